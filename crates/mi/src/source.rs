@@ -1,0 +1,187 @@
+//! Source files and positions: every syntax node points back into the text it came from.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+/// Index of a file in a [`SourceMap`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct FileId(pub u32);
+
+/// A byte range `lo..hi` in one source file.
+///
+/// Spans never take part in equality: two syntax trees are equal when they say the same
+/// thing, wherever it was written. This is what makes `parse(print(tree)) == tree` testable.
+#[derive(Clone, Copy, Debug, Default, Eq)]
+pub struct Span {
+    /// The file the bytes belong to.
+    pub file: FileId,
+    /// Offset of the first byte.
+    pub lo: u32,
+    /// Offset one past the last byte.
+    pub hi: u32,
+}
+
+impl PartialEq for Span {
+    fn eq(&self, _other: &Span) -> bool {
+        true
+    }
+}
+
+impl Span {
+    /// A span from `lo` to `hi` in `file`.
+    pub fn new(file: FileId, lo: u32, hi: u32) -> Span {
+        Span { file, lo, hi }
+    }
+
+    /// The span covering both `self` and `other` (which must be in the same file).
+    pub fn to(self, other: Span) -> Span {
+        Span { file: self.file, lo: self.lo.min(other.lo), hi: self.hi.max(other.hi) }
+    }
+
+    /// The empty span at the start of this one.
+    pub fn start(self) -> Span {
+        Span { file: self.file, lo: self.lo, hi: self.lo }
+    }
+}
+
+/// Largest source file mira reads, in bytes: spans store 32-bit offsets.
+pub const MAX_FILE_SIZE: u64 = u32::MAX as u64 - 1;
+
+/// Where a source file came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Origin {
+    /// A file on disk (the path as it was opened).
+    Disk(PathBuf),
+    /// One of the standard declaration files that mira carries (`base.mi`, …).
+    Builtin(&'static str),
+    /// Text handed to the parser directly (tests, standard input); the name is for messages.
+    Memory(String),
+}
+
+/// One source file: its bytes and where lines start.
+#[derive(Debug)]
+pub struct SourceFile {
+    /// Where the text came from.
+    pub origin: Origin,
+    /// The raw bytes (a `.mi` file may hold binary blocks, so this is not `str`).
+    pub bytes: Arc<[u8]>,
+    line_starts: OnceLock<Vec<u32>>,
+}
+
+impl SourceFile {
+    /// The name used in diagnostics.
+    pub fn name(&self) -> String {
+        match &self.origin {
+            Origin::Disk(p) => p.display().to_string(),
+            Origin::Builtin(n) => format!("<builtin>/{n}"),
+            Origin::Memory(n) => n.clone(),
+        }
+    }
+
+    /// The directory that relative `$include`s of this file are looked up in first.
+    pub fn dir(&self) -> Option<&Path> {
+        match &self.origin {
+            Origin::Disk(p) => p.parent(),
+            _ => None,
+        }
+    }
+
+    fn line_starts(&self) -> &[u32] {
+        self.line_starts.get_or_init(|| {
+            let mut starts = vec![0u32];
+            starts.extend(memchr::memchr_iter(b'\n', &self.bytes).map(|i| i as u32 + 1));
+            starts
+        })
+    }
+
+    /// 1-based line and column (in characters) of byte `offset`.
+    pub fn line_col(&self, offset: u32) -> (u32, u32) {
+        let starts = self.line_starts();
+        let line = starts.partition_point(|&s| s <= offset).saturating_sub(1);
+        let start = starts[line] as usize;
+        let end = (offset as usize).min(self.bytes.len());
+        let col = String::from_utf8_lossy(&self.bytes[start..end.max(start)]).chars().count();
+        (line as u32 + 1, col as u32 + 1)
+    }
+
+    /// The text of 1-based line `line`, without its line break.
+    pub fn line_text(&self, line: u32) -> String {
+        let starts = self.line_starts();
+        let Some(&start) = starts.get(line.saturating_sub(1) as usize) else {
+            return String::new();
+        };
+        let end = starts.get(line as usize).map_or(self.bytes.len(), |&e| e as usize);
+        let text = &self.bytes[start as usize..end];
+        let text = text.strip_suffix(b"\n").unwrap_or(text);
+        let text = text.strip_suffix(b"\r").unwrap_or(text);
+        String::from_utf8_lossy(text).into_owned()
+    }
+}
+
+/// All files read while parsing one scene: the main file and everything it includes.
+#[derive(Debug, Default)]
+pub struct SourceMap {
+    files: Vec<SourceFile>,
+}
+
+impl SourceMap {
+    /// An empty map.
+    pub fn new() -> SourceMap {
+        SourceMap::default()
+    }
+
+    /// Adds a file and returns its id.
+    pub fn add(&mut self, origin: Origin, bytes: impl Into<Arc<[u8]>>) -> FileId {
+        let id = FileId(self.files.len() as u32);
+        self.files.push(SourceFile { origin, bytes: bytes.into(), line_starts: OnceLock::new() });
+        id
+    }
+
+    /// The file with this id.
+    pub fn file(&self, id: FileId) -> &SourceFile {
+        &self.files[id.0 as usize]
+    }
+
+    /// Every file, in the order they were read.
+    pub fn files(&self) -> impl Iterator<Item = (FileId, &SourceFile)> {
+        self.files.iter().enumerate().map(|(i, f)| (FileId(i as u32), f))
+    }
+
+    /// The bytes a span covers.
+    pub fn slice(&self, span: Span) -> &[u8] {
+        &self.file(span.file).bytes[span.lo as usize..span.hi as usize]
+    }
+
+    /// `file:line:col` of the start of a span.
+    pub fn location(&self, span: Span) -> String {
+        let file = self.file(span.file);
+        let (line, col) = file.line_col(span.lo);
+        format!("{}:{}:{}", file.name(), line, col)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_are_one_based() {
+        let mut map = SourceMap::new();
+        let id = map.add(Origin::Memory("t.mi".into()), b"ab\ncd\r\nef".to_vec());
+        let f = map.file(id);
+        assert_eq!(f.line_col(0), (1, 1));
+        assert_eq!(f.line_col(1), (1, 2));
+        assert_eq!(f.line_col(3), (2, 1));
+        assert_eq!(f.line_col(7), (3, 1));
+        assert_eq!(f.line_text(2), "cd");
+        assert_eq!(f.line_text(3), "ef");
+        assert_eq!(map.location(Span::new(id, 8, 9)), "t.mi:3:2");
+    }
+
+    #[test]
+    fn columns_count_characters_not_bytes() {
+        let mut map = SourceMap::new();
+        let id = map.add(Origin::Memory("u.mi".into()), "\"é\" x".as_bytes().to_vec());
+        assert_eq!(map.file(id).line_col(5), (1, 5));
+    }
+}

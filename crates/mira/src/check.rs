@@ -1,0 +1,96 @@
+//! `mira check`: parse files, print diagnostics and a one-line summary per file.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use mi::stats::Stats;
+
+use crate::IncludeArgs;
+
+/// Arguments of `mira check`.
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// The .mi files to check.
+    #[arg(required = true, value_name = "FILE")]
+    files: Vec<PathBuf>,
+    #[command(flatten)]
+    include: IncludeArgs,
+    /// Print warnings too (errors are always printed).
+    #[arg(short = 'W', long)]
+    warnings: bool,
+}
+
+/// Runs the command.
+pub fn run(args: &CheckArgs) -> ExitCode {
+    let options = args.include.read_options();
+    let mut failed = false;
+    let stdout = std::io::stdout();
+    let stderr = std::io::stderr();
+    for path in &args.files {
+        let parsed = match mi::parse_file(path, &options) {
+            Ok(p) => p,
+            Err(e) => {
+                let _ = writeln!(stderr.lock(), "{}: error: {}", path.display(), e.message);
+                failed = true;
+                continue;
+            }
+        };
+        let diags = &parsed.diagnostics;
+        for d in &diags.list {
+            if d.is_error() || args.warnings {
+                let _ = write!(stderr.lock(), "{}", d.render(&parsed.sources));
+            }
+        }
+        failed |= diags.has_errors();
+        let _ = writeln!(stdout.lock(), "{}", summary(path, &parsed));
+    }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn plural(n: usize, word: &str) -> String {
+    let s = if n == 1 || word.ends_with('s') { "" } else { "s" };
+    format!("{n} {word}{s}")
+}
+
+/// `file: N errors, N warnings; element counts; geometry counts; shaders used`.
+fn summary(path: &std::path::Path, parsed: &mi::Parsed) -> String {
+    let stats = Stats::of(&parsed.items);
+    let d = &parsed.diagnostics;
+    let mut parts = vec![format!("{}, {}", plural(d.error_count(), "error"), plural(d.warning_count(), "warning"))];
+    let elements: Vec<String> = stats.elements.iter().map(|(k, n)| plural(*n, k)).collect();
+    if !elements.is_empty() {
+        parts.push(elements.join(", "));
+    }
+    let mut geometry = Vec::new();
+    if stats.polygons > 0 {
+        geometry.push(format!("{} ({} triangles)", plural(stats.polygons, "polygon"), stats.polygon_triangles));
+    }
+    if stats.trilist_triangles > 0 {
+        geometry.push(format!("{} trilist triangles", stats.trilist_triangles));
+    }
+    if stats.subdivision_faces > 0 {
+        geometry.push(plural(stats.subdivision_faces, "subdivision face"));
+    }
+    if stats.surfaces > 0 {
+        geometry.push(plural(stats.surfaces, "free-form surface"));
+    }
+    if stats.hairs > 0 {
+        geometry.push(plural(stats.hairs, "hair"));
+    }
+    if !geometry.is_empty() {
+        parts.push(geometry.join(", "));
+    }
+    if stats.includes > 0 {
+        parts.push(plural(stats.includes, "include"));
+    }
+    if !stats.shaders_used.is_empty() {
+        let names: Vec<&str> = stats.shaders_used.iter().map(String::as_str).collect();
+        parts.push(format!("shaders used: {}", names.join(" ")));
+    }
+    format!("{}: {}", path.display(), parts.join("; "))
+}

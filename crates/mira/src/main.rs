@@ -1,0 +1,47 @@
+//! `mira`: render mental ray and Iray `.mi` scenes.
+
+mod check;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Render mental ray and Iray `.mi` scenes.
+#[derive(Parser)]
+#[command(name = "mira", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Read .mi files (following $include) and report problems and a summary of each.
+    ///
+    /// Exit status 0 when no file has errors, 1 otherwise.
+    Check(check::CheckArgs),
+}
+
+/// Include-path options shared by every command that reads scenes.
+#[derive(clap::Args, Clone, Debug)]
+pub struct IncludeArgs {
+    /// Directory to search for $include files (repeatable; searched in order, before the
+    /// directories of the MI_INCLUDE_PATH environment variable).
+    #[arg(short = 'I', long = "include", value_name = "DIR")]
+    pub include: Vec<PathBuf>,
+}
+
+impl IncludeArgs {
+    /// The read options these arguments ask for.
+    pub fn read_options(&self) -> mi::ReadOptions {
+        mi::ReadOptions { include_paths: self.include.clone(), ..mi::ReadOptions::default() }.with_env_include_path()
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Check(args) => check::run(&args),
+    }
+}
