@@ -22,5 +22,10 @@ fn main() {
         best = best.min(secs);
         drop(parsed);
     }
-    println!("{path}: {} bytes, best of {runs}: {:.1} ms, {:.0} MB/s", bytes.len(), best * 1e3, bytes.len() as f64 / best / 1e6);
+    println!(
+        "{path}: {} bytes, best of {runs}: {:.1} ms, {:.0} MB/s",
+        bytes.len(),
+        best * 1e3,
+        bytes.len() as f64 / best / 1e6
+    );
 }

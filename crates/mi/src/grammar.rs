@@ -425,7 +425,7 @@ pub static COMMANDS: &[Rule] = &[
     r("min version", &[Name]),
     r("max version", &[Name]),
     r("debug", &[Name, Opt(&[Name])]),
-    r("set", &[Name, Opt(&[Name])]),
+    r("set", &[Name, Opt(&[Name])]), // read by the parser itself (see `Parser::item`)
     r("touch", &[Name]),
     r("call", &[Shaders]),
     r("root", &[Name]),

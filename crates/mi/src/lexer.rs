@@ -269,6 +269,23 @@ fn parse_f32_simple(s: &[u8]) -> Option<(f32, usize)> {
     Some((if neg { -v } else { v }, i))
 }
 
+/// The arguments of a directive whose span runs from its `$`: the text after the word.
+pub fn directive_args(directive_text: &[u8]) -> &[u8] {
+    let word_end =
+        directive_text.iter().skip(1).position(|b| !b.is_ascii_alphabetic()).map_or(directive_text.len(), |i| i + 1);
+    let rest = &directive_text[word_end..];
+    // Drop a trailing comment.
+    let mut in_string = false;
+    for (i, &b) in rest.iter().enumerate() {
+        match b {
+            b'"' => in_string = !in_string,
+            b'#' if !in_string => return rest[..i].trim_ascii(),
+            _ => {}
+        }
+    }
+    rest.trim_ascii()
+}
+
 /// Parses an integer literal's bytes (optional sign, decimal digits); `None` on overflow.
 fn parse_int(s: &[u8]) -> Option<i64> {
     let (neg, digits) = match s.first() {
@@ -520,7 +537,8 @@ impl Lexer {
         if needs_args && lo == hi {
             return Err(self.err(start, end, format!("'${}' needs a name", String::from_utf8_lossy(word))));
         }
-        Ok(Token { tok: Tok::Directive(directive), span: self.span(lo, hi) })
+        // The span runs from `$` to the end of the arguments; see [`directive_args`].
+        Ok(Token { tok: Tok::Directive(directive), span: self.span(start, hi.max(end)) })
     }
 
     /// Skips spaces and tabs (not line breaks).
@@ -843,7 +861,7 @@ mod tests {
         assert_eq!(&lx.src()[t.span.lo as usize..t.span.hi as usize], b"base.mi");
         let t = lx.next_token().unwrap();
         assert_eq!(t.tok, Tok::Directive(Directive::IfDef));
-        assert_eq!(&lx.src()[t.span.lo as usize..t.span.hi as usize], b"\"x\"");
+        assert_eq!(directive_args(&lx.src()[t.span.lo as usize..t.span.hi as usize]), b"\"x\"");
     }
 
     #[test]
@@ -864,8 +882,22 @@ mod tests {
     #[test]
     fn simple_float_path_agrees_with_the_general_parser() {
         let samples = [
-            "0", "1.", ".5", "-0.136563", "549.6", "1e-5", "-2.5e-05", "16777216", "0.1", "3.4028235e10", "7e-10",
-            "123456.7", "0.000001", "9.999999", "-0", "+4.25",
+            "0",
+            "1.",
+            ".5",
+            "-0.136563",
+            "549.6",
+            "1e-5",
+            "-2.5e-05",
+            "16777216",
+            "0.1",
+            "3.4028235e10",
+            "7e-10",
+            "123456.7",
+            "0.000001",
+            "9.999999",
+            "-0",
+            "+4.25",
         ];
         for s in samples {
             let general: f32 = fast_float2::parse(s).unwrap();

@@ -275,7 +275,7 @@ impl TokenStream {
 
     /// Evaluates a conditional directive whose arguments are at `args`.
     fn condition(&self, d: Directive, args: Span) -> bool {
-        let text = String::from_utf8_lossy(self.sources.slice(args)).into_owned();
+        let text = String::from_utf8_lossy(crate::lexer::directive_args(self.sources.slice(args))).into_owned();
         let words = split_args(&text);
         let key = words.first().map_or("", String::as_str);
         let constant = words.get(1).map_or("", String::as_str);

@@ -506,8 +506,8 @@ impl Parser {
             Tok::Name => {}
             Tok::Directive(Directive::Lookup) => {
                 self.bump()?;
-                let key =
-                    Name { text: String::from_utf8_lossy(self.bytes(&t)).trim_matches('"').to_string(), span: t.span };
+                let args = crate::lexer::directive_args(self.bytes(&t));
+                let key = Name { text: String::from_utf8_lossy(args).trim_matches('"').to_string(), span: t.span };
                 return Ok(Item::Command(Command::Kw(KwStmt {
                     key: "$lookup",
                     args: vec![Arg::Name(key)],
@@ -580,6 +580,22 @@ impl Parser {
                 Item::Render(Render { root, camera, options, span })
             }
             b"registry" => Item::Registry(self.registry()?),
+            b"set" => {
+                // The variable is recorded before anything after it is looked at: the next
+                // line may be a conditional that tests it.
+                self.bump()?;
+                let var = self.name()?;
+                self.ts.set_var(&var.text, "");
+                let mut args = vec![Arg::Name(var.clone())];
+                let mut end = var.span;
+                if self.at_str()? {
+                    let value = self.name()?;
+                    self.ts.set_var(&var.text, &value.text);
+                    end = value.span;
+                    args.push(Arg::Name(value));
+                }
+                Item::Command(Command::Kw(KwStmt { key: "set", args, span: t.span.to(end) }))
+            }
             b"frame" => {
                 return Err(Diagnostic::error(
                     t.span,
@@ -593,23 +609,10 @@ impl Parser {
                         format!("unknown keyword {}: expected an element or command", self.describe(&t)),
                     ));
                 };
-                if stmt.key == "set" {
-                    let var = arg_text(&stmt.args, 0);
-                    let value = arg_text(&stmt.args, 1);
-                    self.ts.set_var(&var, &value);
-                }
                 Item::Command(Command::Kw(stmt))
             }
         };
         Ok(item)
-    }
-}
-
-/// The text of the `i`-th argument if it is a name.
-fn arg_text(args: &[Arg], i: usize) -> String {
-    match args.get(i) {
-        Some(Arg::Name(n)) => n.text.clone(),
-        _ => String::new(),
     }
 }
 

@@ -80,13 +80,27 @@ impl Parser {
             P::Opt(ps) => self.can_start(&ps[0])?,
             P::Alt(alts) => {
                 for alt in alts.iter() {
-                    if self.can_start(&alt[0])? {
+                    if self.can_start_seq(alt)? {
                         return Ok(true);
                     }
                 }
                 false
             }
         })
+    }
+
+    /// Whether the next token can start the sequence `ps` (leading optional parts may be
+    /// absent).
+    fn can_start_seq(&mut self, ps: &[P]) -> PResult<bool> {
+        for p in ps {
+            if self.can_start(p)? {
+                return Ok(true);
+            }
+            if !matches!(p, P::Opt(_) | P::Ints(0, _) | P::Floats(0, _)) {
+                return Ok(false);
+            }
+        }
+        Ok(false)
     }
 
     /// What a pattern expects, for messages.
@@ -153,7 +167,11 @@ impl Parser {
                     n += 1;
                 }
                 if n < *min {
-                    return self.expected(&format!("{min} integers"));
+                    return self.expected(&if *min == 1 {
+                        "an integer".to_string()
+                    } else {
+                        format!("{min} integers")
+                    });
                 }
             }
             P::Floats(min, max) => {
@@ -163,7 +181,7 @@ impl Parser {
                     n += 1;
                 }
                 if n < *min {
-                    return self.expected(&format!("{min} numbers"));
+                    return self.expected(&if *min == 1 { "a number".to_string() } else { format!("{min} numbers") });
                 }
             }
             P::Words(ws) => {
@@ -213,7 +231,7 @@ impl Parser {
             }
             P::Alt(alts) => {
                 for alt in alts.iter() {
-                    if self.can_start(&alt[0])? {
+                    if self.can_start_seq(alt)? {
                         for p in alt.iter() {
                             self.pattern(p, out)?;
                         }

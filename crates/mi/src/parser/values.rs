@@ -96,6 +96,10 @@ impl Parser {
                     self.bump()?;
                 }
                 Tok::RParen => {}
+                Tok::Eof => {
+                    return Err(Diagnostic::error(open, "parameter list is not closed by ')'")
+                        .with_note(Some(t.span), "the file ends here"))
+                }
                 _ => return self.expected("',' or ')' after a parameter value"),
             }
         }
