@@ -46,6 +46,10 @@ pub enum P {
     Tree,
     /// An approximation technique and what it applies to (`approximate …`).
     Approx,
+    /// A literal `,`.
+    Comma,
+    /// One or more hexadecimal byte strings.
+    Bytes,
     /// All of these, present when the next token can start the first of them.
     Opt(&'static [P]),
     /// The first alternative whose first pattern fits the next token.
@@ -176,7 +180,15 @@ pub static OPTIONS: &[Rule] = &[
     r("data", &[DATA]),
     r("irradiance particles", &[Bool]),
     r("ambient occlusion", &[Bool]),
-    r("ibl", &[Alt(&[&[Bool], &[Words(&["falloff", "accuracy", "jitter"]), Floats(0, 2)]])]),
+    r("ibl", &[Bool]),
+    r("ibl jitter", &[Bool]),
+    r("ibl falloff", &[Floats(1, 2)]),
+    r("ibl accuracy", &[Num, Opt(&[Num])]),
+    r("trace falloff", &[Floats(1, 2)]),
+    r("globillum falloff", &[Floats(1, 2)]),
+    r("caustic falloff", &[Floats(1, 2)]),
+    r("raycl subdivision", &[Ints(1, 2)]),
+    r("raycl memory", &[Int]),
 ];
 
 /// Statements of `camera … end camera` (besides `output`, `framebuffer` and attributes).
@@ -416,7 +428,7 @@ pub static PHENOMENON: &[Rule] = &[
 /// Top-level commands.
 pub static COMMANDS: &[Rule] = &[
     r("link", &[Name]),
-    r("code", &[Name]),
+    r("code", &[Alt(&[&[Bytes], &[Name]])]),
     r("system", &[Name]),
     r("verbose", &[Alt(&[&[Bool], &[Int]])]),
     r("echo", &[Name]),
@@ -427,7 +439,7 @@ pub static COMMANDS: &[Rule] = &[
     r("debug", &[Name, Opt(&[Name])]),
     r("set", &[Name, Opt(&[Name])]), // read by the parser itself (see `Parser::item`)
     r("touch", &[Name]),
-    r("call", &[Shaders]),
+    r("call", &[Shaders, Opt(&[Comma, Name, Name])]),
     r("root", &[Name]),
 ];
 

@@ -152,38 +152,33 @@ fn is_delimiter(b: u8) -> bool {
     )
 }
 
-/// Decodes the body of a quoted string (without the quotes), resolving backslash escapes:
-/// `\n`, `\t`, `\r`, `\"`, `\\`, and octal `\ooo`; any other escaped character stands for itself.
+/// Decodes the body of a quoted string (without the quotes): `\"` and `\\` are the only
+/// escapes (as the mental ray manual documents); any other backslash is kept with the
+/// character after it, so Windows paths such as `"C:\textures\new"` survive. Bytes that
+/// are not UTF-8 (Windows code-page names) are read as Latin-1, which keeps distinct names
+/// distinct.
 pub fn unescape(body: &[u8]) -> String {
     let mut out = Vec::with_capacity(body.len());
     let mut i = 0;
     while i < body.len() {
         let b = body[i];
-        if b != b'\\' || i + 1 == body.len() {
+        if b == b'\\' && matches!(body.get(i + 1), Some(b'"' | b'\\')) {
+            out.push(body[i + 1]);
+            i += 2;
+        } else {
             out.push(b);
             i += 1;
-            continue;
-        }
-        let e = body[i + 1];
-        i += 2;
-        match e {
-            b'n' => out.push(b'\n'),
-            b't' => out.push(b'\t'),
-            b'r' => out.push(b'\r'),
-            b'0'..=b'7' => {
-                let mut v = u32::from(e - b'0');
-                let mut k = 0;
-                while k < 2 && i < body.len() && (b'0'..=b'7').contains(&body[i]) {
-                    v = v * 8 + u32::from(body[i] - b'0');
-                    i += 1;
-                    k += 1;
-                }
-                out.push(v as u8);
-            }
-            other => out.push(other),
         }
     }
-    String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+    bytes_to_string(out)
+}
+
+/// Text of bytes: UTF-8 when valid, else Latin-1 (every byte one character).
+pub fn bytes_to_string(bytes: Vec<u8>) -> String {
+    match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => e.into_bytes().iter().map(|&b| b as char).collect(),
+    }
 }
 
 /// Exact powers of ten as `f32` (all representable).
@@ -301,9 +296,10 @@ fn parse_int(s: &[u8]) -> Option<i64> {
 }
 
 impl Lexer {
-    /// A lexer at the start of `src`.
+    /// A lexer at the start of `src` (after a UTF-8 byte-order mark, if there is one).
     pub fn new(file: FileId, src: Arc<[u8]>) -> Lexer {
-        Lexer { file, src, pos: 0 }
+        let pos = if src.starts_with(&[0xef, 0xbb, 0xbf]) { 3 } else { 0 };
+        Lexer { file, src, pos }
     }
 
     /// The whole source.
@@ -596,11 +592,9 @@ impl Lexer {
             if text.first() == Some(&b'$') {
                 let word_len = text[1..].iter().position(|b| !b.is_ascii_alphabetic()).map_or(text.len() - 1, |i| i);
                 let word = &text[1..1 + word_len];
-                let args_at = line + (raw.len() - text.len()) + 1 + word_len;
-                let args = self.src[args_at..next].trim_ascii();
-                let args_lo =
-                    args_at + (self.src[args_at..next].len() - self.src[args_at..next].trim_ascii_start().len());
-                let args_span = self.span(args_lo, args_lo + args.len());
+                // The span runs from `$` to the end of the line, like a directive token's.
+                let dollar = line + (raw.len() - text.len());
+                let args_span = self.span(dollar, dollar + text.trim_ascii_end().len());
                 match word {
                     b"ifdef" | b"ifndef" | b"ifeq" | b"ifneq" => depth += 1,
                     b"endif" if depth == 0 => {
@@ -833,7 +827,9 @@ mod tests {
     #[test]
     fn string_escapes() {
         assert_eq!(lex_all(r#""a\"b""#), vec![Tok::Str { escaped: true }]);
-        assert_eq!(unescape(br#"a\"b\\c\n\101"#), "a\"b\\c\nA");
+        assert_eq!(unescape(br#"a\"b\\c"#), "a\"b\\c");
+        assert_eq!(unescape(br#"C:\textures\new\x.map"#), r"C:\textures\new\x.map");
+        assert_eq!(unescape(b"Mat\xe9riau"), "Mat\u{e9}riau");
     }
 
     #[test]

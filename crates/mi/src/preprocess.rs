@@ -310,16 +310,33 @@ impl TokenStream {
         self.vars.contains_key(key) || self.value_of(key).is_some_and(|v| !v.is_empty())
     }
 
-    /// Replaces `{key}` by registry values (unknown keys are left as written).
+    /// Replaces `{key}` by registry values and `{$NAME}` by environment variables,
+    /// recursively (registry values may name other keys); unknown keys are left as written.
     fn expand(&self, text: &str) -> String {
+        let mut current = text.to_string();
+        for _ in 0..16 {
+            let next = self.expand_once(&current);
+            if next == current {
+                break;
+            }
+            current = next;
+        }
+        current
+    }
+
+    fn expand_once(&self, text: &str) -> String {
         let mut out = String::new();
         let mut rest = text;
         while let Some(open) = rest.find('{') {
             let Some(close) = rest[open..].find('}') else { break };
             let key = &rest[open + 1..open + close];
             out.push_str(&rest[..open]);
-            match self.registry.get(key) {
-                Some(v) => out.push_str(v),
+            let value = match key.strip_prefix('$') {
+                Some(env) => std::env::var(env).ok(),
+                None => self.registry.get(key).cloned(),
+            };
+            match value {
+                Some(v) => out.push_str(&v),
                 None => out.push_str(&rest[open..=open + close]),
             }
             rest = &rest[open + close + 1..];
@@ -371,6 +388,17 @@ impl TokenStream {
                 searched.push(dir.unwrap_or_default().join(path));
             }
             searched.extend(self.options.include_paths.iter().map(|d| d.join(path)));
+            // mental ray's own include path, when a registry entry sets it.
+            if let Some(dirs) = self.registry.get("_MI_REG_INCLUDE") {
+                let dirs = self.expand(dirs);
+                searched.extend(dirs.split([';', ':']).filter(|d| !d.is_empty()).map(|d| Path::new(d).join(path)));
+            }
+        }
+        if expanded.contains('\\') {
+            // Windows paths written by Windows exporters.
+            let unix: Vec<PathBuf> =
+                searched.iter().map(|p| PathBuf::from(p.to_string_lossy().replace('\\', "/"))).collect();
+            searched.extend(unix);
         }
         if let Some(found) = searched.iter().find(|p| p.is_file()) {
             return IncludeTarget::File(found.clone());

@@ -361,6 +361,11 @@ impl Printer {
     }
 
     fn kw(&mut self, k: &KwStmt) {
+        // `visible trace approximate …`: the flags come before the keyword.
+        if let (true, [Arg::Approx(a)]) = (k.key == "approximate", k.args.as_slice()) {
+            self.approximation(a, true);
+            return;
+        }
         self.sp(k.key);
         for a in &k.args {
             self.arg(a);
@@ -411,6 +416,12 @@ impl Printer {
             }
             Arg::Tree(t) => self.tree(t),
             Arg::Approx(a) => self.approximation(a, false),
+            Arg::Comma => self.w(","),
+            Arg::Bytes(pieces) => {
+                for p in pieces {
+                    self.sp(&hex(p));
+                }
+            }
         }
     }
 
@@ -530,6 +541,7 @@ impl Printer {
                     Atom::Num(n) => self.sp(&num(*n)),
                     Atom::Comma => self.w(","),
                     Atom::Equals => self.sp("="),
+                    Atom::Percent => self.w("%"),
                 }
                 return;
             }

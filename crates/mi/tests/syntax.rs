@@ -542,3 +542,108 @@ fn real_file_tolerance() {
     assert_eq!(s.text.len(), 2000 * 6);
     assert!(s.text.starts_with("x\"y\\z "));
 }
+
+#[test]
+fn real_world_forms_read_without_complaint() {
+    // tests/data/forms: one file per construct family, in the styles real exporters write.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/forms");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "mi") {
+            let parsed = mi::parse_file(&path, &mi::ReadOptions::default()).unwrap();
+            assert!(parsed.diagnostics.list.is_empty(), "{}", parsed.diagnostics.render(&parsed.sources));
+            count += 1;
+        }
+    }
+    assert!(count >= 40);
+}
+
+#[test]
+fn chained_conditionals_take_the_right_branch() {
+    let text = "set \"exporter\" \"mayatomr\"\n$ifdef \"nothing\"\ngarbage 1\n$elseifeq \"exporter\" \"mayatomr\"\n\
+                options \"a\" end options\n$else\ngarbage 2\n$endif\nset \"gi\"\n$ifdef \"nothing\"\ngarbage 3\n\
+                $elseifdef gi\noptions \"b\" end options\n$endif\n$ifndef \"gi\"\ngarbage\n$elseifdef \"nothing\"\ngarbage\n\
+                $else\noptions \"c\" end options\n$endif\n";
+    let parsed = parse(text);
+    let names: Vec<&str> = parsed
+        .items
+        .iter()
+        .filter_map(|i| if let Item::Options(b) = i { Some(b.name.as_str()) } else { None })
+        .collect();
+    assert_eq!(names, vec!["a", "b", "c"]);
+}
+
+#[test]
+fn windows_paths_latin1_names_and_byte_order_marks() {
+    let mut text = vec![0xef, 0xbb, 0xbf];
+    text.extend_from_slice(b"color texture \"t\" \"C:\\textures\\new\\wood.jpg\"\nmaterial \"Mat\xe9riau\" end material\nmaterial \"Mat\xe8riau\" end material\n");
+    let parsed = mi::parse_source(mi::Origin::Memory("w.mi".into()), text, &mi::ReadOptions::default());
+    assert!(parsed.diagnostics.list.is_empty(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let Item::Texture(t) = &parsed.items[0] else { panic!() };
+    assert!(matches!(&t.source, TextureSource::File { file, .. } if file.text == r"C:\textures\new\wood.jpg"));
+    let names: Vec<&str> = parsed.items[1..]
+        .iter()
+        .filter_map(|i| if let Item::Material(m) = i { Some(m.name.as_str()) } else { None })
+        .collect();
+    assert_eq!(names, vec!["Mat\u{e9}riau", "Mat\u{e8}riau"]);
+}
+
+#[test]
+fn a_bad_character_costs_one_error_and_not_the_next_element() {
+    let parsed = mi::parse_str("b.mi", "options \"o\" end options\n~\ncamera \"c\" end camera\n");
+    assert_eq!(parsed.diagnostics.error_count(), 1, "{}", parsed.diagnostics.render(&parsed.sources));
+    assert!(matches!(parsed.items.last(), Some(Item::Camera(_))));
+}
+
+#[test]
+fn binary_topology_and_triangle_data_are_read_by_count() {
+    let mut text = b"object \"o\" tagged\n trilist vertex 3 p\n triangle 1 data 1 1\n [ 0 0 0 1 0 0 0 1 0 ]\n [ 0 0 1 2 ]\n triangle data integer `".to_vec();
+    text.extend_from_slice(&0x60u32.to_be_bytes());
+    text.extend_from_slice(b"` integer `");
+    text.extend_from_slice(&0x6060u32.to_be_bytes());
+    text.extend_from_slice(b"`\n topology integer `");
+    for w in [96u32, 0x60_00_00_60, 2] {
+        text.extend_from_slice(&w.to_be_bytes());
+    }
+    text.extend_from_slice(b"`\n end trilist\nend object\n");
+    let parsed = mi::parse_source(mi::Origin::Memory("t.mi".into()), text, &mi::ReadOptions::default());
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let Item::Object(o) = &parsed.items[0] else { panic!() };
+    let Geometry::Trilist(t) = &o.geometry[0] else { panic!() };
+    assert_eq!(t.triangle_data, Some((vec![0x60], vec![0x6060])));
+    assert_eq!(t.topology, Some(vec![96, 0x60_00_00_60, 2]));
+}
+
+#[test]
+fn registry_keys_expand_recursively_in_include_paths() {
+    let dir = std::env::temp_dir().join(format!("mira-registry-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("sub/e.mi"), "options \"from_include\" end options\n").unwrap();
+    let main = dir.join("main.mi");
+    std::fs::write(
+        &main,
+        format!(
+            "registry \"{{ROOT}}\" value \"{}\" end registry\nregistry \"{{SUB}}\" value \"{{ROOT}}/sub\" end registry\n$include \"{{SUB}}/e.mi\"\n",
+            dir.display()
+        ),
+    )
+    .unwrap();
+    let parsed = mi::parse_file(&main, &mi::ReadOptions::default()).unwrap();
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    assert_eq!(Stats::of(&parsed.items).elements.get("options"), Some(&1));
+}
+
+#[test]
+fn unquoted_and_missing_names_where_the_grammar_allows_them() {
+    let parsed = parse(
+        "object group g1 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 c 0 1 2 end group end object\ninstance \"i\" pCubeShape1 visible on end instance\n\
+         call \"mib_color_alpha\" (), \"a\" \"b\"\ncode 'c0de'\n",
+    );
+    let Item::Object(o) = &parsed.items[0] else { panic!() };
+    assert_eq!(o.name.text, "");
+    let Geometry::Group(g) = &o.geometry[0] else { panic!() };
+    assert_eq!(g.name.as_ref().unwrap().text, "g1");
+    let Item::Instance(i) = &parsed.items[1] else { panic!() };
+    assert!(matches!(&i.target, InstanceTarget::Element(n) if n.text == "pCubeShape1"));
+}

@@ -53,8 +53,13 @@ pub fn run(args: &CheckArgs) -> ExitCode {
 }
 
 fn plural(n: usize, word: &str) -> String {
-    let s = if n == 1 || word.ends_with('s') { "" } else { "s" };
-    format!("{n} {word}{s}")
+    if n == 1 || word.ends_with('s') || word == "data" {
+        return format!("{n} {word}");
+    }
+    match word.strip_suffix('y') {
+        Some(stem) => format!("{n} {stem}ies"),
+        None => format!("{n} {word}s"),
+    }
 }
 
 /// `file: N errors, N warnings; element counts; geometry counts; shaders used`.

@@ -221,6 +221,13 @@ impl Polygons {
         (first..end).map(move |j| &self.indices[self.loop_starts[j] as usize..self.loop_starts[j + 1] as usize])
     }
 
+    /// All vertex indices of polygon `i` (outline and holes).
+    pub fn indices_of(&self, i: usize) -> &[u32] {
+        let first = self.list[i].first_loop as usize;
+        let end = self.list.get(i + 1).map_or(self.loop_starts.len().saturating_sub(1), |p| p.first_loop as usize);
+        &self.indices[self.loop_starts[first] as usize..self.loop_starts[end] as usize]
+    }
+
     /// Starts a polygon; add its loops with [`Polygons::push_loop`].
     pub fn begin(&mut self, kind: PolygonKind, material: PolygonMaterial, offset: Offset) {
         if self.loop_starts.is_empty() {

@@ -251,6 +251,10 @@ pub enum Arg {
     Tree(TokenTree),
     /// An approximation.
     Approx(Box<Approximation>),
+    /// `,` (between the parts of `call`).
+    Comma,
+    /// Hexadecimal byte strings (`code 'c0de…'`).
+    Bytes(Vec<Vec<u8>>),
 }
 
 /// `attribute [override] {const|global} type "name" value` (Iray and mental ray 3.8+): a
@@ -671,4 +675,6 @@ pub enum Atom {
     Comma,
     /// `=`
     Equals,
+    /// `%`
+    Percent,
 }

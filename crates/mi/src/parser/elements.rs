@@ -205,7 +205,7 @@ impl Parser {
     }
 
     /// A single-quoted hexadecimal byte string.
-    fn byte_string(&mut self) -> PResult<Vec<u8>> {
+    pub(crate) fn byte_string(&mut self) -> PResult<Vec<u8>> {
         let t = self.bump()?;
         let raw = self.bytes(&t);
         let digits: Vec<u8> = raw[1..raw.len() - 1].iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
@@ -235,6 +235,13 @@ impl Parser {
         let target = if self.eat("geometry")? {
             InstanceTarget::Geometry(self.shader_list()?)
         } else if self.at_str()? {
+            InstanceTarget::Element(self.name()?)
+        } else if self.peek()?.tok == Tok::Name
+            && !self.at("end")?
+            && !self.at("attribute")?
+            && self.match_rule(&[grammar::INSTANCE])?.is_none()
+        {
+            // An unquoted element name.
             InstanceTarget::Element(self.name()?)
         } else {
             InstanceTarget::None
@@ -319,7 +326,8 @@ impl Parser {
                     _ => return self.expected("a byte string in 'single quotes' or ']'"),
                 }
             }
-            if total != size {
+            // An empty list is how exporters reserve data filled in later.
+            if total != size && !pieces.is_empty() {
                 self.warn(start, format!("data '{}' declares {size} bytes but holds {total}", name.text));
             }
             DataBody::Bytes { size, pieces }

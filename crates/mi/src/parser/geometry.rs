@@ -30,7 +30,12 @@ impl Parser {
     pub fn object(&mut self) -> PResult<Object> {
         let start = self.expect("object")?;
         self.ends.push("object");
-        let name = self.name()?;
+        // The name is optional in the grammar: an object may start with its flags.
+        let next = self.peek()?;
+        let unnamed = next.tok == Tok::Name
+            && (["group", "trilist", "hair", "basis", "end", "attribute"].iter().any(|w| self.is(&next, w))
+                || self.match_rule(&[grammar::OBJECT])?.is_some());
+        let name = if unnamed { Name { text: String::new(), span: next.span.start() } } else { self.name()? };
         let mut object = Object { name, stmts: Vec::new(), bases: Vec::new(), geometry: Vec::new(), span: start };
         loop {
             self.not_eof("object", start)?;
@@ -110,7 +115,33 @@ impl Parser {
     fn group(&mut self, tagged: bool) -> PResult<Group> {
         let start = self.expect("group")?;
         let mut group = Group::default();
-        if self.at_str()? {
+        let next = self.peek()?;
+        let unquoted_name = next.tok == Tok::Name
+            && ![
+                "v",
+                "c",
+                "cp",
+                "p",
+                "strip",
+                "fan",
+                "end",
+                "subdivision",
+                "ccmesh",
+                "curve",
+                "space",
+                "surface",
+                "connect",
+                "merge",
+                "approximate",
+                "visible",
+                "trace",
+                "shadow",
+                "caustic",
+                "globillum",
+            ]
+            .iter()
+            .any(|w| self.is(&next, w));
+        if self.at_str()? || unquoted_name {
             group.name = Some(self.name()?);
         }
         if self.eat("merge")? {
@@ -153,12 +184,8 @@ impl Parser {
         loop {
             let lx = self.lexer()?;
             while let Some(x) = lx.try_f32()? {
-                let at = lx.pos;
                 let (Some(y), Some(z)) = (lx.try_f32()?, lx.try_f32()?) else {
-                    return Err(Diagnostic::error(
-                        Span::new(lx.file, at as u32, at as u32 + 1),
-                        "a vector needs three numbers",
-                    ));
+                    return Err(at_lexer(lx, "a vector needs three numbers; the third is missing here"));
                 };
                 out.push([x, y, z]);
             }
@@ -292,7 +319,7 @@ impl Parser {
                 let b = &lx.src()[t.span.lo as usize + 1..t.span.hi as usize - 1];
                 let text = match t.tok {
                     Tok::Str { escaped: true } => crate::lexer::unescape(b),
-                    _ => String::from_utf8_lossy(b).into_owned(),
+                    _ => crate::lexer::bytes_to_string(b.to_vec()),
                 };
                 let index = match polys.material_names.iter().rposition(|n| n.text == text) {
                     Some(i) => i,
@@ -346,10 +373,10 @@ impl Parser {
         Ok(())
     }
 
-    /// `count` numbers (sharpness values for set mask bits, edges of a face).
-    fn exact_floats(&mut self, count: usize) -> PResult<Vec<f64>> {
-        let mut v = Vec::with_capacity(count.min(64));
-        for _ in 0..count {
+    /// Numbers while they come (crease sharpness values: one per set mask bit as a rule).
+    fn floats_while(&mut self) -> PResult<Vec<f64>> {
+        let mut v = Vec::new();
+        while self.at_number()? {
             v.push(self.float()?);
         }
         Ok(v)
@@ -418,7 +445,7 @@ impl Parser {
                 loop {
                     if self.eat("crease")? {
                         let mask = self.uint("a crease edge mask")?;
-                        let values = self.exact_floats(mask.count_ones() as usize)?;
+                        let values = self.floats_while()?;
                         extras.push(FaceExtra::Crease { mask, values });
                     } else if self.eat("trim")? {
                         extras.push(FaceExtra::Trim(self.uint("a trim edge mask")?));
@@ -478,16 +505,14 @@ impl Parser {
                     self.bump()?;
                     let mask = self.uint("a detail vertex mask")?;
                     let mut indices = Vec::new();
-                    for _ in 0..mask.count_ones() {
-                        indices.push(self.uint("a detail vector index")?);
-                    }
+                    self.indices(&mut indices)?;
                     Hira::Detail { mask, indices }
                 }
                 (Tok::Name, b"crease") => {
                     self.bump()?;
                     let child = self.int()?;
                     let mask = self.uint("a crease edge mask")?;
-                    let values = self.exact_floats(mask.count_ones() as usize)?;
+                    let values = self.floats_while()?;
                     Hira::Crease { child, mask, values }
                 }
                 (Tok::Name, b"trim") => {
@@ -801,9 +826,6 @@ impl Parser {
                     while matches!(self.peek()?.tok, Tok::Int(_)) {
                         dims.push(self.uint("a dimension")?);
                     }
-                    if dims.is_empty() {
-                        dims.push(1);
-                    }
                     layout.push(if word == b"t" { LayoutItem::T(dims) } else { LayoutItem::U(dims) });
                     continue;
                 }
@@ -869,19 +891,23 @@ impl Parser {
                 ));
             }
         }
-        list.triangles = self.triangles(triangle_count, tagged, start)?;
+        let at = self.peek()?.span;
+        list.triangles = self.triangles(triangle_count, tagged, at)?;
         if let Some(n) = border_count {
-            list.border = Some(self.triangles(n, tagged, start)?);
+            let at = self.peek()?.span;
+            list.border = Some(self.triangles(n, tagged, at)?);
         }
         if self.at_words("triangle data")? {
             self.bump()?;
             self.bump()?;
-            let a = self.word_block()?;
-            let b = self.word_block()?;
+            let (info, data) = data_sizes
+                .map_or((None, None), |(i, d)| (Some(i as usize), (d as usize).checked_mul(triangle_count as usize)));
+            let a = self.word_block(info)?;
+            let b = self.word_block(data)?;
             list.triangle_data = Some((a, b));
         }
         if self.eat("topology")? {
-            list.topology = Some(self.word_block()?);
+            list.topology = Some(self.word_block((triangle_count as usize).checked_mul(3))?);
         }
         let end = self.expect_end("trilist")?;
         list.span = start.to(end);
@@ -933,14 +959,18 @@ impl Parser {
         }
     }
 
-    /// `[ ints ]` or `integer `…`` of unknown length.
-    fn word_block(&mut self) -> PResult<Vec<u32>> {
+    /// `[ ints ]` or `integer `…`` (of `words` words when known: the payload may then hold
+    /// backquotes).
+    fn word_block(&mut self, words: Option<usize>) -> PResult<Vec<u32>> {
         if self.eat("integer")? {
             let t = self.bump()?;
             if t.tok != Tok::Binary {
                 return Err(Diagnostic::error(t.span, "expected a backquoted binary block"));
             }
-            let payload = Span::new(t.span.file, t.span.lo + 1, t.span.hi - 1);
+            let payload = match words.and_then(|w| w.checked_mul(4)) {
+                Some(len) => self.exact_binary(t, len)?,
+                None => Span::new(t.span.file, t.span.lo + 1, t.span.hi - 1),
+            };
             let bytes = self.ts.bytes(payload);
             if bytes.len() % 4 != 0 {
                 return Err(Diagnostic::error(t.span, "binary block length is not a multiple of 4"));

@@ -261,10 +261,10 @@ impl Parser {
                 if escaped {
                     unescape(body)
                 } else {
-                    String::from_utf8_lossy(body).into_owned()
+                    crate::lexer::bytes_to_string(body.to_vec())
                 }
             }
-            _ => String::from_utf8_lossy(self.bytes(t)).into_owned(),
+            _ => crate::lexer::bytes_to_string(self.bytes(t).to_vec()),
         }
     }
 
@@ -397,8 +397,8 @@ impl Parser {
             let t = match self.ts.peek_raw(0) {
                 Ok(t) => t,
                 Err(d) => {
+                    // The stream has already stepped past the bad bytes.
                     self.diags.push(d);
-                    let _ = self.ts.next_raw();
                     continue;
                 }
             };
@@ -468,10 +468,7 @@ impl Parser {
         loop {
             let t = match self.ts.peek_raw(0) {
                 Ok(t) => t,
-                Err(_) => {
-                    let _ = self.ts.next_raw();
-                    continue;
-                }
+                Err(_) => continue,
             };
             match t.tok {
                 Tok::Eof | Tok::IncludeEnd | Tok::IncludeBegin(_) => return,

@@ -77,6 +77,8 @@ impl Parser {
             P::ShaderArray | P::Names => t.tok == Tok::LBracket,
             P::Tree => matches!(t.tok, Tok::LParen | Tok::LBracket | Tok::LBrace),
             P::Approx => true,
+            P::Comma => t.tok == Tok::Comma,
+            P::Bytes => t.tok == Tok::ByteStr,
             P::Opt(ps) => self.can_start(&ps[0])?,
             P::Alt(alts) => {
                 for alt in alts.iter() {
@@ -118,6 +120,8 @@ impl Parser {
             P::ShaderArray | P::Names => "'['".into(),
             P::Tree => "'(' or '['".into(),
             P::Approx => "an approximation".into(),
+            P::Comma => "','".into(),
+            P::Bytes => "a byte string in 'single quotes'".into(),
             P::Opt(ps) => Self::describe_pattern(&ps[0]),
             P::Alt(alts) => alts.iter().map(|a| Self::describe_pattern(&a[0])).collect::<Vec<_>>().join(" or "),
         }
@@ -221,6 +225,20 @@ impl Parser {
             P::Approx => {
                 let start = self.peek()?.span;
                 out.push(Arg::Approx(Box::new(self.approximation(Vec::new(), start)?)));
+            }
+            P::Comma => {
+                self.expect_tok(Tok::Comma, "','")?;
+                out.push(Arg::Comma);
+            }
+            P::Bytes => {
+                let mut pieces = Vec::new();
+                while self.peek()?.tok == Tok::ByteStr {
+                    pieces.push(self.byte_string()?);
+                }
+                if pieces.is_empty() {
+                    return self.expected("a byte string in 'single quotes'");
+                }
+                out.push(Arg::Bytes(pieces));
             }
             P::Opt(ps) => {
                 if self.can_start(&ps[0])? {

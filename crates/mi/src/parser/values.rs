@@ -332,6 +332,7 @@ impl Parser {
                 Tok::Float(v) => Atom::Num(Num::Float(v)),
                 Tok::Comma => Atom::Comma,
                 Tok::Equals => Atom::Equals,
+                Tok::Percent => Atom::Percent,
                 Tok::Eof => {
                     return Err(Diagnostic::error(open.span, "bracket is not closed")
                         .with_note(Some(t.span), "the file ends here"))

@@ -1,0 +1,63 @@
+//! The `mira` command as a user runs it.
+
+use std::process::Command;
+
+fn mira(args: &[&str]) -> (i32, String, String) {
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_mira")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn check_passes_the_shipped_scenes() {
+    let (code, out, err) = mira(&["check", "../../scenes/iray_cornell_box.mi", "../../scenes/classic_spheres.mi"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("iray_cornell_box.mi: 0 errors, 3 warnings; 1 camera, 7 instances"), "{out}");
+    assert!(out.contains("5 polygons (28 triangles), 20 trilist triangles"), "{out}");
+    assert!(out.contains("shaders used: mdl::nvidia::core_definitions::flex_material"), "{out}");
+    assert_eq!(out.lines().count(), 2);
+    assert!(err.is_empty(), "warnings are printed only with -W: {err}");
+}
+
+#[test]
+fn check_reports_errors_with_location_and_exit_status_1() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.mi");
+    std::fs::write(&bad, "options \"o\"\n    samples 0 x\nend options\n$include \"nowhere.mi\"\n").unwrap();
+    let (code, out, err) = mira(&["check", bad.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("bad.mi:2:15: error: expected on or off") || err.contains("bad.mi:2:15: error:"), "{err}");
+    assert!(err.contains("        samples 0 x\n"), "the source line is shown: {err}");
+    assert!(err.contains("bad.mi:4:11: error: cannot find include file 'nowhere.mi'"), "{err}");
+    assert!(out.contains("bad.mi: 2 errors"), "{out}");
+}
+
+#[test]
+fn check_warnings_flag_and_include_path() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-inc-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    std::fs::write(dir.join("lib/extra.mi"), "declare shader \"extra\" () end declare\n").unwrap();
+    std::fs::write(dir.join("s.mi"), "$include <extra.mi>\nshader \"e\" \"extra\" ()\n").unwrap();
+    let s = dir.join("s.mi");
+    let (code, _, err) = mira(&["check", s.to_str().unwrap()]);
+    assert_eq!(code, 1, "angle includes are not looked up beside the file: {err}");
+    let lib = dir.join("lib");
+    let (code, out, err) = mira(&["check", "-I", lib.to_str().unwrap(), s.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("1 declare") && out.contains("shaders used: extra"), "{out}");
+    let (code, _, err) = mira(&["check", "-W", "../../scenes/iray_cornell_box.mi"]);
+    assert_eq!(code, 0);
+    assert!(err.contains("warning: ccmesh polygon has 4 edges but 6 crease values"), "{err}");
+}
+
+#[test]
+fn missing_file_is_an_error() {
+    let (code, _, err) = mira(&["check", "no/such/file.mi"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("no/such/file.mi: error:"), "{err}");
+}

@@ -1,0 +1,212 @@
+//! Tessellated geometry in object space: triangle meshes and hair curves.
+//!
+//! One [`Mesh`] per `object` (all its groups, trilists and subdivision surfaces merged),
+//! shared by every instance of the object. Materials are not bound here: each triangle
+//! names a [`MaterialSlot`] (a label of a tagged object, a material written on the face, or
+//! nothing), and each instance maps the slots to materials.
+
+use glam::Vec3;
+
+/// What a face says about its material; the instance decides what it becomes.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum MaterialSlot {
+    /// No material on the face: the instance's material applies.
+    #[default]
+    Inherit,
+    /// A material named on the face (untagged objects).
+    Named(String),
+    /// An integer label (tagged objects): index into the instance's material array.
+    Label(u32),
+}
+
+/// One texture (or user) space: a coordinate per vertex.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TexSpace {
+    /// How many components are meaningful (1 to 3).
+    pub dim: u8,
+    /// One coordinate per vertex, unused components zero.
+    pub coords: Vec<Vec3>,
+}
+
+/// A triangle mesh in object space.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// The object's name.
+    pub name: String,
+    /// Vertex positions, object space.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals, object space; empty when the geometry gives none (the
+    /// geometric normal is used).
+    pub normals: Vec<Vec3>,
+    /// Texture spaces, in order (`t` references of group vertices, `t` layouts of trilists).
+    pub textures: Vec<TexSpace>,
+    /// User vector spaces (`u`), in order.
+    pub user: Vec<TexSpace>,
+    /// Per-vertex motion vectors (the first `m`), object space per shutter interval; empty
+    /// when there are none.
+    pub motion: Vec<Vec3>,
+    /// Per-vertex surface derivatives (dP/du, dP/dv) when the geometry gives them (`d`);
+    /// empty otherwise.
+    pub derivatives: Vec<[Vec3; 2]>,
+    /// Per-vertex bump basis vectors (u, v) of the first texture space (`t i bu bv`, `b`).
+    pub bump_basis: Vec<[Vec3; 2]>,
+    /// Triangles as vertex indices, counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// Per triangle: index into `slots`.
+    pub triangle_slots: Vec<u32>,
+    /// The distinct material slots of the faces.
+    pub slots: Vec<MaterialSlot>,
+}
+
+impl Mesh {
+    /// An empty mesh named `name`.
+    pub fn new(name: &str) -> Mesh {
+        Mesh { name: name.to_string(), ..Mesh::default() }
+    }
+
+    /// Index of `slot`, added if new.
+    pub fn slot(&mut self, slot: MaterialSlot) -> u32 {
+        match self.slots.iter().position(|s| *s == slot) {
+            Some(i) => i as u32,
+            None => {
+                self.slots.push(slot);
+                (self.slots.len() - 1) as u32
+            }
+        }
+    }
+
+    /// Surface area of the triangles, object space.
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.positions[i as usize].as_dvec3());
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum()
+    }
+
+    /// Axis-aligned bounds, object space (`None` when empty).
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let first = *self.positions.first()?;
+        Some(self.positions.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))))
+    }
+
+    /// Bytes held by the arrays.
+    pub fn memory_bytes(&self) -> usize {
+        let spaces = |s: &[TexSpace]| s.iter().map(|t| t.coords.len() * 12).sum::<usize>();
+        self.positions.len() * 12
+            + self.normals.len() * 12
+            + spaces(&self.textures)
+            + spaces(&self.user)
+            + self.motion.len() * 12
+            + self.derivatives.len() * 24
+            + self.bump_basis.len() * 24
+            + self.triangles.len() * 12
+            + self.triangle_slots.len() * 4
+    }
+
+    /// Appends `other`, offsetting its indices and merging its slots.
+    pub fn append(&mut self, other: Mesh) {
+        let base = self.positions.len() as u32;
+        let had = self.positions.len();
+        let slot_map: Vec<u32> = other.slots.iter().map(|s| self.slot(s.clone())).collect();
+        self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+        self.triangle_slots.extend(other.triangle_slots.iter().map(|&s| slot_map[s as usize]));
+        // Per-vertex arrays: keep them aligned with positions, padding what one side lacks.
+        let n_other = other.positions.len();
+        pad_merge(&mut self.normals, other.normals, had, n_other, Vec3::ZERO);
+        pad_merge(&mut self.motion, other.motion, had, n_other, Vec3::ZERO);
+        pad_merge(&mut self.derivatives, other.derivatives, had, n_other, [Vec3::ZERO; 2]);
+        pad_merge(&mut self.bump_basis, other.bump_basis, had, n_other, [Vec3::ZERO; 2]);
+        merge_spaces(&mut self.textures, other.textures, had, n_other);
+        merge_spaces(&mut self.user, other.user, had, n_other);
+        self.positions.extend(other.positions);
+    }
+}
+
+/// Appends per-vertex `b` (for `n_b` vertices) to `a` (for `n_a`), padding with `zero`
+/// where one side has no data; leaves both empty if neither has any.
+fn pad_merge<T: Clone>(a: &mut Vec<T>, b: Vec<T>, n_a: usize, n_b: usize, zero: T) {
+    if a.is_empty() && b.is_empty() {
+        return;
+    }
+    a.resize(n_a, zero.clone());
+    if b.is_empty() {
+        a.resize(n_a + n_b, zero);
+    } else {
+        a.extend(b);
+    }
+}
+
+fn merge_spaces(a: &mut Vec<TexSpace>, b: Vec<TexSpace>, n_a: usize, n_b: usize) {
+    let count = a.len().max(b.len());
+    a.resize(count, TexSpace::default());
+    let mut b = b.into_iter();
+    for space in a.iter_mut() {
+        let other = b.next().unwrap_or_default();
+        space.dim = space.dim.max(other.dim);
+        space.coords.resize(n_a, Vec3::ZERO);
+        if other.coords.is_empty() {
+            space.coords.resize(n_a + n_b, Vec3::ZERO);
+        } else {
+            space.coords.extend(other.coords);
+        }
+    }
+}
+
+/// Hair curves of one object, object space.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct HairGeometry {
+    /// The object's name.
+    pub name: String,
+    /// 1 (polylines) or 3 (cubic Bézier segments).
+    pub degree: u8,
+    /// Control point positions of all hairs.
+    pub points: Vec<Vec3>,
+    /// Radius per control point.
+    pub radii: Vec<f32>,
+    /// Hair `h` owns points `starts[h] .. starts[h + 1]`.
+    pub starts: Vec<u32>,
+    /// Per-hair texture scalars (`hair t k`): `k` per hair.
+    pub hair_scalars: Vec<f32>,
+    /// Per-vertex texture scalars (`vertex t k`): `k` per point.
+    pub vertex_scalars: Vec<f32>,
+    /// The material slot of all hairs.
+    pub slot: MaterialSlot,
+}
+
+impl HairGeometry {
+    /// Number of hairs.
+    pub fn len(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn append_offsets_indices_and_merges_slots() {
+        let mut a = Mesh::new("a");
+        a.positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+        a.triangles = vec![[0, 1, 2]];
+        let s = a.slot(MaterialSlot::Label(1));
+        a.triangle_slots = vec![s];
+        let mut b = a.clone();
+        b.normals = vec![Vec3::Z; 3];
+        b.slots = vec![MaterialSlot::Named("m".into()), MaterialSlot::Label(1)];
+        b.triangle_slots = vec![1];
+        a.append(b);
+        assert_eq!(a.triangles, vec![[0, 1, 2], [3, 4, 5]]);
+        assert_eq!(a.triangle_slots, vec![0, 0]);
+        assert_eq!(a.normals, vec![Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, Vec3::Z]);
+        assert_eq!(a.area(), 1.0);
+    }
+}

@@ -1,0 +1,472 @@
+//! The `options` element as typed settings, with mental ray's defaults (and Iray's where
+//! the scene is in the Iray dialect).
+
+use mi::ast::{Arg, Block, Stmt};
+
+use crate::values::{attributes, bool_arg, f64_arg, floats_arg, int_arg, last, str_arg, AttrValue, Attributes};
+
+/// Which dialect the scene is written in; it changes how some statements are read.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Dialect {
+    /// Classic mental ray.
+    #[default]
+    MentalRay,
+    /// NVIDIA Iray / RealityServer: MDL materials, attributes, filter remapping.
+    Iray,
+}
+
+/// Pixel filter kinds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterKind {
+    /// Box.
+    Box,
+    /// Triangle (tent).
+    Triangle,
+    /// Gaussian.
+    Gauss,
+    /// Mitchell–Netravali.
+    Mitchell,
+    /// Lanczos.
+    Lanczos,
+}
+
+/// The pixel filter: `filter kind [width [height]]`, sizes being the full footprint in
+/// pixels (mental ray's convention; Iray's radius is half of it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Filter {
+    /// The kind.
+    pub kind: FilterKind,
+    /// Footprint width in pixels.
+    pub width: f64,
+    /// Footprint height in pixels.
+    pub height: f64,
+    /// `clip mitchell`/`clip lanczos`: negative lobes clipped.
+    pub clip: bool,
+}
+
+impl Filter {
+    /// The filter radius in pixels (half the footprint), x and y.
+    pub fn radius(&self) -> (f64, f64) {
+        (self.width * 0.5, self.height * 0.5)
+    }
+}
+
+/// Shadow computation mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowMode {
+    /// No shadows.
+    Off,
+    /// Shadows, shadow shaders in any order.
+    On,
+    /// Shadow shaders called in order from the light.
+    Sort,
+    /// Shadow segments (volumes between occluders).
+    Segments,
+}
+
+/// Which sides of surfaces are seen.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Face {
+    /// Front faces only.
+    Front,
+    /// Back faces only.
+    Back,
+    /// Both.
+    #[default]
+    Both,
+}
+
+impl Face {
+    /// From the keyword.
+    pub fn from_word(w: &str) -> Face {
+        match w {
+            "front" => Face::Front,
+            "back" => Face::Back,
+            _ => Face::Both,
+        }
+    }
+}
+
+/// Final gathering settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FinalGather {
+    /// `finalgather on|off|fastlookup|only`.
+    pub enabled: bool,
+    /// `finalgather accuracy [view] rays [max [min]]`: rays per final gather point.
+    pub rays: u32,
+    /// Interpolation radii (max, min), in world or (with `view`) pixel units.
+    pub radius: Option<(f64, f64)>,
+    /// Radii are in pixels.
+    pub view: bool,
+    /// `finalgather trace depth reflect refract diffuse sum`.
+    pub trace_depth: [u32; 4],
+    /// `finalgather falloff start stop`.
+    pub falloff: Option<(f64, f64)>,
+    /// `finalgather scale r g b a`.
+    pub scale: [f64; 4],
+}
+
+/// Progressive (Iray-style) rendering limits, from Iray attributes or mental ray's
+/// `"progressive …"` string options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Progressive {
+    /// Stop after this many samples per pixel.
+    pub max_samples: u32,
+    /// Stop after this many seconds (`None`: no limit).
+    pub max_time: Option<f64>,
+    /// Do not stop for convergence before this many samples.
+    pub min_samples: u32,
+    /// Whether the convergence test is on.
+    pub quality_enabled: bool,
+    /// Relative error threshold of the convergence test (1 = Iray's default quality).
+    pub quality: f64,
+    /// Stop when this fraction of pixels has converged.
+    pub converged_pixel_ratio: f64,
+}
+
+/// All settings of the `options` element.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// The element's name.
+    pub name: String,
+    /// The dialect the scene is written in.
+    pub dialect: Dialect,
+    /// `samples min max`: adaptive supersampling as powers of 4 per pixel (0 = 1 sample,
+    /// 1 = 4, −1 = one per 2×2 pixels).
+    pub samples: (i32, i32),
+    /// `contrast r g b a`: adaptive sampling thresholds.
+    pub contrast: [f64; 4],
+    /// The pixel filter (remapped for Iray).
+    pub filter: Filter,
+    /// `jitter`: sample jittering, 0 to 1.
+    pub jitter: f64,
+    /// `trace on|off`: secondary rays.
+    pub trace: bool,
+    /// `trace depth reflect refract sum`.
+    pub trace_depth: (u32, u32, u32),
+    /// `shadow`.
+    pub shadow: ShadowMode,
+    /// `face`.
+    pub face: Face,
+    /// Final gathering.
+    pub finalgather: FinalGather,
+    /// `globillum` (photon global illumination).
+    pub globillum: bool,
+    /// `caustic`.
+    pub caustic: bool,
+    /// `motion on|off`.
+    pub motion: bool,
+    /// `motion steps`.
+    pub motion_steps: u32,
+    /// `shutter [delay] close`: the shutter interval (open, close) in frame time.
+    pub shutter: (f64, f64),
+    /// Pre-3.10 user frame buffers: `frame buffer n "type"`.
+    pub frame_buffers: Vec<(u32, String)>,
+    /// `colorclip rgb|alpha|raw`.
+    pub colorclip: String,
+    /// `premultiply on|off`.
+    pub premultiply: bool,
+    /// `gamma`.
+    pub gamma: f64,
+    /// `desaturate`.
+    pub desaturate: bool,
+    /// `dither`.
+    pub dither: bool,
+    /// Progressive rendering limits.
+    pub progressive: Progressive,
+    /// String options (`"name" value`), last one wins.
+    pub string_options: Attributes,
+    /// Typed attributes (Iray).
+    pub attributes: Attributes,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            name: String::new(),
+            dialect: Dialect::MentalRay,
+            samples: (-2, 0),
+            contrast: [0.1; 4],
+            filter: Filter { kind: FilterKind::Box, width: 1.0, height: 1.0, clip: false },
+            jitter: 0.0,
+            trace: true,
+            trace_depth: (2, 2, 4),
+            shadow: ShadowMode::On,
+            face: Face::Both,
+            finalgather: FinalGather {
+                enabled: false,
+                rays: 1000,
+                radius: None,
+                view: false,
+                trace_depth: [2, 2, 0, 2],
+                falloff: None,
+                scale: [1.0; 4],
+            },
+            globillum: false,
+            caustic: false,
+            motion: false,
+            motion_steps: 1,
+            shutter: (0.0, 0.0),
+            frame_buffers: Vec::new(),
+            colorclip: "rgb".into(),
+            premultiply: true,
+            gamma: 1.0,
+            desaturate: false,
+            dither: false,
+            progressive: Progressive {
+                max_samples: 100,
+                max_time: None,
+                min_samples: 4,
+                quality_enabled: false,
+                quality: 1.0,
+                converged_pixel_ratio: 0.95,
+            },
+            string_options: Attributes::new(),
+            attributes: Attributes::new(),
+        }
+    }
+}
+
+fn filter_kind(w: &str) -> FilterKind {
+    match w {
+        "triangle" => FilterKind::Triangle,
+        "gauss" => FilterKind::Gauss,
+        "mitchell" => FilterKind::Mitchell,
+        "lanczos" => FilterKind::Lanczos,
+        _ => FilterKind::Box,
+    }
+}
+
+/// Default footprint of each filter kind (box 1, triangle 2, gauss 3, mitchell and
+/// lanczos 4).
+fn default_width(kind: FilterKind) -> f64 {
+    match kind {
+        FilterKind::Box => 1.0,
+        FilterKind::Triangle => 2.0,
+        FilterKind::Gauss => 3.0,
+        FilterKind::Mitchell | FilterKind::Lanczos => 4.0,
+    }
+}
+
+impl Options {
+    /// Reads the definitions of an `options` element (the first, then incremental changes).
+    pub fn from_blocks(blocks: &[&Block], dialect: Dialect) -> Options {
+        let mut o = Options {
+            name: blocks.first().map(|b| b.name.text.clone()).unwrap_or_default(),
+            dialect,
+            ..Options::default()
+        };
+        let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+        if let Some(k) = last(&stmts, "samples") {
+            let ints: Vec<i64> = (0..k.args.len()).filter_map(|i| int_arg(k, i)).collect();
+            o.samples = match ints[..] {
+                [n] => ((n - 2) as i32, n as i32),
+                [a, b, ..] => (a as i32, b as i32),
+                _ => o.samples,
+            };
+        }
+        if let Some(c) = last(&stmts, "contrast").and_then(|k| floats_arg(k, 0)) {
+            let a = c.get(3).copied().unwrap_or((c[0] + c[1] + c[2]) / 3.0);
+            o.contrast = [c[0], c[1], c[2], a];
+        }
+        if let Some(k) = last(&stmts, "filter") {
+            let clip = str_arg(k, 0) == Some("clip");
+            let kind = filter_kind(str_arg(k, usize::from(clip)).unwrap_or("box"));
+            let nums: Vec<f64> = (0..k.args.len()).filter_map(|i| f64_arg(k, i)).collect();
+            let width = nums.first().copied().unwrap_or(default_width(kind));
+            let height = nums.get(1).copied().unwrap_or(width);
+            o.filter = Filter { kind, width, height, clip };
+        }
+        if dialect == Dialect::Iray && matches!(o.filter.kind, FilterKind::Mitchell | FilterKind::Lanczos) {
+            // Iray has box, triangle and gauss only; the others become gauss.
+            o.filter.kind = FilterKind::Gauss;
+            o.filter.clip = false;
+        }
+        if let Some(v) = last(&stmts, "jitter").and_then(|k| f64_arg(k, 0)) {
+            o.jitter = v;
+        }
+        if let Some(k) = last(&stmts, "trace") {
+            o.trace = bool_arg(k, 0);
+        }
+        if let Some(k) = last(&stmts, "trace depth") {
+            let d: Vec<u32> = (0..3).filter_map(|i| int_arg(k, i)).map(|v| v.clamp(0, 1 << 16) as u32).collect();
+            let reflect = d.first().copied().unwrap_or(2);
+            let refract = d.get(1).copied().unwrap_or(reflect);
+            let sum = d.get(2).copied().unwrap_or(reflect + refract);
+            o.trace_depth = (reflect, refract, sum);
+        }
+        if let Some(k) = last(&stmts, "shadow") {
+            o.shadow = match k.args.first() {
+                Some(Arg::Bool(false)) => ShadowMode::Off,
+                Some(Arg::Word("sort")) => ShadowMode::Sort,
+                Some(Arg::Word("segments")) => ShadowMode::Segments,
+                _ => ShadowMode::On,
+            };
+        }
+        if let Some(w) = last(&stmts, "face").and_then(|k| str_arg(k, 0)) {
+            o.face = Face::from_word(w);
+        }
+        if let Some(k) = last(&stmts, "finalgather") {
+            o.finalgather.enabled = !matches!(k.args.first(), Some(Arg::Bool(false)));
+        }
+        if let Some(k) = last(&stmts, "finalgather accuracy") {
+            let view = str_arg(k, 0) == Some("view");
+            let base = usize::from(view);
+            o.finalgather.view = view;
+            if let Some(r) = int_arg(k, base) {
+                o.finalgather.rays = r.clamp(1, 1 << 20) as u32;
+            }
+            if let Some(max) = f64_arg(k, base + 1) {
+                let min = f64_arg(k, base + 2).unwrap_or(max * 0.1);
+                o.finalgather.radius = Some((max, min));
+            }
+        }
+        if let Some(k) = last(&stmts, "finalgather trace depth") {
+            let d: Vec<u32> = (0..4).filter_map(|i| int_arg(k, i)).map(|v| v.clamp(0, 1 << 16) as u32).collect();
+            for (slot, v) in o.finalgather.trace_depth.iter_mut().zip(d) {
+                *slot = v;
+            }
+        }
+        if let Some(k) = last(&stmts, "finalgather falloff") {
+            let a = f64_arg(k, 0).unwrap_or(0.0);
+            o.finalgather.falloff = Some(match f64_arg(k, 1) {
+                Some(b) => (a, b),
+                None => (0.0, a),
+            });
+        }
+        if let Some(c) = last(&stmts, "finalgather scale").and_then(|k| floats_arg(k, 0)) {
+            o.finalgather.scale = [c[0], c[1], c[2], c.get(3).copied().unwrap_or(1.0)];
+        }
+        if let Some(k) = last(&stmts, "globillum") {
+            o.globillum = !matches!(k.args.first(), Some(Arg::Bool(false) | Arg::Int(0)));
+        }
+        if let Some(k) = last(&stmts, "caustic") {
+            o.caustic = !matches!(k.args.first(), Some(Arg::Bool(false) | Arg::Int(0)));
+        }
+        if let Some(k) = last(&stmts, "motion") {
+            o.motion = bool_arg(k, 0);
+        }
+        if let Some(v) = last(&stmts, "motion steps").and_then(|k| int_arg(k, 0)) {
+            o.motion_steps = v.clamp(1, 15) as u32;
+        }
+        if let Some(k) = last(&stmts, "shutter") {
+            o.shutter = match (f64_arg(k, 0), f64_arg(k, 1)) {
+                (Some(d), Some(c)) => (d, c),
+                (Some(c), None) => (0.0, c),
+                _ => o.shutter,
+            };
+        }
+        for s in &stmts {
+            if let Stmt::Kw(k) = s {
+                if k.key == "frame buffer" {
+                    let n = int_arg(k, 0).unwrap_or(0).clamp(0, 1 << 16) as u32;
+                    let ty = str_arg(k, 1).unwrap_or("").to_string();
+                    o.frame_buffers.retain(|(m, _)| *m != n);
+                    o.frame_buffers.push((n, ty));
+                }
+            }
+        }
+        if let Some(w) = last(&stmts, "colorclip").and_then(|k| str_arg(k, 0)) {
+            o.colorclip = w.to_string();
+        }
+        if let Some(k) = last(&stmts, "premultiply") {
+            o.premultiply = bool_arg(k, 0);
+        }
+        if let Some(v) = last(&stmts, "gamma").and_then(|k| f64_arg(k, 0)) {
+            o.gamma = v;
+        }
+        if let Some(k) = last(&stmts, "desaturate") {
+            o.desaturate = bool_arg(k, 0);
+        }
+        if let Some(k) = last(&stmts, "dither") {
+            o.dither = bool_arg(k, 0);
+        }
+        for s in &stmts {
+            if let Stmt::StringOption { name, value } = s {
+                if let Some(v) = AttrValue::from_value(value) {
+                    o.string_options.insert(name.text.clone(), v);
+                }
+            }
+        }
+        o.attributes = attributes(&stmts);
+        o.read_progressive();
+        o
+    }
+
+    /// Progressive limits from Iray attributes, then mental ray string options.
+    fn read_progressive(&mut self) {
+        let get = |names: &[&str]| {
+            names.iter().find_map(|n| self.attributes.get(*n).or(self.string_options.get(*n))).cloned()
+        };
+        let p = &mut self.progressive;
+        if let Some(v) = get(&["progressive_rendering_max_samples", "progressive max samples"]).and_then(|v| v.as_f64())
+        {
+            p.max_samples = v.clamp(1.0, 1e9) as u32;
+        }
+        if let Some(v) = get(&["progressive_rendering_min_samples", "progressive min samples"]).and_then(|v| v.as_f64())
+        {
+            p.min_samples = v.clamp(1.0, 1e9) as u32;
+        }
+        if let Some(v) = get(&["progressive_rendering_max_time", "progressive max time"]).and_then(|v| v.as_f64()) {
+            p.max_time = (v > 0.0).then_some(v);
+        }
+        if let Some(v) = get(&["progressive_rendering_quality_enabled"]).and_then(|v| v.as_bool()) {
+            p.quality_enabled = v;
+        }
+        if let Some(v) = get(&["progressive_rendering_quality", "progressive error threshold"]).and_then(|v| v.as_f64())
+        {
+            p.quality = v;
+        }
+        if let Some(v) = get(&["progressive_rendering_converged_pixel_ratio"]).and_then(|v| v.as_f64()) {
+            p.converged_pixel_ratio = v.clamp(0.0, 1.0);
+            p.quality_enabled = true;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options(text: &str, dialect: Dialect) -> Options {
+        let parsed = mi::parse_str("o.mi", text);
+        assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+        let blocks: Vec<&Block> =
+            parsed.items.iter().filter_map(|i| if let mi::Item::Options(b) = i { Some(b) } else { None }).collect();
+        let blocks: Vec<Block> = blocks.into_iter().cloned().collect();
+        let refs: Vec<&Block> = blocks.iter().collect();
+        Options::from_blocks(&refs, dialect)
+    }
+
+    #[test]
+    fn defaults() {
+        let o = options("options \"o\" end options", Dialect::MentalRay);
+        assert_eq!(o.samples, (-2, 0));
+        assert_eq!(o.filter, Filter { kind: FilterKind::Box, width: 1.0, height: 1.0, clip: false });
+        assert_eq!(o.trace_depth, (2, 2, 4));
+        assert_eq!(o.shadow, ShadowMode::On);
+    }
+
+    #[test]
+    fn statements_and_iray_filter_remapping() {
+        let text = "options \"o\"\n samples 1\n filter mitchell 4 4\n trace depth 3\n shadow segments\n\
+                    finalgather on\n finalgather accuracy view 300 25\n shutter 0.5\n frame buffer 0 \"+rgba_fp\"\n\
+                    \"unified sampling\" on\n attribute integer \"progressive_rendering_max_samples\" 64\n end options";
+        let o = options(text, Dialect::MentalRay);
+        assert_eq!(o.samples, (-1, 1));
+        assert_eq!(o.filter.kind, FilterKind::Mitchell);
+        assert_eq!(o.filter.radius(), (2.0, 2.0));
+        assert_eq!(o.trace_depth, (3, 3, 6));
+        assert_eq!(o.shadow, ShadowMode::Segments);
+        assert!(o.finalgather.enabled && o.finalgather.view);
+        assert_eq!(o.finalgather.rays, 300);
+        assert_eq!(o.finalgather.radius, Some((25.0, 2.5)));
+        assert_eq!(o.shutter, (0.0, 0.5));
+        assert_eq!(o.frame_buffers, vec![(0, "+rgba_fp".to_string())]);
+        assert_eq!(o.string_options["unified sampling"], AttrValue::Bool(true));
+        assert_eq!(o.progressive.max_samples, 64);
+        let iray = options(text, Dialect::Iray);
+        assert_eq!(iray.filter.kind, FilterKind::Gauss);
+        assert_eq!(iray.filter.radius(), (2.0, 2.0));
+    }
+}

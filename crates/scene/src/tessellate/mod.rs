@@ -1,0 +1,325 @@
+//! Objects to geometry: every group, trilist and subdivision surface of an object becomes
+//! part of one triangle [`Mesh`]; hair blocks become [`HairGeometry`].
+//!
+//! Subdivision surfaces and ccmeshes are refined by the level their `approximate …
+//! parametric N` statement gives ([`DEFAULT_SUBDIVISION_LEVELS`] without one), at most as
+//! many levels as keep the face count under [`MAX_SUBDIVISION_FACES`]. Free-form surfaces
+//! are not tessellated yet: they are skipped with a warning.
+
+pub mod hair;
+pub mod polygon;
+pub mod subdiv;
+pub mod trilist;
+
+use glam::DVec3;
+use mi::ast::{
+    ApproxTerm, Approximation, Arg, Ccmesh, FaceExtra, FaceMaterial, FeatureKind, Geometry, Group, GroupItem, Hira,
+    Object, PolygonMaterial, Stmt, SubdivSurface, VertexAttr,
+};
+use mi::Diagnostic;
+
+use crate::mesh::{HairGeometry, MaterialSlot, Mesh};
+use subdiv::{Cage, SHARP};
+
+/// Subdivision levels when no approximation is given.
+pub const DEFAULT_SUBDIVISION_LEVELS: u32 = 2;
+
+/// Most faces a subdivision surface may refine to; deeper requests are reduced, with a
+/// warning.
+pub const MAX_SUBDIVISION_FACES: u64 = 8 << 20;
+
+/// Sharpness, in subdivision levels, of a crease value of 1 (values are 0…1; 1 and above
+/// is sharp at every level, as exporters write fully sharp creases).
+pub const CREASE_LEVELS_PER_UNIT: f64 = 10.0;
+
+/// The geometry of one object.
+#[derive(Clone, Debug, Default)]
+pub struct ObjectGeometry {
+    /// All triangles of the object (empty mesh if it has none).
+    pub mesh: Mesh,
+    /// Its hair blocks.
+    pub hair: Vec<HairGeometry>,
+}
+
+/// Tessellates an object. Problems in one geometry block are reported and that block is
+/// skipped; the rest of the object still comes out.
+pub fn tessellate(object: &Object, diags: &mut Vec<Diagnostic>) -> ObjectGeometry {
+    let name = &object.name.text;
+    let mut out = ObjectGeometry { mesh: Mesh::new(name), hair: Vec::new() };
+    let object_approx: Vec<&Approximation> = object
+        .stmts
+        .iter()
+        .filter_map(|s| match s {
+            Stmt::Kw(k) if k.key == "approximate" => match k.args.first() {
+                Some(Arg::Approx(a)) => Some(&**a),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect();
+    let mut tri = polygon::Triangulator::default();
+    for g in &object.geometry {
+        match g {
+            Geometry::Group(group) => {
+                if let Some(mesh) = group_mesh(group, name, &object_approx, &mut tri, diags) {
+                    out.mesh.append(mesh);
+                }
+            }
+            Geometry::Trilist(list) => {
+                if let Some(mesh) = trilist::trilist_mesh(list, name, diags) {
+                    out.mesh.append(mesh);
+                }
+            }
+            Geometry::Hair(h) => out.hair.extend(hair::hair_geometry(h, name, diags)),
+        }
+    }
+    out
+}
+
+/// A group's polygons and subdivision surfaces as one mesh.
+fn group_mesh(
+    group: &Group,
+    name: &str,
+    object_approx: &[&Approximation],
+    tri: &mut polygon::Triangulator,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Mesh> {
+    let mut mesh = Mesh::new(name);
+    polygon::group_vertices(group, &mut mesh, diags).ok()?;
+    let vertex_count = mesh.positions.len();
+    if group.polygons.is_empty() {
+        // Only surfaces use the vertices: the mesh gets its own refined vertices.
+        mesh.positions.clear();
+        mesh.normals.clear();
+        mesh.textures.clear();
+        mesh.user.clear();
+        mesh.motion.clear();
+        mesh.derivatives.clear();
+        mesh.bump_basis.clear();
+    } else {
+        polygon::triangulate_polygons(group, &mut mesh, 0, tri, diags);
+    }
+    let approximations: Vec<&Approximation> = group
+        .items
+        .iter()
+        .filter_map(|i| if let GroupItem::Approximate(a) = i { Some(a) } else { None })
+        .chain(object_approx.iter().copied())
+        .collect();
+    let mut skipped_freeform = false;
+    for item in &group.items {
+        let (surface_name, target, cage) = match item {
+            GroupItem::Subdivision(s) => {
+                (&s.name, "subdivision surface", subdivision_cage(s, group, vertex_count, &mut mesh, diags))
+            }
+            GroupItem::Ccmesh(c) => (&c.name, "ccmesh", ccmesh_cage(c, group, vertex_count, &mut mesh, diags)),
+            GroupItem::Surface(s) if !skipped_freeform => {
+                skipped_freeform = true;
+                diags.push(Diagnostic::warning(
+                    s.span.start(),
+                    format!("free-form surfaces of object '{name}' are skipped: mira does not tessellate them yet"),
+                ));
+                continue;
+            }
+            _ => continue,
+        };
+        let Some(cage) = cage else { continue };
+        let requested = approximations
+            .iter()
+            .filter(|a| {
+                a.target == Some(target) && (a.names.is_empty() || a.names.iter().any(|n| n.text == surface_name.text))
+            })
+            .find_map(|a| parametric_levels(a))
+            .unwrap_or(DEFAULT_SUBDIVISION_LEVELS);
+        let mut levels = requested;
+        while levels > 0 && cage.faces_after(levels) > MAX_SUBDIVISION_FACES {
+            levels -= 1;
+        }
+        if levels < requested {
+            diags.push(Diagnostic::warning(
+                surface_name.span,
+                format!(
+                    "{target} '{}': {requested} levels would make too many faces; using {levels}",
+                    surface_name.text
+                ),
+            ));
+        }
+        // The cage's face slots index `mesh.slots`, which the refined mesh shares.
+        let mut refined = subdiv::subdivided_mesh(&cage, levels, name);
+        refined.slots = mesh.slots.clone();
+        mesh.append(refined);
+    }
+    Some(mesh)
+}
+
+/// The subdivision level of an approximation (`parametric N`, `regular parametric N`).
+fn parametric_levels(a: &Approximation) -> Option<u32> {
+    let terms = &a.technique;
+    let at = terms.iter().position(|t| *t == ApproxTerm::Word("parametric"))?;
+    match terms.get(at + 1) {
+        Some(ApproxTerm::Num(n)) => Some(n.as_f64().clamp(0.0, 16.0) as u32),
+        _ => None,
+    }
+}
+
+/// Slot of an inline face material.
+fn face_slot(mesh: &mut Mesh, m: &FaceMaterial, last: &mut Option<u32>) -> u32 {
+    match m {
+        FaceMaterial::Label(l) => mesh.slot(MaterialSlot::Label(*l)),
+        FaceMaterial::Named(n) => {
+            let s =
+                mesh.slot(if n.text.is_empty() { MaterialSlot::Inherit } else { MaterialSlot::Named(n.text.clone()) });
+            *last = Some(s);
+            s
+        }
+        FaceMaterial::Inherit => last.unwrap_or_else(|| mesh.slot(MaterialSlot::Inherit)),
+    }
+}
+
+/// The group's vertices as a cage (positions and texture spaces; faces added by the caller).
+fn base_cage(group: &Group) -> Cage {
+    let mut cage = Cage::default();
+    let mut spaces = 0;
+    for (i, v) in group.vertices.iter().enumerate() {
+        let p = group.vectors.get(v.pos as usize).copied().unwrap_or_default();
+        cage.positions.push(DVec3::new(p[0].into(), p[1].into(), p[2].into()));
+        let mut k = 0;
+        for a in group.vertex_attrs(i) {
+            match *a {
+                VertexAttr::Tex { index, .. } => {
+                    if cage.textures.len() <= k {
+                        cage.textures.resize(k + 1, vec![DVec3::ZERO; group.vertices.len()]);
+                        spaces = spaces.max(k + 1);
+                    }
+                    let t = group.vectors.get(index as usize).copied().unwrap_or_default();
+                    cage.textures[k][i] = DVec3::new(t[0].into(), t[1].into(), t[2].into());
+                    k += 1;
+                }
+                VertexAttr::Feature { kind: FeatureKind::Corner, arg } => {
+                    let sharpness = match arg {
+                        Some(mi::ast::FeatureArg::Level(l)) if l > 0 => l as f64,
+                        _ => SHARP,
+                    };
+                    cage.corners.insert(i as u32, sharpness);
+                }
+                _ => {}
+            }
+        }
+    }
+    cage
+}
+
+fn crease_levels(value: f64) -> f64 {
+    if value >= 1.0 {
+        SHARP
+    } else {
+        (value * CREASE_LEVELS_PER_UNIT).max(0.0)
+    }
+}
+
+fn check_indices(indices: &[u32], vertex_count: usize, span: mi::Span, diags: &mut Vec<Diagnostic>) -> bool {
+    match indices.iter().find(|&&i| i as usize >= vertex_count) {
+        Some(&bad) => {
+            diags.push(Diagnostic::error(
+                span,
+                format!("face uses vertex {bad} but the group has {vertex_count} vertices"),
+            ));
+            false
+        }
+        None => true,
+    }
+}
+
+/// The control cage of a `subdivision surface`, with its creases and level-1 details.
+fn subdivision_cage(
+    s: &SubdivSurface,
+    group: &Group,
+    vertex_count: usize,
+    mesh: &mut Mesh,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Cage> {
+    let mut cage = base_cage(group);
+    let mut last = None;
+    for face in &s.faces {
+        let span = mi::Span::new(s.span.file, face.offset.0, face.offset.0 + 1);
+        if face.indices.len() < 3 || !check_indices(&face.indices, vertex_count, span, diags) {
+            continue;
+        }
+        let slot = face_slot(mesh, &face.material, &mut last);
+        let f = cage.face_count();
+        cage.push_face(&face.indices, slot);
+        let k = face.indices.len();
+        for extra in &face.extras {
+            match extra {
+                FaceExtra::Crease { mask, values } => {
+                    let mut vals = values.iter();
+                    for bit in 0..k.min(32) {
+                        if mask & (1 << bit) != 0 {
+                            let v = vals.next().copied().unwrap_or(1.0);
+                            let (a, b) = (face.indices[bit], face.indices[(bit + 1) % k]);
+                            cage.creases.insert((a.min(b), a.max(b)), crease_levels(v));
+                        }
+                    }
+                }
+                FaceExtra::Hierarchy(h) => {
+                    for item in h {
+                        if let Hira::Detail { mask, indices } = item {
+                            let offsets = indices
+                                .iter()
+                                .map(|&i| {
+                                    let v = group.vectors.get(i as usize).copied().unwrap_or_default();
+                                    DVec3::new(v[0].into(), v[1].into(), v[2].into())
+                                })
+                                .collect();
+                            cage.details.push((f as u32, *mask, offsets));
+                        }
+                    }
+                }
+                FaceExtra::Trim(_) => {}
+            }
+        }
+    }
+    (cage.face_count() > 0).then_some(cage)
+}
+
+/// The control cage of a `ccmesh`.
+fn ccmesh_cage(
+    c: &Ccmesh,
+    group: &Group,
+    vertex_count: usize,
+    mesh: &mut Mesh,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Cage> {
+    let mut cage = base_cage(group);
+    let (mut start, mut cstart) = (0usize, 0usize);
+    let mut slot_of_name: Vec<Option<u32>> = vec![None; c.material_names.len()];
+    let mut last = None;
+    for face in &c.faces {
+        let indices = &c.indices[start..face.end as usize];
+        let creases = &c.creases[cstart..face.crease_end as usize];
+        start = face.end as usize;
+        cstart = face.crease_end as usize;
+        let span = mi::Span::new(c.span.file, face.offset.0, face.offset.0 + 1);
+        if indices.len() < 3 || !check_indices(indices, vertex_count, span, diags) {
+            continue;
+        }
+        let slot = match face.material {
+            PolygonMaterial::Label(l) => mesh.slot(MaterialSlot::Label(l)),
+            PolygonMaterial::Named(m) => {
+                let s = *slot_of_name[m as usize]
+                    .get_or_insert_with(|| mesh.slot(MaterialSlot::Named(c.material_names[m as usize].text.clone())));
+                last = Some(s);
+                s
+            }
+            PolygonMaterial::Inherit => last.unwrap_or_else(|| mesh.slot(MaterialSlot::Inherit)),
+        };
+        cage.push_face(indices, slot);
+        let k = indices.len();
+        for (e, &v) in creases.iter().enumerate().take(k) {
+            if v > 0.0 {
+                let (a, b) = (indices[e], indices[(e + 1) % k]);
+                cage.creases.insert((a.min(b), a.max(b)), crease_levels(f64::from(v)));
+            }
+        }
+    }
+    (cage.face_count() > 0).then_some(cage)
+}
