@@ -19,6 +19,10 @@ pub struct CheckArgs {
     /// Print warnings too (errors are always printed).
     #[arg(short = 'W', long)]
     warnings: bool,
+    /// Also build the world (resolve names, flatten instances, tessellate) and report
+    /// instances, triangles, bounds, camera, lights and materials per object.
+    #[arg(long)]
+    scene: bool,
 }
 
 /// Runs the command.
@@ -36,14 +40,23 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                 continue;
             }
         };
-        let diags = &parsed.diagnostics;
+        let mut diags = parsed.diagnostics.clone();
+        let mut world = None;
+        if args.scene && !diags.has_errors() {
+            let mut list = Vec::new();
+            world = scene::Scene::build(&parsed, 0, &mut list);
+            diags.list.extend(list);
+        }
         for d in &diags.list {
             if d.is_error() || args.warnings {
                 let _ = write!(stderr.lock(), "{}", d.render(&parsed.sources));
             }
         }
         failed |= diags.has_errors();
-        let _ = writeln!(stdout.lock(), "{}", summary(path, &parsed));
+        let _ = writeln!(stdout.lock(), "{}", summary(path, &parsed, &diags));
+        if let Some(world) = &world {
+            let _ = write!(stdout.lock(), "{}", scene::report::report(world));
+        }
     }
     if failed {
         ExitCode::FAILURE
@@ -63,9 +76,8 @@ fn plural(n: usize, word: &str) -> String {
 }
 
 /// `file: N errors, N warnings; element counts; geometry counts; shaders used`.
-fn summary(path: &std::path::Path, parsed: &mi::Parsed) -> String {
+fn summary(path: &std::path::Path, parsed: &mi::Parsed, d: &mi::Diagnostics) -> String {
     let stats = Stats::of(&parsed.items);
-    let d = &parsed.diagnostics;
     let mut parts = vec![format!("{}, {}", plural(d.error_count(), "error"), plural(d.warning_count(), "warning"))];
     let elements: Vec<String> = stats.elements.iter().map(|(k, n)| plural(*n, k)).collect();
     if !elements.is_empty() {

@@ -15,12 +15,15 @@ use crate::values::{attributes, bool_arg, f64_arg, floats_arg, last, str_arg, At
 #[derive(Clone, Debug, PartialEq)]
 pub enum AreaShape {
     /// A parallelogram centred on the light's position, spanned by two full edge vectors;
-    /// it emits towards `edge_u × edge_v`.
+    /// it faces `normal` (`edge_u × edge_v` in light space, carried to world space as a
+    /// normal, so that a mirroring instance transform does not turn the light around).
     Rectangle {
         /// First edge.
         edge_u: DVec3,
         /// Second edge.
         edge_v: DVec3,
+        /// Unit normal of the emitting side.
+        normal: DVec3,
     },
     /// A disc centred on the position, facing `normal`.
     Disc {
@@ -164,9 +167,11 @@ impl Light {
                 }
                 "rectangle" => {
                     let (Some(u), Some(v)) = (floats_arg(k, 0), floats_arg(k, 1)) else { continue };
+                    let normal_matrix = light_to_world.inverse().transpose();
                     let shape = AreaShape::Rectangle {
                         edge_u: light_to_world.transform_vector3(vec(u)),
                         edge_v: light_to_world.transform_vector3(vec(v)),
+                        normal: normal_matrix.transform_vector3(vec(u).cross(vec(v))).normalize_or(DVec3::Z),
                     };
                     (shape, 2)
                 }
@@ -229,7 +234,7 @@ impl Light {
     /// without a closed form).
     pub fn area_size(&self) -> Option<f64> {
         Some(match &self.area.as_ref()?.shape {
-            AreaShape::Rectangle { edge_u, edge_v } => edge_u.cross(*edge_v).length(),
+            AreaShape::Rectangle { edge_u, edge_v, .. } => edge_u.cross(*edge_v).length(),
             AreaShape::Disc { radius, .. } => std::f64::consts::PI * radius * radius,
             AreaShape::Sphere { radius } => 4.0 * std::f64::consts::PI * radius * radius,
             AreaShape::Cylinder { axis, radius } => std::f64::consts::TAU * radius * axis.length(),
@@ -240,7 +245,7 @@ impl Light {
     /// The emitting side's normal of a rectangle or disc light, world space.
     pub fn area_normal(&self) -> Option<DVec3> {
         match &self.area.as_ref()?.shape {
-            AreaShape::Rectangle { edge_u, edge_v } => Some(edge_u.cross(*edge_v).normalize_or_zero()),
+            AreaShape::Rectangle { normal, .. } => Some(*normal),
             AreaShape::Disc { normal, .. } => Some(*normal),
             _ => None,
         }

@@ -24,7 +24,7 @@ pub fn report(scene: &Scene) -> String {
     let memory: usize = scene.objects.iter().map(|o| o.geometry.mesh.memory_bytes()).sum();
     let _ = writeln!(
         s,
-        "  instances: {} ({} lights), objects: {}, triangles: {} unique, {} instanced, mesh memory {:.1} MiB",
+        "  instances: {} objects, {} lights; objects: {}; triangles: {} unique, {} instanced; mesh memory {:.2} MiB",
         scene.instances.len(),
         scene.lights.len(),
         scene.objects.len(),
@@ -69,8 +69,8 @@ pub fn report(scene: &Scene) -> String {
     for l in &scene.lights {
         let kind = match (l.kind, &l.area) {
             (_, Some(a)) => match &a.shape {
-                AreaShape::Rectangle { edge_u, edge_v } => {
-                    format!("rectangle {:.4} x {:.4}", edge_u.length(), edge_v.length())
+                AreaShape::Rectangle { edge_u, edge_v, .. } => {
+                    format!("rectangle {} x {}", edge_u.length(), edge_v.length())
                 }
                 AreaShape::Disc { radius, .. } => format!("disc radius {radius:.4}"),
                 AreaShape::Sphere { radius } => format!("sphere radius {radius:.4}"),
