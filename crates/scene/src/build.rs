@@ -91,6 +91,7 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
         ));
         return None;
     };
+    crate::references::check(&table, diags);
     let r = render.render;
     let scope = &render.scope;
     let dialect = dialect(&table);

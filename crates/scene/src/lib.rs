@@ -16,6 +16,7 @@ pub mod light;
 pub mod mesh;
 pub mod names;
 pub mod options;
+pub mod references;
 pub mod report;
 pub mod tessellate;
 pub mod transform;

@@ -240,3 +240,18 @@ fn objects_instanced_twice_are_stored_once() {
     assert_eq!(spot.kind, LightKind::Spot);
     assert!((spot.spread - 0.866025).abs() < 1e-9);
 }
+
+#[test]
+fn shader_references_must_name_shaders() {
+    let text = "options \"o\" end options\ncamera \"c\" end camera\ninstance \"ci\" \"c\" end instance\n\
+        shader \"tex\" \"mib_texture_lookup\" ()\n\
+        shader \"mix\" \"mib_color_mix\" ( \"color_0\" = \"tex.out\", \"color_1\" = \"tex\", \"color_2\" = \"missing\" )\n\
+        material \"m\" = \"mix\" = \"nowhere\" end material\n\
+        instgroup \"root\" \"ci\" end instgroup\nrender \"root\" \"ci\" \"o\"\n";
+    let parsed = mi::parse_str("t.mi", text);
+    let mut diags = Vec::new();
+    let _ = Scene::build(&parsed, 0, &mut diags);
+    let mut errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.message.clone()).collect();
+    errors.sort();
+    assert_eq!(errors, vec!["unknown shader 'missing'", "unknown shader 'nowhere'"]);
+}
