@@ -1,6 +1,8 @@
 //! `mira`: render mental ray and Iray `.mi` scenes.
 
 mod check;
+mod output;
+mod render_cmd;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -21,6 +23,11 @@ enum Command {
     ///
     /// Exit status 0 when no file has errors, 1 otherwise.
     Check(check::CheckArgs),
+    /// Render a scene.
+    ///
+    /// Writes the images the scene's camera asks for (or -o FILE), rendered by progressive
+    /// path tracing. Ctrl-C stops early and still writes the image rendered so far.
+    Render(render_cmd::RenderArgs),
 }
 
 /// Include-path options shared by every command that reads scenes.
@@ -43,5 +50,6 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check(args) => check::run(&args),
+        Command::Render(args) => render_cmd::run(&args),
     }
 }

@@ -1,0 +1,259 @@
+//! `mira render`: build the world, render it progressively, write the images.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use render::accel::Backend;
+use render::tonemap::ToneMapper;
+
+use crate::output::{self, Format};
+use crate::IncludeArgs;
+
+/// Which acceleration structure to use.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum AccelArg {
+    /// Embree if mira was built with it, else the Rust BVH.
+    Auto,
+    /// mira's own BVHs.
+    Rust,
+    /// Intel Embree 3.
+    Embree,
+}
+
+/// Arguments of `mira render`.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// The scene to render.
+    #[arg(value_name = "SCENE")]
+    scene: PathBuf,
+    /// Write this image instead of the scene's outputs (format from the extension: .exr
+    /// linear with every frame buffer; .png, .jpg, .tif tone mapped; .hdr linear).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Image size in pixels (overrides the camera's resolution, keeping its field of view).
+    #[arg(long, num_args = 2, value_names = ["W", "H"])]
+    resolution: Option<Vec<u32>>,
+    /// Samples per pixel (overrides the scene's progressive settings).
+    #[arg(long, value_name = "N")]
+    spp: Option<u32>,
+    /// Worker threads (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+    /// Seed of the sample patterns.
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+    /// Stop after this many seconds.
+    #[arg(long, value_name = "SECONDS")]
+    time: Option<f64>,
+    /// Acceleration structure.
+    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
+    accel: AccelArg,
+    /// Which `render` statement of the file (1 = the first).
+    #[arg(long, default_value_t = 1)]
+    frame: usize,
+    /// Print rays, samples per second, Mrays/s, memory and timings.
+    #[arg(long)]
+    stats: bool,
+    /// Print warnings.
+    #[arg(short = 'W', long)]
+    warnings: bool,
+    #[command(flatten)]
+    include: IncludeArgs,
+}
+
+/// Peak resident memory of this process, in bytes (Linux).
+fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Runs the command.
+pub fn run(args: &RenderArgs) -> ExitCode {
+    let err = |msg: String| {
+        eprintln!("mira: error: {msg}");
+        ExitCode::FAILURE
+    };
+    let t0 = Instant::now();
+    let options = args.include.read_options();
+    let parsed = match mi::parse_file(&args.scene, &options) {
+        Ok(p) => p,
+        Err(e) => return err(e.to_string()),
+    };
+    let mut diags = parsed.diagnostics.list.clone();
+    let world_scene = if parsed.diagnostics.has_errors() {
+        None
+    } else {
+        scene::Scene::build(&parsed, args.frame.saturating_sub(1), &mut diags)
+    };
+    let mut stderr = std::io::stderr().lock();
+    for d in &diags {
+        if d.is_error() || args.warnings {
+            let _ = write!(stderr, "{}", d.render(&parsed.sources));
+        }
+    }
+    drop(stderr);
+    if diags.iter().any(|d| d.is_error()) {
+        return err(format!("{} has errors; nothing rendered", args.scene.display()));
+    }
+    let Some(mut sc) = world_scene else { return err("no world to render".into()) };
+    if let Some(res) = &args.resolution {
+        let (w, h) = (res[0].clamp(1, scene::camera::MAX_RESOLUTION), res[1].clamp(1, scene::camera::MAX_RESOLUTION));
+        let old = sc.camera.resolution;
+        // Keep the image plane: aspect stays as the camera had it relative to its pixels.
+        let pixel_aspect = old.0 as f64 / (sc.camera.aspect * old.1 as f64);
+        sc.camera.aspect = w as f64 / (h as f64 * pixel_aspect);
+        sc.camera.resolution = (w, h);
+        sc.camera.offset = (sc.camera.offset.0 * w as f64 / old.0 as f64, sc.camera.offset.1 * h as f64 / old.1 as f64);
+        sc.camera.window = sc.camera.window.map(|[a, b, c, d]| {
+            let sx = w as f64 / old.0 as f64;
+            let sy = h as f64 / old.1 as f64;
+            [(a as f64 * sx) as i64, (b as f64 * sy) as i64, (c as f64 * sx) as i64, (d as f64 * sy) as i64]
+        });
+    }
+    let world = render::World::from_scene(&sc);
+    if args.warnings {
+        for w in &world.warnings {
+            eprintln!("mira: warning: {w}");
+        }
+    }
+    let t_scene = t0.elapsed();
+    let backend = match args.accel {
+        AccelArg::Auto => Backend::default_available(),
+        AccelArg::Rust => Backend::Rust,
+        AccelArg::Embree => {
+            if !Backend::Embree.available() {
+                return err("this mira was built without Embree (install libembree-dev and rebuild)".into());
+            }
+            Backend::Embree
+        }
+    };
+    let pool = match rayon::ThreadPoolBuilder::new().num_threads(args.threads).build() {
+        Ok(p) => p,
+        Err(e) => return err(format!("cannot start worker threads: {e}")),
+    };
+    let t1 = Instant::now();
+    let accel = pool.install(|| render::accel::build(&world, backend));
+    let t_accel = t1.elapsed();
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let cancel = cancel.clone();
+        let _ = ctrlc::set_handler(move || {
+            if cancel.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+        });
+    }
+    let settings = render::Settings {
+        spp: args.spp,
+        seed: args.seed,
+        max_time: args.time.map(Duration::from_secs_f64),
+        ..render::Settings::default()
+    };
+    let target = settings.spp.unwrap_or(world.options.progressive.max_samples).max(1);
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new(u64::from(target));
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} spp ({eta} left) {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar
+    });
+    let on_progress = |p: render::Progress| {
+        if let Some(bar) = &bar {
+            bar.set_position(u64::from(p.samples));
+            if let Some(c) = p.converged {
+                bar.set_message(format!("{:.1}% converged", c * 100.0));
+            }
+        }
+    };
+    let (film, stats) = pool.install(|| render::render(&world, accel.as_ref(), &settings, &cancel, &on_progress));
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    if stats.cancelled {
+        eprintln!("mira: interrupted at {} samples per pixel; writing what was rendered", stats.spp);
+    }
+    // Outputs: -o, else the camera's file outputs in formats mira writes, else SCENE.exr.
+    let tone = ToneMapper::for_camera(&sc.camera);
+    let mut targets: Vec<(PathBuf, Format)> = Vec::new();
+    if let Some(o) = &args.output {
+        match Format::from_path(o) {
+            Some(f) => targets.push((o.clone(), f)),
+            None => {
+                return err(format!(
+                    "cannot tell the image format of '{}' (use .exr, .png, .jpg, .tif or .hdr)",
+                    o.display()
+                ))
+            }
+        }
+    } else {
+        for out in &sc.camera.outputs {
+            if let scene::camera::Output::File { format, file, .. } = out {
+                match Format::from_name(format) {
+                    Some(f) => targets.push((PathBuf::from(file), f)),
+                    None => eprintln!("mira: warning: output format '{format}' of '{file}' is not supported; skipped"),
+                }
+            }
+        }
+        for fb in &sc.camera.framebuffers {
+            if let (Some(file), true) = (&fb.filename, fb.primary || fb.datatype.starts_with("rgb")) {
+                let format =
+                    fb.filetype.as_deref().and_then(Format::from_name).or_else(|| Format::from_path(Path::new(file)));
+                if let Some(f) = format {
+                    targets.push((PathBuf::from(file), f));
+                }
+            }
+        }
+        if targets.is_empty() {
+            targets.push((args.scene.with_extension("exr"), Format::Exr));
+        }
+    }
+    let mut failed = false;
+    for (path, format) in &targets {
+        match output::write(&film, path, *format, &tone) {
+            Ok(()) => eprintln!("mira: wrote {}", path.display()),
+            Err(e) => {
+                eprintln!("mira: error: cannot write {}: {e}", path.display());
+                failed = true;
+            }
+        }
+    }
+    if args.stats {
+        let secs = stats.render_time.as_secs_f64().max(1e-9);
+        println!(
+            "scene:          {:.3} s (parse, build, translate), {} instances, {} triangles",
+            t_scene.as_secs_f64(),
+            world.instances.len(),
+            world.instanced_triangles()
+        );
+        println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
+        println!("render:         {:.3} s, {} x {} pixels, {} spp", secs, film.width, film.height, stats.spp);
+        println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
+        println!(
+            "rays:           {} ({} shadow), {:.2} Mrays/s",
+            stats.total_rays(),
+            stats.shadow_rays,
+            stats.total_rays() as f64 / secs / 1e6
+        );
+        if let Some(t) = stats.first_pixels {
+            println!("first pixels:   {:.3} s", t.as_secs_f64() + t_scene.as_secs_f64() + t_accel.as_secs_f64());
+        }
+        println!("non-finite:     {} channels stored as 1.0", stats.nonfinite);
+        if let Some(m) = peak_memory() {
+            println!("peak memory:    {:.1} MiB", m as f64 / (1 << 20) as f64);
+        }
+    }
+    if failed || stats.cancelled {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}

@@ -1,0 +1,249 @@
+//! The Embree 3 backend, through a thin binding of the few functions mira needs (Embree's
+//! C API: one scene per mesh, instanced by a top-level scene, ray masks for the instance
+//! flags). Only built when the build script found Embree 3 (`cfg(embree)`).
+//!
+//! This module is the one place in mira with `unsafe` code: calls into the C library. Each
+//! call's preconditions are stated next to it.
+#![allow(unsafe_code)]
+
+use std::ffi::c_void;
+use std::os::raw::{c_char, c_uint};
+
+use super::{Accel, Backend, Hit};
+use crate::accel::bvh::instance_mask;
+use crate::ray::Ray;
+use crate::world::World;
+
+type RtcDevice = *mut c_void;
+type RtcScene = *mut c_void;
+type RtcGeometry = *mut c_void;
+
+const GEOMETRY_TYPE_TRIANGLE: c_uint = 0;
+const GEOMETRY_TYPE_INSTANCE: c_uint = 121;
+const BUFFER_TYPE_INDEX: c_uint = 0;
+const BUFFER_TYPE_VERTEX: c_uint = 1;
+const FORMAT_UINT3: c_uint = 0x5003;
+const FORMAT_FLOAT3: c_uint = 0x9003;
+const FORMAT_FLOAT3X4_COLUMN_MAJOR: c_uint = 0x9234;
+const BUILD_QUALITY_HIGH: c_uint = 2;
+const INVALID_ID: c_uint = c_uint::MAX;
+
+/// `struct RTCIntersectContext` of Embree 3.13 built with one instance level.
+#[repr(C)]
+struct IntersectContext {
+    flags: c_uint,
+    filter: *const c_void,
+    inst_id: [c_uint; 1],
+}
+
+/// `struct RTCRay`.
+#[repr(C, align(16))]
+#[derive(Clone, Copy)]
+struct RtcRay {
+    org: [f32; 3],
+    tnear: f32,
+    dir: [f32; 3],
+    time: f32,
+    tfar: f32,
+    mask: c_uint,
+    id: c_uint,
+    flags: c_uint,
+}
+
+/// `struct RTCHit` with one instance level.
+#[repr(C, align(16))]
+#[derive(Clone, Copy)]
+struct RtcHit {
+    ng: [f32; 3],
+    u: f32,
+    v: f32,
+    prim_id: c_uint,
+    geom_id: c_uint,
+    inst_id: [c_uint; 1],
+}
+
+/// `struct RTCRayHit`.
+#[repr(C, align(16))]
+struct RtcRayHit {
+    ray: RtcRay,
+    hit: RtcHit,
+}
+
+#[link(name = "embree3")]
+extern "C" {
+    fn rtcNewDevice(config: *const c_char) -> RtcDevice;
+    fn rtcReleaseDevice(device: RtcDevice);
+    fn rtcGetDeviceError(device: RtcDevice) -> c_uint;
+    fn rtcNewScene(device: RtcDevice) -> RtcScene;
+    fn rtcSetSceneBuildQuality(scene: RtcScene, quality: c_uint);
+    fn rtcCommitScene(scene: RtcScene);
+    fn rtcReleaseScene(scene: RtcScene);
+    fn rtcNewGeometry(device: RtcDevice, kind: c_uint) -> RtcGeometry;
+    fn rtcSetNewGeometryBuffer(
+        geometry: RtcGeometry,
+        kind: c_uint,
+        slot: c_uint,
+        format: c_uint,
+        byte_stride: usize,
+        item_count: usize,
+    ) -> *mut c_void;
+    fn rtcSetGeometryInstancedScene(geometry: RtcGeometry, scene: RtcScene);
+    fn rtcSetGeometryTransform(geometry: RtcGeometry, time_step: c_uint, format: c_uint, xfm: *const f32);
+    fn rtcSetGeometryMask(geometry: RtcGeometry, mask: c_uint);
+    fn rtcCommitGeometry(geometry: RtcGeometry);
+    fn rtcAttachGeometryByID(scene: RtcScene, geometry: RtcGeometry, id: c_uint);
+    fn rtcReleaseGeometry(geometry: RtcGeometry);
+    fn rtcIntersect1(scene: RtcScene, context: *mut IntersectContext, rayhit: *mut RtcRayHit);
+    fn rtcOccluded1(scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay);
+}
+
+/// Scenes built by Embree for a [`World`].
+pub struct EmbreeAccel {
+    device: RtcDevice,
+    top: RtcScene,
+    meshes: Vec<RtcScene>,
+}
+
+// SAFETY: Embree devices and committed scenes may be used from any thread; after
+// construction mira only queries them (rtcIntersect1/rtcOccluded1 are thread-safe on a
+// committed scene) and releases them in `drop`.
+unsafe impl Send for EmbreeAccel {}
+// SAFETY: as above: queries on a committed scene are thread-safe.
+unsafe impl Sync for EmbreeAccel {}
+
+impl EmbreeAccel {
+    /// Builds Embree scenes for a world (falls back to an empty scene on device errors,
+    /// which are reported by [`EmbreeAccel::error`]).
+    pub fn new(world: &World) -> EmbreeAccel {
+        // SAFETY: a null config string asks for the default device; every pointer passed
+        // below comes from Embree itself or from live Rust buffers of the stated sizes.
+        unsafe {
+            let device = rtcNewDevice(c"threads=0".as_ptr());
+            let meshes: Vec<RtcScene> = world
+                .meshes
+                .iter()
+                .map(|m| {
+                    let scene = rtcNewScene(device);
+                    rtcSetSceneBuildQuality(scene, BUILD_QUALITY_HIGH);
+                    if !m.triangles.is_empty() {
+                        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
+                        let verts =
+                            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len())
+                                as *mut f32;
+                        if !verts.is_null() {
+                            let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
+                            for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
+                                o.copy_from_slice(&p.to_array());
+                            }
+                        }
+                        let idx =
+                            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3, 12, m.triangles.len())
+                                as *mut u32;
+                        if !idx.is_null() {
+                            let out = std::slice::from_raw_parts_mut(idx, 3 * m.triangles.len());
+                            for (o, t) in out.chunks_exact_mut(3).zip(&m.triangles) {
+                                o.copy_from_slice(t);
+                            }
+                        }
+                        rtcCommitGeometry(geom);
+                        rtcAttachGeometryByID(scene, geom, 0);
+                        rtcReleaseGeometry(geom);
+                    }
+                    rtcCommitScene(scene);
+                    scene
+                })
+                .collect();
+            let top = rtcNewScene(device);
+            for (i, inst) in world.instances.iter().enumerate() {
+                let geom = rtcNewGeometry(device, GEOMETRY_TYPE_INSTANCE);
+                rtcSetGeometryInstancedScene(geom, meshes[inst.mesh as usize]);
+                let m = inst.object_to_world;
+                let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis, m.translation];
+                let xfm: Vec<f32> = cols.iter().flat_map(|c| c.to_array()).collect();
+                rtcSetGeometryTransform(geom, 0, FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.as_ptr());
+                rtcSetGeometryMask(geom, instance_mask(&inst.flags));
+                rtcCommitGeometry(geom);
+                rtcAttachGeometryByID(top, geom, i as c_uint);
+                rtcReleaseGeometry(geom);
+            }
+            rtcCommitScene(top);
+            EmbreeAccel { device, top, meshes }
+        }
+    }
+
+    /// Embree's last error code (0: none).
+    pub fn error(&self) -> u32 {
+        // SAFETY: the device is alive until drop.
+        unsafe { rtcGetDeviceError(self.device) }
+    }
+
+    fn rtc_ray(ray: &Ray) -> RtcRay {
+        RtcRay {
+            org: ray.origin.to_array(),
+            tnear: ray.tmin,
+            dir: ray.dir.to_array(),
+            time: 0.0,
+            tfar: ray.tmax,
+            mask: ray.mask,
+            id: 0,
+            flags: 0,
+        }
+    }
+
+    fn context() -> IntersectContext {
+        IntersectContext { flags: 0, filter: std::ptr::null(), inst_id: [INVALID_ID] }
+    }
+}
+
+impl Accel for EmbreeAccel {
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut rh = RtcRayHit {
+            ray: Self::rtc_ray(ray),
+            hit: RtcHit {
+                ng: [0.0; 3],
+                u: 0.0,
+                v: 0.0,
+                prim_id: INVALID_ID,
+                geom_id: INVALID_ID,
+                inst_id: [INVALID_ID],
+            },
+        };
+        let mut ctx = Self::context();
+        // SAFETY: `top` is a committed scene; `ctx` and `rh` are valid, 16-byte aligned
+        // structures laid out as Embree 3.13 declares them.
+        unsafe { rtcIntersect1(self.top, &mut ctx, &mut rh) };
+        (rh.hit.geom_id != INVALID_ID).then_some(Hit {
+            t: rh.ray.tfar,
+            instance: rh.hit.inst_id[0],
+            prim: rh.hit.prim_id,
+            u: rh.hit.u,
+            v: rh.hit.v,
+        })
+    }
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        let mut r = Self::rtc_ray(ray);
+        let mut ctx = Self::context();
+        // SAFETY: as for `intersect`.
+        unsafe { rtcOccluded1(self.top, &mut ctx, &mut r) };
+        // Embree sets tfar to −∞ when the ray is blocked.
+        r.tfar < 0.0 && r.tfar.is_infinite()
+    }
+
+    fn backend(&self) -> Backend {
+        Backend::Embree
+    }
+}
+
+impl Drop for EmbreeAccel {
+    fn drop(&mut self) {
+        // SAFETY: the scenes and device were created by `new` and are released once.
+        unsafe {
+            rtcReleaseScene(self.top);
+            for s in &self.meshes {
+                rtcReleaseScene(*s);
+            }
+            rtcReleaseDevice(self.device);
+        }
+    }
+}

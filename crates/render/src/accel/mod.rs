@@ -1,0 +1,100 @@
+//! Ray–scene intersection behind one small trait, with a two-level structure (a BVH per
+//! mesh, one over the instances) so that instanced geometry is stored once.
+//!
+//! Backends: [`bvh`] (pure Rust, always built: compressed 8-wide BVHs from the `obvhs`
+//! crate) and, when Embree 3 was found at build time, `embree`.
+
+pub mod bvh;
+#[cfg(embree)]
+pub mod embree;
+
+use crate::ray::Ray;
+use crate::world::World;
+
+/// The closest hit of a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along the ray (in units of the ray's `dir`).
+    pub t: f32,
+    /// Index of the instance in [`World::instances`].
+    pub instance: u32,
+    /// Index of the triangle in the instance's mesh.
+    pub prim: u32,
+    /// Barycentric coordinate of the triangle's second vertex.
+    pub u: f32,
+    /// Barycentric coordinate of the third vertex.
+    pub v: f32,
+}
+
+/// Which acceleration structure to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// mira's pure-Rust BVHs.
+    Rust,
+    /// Intel Embree 3.
+    Embree,
+}
+
+impl Backend {
+    /// The best backend compiled in.
+    pub fn default_available() -> Backend {
+        if cfg!(embree) {
+            Backend::Embree
+        } else {
+            Backend::Rust
+        }
+    }
+
+    /// Whether this backend is compiled in.
+    pub fn available(self) -> bool {
+        match self {
+            Backend::Rust => true,
+            Backend::Embree => cfg!(embree),
+        }
+    }
+}
+
+/// Ray queries against a built scene.
+pub trait Accel: Send + Sync {
+    /// The closest hit along `ray` within its `[tmin, tmax]`.
+    fn intersect(&self, ray: &Ray) -> Option<Hit>;
+    /// Whether anything blocks `ray` within its `[tmin, tmax]`.
+    fn occluded(&self, ray: &Ray) -> bool;
+    /// Which backend this is.
+    fn backend(&self) -> Backend;
+}
+
+/// Builds the acceleration structure of `world` with `backend` (falling back to the Rust
+/// backend if the requested one is not compiled in).
+pub fn build(world: &World, backend: Backend) -> Box<dyn Accel> {
+    match backend {
+        #[cfg(embree)]
+        Backend::Embree => Box::new(embree::EmbreeAccel::new(world)),
+        _ => Box::new(bvh::BvhAccel::new(world)),
+    }
+}
+
+/// Möller–Trumbore ray–triangle intersection: (t, u, v) of a hit within `[tmin, tmax]`.
+#[inline(always)]
+pub fn intersect_triangle(ray: &Ray, p0: glam::Vec3A, p1: glam::Vec3A, p2: glam::Vec3A) -> Option<(f32, f32, f32)> {
+    let e1 = p1 - p0;
+    let e2 = p2 - p0;
+    let pv = ray.dir.cross(e2);
+    let det = e1.dot(pv);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let tv = ray.origin - p0;
+    let u = tv.dot(pv) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let qv = tv.cross(e1);
+    let v = ray.dir.dot(qv) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(qv) * inv;
+    (t >= ray.tmin && t <= ray.tmax).then_some((t, u, v))
+}

@@ -1,0 +1,157 @@
+//! The mental ray camera as a ray generator.
+//!
+//! Raster coordinates here have their origin at the top-left corner of the image, y down,
+//! pixel (i, j) covering `[i, i+1) × [j, j+1)`; mental ray's raster space has y up, so
+//! `raster_y_mr = height − y`. A camera-space point (x, y, z) projects to
+//! `raster_x = x/(−z) · focal·w/aperture + w/2 − offset_x` and
+//! `raster_y_mr = y/(−z) · focal·aspect·h/aperture + h/2 − offset_y`; orthographic cameras
+//! drop the division by −z.
+
+use glam::{Affine3A, Vec3A};
+
+use crate::ray::Ray;
+
+/// The camera in the form the renderer needs.
+#[derive(Clone, Debug)]
+pub struct CameraModel {
+    /// Image size in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Camera → world.
+    pub camera_to_world: Affine3A,
+    /// World → camera.
+    pub world_to_camera: Affine3A,
+    /// Focal distance (1 for orthographic cameras).
+    pub focal: f32,
+    /// Image plane width.
+    pub aperture: f32,
+    /// Image plane width / height.
+    pub aspect: f32,
+    /// Orthographic projection.
+    pub orthographic: bool,
+    /// Offset in pixels.
+    pub offset: (f32, f32),
+    /// Near and far clip distances along −Z.
+    pub clip: (f32, f32),
+    /// Pixel rectangle to render, top-left origin: x0, y0 inclusive, x1, y1 exclusive.
+    pub window: (u32, u32, u32, u32),
+}
+
+impl CameraModel {
+    /// From the scene's camera.
+    pub fn new(c: &scene::Camera) -> CameraModel {
+        let (w, h) = c.resolution;
+        let window = match c.window {
+            Some([xl, yl, xh, yh]) => {
+                // mental ray's window is in its lower-left raster space, xh/yh inclusive.
+                let cl = |v: i64, max: u32| v.clamp(0, i64::from(max)) as u32;
+                let (x0, x1) = (cl(xl, w), cl(xh + 1, w));
+                let (y0, y1) = (cl(i64::from(h) - (yh + 1), h), cl(i64::from(h) - yl, h));
+                (x0.min(x1), y0.min(y1), x1.max(x0), y1.max(y0))
+            }
+            None => (0, 0, w, h),
+        };
+        CameraModel {
+            width: w,
+            height: h,
+            camera_to_world: Affine3A::from_mat4(c.camera_to_world.as_mat4()),
+            world_to_camera: Affine3A::from_mat4(c.world_to_camera.as_mat4()),
+            focal: c.focal.unwrap_or(1.0) as f32,
+            aperture: c.aperture as f32,
+            aspect: c.aspect as f32,
+            orthographic: c.focal.is_none(),
+            offset: (c.offset.0 as f32, c.offset.1 as f32),
+            clip: (c.clip.0.max(0.0) as f32, c.clip.1 as f32),
+            window,
+        }
+    }
+
+    /// Sets a new resolution, keeping the field of view (and scaling the offset).
+    pub fn resize(&mut self, width: u32, height: u32) {
+        let (sx, sy) = (width as f32 / self.width as f32, height as f32 / self.height as f32);
+        self.offset = (self.offset.0 * sx, self.offset.1 * sy);
+        let (x0, y0, x1, y1) = self.window;
+        self.window = (
+            (x0 as f32 * sx) as u32,
+            (y0 as f32 * sy) as u32,
+            ((x1 as f32 * sx).ceil() as u32).min(width),
+            ((y1 as f32 * sy).ceil() as u32).min(height),
+        );
+        self.width = width;
+        self.height = height;
+    }
+
+    /// The primary ray through raster position (x, y), top-left origin; the direction has
+    /// unit length and the range is limited by the clip planes.
+    pub fn ray(&self, x: f32, y: f32) -> Ray {
+        let (w, h) = (self.width as f32, self.height as f32);
+        let rx = x - w * 0.5 + self.offset.0;
+        let ry = (h - y) - h * 0.5 + self.offset.1;
+        let sx = self.aperture / (self.focal * w);
+        let sy = self.aperture / (self.focal * self.aspect * h);
+        let (origin_cam, dir_cam) = if self.orthographic {
+            (Vec3A::new(rx * sx, ry * sy, 0.0), Vec3A::NEG_Z)
+        } else {
+            (Vec3A::ZERO, Vec3A::new(rx * sx, ry * sy, -1.0).normalize())
+        };
+        let origin = self.camera_to_world.transform_point3a(origin_cam);
+        let dir = self.camera_to_world.transform_vector3a(dir_cam);
+        let len = dir.length();
+        // Clip distances are along −Z; along the ray they grow by 1/cos.
+        let cos = -dir_cam.z;
+        Ray {
+            mask: crate::integrator::mask::CAMERA,
+            origin,
+            dir: dir / len,
+            tmin: self.clip.0 / cos * len,
+            tmax: self.clip.1 / cos * len,
+        }
+    }
+
+    /// Depth (−z in camera space) of a world point: what the `z` frame buffer stores.
+    pub fn depth(&self, p: Vec3A) -> f32 {
+        -self.world_to_camera.transform_point3a(p).z
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cam(offset: (f32, f32)) -> CameraModel {
+        CameraModel {
+            width: 200,
+            height: 100,
+            camera_to_world: Affine3A::IDENTITY,
+            world_to_camera: Affine3A::IDENTITY,
+            focal: 1.0,
+            aperture: 2.0,
+            aspect: 2.0,
+            orthographic: false,
+            offset,
+            clip: (0.0, f32::INFINITY),
+            window: (0, 0, 200, 100),
+        }
+    }
+
+    #[test]
+    fn centre_and_corners() {
+        let c = cam((0.0, 0.0));
+        let r = c.ray(100.0, 50.0);
+        assert!((r.dir - Vec3A::NEG_Z).length() < 1e-6);
+        // Top-left corner: x = −aperture/2, y = +aperture/(2·aspect).
+        let r = c.ray(0.0, 0.0);
+        let expect = Vec3A::new(-1.0, 0.5, -1.0).normalize();
+        assert!((r.dir - expect).length() < 1e-6, "{}", r.dir);
+    }
+
+    #[test]
+    fn positive_offset_moves_the_picture_left() {
+        // A point seen at the centre without offset appears 10 pixels to the left with
+        // offset_x = 10: the pixel 10 to the left now looks straight ahead.
+        let c = cam((10.0, 0.0));
+        let r = c.ray(90.0, 50.0);
+        assert!((r.dir - Vec3A::NEG_Z).length() < 1e-6, "{}", r.dir);
+    }
+}

@@ -1,0 +1,125 @@
+//! The film: per-pixel sample accumulators and the frame buffers made from them.
+//!
+//! Colour buffers store the filter-weighted mean of a pixel's samples (straight RGB, alpha =
+//! coverage). A sample whose colour is NaN or infinite is stored as 1.0 in those channels
+//! (mental ray's rule) and counted. `z` (depth along −Z in camera space, 0 where nothing was
+//! hit), `n` (world-space shading normal) and `tag` (the instance's label) come from each
+//! pixel's first sample.
+
+use shade::Rgb;
+
+/// One pixel's accumulators.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Pixel {
+    /// Σ w·rgba.
+    pub sum: [f64; 4],
+    /// Σ w.
+    pub weight: f64,
+    /// Σ w·rgb of the odd-numbered samples (for the error estimate).
+    pub odd_sum: [f32; 3],
+    /// Σ w of the odd-numbered samples.
+    pub odd_weight: f32,
+    /// Samples taken.
+    pub samples: u32,
+    /// Depth of the first sample's hit (0: none).
+    pub depth: f32,
+    /// World-space shading normal of the first sample's hit.
+    pub normal: [f32; 3],
+    /// Label of the first sample's hit.
+    pub tag: u32,
+    /// Whether the pixel has converged.
+    pub converged: bool,
+}
+
+impl Pixel {
+    /// Adds one sample: colour, alpha and filter weight. Returns the number of channels
+    /// that were NaN or infinite (stored as 1.0).
+    pub fn add(&mut self, c: Rgb, alpha: f32, w: f32, index: u32) -> u32 {
+        let mut bad = 0;
+        let mut fix = |v: f32| {
+            if v.is_finite() {
+                v
+            } else {
+                bad += 1;
+                1.0
+            }
+        };
+        let c = Rgb::new(fix(c.x), fix(c.y), fix(c.z));
+        let w64 = f64::from(w);
+        self.sum[0] += f64::from(c.x) * w64;
+        self.sum[1] += f64::from(c.y) * w64;
+        self.sum[2] += f64::from(c.z) * w64;
+        self.sum[3] += f64::from(alpha) * w64;
+        self.weight += w64;
+        if index % 2 == 1 {
+            self.odd_sum[0] += c.x * w;
+            self.odd_sum[1] += c.y * w;
+            self.odd_sum[2] += c.z * w;
+            self.odd_weight += w;
+        }
+        self.samples += 1;
+        bad
+    }
+
+    /// The pixel's colour and alpha.
+    pub fn rgba(&self) -> [f32; 4] {
+        if self.weight == 0.0 {
+            return [0.0; 4];
+        }
+        let inv = 1.0 / self.weight;
+        [(self.sum[0] * inv) as f32, (self.sum[1] * inv) as f32, (self.sum[2] * inv) as f32, (self.sum[3] * inv) as f32]
+    }
+
+    /// Relative difference between the odd samples' mean and the whole mean, in luminance:
+    /// an estimate of the pixel's remaining error.
+    pub fn error(&self) -> f32 {
+        if self.samples < 4 || self.odd_weight == 0.0 || self.weight == 0.0 {
+            return f32::INFINITY;
+        }
+        let all = self.rgba();
+        let lum = |r: f32, g: f32, b: f32| 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        let l_all = lum(all[0], all[1], all[2]);
+        let o = self.odd_sum;
+        let l_odd = lum(o[0], o[1], o[2]) / self.odd_weight;
+        // Absolute below a luminance of 0.1, relative above (dark pixels converge too).
+        (l_all - l_odd).abs() / l_all.max(0.1)
+    }
+}
+
+/// The accumulated image.
+#[derive(Clone, Debug)]
+pub struct Film {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Pixels, row by row from the top.
+    pub pixels: Vec<Pixel>,
+}
+
+impl Film {
+    /// An empty film.
+    pub fn new(width: u32, height: u32) -> Film {
+        Film { width, height, pixels: vec![Pixel::default(); width as usize * height as usize] }
+    }
+
+    /// The colour buffer, RGBA per pixel, row by row from the top.
+    pub fn rgba(&self) -> Vec<[f32; 4]> {
+        self.pixels.iter().map(Pixel::rgba).collect()
+    }
+
+    /// The depth buffer.
+    pub fn depth(&self) -> Vec<f32> {
+        self.pixels.iter().map(|p| p.depth).collect()
+    }
+
+    /// The normal buffer.
+    pub fn normals(&self) -> Vec<[f32; 3]> {
+        self.pixels.iter().map(|p| p.normal).collect()
+    }
+
+    /// The label buffer.
+    pub fn tags(&self) -> Vec<u32> {
+        self.pixels.iter().map(|p| p.tag).collect()
+    }
+}

@@ -1,0 +1,238 @@
+//! Unidirectional path tracing with next-event estimation and multiple importance sampling
+//! (power heuristic), Russian roulette after a few bounces.
+
+use glam::Vec3A;
+use shade::{Frame, Rgb};
+
+use crate::accel::{Accel, Hit};
+use crate::light::LightSource;
+use crate::ray::{offset_origin, Ray};
+use crate::sampler::Sampler;
+use crate::world::World;
+
+/// Ray kinds, as masks tested against instance flags.
+pub mod mask {
+    /// Rays from the camera: instances with `visible off` are skipped.
+    pub const CAMERA: u32 = 1;
+    /// Shadow rays: instances that cast no shadows are skipped.
+    pub const SHADOW: u32 = 2;
+    /// Secondary (scattered) rays: instances not seen by reflections are skipped.
+    pub const SECONDARY: u32 = 4;
+}
+
+/// Integrator settings.
+#[derive(Clone, Copy, Debug)]
+pub struct PathSettings {
+    /// Most scattering events along a path.
+    pub max_depth: u32,
+    /// Bounces before Russian roulette starts.
+    pub rr_depth: u32,
+    /// Combine light and BSDF sampling with MIS (off: light sampling only for lights that
+    /// can be sampled, BSDF sampling only for emitters that cannot).
+    pub mis: bool,
+}
+
+impl Default for PathSettings {
+    fn default() -> PathSettings {
+        PathSettings { max_depth: 16, rr_depth: 3, mis: true }
+    }
+}
+
+/// Per-thread ray counts.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RayCounts {
+    /// Closest-hit rays.
+    pub rays: u64,
+    /// Shadow rays.
+    pub shadow_rays: u64,
+}
+
+/// What the first hit of a camera path was.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FirstHit {
+    /// World-space hit point.
+    pub point: Vec3A,
+    /// World-space shading normal.
+    pub normal: Vec3A,
+    /// The instance's label.
+    pub tag: u32,
+}
+
+/// The result of one camera path.
+#[derive(Clone, Copy, Debug)]
+pub struct PathResult {
+    /// Radiance.
+    pub radiance: Rgb,
+    /// 1 when the path hit something (geometry or a visible light).
+    pub alpha: f32,
+    /// The first hit, if any.
+    pub first: Option<FirstHit>,
+}
+
+/// Surface data at a hit.
+struct Surface {
+    p: Vec3A,
+    ng: Vec3A,
+    ns: Vec3A,
+    material: u32,
+    tag: u32,
+}
+
+fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
+    let inst = &world.instances[hit.instance as usize];
+    let mesh = &world.meshes[inst.mesh as usize];
+    let [i0, i1, i2] = mesh.triangles[hit.prim as usize];
+    let (p0, p1, p2) = (mesh.positions[i0 as usize], mesh.positions[i1 as usize], mesh.positions[i2 as usize]);
+    let w = 1.0 - hit.u - hit.v;
+    let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
+    let p = inst.object_to_world.transform_point3a(p_obj);
+    // Normals go to world space with the inverse transpose, so mirroring transforms keep
+    // the counter-clockwise side as the front.
+    let ng = (inst.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    let ns = if mesh.normals.is_empty() {
+        ng
+    } else {
+        let n = mesh.normals[i0 as usize] * w + mesh.normals[i1 as usize] * hit.u + mesh.normals[i2 as usize] * hit.v;
+        let n = (inst.normal_to_world * n).normalize_or(ng);
+        if n.dot(ng) < 0.0 {
+            -n
+        } else {
+            n
+        }
+    };
+    let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
+    let material = inst.materials.get(slot).copied().unwrap_or(0);
+    let _ = ray;
+    Surface { p, ng, ns, material, tag: inst.tag }
+}
+
+/// Power heuristic weight of a strategy with density `a` against one with `b`.
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 == 0.0 {
+        0.0
+    } else {
+        a2 / (a2 + b2)
+    }
+}
+
+/// The closest visible light hit by `ray` before distance `tmax`.
+fn hit_light(lights: &[LightSource], ray: &Ray) -> Option<(usize, f32, Rgb)> {
+    let mut best: Option<(usize, f32, Rgb)> = None;
+    for (i, l) in lights.iter().enumerate() {
+        if !l.visible {
+            continue;
+        }
+        if let Some((t, le)) = l.intersect(ray) {
+            if best.is_none_or(|(_, bt, _)| t < bt) {
+                best = Some((i, t, le));
+            }
+        }
+    }
+    best
+}
+
+/// Traces one camera path.
+pub fn trace_path(
+    world: &World,
+    accel: &dyn Accel,
+    camera_ray: Ray,
+    sampler: &mut Sampler,
+    settings: &PathSettings,
+    counts: &mut RayCounts,
+) -> PathResult {
+    let mut ray = camera_ray;
+    let mut throughput = Rgb::ONE;
+    let mut radiance = Rgb::ZERO;
+    let mut first = None;
+    let mut alpha = 0.0;
+    // The BSDF density of the last bounce (for MIS on lights hit), and whether it was a delta.
+    let mut last_pdf = 0.0f32;
+    let mut last_delta = true;
+    let light_count = world.lights.len();
+    let pick = if light_count > 0 { 1.0 / light_count as f32 } else { 0.0 };
+    for depth in 0..settings.max_depth {
+        counts.rays += 1;
+        let hit = accel.intersect(&ray);
+        let tmax = hit.map_or(ray.tmax, |h| h.t);
+        if let Some((li, t, le)) = hit_light(&world.lights, &Ray { tmax, ..ray }) {
+            if depth == 0 {
+                alpha = 1.0;
+            }
+            // Emission found by the BSDF: all of it when light sampling could not have
+            // found it (camera rays, delta bounces); else the MIS share, or nothing when
+            // light sampling alone accounts for it.
+            let weight = if depth == 0 || last_delta {
+                1.0
+            } else if settings.mis {
+                power_heuristic(last_pdf, pick * world.lights[li].pdf(ray.origin, ray.dir, t))
+            } else {
+                0.0
+            };
+            radiance += throughput * le * weight;
+            break;
+        }
+        let Some(hit) = hit else { break };
+        let s = surface(world, &ray, &hit);
+        if depth == 0 {
+            alpha = 1.0;
+            first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag });
+        }
+        let material = &world.materials[s.material as usize];
+        if material.emission != Rgb::ZERO {
+            radiance += throughput * material.emission;
+        }
+        // Two-sided shading: face the normals towards the ray.
+        let (ng, ns) = if s.ng.dot(ray.dir) > 0.0 { (-s.ng, -s.ns) } else { (s.ng, s.ns) };
+        let frame = Frame::from_normal(ns);
+        let wo = frame.to_local(-ray.dir);
+        let bsdf = material.bsdf();
+        // Next-event estimation (the sample numbers are drawn even when unused, so that
+        // every bounce uses the same dimensions).
+        let choice = sampler.next_1d();
+        let u_light = sampler.next_2d();
+        if light_count > 0 && !bsdf.is_delta() {
+            let light = &world.lights[((choice * light_count as f32) as usize).min(light_count - 1)];
+            if let Some(ls) = light.sample(s.p, u_light) {
+                let wi = frame.to_local(ls.wi);
+                let f = bsdf.eval(wo, wi);
+                if ls.wi.dot(ng) > 0.0 && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
+                    let origin = offset_origin(s.p, ng, ls.wi);
+                    let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+                    counts.shadow_rays += 1;
+                    let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax };
+                    if !light.shadow || !accel.occluded(&shadow) {
+                        let weight = if ls.delta || !settings.mis {
+                            1.0
+                        } else {
+                            power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi))
+                        };
+                        radiance += throughput * f * ls.radiance * (wi.z.abs() * weight / (pick * ls.pdf));
+                    }
+                }
+            }
+        }
+        // Scatter.
+        let Some(bs) = bsdf.sample(wo, sampler.next_2d()) else { break };
+        let wi = frame.to_world(bs.wi);
+        // A reflected ray must leave above the geometric surface, a transmitted one below:
+        // shading normals can say otherwise, and then the path ends.
+        if (bs.wi.z > 0.0) != (wi.dot(ng) > 0.0) {
+            break;
+        }
+        throughput *= bs.weight();
+        last_pdf = bs.pdf;
+        last_delta = bs.delta;
+        let u_rr = sampler.next_1d();
+        if depth + 1 >= settings.rr_depth {
+            let q = throughput.max_element().min(0.95);
+            if q <= 0.0 || u_rr >= q {
+                break;
+            }
+            throughput /= q;
+        }
+        ray =
+            Ray { mask: mask::SECONDARY, origin: offset_origin(s.p, ng, wi), dir: wi, tmin: 0.0, tmax: f32::INFINITY };
+    }
+    PathResult { radiance, alpha, first }
+}

@@ -1,0 +1,398 @@
+//! Light sources in world space: their shapes, what they emit and how to sample them.
+//!
+//! Physical lights (MDL light materials) emit radiance from their surface (one-sided for
+//! rectangles and discs, facing their normal); point lights have an intensity falling off
+//! with 1/r². mental ray's base light shaders are not physical: a lit point receives the
+//! shader's colour, with no distance falloff unless `atten` asks for a linear one, and area
+//! lights average that colour over points of their surface; they are sampled like point
+//! lights at those points.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3A};
+use scene::{AreaShape, Library, Light, LightKind};
+use shade::emission::{Emission, Power};
+use shade::{Frame, Rgb};
+
+use crate::ray::Ray;
+
+/// The geometry of a light, world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A point (or the origin of a directional light).
+    Point,
+    /// A parallelogram centred on the position, full edges `u` and `v`.
+    Rect {
+        /// First edge.
+        u: Vec3A,
+        /// Second edge.
+        v: Vec3A,
+        /// Unit normal of the emitting side.
+        normal: Vec3A,
+    },
+    /// A disc centred on the position.
+    Disc {
+        /// Unit normal.
+        normal: Vec3A,
+        /// Radius.
+        radius: f32,
+    },
+    /// A sphere around the position.
+    Sphere {
+        /// Radius.
+        radius: f32,
+    },
+    /// A cylinder around the position along `axis` (full length).
+    Cylinder {
+        /// Axis.
+        axis: Vec3A,
+        /// Radius.
+        radius: f32,
+    },
+}
+
+/// What a light gives a lit point, resolved for its shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Output {
+    /// Surface radiance (area lights); `two_sided` surfaces emit on both sides.
+    Radiance {
+        /// Radiance.
+        l: Rgb,
+        /// Emits on both sides.
+        two_sided: bool,
+    },
+    /// Radiant intensity (point and spot lights), falling off with 1/r².
+    Intensity(Rgb),
+    /// Irradiance perpendicular to the beam (directional lights).
+    Irradiance(Rgb),
+    /// mental ray base light shaders: the colour itself, optionally with a linear falloff.
+    Constant {
+        /// Colour received.
+        color: Rgb,
+        /// Linear falloff `(start, stop)`.
+        falloff: Option<(f32, f32)>,
+    },
+}
+
+/// A light in the render world.
+#[derive(Clone, Debug)]
+pub struct LightSource {
+    /// The light instance's name.
+    pub name: String,
+    /// Point, spot or directional.
+    pub kind: LightKind,
+    /// Position (centre of the shape), world space.
+    pub position: Vec3A,
+    /// Direction light travels (spot, directional), unit.
+    pub direction: Vec3A,
+    /// The shape.
+    pub shape: Shape,
+    /// What it emits.
+    pub output: Output,
+    /// Cosine of the spot's outer half-angle.
+    pub spread: f32,
+    /// Cosine of the spot's inner (full-intensity) half-angle (mental ray spots).
+    pub cone: Option<f32>,
+    /// MDL spot exponent.
+    pub spot_exponent: Option<f32>,
+    /// Seen by rays.
+    pub visible: bool,
+    /// Casts shadows.
+    pub shadow: bool,
+}
+
+/// A sampled light contribution towards a shading point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit direction from the shading point to the light.
+    pub wi: Vec3A,
+    /// Distance to the sampled point (`f32::INFINITY` for directional lights).
+    pub dist: f32,
+    /// Radiance arriving (for `delta` samples, the contribution with the pdf divided out).
+    pub radiance: Rgb,
+    /// Solid-angle density of the sample (1 for delta samples).
+    pub pdf: f32,
+    /// Whether the sample cannot be found by a BSDF ray (points, directions, non-physical
+    /// lights).
+    pub delta: bool,
+}
+
+fn area(shape: &Shape) -> f32 {
+    match *shape {
+        Shape::Point => 0.0,
+        Shape::Rect { u, v, .. } => u.cross(v).length(),
+        Shape::Disc { radius, .. } => PI * radius * radius,
+        Shape::Sphere { radius } => 4.0 * PI * radius * radius,
+        Shape::Cylinder { axis, radius } => 2.0 * PI * radius * axis.length(),
+    }
+}
+
+impl LightSource {
+    /// Translates a scene light (its emission read by `shade`).
+    pub fn from_scene(light: &Light, lib: &Library) -> Result<LightSource, String> {
+        let emission: Emission = shade::emission::emission(light, lib)?;
+        let shape = match (&light.area, light.kind) {
+            (Some(a), LightKind::Point | LightKind::Spot) => match &a.shape {
+                AreaShape::Rectangle { edge_u, edge_v, normal } => {
+                    Shape::Rect { u: edge_u.as_vec3a(), v: edge_v.as_vec3a(), normal: normal.as_vec3a() }
+                }
+                AreaShape::Disc { normal, radius } => Shape::Disc { normal: normal.as_vec3a(), radius: *radius as f32 },
+                AreaShape::Sphere { radius } => Shape::Sphere { radius: *radius as f32 },
+                AreaShape::Cylinder { axis, radius } => {
+                    Shape::Cylinder { axis: axis.as_vec3a(), radius: *radius as f32 }
+                }
+                AreaShape::Object { .. } | AreaShape::User => {
+                    return Err(format!(
+                        "light '{}': object and user area lights are not supported yet",
+                        light.instance
+                    ))
+                }
+            },
+            _ => Shape::Point,
+        };
+        let a = area(&shape);
+        let is_area = !matches!(shape, Shape::Point);
+        let output = match (emission.power, light.kind, is_area) {
+            (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
+            (p, LightKind::Directional, _) => Output::Irradiance(match p {
+                Power::Exitance(c) | Power::Radiance(c) | Power::Flux(c) | Power::Intensity(c) => c,
+                Power::Constant { color, .. } => color,
+            }),
+            (Power::Exitance(e), _, true) => Output::Radiance { l: e / PI, two_sided: false },
+            (Power::Radiance(l), _, true) => Output::Radiance { l, two_sided: false },
+            (Power::Flux(f), _, true) => Output::Radiance { l: f / (PI * a), two_sided: false },
+            (Power::Intensity(i), _, true) => Output::Radiance { l: i / a, two_sided: false },
+            (Power::Flux(f), _, false) => Output::Intensity(f / (4.0 * PI)),
+            (Power::Exitance(c) | Power::Radiance(c) | Power::Intensity(c), _, false) => Output::Intensity(c),
+        };
+        Ok(LightSource {
+            name: light.instance.clone(),
+            kind: light.kind,
+            position: light.position.as_vec3a(),
+            direction: light.direction.as_vec3a(),
+            shape,
+            output,
+            spread: light.spread as f32,
+            cone: emission.cone,
+            spot_exponent: emission.spot_exponent,
+            visible: light.visible && is_area && matches!(output, Output::Radiance { .. }),
+            shadow: light.shadow,
+        })
+    }
+
+    /// Spot attenuation of light leaving in unit direction `out`.
+    fn spot(&self, out: Vec3A) -> f32 {
+        if self.kind != LightKind::Spot {
+            return 1.0;
+        }
+        let c = out.dot(self.direction);
+        if let Some(e) = self.spot_exponent {
+            return c.max(0.0).powf(e);
+        }
+        if c < self.spread {
+            return 0.0;
+        }
+        match self.cone {
+            Some(inner) if inner > self.spread && c < inner => (c - self.spread) / (inner - self.spread),
+            _ => 1.0,
+        }
+    }
+
+    /// A point on the shape (uniform by area) and its normal.
+    fn point_on(&self, u: Vec2) -> (Vec3A, Vec3A) {
+        let p = self.position;
+        match self.shape {
+            Shape::Point => (p, Vec3A::ZERO),
+            Shape::Rect { u: eu, v: ev, normal } => (p + eu * (u.x - 0.5) + ev * (u.y - 0.5), normal),
+            Shape::Disc { normal, radius } => {
+                let f = Frame::from_normal(normal);
+                let d = shade::bsdf::concentric_disc(u) * radius;
+                (p + f.tangent * d.x + f.bitangent * d.y, normal)
+            }
+            Shape::Sphere { radius } => {
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * PI * u.y;
+                let n = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
+                (p + n * radius, n)
+            }
+            Shape::Cylinder { axis, radius } => {
+                let f = Frame::from_normal(axis.normalize_or(Vec3A::Z));
+                let phi = 2.0 * PI * u.y;
+                let n = f.tangent * phi.cos() + f.bitangent * phi.sin();
+                (p + axis * (u.x - 0.5) + n * radius, n)
+            }
+        }
+    }
+
+    /// Samples the light as seen from `p`.
+    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        match self.output {
+            Output::Irradiance(e) => {
+                Some(LightSample { wi: -self.direction, dist: f32::INFINITY, radiance: e, pdf: 1.0, delta: true })
+            }
+            Output::Intensity(i) => {
+                let d = self.position - p;
+                let dist2 = d.length_squared();
+                let dist = dist2.sqrt();
+                let wi = d / dist;
+                let radiance = i * self.spot(-wi) / dist2;
+                (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
+            }
+            Output::Constant { color, falloff } => {
+                let (q, _) = self.point_on(u);
+                let (wi, dist) = if self.kind == LightKind::Directional {
+                    (-self.direction, f32::INFINITY)
+                } else {
+                    let d = q - p;
+                    let dist = d.length();
+                    (d / dist, dist)
+                };
+                let atten = match falloff {
+                    Some((start, stop)) if stop > start && self.kind != LightKind::Directional => {
+                        ((stop - dist) / (stop - start)).clamp(0.0, 1.0)
+                    }
+                    _ => 1.0,
+                };
+                let radiance = color * atten * self.spot(-wi);
+                (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
+            }
+            Output::Radiance { l, two_sided } => {
+                if let Shape::Sphere { radius } = self.shape {
+                    return self.sample_sphere_cone(p, radius, l, u);
+                }
+                let (q, n) = self.point_on(u);
+                let d = q - p;
+                let dist2 = d.length_squared();
+                let dist = dist2.sqrt();
+                if dist == 0.0 {
+                    return None;
+                }
+                let wi = d / dist;
+                let cos_l = -wi.dot(n);
+                if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
+                    return None;
+                }
+                let pdf = dist2 / (cos_l.abs() * area(&self.shape));
+                Some(LightSample { wi, dist, radiance: l, pdf, delta: false })
+            }
+        }
+    }
+
+    /// Samples the cone of directions a sphere subtends from `p` (uniform in solid angle).
+    fn sample_sphere_cone(&self, p: Vec3A, radius: f32, l: Rgb, u: Vec2) -> Option<LightSample> {
+        let d = self.position - p;
+        let dist2 = d.length_squared();
+        if dist2 <= radius * radius {
+            return None;
+        }
+        let dist_c = dist2.sqrt();
+        let cos_max = (1.0 - radius * radius / dist2).max(0.0).sqrt();
+        let cos_t = 1.0 - u.x * (1.0 - cos_max);
+        let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+        let phi = 2.0 * PI * u.y;
+        let f = Frame::from_normal(d / dist_c);
+        let wi = f.to_world(Vec3A::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t));
+        let (t, _) = self.intersect(&Ray::new(p, wi))?;
+        let pdf = 1.0 / (2.0 * PI * (1.0 - cos_max));
+        Some(LightSample { wi, dist: t, radiance: l, pdf, delta: false })
+    }
+
+    /// Solid-angle density with which [`LightSource::sample`] picks direction `wi` (unit)
+    /// from `p` towards the point at distance `t` on the light.
+    pub fn pdf(&self, p: Vec3A, wi: Vec3A, t: f32) -> f32 {
+        match (self.output, self.shape) {
+            (Output::Radiance { .. }, Shape::Sphere { radius }) => {
+                let dist2 = (self.position - p).length_squared();
+                let cos_max = (1.0 - radius * radius / dist2).max(0.0).sqrt();
+                1.0 / (2.0 * PI * (1.0 - cos_max))
+            }
+            (Output::Radiance { .. }, shape) => {
+                let (_, n) = self.point_and_normal_at(p + wi * t);
+                let cos_l = wi.dot(n).abs();
+                if cos_l == 0.0 {
+                    return 0.0;
+                }
+                t * t / (cos_l * area(&shape))
+            }
+            _ => 0.0,
+        }
+    }
+
+    fn point_and_normal_at(&self, q: Vec3A) -> (Vec3A, Vec3A) {
+        let n = match self.shape {
+            Shape::Rect { normal, .. } | Shape::Disc { normal, .. } => normal,
+            Shape::Sphere { .. } => (q - self.position).normalize_or_zero(),
+            Shape::Cylinder { axis, .. } => {
+                let a = axis.normalize_or(Vec3A::Z);
+                let r = q - self.position;
+                (r - a * r.dot(a)).normalize_or_zero()
+            }
+            Shape::Point => Vec3A::ZERO,
+        };
+        (q, n)
+    }
+
+    /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
+    pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        let Output::Radiance { l, two_sided } = self.output else { return None };
+        let c = self.position;
+        let plane = |n: Vec3A| {
+            let denom = ray.dir.dot(n);
+            if denom == 0.0 {
+                return None;
+            }
+            let t = (c - ray.origin).dot(n) / denom;
+            (t > ray.tmin && t < ray.tmax).then_some((t, denom))
+        };
+        let (t, facing) = match self.shape {
+            Shape::Rect { u, v, normal } => {
+                let (t, denom) = plane(normal)?;
+                let q = ray.at(t) - c;
+                let (su, sv) = (q.dot(u) / u.length_squared(), q.dot(v) / v.length_squared());
+                // The edges need not be orthogonal: solve in the parallelogram's own basis.
+                let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+                let det = uu * vv - uv * uv;
+                let (a, b) = if det.abs() > 0.0 {
+                    ((q.dot(u) * vv - q.dot(v) * uv) / det, (q.dot(v) * uu - q.dot(u) * uv) / det)
+                } else {
+                    (su, sv)
+                };
+                if a.abs() > 0.5 || b.abs() > 0.5 {
+                    return None;
+                }
+                (t, denom < 0.0)
+            }
+            Shape::Disc { normal, radius } => {
+                let (t, denom) = plane(normal)?;
+                if (ray.at(t) - c).length_squared() > radius * radius {
+                    return None;
+                }
+                (t, denom < 0.0)
+            }
+            Shape::Sphere { radius } => {
+                let oc = ray.origin - c;
+                let a = ray.dir.length_squared();
+                let b = oc.dot(ray.dir);
+                let cc = oc.length_squared() - radius * radius;
+                let disc = b * b - a * cc;
+                if disc < 0.0 {
+                    return None;
+                }
+                let sq = disc.sqrt();
+                let t0 = (-b - sq) / a;
+                let t1 = (-b + sq) / a;
+                let t = if t0 > ray.tmin && t0 < ray.tmax {
+                    t0
+                } else if t1 > ray.tmin && t1 < ray.tmax {
+                    t1
+                } else {
+                    return None;
+                };
+                (t, cc > 0.0)
+            }
+            Shape::Cylinder { .. } | Shape::Point => return None,
+        };
+        (facing || two_sided).then_some((t, l))
+    }
+}

@@ -1,0 +1,151 @@
+//! The render world: the scene's meshes, instances, materials, lights and camera in the
+//! compact `f32` form the integrators read.
+
+use glam::{Affine3A, Mat3A, Vec2, Vec3A};
+use scene::Scene;
+use shade::SurfaceMaterial;
+
+use crate::camera::CameraModel;
+use crate::light::LightSource;
+
+/// A triangle mesh, object space.
+#[derive(Clone, Debug, Default)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub positions: Vec<Vec3A>,
+    /// Vertex shading normals (empty: use the geometric normal).
+    pub normals: Vec<Vec3A>,
+    /// Vertex coordinates of the first texture space (empty if none).
+    pub uvs: Vec<Vec2>,
+    /// Triangles (counter-clockwise is the front).
+    pub triangles: Vec<[u32; 3]>,
+    /// Material slot of each triangle.
+    pub slots: Vec<u32>,
+}
+
+/// An instance of a mesh.
+#[derive(Clone, Debug)]
+pub struct InstanceData {
+    /// Index into [`World::meshes`].
+    pub mesh: u32,
+    /// Object → world.
+    pub object_to_world: Affine3A,
+    /// World → object.
+    pub world_to_object: Affine3A,
+    /// Object-space normals → world space (inverse transpose).
+    pub normal_to_world: Mat3A,
+    /// Material index (into [`World::materials`]) of each of the mesh's slots.
+    pub materials: Vec<u32>,
+    /// Render flags.
+    pub flags: scene::Flags,
+    /// The label written to the tag buffer.
+    pub tag: u32,
+}
+
+/// Everything an integrator needs.
+pub struct World {
+    /// Unique meshes.
+    pub meshes: Vec<MeshData>,
+    /// Their placements.
+    pub instances: Vec<InstanceData>,
+    /// Surface materials; index 0 is the grey default for faces without a material.
+    pub materials: Vec<SurfaceMaterial>,
+    /// Light sources.
+    pub lights: Vec<LightSource>,
+    /// The camera.
+    pub camera: CameraModel,
+    /// The scene's options.
+    pub options: scene::Options,
+    /// Things approximated or left out while translating, for the user.
+    pub warnings: Vec<String>,
+}
+
+fn affine(m: glam::DMat4) -> Affine3A {
+    Affine3A::from_mat4(m.as_mat4())
+}
+
+impl World {
+    /// Translates a built scene.
+    pub fn from_scene(scene: &Scene) -> World {
+        let mut warnings = Vec::new();
+        let mut materials = vec![SurfaceMaterial::grey("(no material)")];
+        for m in &scene.materials {
+            let (mat, w) = shade::material::translate(m, &scene.library);
+            warnings.extend(w);
+            materials.push(mat);
+        }
+        let meshes: Vec<MeshData> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                let m = &o.geometry.mesh;
+                MeshData {
+                    positions: m.positions.iter().map(|p| Vec3A::from(*p)).collect(),
+                    normals: m.normals.iter().map(|n| Vec3A::from(*n)).collect(),
+                    uvs: m
+                        .textures
+                        .first()
+                        .map(|t| t.coords.iter().map(|c| Vec2::new(c.x, c.y)).collect())
+                        .unwrap_or_default(),
+                    triangles: m.triangles.clone(),
+                    slots: m.triangle_slots.clone(),
+                }
+            })
+            .collect();
+        if scene.objects.iter().any(|o| !o.geometry.hair.is_empty()) {
+            warnings.push("hair is not rendered by the path integrator yet".into());
+        }
+        let instances = scene
+            .instances
+            .iter()
+            .filter(|i| !scene.objects[i.object as usize].geometry.mesh.triangles.is_empty())
+            .map(|i| {
+                let object_to_world = affine(i.object_to_world);
+                InstanceData {
+                    mesh: i.object,
+                    object_to_world,
+                    world_to_object: affine(i.world_to_object),
+                    normal_to_world: object_to_world.matrix3.inverse().transpose(),
+                    materials: i.materials.iter().map(|m| m.map_or(0, |m| m + 1)).collect(),
+                    flags: i.flags,
+                    tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
+                }
+            })
+            .collect();
+        let mut lights = Vec::new();
+        for l in &scene.lights {
+            match LightSource::from_scene(l, &scene.library) {
+                Ok(src) => lights.push(src),
+                Err(w) => warnings.push(w),
+            }
+        }
+        World {
+            meshes,
+            instances,
+            materials,
+            lights,
+            camera: CameraModel::new(&scene.camera),
+            options: scene.options.clone(),
+            warnings,
+        }
+    }
+
+    /// World-space bounds of all instances.
+    pub fn bounds(&self) -> (Vec3A, Vec3A) {
+        let mut lo = Vec3A::splat(f32::INFINITY);
+        let mut hi = Vec3A::splat(f32::NEG_INFINITY);
+        for inst in &self.instances {
+            for p in &self.meshes[inst.mesh as usize].positions {
+                let w = inst.object_to_world.transform_point3a(*p);
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Number of triangles over all instances.
+    pub fn instanced_triangles(&self) -> usize {
+        self.instances.iter().map(|i| self.meshes[i.mesh as usize].triangles.len()).sum()
+    }
+}

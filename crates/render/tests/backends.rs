@@ -1,0 +1,104 @@
+//! Both acceleration backends give the same hits on the same rays (when mira is built with
+//! Embree; otherwise only the Rust backend is checked against brute force).
+
+use glam::Vec3A;
+use render::accel::{self, intersect_triangle, Backend};
+use render::ray::Ray;
+use render::World;
+
+fn cornell() -> World {
+    let parsed = mi::parse_str("cb.mi", include_str!("../../../scenes/iray_cornell_box.mi"));
+    let mut diags = Vec::new();
+    World::from_scene(&scene::Scene::build(&parsed, 0, &mut diags).unwrap())
+}
+
+/// Random rays from inside the box in all directions.
+fn rays(n: usize) -> Vec<Ray> {
+    let mut state = 0x853c_49e6_748f_ea9bu64;
+    let mut rnd = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 40) as f32) / (1u64 << 24) as f32
+    };
+    (0..n)
+        .map(|_| {
+            let o = Vec3A::new(20.0 + 510.0 * rnd(), 10.0 + 520.0 * rnd(), 10.0 + 540.0 * rnd());
+            let z = 2.0 * rnd() - 1.0;
+            let r = (1.0 - z * z).sqrt();
+            let phi = std::f32::consts::TAU * rnd();
+            Ray::new(o, Vec3A::new(r * phi.cos(), r * phi.sin(), z))
+        })
+        .collect()
+}
+
+/// The closest hit by testing every triangle of every instance.
+fn brute_force(world: &World, ray: &Ray) -> Option<(u32, u32, f32)> {
+    let mut best: Option<(u32, u32, f32)> = None;
+    for (i, inst) in world.instances.iter().enumerate() {
+        let mesh = &world.meshes[inst.mesh as usize];
+        let local = Ray {
+            origin: inst.world_to_object.transform_point3a(ray.origin),
+            dir: inst.world_to_object.transform_vector3a(ray.dir),
+            ..*ray
+        };
+        for (p, t) in mesh.triangles.iter().enumerate() {
+            let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+            if let Some((d, _, _)) = intersect_triangle(&local, a, b, c) {
+                if best.is_none_or(|x| d < x.2) {
+                    best = Some((i as u32, p as u32, d));
+                }
+            }
+        }
+    }
+    best
+}
+
+#[test]
+fn rust_backend_matches_brute_force() {
+    let world = cornell();
+    let bvh = accel::build(&world, Backend::Rust);
+    let mut mismatches = 0;
+    let rays = rays(4000);
+    for ray in &rays {
+        let a = bvh.intersect(ray).map(|h| (h.instance, h.prim, h.t));
+        let b = brute_force(&world, ray);
+        match (a, b) {
+            (Some(a), Some(b)) if a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() <= 1e-3 * b.2 => {}
+            (None, None) => {}
+            _ => mismatches += 1,
+        }
+        assert_eq!(bvh.occluded(ray), b.is_some());
+    }
+    assert_eq!(mismatches, 0);
+}
+
+#[cfg(embree)]
+#[test]
+fn embree_and_rust_backends_agree() {
+    let world = cornell();
+    let rust = accel::build(&world, Backend::Rust);
+    let embree = accel::build(&world, Backend::Embree);
+    assert_eq!(embree.backend(), Backend::Embree);
+    let rays = rays(20_000);
+    let mut different = 0;
+    for ray in &rays {
+        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
+        match (a, b) {
+            (Some(a), Some(b)) => {
+                // Same triangle at the same distance; rays that graze a shared edge may pick
+                // either neighbour, and the distances then agree too.
+                if (a.instance, a.prim) != (b.instance, b.prim) {
+                    different += 1;
+                }
+                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                assert!(
+                    (a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3
+                        || (a.instance, a.prim) != (b.instance, b.prim)
+                );
+            }
+            (None, None) => {}
+            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
+        }
+        assert_eq!(rust.occluded(ray), embree.occluded(ray));
+    }
+    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+}

@@ -1,0 +1,95 @@
+//! BSDFs: the closed set of scattering lobes mira's materials are built from.
+//!
+//! Conventions: directions are in the local shading frame (+Z = shading normal) and point
+//! away from the surface; `eval` returns f(ωo, ωi) without the cosine; `sample` returns a
+//! direction with `f · |cos θi| / pdf` as its weight; `pdf` is per unit solid angle.
+
+mod lambert;
+
+pub use lambert::Lambert;
+
+use crate::Rgb;
+use glam::{Vec2, Vec3A};
+
+/// A sampled direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// The incident direction ωi, local frame.
+    pub wi: Vec3A,
+    /// f(ωo, ωi).
+    pub f: Rgb,
+    /// Probability density of ωi per solid angle.
+    pub pdf: f32,
+    /// The lobe is a Dirac delta (mirror, smooth glass): `pdf` is a discrete probability.
+    pub delta: bool,
+}
+
+impl BsdfSample {
+    /// `f · |cos θi| / pdf`, the path throughput factor.
+    pub fn weight(&self) -> Rgb {
+        if self.pdf > 0.0 {
+            self.f * (self.wi.z.abs() / self.pdf)
+        } else {
+            Rgb::ZERO
+        }
+    }
+}
+
+/// A BSDF at one shading point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian diffuse reflection.
+    Lambert(Lambert),
+}
+
+impl Bsdf {
+    /// f(ωo, ωi).
+    pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        match self {
+            Bsdf::Lambert(l) => l.eval(wo, wi),
+        }
+    }
+
+    /// Samples ωi given ωo and two uniform numbers.
+    pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
+        match self {
+            Bsdf::Lambert(l) => l.sample(wo, u),
+        }
+    }
+
+    /// Density of sampling ωi given ωo.
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        match self {
+            Bsdf::Lambert(l) => l.pdf(wo, wi),
+        }
+    }
+
+    /// Whether every lobe is a delta (no light sampling helps).
+    pub fn is_delta(&self) -> bool {
+        false
+    }
+}
+
+/// Cosine-weighted direction on the +Z hemisphere (Malley's method, concentric disc).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
+    let d = concentric_disc(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3A::new(d.x, d.y, z)
+}
+
+/// Uniform point on the unit disc (Shirley–Chiu concentric mapping).
+pub fn concentric_disc(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (o.y, std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y))
+    };
+    Vec2::new(r * theta.cos(), r * theta.sin())
+}
+
+#[cfg(test)]
+pub(crate) mod testing;

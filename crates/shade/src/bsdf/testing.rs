@@ -1,0 +1,117 @@
+//! Checks every BSDF must pass: reciprocity, energy (albedo ≤ 1) and a chi-square test of
+//! `sample` against `pdf`.
+
+use glam::{Vec2, Vec3A};
+
+use super::Bsdf;
+use crate::Rgb;
+
+/// A deterministic low-discrepancy 2-D point (R2 sequence).
+pub fn r2(i: u32) -> Vec2 {
+    const G: f64 = 1.324_717_957_244_746;
+    let a = (i as f64 / G).fract();
+    let b = (i as f64 / (G * G)).fract();
+    Vec2::new(a as f32, b as f32)
+}
+
+/// Directions on the sphere for testing.
+fn directions() -> Vec<Vec3A> {
+    (0..64)
+        .map(|i| {
+            let u = r2(i + 1);
+            let z = 1.0 - 2.0 * u.x;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = std::f32::consts::TAU * u.y;
+            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect()
+}
+
+/// f(ωo, ωi) = f(ωi, ωo) within `tol` (relative).
+pub fn reciprocity(bsdf: &Bsdf, tol: f32) {
+    for &a in &directions() {
+        for &b in &directions() {
+            let (f1, f2) = (bsdf.eval(a, b), bsdf.eval(b, a));
+            let scale = f1.max_element().max(f2.max_element()).max(1e-6);
+            assert!((f1 - f2).abs().max_element() / scale <= tol, "f({a},{b}) = {f1} but f({b},{a}) = {f2}");
+        }
+    }
+}
+
+/// ∫ f(ωo, ωi) |cos θi| dωi by importance sampling with `n` samples.
+pub fn albedo(bsdf: &Bsdf, wo: Vec3A, n: u32) -> Rgb {
+    let mut sum = Rgb::ZERO;
+    for i in 0..n {
+        if let Some(s) = bsdf.sample(wo, r2(i)) {
+            sum += s.weight();
+        }
+    }
+    sum / n as f32
+}
+
+/// Chi-square test of sampled directions against `pdf` over a θ×φ grid (Pearson, with
+/// cells of low expected count merged), at the 1% significance level.
+pub fn chi_square(bsdf: &Bsdf, wo: Vec3A) {
+    const THETA: usize = 10;
+    const PHI: usize = 20;
+    const SAMPLES: u32 = 200_000;
+    let cell = |w: Vec3A| {
+        let theta = w.z.clamp(-1.0, 1.0).acos();
+        let phi = w.y.atan2(w.x).rem_euclid(std::f32::consts::TAU);
+        let t = ((theta / std::f32::consts::PI) * THETA as f32).min(THETA as f32 - 1.0) as usize;
+        let p = ((phi / std::f32::consts::TAU) * PHI as f32).min(PHI as f32 - 1.0) as usize;
+        t * PHI + p
+    };
+    let mut observed = vec![0f64; THETA * PHI];
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut rnd = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    for _ in 0..SAMPLES {
+        if let Some(s) = bsdf.sample(wo, Vec2::new(rnd(), rnd())) {
+            if !s.delta {
+                observed[cell(s.wi)] += 1.0;
+            }
+        }
+    }
+    // Expected counts: integrate the pdf over each cell with a fine midpoint rule.
+    let mut expected = vec![0f64; THETA * PHI];
+    const SUB: usize = 16;
+    for t in 0..THETA * SUB {
+        for p in 0..PHI * SUB {
+            let theta = (t as f64 + 0.5) / (THETA * SUB) as f64 * std::f64::consts::PI;
+            let phi = (p as f64 + 0.5) / (PHI * SUB) as f64 * std::f64::consts::TAU;
+            let w = Vec3A::new((theta.sin() * phi.cos()) as f32, (theta.sin() * phi.sin()) as f32, theta.cos() as f32);
+            let area = theta.sin()
+                * (std::f64::consts::PI / (THETA * SUB) as f64)
+                * (std::f64::consts::TAU / (PHI * SUB) as f64);
+            expected[cell(w)] += f64::from(bsdf.pdf(wo, w)) * area * f64::from(SAMPLES);
+        }
+    }
+    // Pool cells with expected < 5 into one.
+    let (mut chi2, mut dof) = (0.0, 0usize);
+    let (mut pool_o, mut pool_e) = (0.0, 0.0);
+    for (o, e) in observed.iter().zip(&expected) {
+        if *e < 5.0 {
+            pool_o += o;
+            pool_e += e;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
+            dof += 1;
+        }
+    }
+    if pool_e >= 5.0 {
+        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        dof += 1;
+    } else {
+        assert!(pool_o < 5.0 + 10.0 * pool_e.max(1.0), "{pool_o} samples fell where the pdf is ~0 ({pool_e})");
+    }
+    let dof = dof.saturating_sub(1).max(1) as f64;
+    // Wilson–Hilferty approximation of the 99% quantile of χ²(dof).
+    let z = 2.326;
+    let limit = dof * (1.0 - 2.0 / (9.0 * dof) + z * (2.0 / (9.0 * dof)).sqrt()).powi(3);
+    assert!(chi2 < limit, "chi-square {chi2:.1} over the 99% limit {limit:.1} ({dof} dof) for wo = {wo}");
+}
