@@ -290,6 +290,9 @@ fn parse_int(s: &[u8]) -> Option<i64> {
     };
     let mut v: i64 = 0;
     for &d in digits {
+        if !d.is_ascii_digit() {
+            return None;
+        }
         v = v.checked_mul(10)?.checked_add(i64::from(d - b'0'))?;
     }
     Some(if neg { -v } else { v })
@@ -477,7 +480,7 @@ impl Lexer {
         }
         self.pos = end;
         let text = &self.src[start..end];
-        let tok = match (float, parse_int(text)) {
+        let tok = match (float, if float { None } else { parse_int(text) }) {
             (false, Some(v)) => Tok::Int(v),
             _ => match fast_float2::parse::<f64, _>(text) {
                 Ok(v) => Tok::Float(v),
