@@ -10,6 +10,9 @@ use scene::options::{Filter, FilterKind};
 
 const TABLE: usize = 256;
 
+/// Entries of the inverse-CDF table: a sample costs one lookup and one interpolation.
+const INVERSE: usize = 1024;
+
 /// One axis of a separable filter, tabulated for sampling.
 #[derive(Clone, Debug)]
 struct Axis {
@@ -18,6 +21,8 @@ struct Axis {
     cdf: Vec<f32>,
     /// Sign of f in each step.
     sign: Vec<f32>,
+    /// Offsets at u = k / INVERSE, k = 0..=INVERSE (the inverse of `cdf`).
+    inverse: Vec<f32>,
 }
 
 /// A 2-D filter, separable into x and y.
@@ -85,16 +90,27 @@ impl Axis {
         for c in &mut cdf {
             *c /= acc;
         }
-        Axis { radius, cdf, sign }
+        let mut axis = Axis { radius, cdf, sign, inverse: Vec::new() };
+        axis.inverse = (0..=INVERSE).map(|k| axis.search(k as f32 / INVERSE as f32)).collect();
+        axis
+    }
+
+    /// The offset where the CDF reaches `u` (binary search).
+    fn search(&self, u: f32) -> f32 {
+        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, TABLE) - 1;
+        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
+        let frac = if c1 > c0 { ((u - c0) / (c1 - c0)).clamp(0.0, 1.0) } else { 0.5 };
+        -self.radius + (i as f32 + frac) / TABLE as f32 * 2.0 * self.radius
     }
 
     /// An offset in [−radius, radius] distributed like |f|, and the sign of f there.
+    #[inline]
     fn sample(&self, u: f32) -> (f32, f32) {
-        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, TABLE) - 1;
-        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
-        let frac = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
-        let d = -self.radius + (i as f32 + frac) / TABLE as f32 * 2.0 * self.radius;
-        (d, self.sign[i])
+        let x = u * INVERSE as f32;
+        let k = (x as usize).min(INVERSE - 1);
+        let d = self.inverse[k] + (self.inverse[k + 1] - self.inverse[k]) * (x - k as f32);
+        let cell = (((d + self.radius) / (2.0 * self.radius)) * TABLE as f32) as usize;
+        (d, self.sign[cell.min(TABLE - 1)])
     }
 }
 

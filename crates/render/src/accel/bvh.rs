@@ -1,7 +1,9 @@
-//! The pure-Rust backend: a compressed 8-wide BVH (Ylitie et al. 2017, built by PLOC with
-//! reinsertion, from the `obvhs` crate) per mesh, and one over the instances' world
-//! bounds. Rays enter an instance's BVH transformed to its object space (the parameter t
-//! is the same in both spaces, since the direction is not renormalised).
+//! The pure-Rust backend: compressed 8-wide BVHs (Ylitie et al. 2017, built by PLOC with
+//! reinsertion, from the `obvhs` crate). Instances of meshes used once are merged into one
+//! world-space BVH; meshes used by several instances get one BVH each, shared, under a
+//! BVH over those instances' world bounds. Rays enter an instance's BVH transformed to its
+//! object space (the parameter t is the same in both spaces, since the direction is not
+//! renormalised).
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
@@ -16,13 +18,15 @@ use crate::integrator::mask;
 use crate::ray::Ray;
 use crate::world::World;
 
-/// A triangle in BVH order: its vertices and its index in the mesh.
+/// A triangle in BVH order: its vertices, its index in the mesh and (for the world-space
+/// BVH) its instance.
 #[derive(Clone, Copy)]
 struct Tri {
     p0: Vec3A,
     p1: Vec3A,
     p2: Vec3A,
     index: u32,
+    instance: u32,
 }
 
 struct MeshBvh {
@@ -36,11 +40,26 @@ struct InstanceRef {
     mask: u32,
 }
 
-/// Two-level BVH over a [`World`].
+/// Two-level BVH over a [`World`], with singly-used meshes flattened into world space.
 pub struct BvhAccel {
     meshes: Vec<MeshBvh>,
     instances: Vec<InstanceRef>,
+    /// Instances of the top-level BVH (its primitive i is instance `tlas_instances[i]`).
+    tlas_instances: Vec<u32>,
     tlas: Option<CwBvh>,
+    /// The world-space BVH of the flattened instances.
+    flat: Option<MeshBvh>,
+}
+
+/// A BVH over triangles (each carrying its mesh index and instance).
+fn triangle_bvh(source: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
+    if source.is_empty() {
+        return MeshBvh { bvh: CwBvh::default(), tris: Vec::new() };
+    }
+    let boxes: Vec<Triangle> = source.iter().map(|t| Triangle { v0: t.p0, v1: t.p1, v2: t.p2 }).collect();
+    let bvh = build_cwbvh_from_tris(&boxes, params, &mut Default::default());
+    let tris = bvh.primitive_indices.iter().map(|&i| source[i as usize]).collect();
+    MeshBvh { bvh, tris }
 }
 
 /// The ray kinds an instance accepts, from its flags.
@@ -62,32 +81,32 @@ impl BvhAccel {
     /// Builds the BVHs of a world.
     pub fn new(world: &World) -> BvhAccel {
         let params = BvhBuildParams::medium_build();
+        let flat = super::flat_instances(world);
+        let mut shared = vec![false; world.meshes.len()];
+        for (inst, f) in world.instances.iter().zip(&flat) {
+            shared[inst.mesh as usize] |= !f;
+        }
         let meshes = world
             .meshes
             .iter()
-            .map(|m| {
-                let source: Vec<Triangle> = m
-                    .triangles
-                    .iter()
-                    .map(|t| Triangle {
-                        v0: m.positions[t[0] as usize],
-                        v1: m.positions[t[1] as usize],
-                        v2: m.positions[t[2] as usize],
-                    })
-                    .collect();
-                if source.is_empty() {
-                    return MeshBvh { bvh: CwBvh::default(), tris: Vec::new() };
-                }
-                let bvh = build_cwbvh_from_tris(&source, params, &mut Default::default());
-                let tris = bvh
-                    .primitive_indices
-                    .iter()
-                    .map(|&i| {
-                        let t = &source[i as usize];
-                        Tri { p0: t.v0, p1: t.v1, p2: t.v2, index: i }
-                    })
-                    .collect();
-                MeshBvh { bvh, tris }
+            .zip(&shared)
+            .map(|(m, &used)| {
+                let source = if used {
+                    m.triangles
+                        .iter()
+                        .enumerate()
+                        .map(|(i, t)| Tri {
+                            p0: m.positions[t[0] as usize],
+                            p1: m.positions[t[1] as usize],
+                            p2: m.positions[t[2] as usize],
+                            index: i as u32,
+                            instance: 0,
+                        })
+                        .collect()
+                } else {
+                    Vec::new()
+                };
+                triangle_bvh(source, params)
             })
             .collect();
         let instances: Vec<InstanceRef> = world
@@ -95,10 +114,24 @@ impl BvhAccel {
             .iter()
             .map(|i| InstanceRef { mesh: i.mesh, world_to_object: i.world_to_object, mask: instance_mask(&i.flags) })
             .collect();
-        let bounds: Vec<Aabb> = world
-            .instances
+        let mut world_tris = Vec::new();
+        for (k, inst) in world.instances.iter().enumerate().filter(|(k, _)| flat[*k]) {
+            let m = &world.meshes[inst.mesh as usize];
+            let w = |i: u32| inst.object_to_world.transform_point3a(m.positions[i as usize]);
+            world_tris.extend(m.triangles.iter().enumerate().map(|(i, t)| Tri {
+                p0: w(t[0]),
+                p1: w(t[1]),
+                p2: w(t[2]),
+                index: i as u32,
+                instance: k as u32,
+            }));
+        }
+        let flat_bvh = (!world_tris.is_empty()).then(|| triangle_bvh(world_tris, params));
+        let tlas_instances: Vec<u32> = (0..world.instances.len() as u32).filter(|k| !flat[*k as usize]).collect();
+        let bounds: Vec<Aabb> = tlas_instances
             .iter()
-            .map(|i| {
+            .map(|&k| {
+                let i = &world.instances[k as usize];
                 let mut b = Aabb::empty();
                 for p in &world.meshes[i.mesh as usize].positions {
                     b.extend(i.object_to_world.transform_point3a(*p));
@@ -107,7 +140,30 @@ impl BvhAccel {
             })
             .collect();
         let tlas = (!bounds.is_empty()).then(|| build_cwbvh(&bounds, params, &mut Default::default()));
-        BvhAccel { meshes, instances, tlas }
+        BvhAccel { meshes, instances, tlas_instances, tlas, flat: flat_bvh }
+    }
+
+    /// Closest hit among the flattened instances, updating `best`.
+    fn intersect_flat(&self, ray: &Ray, best: &mut Option<Hit>) -> f32 {
+        let Some(flat) = &self.flat else { return ray.tmax };
+        let mut found = ray.tmax;
+        let mut hit = RayHit::none();
+        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        flat.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+            let t = &flat.tris[id];
+            if self.instances[t.instance as usize].mask & ray.mask == 0 {
+                return f32::INFINITY;
+            }
+            match intersect_triangle(&Ray { tmax: r.tmax, ..*ray }, t.p0, t.p1, t.p2) {
+                Some((d, u, v)) => {
+                    found = d;
+                    *best = Some(Hit { t: d, instance: t.instance, prim: t.index, u, v });
+                    d
+                }
+                None => f32::INFINITY,
+            }
+        });
+        found
     }
 
     /// Closest hit in one instance, updating `best`; returns the new closest distance.
@@ -146,22 +202,36 @@ impl BvhAccel {
 
 impl Accel for BvhAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        let tlas = self.tlas.as_ref()?;
         let mut best = None;
+        let tmax = self.intersect_flat(ray, &mut best);
+        let Some(tlas) = self.tlas.as_ref() else { return best };
         let mut hit = RayHit::none();
-        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, tmax);
         tlas.ray_traverse(bvh_ray, &mut hit, |r, id| {
-            let instance = tlas.primitive_indices[id];
+            let instance = self.tlas_instances[tlas.primitive_indices[id] as usize];
             self.intersect_instance(ray, r.tmax, instance, &mut best)
         });
         best
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
+        if let Some(flat) = &self.flat {
+            let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+            let missed = flat.bvh.ray_traverse_miss(bvh_ray, |_, id| {
+                let t = &flat.tris[id];
+                if self.instances[t.instance as usize].mask & ray.mask == 0 {
+                    return f32::INFINITY;
+                }
+                intersect_triangle(ray, t.p0, t.p1, t.p2).map_or(f32::INFINITY, |h| h.0)
+            });
+            if !missed {
+                return true;
+            }
+        }
         let Some(tlas) = self.tlas.as_ref() else { return false };
         let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
         !tlas.ray_traverse_miss(bvh_ray, |_, id| {
-            let inst = &self.instances[tlas.primitive_indices[id] as usize];
+            let inst = &self.instances[self.tlas_instances[tlas.primitive_indices[id] as usize] as usize];
             if inst.mask & ray.mask == 0 {
                 return f32::INFINITY;
             }

@@ -119,33 +119,20 @@ impl EmbreeAccel {
         // below comes from Embree itself or from live Rust buffers of the stated sizes.
         unsafe {
             let device = rtcNewDevice(c"threads=0".as_ptr());
+            let flat = super::flat_instances(world);
+            let mut shared = vec![false; world.meshes.len()];
+            for (inst, f) in world.instances.iter().zip(&flat) {
+                shared[inst.mesh as usize] |= !f;
+            }
             let meshes: Vec<RtcScene> = world
                 .meshes
                 .iter()
-                .map(|m| {
+                .zip(&shared)
+                .map(|(m, &used)| {
                     let scene = rtcNewScene(device);
                     rtcSetSceneBuildQuality(scene, BUILD_QUALITY_HIGH);
-                    if !m.triangles.is_empty() {
-                        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
-                        let verts =
-                            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len())
-                                as *mut f32;
-                        if !verts.is_null() {
-                            let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
-                            for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
-                                o.copy_from_slice(&p.to_array());
-                            }
-                        }
-                        let idx =
-                            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3, 12, m.triangles.len())
-                                as *mut u32;
-                        if !idx.is_null() {
-                            let out = std::slice::from_raw_parts_mut(idx, 3 * m.triangles.len());
-                            for (o, t) in out.chunks_exact_mut(3).zip(&m.triangles) {
-                                o.copy_from_slice(t);
-                            }
-                        }
-                        rtcCommitGeometry(geom);
+                    if used && !m.triangles.is_empty() {
+                        let geom = triangle_geometry(device, m, glam::Affine3A::IDENTITY);
                         rtcAttachGeometryByID(scene, geom, 0);
                         rtcReleaseGeometry(geom);
                     }
@@ -154,7 +141,17 @@ impl EmbreeAccel {
                 })
                 .collect();
             let top = rtcNewScene(device);
+            rtcSetSceneBuildQuality(top, BUILD_QUALITY_HIGH);
             for (i, inst) in world.instances.iter().enumerate() {
+                if flat[i] {
+                    // A mesh used once: its triangles go into the top scene in world space.
+                    let geom = triangle_geometry(device, &world.meshes[inst.mesh as usize], inst.object_to_world);
+                    rtcSetGeometryMask(geom, instance_mask(&inst.flags));
+                    rtcCommitGeometry(geom);
+                    rtcAttachGeometryByID(top, geom, i as c_uint);
+                    rtcReleaseGeometry(geom);
+                    continue;
+                }
                 let geom = rtcNewGeometry(device, GEOMETRY_TYPE_INSTANCE);
                 rtcSetGeometryInstancedScene(geom, meshes[inst.mesh as usize]);
                 let m = inst.object_to_world;
@@ -172,6 +169,7 @@ impl EmbreeAccel {
     }
 
     /// Embree's last error code (0: none).
+    #[allow(dead_code)]
     pub fn error(&self) -> u32 {
         // SAFETY: the device is alive until drop.
         unsafe { rtcGetDeviceError(self.device) }
@@ -212,9 +210,12 @@ impl Accel for EmbreeAccel {
         // SAFETY: `top` is a committed scene; `ctx` and `rh` are valid, 16-byte aligned
         // structures laid out as Embree 3.13 declares them.
         unsafe { rtcIntersect1(self.top, &mut ctx, &mut rh) };
+        // Flattened meshes are top-level geometries (their id is the instance); the others
+        // are hit inside an instance.
+        let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
         (rh.hit.geom_id != INVALID_ID).then_some(Hit {
             t: rh.ray.tfar,
-            instance: rh.hit.inst_id[0],
+            instance,
             prim: rh.hit.prim_id,
             u: rh.hit.u,
             v: rh.hit.v,
@@ -232,6 +233,35 @@ impl Accel for EmbreeAccel {
 
     fn backend(&self) -> Backend {
         Backend::Embree
+    }
+}
+
+/// A committed triangle geometry of `mesh` with its vertices carried by `transform`.
+///
+/// # Safety
+/// `device` must be a live Embree device.
+unsafe fn triangle_geometry(device: RtcDevice, m: &crate::world::MeshData, transform: glam::Affine3A) -> RtcGeometry {
+    // SAFETY: the buffers Embree returns hold exactly the item counts asked for.
+    unsafe {
+        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
+        let verts =
+            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len()) as *mut f32;
+        if !verts.is_null() {
+            let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
+            for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
+                o.copy_from_slice(&transform.transform_point3a(*p).to_array());
+            }
+        }
+        let idx = rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3, 12, m.triangles.len()) as *mut u32;
+        if !idx.is_null() {
+            let out = std::slice::from_raw_parts_mut(idx, 3 * m.triangles.len());
+            for (o, t) in out.chunks_exact_mut(3).zip(&m.triangles) {
+                o.copy_from_slice(t);
+            }
+        }
+        // Committed again by the caller after setting the mask.
+        rtcCommitGeometry(geom);
+        geom
     }
 }
 

@@ -64,6 +64,17 @@ pub trait Accel: Send + Sync {
     fn backend(&self) -> Backend;
 }
 
+/// Which instances are placed flat in world space (their mesh is used by no other
+/// instance, so a world-space copy costs no extra memory over instancing and saves the
+/// top-level traversal and ray transforms), and which keep a shared mesh BVH.
+pub fn flat_instances(world: &World) -> Vec<bool> {
+    let mut uses = vec![0u32; world.meshes.len()];
+    for i in &world.instances {
+        uses[i.mesh as usize] += 1;
+    }
+    world.instances.iter().map(|i| uses[i.mesh as usize] == 1).collect()
+}
+
 /// Builds the acceleration structure of `world` with `backend` (falling back to the Rust
 /// backend if the requested one is not compiled in).
 pub fn build(world: &World, backend: Backend) -> Box<dyn Accel> {
