@@ -251,8 +251,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             println!("peak memory:    {:.1} MiB", m as f64 / (1 << 20) as f64);
         }
     }
-    if failed || stats.cancelled {
+    if failed {
         ExitCode::FAILURE
+    } else if stats.cancelled {
+        // 128 + SIGINT, as shells report an interrupted command.
+        ExitCode::from(130)
     } else {
         ExitCode::SUCCESS
     }

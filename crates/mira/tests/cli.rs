@@ -61,3 +61,50 @@ fn missing_file_is_an_error() {
     assert_eq!(code, 1);
     assert!(err.contains("no/such/file.mi: error:"), "{err}");
 }
+
+#[test]
+fn render_writes_exr_and_png() {
+    let dir = std::env::temp_dir().join(format!("mira-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let exr = dir.join("cb.exr");
+    let png = dir.join("cb.png");
+    for out in [&exr, &png] {
+        let (code, stdout, err) = mira(&[
+            "render",
+            "../../scenes/iray_cornell_box.mi",
+            "--resolution",
+            "32",
+            "32",
+            "--spp",
+            "4",
+            "--stats",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            stdout.contains("Mrays/s") && stdout.contains("samples/s") && stdout.contains("peak memory"),
+            "{stdout}"
+        );
+        assert!(err.contains("wrote"), "{err}");
+    }
+    let png_bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&png_bytes[1..4], b"PNG");
+    let exr_bytes = std::fs::read(&exr).unwrap();
+    assert_eq!(&exr_bytes[..4], &[0x76, 0x2f, 0x31, 0x01], "OpenEXR magic number");
+    // Every frame buffer is a channel.
+    for name in [&b"N.X"[..], b"tag", b"Z\0"] {
+        assert!(exr_bytes.windows(name.len()).any(|w| w == name), "channel {}", String::from_utf8_lossy(name));
+    }
+}
+
+#[test]
+fn render_refuses_scenes_with_errors() {
+    let dir = std::env::temp_dir().join(format!("mira-render-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.mi");
+    std::fs::write(&bad, "options \"o\" end options\nrender \"root\" \"cam\" \"o\"\n").unwrap();
+    let (code, _, err) = mira(&["render", bad.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("bad.mi:2:15: error: unknown camera instance 'cam'"), "{err}");
+}
