@@ -71,13 +71,19 @@ pub fn write(film: &Film, path: &Path, format: Format, tone: &ToneMapper) -> std
     }
 }
 
-/// One EXR part with channels R, G, B, A (linear colour), Z (depth), N.X/N.Y/N.Z (normal)
-/// and tag (label, unsigned integer).
+/// One EXR part with channels R, G, B, A (linear colour), Z (depth), N.X/N.Y/N.Z (normal),
+/// tag (label, unsigned integer) and `name.R/G/B/A` for each user frame buffer.
 fn write_exr(film: &Film, path: &Path) -> std::result::Result<(), String> {
     let (w, h) = (film.width as usize, film.height as usize);
     let rgba = film.rgba();
     let normals = film.normals();
     let channel = |name: &str, data: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(data));
+    let mut user: Vec<AnyChannel<FlatSamples>> = Vec::new();
+    for b in &film.user {
+        for (k, c) in ["R", "G", "B", "A"].iter().enumerate() {
+            user.push(channel(&format!("{}.{c}", b.name), b.data.iter().map(|p| p[k]).collect()));
+        }
+    }
     let channels = AnyChannels::sort(
         vec![
             channel("R", rgba.iter().map(|p| p[0]).collect()),
@@ -90,7 +96,9 @@ fn write_exr(film: &Film, path: &Path) -> std::result::Result<(), String> {
             channel("N.Z", normals.iter().map(|n| n[2]).collect()),
             AnyChannel::new("tag", FlatSamples::U32(film.tags())),
         ]
-        .into(),
+        .into_iter()
+        .chain(user)
+        .collect(),
     );
     let layer = Layer::new((w, h), LayerAttributes::default(), Encoding::FAST_LOSSLESS, channels);
     Image::from_layer(layer).write().to_file(path).map_err(|e| e.to_string())

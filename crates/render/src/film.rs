@@ -86,6 +86,19 @@ impl Pixel {
     }
 }
 
+/// A user frame buffer declared by the scene (`frame buffer n "type"` in the options, or a
+/// camera `framebuffer` with `user on`): four channels per pixel that shaders write with
+/// `fb_put` (zero where nothing was written).
+#[derive(Clone, Debug)]
+pub struct UserBuffer {
+    /// Name: `fb<n>` for numbered buffers, else the framebuffer's name.
+    pub name: String,
+    /// Declared data type (`rgba`, `rgba_fp`, `s`, `z`, …).
+    pub datatype: String,
+    /// Values, row by row from the top.
+    pub data: Vec<[f32; 4]>,
+}
+
 /// The accumulated image.
 #[derive(Clone, Debug)]
 pub struct Film {
@@ -95,12 +108,20 @@ pub struct Film {
     pub height: u32,
     /// Pixels, row by row from the top.
     pub pixels: Vec<Pixel>,
+    /// User frame buffers.
+    pub user: Vec<UserBuffer>,
 }
 
 impl Film {
     /// An empty film.
     pub fn new(width: u32, height: u32) -> Film {
-        Film { width, height, pixels: vec![Pixel::default(); width as usize * height as usize] }
+        Film { width, height, pixels: vec![Pixel::default(); width as usize * height as usize], user: Vec::new() }
+    }
+
+    /// Adds a user frame buffer.
+    pub fn add_user_buffer(&mut self, name: &str, datatype: &str) {
+        let n = self.width as usize * self.height as usize;
+        self.user.push(UserBuffer { name: name.to_string(), datatype: datatype.to_string(), data: vec![[0.0; 4]; n] });
     }
 
     /// The colour buffer, RGBA per pixel, row by row from the top.

@@ -95,6 +95,9 @@ pub fn render(
     let cam = &world.camera;
     let (w, h) = (cam.width, cam.height);
     let mut film = Film::new(w, h);
+    for (name, datatype) in &world.user_buffers {
+        film.add_user_buffer(name, datatype);
+    }
     let filter = PixelFilter::new(&world.options.filter);
     let prog = &world.options.progressive;
     let target = settings.spp.unwrap_or(prog.max_samples).max(1);

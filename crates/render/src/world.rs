@@ -56,6 +56,8 @@ pub struct World {
     pub camera: CameraModel,
     /// The scene's options.
     pub options: scene::Options,
+    /// User frame buffers the scene declares: (name, data type).
+    pub user_buffers: Vec<(String, String)>,
     /// Things approximated or left out while translating, for the user.
     pub warnings: Vec<String>,
 }
@@ -119,6 +121,17 @@ impl World {
                 Err(w) => warnings.push(w),
             }
         }
+        let mut user_buffers: Vec<(String, String)> = scene
+            .options
+            .frame_buffers
+            .iter()
+            .map(|(n, ty)| (format!("fb{n}"), ty.trim_start_matches(['+', '-']).to_string()))
+            .collect();
+        for fb in &scene.camera.framebuffers {
+            if fb.user && !user_buffers.iter().any(|(n, _)| *n == fb.name) {
+                user_buffers.push((fb.name.clone(), fb.datatype.clone()));
+            }
+        }
         World {
             meshes,
             instances,
@@ -126,6 +139,7 @@ impl World {
             lights,
             camera: CameraModel::new(&scene.camera),
             options: scene.options.clone(),
+            user_buffers,
             warnings,
         }
     }

@@ -89,7 +89,16 @@ fn world(
     lights: Vec<LightSource>,
     camera: CameraModel,
 ) -> World {
-    World { meshes, instances, materials, lights, camera, options: options(), warnings: Vec::new() }
+    World {
+        meshes,
+        instances,
+        materials,
+        lights,
+        camera,
+        options: options(),
+        user_buffers: Vec::new(),
+        warnings: Vec::new(),
+    }
 }
 
 fn run(world: &World, spp: u32, path: PathSettings) -> Vec<[f32; 4]> {
