@@ -20,6 +20,9 @@ use crate::stdlib;
 /// How deeply `$include`s may nest.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
+/// Longest text a registry expansion may produce (bytes).
+pub const MAX_EXPANSION: usize = 64 * 1024;
+
 /// Where an `$include` led.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum IncludeTarget {
@@ -91,6 +94,8 @@ pub(crate) struct TokenStream {
     /// A token to produce before reading on (the end marker of an include not opened).
     pending: Option<Token>,
     pub includes: Vec<IncludeRecord>,
+    /// Built-in declaration files already read.
+    builtins_read: Vec<&'static str>,
     vars: HashMap<String, String>,
     registry: HashMap<String, String>,
     options: ReadOptions,
@@ -113,6 +118,7 @@ impl TokenStream {
             lookahead: VecDeque::new(),
             pending: None,
             includes: Vec::new(),
+            builtins_read: Vec::new(),
             vars: HashMap::new(),
             registry: HashMap::new(),
             options,
@@ -312,10 +318,13 @@ impl TokenStream {
 
     /// Replaces `{key}` by registry values and `{$NAME}` by environment variables,
     /// recursively (registry values may name other keys); unknown keys are left as written.
+    /// Expansion stops (leaving the rest as written) once the text would pass
+    /// [`MAX_EXPANSION`] bytes, so that self-multiplying registry values cannot exhaust
+    /// memory.
     fn expand(&self, text: &str) -> String {
         let mut current = text.to_string();
         for _ in 0..16 {
-            let next = self.expand_once(&current);
+            let Some(next) = self.expand_once(&current) else { break };
             if next == current {
                 break;
             }
@@ -324,10 +333,13 @@ impl TokenStream {
         current
     }
 
-    fn expand_once(&self, text: &str) -> String {
+    fn expand_once(&self, text: &str) -> Option<String> {
         let mut out = String::new();
         let mut rest = text;
         while let Some(open) = rest.find('{') {
+            if out.len() > MAX_EXPANSION {
+                return None;
+            }
             let Some(close) = rest[open..].find('}') else { break };
             let key = &rest[open + 1..open + close];
             out.push_str(&rest[..open]);
@@ -342,7 +354,7 @@ impl TokenStream {
             rest = &rest[open + close + 1..];
         }
         out.push_str(rest);
-        out
+        (out.len() <= MAX_EXPANSION).then_some(out)
     }
 
     /// Resolves an `$include`, opens the file if there is one and returns its begin marker.
@@ -352,7 +364,11 @@ impl TokenStream {
         let index = self.includes.len() as u32;
         let opened = match &target {
             IncludeTarget::File(path) => self.open_file(path, span),
+            // mira's built-in declaration files hold declarations only: reading one again
+            // changes nothing, so it is read once per parse.
+            IncludeTarget::Builtin(name) if self.builtins_read.contains(name) => false,
             IncludeTarget::Builtin(name) => {
+                self.builtins_read.push(name);
                 let text = stdlib::text(name).expect("builtin exists");
                 let id = self.sources.add(Origin::Builtin(name), text.as_bytes().to_vec());
                 self.frames.push(Frame {
@@ -409,11 +425,11 @@ impl TokenStream {
                 return IncludeTarget::Builtin(name);
             }
         }
-        let mut d = Diagnostic::error(span, format!("cannot find include file '{expanded}'"));
+        let mut d = Diagnostic::error(span, format!("cannot find include file '{}'", clip(&expanded)));
         if searched.is_empty() {
             d = d.with_note(None, "no include directories are set: pass -I DIR or set MI_INCLUDE_PATH");
         } else {
-            let list: Vec<String> = searched.iter().map(|p| p.display().to_string()).collect();
+            let list: Vec<String> = searched.iter().map(|p| clip(&p.display().to_string())).collect();
             d = d.with_note(None, format!("looked for: {}", list.join(", ")));
         }
         self.diags.push(d);
@@ -493,4 +509,17 @@ pub fn read_source(path: &Path) -> Result<Vec<u8>, String> {
         return Err(format!("file is {} bytes; mira reads .mi files up to 4 GiB", meta.len()));
     }
     std::fs::read(path).map_err(|e| e.to_string())
+}
+
+/// A name shortened for a message (a registry expansion can be long).
+fn clip(text: &str) -> String {
+    const MAX: usize = 160;
+    if text.len() <= MAX {
+        return text.to_string();
+    }
+    let mut end = MAX;
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}… ({} bytes)", &text[..end], text.len())
 }

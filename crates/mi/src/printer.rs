@@ -23,6 +23,8 @@ struct Printer {
     indent: usize,
 }
 
+/// A number as text. Infinities become ±1e999 (which read back as infinities); NaN, which
+/// only binary data can hold and text cannot express, is written as -1e999.
 fn float(v: f64) -> String {
     if v.is_finite() {
         format!("{v:?}")

@@ -191,3 +191,32 @@ fn random_bytes_never_panic() {
         }
     }
 }
+
+/// Fuzz finding 3: a registry value that names itself eight times doubles the text on every
+/// round; expansion stops at a size cap and the include fails with a short message.
+#[test]
+fn self_multiplying_registry_value_is_capped() {
+    let text = "registry \"{A}\" value \"{A}{A}{A}{A}{A}{A}{A}{A}\" end registry\n$include \"{A}\"\n";
+    let (line, col, msg) = first_error(text.as_bytes());
+    assert_eq!((line, col), (2, 11));
+    assert!(msg.starts_with("cannot find include file") && msg.len() < 400, "{msg}");
+}
+
+/// Fuzz finding 4: including a built-in declaration file again adds nothing, and costs
+/// nothing (it used to be read and parsed on every include).
+#[test]
+fn built_in_declaration_files_are_read_once() {
+    let text = "$include \"base.mi\"\n".repeat(1000);
+    let parsed = mi::parse_source(mi::Origin::Memory("many.mi".into()), text.into_bytes(), &mi::ReadOptions::default());
+    assert!(parsed.diagnostics.list.iter().all(|d| !d.is_error()));
+    let declares: usize = parsed
+        .items
+        .iter()
+        .map(|i| match i {
+            mi::ast::Item::Include(inc) => inc.items.iter().filter(|i| matches!(i, mi::ast::Item::Declare(_))).count(),
+            _ => 0,
+        })
+        .sum();
+    let once = mi::parse_str("base.mi", mi::stdlib::text("base.mi").unwrap()).items.len();
+    assert_eq!(declares, once);
+}

@@ -255,3 +255,35 @@ fn shader_references_must_name_shaders() {
     errors.sort();
     assert_eq!(errors, vec!["unknown shader 'missing'", "unknown shader 'nowhere'"]);
 }
+
+/// Binary vectors can hold NaN (found by the parser fuzzer): such triangles are left out
+/// with a warning rather than reaching the acceleration structures.
+#[test]
+fn triangles_with_nonfinite_vertices_are_left_out() {
+    let mut text = b"options \"o\" end options\ncamera \"c\" focal 1 aperture 1 aspect 1 resolution 8 8 end camera\n\
+instance \"ci\" \"c\" end instance\nobject \"n\" group `"
+        .to_vec();
+    text.extend([0xffu8; 12]);
+    text.extend_from_slice(
+        b"` 0 0 -3 1 0 -3 1 1 -3 v 0 v 1 v 2 v 3 p 0 1 2 p 1 2 3 end group end object\n\
+instance \"ni\" \"n\" end instance\ninstgroup \"root\" \"ci\" \"ni\" end instgroup\nrender \"root\" \"ci\" \"o\"\n",
+    );
+    let parsed = mi::parse_source(mi::Origin::Memory("nan.mi".into()), text, &mi::ReadOptions::default());
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let mut diags = Vec::new();
+    let scene = Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    assert_eq!(scene.objects[0].geometry.mesh.triangles.len(), 1);
+    assert!(scene.objects[0].geometry.mesh.triangles[0].iter().all(|&i| i != 0));
+    assert_eq!(scene.objects[0].geometry.mesh.triangle_slots.len(), 1);
+
+    // Infinities written as text reach the mesh and are caught there.
+    let (scene, diags, _) = build(
+        "options \"o\" end options\ncamera \"c\" focal 1 aperture 1 aspect 1 resolution 8 8 end camera\n\
+instance \"ci\" \"c\" end instance\nobject \"t\" trilist vertex 4 p triangle 2 [ 1e999 0 -3 1 0 -3 1 1 -3 0 1 -3 ]\n\
+[ 0 1 2 1 2 3 ] end trilist end object\ninstance \"ti\" \"t\" end instance\n\
+instgroup \"root\" \"ci\" \"ti\" end instgroup\nrender \"root\" \"ci\" \"o\"\n",
+    );
+    assert_eq!(scene.objects[0].geometry.mesh.triangles, vec![[1, 2, 3]]);
+    let warning = diags.iter().find(|d| d.message.contains("non-finite")).expect("a warning");
+    assert!(warning.message.contains(" 1 triangle(s)"), "{}", warning.message);
+}

@@ -73,7 +73,45 @@ pub fn tessellate(object: &Object, diags: &mut Vec<Diagnostic>) -> ObjectGeometr
             Geometry::Hair(h) => out.hair.extend(hair::hair_geometry(h, name, diags)),
         }
     }
+    drop_nonfinite(&mut out, object.name.span, diags);
     out
+}
+
+/// Removes triangles with a NaN or infinite vertex (binary vectors can hold any bits) and
+/// hairs with such points: nothing downstream could place them.
+fn drop_nonfinite(out: &mut ObjectGeometry, span: mi::Span, diags: &mut Vec<Diagnostic>) {
+    let mesh = &mut out.mesh;
+    let finite: Vec<bool> = mesh.positions.iter().map(|p| p.is_finite()).collect();
+    if finite.iter().any(|f| !f) {
+        let before = mesh.triangles.len();
+        let keep: Vec<bool> = mesh.triangles.iter().map(|t| t.iter().all(|&i| finite[i as usize])).collect();
+        let mut k = keep.iter();
+        mesh.triangles.retain(|_| *k.next().expect("one flag per triangle"));
+        let mut k = keep.iter();
+        mesh.triangle_slots.retain(|_| *k.next().expect("one flag per triangle"));
+        let dropped = before - mesh.triangles.len();
+        if dropped == 0 {
+            return;
+        }
+        diags.push(Diagnostic::warning(
+            span,
+            format!("object '{}': {} triangle(s) with a non-finite vertex position are left out", mesh.name, dropped),
+        ));
+    }
+    for h in &mut out.hair {
+        let bad = h.points.iter().any(|p| !p.is_finite()) || h.radii.iter().any(|r| !r.is_finite());
+        if bad {
+            diags.push(Diagnostic::warning(
+                span,
+                format!("object '{}': hair with non-finite points or radii is left out", h.name),
+            ));
+            h.points.clear();
+            h.radii.clear();
+            h.starts.clear();
+            h.hair_scalars.clear();
+            h.vertex_scalars.clear();
+        }
+    }
 }
 
 /// A group's polygons and subdivision surfaces as one mesh.
