@@ -24,6 +24,17 @@ pub enum AccelArg {
     Embree,
 }
 
+/// Which engine renders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EngineArg {
+    /// Classic if the scene's materials are mental ray shaders, else path.
+    Auto,
+    /// mental ray's shader-driven ray tracing.
+    Classic,
+    /// Iray-style progressive path tracing.
+    Path,
+}
+
 /// Arguments of `mira render`.
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -52,6 +63,9 @@ pub struct RenderArgs {
     /// Acceleration structure.
     #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
     accel: AccelArg,
+    /// Rendering engine.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    engine: EngineArg,
     /// Which `render` statement of the file (1 = the first).
     #[arg(long, default_value_t = 1)]
     frame: usize,
@@ -117,7 +131,29 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         });
     }
     let world = render::World::from_scene(&sc);
-    if args.warnings {
+    let classic = match args.engine {
+        EngineArg::Classic => true,
+        EngineArg::Path => false,
+        EngineArg::Auto => shade::model::Shading::wants_classic(&sc),
+    };
+    let shading = classic.then(|| {
+        let mut dirs: Vec<PathBuf> = args.scene.parent().map(Path::to_path_buf).into_iter().collect();
+        dirs.extend(options.include_paths.iter().cloned());
+        let shading_options = shade::model::ShadingOptions {
+            search: shade::texture::SearchPath { dirs },
+            seed: args.seed,
+            finalgather_rays: None,
+        };
+        let (shading, shade_diags) = shade::model::Shading::build(&sc, &shading_options);
+        let mut stderr = std::io::stderr().lock();
+        for d in &shade_diags {
+            if d.is_error() || args.warnings {
+                let _ = write!(stderr, "{}", d.render(&parsed.sources));
+            }
+        }
+        shading
+    });
+    if args.warnings && !classic {
         for w in &world.warnings {
             eprintln!("mira: warning: {w}");
         }
@@ -150,12 +186,17 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         });
     }
     let settings = render::Settings {
+        engine: if classic { render::EngineKind::Classic } else { render::EngineKind::Path },
         spp: args.spp,
         seed: args.seed,
         max_time: args.time.map(Duration::from_secs_f64),
         ..render::Settings::default()
     };
-    let target = settings.spp.unwrap_or(world.options.progressive.max_samples).max(1);
+    let target = if classic {
+        render::render::classic_samples(&world.options, settings.spp).1
+    } else {
+        settings.spp.unwrap_or(world.options.progressive.max_samples).max(1)
+    };
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(u64::from(target));
         bar.set_style(
@@ -174,7 +215,8 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             }
         }
     };
-    let (film, stats) = pool.install(|| render::render(&world, accel.as_ref(), &settings, &cancel, &on_progress));
+    let (film, stats) =
+        pool.install(|| render::render(&world, accel.as_ref(), shading.as_ref(), &settings, &cancel, &on_progress));
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -235,7 +277,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             world.instanced_triangles()
         );
         println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
-        println!("render:         {:.3} s, {} x {} pixels, {} spp", secs, film.width, film.height, stats.spp);
+        let engine = if classic { "classic" } else { "path" };
+        println!(
+            "render:         {:.3} s ({engine}), {} x {} pixels, {} spp",
+            secs, film.width, film.height, stats.spp
+        );
         println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
         println!(
             "rays:           {} ({} shadow), {:.2} Mrays/s",

@@ -100,7 +100,7 @@ fn bench(c: &mut Criterion) {
         let settings = render::Settings { spp: Some(16), ..render::Settings::default() };
         group.throughput(Throughput::Elements(64 * 64 * 16));
         group.bench_function(format!("cornell_64x64_16spp/{backend:?}"), |b| {
-            b.iter(|| render::render(&small, accel.as_ref(), &settings, &AtomicBool::new(false), &|_| {}).1)
+            b.iter(|| render::render(&small, accel.as_ref(), None, &settings, &AtomicBool::new(false), &|_| {}).1)
         });
     }
     group.finish();

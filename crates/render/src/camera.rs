@@ -109,6 +109,33 @@ impl CameraModel {
         }
     }
 
+    /// A ray from `origin` along unit `dir` (world space) limited by the clip planes, which
+    /// are distances along −Z in camera space (for lens shaders that bend eye rays).
+    pub fn clip_ray(&self, origin: Vec3A, dir: Vec3A) -> Ray {
+        let cos = -self.world_to_camera.transform_vector3a(dir).z;
+        let (tmin, tmax) = if cos > 0.0 { (self.clip.0 / cos, self.clip.1 / cos) } else { (0.0, f32::INFINITY) };
+        Ray { mask: crate::integrator::mask::CAMERA, origin, dir, tmin, tmax }
+    }
+
+    /// The angle one pixel subtends at the centre of the image (radians; 0 for orthographic
+    /// cameras, whose rays do not spread).
+    pub fn pixel_angle(&self) -> f32 {
+        if self.orthographic {
+            0.0
+        } else {
+            self.aperture / (self.focal * self.width.max(1) as f32)
+        }
+    }
+
+    /// The width of a pixel's footprint at the camera (scene units; orthographic cameras).
+    pub fn pixel_width(&self) -> f32 {
+        if self.orthographic {
+            self.aperture / self.width.max(1) as f32
+        } else {
+            0.0
+        }
+    }
+
     /// Depth (−z in camera space) of a world point: what the `z` frame buffer stores.
     pub fn depth(&self, p: Vec3A) -> f32 {
         -self.world_to_camera.transform_point3a(p).z

@@ -29,6 +29,10 @@ pub struct Pixel {
     pub tag: u32,
     /// Whether the pixel has converged.
     pub converged: bool,
+    /// Smallest value of each channel (RGBA) over the samples (for the contrast test).
+    pub lo: [f32; 4],
+    /// Largest value of each channel over the samples.
+    pub hi: [f32; 4],
 }
 
 impl Pixel {
@@ -51,6 +55,16 @@ impl Pixel {
         self.sum[2] += f64::from(c.z) * w64;
         self.sum[3] += f64::from(alpha) * w64;
         self.weight += w64;
+        let v = [c.x, c.y, c.z, alpha];
+        if self.samples == 0 {
+            self.lo = v;
+            self.hi = v;
+        } else {
+            for ((lo, hi), x) in self.lo.iter_mut().zip(&mut self.hi).zip(v) {
+                *lo = lo.min(x);
+                *hi = hi.max(x);
+            }
+        }
         if index % 2 == 1 {
             self.odd_sum[0] += c.x * w;
             self.odd_sum[1] += c.y * w;
@@ -95,8 +109,23 @@ pub struct UserBuffer {
     pub name: String,
     /// Declared data type (`rgba`, `rgba_fp`, `s`, `z`, …).
     pub datatype: String,
-    /// Values, row by row from the top.
+    /// Values, row by row from the top: the mean of what the samples wrote.
     pub data: Vec<[f32; 4]>,
+    /// Writes per pixel.
+    pub writes: Vec<u32>,
+}
+
+impl UserBuffer {
+    /// Adds a value written by a sample of pixel `i` (the buffer keeps the mean).
+    pub fn put(&mut self, i: usize, v: [f32; 4]) {
+        self.writes[i] += 1;
+        let n = self.writes[i] as f32;
+        let d = &mut self.data[i];
+        for k in 0..4 {
+            let x = if v[k].is_finite() { v[k] } else { 1.0 };
+            d[k] += (x - d[k]) / n;
+        }
+    }
 }
 
 /// The accumulated image.
@@ -110,23 +139,51 @@ pub struct Film {
     pub pixels: Vec<Pixel>,
     /// User frame buffers.
     pub user: Vec<UserBuffer>,
+    /// Filter-weighted sums of splatted samples (Σ w·rgba, Σ w) per pixel, when the engine
+    /// splats (see [`crate::filter`]); empty otherwise.
+    pub splat: Vec<[f64; 5]>,
 }
 
 impl Film {
     /// An empty film.
     pub fn new(width: u32, height: u32) -> Film {
-        Film { width, height, pixels: vec![Pixel::default(); width as usize * height as usize], user: Vec::new() }
+        Film {
+            width,
+            height,
+            pixels: vec![Pixel::default(); width as usize * height as usize],
+            user: Vec::new(),
+            splat: Vec::new(),
+        }
     }
 
     /// Adds a user frame buffer.
     pub fn add_user_buffer(&mut self, name: &str, datatype: &str) {
         let n = self.width as usize * self.height as usize;
-        self.user.push(UserBuffer { name: name.to_string(), datatype: datatype.to_string(), data: vec![[0.0; 4]; n] });
+        self.user.push(UserBuffer {
+            name: name.to_string(),
+            datatype: datatype.to_string(),
+            data: vec![[0.0; 4]; n],
+            writes: vec![0; n],
+        });
     }
 
     /// The colour buffer, RGBA per pixel, row by row from the top.
     pub fn rgba(&self) -> Vec<[f32; 4]> {
-        self.pixels.iter().map(Pixel::rgba).collect()
+        if self.splat.is_empty() {
+            return self.pixels.iter().map(Pixel::rgba).collect();
+        }
+        self.pixels
+            .iter()
+            .zip(&self.splat)
+            .map(|(p, s)| {
+                if s[4] > 1e-9 {
+                    let inv = 1.0 / s[4];
+                    [(s[0] * inv) as f32, (s[1] * inv) as f32, (s[2] * inv) as f32, (s[3] * inv) as f32]
+                } else {
+                    p.rgba()
+                }
+            })
+            .collect()
     }
 
     /// The depth buffer.

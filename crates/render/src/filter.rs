@@ -1,7 +1,11 @@
-//! Pixel filters, applied by filter importance sampling: each sample's position within the
-//! filter's footprint is drawn from the filter's own (absolute) shape, and its weight is
-//! the filter's sign there. Every pixel is then the weighted mean of its own samples, which
-//! keeps tiles independent and the image the same for any thread count.
+//! Pixel filters. The path engine applies them by filter importance sampling: each
+//! sample's position within the filter's footprint is drawn from the filter's own
+//! (absolute) shape, and its weight is the filter's sign there; every pixel is the
+//! weighted mean of its own samples, which keeps tiles independent and the image the same
+//! for any thread count. The classic engine, which takes few and adaptive samples, splats
+//! each sample into all pixels its footprint covers with weight [`PixelFilter::eval`], as
+//! mental ray filtered (a ratio of signed weights over one pixel's one or two samples
+//! would be unstable).
 //!
 //! Radii follow mental ray: `filter kind w h` gives the full footprint, so the radius is
 //! half of it (Iray, which writes a radius, halves the `.mi` value for the same reason).
@@ -31,6 +35,7 @@ pub struct PixelFilter {
     x: Axis,
     y: Axis,
     kind: FilterKind,
+    clip: bool,
 }
 
 /// The 1-D profile of a filter at distance `d` from the centre (radius `r`).
@@ -118,7 +123,30 @@ impl PixelFilter {
     /// The filter of the options.
     pub fn new(f: &Filter) -> PixelFilter {
         let (rx, ry) = f.radius();
-        PixelFilter { x: Axis::new(f.kind, rx as f32, f.clip), y: Axis::new(f.kind, ry as f32, f.clip), kind: f.kind }
+        PixelFilter {
+            x: Axis::new(f.kind, rx as f32, f.clip),
+            y: Axis::new(f.kind, ry as f32, f.clip),
+            kind: f.kind,
+            clip: f.clip,
+        }
+    }
+
+    /// The filter's radii in pixels (x, y).
+    pub fn radius(&self) -> (f32, f32) {
+        (self.x.radius, self.y.radius)
+    }
+
+    /// The filter's weight at offset (dx, dy) pixels from a pixel centre.
+    pub fn eval(&self, dx: f32, dy: f32) -> f32 {
+        let f = |d: f32, r: f32| {
+            let v = profile(self.kind, d, r);
+            if self.clip {
+                v.max(0.0)
+            } else {
+                v
+            }
+        };
+        f(dx, self.x.radius) * f(dy, self.y.radius)
     }
 
     /// The filter kind.

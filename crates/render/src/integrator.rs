@@ -16,8 +16,17 @@ pub mod mask {
     pub const CAMERA: u32 = 1;
     /// Shadow rays: instances that cast no shadows are skipped.
     pub const SHADOW: u32 = 2;
-    /// Secondary (scattered) rays: instances not seen by reflections are skipped.
+    /// Secondary (scattered) rays of the path tracer: instances seen by none of
+    /// reflection, refraction and final gather rays are skipped.
     pub const SECONDARY: u32 = 4;
+    /// Reflection rays of the classic engine.
+    pub const REFLECT: u32 = 8;
+    /// Refraction rays of the classic engine.
+    pub const REFRACT: u32 = 16;
+    /// Transparency rays of the classic engine.
+    pub const TRANSPARENT: u32 = 32;
+    /// Final gather rays.
+    pub const FINALGATHER: u32 = 64;
 }
 
 /// Integrator settings.

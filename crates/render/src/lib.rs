@@ -7,6 +7,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod classic;
 pub mod film;
 pub mod filter;
 pub mod integrator;
@@ -18,5 +19,5 @@ pub mod tonemap;
 pub mod world;
 
 pub use accel::{Accel, Backend};
-pub use render::{render, Progress, Settings, Stats};
+pub use render::{render, EngineKind, Progress, Settings, Stats};
 pub use world::World;

@@ -10,46 +10,12 @@
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3A};
-use scene::{AreaShape, Library, Light, LightKind};
+use scene::{Library, Light, LightKind};
 use shade::emission::{Emission, Power};
+pub use shade::light::Shape;
 use shade::{Frame, Rgb};
 
 use crate::ray::Ray;
-
-/// The geometry of a light, world space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Shape {
-    /// A point (or the origin of a directional light).
-    Point,
-    /// A parallelogram centred on the position, full edges `u` and `v`.
-    Rect {
-        /// First edge.
-        u: Vec3A,
-        /// Second edge.
-        v: Vec3A,
-        /// Unit normal of the emitting side.
-        normal: Vec3A,
-    },
-    /// A disc centred on the position.
-    Disc {
-        /// Unit normal.
-        normal: Vec3A,
-        /// Radius.
-        radius: f32,
-    },
-    /// A sphere around the position.
-    Sphere {
-        /// Radius.
-        radius: f32,
-    },
-    /// A cylinder around the position along `axis` (full length).
-    Cylinder {
-        /// Axis.
-        axis: Vec3A,
-        /// Radius.
-        radius: f32,
-    },
-}
 
 /// What a light gives a lit point, resolved for its shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -117,40 +83,17 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-fn area(shape: &Shape) -> f32 {
-    match *shape {
-        Shape::Point => 0.0,
-        Shape::Rect { u, v, .. } => u.cross(v).length(),
-        Shape::Disc { radius, .. } => PI * radius * radius,
-        Shape::Sphere { radius } => 4.0 * PI * radius * radius,
-        Shape::Cylinder { axis, radius } => 2.0 * PI * radius * axis.length(),
-    }
-}
-
 impl LightSource {
     /// Translates a scene light (its emission read by `shade`).
     pub fn from_scene(light: &Light, lib: &Library) -> Result<LightSource, String> {
         let emission: Emission = shade::emission::emission(light, lib)?;
         let shape = match (&light.area, light.kind) {
-            (Some(a), LightKind::Point | LightKind::Spot) => match &a.shape {
-                AreaShape::Rectangle { edge_u, edge_v, normal } => {
-                    Shape::Rect { u: edge_u.as_vec3a(), v: edge_v.as_vec3a(), normal: normal.as_vec3a() }
-                }
-                AreaShape::Disc { normal, radius } => Shape::Disc { normal: normal.as_vec3a(), radius: *radius as f32 },
-                AreaShape::Sphere { radius } => Shape::Sphere { radius: *radius as f32 },
-                AreaShape::Cylinder { axis, radius } => {
-                    Shape::Cylinder { axis: axis.as_vec3a(), radius: *radius as f32 }
-                }
-                AreaShape::Object { .. } | AreaShape::User => {
-                    return Err(format!(
-                        "light '{}': object and user area lights are not supported yet",
-                        light.instance
-                    ))
-                }
-            },
+            (Some(a), LightKind::Point | LightKind::Spot) => Shape::from_area(&a.shape).ok_or_else(|| {
+                format!("light '{}': object and user area lights are not supported yet", light.instance)
+            })?,
             _ => Shape::Point,
         };
-        let a = area(&shape);
+        let a = shape.area();
         let is_area = !matches!(shape, Shape::Point);
         let output = match (emission.power, light.kind, is_area) {
             (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
@@ -200,29 +143,7 @@ impl LightSource {
 
     /// A point on the shape (uniform by area) and its normal.
     fn point_on(&self, u: Vec2) -> (Vec3A, Vec3A) {
-        let p = self.position;
-        match self.shape {
-            Shape::Point => (p, Vec3A::ZERO),
-            Shape::Rect { u: eu, v: ev, normal } => (p + eu * (u.x - 0.5) + ev * (u.y - 0.5), normal),
-            Shape::Disc { normal, radius } => {
-                let f = Frame::from_normal(normal);
-                let d = shade::bsdf::concentric_disc(u) * radius;
-                (p + f.tangent * d.x + f.bitangent * d.y, normal)
-            }
-            Shape::Sphere { radius } => {
-                let z = 1.0 - 2.0 * u.x;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = 2.0 * PI * u.y;
-                let n = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
-                (p + n * radius, n)
-            }
-            Shape::Cylinder { axis, radius } => {
-                let f = Frame::from_normal(axis.normalize_or(Vec3A::Z));
-                let phi = 2.0 * PI * u.y;
-                let n = f.tangent * phi.cos() + f.bitangent * phi.sin();
-                (p + axis * (u.x - 0.5) + n * radius, n)
-            }
-        }
+        self.shape.point_on(self.position, u)
     }
 
     /// Samples the light as seen from `p`.
@@ -273,7 +194,7 @@ impl LightSource {
                 if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
                     return None;
                 }
-                let pdf = dist2 / (cos_l.abs() * area(&self.shape));
+                let pdf = dist2 / (cos_l.abs() * self.shape.area());
                 Some(LightSample { wi, dist, radiance: l, pdf, delta: false })
             }
         }
@@ -308,91 +229,21 @@ impl LightSource {
                 1.0 / (2.0 * PI * (1.0 - cos_max))
             }
             (Output::Radiance { .. }, shape) => {
-                let (_, n) = self.point_and_normal_at(p + wi * t);
+                let n = shape.normal_at(self.position, p + wi * t);
                 let cos_l = wi.dot(n).abs();
                 if cos_l == 0.0 {
                     return 0.0;
                 }
-                t * t / (cos_l * area(&shape))
+                t * t / (cos_l * shape.area())
             }
             _ => 0.0,
         }
     }
 
-    fn point_and_normal_at(&self, q: Vec3A) -> (Vec3A, Vec3A) {
-        let n = match self.shape {
-            Shape::Rect { normal, .. } | Shape::Disc { normal, .. } => normal,
-            Shape::Sphere { .. } => (q - self.position).normalize_or_zero(),
-            Shape::Cylinder { axis, .. } => {
-                let a = axis.normalize_or(Vec3A::Z);
-                let r = q - self.position;
-                (r - a * r.dot(a)).normalize_or_zero()
-            }
-            Shape::Point => Vec3A::ZERO,
-        };
-        (q, n)
-    }
-
     /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
         let Output::Radiance { l, two_sided } = self.output else { return None };
-        let c = self.position;
-        let plane = |n: Vec3A| {
-            let denom = ray.dir.dot(n);
-            if denom == 0.0 {
-                return None;
-            }
-            let t = (c - ray.origin).dot(n) / denom;
-            (t > ray.tmin && t < ray.tmax).then_some((t, denom))
-        };
-        let (t, facing) = match self.shape {
-            Shape::Rect { u, v, normal } => {
-                let (t, denom) = plane(normal)?;
-                let q = ray.at(t) - c;
-                let (su, sv) = (q.dot(u) / u.length_squared(), q.dot(v) / v.length_squared());
-                // The edges need not be orthogonal: solve in the parallelogram's own basis.
-                let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
-                let det = uu * vv - uv * uv;
-                let (a, b) = if det.abs() > 0.0 {
-                    ((q.dot(u) * vv - q.dot(v) * uv) / det, (q.dot(v) * uu - q.dot(u) * uv) / det)
-                } else {
-                    (su, sv)
-                };
-                if a.abs() > 0.5 || b.abs() > 0.5 {
-                    return None;
-                }
-                (t, denom < 0.0)
-            }
-            Shape::Disc { normal, radius } => {
-                let (t, denom) = plane(normal)?;
-                if (ray.at(t) - c).length_squared() > radius * radius {
-                    return None;
-                }
-                (t, denom < 0.0)
-            }
-            Shape::Sphere { radius } => {
-                let oc = ray.origin - c;
-                let a = ray.dir.length_squared();
-                let b = oc.dot(ray.dir);
-                let cc = oc.length_squared() - radius * radius;
-                let disc = b * b - a * cc;
-                if disc < 0.0 {
-                    return None;
-                }
-                let sq = disc.sqrt();
-                let t0 = (-b - sq) / a;
-                let t1 = (-b + sq) / a;
-                let t = if t0 > ray.tmin && t0 < ray.tmax {
-                    t0
-                } else if t1 > ray.tmin && t1 < ray.tmax {
-                    t1
-                } else {
-                    return None;
-                };
-                (t, cc > 0.0)
-            }
-            Shape::Cylinder { .. } | Shape::Point => return None,
-        };
+        let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
         (facing || two_sided).then_some((t, l))
     }
 }

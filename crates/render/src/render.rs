@@ -12,6 +12,9 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
+use glam::Vec2;
+use shade::model::Shading;
+
 use crate::accel::Accel;
 use crate::film::{Film, Pixel};
 use crate::filter::PixelFilter;
@@ -19,9 +22,20 @@ use crate::integrator::{trace_path, PathSettings, RayCounts};
 use crate::sampler::{pixel_seed, Sampler};
 use crate::world::World;
 
+/// Which engine makes the samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EngineKind {
+    /// Iray-style progressive path tracing of physical materials.
+    Path,
+    /// mental ray's shader-driven ray tracing: material shaders decide.
+    Classic,
+}
+
 /// How to render.
 #[derive(Clone, Debug)]
 pub struct Settings {
+    /// The engine.
+    pub engine: EngineKind,
     /// Samples per pixel to stop at (overrides the scene's progressive maximum).
     pub spp: Option<u32>,
     /// Seed of the sample scrambling.
@@ -36,7 +50,14 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { spp: None, seed: 0, max_time: None, path: PathSettings::default(), band: 4 }
+        Settings {
+            engine: EngineKind::Path,
+            spp: None,
+            seed: 0,
+            max_time: None,
+            path: PathSettings::default(),
+            band: 4,
+        }
     }
 }
 
@@ -83,11 +104,106 @@ impl Stats {
     }
 }
 
+/// The filtered contributions of one band's samples to the pixels their filter covers
+/// (the band's rows and `radius` rows around them).
+struct Splat {
+    /// First image row covered.
+    y0: usize,
+    /// Rows covered.
+    rows: usize,
+    width: usize,
+    height: usize,
+    /// Σ w·rgba and Σ w per covered pixel.
+    sums: Vec<[f64; 5]>,
+}
+
+impl Splat {
+    fn new(filter: &PixelFilter, band_y: usize, band_rows: usize, width: u32, height: u32) -> Splat {
+        let ry = filter.radius().1.ceil() as usize;
+        let y0 = band_y.saturating_sub(ry);
+        let y1 = (band_y + band_rows + ry).min(height as usize);
+        let rows = y1 - y0;
+        Splat { y0, rows, width: width as usize, height: height as usize, sums: vec![[0.0; 5]; rows * width as usize] }
+    }
+
+    /// Adds a sample at raster position `p` with colour `c` (NaN and infinities as 1.0).
+    fn add(&mut self, filter: &PixelFilter, p: Vec2, c: [f32; 4]) {
+        let c = c.map(|v| if v.is_finite() { v } else { 1.0 });
+        let (rx, ry) = filter.radius();
+        let x_lo = (p.x - rx - 0.5).ceil().max(0.0) as usize;
+        let x_hi = ((p.x + rx - 0.5).floor() as i64).min(self.width as i64 - 1);
+        let y_lo = (p.y - ry - 0.5).ceil().max(self.y0 as f32) as usize;
+        let y_hi = ((p.y + ry - 0.5).floor() as i64).min((self.y0 + self.rows) as i64 - 1).min(self.height as i64 - 1);
+        for y in y_lo as i64..=y_hi {
+            let dy = y as f32 + 0.5 - p.y;
+            for x in x_lo as i64..=x_hi {
+                let wgt = filter.eval(x as f32 + 0.5 - p.x, dy);
+                if wgt == 0.0 {
+                    continue;
+                }
+                let s = &mut self.sums[(y as usize - self.y0) * self.width + x as usize];
+                let w64 = f64::from(wgt);
+                for k in 0..4 {
+                    s[k] += w64 * f64::from(c[k]);
+                }
+                s[4] += w64;
+            }
+        }
+    }
+
+    fn merge_into(&self, film: &mut [[f64; 5]], width: usize) {
+        for (r, row) in self.sums.chunks(width).enumerate() {
+            let base = (self.y0 + r) * width;
+            for (dst, src) in film[base..base + width].iter_mut().zip(row) {
+                for k in 0..5 {
+                    dst[k] += src[k];
+                }
+            }
+        }
+    }
+}
+
+/// Samples per pixel of the classic engine: (first pass, most) from the options'
+/// `samples min max` (4^level; levels below 0 are taken as 0, mental ray's infrasampling
+/// is not done) unless `spp` fixes the count.
+pub fn classic_samples(options: &scene::Options, spp: Option<u32>) -> (u32, u32) {
+    if let Some(n) = spp {
+        return (n.max(1), n.max(1));
+    }
+    let (lo, hi) = options.samples;
+    let hi = hi.clamp(0, 5);
+    let lo = lo.clamp(0, hi);
+    (4u32.pow(lo as u32), 4u32.pow(hi as u32))
+}
+
+/// The contrast test of the classic engine: whether pixel `i` has to be sampled further
+/// (its samples spread by more than `contrast` in some channel, or, after the first pass,
+/// its colour differs from a neighbour's by more).
+fn needs_more(film: &Film, i: usize, contrast: [f32; 4], neighbours: bool) -> bool {
+    let p = &film.pixels[i];
+    if (0..4).any(|k| p.hi[k] - p.lo[k] > contrast[k]) {
+        return true;
+    }
+    if !neighbours {
+        return false;
+    }
+    let (w, h) = (film.width as usize, film.height as usize);
+    let (x, y) = (i % w, i / w);
+    let c = p.rgba();
+    let near = [(x > 0).then(|| i - 1), (x + 1 < w).then(|| i + 1), (y > 0).then(|| i - w), (y + 1 < h).then(|| i + w)];
+    near.into_iter().flatten().any(|j| {
+        let d = film.pixels[j].rgba();
+        (0..4).any(|k| (c[k] - d[k]).abs() > contrast[k])
+    })
+}
+
 /// Renders `world` progressively. `progress` is called after each pass; `cancel` stops the
-/// render at the next row (the image keeps what was done).
+/// render at the next row (the image keeps what was done). The classic engine needs the
+/// scene's compiled `shading`.
 pub fn render(
     world: &World,
     accel: &dyn Accel,
+    shading: Option<&Shading>,
     settings: &Settings,
     cancel: &AtomicBool,
     progress: &(dyn Fn(Progress) + Sync),
@@ -100,9 +216,17 @@ pub fn render(
     }
     let filter = PixelFilter::new(&world.options.filter);
     let prog = &world.options.progressive;
-    let target = settings.spp.unwrap_or(prog.max_samples).max(1);
+    let classic = match (settings.engine, shading) {
+        (EngineKind::Classic, Some(s)) => Some(s),
+        _ => None,
+    };
+    let (first_pass, target) = match classic {
+        Some(_) => classic_samples(&world.options, settings.spp),
+        None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
+    };
+    let contrast = world.options.contrast.map(|c| c as f32);
     let max_time = settings.max_time.or(prog.max_time.map(Duration::from_secs_f64));
-    let quality = (settings.spp.is_none() && prog.quality_enabled).then_some(prog);
+    let quality = (classic.is_none() && settings.spp.is_none() && prog.quality_enabled).then_some(prog);
     let start = Instant::now();
     let rays = AtomicU64::new(0);
     let shadow_rays = AtomicU64::new(0);
@@ -112,13 +236,22 @@ pub fn render(
     let mut stats = Stats::default();
     let (x0, y0, x1, y1) = cam.window;
     let band = settings.band.max(1) as usize;
+    let fb_writes: Mutex<Vec<(usize, u32, [f32; 4])>> = Mutex::new(Vec::new());
+    let splats: Mutex<Vec<(usize, Splat)>> = Mutex::new(Vec::new());
+    if classic.is_some() {
+        film.splat = vec![[0.0; 5]; film.pixels.len()];
+    }
     while done < target {
-        // Pass sizes 1, 1, 2, 4, … so that the first image comes quickly.
-        let pass = done.max(1).min(target - done).min(64);
+        // Pass sizes 1, 1, 2, 4, … so that the first image comes quickly (the classic
+        // engine starts with its minimum samples).
+        let pass = if done == 0 { first_pass } else { done }.min(target - done).min(64.max(first_pass));
         let rows: Vec<(usize, &mut [Pixel])> = film.pixels.chunks_mut(w as usize * band).enumerate().collect();
         rows.into_par_iter().for_each(|(b, chunk)| {
             let mut counts = RayCounts::default();
             let mut bad = 0u64;
+            let mut writes = Vec::new();
+            let rows = chunk.len().div_ceil(w as usize);
+            let mut splat = classic.map(|_| Splat::new(&filter, b * band, rows, w, h));
             for (k, px) in chunk.iter_mut().enumerate() {
                 if cancel.load(Ordering::Relaxed) {
                     break;
@@ -131,18 +264,48 @@ pub fn render(
                 let seed = pixel_seed(x, y, settings.seed);
                 for index in done..done + pass {
                     let mut sampler = Sampler::new(seed, index);
-                    let (offset, weight) = filter.sample(sampler.next_2d());
-                    let ray = cam.ray(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-                    let r = trace_path(world, accel, ray, &mut sampler, &settings.path, &mut counts);
+                    let u = sampler.next_2d();
+                    // The path engine samples the filter; the classic engine samples the
+                    // pixel and splats.
+                    let (raster, weight) = if classic.is_some() {
+                        (Vec2::new(x as f32 + u.x, y as f32 + u.y), 1.0)
+                    } else {
+                        let (offset, weight) = filter.sample(u);
+                        (Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y), weight)
+                    };
+                    let (color, alpha, first) = match classic {
+                        Some(shading) => {
+                            let s = crate::classic::eye_sample(world, accel, shading, raster, [x, y], index);
+                            counts.rays += s.counts.rays;
+                            counts.shadow_rays += s.counts.shadow_rays;
+                            let i = b * band * w as usize + k;
+                            writes.extend(s.fb.iter().map(|(buf, v)| (i, *buf, v.to_array())));
+                            if let Some(splat) = &mut splat {
+                                splat.add(&filter, raster, s.color.to_array());
+                            }
+                            (shade::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
+                        }
+                        None => {
+                            let ray = cam.ray(raster.x, raster.y);
+                            let r = trace_path(world, accel, ray, &mut sampler, &settings.path, &mut counts);
+                            (r.radiance, r.alpha, r.first)
+                        }
+                    };
                     if index == 0 {
-                        if let Some(f) = r.first {
+                        if let Some(f) = first {
                             px.depth = cam.depth(f.point);
                             px.normal = f.normal.to_array();
                             px.tag = f.tag;
                         }
                     }
-                    bad += u64::from(px.add(r.radiance, r.alpha, weight, index));
+                    bad += u64::from(px.add(color, alpha, weight, index));
                 }
+            }
+            if !writes.is_empty() {
+                fb_writes.lock().unwrap_or_else(|e| e.into_inner()).extend(writes);
+            }
+            if let Some(splat) = splat {
+                splats.lock().unwrap_or_else(|e| e.into_inner()).push((b, splat));
             }
             rays.fetch_add(counts.rays, Ordering::Relaxed);
             shadow_rays.fetch_add(counts.shadow_rays, Ordering::Relaxed);
@@ -157,7 +320,35 @@ pub fn render(
             break;
         }
         done += pass;
+        // Merge the bands' splats in band order: the sums are the same for any thread
+        // count.
+        let mut bands = std::mem::take(&mut *splats.lock().unwrap_or_else(|e| e.into_inner()));
+        bands.sort_by_key(|(b, _)| *b);
+        for (_, s) in bands {
+            s.merge_into(&mut film.splat, w as usize);
+        }
+        for (i, buf, v) in fb_writes.lock().unwrap_or_else(|e| e.into_inner()).drain(..) {
+            if let Some(user) = film.user.get_mut(buf as usize) {
+                user.put(i, v);
+            }
+        }
         let mut converged_ratio = None;
+        if classic.is_some() && settings.spp.is_none() {
+            // mental ray's adaptive supersampling: only pixels with contrast go on.
+            let more: Vec<bool> =
+                (0..film.pixels.len()).map(|i| needs_more(&film, i, contrast, done == first_pass)).collect();
+            let mut count = 0usize;
+            for (p, m) in film.pixels.iter_mut().zip(&more) {
+                if !*m {
+                    p.converged = true;
+                }
+                count += usize::from(p.converged);
+            }
+            converged_ratio = Some(count as f32 / film.pixels.len().max(1) as f32);
+            if count == film.pixels.len() {
+                stats.converged = true;
+            }
+        }
         if let Some(q) = quality {
             if done >= q.min_samples {
                 let threshold = 0.05 / q.quality.max(1e-3) as f32;

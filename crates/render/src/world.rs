@@ -1,7 +1,7 @@
 //! The render world: the scene's meshes, instances, materials, lights and camera in the
 //! compact `f32` form the integrators read.
 
-use glam::{Affine3A, Mat3A, Vec2, Vec3A};
+use glam::{Affine3A, Mat3A, Vec3A};
 use scene::Scene;
 use shade::SurfaceMaterial;
 
@@ -15,8 +15,11 @@ pub struct MeshData {
     pub positions: Vec<Vec3A>,
     /// Vertex shading normals (empty: use the geometric normal).
     pub normals: Vec<Vec3A>,
-    /// Vertex coordinates of the first texture space (empty if none).
-    pub uvs: Vec<Vec2>,
+    /// Vertex coordinates of each texture space (mental ray's `tex_list`).
+    pub textures: Vec<Vec<Vec3A>>,
+    /// Vertex bump basis vectors (u, v) of the first texture space, object space (empty if
+    /// the geometry gives none).
+    pub bump_basis: Vec<[Vec3A; 2]>,
     /// Triangles (counter-clockwise is the front).
     pub triangles: Vec<[u32; 3]>,
     /// Material slot of each triangle.
@@ -40,6 +43,8 @@ pub struct InstanceData {
     pub flags: scene::Flags,
     /// The label written to the tag buffer.
     pub tag: u32,
+    /// Index of the instance in the scene's instance list.
+    pub scene_index: u32,
 }
 
 /// Everything an integrator needs.
@@ -84,11 +89,8 @@ impl World {
                 MeshData {
                     positions: m.positions.iter().map(|p| Vec3A::from(*p)).collect(),
                     normals: m.normals.iter().map(|n| Vec3A::from(*n)).collect(),
-                    uvs: m
-                        .textures
-                        .first()
-                        .map(|t| t.coords.iter().map(|c| Vec2::new(c.x, c.y)).collect())
-                        .unwrap_or_default(),
+                    textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
+                    bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
                     triangles: m.triangles.clone(),
                     slots: m.triangle_slots.clone(),
                 }
@@ -100,8 +102,9 @@ impl World {
         let instances = scene
             .instances
             .iter()
-            .filter(|i| !scene.objects[i.object as usize].geometry.mesh.triangles.is_empty())
-            .map(|i| {
+            .enumerate()
+            .filter(|(_, i)| !scene.objects[i.object as usize].geometry.mesh.triangles.is_empty())
+            .map(|(scene_index, i)| {
                 let object_to_world = affine(i.object_to_world);
                 InstanceData {
                     mesh: i.object,
@@ -111,6 +114,7 @@ impl World {
                     materials: i.materials.iter().map(|m| m.map_or(0, |m| m + 1)).collect(),
                     flags: i.flags,
                     tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
+                    scene_index: scene_index as u32,
                 }
             })
             .collect();

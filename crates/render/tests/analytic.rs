@@ -58,6 +58,7 @@ fn instance(mesh: u32, material: u32) -> InstanceData {
         materials: vec![material],
         flags: scene::Flags::default(),
         tag: 0,
+        scene_index: 0,
     }
 }
 
@@ -104,7 +105,7 @@ fn world(
 fn run(world: &World, spp: u32, path: PathSettings) -> Vec<[f32; 4]> {
     let accel = accel::build(world, Backend::Rust);
     let settings = Settings { spp: Some(spp), path, ..Settings::default() };
-    let (film, _) = render::render(world, accel.as_ref(), &settings, &AtomicBool::new(false), &|_| {});
+    let (film, _) = render::render(world, accel.as_ref(), None, &settings, &AtomicBool::new(false), &|_| {});
     film.rgba()
 }
 
@@ -258,7 +259,9 @@ fn same_image_for_any_thread_count() {
     let settings = Settings { spp: Some(4), seed: 7, ..Settings::default() };
     let image = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| render::render(&world, accel.as_ref(), &settings, &AtomicBool::new(false), &|_| {}).0.rgba())
+        pool.install(|| {
+            render::render(&world, accel.as_ref(), None, &settings, &AtomicBool::new(false), &|_| {}).0.rgba()
+        })
     };
     let one = image(1);
     let two = image(2);

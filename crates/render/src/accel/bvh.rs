@@ -74,6 +74,18 @@ pub fn instance_mask(flags: &scene::Flags) -> u32 {
     if flags.reflection.cast || flags.refraction.cast || flags.finalgather.cast {
         m |= mask::SECONDARY;
     }
+    if flags.reflection.cast {
+        m |= mask::REFLECT;
+    }
+    if flags.refraction.cast {
+        m |= mask::REFRACT;
+    }
+    if flags.transparency.cast {
+        m |= mask::TRANSPARENT;
+    }
+    if flags.finalgather.cast {
+        m |= mask::FINALGATHER;
+    }
     m
 }
 

@@ -1,0 +1,258 @@
+//! The classic (shader-driven) engine: mental ray's way of rendering. An eye ray runs the
+//! camera's lens shaders, then the material shader of the surface it hits; the shader's
+//! colour is the sample. Everything else — lights, shadows, reflections, final gathering —
+//! is what the shaders ask for through [`shade::model::Tracer`], implemented here over the
+//! acceleration structure.
+
+use std::cell::{Cell, RefCell};
+
+use glam::{Vec2, Vec3A};
+use shade::model::{Color, Ctx, RayType, Shading, State, Tracer, VertexData};
+
+use crate::accel::{Accel, Hit};
+use crate::integrator::{mask, FirstHit, RayCounts};
+use crate::ray::Ray;
+use crate::world::World;
+
+/// The ray casting of one rendering thread for one eye sample.
+pub struct ClassicTracer<'a> {
+    world: &'a World,
+    accel: &'a dyn Accel,
+    /// Counts of rays cast.
+    pub counts: Cell<RayCounts>,
+    /// The first surface the eye ray hit.
+    pub first: Cell<Option<FirstHit>>,
+    /// `fb_put` writes of this sample: (buffer, value).
+    pub fb: RefCell<Vec<(u32, Color)>>,
+}
+
+impl<'a> ClassicTracer<'a> {
+    /// A tracer over a built world.
+    pub fn new(world: &'a World, accel: &'a dyn Accel) -> ClassicTracer<'a> {
+        ClassicTracer {
+            world,
+            accel,
+            counts: Cell::new(RayCounts::default()),
+            first: Cell::new(None),
+            fb: RefCell::new(Vec::new()),
+        }
+    }
+
+    fn count(&self, shadow: bool) {
+        let mut c = self.counts.get();
+        if shadow {
+            c.shadow_rays += 1;
+        } else {
+            c.rays += 1;
+        }
+        self.counts.set(c);
+    }
+}
+
+/// The instances a ray of `kind` may see.
+fn ray_mask(kind: RayType) -> u32 {
+    match kind {
+        RayType::Eye => mask::CAMERA,
+        RayType::Reflect => mask::REFLECT,
+        RayType::Refract => mask::REFRACT,
+        RayType::Transparent => mask::TRANSPARENT,
+        RayType::Finalgather => mask::FINALGATHER,
+        RayType::Shadow | RayType::Light => mask::SHADOW,
+        RayType::Environment | RayType::Probe => u32::MAX,
+    }
+}
+
+/// Fills in the surface part of `s` for `hit` on the ray `s.org + t s.dir`.
+pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
+    let inst = &world.instances[hit.instance as usize];
+    let mesh = &world.meshes[inst.mesh as usize];
+    let tri = mesh.triangles[hit.prim as usize];
+    let [i0, i1, i2] = tri.map(|i| i as usize);
+    let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);
+    let (b1, b2) = (hit.u, hit.v);
+    let b0 = 1.0 - b1 - b2;
+    s.dist = hit.t;
+    s.point = s.org + s.dir * hit.t;
+    s.bary = [b0, b1, b2];
+    let ng = (inst.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    s.shadow_point = s.point;
+    let mut ns = if mesh.normals.is_empty() {
+        ng
+    } else {
+        let (n0, n1, n2) = (mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
+        // Lift the point onto the vertices' tangent planes (object space), where it lies
+        // below them.
+        let p_obj = p0 * b0 + p1 * b1 + p2 * b2;
+        let lift = |p_i: Vec3A, n_i: Vec3A| {
+            let n_i = n_i.normalize_or_zero();
+            let d = (p_obj - p_i).dot(n_i);
+            if d < 0.0 {
+                p_obj - n_i * d
+            } else {
+                p_obj
+            }
+        };
+        let lifted = lift(p0, n0) * b0 + lift(p1, n1) * b1 + lift(p2, n2) * b2;
+        s.shadow_point = inst.object_to_world.transform_point3a(lifted);
+        let n = n0 * b0 + n1 * b1 + n2 * b2;
+        (inst.normal_to_world * n).normalize_or(ng)
+    };
+    if ns.dot(ng) < 0.0 {
+        ns = -ns;
+    }
+    // Face the ray: a back-side hit flips both normals and says so.
+    s.inv_normal = ng.dot(s.dir) > 0.0;
+    let (ng, ns) = if s.inv_normal { (-ng, -ns) } else { (ng, ns) };
+    s.normal_geom = ng;
+    s.normal = ns;
+    s.dot_nd = ns.dot(s.dir);
+    s.tex_count = mesh.textures.len().min(shade::model::state::MAX_TEXTURES);
+    for (k, space) in mesh.textures.iter().take(s.tex_count).enumerate() {
+        s.tex_list[k] = space[i0] * b0 + space[i1] * b1 + space[i2] * b2;
+    }
+    // Surface derivatives from the first texture space: dP/du, dP/dv of the triangle.
+    s.derivs = [Vec3A::ZERO; 2];
+    if let Some(space) = mesh.textures.first() {
+        let (t0, t1, t2) = (space[i0], space[i1], space[i2]);
+        let (du1, dv1, du2, dv2) = (t1.x - t0.x, t1.y - t0.y, t2.x - t0.x, t2.y - t0.y);
+        let det = du1 * dv2 - du2 * dv1;
+        if det.abs() > 1e-20 {
+            let (e1, e2) = (p1 - p0, p2 - p0);
+            let dpdu = (e1 * dv2 - e2 * dv1) / det;
+            let dpdv = (e2 * du1 - e1 * du2) / det;
+            s.derivs = [inst.object_to_world.transform_vector3a(dpdu), inst.object_to_world.transform_vector3a(dpdv)];
+        }
+    }
+    s.bump_basis = (!mesh.bump_basis.is_empty()).then(|| {
+        let [a, b, c] = [mesh.bump_basis[i0], mesh.bump_basis[i1], mesh.bump_basis[i2]];
+        let u = a[0] * b0 + b[0] * b1 + c[0] * b2;
+        let v = a[1] * b0 + b[1] * b1 + c[1] * b2;
+        [inst.object_to_world.transform_vector3a(u), inst.object_to_world.transform_vector3a(v)]
+    });
+    s.label = inst.tag;
+    s.instance = inst.scene_index;
+    s.geometry = hit.instance;
+    s.prim = hit.prim;
+    let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
+    s.material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
+    s.object_to_world = inst.object_to_world;
+    s.world_to_object = inst.world_to_object;
+    s.footprint += s.spread * hit.t;
+}
+
+impl Tracer for ClassicTracer<'_> {
+    fn intersect(&self, s: &mut State, max_dist: f32) -> bool {
+        self.count(false);
+        let mut ray = Ray { mask: ray_mask(s.ray_type), origin: s.org, dir: s.dir, tmin: 0.0, tmax: max_dist };
+        if s.ray_type == RayType::Eye {
+            let cam = &self.world.camera;
+            let r = cam.clip_ray(s.org, s.dir);
+            ray.tmin = r.tmin;
+            ray.tmax = ray.tmax.min(r.tmax);
+        }
+        let Some(hit) = self.accel.intersect(&ray) else { return false };
+        fill_state(self.world, &hit, s);
+        if s.ray_type == RayType::Eye && s.reflection_level == 0 && s.refraction_level == 0 {
+            let first = self.first.get();
+            if first.is_none() {
+                self.first.set(Some(FirstHit { point: s.point, normal: s.normal, tag: s.label }));
+            }
+        }
+        true
+    }
+
+    fn shadow_hits(&self, s: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool) {
+        let mut origin = s.org;
+        let mut remaining = max_dist;
+        // A shadow ray crosses at most this many surfaces before it counts as blocked.
+        for _ in 0..64 {
+            self.count(true);
+            let ray = Ray { mask: mask::SHADOW, origin, dir: s.dir, tmin: 0.0, tmax: remaining };
+            let Some(hit) = self.accel.intersect(&ray) else { return };
+            let mut h = s.child(RayType::Shadow, origin, s.dir);
+            h.light = s.light;
+            fill_state(self.world, &hit, &mut h);
+            if !visit(&h) {
+                return;
+            }
+            origin = shade::model::trace::offset_point(h.point, h.normal_geom, s.dir);
+            remaining -= hit.t;
+            if remaining <= 0.0 {
+                return;
+            }
+        }
+        // Too many layers: treat the light as blocked.
+        let mut h = s.child(RayType::Shadow, origin, s.dir);
+        h.material = None;
+        visit(&h);
+    }
+
+    fn triangle(&self, hit: &State, data: VertexData) -> Option<[Vec3A; 3]> {
+        let inst = self.world.instances.get(hit.geometry as usize)?;
+        let mesh = &self.world.meshes[inst.mesh as usize];
+        let tri = mesh.triangles.get(hit.prim as usize)?.map(|i| i as usize);
+        match data {
+            VertexData::Point => Some(tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i]))),
+            VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
+            VertexData::Normal => Some(tri.map(|i| (inst.normal_to_world * mesh.normals[i]).normalize_or_zero())),
+            VertexData::Motion => Some([Vec3A::ZERO; 3]),
+            VertexData::Texture(k) => mesh.textures.get(k).map(|t| tri.map(|i| t[i])),
+        }
+    }
+
+    fn fb_put(&self, buffer: u32, value: Color) -> bool {
+        if (buffer as usize) < self.world.user_buffers.len() {
+            self.fb.borrow_mut().push((buffer, value));
+            true
+        } else {
+            false
+        }
+    }
+}
+
+/// What one classic eye sample produced.
+#[derive(Clone, Debug)]
+pub struct ClassicSample {
+    /// The colour (straight RGB and alpha).
+    pub color: Color,
+    /// The first surface hit.
+    pub first: Option<FirstHit>,
+    /// User frame buffer writes.
+    pub fb: Vec<(u32, Color)>,
+    /// Rays cast.
+    pub counts: RayCounts,
+}
+
+/// Renders one eye sample through raster position `raster` (pixels, top-left origin) of
+/// pixel `pixel`, sample `index`.
+pub fn eye_sample(
+    world: &World,
+    accel: &dyn Accel,
+    shading: &Shading,
+    raster: Vec2,
+    pixel: [u32; 2],
+    index: u32,
+) -> ClassicSample {
+    let tracer = ClassicTracer::new(world, accel);
+    let cam = &world.camera;
+    let ray = cam.ray(raster.x, raster.y);
+    let mut state = State {
+        ray_type: RayType::Eye,
+        org: ray.origin,
+        dir: ray.dir,
+        point: ray.origin,
+        // mental ray's raster space has its origin at the lower left.
+        raster: Vec2::new(raster.x, cam.height as f32 - raster.y),
+        pixel,
+        sample_index: index,
+        spread: cam.pixel_angle(),
+        ior_in: 1.0,
+        ior: 1.0,
+        child_dist: f32::INFINITY,
+        ..State::default()
+    };
+    state.normal = -ray.dir;
+    let mut ctx = Ctx::new(shading, &tracer, state);
+    let color = ctx.trace_eye(ray.origin, ray.dir);
+    ClassicSample { color, first: tracer.first.get(), fb: tracer.fb.into_inner(), counts: tracer.counts.get() }
+}

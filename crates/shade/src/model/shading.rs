@@ -1,0 +1,285 @@
+//! A scene's shading, compiled: the shader graph, textures, materials' shader slots,
+//! lights, the camera's environment and lens shaders, and the options shaders obey.
+
+use std::sync::Arc;
+
+use glam::Vec3A;
+use mi::ast::{Arg, ShaderList, Stmt, TextureSource};
+use mi::{Diagnostic, Span};
+use scene::instance::LightLink;
+use scene::{MaterialKind, Scene};
+
+use super::decl::Decls;
+use super::graph::{Builder, Graph, Names, NodeId};
+use super::lights::ShadingLight;
+use super::trace::{FinalGather, TraceDepth};
+use super::value::{Color, Value};
+use crate::texture::{self, SearchPath, Texture};
+
+/// The shader lists of a material's slots.
+#[derive(Clone, Debug, Default)]
+pub struct MaterialShaders {
+    /// The material's name.
+    pub name: String,
+    /// Material (surface) shader list.
+    pub surface: Option<NodeId>,
+    /// Shadow shader list.
+    pub shadow: Option<NodeId>,
+    /// Volume shader list.
+    pub volume: Option<NodeId>,
+    /// Environment shader list.
+    pub environment: Option<NodeId>,
+    /// Photon shader list.
+    pub photon: Option<NodeId>,
+    /// Displacement shader list.
+    pub displace: Option<NodeId>,
+    /// `opaque`: shadow rays may stop at it.
+    pub opaque: bool,
+    /// Its surface shader is a mental ray shader (not mira's stand-in for MDL).
+    pub classic: bool,
+}
+
+/// How to compile.
+#[derive(Clone, Debug, Default)]
+pub struct ShadingOptions {
+    /// Where texture files are looked for.
+    pub search: SearchPath,
+    /// Seed of shaders' sampling.
+    pub seed: u32,
+    /// Final gather rays at each eye-ray hit (`None`: the options' accuracy).
+    pub finalgather_rays: Option<u32>,
+}
+
+/// The compiled shading of a scene (shared by all rendering threads).
+#[derive(Debug, Default)]
+pub struct Shading {
+    /// Every shader node.
+    pub graph: Graph,
+    /// Textures by index (`Tag::Texture`).
+    pub textures: Vec<Texture>,
+    /// Shader slots of the scene's materials, in scene order.
+    pub materials: Vec<MaterialShaders>,
+    /// Lights, in scene order (`Tag::Light`).
+    pub lights: Vec<ShadingLight>,
+    /// Each scene instance's light list (mode 4).
+    pub instance_lights: Vec<Option<LightLink>>,
+    /// The camera's environment shader list.
+    pub environment: Option<NodeId>,
+    /// The camera's lens shaders, in order.
+    pub lens: Vec<NodeId>,
+    /// Trace-depth limits.
+    pub depth: TraceDepth,
+    /// `trace on`: secondary rays are cast at all.
+    pub trace: bool,
+    /// Shadows are traced.
+    pub shadows: bool,
+    /// Final gathering.
+    pub finalgather: FinalGather,
+    /// Seed of shaders' sampling.
+    pub seed: u32,
+    /// Image resolution in pixels (screen-space shaders).
+    pub resolution: (u32, u32),
+    /// World → camera space.
+    pub world_to_camera: glam::Affine3A,
+}
+
+/// Most trace depth mira follows, whatever the options say (deeper recursion would only
+/// exhaust the stack for no visible change).
+pub const MAX_TRACE_DEPTH: u32 = 64;
+
+impl Shading {
+    /// Compiles the shading of `scene`. Problems (unknown shaders, parameters, unreadable
+    /// textures) come back as diagnostics pointing into the scene's files.
+    pub fn build(scene: &Scene, options: &ShadingOptions) -> (Shading, Vec<Diagnostic>) {
+        let lib = &scene.library;
+        let decls = Decls::new(lib.declarations.values());
+        let mut names = Names::default();
+        for (i, name) in lib.textures.keys().enumerate() {
+            names.textures.insert(name.clone(), i as u32);
+        }
+        for (i, l) in scene.lights.iter().enumerate() {
+            names.lights.insert(l.instance.clone(), i as u32);
+            names.lights.entry(l.name.clone()).or_insert(i as u32);
+        }
+        for (i, m) in scene.materials.iter().enumerate() {
+            names.materials.insert(m.name.clone(), i as u32);
+        }
+        for (i, name) in lib.data.keys().enumerate() {
+            names.data.insert(name.clone(), i as u32);
+        }
+        let mut b = Builder::new(&decls, &lib.shaders, names);
+        let mut diags = Vec::new();
+
+        let mut textures = Vec::with_capacity(lib.textures.len());
+        for t in lib.textures.values() {
+            textures.push(match &t.source {
+                TextureSource::Shader(list) => b.list(list, None).map_or(Texture::Missing, Texture::Shader),
+                TextureSource::File { file, .. } => load_file(&file.text, file.span, t, options, &mut diags),
+                TextureSource::Pixels { dims, pieces } => {
+                    let bytes: Vec<u8> = pieces.concat();
+                    match texture::inline_pixels(dims, &bytes) {
+                        Ok(m) => image_texture(m, t),
+                        Err(e) => {
+                            diags.push(Diagnostic::warning(t.span, format!("texture '{}': {e}", t.name.text)));
+                            Texture::Missing
+                        }
+                    }
+                }
+            });
+        }
+
+        let mut materials = Vec::with_capacity(scene.materials.len());
+        for m in &scene.materials {
+            materials.push(material(&mut b, m, lib));
+        }
+
+        let lights = scene
+            .lights
+            .iter()
+            .map(|l| ShadingLight {
+                name: l.instance.clone(),
+                shader: l.shader.as_ref().and_then(|s| b.list(s, None)),
+                kind: l.kind,
+                origin: l.position.as_vec3a(),
+                direction: l.direction.as_vec3a().normalize_or(Vec3A::NEG_Z),
+                spread: l.spread as f32,
+                shape: l.area.as_ref().and_then(|a| crate::light::Shape::from_area(&a.shape)),
+                samples: l.area.as_ref().map_or((1, 1), |a| a.samples),
+                low: l.area.as_ref().and_then(|a| a.low),
+                visible: l.visible,
+                exponent: l.exponent as f32,
+            })
+            .collect();
+
+        let environment = scene.camera.environment.as_ref().and_then(|e| b.list(e, None));
+        let lens = scene.camera.lens.iter().filter_map(|l| b.list(l, None)).collect();
+        let o = &scene.options;
+        let fg = &o.finalgather;
+        let clamp = |d: u32| d.min(MAX_TRACE_DEPTH);
+        let finalgather = FinalGather {
+            enabled: fg.enabled,
+            rays: options.finalgather_rays.unwrap_or(fg.rays).max(1),
+            secondary_rays: 1,
+            diffuse_depth: clamp(fg.trace_depth[2]),
+            max_dist: fg.falloff.map(|(_, stop)| stop as f32).filter(|d| *d > 0.0),
+            scale: Color::new(fg.scale[0] as f32, fg.scale[1] as f32, fg.scale[2] as f32, fg.scale[3] as f32),
+        };
+        let (graph, graph_diags) = b.finish();
+        diags.extend(graph_diags);
+        let shading = Shading {
+            graph,
+            textures,
+            materials,
+            lights,
+            instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
+            environment,
+            lens,
+            depth: TraceDepth {
+                reflect: clamp(o.trace_depth.0),
+                refract: clamp(o.trace_depth.1),
+                sum: clamp(o.trace_depth.2),
+            },
+            trace: o.trace,
+            shadows: o.shadow != scene::options::ShadowMode::Off,
+            finalgather,
+            seed: options.seed,
+            resolution: scene.camera.resolution,
+            world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
+        };
+        (shading, diags)
+    }
+
+    /// Whether any material is shaded by mental ray shaders (the classic engine's domain).
+    pub fn has_classic_materials(&self) -> bool {
+        self.materials.iter().any(|m| m.classic)
+    }
+
+    /// Whether a scene is for the classic engine: some material of it has a mental ray
+    /// material shader (not an MDL material). Decided without compiling anything.
+    pub fn wants_classic(scene: &Scene) -> bool {
+        scene.materials.iter().any(|m| match &m.kind {
+            MaterialKind::Material(defs) => defs.last().and_then(|d| d.shaders.as_ref()).is_some_and(|list| {
+                list.0.first().is_some_and(|item| match item {
+                    mi::ast::ShaderItem::Call { decl, .. } => !decl.text.starts_with("mdl::"),
+                    mi::ast::ShaderItem::Ref(r) => {
+                        scene.library.shaders.get(&r.text).is_some_and(|d| match d.list.0.first() {
+                            Some(mi::ast::ShaderItem::Call { decl, .. }) => !decl.text.starts_with("mdl::"),
+                            _ => true,
+                        })
+                    }
+                    mi::ast::ShaderItem::Define { .. } => true,
+                })
+            }),
+            MaterialKind::Shader(_) => false,
+        })
+    }
+}
+
+fn image_texture(image: texture::MipMap, t: &mi::ast::Texture) -> Texture {
+    Texture::Image { image: Arc::new(image), filter: texture::filter_flag(t), kind: t.kind }
+}
+
+fn load_file(
+    name: &str,
+    span: Span,
+    t: &mi::ast::Texture,
+    options: &ShadingOptions,
+    diags: &mut Vec<Diagnostic>,
+) -> Texture {
+    let Some(path) = options.search.resolve(name) else {
+        diags.push(Diagnostic::warning(span, format!("texture file '{name}' not found; lookups of it give black")));
+        return Texture::Missing;
+    };
+    match texture::load_image(&path) {
+        Ok(m) => image_texture(m, t),
+        Err(e) => {
+            diags.push(Diagnostic::warning(span, format!("texture file '{}': {e}", path.display())));
+            Texture::Missing
+        }
+    }
+}
+
+/// The shader slots of one material.
+fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library) -> MaterialShaders {
+    let mut out = MaterialShaders { name: m.name.clone(), ..MaterialShaders::default() };
+    match &m.kind {
+        MaterialKind::Material(defs) => {
+            // An incremental redefinition replaces the material as a whole.
+            let Some(def) = defs.last() else { return out };
+            out.surface = def.shaders.as_ref().and_then(|l| b.list(l, None));
+            out.classic = out.surface.is_some();
+            for stmt in &def.stmts {
+                let Stmt::Kw(k) = stmt else { continue };
+                let list = || match k.args.first() {
+                    Some(Arg::Shaders(l)) => Some(l),
+                    _ => None,
+                };
+                let build = |b: &mut Builder, l: Option<&ShaderList>| l.and_then(|l| b.list(l, None));
+                match k.key {
+                    "opaque" => out.opaque = true,
+                    "shadow" => out.shadow = build(b, list()),
+                    "volume" => out.volume = build(b, list()),
+                    "environment" => out.environment = build(b, list()),
+                    "photon" => out.photon = build(b, list()),
+                    "displace" => out.displace = build(b, list()),
+                    _ => {}
+                }
+            }
+            if out.surface.is_none() {
+                out.surface = stand_in(b, m, lib, def.span);
+            }
+        }
+        MaterialKind::Shader(def) => {
+            out.surface = stand_in(b, m, lib, def.name.span);
+        }
+    }
+    out
+}
+
+/// mira's Lambertian stand-in for a material without mental ray shaders, with the diffuse
+/// colour and emission the path engine's translation finds.
+fn stand_in(b: &mut Builder, m: &scene::Material, lib: &scene::Library, span: Span) -> Option<NodeId> {
+    let (surface, _) = crate::material::translate(m, lib);
+    let c = |c: crate::Rgb| Value::Color(Color::new(c.x, c.y, c.z, 1.0));
+    b.internal("mira_diffuse", &[("diffuse", c(surface.diffuse)), ("emission", c(surface.emission))], span)
+}

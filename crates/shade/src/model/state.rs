@@ -1,0 +1,285 @@
+//! The shading state: what a shader knows about the point it shades (mental ray's
+//! `miState`), with mental ray's names and meanings.
+//!
+//! mira's internal space is world space: every point, vector and normal here is in world
+//! space unless the name says otherwise. Distances are in scene units.
+
+use glam::{Affine3A, Vec2, Vec3A};
+
+/// Why a ray was cast (mental ray's `miRay_type`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RayType {
+    /// From the camera.
+    #[default]
+    Eye,
+    /// A transparency ray (straight through, no bending).
+    Transparent,
+    /// A reflection ray.
+    Reflect,
+    /// A refraction ray.
+    Refract,
+    /// From a light towards an illuminated point (the light shader's state).
+    Light,
+    /// A shadow ray (the shadow shader's state).
+    Shadow,
+    /// An environment lookup (no geometry hit).
+    Environment,
+    /// A final gather ray (`compute_irradiance`).
+    Finalgather,
+    /// A probe ray cast by a shader itself (occlusion and similar).
+    Probe,
+}
+
+impl RayType {
+    /// Whether rays of this kind are cast by the eye or by other shading (not light or
+    /// shadow work).
+    pub fn is_visible(self) -> bool {
+        !matches!(self, RayType::Light | RayType::Shadow)
+    }
+}
+
+/// Most texture spaces a state carries.
+pub const MAX_TEXTURES: usize = 8;
+
+/// Most media a refraction chain remembers.
+pub const MAX_MEDIA: usize = 8;
+
+/// A medium a ray is inside: the material it entered through and that material's
+/// index of refraction.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Medium {
+    /// The material (scene index).
+    pub material: u32,
+    /// Its index of refraction.
+    pub ior: f32,
+}
+
+/// The hair-specific part of a state (see `mental-ray-material-shaders.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HairState {
+    /// Interpolated tangent at the hit, root to tip (mental ray puts it in `derivs[0]`).
+    pub tangent: Vec3A,
+    /// Position across the hair (0 left edge … 1 right edge, seen from the ray).
+    pub across: f32,
+    /// Position along the hair (0 at the first vertex … 1 at the last).
+    pub along: f32,
+}
+
+/// The shading point.
+#[derive(Clone, Debug, Default)]
+pub struct State {
+    /// Why the ray that led here was cast.
+    pub ray_type: RayType,
+    /// Reflection rays on the path from the eye.
+    pub reflection_level: u32,
+    /// Refraction and transparency rays on the path from the eye.
+    pub refraction_level: u32,
+    /// Final gather bounces on the path from the eye.
+    pub finalgather_level: u32,
+    /// Ray origin (for light shaders: the point on the light).
+    pub org: Vec3A,
+    /// Ray direction, unit length (for light shaders: from the light to the illuminated
+    /// point).
+    pub dir: Vec3A,
+    /// Distance from `org` to `point` (0 for environment lookups).
+    pub dist: f32,
+    /// Intersection point (for light shaders: the illuminated point).
+    pub point: Vec3A,
+    /// Where shadow rays from this point start: the point lifted onto the smooth surface the
+    /// vertex normals describe (Hanika, "Hacking the shadow terminator", 2021), so that
+    /// coarse tessellations do not shadow themselves near the terminator; the point itself
+    /// on flat geometry.
+    pub shadow_point: Vec3A,
+    /// Shading normal, unit length, facing the incoming ray (shaders may change it).
+    pub normal: Vec3A,
+    /// Geometric normal, unit length, facing the incoming ray.
+    pub normal_geom: Vec3A,
+    /// The ray hit the back side: `normal` and `normal_geom` were flipped to face it.
+    pub inv_normal: bool,
+    /// `dot(normal, dir)` (negative when the normal faces the ray).
+    pub dot_nd: f32,
+    /// Barycentric coordinates of the hit in its triangle.
+    pub bary: [f32; 3],
+    /// Texture coordinates, one vector per texture space (count in `tex_count`).
+    pub tex_list: [Vec3A; MAX_TEXTURES],
+    /// How many entries of `tex_list` are meaningful.
+    pub tex_count: usize,
+    /// Surface derivatives dP/du, dP/dv of the first texture space (zero if unknown).
+    pub derivs: [Vec3A; 2],
+    /// Bump basis vectors of the first texture space, when the geometry gives them.
+    pub bump_basis: Option<[Vec3A; 2]>,
+    /// Motion vector of the point (world units per shutter interval).
+    pub motion: Vec3A,
+    /// The instance's label (written to the tag buffer).
+    pub label: u32,
+    /// Index of the instance that was hit, in the scene's instance list.
+    pub instance: u32,
+    /// The renderer's handle of the hit instance (for [`super::Tracer::triangle`]).
+    pub geometry: u32,
+    /// The triangle that was hit.
+    pub prim: u32,
+    /// The current material (scene index), if any.
+    pub material: Option<u32>,
+    /// Object → world of the hit instance.
+    pub object_to_world: Affine3A,
+    /// World → object of the hit instance.
+    pub world_to_object: Affine3A,
+    /// Raster position of the eye sample (pixels, origin at the lower left as in mental
+    /// ray).
+    pub raster: Vec2,
+    /// Index of refraction of the medium the ray travels in (`ior_in`).
+    pub ior_in: f32,
+    /// Index of refraction of the medium on the other side (`ior`), set by
+    /// `mib_refraction_index` and read by refraction.
+    pub ior: f32,
+    /// The media the ray is inside, innermost last.
+    pub media: [Medium; MAX_MEDIA],
+    /// How many entries of `media` are meaningful.
+    pub media_count: usize,
+    /// Shutter time of the sample.
+    pub time: f32,
+    /// Width of the ray's footprint at the hit (scene units), for texture filtering.
+    pub footprint: f32,
+    /// Growth of the footprint per unit distance (radians).
+    pub spread: f32,
+    /// The light a light or shadow shader works for (index into the shading lights).
+    pub light: Option<u32>,
+    /// Distance travelled by the last ray traced from this state (mental ray's
+    /// `child->dist`), infinite if it hit nothing.
+    pub child_dist: f32,
+    /// Hair data when the hit is on a hair.
+    pub hair: Option<HairState>,
+    /// Position in the pixel's sample sequence (for shaders that sample).
+    pub sample_index: u32,
+    /// Pixel the eye sample belongs to (decorrelates shader sampling between pixels).
+    pub pixel: [u32; 2],
+    /// The last texture coordinate a texture-space shader computed (mental ray's
+    /// `state->tex`).
+    pub tex: Vec3A,
+    /// The next lens shader an eye ray cast from this state runs (index into the camera's
+    /// lens shaders; past the end: the ray is cast).
+    pub lens_next: u32,
+}
+
+impl State {
+    /// A state for a ray leaving this one: the new ray's type, origin and direction;
+    /// depths and media are carried along.
+    pub fn child(&self, ray_type: RayType, org: Vec3A, dir: Vec3A) -> State {
+        let mut s = State {
+            ray_type,
+            reflection_level: self.reflection_level,
+            refraction_level: self.refraction_level,
+            finalgather_level: self.finalgather_level,
+            org,
+            dir,
+            raster: self.raster,
+            ior_in: self.ior_in,
+            ior: self.ior_in,
+            media: self.media,
+            media_count: self.media_count,
+            time: self.time,
+            footprint: self.footprint,
+            spread: self.spread,
+            child_dist: f32::INFINITY,
+            sample_index: self.sample_index,
+            pixel: self.pixel,
+            lens_next: self.lens_next,
+            ..State::default()
+        };
+        match ray_type {
+            RayType::Reflect => s.reflection_level += 1,
+            RayType::Refract | RayType::Transparent => s.refraction_level += 1,
+            RayType::Finalgather => s.finalgather_level += 1,
+            _ => {}
+        }
+        s
+    }
+
+    /// The texture coordinate of space `i` (zero if the geometry has fewer spaces).
+    pub fn tex(&self, i: usize) -> Vec3A {
+        if i < self.tex_count {
+            self.tex_list[i]
+        } else {
+            Vec3A::ZERO
+        }
+    }
+
+    /// The medium the ray is in, if it entered one.
+    pub fn medium(&self) -> Option<Medium> {
+        self.media_count.checked_sub(1).map(|i| self.media[i])
+    }
+
+    /// Whether the ray is inside material `m` (entered it and has not left).
+    pub fn inside(&self, m: u32) -> bool {
+        self.media[..self.media_count].iter().any(|x| x.material == m)
+    }
+
+    /// Records entering a medium (the oldest is forgotten when the chain is full).
+    pub fn enter(&mut self, medium: Medium) {
+        if self.media_count == MAX_MEDIA {
+            self.media.copy_within(1.., 0);
+            self.media_count -= 1;
+        }
+        self.media[self.media_count] = medium;
+        self.media_count += 1;
+    }
+
+    /// Records leaving material `m` (its innermost entry is removed).
+    pub fn leave(&mut self, m: u32) {
+        if let Some(i) = self.media[..self.media_count].iter().rposition(|x| x.material == m) {
+            self.media.copy_within(i + 1..self.media_count, i);
+            self.media_count -= 1;
+        }
+    }
+
+    /// Object space point of the hit.
+    pub fn point_object(&self) -> Vec3A {
+        self.world_to_object.transform_point3a(self.point)
+    }
+
+    /// A world-space vector in object space.
+    pub fn vector_to_object(&self, v: Vec3A) -> Vec3A {
+        self.world_to_object.transform_vector3a(v)
+    }
+
+    /// An object-space vector in world space.
+    pub fn vector_from_object(&self, v: Vec3A) -> Vec3A {
+        self.object_to_world.transform_vector3a(v)
+    }
+
+    /// A world-space normal in object space (inverse transpose of world → object).
+    pub fn normal_to_object(&self, n: Vec3A) -> Vec3A {
+        self.object_to_world.matrix3.transpose() * n
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn children_count_their_kind_of_depth() {
+        let eye = State::default();
+        let r = eye.child(RayType::Reflect, Vec3A::ZERO, Vec3A::Z);
+        let rr = r.child(RayType::Refract, Vec3A::ZERO, Vec3A::Z);
+        assert_eq!((rr.reflection_level, rr.refraction_level), (1, 1));
+        let t = rr.child(RayType::Transparent, Vec3A::ZERO, Vec3A::Z);
+        assert_eq!(t.refraction_level, 2);
+    }
+
+    #[test]
+    fn media_chain_enters_and_leaves_in_any_order() {
+        let mut s = State::default();
+        s.enter(Medium { material: 1, ior: 1.5 });
+        s.enter(Medium { material: 2, ior: 1.33 });
+        assert!(s.inside(1) && s.inside(2));
+        s.leave(1);
+        assert_eq!(s.medium(), Some(Medium { material: 2, ior: 1.33 }));
+        assert!(!s.inside(1));
+        for m in 0..20 {
+            s.enter(Medium { material: m, ior: 1.0 });
+        }
+        assert_eq!(s.media_count, MAX_MEDIA);
+        assert_eq!(s.medium().unwrap().material, 19);
+    }
+}

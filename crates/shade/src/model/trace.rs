@@ -1,0 +1,289 @@
+//! Rays cast by shaders: reflection, refraction, transparency, environment lookups, final
+//! gathering (mental ray's `mi_trace_*`, `mi_reflection_dir`, `mi_refraction_dir`,
+//! `mi_compute_irradiance`), with the options' trace-depth limits.
+//!
+//! A traced ray that hits a surface runs that surface's material shader list in a fresh
+//! context and returns its colour; a ray that hits nothing runs the environment shader (the
+//! material's, else the camera's). Depth limits: reflection rays beyond `trace depth`'s
+//! reflection limit, refraction and transparency rays beyond its refraction limit, and any
+//! ray beyond the sum limit are not cast (the call returns `None`).
+
+use glam::Vec3A;
+
+use super::ctx::Ctx;
+use super::state::{RayType, State};
+use super::value::{Color, Value};
+use crate::Frame;
+
+/// Moves a surface point off the surface along its geometric normal `n` (towards the side
+/// `dir` leaves to), by a few ulps of the coordinates: no fixed epsilon, so it works at
+/// every scene scale (Wächter and Binder, "A fast and robust method for avoiding
+/// self-intersection", Ray Tracing Gems, 2019).
+pub fn offset_point(p: Vec3A, n: Vec3A, dir: Vec3A) -> Vec3A {
+    const ORIGIN: f32 = 1.0 / 32.0;
+    const FLOAT_SCALE: f32 = 1.0 / 65536.0;
+    const INT_SCALE: f32 = 256.0;
+    let n = if n.dot(dir) < 0.0 { -n } else { n };
+    let of_i = [(INT_SCALE * n.x) as i32, (INT_SCALE * n.y) as i32, (INT_SCALE * n.z) as i32];
+    let step = |p: f32, o: i32| {
+        let bits = p.to_bits() as i32;
+        f32::from_bits(bits.wrapping_add(if p < 0.0 { -o } else { o }) as u32)
+    };
+    let p_i = Vec3A::new(step(p.x, of_i[0]), step(p.y, of_i[1]), step(p.z, of_i[2]));
+    Vec3A::new(
+        if p.x.abs() < ORIGIN { p.x + FLOAT_SCALE * n.x } else { p_i.x },
+        if p.y.abs() < ORIGIN { p.y + FLOAT_SCALE * n.y } else { p_i.y },
+        if p.z.abs() < ORIGIN { p.z + FLOAT_SCALE * n.z } else { p_i.z },
+    )
+}
+
+/// Trace-depth limits (`trace depth reflect refract sum`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraceDepth {
+    /// Most reflections on a path.
+    pub reflect: u32,
+    /// Most refractions and transparency rays on a path.
+    pub refract: u32,
+    /// Most of both together.
+    pub sum: u32,
+}
+
+/// Final gathering as mira does it: path-traced irradiance at every shading point that
+/// asks for it (no interpolation cache).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FinalGather {
+    /// Whether `compute_irradiance` gathers at all (`finalgather on`).
+    pub enabled: bool,
+    /// Rays per gather at the first diffuse bounce from the eye.
+    pub rays: u32,
+    /// Rays per gather at deeper bounces.
+    pub secondary_rays: u32,
+    /// Diffuse bounces (`finalgather trace depth … diffuse`): gathers from gather hits.
+    pub diffuse_depth: u32,
+    /// Gather rays stop at this distance and see the environment (`finalgather falloff`).
+    pub max_dist: Option<f32>,
+    /// `finalgather scale`.
+    pub scale: Color,
+}
+
+impl Ctx<'_> {
+    /// Whether a ray of `kind` may leave this state under the depth limits.
+    pub fn may_trace(&self, kind: RayType) -> bool {
+        let d = self.shading().depth;
+        let s = &self.state;
+        let sum = s.reflection_level + s.refraction_level;
+        if !self.shading().trace || sum >= d.sum {
+            return false;
+        }
+        match kind {
+            RayType::Reflect => s.reflection_level < d.reflect,
+            RayType::Refract | RayType::Transparent => s.refraction_level < d.refract,
+            _ => true,
+        }
+    }
+
+    /// The mirror direction of the ray about the shading normal (mental ray's
+    /// `mi_reflection_dir`).
+    pub fn reflection_dir(&self) -> Vec3A {
+        let d = self.state.dir;
+        let n = self.state.normal;
+        (d - 2.0 * d.dot(n) * n).normalize_or(n)
+    }
+
+    /// The refracted direction for indices `ior_in` (the side the ray comes from) and
+    /// `ior_out`, or `None` under total internal reflection (mental ray's
+    /// `mi_refraction_dir`).
+    pub fn refraction_dir(&self, ior_in: f32, ior_out: f32) -> Option<Vec3A> {
+        refract(self.state.dir, self.state.normal, ior_in / ior_out)
+    }
+
+    /// Traces a reflection ray along `dir` (unit). `None` if the depth limit forbids it.
+    pub fn trace_reflection(&mut self, dir: Vec3A) -> Option<Color> {
+        if !self.may_trace(RayType::Reflect) {
+            return None;
+        }
+        Some(self.trace(RayType::Reflect, dir))
+    }
+
+    /// Traces a refraction ray along `dir` (unit); the ray enters (or leaves) the current
+    /// material with index of refraction `state.ior`.
+    pub fn trace_refraction(&mut self, dir: Vec3A) -> Option<Color> {
+        if !self.may_trace(RayType::Refract) {
+            return None;
+        }
+        Some(self.trace(RayType::Refract, dir))
+    }
+
+    /// Continues the ray straight through the surface.
+    pub fn trace_transparent(&mut self) -> Option<Color> {
+        if !self.may_trace(RayType::Transparent) {
+            return None;
+        }
+        Some(self.trace(RayType::Transparent, self.state.dir))
+    }
+
+    /// Casts a ray of `kind` and shades what it finds.
+    fn trace(&mut self, kind: RayType, dir: Vec3A) -> Color {
+        let s = &self.state;
+        let org = offset_point(s.point, s.normal_geom, dir);
+        let mut child = s.child(kind, org, dir);
+        // Crossing the surface: enter or leave the material's medium.
+        if matches!(kind, RayType::Refract | RayType::Transparent) {
+            if let Some(m) = s.material {
+                if s.inside(m) {
+                    child.leave(m);
+                } else {
+                    child.enter(super::state::Medium { material: m, ior: s.ior });
+                }
+                child.ior_in = child.medium().map_or(1.0, |x| x.ior);
+            }
+        }
+        let (color, dist) = self.shade_ray(child, f32::INFINITY);
+        self.state.child_dist = dist;
+        color
+    }
+
+    /// Shades the first surface along `ray` (material shader) or, if none, the
+    /// environment. Returns the colour and the distance travelled (infinite on a miss).
+    pub fn shade_ray(&mut self, mut ray: State, max_dist: f32) -> (Color, f32) {
+        let shading = self.shading();
+        if self.tracer.intersect(&mut ray, max_dist) {
+            let dist = ray.dist;
+            let shader = ray.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.surface);
+            let Some(shader) = shader else { return (Color::new(0.0, 0.0, 0.0, 1.0), dist) };
+            let mut ctx = Ctx::new(shading, self.tracer, ray);
+            let mut result = Value::Color(Color::ZERO);
+            ctx.run_list(shader, &mut result);
+            self.counts.calls += ctx.counts.calls;
+            (result.color(), dist)
+        } else {
+            (self.environment(ray), f32::INFINITY)
+        }
+    }
+
+    /// Casts an eye ray from `org` along unit `dir` (mental ray's `mi_trace_eye`): the next
+    /// lens shader runs if there is one, else the ray is shaded.
+    pub fn trace_eye(&mut self, org: Vec3A, dir: Vec3A) -> Color {
+        let shading = self.shading();
+        let mut ray = self.state.child(RayType::Eye, org, dir);
+        ray.reflection_level = self.state.reflection_level;
+        if let Some(&lens) = shading.lens.get(self.state.lens_next as usize) {
+            ray.lens_next = self.state.lens_next + 1;
+            ray.point = org;
+            let mut ctx = Ctx::new(shading, self.tracer, ray);
+            let mut result = Value::Color(Color::ZERO);
+            ctx.call(lens, &mut result);
+            self.counts.calls += ctx.counts.calls;
+            return result.color();
+        }
+        let (c, _) = self.shade_ray(ray, f32::INFINITY);
+        c
+    }
+
+    /// Runs the environment shader for direction `dir` (mental ray's
+    /// `mi_trace_environment`): the current material's, else the camera's; black if none.
+    pub fn trace_environment(&mut self, dir: Vec3A) -> Color {
+        let ray = self.state.child(RayType::Environment, self.state.point, dir);
+        self.environment(ray)
+    }
+
+    fn environment(&mut self, mut ray: State) -> Color {
+        let shading = self.shading();
+        let material_env =
+            self.state.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.environment);
+        let Some(shader) = material_env.or(shading.environment) else { return Color::ZERO };
+        ray.ray_type = RayType::Environment;
+        ray.point = ray.org;
+        ray.dist = 0.0;
+        ray.material = self.state.material;
+        let mut ctx = Ctx::new(shading, self.tracer, ray);
+        let mut result = Value::Color(Color::ZERO);
+        ctx.run_list(shader, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        result.color()
+    }
+
+    /// Indirect illumination at the point (mental ray's `mi_compute_irradiance`): the
+    /// irradiance E = ∫ L cos θ dω over the hemisphere of the shading normal, estimated with
+    /// cosine-distributed gather rays (π × their mean radiance). As in mental ray it is not
+    /// divided by π: the base shaders' `diffuse ⊙ irradiance` is π times the physically
+    /// correct Lambertian term, matching their direct term, which has no 1/π either. Zero
+    /// when final gathering is off or its diffuse depth is used up.
+    pub fn compute_irradiance(&mut self) -> Color {
+        let fg = self.shading().finalgather;
+        if !fg.enabled || self.state.finalgather_level > fg.diffuse_depth {
+            return Color::ZERO;
+        }
+        let n = if self.state.finalgather_level == 0 && self.state.ray_type != RayType::Finalgather {
+            fg.rays
+        } else {
+            fg.secondary_rays
+        }
+        .max(1);
+        let frame = Frame::from_normal(self.state.normal);
+        let site = self.next_site();
+        let mut sum = Color::ZERO;
+        for i in 0..n {
+            let u = self.sample2(site, i, n);
+            let local = crate::bsdf::cosine_hemisphere(u);
+            let dir = frame.to_world(local);
+            if dir.dot(self.state.normal_geom) <= 0.0 {
+                continue;
+            }
+            let org = offset_point(self.state.point, self.state.normal_geom, dir);
+            let ray = self.state.child(RayType::Finalgather, org, dir);
+            let max = fg.max_dist.unwrap_or(f32::INFINITY);
+            let (c, dist) = self.shade_ray(ray, max);
+            let c = if dist.is_infinite() && fg.max_dist.is_some() {
+                // Past the falloff distance: the environment.
+                self.trace_environment(dir)
+            } else {
+                c
+            };
+            sum += c;
+        }
+        let e = sum * (std::f32::consts::PI / n as f32);
+        Color::new(e.x * fg.scale.x, e.y * fg.scale.y, e.z * fg.scale.z, 1.0)
+    }
+
+    /// A cosine-weighted direction about the shading normal (for shaders sampling the
+    /// hemisphere themselves).
+    pub fn cosine_dir(&mut self, site: u32, i: u32, n: u32) -> Vec3A {
+        let u = self.sample2(site, i, n);
+        Frame::from_normal(self.state.normal).to_world(crate::bsdf::cosine_hemisphere(u))
+    }
+}
+
+/// Refraction of unit direction `d` at unit normal `n` (facing against `d`) with relative
+/// index `eta` = n_in / n_out; `None` under total internal reflection.
+pub fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
+    let cos_i = -d.dot(n);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((d * eta + n * (eta * cos_i - cos_t)).normalize())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refraction_obeys_snell_and_total_internal_reflection() {
+        let n = Vec3A::Z;
+        let theta = 30f32.to_radians();
+        let d = Vec3A::new(theta.sin(), 0.0, -theta.cos());
+        let t = refract(d, n, 1.0 / 1.5).unwrap();
+        assert!((t.x - theta.sin() / 1.5).abs() < 1e-6);
+        assert!(t.z < 0.0);
+        // From glass to air past the critical angle asin(1/1.5) = 41.8°.
+        let steep = 42f32.to_radians();
+        let d = Vec3A::new(steep.sin(), 0.0, -steep.cos());
+        assert!(refract(d, n, 1.5).is_none());
+        let shallow = 41f32.to_radians();
+        let d = Vec3A::new(shallow.sin(), 0.0, -shallow.cos());
+        assert!(refract(d, n, 1.5).is_some());
+    }
+}

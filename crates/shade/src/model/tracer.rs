@@ -1,0 +1,57 @@
+//! The contract between shading and the renderer's ray casting.
+//!
+//! Shading owns what mental ray's shader interface does with a ray (which shader runs at a
+//! hit, depth limits, shadow shaders, light loops, final gathering; see [`super::Ctx`]);
+//! the renderer owns the geometry. It implements this trait: cast a ray and describe what
+//! it hit as a [`State`], walk the surfaces between two points for a shadow ray, and take
+//! frame-buffer writes for the current eye sample.
+
+use glam::Vec3A;
+
+use super::state::State;
+use super::value::Color;
+
+/// Per-vertex data of a hit triangle that shaders may ask for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexData {
+    /// Vertex positions, world space.
+    Point,
+    /// Vertex normals, world space (the geometric normal where there are none).
+    Normal,
+    /// Vertex motion vectors, world space.
+    Motion,
+    /// Vertex coordinates of texture space `k`.
+    Texture(usize),
+}
+
+/// What a ray hit, for shading.
+pub type Hit = State;
+
+/// Ray casting for shaders (implemented by the renderer, one per rendering thread).
+pub trait Tracer {
+    /// Casts the ray of `ray` (its `ray_type`, `org`, unit `dir`, levels and media set up
+    /// by the caller) up to distance `max_dist`. On a hit, fills in the surface fields of
+    /// `ray` (point, normals facing the ray, `inv_normal`, `dist`, texture spaces,
+    /// derivatives, instance, label, material, transforms) and returns true. The instance
+    /// flags decide what each ray type can see (`visible`, `reflection`, `refraction`,
+    /// `transparency`, `finalgather`).
+    fn intersect(&self, ray: &mut State, max_dist: f32) -> bool;
+
+    /// Visits the surfaces a shadow ray from `ray.org` along `ray.dir` crosses before
+    /// `max_dist`, nearest first, each described as a shadow-ray hit (as [`intersect`]
+    /// fills it in, with `ray_type` [`super::RayType::Shadow`]); only instances that cast
+    /// shadows are visited. `visit` returns false to stop.
+    ///
+    /// [`intersect`]: Tracer::intersect
+    fn shadow_hits(&self, ray: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool);
+
+    /// The three vertices' `data` of the triangle `hit` (a state [`intersect`] filled in)
+    /// lies on; `None` if the geometry has no such data.
+    ///
+    /// [`intersect`]: Tracer::intersect
+    fn triangle(&self, hit: &State, data: VertexData) -> Option<[Vec3A; 3]>;
+
+    /// Stores `value` into user frame buffer `buffer` for the current eye sample
+    /// (mental ray's `mi_fb_put`). Returns false if there is no such buffer.
+    fn fb_put(&self, buffer: u32, value: Color) -> bool;
+}
