@@ -66,6 +66,10 @@ pub struct RenderArgs {
     /// Rendering engine.
     #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
     engine: EngineArg,
+    /// Final gather rays at each eye-ray hit of the classic engine (default: the scene's
+    /// finalgather accuracy / 16, from 4 to 64).
+    #[arg(long, value_name = "N")]
+    fg_rays: Option<u32>,
     /// Which `render` statement of the file (1 = the first).
     #[arg(long, default_value_t = 1)]
     frame: usize,
@@ -142,7 +146,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         let shading_options = shade::model::ShadingOptions {
             search: shade::texture::SearchPath { dirs },
             seed: args.seed,
-            finalgather_rays: None,
+            finalgather_rays: args.fg_rays,
         };
         let (shading, shade_diags) = shade::model::Shading::build(&sc, &shading_options);
         let mut stderr = std::io::stderr().lock();

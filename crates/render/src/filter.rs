@@ -138,15 +138,26 @@ impl PixelFilter {
 
     /// The filter's weight at offset (dx, dy) pixels from a pixel centre.
     pub fn eval(&self, dx: f32, dy: f32) -> f32 {
-        let f = |d: f32, r: f32| {
-            let v = profile(self.kind, d, r);
-            if self.clip {
-                v.max(0.0)
-            } else {
-                v
-            }
-        };
-        f(dx, self.x.radius) * f(dy, self.y.radius)
+        self.eval_x(dx) * self.eval_y(dy)
+    }
+
+    /// The horizontal factor of [`PixelFilter::eval`].
+    pub fn eval_x(&self, dx: f32) -> f32 {
+        self.profile(dx, self.x.radius)
+    }
+
+    /// The vertical factor of [`PixelFilter::eval`].
+    pub fn eval_y(&self, dy: f32) -> f32 {
+        self.profile(dy, self.y.radius)
+    }
+
+    fn profile(&self, d: f32, r: f32) -> f32 {
+        let v = profile(self.kind, d, r);
+        if self.clip {
+            v.max(0.0)
+        } else {
+            v
+        }
     }
 
     /// The filter kind.

@@ -104,6 +104,9 @@ impl Stats {
     }
 }
 
+/// One parallel work item: a band's index and pixels, and its splat buffer (classic).
+type BandWork<'a> = ((usize, &'a mut [Pixel]), Option<&'a mut Splat>);
+
 /// The filtered contributions of one band's samples to the pixels their filter covers
 /// (the band's rows and `radius` rows around them).
 struct Splat {
@@ -134,15 +137,23 @@ impl Splat {
         let x_hi = ((p.x + rx - 0.5).floor() as i64).min(self.width as i64 - 1);
         let y_lo = (p.y - ry - 0.5).ceil().max(self.y0 as f32) as usize;
         let y_hi = ((p.y + ry - 0.5).floor() as i64).min((self.y0 + self.rows) as i64 - 1).min(self.height as i64 - 1);
-        for y in y_lo as i64..=y_hi {
-            let dy = y as f32 + 0.5 - p.y;
-            for x in x_lo as i64..=x_hi {
-                let wgt = filter.eval(x as f32 + 0.5 - p.x, dy);
-                if wgt == 0.0 {
-                    continue;
-                }
-                let s = &mut self.sums[(y as usize - self.y0) * self.width + x as usize];
-                let w64 = f64::from(wgt);
+        if x_hi < x_lo as i64 || y_hi < y_lo as i64 {
+            return;
+        }
+        // The filter is separable: one weight per column and per row.
+        let mut wx = [0.0f32; 32];
+        let columns = ((x_hi - x_lo as i64 + 1) as usize).min(wx.len());
+        for (i, w) in wx[..columns].iter_mut().enumerate() {
+            *w = filter.eval_x((x_lo + i) as f32 + 0.5 - p.x);
+        }
+        for y in y_lo..=y_hi as usize {
+            let wy = filter.eval_y(y as f32 + 0.5 - p.y);
+            if wy == 0.0 {
+                continue;
+            }
+            let row = (y - self.y0) * self.width + x_lo;
+            for (s, w) in self.sums[row..row + columns].iter_mut().zip(&wx[..columns]) {
+                let w64 = f64::from(w * wy);
                 for k in 0..4 {
                     s[k] += w64 * f64::from(c[k]);
                 }
@@ -151,13 +162,15 @@ impl Splat {
         }
     }
 
-    fn merge_into(&self, film: &mut [[f64; 5]], width: usize) {
-        for (r, row) in self.sums.chunks(width).enumerate() {
+    /// Adds the band's sums to the film's and clears them for the next pass.
+    fn merge_into(&mut self, film: &mut [[f64; 5]], width: usize) {
+        for (r, row) in self.sums.chunks_mut(width).enumerate() {
             let base = (self.y0 + r) * width;
             for (dst, src) in film[base..base + width].iter_mut().zip(row) {
                 for k in 0..5 {
                     dst[k] += src[k];
                 }
+                *src = [0.0; 5];
             }
         }
     }
@@ -237,21 +250,26 @@ pub fn render(
     let (x0, y0, x1, y1) = cam.window;
     let band = settings.band.max(1) as usize;
     let fb_writes: Mutex<Vec<(usize, u32, [f32; 4])>> = Mutex::new(Vec::new());
-    let splats: Mutex<Vec<(usize, Splat)>> = Mutex::new(Vec::new());
-    if classic.is_some() {
-        film.splat = vec![[0.0; 5]; film.pixels.len()];
-    }
+    // The classic engine's per-band splat buffers, kept across passes.
+    let band_count = (h as usize).div_ceil(band);
+    let mut band_splats: Vec<Splat> = match classic {
+        Some(_) => {
+            film.splat = vec![[0.0; 5]; film.pixels.len()];
+            (0..band_count).map(|b| Splat::new(&filter, b * band, band.min(h as usize - b * band), w, h)).collect()
+        }
+        None => Vec::new(),
+    };
     while done < target {
         // Pass sizes 1, 1, 2, 4, … so that the first image comes quickly (the classic
         // engine starts with its minimum samples).
         let pass = if done == 0 { first_pass } else { done }.min(target - done).min(64.max(first_pass));
-        let rows: Vec<(usize, &mut [Pixel])> = film.pixels.chunks_mut(w as usize * band).enumerate().collect();
-        rows.into_par_iter().for_each(|(b, chunk)| {
+        let mut splat_slots: Vec<Option<&mut Splat>> = band_splats.iter_mut().map(Some).collect();
+        splat_slots.resize_with(band_count, || None);
+        let rows: Vec<BandWork> = film.pixels.chunks_mut(w as usize * band).enumerate().zip(splat_slots).collect();
+        rows.into_par_iter().for_each(|((b, chunk), mut splat)| {
             let mut counts = RayCounts::default();
             let mut bad = 0u64;
             let mut writes = Vec::new();
-            let rows = chunk.len().div_ceil(w as usize);
-            let mut splat = classic.map(|_| Splat::new(&filter, b * band, rows, w, h));
             for (k, px) in chunk.iter_mut().enumerate() {
                 if cancel.load(Ordering::Relaxed) {
                     break;
@@ -280,7 +298,7 @@ pub fn render(
                             counts.shadow_rays += s.counts.shadow_rays;
                             let i = b * band * w as usize + k;
                             writes.extend(s.fb.iter().map(|(buf, v)| (i, *buf, v.to_array())));
-                            if let Some(splat) = &mut splat {
+                            if let Some(splat) = splat.as_deref_mut() {
                                 splat.add(&filter, raster, s.color.to_array());
                             }
                             (shade::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
@@ -304,9 +322,6 @@ pub fn render(
             if !writes.is_empty() {
                 fb_writes.lock().unwrap_or_else(|e| e.into_inner()).extend(writes);
             }
-            if let Some(splat) = splat {
-                splats.lock().unwrap_or_else(|e| e.into_inner()).push((b, splat));
-            }
             rays.fetch_add(counts.rays, Ordering::Relaxed);
             shadow_rays.fetch_add(counts.shadow_rays, Ordering::Relaxed);
             nonfinite.fetch_add(bad, Ordering::Relaxed);
@@ -322,9 +337,7 @@ pub fn render(
         done += pass;
         // Merge the bands' splats in band order: the sums are the same for any thread
         // count.
-        let mut bands = std::mem::take(&mut *splats.lock().unwrap_or_else(|e| e.into_inner()));
-        bands.sort_by_key(|(b, _)| *b);
-        for (_, s) in bands {
+        for s in &mut band_splats {
             s.merge_into(&mut film.splat, w as usize);
         }
         for (i, buf, v) in fb_writes.lock().unwrap_or_else(|e| e.into_inner()).drain(..) {

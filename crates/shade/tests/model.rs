@@ -250,9 +250,10 @@ fn spot_light_cone_falls_off_linearly_in_the_cosine() {
 #[test]
 fn final_gathering_returns_irradiance_not_divided_by_pi() {
     // Under a uniform environment of radiance 0.25, the irradiance is π · 0.25, and the
-    // base shaders add diffuse ⊙ irradiance as mental ray did.
+    // base shaders add diffuse ⊙ irradiance as mental ray did. Accuracy 1024 gives 64
+    // gather rays per eye hit.
     let c = support::compile_with(
-        "finalgather on finalgather accuracy 64",
+        "finalgather on finalgather accuracy 1024",
         r#"environment = "sky""#,
         r#"shader "sky" "mib_color_mix" ("num" 0, "color_base" 0.25 0.25 0.25 1)
            material "m" "mib_illum_lambert" ("diffuse" 0.5 0.5 0.5 1, "mode" 0) end material"#,
@@ -306,4 +307,49 @@ fn colour_mix_layers_in_order() {
     // multiply by grey · 2 = 1·(0.5, 0.5, 0.5, 1)·2.
     assert_color(v.color(), [0.5, 0.25, 0.5, 2.5], 1e-6);
     assert_eq!(Value::Null.color().x, 0.0);
+}
+
+#[test]
+fn physical_light_falls_off_with_the_inverse_square() {
+    let c = compile(
+        r#"light "bulb" "physical_light" ("color" 1256.637 1256.637 1256.637) origin 0 0 0 end light
+           instance "bulb_inst" "bulb" transform 1 0 0 0 0 1 0 0 0 0 1 0 0 -10 0 1 end instance
+           material "m" "mib_illum_lambert" ("diffuse" 1 1 1 1, "mode" 0, "lights" ["bulb_inst"]) end material"#,
+        &["m"],
+    );
+    assert!(c.messages.is_empty(), "{:?}", c.messages);
+    // 400π / (4π · 10²) = 1 at the point below it.
+    let (v, _, _) = run(&c, &Empty::default(), c.material("m"), lit());
+    assert!((v.color().x - 1.0).abs() < 1e-4, "{}", v.color().x);
+}
+
+#[test]
+fn depth_of_field_rays_meet_at_the_focal_plane() {
+    let c = support::compile_with(
+        "",
+        r#"lens "physical_lens_dof" ("plane" 3, "radius" 0.2)"#,
+        r#"material "m" "mib_illum_lambert" () end material"#,
+        &["m"],
+    );
+    assert!(c.messages.is_empty(), "{:?}", c.messages);
+    // The camera sits at z = 5 looking down −Z; the focal plane is at z = 2.
+    let eye = Vec3A::new(0.0, 0.0, 5.0);
+    let dir = Vec3A::new(0.1, 0.05, -1.0).normalize();
+    let focus = eye + dir * (3.0 / -dir.z);
+    for i in 0..8 {
+        let mut s = point(Vec3A::Z, dir);
+        s.org = eye;
+        s.point = eye;
+        s.sample_index = i;
+        // As the renderer runs it: the lens shader's own eye rays go on past it.
+        s.lens_next = 1;
+        let tracer = Empty::default();
+        run(&c, &tracer, c.shading.lens[0], s);
+        let (kind, d) = tracer.rays.borrow()[0];
+        let o = tracer.origins.borrow()[0];
+        assert_eq!(kind, RayType::Eye);
+        assert!((o - eye).length() <= 0.2 + 1e-5 && (o.z - 5.0).abs() < 1e-5, "lens point {o}");
+        let t = (focus.z - o.z) / d.z;
+        assert!((o + d * t - focus).length() < 1e-4, "misses the focus point");
+    }
 }

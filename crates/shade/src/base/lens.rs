@@ -89,3 +89,30 @@ fn stencil(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     *out = Value::Color(result);
     true
 }
+
+/// `physical_lens_dof (scalar plane, scalar radius)` from the physics library: a thin lens
+/// of aperture `radius` (scene units) focused at distance `plane` in front of the camera
+/// (along −Z in camera space): each eye ray starts on a point of the lens disc and passes
+/// through the point where the pinhole ray meets the focal plane.
+pub static DOF: ShaderImpl = ShaderImpl { name: "physical_lens_dof", params: &["plane", "radius"], run: dof };
+
+fn dof(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let plane = ctx.scalar(n, 0).abs();
+    let radius = ctx.scalar(n, 1);
+    let (org, dir) = (ctx.state.org, ctx.state.dir);
+    let to_camera = ctx.shading().world_to_camera;
+    let cos = -to_camera.transform_vector3a(dir).z;
+    if radius <= 0.0 || plane <= 0.0 || cos <= 0.0 {
+        *out = Value::Color(eye(ctx));
+        return true;
+    }
+    let focus = org + dir * (plane / cos);
+    let site = ctx.next_site();
+    let u = ctx.sample2(site, 0, 1);
+    let d = crate::bsdf::concentric_disc(u) * radius;
+    let to_world = to_camera.inverse();
+    let lens = org + to_world.transform_vector3a(Vec3A::new(d.x, d.y, 0.0));
+    let new_dir = (focus - lens).normalize_or(dir);
+    *out = Value::Color(ctx.trace_eye(lens, new_dir));
+    true
+}

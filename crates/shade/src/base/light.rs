@@ -141,6 +141,57 @@ fn photometric(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     ok
 }
 
+/// `physical_light (color color, scalar cone, scalar threshold, scalar cos_exp)` from the
+/// physics library: a physically falling-off light. Point, spot and sphere lights give
+/// color / (4π r^e) (e the light's `exponent`, 2 when 0); rectangle and disc lights
+/// color · cos^cos_exp / (π r²), nothing behind their emitting side (cos_exp 0: 1);
+/// directional lights the colour. Spot lights use `cone` as `mib_light_spot` does.
+/// Below `threshold` (of the largest channel) the sample is dropped. Shadows are always
+/// traced.
+pub static PHYSICAL: ShaderImpl =
+    ShaderImpl { name: "physical_light", params: &["color", "cone", "threshold", "cos_exp"], run: physical };
+
+fn physical(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    use crate::light::Shape;
+    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let (kind, shape, spread, direction, exponent) =
+        (light.kind, light.shape, light.spread, light.direction, light.exponent);
+    let r = ctx.state.dist;
+    let f = match (kind, shape) {
+        (LightKind::Directional, _) => 1.0,
+        (_, Some(Shape::Rect { normal, .. } | Shape::Disc { normal, .. })) => {
+            let cos = normal.dot(ctx.state.dir);
+            if cos <= 0.0 {
+                return false;
+            }
+            let e = ctx.scalar(n, 3);
+            cos.powf(if e > 0.0 { e } else { 1.0 }) / (std::f32::consts::PI * r * r)
+        }
+        _ => {
+            let e = if exponent > 0.0 { exponent } else { 2.0 };
+            1.0 / (4.0 * std::f32::consts::PI * r.powf(e))
+        }
+    };
+    let mut f = f;
+    if kind == LightKind::Spot {
+        let c = direction.dot(ctx.state.dir);
+        let Some(s) = spot_factor(c, spread, ctx.scalar(n, 1)) else { return false };
+        f *= s;
+    }
+    let mut c = ctx.color(n, 0) * f;
+    if c.x.max(c.y).max(c.z) < ctx.scalar(n, 2) {
+        return false;
+    }
+    let mut filter = Color::ONE;
+    if !ctx.trace_shadow(&mut filter) {
+        return false;
+    }
+    c *= filter;
+    c.w = 1.0;
+    *out = Value::Color(c);
+    true
+}
+
 /// `mib_shadow_transparency (color color, color transp, integer mode, array light light)`:
 /// a shadow shader. With t = 2 · transp · color.a per channel, the light is multiplied by
 /// t · color where t < 1 (0: opaque, ½: filtered by `color`) and by (t − 1) + (2 − t) · color

@@ -1,4 +1,5 @@
-//! mental ray's base shader library (`base.mi`), on the shader model of [`crate::model`].
+//! mental ray's base shader library (`base.mi`), and `physical_light` and
+//! `physical_lens_dof` of the physics library, on the shader model of [`crate::model`].
 //!
 //! Each module holds a family; each shader is a [`ShaderImpl`] whose `params` list the
 //! declared parameter names in the order its code indexes them. Formulas follow
@@ -66,6 +67,7 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &light::INFINITE,
     &light::PHOTOMETRIC,
     &light::SHADOW_TRANSPARENCY,
+    &light::PHYSICAL,
     &environment::SPHERICAL,
     &environment::BACKGROUND,
     &environment::CUBE1,
@@ -75,6 +77,7 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &occlusion::FAST_OCCLUSION,
     &lens::STENCIL,
     &lens::CLAMP,
+    &lens::DOF,
 ];
 
 /// RGB of a colour.

@@ -46,7 +46,8 @@ pub struct ShadingOptions {
     pub search: SearchPath,
     /// Seed of shaders' sampling.
     pub seed: u32,
-    /// Final gather rays at each eye-ray hit (`None`: the options' accuracy).
+    /// Final gather rays at each eye-ray hit (`None`: [`default_gather_rays`] of the
+    /// options' accuracy).
     pub finalgather_rays: Option<u32>,
 }
 
@@ -81,6 +82,14 @@ pub struct Shading {
     pub resolution: (u32, u32),
     /// World → camera space.
     pub world_to_camera: glam::Affine3A,
+}
+
+/// Gather rays per eye-ray hit for the options' `finalgather accuracy`. mental ray cast
+/// that many rays at sparse final gather points and interpolated between them; mira
+/// gathers at every eye hit instead (no interpolation cache yet), so it spends a
+/// sixteenth of them there (4 to 64), the pixel's samples averaging the rest.
+pub fn default_gather_rays(accuracy: u32) -> u32 {
+    (accuracy / 16).clamp(4, 64)
 }
 
 /// Most trace depth mira follows, whatever the options say (deeper recursion would only
@@ -158,7 +167,7 @@ impl Shading {
         let clamp = |d: u32| d.min(MAX_TRACE_DEPTH);
         let finalgather = FinalGather {
             enabled: fg.enabled,
-            rays: options.finalgather_rays.unwrap_or(fg.rays).max(1),
+            rays: options.finalgather_rays.unwrap_or_else(|| default_gather_rays(fg.rays)).max(1),
             secondary_rays: 1,
             diffuse_depth: clamp(fg.trace_depth[2]),
             max_dist: fg.falloff.map(|(_, stop)| stop as f32).filter(|d| *d > 0.0),

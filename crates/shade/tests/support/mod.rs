@@ -84,11 +84,14 @@ pub fn compile_with(options: &str, camera: &str, body: &str, materials: &[&str])
 pub struct Empty {
     /// (ray type, direction) of every ray cast.
     pub rays: RefCell<Vec<(RayType, Vec3A)>>,
+    /// Their origins.
+    pub origins: RefCell<Vec<Vec3A>>,
 }
 
 impl Tracer for Empty {
     fn intersect(&self, ray: &mut State, _max_dist: f32) -> bool {
         self.rays.borrow_mut().push((ray.ray_type, ray.dir));
+        self.origins.borrow_mut().push(ray.org);
         false
     }
 
