@@ -129,6 +129,25 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
         let v = a[1] * b0 + b[1] * b1 + c[1] * b2;
         [inst.object_to_world.transform_vector3a(u), inst.object_to_world.transform_vector3a(v)]
     });
+    s.hair = None;
+    if let Some(hair) = &mesh.hair {
+        // mental ray's hair state: the normal faces the ray, perpendicular to the hair.
+        let [t, root] = hair.tangents[hit.prim as usize];
+        let t = inst.object_to_world.transform_vector3a(t).normalize_or(Vec3A::Y);
+        let root = inst.object_to_world.transform_vector3a(root).normalize_or(t);
+        let back = -s.dir;
+        let n = (back - t * t.dot(back)).normalize_or(back);
+        let along = hair.along[i0] * b0 + hair.along[i1] * b1 + hair.along[i2] * b2;
+        let across = hair.across[i0] * b0 + hair.across[i1] * b1 + hair.across[i2] * b2;
+        s.normal = n;
+        s.normal_geom = n;
+        s.inv_normal = false;
+        s.dot_nd = n.dot(s.dir);
+        s.shadow_point = s.point;
+        s.derivs = [t, Vec3A::ZERO];
+        s.bary = [across, along, 0.0];
+        s.hair = Some(shade::model::state::HairState { tangent: t, root, across, along });
+    }
     s.label = inst.tag;
     s.instance = inst.scene_index;
     s.geometry = hit.instance;

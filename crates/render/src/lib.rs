@@ -10,6 +10,7 @@ pub mod camera;
 pub mod classic;
 pub mod film;
 pub mod filter;
+pub mod hair;
 pub mod integrator;
 pub mod light;
 pub mod ray;

@@ -24,6 +24,8 @@ pub struct MeshData {
     pub triangles: Vec<[u32; 3]>,
     /// Material slot of each triangle.
     pub slots: Vec<u32>,
+    /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
+    pub hair: Option<crate::hair::HairData>,
 }
 
 /// An instance of a mesh.
@@ -93,13 +95,24 @@ impl World {
                     bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
                     triangles: m.triangles.clone(),
                     slots: m.triangle_slots.clone(),
+                    hair: None,
                 }
             })
             .collect();
-        if scene.objects.iter().any(|o| !o.geometry.hair.is_empty()) {
-            warnings.push("hair is not rendered by the path integrator yet".into());
-        }
-        let instances = scene
+        let mut meshes = meshes;
+        // Hair: one ribbon mesh per object with hair, after the objects' meshes.
+        let hair_mesh: Vec<Option<u32>> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                crate::hair::ribbons(&o.geometry.hair).map(|(mut mesh, hair)| {
+                    mesh.hair = Some(hair);
+                    meshes.push(mesh);
+                    (meshes.len() - 1) as u32
+                })
+            })
+            .collect();
+        let mut instances: Vec<InstanceData> = scene
             .instances
             .iter()
             .enumerate()
@@ -118,6 +131,20 @@ impl World {
                 }
             })
             .collect();
+        for (scene_index, i) in scene.instances.iter().enumerate() {
+            let Some(mesh) = hair_mesh[i.object as usize] else { continue };
+            let object_to_world = affine(i.object_to_world);
+            instances.push(InstanceData {
+                mesh,
+                object_to_world,
+                world_to_object: affine(i.world_to_object),
+                normal_to_world: object_to_world.matrix3.inverse().transpose(),
+                materials: i.hair_materials.iter().map(|m| m.map_or(0, |m| m + 1)).collect(),
+                flags: i.flags,
+                tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
+                scene_index: scene_index as u32,
+            });
+        }
         let mut lights = Vec::new();
         for l in &scene.lights {
             match LightSource::from_scene(l, &scene.library) {

@@ -214,3 +214,50 @@ fn the_classic_seed_scene_renders() {
     assert!(messages.iter().all(|m| m.contains("mib_texture_checkerboard' has no parameter 'color")));
     assert!(pixels.iter().any(|p| p[0] > 0.1), "something is lit");
 }
+
+#[test]
+fn hair_renders_with_mental_rays_hair_state() {
+    // One straight hair up the middle of the view (root at the bottom), radius 0.2, lit
+    // from above its tip: mib_illum_hair lights hair like the scalp it grows from (its
+    // diffuse normal is the root tangent), darker towards the root, opaque at the root and
+    // clear at the tip.
+    let text = r#"
+options "opt" filter box 1 1 samples 0 0 end options
+camera "cam" focal infinity aperture 2 aspect 1 resolution 20 20 end camera
+instance "cam_inst" "cam" end instance
+light "sun" "mib_light_infinite" ("color" 1 1 1) direction 0 -1 0 end light
+instance "sun_inst" "sun" end instance
+material "hair_mtl" "mib_illum_hair" ("diffuse" 1 1 1 1, "specular" 0 0 0 1, "mode" 0, "lights" ["sun_inst"]) end material
+object "fur" hair
+    material "hair_mtl"
+    radius 0.2
+    scalar [ 6 ]
+    0 -1 -5  0 1 -5
+    hair [ 2 ]
+    0 6
+end hair end object
+instance "fur_inst" "fur" end instance
+instgroup "root" "cam_inst" "sun_inst" "fur_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+    let (pixels, messages, _) = render(text, None);
+    assert!(messages.is_empty(), "{messages:?}");
+    let at = |x: usize, y: usize| pixels[y * 20 + x];
+    // Pixels 9 and 10 of each row cover x in [−0.1, 0.1]: inside the hair.
+    for y in 0..20 {
+        assert_eq!(at(0, y)[3], 0.0, "background at row {y}");
+        assert_eq!(at(19, y)[3], 0.0);
+    }
+    let root = at(10, 19);
+    let tip = at(10, 0);
+    // At the root the diffuse colour is halved: 0.5 · cos 0.
+    assert!(root[3] > 0.99 && (root[0] - 0.5).abs() < 0.01, "root {root:?}");
+    assert!(tip[3] < 0.05, "tip {tip:?}");
+    // Row 10 spans 0.45 to 0.5 of the way up: opacity 1 − smoothstep(0.3, 1, along).
+    let opacity = |along: f32| {
+        let t = (along - 0.3) / 0.7;
+        1.0 - t * t * (3.0 - 2.0 * t)
+    };
+    let a = at(10, 10)[3];
+    assert!(a <= opacity(0.45) + 1e-5 && a >= opacity(0.5) - 1e-5, "middle {a}");
+}

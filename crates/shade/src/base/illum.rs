@@ -230,7 +230,7 @@ fn hair(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let s = &ctx.state;
     let t = s.hair.map_or(s.derivs[0], |h| h.tangent).normalize_or(Vec3A::Y);
     let along = s.hair.map_or(s.bary[1], |h| h.along);
-    let scalp = s.normal_geom;
+    let scalp = s.hair.map_or(s.normal_geom, |h| h.root);
     let view = -s.dir;
     let hair_n = t.cross(scalp.cross(t));
     let b = scalp.dot(t);

@@ -59,6 +59,10 @@ pub struct Medium {
 pub struct HairState {
     /// Interpolated tangent at the hit, root to tip (mental ray puts it in `derivs[0]`).
     pub tangent: Vec3A,
+    /// Tangent of the hair's first segment, an approximation of the scalp normal (mental
+    /// ray puts it in `normal_geom`; mira keeps `normal_geom` facing the ray for robust
+    /// ray offsets).
+    pub root: Vec3A,
     /// Position across the hair (0 left edge … 1 right edge, seen from the ray).
     pub across: f32,
     /// Position along the hair (0 at the first vertex … 1 at the last).
