@@ -1,6 +1,8 @@
 //! Building the world: the `render` statement's options, camera and root group resolved,
 //! the instance DAG walked, objects tessellated once, materials bound.
 
+mod geometry;
+
 use std::collections::HashMap;
 
 use glam::DMat4;
@@ -312,7 +314,7 @@ impl<'a> Builder<'a, '_> {
             lights,
             shadow_lights,
         };
-        let target = defs.iter().rev().find_map(|d| match &d.target {
+        let target: Option<&'a InstanceTarget> = defs.iter().rev().find_map(|d| match &d.target {
             InstanceTarget::None => None,
             t => Some(t),
         });
@@ -347,12 +349,7 @@ impl<'a> Builder<'a, '_> {
                     )),
                 }
             }
-            Some(InstanceTarget::Geometry(_)) => self.diags.push(Diagnostic::warning(
-                span,
-                format!(
-                    "instance '{full}' uses a geometry shader; procedural geometry is not supported yet and is skipped"
-                ),
-            )),
+            Some(InstanceTarget::Geometry(list)) => self.geometry(full, list, scope, &next, span),
             _ => self.error(Diagnostic::error(span, format!("instance '{full}' names nothing to instance"))),
         }
     }
@@ -395,6 +392,12 @@ impl<'a> Builder<'a, '_> {
                 i
             }
         };
+        self.place(instance, object, inherited, span);
+    }
+
+    /// Places object number `object` under `instance`: its flags resolved and its
+    /// material slots bound.
+    fn place(&mut self, instance: &str, object: u32, inherited: &Inherited, span: mi::Span) {
         let Some(object_to_world) = transform::inverse(inherited.world_to_local) else { return };
         let obj = &self.objects[object as usize];
         let flags = inherited.flags.or(obj.flags).resolve(self.options.face);

@@ -4,10 +4,12 @@
 //! Subdivision surfaces and ccmeshes are refined by the level their `approximate …
 //! parametric N` statement gives ([`DEFAULT_SUBDIVISION_LEVELS`] without one), at most as
 //! many levels as keep the face count under [`MAX_SUBDIVISION_FACES`]. Free-form surfaces
-//! are not tessellated yet: they are skipped with a warning.
+//! are not tessellated yet: they are skipped with a warning. The shapes of mental ray's
+//! geometry shaders (`mib_geo_sphere`, …) are made by [`procedural`].
 
 pub mod hair;
 pub mod polygon;
+pub mod procedural;
 pub mod subdiv;
 pub mod trilist;
 
