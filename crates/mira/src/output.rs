@@ -58,7 +58,7 @@ pub fn write(film: &Film, path: &Path, format: Format, tone: &ToneMapper) -> std
             let rgba = film.rgba();
             let img = image::RgbaImage::from_fn(film.width, film.height, |x, y| {
                 let p = rgba[(y * film.width + x) as usize];
-                let c = tone.map(Rgb::new(p[0], p[1], p[2]));
+                let c = tone.map_at(Rgb::new(p[0], p[1], p[2]), x, y, film.width, film.height);
                 let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
                 image::Rgba([q(c.x), q(c.y), q(c.z), q(p[3])])
             });

@@ -228,7 +228,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         eprintln!("mira: interrupted at {} samples per pixel; writing what was rendered", stats.spp);
     }
     // Outputs: -o, else the camera's file outputs in formats mira writes, else SCENE.exr.
-    let tone = ToneMapper::for_camera(&sc.camera);
+    let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
     let mut targets: Vec<(PathBuf, Format)> = Vec::new();
     if let Some(o) = &args.output {
         match Format::from_path(o) {

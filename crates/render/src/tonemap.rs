@@ -1,113 +1,32 @@
-//! Tone mapping for display images: `mia_exposure_photographic`, `mia_exposure_simple`, or
-//! plain sRGB encoding.
-//!
-//! `mia_exposure_photographic` (mental ray's architectural library, also Iray's built-in
-//! tonemapper through the camera's `mip_*` attributes): exposure from ISO, shutter and
-//! f-number (or a plain gain when `film_iso` is 0), white balance, highlight burn, saturation,
-//! black crush, then display gamma. The exposure constant is the reflected-light meter's
-//! (K = 12.5 with 18 % middle grey): the "sunny 16" defaults (ISO 100, 1/100 s, f/16) map an
-//! average luminance of 3 200 cd/m² to 0.18.
+//! Tone mapping for display images: the camera's `mia_exposure_photographic` (as Iray
+//! camera attributes, an output shader, or a lens shader when the path engine ran, which
+//! does not run lens shaders), `mia_exposure_simple`, or plain sRGB encoding. The curves
+//! are `shade::mia::exposure`'s.
 
+use mi::ast::{Param, ShaderList};
+use scene::camera::Output;
+use shade::mia::exposure::{Photographic, Simple};
 use shade::Rgb;
 
-/// Parameters of `mia_exposure_photographic`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Photographic {
-    /// Pixel value → cd/m² (photographic mode) or plain gain (arbitrary mode).
-    pub cm2_factor: f32,
-    /// White balance.
-    pub whitepoint: Rgb,
-    /// Film speed; 0 switches to arbitrary mode.
-    pub film_iso: f32,
-    /// Shutter as 1/x seconds (100 = 1/100 s).
-    pub camera_shutter: f32,
-    /// Aperture f-number.
-    pub f_number: f32,
-    /// Edge darkening strength.
-    pub vignetting: f32,
-    /// 0: highlights compressed (Reinhard), 1: linear.
-    pub burn_highlights: f32,
-    /// Shadow contrast.
-    pub crush_blacks: f32,
-    /// 0: grey, 1: unchanged.
-    pub saturation: f32,
-    /// Display gamma.
-    pub gamma: f32,
-}
-
-impl Default for Photographic {
-    fn default() -> Photographic {
-        Photographic {
-            cm2_factor: 1.0,
-            whitepoint: Rgb::ONE,
-            film_iso: 100.0,
-            camera_shutter: 100.0,
-            f_number: 16.0,
-            vignetting: 0.0,
-            burn_highlights: 0.0,
-            crush_blacks: 0.25,
-            saturation: 1.0,
-            gamma: 2.2,
-        }
-    }
-}
-
-/// Luminance weights of `mia_exposure_photographic`'s saturation and black-crush steps.
-fn lum(c: Rgb) -> f32 {
-    0.176204 * c.x + 0.812985 * c.y + 0.0108109 * c.z
-}
-
-impl Photographic {
-    /// The exposure multiplier.
-    pub fn exposure(&self) -> f32 {
-        if self.film_iso > 0.0 {
-            let seconds = 1.0 / self.camera_shutter.max(1e-9);
-            0.18 / 12.5 * self.cm2_factor * self.film_iso * seconds / (self.f_number * self.f_number).max(1e-9)
-        } else {
-            self.cm2_factor
-        }
-    }
-
-    /// Maps a linear colour to display values in [0, 1].
-    pub fn map(&self, c: Rgb) -> Rgb {
-        let wp = self.whitepoint / lum(self.whitepoint).max(1e-6);
-        let mut c = (c * self.exposure() / wp).max(Rgb::ZERO);
-        let b = self.burn_highlights;
-        c = c * (c * b + Rgb::ONE) / (c + Rgb::ONE);
-        let l = lum(c);
-        c = Rgb::splat(l).lerp(c, self.saturation).max(Rgb::ZERO);
-        let l = lum(c);
-        if l < 1.0 {
-            let s = l.max(0.0).sqrt();
-            let p = 1.0 + 2.0 * self.crush_blacks;
-            c = c * s + Rgb::new(c.x.powf(p), c.y.powf(p), c.z.powf(p)) * (1.0 - s);
-        }
-        let g = 1.0 / self.gamma.max(1e-3);
-        Rgb::new(c.x.powf(g), c.y.powf(g), c.z.powf(g)).clamp(Rgb::ZERO, Rgb::ONE)
-    }
-
-    /// From the Iray camera attributes (`tm_tonemapper "mia_exposure_photographic"` and
-    /// `mip_*`), Iray's defaults where absent.
-    pub fn from_attributes(a: &scene::values::Attributes) -> Photographic {
-        let f = |name: &str, default: f32| a.get(name).and_then(|v| v.as_f64()).map_or(default, |v| v as f32);
-        let whitepoint = match a.get("mip_whitepoint") {
-            Some(scene::values::AttrValue::Floats(v)) if v.len() >= 3 => {
-                Rgb::new(v[0] as f32, v[1] as f32, v[2] as f32)
-            }
-            _ => Rgb::new(1.04287, 0.983863, 1.03358),
-        };
-        Photographic {
-            cm2_factor: f("mip_cm2_factor", 1.0),
-            whitepoint,
-            film_iso: f("mip_film_iso", 100.0),
-            camera_shutter: f("mip_camera_shutter", 0.125),
-            f_number: f("mip_f_number", 8.0),
-            vignetting: f("mip_vignetting", 0.0),
-            burn_highlights: f("mip_burn_highlights", 0.0),
-            crush_blacks: f("mip_crush_blacks", 0.25),
-            saturation: f("mip_saturation", 1.0),
-            gamma: f("mip_gamma", 2.2),
-        }
+/// Photographic tone mapping from the Iray camera attributes (`tm_tonemapper
+/// "mia_exposure_photographic"` and `mip_*`), Iray's defaults where absent.
+pub fn photographic_from_attributes(a: &scene::values::Attributes) -> Photographic {
+    let f = |name: &str, default: f32| a.get(name).and_then(|v| v.as_f64()).map_or(default, |v| v as f32);
+    let whitepoint = match a.get("mip_whitepoint") {
+        Some(scene::values::AttrValue::Floats(v)) if v.len() >= 3 => Rgb::new(v[0] as f32, v[1] as f32, v[2] as f32),
+        _ => Rgb::new(1.04287, 0.983863, 1.03358),
+    };
+    Photographic {
+        cm2_factor: f("mip_cm2_factor", 1.0),
+        whitepoint,
+        film_iso: f("mip_film_iso", 100.0),
+        camera_shutter: f("mip_camera_shutter", 0.125),
+        f_number: f("mip_f_number", 8.0),
+        vignetting: f("mip_vignetting", 0.0),
+        burn_highlights: f("mip_burn_highlights", 0.0),
+        crush_blacks: f("mip_crush_blacks", 0.25),
+        saturation: f("mip_saturation", 1.0),
+        gamma: f("mip_gamma", 2.2),
     }
 }
 
@@ -116,25 +35,127 @@ impl Photographic {
 pub enum ToneMapper {
     /// sRGB encoding of the clamped linear value.
     Srgb,
-    /// `mia_exposure_photographic`.
-    Photographic(Photographic),
+    /// `mia_exposure_simple`.
+    Simple(Simple),
+    /// `mia_exposure_photographic`, with the camera's half field of view tangents for
+    /// vignetting.
+    Photographic(Photographic, (f32, f32)),
+    /// The pixels are display values already (a lens shader mapped every sample): clamp.
+    Display,
+}
+
+/// A value of a shader call's parameter, else the declaration's default, else 0.
+fn param_f32(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &str) -> f32 {
+    let given = params.iter().rev().find(|p| p.name.text == name).map(|p| &p.value);
+    let default = decl.and_then(|d| d.param(name)).and_then(|i| decl?.params[i].default.as_ref());
+    match given.or(default) {
+        Some(mi::ast::Value::Num(n)) => n.as_f64() as f32,
+        Some(mi::ast::Value::Tuple(t)) => t.first().map_or(0.0, |n| n.as_f64() as f32),
+        Some(mi::ast::Value::Bool(b)) => f32::from(u8::from(*b)),
+        _ => 0.0,
+    }
+}
+
+fn param_rgb(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &str) -> Rgb {
+    let given = params.iter().rev().find(|p| p.name.text == name).map(|p| &p.value);
+    let default = decl.and_then(|d| d.param(name)).and_then(|i| decl?.params[i].default.as_ref());
+    match given.or(default) {
+        Some(mi::ast::Value::Tuple(t)) if t.len() >= 3 => {
+            Rgb::new(t[0].as_f64() as f32, t[1].as_f64() as f32, t[2].as_f64() as f32)
+        }
+        Some(mi::ast::Value::Num(n)) => Rgb::splat(n.as_f64() as f32),
+        _ => Rgb::ONE,
+    }
+}
+
+/// The exposure shader a shader list holds, with constant parameters (connected ones read
+/// as their defaults).
+fn exposure_in(list: &ShaderList, lib: &scene::Library) -> Option<ToneMapper> {
+    let decls = shade::model::decl::Decls::new(lib.declarations.values());
+    list.0.iter().find_map(|item| {
+        let (name, params) = shade::material::first_call(std::slice::from_ref(item), lib)?;
+        let decl = decls.get(name);
+        let d = decl.as_deref();
+        match name {
+            "mia_exposure_simple" => Some(ToneMapper::Simple(Simple {
+                pedestal: param_f32(params, d, "pedestal"),
+                gain: param_f32(params, d, "gain"),
+                knee: param_f32(params, d, "knee"),
+                compression: param_f32(params, d, "compression"),
+                gamma: param_f32(params, d, "gamma"),
+            })),
+            "mia_exposure_photographic" => Some(ToneMapper::Photographic(
+                Photographic {
+                    cm2_factor: param_f32(params, d, "cm2_factor"),
+                    whitepoint: param_rgb(params, d, "whitepoint"),
+                    film_iso: param_f32(params, d, "film_iso"),
+                    camera_shutter: param_f32(params, d, "camera_shutter"),
+                    f_number: param_f32(params, d, "f_number"),
+                    vignetting: param_f32(params, d, "vignetting"),
+                    burn_highlights: param_f32(params, d, "burn_highlights"),
+                    crush_blacks: param_f32(params, d, "crush_blacks"),
+                    saturation: param_f32(params, d, "saturation"),
+                    gamma: param_f32(params, d, "gamma"),
+                },
+                (0.0, 0.0),
+            )),
+            _ => None,
+        }
+    })
 }
 
 impl ToneMapper {
-    /// The camera's tonemapper (Iray attributes), or plain sRGB.
-    pub fn for_camera(c: &scene::Camera) -> ToneMapper {
-        match c.attributes.get("tm_tonemapper").and_then(|v| v.as_str()) {
-            Some("mia_exposure_photographic") => ToneMapper::Photographic(Photographic::from_attributes(&c.attributes)),
-            _ => ToneMapper::Srgb,
+    /// The display transform of a camera: its Iray tonemapper attributes, else an
+    /// `mia_exposure_*` output shader, else an `mia_exposure_*` lens shader — which, when
+    /// `lens_applied` (the classic engine ran it on every sample), leaves display values
+    /// to clamp — else plain sRGB.
+    pub fn for_camera(c: &scene::Camera, lib: &scene::Library, lens_applied: bool) -> ToneMapper {
+        let tan = match c.focal {
+            Some(f) if f > 0.0 => {
+                ((c.aperture / (2.0 * f)) as f32, (c.aperture / (2.0 * f * c.aspect.max(1e-9))) as f32)
+            }
+            _ => (0.0, 0.0),
+        };
+        let with_tan = |t: ToneMapper| match t {
+            ToneMapper::Photographic(p, _) => ToneMapper::Photographic(p, tan),
+            other => other,
+        };
+        if c.attributes.get("tm_tonemapper").and_then(|v| v.as_str()) == Some("mia_exposure_photographic") {
+            return ToneMapper::Photographic(photographic_from_attributes(&c.attributes), tan);
         }
+        for out in &c.outputs {
+            if let Output::Shader { shaders, .. } = out {
+                if let Some(t) = exposure_in(shaders, lib) {
+                    return with_tan(t);
+                }
+            }
+        }
+        for lens in &c.lens {
+            if let Some(t) = exposure_in(lens, lib) {
+                return if lens_applied { ToneMapper::Display } else { with_tan(t) };
+            }
+        }
+        ToneMapper::Srgb
     }
 
-    /// Display value in [0, 1] of a linear colour.
-    pub fn map(&self, c: Rgb) -> Rgb {
-        match self {
+    /// Display value in [0, 1] of a linear colour at pixel (x, y) of a w × h image.
+    pub fn map_at(&self, c: Rgb, x: u32, y: u32, w: u32, h: u32) -> Rgb {
+        let out = match self {
             ToneMapper::Srgb => Rgb::new(srgb(c.x), srgb(c.y), srgb(c.z)),
-            ToneMapper::Photographic(p) => p.map(c),
-        }
+            ToneMapper::Simple(s) => s.map(c),
+            ToneMapper::Photographic(p, (tx, ty)) => {
+                let u = (2.0 * (x as f32 + 0.5) / w.max(1) as f32 - 1.0) * tx;
+                let v = (2.0 * (y as f32 + 0.5) / h.max(1) as f32 - 1.0) * ty;
+                p.map(c, 1.0 / (1.0 + u * u + v * v).sqrt())
+            }
+            ToneMapper::Display => c,
+        };
+        out.clamp(Rgb::ZERO, Rgb::ONE)
+    }
+
+    /// Display value of a linear colour at the image centre.
+    pub fn map(&self, c: Rgb) -> Rgb {
+        self.map_at(c, 0, 0, 1, 1)
     }
 }
 
@@ -160,19 +181,25 @@ mod tests {
     }
 
     #[test]
-    fn photographic_exposure_and_curve() {
-        let p = Photographic::default();
-        // Sunny 16: 3 200 cd/m² → 0.18 before the curve.
-        assert!((p.exposure() * 3200.0 - 0.18).abs() < 1e-5);
-        // Arbitrary mode: cm2_factor is the gain.
-        let a = Photographic { film_iso: 0.0, cm2_factor: 2.5, ..p };
-        assert_eq!(a.exposure(), 2.5);
-        // burn 1 and crush 0, gamma 1: linear (below 1).
-        let lin = Photographic { film_iso: 0.0, burn_highlights: 1.0, crush_blacks: 0.0, gamma: 1.0, ..p };
-        let out = lin.map(Rgb::new(0.2, 0.4, 0.6));
-        assert!((out - Rgb::new(0.2, 0.4, 0.6)).abs().max_element() < 1e-6, "{out}");
-        // burn 0: Reinhard c / (1 + c).
-        let reinhard = Photographic { burn_highlights: 0.0, ..lin };
-        assert!((reinhard.map(Rgb::splat(3.0)).x - 0.75).abs() < 1e-6);
+    fn exposure_shaders_of_a_camera_are_found_with_their_defaults() {
+        let text = r#"
+options "o" end options
+camera "c" focal 1 aperture 1 aspect 1 resolution 4 4
+    output "+rgba" "mia_exposure_simple" ("gain" 0.2)
+end camera
+instance "ci" "c" end instance
+instgroup "root" "ci" end instgroup
+render "root" "ci" "o"
+"#;
+        let parsed = mi::parse_str("t.mi", text);
+        let mut d = Vec::new();
+        let sc = scene::Scene::build(&parsed, 0, &mut d).unwrap();
+        let t = ToneMapper::for_camera(&sc.camera, &sc.library, false);
+        assert_eq!(t, ToneMapper::Simple(Simple { pedestal: 0.0, gain: 0.2, knee: 0.5, compression: 2.0, gamma: 2.2 }));
+        let lens = text.replace("output \"+rgba\"", "lens");
+        let parsed = mi::parse_str("t.mi", &lens);
+        let sc = scene::Scene::build(&parsed, 0, &mut d).unwrap();
+        assert_eq!(ToneMapper::for_camera(&sc.camera, &sc.library, true), ToneMapper::Display);
+        assert!(matches!(ToneMapper::for_camera(&sc.camera, &sc.library, false), ToneMapper::Simple(_)));
     }
 }

@@ -78,6 +78,12 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &lens::STENCIL,
     &lens::CLAMP,
     &lens::DOF,
+    &crate::mia::shader::MIA_MATERIAL,
+    &crate::mia::shader::MIA_MATERIAL_X,
+    &crate::mia::shader::MIA_MATERIAL_X_PASSES,
+    &crate::mia::exposure::EXPOSURE_SIMPLE,
+    &crate::mia::exposure::EXPOSURE_PHOTOGRAPHIC,
+    &crate::mia::comparison::LOBE_REFLECTION,
 ];
 
 /// RGB of a colour.

@@ -74,6 +74,10 @@ const INTERNAL: &str = r#"
 # A Lambertian surface lit by all lights, with final gathering: the classic engine's
 # stand-in for materials it has no mental ray shader for (MDL materials).
 declare shader color "mira_diffuse" (color "diffuse", color "emission") end declare
+# Glossy reflection jittered around the mirror direction, to compare with mia_material's
+# jittered normals.
+declare shader color "mira_lobe_reflection" (color "input", color "reflect", scalar "gloss",
+    integer "samples" default 16) end declare
 "#;
 
 /// mira's built-in declarations (`base.mi`, `physics.mi`, `contour.mi`, `architectural.mi`,

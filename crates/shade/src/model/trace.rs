@@ -122,8 +122,24 @@ impl Ctx<'_> {
         Some(self.trace(RayType::Transparent, self.state.dir))
     }
 
+    /// Casts a ray of `kind` along `dir` no farther than `max_dist` (depth limits
+    /// permitting; `None` if they forbid it): the colour found and the distance travelled,
+    /// infinite when nothing was hit (the colour is then the environment's, or black when
+    /// the distance is limited, since the ray stopped short of it).
+    pub fn cast(&mut self, kind: RayType, dir: Vec3A, max_dist: f32) -> Option<(Color, f32)> {
+        if !self.may_trace(kind) {
+            return None;
+        }
+        let c = self.trace_limited(kind, dir, max_dist);
+        Some((c, self.state.child_dist))
+    }
+
     /// Casts a ray of `kind` and shades what it finds.
     fn trace(&mut self, kind: RayType, dir: Vec3A) -> Color {
+        self.trace_limited(kind, dir, f32::INFINITY)
+    }
+
+    fn trace_limited(&mut self, kind: RayType, dir: Vec3A, max_dist: f32) -> Color {
         let s = &self.state;
         let org = offset_point(s.point, s.normal_geom, dir);
         let mut child = s.child(kind, org, dir);
@@ -138,13 +154,14 @@ impl Ctx<'_> {
                 child.ior_in = child.medium().map_or(1.0, |x| x.ior);
             }
         }
-        let (color, dist) = self.shade_ray(child, f32::INFINITY);
+        let (color, dist) = self.shade_ray(child, max_dist);
         self.state.child_dist = dist;
         color
     }
 
-    /// Shades the first surface along `ray` (material shader) or, if none, the
-    /// environment. Returns the colour and the distance travelled (infinite on a miss).
+    /// Shades the first surface along `ray` within `max_dist` (material shader) or, if
+    /// none, the environment (transparent black when the distance is limited). Returns the
+    /// colour and the distance travelled (infinite on a miss).
     pub fn shade_ray(&mut self, mut ray: State, max_dist: f32) -> (Color, f32) {
         let shading = self.shading();
         if self.tracer.intersect(&mut ray, max_dist) {
@@ -156,6 +173,8 @@ impl Ctx<'_> {
             ctx.run_list(shader, &mut result);
             self.counts.calls += ctx.counts.calls;
             (result.color(), dist)
+        } else if max_dist.is_finite() {
+            (Color::ZERO, f32::INFINITY)
         } else {
             (self.environment(ray), f32::INFINITY)
         }
