@@ -62,6 +62,14 @@ fn triangle_bvh(source: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
     MeshBvh { bvh, tris }
 }
 
+/// The traversal ray for `origin + t·dir`, t in [tmin, tmax]. Negative zeros in the
+/// direction become positive: obvhs picks the traversal octant from the comparison
+/// `d < 0` but inverts −0 to −1/ε, and the two disagreeing made rays straight down an
+/// axis (shadow rays towards a sun at (0, 0, −1) ⇒ direction (−0, −0, 1)) miss.
+fn traversal_ray(origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> BvhRay {
+    BvhRay::new(origin, dir + Vec3A::ZERO, tmin, tmax)
+}
+
 /// The ray kinds an instance accepts, from its flags.
 pub fn instance_mask(flags: &scene::Flags) -> u32 {
     let mut m = 0;
@@ -160,7 +168,7 @@ impl BvhAccel {
         let Some(flat) = &self.flat else { return ray.tmax };
         let mut found = ray.tmax;
         let mut hit = RayHit::none();
-        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
         flat.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
             let t = &flat.tris[id];
             if self.instances[t.instance as usize].mask & ray.mask == 0 {
@@ -194,7 +202,7 @@ impl BvhAccel {
         };
         let mut found = f32::INFINITY;
         let mut hit = RayHit::none();
-        let bvh_ray = BvhRay::new(local.origin, local.dir, local.tmin, local.tmax);
+        let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
         mesh.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
             let t = &mesh.tris[id];
             match intersect_triangle(&Ray { tmax: r.tmax, ..local }, t.p0, t.p1, t.p2) {
@@ -218,7 +226,7 @@ impl Accel for BvhAccel {
         let tmax = self.intersect_flat(ray, &mut best);
         let Some(tlas) = self.tlas.as_ref() else { return best };
         let mut hit = RayHit::none();
-        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, tmax);
+        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, tmax);
         tlas.ray_traverse(bvh_ray, &mut hit, |r, id| {
             let instance = self.tlas_instances[tlas.primitive_indices[id] as usize];
             self.intersect_instance(ray, r.tmax, instance, &mut best)
@@ -228,7 +236,7 @@ impl Accel for BvhAccel {
 
     fn occluded(&self, ray: &Ray) -> bool {
         if let Some(flat) = &self.flat {
-            let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+            let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
             let missed = flat.bvh.ray_traverse_miss(bvh_ray, |_, id| {
                 let t = &flat.tris[id];
                 if self.instances[t.instance as usize].mask & ray.mask == 0 {
@@ -241,7 +249,7 @@ impl Accel for BvhAccel {
             }
         }
         let Some(tlas) = self.tlas.as_ref() else { return false };
-        let bvh_ray = BvhRay::new(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
         !tlas.ray_traverse_miss(bvh_ray, |_, id| {
             let inst = &self.instances[self.tlas_instances[tlas.primitive_indices[id] as usize] as usize];
             if inst.mask & ray.mask == 0 {
@@ -253,7 +261,7 @@ impl Accel for BvhAccel {
                 dir: inst.world_to_object.transform_vector3a(ray.dir),
                 ..*ray
             };
-            let bvh_ray = BvhRay::new(local.origin, local.dir, local.tmin, local.tmax);
+            let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
             let missed = mesh.bvh.ray_traverse_miss(bvh_ray, |_, id| {
                 let t = &mesh.tris[id];
                 intersect_triangle(&local, t.p0, t.p1, t.p2).map_or(f32::INFINITY, |h| h.0)
