@@ -222,7 +222,9 @@ pub fn trace_path(
             }
         }
         // Scatter.
-        let Some(bs) = bsdf.sample(wo, sampler.next_2d()) else { break };
+        let u_dir = sampler.next_2d();
+        let u_lobe = sampler.next_1d();
+        let Some(bs) = bsdf.sample(wo, u_dir, u_lobe) else { break };
         let wi = frame.to_world(bs.wi);
         // A reflected ray must leave above the geometric surface, a transmitted one below:
         // shading normals can say otherwise, and then the path ends.

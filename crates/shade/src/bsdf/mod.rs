@@ -4,9 +4,14 @@
 //! away from the surface; `eval` returns f(ωo, ωi) without the cosine; `sample` returns a
 //! direction with `f · |cos θi| / pdf` as its weight; `pdf` is per unit solid angle.
 
+pub mod dielectric;
 mod lambert;
+pub mod microfacet;
+mod oren_nayar;
 
+pub use dielectric::Dielectric;
 pub use lambert::Lambert;
+pub use oren_nayar::OrenNayar;
 
 use crate::Rgb;
 use glam::{Vec2, Vec3A};
@@ -40,33 +45,53 @@ impl BsdfSample {
 pub enum Bsdf {
     /// Lambertian diffuse reflection.
     Lambert(Lambert),
+    /// Oren–Nayar rough diffuse reflection.
+    OrenNayar(OrenNayar),
+    /// A dielectric interface.
+    Dielectric(Dielectric),
+    /// `mia_material`'s layers.
+    Mia(crate::mia::bsdf::MiaBsdf),
 }
 
 impl Bsdf {
-    /// f(ωo, ωi).
+    /// f(ωo, ωi) of the non-delta lobes.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         match self {
             Bsdf::Lambert(l) => l.eval(wo, wi),
+            Bsdf::OrenNayar(l) => l.eval(wo, wi),
+            Bsdf::Dielectric(l) => l.eval(wo, wi),
+            Bsdf::Mia(l) => l.eval(wo, wi),
         }
     }
 
-    /// Samples ωi given ωo and two uniform numbers.
-    pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
+    /// Samples ωi given ωo, two uniform numbers for the direction and one for choosing a
+    /// lobe.
+    pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
         match self {
             Bsdf::Lambert(l) => l.sample(wo, u),
+            Bsdf::OrenNayar(l) => l.sample(wo, u),
+            Bsdf::Dielectric(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Mia(l) => l.sample(wo, u, u_lobe),
         }
     }
 
-    /// Density of sampling ωi given ωo.
+    /// Density of sampling ωi given ωo (non-delta lobes).
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         match self {
             Bsdf::Lambert(l) => l.pdf(wo, wi),
+            Bsdf::OrenNayar(l) => l.pdf(wo, wi),
+            Bsdf::Dielectric(l) => l.pdf(wo, wi),
+            Bsdf::Mia(l) => l.pdf(wo, wi),
         }
     }
 
     /// Whether every lobe is a delta (no light sampling helps).
     pub fn is_delta(&self) -> bool {
-        false
+        match self {
+            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
+            Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
+            Bsdf::Mia(m) => m.is_delta(),
+        }
     }
 }
 

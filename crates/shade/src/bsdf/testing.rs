@@ -42,7 +42,7 @@ pub fn reciprocity(bsdf: &Bsdf, tol: f32) {
 pub fn albedo(bsdf: &Bsdf, wo: Vec3A, n: u32) -> Rgb {
     let mut sum = Rgb::ZERO;
     for i in 0..n {
-        if let Some(s) = bsdf.sample(wo, r2(i)) {
+        if let Some(s) = bsdf.sample(wo, r2(i), r2(i + 7919).x) {
             sum += s.weight();
         }
     }
@@ -71,23 +71,25 @@ pub fn chi_square(bsdf: &Bsdf, wo: Vec3A) {
         (state >> 40) as f32 / (1u64 << 24) as f32
     };
     for _ in 0..SAMPLES {
-        if let Some(s) = bsdf.sample(wo, Vec2::new(rnd(), rnd())) {
+        if let Some(s) = bsdf.sample(wo, Vec2::new(rnd(), rnd()), rnd()) {
             if !s.delta {
                 observed[cell(s.wi)] += 1.0;
             }
         }
     }
-    // Expected counts: integrate the pdf over each cell with a fine midpoint rule.
+    // Expected counts: integrate the pdf over each cell with a fine midpoint rule (finer in
+    // θ, where lobes grazing the horizon change fastest).
     let mut expected = vec![0f64; THETA * PHI];
-    const SUB: usize = 16;
-    for t in 0..THETA * SUB {
-        for p in 0..PHI * SUB {
-            let theta = (t as f64 + 0.5) / (THETA * SUB) as f64 * std::f64::consts::PI;
-            let phi = (p as f64 + 0.5) / (PHI * SUB) as f64 * std::f64::consts::TAU;
+    const SUB_THETA: usize = 64;
+    const SUB_PHI: usize = 16;
+    for t in 0..THETA * SUB_THETA {
+        for p in 0..PHI * SUB_PHI {
+            let theta = (t as f64 + 0.5) / (THETA * SUB_THETA) as f64 * std::f64::consts::PI;
+            let phi = (p as f64 + 0.5) / (PHI * SUB_PHI) as f64 * std::f64::consts::TAU;
             let w = Vec3A::new((theta.sin() * phi.cos()) as f32, (theta.sin() * phi.sin()) as f32, theta.cos() as f32);
             let area = theta.sin()
-                * (std::f64::consts::PI / (THETA * SUB) as f64)
-                * (std::f64::consts::TAU / (PHI * SUB) as f64);
+                * (std::f64::consts::PI / (THETA * SUB_THETA) as f64)
+                * (std::f64::consts::TAU / (PHI * SUB_PHI) as f64);
             expected[cell(w)] += f64::from(bsdf.pdf(wo, w)) * area * f64::from(SAMPLES);
         }
     }

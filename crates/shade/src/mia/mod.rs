@@ -1,5 +1,6 @@
 //! The Architectural library: `mia_material` (Arch & Design) and its helpers.
 
+pub mod bsdf;
 pub mod comparison;
 pub mod exposure;
 pub mod lobes;
