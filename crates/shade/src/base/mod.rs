@@ -83,6 +83,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::shader::MIA_MATERIAL_X_PASSES,
     &crate::mia::exposure::EXPOSURE_SIMPLE,
     &crate::mia::exposure::EXPOSURE_PHOTOGRAPHIC,
+    &crate::mia::sky::MIA_PHYSICALSKY,
+    &crate::mia::sun::MIA_PHYSICALSUN,
     &crate::mia::comparison::LOBE_REFLECTION,
 ];
 

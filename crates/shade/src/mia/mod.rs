@@ -1,4 +1,5 @@
-//! The Architectural library: `mia_material` (Arch & Design) and its helpers.
+//! The Architectural library: `mia_material` (Arch & Design) and its helpers, and the
+//! physical sun and sky.
 
 pub mod bsdf;
 pub mod comparison;
@@ -6,4 +7,6 @@ pub mod exposure;
 pub mod lobes;
 pub mod params;
 pub mod shader;
+pub mod sky;
+pub mod sun;
 pub mod weights;
