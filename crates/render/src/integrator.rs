@@ -191,8 +191,10 @@ pub fn trace_path(
         if material.emission != Rgb::ZERO {
             radiance += throughput * material.emission;
         }
-        // Two-sided shading: face the normals towards the ray.
-        let (ng, ns) = if s.ng.dot(ray.dir) > 0.0 { (-s.ng, -s.ns) } else { (s.ng, s.ns) };
+        // Two-sided shading: face the normals towards the ray, unless light can enter the
+        // surface — then the front is outside, and a ray from behind sees the inside.
+        let facing = material.has_inside() || s.ng.dot(ray.dir) <= 0.0;
+        let (ng, ns) = if facing { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
         let frame = Frame::from_normal(ns);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.bsdf();
@@ -205,7 +207,9 @@ pub fn trace_path(
             if let Some(ls) = light.sample(s.p, u_light) {
                 let wi = frame.to_local(ls.wi);
                 let f = bsdf.eval(wo, wi);
-                if ls.wi.dot(ng) > 0.0 && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
+                // The light must be on the side of the geometric surface the shading frame
+                // puts it on (reflection above, transmission below).
+                if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
                     let origin = offset_origin(s.p, ng, ls.wi);
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;

@@ -114,7 +114,7 @@ fn mean(pixels: &[[f32; 4]]) -> Rgb {
 }
 
 fn material(diffuse: f32, emission: f32) -> SurfaceMaterial {
-    SurfaceMaterial { name: "m".into(), diffuse: Rgb::splat(diffuse), emission: Rgb::splat(emission) }
+    SurfaceMaterial { emission: Rgb::splat(emission), ..SurfaceMaterial::lambert("m", Rgb::splat(diffuse)) }
 }
 
 #[test]

@@ -1,38 +1,72 @@
 //! Surface materials for the path integrator, translated from the scene's materials.
 //!
-//! This is the first step of the translation: every material becomes a two-sided
-//! Lambertian surface with an optional emission. MDL `flex_material` keeps its
-//! `base_color` (the diffuse layer; its glossy layers come with the unified material),
-//! MDL `diffuse` its `diffuse_color`, and the mental ray illumination shaders
-//! (`mib_illum_*`) their `diffuse` colour. Anything else is a grey diffuse surface, with a
-//! warning naming what was not understood.
+//! Each material becomes a [`SurfaceModel`] — a BSDF family with constant parameters — and
+//! an emission:
+//! - mira's `unified_material` shader: the unified material with its own parameters;
+//! - MDL (`::nvidia::core_definitions`): `flex_material` and `flex_material_v2`, `metal`,
+//!   `plastic`, `thin_glass` and `thick_glass` become unified materials; `diffuse` an
+//!   Oren–Nayar surface; `add_emission` its base material plus emission in MDL's units;
+//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert).
+//!
+//! Anything else — and parameters connected to shaders, which need the shader graph — is
+//! rendered as a grey diffuse surface or with the parameter's default, with a warning
+//! naming what was not understood.
 
 use mi::ast::{Num, Param, ShaderItem, Value};
 use scene::{Library, Material, MaterialKind};
 
-use crate::bsdf::{Bsdf, Lambert};
+use crate::bsdf::{Bsdf, Lambert, OrenNayar, Unified, UnifiedParams};
 use crate::Rgb;
+
+/// The scattering model of a surface, with constant parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SurfaceModel {
+    /// Lambertian reflection of the material's `diffuse` colour.
+    Lambert,
+    /// Oren–Nayar reflection of the `diffuse` colour with roughness σ (radians).
+    OrenNayar(f32),
+    /// The unified material.
+    Unified(UnifiedParams),
+}
 
 /// A surface's scattering and emission.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceMaterial {
     /// The material's name.
     pub name: String,
-    /// Diffuse reflectance.
+    /// The diffuse colour (the Lambert and Oren–Nayar models' reflectance, and the colour
+    /// the classic engine's stand-in shades with).
     pub diffuse: Rgb,
     /// Emitted radiance (W·m⁻²·sr⁻¹ in scene units), both sides.
     pub emission: Rgb,
+    /// How the surface scatters.
+    pub model: SurfaceModel,
 }
 
 impl SurfaceMaterial {
     /// A grey diffuse surface (the fallback for what is not understood).
     pub fn grey(name: &str) -> SurfaceMaterial {
-        SurfaceMaterial { name: name.to_string(), diffuse: Rgb::splat(0.5), emission: Rgb::ZERO }
+        SurfaceMaterial::lambert(name, Rgb::splat(0.5))
+    }
+
+    /// A Lambertian surface of reflectance `diffuse`.
+    pub fn lambert(name: &str, diffuse: Rgb) -> SurfaceMaterial {
+        SurfaceMaterial { name: name.to_string(), diffuse, emission: Rgb::ZERO, model: SurfaceModel::Lambert }
     }
 
     /// The BSDF at a shading point.
     pub fn bsdf(&self) -> Bsdf {
-        Bsdf::Lambert(Lambert { albedo: self.diffuse })
+        match &self.model {
+            SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: self.diffuse }),
+            SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(self.diffuse, *sigma)),
+            SurfaceModel::Unified(p) => Bsdf::Unified(Unified::new(p)),
+        }
+    }
+
+    /// Whether light can enter the surface (then its two sides differ: the path tracer
+    /// keeps the geometric orientation instead of facing the normal towards the ray).
+    pub fn has_inside(&self) -> bool {
+        matches!(&self.model, SurfaceModel::Unified(p) if p.spec_trans > 0.0 && !p.thin)
     }
 }
 
@@ -106,37 +140,198 @@ pub fn translate(m: &Material, lib: &Library) -> (SurfaceMaterial, Vec<String>) 
         warnings.push(format!("material '{}' has no shader mira understands; rendered grey", m.name));
         return (SurfaceMaterial::grey(&m.name), warnings);
     };
-    let decl = declaration_name(decl);
-    let (param, default) = match decl {
-        "mdl::nvidia::core_definitions::flex_material" | "mdl::nvidia::core_definitions::flex_material_v2" => {
-            ("base_color", Rgb::splat(0.5))
+    let mut reader = Reader { material: &m.name, warnings: &mut warnings };
+    let surface = reader.call(decl, params, lib, 0);
+    (surface, warnings)
+}
+
+const CORE: &str = "mdl::nvidia::core_definitions::";
+
+/// Reads constant parameters, warning about what it cannot read.
+struct Reader<'a> {
+    material: &'a str,
+    warnings: &'a mut Vec<String>,
+}
+
+impl Reader<'_> {
+    fn color(&mut self, params: &[Param], name: &str, default: Rgb) -> Rgb {
+        match color_param(params, name) {
+            None => default,
+            Some(Ok(c)) => c,
+            Some(Err(why)) => {
+                self.warnings.push(format!("material '{}': {why}; its default is used", self.material));
+                default
+            }
         }
-        "mdl::nvidia::core_definitions::diffuse" => ("diffuse_color", Rgb::splat(0.8)),
-        "mib_illum_lambert"
-        | "mib_illum_phong"
-        | "mib_illum_blinn"
-        | "mib_illum_cooktorr"
-        | "mib_illum_ward"
-        | "mib_illum_ward_deriv"
-        | "mib_illum_hair" => ("diffuse", Rgb::ZERO),
-        other => {
-            warnings.push(format!(
-                "material '{}': shader '{other}' is not supported by the path integrator yet; rendered grey",
-                m.name
-            ));
-            return (SurfaceMaterial::grey(&m.name), warnings);
+    }
+
+    fn scalar(&mut self, params: &[Param], name: &str, default: f32) -> f32 {
+        if let Some(p) = params.iter().rev().find(|p| p.name.text == name) {
+            if let Value::Connect(c) = &p.value {
+                self.warnings.push(format!(
+                    "material '{}': '{name}' is connected to '{}'; its default is used",
+                    self.material, c.text
+                ));
+                return default;
+            }
         }
-    };
-    let diffuse = match color_param(params, param) {
-        None => default,
-        Some(Ok(c)) => c,
-        Some(Err(why)) => {
-            warnings.push(format!("material '{}': {why}; its default is used", m.name));
-            default
+        scalar_param(params, name).map_or(default, |v| v as f32)
+    }
+
+    fn flag(&mut self, params: &[Param], name: &str, default: bool) -> bool {
+        self.scalar(params, name, f32::from(u8::from(default))) != 0.0
+    }
+
+    /// The surface of shader `decl` with `params`; `depth` counts nested `base` materials.
+    fn call(&mut self, decl: &str, params: &[Param], lib: &Library, depth: u32) -> SurfaceMaterial {
+        let name = self.material;
+        let decl = declaration_name(decl);
+        let unified = |p: UnifiedParams| SurfaceMaterial {
+            name: name.to_string(),
+            diffuse: p.base_color,
+            emission: Rgb::ZERO,
+            model: SurfaceModel::Unified(p),
+        };
+        let mdl = decl.strip_prefix(CORE);
+        match (decl, mdl) {
+            ("unified_material", _) => {
+                let d = UnifiedParams::default();
+                let normal = params.iter().any(|p| p.name.text == "normal" || p.name.text == "bump");
+                if normal {
+                    self.warnings.push(format!(
+                        "material '{name}': unified_material's normal/bump input needs the shader graph; ignored by the path engine"
+                    ));
+                }
+                let transmission = params.iter().any(|p| p.name.text == "transmission_color");
+                unified(UnifiedParams {
+                    base_color: self.color(params, "base_color", d.base_color),
+                    metallic: self.scalar(params, "metallic", d.metallic),
+                    roughness: self.scalar(params, "roughness", d.roughness),
+                    anisotropic: self.scalar(params, "anisotropic", d.anisotropic),
+                    spec_trans: self.scalar(params, "spec_trans", d.spec_trans),
+                    ior: self.scalar(params, "ior", d.ior),
+                    specular: self.scalar(params, "specular", d.specular),
+                    specular_tint: self.scalar(params, "specular_tint", d.specular_tint),
+                    sheen: self.scalar(params, "sheen", d.sheen),
+                    sheen_tint: self.scalar(params, "sheen_tint", d.sheen_tint),
+                    clearcoat: self.scalar(params, "clearcoat", d.clearcoat),
+                    clearcoat_gloss: self.scalar(params, "clearcoat_gloss", d.clearcoat_gloss),
+                    thin: self.flag(params, "thin", d.thin),
+                    transmission_color: transmission.then(|| self.color(params, "transmission_color", Rgb::ONE)),
+                })
+            }
+            (_, Some(m @ ("flex_material" | "flex_material_v2"))) => {
+                let v2 = m == "flex_material_v2";
+                let metallic = self.scalar(params, "is_metal", 0.0).clamp(0.0, 1.0);
+                let base = self.color(params, "base_color", Rgb::splat(0.5));
+                // The reflection layer's weight: the dielectric's `specular`, and a scale
+                // on the metal's colour.
+                let reflectivity = self.scalar(params, "reflectivity", 1.0).clamp(0.0, 1.0);
+                let metal_base = base * reflectivity;
+                let mut surface = unified(UnifiedParams {
+                    base_color: base * (1.0 - metallic) + metal_base * metallic,
+                    metallic,
+                    roughness: self.scalar(params, "reflection_roughness", if v2 { 0.3 } else { 0.1 }),
+                    anisotropic: self.scalar(params, "anisotropy", 0.0),
+                    spec_trans: self.scalar(params, "transparency", 0.0),
+                    ior: self.scalar(params, "ior", 1.5),
+                    specular: reflectivity,
+                    thin: self.flag(params, "thin_walled", false),
+                    transmission_color: Some(self.color(params, "transmission_color", Rgb::ONE)),
+                    ..Default::default()
+                });
+                surface.diffuse = base;
+                surface
+            }
+            (_, Some("diffuse")) => {
+                let diffuse = self.color(params, "diffuse_color", Rgb::splat(0.8)).clamp(Rgb::ZERO, Rgb::ONE);
+                let sigma = self.scalar(params, "roughness", 0.0);
+                SurfaceMaterial {
+                    model: if sigma > 0.0 { SurfaceModel::OrenNayar(sigma) } else { SurfaceModel::Lambert },
+                    ..SurfaceMaterial::lambert(name, diffuse)
+                }
+            }
+            (_, Some("metal")) => {
+                let color = self.color(params, "metal_color", Rgb::splat(0.9));
+                let weight = self.scalar(params, "glossy_weight", 0.9);
+                unified(UnifiedParams {
+                    base_color: color * weight,
+                    metallic: 1.0,
+                    roughness: self.scalar(params, "roughness", 0.05),
+                    ..Default::default()
+                })
+            }
+            (_, Some("plastic")) => unified(UnifiedParams {
+                base_color: self.color(params, "diffuse_color", Rgb::splat(0.5)),
+                roughness: self.scalar(params, "roughness", 0.25),
+                ior: self.scalar(params, "ior", 1.4),
+                ..Default::default()
+            }),
+            (_, Some(g @ ("thin_glass" | "thick_glass"))) => {
+                let thin = g == "thin_glass";
+                let glass = self.color(params, "glass_color", Rgb::splat(0.95));
+                let transmission = if thin { Rgb::ONE } else { self.color(params, "transmission_color", Rgb::ONE) };
+                unified(UnifiedParams {
+                    base_color: glass,
+                    roughness: self.scalar(params, "roughness", 0.0),
+                    ior: self.scalar(params, "ior", 1.4),
+                    spec_trans: 1.0,
+                    thin,
+                    transmission_color: Some(glass * transmission),
+                    ..Default::default()
+                })
+            }
+            (_, Some("add_emission")) => {
+                let mut surface = match params.iter().rev().find(|p| p.name.text == "base").map(|p| &p.value) {
+                    Some(Value::Connect(target)) if depth < 8 => {
+                        match lib.shaders.get(&target.text).and_then(|d| first_call(&d.list.0, lib)) {
+                            Some((decl, inner)) => self.call(decl, inner, lib, depth + 1),
+                            None => {
+                                self.warnings.push(format!(
+                                    "material '{name}': add_emission's base '{}' is not a shader mira knows; black",
+                                    target.text
+                                ));
+                                SurfaceMaterial::lambert(name, Rgb::ZERO)
+                            }
+                        }
+                    }
+                    // MDL's default base is diffuse(black).
+                    _ => SurfaceMaterial::lambert(name, Rgb::ZERO),
+                };
+                let tint = self.color(params, "tint", Rgb::ONE);
+                let amount = self.scalar(params, "intensity", 1000.0) * self.scalar(params, "unit_scale", 1.0);
+                let radiance = match string_param(params, "unit").unwrap_or("lumen_m2") {
+                    "nit" => amount,
+                    "lumen_m2" => amount / std::f32::consts::PI,
+                    other => {
+                        self.warnings.push(format!(
+                            "material '{name}': add_emission in '{other}' needs the emitter's area; read as lumen_m2"
+                        ));
+                        amount / std::f32::consts::PI
+                    }
+                };
+                surface.emission = tint * radiance;
+                surface
+            }
+            (
+                "mib_illum_lambert"
+                | "mib_illum_phong"
+                | "mib_illum_blinn"
+                | "mib_illum_cooktorr"
+                | "mib_illum_ward"
+                | "mib_illum_ward_deriv"
+                | "mib_illum_hair",
+                _,
+            ) => {
+                let diffuse = self.color(params, "diffuse", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
+                SurfaceMaterial::lambert(name, diffuse)
+            }
+            (other, _) => {
+                self.warnings.push(format!(
+                    "material '{name}': shader '{other}' is not supported by the path integrator yet; rendered grey"
+                ));
+                SurfaceMaterial::grey(name)
+            }
         }
-    };
-    (
-        SurfaceMaterial { name: m.name.clone(), diffuse: diffuse.clamp(Rgb::ZERO, Rgb::ONE), emission: Rgb::ZERO },
-        warnings,
-    )
+    }
 }

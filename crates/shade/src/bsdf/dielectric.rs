@@ -56,28 +56,61 @@ pub struct Dielectric {
     pub reflect_tint: Rgb,
     /// Tint of the refraction.
     pub transmit_tint: Rgb,
+    /// The share of the refracted light that passes through unscattered, 0 to 1: 1 for
+    /// glass; the unified material's `spec_trans`, whose remainder its diffuse lobe
+    /// takes. The choice between reflecting and refracting is sampled in proportion to
+    /// F and (1 − F)·`transmission`.
+    pub transmission: f32,
+    /// Weight of the reflection, 0 to 1: the Fresnel term F becomes `specular`·F (1 for
+    /// glass; MDL's `reflectivity` and the unified material's `specular`).
+    pub specular: f32,
 }
 
 impl Dielectric {
+    /// Clear glass (untinted, everything refracted passes through) of index `eta`.
+    pub fn glass(eta: f32, ggx: Ggx) -> Dielectric {
+        Dielectric { eta, ggx, reflect_tint: Rgb::ONE, transmit_tint: Rgb::ONE, transmission: 1.0, specular: 1.0 }
+    }
+
+    /// The weighted Fresnel reflectance for `cos` (negative: from inside).
+    fn fresnel(&self, cos: f32) -> f32 {
+        self.specular * fresnel(cos, self.eta)
+    }
+
+    /// The probability of choosing reflection for Fresnel reflectance `f`.
+    fn reflect_probability(&self, f: f32) -> f32 {
+        let total = f + (1.0 - f) * self.transmission;
+        if total > 0.0 {
+            f / total
+        } else {
+            0.0
+        }
+    }
+
+    /// The relative index for the pair: 1 for reflection, η entering, 1/η leaving.
+    fn etap(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if wo.z * wi.z > 0.0 {
+            1.0
+        } else if wo.z > 0.0 {
+            self.eta
+        } else {
+            1.0 / self.eta
+        }
+    }
+
     /// f(ωo, ωi) (zero for smooth interfaces, whose lobes are Dirac deltas).
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         if self.ggx.is_smooth() || self.eta == 1.0 || wo.z == 0.0 || wi.z == 0.0 {
             return Rgb::ZERO;
         }
         let reflect = wo.z * wi.z > 0.0;
-        let etap = if reflect {
-            1.0
-        } else if wo.z > 0.0 {
-            self.eta
-        } else {
-            1.0 / self.eta
-        };
+        let etap = self.etap(wo, wi);
         let Some(h) = half_vector(wo, wi, etap) else { return Rgb::ZERO };
         // Discard back-facing micro-normals.
         if h.dot(wi) * wi.z < 0.0 || h.dot(wo) * wo.z < 0.0 {
             return Rgb::ZERO;
         }
-        let f = fresnel(wo.dot(h), self.eta);
+        let f = self.fresnel(wo.dot(h));
         let d = self.ggx.d(h);
         // Λ depends on z² only: the sides do not matter.
         let g = self.ggx.g2(wo, wi);
@@ -86,12 +119,12 @@ impl Dielectric {
         } else {
             let denom = wi.dot(h) + wo.dot(h) / etap;
             let ft = d * (1.0 - f) * g * (wi.dot(h) * wo.dot(h)).abs() / (wi.z * wo.z * denom * denom).abs();
-            self.transmit_tint * (ft / (etap * etap))
+            self.transmit_tint * (ft * self.transmission / (etap * etap))
         }
     }
 
-    /// Samples ωi: a micro-normal from the visible normals, then reflection with the
-    /// probability of the Fresnel term, refraction otherwise.
+    /// Samples ωi: a micro-normal from the visible normals, then reflection or refraction
+    /// in proportion to F and (1 − F)·`transmission`.
     pub fn sample(&self, wo: Vec3A, u: Vec2, u_choice: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
@@ -99,32 +132,33 @@ impl Dielectric {
         let side = wo.z.signum();
         if self.ggx.is_smooth() || self.eta == 1.0 {
             let n = Vec3A::Z * side;
-            let f = if self.eta == 1.0 { 0.0 } else { fresnel(wo.z, self.eta) };
-            if u_choice < f {
+            let f = if self.eta == 1.0 { 0.0 } else { self.fresnel(wo.z) };
+            let p_reflect = self.reflect_probability(f);
+            if u_choice < p_reflect {
                 let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
-                return Some(BsdfSample { wi, f: self.reflect_tint * (f / wi.z.abs()), pdf: f, delta: true });
+                return Some(BsdfSample { wi, f: self.reflect_tint * (f / wi.z.abs()), pdf: p_reflect, delta: true });
+            }
+            if p_reflect >= 1.0 {
+                return None;
             }
             let etap = if wo.z > 0.0 { self.eta } else { 1.0 / self.eta };
             let wi = refract(wo, n, etap)?;
-            let ft = self.transmit_tint * ((1.0 - f) / (wi.z.abs() * etap * etap));
-            return Some(BsdfSample { wi, f: ft, pdf: 1.0 - f, delta: true });
+            let ft = self.transmit_tint * ((1.0 - f) * self.transmission / (wi.z.abs() * etap * etap));
+            return Some(BsdfSample { wi, f: ft, pdf: 1.0 - p_reflect, delta: true });
         }
         let h = self.ggx.sample_visible(wo * side, u) * side;
         // The Fresnel term takes the cosine on the outside-facing micro-normal.
-        let f = fresnel(wo.dot(h * side), self.eta);
-        let wi = if u_choice < f {
+        let f = self.fresnel(wo.dot(h * side));
+        let reflected = u_choice < self.reflect_probability(f);
+        let wi = if reflected {
             reflect(wo, h)
         } else {
             let etap = if wo.z > 0.0 { self.eta } else { 1.0 / self.eta };
-            match refract(wo, h, etap) {
-                Some(w) => w,
-                None => reflect(wo, h),
-            }
+            refract(wo, h, etap)?
         };
         // A reflection off a steep micro-normal can leave through the surface (and a
         // refraction come back out on wo's side): those paths end here, as `pdf` and
         // `eval` count them under the other lobe's half vector.
-        let reflected = f >= 1.0 || u_choice < f;
         if (wi.z * wo.z > 0.0) != reflected {
             return None;
         }
@@ -138,25 +172,19 @@ impl Dielectric {
             return 0.0;
         }
         let reflect = wo.z * wi.z > 0.0;
-        let etap = if reflect {
-            1.0
-        } else if wo.z > 0.0 {
-            self.eta
-        } else {
-            1.0 / self.eta
-        };
+        let etap = self.etap(wo, wi);
         let Some(h) = half_vector(wo, wi, etap) else { return 0.0 };
         if h.dot(wi) * wi.z < 0.0 || h.dot(wo) * wo.z < 0.0 {
             return 0.0;
         }
         let side = wo.z.signum();
         let dv = self.ggx.d_visible(wo * side, h);
-        let f = fresnel(wo.dot(h), self.eta);
+        let p_reflect = self.reflect_probability(self.fresnel(wo.dot(h)));
         if reflect {
-            dv / (4.0 * wo.dot(h).abs()) * f
+            dv / (4.0 * wo.dot(h).abs()) * p_reflect
         } else {
             let denom = wi.dot(h) + wo.dot(h) / etap;
-            dv * wi.dot(h).abs() / (denom * denom) * (1.0 - f)
+            dv * wi.dot(h).abs() / (denom * denom) * (1.0 - p_reflect)
         }
     }
 }
@@ -191,7 +219,7 @@ mod tests {
 
     #[test]
     fn smooth_glass_splits_by_fresnel_and_refracts_by_snell() {
-        let d = Dielectric { eta: 1.5, ggx: Ggx::isotropic(0.0), reflect_tint: Rgb::ONE, transmit_tint: Rgb::ONE };
+        let d = Dielectric::glass(1.5, Ggx::isotropic(0.0));
         let a = 40f32.to_radians();
         let wo = Vec3A::new(a.sin(), 0.0, a.cos());
         let r = d.sample(wo, Vec2::ZERO, 0.0).unwrap();
@@ -209,12 +237,7 @@ mod tests {
     #[test]
     fn sampling_matches_the_density() {
         for alpha in [0.15, 0.4] {
-            let b = crate::bsdf::Bsdf::Dielectric(Dielectric {
-                eta: 1.5,
-                ggx: Ggx { alpha_x: alpha, alpha_y: alpha * 1.5 },
-                reflect_tint: Rgb::ONE,
-                transmit_tint: Rgb::ONE,
-            });
+            let b = crate::bsdf::Bsdf::Dielectric(Dielectric::glass(1.5, Ggx { alpha_x: alpha, alpha_y: alpha * 1.5 }));
             for wo in [Vec3A::new(0.4, 0.2, 0.89).normalize(), Vec3A::new(-0.7, 0.1, 0.3).normalize()] {
                 crate::bsdf::testing::chi_square(&b, wo);
                 crate::bsdf::testing::chi_square(&b, -wo);
@@ -227,7 +250,7 @@ mod tests {
     /// the generalised reciprocity of refraction, f(a, b)/n(b)² = f(b, a)/n(a)².
     #[test]
     fn energy_and_generalised_reciprocity() {
-        let d = Dielectric { eta: 1.5, ggx: Ggx::isotropic(0.3), reflect_tint: Rgb::ONE, transmit_tint: Rgb::ONE };
+        let d = Dielectric::glass(1.5, Ggx::isotropic(0.3));
         let n = |w: Vec3A| if w.z < 0.0 { 1.5f32 } else { 1.0 };
         for i in 0..12 {
             let t = (i as f32 + 0.5) / 12.0 * 1.5;

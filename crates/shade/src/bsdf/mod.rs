@@ -8,10 +8,12 @@ pub mod dielectric;
 mod lambert;
 pub mod microfacet;
 mod oren_nayar;
+pub mod unified;
 
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use oren_nayar::OrenNayar;
+pub use unified::{Unified, UnifiedParams};
 
 use crate::Rgb;
 use glam::{Vec2, Vec3A};
@@ -51,6 +53,8 @@ pub enum Bsdf {
     Dielectric(Dielectric),
     /// `mia_material`'s layers.
     Mia(crate::mia::bsdf::MiaBsdf),
+    /// The unified (Disney-derived) material.
+    Unified(Unified),
 }
 
 impl Bsdf {
@@ -61,6 +65,7 @@ impl Bsdf {
             Bsdf::OrenNayar(l) => l.eval(wo, wi),
             Bsdf::Dielectric(l) => l.eval(wo, wi),
             Bsdf::Mia(l) => l.eval(wo, wi),
+            Bsdf::Unified(l) => l.eval(wo, wi),
         }
     }
 
@@ -72,6 +77,7 @@ impl Bsdf {
             Bsdf::OrenNayar(l) => l.sample(wo, u),
             Bsdf::Dielectric(l) => l.sample(wo, u, u_lobe),
             Bsdf::Mia(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Unified(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -82,6 +88,7 @@ impl Bsdf {
             Bsdf::OrenNayar(l) => l.pdf(wo, wi),
             Bsdf::Dielectric(l) => l.pdf(wo, wi),
             Bsdf::Mia(l) => l.pdf(wo, wi),
+            Bsdf::Unified(l) => l.pdf(wo, wi),
         }
     }
 
@@ -91,6 +98,7 @@ impl Bsdf {
             Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
             Bsdf::Mia(m) => m.is_delta(),
+            Bsdf::Unified(u) => u.is_delta(),
         }
     }
 }
