@@ -197,7 +197,7 @@ pub fn trace_path(
         let (ng, ns) = if facing { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
         let frame = Frame::from_normal(ns);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = material.bsdf();
+        let bsdf = material.bsdf(wo);
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();

@@ -139,6 +139,60 @@ fn white_furnace_closed_sphere() {
     }
 }
 
+/// `mia_material` in the path engine, inside the furnace: a white Lambert diffuse of 0.6
+/// and a reflection of weight 0.5 at every angle (R0 = R90 = 1) conserve to the weights
+/// 0.3 + 0.5 = 0.8. A mirror reflects exactly its weight, so the radiance is Le/(1 − 0.8);
+/// glossy reflections lose a little to masking and never gain: at most that.
+#[test]
+fn mia_material_in_the_furnace_conserves_energy() {
+    use shade::material::SurfaceModel;
+    use shade::mia::params::Mia;
+    for gloss in [1.0f32, 0.5] {
+        let mia = Mia {
+            diffuse: Rgb::splat(0.6),
+            roughness: 0.0,
+            reflectivity: 0.5,
+            refl_color: Rgb::ONE,
+            refl_gloss: gloss,
+            metal: false,
+            transparency: 0.0,
+            refr_color: Rgb::ONE,
+            ior: 1.4,
+            transl: Rgb::ZERO,
+            anisotropy: 1.0,
+            rotation: 0.0,
+            fresnel: false,
+            curve: (1.0, 1.0, 5.0),
+            conserve: true,
+            hl_balance: 1.0,
+            thin_walled: false,
+        };
+        let le = 0.2;
+        let m = SurfaceMaterial {
+            emission: Rgb::splat(le),
+            model: SurfaceModel::Mia(Box::new((mia, 1.0))),
+            ..SurfaceMaterial::lambert("mia", Rgb::splat(0.6))
+        };
+        let w = world(
+            vec![sphere(1.0, 24, 48)],
+            vec![instance(0, 1)],
+            vec![SurfaceMaterial::grey("default"), m],
+            Vec::new(),
+            camera(Affine3A::IDENTITY, 8, 2.0, false),
+        );
+        let path = PathSettings { max_depth: 200, ..PathSettings::default() };
+        let got = mean(&run(&w, 128, path)).x;
+        let bound = le / (1.0 - 0.8);
+        eprintln!("mia furnace, gloss {gloss}: {got} (bound {bound})");
+        assert!(got <= bound * 1.01, "gloss {gloss}: {got} over {bound}");
+        if gloss >= 1.0 {
+            assert!((got - bound).abs() < 0.01 * bound, "mirror: {got} vs {bound}");
+        } else {
+            assert!(got > 0.9 * bound, "gloss {gloss}: {got} loses too much against {bound}");
+        }
+    }
+}
+
 #[test]
 fn lambertian_plane_under_a_point_light() {
     // Plane z = 0 of albedo ρ, point light of intensity I at height h above (0, 0): the

@@ -6,6 +6,8 @@
 //! - MDL (`::nvidia::core_definitions`): `flex_material` and `flex_material_v2`, `metal`,
 //!   `plastic`, `thin_glass` and `thick_glass` become unified materials; `diffuse` an
 //!   Oren–Nayar surface; `add_emission` its base material plus emission in MDL's units;
+//! - `mia_material` and `mia_material_x`: [`crate::mia::bsdf::MiaBsdf`], whose layer
+//!   weights come from the author's curve and conservation at each viewing angle;
 //! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert).
 //!
 //! Anything else — and parameters connected to shaders, which need the shader graph — is
@@ -15,7 +17,10 @@
 use mi::ast::{Num, Param, ShaderItem, Value};
 use scene::{Library, Material, MaterialKind};
 
+use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{Bsdf, Lambert, OrenNayar, Unified, UnifiedParams};
+use crate::mia::bsdf::{anisotropic_roughness, gloss_to_roughness, MiaBsdf};
+use crate::mia::params::Mia;
 use crate::Rgb;
 
 /// The scattering model of a surface, with constant parameters.
@@ -27,6 +32,8 @@ pub enum SurfaceModel {
     OrenNayar(f32),
     /// The unified material.
     Unified(UnifiedParams),
+    /// `mia_material`: its parameters and `refr_gloss`.
+    Mia(Box<(Mia, f32)>),
 }
 
 /// A surface's scattering and emission.
@@ -54,19 +61,39 @@ impl SurfaceMaterial {
         SurfaceMaterial { name: name.to_string(), diffuse, emission: Rgb::ZERO, model: SurfaceModel::Lambert }
     }
 
-    /// The BSDF at a shading point.
-    pub fn bsdf(&self) -> Bsdf {
+    /// The BSDF at a shading point seen from `wo` (local shading frame: some layer
+    /// weights depend on the viewing angle).
+    pub fn bsdf(&self, wo: glam::Vec3A) -> Bsdf {
         match &self.model {
             SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: self.diffuse }),
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(self.diffuse, *sigma)),
             SurfaceModel::Unified(p) => Bsdf::Unified(Unified::new(p)),
+            SurfaceModel::Mia(m) => {
+                let (mia, refr_gloss) = &**m;
+                let w = mia.weights(wo.z.abs(), true);
+                let (ax, ay) = anisotropic_roughness(gloss_to_roughness(mia.refl_gloss), mia.anisotropy);
+                Bsdf::Mia(MiaBsdf {
+                    diffuse: OrenNayar::new(w.diffuse, mia.roughness),
+                    reflect: w.reflect,
+                    reflect_ggx: Ggx { alpha_x: ax, alpha_y: ay },
+                    transmit: w.refract,
+                    transmit_ggx: Ggx::isotropic(gloss_to_roughness(*refr_gloss)),
+                    eta: mia.ior.max(1e-3),
+                    thin: mia.thin_walled,
+                    transl: w.transl,
+                })
+            }
         }
     }
 
     /// Whether light can enter the surface (then its two sides differ: the path tracer
     /// keeps the geometric orientation instead of facing the normal towards the ray).
     pub fn has_inside(&self) -> bool {
-        matches!(&self.model, SurfaceModel::Unified(p) if p.spec_trans > 0.0 && !p.thin)
+        match &self.model {
+            SurfaceModel::Unified(p) => p.spec_trans > 0.0 && !p.thin,
+            SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
+            _ => false,
+        }
     }
 }
 
@@ -180,6 +207,63 @@ impl Reader<'_> {
 
     fn flag(&mut self, params: &[Param], name: &str, default: bool) -> bool {
         self.scalar(params, name, f32::from(u8::from(default))) != 0.0
+    }
+
+    /// `mia_material`'s constant parameters (declaration defaults where unset) and its
+    /// `refr_gloss`.
+    fn mia(&mut self, decl: &str, params: &[Param]) -> (Mia, f32) {
+        let decls = crate::model::decl::Decls::default();
+        let declared = decls.get(decl);
+        let default = |name: &str| -> Vec<f32> {
+            let value = declared.as_ref().and_then(|d| d.param(name).and_then(|i| d.params[i].default.clone()));
+            match value {
+                Some(Value::Num(n)) => vec![n.as_f64() as f32],
+                Some(Value::Bool(b)) => vec![f32::from(u8::from(b))],
+                Some(Value::Tuple(v)) => v.iter().map(|n| n.as_f64() as f32).collect(),
+                _ => vec![0.0],
+            }
+        };
+        let mut s = |name: &str| {
+            let d = default(name)[0];
+            self.scalar(params, name, d)
+        };
+        let (weight, roughness, reflectivity, gloss) =
+            (s("diffuse_weight"), s("diffuse_roughness"), s("reflectivity"), s("refl_gloss"));
+        let (metal, transparency, refr_gloss, ior) =
+            (s("refl_is_metal"), s("transparency"), s("refr_gloss"), s("refr_ior"));
+        let (translucency, transl_weight, anisotropy) =
+            (s("refr_translucency"), s("refr_trans_weight"), s("anisotropy"));
+        let (fresnel, r0, r90, curve) =
+            (s("brdf_fresnel"), s("brdf_0_degree_refl"), s("brdf_90_degree_refl"), s("brdf_curve"));
+        let (conserve, balance, thin) = (s("brdf_conserve_energy"), s("hl_vs_refl_balance"), s("thin_walled"));
+        let rotation = s("anisotropy_rotation");
+        let mut c = |name: &str| {
+            let d = default(name);
+            let d = Rgb::new(d[0], *d.get(1).unwrap_or(&d[0]), *d.get(2).unwrap_or(&d[0]));
+            self.color(params, name, d)
+        };
+        let (diffuse, refl_color, refr_color, transl_color) =
+            (c("diffuse"), c("refl_color"), c("refr_color"), c("refr_trans_color"));
+        let mia = Mia {
+            diffuse: diffuse * weight,
+            roughness,
+            reflectivity,
+            refl_color,
+            refl_gloss: gloss,
+            metal: metal != 0.0,
+            transparency,
+            refr_color,
+            ior,
+            transl: if translucency != 0.0 { transl_color * transl_weight } else { Rgb::ZERO },
+            anisotropy,
+            rotation,
+            fresnel: fresnel != 0.0,
+            curve: (r0, r90, curve),
+            conserve: conserve != 0.0,
+            hl_balance: balance,
+            thin_walled: thin != 0.0,
+        };
+        (mia, refr_gloss)
     }
 
     /// The surface of shader `decl` with `params`; `depth` counts nested `base` materials.
@@ -312,6 +396,15 @@ impl Reader<'_> {
                 };
                 surface.emission = tint * radiance;
                 surface
+            }
+            (m @ ("mia_material" | "mia_material_x" | "mia_material_x_passes"), _) => {
+                let mia = self.mia(m, params);
+                SurfaceMaterial {
+                    name: name.to_string(),
+                    diffuse: mia.0.diffuse,
+                    emission: Rgb::ZERO,
+                    model: SurfaceModel::Mia(Box::new(mia)),
+                }
             }
             (
                 "mib_illum_lambert"

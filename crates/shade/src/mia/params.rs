@@ -146,7 +146,7 @@ pub const LEGACY_NAMES: &[&str] = NAMES.split_at(P::BumpMode as usize).0;
 
 /// Parameter values at a shading point (the ones every shading needs; the rest are read
 /// where they are used).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Mia {
     /// `diffuse · diffuse_weight`.
     pub diffuse: Vec3A,
