@@ -4,12 +4,14 @@
 //! away from the surface; `eval` returns f(ωo, ωi) without the cosine; `sample` returns a
 //! direction with `f · |cos θi| / pdf` as its weight; `pdf` is per unit solid angle.
 
+pub mod conductor;
 pub mod dielectric;
 mod lambert;
 pub mod microfacet;
 mod oren_nayar;
 pub mod unified;
 
+pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use oren_nayar::OrenNayar;
@@ -51,6 +53,8 @@ pub enum Bsdf {
     OrenNayar(OrenNayar),
     /// A dielectric interface.
     Dielectric(Dielectric),
+    /// A metal: conductor Fresnel on GGX micro-mirrors, or a smooth mirror.
+    Conductor(Conductor),
     /// `mia_material`'s layers.
     Mia(crate::mia::bsdf::MiaBsdf),
     /// The unified (Disney-derived) material.
@@ -64,6 +68,7 @@ impl Bsdf {
             Bsdf::Lambert(l) => l.eval(wo, wi),
             Bsdf::OrenNayar(l) => l.eval(wo, wi),
             Bsdf::Dielectric(l) => l.eval(wo, wi),
+            Bsdf::Conductor(l) => l.eval(wo, wi),
             Bsdf::Mia(l) => l.eval(wo, wi),
             Bsdf::Unified(l) => l.eval(wo, wi),
         }
@@ -76,6 +81,7 @@ impl Bsdf {
             Bsdf::Lambert(l) => l.sample(wo, u),
             Bsdf::OrenNayar(l) => l.sample(wo, u),
             Bsdf::Dielectric(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Conductor(l) => l.sample(wo, u),
             Bsdf::Mia(l) => l.sample(wo, u, u_lobe),
             Bsdf::Unified(l) => l.sample(wo, u, u_lobe),
         }
@@ -87,6 +93,7 @@ impl Bsdf {
             Bsdf::Lambert(l) => l.pdf(wo, wi),
             Bsdf::OrenNayar(l) => l.pdf(wo, wi),
             Bsdf::Dielectric(l) => l.pdf(wo, wi),
+            Bsdf::Conductor(l) => l.pdf(wo, wi),
             Bsdf::Mia(l) => l.pdf(wo, wi),
             Bsdf::Unified(l) => l.pdf(wo, wi),
         }
@@ -97,6 +104,7 @@ impl Bsdf {
         match self {
             Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
+            Bsdf::Conductor(c) => c.ggx.is_smooth(),
             Bsdf::Mia(m) => m.is_delta(),
             Bsdf::Unified(u) => u.is_delta(),
         }
