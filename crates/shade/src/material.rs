@@ -287,6 +287,7 @@ impl Reader<'_> {
                     ));
                 }
                 let transmission = params.iter().any(|p| p.name.text == "transmission_color");
+                let edge = params.iter().any(|p| p.name.text == "edge_tint");
                 unified(UnifiedParams {
                     base_color: self.color(params, "base_color", d.base_color),
                     metallic: self.scalar(params, "metallic", d.metallic),
@@ -302,6 +303,7 @@ impl Reader<'_> {
                     clearcoat_gloss: self.scalar(params, "clearcoat_gloss", d.clearcoat_gloss),
                     thin: self.flag(params, "thin", d.thin),
                     transmission_color: transmission.then(|| self.color(params, "transmission_color", Rgb::ONE)),
+                    edge_tint: edge.then(|| self.color(params, "edge_tint", Rgb::ONE)),
                 })
             }
             (_, Some(m @ ("flex_material" | "flex_material_v2"))) => {

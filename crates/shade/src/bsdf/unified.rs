@@ -2,7 +2,9 @@
 //! with a decoupled metallic lobe and specular transmission.
 //!
 //! Seen from outside (the side the normal points to) the lobes and their weights are
-//! - metal: `metallic` × GGX reflection with Schlick's Fresnel of `base_color`;
+//! - metal: `metallic` × GGX reflection with Schlick's Fresnel of `base_color`, or, when
+//!   `edge_tint` is set, the exact conductor Fresnel of the complex index that Gulbrandsen's
+//!   artist-friendly mapping (2014) gives for reflectivity `base_color` and that edge tint;
 //! - dielectric specular: (1 − `metallic`) × a GGX dielectric of index `ior` with the exact
 //!   Fresnel term F: reflection F (tinted by `specular_tint`), refraction (1 − F)·`spec_trans`
 //!   tinted by `base_color`; the choice between them is sampled in proportion to F and
@@ -66,6 +68,9 @@ pub struct UnifiedParams {
     /// Tint of the transmitted light (MDL materials have their own); `None`: the base
     /// colour, as in the Disney BSDF.
     pub transmission_color: Option<Rgb>,
+    /// The metal's colour at grazing angles (Gulbrandsen's edge tint): with it the metal
+    /// lobe uses a complex index of refraction instead of Schlick's approximation.
+    pub edge_tint: Option<Rgb>,
 }
 
 impl Default for UnifiedParams {
@@ -85,6 +90,7 @@ impl Default for UnifiedParams {
             clearcoat_gloss: 1.0,
             thin: false,
             transmission_color: None,
+            edge_tint: None,
         }
     }
 }
@@ -96,6 +102,24 @@ fn hue(c: Rgb) -> Rgb {
         c / m
     } else {
         Rgb::ONE
+    }
+}
+
+/// The metal lobe's Fresnel term.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum MetalFresnel {
+    /// Schlick's approximation with this reflectance at normal incidence.
+    Schlick(Rgb),
+    /// A conductor of complex index η + ik per channel.
+    Conductor { eta: Rgb, k: Rgb },
+}
+
+impl MetalFresnel {
+    fn at(&self, cos: f32) -> Rgb {
+        match *self {
+            MetalFresnel::Schlick(r0) => schlick(r0, cos),
+            MetalFresnel::Conductor { eta, k } => super::conductor::fresnel_conductor_rgb(cos.abs(), eta, k),
+        }
     }
 }
 
@@ -133,6 +157,8 @@ pub struct Unified {
     dielectric: Dielectric,
     /// F̄ of `ior`.
     fresnel_avg: f32,
+    /// The metal's Fresnel term.
+    metal: MetalFresnel,
 }
 
 /// The largest albedo of the sheen term (1 − cos θd)⁵/π·(1 − F(θi))/(1 − F̄) over ωo, at
@@ -174,12 +200,20 @@ impl Unified {
             transmission: p.spec_trans,
             specular: p.specular,
         };
+        let metal = match p.edge_tint {
+            Some(tint) => {
+                let (eta, k) = super::conductor::artist_to_ior(p.base_color, tint.clamp(Rgb::ZERO, Rgb::ONE));
+                MetalFresnel::Conductor { eta, k }
+            }
+            None => MetalFresnel::Schlick(p.base_color),
+        };
         Unified {
             params: p,
             ggx,
             coat_ggx: Ggx::isotropic(coat_alpha),
             dielectric,
             fresnel_avg: p.specular * fresnel_average(p.ior),
+            metal,
         }
     }
 
@@ -222,7 +256,7 @@ impl Unified {
         let dielectric = (1.0 - p.metallic) * below;
         let weights = [p.metallic * below, dielectric, dielectric * (1.0 - p.spec_trans), self.params.clearcoat];
         let energy = [
-            weights[METAL] * luminance(schlick(p.base_color, wo.z)).max(0.05),
+            weights[METAL] * luminance(self.metal.at(wo.z)).max(0.05),
             weights[SPECULAR] * (f + (1.0 - f) * p.spec_trans),
             weights[DIFFUSE] * (1.0 - f) * (luminance(p.base_color) + p.sheen * 0.1).max(0.05),
             self.coat_fresnel(wo),
@@ -273,7 +307,7 @@ impl Unified {
         if wi.z > 0.0 {
             if w[METAL] > 0.0 && !self.ggx.is_smooth() {
                 let (m, h) = Self::microfacet_reflection(&self.ggx, wo, wi);
-                f += schlick(self.params.base_color, wo.dot(h)) * (m * w[METAL]);
+                f += self.metal.at(wo.dot(h)) * (m * w[METAL]);
             }
             if w[DIFFUSE] > 0.0 {
                 f += self.diffuse(wo, wi) * w[DIFFUSE];
@@ -380,7 +414,7 @@ impl Unified {
                 if ggx.is_smooth() {
                     let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
                     let f = if lobe == METAL {
-                        schlick(self.params.base_color, wo.z) * w[METAL]
+                        self.metal.at(wo.z) * w[METAL]
                     } else {
                         Rgb::splat(fresnel(wo.z, 1.5) * w[COAT])
                     };
@@ -560,6 +594,32 @@ mod tests {
         });
         let s = m.sample(Vec3A::new(0.6, 0.0, 0.8), Vec2::ZERO, 0.5).unwrap();
         assert!(s.delta && (s.weight() - Rgb::ONE).abs().max_element() < 1e-6);
+    }
+
+    /// With an edge tint the metal's Fresnel is a conductor's: at normal incidence it
+    /// reflects `base_color` (Gulbrandsen's mapping is exact there), at grazing the edge
+    /// tint's side of the curve; and it still samples its density and conserves energy.
+    #[test]
+    fn complex_ior_metal() {
+        let gold = Rgb::new(0.97, 0.80, 0.32);
+        let b = unified(|p| {
+            p.base_color = gold;
+            p.metallic = 1.0;
+            p.roughness = 0.0;
+            p.edge_tint = Some(Rgb::new(1.0, 0.95, 0.6));
+        });
+        let s = b.sample(Vec3A::Z, Vec2::ZERO, 0.5).unwrap();
+        assert!(s.delta && (s.weight() - gold).abs().max_element() < 1e-4, "{}", s.weight());
+        let rough = unified(|p| {
+            p.base_color = gold;
+            p.metallic = 1.0;
+            p.roughness = 0.4;
+            p.edge_tint = Some(Rgb::new(1.0, 0.95, 0.6));
+        });
+        chi_square(&rough, Vec3A::new(0.3, 0.2, 0.93).normalize());
+        for wo in directions() {
+            assert!(albedo(&rough, wo, 8_000).max_element() <= 1.01);
+        }
     }
 
     /// Sampling matches the density for each lobe alone and for mixtures, at normal and
