@@ -259,8 +259,8 @@ mod tests {
                 // scattering model loses to masking at rough, grazing angles.
                 let mut energy = 0.0;
                 for k in 0..20_000 {
-                    let u = crate::bsdf::testing::r2(k);
-                    if let Some(s) = d.sample(wo, u, crate::bsdf::testing::r2(k + 7919).x) {
+                    let (u, u_choice) = crate::bsdf::testing::r3(k);
+                    if let Some(s) = d.sample(wo, u, u_choice) {
                         energy += s.weight().x * (n(s.wi) / n(wo)).powi(2);
                     }
                 }

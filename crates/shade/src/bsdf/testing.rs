@@ -14,6 +14,18 @@ pub fn r2(i: u32) -> Vec2 {
     Vec2::new(a as f32, b as f32)
 }
 
+/// A deterministic low-discrepancy 3-D point (the R3 sequence): two numbers for a
+/// direction and one for choosing a lobe, without the correlation that reusing R2 with an
+/// offset index would give (its first coordinate is only shifted).
+pub fn r3(i: u32) -> (Vec2, f32) {
+    const G: f64 = 1.220_744_084_605_759_5;
+    let x = i as f64 + 0.5;
+    let a = (x / G).fract();
+    let b = (x / (G * G)).fract();
+    let c = (x / (G * G * G)).fract();
+    (Vec2::new(a as f32, b as f32), c as f32)
+}
+
 /// Directions on the sphere for testing.
 fn directions() -> Vec<Vec3A> {
     (0..64)
@@ -42,7 +54,8 @@ pub fn reciprocity(bsdf: &Bsdf, tol: f32) {
 pub fn albedo(bsdf: &Bsdf, wo: Vec3A, n: u32) -> Rgb {
     let mut sum = Rgb::ZERO;
     for i in 0..n {
-        if let Some(s) = bsdf.sample(wo, r2(i), r2(i + 7919).x) {
+        let (u, u_lobe) = r3(i);
+        if let Some(s) = bsdf.sample(wo, u, u_lobe) {
             sum += s.weight();
         }
     }

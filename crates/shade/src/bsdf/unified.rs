@@ -477,7 +477,7 @@ impl Unified {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bsdf::testing::{albedo, chi_square, r2};
+    use crate::bsdf::testing::{albedo, chi_square, r3};
     use crate::bsdf::Bsdf;
 
     fn unified(f: impl FnOnce(&mut UnifiedParams)) -> Bsdf {
@@ -579,7 +579,8 @@ mod tests {
             let mut energy = 0.0;
             let n = 4000;
             for i in 0..n {
-                if let Some(s) = b.sample(wo, r2(i), r2(i + 7919).x) {
+                let (u, u_lobe) = r3(i);
+                if let Some(s) = b.sample(wo, u, u_lobe) {
                     let scale = if s.wi.z < 0.0 { 1.5f32 * 1.5 } else { 1.0 };
                     energy += s.weight().x * scale;
                 }
@@ -619,6 +620,59 @@ mod tests {
         chi_square(&rough, Vec3A::new(0.3, 0.2, 0.93).normalize());
         for wo in directions() {
             assert!(albedo(&rough, wo, 8_000).max_element() <= 1.01);
+        }
+    }
+
+    /// The behaviours the notes' sweeps show (`scenes/unified_sweeps.mi`): rough refraction
+    /// darkens as roughness grows (single-scattering microfacets lose energy, visibly so
+    /// through glass), and `spec_trans` blends diffuse into glass linearly — the energy
+    /// scattered at `spec_trans` t is the straight line between t = 0 and t = 1.
+    #[test]
+    fn sweeps_behave_as_the_notes_describe() {
+        let n2_energy = |b: &Bsdf, wo: Vec3A| {
+            let n = 20_000;
+            let mut e = 0.0;
+            for i in 0..n {
+                let (u, u_lobe) = r3(i);
+                if let Some(s) = b.sample(wo, u, u_lobe) {
+                    e += s.weight().x * if s.wi.z < 0.0 { 2.25 } else { 1.0 };
+                }
+            }
+            e / n as f32
+        };
+        let wo = Vec3A::new(0.5, 0.0, 0.866);
+        let energies: Vec<f32> = [0.01, 0.3, 0.5, 0.7, 1.0]
+            .iter()
+            .map(|&r| {
+                n2_energy(
+                    &unified(|p| {
+                        p.roughness = r;
+                        p.spec_trans = 1.0;
+                    }),
+                    wo,
+                )
+            })
+            .collect();
+        for k in 1..energies.len() {
+            assert!(energies[k] < energies[k - 1] - 1e-4, "not darker with roughness: {energies:?}");
+        }
+        assert!(energies[0] > 0.999 && energies[4] < 0.95, "{energies:?}");
+        let at = |t: f32| {
+            albedo(
+                &unified(|p| {
+                    p.roughness = 0.1;
+                    p.spec_trans = t;
+                    p.base_color = Rgb::new(0.9, 0.6, 0.3);
+                }),
+                wo,
+                40_000,
+            )
+        };
+        let (a0, a1) = (at(0.0), at(1.0));
+        for t in [0.3, 0.5, 0.7] {
+            let line = a0 + (a1 - a0) * t;
+            let got = at(t);
+            assert!((got - line).abs().max_element() < 0.01, "spec_trans {t}: {got} vs {line}");
         }
     }
 
