@@ -30,8 +30,9 @@ pub enum SurfaceModel {
     Lambert,
     /// Oren–Nayar reflection of the `diffuse` colour with roughness σ (radians).
     OrenNayar(f32),
-    /// The unified material.
-    Unified(UnifiedParams),
+    /// The unified material (built once: its constants, such as the Fresnel average, are
+    /// not recomputed per hit).
+    Unified(Box<Unified>),
     /// `mia_material`: its parameters and `refr_gloss`.
     Mia(Box<(Mia, f32)>),
 }
@@ -67,7 +68,7 @@ impl SurfaceMaterial {
         match &self.model {
             SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: self.diffuse }),
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(self.diffuse, *sigma)),
-            SurfaceModel::Unified(p) => Bsdf::Unified(Unified::new(p)),
+            SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
@@ -90,7 +91,7 @@ impl SurfaceMaterial {
     /// keeps the geometric orientation instead of facing the normal towards the ray).
     pub fn has_inside(&self) -> bool {
         match &self.model {
-            SurfaceModel::Unified(p) => p.spec_trans > 0.0 && !p.thin,
+            SurfaceModel::Unified(u) => u.params().spec_trans > 0.0 && !u.params().thin,
             SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
             _ => false,
         }
@@ -274,7 +275,7 @@ impl Reader<'_> {
             name: name.to_string(),
             diffuse: p.base_color,
             emission: Rgb::ZERO,
-            model: SurfaceModel::Unified(p),
+            model: SurfaceModel::Unified(Box::new(Unified::new(&p))),
         };
         let mdl = decl.strip_prefix(CORE);
         match (decl, mdl) {
@@ -327,6 +328,12 @@ impl Reader<'_> {
                     ..Default::default()
                 });
                 surface.diffuse = base;
+                // Without reflection, transparency or metal the layers reduce to the
+                // diffuse base (Oren–Nayar, Lambert at roughness 0): cheaper, and exactly so.
+                if reflectivity == 0.0 && metallic == 0.0 && self.scalar(params, "transparency", 0.0) == 0.0 {
+                    let sigma = self.scalar(params, "diffuse_roughness", 0.0);
+                    surface.model = if sigma > 0.0 { SurfaceModel::OrenNayar(sigma) } else { SurfaceModel::Lambert };
+                }
                 surface
             }
             (_, Some("diffuse")) => {

@@ -217,6 +217,11 @@ impl Unified {
         }
     }
 
+    /// The parameters (clamped to their ranges).
+    pub fn params(&self) -> &UnifiedParams {
+        &self.params
+    }
+
     /// The dielectric's weighted Fresnel reflectance at `cos` from outside.
     fn fresnel(&self, cos: f32) -> f32 {
         self.params.specular * fresnel(cos, self.params.ior)
