@@ -220,7 +220,7 @@ impl Reader<'_> {
             match value {
                 Some(Value::Num(n)) => vec![n.as_f64() as f32],
                 Some(Value::Bool(b)) => vec![f32::from(u8::from(b))],
-                Some(Value::Tuple(v)) => v.iter().map(|n| n.as_f64() as f32).collect(),
+                Some(Value::Tuple(v)) if !v.is_empty() => v.iter().map(|n| n.as_f64() as f32).collect(),
                 _ => vec![0.0],
             }
         };

@@ -118,6 +118,24 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
     Vec3A::new(d.x, d.y, z)
 }
 
+/// A cosine-distributed direction on ωo's side of the surface (`None` when ωo lies in it).
+pub fn cosine_on_side(wo: Vec3A, u: Vec2) -> Option<Vec3A> {
+    if wo.z == 0.0 {
+        return None;
+    }
+    let wi = cosine_hemisphere(u);
+    Some(if wo.z < 0.0 { Vec3A::new(wi.x, wi.y, -wi.z) } else { wi })
+}
+
+/// The density of [`cosine_on_side`]: |cos θi|/π on ωo's side, 0 on the other.
+pub fn cosine_pdf_on_side(wo: Vec3A, wi: Vec3A) -> f32 {
+    if wo.z * wi.z > 0.0 {
+        wi.z.abs() * std::f32::consts::FRAC_1_PI
+    } else {
+        0.0
+    }
+}
+
 /// Uniform point on the unit disc (Shirley–Chiu concentric mapping).
 pub fn concentric_disc(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;

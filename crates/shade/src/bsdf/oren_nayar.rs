@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3A};
 
-use super::{cosine_hemisphere, BsdfSample};
+use super::{cosine_on_side, cosine_pdf_on_side, BsdfSample};
 use crate::Rgb;
 
 /// Rough diffuse reflection on the side of ωo.
@@ -46,24 +46,14 @@ impl OrenNayar {
 
     /// Cosine-weighted sampling on ωo's side.
     pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
-        if wo.z == 0.0 {
-            return None;
-        }
-        let mut wi = cosine_hemisphere(u);
-        if wo.z < 0.0 {
-            wi.z = -wi.z;
-        }
+        let wi = cosine_on_side(wo, u)?;
         let pdf = self.pdf(wo, wi);
         (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval(wo, wi), pdf, delta: false })
     }
 
     /// |cos θi| / π on ωo's side.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        if wo.z * wi.z > 0.0 {
-            wi.z.abs() * std::f32::consts::FRAC_1_PI
-        } else {
-            0.0
-        }
+        cosine_pdf_on_side(wo, wi)
     }
 }
 
