@@ -8,6 +8,7 @@
 
 pub mod color;
 pub mod environment;
+pub mod glossy;
 pub mod illum;
 pub mod lens;
 pub mod light;
@@ -39,6 +40,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &raytrace::DIELECTRIC,
     &raytrace::REFRACTION_INDEX,
     &raytrace::TWOSIDED,
+    &glossy::GLOSSY_REFLECTION,
+    &glossy::GLOSSY_REFRACTION,
     &texture::LOOKUP,
     &texture::LOOKUP2,
     &texture::FILTER_LOOKUP,
