@@ -88,6 +88,9 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::exposure::EXPOSURE_PHOTOGRAPHIC,
     &crate::mia::sky::MIA_PHYSICALSKY,
     &crate::mia::sun::MIA_PHYSICALSUN,
+    &crate::mia::roundcorners::MIA_ROUNDCORNERS,
+    &crate::mia::envblur::MIA_ENVBLUR,
+    &crate::mia::bokeh::MIA_LENS_BOKEH,
     &crate::mia::comparison::LOBE_REFLECTION,
 ];
 

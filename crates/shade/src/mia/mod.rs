@@ -1,11 +1,14 @@
 //! The Architectural library: `mia_material` (Arch & Design) and its helpers, and the
 //! physical sun and sky.
 
+pub mod bokeh;
 pub mod bsdf;
 pub mod comparison;
+pub mod envblur;
 pub mod exposure;
 pub mod lobes;
 pub mod params;
+pub mod roundcorners;
 pub mod shader;
 pub mod sky;
 pub mod sun;

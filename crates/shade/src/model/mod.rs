@@ -21,6 +21,7 @@ pub mod ctx;
 pub mod decl;
 pub mod graph;
 pub mod lights;
+pub mod precomputed;
 pub mod shading;
 pub mod state;
 pub mod trace;

@@ -82,6 +82,8 @@ pub struct Shading {
     pub resolution: (u32, u32),
     /// World → camera space.
     pub world_to_camera: glam::Affine3A,
+    /// Data shader nodes compute once per render (pre-blurred environments).
+    pub precomputed: super::precomputed::Precomputed,
 }
 
 /// Gather rays per eye-ray hit for the options' `finalgather accuracy`. mental ray cast
@@ -194,6 +196,7 @@ impl Shading {
             seed: options.seed,
             resolution: scene.camera.resolution,
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
+            precomputed: Default::default(),
         };
         (shading, diags)
     }
