@@ -6,6 +6,7 @@
 //! `shared/spec/shaders.md` (paraphrased from mental images' sources and manual); where a
 //! shader's behaviour is mira's reading of an unclear text, its doc comment says so.
 
+pub mod bsdf_builtin;
 pub mod color;
 pub mod environment;
 pub mod glossy;
@@ -42,6 +43,11 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &raytrace::TWOSIDED,
     &glossy::GLOSSY_REFLECTION,
     &glossy::GLOSSY_REFRACTION,
+    &bsdf_builtin::LAMBERT,
+    &bsdf_builtin::PHONG,
+    &bsdf_builtin::ASHIKHMIN,
+    &bsdf_builtin::MIRROR,
+    &bsdf_builtin::ARCHITECTURAL,
     &texture::LOOKUP,
     &texture::LOOKUP2,
     &texture::FILTER_LOOKUP,

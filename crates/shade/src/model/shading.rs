@@ -33,6 +33,9 @@ pub struct MaterialShaders {
     pub photon: Option<NodeId>,
     /// Displacement shader list.
     pub displace: Option<NodeId>,
+    /// BSDF shader (`bsdf` slot, mental ray 3.7+): a built-in BSDF, which the classic engine
+    /// runs as the material shader when the material has none.
+    pub bsdf: Option<NodeId>,
     /// `opaque`: shadow rays may stop at it.
     pub opaque: bool,
     /// Its surface shader is a mental ray shader (not mira's stand-in for MDL).
@@ -274,8 +277,13 @@ fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library) -> Mater
                     "environment" => out.environment = build(b, list()),
                     "photon" => out.photon = build(b, list()),
                     "displace" => out.displace = build(b, list()),
+                    "bsdf" => out.bsdf = build(b, list()),
                     _ => {}
                 }
+            }
+            if out.surface.is_none() && out.bsdf.is_some() {
+                out.surface = out.bsdf;
+                out.classic = true;
             }
             if out.surface.is_none() {
                 out.surface = stand_in(b, m, lib, def.span);
