@@ -84,15 +84,36 @@ pub struct LightSample {
 }
 
 impl LightSource {
-    /// Translates a scene light (its emission read by `shade`).
+    /// Translates a scene light (its emission read by `shade`); `object` area lights need
+    /// the scene's geometry: [`LightSource::in_scene`].
     pub fn from_scene(light: &Light, lib: &Library) -> Result<LightSource, String> {
-        let emission: Emission = shade::emission::emission(light, lib)?;
         let shape = match (&light.area, light.kind) {
             (Some(a), LightKind::Point | LightKind::Spot) => Shape::from_area(&a.shape).ok_or_else(|| {
-                format!("light '{}': object and user area lights are not supported yet", light.instance)
+                format!(
+                    "light '{}': object area lights need the scene's geometry; user area lights have no shape",
+                    light.instance
+                )
             })?,
             _ => Shape::Point,
         };
+        Self::with_shape(light, lib, shape)
+    }
+
+    /// Translates a light of `scene`, `object` area lights included (their instance's
+    /// triangles, world space). User area lights have no shape the path engine could
+    /// sample (their light shader places the points; the classic engine runs it): an error.
+    pub fn in_scene(light: &Light, scene: &scene::Scene) -> Result<LightSource, String> {
+        let shape = match (&light.area, light.kind) {
+            (Some(a), LightKind::Point | LightKind::Spot) => Shape::of_area(&a.shape, scene)
+                .map_err(|e| format!("light '{}': {e}; the path engine leaves it out", light.instance))?,
+            _ => Shape::Point,
+        };
+        Self::with_shape(light, &scene.library, shape)
+    }
+
+    /// Translates a scene light given its shape, world space.
+    fn with_shape(light: &Light, lib: &Library, shape: Shape) -> Result<LightSource, String> {
+        let emission: Emission = shade::emission::emission(light, lib)?;
         let a = shape.area();
         let is_area = !matches!(shape, Shape::Point);
         let output = match (emission.power, light.kind, is_area) {
@@ -222,8 +243,8 @@ impl LightSource {
     /// Solid-angle density with which [`LightSource::sample`] picks direction `wi` (unit)
     /// from `p` towards the point at distance `t` on the light.
     pub fn pdf(&self, p: Vec3A, wi: Vec3A, t: f32) -> f32 {
-        match (self.output, self.shape) {
-            (Output::Radiance { .. }, Shape::Sphere { radius }) => {
+        match (self.output, &self.shape) {
+            (Output::Radiance { .. }, &Shape::Sphere { radius }) => {
                 let dist2 = (self.position - p).length_squared();
                 let cos_max = (1.0 - radius * radius / dist2).max(0.0).sqrt();
                 1.0 / (2.0 * PI * (1.0 - cos_max))

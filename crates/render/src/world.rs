@@ -147,7 +147,7 @@ impl World {
         }
         let mut lights = Vec::new();
         for l in &scene.lights {
-            match LightSource::from_scene(l, &scene.library) {
+            match LightSource::in_scene(l, scene) {
                 Ok(src) => lights.push(src),
                 Err(w) => warnings.push(w),
             }

@@ -155,11 +155,17 @@ fn physical(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     use crate::light::Shape;
     let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
     let (kind, shape, spread, direction, exponent) =
-        (light.kind, light.shape, light.spread, light.direction, light.exponent);
+        (light.kind, &light.shape, light.spread, light.direction, light.exponent);
     let r = ctx.state.dist;
-    let f = match (kind, shape) {
+    // Flat shapes: the normal at the sampled point (an object light's triangle there).
+    let flat = match shape {
+        Some(Shape::Rect { normal, .. } | Shape::Disc { normal, .. }) => Some(*normal),
+        Some(m @ Shape::Mesh(_)) => Some(m.normal_at(light.origin, ctx.state.org)),
+        _ => None,
+    };
+    let f = match (kind, flat) {
         (LightKind::Directional, _) => 1.0,
-        (_, Some(Shape::Rect { normal, .. } | Shape::Disc { normal, .. })) => {
+        (_, Some(normal)) => {
             let cos = normal.dot(ctx.state.dir);
             if cos <= 0.0 {
                 return false;

@@ -98,6 +98,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::envblur::MIA_ENVBLUR,
     &crate::mia::bokeh::MIA_LENS_BOKEH,
     &crate::mia::comparison::LOBE_REFLECTION,
+    &crate::mia::portal::PORTAL_LIGHT,
+    &crate::mia::light_surface::LIGHT_SURFACE,
 ];
 
 /// RGB of a colour.

@@ -3,14 +3,16 @@
 //! loop (area light samples).
 
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3A};
-use scene::AreaShape;
+use scene::{AreaShape, Scene};
 
+use super::MeshShape;
 use crate::Frame;
 
 /// The geometry of a light, world space.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     /// A point (or the origin of a directional light).
     Point,
@@ -42,6 +44,9 @@ pub enum Shape {
         /// Radius.
         radius: f32,
     },
+    /// Triangles of an object instance (`object` area lights), world space; the light's
+    /// position plays no part.
+    Mesh(Arc<MeshShape>),
 }
 
 impl Shape {
@@ -59,6 +64,19 @@ impl Shape {
         })
     }
 
+    /// The shape of a scene area light, with `object` lights' triangles looked up in
+    /// `scene`. User shapes have no geometry (their light shader picks the points) and
+    /// give an error, as do object lights naming no instance with triangles.
+    pub fn of_area(area: &AreaShape, scene: &Scene) -> Result<Shape, String> {
+        match area {
+            AreaShape::Object { instance } => Ok(Shape::Mesh(Arc::new(
+                MeshShape::of_instance(scene, instance).map_err(|e| format!("object area light: {e}"))?,
+            ))),
+            AreaShape::User => Err("user area lights have no shape: their light shader picks the points".into()),
+            a => Shape::from_area(a).ok_or_else(|| "no area shape".to_string()),
+        }
+    }
+
     /// Surface area (0 for a point).
     pub fn area(&self) -> f32 {
         match *self {
@@ -67,6 +85,7 @@ impl Shape {
             Shape::Disc { radius, .. } => PI * radius * radius,
             Shape::Sphere { radius } => 4.0 * PI * radius * radius,
             Shape::Cylinder { axis, radius } => 2.0 * PI * radius * axis.length(),
+            Shape::Mesh(ref m) => m.area(),
         }
     }
 
@@ -94,6 +113,7 @@ impl Shape {
                 let n = f.tangent * phi.cos() + f.bitangent * phi.sin();
                 (center + axis * (u.x - 0.5) + n * radius, n)
             }
+            Shape::Mesh(ref m) => m.point_on(u),
         }
     }
 
@@ -107,6 +127,7 @@ impl Shape {
                 let r = q - center;
                 (r - a * r.dot(a)).normalize_or_zero()
             }
+            Shape::Mesh(ref m) => m.normal_at(q),
             Shape::Point => Vec3A::ZERO,
         }
     }
@@ -124,6 +145,7 @@ impl Shape {
             (t > tmin && t < tmax).then_some((t, denom))
         };
         match *self {
+            Shape::Mesh(ref m) => m.intersect(origin, dir, tmin, tmax),
             Shape::Rect { u, v, normal } => {
                 let (t, denom) = plane(normal)?;
                 let q = origin + dir * t - center;

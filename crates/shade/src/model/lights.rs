@@ -43,6 +43,9 @@ pub struct ShadingLight {
     pub spread: f32,
     /// The area shape, for area lights.
     pub shape: Option<Shape>,
+    /// A `user` area light: its shader picks each sample's point on the light itself
+    /// (see [`Ctx::sample_light`]).
+    pub user: bool,
     /// Area samples in u and v.
     pub samples: (u32, u32),
     /// From this reflection/refraction level on, use these sample counts instead.
@@ -119,10 +122,11 @@ impl Ctx<'_> {
     pub fn light_loop(&mut self, light: u32) -> LightLoop {
         let l = &self.shading().lights[light as usize];
         let level = self.state.reflection_level + self.state.refraction_level;
-        let grid = match (l.shape, l.low) {
-            (None, _) => (1, 1),
-            (Some(_), Some((from, u, v))) if level >= from => (u.max(1), v.max(1)),
-            (Some(_), _) => (l.samples.0.max(1), l.samples.1.max(1)),
+        let area = l.shape.is_some() || l.user;
+        let grid = match l.low {
+            _ if !area => (1, 1),
+            Some((from, u, v)) if level >= from => (u.max(1), v.max(1)),
+            _ => (l.samples.0.max(1), l.samples.1.max(1)),
         };
         let site = self.next_site();
         LightLoop { light, samples: 0, next: 0, grid, site, both_sides: false }
@@ -131,11 +135,33 @@ impl Ctx<'_> {
     /// The next sample of the light that reaches the point, or `None` when the light's
     /// samples are used up. Samples that do not reach (behind the surface, rejected by the
     /// light shader, fully shadowed) count in `samples` but are not returned.
+    ///
+    /// A `user` area light's shader is called again and again while it returns true, at
+    /// most u·v times (its `samples`): each call sets the sample's point on the light
+    /// (`org`, with `dir` and `dist` to match) itself and finds its number in the light
+    /// loop in `sample_index`; it arrives with `org` at the light's origin. The call
+    /// that returns false ends the loop and is no sample.
     pub fn sample_light(&mut self, lp: &mut LightLoop) -> Option<LightSample> {
         let count = lp.grid.0 * lp.grid.1;
+        let user = self.shading().lights[lp.light as usize].user;
         while lp.next < count {
             let i = lp.next;
             lp.next += 1;
+            if user {
+                match self.user_light_sample(lp, i) {
+                    None => {
+                        lp.next = count;
+                        return None;
+                    }
+                    Some(s) => {
+                        lp.samples += 1;
+                        if s.is_some() {
+                            return s;
+                        }
+                    }
+                }
+                continue;
+            }
             lp.samples += 1;
             if let Some(s) = self.light_sample(lp, i, count) {
                 return Some(s);
@@ -144,11 +170,50 @@ impl Ctx<'_> {
         None
     }
 
+    /// One call of a user area light's shader: `None` when it returned false (the loop
+    /// ends), else the sample if it reaches the point.
+    fn user_light_sample(&mut self, lp: &LightLoop, i: u32) -> Option<Option<LightSample>> {
+        let shading = self.shading();
+        let light = &shading.lights[lp.light as usize];
+        let shader = light.shader?;
+        let p = self.state.point;
+        let d = p - light.origin;
+        let dist = d.length();
+        let mut ls = self.state.child(RayType::Light, light.origin, d.normalize_or(-light.direction));
+        ls.point = p;
+        ls.shadow_point = self.state.shadow_point;
+        ls.dist = dist;
+        ls.normal = self.state.normal;
+        ls.normal_geom = self.state.normal_geom;
+        ls.instance = self.state.instance;
+        ls.light = Some(lp.light);
+        ls.dot_nd = self.state.normal.dot(-ls.dir);
+        ls.sample_index = i;
+        let mut ctx = Ctx::new(shading, self.tracer, ls);
+        let mut result = Value::Color(Color::ZERO);
+        let ok = ctx.run_list(shader, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        if !ok {
+            return None;
+        }
+        // Where the shader put the sample.
+        let to = ctx.state.org - p;
+        let dist = to.length();
+        if !(dist > 0.0 && dist.is_finite()) {
+            return Some(None);
+        }
+        let dir = to / dist;
+        let dot_nl = self.state.normal.dot(dir);
+        let color = result.color();
+        let reaches = (dot_nl > 0.0 || lp.both_sides) && (color.x != 0.0 || color.y != 0.0 || color.z != 0.0);
+        Some(reaches.then_some(LightSample { color, dir, dot_nl, dist }))
+    }
+
     fn light_sample(&mut self, lp: &LightLoop, i: u32, count: u32) -> Option<LightSample> {
         let shading = self.shading();
         let light = &shading.lights[lp.light as usize];
         let p = self.state.point;
-        let (to_light, dist, on_light) = match (light.kind, light.shape) {
+        let (to_light, dist, on_light) = match (light.kind, &light.shape) {
             (LightKind::Directional, _) => (-light.direction, f32::INFINITY, p - light.direction * 1e30),
             (_, None) => {
                 let d = light.origin - p;

@@ -253,6 +253,10 @@ impl Ctx<'_> {
             let ray = self.state.child(RayType::Finalgather, org, dir);
             let max = fg.max_dist.unwrap_or(f32::INFINITY);
             let (c, dist) = self.shade_ray(ray, max);
+            if crate::mia::portal::blocks_gather(self.shading(), org, dir, dist) {
+                // A portal light brings this light in directly.
+                continue;
+            }
             let c = if dist.is_infinite() && fg.max_dist.is_some() {
                 // Past the falloff distance: the environment.
                 self.trace_environment(dir)
