@@ -22,6 +22,8 @@ pub struct ClassicTracer<'a> {
     pub counts: Cell<RayCounts>,
     /// The first surface the eye ray hit.
     pub first: Cell<Option<FirstHit>>,
+    /// World-space motion of that hit over the shutter interval (`state.motion`).
+    pub first_motion: Cell<Vec3A>,
     /// `fb_put` writes of this sample: (buffer, value).
     pub fb: RefCell<Vec<(u32, Color)>>,
 }
@@ -34,6 +36,7 @@ impl<'a> ClassicTracer<'a> {
             accel,
             counts: Cell::new(RayCounts::default()),
             first: Cell::new(None),
+            first_motion: Cell::new(Vec3A::ZERO),
             fb: RefCell::new(Vec::new()),
         }
     }
@@ -157,6 +160,53 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.object_to_world = inst.object_to_world;
     s.world_to_object = inst.world_to_object;
     s.footprint += s.spread * hit.t;
+    s.motion = motion(inst, mesh, [i0, i1, i2], s);
+}
+
+/// World-space motion of the hit point over the shutter interval: where the instance's
+/// `motion transform` carries it by the end of the interval, plus the interpolated vertex
+/// motion vectors (object space, carried to world space by the instance transform).
+fn motion(inst: &crate::world::InstanceData, mesh: &crate::world::MeshData, v: [usize; 3], s: &State) -> Vec3A {
+    let mut m = Vec3A::ZERO;
+    if let Some(to_world) = inst.motion_to_world {
+        m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+    }
+    if let (Some(a), Some(b), Some(c)) = (mesh.motion.get(v[0]), mesh.motion.get(v[1]), mesh.motion.get(v[2])) {
+        if s.hair.is_none() {
+            let [b0, b1, b2] = s.bary;
+            m += inst.object_to_world.transform_vector3a(*a * b0 + *b * b1 + *c * b2);
+        }
+    }
+    m
+}
+
+/// The raster position (pixels, origin at the lower left as mental ray's raster space) of
+/// world point `p`, or `None` behind a perspective camera.
+pub fn raster_position(cam: &crate::camera::CameraModel, p: Vec3A) -> Option<Vec2> {
+    let c = cam.world_to_camera.transform_point3a(p);
+    let (w, h) = (cam.width as f32, cam.height as f32);
+    let sx = cam.aperture / (cam.focal * w);
+    let sy = cam.aperture / (cam.focal * cam.aspect * h);
+    let (x, y) = if cam.orthographic {
+        (c.x, c.y)
+    } else {
+        if c.z >= 0.0 {
+            return None;
+        }
+        (c.x / -c.z, c.y / -c.z)
+    };
+    Some(Vec2::new(x / sx + w * 0.5 - cam.offset.0, y / sy + h * 0.5 - cam.offset.1))
+}
+
+/// The raster-space motion (pixels, y up) of world point `p` moving by `m`.
+pub fn raster_motion(cam: &crate::camera::CameraModel, p: Vec3A, m: Vec3A) -> Vec2 {
+    if m == Vec3A::ZERO {
+        return Vec2::ZERO;
+    }
+    match (raster_position(cam, p), raster_position(cam, p + m)) {
+        (Some(a), Some(b)) => b - a,
+        _ => Vec2::ZERO,
+    }
 }
 
 impl Tracer for ClassicTracer<'_> {
@@ -175,6 +225,7 @@ impl Tracer for ClassicTracer<'_> {
             let first = self.first.get();
             if first.is_none() {
                 self.first.set(Some(FirstHit { point: s.point, normal: s.normal, tag: s.label }));
+                self.first_motion.set(s.motion);
             }
         }
         true
@@ -214,7 +265,10 @@ impl Tracer for ClassicTracer<'_> {
             VertexData::Point => Some(tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i]))),
             VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
             VertexData::Normal => Some(tri.map(|i| (inst.normal_to_world * mesh.normals[i]).normalize_or_zero())),
-            VertexData::Motion => Some([Vec3A::ZERO; 3]),
+            VertexData::Motion if mesh.motion.is_empty() => Some([Vec3A::ZERO; 3]),
+            VertexData::Motion => Some(
+                tri.map(|i| inst.object_to_world.transform_vector3a(mesh.motion.get(i).copied().unwrap_or_default())),
+            ),
             VertexData::Texture(k) => mesh.textures.get(k).map(|t| tri.map(|i| t[i])),
         }
     }
@@ -238,6 +292,8 @@ pub struct ClassicSample {
     pub first: Option<FirstHit>,
     /// User frame buffer writes.
     pub fb: Vec<(u32, Color)>,
+    /// Raster-space motion of the first hit over the shutter interval (pixels, y up).
+    pub motion: Vec2,
     /// Rays cast.
     pub counts: RayCounts,
 }
@@ -273,5 +329,7 @@ pub fn eye_sample(
     state.normal = -ray.dir;
     let mut ctx = Ctx::new(shading, &tracer, state);
     let color = ctx.trace_eye(ray.origin, ray.dir);
-    ClassicSample { color, first: tracer.first.get(), fb: tracer.fb.into_inner(), counts: tracer.counts.get() }
+    let first = tracer.first.get();
+    let motion = first.map_or(Vec2::ZERO, |f| raster_motion(cam, f.point, tracer.first_motion.get()));
+    ClassicSample { color, first, fb: tracer.fb.into_inner(), counts: tracer.counts.get(), motion }
 }

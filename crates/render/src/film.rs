@@ -3,8 +3,8 @@
 //! Colour buffers store the filter-weighted mean of a pixel's samples (straight RGB, alpha =
 //! coverage). A sample whose colour is NaN or infinite is stored as 1.0 in those channels
 //! (mental ray's rule) and counted. `z` (depth along −Z in camera space, 0 where nothing was
-//! hit), `n` (world-space shading normal) and `tag` (the instance's label) come from each
-//! pixel's first sample.
+//! hit), `n` (world-space shading normal), `tag` (the instance's label) and `m` (raster-space
+//! motion, classic engine) come from each pixel's first sample.
 
 use shade::Rgb;
 
@@ -27,6 +27,9 @@ pub struct Pixel {
     pub normal: [f32; 3],
     /// Label of the first sample's hit.
     pub tag: u32,
+    /// Raster-space motion of the first sample's hit over the shutter interval (pixels, x
+    /// right, y up as mental ray's raster space; 0 where nothing moves or was hit).
+    pub motion: [f32; 2],
     /// Whether the pixel has converged.
     pub converged: bool,
     /// Smallest value of each channel (RGBA) over the samples (for the contrast test).
@@ -199,5 +202,11 @@ impl Film {
     /// The label buffer.
     pub fn tags(&self) -> Vec<u32> {
         self.pixels.iter().map(|p| p.tag).collect()
+    }
+
+    /// The motion buffer (`m`): raster-space motion of each pixel's first hit over the
+    /// shutter interval, pixels (x right, y up).
+    pub fn motion(&self) -> Vec<[f32; 2]> {
+        self.pixels.iter().map(|p| p.motion).collect()
     }
 }

@@ -291,6 +291,7 @@ pub fn render(
                         let (offset, weight) = filter.sample(u);
                         (Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y), weight)
                     };
+                    let mut motion = [0.0; 2];
                     let (color, alpha, first) = match classic {
                         Some(shading) => {
                             let s = crate::classic::eye_sample(world, accel, shading, raster, [x, y], index);
@@ -301,6 +302,7 @@ pub fn render(
                             if let Some(splat) = splat.as_deref_mut() {
                                 splat.add(&filter, raster, s.color.to_array());
                             }
+                            motion = s.motion.to_array();
                             (shade::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
                         }
                         None => {
@@ -314,6 +316,7 @@ pub fn render(
                             px.depth = cam.depth(f.point);
                             px.normal = f.normal.to_array();
                             px.tag = f.tag;
+                            px.motion = motion;
                         }
                     }
                     bad += u64::from(px.add(color, alpha, weight, index));

@@ -26,6 +26,8 @@ pub struct MeshData {
     pub slots: Vec<u32>,
     /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
     pub hair: Option<crate::hair::HairData>,
+    /// Vertex motion vectors, object space per shutter interval (empty: none).
+    pub motion: Vec<Vec3A>,
 }
 
 /// An instance of a mesh.
@@ -47,6 +49,9 @@ pub struct InstanceData {
     pub tag: u32,
     /// Index of the instance in the scene's instance list.
     pub scene_index: u32,
+    /// Object → world at the end of the shutter interval, when the instance moves
+    /// (`motion transform`).
+    pub motion_to_world: Option<Affine3A>,
 }
 
 /// Everything an integrator needs.
@@ -96,6 +101,7 @@ impl World {
                     triangles: m.triangles.clone(),
                     slots: m.triangle_slots.clone(),
                     hair: None,
+                    motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
                 }
             })
             .collect();
@@ -128,6 +134,7 @@ impl World {
                     flags: i.flags,
                     tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
                     scene_index: scene_index as u32,
+                    motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
                 }
             })
             .collect();
@@ -143,6 +150,7 @@ impl World {
                 flags: i.flags,
                 tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
                 scene_index: scene_index as u32,
+                motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
             });
         }
         let mut lights = Vec::new();

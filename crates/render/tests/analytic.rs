@@ -59,6 +59,7 @@ fn instance(mesh: u32, material: u32) -> InstanceData {
         flags: scene::Flags::default(),
         tag: 0,
         scene_index: 0,
+        motion_to_world: None,
     }
 }
 
