@@ -134,13 +134,14 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             [(a as f64 * sx) as i64, (b as f64 * sy) as i64, (c as f64 * sx) as i64, (d as f64 * sy) as i64]
         });
     }
-    let world = render::World::from_scene(&sc);
     let classic = match args.engine {
         EngineArg::Classic => true,
         EngineArg::Path => false,
         EngineArg::Auto => shade::model::Shading::wants_classic(&sc),
     };
-    let shading = classic.then(|| {
+    // Both engines use the compiled shading: the classic one runs the material shaders,
+    // the path engine the shaders connected to material parameters (textures, bumps).
+    let shading = {
         let mut dirs: Vec<PathBuf> = args.scene.parent().map(Path::to_path_buf).into_iter().collect();
         dirs.extend(options.include_paths.iter().cloned());
         let shading_options = shade::model::ShadingOptions {
@@ -156,7 +157,8 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             }
         }
         shading
-    });
+    };
+    let world = render::World::from_scene_shaded(&sc, Some(&shading));
     if args.warnings && !classic {
         for w in &world.warnings {
             eprintln!("mira: warning: {w}");
@@ -220,7 +222,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
     };
     let (film, stats) =
-        pool.install(|| render::render(&world, accel.as_ref(), shading.as_ref(), &settings, &cancel, &on_progress));
+        pool.install(|| render::render(&world, accel.as_ref(), Some(&shading), &settings, &cancel, &on_progress));
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }

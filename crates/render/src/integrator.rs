@@ -2,6 +2,8 @@
 //! (power heuristic), Russian roulette after a few bounces.
 
 use glam::Vec3A;
+use shade::material::HitMaterial;
+use shade::model::{Ctx, RayType, Shading, State};
 use shade::{Frame, Rgb};
 
 use crate::accel::{Accel, Hit};
@@ -141,10 +143,74 @@ fn hit_light(lights: &[LightSource], ray: &Ray) -> Option<(usize, f32, Rgb)> {
     best
 }
 
-/// Traces one camera path.
+/// Most cutout surfaces a ray passes through before it stops at the next one.
+const MAX_CUTOUT_CROSSINGS: u32 = 64;
+
+/// The material at a hit: its constant parameters, or — for materials with connected
+/// parameters, when the scene's shader graph is given — the connected shaders run at the
+/// point.
+fn material_at<'w>(
+    world: &'w World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    ray: &Ray,
+    hit: &Hit,
+    material: u32,
+) -> HitMaterial<'w> {
+    let m = &world.materials[material as usize];
+    match shading {
+        Some(shading) if m.is_varying() => {
+            let tracer = crate::classic::ClassicTracer::new(world, accel);
+            let mut state = State {
+                ray_type: RayType::Eye,
+                org: ray.origin,
+                dir: ray.dir,
+                ior_in: 1.0,
+                ior: 1.0,
+                child_dist: f32::INFINITY,
+                ..State::default()
+            };
+            crate::classic::fill_state(world, hit, &mut state);
+            let mut ctx = Ctx::new(shading, &tracer, state);
+            m.at(&mut ctx)
+        }
+        _ => m.constant(),
+    }
+}
+
+/// A number in [0, 1) for a cutout decision at `p`, decorrelated from the path's sampler.
+fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
+    let bits = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), sampler_seed, depth];
+    (shade::model::ctx::hash(&bits) >> 8) as f32 / (1u32 << 24) as f32
+}
+
+/// Whether the shadow ray is blocked: by any surface, or with cutout materials by a
+/// surface that does not let it pass (a stochastic choice by its opacity).
+fn shadow_blocked(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> bool {
+    if !world.has_cutouts {
+        return accel.occluded(shadow);
+    }
+    let mut ray = *shadow;
+    for crossing in 0..MAX_CUTOUT_CROSSINGS {
+        let Some(hit) = accel.intersect(&ray) else { return false };
+        let s = surface(world, &ray, &hit);
+        let m = material_at(world, accel, shading, &ray, &hit, s.material);
+        if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
+            return true;
+        }
+        let travelled = hit.t;
+        ray.origin = offset_origin(s.p, s.ng, ray.dir);
+        ray.tmax = (ray.tmax - travelled).max(0.0);
+    }
+    true
+}
+
+/// Traces one camera path; `shading` (the scene's compiled shader graph) evaluates
+/// materials with connected parameters.
 pub fn trace_path(
     world: &World,
     accel: &dyn Accel,
+    shading: Option<&Shading>,
     camera_ray: Ray,
     sampler: &mut Sampler,
     settings: &PathSettings,
@@ -160,9 +226,26 @@ pub fn trace_path(
     let mut last_delta = true;
     let light_count = world.lights.len();
     let pick = if light_count > 0 { 1.0 / light_count as f32 } else { 0.0 };
+    let seed = sampler.stream();
     for depth in 0..settings.max_depth {
         counts.rays += 1;
-        let hit = accel.intersect(&ray);
+        // The nearest surface that stops the ray: cutouts let it through by their opacity.
+        let mut found: Option<(Hit, Surface, HitMaterial)> = None;
+        let mut through = ray;
+        for crossing in 0..MAX_CUTOUT_CROSSINGS {
+            let Some(h) = accel.intersect(&through) else { break };
+            let s = surface(world, &through, &h);
+            let m = material_at(world, accel, shading, &through, &h, s.material);
+            if m.opacity >= 1.0 || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity {
+                // Distances along the original ray.
+                let t = (s.p - ray.origin).dot(ray.dir);
+                found = Some((Hit { t, ..h }, s, m));
+                break;
+            }
+            counts.rays += 1;
+            through.origin = offset_origin(s.p, s.ng, ray.dir);
+        }
+        let hit = found.as_ref().map(|(h, _, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
         if let Some((li, t, le)) = hit_light(&world.lights, &Ray { tmax, ..ray }) {
             if depth == 0 {
@@ -181,23 +264,25 @@ pub fn trace_path(
             radiance += throughput * le * weight;
             break;
         }
-        let Some(hit) = hit else { break };
-        let s = surface(world, &ray, &hit);
+        let Some((_, s, material)) = found else { break };
         if depth == 0 {
             alpha = 1.0;
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag });
         }
-        let material = &world.materials[s.material as usize];
         if material.emission != Rgb::ZERO {
             radiance += throughput * material.emission;
         }
         // Two-sided shading: face the normals towards the ray, unless light can enter the
         // surface — then the front is outside, and a ray from behind sees the inside.
-        let facing = material.has_inside() || s.ng.dot(ray.dir) <= 0.0;
-        let (ng, ns) = if facing { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
+        let facing = material.model.has_inside() || s.ng.dot(ray.dir) <= 0.0;
+        let (ng, mut ns) = if facing { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
+        if let Some(bent) = material.normal {
+            // A bump or normal map (given facing the ray): on the side of `ns`.
+            ns = if bent.dot(ns) < 0.0 { -bent } else { bent };
+        }
         let frame = Frame::from_normal(ns);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = material.bsdf(wo);
+        let bsdf = material.model.bsdf(material.diffuse, wo);
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
@@ -214,7 +299,7 @@ pub fn trace_path(
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax };
-                    if !light.shadow || !accel.occluded(&shadow) {
+                    if !light.shadow || !shadow_blocked(world, accel, shading, &shadow, seed) {
                         let weight = if ls.delta || !settings.mis {
                             1.0
                         } else {

@@ -307,7 +307,7 @@ pub fn render(
                         }
                         None => {
                             let ray = cam.ray(raster.x, raster.y);
-                            let r = trace_path(world, accel, ray, &mut sampler, &settings.path, &mut counts);
+                            let r = trace_path(world, accel, shading, ray, &mut sampler, &settings.path, &mut counts);
                             (r.radiance, r.alpha, r.first)
                         }
                     };

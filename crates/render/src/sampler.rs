@@ -48,6 +48,12 @@ impl Sampler {
         }
     }
 
+    /// A number identifying this pixel sample (its seed and index hashed), for random
+    /// decisions outside the low-discrepancy dimensions.
+    pub fn stream(&self) -> u32 {
+        pixel_seed(self.index, 0x5eed, self.seed)
+    }
+
     /// The next two numbers.
     #[inline]
     pub fn next_2d(&mut self) -> glam::Vec2 {

@@ -3,6 +3,7 @@
 
 use glam::{Affine3A, Mat3A, Vec3A};
 use scene::Scene;
+use shade::model::Shading;
 use shade::SurfaceMaterial;
 
 use crate::camera::CameraModel;
@@ -72,6 +73,9 @@ pub struct World {
     pub user_buffers: Vec<(String, String)>,
     /// Things approximated or left out while translating, for the user.
     pub warnings: Vec<String>,
+    /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
+    /// look at what they cross.
+    pub has_cutouts: bool,
 }
 
 fn affine(m: glam::DMat4) -> Affine3A {
@@ -79,15 +83,24 @@ fn affine(m: glam::DMat4) -> Affine3A {
 }
 
 impl World {
-    /// Translates a built scene.
+    /// Translates a built scene; material parameters connected to shaders take their
+    /// defaults (see [`World::from_scene_shaded`]).
     pub fn from_scene(scene: &Scene) -> World {
+        World::from_scene_shaded(scene, None)
+    }
+
+    /// Translates a built scene whose compiled shading is `shading`: materials with
+    /// connected parameters are evaluated through it at each hit (pass the same shading
+    /// to the render).
+    pub fn from_scene_shaded(scene: &Scene, shading: Option<&Shading>) -> World {
         let mut warnings = Vec::new();
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
-        for m in &scene.materials {
-            let (mat, w) = shade::material::translate(m, &scene.library);
+        for (i, m) in scene.materials.iter().enumerate() {
+            let (mat, w) = shade::material::translate(m, &scene.library, shading.map(|s| (s, i)));
             warnings.extend(w);
             materials.push(mat);
         }
+        let has_cutouts = materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)));
         let meshes: Vec<MeshData> = scene
             .objects
             .iter()
@@ -180,6 +193,7 @@ impl World {
             options: scene.options.clone(),
             user_buffers,
             warnings,
+            has_cutouts,
         }
     }
 

@@ -92,6 +92,7 @@ fn world(
     camera: CameraModel,
 ) -> World {
     World {
+        has_cutouts: false,
         meshes,
         instances,
         materials,

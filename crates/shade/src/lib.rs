@@ -11,6 +11,7 @@ pub mod emission;
 pub mod frame;
 pub mod light;
 pub mod material;
+pub mod mdl;
 pub mod mia;
 pub mod model;
 pub mod texture;

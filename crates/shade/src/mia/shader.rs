@@ -188,7 +188,7 @@ fn mia(ctx: &mut Ctx, n: NodeId, out: &mut Value, extended: bool) -> bool {
 
 /// Runs the bump shader (and, for `mia_material_x`, the bump vectors) on the state's
 /// normal.
-fn bump(ctx: &mut Ctx, n: NodeId, extended: bool) {
+pub fn bump(ctx: &mut Ctx, n: NodeId, extended: bool) {
     if let Some(Tag::Shader(b)) = ctx.tag(n, P::Bump as usize) {
         let mut tmp = Value::Null;
         ctx.call(b, &mut tmp);

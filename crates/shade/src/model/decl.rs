@@ -86,7 +86,11 @@ fn builtin() -> &'static HashMap<String, Arc<Decl>> {
     static BUILTIN: OnceLock<HashMap<String, Arc<Decl>>> = OnceLock::new();
     BUILTIN.get_or_init(|| {
         let mut map = HashMap::new();
-        for (name, text) in mi::stdlib::FILES.iter().copied().chain([("internal.mi", INTERNAL)]) {
+        for (name, text) in mi::stdlib::FILES
+            .iter()
+            .copied()
+            .chain([("internal.mi", INTERNAL), ("mdl_base.mi", crate::mdl::DECLARATIONS)])
+        {
             let parsed = mi::parse_str(name, text);
             for item in &parsed.items {
                 if let ast::Item::Declare(d) = item {
@@ -112,9 +116,15 @@ impl Decls {
         }
     }
 
-    /// The declaration of `name`: the scene's, else mira's built-in one.
+    /// The declaration of `name`: the scene's, else mira's built-in one. A name with an
+    /// MDL signature (`mdl::base::f(float,color)`) finds the declaration of `mdl::base::f`.
     pub fn get(&self, name: &str) -> Option<Arc<Decl>> {
-        self.map.get(name).or_else(|| builtin().get(name)).cloned()
+        let found = self.map.get(name).or_else(|| builtin().get(name));
+        match found {
+            Some(d) => Some(d.clone()),
+            None if name.contains('(') => self.get(crate::material::declaration_name(name)),
+            None => None,
+        }
     }
 
     /// Whether the scene itself declares `name`.

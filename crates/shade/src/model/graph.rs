@@ -72,6 +72,8 @@ pub struct Names {
     pub materials: HashMap<String, u32>,
     /// Data element names.
     pub data: HashMap<String, u32>,
+    /// Light profile names (in the library's order: `Shading::lightprofiles`).
+    pub lightprofiles: HashMap<String, u32>,
 }
 
 /// The compiled shader network of a scene.
@@ -269,7 +271,11 @@ impl<'a> Builder<'a> {
             format!("{decl_name}#{}", self.counter)
         });
         let Some(decl) = self.decls.get(decl_name) else {
-            if !decl_name.starts_with("mdl::") {
+            if decl_name.starts_with("mdl::") {
+                // An MDL material: translated to a BSDF elsewhere, but the functions its
+                // parameters connect to are nodes, evaluated per hit.
+                self.connect_all(params);
+            } else {
                 self.diags
                     .push(Diagnostic::warning(span, format!("shader '{decl_name}' is not declared; it is ignored")));
             }
@@ -363,6 +369,23 @@ impl<'a> Builder<'a> {
     }
 
     /// A connection `= "s"` or `= "s.member"`.
+    /// Builds the shaders that `params` connect to (also inside arrays and structs).
+    fn connect_all(&mut self, params: &[ast::Param]) {
+        fn walk(b: &mut Builder, v: &ast::Value) {
+            match v {
+                ast::Value::Connect(name) => {
+                    b.connect(name);
+                }
+                ast::Value::Array(items) => items.iter().for_each(|i| walk(b, i)),
+                ast::Value::Struct(members) => members.iter().for_each(|m| walk(b, &m.value)),
+                _ => {}
+            }
+        }
+        for p in params {
+            walk(self, &p.value);
+        }
+    }
+
     fn connect(&mut self, name: &ast::Name) -> Slot {
         if let Some(n) = self.named(&name.text, name.span) {
             return Slot::Connect { node: n, member: None };
@@ -464,9 +487,14 @@ impl<'a> Builder<'a> {
                 Some(&i) => Value::Tag(Tag::Data(i)),
                 None => Value::Str(Arc::from(s.text.as_str())),
             },
-            (ParamType::Geometry | ParamType::Lightprofile | ParamType::Spectrum, V::Str(s)) => {
-                Value::Str(Arc::from(s.text.as_str()))
-            }
+            (ParamType::Lightprofile, V::Str(s)) => match self.graph.names.lightprofiles.get(&s.text) {
+                Some(&i) => Value::Tag(Tag::Lightprofile(i)),
+                None => {
+                    self.diags.push(Diagnostic::warning(s.span, format!("unknown lightprofile '{}'", s.text)));
+                    Value::Null
+                }
+            },
+            (ParamType::Geometry | ParamType::Spectrum, V::Str(s)) => Value::Str(Arc::from(s.text.as_str())),
             (ParamType::Struct(fields), V::Struct(given)) => {
                 let mut members: Vec<(Arc<str>, Slot)> =
                     fields.iter().map(|f| (Arc::from(f.name.text.as_str()), Slot::Value(zero(&f.ty)))).collect();

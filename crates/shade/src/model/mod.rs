@@ -56,7 +56,8 @@ pub type Implementation = &'static ShaderImpl;
 
 /// The implementation of the declared shader `name`, if mira has one.
 pub fn implementation(name: &str) -> Option<Implementation> {
-    crate::base::REGISTRY.iter().copied().find(|s| s.name == name)
+    let name = crate::material::declaration_name(name);
+    crate::base::REGISTRY.iter().chain(crate::mdl::REGISTRY).copied().find(|s| s.name == name)
 }
 
 /// A phenomenon instance: runs the shader list at its `root` (its only parameter).

@@ -291,6 +291,9 @@ fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library) -> Mater
             }
         }
         MaterialKind::Shader(def) => {
+            // An MDL material is no node itself; this builds the functions its parameters
+            // connect to, which the path engine evaluates per hit.
+            b.named(&def.name.text, def.name.span);
             out.surface = stand_in(b, m, lib, def.name.span);
         }
     }
@@ -300,7 +303,7 @@ fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library) -> Mater
 /// mira's Lambertian stand-in for a material without mental ray shaders, with the diffuse
 /// colour and emission the path engine's translation finds.
 fn stand_in(b: &mut Builder, m: &scene::Material, lib: &scene::Library, span: Span) -> Option<NodeId> {
-    let (surface, _) = crate::material::translate(m, lib);
+    let (surface, _) = crate::material::translate(m, lib, None);
     let c = |c: crate::Rgb| Value::Color(Color::new(c.x, c.y, c.z, 1.0));
     b.internal("mira_diffuse", &[("diffuse", c(surface.diffuse)), ("emission", c(surface.emission))], span)
 }

@@ -1,0 +1,141 @@
+//! Material parameters connected to shaders in the path engine: MDL `::base` file
+//! textures and normal maps on MDL materials, mental ray texture shaders and cutouts on
+//! `mia_material`. Each scene is a square seen head-on, lit head-on by a directional light
+//! of irradiance π, so that a Lambertian pixel's value is its albedo (times the cosine to
+//! a bent normal); the expected values follow from the texels.
+
+use std::sync::atomic::AtomicBool;
+
+use render::{EngineKind, Settings};
+use shade::model::{Shading, ShadingOptions};
+
+/// Renders `body` (materials, shaders and the square's instance `material`) with the path
+/// engine at 8×8: the pixels (RGBA, rows from the top) and the diagnostics.
+fn render(body: &str, material: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
+    let text = format!(
+        r#"
+options "opt" filter box 1 1 end options
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+{body}
+object "square" group
+    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
+    0 0 0  1 0 0  1 1 0  0 1 0
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
+    p 0 1 2 3
+end group end object
+instance "square_inst" "square" material "{material}" end instance
+instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    );
+    let parsed = mi::parse_str("t.mi", &text);
+    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    diags.extend(shade_diags);
+    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let world = render::World::from_scene_shaded(&scene, Some(&shading));
+    messages.extend(world.warnings.iter().cloned());
+    let accel = render::accel::build(&world, render::Backend::default_available());
+    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
+    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
+    (film.rgba(), messages)
+}
+
+/// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,
+/// top right white (rows listed from the bottom).
+const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
+    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
+    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'"#;
+
+/// Pixels whose footprints lie inside one texel block (away from block edges, where
+/// bilinear filtering blends): (x, y from the top, expected RGB).
+const INSIDE: [(usize, usize, [f32; 3]); 4] =
+    [(1, 6, [1.0, 0.0, 0.0]), (6, 6, [0.0, 1.0, 0.0]), (1, 1, [0.0, 0.0, 1.0]), (6, 1, [1.0, 1.0, 1.0])];
+
+fn assert_rgb(got: [f32; 4], want: [f32; 3], tol: f32, what: &str) {
+    for k in 0..3 {
+        assert!((got[k] - want[k]).abs() <= tol, "{what}: got {got:?}, want {want:?} (±{tol})");
+    }
+}
+
+#[test]
+fn mdl_file_texture_drives_the_base_colour() {
+    let body = format!(
+        r#"{QUADRANTS}
+shader "uvw" "mdl::base::coordinate_source(::base::texture_coordinate_system,int)" ("texture_space" 0)
+shader "tex" "mdl::base::file_texture" ("texture" "quadrants", "uvw" = "uvw")
+shader "mat" "mdl::nvidia::core_definitions::flex_material" ("base_color" = "tex.tint", "reflectivity" 0)"#
+    );
+    let (px, messages) = render(&body, "mat", 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    for (x, y, want) in INSIDE {
+        assert_rgb(px[y * 8 + x], want, 1e-3, &format!("pixel ({x}, {y})"));
+    }
+}
+
+#[test]
+fn mdl_coordinate_transform_moves_the_texture() {
+    // Translating the coordinates by (½, ½) (the texture repeats) shows each pixel the
+    // diagonally opposite block.
+    let body = format!(
+        r#"{QUADRANTS}
+shader "move" "mdl::base::rotation_translation_scale" ("translation" 0.5 0.5 0)
+shader "uvw" "mdl::base::transform_coordinate" ("transform" = "move")
+shader "tex" "mdl::base::file_texture" ("texture" "quadrants", "uvw" = "uvw")
+shader "mat" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" = "tex")"#
+    );
+    let (px, messages) = render(&body, "mat", 4);
+    assert!(messages.is_empty(), "{messages:#?}");
+    for (x, y, _) in INSIDE {
+        let opposite = INSIDE.iter().find(|(ox, oy, _)| *ox == 7 - x && *oy == 7 - y).unwrap().2;
+        assert_rgb(px[y * 8 + x], opposite, 1e-3, &format!("pixel ({x}, {y})"));
+    }
+}
+
+#[test]
+fn mdl_tangent_space_normal_map_bends_the_shading_normal() {
+    // One texel (0.854, 0.5, 0.854): tangent-space normal (0.707, 0, 0.707) after 2t − 1,
+    // a 45° lean along u. Lit head-on, a white Lambertian surface gives cos 45°.
+    let body = r#"color texture "lean" [ 1 1 ] 'da80da'
+shader "n" "mdl::base::tangent_space_normal_texture" ("texture" "lean")
+shader "mat" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 1 1 1, "normal" = "n")"#;
+    let (px, messages) = render(body, "mat", 4);
+    assert!(messages.is_empty(), "{messages:#?}");
+    // 0xda = 218 → 2·218/255 − 1 = 0.7098; 0x80 → 0.0039: the normal (0.7098, 0.0039, 0.7098)
+    // normalised gives cos = 0.70709.
+    let t = |b: f32| 2.0 * b / 255.0 - 1.0;
+    let n = glam::Vec3::new(t(218.0), t(128.0), t(218.0)).normalize();
+    for (i, p) in px.iter().enumerate() {
+        assert_rgb(*p, [n.z; 3], 2e-3, &format!("pixel {i}"));
+    }
+}
+
+#[test]
+fn mia_material_reads_connected_textures_and_cuts_out() {
+    // diffuse from a texture lookup; the left half cut out by a texture of opacity.
+    let body = format!(
+        r#"{QUADRANTS}
+color texture "half" [ 4 1 ] '000000' '000000' 'ffffff' 'ffffff'
+shader "coord" "mib_texture_vector" ("select" 0)
+shader "diffuse_tex" "mib_texture_lookup" ("tex" "quadrants", "coord" = "coord")
+shader "cut_tex" "mib_texture_lookup" ("tex" "half", "coord" = "coord")
+material "m" "mia_material" ("diffuse" = "diffuse_tex", "reflectivity" 0, "diffuse_roughness" 0,
+    "cutout_opacity" = "cut_tex") end material"#
+    );
+    let (px, messages) = render(&body, "m", 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    for (x, y, want) in INSIDE {
+        let p = px[y * 8 + x];
+        if x < 4 {
+            assert_eq!(p, [0.0; 4], "pixel ({x}, {y}) is cut out");
+        } else {
+            assert_rgb(p, want, 1e-3, &format!("pixel ({x}, {y})"));
+            assert_eq!(p[3], 1.0);
+        }
+    }
+}
