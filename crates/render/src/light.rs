@@ -5,20 +5,39 @@
 //! with 1/r². mental ray's base light shaders are not physical: a lit point receives the
 //! shader's colour, with no distance falloff unless `atten` asks for a linear one, and area
 //! lights average that colour over points of their surface; they are sampled like point
-//! lights at those points.
+//! lights at those points. Photometric lights (MDL `light_ies`, `mib_light_photometric`,
+//! `mia_photometric_light`) are point lights whose intensity follows a [`Distribution`]
+//! (an IES profile or a cosine power) over directions in the light's local frame.
 
 use std::f32::consts::PI;
+use std::sync::Arc;
 
-use glam::{Vec2, Vec3A};
+use glam::{Mat3A, Vec2, Vec3A};
 use scene::{Library, Light, LightKind};
-use shade::emission::{Emission, Power};
+use shade::emission::{Distribution, Emission, Power};
 pub use shade::light::Shape;
 use shade::{Frame, Rgb};
 
 use crate::ray::Ray;
 
+/// A distribution over directions and the frame it is given in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalDistribution {
+    /// The distribution (light-local directions).
+    pub distribution: Distribution,
+    /// World → light-local rotation of directions.
+    pub to_local: Mat3A,
+}
+
+impl LocalDistribution {
+    /// The factor towards world direction `out` (from the light).
+    pub fn factor(&self, out: Vec3A) -> f32 {
+        self.distribution.factor(self.to_local * out)
+    }
+}
+
 /// What a light gives a lit point, resolved for its shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Output {
     /// Surface radiance (area lights); `two_sided` surfaces emit on both sides.
     Radiance {
@@ -37,6 +56,19 @@ pub enum Output {
         color: Rgb,
         /// Linear falloff `(start, stop)`.
         falloff: Option<(f32, f32)>,
+    },
+    /// Photometric lights: `color` × the distribution towards the point × d^−exponent
+    /// (only between `range`'s start and stop when given; none for exponent 0). With
+    /// exponent 2 and no range, `color` × distribution is a radiant intensity.
+    Photometric {
+        /// Colour (intensity) along the distribution's unit direction.
+        color: Rgb,
+        /// Distance falloff exponent.
+        exponent: f32,
+        /// Where the falloff applies.
+        range: Option<(f32, f32)>,
+        /// How it varies with direction (`None`: uniform).
+        distribution: Option<Arc<LocalDistribution>>,
     },
 }
 
@@ -96,32 +128,53 @@ impl LightSource {
             })?,
             _ => Shape::Point,
         };
-        Self::with_shape(light, lib, shape)
+        Self::with_shape(light, lib, shape, &|_| None)
     }
 
     /// Translates a light of `scene`, `object` area lights included (their instance's
     /// triangles, world space). User area lights have no shape the path engine could
     /// sample (their light shader places the points; the classic engine runs it): an error.
     pub fn in_scene(light: &Light, scene: &scene::Scene) -> Result<LightSource, String> {
+        Self::in_scene_shaded(light, scene, None)
+    }
+
+    /// [`LightSource::in_scene`] with the scene's compiled shading, which holds the light
+    /// profiles photometric lights use (without it they shine uniformly).
+    pub fn in_scene_shaded(
+        light: &Light,
+        scene: &scene::Scene,
+        shading: Option<&shade::model::Shading>,
+    ) -> Result<LightSource, String> {
         let shape = match (&light.area, light.kind) {
             (Some(a), LightKind::Point | LightKind::Spot) => Shape::of_area(&a.shape, scene)
                 .map_err(|e| format!("light '{}': {e}; the path engine leaves it out", light.instance))?,
             _ => Shape::Point,
         };
-        Self::with_shape(light, &scene.library, shape)
+        Self::with_shape(light, &scene.library, shape, &|name| shading.and_then(|s| s.lightprofile(name)))
     }
 
-    /// Translates a scene light given its shape, world space.
-    fn with_shape(light: &Light, lib: &Library, shape: Shape) -> Result<LightSource, String> {
-        let emission: Emission = shade::emission::emission(light, lib)?;
+    /// Translates a scene light given its shape, world space, and its light profiles.
+    fn with_shape(
+        light: &Light,
+        lib: &Library,
+        shape: Shape,
+        profiles: &dyn Fn(&str) -> Option<Arc<shade::light::ies::Profile>>,
+    ) -> Result<LightSource, String> {
+        let emission: Emission = shade::emission::emission_with(light, lib, profiles)?;
+        let to_local = shade::light::profiles::to_local(light.light_to_world);
+        let distribution =
+            emission.distribution.clone().map(|distribution| Arc::new(LocalDistribution { distribution, to_local }));
         let a = shape.area();
         let is_area = !matches!(shape, Shape::Point);
         let output = match (emission.power, light.kind, is_area) {
             (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
             (p, LightKind::Directional, _) => Output::Irradiance(match p {
                 Power::Exitance(c) | Power::Radiance(c) | Power::Flux(c) | Power::Intensity(c) => c,
-                Power::Constant { color, .. } => color,
+                Power::Constant { color, .. } | Power::Photometric { color, .. } => color,
             }),
+            (Power::Photometric { color, exponent, range }, _, _) => {
+                Output::Photometric { color, exponent, range, distribution }
+            }
             (Power::Exitance(e), _, true) => Output::Radiance { l: e / PI, two_sided: false },
             (Power::Radiance(l), _, true) => Output::Radiance { l, two_sided: false },
             (Power::Flux(f), _, true) => Output::Radiance { l: f / (PI * a), two_sided: false },
@@ -129,6 +182,7 @@ impl LightSource {
             (Power::Flux(f), _, false) => Output::Intensity(f / (4.0 * PI)),
             (Power::Exitance(c) | Power::Radiance(c) | Power::Intensity(c), _, false) => Output::Intensity(c),
         };
+        let radiant = matches!(output, Output::Radiance { .. });
         Ok(LightSource {
             name: light.instance.clone(),
             kind: light.kind,
@@ -139,7 +193,7 @@ impl LightSource {
             spread: light.spread as f32,
             cone: emission.cone,
             spot_exponent: emission.spot_exponent,
-            visible: light.visible && is_area && matches!(output, Output::Radiance { .. }),
+            visible: light.visible && is_area && radiant,
             shadow: light.shadow,
         })
     }
@@ -169,16 +223,31 @@ impl LightSource {
 
     /// Samples the light as seen from `p`.
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
-        match self.output {
+        match &self.output {
+            Output::Photometric { color, exponent, range, distribution } => {
+                let (q, _) = self.point_on(u);
+                let d = q - p;
+                let dist = d.length();
+                if dist <= 0.0 || !dist.is_finite() {
+                    return None;
+                }
+                let wi = d / dist;
+                let mut f = distribution.as_ref().map_or(1.0, |dist| dist.factor(-wi));
+                let in_range = range.is_none_or(|(start, stop)| dist > start && dist < stop);
+                if *exponent > 0.0 && in_range {
+                    f *= dist.powf(-exponent);
+                }
+                (f > 0.0).then_some(LightSample { wi, dist, radiance: *color * f, pdf: 1.0, delta: true })
+            }
             Output::Irradiance(e) => {
-                Some(LightSample { wi: -self.direction, dist: f32::INFINITY, radiance: e, pdf: 1.0, delta: true })
+                Some(LightSample { wi: -self.direction, dist: f32::INFINITY, radiance: *e, pdf: 1.0, delta: true })
             }
             Output::Intensity(i) => {
                 let d = self.position - p;
                 let dist2 = d.length_squared();
                 let dist = dist2.sqrt();
                 let wi = d / dist;
-                let radiance = i * self.spot(-wi) / dist2;
+                let radiance = *i * self.spot(-wi) / dist2;
                 (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
             }
             Output::Constant { color, falloff } => {
@@ -190,18 +259,18 @@ impl LightSource {
                     let dist = d.length();
                     (d / dist, dist)
                 };
-                let atten = match falloff {
+                let atten = match *falloff {
                     Some((start, stop)) if stop > start && self.kind != LightKind::Directional => {
                         ((stop - dist) / (stop - start)).clamp(0.0, 1.0)
                     }
                     _ => 1.0,
                 };
-                let radiance = color * atten * self.spot(-wi);
+                let radiance = *color * atten * self.spot(-wi);
                 (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
             }
             Output::Radiance { l, two_sided } => {
                 if let Shape::Sphere { radius } = self.shape {
-                    return self.sample_sphere_cone(p, radius, l, u);
+                    return self.sample_sphere_cone(p, radius, *l, u);
                 }
                 let (q, n) = self.point_on(u);
                 let d = q - p;
@@ -212,11 +281,11 @@ impl LightSource {
                 }
                 let wi = d / dist;
                 let cos_l = -wi.dot(n);
-                if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
+                if cos_l <= 0.0 && !*two_sided || cos_l == 0.0 {
                     return None;
                 }
                 let pdf = dist2 / (cos_l.abs() * self.shape.area());
-                Some(LightSample { wi, dist, radiance: l, pdf, delta: false })
+                Some(LightSample { wi, dist, radiance: *l, pdf, delta: false })
             }
         }
     }
@@ -243,7 +312,7 @@ impl LightSource {
     /// Solid-angle density with which [`LightSource::sample`] picks direction `wi` (unit)
     /// from `p` towards the point at distance `t` on the light.
     pub fn pdf(&self, p: Vec3A, wi: Vec3A, t: f32) -> f32 {
-        match (self.output, &self.shape) {
+        match (&self.output, &self.shape) {
             (Output::Radiance { .. }, &Shape::Sphere { radius }) => {
                 let dist2 = (self.position - p).length_squared();
                 let cos_max = (1.0 - radius * radius / dist2).max(0.0).sqrt();

@@ -78,6 +78,30 @@ pub struct World {
     pub has_cutouts: bool,
 }
 
+/// Divides the emission of materials given for their whole surface (MDL `lumen`,
+/// `candela`) by the world-space area of the triangles that carry them.
+fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], instances: &[InstanceData]) {
+    if !materials.iter().any(|m| m.emission_over_area) {
+        return;
+    }
+    let mut area = vec![0.0f64; materials.len()];
+    for inst in instances {
+        let mesh = &meshes[inst.mesh as usize];
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let slot = mesh.slots.get(t).copied().unwrap_or(0) as usize;
+            let m = inst.materials.get(slot).copied().unwrap_or(0) as usize;
+            if !materials.get(m).is_some_and(|m| m.emission_over_area) {
+                continue;
+            }
+            let [a, b, c] = tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i as usize]));
+            area[m] += 0.5 * f64::from((b - a).cross(c - a).length());
+        }
+    }
+    for (m, a) in materials.iter_mut().zip(area) {
+        m.spread_emission_over(a as f32);
+    }
+}
+
 fn affine(m: glam::DMat4) -> Affine3A {
     Affine3A::from_mat4(m.as_mat4())
 }
@@ -166,9 +190,10 @@ impl World {
                 motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
             });
         }
+        spread_emission(&mut materials, &meshes, &instances);
         let mut lights = Vec::new();
         for l in &scene.lights {
-            match LightSource::in_scene(l, scene) {
+            match LightSource::in_scene_shaded(l, scene, shading) {
                 Ok(src) => lights.push(src),
                 Err(w) => warnings.push(w),
             }

@@ -1,10 +1,16 @@
-//! What lights emit: MDL light materials (`light_omni`, `light_spot`) with MDL's units, and
-//! mental ray's base light shaders (`mib_light_point`, `mib_light_spot`,
-//! `mib_light_infinite`).
+//! What lights emit: MDL light materials (`light_omni`, `light_spot`, `light_ies`) with
+//! MDL's units, mental ray's base light shaders (`mib_light_point`, `mib_light_spot`,
+//! `mib_light_infinite`, `mib_light_photometric`) and the Architectural library's
+//! `mia_photometric_light`.
+
+use std::sync::Arc;
 
 use scene::{Library, Light};
 
+use crate::light::ies::Profile;
+pub use crate::light::profiles::Distribution;
 use crate::material::{color_param, declaration_name, first_call, scalar_param, string_param};
+use crate::mia::photometric::{positive_or_one, Settings};
 use crate::Rgb;
 
 /// How a light's colour is to be read.
@@ -27,10 +33,21 @@ pub enum Power {
         /// Linear falloff distances, if `atten` is on.
         falloff: Option<(f32, f32)>,
     },
+    /// Photometric point lights (`mib_light_photometric`, `mia_photometric_light`): the
+    /// colour arriving is `color` × the [`Emission::distribution`] towards the point ×
+    /// d^−exponent (no falloff for exponent 0, nor outside `range` when one is given).
+    Photometric {
+        /// The colour at unit distance along the distribution's peak.
+        color: Rgb,
+        /// Distance falloff exponent (2: inverse square).
+        exponent: f32,
+        /// `(start, stop)`: the falloff applies only between them.
+        range: Option<(f32, f32)>,
+    },
 }
 
 /// A light's emission, and whether it is a spot with an exponent distribution.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Emission {
     /// The amount and its unit.
     pub power: Power,
@@ -38,10 +55,26 @@ pub struct Emission {
     pub spot_exponent: Option<f32>,
     /// mental ray `mib_light_spot`: cosine of the inner (full-intensity) cone.
     pub cone: Option<f32>,
+    /// How a point light's intensity varies with direction in the light's local frame
+    /// (a light profile or a cosine power; `None`: uniform). MDL `light_ies` and mental
+    /// ray's photometric lights.
+    pub distribution: Option<Distribution>,
 }
 
-/// The emission of `light`, or a message saying why it cannot be read.
+/// The emission of `light`, or a message saying why it cannot be read; light profiles
+/// are not available (see [`emission_with`]).
 pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
+    emission_with(light, lib, &|_| None)
+}
+
+/// The emission of `light`, with `profiles` giving the light profile of a `lightprofile`
+/// element's name (`None` where it is unknown or unreadable: the light is then uniform).
+/// A profile parameter that is not set falls back to the light's `lightprofile` statement.
+pub fn emission_with(
+    light: &Light,
+    lib: &Library,
+    profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
+) -> Result<Emission, String> {
     let Some(list) = &light.shader else {
         return Err(format!("light '{}' has no light shader", light.name));
     };
@@ -52,6 +85,8 @@ pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
         Some(Ok(c)) => c,
         _ => default,
     };
+    let profile = || string_param(params, "profile").or(light.lightprofile.as_deref()).and_then(profiles);
+    let scalar = |name: &str, default: f64| scalar_param(params, name).unwrap_or(default) as f32;
     match declaration_name(decl) {
         "mdl::nvidia::core_definitions::light_omni" | "mdl::nvidia::core_definitions::light_spot" => {
             let amount = color("tint", Rgb::ONE)
@@ -66,7 +101,54 @@ pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
             let spot_exponent = declaration_name(decl)
                 .ends_with("light_spot")
                 .then(|| scalar_param(params, "spot_exponent").unwrap_or(30.0) as f32);
-            Ok(Emission { power, spot_exponent, cone: None })
+            Ok(Emission { power, spot_exponent, cone: None, distribution: None })
+        }
+        "mdl::nvidia::core_definitions::light_ies" => {
+            // The profile's measured candela, times tint · intensity · unit_scale.
+            let amount = color("tint", Rgb::ONE) * scalar("intensity", 1.0) * scalar("unit_scale", 1.0);
+            let distribution = profile().map(|profile| Distribution::Profile { profile, scale: 1.0 });
+            Ok(Emission {
+                power: Power::Photometric { color: amount, exponent: 2.0, range: None },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
+        }
+        "mib_light_photometric" => {
+            let (start, stop) = (scalar("start", 0.0), scalar("stop", 0.0));
+            let distribution = profile()
+                .filter(|p| p.peak() > 0.0)
+                .map(|profile| Distribution::Profile { scale: 1.0 / profile.peak(), profile });
+            Ok(Emission {
+                power: Power::Photometric {
+                    color: color("color", Rgb::ZERO),
+                    exponent: light.exponent.max(0.0) as f32,
+                    range: (stop > start && stop > 0.0).then_some((start, stop)),
+                },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
+        }
+        "mia_photometric_light" => {
+            let settings = Settings {
+                intensity_mode: scalar("intensity_mode", 0.0) as i32,
+                peak_cd: scalar("manual_peak_intensity_cd", 0.0),
+                flux_lm: scalar("manual_flux_lm", 0.0),
+                distribution_mode: scalar("distribution_mode", 0.0) as i32,
+                cosine_bias: scalar("spotlight_cosine_bias", 0.0),
+            };
+            let (peak, distribution) = settings.resolve(profile());
+            let on = scalar("on", 1.0) != 0.0;
+            let u = positive_or_one(scalar("units_to_meter_scale", 1.0));
+            let cm2 = positive_or_one(scalar("cm2_factor", 1.0));
+            let k = if on { scalar("multiplier", 1.0) * peak / (u * u * cm2) } else { 0.0 };
+            Ok(Emission {
+                power: Power::Photometric { color: color("color", Rgb::ONE) * k, exponent: 2.0, range: None },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
         }
         "mib_light_point" | "mib_light_spot" | "mib_light_infinite" => {
             let atten = scalar_param(params, "atten").unwrap_or(0.0) != 0.0;
@@ -82,6 +164,7 @@ pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
                 power: Power::Constant { color: color("color", Rgb::ZERO), falloff },
                 spot_exponent: None,
                 cone,
+                distribution: None,
             })
         }
         other => Err(format!("light '{}': light shader '{other}' is not supported yet", light.name)),

@@ -328,3 +328,37 @@ fn fast_occlusion_and_stencil() {
     let k = 1.0 - 128.0 / 255.0;
     close(v.color().to_array(), [k, 0.5 * k, 0.0, 0.0], 1e-6);
 }
+
+#[test]
+fn photometric_light_follows_its_ies_profile() {
+    // Quadrant-symmetric type C profile: vertical 0, 90, 180; horizontal 0 and 90 with 40
+    // and 80 cd sideways (peak 100 at the nadir). The light stands at world (0, 10, 0) and
+    // lights the point below it, so the direction is local −Y: vertical 90°, horizontal
+    // 270°, which folds onto the 90° column: 80 / 100 of the colour.
+    let dir = std::env::temp_dir().join(format!("mira_base_ies_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("quad.ies");
+    std::fs::write(
+        &file,
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 2 1 2 0 0 0\n1 1 10\n0 90 180\n0 90\n100 40 0\n100 80 0\n",
+    )
+    .unwrap();
+    let lambert = r#"material "m" "mib_illum_lambert" ("diffuse" 1 1 1 1, "mode" 0, "lights" ["l_inst"]) end material"#;
+    let light = |params: &str, statement: &str| {
+        color(
+            &format!(
+                r#"lightprofile "quad" format ies file "{}" end lightprofile
+                   light "l" "mib_light_photometric" ("color" 100 100 100{params}) origin 0 0 0 exponent 2 {statement} end light
+                   instance "l_inst" "l" transform 1 0 0 0 0 1 0 0 0 0 1 0 0 -10 0 1 end instance
+                   {lambert}"#,
+                file.display()
+            ),
+            lit(),
+        )[0]
+    };
+    assert!((light(r#", "profile" "quad""#, "") - 0.8).abs() < 1e-5);
+    // The light's own `lightprofile` statement stands in for an unset parameter.
+    assert!((light("", r#"lightprofile "quad""#) - 0.8).abs() < 1e-5);
+    assert!((light("", "") - 1.0).abs() < 1e-5);
+    let _ = std::fs::remove_dir_all(&dir);
+}

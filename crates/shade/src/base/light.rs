@@ -117,23 +117,37 @@ fn infinite(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 /// scalar stop, lightprofile profile)`: a point light falling off as 1/dist^exponent (the
 /// light's `exponent`, 2 for the inverse square law); when `stop` > `start` > … the falloff
 /// applies only between them (outside, the colour arrives unchanged, as in mental ray).
-/// Light profiles are not read yet: the distribution is uniform.
+/// The colour is multiplied by the light profile's normalised value (intensity / peak) for
+/// the direction from the light to the point, in the light's local frame (nadir = local −Z;
+/// see [`crate::light::ies`]); without a `profile` the light's own `lightprofile`
+/// statement is used, and without either (or with an unreadable one) the light is uniform.
 pub static PHOTOMETRIC: ShaderImpl = ShaderImpl {
     name: "mib_light_photometric",
-    params: &["color", "shadow", "factor", "start", "stop"],
+    params: &["color", "shadow", "factor", "start", "stop", "profile"],
     run: photometric,
 };
 
 fn photometric(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
-    let exponent = light.exponent;
-    let kind = light.kind;
+    let (exponent, kind, to_local, own) = (light.exponent, light.kind, light.to_local, light.profile);
     let mut c = ctx.color(n, 0);
     let (start, stop) = (ctx.scalar(n, 3), ctx.scalar(n, 4));
     let d = ctx.state.dist;
     let ranged = stop > start && stop > 0.0;
     if kind != LightKind::Directional && exponent > 0.0 && (!ranged || (d > start && d < stop)) && d > 0.0 {
         c *= d.powf(-exponent);
+    }
+    let shading = ctx.shading();
+    let tagged = ctx.eval(n, 5);
+    let profile = shading
+        .lightprofile_of(&tagged)
+        .or_else(|| own.and_then(|i| shading.lightprofiles.get(i as usize)?.as_deref()));
+    if let Some(p) = profile {
+        let f = p.normalized(to_local * ctx.state.dir);
+        if f <= 0.0 {
+            return false;
+        }
+        c *= f;
     }
     let (on, factor) = (ctx.bool(n, 1), ctx.scalar(n, 2));
     let ok = shadow(ctx, &mut c, on, factor);

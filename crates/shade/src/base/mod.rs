@@ -93,6 +93,7 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::exposure::EXPOSURE_SIMPLE,
     &crate::mia::exposure::EXPOSURE_PHOTOGRAPHIC,
     &crate::mia::sky::MIA_PHYSICALSKY,
+    &crate::mia::photometric::MIA_PHOTOMETRIC_LIGHT,
     &crate::mia::sun::MIA_PHYSICALSUN,
     &crate::mia::roundcorners::MIA_ROUNDCORNERS,
     &crate::mia::envblur::MIA_ENVBLUR,

@@ -9,6 +9,7 @@ pub mod exposure;
 pub mod light_surface;
 pub mod lobes;
 pub mod params;
+pub mod photometric;
 pub mod portal;
 pub mod roundcorners;
 pub mod shader;

@@ -54,6 +54,11 @@ pub struct ShadingLight {
     pub visible: bool,
     /// Distance falloff exponent of physical lights.
     pub exponent: f32,
+    /// World → light-local rotation of directions (light profile lookups; see
+    /// [`crate::light::ies`] for the axes).
+    pub to_local: glam::Mat3A,
+    /// The light's own `lightprofile` statement (index into `Shading::lightprofiles`).
+    pub profile: Option<u32>,
 }
 
 /// One sample of a light (what mental ray's `mi_sample_light` hands back).

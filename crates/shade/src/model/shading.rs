@@ -61,6 +61,8 @@ pub struct Shading {
     pub graph: Graph,
     /// Textures by index (`Tag::Texture`).
     pub textures: Vec<Texture>,
+    /// Light profiles by index (`Tag::Lightprofile`); `None`: could not be read.
+    pub lightprofiles: Vec<Option<Arc<crate::light::ies::Profile>>>,
     /// Shader slots of the scene's materials, in scene order.
     pub materials: Vec<MaterialShaders>,
     /// Lights, in scene order (`Tag::Light`).
@@ -89,10 +91,10 @@ pub struct Shading {
     pub precomputed: super::precomputed::Precomputed,
 }
 
-/// Gather rays per eye-ray hit for the options' `finalgather accuracy`. mental ray cast
-/// that many rays at sparse final gather points and interpolated between them; mira
-/// gathers at every eye hit instead (no interpolation cache yet), so it spends a
-/// sixteenth of them there (4 to 64), the pixel's samples averaging the rest.
+/// Gather rays per eye-ray hit for the options' `finalgather accuracy` where final gathering
+/// is brute force (no cache, or no valid final gather point there). The cache's points
+/// cast the full accuracy ([`super::fgcache`]); a brute-force gather spends a sixteenth of
+/// it (4 to 64), the pixel's samples averaging the rest.
 pub fn default_gather_rays(accuracy: u32) -> u32 {
     (accuracy / 16).clamp(4, 64)
 }
@@ -121,8 +123,12 @@ impl Shading {
         for (i, name) in lib.data.keys().enumerate() {
             names.data.insert(name.clone(), i as u32);
         }
+        for (i, name) in lib.lightprofiles.keys().enumerate() {
+            names.lightprofiles.insert(name.clone(), i as u32);
+        }
+        let profile_names = names.lightprofiles.clone();
         let mut b = Builder::new(&decls, &lib.shaders, names);
-        let mut diags = Vec::new();
+        let (lightprofiles, mut diags) = crate::light::profiles::load_all(lib, &options.search);
 
         let mut textures = Vec::with_capacity(lib.textures.len());
         for t in lib.textures.values() {
@@ -163,6 +169,8 @@ impl Shading {
                 low: l.area.as_ref().and_then(|a| a.low),
                 visible: l.visible,
                 exponent: l.exponent as f32,
+                to_local: crate::light::profiles::to_local(l.light_to_world),
+                profile: l.lightprofile.as_ref().and_then(|p| profile_names.get(p).copied()),
             })
             .collect();
 
@@ -178,12 +186,14 @@ impl Shading {
             diffuse_depth: clamp(fg.trace_depth[2]),
             max_dist: fg.falloff.map(|(_, stop)| stop as f32).filter(|d| *d > 0.0),
             scale: Color::new(fg.scale[0] as f32, fg.scale[1] as f32, fg.scale[2] as f32, fg.scale[3] as f32),
+            cache: super::fgcache::CacheSettings::of_options(fg),
         };
         let (graph, graph_diags) = b.finish();
         diags.extend(graph_diags);
         let shading = Shading {
             graph,
             textures,
+            lightprofiles,
             materials,
             lights,
             instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
@@ -203,6 +213,20 @@ impl Shading {
             precomputed: Default::default(),
         };
         (shading, diags)
+    }
+
+    /// The light profile named `name` (a `lightprofile` element), if it was read.
+    pub fn lightprofile(&self, name: &str) -> Option<Arc<crate::light::ies::Profile>> {
+        let i = *self.graph.names.lightprofiles.get(name)?;
+        self.lightprofiles.get(i as usize).cloned().flatten()
+    }
+
+    /// The light profile a `lightprofile` parameter's value tags, if it was read.
+    pub fn lightprofile_of(&self, v: &Value) -> Option<&crate::light::ies::Profile> {
+        match v.tag()? {
+            super::value::Tag::Lightprofile(i) => self.lightprofiles.get(i as usize)?.as_deref(),
+            _ => None,
+        }
     }
 
     /// Whether any material is shaded by mental ray shaders (the classic engine's domain).
