@@ -59,6 +59,8 @@ pub enum Bsdf {
     Mia(crate::mia::bsdf::MiaBsdf),
     /// The unified (Disney-derived) material.
     Unified(Unified),
+    /// mental ray's built-in BSDFs (`builtin_bsdf_*`).
+    Builtin(crate::base::bsdf_builtin::BuiltinBsdf),
 }
 
 impl Bsdf {
@@ -71,6 +73,7 @@ impl Bsdf {
             Bsdf::Conductor(l) => l.eval(wo, wi),
             Bsdf::Mia(l) => l.eval(wo, wi),
             Bsdf::Unified(l) => l.eval(wo, wi),
+            Bsdf::Builtin(l) => l.eval(wo, wi),
         }
     }
 
@@ -84,6 +87,7 @@ impl Bsdf {
             Bsdf::Conductor(l) => l.sample(wo, u),
             Bsdf::Mia(l) => l.sample(wo, u, u_lobe),
             Bsdf::Unified(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Builtin(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -96,6 +100,7 @@ impl Bsdf {
             Bsdf::Conductor(l) => l.pdf(wo, wi),
             Bsdf::Mia(l) => l.pdf(wo, wi),
             Bsdf::Unified(l) => l.pdf(wo, wi),
+            Bsdf::Builtin(l) => l.pdf(wo, wi),
         }
     }
 
@@ -107,6 +112,7 @@ impl Bsdf {
             Bsdf::Conductor(c) => c.ggx.is_smooth(),
             Bsdf::Mia(m) => m.is_delta(),
             Bsdf::Unified(u) => u.is_delta(),
+            Bsdf::Builtin(b) => b.is_delta(),
         }
     }
 }

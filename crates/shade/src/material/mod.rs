@@ -42,6 +42,8 @@ pub enum SurfaceModel {
     Unified(Box<Unified>),
     /// `mia_material`: its parameters and `refr_gloss`.
     Mia(Box<(Mia, f32)>),
+    /// A mental ray built-in BSDF (a material's `bsdf` slot, `builtin_bsdf_*`).
+    Builtin(Box<crate::base::bsdf_builtin::BuiltinBsdf>),
 }
 
 /// A surface's scattering and emission.
@@ -58,6 +60,9 @@ pub struct SurfaceMaterial {
     pub model: SurfaceModel,
     /// Coverage: 1 is solid, 0 lets rays through untouched (cutouts).
     pub opacity: f32,
+    /// `emission` is for the whole emitting surface (radiance × area, from MDL's `lumen`
+    /// and `candela` units): the renderer divides it by the material's total area.
+    pub emission_over_area: bool,
     /// Parameters driven by shaders, evaluated at each hit.
     pub varying: Varying,
 }
@@ -76,6 +81,7 @@ impl SurfaceMaterial {
             emission: Rgb::ZERO,
             model: SurfaceModel::Lambert,
             opacity: 1.0,
+            emission_over_area: false,
             varying: Varying::Constant,
         }
     }
@@ -100,6 +106,7 @@ impl SurfaceModel {
             SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: diffuse }),
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(diffuse, *sigma)),
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
+            SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
@@ -198,6 +205,9 @@ pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>
         }),
     };
     let Some((decl, params)) = call else {
+        if let Some(surface) = shading.and_then(|(s, i)| builtin_bsdf(m, s, i)) {
+            return (surface, warnings);
+        }
         warnings.push(format!("material '{}' has no shader mira understands; rendered grey", m.name));
         return (SurfaceMaterial::grey(&m.name), warnings);
     };
@@ -210,4 +220,42 @@ pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>
         inputs::bind_material_shaders(&mut surface, graph, head);
     }
     (surface, warnings)
+}
+
+/// The material of a `bsdf` slot holding one of mental ray's built-in BSDFs, with its
+/// constant parameters (connected ones take their defaults).
+fn builtin_bsdf(m: &Material, shading: &Shading, index: usize) -> Option<SurfaceMaterial> {
+    let node = &shading.graph.nodes[shading.materials.get(index)?.bsdf? as usize];
+    let imp = node.imp?;
+    let param = |name: &str| {
+        let i = imp.params.iter().position(|p| *p == name)?;
+        match node.slots.get(i)? {
+            crate::model::Slot::Value(v) => Some(v.clone()),
+            _ => None,
+        }
+    };
+    let bsdf = crate::base::bsdf_builtin::builtin_bsdf_surface(imp.name, &param)?;
+    let diffuse = match &bsdf {
+        crate::base::bsdf_builtin::BuiltinBsdf::Lambert(l) => l.albedo,
+        _ => Rgb::splat(0.5),
+    };
+    Some(SurfaceMaterial { model: SurfaceModel::Builtin(Box::new(bsdf)), ..SurfaceMaterial::lambert(&m.name, diffuse) })
+}
+
+impl SurfaceMaterial {
+    /// Divides an emission given for the whole surface by the surface's `area` (scene
+    /// units²), also in emission driven by shaders; nothing when the emission is per area.
+    pub fn spread_emission_over(&mut self, area: f32) {
+        if !self.emission_over_area {
+            return;
+        }
+        let scale = if area > 0.0 { 1.0 / area } else { 0.0 };
+        self.emission *= scale;
+        if let Varying::Bindings(bindings) = &mut self.varying {
+            for b in bindings.iter_mut().filter(|b| b.target == Target::Emission) {
+                b.scale *= scale;
+            }
+        }
+        self.emission_over_area = false;
+    }
 }

@@ -350,16 +350,21 @@ impl<'a> Reader<'a> {
                     _ => SurfaceMaterial::lambert(name, Rgb::ZERO),
                 };
                 let amount = self.scalar(params, "intensity", 1000.0) * self.scalar(params, "unit_scale", 1.0);
-                let radiance = match string_param(params, "unit").unwrap_or("lumen_m2") {
-                    "nit" => amount,
-                    "lumen_m2" => amount / std::f32::consts::PI,
+                // A Lambertian emitter of radiance L and area A has exitance πL, flux πLA
+                // and peak intensity LA: `lumen` and `candela` give L·A, divided by the
+                // material's area once the world knows it.
+                let unit = string_param(params, "unit").unwrap_or("lumen_m2");
+                let radiance = match unit {
+                    "nit" | "candela" => amount,
+                    "lumen_m2" | "lumen" => amount / std::f32::consts::PI,
                     other => {
                         self.warnings.push(format!(
-                            "material '{name}': add_emission in '{other}' needs the emitter's area; read as lumen_m2"
+                            "material '{name}': add_emission in unknown unit '{other}'; read as lumen_m2"
                         ));
                         amount / std::f32::consts::PI
                     }
                 };
+                surface.emission_over_area = matches!(unit, "lumen" | "candela");
                 let tint = self.color_to(params, "tint", Rgb::ONE, Some((Target::Emission, radiance)));
                 surface.emission = tint * radiance;
                 surface

@@ -1,6 +1,7 @@
-//! Material parameters connected to shaders in the path engine: MDL `::base` file
-//! textures and normal maps on MDL materials, mental ray texture shaders and cutouts on
-//! `mia_material`. Each scene is a square seen head-on, lit head-on by a directional light
+//! Materials the path engine reads through the scene's shader graph: parameters connected
+//! to MDL `::base` file textures and normal maps on MDL materials, mental ray texture
+//! shaders and cutouts on `mia_material`, and the built-in BSDFs of a material's `bsdf`
+//! slot. Each scene is a square seen head-on, lit head-on by a directional light
 //! of irradiance π, so that a Lambertian pixel's value is its albedo (times the cosine to
 //! a bent normal); the expected values follow from the texels.
 
@@ -138,4 +139,33 @@ material "m" "mia_material" ("diffuse" = "diffuse_tex", "reflectivity" 0, "diffu
             assert_eq!(p[3], 1.0);
         }
     }
+}
+
+#[test]
+fn builtin_bsdf_slot_renders_its_bsdf() {
+    // A Lambertian built-in BSDF of reflectance (0.2, 0.4, 0.6): radiance ρ·E/π = ρ.
+    let body = r#"shader "lb" "builtin_bsdf_lambert" ("diffuse" 0.2 0.4 0.6)
+material "b" bsdf = "lb" end material"#;
+    let (px, messages) = render(body, "b", 4);
+    assert!(messages.is_empty(), "{messages:#?}");
+    for (i, p) in px.iter().enumerate() {
+        assert_rgb(*p, [0.2, 0.4, 0.6], 1e-3, &format!("pixel {i}"));
+    }
+}
+
+#[test]
+fn add_emission_units_give_the_radiance_of_the_square() {
+    // The square has area 4. A Lambertian emitter of radiance L: flux πL·A, peak intensity
+    // L·A, exitance πL, luminance L. Each unit below is chosen to give L = 1.
+    for (unit, intensity) in [("lumen", 4.0 * std::f32::consts::PI), ("candela", 4.0), ("nit", 1.0)] {
+        let body = format!(
+            r#"shader "glow" "mdl::nvidia::core_definitions::add_emission" ("intensity" {intensity}, "unit" "{unit}")"#
+        );
+        let (px, messages) = render(&body, "glow", 1);
+        assert!(messages.is_empty(), "{unit}: {messages:#?}");
+        assert_rgb(px[27], [1.0; 3], 1e-4, unit);
+    }
+    let body =
+        r#"shader "glow" "mdl::nvidia::core_definitions::add_emission" ("intensity" 3.14159265, "unit" "lumen_m2")"#;
+    assert_rgb(render(body, "glow", 1).0[27], [1.0; 3], 1e-4, "lumen_m2");
 }
