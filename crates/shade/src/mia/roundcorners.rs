@@ -183,14 +183,17 @@ fn find_faces(ctx: &mut Ctx, radius: f32, allow_different_materials: bool) -> Ve
     let (p, ng, material) = (s.point, s.normal_geom, s.material);
     let frame = Frame::from_normal(ng);
     let lift = radius * LIFT;
-    let reach = radius / (PI / RING as f32).cos() * 1.001;
+    // Rays start a little behind the point so that a face right at it (closer than a
+    // renderer's minimum hit distance) is still found.
+    let back = radius * 1e-4;
+    let reach = radius / (PI / RING as f32).cos() * 1.001 + back;
     let mut faces: Vec<Face> = Vec::new();
     for side in [1.0f32, -1.0] {
         let org = p + ng * (lift * side);
         for k in 0..RING {
             let phi = 2.0 * PI * k as f32 / RING as f32;
             let dir = frame.tangent * phi.cos() + frame.bitangent * phi.sin();
-            let mut ray = ctx.state.child(RayType::Probe, org, dir);
+            let mut ray = ctx.state.child(RayType::Probe, org - dir * back, dir);
             if !ctx.tracer.intersect(&mut ray, reach) {
                 continue;
             }
