@@ -169,3 +169,24 @@ fn add_emission_units_give_the_radiance_of_the_square() {
         r#"shader "glow" "mdl::nvidia::core_definitions::add_emission" ("intensity" 3.14159265, "unit" "lumen_m2")"#;
     assert_rgb(render(body, "glow", 1).0[27], [1.0; 3], 1e-4, "lumen_m2");
 }
+
+#[test]
+fn an_mdl_light_material_is_a_known_shader() {
+    // The light's shader list names an MDL material: no graph node, but no unknown shader.
+    let text = r#"
+shader "Light_def" "mdl::nvidia::core_definitions::light_omni" ("intensity" 42)
+light "lamp" = "Light_def" origin 0 0 0 end light
+instance "lamp_inst" "lamp" end instance
+camera "cam" resolution 4 4 end camera
+instance "cam_inst" "cam" end instance
+instgroup "root" "cam_inst" "lamp_inst" end instgroup
+options "opt" end options
+render "root" "cam_inst" "opt"
+"#;
+    let parsed = mi::parse_str("t.mi", text);
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let (_, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let messages: Vec<String> = shade_diags.iter().map(|d| d.render(&parsed.sources)).collect();
+    assert!(messages.is_empty(), "{messages:#?}");
+}

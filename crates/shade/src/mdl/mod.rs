@@ -1,12 +1,13 @@
-//! MDL functions of Iray `.mi` files (the `::base` module's texturing functions) as shader
-//! graph nodes, so that material parameters connected to them are evaluated at each hit
-//! like mental ray shaders are.
+//! MDL functions of Iray `.mi` files (the `::base` module's texturing functions and its
+//! `sun_and_sky` environment) as shader graph nodes, so that material parameters connected
+//! to them are evaluated at each hit like mental ray shaders are.
 //!
 //! Their declarations ([`DECLARATIONS`]) are built in: a scene names them with or without
 //! the MDL signature (`mdl::base::file_texture(texture_2d,color,…)`). MDL materials
 //! themselves (`::nvidia::core_definitions`) are translated to BSDFs by
 //! [`crate::material`], not run as nodes.
 
+pub mod sky;
 pub mod texture;
 
 use crate::model::ShaderImpl;
@@ -24,6 +25,7 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &texture::FILE_BUMP,
     &texture::BLEND_COLOR_LAYERS,
     &texture::GLOSS_TO_ROUGH,
+    &sky::SUN_AND_SKY,
 ];
 
 #[cfg(test)]

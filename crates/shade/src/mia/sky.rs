@@ -422,8 +422,9 @@ impl PhysicalSky {
         (glow, if disk_area > 0.0 { rest / disk_area } else { 0.0 })
     }
 
-    /// The sun disk and glow at `angle` (radians) from the sun, × the sun's illuminance.
-    fn sun_profile(&self, angle: f32, t: f32) -> f32 {
+    /// The sun disk and glow at `angle` (radians) from the sun, × the sun's illuminance,
+    /// for turbidity `t` (zero beyond 10 × the disk's radius).
+    pub fn sun_profile(&self, angle: f32, t: f32) -> f32 {
         let radius = SUN_ANGULAR_RADIUS * self.sun_disk_scale * 10.0;
         if radius <= 0.0 || angle >= radius {
             return 0.0;
@@ -446,7 +447,8 @@ impl PhysicalSky {
         let mut c = Vec3A::ZERO;
         if night > 0.0 {
             c = day.rgb(lift(d)) * (PI * scale);
-            c += sun_e * self.sun_profile(d.dot(s_real).clamp(-1.0, 1.0).acos(), t);
+            // The angle by atan2: acos of a dot product near 1 loses the tiny disk in f32.
+            c += sun_e * self.sun_profile(d.cross(s_real).length().atan2(d.dot(s_real)), t);
             c *= night;
         }
         let mut night_weight = 1.0;

@@ -213,7 +213,13 @@ impl<'a> Builder<'a> {
                 }
                 ShaderItem::Ref(r) => {
                     let n = self.named(&r.text, r.span);
-                    if n.is_none() && !self.diags.iter().any(|d| d.span.lo == r.span.lo && d.span.file == r.span.file) {
+                    // A defined shader that is no node (an MDL material, an undeclared
+                    // shader, already warned about) is not an unknown one.
+                    let defined = self.shaders.contains_key(&r.text);
+                    if n.is_none()
+                        && !defined
+                        && !self.diags.iter().any(|d| d.span.lo == r.span.lo && d.span.file == r.span.file)
+                    {
                         self.diags.push(Diagnostic::error(r.span, format!("unknown shader '{}'", r.text)));
                     }
                     n
