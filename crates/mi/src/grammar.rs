@@ -75,6 +75,7 @@ const ON_OFF_INT: P = Alt(&[&[Bool], &[Int]]);
 const DATA: P = Alt(&[&[Words(&["null"])], &[Name]]);
 const FILTERS: &[&str] = &["box", "triangle", "gauss", "mitchell", "lanczos", "cone"];
 const SAMPLES: P = Ints(0, 5);
+const FG_MODES: &[&str] = &["strict", "compatible", "automatic", "multiframe", "force"];
 
 /// Statements of `options … end options` (besides string options and attributes).
 pub static OPTIONS: &[Rule] = &[
@@ -149,6 +150,8 @@ pub static OPTIONS: &[Rule] = &[
     r("finalgather scale", &[Color]),
     r("finalgather secondary scale", &[Color]),
     r("finalgather presample density", &[Float]),
+    r("finalgather points", &[Int]),
+    r("finalgather mode", &[Alt(&[&[Words(FG_MODES), Opt(&[Float])], &[Name]])]),
     r("finalgather importance", &[Floats(1, 2)]),
     r("trace importance", &[Floats(1, 2)]),
     r("lightmap", &[Alt(&[&[Bool], &[Words(&["only"])]])]),

@@ -104,6 +104,14 @@ pub struct FinalGather {
     pub falloff: Option<(f64, f64)>,
     /// `finalgather scale r g b a`.
     pub scale: [f64; 4],
+    /// `finalgather points n` (or the string option `"finalgather points"`): final gather
+    /// points interpolated at a lookup; 0 asks for brute force (no interpolation).
+    pub points: u32,
+    /// `finalgather mode …` (or `"finalgather mode"`): `strict` (3.4 radii), `automatic`,
+    /// `multiframe`, as written (lower case).
+    pub mode: String,
+    /// `finalgather presample density f`: density of the pre-pass over the image.
+    pub presample_density: f64,
 }
 
 /// Progressive (Iray-style) rendering limits, from Iray attributes or mental ray's
@@ -201,6 +209,9 @@ impl Default for Options {
                 trace_depth: [2, 2, 0, 2],
                 falloff: None,
                 scale: [1.0; 4],
+                points: 30,
+                mode: "strict".into(),
+                presample_density: 1.0,
             },
             globillum: false,
             caustic: false,
@@ -390,7 +401,35 @@ impl Options {
         }
         o.attributes = attributes(&stmts);
         o.read_progressive();
+        o.read_finalgather(&stmts);
         o
+    }
+
+    /// Final gather interpolation settings: the keyword statements, then the string
+    /// options (`"finalgather points" 30`, `"finalgather mode" "automatic"`), last one wins.
+    fn read_finalgather(&mut self, stmts: &[&Stmt]) {
+        let fg = &mut self.finalgather;
+        if let Some(v) = last(stmts, "finalgather points").and_then(|k| int_arg(k, 0)) {
+            fg.points = v.clamp(0, 1 << 16) as u32;
+        }
+        if let Some(k) = last(stmts, "finalgather mode") {
+            let words: Vec<String> = (0..k.args.len())
+                .filter_map(|i| str_arg(k, i).map(str::to_string).or_else(|| f64_arg(k, i).map(|v| v.to_string())))
+                .collect();
+            fg.mode = words.join(" ").to_ascii_lowercase();
+        }
+        if let Some(v) = last(stmts, "finalgather presample density").and_then(|k| f64_arg(k, 0)) {
+            fg.presample_density = v;
+        }
+        if let Some(v) = self.string_options.get("finalgather points").and_then(|v| v.as_f64()) {
+            fg.points = v.clamp(0.0, 65536.0) as u32;
+        }
+        if let Some(AttrValue::Str(m)) = self.string_options.get("finalgather mode") {
+            fg.mode = m.to_ascii_lowercase();
+        }
+        if let Some(v) = self.string_options.get("finalgather presample density").and_then(|v| v.as_f64()) {
+            fg.presample_density = v;
+        }
     }
 
     /// Progressive limits from Iray attributes, then mental ray string options.
@@ -461,6 +500,18 @@ mod tests {
         assert!(o.finalgather.enabled && o.finalgather.view);
         assert_eq!(o.finalgather.rays, 300);
         assert_eq!(o.finalgather.radius, Some((25.0, 2.5)));
+        assert_eq!((o.finalgather.points, o.finalgather.mode.as_str()), (30, "strict"));
+        let fg = options(
+            "options \"o\" finalgather points 12 finalgather mode strict 3.4 finalgather presample density 2 end options",
+            Dialect::MentalRay,
+        );
+        assert_eq!((fg.finalgather.points, fg.finalgather.mode.as_str()), (12, "strict 3.4"));
+        assert_eq!(fg.finalgather.presample_density, 2.0);
+        let strings = options(
+            "options \"o\" \"finalgather points\" 5 \"finalgather mode\" \"Automatic\" end options",
+            Dialect::MentalRay,
+        );
+        assert_eq!((strings.finalgather.points, strings.finalgather.mode.as_str()), (5, "automatic"));
         assert_eq!(o.shutter, (0.0, 0.5));
         assert_eq!(o.frame_buffers, vec![(0, "+rgba_fp".to_string())]);
         assert_eq!(o.string_options["unified sampling"], AttrValue::Bool(true));

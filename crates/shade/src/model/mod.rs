@@ -10,6 +10,7 @@
 //! - [`state`]: the shading point.
 //! - [`lights`]: light lists, the light sample loop, shadows.
 //! - [`trace`]: reflection, refraction, environment and final gather rays.
+//! - [`fgcache`]: the final gather interpolation cache.
 //! - [`shading`]: a scene's shading compiled (graph, textures, materials, lights, options).
 //! - [`tracer`]: the contract with the renderer's ray casting.
 //!
@@ -19,6 +20,7 @@
 
 pub mod ctx;
 pub mod decl;
+pub mod fgcache;
 pub mod graph;
 pub mod lights;
 pub mod precomputed;

@@ -48,8 +48,9 @@ pub struct TraceDepth {
     pub sum: u32,
 }
 
-/// Final gathering as mira does it: path-traced irradiance at every shading point that
-/// asks for it (no interpolation cache).
+/// Final gathering: irradiance gathered with rays, interpolated between final gather
+/// points where the renderer built a cache ([`super::fgcache`]), else gathered at every
+/// shading point that asks for it (brute force).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FinalGather {
     /// Whether `compute_irradiance` gathers at all (`finalgather on`).
@@ -64,6 +65,8 @@ pub struct FinalGather {
     pub max_dist: Option<f32>,
     /// `finalgather scale`.
     pub scale: Color,
+    /// The interpolation cache's settings; `None`: brute force (`finalgather points 0`).
+    pub cache: Option<super::fgcache::CacheSettings>,
 }
 
 impl Ctx<'_> {
@@ -223,25 +226,42 @@ impl Ctx<'_> {
     }
 
     /// Indirect illumination at the point (mental ray's `mi_compute_irradiance`): the
-    /// irradiance E = ∫ L cos θ dω over the hemisphere of the shading normal, estimated with
-    /// cosine-distributed gather rays (π × their mean radiance). As in mental ray it is not
-    /// divided by π: the base shaders' `diffuse ⊙ irradiance` is π times the physically
-    /// correct Lambertian term, matching their direct term, which has no 1/π either. Zero
-    /// when final gathering is off or its diffuse depth is used up.
+    /// irradiance E = ∫ L cos θ dω over the hemisphere of the shading normal. At the first
+    /// diffuse bounce it is interpolated from the render's final gather points where one is
+    /// valid ([`super::fgcache`]); elsewhere it is estimated with cosine-distributed gather
+    /// rays (π × their mean radiance). As in mental ray it is not divided by π: the base
+    /// shaders' `diffuse ⊙ irradiance` is π times the physically correct Lambertian term,
+    /// matching their direct term, which has no 1/π either. Zero when final gathering is
+    /// off or its diffuse depth is used up.
     pub fn compute_irradiance(&mut self) -> Color {
         let fg = self.shading().finalgather;
         if !fg.enabled || self.state.finalgather_level > fg.diffuse_depth {
             return Color::ZERO;
         }
-        let n = if self.state.finalgather_level == 0 && self.state.ray_type != RayType::Finalgather {
-            fg.rays
+        let primary = self.state.finalgather_level == 0 && self.state.ray_type != RayType::Finalgather;
+        let cached = if primary {
+            self.tracer.fg_cache().and_then(|c| c.lookup(self.state.point, self.state.normal))
         } else {
-            fg.secondary_rays
-        }
-        .max(1);
+            None
+        };
+        let e = match cached {
+            Some(e) => e,
+            None => self.gather(if primary { fg.rays } else { fg.secondary_rays }).0,
+        };
+        Color::new(e.x * fg.scale.x, e.y * fg.scale.y, e.z * fg.scale.z, 1.0)
+    }
+
+    /// Gathers irradiance at the point with `n` cosine-distributed rays about the shading
+    /// normal: (π × their mean radiance, before `finalgather scale`; the harmonic mean
+    /// distance to what they hit, infinite when every ray escaped). Final gather points of
+    /// the interpolation cache are made with it.
+    pub fn gather(&mut self, n: u32) -> (Color, f32) {
+        let fg = self.shading().finalgather;
+        let n = n.max(1);
         let frame = Frame::from_normal(self.state.normal);
         let site = self.next_site();
         let mut sum = Color::ZERO;
+        let mut inverse_dist = 0.0f64;
         for i in 0..n {
             let u = self.sample2(site, i, n);
             let local = crate::bsdf::cosine_hemisphere(u);
@@ -253,6 +273,9 @@ impl Ctx<'_> {
             let ray = self.state.child(RayType::Finalgather, org, dir);
             let max = fg.max_dist.unwrap_or(f32::INFINITY);
             let (c, dist) = self.shade_ray(ray, max);
+            if dist > 0.0 && dist.is_finite() {
+                inverse_dist += 1.0 / f64::from(dist);
+            }
             if crate::mia::portal::blocks_gather(self.shading(), org, dir, dist) {
                 // A portal light brings this light in directly.
                 continue;
@@ -265,8 +288,9 @@ impl Ctx<'_> {
             };
             sum += c;
         }
+        let mean_dist = if inverse_dist > 0.0 { (f64::from(n) / inverse_dist) as f32 } else { f32::INFINITY };
         let e = sum * (std::f32::consts::PI / n as f32);
-        Color::new(e.x * fg.scale.x, e.y * fg.scale.y, e.z * fg.scale.z, 1.0)
+        (Color::new(e.x, e.y, e.z, 1.0), mean_dist)
     }
 
     /// A cosine-weighted direction about the shading normal (for shaders sampling the

@@ -54,4 +54,10 @@ pub trait Tracer {
     /// Stores `value` into user frame buffer `buffer` for the current eye sample
     /// (mental ray's `mi_fb_put`). Returns false if there is no such buffer.
     fn fb_put(&self, buffer: u32, value: Color) -> bool;
+
+    /// The final gather interpolation cache of this render, if the renderer built one
+    /// ([`super::fgcache`]); `compute_irradiance` then interpolates where it can.
+    fn fg_cache(&self) -> Option<&super::fgcache::FgCache> {
+        None
+    }
 }
