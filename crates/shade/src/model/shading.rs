@@ -186,6 +186,7 @@ impl Shading {
             diffuse_depth: clamp(fg.trace_depth[2]),
             max_dist: fg.falloff.map(|(_, stop)| stop as f32).filter(|d| *d > 0.0),
             scale: Color::new(fg.scale[0] as f32, fg.scale[1] as f32, fg.scale[2] as f32, fg.scale[3] as f32),
+            cache: super::fgcache::CacheSettings::of_options(fg),
         };
         let (graph, graph_diags) = b.finish();
         diags.extend(graph_diags);
