@@ -190,3 +190,29 @@ render "root" "cam_inst" "opt"
     let messages: Vec<String> = shade_diags.iter().map(|d| d.render(&parsed.sources)).collect();
     assert!(messages.is_empty(), "{messages:#?}");
 }
+
+#[test]
+fn mdl_blend_color_layers_and_bump_map() {
+    // Base 0.2; a blend layer of 1 at weight ½ → 0.6; a multiply layer of 0.5 → 0.3.
+    let body = r#"shader "layers" "mdl::base::blend_color_layers" (
+    "layers" [ { "layer_color" 1 1 1, "weight" 0.5, "mode" "color_layer_blend" },
+               { "layer_color" 0.5 0.5 0.5, "weight" 1, "mode" "color_layer_multiply" } ],
+    "base" 0.2 0.2 0.2)
+shader "mat" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" = "layers.tint")"#;
+    let (px, messages) = render(body, "mat", 1);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_rgb(px[27], [0.3; 3], 1e-5, "blended");
+
+    // Heights 0, ¼, ½, ¾ along u (one texel = ¼): one texel's rise is 64/255, so the normal
+    // leans to normalize(−64/255, 0, 1) and a white surface lit head-on gives its z.
+    let body = r#"color texture "ramp" [ 4 1 ] '000000' '404040' '808080' 'c0c0c0'
+shader "bump" "mdl::base::file_bump_texture" ("texture" "ramp")
+shader "mat" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 1 1 1, "normal" = "bump")"#;
+    let (px, messages) = render(body, "mat", 4);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let rise = 64.0f32 / 255.0;
+    let want = 1.0 / (1.0 + rise * rise).sqrt();
+    for x in 1..5 {
+        assert_rgb(px[3 * 8 + x], [want; 3], 2e-3, &format!("pixel ({x}, 3)"));
+    }
+}
