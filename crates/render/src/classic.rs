@@ -161,6 +161,14 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.world_to_object = inst.world_to_object;
     s.footprint += s.spread * hit.t;
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
+    // Pixel differentials across the footprint (raster x along the camera's right), and
+    // the first texture space's dUV/dx, dUV/dy over the triangle.
+    s.set_pixel_derivs(world.camera.camera_to_world.transform_vector3a(Vec3A::X));
+    s.tex_derivs = [glam::Vec2::ZERO; 2];
+    if let (Some(space), None) = (mesh.textures.first(), &s.hair) {
+        let corners = [p0, p1, p2].map(|p| inst.object_to_world.transform_point3a(p));
+        s.tex_derivs = s.texture_derivs(corners, [space[i0], space[i1], space[i2]]).unwrap_or_default();
+    }
 }
 
 /// World-space motion of the hit point over the shutter interval: where the instance's
@@ -321,6 +329,7 @@ pub fn eye_sample(
         pixel,
         sample_index: index,
         spread: cam.pixel_angle(),
+        footprint: cam.pixel_width(),
         ior_in: 1.0,
         ior: 1.0,
         child_dist: f32::INFINITY,

@@ -46,36 +46,96 @@ fn lookup2(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 }
 
 /// `mib_texture_filter_lookup (color texture tex, vector coord, scalar eccmax, scalar
-/// maxminor, scalar disc_r, boolean bilinear, integer space, shader remap)`: a filtered
-/// lookup whose footprint is a disc of radius `disc_r` pixels (0: 0.3) projected into the
-/// texture. mira filters isotropically with the pyramid (the footprint's larger axis);
-/// mental ray's elliptical filtering (`eccmax`, `maxminor`) is not reproduced.
+/// maxminor, scalar disc_r, boolean bilinear, integer space, shader remap)`: an elliptically
+/// filtered (EWA) lookup of an image texture centred at `coord`. A screen disc of radius
+/// `disc_r` pixels (0: 0.3) is projected into texture space `space` through the hit
+/// triangle (the state's pixel differentials): three points — the hit's coordinate and
+/// its steps of `disc_r` pixels along raster x and y — which the `remap` shader, if any,
+/// maps (each handed to it as `state.tex_arg`, which `mib_texture_remap` takes in place of
+/// its input). Their differences are the ellipse's conjugate semi-axes; it is limited to
+/// eccentricity `eccmax` and filtered on the level where its minor axis spans `maxminor`
+/// texels (see [`crate::texture::MipMap::ewa`]; 0: 20 and 6). `bilinear` interpolates
+/// magnified footprints. Without differentials (unknown footprint), or for a texture
+/// shader, the lookup is unfiltered; outside [0, 1)² transparent black (and failure).
 pub static FILTER_LOOKUP: ShaderImpl = ShaderImpl {
     name: "mib_texture_filter_lookup",
     params: &["tex", "coord", "eccmax", "maxminor", "disc_r", "bilinear", "space", "remap"],
     run: filter_lookup,
 };
 
+/// Most texture spaces `mib_texture_filter_lookup` addresses.
+const MAX_FILTER_SPACE: i32 = 63;
+
 fn filter_lookup(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let coord = ctx.vector(n, 1);
+    *out = Value::Color(Vec4::ZERO);
+    let tag = ctx.tag(n, 0);
+    let image = match tag {
+        Some(Tag::Texture(t)) => match ctx.shading().textures.get(t as usize) {
+            Some(crate::texture::Texture::Image { image, .. }) => image.clone(),
+            _ => return false,
+        },
+        Some(tag @ Tag::Shader(_)) => {
+            let c = ctx.lookup_color_texture(tag, coord);
+            *out = Value::Color(c.unwrap_or(Vec4::ZERO));
+            return c.is_some();
+        }
+        _ => return false,
+    };
+    if !(0.0..1.0).contains(&coord.x) || !(0.0..1.0).contains(&coord.y) {
+        return false;
+    }
+    let (eccmax, maxminor) = (ctx.scalar(n, 2), ctx.scalar(n, 3));
     let r = ctx.scalar(n, 4);
     let r = if r > 0.0 { r } else { 0.3 };
-    let Some(Tag::Texture(t)) = ctx.tag(n, 0) else {
-        *out = Value::Color(Vec4::ZERO);
-        return false;
-    };
-    let Some(tex) = ctx.shading().textures.get(t as usize) else { return false };
-    let du = ctx.state.derivs[0].length().max(ctx.state.derivs[1].length());
-    let width = if du > 0.0 { ctx.state.footprint * 2.0 * r / du } else { 0.0 };
-    let c = match tex {
-        crate::texture::Texture::Image { image, .. } => {
-            { (0.0..1.0).contains(&coord.x) && (0.0..1.0).contains(&coord.y) }
-                .then(|| image.lookup(coord.x, coord.y, width))
+    let bilinear = ctx.bool(n, 5);
+    let space = ctx.int(n, 6).clamp(0, MAX_FILTER_SPACE) as usize;
+    let axes = filter_axes(ctx, n, space, r);
+    let mut c = match axes {
+        Some(axes) => {
+            image.ewa(coord.x, coord.y, &crate::texture::mipmap::Ellipse { axes, eccmax, maxminor, bilinear })
         }
-        _ => None,
+        None => image.lookup(coord.x, coord.y, 0.0),
     };
-    *out = Value::Color(c.unwrap_or(Vec4::ZERO));
-    c.is_some()
+    if image.channels < 3 {
+        let a = if image.channels == 2 { c.y } else { 1.0 };
+        c = Vec4::new(c.x, c.x, c.x, a);
+    }
+    *out = Value::Color(c);
+    true
+}
+
+/// The conjugate semi-axes of the projected disc of radius `r` pixels in texture space
+/// `space`, after the `remap` shader; `None` without pixel differentials.
+fn filter_axes(ctx: &mut Ctx, n: NodeId, space: usize, r: f32) -> Option<[glam::Vec2; 2]> {
+    let s = &ctx.state;
+    if s.point_derivs == [Vec3A::ZERO; 2] {
+        return None;
+    }
+    let derivs = if space == 0 {
+        (s.tex_count > 0).then_some(s.tex_derivs)?
+    } else {
+        let corners = ctx.tracer.triangle(s, VertexData::Point)?;
+        let coords = ctx.tracer.triangle(s, VertexData::Texture(space))?;
+        s.texture_derivs(corners, coords)?
+    };
+    let t0 = s.tex(space);
+    let step = |d: glam::Vec2| Vec3A::new(d.x * r, d.y * r, 0.0);
+    let mut pts = [t0, t0 + step(derivs[0]), t0 + step(derivs[1])];
+    if let Some(Tag::Shader(remap)) = ctx.tag(n, 7) {
+        let saved = ctx.state.tex;
+        for p in &mut pts {
+            ctx.flush_cache();
+            ctx.state.tex_arg = Some(*p);
+            ctx.state.tex = *p;
+            *p = ctx.result(remap).vector();
+        }
+        ctx.state.tex_arg = None;
+        ctx.state.tex = saved;
+        ctx.flush_cache();
+    }
+    let axes = [pts[1] - pts[0], pts[2] - pts[0]].map(|v| glam::Vec2::new(v.x, v.y));
+    axes.iter().all(|a| a.is_finite()).then_some(axes)
 }
 
 /// `mib_texture_vector (integer select, integer selspace, integer vertex, integer
@@ -209,7 +269,8 @@ fn tex_vector(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 /// `input` times `transform` (when its last element is not 0); `torus` wraps into [0, 1);
 /// on axes with a `repeat` and a value in [0, 1), the value is multiplied by it, every
 /// other copy mirrored where `alt` (the first one among them), and wrapped again; axes with
-/// `min` ≠ `max` are rescaled from [0, 1] to [min, max]; `offset` is added.
+/// `min` ≠ `max` are rescaled from [0, 1] to [min, max]; `offset` is added. A coordinate
+/// handed over in `state.tex_arg` (by `mib_texture_filter_lookup`) replaces `input`.
 pub static REMAP: ShaderImpl = ShaderImpl {
     name: "mib_texture_remap",
     params: &[
@@ -230,7 +291,11 @@ pub static REMAP: ShaderImpl = ShaderImpl {
 };
 
 fn remap(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let mut p = ctx.vector(n, 0);
+    // A coordinate handed over by a filtered lookup replaces the input.
+    let mut p = match ctx.state.tex_arg.take() {
+        Some(p) => p,
+        None => ctx.vector(n, 0),
+    };
     let m = ctx.eval(n, 1).transform();
     if m.w_axis.w != 0.0 {
         p = Vec3A::from(m.transform_point3(p.into()));

@@ -110,6 +110,19 @@ pub struct State {
     pub tex_count: usize,
     /// Surface derivatives dP/du, dP/dv of the first texture space (zero if unknown).
     pub derivs: [Vec3A; 2],
+    /// Pixel differentials of the hit point (mental ray's screen-to-surface projection):
+    /// where the point moves on the surface's tangent plane (world space) for a one-pixel
+    /// step across the ray's footprint — along the camera's raster x (right) and y (up),
+    /// made perpendicular to the ray. Zero when the footprint is unknown. See
+    /// [`State::set_pixel_derivs`].
+    pub point_derivs: [Vec3A; 2],
+    /// dUV/dx and dUV/dy: the change of the first texture space's coordinate (its x and y)
+    /// over the steps of `point_derivs`, texture-space units per pixel. Zero when unknown.
+    pub tex_derivs: [Vec2; 2],
+    /// A texture coordinate handed to a remapping shader in place of its input (mental
+    /// ray's fourth argument of `mi_call_shader_x`, set by `mib_texture_filter_lookup`);
+    /// shaders that honour it take it (leaving `None`).
+    pub tex_arg: Option<Vec3A>,
     /// Bump basis vectors of the first texture space, when the geometry gives them.
     pub bump_basis: Option<[Vec3A; 2]>,
     /// Motion vector of the point (world units per shutter interval).
@@ -236,6 +249,46 @@ impl State {
         }
     }
 
+    /// Sets [`State::point_derivs`] from the ray footprint: steps of `footprint` (one
+    /// pixel's width at the hit) across the ray, the first along `right` (world space, made
+    /// perpendicular to the ray; another perpendicular if it is parallel), the second along
+    /// first × `dir` (up for a camera looking down −Z with `right` = +X), each carried
+    /// along the ray onto the plane through `point` with normal `normal_geom`. Grazing hits
+    /// are limited to a 1/1000 cosine.
+    pub fn set_pixel_derivs(&mut self, right: Vec3A) {
+        self.point_derivs = [Vec3A::ZERO; 2];
+        if !(self.footprint.is_finite() && self.footprint > 0.0) {
+            return;
+        }
+        let d = self.dir;
+        let x = (right - d * right.dot(d)).try_normalize().unwrap_or_else(|| d.any_orthonormal_vector());
+        let y = x.cross(d);
+        let n = self.normal_geom;
+        let cos = n.dot(d);
+        let cos = if cos.abs() < 1e-3 { 1e-3f32.copysign(cos) } else { cos };
+        let onto_plane = |v: Vec3A| (v - d * (v.dot(n) / cos)) * self.footprint;
+        self.point_derivs = [onto_plane(x), onto_plane(y)];
+    }
+
+    /// The differentials of a texture space over the hit triangle for the steps of
+    /// `point_derivs`: `corners` are the triangle's world-space vertices, `coords` their
+    /// texture coordinates (x and y used). `None` for a degenerate triangle.
+    pub fn texture_derivs(&self, corners: [Vec3A; 3], coords: [Vec3A; 3]) -> Option<[Vec2; 2]> {
+        let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
+        let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let det = a * c - b * b;
+        if det.is_nan() || det <= 1e-12 * a * c {
+            return None;
+        }
+        let (t1, t2) = (coords[1] - coords[0], coords[2] - coords[0]);
+        // Barycentric steps (least squares in the triangle's plane), then texture steps.
+        Some(self.point_derivs.map(|dp| {
+            let (r1, r2) = (e1.dot(dp), e2.dot(dp));
+            let (b1, b2) = ((c * r1 - b * r2) / det, (a * r2 - b * r1) / det);
+            Vec2::new(t1.x * b1 + t2.x * b2, t1.y * b1 + t2.y * b2)
+        }))
+    }
+
     /// Object space point of the hit.
     pub fn point_object(&self) -> Vec3A {
         self.world_to_object.transform_point3a(self.point)
@@ -269,6 +322,33 @@ mod tests {
         assert_eq!((rr.reflection_level, rr.refraction_level), (1, 1));
         let t = rr.child(RayType::Transparent, Vec3A::ZERO, Vec3A::Z);
         assert_eq!(t.refraction_level, 2);
+    }
+
+    #[test]
+    fn pixel_derivs_stretch_by_the_inverse_cosine_along_the_tilt() {
+        // A camera looking down −Z at the plane z = 0 tilted by 60° about x: unit uv per
+        // unit length, u along x, v up the tilted plane.
+        let tilt = 60f32.to_radians();
+        let (up, n) = (Vec3A::new(0.0, tilt.cos(), tilt.sin()), Vec3A::new(0.0, -tilt.sin(), tilt.cos()));
+        let s = State { dir: -Vec3A::Z, normal_geom: n, footprint: 0.01, ..State::default() };
+        let mut s = s;
+        s.set_pixel_derivs(Vec3A::X);
+        assert!((s.point_derivs[0] - Vec3A::new(0.01, 0.0, 0.0)).length() < 1e-7);
+        // Up one pixel on screen: 0.01 / cos 60° = 0.02 along the plane.
+        assert!((s.point_derivs[1] - up * 0.02).length() < 1e-6, "{}", s.point_derivs[1]);
+        let corners = [Vec3A::ZERO, Vec3A::X, up];
+        let coords = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
+        let [dx, dy] = s.texture_derivs(corners, coords).unwrap();
+        assert!((dx - Vec2::new(0.01, 0.0)).length() < 1e-6 && (dy - Vec2::new(0.0, 0.02)).length() < 1e-6);
+        // A texture scaled 3× in u and mirrored in v scales the differentials.
+        let coords = [Vec3A::ZERO, Vec3A::X * 3.0, -Vec3A::Y];
+        let [dx, dy] = s.texture_derivs(corners, coords).unwrap();
+        assert!((dx - Vec2::new(0.03, 0.0)).length() < 1e-6 && (dy - Vec2::new(0.0, -0.02)).length() < 1e-6);
+        assert!(s.texture_derivs([Vec3A::ZERO, Vec3A::X, Vec3A::X * 2.0], coords).is_none());
+        // No footprint, no differentials.
+        s.footprint = 0.0;
+        s.set_pixel_derivs(Vec3A::X);
+        assert_eq!(s.point_derivs, [Vec3A::ZERO; 2]);
     }
 
     #[test]

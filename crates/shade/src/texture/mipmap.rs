@@ -5,7 +5,7 @@
 //! convention: v = 0 is the bottom row of the picture). Lookups wrap around at the edges,
 //! so that textures repeated by coordinate remapping tile without seams.
 
-use glam::Vec4;
+use glam::{Vec2, Vec4};
 
 /// Texels of one level, kept at the precision of the source.
 #[derive(Clone, Debug)]
@@ -50,6 +50,44 @@ impl Level {
         let top = self.texel(xa, ya) * (1.0 - fx) + self.texel(xb, ya) * fx;
         let bottom = self.texel(xa, yb) * (1.0 - fx) + self.texel(xb, yb) * fx;
         top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Gaussian-weighted mean of the texels around texture coordinates (u, v), wrapping:
+    /// texel centres at offset d (this level's texels) weigh exp(−2 dᵀ Σ⁻¹ d) for
+    /// dᵀ Σ⁻¹ d < 4, where Σ = [`sxx`, `sxy`; `sxy`, `syy`] (this level's texels²) holds the
+    /// footprint ellipse's semi-axes as ±√eigenvalues. The Gaussian's standard deviation is
+    /// half of each semi-axis; the cut at twice the semi-axis drops 0.03 % of its weight.
+    fn gaussian(&self, u: f32, v: f32, [sxx, sxy, syy]: [f32; 3]) -> Vec4 {
+        let det = sxx * syy - sxy * sxy;
+        if !(det.is_finite() && det > 0.0) {
+            return self.bilinear(u, v);
+        }
+        let (qxx, qxy, qyy) = (syy / det, -sxy / det, sxx / det);
+        let cx = u * self.width as f32 - 0.5;
+        let cy = v * self.height as f32 - 0.5;
+        // Where dᵀ Σ⁻¹ d = 4 reaches furthest along x and y: 2 √Σxx and 2 √Σyy.
+        let (ex, ey) = (2.0 * sxx.sqrt(), 2.0 * syy.sqrt());
+        let wrap = |i: i64, n: usize| i.rem_euclid(n as i64) as usize;
+        let mut sum = Vec4::ZERO;
+        let mut total = 0.0;
+        for y in (cy - ey).ceil() as i64..=(cy + ey).floor() as i64 {
+            let dy = y as f32 - cy;
+            let row = wrap(y, self.height);
+            for x in (cx - ex).ceil() as i64..=(cx + ex).floor() as i64 {
+                let dx = x as f32 - cx;
+                let q = qxx * dx * dx + 2.0 * qxy * dx * dy + qyy * dy * dy;
+                if q < 4.0 {
+                    let w = (-2.0 * q).exp();
+                    sum += self.texel(wrap(x, self.width), row) * w;
+                    total += w;
+                }
+            }
+        }
+        if total > 0.0 {
+            sum / total
+        } else {
+            self.bilinear(u, v)
+        }
     }
 
     /// The next smaller level: 2×2 box filter (a 1-texel edge is kept when a side is odd
@@ -162,6 +200,101 @@ impl MipMap {
     }
 }
 
+/// The footprint of an elliptical (EWA) lookup: a screen-space disc projected into texture
+/// space, and mental ray's limits on it (`mib_texture_filter_lookup`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ellipse {
+    /// Two conjugate semi-axes of the ellipse in texture-space units ([0, 1) over the image
+    /// in u and v): the images of two perpendicular radii of the screen disc. The ellipse is
+    /// { a·cos t + b·sin t }, whatever pair of perpendicular radii was projected.
+    pub axes: [Vec2; 2],
+    /// Largest ratio of major to minor axis; longer ellipses get a longer minor axis
+    /// (≤ 1: [`DEFAULT_ECCMAX`]).
+    pub eccmax: f32,
+    /// Largest minor semi-axis in texels of the level filtered: the level is the one on
+    /// which the minor semi-axis spans at most this many texels, linearly between the two
+    /// nearest (≤ 0: [`DEFAULT_MAXMINOR`]).
+    pub maxminor: f32,
+    /// Footprints smaller than a texel (magnification): bilinear interpolation if set, else
+    /// the nearest texel.
+    pub bilinear: bool,
+}
+
+/// Eccentricity limit when the lookup gives none.
+pub const DEFAULT_ECCMAX: f32 = 20.0;
+/// Minor-axis limit (texels) when the lookup gives none.
+pub const DEFAULT_MAXMINOR: f32 = 6.0;
+/// The longest major semi-axis (texels of the level filtered) mira sums over; longer
+/// ellipses are filtered on a coarser level (bounds the work of one lookup).
+const MAX_MAJOR: f32 = 128.0;
+
+/// Eigenvalues (larger first) of the symmetric 2×2 matrix [a, b; b, c].
+fn eigenvalues(a: f32, b: f32, c: f32) -> (f32, f32) {
+    let mean = 0.5 * (a + c);
+    let d = (0.25 * (a - c) * (a - c) + b * b).sqrt();
+    (mean + d, (mean - d).max(0.0))
+}
+
+impl MipMap {
+    /// The elliptically filtered value at (u, v) (Heckbert's EWA): the ellipse's semi-axes
+    /// are found in texels, its eccentricity limited to `eccmax` (by lengthening the minor
+    /// axis), the level chosen where the minor semi-axis spans `maxminor` texels, and there
+    /// the texels are averaged with Gaussian weights over the ellipse (σ = half of each
+    /// semi-axis; each semi-axis is made at least one texel of the level). Levels are
+    /// blended linearly.
+    pub fn ewa(&self, u: f32, v: f32, e: &Ellipse) -> Vec4 {
+        let (w0, h0) = self.size();
+        let scale = Vec2::new(w0 as f32, h0 as f32);
+        let [a, b] = e.axes.map(|x| x * scale);
+        let (sxx, sxy, syy) = (a.x * a.x + b.x * b.x, a.x * a.y + b.x * b.y, a.y * a.y + b.y * b.y);
+        let (l1, l2) = eigenvalues(sxx, sxy, syy);
+        let (major, mut minor) = (l1.sqrt(), l2.sqrt());
+        if !major.is_finite() || major <= 1.0 {
+            return if !major.is_finite() || e.bilinear {
+                self.levels[0].bilinear(u, v)
+            } else {
+                let x = ((u * w0 as f32).floor() as i64).rem_euclid(w0 as i64) as usize;
+                let y = ((v * h0 as f32).floor() as i64).rem_euclid(h0 as i64) as usize;
+                self.levels[0].texel(x, y)
+            };
+        }
+        // Direction of the major axis.
+        let dir = if sxy.abs() > 1e-12 * (sxx + syy) {
+            Vec2::new(l1 - syy, sxy).normalize()
+        } else if sxx >= syy {
+            Vec2::X
+        } else {
+            Vec2::Y
+        };
+        let eccmax = if e.eccmax > 1.0 { e.eccmax } else { DEFAULT_ECCMAX };
+        let maxminor = if e.maxminor > 0.0 { e.maxminor } else { DEFAULT_MAXMINOR };
+        minor = minor.max(major / eccmax);
+        let level = (minor / maxminor).log2().max((major / MAX_MAJOR).log2()).max(0.0);
+        let level = level.min((self.levels.len() - 1) as f32);
+        let across = dir.perp();
+        let at = |k: usize| {
+            let l = &self.levels[k];
+            let s = Vec2::new(l.width as f32 / w0 as f32, l.height as f32 / h0 as f32);
+            let (p, q) = (dir * major * s, across * minor * s);
+            let (mut xx, xy, mut yy) = (p.x * p.x + q.x * q.x, p.x * p.y + q.x * q.y, p.y * p.y + q.y * q.y);
+            // At least a texel across: raise the smaller eigenvalue to 1.
+            let small = eigenvalues(xx, xy, yy).1;
+            if small < 1.0 {
+                xx += 1.0 - small;
+                yy += 1.0 - small;
+            }
+            l.gaussian(u, v, [xx, xy, yy])
+        };
+        let l0 = level.floor();
+        let t = level - l0;
+        let lo = at(l0 as usize);
+        if t < 1e-4 {
+            return lo;
+        }
+        lo * (1.0 - t) + at((l0 as usize + 1).min(self.levels.len() - 1)) * t
+    }
+}
+
 fn flip_rows<T: Copy>(top_down: &[T], width: usize, height: usize) -> Vec<T> {
     let mut out = Vec::with_capacity(width * height);
     for row in (0..height).rev() {
@@ -202,6 +335,88 @@ mod tests {
         let sharp = m.lookup(0.5 / 64.0, 0.5 / 64.0, 1.0 / 64.0);
         assert_eq!(sharp, m.texel(0, 0));
         assert!(sharp.x == 0.0 || sharp.x == 1.0);
+    }
+
+    /// A float texture n×n whose texel (x, y) (y up) is `f(x, y)` in all colour channels.
+    fn float_texture(n: usize, f: impl Fn(usize, usize) -> f32) -> MipMap {
+        let top_down: Vec<[f32; 4]> = (0..n * n)
+            .map(|i| {
+                let v = f(i % n, n - 1 - i / n);
+                [v, v, v, 1.0]
+            })
+            .collect();
+        MipMap::from_rgba32f(n, n, &top_down, 4)
+    }
+
+    fn ellipse(a: (f32, f32), b: (f32, f32), n: usize) -> Ellipse {
+        let s = 1.0 / n as f32;
+        Ellipse { axes: [Vec2::new(a.0, a.1) * s, Vec2::new(b.0, b.1) * s], eccmax: 0.0, maxminor: 0.0, bilinear: true }
+    }
+
+    #[test]
+    fn ewa_keeps_a_constant_texture_constant() {
+        let m = float_texture(64, |_, _| 0.37);
+        for (a, b) in [
+            ((0.3, 0.0), (0.0, 0.2)),
+            ((3.0, 0.0), (0.0, 2.0)),
+            ((20.0, 20.0), (-0.5, 0.5)),
+            ((500.0, 3.0), (1.0, 40.0)),
+        ] {
+            for (u, v) in [(0.5, 0.5), (0.01, 0.99), (0.999, 0.3)] {
+                let c = m.ewa(u, v, &ellipse(a, b, 64));
+                assert!((c.x - 0.37).abs() < 1e-5 && (c.w - 1.0).abs() < 1e-5, "{a:?} {b:?} at {u},{v}: {c}");
+            }
+        }
+    }
+
+    #[test]
+    fn ewa_at_grazing_angles_is_sharp_across_and_averages_along() {
+        // A grazing footprint: 1 texel across (u), 40 texels along (v).
+        let n = 256;
+        let e = ellipse((1.0, 0.0), (0.0, 40.0), n);
+        let checker = float_texture(n, |x, y| ((x / 4 + y / 4) % 2) as f32);
+        let u_stripes = float_texture(n, |x, _| ((x / 4) % 2) as f32);
+        let v_stripes = float_texture(n, |_, y| ((y / 4) % 2) as f32);
+        for k in [3usize, 10, 31] {
+            let (u, v) = ((4 * k + 2) as f32 / n as f32, 0.37 + k as f32 * 0.01);
+            let c = checker.ewa(u, v, &e).x;
+            assert!((c - 0.5).abs() < 0.01, "checkerboard at column {k}: {c}");
+            let along = v_stripes.ewa(u, v, &e).x;
+            assert!((along - 0.5).abs() < 0.01, "stripes along the footprint average: {along}");
+            // Across the footprint the stripes stay sharp...
+            let across = u_stripes.ewa(u, v, &e).x;
+            let expected = (k % 2) as f32;
+            assert!((across - expected).abs() < 0.06, "stripe {k}: {across}");
+            // ... where an isotropic lookup as wide as the footprint's long axis blurs them.
+            let iso = u_stripes.lookup(u, v, 2.0 * 40.0 / n as f32).x;
+            assert!((iso - 0.5).abs() < 0.1, "isotropic: {iso}");
+        }
+        // Limiting the eccentricity lengthens the minor axis: the stripes blur.
+        let loose = u_stripes.ewa(10.0 / n as f32, 0.5, &Ellipse { eccmax: 4.0, ..e }).x;
+        assert!((loose - 0.5).abs() < 0.25, "eccmax 4: {loose}");
+    }
+
+    #[test]
+    fn ewa_of_an_axis_aligned_footprint_is_the_gaussian_mean() {
+        // cos(2π k x / n) under a Gaussian of deviation σ: attenuated by exp(−2π²σ²k²/n²).
+        let (n, k) = (256usize, 8.0f32);
+        let f = |x: f32| 0.5 + 0.5 * (2.0 * std::f32::consts::PI * k * x / n as f32).cos();
+        let m = float_texture(n, |x, _| f(x as f32 + 0.5));
+        // Semi-axes 6 and 3 texels: σ = 3 along u (level 0, as maxminor allows 3 texels).
+        let e = Ellipse { maxminor: 3.0, ..ellipse((6.0, 0.0), (0.0, 3.0), n) };
+        let atten = (-2.0 * std::f32::consts::PI.powi(2) * 9.0 * k * k / (n * n) as f32).exp();
+        for x in [0.0f32, 5.0, 8.5, 13.25, 100.0] {
+            let u = x / n as f32;
+            let expected = 0.5 + (f(x) - 0.5) * atten;
+            let got = m.ewa(u, 0.5, &e).x;
+            assert!((got - expected).abs() < 2e-3, "x {x}: {got} vs {expected}");
+        }
+        // Turned 90°, the same footprint along v reads the texture's constant direction:
+        // σ = 1.5 along u.
+        let e = Ellipse { maxminor: 3.0, ..ellipse((0.0, 6.0), (3.0, 0.0), n) };
+        let atten = (-2.0 * std::f32::consts::PI.powi(2) * 2.25 * k * k / (n * n) as f32).exp();
+        let got = m.ewa(5.0 / n as f32, 0.5, &e).x;
+        assert!((got - (0.5 + (f(5.0) - 0.5) * atten)).abs() < 2e-3, "{got}");
     }
 
     #[test]
