@@ -1,5 +1,6 @@
-//! Writing images: multi-channel linear EXR with every frame buffer, and 8-bit PNG (or
-//! JPEG, TIFF) through the scene's tone mapper, Radiance HDR linear.
+//! Writing images: multi-channel linear EXR with every frame buffer (the motion buffer when
+//! an output asks for it), and 8-bit PNG (or JPEG, TIFF) through the scene's tone mapper,
+//! Radiance HDR linear.
 
 use std::path::Path;
 
@@ -42,10 +43,38 @@ impl Format {
     }
 }
 
-/// Writes `film` to `path` in `format`.
-pub fn write(film: &Film, path: &Path, format: Format, tone: &ToneMapper) -> std::result::Result<(), String> {
+/// Buffers an output asks for beyond what every file of its format holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Extras {
+    /// The motion buffer (`m`): raster-space motion vectors, written to EXR files as
+    /// channels `M.X`, `M.Y`.
+    pub motion: bool,
+}
+
+impl Extras {
+    /// From an `output` statement's frame buffer types (`rgba`, `+m`, `-z`, …) or a
+    /// `framebuffer`'s data type.
+    pub fn from_types<S: AsRef<str>>(types: &[S]) -> Extras {
+        Extras { motion: types.iter().any(|t| t.as_ref().trim().trim_start_matches(['+', '-']) == "m") }
+    }
+
+    /// Both sets of buffers.
+    pub fn union(self, other: Extras) -> Extras {
+        Extras { motion: self.motion || other.motion }
+    }
+}
+
+/// Writes `film` to `path` in `format` with the buffers of `extras` (EXR only; other
+/// formats hold the colour buffer alone).
+pub fn write(
+    film: &Film,
+    path: &Path,
+    format: Format,
+    tone: &ToneMapper,
+    extras: Extras,
+) -> std::result::Result<(), String> {
     match format {
-        Format::Exr => write_exr(film, path),
+        Format::Exr => write_exr(film, path, extras),
         Format::Hdr => {
             let rgba = film.rgba();
             let img = image::Rgb32FImage::from_fn(film.width, film.height, |x, y| {
@@ -72,8 +101,10 @@ pub fn write(film: &Film, path: &Path, format: Format, tone: &ToneMapper) -> std
 }
 
 /// One EXR part with channels R, G, B, A (linear colour), Z (depth), N.X/N.Y/N.Z (normal),
-/// tag (label, unsigned integer) and `name.R/G/B/A` for each user frame buffer.
-fn write_exr(film: &Film, path: &Path) -> std::result::Result<(), String> {
+/// tag (label, unsigned integer), `name.R/G/B/A` for each user frame buffer and, when
+/// `extras` asks for it, M.X/M.Y (motion of each pixel's first hit over the shutter
+/// interval in raster pixels, x right, y up as mental ray's raster space).
+fn write_exr(film: &Film, path: &Path, extras: Extras) -> std::result::Result<(), String> {
     let (w, h) = (film.width as usize, film.height as usize);
     let rgba = film.rgba();
     let normals = film.normals();
@@ -83,6 +114,11 @@ fn write_exr(film: &Film, path: &Path) -> std::result::Result<(), String> {
         for (k, c) in ["R", "G", "B", "A"].iter().enumerate() {
             user.push(channel(&format!("{}.{c}", b.name), b.data.iter().map(|p| p[k]).collect()));
         }
+    }
+    if extras.motion {
+        let motion = film.motion();
+        user.push(channel("M.X", motion.iter().map(|m| m[0]).collect()));
+        user.push(channel("M.Y", motion.iter().map(|m| m[1]).collect()));
     }
     let channels = AnyChannels::sort(
         vec![

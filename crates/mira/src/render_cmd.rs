@@ -231,10 +231,21 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
     // Outputs: -o, else the camera's file outputs in formats mira writes, else SCENE.exr.
     let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
-    let mut targets: Vec<(PathBuf, Format)> = Vec::new();
+    let mut targets: Vec<(PathBuf, Format, output::Extras)> = Vec::new();
+    // Buffers beyond colour some output asks for (`-o` writes them too).
+    let asked = sc
+        .camera
+        .outputs
+        .iter()
+        .filter_map(|o| match o {
+            scene::camera::Output::File { types, .. } => Some(output::Extras::from_types(types)),
+            _ => None,
+        })
+        .chain(sc.camera.framebuffers.iter().map(|fb| output::Extras::from_types(&[&fb.datatype])))
+        .fold(output::Extras::default(), output::Extras::union);
     if let Some(o) = &args.output {
         match Format::from_path(o) {
-            Some(f) => targets.push((o.clone(), f)),
+            Some(f) => targets.push((o.clone(), f, asked)),
             None => {
                 return err(format!(
                     "cannot tell the image format of '{}' (use .exr, .png, .jpg, .tif or .hdr)",
@@ -244,29 +255,41 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
     } else {
         for out in &sc.camera.outputs {
-            if let scene::camera::Output::File { format, file, .. } = out {
+            if let scene::camera::Output::File { types, format, file } = out {
+                let extras = output::Extras::from_types(types);
                 match Format::from_name(format) {
-                    Some(f) => targets.push((PathBuf::from(file), f)),
+                    Some(f) if extras.motion && f != Format::Exr => {
+                        eprintln!("mira: warning: the motion buffer of '{file}' is written only to EXR files; skipped")
+                    }
+                    Some(f) => targets.push((PathBuf::from(file), f, extras)),
                     None => eprintln!("mira: warning: output format '{format}' of '{file}' is not supported; skipped"),
                 }
             }
         }
         for fb in &sc.camera.framebuffers {
-            if let (Some(file), true) = (&fb.filename, fb.primary || fb.datatype.starts_with("rgb")) {
+            let extras = output::Extras::from_types(&[&fb.datatype]);
+            if let (Some(file), true) = (&fb.filename, fb.primary || fb.datatype.starts_with("rgb") || extras.motion) {
                 let format =
                     fb.filetype.as_deref().and_then(Format::from_name).or_else(|| Format::from_path(Path::new(file)));
-                if let Some(f) = format {
-                    targets.push((PathBuf::from(file), f));
+                match format {
+                    Some(f) if extras.motion && f != Format::Exr => {
+                        eprintln!(
+                            "mira: warning: the motion buffer '{}' is written only to EXR files; skipped",
+                            fb.name
+                        )
+                    }
+                    Some(f) => targets.push((PathBuf::from(file), f, extras)),
+                    None => {}
                 }
             }
         }
         if targets.is_empty() {
-            targets.push((args.scene.with_extension("exr"), Format::Exr));
+            targets.push((args.scene.with_extension("exr"), Format::Exr, asked));
         }
     }
     let mut failed = false;
-    for (path, format) in &targets {
-        match output::write(&film, path, *format, &tone) {
+    for (path, format, extras) in &targets {
+        match output::write(&film, path, *format, &tone, *extras) {
             Ok(()) => eprintln!("mira: wrote {}", path.display()),
             Err(e) => {
                 eprintln!("mira: error: cannot write {}: {e}", path.display());

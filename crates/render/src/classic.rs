@@ -188,6 +188,21 @@ fn motion(inst: &crate::world::InstanceData, mesh: &crate::world::MeshData, v: [
     m
 }
 
+/// World-space motion over the shutter interval of `point` on `hit` (as [`fill_state`]
+/// finds it; for the path engine's first hit).
+pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
+    let inst = &world.instances[hit.instance as usize];
+    let mesh = &world.meshes[inst.mesh as usize];
+    let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
+    let s = State {
+        point,
+        bary: [1.0 - hit.u - hit.v, hit.u, hit.v],
+        hair: mesh.hair.as_ref().map(|_| shade::model::state::HairState::default()),
+        ..State::default()
+    };
+    motion(inst, mesh, tri, &s)
+}
+
 /// The raster position (pixels, origin at the lower left as mental ray's raster space) of
 /// world point `p`, or `None` behind a perspective camera.
 pub fn raster_position(cam: &crate::camera::CameraModel, p: Vec3A) -> Option<Vec2> {
@@ -232,7 +247,7 @@ impl Tracer for ClassicTracer<'_> {
         if s.ray_type == RayType::Eye && s.reflection_level == 0 && s.refraction_level == 0 {
             let first = self.first.get();
             if first.is_none() {
-                self.first.set(Some(FirstHit { point: s.point, normal: s.normal, tag: s.label }));
+                self.first.set(Some(FirstHit { point: s.point, normal: s.normal, tag: s.label, motion: s.motion }));
                 self.first_motion.set(s.motion);
             }
         }

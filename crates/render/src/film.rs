@@ -4,7 +4,7 @@
 //! coverage). A sample whose colour is NaN or infinite is stored as 1.0 in those channels
 //! (mental ray's rule) and counted. `z` (depth along −Z in camera space, 0 where nothing was
 //! hit), `n` (world-space shading normal), `tag` (the instance's label) and `m` (raster-space
-//! motion, classic engine) come from each pixel's first sample.
+//! motion, both engines) come from each pixel's first sample.
 
 use shade::Rgb;
 

@@ -67,6 +67,8 @@ pub struct FirstHit {
     pub normal: Vec3A,
     /// The instance's label.
     pub tag: u32,
+    /// World-space motion of the hit point over the shutter interval (`state.motion`).
+    pub motion: Vec3A,
 }
 
 /// The result of one camera path.
@@ -264,10 +266,11 @@ pub fn trace_path(
             radiance += throughput * le * weight;
             break;
         }
-        let Some((_, s, material)) = found else { break };
+        let Some((stop, s, material)) = found else { break };
         if depth == 0 {
             alpha = 1.0;
-            first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag });
+            let motion = crate::classic::hit_motion(world, &stop, s.p);
+            first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
         }
         if material.emission != Rgb::ZERO {
             radiance += throughput * material.emission;

@@ -308,6 +308,9 @@ pub fn render(
                         None => {
                             let ray = cam.ray(raster.x, raster.y);
                             let r = trace_path(world, accel, shading, ray, &mut sampler, &settings.path, &mut counts);
+                            if let Some(f) = r.first {
+                                motion = crate::classic::raster_motion(cam, f.point, f.motion).to_array();
+                            }
                             (r.radiance, r.alpha, r.first)
                         }
                     };
