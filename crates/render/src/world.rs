@@ -148,7 +148,7 @@ impl World {
             .objects
             .iter()
             .map(|o| {
-                crate::hair::ribbons(&o.geometry.hair).map(|(mut mesh, hair)| {
+                crate::hair::ribbons(&o.geometry.hair, crate::hair::Facing::Crossed).map(|(mut mesh, hair)| {
                     mesh.hair = Some(hair);
                     meshes.push(mesh);
                     (meshes.len() - 1) as u32
@@ -178,17 +178,47 @@ impl World {
         for (scene_index, i) in scene.instances.iter().enumerate() {
             let Some(mesh) = hair_mesh[i.object as usize] else { continue };
             let object_to_world = affine(i.object_to_world);
-            instances.push(InstanceData {
+            let world_to_object = affine(i.world_to_object);
+            // Crossed ribbons for shadow, reflection, refraction and final gather rays;
+            // ribbons facing the camera for eye and transparency rays (see `crate::hair`).
+            let mut crossed_flags = i.flags;
+            crossed_flags.visible = false;
+            crossed_flags.transparency.cast = false;
+            let mut facing_flags = i.flags;
+            for m in [&mut facing_flags.shadow, &mut facing_flags.reflection, &mut facing_flags.refraction] {
+                m.cast = false;
+            }
+            facing_flags.finalgather.cast = false;
+            let cam = &scene.camera;
+            let cam_to_object = world_to_object * affine(cam.camera_to_world);
+            let facing = if cam.focal.is_none() {
+                crate::hair::Facing::Direction(cam_to_object.transform_vector3a(Vec3A::Z))
+            } else {
+                crate::hair::Facing::Point(cam_to_object.transform_point3a(Vec3A::ZERO))
+            };
+            let facing_mesh = (i.flags.visible || i.flags.transparency.cast)
+                .then(|| crate::hair::ribbons(&scene.objects[i.object as usize].geometry.hair, facing))
+                .flatten()
+                .map(|(mut m, hair)| {
+                    m.hair = Some(hair);
+                    meshes.push(m);
+                    (meshes.len() - 1) as u32
+                });
+            let placed = |mesh: u32, flags: scene::Flags| InstanceData {
                 mesh,
                 object_to_world,
-                world_to_object: affine(i.world_to_object),
+                world_to_object,
                 normal_to_world: object_to_world.matrix3.inverse().transpose(),
                 materials: i.hair_materials.iter().map(|m| m.map_or(0, |m| m + 1)).collect(),
-                flags: i.flags,
+                flags,
                 tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
                 scene_index: scene_index as u32,
                 motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
-            });
+            };
+            instances.push(placed(mesh, crossed_flags));
+            if let Some(facing_mesh) = facing_mesh {
+                instances.push(placed(facing_mesh, facing_flags));
+            }
         }
         spread_emission(&mut materials, &meshes, &instances);
         let mut lights = Vec::new();
