@@ -1,6 +1,7 @@
 //! The Architectural library: `mia_material` (Arch & Design) and its helpers, and the
 //! physical sun and sky.
 
+pub mod aerial;
 pub mod bokeh;
 pub mod bsdf;
 pub mod comparison;

@@ -40,8 +40,10 @@
 //! the paper's published values (mental ray's own tuning of them is not public); a zenith
 //! luminance the fit makes negative (very hazy skies with a low sun) is taken as 0; the
 //! disk and glow dim with the rest of the sky after sunset; the ground uses the model's
-//! turbidity. Not done: the shader as a lens or volume shader for aerial perspective
-//! (`visibility_distance`; as a lens shader it passes the eye ray through), `flags`.
+//! turbidity. Not done: `flags`.
+//!
+//! **Aerial perspective** (`visibility_distance`, the shader in a camera's lens list):
+//! see [`super::aerial`].
 
 use std::cell::RefCell;
 use std::f32::consts::PI;
@@ -475,7 +477,8 @@ impl PhysicalSky {
 /// The sun's direction comes from the `sun` light (the opposite of the way it shines), else
 /// `sun_direction`. `use_background` shows the `background` shader (or transparent black)
 /// instead for rays from the eye (reflection and gather depth 0). Off: transparent black.
-/// In a camera's lens list it passes the eye ray through.
+/// In a camera's lens list it passes the eye ray through, with aerial perspective when
+/// `visibility_distance` is positive ([`super::aerial`]).
 pub static MIA_PHYSICALSKY: ShaderImpl = ShaderImpl {
     name: "mia_physicalsky",
     params: &[
@@ -506,6 +509,7 @@ pub static MIA_PHYSICALSKY: ShaderImpl = ShaderImpl {
         "d",
         "e",
         "physically_scaled_sun",
+        "visibility_distance",
     ],
     run: physicalsky,
 };
@@ -542,7 +546,14 @@ pub fn sky_of(ctx: &mut Ctx, n: NodeId) -> PhysicalSky {
 fn physicalsky(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     if ctx.state.ray_type == RayType::Eye && ctx.shading().lens.contains(&n) {
         let (org, dir) = (ctx.state.org, ctx.state.dir);
-        *out = Value::Color(ctx.trace_eye(org, dir));
+        let c = ctx.trace_eye(org, dir);
+        let (dist, visibility) = (ctx.state.child_dist, ctx.scalar(n, 27));
+        let c = if visibility > 0.0 && dist.is_finite() && ctx.bool(n, 0) {
+            super::aerial::aerial_perspective(&sky_of(ctx, n), c, dir, dist, visibility)
+        } else {
+            c
+        };
+        *out = Value::Color(c);
         return true;
     }
     if !ctx.bool(n, 0) {

@@ -184,7 +184,9 @@ impl Ctx<'_> {
     }
 
     /// Casts an eye ray from `org` along unit `dir` (mental ray's `mi_trace_eye`): the next
-    /// lens shader runs if there is one, else the ray is shaded.
+    /// lens shader runs if there is one, else the ray is shaded. The distance the ray
+    /// travelled (as the last lens shader saw it; infinite on a miss) is left in
+    /// `state.child_dist`.
     pub fn trace_eye(&mut self, org: Vec3A, dir: Vec3A) -> Color {
         let shading = self.shading();
         let mut ray = self.state.child(RayType::Eye, org, dir);
@@ -196,9 +198,11 @@ impl Ctx<'_> {
             let mut result = Value::Color(Color::ZERO);
             ctx.call(lens, &mut result);
             self.counts.calls += ctx.counts.calls;
+            self.state.child_dist = ctx.state.child_dist;
             return result.color();
         }
-        let (c, _) = self.shade_ray(ray, f32::INFINITY);
+        let (c, dist) = self.shade_ray(ray, f32::INFINITY);
+        self.state.child_dist = dist;
         c
     }
 
