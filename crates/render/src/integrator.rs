@@ -2,11 +2,13 @@
 //! (power heuristic), Russian roulette after a few bounces.
 
 use glam::Vec3A;
+use shade::bsdf::Bsdf;
 use shade::material::HitMaterial;
 use shade::model::{Ctx, RayType, Shading, State};
 use shade::{Frame, Rgb};
 
 use crate::accel::{Accel, Hit};
+use crate::environment::Environment;
 use crate::light::LightSource;
 use crate::ray::{offset_origin, Ray};
 use crate::sampler::Sampler;
@@ -129,11 +131,12 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     }
 }
 
-/// The closest visible light hit by `ray` before distance `tmax`.
-fn hit_light(lights: &[LightSource], ray: &Ray) -> Option<(usize, f32, Rgb)> {
+/// The closest visible light hit by `ray` before distance `tmax`; camera rays pass through
+/// portal windows.
+fn hit_light(lights: &[LightSource], ray: &Ray, camera: bool) -> Option<(usize, f32, Rgb)> {
     let mut best: Option<(usize, f32, Rgb)> = None;
     for (i, l) in lights.iter().enumerate() {
-        if !l.visible {
+        if !l.visible || camera && l.is_portal() {
             continue;
         }
         if let Some((t, le)) = l.intersect(ray) {
@@ -143,6 +146,93 @@ fn hit_light(lights: &[LightSource], ray: &Ray) -> Option<(usize, f32, Rgb)> {
         }
     }
     best
+}
+
+/// Radiance `le` of a light's surface seen along unit `dir`; a portal's is its scale × the
+/// environment seen through it along `dir` (× the environment's lighting scale).
+fn light_radiance(light: &LightSource, le: Rgb, env: Option<&Environment>, dir: Vec3A) -> Rgb {
+    if !light.is_portal() {
+        return le;
+    }
+    env.map_or(Rgb::ZERO, |env| le * env.radiance(dir) * env.lighting_scale)
+}
+
+/// Whether a ray from `origin` along unit `dir` leaves through the emitting side of a portal
+/// window: the portal light then accounts for the environment in that direction.
+fn through_portal(lights: &[LightSource], origin: Vec3A, dir: Vec3A) -> bool {
+    lights.iter().any(|l| l.is_portal() && l.intersect(&Ray::new(origin, dir)).is_some())
+}
+
+/// The environment seen by a ray that left the scene after `depth` bounces: all of it for
+/// camera rays (when the camera sees it), after delta bounces and when next-event
+/// estimation does not sample it, else its MIS share
+/// against environment sampling chosen with probability `pick` (none without MIS).
+fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool), pick: f32, mis: bool) -> Rgb {
+    let (last_pdf, last_delta) = last;
+    if depth == 0 {
+        return if env.camera_visible { env.radiance(ray.dir) } else { Rgb::ZERO };
+    }
+    let weight = if last_delta || !env.sampled {
+        1.0
+    } else if mis {
+        power_heuristic(last_pdf, pick * env.pdf(ray.dir))
+    } else {
+        0.0
+    };
+    if weight == 0.0 {
+        return Rgb::ZERO;
+    }
+    env.radiance(ray.dir) * (env.lighting_scale * weight)
+}
+
+/// A shading point as next-event estimation sees it.
+struct Vertex<'v> {
+    p: Vec3A,
+    ng: Vec3A,
+    frame: &'v Frame,
+    wo: Vec3A,
+    bsdf: &'v Bsdf,
+}
+
+/// Next-event estimation towards the environment (chosen with probability `pick`): one
+/// direction drawn from it, unless it leaves through a portal (the portal's share) or is
+/// blocked; MIS against the BSDF.
+#[allow(clippy::too_many_arguments)]
+fn environment_light(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    env: &Environment,
+    v: &Vertex,
+    pick: f32,
+    u: glam::Vec2,
+    seed: u32,
+    mis: bool,
+    counts: &mut RayCounts,
+) -> Rgb {
+    let Some(es) = env.sample(u) else { return Rgb::ZERO };
+    if es.pdf <= 0.0 || es.radiance == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let wi = v.frame.to_local(es.dir);
+    if (es.dir.dot(v.ng) > 0.0) != (wi.z > 0.0) {
+        return Rgb::ZERO;
+    }
+    let f = v.bsdf.eval(v.wo, wi);
+    if f == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let origin = offset_origin(v.p, v.ng, es.dir);
+    if through_portal(&world.lights, origin, es.dir) {
+        return Rgb::ZERO;
+    }
+    counts.shadow_rays += 1;
+    let shadow = Ray { mask: mask::SHADOW, origin, dir: es.dir, tmin: 0.0, tmax: f32::INFINITY };
+    if shadow_blocked(world, accel, shading, &shadow, seed) {
+        return Rgb::ZERO;
+    }
+    let weight = if mis { power_heuristic(pick * es.pdf, v.bsdf.pdf(v.wo, wi)) } else { 1.0 };
+    f * es.radiance * (env.lighting_scale * wi.z.abs() * weight / (pick * es.pdf))
 }
 
 /// Most cutout surfaces a ray passes through before it stops at the next one.
@@ -208,11 +298,21 @@ fn shadow_blocked(world: &World, accel: &dyn Accel, shading: Option<&Shading>, s
 }
 
 /// Traces one camera path; `shading` (the scene's compiled shader graph) evaluates
-/// materials with connected parameters.
+/// materials with connected parameters; `env` lights the scene from infinitely far away.
+///
+/// Portal lights (`mia_portal_light`) and the environment share the environment's light
+/// without counting it twice: a ray that crosses a portal window from its emitting side
+/// finds the portal (radiance: the environment along the ray × the portal's scale, MIS
+/// against sampling the portal), whatever lies beyond; only rays that leave the scene
+/// without crossing one find the environment (MIS against sampling the environment), and
+/// environment samples whose direction crosses a portal count nothing. Camera rays pass
+/// through portals.
+#[allow(clippy::too_many_arguments)]
 pub fn trace_path(
     world: &World,
     accel: &dyn Accel,
     shading: Option<&Shading>,
+    env: Option<&Environment>,
     camera_ray: Ray,
     sampler: &mut Sampler,
     settings: &PathSettings,
@@ -227,7 +327,9 @@ pub fn trace_path(
     let mut last_pdf = 0.0f32;
     let mut last_delta = true;
     let light_count = world.lights.len();
-    let pick = if light_count > 0 { 1.0 / light_count as f32 } else { 0.0 };
+    // The environment is one more light to choose for next-event estimation.
+    let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
+    let pick = if choices > 0 { 1.0 / choices as f32 } else { 0.0 };
     let seed = sampler.stream();
     for depth in 0..settings.max_depth {
         counts.rays += 1;
@@ -249,7 +351,18 @@ pub fn trace_path(
         }
         let hit = found.as_ref().map(|(h, _, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
-        if let Some((li, t, le)) = hit_light(&world.lights, &Ray { tmax, ..ray }) {
+        let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
+        if let (None, None, Some(env)) = (&light_hit, &found, env) {
+            // Left the scene: the environment.
+            let le = environment_seen(env, &ray, depth, (last_pdf, last_delta), pick, settings.mis);
+            if depth == 0 && le != Rgb::ZERO {
+                alpha = 1.0;
+            }
+            radiance += throughput * le;
+            break;
+        }
+        if let Some((li, t, le)) = light_hit {
+            let le = light_radiance(&world.lights[li], le, env, ray.dir);
             if depth == 0 {
                 alpha = 1.0;
             }
@@ -290,9 +403,15 @@ pub fn trace_path(
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
         let u_light = sampler.next_2d();
-        if light_count > 0 && !bsdf.is_delta() {
-            let light = &world.lights[((choice * light_count as f32) as usize).min(light_count - 1)];
-            if let Some(ls) = light.sample(s.p, u_light) {
+        let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
+        if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
+            let v = Vertex { p: s.p, ng, frame: &frame, wo, bsdf: &bsdf };
+            radiance += throughput
+                * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
+        } else if k < light_count && !bsdf.is_delta() {
+            let light = &world.lights[k];
+            if let Some(mut ls) = light.sample(s.p, u_light) {
+                ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
                 let f = bsdf.eval(wo, wi);
                 // The light must be on the side of the geometric surface the shading frame

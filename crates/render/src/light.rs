@@ -70,6 +70,16 @@ pub enum Output {
         /// How it varies with direction (`None`: uniform).
         distribution: Option<Arc<LocalDistribution>>,
     },
+    /// `mia_portal_light`: a window bringing the environment in. Its surface radiance
+    /// along a direction is `scale` × the environment's radiance along it (the integrator
+    /// multiplies the two), towards the shape's normal side (the other with `reverse`).
+    /// Sampled by area like [`Output::Radiance`].
+    Portal {
+        /// Tint × multiplier.
+        scale: Rgb,
+        /// Emits to the side opposite the shape's normal.
+        reverse: bool,
+    },
 }
 
 /// A light in the render world.
@@ -167,10 +177,15 @@ impl LightSource {
         let a = shape.area();
         let is_area = !matches!(shape, Shape::Point);
         let output = match (emission.power, light.kind, is_area) {
+            (Power::Portal { scale, reverse }, _, true) => Output::Portal { scale, reverse },
+            (Power::Portal { .. }, _, false) => {
+                return Err(format!("light '{}': mia_portal_light needs an area light shape", light.instance))
+            }
             (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
             (p, LightKind::Directional, _) => Output::Irradiance(match p {
                 Power::Exitance(c) | Power::Radiance(c) | Power::Flux(c) | Power::Intensity(c) => c,
                 Power::Constant { color, .. } | Power::Photometric { color, .. } => color,
+                Power::Portal { scale, .. } => scale,
             }),
             (Power::Photometric { color, exponent, range }, _, _) => {
                 Output::Photometric { color, exponent, range, distribution }
@@ -183,6 +198,9 @@ impl LightSource {
             (Power::Exitance(c) | Power::Radiance(c) | Power::Intensity(c), _, false) => Output::Intensity(c),
         };
         let radiant = matches!(output, Output::Radiance { .. });
+        // Portals are always found by scattered rays (the integrator's rule that the
+        // environment is not counted twice needs it); camera rays pass through them.
+        let portal = matches!(output, Output::Portal { .. });
         Ok(LightSource {
             name: light.instance.clone(),
             kind: light.kind,
@@ -193,9 +211,14 @@ impl LightSource {
             spread: light.spread as f32,
             cone: emission.cone,
             spot_exponent: emission.spot_exponent,
-            visible: light.visible && is_area && radiant,
+            visible: (light.visible && radiant || portal) && is_area,
             shadow: light.shadow,
         })
+    }
+
+    /// Whether it is a `mia_portal_light` window.
+    pub fn is_portal(&self) -> bool {
+        matches!(self.output, Output::Portal { .. })
     }
 
     /// Spot attenuation of light leaving in unit direction `out`.
@@ -268,6 +291,20 @@ impl LightSource {
                 let radiance = *color * atten * self.spot(-wi);
                 (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
             }
+            Output::Portal { scale, reverse } => {
+                let (q, n) = self.point_on(u);
+                let n = if *reverse { -n } else { n };
+                let d = q - p;
+                let dist2 = d.length_squared();
+                let dist = dist2.sqrt();
+                let wi = d / dist;
+                let cos_l = -wi.dot(n);
+                if dist == 0.0 || cos_l <= 0.0 {
+                    return None;
+                }
+                let pdf = dist2 / (cos_l * self.shape.area());
+                Some(LightSample { wi, dist, radiance: *scale, pdf, delta: false })
+            }
             Output::Radiance { l, two_sided } => {
                 if let Shape::Sphere { radius } = self.shape {
                     return self.sample_sphere_cone(p, radius, *l, u);
@@ -318,7 +355,7 @@ impl LightSource {
                 let cos_max = (1.0 - radius * radius / dist2).max(0.0).sqrt();
                 1.0 / (2.0 * PI * (1.0 - cos_max))
             }
-            (Output::Radiance { .. }, shape) => {
+            (Output::Radiance { .. } | Output::Portal { .. }, shape) => {
                 let n = shape.normal_at(self.position, p + wi * t);
                 let cos_l = wi.dot(n).abs();
                 if cos_l == 0.0 {
@@ -332,8 +369,13 @@ impl LightSource {
 
     /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
-        let Output::Radiance { l, two_sided } = self.output else { return None };
+        let (l, two_sided, reverse) = match self.output {
+            Output::Radiance { l, two_sided } => (l, two_sided, false),
+            // A portal's radiance is its scale (× the environment, which the caller adds).
+            Output::Portal { scale, reverse } => (scale, false, reverse),
+            _ => return None,
+        };
         let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
-        (facing || two_sided).then_some((t, l))
+        (facing != reverse || two_sided).then_some((t, l))
     }
 }

@@ -233,6 +233,11 @@ pub fn render(
         (EngineKind::Classic, Some(s)) => Some(s),
         _ => None,
     };
+    // The path engine's environment, its importance grid tabulated now.
+    let env = match (classic, shading) {
+        (None, Some(s)) => crate::environment::Environment::of_scene(world, accel, s),
+        _ => None,
+    };
     let (first_pass, target) = match classic {
         Some(_) => classic_samples(&world.options, settings.spp),
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
@@ -307,7 +312,16 @@ pub fn render(
                         }
                         None => {
                             let ray = cam.ray(raster.x, raster.y);
-                            let r = trace_path(world, accel, shading, ray, &mut sampler, &settings.path, &mut counts);
+                            let r = trace_path(
+                                world,
+                                accel,
+                                shading,
+                                env.as_ref(),
+                                ray,
+                                &mut sampler,
+                                &settings.path,
+                                &mut counts,
+                            );
                             if let Some(f) = r.first {
                                 motion = crate::classic::raster_motion(cam, f.point, f.motion).to_array();
                             }

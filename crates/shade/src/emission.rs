@@ -1,7 +1,7 @@
 //! What lights emit: MDL light materials (`light_omni`, `light_spot`, `light_ies`) with
 //! MDL's units, mental ray's base light shaders (`mib_light_point`, `mib_light_spot`,
 //! `mib_light_infinite`, `mib_light_photometric`) and the Architectural library's
-//! `mia_photometric_light`.
+//! `mia_photometric_light` and `mia_portal_light`.
 
 use std::sync::Arc;
 
@@ -43,6 +43,17 @@ pub enum Power {
         exponent: f32,
         /// `(start, stop)`: the falloff applies only between them.
         range: Option<(f32, f32)>,
+    },
+    /// `mia_portal_light` (area lights over windows): the surface radiance along a
+    /// direction is `scale` × the environment's radiance along it, emitted to the side of
+    /// the shape's normal (the other side with `reverse`). `use_custom_environment`,
+    /// `cutoff_threshold` and `shadows` are not read: the scene's environment is used, and
+    /// every sample is shadowed.
+    Portal {
+        /// `tint_color` × `multiplier` (zero when `on` is off).
+        scale: Rgb,
+        /// `reverse`.
+        reverse: bool,
     },
 }
 
@@ -148,6 +159,16 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone: None,
                 distribution,
+            })
+        }
+        "mia_portal_light" => {
+            let on = scalar("on", 1.0) != 0.0;
+            let scale = if on { color("tint_color", Rgb::ONE) * scalar("multiplier", 1.0) } else { Rgb::ZERO };
+            Ok(Emission {
+                power: Power::Portal { scale, reverse: scalar("reverse", 0.0) != 0.0 },
+                spot_exponent: None,
+                cone: None,
+                distribution: None,
             })
         }
         "mib_light_point" | "mib_light_spot" | "mib_light_infinite" => {

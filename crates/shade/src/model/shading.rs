@@ -174,7 +174,10 @@ impl Shading {
             })
             .collect();
 
-        let environment = scene.camera.environment.as_ref().and_then(|e| b.list(e, None));
+        let environment = match &scene.camera.environment {
+            Some(e) => b.list(e, None),
+            None => iray_environment(&mut b, &scene.options, &mut diags),
+        };
         let lens = scene.camera.lens.iter().filter_map(|l| b.list(l, None)).collect();
         let o = &scene.options;
         let fg = &o.finalgather;
@@ -322,6 +325,22 @@ fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library) -> Mater
         }
     }
     out
+}
+
+/// Iray: the shader named by the options attribute `environment_function` (the scene's
+/// environment when the camera has none); a warning when no such shader is defined.
+fn iray_environment(b: &mut Builder, options: &scene::Options, diags: &mut Vec<Diagnostic>) -> Option<NodeId> {
+    let Some(scene::values::AttrValue::Str(name)) = options.attributes.get("environment_function") else {
+        return None;
+    };
+    let node = b.named(name, Span::default());
+    if node.is_none() {
+        diags.push(Diagnostic::warning(
+            Span::default(),
+            format!("options attribute environment_function names '{name}', which is no shader: no environment"),
+        ));
+    }
+    node
 }
 
 /// mira's Lambertian stand-in for a material without mental ray shaders, with the diffuse
