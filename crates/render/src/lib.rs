@@ -8,6 +8,7 @@
 pub mod accel;
 pub mod camera;
 pub mod classic;
+pub mod fgcache;
 pub mod environment;
 pub mod film;
 pub mod filter;

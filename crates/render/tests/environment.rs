@@ -279,3 +279,29 @@ fn portal_light_matches_the_environment_through_the_open_window() {
     let twice = mean(&room_floor(&render(&wd, &sd, 256, true)));
     assert!((twice - 2.0 * b).abs() < 0.03 * 2.0 * b, "multiplier 2: {twice} vs 2 × {b}");
 }
+
+#[test]
+fn iray_environment_function_lights_and_scales() {
+    // No camera environment: the options name the shader, and its intensity multiplies it.
+    let text = r#"
+shader "env" "mib_color_mix" ("num" 0, "color_base" 0.5 0.5 0.5 1)
+options "opt" filter box 1 1
+    attribute string "environment_function" "env"
+    attribute scalar "environment_function_intensity" 2
+end options
+camera "cam" focal infinity aperture 2 aspect 1 resolution 4 4 end camera
+instance "cam_inst" "cam" end instance
+instgroup "root" "cam_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+    let (world, shading, messages) = build(text);
+    assert!(messages.is_empty(), "{messages:?}");
+    for p in render(&world, &shading, 1, true) {
+        assert!((p[0] - 1.0).abs() < 1e-6, "{p:?}");
+    }
+    // A name that is no shader: a warning and no environment, not a crash.
+    let (world, shading, messages) =
+        build(&text.replace(r#""environment_function" "env""#, r#""environment_function" "nope""#));
+    assert!(messages.iter().any(|m| m.contains("environment_function")), "{messages:?}");
+    assert!(render(&world, &shading, 1, true).iter().all(|p| p[0] == 0.0));
+}
