@@ -8,7 +8,6 @@
 pub mod accel;
 pub mod camera;
 pub mod classic;
-pub mod fgcache;
 pub mod environment;
 pub mod film;
 pub mod filter;

@@ -163,30 +163,23 @@ impl Ctx<'_> {
     }
 
     /// Shades the first surface along `ray` within `max_dist` (material shader) or, if
-    /// none, the environment (transparent black when the distance is limited), then runs
-    /// the volume shader of the medium the ray travelled in over the segment
-    /// ([`super::volume`]). Returns the colour and the distance travelled (infinite on a
-    /// miss).
+    /// none, the environment (transparent black when the distance is limited). Returns the
+    /// colour and the distance travelled (infinite on a miss).
     pub fn shade_ray(&mut self, mut ray: State, max_dist: f32) -> (Color, f32) {
         let shading = self.shading();
         if self.tracer.intersect(&mut ray, max_dist) {
             let dist = ray.dist;
             let shader = ray.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.surface);
             let Some(shader) = shader else { return (Color::new(0.0, 0.0, 0.0, 1.0), dist) };
-            // The segment for the volume shader, if one applies.
-            let segment = self.volume_of(&ray).map(|_| ray.clone());
             let mut ctx = Ctx::new(shading, self.tracer, ray);
             let mut result = Value::Color(Color::ZERO);
             ctx.run_list(shader, &mut result);
             self.counts.calls += ctx.counts.calls;
-            let c = result.color();
-            (segment.map_or(c, |s| self.ray_volume(&s, true, c)), dist)
+            (result.color(), dist)
         } else if max_dist.is_finite() {
             (Color::ZERO, f32::INFINITY)
         } else {
-            let segment = self.volume_of(&ray).map(|_| ray.clone());
-            let c = self.environment(ray);
-            (segment.map_or(c, |s| self.ray_volume(&s, false, c)), f32::INFINITY)
+            (self.environment(ray), f32::INFINITY)
         }
     }
 
@@ -264,15 +257,15 @@ impl Ctx<'_> {
 
     /// Gathers irradiance at the point with `n` cosine-distributed rays about the shading
     /// normal: (π × their mean radiance, before `finalgather scale`; the harmonic mean
-    /// distance to what the rays that hit something hit, infinite when every ray escaped).
-    /// Final gather points of the interpolation cache are made with it.
+    /// distance to what they hit, infinite when every ray escaped). Final gather points of
+    /// the interpolation cache are made with it.
     pub fn gather(&mut self, n: u32) -> (Color, f32) {
         let fg = self.shading().finalgather;
         let n = n.max(1);
         let frame = Frame::from_normal(self.state.normal);
         let site = self.next_site();
         let mut sum = Color::ZERO;
-        let (mut inverse_dist, mut hits) = (0.0f64, 0u32);
+        let mut inverse_dist = 0.0f64;
         for i in 0..n {
             let u = self.sample2(site, i, n);
             let local = crate::bsdf::cosine_hemisphere(u);
@@ -286,7 +279,6 @@ impl Ctx<'_> {
             let (c, dist) = self.shade_ray(ray, max);
             if dist > 0.0 && dist.is_finite() {
                 inverse_dist += 1.0 / f64::from(dist);
-                hits += 1;
             }
             if crate::mia::portal::blocks_gather(self.shading(), org, dir, dist) {
                 // A portal light brings this light in directly.
@@ -300,7 +292,7 @@ impl Ctx<'_> {
             };
             sum += c;
         }
-        let mean_dist = if hits > 0 { (f64::from(hits) / inverse_dist) as f32 } else { f32::INFINITY };
+        let mean_dist = if inverse_dist > 0.0 { (f64::from(n) / inverse_dist) as f32 } else { f32::INFINITY };
         let e = sum * (std::f32::consts::PI / n as f32);
         (Color::new(e.x, e.y, e.z, 1.0), mean_dist)
     }
