@@ -257,15 +257,15 @@ impl Ctx<'_> {
 
     /// Gathers irradiance at the point with `n` cosine-distributed rays about the shading
     /// normal: (π × their mean radiance, before `finalgather scale`; the harmonic mean
-    /// distance to what they hit, infinite when every ray escaped). Final gather points of
-    /// the interpolation cache are made with it.
+    /// distance to what the rays that hit something hit, infinite when every ray escaped).
+    /// Final gather points of the interpolation cache are made with it.
     pub fn gather(&mut self, n: u32) -> (Color, f32) {
         let fg = self.shading().finalgather;
         let n = n.max(1);
         let frame = Frame::from_normal(self.state.normal);
         let site = self.next_site();
         let mut sum = Color::ZERO;
-        let mut inverse_dist = 0.0f64;
+        let (mut inverse_dist, mut hits) = (0.0f64, 0u32);
         for i in 0..n {
             let u = self.sample2(site, i, n);
             let local = crate::bsdf::cosine_hemisphere(u);
@@ -279,6 +279,7 @@ impl Ctx<'_> {
             let (c, dist) = self.shade_ray(ray, max);
             if dist > 0.0 && dist.is_finite() {
                 inverse_dist += 1.0 / f64::from(dist);
+                hits += 1;
             }
             if crate::mia::portal::blocks_gather(self.shading(), org, dir, dist) {
                 // A portal light brings this light in directly.
@@ -292,7 +293,7 @@ impl Ctx<'_> {
             };
             sum += c;
         }
-        let mean_dist = if inverse_dist > 0.0 { (f64::from(n) / inverse_dist) as f32 } else { f32::INFINITY };
+        let mean_dist = if hits > 0 { (f64::from(hits) / inverse_dist) as f32 } else { f32::INFINITY };
         let e = sum * (std::f32::consts::PI / n as f32);
         (Color::new(e.x, e.y, e.z, 1.0), mean_dist)
     }
