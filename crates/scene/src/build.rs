@@ -363,11 +363,39 @@ impl<'a> Builder<'a, '_> {
         inherited: &Inherited,
         span: mi::Span,
     ) {
+        self.place_object_as(instance, full, defs, inherited, span, false);
+    }
+
+    /// [`Builder::place_object`] under the name `full`; with `uv_texsurf`, the object's
+    /// free-form surfaces first get `mib_geo_add_uv_texsurf`'s (u, v) texture surface.
+    fn place_object_as(
+        &mut self,
+        instance: &str,
+        full: &str,
+        defs: &[&'a ast::Object],
+        inherited: &Inherited,
+        span: mi::Span,
+        uv_texsurf: bool,
+    ) {
         let object = match self.object_index.get(full) {
             Some(&i) => i,
             None => {
                 // Incremental objects: flags accumulate, the last geometry wins.
                 let geometry = match defs.iter().rev().find(|o| !o.geometry.is_empty()) {
+                    Some(o) if uv_texsurf => {
+                        let mut o = (*o).clone();
+                        if tessellate::freeform::add_uv_texture_surfaces(&mut o) == 0 {
+                            self.diags.push(Diagnostic::warning(
+                                span,
+                                format!(
+                                    "instance '{instance}': mib_geo_add_uv_texsurf: object '{}' has no free-form \
+                                     surfaces; it is placed unchanged",
+                                    o.name.text
+                                ),
+                            ));
+                        }
+                        tessellate::tessellate(&o, self.diags)
+                    }
                     Some(o) => tessellate::tessellate(o, self.diags),
                     None => ObjectGeometry::default(),
                 };

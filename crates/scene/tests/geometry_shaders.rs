@@ -306,10 +306,12 @@ fn geo_instance_under_an_overriding_material_keeps_it() {
 fn unsupported_and_unknown_geometry_shaders_warn_and_place_nothing() {
     let body = "object \"tri\" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 p 0 1 2 end group end object\n\
         instance \"u\" geometry \"my_own_geometry\" (\"size\" 2) end instance\n\
-        instance \"t\" geometry \"mib_geo_add_uv_texsurf\" (\"object\" \"tri\") end instance";
+        instance \"t\" geometry \"mib_geo_add_uv_texsurf\" (\"object\" \"tri\") material \"m\" end instance";
     let text = scene_text(body, "\"u\" \"t\"");
     let (s, diags) = build(&text);
-    assert!(s.instances.is_empty());
+    // mib_geo_add_uv_texsurf on an object without free-form surfaces places it unchanged.
+    assert_eq!(s.instances.len(), 1);
+    assert_eq!(s.objects[s.instances[0].object as usize].geometry.mesh.triangles.len(), 1);
     let parsed = mi::parse_str("t.mi", &text);
     let warnings: Vec<(u32, String)> = diags
         .iter()
@@ -319,7 +321,30 @@ fn unsupported_and_unknown_geometry_shaders_warn_and_place_nothing() {
     assert_eq!(warnings.len(), 2, "{warnings:?}");
     assert_eq!(warnings[0].0, 6, "at the instance");
     assert!(warnings[0].1.contains("'my_own_geometry'") && warnings[0].1.contains("instance 'u'"), "{warnings:?}");
-    assert!(warnings[1].1.contains("'mib_geo_add_uv_texsurf'"), "{warnings:?}");
+    assert!(warnings[1].1.contains("mib_geo_add_uv_texsurf") && warnings[1].1.contains("no free-form"), "{warnings:?}");
+}
+
+#[test]
+fn add_uv_texsurf_gives_free_form_surfaces_their_parameters() {
+    // A flat Bézier patch over u ∈ [0, 2], v ∈ [0, 1] with a texture surface of its own.
+    let body = "object \"patch\" basis \"lin\" bezier 1 group\n\
+        0 0 0  1 0 0  0 1 0  1 1 0  5 5 0  6 5 0  5 6 0  6 6 0\n\
+        v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7\n\
+        surface \"s\" \"\" \"lin\" 0 2 0. 2. \"lin\" 0 1 0. 1. 0 1 2 3 texture \"lin\" 0. 2. \"lin\" 0. 1. 4 5 6 7\n\
+        approximate surface regular parametric 4 4 \"s\"\n\
+        end group end object\n\
+        instance \"plain\" \"patch\" material \"m\" end instance\n\
+        instance \"uv\" geometry \"mib_geo_add_uv_texsurf\" (\"object\" \"patch\") material \"m\" end instance";
+    let (s, diags) = build(&scene_text(body, "\"plain\" \"uv\""));
+    assert!(diags.is_empty(), "{diags:?}");
+    let plain = &s.objects[instance(&s, "plain").object as usize].geometry.mesh;
+    let uv = &s.objects[instance(&s, "uv").object as usize].geometry.mesh;
+    assert_eq!(plain.textures.len(), 1);
+    assert_eq!(uv.textures.len(), 2, "the (u, v) space comes last");
+    assert_eq!(plain.triangles.len(), 32);
+    for (p, t) in uv.positions.iter().zip(&uv.textures[1].coords) {
+        assert!((t.x - 2.0 * p.x).abs() < 1e-6 && (t.y - p.y).abs() < 1e-6, "{t} at {p}");
+    }
 }
 
 #[test]

@@ -7,8 +7,11 @@
 //!   their `object` parameter names below the instance, with their `matrix` as one more
 //!   instance transform and their `material` (array) as that level's instance material.
 //!
-//! Other geometry shaders (`mib_geo_add_uv_texsurf`, custom ones) are skipped with a
-//! warning naming them.
+//! - `mib_geo_add_uv_texsurf` placing a copy of the object its `object` parameter names
+//!   whose free-form surfaces get a last texture space holding their (u, v) parameters
+//!   (made once per object, named `<object>#mib_geo_add_uv_texsurf`).
+//!
+//! Other geometry shaders (custom ones) are skipped with a warning naming them.
 
 use glam::DMat4;
 use mi::ast::{Name, Param, ShaderItem, ShaderList, Value};
@@ -105,6 +108,7 @@ impl<'a> Builder<'a, '_> {
         }
         match call.decl {
             "mib_geo_instance" | "mib_geo_instance_mlist" => self.geo_instance(full, &call, inherited, span),
+            "mib_geo_add_uv_texsurf" => self.add_uv_texsurf(full, &call, inherited, span),
             decl => self.diags.push(Diagnostic::warning(
                 span,
                 format!("instance '{full}' uses the geometry shader '{decl}', which mira does not support yet; it is skipped"),
@@ -157,6 +161,36 @@ impl<'a> Builder<'a, '_> {
         }
         self.error(Diagnostic::error(span, "the geometry shader's references to named shaders go round in a loop"));
         None
+    }
+
+    /// `mib_geo_add_uv_texsurf`: the object named by `object`, its free-form surfaces with
+    /// one more texture surface giving their (u, v) parameters, placed below instance `full`.
+    fn add_uv_texsurf(&mut self, full: &str, call: &Call<'a>, inherited: &Inherited, span: Span) {
+        let table = self.table;
+        let decl = call.decl;
+        let name: &'a Name = match param(call.params, "object").map(|p| &p.value) {
+            Some(Value::Str(n)) => n,
+            _ => {
+                return self.diags.push(Diagnostic::warning(
+                    call.span,
+                    format!("instance '{full}': {decl} names no object; nothing is placed"),
+                ));
+            }
+        };
+        let Some((target_full, element)) = table.get(&name.text, &call.scope) else {
+            return self.error(Diagnostic::error(name.span, format!("unknown element '{}' in {decl}", name.text)));
+        };
+        match &element.def {
+            Def::Object(objs) => {
+                let objs = objs.clone();
+                let key = format!("{target_full}#{decl}");
+                self.place_object_as(full, &key, &objs, inherited, span, true);
+            }
+            other => self.error(Diagnostic::error(
+                name.span,
+                format!("{decl} needs an object; '{}' is a {}", name.text, other.kind()),
+            )),
+        }
     }
 
     /// `mib_geo_instance` and `mib_geo_instance_mlist`: the element named by `object`

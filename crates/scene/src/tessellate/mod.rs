@@ -4,9 +4,10 @@
 //! Subdivision surfaces and ccmeshes are refined by the level their `approximate …
 //! parametric N` statement gives ([`DEFAULT_SUBDIVISION_LEVELS`] without one), at most as
 //! many levels as keep the face count under [`MAX_SUBDIVISION_FACES`]. Free-form surfaces
-//! are not tessellated yet: they are skipped with a warning. The shapes of mental ray's
-//! geometry shaders (`mib_geo_sphere`, …) are made by [`procedural`].
+//! (Bézier, NURBS, … with trims and texture surfaces) are tessellated by [`freeform`]. The
+//! shapes of mental ray's geometry shaders (`mib_geo_sphere`, …) are made by [`procedural`].
 
+pub mod freeform;
 pub mod hair;
 pub mod polygon;
 pub mod procedural;
@@ -63,7 +64,7 @@ pub fn tessellate(object: &Object, diags: &mut Vec<Diagnostic>) -> ObjectGeometr
     for g in &object.geometry {
         match g {
             Geometry::Group(group) => {
-                if let Some(mesh) = group_mesh(group, name, &object_approx, &mut tri, diags) {
+                if let Some(mesh) = group_mesh(group, name, &object.bases, &object_approx, &mut tri, diags) {
                     out.mesh.append(mesh);
                 }
             }
@@ -116,10 +117,11 @@ fn drop_nonfinite(out: &mut ObjectGeometry, span: mi::Span, diags: &mut Vec<Diag
     }
 }
 
-/// A group's polygons and subdivision surfaces as one mesh.
+/// A group's polygons, subdivision surfaces and free-form surfaces as one mesh.
 fn group_mesh(
     group: &Group,
     name: &str,
+    bases: &[mi::ast::Basis],
     object_approx: &[&Approximation],
     tri: &mut polygon::Triangulator,
     diags: &mut Vec<Diagnostic>,
@@ -145,21 +147,12 @@ fn group_mesh(
         .filter_map(|i| if let GroupItem::Approximate(a) = i { Some(a) } else { None })
         .chain(object_approx.iter().copied())
         .collect();
-    let mut skipped_freeform = false;
     for item in &group.items {
         let (surface_name, target, cage) = match item {
             GroupItem::Subdivision(s) => {
                 (&s.name, "subdivision surface", subdivision_cage(s, group, vertex_count, &mut mesh, diags))
             }
             GroupItem::Ccmesh(c) => (&c.name, "ccmesh", ccmesh_cage(c, group, vertex_count, &mut mesh, diags)),
-            GroupItem::Surface(s) if !skipped_freeform => {
-                skipped_freeform = true;
-                diags.push(Diagnostic::warning(
-                    s.span.start(),
-                    format!("free-form surfaces of object '{name}' are skipped: mira does not tessellate them yet"),
-                ));
-                continue;
-            }
             _ => continue,
         };
         let Some(cage) = cage else { continue };
@@ -188,6 +181,7 @@ fn group_mesh(
         refined.slots = mesh.slots.clone();
         mesh.append(refined);
     }
+    freeform::group_surfaces(group, bases, &approximations, &mut mesh, diags);
     Some(mesh)
 }
 
