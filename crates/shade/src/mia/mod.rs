@@ -7,6 +7,7 @@ pub mod bsdf;
 pub mod comparison;
 pub mod envblur;
 pub mod exposure;
+pub mod interpolate;
 pub mod light_surface;
 pub mod lobes;
 pub mod params;

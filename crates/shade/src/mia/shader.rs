@@ -15,7 +15,9 @@
 //!   `thin_walled`), total internal reflection reflected, absorption or fade with distance;
 //! - translucency: Lambert from the back side;
 //! - `additional_color` on top, all of it blended with what lies behind by
-//!   `cutout_opacity`.
+//!   `cutout_opacity`;
+//! - with `refl_interpolate` / `refr_interpolate`, glossy layers of eye-ray hits are
+//!   interpolated from a per-render lattice cache ([`super::interpolate`]).
 //!
 //! As a shadow shader it lets through the transparency's share of the light (tinted by
 //! `refr_color`, after the reflection took its part), or nothing with
@@ -25,6 +27,7 @@ use std::sync::Arc;
 
 use glam::{Vec3A, Vec4};
 
+use super::interpolate::{interpolated, Layer};
 use super::lobes::{
     anisotropic_shininess, base_shininess, highlight, jittered_reflection, oren_nayar, sample_ward_half,
 };
@@ -168,11 +171,22 @@ fn mia(ctx: &mut Ctx, n: NodeId, out: &mut Value, extended: bool) -> bool {
     let frame = anisotropy_frame(ctx, n, &m, bumped);
     let (su, sv) = anisotropic_shininess(base_shininess(m.refl_gloss), m.anisotropy);
     direct(ctx, n, &m, &frame, diffuse_normal, &mut parts, (su, sv));
+    let density = ctx.int(n, P::IntrGridDensity as usize);
     if parts.refl_level != Vec3A::ZERO {
-        parts.refl_raw = reflection(ctx, n, &m, &frame, (su, sv));
+        let glossy = m.refl_gloss < 1.0 && ctx.bool(n, P::ReflInterpolate as usize);
+        let cached = glossy
+            .then(|| {
+                interpolated(ctx, n, Layer::Reflection, density, |c| (reflection(c, n, &m, &frame, (su, sv)), 1.0))
+            })
+            .flatten();
+        parts.refl_raw = cached.map_or_else(|| reflection(ctx, n, &m, &frame, (su, sv)), |v| v.0);
     }
     if parts.refr_level != Vec3A::ZERO {
-        let (raw, behind_alpha) = refraction(ctx, n, &m, &frame);
+        let glossy = ctx.scalar(n, P::RefrGloss as usize) < 1.0 && ctx.bool(n, P::RefrInterpolate as usize);
+        let cached = glossy
+            .then(|| interpolated(ctx, n, Layer::Refraction, density, |c| refraction(c, n, &m, &frame)))
+            .flatten();
+        let (raw, behind_alpha) = cached.unwrap_or_else(|| refraction(ctx, n, &m, &frame));
         parts.refr_raw = raw;
         if ctx.bool(n, P::PropagateAlpha as usize) {
             // What lies behind shows through the transparent share.
