@@ -14,10 +14,13 @@ pub mod illum;
 pub mod lens;
 pub mod light;
 pub mod occlusion;
+pub mod parti_volume;
+pub mod photon;
 pub mod procedural;
 pub mod raytrace;
 pub mod reflectance;
 pub mod texture;
+pub mod volume;
 
 use glam::{Vec3A, Vec4};
 
@@ -87,6 +90,9 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &lens::STENCIL,
     &lens::CLAMP,
     &lens::DOF,
+    &volume::VOLUME,
+    &volume::RAY_MARCHER,
+    &parti_volume::PARTI_VOLUME,
     &crate::mia::shader::MIA_MATERIAL,
     &crate::mia::shader::MIA_MATERIAL_X,
     &crate::mia::shader::MIA_MATERIAL_X_PASSES,
@@ -101,6 +107,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::comparison::LOBE_REFLECTION,
     &crate::mia::portal::PORTAL_LIGHT,
     &crate::mia::light_surface::LIGHT_SURFACE,
+    &photon::PHOTON_BASIC,
+    &photon::DIELECTRIC_PHOTON,
+    &photon::TRANSMAT_PHOTON,
+    &photon::DGS_PHOTON,
 ];
 
 /// RGB of a colour.

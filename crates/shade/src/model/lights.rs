@@ -16,6 +16,8 @@
 //! `point` the illuminated point, `dir` from the light to that point, `dist` between them.
 //! They call [`Ctx::trace_shadow`], which walks the surfaces in between and runs their
 //! shadow shaders on the light's colour; a surface without a shadow shader blocks it.
+//! The light's result then passes through the volume of the medium the point is seen in
+//! ([`super::volume`]).
 
 use glam::{Vec2, Vec3A};
 use scene::LightKind;
@@ -59,6 +61,8 @@ pub struct ShadingLight {
     pub to_local: glam::Mat3A,
     /// The light's own `lightprofile` statement (index into `Shading::lightprofiles`).
     pub profile: Option<u32>,
+    /// Photon emission, if the light has `energy`.
+    pub photons: Option<super::photonmap::LightPhotons>,
 }
 
 /// One sample of a light (what mental ray's `mi_sample_light` hands back).
@@ -209,7 +213,12 @@ impl Ctx<'_> {
         }
         let dir = to / dist;
         let dot_nl = self.state.normal.dot(dir);
-        let color = result.color();
+        let mut color = result.color();
+        if self.volume_of(&ctx.state).is_some() {
+            let mut light_ray = ctx.state.clone();
+            (light_ray.dir, light_ray.point, light_ray.dist) = (-dir, p, dist);
+            color = self.light_volume(&light_ray, color);
+        }
         let reaches = (dot_nl > 0.0 || lp.both_sides) && (color.x != 0.0 || color.y != 0.0 || color.z != 0.0);
         Some(reaches.then_some(LightSample { color, dir, dot_nl, dist }))
     }
@@ -261,6 +270,7 @@ impl Ctx<'_> {
             return None;
         }
         let color = result.color();
+        let color = if crate::base::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
         (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
             color,
             dir: to_light,

@@ -11,8 +11,10 @@
 //! - [`lights`]: light lists, the light sample loop, shadows.
 //! - [`trace`]: reflection, refraction, environment and final gather rays.
 //! - [`fgcache`]: the final gather interpolation cache.
+//! - [`photonmap`]: caustic and global illumination photon maps and their estimates.
 //! - [`shading`]: a scene's shading compiled (graph, textures, materials, lights, options).
 //! - [`tracer`]: the contract with the renderer's ray casting.
+//! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes).
 //!
 //! A shader implementation is a plain function registered by name ([`ShaderImpl`]); the
 //! graph stores each node's parameters in the order the implementation lists them, so the
@@ -23,12 +25,14 @@ pub mod decl;
 pub mod fgcache;
 pub mod graph;
 pub mod lights;
+pub mod photonmap;
 pub mod precomputed;
 pub mod shading;
 pub mod state;
 pub mod trace;
 pub mod tracer;
 pub mod value;
+pub mod volume;
 
 pub use ctx::Ctx;
 pub use graph::{Graph, NodeId, Slot};

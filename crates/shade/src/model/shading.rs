@@ -71,6 +71,9 @@ pub struct Shading {
     pub instance_lights: Vec<Option<LightLink>>,
     /// The camera's environment shader list.
     pub environment: Option<NodeId>,
+    /// The camera's volume shader list (the atmosphere rays outside any object's volume
+    /// travel through; see [`super::volume`]).
+    pub volume: Option<NodeId>,
     /// The camera's lens shaders, in order.
     pub lens: Vec<NodeId>,
     /// Trace-depth limits.
@@ -89,6 +92,9 @@ pub struct Shading {
     pub world_to_camera: glam::Affine3A,
     /// Data shader nodes compute once per render (pre-blurred environments).
     pub precomputed: super::precomputed::Precomputed,
+    /// The photon maps, once the renderer's photon pass made them (`caustic on`,
+    /// `globillum on`); unset: `compute_irradiance` is final gathering alone.
+    pub photons: std::sync::OnceLock<super::photonmap::PhotonMaps>,
 }
 
 /// Gather rays per eye-ray hit for the options' `finalgather accuracy` where final gathering
@@ -171,6 +177,11 @@ impl Shading {
                 exponent: l.exponent as f32,
                 to_local: crate::light::profiles::to_local(l.light_to_world),
                 profile: l.lightprofile.as_ref().and_then(|p| profile_names.get(p).copied()),
+                photons: l.energy.map(|e| super::photonmap::LightPhotons {
+                    energy: Vec3A::new(e[0] as f32, e[1] as f32, e[2] as f32),
+                    caustic: l.caustic_photons,
+                    globillum: l.globillum_photons,
+                }),
             })
             .collect();
 
@@ -191,6 +202,7 @@ impl Shading {
             scale: Color::new(fg.scale[0] as f32, fg.scale[1] as f32, fg.scale[2] as f32, fg.scale[3] as f32),
             cache: super::fgcache::CacheSettings::of_options(fg),
         };
+        let volume = scene.camera.volume.as_ref().and_then(|v| b.list(v, None));
         let (graph, graph_diags) = b.finish();
         diags.extend(graph_diags);
         let shading = Shading {
@@ -201,6 +213,7 @@ impl Shading {
             lights,
             instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
             environment,
+            volume,
             lens,
             depth: TraceDepth {
                 reflect: clamp(o.trace_depth.0),
@@ -214,6 +227,7 @@ impl Shading {
             resolution: scene.camera.resolution,
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
             precomputed: Default::default(),
+            photons: Default::default(),
         };
         (shading, diags)
     }

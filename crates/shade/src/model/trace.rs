@@ -163,23 +163,30 @@ impl Ctx<'_> {
     }
 
     /// Shades the first surface along `ray` within `max_dist` (material shader) or, if
-    /// none, the environment (transparent black when the distance is limited). Returns the
-    /// colour and the distance travelled (infinite on a miss).
+    /// none, the environment (transparent black when the distance is limited), then runs
+    /// the volume shader of the medium the ray travelled in over the segment
+    /// ([`super::volume`]). Returns the colour and the distance travelled (infinite on a
+    /// miss).
     pub fn shade_ray(&mut self, mut ray: State, max_dist: f32) -> (Color, f32) {
         let shading = self.shading();
         if self.tracer.intersect(&mut ray, max_dist) {
             let dist = ray.dist;
             let shader = ray.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.surface);
             let Some(shader) = shader else { return (Color::new(0.0, 0.0, 0.0, 1.0), dist) };
+            // The segment for the volume shader, if one applies.
+            let segment = self.volume_of(&ray).map(|_| ray.clone());
             let mut ctx = Ctx::new(shading, self.tracer, ray);
             let mut result = Value::Color(Color::ZERO);
             ctx.run_list(shader, &mut result);
             self.counts.calls += ctx.counts.calls;
-            (result.color(), dist)
+            let c = result.color();
+            (segment.map_or(c, |s| self.ray_volume(&s, true, c)), dist)
         } else if max_dist.is_finite() {
             (Color::ZERO, f32::INFINITY)
         } else {
-            (self.environment(ray), f32::INFINITY)
+            let segment = self.volume_of(&ray).map(|_| ray.clone());
+            let c = self.environment(ray);
+            (segment.map_or(c, |s| self.ray_volume(&s, false, c)), f32::INFINITY)
         }
     }
 
@@ -236,8 +243,18 @@ impl Ctx<'_> {
     /// rays (π × their mean radiance). As in mental ray it is not divided by π: the base
     /// shaders' `diffuse ⊙ irradiance` is π times the physically correct Lambertian term,
     /// matching their direct term, which has no 1/π either. Zero when final gathering is
-    /// off or its diffuse depth is used up.
+    /// off or its diffuse depth is used up. With photon maps, the caustic and global
+    /// illumination estimates join in ([`Ctx::photon_irradiance`]).
     pub fn compute_irradiance(&mut self) -> Color {
+        match self.shading().photons.get() {
+            Some(maps) => self.photon_irradiance(maps),
+            None => self.final_gather_irradiance(),
+        }
+    }
+
+    /// The final gathering part of [`Ctx::compute_irradiance`]: zero when final gathering
+    /// is off or its diffuse depth is used up.
+    pub fn final_gather_irradiance(&mut self) -> Color {
         let fg = self.shading().finalgather;
         if !fg.enabled || self.state.finalgather_level > fg.diffuse_depth {
             return Color::ZERO;

@@ -1,0 +1,87 @@
+//! Volume shaders: what happens to light along a ray segment (mental ray's volume shader
+//! calls).
+//!
+//! After a ray's colour is known (the surface shader at its hit, or the environment on a
+//! miss), the volume shader of the medium the ray travelled in modifies it: the material
+//! volume of the innermost medium the ray is inside (entered through a refraction or
+//! transparency ray, see [`super::state::State::enter`]), else the camera's volume (the
+//! atmosphere). A material without a volume shader has none inside it: the camera's does
+//! not apply there, as in mental ray, where entering a surface makes its material's volume
+//! (possibly none) the current one.
+//!
+//! The volume shader's state is mental ray's: `org` and `dir` the ray's, `point` its hit
+//! and `dist` the distance travelled, or, on a miss, `point` = `org` and `dist` = 0 (an
+//! infinite segment); `ray_type` the ray's own. Its result arrives holding the ray's
+//! colour. Light rays (a light shader's result on its way from the light to the
+//! illuminated point: `org` on the light, `point` the illuminated point, `dir` from the
+//! light, `dist` between them, `ray_type` [`RayType::Light`]) pass through the volume of
+//! the medium the illuminated point is seen in, over their whole length (mental ray's
+//! `shadow segments` mode, which splits them at every surface, is not followed).
+
+use super::ctx::Ctx;
+use super::graph::NodeId;
+use super::state::{RayType, State};
+use super::value::{Color, Value};
+
+impl Ctx<'_> {
+    /// The volume shader list of the medium a ray with state `s` travels in: the innermost
+    /// entered material's volume (`None` if it has none), else the camera's.
+    pub fn volume_of(&self, s: &State) -> Option<NodeId> {
+        let shading = self.shading();
+        match s.medium() {
+            Some(m) => shading.materials.get(m.material as usize).and_then(|m| m.volume),
+            None => shading.volume,
+        }
+    }
+
+    /// Runs volume shader list `volume` on `color` for the segment `state` describes
+    /// (see the module documentation) and returns the modified colour.
+    pub fn run_volume(&mut self, volume: NodeId, state: State, color: Color) -> Color {
+        let mut ctx = Ctx::new(self.shading(), self.tracer, state);
+        let mut result = Value::Color(color);
+        ctx.run_list(volume, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        result.color()
+    }
+
+    /// Applies the volume of the medium `ray` travelled in to the colour it brought back:
+    /// `ray` is the traced ray's state after intersection (`hit`: it found a surface at
+    /// `ray.dist`; else it escaped to infinity). Rays that are not eye, reflection,
+    /// refraction, transparency or final gather rays are left alone.
+    pub fn ray_volume(&mut self, ray: &State, hit: bool, color: Color) -> Color {
+        let kinds = matches!(
+            ray.ray_type,
+            RayType::Eye | RayType::Reflect | RayType::Refract | RayType::Transparent | RayType::Finalgather
+        );
+        let Some(volume) = self.volume_of(ray).filter(|_| kinds) else { return color };
+        let mut s = ray.clone();
+        if !hit {
+            s.point = s.org;
+            s.dist = 0.0;
+        }
+        self.run_volume(volume, s, color)
+    }
+
+    /// Applies the volume to a light shader's result on light ray `light` (a light state:
+    /// `org` on the light, `point` the illuminated point, `dist` between them, infinite for
+    /// directional lights, where the volume sees 0, an infinite segment).
+    pub fn light_volume(&mut self, light: &State, color: Color) -> Color {
+        let Some(volume) = self.volume_of(light) else { return color };
+        let mut s = light.clone();
+        s.ray_type = RayType::Light;
+        if !s.dist.is_finite() {
+            s.dist = 0.0;
+        }
+        self.run_volume(volume, s, color)
+    }
+}
+
+/// The length of a volume shader's segment: `state.dist`, or infinite where mental ray
+/// gives 0 (a ray that hit nothing, a directional light's ray).
+pub fn segment_length(state: &State) -> f32 {
+    if state.dist > 0.0 {
+        state.dist
+    } else {
+        f32::INFINITY
+    }
+}
