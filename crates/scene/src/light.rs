@@ -9,7 +9,7 @@
 use glam::{DMat4, DVec3};
 use mi::ast::{Arg, Block, ShaderList, Stmt};
 
-use crate::values::{attributes, bool_arg, f64_arg, floats_arg, last, str_arg, Attributes};
+use crate::values::{attributes, bool_arg, f64_arg, floats_arg, int_arg, last, str_arg, Attributes};
 
 /// The shape of an area light, world space.
 #[derive(Clone, Debug, PartialEq)]
@@ -104,6 +104,11 @@ pub struct Light {
     pub energy: Option<[f64; 3]>,
     /// `exponent`: photon falloff exponent.
     pub exponent: f64,
+    /// `caustic photons store [emit]`: caustic photons to store, and the most to emit.
+    pub caustic_photons: Option<(u32, Option<u32>)>,
+    /// `globillum photons store [emit]`: global illumination photons to store, and the
+    /// most to emit.
+    pub globillum_photons: Option<(u32, Option<u32>)>,
     /// `shadowmap`.
     pub shadowmap: bool,
     /// `lightprofile "name"`.
@@ -223,6 +228,8 @@ impl Light {
                 k.args.iter().find_map(|a| if let Arg::Floats(v) = a { Some([v[0], v[1], v[2]]) } else { None })
             }),
             exponent: last(&stmts, "exponent").and_then(|k| f64_arg(k, 0)).unwrap_or(2.0),
+            caustic_photons: last(&stmts, "caustic photons").and_then(photon_counts),
+            globillum_photons: last(&stmts, "globillum photons").and_then(photon_counts),
             shadowmap: last(&stmts, "shadowmap").map(|k| bool_arg(k, 0)).unwrap_or(false),
             lightprofile: last(&stmts, "lightprofile").and_then(|k| str_arg(k, 0)).map(String::from),
             light_to_world,
@@ -250,6 +257,13 @@ impl Light {
             _ => None,
         }
     }
+}
+
+/// `store [emit]` of a `caustic photons` or `globillum photons` statement (negative
+/// counts read as 0).
+fn photon_counts(k: &mi::ast::KwStmt) -> Option<(u32, Option<u32>)> {
+    let count = |i| int_arg(k, i).map(|n| n.clamp(0, 1 << 30) as u32);
+    Some((count(0)?, count(1)))
 }
 
 /// The mean linear scale of a transform (for radii).

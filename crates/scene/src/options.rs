@@ -114,6 +114,88 @@ pub struct FinalGather {
     pub presample_density: f64,
 }
 
+/// The filter of caustic photon lookups (`caustic filter box|cone|gauss [k]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CausticFilter {
+    /// Every photon within the radius counts fully.
+    Box,
+    /// Weight 1 − d / (k r), `k` ≥ 1 (mental ray's default `k` 1.1).
+    Cone(f64),
+    /// Gaussian weight (Jensen's α = 0.918, β = 1.953).
+    Gauss,
+}
+
+/// Photon map settings of the options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Photons {
+    /// `caustic accuracy n [radius]`: photons per caustic lookup and the largest lookup
+    /// radius (world units; `None` or 0: chosen from the scene's size).
+    pub caustic_accuracy: (u32, Option<f64>),
+    /// `globillum accuracy n [radius]`, as `caustic_accuracy`.
+    pub globillum_accuracy: (u32, Option<f64>),
+    /// `caustic filter`.
+    pub caustic_filter: CausticFilter,
+    /// `caustic scale r g b`.
+    pub caustic_scale: [f64; 3],
+    /// `globillum scale r g b`.
+    pub globillum_scale: [f64; 3],
+    /// `photon trace depth reflect refract sum`: most specular reflections, refractions
+    /// and scattering events of all kinds (diffuse bounces included) along a photon path.
+    pub trace_depth: (u32, u32, u32),
+}
+
+impl Default for Photons {
+    /// mental ray's defaults: 100 caustic and 500 global illumination photons per lookup,
+    /// radii from the scene, box filter, unit scales, photon trace depth 5 5 5.
+    fn default() -> Photons {
+        Photons {
+            caustic_accuracy: (100, None),
+            globillum_accuracy: (500, None),
+            caustic_filter: CausticFilter::Box,
+            caustic_scale: [1.0; 3],
+            globillum_scale: [1.0; 3],
+            trace_depth: (5, 5, 5),
+        }
+    }
+}
+
+impl Photons {
+    /// Reads the photon statements among an options element's statements.
+    fn read(&mut self, stmts: &[&Stmt]) {
+        let accuracy = |k: &mi::ast::KwStmt, old: (u32, Option<f64>)| {
+            let n = int_arg(k, 0).map_or(old.0, |n| n.clamp(1, 1 << 20) as u32);
+            (n, f64_arg(k, 1).filter(|r| *r > 0.0))
+        };
+        if let Some(k) = last(stmts, "caustic accuracy") {
+            self.caustic_accuracy = accuracy(k, self.caustic_accuracy);
+        }
+        if let Some(k) = last(stmts, "globillum accuracy") {
+            self.globillum_accuracy = accuracy(k, self.globillum_accuracy);
+        }
+        if let Some(k) = last(stmts, "caustic filter") {
+            self.caustic_filter = match str_arg(k, 0) {
+                Some("cone") => CausticFilter::Cone(f64_arg(k, 1).unwrap_or(1.1).max(1.0)),
+                Some("gauss") => CausticFilter::Gauss,
+                _ => CausticFilter::Box,
+            };
+        }
+        let scale = |k: &mi::ast::KwStmt| floats_arg(k, 0).filter(|c| c.len() >= 3).map(|c| [c[0], c[1], c[2]]);
+        if let Some(c) = last(stmts, "caustic scale").and_then(scale) {
+            self.caustic_scale = c;
+        }
+        if let Some(c) = last(stmts, "globillum scale").and_then(scale) {
+            self.globillum_scale = c;
+        }
+        if let Some(k) = last(stmts, "photon trace depth") {
+            let d: Vec<u32> = (0..3).filter_map(|i| int_arg(k, i)).map(|v| v.clamp(0, 1 << 10) as u32).collect();
+            let reflect = d.first().copied().unwrap_or(5);
+            let refract = d.get(1).copied().unwrap_or(reflect);
+            let sum = d.get(2).copied().unwrap_or(reflect + refract);
+            self.trace_depth = (reflect, refract, sum);
+        }
+    }
+}
+
 /// Progressive (Iray-style) rendering limits, from Iray attributes or mental ray's
 /// `"progressive …"` string options.
 #[derive(Clone, Debug, PartialEq)]
@@ -162,6 +244,9 @@ pub struct Options {
     pub globillum: bool,
     /// `caustic`.
     pub caustic: bool,
+    /// Photon map settings (`caustic accuracy`, `globillum accuracy`, `caustic filter`,
+    /// `photon trace depth`, scales).
+    pub photons: Photons,
     /// `motion on|off`.
     pub motion: bool,
     /// `motion steps`.
@@ -215,6 +300,7 @@ impl Default for Options {
             },
             globillum: false,
             caustic: false,
+            photons: Photons::default(),
             motion: false,
             motion_steps: 1,
             shutter: (0.0, 0.0),
@@ -354,6 +440,7 @@ impl Options {
         if let Some(k) = last(&stmts, "caustic") {
             o.caustic = !matches!(k.args.first(), Some(Arg::Bool(false) | Arg::Int(0)));
         }
+        o.photons.read(&stmts);
         if let Some(k) = last(&stmts, "motion") {
             o.motion = bool_arg(k, 0);
         }

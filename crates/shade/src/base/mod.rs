@@ -15,6 +15,7 @@ pub mod lens;
 pub mod light;
 pub mod occlusion;
 pub mod parti_volume;
+pub mod photon;
 pub mod procedural;
 pub mod raytrace;
 pub mod reflectance;
@@ -106,6 +107,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &crate::mia::comparison::LOBE_REFLECTION,
     &crate::mia::portal::PORTAL_LIGHT,
     &crate::mia::light_surface::LIGHT_SURFACE,
+    &photon::PHOTON_BASIC,
+    &photon::DIELECTRIC_PHOTON,
+    &photon::TRANSMAT_PHOTON,
+    &photon::DGS_PHOTON,
 ];
 
 /// RGB of a colour.

@@ -12,6 +12,7 @@ pub mod light_surface;
 pub mod lobes;
 pub mod params;
 pub mod photometric;
+pub mod photon;
 pub mod portal;
 pub mod roundcorners;
 pub mod shader;

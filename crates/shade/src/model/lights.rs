@@ -61,6 +61,8 @@ pub struct ShadingLight {
     pub to_local: glam::Mat3A,
     /// The light's own `lightprofile` statement (index into `Shading::lightprofiles`).
     pub profile: Option<u32>,
+    /// Photon emission, if the light has `energy`.
+    pub photons: Option<super::photonmap::LightPhotons>,
 }
 
 /// One sample of a light (what mental ray's `mi_sample_light` hands back).

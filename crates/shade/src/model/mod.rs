@@ -11,6 +11,7 @@
 //! - [`lights`]: light lists, the light sample loop, shadows.
 //! - [`trace`]: reflection, refraction, environment and final gather rays.
 //! - [`fgcache`]: the final gather interpolation cache.
+//! - [`photonmap`]: caustic and global illumination photon maps and their estimates.
 //! - [`shading`]: a scene's shading compiled (graph, textures, materials, lights, options).
 //! - [`tracer`]: the contract with the renderer's ray casting.
 //! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes).
@@ -24,6 +25,7 @@ pub mod decl;
 pub mod fgcache;
 pub mod graph;
 pub mod lights;
+pub mod photonmap;
 pub mod precomputed;
 pub mod shading;
 pub mod state;

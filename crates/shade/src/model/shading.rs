@@ -92,6 +92,9 @@ pub struct Shading {
     pub world_to_camera: glam::Affine3A,
     /// Data shader nodes compute once per render (pre-blurred environments).
     pub precomputed: super::precomputed::Precomputed,
+    /// The photon maps, once the renderer's photon pass made them (`caustic on`,
+    /// `globillum on`); unset: `compute_irradiance` is final gathering alone.
+    pub photons: std::sync::OnceLock<super::photonmap::PhotonMaps>,
 }
 
 /// Gather rays per eye-ray hit for the options' `finalgather accuracy` where final gathering
@@ -174,6 +177,11 @@ impl Shading {
                 exponent: l.exponent as f32,
                 to_local: crate::light::profiles::to_local(l.light_to_world),
                 profile: l.lightprofile.as_ref().and_then(|p| profile_names.get(p).copied()),
+                photons: l.energy.map(|e| super::photonmap::LightPhotons {
+                    energy: Vec3A::new(e[0] as f32, e[1] as f32, e[2] as f32),
+                    caustic: l.caustic_photons,
+                    globillum: l.globillum_photons,
+                }),
             })
             .collect();
 
@@ -219,6 +227,7 @@ impl Shading {
             resolution: scene.camera.resolution,
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
             precomputed: Default::default(),
+            photons: Default::default(),
         };
         (shading, diags)
     }

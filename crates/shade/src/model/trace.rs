@@ -243,8 +243,18 @@ impl Ctx<'_> {
     /// rays (π × their mean radiance). As in mental ray it is not divided by π: the base
     /// shaders' `diffuse ⊙ irradiance` is π times the physically correct Lambertian term,
     /// matching their direct term, which has no 1/π either. Zero when final gathering is
-    /// off or its diffuse depth is used up.
+    /// off or its diffuse depth is used up. With photon maps, the caustic and global
+    /// illumination estimates join in ([`Ctx::photon_irradiance`]).
     pub fn compute_irradiance(&mut self) -> Color {
+        match self.shading().photons.get() {
+            Some(maps) => self.photon_irradiance(maps),
+            None => self.final_gather_irradiance(),
+        }
+    }
+
+    /// The final gathering part of [`Ctx::compute_irradiance`]: zero when final gathering
+    /// is off or its diffuse depth is used up.
+    pub fn final_gather_irradiance(&mut self) -> Color {
         let fg = self.shading().finalgather;
         if !fg.enabled || self.state.finalgather_level > fg.diffuse_depth {
             return Color::ZERO;
