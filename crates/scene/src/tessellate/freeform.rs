@@ -16,7 +16,8 @@
 //! sub-cells, each kept by its centre. Sub-cell positions are bilinear in the cell's
 //! corners (so no crack opens against the neighbouring whole cells); their normals and
 //! texture coordinates are the surface's own. The trimmed edge is therefore accurate to
-//! about one sub-cell.
+//! about one sub-cell; trimmed surfaces get at least [`MIN_TRIMMED_PARTS`] parts per
+//! direction.
 //!
 //! Not supported (reported once per group, then ignored): `special` points and curves,
 //! `connect` statements and space curves, which only steer where mental ray places
@@ -39,6 +40,10 @@ use trim::{Curve2, Trimming};
 
 /// Sub-cells per side of a grid cell a trimming loop passes through.
 pub const TRIM_REFINE: usize = 8;
+
+/// Fewest grid parts per direction of a trimmed surface, so that its trimmed edges
+/// (accurate to a [`TRIM_REFINE`]th of a part) stay smooth under coarse approximations.
+pub const MIN_TRIMMED_PARTS: usize = 16;
 
 /// Most grid vertices one surface may have; finer plans are reduced, with a warning.
 pub const MAX_GRID_VERTICES: usize = 1 << 22;
@@ -312,10 +317,15 @@ pub fn group_surfaces(
                 continue;
             }
         };
-        let approximation = approximations.iter().rev().find(|a| {
-            a.target == Some("surface") && (a.names.is_empty() || a.names.iter().any(|n| n.text == s.name.text))
-        });
-        let plan = approximation.and_then(|a| Plan::from_approximation(a)).unwrap_or_default();
+        // The last approximation naming the surface that mira can follow.
+        let plan = approximations
+            .iter()
+            .rev()
+            .filter(|a| {
+                a.target == Some("surface") && (a.names.is_empty() || a.names.iter().any(|n| n.text == s.name.text))
+            })
+            .find_map(|a| Plan::from_approximation(a))
+            .unwrap_or_default();
         let (mut part, reduced) = surface.tessellate(&plan, &mesh.name);
         if reduced {
             diags.push(Diagnostic::warning(
@@ -388,6 +398,14 @@ impl Freeform {
                 (approx::uniform_samples(u.lo, u.hi, pu), approx::uniform_samples(v.lo, v.hi, pv))
             }
         };
+        if !self.trimming.is_empty() {
+            if us.len() <= MIN_TRIMMED_PARTS {
+                us = approx::uniform_samples(u.lo, u.hi, MIN_TRIMMED_PARTS);
+            }
+            if vs.len() <= MIN_TRIMMED_PARTS {
+                vs = approx::uniform_samples(v.lo, v.hi, MIN_TRIMMED_PARTS);
+            }
+        }
         let mut reduced = false;
         let total = us.len() * vs.len();
         if total > MAX_GRID_VERTICES || us.len() > approx::MAX_PARTS + 1 || vs.len() > approx::MAX_PARTS + 1 {
