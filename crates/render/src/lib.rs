@@ -9,7 +9,6 @@ pub mod accel;
 pub mod camera;
 pub mod classic;
 pub mod environment;
-pub mod fgcache;
 pub mod film;
 pub mod filter;
 pub mod hair;
