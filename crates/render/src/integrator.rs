@@ -272,8 +272,17 @@ fn material_at<'w>(
 
 /// A number in [0, 1) for a cutout decision at `p`, decorrelated from the path's sampler.
 fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
-    let bits = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), sampler_seed, depth];
-    (shade::model::ctx::hash(&bits) >> 8) as f32 / (1u32 << 24) as f32
+    // Each word goes through a full 64-bit avalanche (SplitMix64's finaliser) before the
+    // next is added, so nearby points and seeds give independent numbers.
+    let mix = |mut z: u64| {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    let h = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), sampler_seed, depth]
+        .iter()
+        .fold(0x9e37_79b9_7f4a_7c15u64, |h, &w| mix(h.wrapping_add(u64::from(w)).wrapping_mul(0x9e37_79b9_7f4a_7c15)));
+    (h >> 40) as f32 / (1u64 << 24) as f32
 }
 
 /// Whether the shadow ray is blocked: by any surface, or with cutout materials by a
@@ -457,4 +466,30 @@ pub fn trace_path(
             Ray { mask: mask::SECONDARY, origin: offset_origin(s.p, ng, wi), dir: wi, tmin: 0.0, tmax: f32::INFINITY };
     }
     PathResult { radiance, alpha, first }
+}
+
+#[cfg(test)]
+mod cutout_tests {
+    use super::*;
+
+    /// The cutout numbers of neighbouring points and seeds are uniform: the mean of 40 000
+    /// is ½ and each tenth of [0, 1) holds a tenth of them (chi-square below 30, 9 degrees
+    /// of freedom; 99.95 % quantile 29.7).
+    #[test]
+    fn cutout_numbers_are_uniform() {
+        let mut cells = [0u32; 10];
+        let mut sum = 0.0f64;
+        let n = 40_000;
+        for i in 0..n {
+            let p = Vec3A::new((i % 200) as f32 * 1e-3, (i / 200) as f32 * 1e-3, 1.0);
+            let u = cutout_number(i % 7, p, i % 3);
+            assert!((0.0..1.0).contains(&u));
+            sum += f64::from(u);
+            cells[(u * 10.0) as usize] += 1;
+        }
+        assert!((sum / f64::from(n) - 0.5).abs() < 0.005, "mean {}", sum / f64::from(n));
+        let expect = f64::from(n) / 10.0;
+        let chi2: f64 = cells.iter().map(|&c| (f64::from(c) - expect).powi(2) / expect).sum();
+        assert!(chi2 < 30.0, "chi-square {chi2}: {cells:?}");
+    }
 }
