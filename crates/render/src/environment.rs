@@ -17,6 +17,11 @@
 //! share of samples, and a floor (a thousandth of the mean) keeps the density positive
 //! everywhere.
 //! Constant environments skip the grid and are sampled uniformly over the sphere.
+//!
+//! A sun much smaller than a texel (Iray's `base::sun_and_sky` at its default disk size
+//! covers a fifth of one) would still be found too rarely: when the environment is that
+//! shader, a share of the samples goes uniformly into the cone that holds the sun's disk
+//! and glow ([`SunLobe`]), combined with the grid as one mixture density.
 
 use std::f32::consts::PI;
 
@@ -178,6 +183,62 @@ pub struct Environment<'a> {
     pub sampled: bool,
     /// The importance grid; `None` for constant environments (uniform sampling).
     map: Option<LatLongMap>,
+    /// A small bright sun sampled on its own.
+    sun: Option<SunLobe>,
+}
+
+/// The cone around a sun that gets its own share of the environment's samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SunLobe {
+    /// Unit world direction towards the sun's centre.
+    pub direction: Vec3A,
+    /// Cosine of the cone's half-angle.
+    pub cos_max: f32,
+    /// Probability of sampling the cone rather than the grid.
+    pub share: f32,
+}
+
+impl SunLobe {
+    /// A uniform direction in the cone for `u` in [0, 1)².
+    fn sample(&self, u: Vec2) -> Vec3A {
+        let cos = 1.0 - u.x * (1.0 - self.cos_max);
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        let phi = 2.0 * PI * u.y;
+        let frame = shade::Frame::from_normal(self.direction);
+        frame.to_world(Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos))
+    }
+
+    /// The cone's uniform solid-angle density at `dir`.
+    fn pdf(&self, dir: Vec3A) -> f32 {
+        if dir.dot(self.direction) >= self.cos_max {
+            1.0 / (2.0 * PI * (1.0 - self.cos_max))
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The sun of an Iray `base::sun_and_sky` environment at `node`, as a lobe taking a share
+/// of the samples equal to its part of the light on a plane facing it (between 0.1 and
+/// 0.9); `None` for other shaders or without a sun.
+fn sun_lobe(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -> Option<SunLobe> {
+    let imp = shading.graph.nodes.get(node as usize)?.imp?;
+    if imp.name != "mdl::base::sun_and_sky" {
+        return None;
+    }
+    let tracer = ClassicTracer::new(world, accel);
+    let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
+    let sky = shade::mdl::sky::sun_and_sky_of(&mut ctx, node);
+    let sun = sky.sun()?;
+    let cos_max = sun.cone_radius.cos();
+    if cos_max.is_nan() || cos_max >= 1.0 {
+        return None;
+    }
+    // The sky's irradiance on the same plane, roughly: its zenith radiance × π.
+    let sky_light = luminance(sky.sky_radiance(sun.direction)) * PI;
+    let sun_light = luminance(sun.irradiance);
+    let share = if sun_light + sky_light > 0.0 { sun_light / (sun_light + sky_light) } else { 0.5 };
+    Some(SunLobe { direction: sun.direction.normalize_or(Vec3A::Y), cos_max, share: share.clamp(0.1, 0.9) })
 }
 
 impl<'a> Environment<'a> {
@@ -187,6 +248,7 @@ impl<'a> Environment<'a> {
         let node = shading.environment?;
         let attr = |name: &str| world.options.attributes.get(name).and_then(|a| a.as_f64()).map(|v| v as f32);
         let mut env = Environment::new(Source::Shader { world, accel, shading, node });
+        env.sun = sun_lobe(world, accel, shading, node);
         env.scale = attr("environment_function_intensity").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         env.lighting_scale = attr("environment_lighting_scale").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         (!env.is_black()).then_some(env)
@@ -199,7 +261,7 @@ impl<'a> Environment<'a> {
             Source::Constant(_) => None,
             _ => LatLongMap::build(&source),
         };
-        Environment { source, scale: 1.0, lighting_scale: 1.0, camera_visible: true, sampled: true, map }
+        Environment { source, scale: 1.0, lighting_scale: 1.0, camera_visible: true, sampled: true, map, sun: None }
     }
 
     /// Whether it gives no light at all.
@@ -219,6 +281,25 @@ impl<'a> Environment<'a> {
 
     /// Draws a direction for the numbers `u` in [0, 1)².
     pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
+        let Some(sun) = self.sun else { return self.sample_grid(u) };
+        // The mixture: the sun's cone with its share, else the grid; u.x is reused.
+        let dir = if u.x < sun.share {
+            sun.sample(Vec2::new(u.x / sun.share, u.y))
+        } else {
+            self.sample_grid(Vec2::new((u.x - sun.share) / (1.0 - sun.share), u.y))?.dir
+        };
+        let pdf = self.pdf(dir);
+        (pdf > 0.0).then(|| EnvSample { dir, radiance: self.radiance(dir), pdf })
+    }
+
+    /// Sets the sun lobe (for tests; scenes get theirs from [`Environment::of_scene`]).
+    pub fn with_sun(mut self, sun: Option<SunLobe>) -> Environment<'a> {
+        self.sun = sun;
+        self
+    }
+
+    /// Draws a direction from the grid (or uniformly) alone.
+    fn sample_grid(&self, u: Vec2) -> Option<EnvSample> {
         let Some(map) = &self.map else {
             let z = 1.0 - 2.0 * u.x;
             let r = (1.0 - z * z).max(0.0).sqrt();
@@ -238,6 +319,14 @@ impl<'a> Environment<'a> {
 
     /// Solid-angle density with which [`Environment::sample`] draws unit direction `dir`.
     pub fn pdf(&self, dir: Vec3A) -> f32 {
+        match self.sun {
+            Some(sun) => sun.share * sun.pdf(dir) + (1.0 - sun.share) * self.pdf_grid(dir),
+            None => self.pdf_grid(dir),
+        }
+    }
+
+    /// The grid's (or the uniform) density at `dir`.
+    fn pdf_grid(&self, dir: Vec3A) -> f32 {
         let Some(map) = &self.map else { return 1.0 / (4.0 * PI) };
         let uv = coordinates(dir);
         let (w, h) = (map.rows[0].func.len(), map.rows.len());
