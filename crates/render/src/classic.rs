@@ -26,6 +26,8 @@ pub struct ClassicTracer<'a> {
     pub first_motion: Cell<Vec3A>,
     /// `fb_put` writes of this sample: (buffer, value).
     pub fb: RefCell<Vec<(u32, Color)>>,
+    /// The render's final gather interpolation cache, if it has one.
+    pub fg_cache: Option<&'a shade::model::fgcache::FgCache>,
 }
 
 impl<'a> ClassicTracer<'a> {
@@ -38,6 +40,7 @@ impl<'a> ClassicTracer<'a> {
             first: Cell::new(None),
             first_motion: Cell::new(Vec3A::ZERO),
             fb: RefCell::new(Vec::new()),
+            fg_cache: None,
         }
     }
 
@@ -304,6 +307,10 @@ impl Tracer for ClassicTracer<'_> {
             false
         }
     }
+
+    fn fg_cache(&self) -> Option<&shade::model::fgcache::FgCache> {
+        self.fg_cache
+    }
 }
 
 /// What one classic eye sample produced.
@@ -322,16 +329,18 @@ pub struct ClassicSample {
 }
 
 /// Renders one eye sample through raster position `raster` (pixels, top-left origin) of
-/// pixel `pixel`, sample `index`.
+/// pixel `pixel`, sample `index`; final gathering interpolates from `fg_cache` if given.
 pub fn eye_sample(
     world: &World,
     accel: &dyn Accel,
     shading: &Shading,
+    fg_cache: Option<&shade::model::fgcache::FgCache>,
     raster: Vec2,
     pixel: [u32; 2],
     index: u32,
 ) -> ClassicSample {
-    let tracer = ClassicTracer::new(world, accel);
+    let mut tracer = ClassicTracer::new(world, accel);
+    tracer.fg_cache = fg_cache;
     let cam = &world.camera;
     let ray = cam.ray(raster.x, raster.y);
     let mut state = State {

@@ -9,6 +9,7 @@ pub mod accel;
 pub mod camera;
 pub mod classic;
 pub mod environment;
+pub mod fgcache;
 pub mod film;
 pub mod filter;
 pub mod hair;

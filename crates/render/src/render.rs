@@ -95,6 +95,11 @@ pub struct Stats {
     pub cancelled: bool,
     /// Stopped because enough pixels converged.
     pub converged: bool,
+    /// Final gather points the classic engine's pre-pass computed (0: none, or brute
+    /// force).
+    pub fg_points: u64,
+    /// Time the final gather pre-pass took (included in `render_time`).
+    pub fg_time: Duration,
     /// What the classic engine's photon pass did, if it ran (its time is included in
     /// `render_time`).
     pub photons: Option<crate::photons::PhotonStats>,
@@ -258,11 +263,19 @@ pub fn render(
     let (x0, y0, x1, y1) = cam.window;
     let band = settings.band.max(1) as usize;
     let fb_writes: Mutex<Vec<(usize, u32, [f32; 4])>> = Mutex::new(Vec::new());
-    // The classic engine's photon maps, before the image.
+    // The classic engine's photon maps, then its final gather points, before the image.
     if let Some(p) = classic.and_then(|s| crate::photons::build(world, accel, s, cancel)) {
         rays.fetch_add(p.rays, Ordering::Relaxed);
         stats.photons = Some(p);
     }
+    let fg = classic.and_then(|s| crate::fgcache::prepass(world, accel, s, cancel));
+    if let Some(p) = &fg {
+        rays.fetch_add(p.counts.rays, Ordering::Relaxed);
+        shadow_rays.fetch_add(p.counts.shadow_rays, Ordering::Relaxed);
+        stats.fg_points = p.cache.len() as u64;
+        stats.fg_time = start.elapsed();
+    }
+    let fg_cache = fg.as_ref().map(|p| &p.cache);
     // The classic engine's per-band splat buffers, kept across passes.
     let band_count = (h as usize).div_ceil(band);
     let mut band_splats: Vec<Splat> = match classic {
@@ -307,7 +320,7 @@ pub fn render(
                     let mut motion = [0.0; 2];
                     let (color, alpha, first) = match classic {
                         Some(shading) => {
-                            let s = crate::classic::eye_sample(world, accel, shading, raster, [x, y], index);
+                            let s = crate::classic::eye_sample(world, accel, shading, fg_cache, raster, [x, y], index);
                             counts.rays += s.counts.rays;
                             counts.shadow_rays += s.counts.shadow_rays;
                             let i = b * band * w as usize + k;

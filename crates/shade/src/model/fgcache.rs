@@ -30,11 +30,15 @@ use super::value::Color;
 
 /// Validity radius per unit of harmonic mean distance to the gather rays' hits (Ward's
 /// accuracy `a`).
-pub const RADIUS_PER_DISTANCE: f32 = 0.25;
+pub const RADIUS_PER_DISTANCE: f32 = 0.15;
 
 /// Largest angle (radians) between a lookup's normal and a point's for the point to be
 /// valid at all.
 pub const MAX_NORMAL_ANGLE: f32 = 0.35;
+
+/// Largest change of a point's irradiance, relative to itself, that its gradient may
+/// make across its radius.
+pub const MAX_GRADIENT_CHANGE: f32 = 0.5;
 
 /// Total weight of valid points at which the pre-pass counts a position as covered (so
 /// that most lookups blend more than one point).
@@ -48,8 +52,9 @@ pub enum FgMode {
     /// of the scene's extent; every valid point contributes.
     #[default]
     Strict,
-    /// `automatic`: radii from the scene's extent (10 % and 1 %), whatever `finalgather
-    /// accuracy` says; the `finalgather points` nearest valid points are interpolated.
+    /// `automatic`: radii from the scene's extent (at most 10 %, at least 0.1 %), whatever
+    /// `finalgather accuracy` says; the `finalgather points` nearest valid points are
+    /// interpolated.
     Automatic,
     /// `multiframe`: as automatic (mira keeps no final gather map across frames).
     Multiframe,
@@ -120,7 +125,10 @@ impl CacheSettings {
             (FgMode::Strict, Some((max, min))) if max > 0.0 => {
                 Radii { max, min: if min > 0.0 { min.min(max) } else { 0.1 * max }, view: self.view }
             }
-            _ => Radii { max: 0.1 * extent, min: 0.01 * extent, view: false },
+            (FgMode::Strict, _) => Radii { max: 0.1 * extent, min: 0.01 * extent, view: false },
+            // The automatic modes let the gathered distances set the radii: the minimum
+            // only keeps them off zero.
+            _ => Radii { max: 0.1 * extent, min: 0.001 * extent, view: false },
         }
     }
 
@@ -144,6 +152,10 @@ pub struct FgPoint {
     pub irradiance: Color,
     /// Validity radius (world units).
     pub radius: f32,
+    /// Translational gradient of each of the irradiance's red, green and blue (per world
+    /// unit, in the point's tangent plane), estimated from its neighbours when the cache is
+    /// built; zero where they do not determine it.
+    pub gradient: [Vec3A; 3],
 }
 
 impl FgPoint {
@@ -153,7 +165,15 @@ impl FgPoint {
     pub fn new(position: Vec3A, normal: Vec3A, irradiance: Color, mean_dist: f32, min: f32, max: f32) -> FgPoint {
         let r = RADIUS_PER_DISTANCE * mean_dist;
         let radius = if r.is_nan() { max } else { r.clamp(min.min(max), max) };
-        FgPoint { position, normal, irradiance, radius: radius.max(f32::MIN_POSITIVE) }
+        FgPoint { position, normal, irradiance, radius: radius.max(f32::MIN_POSITIVE), gradient: [Vec3A::ZERO; 3] }
+    }
+
+    /// The point's irradiance carried to `p` along its gradient (never below zero).
+    fn extrapolate(&self, p: Vec3A) -> Color {
+        let d = p - self.position;
+        let e = self.irradiance;
+        let g = |k: usize, v: f32| (v + self.gradient[k].dot(d)).max(0.0);
+        Color::new(g(0, e.x), g(1, e.y), g(2, e.z), e.w)
     }
 
     /// Ward's error of using this point at `p` with normal `n` (valid below 1), or `None`
@@ -227,7 +247,63 @@ impl FgCache {
                 }
             }
         }
-        FgCache { points, levels, nearest }
+        let mut cache = FgCache { points, levels, nearest };
+        cache.estimate_gradients();
+        cache
+    }
+
+    /// Estimates each point's translational gradient by weighted least squares over the
+    /// points valid at its position (differences of irradiance against offsets in its
+    /// tangent plane), limited so that the irradiance changes by at most
+    /// [`MAX_GRADIENT_CHANGE`] of itself across the point's radius.
+    fn estimate_gradients(&mut self) {
+        let gradients: Vec<[Vec3A; 3]> = (0..self.points.len())
+            .map(|i| {
+                let p = self.points[i];
+                let (t, b) = p.normal.any_orthonormal_pair();
+                // Normal equations of the 2D fit: A g = r per channel.
+                let (mut a00, mut a01, mut a11) = (0.0f32, 0.0f32, 0.0f32);
+                let mut r = [[0.0f32; 2]; 3];
+                let mut count = 0;
+                self.valid(p.position, p.normal, |j, e| {
+                    if j as usize == i {
+                        return;
+                    }
+                    let q = &self.points[j as usize];
+                    let d = q.position - p.position;
+                    let (u, v) = (d.dot(t), d.dot(b));
+                    let w = 1.0 - e;
+                    a00 += w * u * u;
+                    a01 += w * u * v;
+                    a11 += w * v * v;
+                    let de = q.irradiance - p.irradiance;
+                    for (k, rk) in r.iter_mut().enumerate() {
+                        rk[0] += w * u * de[k];
+                        rk[1] += w * v * de[k];
+                    }
+                    count += 1;
+                });
+                let det = a00 * a11 - a01 * a01;
+                let scale = (a00 + a11).max(f32::MIN_POSITIVE);
+                if count < 2 || det <= 1e-4 * scale * scale {
+                    return [Vec3A::ZERO; 3];
+                }
+                [0, 1, 2].map(|k| {
+                    let gu = (a11 * r[k][0] - a01 * r[k][1]) / det;
+                    let gv = (a00 * r[k][1] - a01 * r[k][0]) / det;
+                    let g = t * gu + b * gv;
+                    let limit = MAX_GRADIENT_CHANGE * p.irradiance[k].abs() / p.radius;
+                    if g.length() > limit {
+                        g.normalize_or_zero() * limit
+                    } else {
+                        g
+                    }
+                })
+            })
+            .collect();
+        for (p, g) in self.points.iter_mut().zip(gradients) {
+            p.gradient = g;
+        }
     }
 
     /// The points, in the order they were given.
@@ -281,7 +357,7 @@ impl FgCache {
         match self.nearest {
             None => self.valid(p, n, |i, e| {
                 let w = 1.0 - e;
-                sum += self.points[i as usize].irradiance * w;
+                sum += self.points[i as usize].extrapolate(p) * w;
                 total += w;
             }),
             Some(k) => {
@@ -293,7 +369,7 @@ impl FgCache {
                 }
                 for (_, i, e) in found {
                     let w = 1.0 - e;
-                    sum += self.points[i as usize].irradiance * w;
+                    sum += self.points[i as usize].extrapolate(p) * w;
                     total += w;
                 }
             }
@@ -307,7 +383,13 @@ mod tests {
     use super::*;
 
     fn point(x: f32, e: f32, radius: f32) -> FgPoint {
-        FgPoint { position: Vec3A::new(x, 0.0, 0.0), normal: Vec3A::Z, irradiance: Color::splat(e), radius }
+        FgPoint {
+            position: Vec3A::new(x, 0.0, 0.0),
+            normal: Vec3A::Z,
+            irradiance: Color::splat(e),
+            radius,
+            gradient: [Vec3A::ZERO; 3],
+        }
     }
 
     #[test]
@@ -356,7 +438,7 @@ mod tests {
         };
         assert_eq!(s.radii(50.0), Radii { max: 3.0, min: 0.3, view: false });
         let auto = CacheSettings { mode: FgMode::Automatic, ..s };
-        assert_eq!(auto.radii(50.0), Radii { max: 5.0, min: 0.5, view: false });
+        assert_eq!(auto.radii(50.0), Radii { max: 5.0, min: 0.05, view: false });
         assert_eq!(FgMode::from_word("strict 3.4"), Some(FgMode::Strict));
         assert_eq!(FgMode::from_word("multiframe"), Some(FgMode::Multiframe));
         assert_eq!(FgMode::from_word("bogus"), None);

@@ -1,0 +1,141 @@
+//! The classic engine's final gather pre-pass: fills the interpolation cache
+//! ([`shade::model::fgcache`]) before the image is rendered, as mental ray's final gather
+//! precomputation did.
+//!
+//! Eye rays go through a sequence of ever finer grids over the render window, from one
+//! every [`COARSEST_SPACING`] pixels to one every [`FINEST_SPACING`] / √density pixels
+//! (`finalgather presample density`). Where a grid ray hits a shaded surface that the
+//! points of the coarser grids do not yet cover, a final gather point is gathered there
+//! with the full `finalgather accuracy` ray count. Points are thus dense where their radii
+//! are small — near other geometry, where irradiance changes fast — and sparse on open
+//! surfaces. The points of one grid are gathered in parallel and each depends only on the
+//! grids before it, so the cache is the same for any thread count; rendering then only
+//! reads it (lookups where no point is valid gather by brute force).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use glam::Vec2;
+use rayon::prelude::*;
+use shade::model::fgcache::{FgCache, FgPoint, Radii};
+use shade::model::{Ctx, RayType, Shading, State, Tracer};
+
+use crate::accel::Accel;
+use crate::classic::ClassicTracer;
+use crate::integrator::RayCounts;
+use crate::world::World;
+
+/// Spacing (pixels) of the pre-pass's coarsest grid.
+pub const COARSEST_SPACING: f32 = 32.0;
+
+/// Spacing (pixels) of its finest grid at presample density 1.
+pub const FINEST_SPACING: f32 = 2.0;
+
+/// What the pre-pass made.
+#[derive(Debug)]
+pub struct Prepass {
+    /// The final gather points, indexed.
+    pub cache: FgCache,
+    /// Rays it cast.
+    pub counts: RayCounts,
+    /// Eye rays it cast (grid positions visited).
+    pub eye_rays: u64,
+}
+
+/// Runs the pre-pass for a classic render of `world` with `shading`: `None` when final
+/// gathering is off or brute force. Stops early (with the points so far) on `cancel`.
+pub fn prepass(world: &World, accel: &dyn Accel, shading: &Shading, cancel: &AtomicBool) -> Option<Prepass> {
+    let fg = &shading.finalgather;
+    let settings = fg.cache.filter(|_| fg.enabled)?;
+    let cam = &world.camera;
+    let (lo, hi) = world.bounds();
+    let radii = settings.radii((hi - lo).length());
+    let nearest = settings.nearest();
+    let finest = (FINEST_SPACING / settings.density.sqrt()).clamp(0.5, COARSEST_SPACING);
+    let levels = (COARSEST_SPACING / finest).log2().ceil().max(0.0) as i32;
+    let (x0, y0, x1, y1) = cam.window;
+    let (x1, y1) = (x1.min(cam.width), y1.min(cam.height));
+    let mut points: Vec<FgPoint> = Vec::new();
+    let mut cache = FgCache::new(Vec::new(), nearest);
+    let mut counts = RayCounts::default();
+    let mut eye_rays = 0u64;
+    for level in 0..=levels {
+        if cancel.load(Ordering::Relaxed) || x1 <= x0 || y1 <= y0 {
+            break;
+        }
+        let step = finest * 2f32.powi(levels - level);
+        let nx = ((x1 - x0) as f32 / step).ceil() as u32;
+        let ny = ((y1 - y0) as f32 / step).ceil() as u32;
+        let grid: Vec<Vec2> = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| Vec2::new(x0 as f32 + (i as f32 + 0.5) * step, y0 as f32 + (j as f32 + 0.5) * step))
+            .filter(|p| p.x < x1 as f32 && p.y < y1 as f32)
+            .collect();
+        eye_rays += grid.len() as u64;
+        let found: Vec<(Option<FgPoint>, RayCounts)> = grid
+            .par_iter()
+            .map(|&raster| {
+                if cancel.load(Ordering::Relaxed) {
+                    return (None, RayCounts::default());
+                }
+                point_at(world, accel, shading, &cache, raster, radii, settings.point_rays, level as u32)
+            })
+            .collect();
+        for (p, c) in found {
+            counts.rays += c.rays;
+            counts.shadow_rays += c.shadow_rays;
+            points.extend(p);
+        }
+        cache = FgCache::new(points.clone(), nearest);
+    }
+    Some(Prepass { cache, counts, eye_rays })
+}
+
+/// The final gather point for the eye ray through `raster` (pixels, top-left origin), if
+/// it hits a shaded surface that `cache` does not cover yet; and the rays cast.
+#[allow(clippy::too_many_arguments)]
+fn point_at(
+    world: &World,
+    accel: &dyn Accel,
+    shading: &Shading,
+    cache: &FgCache,
+    raster: Vec2,
+    radii: Radii,
+    rays: u32,
+    level: u32,
+) -> (Option<FgPoint>, RayCounts) {
+    let tracer = ClassicTracer::new(world, accel);
+    let cam = &world.camera;
+    let ray = cam.ray(raster.x, raster.y);
+    let root = State {
+        ray_type: RayType::Eye,
+        org: ray.origin,
+        dir: ray.dir,
+        point: ray.origin,
+        raster: Vec2::new(raster.x, cam.height as f32 - raster.y),
+        pixel: [raster.x as u32, raster.y as u32],
+        // A sample index of its own per grid, apart from the render's first samples.
+        sample_index: 0x4647_0000 + level,
+        spread: cam.pixel_angle(),
+        ior_in: 1.0,
+        ior: 1.0,
+        child_dist: f32::INFINITY,
+        ..State::default()
+    };
+    let mut hit = root.child(RayType::Eye, ray.origin, ray.dir);
+    let shaded = tracer.intersect(&mut hit, f32::INFINITY)
+        && hit.material.and_then(|m| shading.materials.get(m as usize)).is_some_and(|m| m.surface.is_some());
+    if !shaded || cache.covers(hit.point, hit.normal) {
+        return (None, tracer.counts.get());
+    }
+    // Radii in pixels become world units through the pixel's footprint at the hit.
+    let scale = match (radii.view, cam.orthographic) {
+        (false, _) => 1.0,
+        (true, true) => cam.pixel_width(),
+        (true, false) => hit.dist * cam.pixel_angle(),
+    };
+    let mut ctx = Ctx::new(shading, &tracer, hit);
+    let (irradiance, mean_dist) = ctx.gather(rays);
+    let (p, n) = (ctx.state.point, ctx.state.normal);
+    let point = FgPoint::new(p, n, irradiance, mean_dist, radii.min * scale, radii.max * scale);
+    (Some(point), tracer.counts.get())
+}
