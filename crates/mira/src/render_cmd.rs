@@ -318,6 +318,13 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             stats.shadow_rays,
             stats.total_rays() as f64 / secs / 1e6
         );
+        if stats.fg_points > 0 {
+            println!(
+                "final gather:   {} interpolation points, pre-pass {:.3} s",
+                stats.fg_points,
+                stats.fg_time.as_secs_f64()
+            );
+        }
         if let Some(t) = stats.first_pixels {
             println!("first pixels:   {:.3} s", t.as_secs_f64() + t_scene.as_secs_f64() + t_accel.as_secs_f64());
         }
