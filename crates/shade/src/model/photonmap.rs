@@ -35,6 +35,8 @@ pub struct Photon {
     pub power: Vec3A,
     /// The direction it travelled (unit, towards the surface).
     pub dir: Vec3A,
+    /// The surface's shading normal there, facing the side the photon came from.
+    pub normal: Vec3A,
 }
 
 /// The lookup filter of a photon map (the options' `caustic filter`; the global map uses
@@ -205,7 +207,7 @@ impl PhotonMap {
         let mut sum = Vec3A::ZERO;
         for (d2, i) in found {
             let ph = &self.photons[i as usize];
-            if ph.dir.dot(n) >= 0.0 || (ph.position - p).dot(n).abs() > thickness {
+            if ph.dir.dot(n) >= 0.0 || ph.normal.dot(n) <= 0.0 || (ph.position - p).dot(n).abs() > thickness {
                 continue;
             }
             sum += ph.power * lookup.filter.weight(d2, r2);
@@ -259,7 +261,19 @@ pub struct PhotonMaps {
     pub caustic: Option<(PhotonMap, Lookup)>,
     /// Global illumination photons, with `globillum accuracy`.
     pub global: Option<(PhotonMap, Lookup)>,
+    /// The global map's irradiance estimate precomputed at (some of) its photons
+    /// (Christensen's "faster photon map global illumination", mental ray's fast lookup):
+    /// each entry's `power` is the irradiance there (scaled), `normal` the surface normal.
+    /// A lookup takes the nearest entry on a surface facing the same way instead of
+    /// gathering `accuracy` photons.
+    pub global_fast: Option<PhotonMap>,
 }
+
+/// Least cosine between a lookup's normal and a precomputed irradiance point's.
+const FAST_COS: f32 = 0.8;
+
+/// Precomputed irradiance points a fast lookup considers.
+const FAST_CANDIDATES: usize = 8;
 
 impl PhotonMaps {
     /// The caustic map's irradiance estimate at `p`, normal `n` (scaled); zero without one.
@@ -268,8 +282,37 @@ impl PhotonMaps {
     }
 
     /// The global map's irradiance estimate at `p`, normal `n` (scaled); `None` without one.
+    /// From the precomputed points where one near enough faces the same way, else gathered.
     pub fn global_irradiance(&self, p: Vec3A, n: Vec3A) -> Option<Vec3A> {
-        self.global.as_ref().map(|(m, l)| m.irradiance(p, n, l) * l.scale)
+        let (map, lookup) = self.global.as_ref()?;
+        if let Some(fast) = &self.global_fast {
+            let near = fast.nearest(p, FAST_CANDIDATES, lookup.radius);
+            let best = near
+                .iter()
+                .filter(|(_, i)| fast.photons[*i as usize].normal.dot(n) >= FAST_COS)
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, i)) = best {
+                return Some(fast.photons[*i as usize].power);
+            }
+        }
+        Some(map.irradiance(p, n, lookup) * lookup.scale)
+    }
+
+    /// Precomputes the global map's irradiance at every `stride`-th photon (see
+    /// [`PhotonMaps::global_fast`]) among the photons of index `range` (so that the caller
+    /// can split the work).
+    pub fn irradiance_points(&self, stride: usize, range: std::ops::Range<usize>) -> Vec<Photon> {
+        let Some((map, lookup)) = &self.global else { return Vec::new() };
+        range
+            .filter(|i| i % stride.max(1) == 0)
+            .filter_map(|i| map.photons.get(i))
+            .map(|ph| Photon {
+                position: ph.position,
+                power: map.irradiance(ph.position, ph.normal, lookup) * lookup.scale,
+                dir: -ph.normal,
+                normal: ph.normal,
+            })
+            .collect()
     }
 }
 
@@ -303,7 +346,12 @@ mod tests {
             for j in 0..n {
                 let x = (i as f32 + 0.5) / n as f32 * 2.0 - 1.0;
                 let y = (j as f32 + 0.5) / n as f32 * 2.0 - 1.0;
-                v.push(Photon { position: Vec3A::new(x, y, 0.0), power: Vec3A::splat(power), dir: -Vec3A::Z });
+                v.push(Photon {
+                    position: Vec3A::new(x, y, 0.0),
+                    power: Vec3A::splat(power),
+                    dir: -Vec3A::Z,
+                    normal: Vec3A::Z,
+                });
             }
         }
         v
