@@ -56,6 +56,9 @@ pub const DEFAULT_PHOTONS: u32 = 10_000;
 /// Photons traced per parallel batch.
 const BATCH: u32 = 4096;
 
+/// Most surfaces one photon path visits.
+const MAX_HITS: u32 = 256;
+
 /// The global map's irradiance is precomputed at every this many photons.
 pub const FAST_STRIDE: usize = 4;
 
@@ -268,7 +271,9 @@ fn trace_photon(
     let tracer = ClassicTracer::new(world, accel);
     let mut rays = 0u64;
     let exponent = emitter.light.exponent;
-    loop {
+    // Surfaces passed unchanged (transmat_photon) count no event; this bounds the path
+    // whatever the geometry.
+    for _ in 0..MAX_HITS {
         // The next surface that casts photons of this map.
         let mut hit = None;
         let mut from = org;
