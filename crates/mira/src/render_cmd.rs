@@ -318,6 +318,16 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             stats.shadow_rays,
             stats.total_rays() as f64 / secs / 1e6
         );
+        if let Some(p) = &stats.photons {
+            println!(
+                "photons:        {} emitted, {} caustic + {} global stored, {:.1} MiB, {:.3} s",
+                p.emitted,
+                p.caustic,
+                p.global,
+                p.memory as f64 / (1 << 20) as f64,
+                p.time.as_secs_f64()
+            );
+        }
         if stats.fg_points > 0 {
             println!(
                 "final gather:   {} interpolation points, pre-pass {:.3} s",
