@@ -216,3 +216,19 @@ shader "mat" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 1 1 1, "n
         assert_rgb(px[3 * 8 + x], [want; 3], 2e-3, &format!("pixel ({x}, 3)"));
     }
 }
+
+#[test]
+fn unified_material_reads_a_connected_texture() {
+    // The unified material is no mental ray shader: no warning, and its connected base
+    // colour is followed (a white dielectric-free, metal-free surface is Lambertian).
+    let body = format!(
+        r#"{QUADRANTS}
+shader "tex" "mdl::base::file_texture" ("texture" "quadrants")
+shader "mat" "unified_material" ("base_color" = "tex.tint", "specular" 0)"#
+    );
+    let (px, messages) = render(&body, "mat", 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    for (x, y, want) in INSIDE {
+        assert_rgb(px[y * 8 + x], want, 0.02, &format!("pixel ({x}, {y})"));
+    }
+}

@@ -277,9 +277,10 @@ impl<'a> Builder<'a> {
             format!("{decl_name}#{}", self.counter)
         });
         let Some(decl) = self.decls.get(decl_name) else {
-            if decl_name.starts_with("mdl::") {
-                // An MDL material: translated to a BSDF elsewhere, but the functions its
-                // parameters connect to are nodes, evaluated per hit.
+            if decl_name.starts_with("mdl::") || decl_name == "unified_material" {
+                // An MDL material or mira's unified material: translated to a BSDF by the
+                // path engine, but the functions its parameters connect to are nodes,
+                // evaluated per hit.
                 self.connect_all(params);
             } else {
                 self.diags
