@@ -2,29 +2,18 @@
 //! wall at the 10 % distance is blended 90 % into the sky's haze colour of each
 //! direction; rays that miss see the sky unchanged.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 use shade::mia::aerial::{aerial_transmittance, haze_color};
 use shade::mia::sky::PhysicalSky;
-use shade::model::{Shading, ShadingOptions};
 
 /// Renders `text` with the classic engine: the pixels (RGBA, rows from the top).
 fn render(text: &str) -> Vec<[f32; 4]> {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let (pixels, messages) = support::render_text(text, EngineKind::Classic, None);
     assert!(messages.is_empty(), "{messages:?}");
-    let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Classic, ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    pixels
 }
 
 /// The sky's parameters (Y up, the sun 40° up to the upper right, behind the camera).

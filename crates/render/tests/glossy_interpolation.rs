@@ -2,10 +2,9 @@
 //! glossy floor reflecting a sky with a low sun renders to the same values as without
 //! interpolation, within the noise, and smoother from pixel to pixel.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
-use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use render::EngineKind;
 
 const RES: usize = 48;
 
@@ -33,19 +32,9 @@ render "root" "cam_inst" "opt"
 "#,
         if interpolate { "on" } else { "off" }
     );
-    let parsed = mi::parse_str("t.mi", &text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let (pixels, messages) = support::render_text(&text, EngineKind::Classic, None);
     assert!(messages.is_empty(), "{messages:?}");
-    let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Classic, ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    pixels
 }
 
 fn luminance(p: [f32; 4]) -> f32 {

@@ -2,14 +2,14 @@
 //! white-ish Lambertian plane under it shows albedo/π × (the sun's irradiance × cos θ +
 //! the sky's irradiance), both computed from the shader's own model.
 
+mod support;
+
 use std::f32::consts::PI;
-use std::sync::atomic::AtomicBool;
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 use shade::mdl::sky::SunAndSky;
 use shade::mia::sky::PhysicalSky;
-use shade::model::{Shading, ShadingOptions};
 
 /// Z up; the sun 60° up, its disk `scale` × the real sun's.
 fn sky_params(scale: f32) -> String {
@@ -59,20 +59,9 @@ instgroup "root" "cam_inst" "plane_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#
     );
-    let parsed = mi::parse_str("t.mi", &text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    messages.extend(world.warnings.iter().cloned());
+    let (pixels, messages) = support::render_text(&text, EngineKind::Path, Some(spp));
     assert!(messages.is_empty(), "{messages:?}");
-    let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    pixels
 }
 
 /// The sky's irradiance (without the sun) on a plane facing +Z: ∫ L cos θ dω over the

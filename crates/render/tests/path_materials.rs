@@ -5,9 +5,9 @@
 //! of irradiance π, so that a Lambertian pixel's value is its albedo (times the cosine to
 //! a bent normal); the expected values follow from the texels.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
-use render::{EngineKind, Settings};
+use render::EngineKind;
 use shade::model::{Shading, ShadingOptions};
 
 /// Renders `body` (materials, shaders and the square's instance `material`) with the path
@@ -32,19 +32,7 @@ instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#
     );
-    let parsed = mi::parse_str("t.mi", &text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    messages.extend(world.warnings.iter().cloned());
-    let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    (film.rgba(), messages)
+    support::render_text(&text, EngineKind::Path, Some(spp))
 }
 
 /// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,

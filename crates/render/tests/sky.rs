@@ -2,26 +2,14 @@
 //! `mia_physicalsky` seen above the horizon and a ground plane lit by `mia_physicalsun`,
 //! half of it in the shadow of an invisible card.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
-use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use render::EngineKind;
 
 /// Renders `text` with the classic engine: the pixels (RGBA, rows from the top) and the
 /// diagnostics.
 fn render(text: &str) -> (Vec<[f32; 4]>, Vec<String>) {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Classic, ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    (film.rgba(), messages)
+    support::render_text(text, EngineKind::Classic, None)
 }
 
 /// Y up: a 90° camera at the origin looking down −Z; the sun 45° up behind it; a grey
