@@ -259,10 +259,14 @@ impl Light {
     }
 }
 
+/// Most photons a light stores (or emits) per map: 16.7 M, about 1 GiB of photons; a
+/// larger count in a file would only exhaust memory.
+pub const MAX_PHOTONS: i64 = 1 << 24;
+
 /// `store [emit]` of a `caustic photons` or `globillum photons` statement (negative
-/// counts read as 0).
+/// counts read as 0, counts above [`MAX_PHOTONS`] as it).
 fn photon_counts(k: &mi::ast::KwStmt) -> Option<(u32, Option<u32>)> {
-    let count = |i| int_arg(k, i).map(|n| n.clamp(0, 1 << 30) as u32);
+    let count = |i| int_arg(k, i).map(|n| n.clamp(0, MAX_PHOTONS) as u32);
     Some((count(0)?, count(1)))
 }
 
