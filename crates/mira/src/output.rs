@@ -4,10 +4,10 @@
 
 use std::path::Path;
 
+use bsdf::Rgb;
 use exr::prelude::*;
 use render::film::Film;
 use render::tonemap::ToneMapper;
-use shade::Rgb;
 
 /// An image file format mira writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -137,19 +137,19 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let classic = match args.engine {
         EngineArg::Classic => true,
         EngineArg::Path => false,
-        EngineArg::Auto => shade::model::Shading::wants_classic(&sc),
+        EngineArg::Auto => shader::Shading::wants_classic(&sc),
     };
     // Both engines use the compiled shading: the classic one runs the material shaders,
     // the path engine the shaders connected to material parameters (textures, bumps).
     let shading = {
         let mut dirs: Vec<PathBuf> = args.scene.parent().map(Path::to_path_buf).into_iter().collect();
         dirs.extend(options.include_paths.iter().cloned());
-        let shading_options = shade::model::ShadingOptions {
-            search: shade::texture::SearchPath { dirs },
+        let shading_options = shader::ShadingOptions {
+            search: shader::texture::SearchPath { dirs },
             seed: args.seed,
             finalgather_rays: args.fg_rays,
         };
-        let (shading, shade_diags) = shade::model::Shading::build(&sc, &shading_options);
+        let (shading, shade_diags) = shader::Shading::build(&sc, &shading_options, &material::registry());
         let mut stderr = std::io::stderr().lock();
         for d in &shade_diags {
             if d.is_error() || args.warnings {

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use render::accel::{self, Backend};
 use render::{EngineKind, Settings, World};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 fn bench(c: &mut Criterion) {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/classic_reflections.mi"))
@@ -20,7 +20,7 @@ fn bench(c: &mut Criterion) {
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("scene builds");
     let world = World::from_scene(&scene);
-    let (shading, _) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(4), ..Settings::default() };
     let mut group = c.benchmark_group("classic_reflections_96x64_4spp");
     group.throughput(Throughput::Elements(96 * 64 * 4));

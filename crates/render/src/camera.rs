@@ -101,7 +101,7 @@ impl CameraModel {
         // Clip distances are along −Z; along the ray they grow by 1/cos.
         let cos = -dir_cam.z;
         Ray {
-            mask: crate::integrator::mask::CAMERA,
+            mask: crate::ray::mask::CAMERA,
             origin,
             dir: dir / len,
             tmin: self.clip.0 / cos * len,
@@ -114,7 +114,7 @@ impl CameraModel {
     pub fn clip_ray(&self, origin: Vec3A, dir: Vec3A) -> Ray {
         let cos = -self.world_to_camera.transform_vector3a(dir).z;
         let (tmin, tmax) = if cos > 0.0 { (self.clip.0 / cos, self.clip.1 / cos) } else { (0.0, f32::INFINITY) };
-        Ray { mask: crate::integrator::mask::CAMERA, origin, dir, tmin, tmax }
+        Ray { mask: crate::ray::mask::CAMERA, origin, dir, tmin, tmax }
     }
 
     /// The angle one pixel subtends at the centre of the image (radians; 0 for orthographic

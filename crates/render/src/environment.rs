@@ -25,13 +25,13 @@
 
 use std::f32::consts::PI;
 
+use bsdf::Rgb;
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
-use shade::model::{Color, Ctx, NodeId, RayType, Shading, State, Value};
-use shade::Rgb;
+use shader::{Color, Ctx, NodeId, RayType, Shading, State, Value};
 
 use crate::accel::Accel;
-use crate::classic::ClassicTracer;
+use crate::tracer::SceneTracer;
 use crate::world::World;
 
 /// Texels of the importance grid around the pole axis.
@@ -66,7 +66,7 @@ impl Source<'_> {
             Source::Constant(c) => *c,
             Source::Function(f) => f(dir),
             Source::Shader { world, accel, shading, node } => {
-                let tracer = ClassicTracer::new(world, *accel);
+                let tracer = SceneTracer::new(world, *accel);
                 let state = State {
                     ray_type: RayType::Environment,
                     org: Vec3A::ZERO,
@@ -204,7 +204,7 @@ impl SunLobe {
         let cos = 1.0 - u.x * (1.0 - self.cos_max);
         let sin = (1.0 - cos * cos).max(0.0).sqrt();
         let phi = 2.0 * PI * u.y;
-        let frame = shade::Frame::from_normal(self.direction);
+        let frame = bsdf::Frame::from_normal(self.direction);
         frame.to_world(Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos))
     }
 
@@ -226,9 +226,9 @@ fn sun_lobe(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -
     if imp.name != "mdl::base::sun_and_sky" {
         return None;
     }
-    let tracer = ClassicTracer::new(world, accel);
+    let tracer = SceneTracer::new(world, accel);
     let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
-    let sky = shade::mdl::sky::sun_and_sky_of(&mut ctx, node);
+    let sky = mdl::sky::sun_and_sky_of(&mut ctx, node);
     let sun = sky.sun()?;
     let cos_max = sun.cone_radius.cos();
     if cos_max.is_nan() || cos_max >= 1.0 {
@@ -471,7 +471,7 @@ mod tests {
                         sum += f64::from(s.radiance.x * s.dir.y / s.pdf);
                     }
                 } else {
-                    let l = shade::bsdf::cosine_hemisphere(u);
+                    let l = bsdf::cosine_hemisphere(u);
                     let d = Vec3A::new(l.x, l.z, l.y);
                     sum += f64::from(env.radiance(d).x * PI);
                 }

@@ -1,5 +1,5 @@
 //! The classic engine's final gather pre-pass: fills the interpolation cache
-//! ([`shade::model::fgcache`]) before the image is rendered, as mental ray's final gather
+//! ([`shader::fgcache`]) before the image is rendered, as mental ray's final gather
 //! precomputation did.
 //!
 //! Eye rays go through a sequence of ever finer grids over the render window, from one
@@ -16,12 +16,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::Vec2;
 use rayon::prelude::*;
-use shade::model::fgcache::{FgCache, FgPoint, Radii};
-use shade::model::{Ctx, RayType, Shading, State, Tracer};
+use shader::fgcache::{FgCache, FgPoint, Radii};
+use shader::{Ctx, RayType, Shading, State, Tracer};
 
 use crate::accel::Accel;
-use crate::classic::ClassicTracer;
-use crate::integrator::RayCounts;
+use crate::ray::RayCounts;
+use crate::tracer::SceneTracer;
 use crate::world::World;
 
 /// Spacing (pixels) of the pre-pass's coarsest grid.
@@ -103,7 +103,7 @@ fn point_at(
     rays: u32,
     level: u32,
 ) -> (Option<FgPoint>, RayCounts) {
-    let tracer = ClassicTracer::new(world, accel);
+    let tracer = SceneTracer::new(world, accel);
     let cam = &world.camera;
     let ray = cam.ray(raster.x, raster.y);
     let root = State {

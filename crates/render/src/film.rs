@@ -6,7 +6,7 @@
 //! hit), `n` (world-space shading normal), `tag` (the instance's label) and `m` (raster-space
 //! motion, both engines) come from each pixel's first sample.
 
-use shade::Rgb;
+use bsdf::Rgb;
 
 /// One pixel's accumulators.
 #[derive(Clone, Copy, Debug, Default)]

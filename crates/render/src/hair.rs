@@ -24,19 +24,7 @@
 use glam::{Vec3, Vec3A};
 use scene::HairGeometry;
 
-use crate::world::MeshData;
-
-/// Per-vertex and per-triangle hair data of a ribbon mesh.
-#[derive(Clone, Debug, Default)]
-pub struct HairData {
-    /// Position along the hair of each vertex (0 at the root, 1 at the tip).
-    pub along: Vec<f32>,
-    /// Position across the ribbon of each vertex (0 one edge, 1 the other).
-    pub across: Vec<f32>,
-    /// Per triangle: the segment's unit tangent (root to tip) and the first segment's
-    /// (the "scalp normal" mental ray gives hair shaders), object space.
-    pub tangents: Vec<[Vec3A; 2]>,
-}
+use crate::mesh::{HairData, MeshData};
 
 /// How ribbons are turned.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -138,14 +126,14 @@ pub fn ribbons(blocks: &[HairGeometry], facing: Facing) -> Option<(MeshData, Hai
                 .map(|i| {
                     let t = (segs[i.min(segs.len() - 1)] + segs[i.saturating_sub(1)])
                         .normalize_or(segs[i.min(segs.len() - 1)]);
-                    facing.side(Vec3A::from(pts[i]), t, shade::Frame::from_normal(t).tangent)
+                    facing.side(Vec3A::from(pts[i]), t, bsdf::Frame::from_normal(t).tangent)
                 })
                 .collect();
             let mut along = 0.0;
             for (k, w) in pts.windows(2).enumerate() {
                 let (p0, p1) = (Vec3A::from(w[0]), Vec3A::from(w[1]));
                 let t = segs[k];
-                let frame = shade::Frame::from_normal(t);
+                let frame = bsdf::Frame::from_normal(t);
                 let a0 = along / total;
                 along += lengths[k];
                 let a1 = along / total;

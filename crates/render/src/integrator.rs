@@ -1,37 +1,18 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling
 //! (power heuristic), Russian roulette after a few bounces.
 
+use bsdf::Bsdf;
+use bsdf::{Frame, Rgb};
 use glam::Vec3A;
-use shade::bsdf::Bsdf;
-use shade::material::HitMaterial;
-use shade::model::{Ctx, RayType, Shading, State};
-use shade::{Frame, Rgb};
+use material::HitMaterial;
+use shader::{Ctx, RayType, Shading, State};
 
 use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::light::LightSource;
-use crate::ray::{offset_origin, Ray};
+use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
-
-/// Ray kinds, as masks tested against instance flags.
-pub mod mask {
-    /// Rays from the camera: instances with `visible off` are skipped.
-    pub const CAMERA: u32 = 1;
-    /// Shadow rays: instances that cast no shadows are skipped.
-    pub const SHADOW: u32 = 2;
-    /// Secondary (scattered) rays of the path tracer: instances seen by none of
-    /// reflection, refraction and final gather rays are skipped.
-    pub const SECONDARY: u32 = 4;
-    /// Reflection rays of the classic engine.
-    pub const REFLECT: u32 = 8;
-    /// Refraction rays of the classic engine.
-    pub const REFRACT: u32 = 16;
-    /// Transparency rays of the classic engine.
-    pub const TRANSPARENT: u32 = 32;
-    /// Final gather rays.
-    pub const FINALGATHER: u32 = 64;
-}
 
 /// Integrator settings.
 #[derive(Clone, Copy, Debug)]
@@ -49,28 +30,6 @@ impl Default for PathSettings {
     fn default() -> PathSettings {
         PathSettings { max_depth: 16, rr_depth: 3, mis: true }
     }
-}
-
-/// Per-thread ray counts.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct RayCounts {
-    /// Closest-hit rays.
-    pub rays: u64,
-    /// Shadow rays.
-    pub shadow_rays: u64,
-}
-
-/// What the first hit of a camera path was.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FirstHit {
-    /// World-space hit point.
-    pub point: Vec3A,
-    /// World-space shading normal.
-    pub normal: Vec3A,
-    /// The instance's label.
-    pub tag: u32,
-    /// World-space motion of the hit point over the shutter interval (`state.motion`).
-    pub motion: Vec3A,
 }
 
 /// The result of one camera path.
@@ -252,7 +211,7 @@ fn material_at<'w>(
     let m = &world.materials[material as usize];
     match shading {
         Some(shading) if m.is_varying() => {
-            let tracer = crate::classic::ClassicTracer::new(world, accel);
+            let tracer = crate::tracer::SceneTracer::new(world, accel);
             let mut state = State {
                 ray_type: RayType::Eye,
                 org: ray.origin,
@@ -262,7 +221,7 @@ fn material_at<'w>(
                 child_dist: f32::INFINITY,
                 ..State::default()
             };
-            crate::classic::fill_state(world, hit, &mut state);
+            crate::tracer::fill_state(world, hit, &mut state);
             let mut ctx = Ctx::new(shading, &tracer, state);
             m.at(&mut ctx)
         }
@@ -391,7 +350,7 @@ pub fn trace_path(
         let Some((stop, s, material)) = found else { break };
         if depth == 0 {
             alpha = 1.0;
-            let motion = crate::classic::hit_motion(world, &stop, s.p);
+            let motion = crate::tracer::hit_motion(world, &stop, s.p);
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
         }
         if material.emission != Rgb::ZERO {

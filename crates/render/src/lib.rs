@@ -15,11 +15,13 @@ pub mod filter;
 pub mod hair;
 pub mod integrator;
 pub mod light;
+pub mod mesh;
 pub mod photons;
 pub mod ray;
 pub mod render;
 pub mod sampler;
 pub mod tonemap;
+pub mod tracer;
 pub mod world;
 
 pub use accel::{Accel, Backend};

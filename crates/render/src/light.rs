@@ -12,11 +12,11 @@
 use std::f32::consts::PI;
 use std::sync::Arc;
 
+use bsdf::{Frame, Rgb};
 use glam::{Mat3A, Vec2, Vec3A};
+use material::emission::{Distribution, Emission, Power};
 use scene::{Library, Light, LightKind};
-use shade::emission::{Distribution, Emission, Power};
-pub use shade::light::Shape;
-use shade::{Frame, Rgb};
+pub use shader::light::Shape;
 
 use crate::ray::Ray;
 
@@ -153,7 +153,7 @@ impl LightSource {
     pub fn in_scene_shaded(
         light: &Light,
         scene: &scene::Scene,
-        shading: Option<&shade::model::Shading>,
+        shading: Option<&shader::Shading>,
     ) -> Result<LightSource, String> {
         let shape = match (&light.area, light.kind) {
             (Some(a), LightKind::Point | LightKind::Spot) => Shape::of_area(&a.shape, scene)
@@ -168,10 +168,10 @@ impl LightSource {
         light: &Light,
         lib: &Library,
         shape: Shape,
-        profiles: &dyn Fn(&str) -> Option<Arc<shade::light::ies::Profile>>,
+        profiles: &dyn Fn(&str) -> Option<Arc<shader::light::ies::Profile>>,
     ) -> Result<LightSource, String> {
-        let emission: Emission = shade::emission::emission_with(light, lib, profiles)?;
-        let to_local = shade::light::profiles::to_local(light.light_to_world);
+        let emission: Emission = material::emission::emission_with(light, lib, profiles)?;
+        let to_local = shader::light::profiles::to_local(light.light_to_world);
         let distribution =
             emission.distribution.clone().map(|distribution| Arc::new(LocalDistribution { distribution, to_local }));
         let a = shape.area();

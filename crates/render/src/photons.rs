@@ -1,7 +1,7 @@
 //! The classic engine's photon pass (mental ray's caustics and photon global
 //! illumination): before the image, every light with `energy` emits photons, they are
-//! traced through the scene by the surfaces' photon shaders ([`shade::base::photon`]) and
-//! stored in the caustic and global photon maps ([`shade::model::photonmap`]), which
+//! traced through the scene by the surfaces' photon shaders (`shader::photon` and the libraries' photon hooks) and
+//! stored in the caustic and global photon maps ([`shader::photonmap`]), which
 //! `compute_irradiance` then looks up.
 //!
 //! Emission, per light and map (`caustic photons` / `globillum photons store [emit]`,
@@ -35,18 +35,18 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use bsdf::Frame;
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
-use shade::base::photon::{scatter_at, Event};
-use shade::model::lights::ShadingLight;
-use shade::model::photonmap::{Filter, Lookup, Photon, PhotonMap, PhotonMaps};
-use shade::model::{Ctx, RayType, Shading, State};
-use shade::Frame;
+use shader::light::ShadingLight;
+use shader::photon::{scatter_at, Event};
+use shader::photonmap::{Filter, Lookup, Photon, PhotonMap, PhotonMaps};
+use shader::{Ctx, RayType, Shading, State};
 
 use crate::accel::Accel;
-use crate::classic::{fill_state, ClassicTracer};
 use crate::ray::Ray;
 use crate::sampler::{pixel_seed, Sampler};
+use crate::tracer::{fill_state, SceneTracer};
 use crate::world::World;
 use scene::LightKind;
 
@@ -226,9 +226,9 @@ impl<'a> Emitter<'a> {
             let origin = self.disc.0 + frame.to_world(Vec3A::new(r * phi.cos(), r * phi.sin(), 0.0));
             return (origin, l.direction, false);
         }
-        if let Some(shape) = l.shape.as_ref().filter(|s| !matches!(s, shade::light::Shape::Point)) {
+        if let Some(shape) = l.shape.as_ref().filter(|s| !matches!(s, shader::light::Shape::Point)) {
             let (p, n) = shape.point_on(l.origin, a);
-            let dir = Frame::from_normal(n).to_world(shade::bsdf::cosine_hemisphere(b));
+            let dir = Frame::from_normal(n).to_world(bsdf::cosine_hemisphere(b));
             return (p, dir.normalize_or(n), true);
         }
         let dir = if l.kind == LightKind::Spot {
@@ -268,7 +268,7 @@ fn trace_photon(
     let depth = world.options.photons.trace_depth;
     let (mut reflections, mut refractions, mut events) = (0u32, 0u32, 0u32);
     let (mut specular, mut diffuse) = (false, false);
-    let tracer = ClassicTracer::new(world, accel);
+    let tracer = SceneTracer::new(world, accel);
     let mut rays = 0u64;
     let exponent = emitter.light.exponent;
     // Surfaces passed unchanged (transmat_photon) count no event; this bounds the path
@@ -289,7 +289,7 @@ fn trace_photon(
                 hit = Some((s, mode.receive));
                 break;
             }
-            from = shade::model::trace::offset_point(s.point, s.normal_geom, dir);
+            from = shader::trace::offset_point(s.point, s.normal_geom, dir);
         }
         let Some((s, receive)) = hit else { break };
         if events == 0 && falloff && exponent != 2.0 && exponent.is_finite() {
@@ -319,11 +319,11 @@ fn trace_photon(
             Event::Diffuse | Event::Translucent if map == Map::Caustic => break,
             Event::Diffuse => {
                 diffuse = true;
-                Frame::from_normal(normal).to_world(shade::bsdf::cosine_hemisphere(u))
+                Frame::from_normal(normal).to_world(bsdf::cosine_hemisphere(u))
             }
             Event::Translucent => {
                 diffuse = true;
-                Frame::from_normal(-normal).to_world(shade::bsdf::cosine_hemisphere(u))
+                Frame::from_normal(-normal).to_world(bsdf::cosine_hemisphere(u))
             }
             Event::Reflect => {
                 reflections += 1;
@@ -333,7 +333,7 @@ fn trace_photon(
                 specular = true;
                 match scatter.gloss {
                     Some((su, sv)) => {
-                        shade::mia::lobes::jittered_reflection(&Frame::from_normal(normal), normal_geom, dir, su, sv, u)
+                        bsdf::mia::lobes::jittered_reflection(&Frame::from_normal(normal), normal_geom, dir, su, sv, u)
                     }
                     None => dir - 2.0 * dir.dot(normal) * normal,
                 }
@@ -349,7 +349,7 @@ fn trace_photon(
                     dir
                 } else {
                     let eta = if inv_normal { scatter.ior } else { 1.0 / scatter.ior };
-                    shade::model::trace::refract(dir, normal, eta).unwrap_or(dir - 2.0 * dir.dot(normal) * normal)
+                    shader::trace::refract(dir, normal, eta).unwrap_or(dir - 2.0 * dir.dot(normal) * normal)
                 }
             }
         };
@@ -361,7 +361,7 @@ fn trace_photon(
             break;
         }
         dir = next.normalize();
-        org = shade::model::trace::offset_point(point, normal_geom, dir);
+        org = shader::trace::offset_point(point, normal_geom, dir);
     }
     rays
 }

@@ -1,4 +1,5 @@
-//! Rays in world space and robust origin offsetting.
+//! Rays in world space, their kinds (masks against instance flags), robust origin
+//! offsetting, and what the engines count and record per ray.
 
 use glam::Vec3A;
 
@@ -6,7 +7,7 @@ use glam::Vec3A;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     /// Which instances the ray may hit: instances whose flags leave out one of these
-    /// bits are skipped (see [`crate::integrator::mask`]).
+    /// bits are skipped (see [`mask`]).
     pub mask: u32,
     /// Origin.
     pub origin: Vec3A,
@@ -34,5 +35,46 @@ impl Ray {
 /// side `dir` leaves to, by a few ulps (the shading model's `offset_point`, shared by both
 /// engines).
 pub fn offset_origin(p: Vec3A, n: Vec3A, dir: Vec3A) -> Vec3A {
-    shade::model::trace::offset_point(p, n, dir)
+    shader::trace::offset_point(p, n, dir)
+}
+
+/// Ray kinds, as masks tested against instance flags.
+pub mod mask {
+    /// Rays from the camera: instances with `visible off` are skipped.
+    pub const CAMERA: u32 = 1;
+    /// Shadow rays: instances that cast no shadows are skipped.
+    pub const SHADOW: u32 = 2;
+    /// Secondary (scattered) rays of the path tracer: instances seen by none of
+    /// reflection, refraction and final gather rays are skipped.
+    pub const SECONDARY: u32 = 4;
+    /// Reflection rays of the classic engine.
+    pub const REFLECT: u32 = 8;
+    /// Refraction rays of the classic engine.
+    pub const REFRACT: u32 = 16;
+    /// Transparency rays of the classic engine.
+    pub const TRANSPARENT: u32 = 32;
+    /// Final gather rays.
+    pub const FINALGATHER: u32 = 64;
+}
+
+/// Per-thread ray counts.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RayCounts {
+    /// Closest-hit rays.
+    pub rays: u64,
+    /// Shadow rays.
+    pub shadow_rays: u64,
+}
+
+/// What the first hit of a camera path was.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FirstHit {
+    /// World-space hit point.
+    pub point: Vec3A,
+    /// World-space shading normal.
+    pub normal: Vec3A,
+    /// The instance's label.
+    pub tag: u32,
+    /// World-space motion of the hit point over the shutter interval (`state.motion`).
+    pub motion: Vec3A,
 }

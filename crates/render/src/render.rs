@@ -13,12 +13,13 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use glam::Vec2;
-use shade::model::Shading;
+use shader::Shading;
 
 use crate::accel::Accel;
 use crate::film::{Film, Pixel};
 use crate::filter::PixelFilter;
-use crate::integrator::{trace_path, PathSettings, RayCounts};
+use crate::integrator::{trace_path, PathSettings};
+use crate::ray::RayCounts;
 use crate::sampler::{pixel_seed, Sampler};
 use crate::world::World;
 
@@ -329,7 +330,7 @@ pub fn render(
                                 splat.add(&filter, raster, s.color.to_array());
                             }
                             motion = s.motion.to_array();
-                            (shade::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
+                            (bsdf::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
                         }
                         None => {
                             let ray = cam.ray(raster.x, raster.y);
@@ -344,7 +345,7 @@ pub fn render(
                                 &mut counts,
                             );
                             if let Some(f) = r.first {
-                                motion = crate::classic::raster_motion(cam, f.point, f.motion).to_array();
+                                motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
                             }
                             (r.radiance, r.alpha, r.first)
                         }

@@ -1,12 +1,12 @@
 //! Tone mapping for display images: the camera's `mia_exposure_photographic` (as Iray
 //! camera attributes, an output shader, or a lens shader when the path engine ran, which
 //! does not run lens shaders), `mia_exposure_simple`, or plain sRGB encoding. The curves
-//! are `shade::mia::exposure`'s.
+//! are `mia::exposure`'s.
 
+use bsdf::Rgb;
 use mi::ast::{Param, ShaderList};
+use mia::exposure::{Photographic, Simple};
 use scene::camera::Output;
-use shade::mia::exposure::{Photographic, Simple};
-use shade::Rgb;
 
 /// Photographic tone mapping from the Iray camera attributes (`tm_tonemapper
 /// "mia_exposure_photographic"` and `mip_*`), Iray's defaults where absent.
@@ -45,7 +45,7 @@ pub enum ToneMapper {
 }
 
 /// A value of a shader call's parameter, else the declaration's default, else 0.
-fn param_f32(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &str) -> f32 {
+fn param_f32(params: &[Param], decl: Option<&shader::decl::Decl>, name: &str) -> f32 {
     let given = params.iter().rev().find(|p| p.name.text == name).map(|p| &p.value);
     let default = decl.and_then(|d| d.param(name)).and_then(|i| decl?.params[i].default.as_ref());
     match given.or(default) {
@@ -56,7 +56,7 @@ fn param_f32(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &s
     }
 }
 
-fn param_rgb(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &str) -> Rgb {
+fn param_rgb(params: &[Param], decl: Option<&shader::decl::Decl>, name: &str) -> Rgb {
     let given = params.iter().rev().find(|p| p.name.text == name).map(|p| &p.value);
     let default = decl.and_then(|d| d.param(name)).and_then(|i| decl?.params[i].default.as_ref());
     match given.or(default) {
@@ -71,9 +71,9 @@ fn param_rgb(params: &[Param], decl: Option<&shade::model::decl::Decl>, name: &s
 /// The exposure shader a shader list holds, with constant parameters (connected ones read
 /// as their defaults).
 fn exposure_in(list: &ShaderList, lib: &scene::Library) -> Option<ToneMapper> {
-    let decls = shade::model::decl::Decls::new(lib.declarations.values());
+    let decls = material::registry().decls(lib.declarations.values());
     list.0.iter().find_map(|item| {
-        let (name, params) = shade::material::first_call(std::slice::from_ref(item), lib)?;
+        let (name, params) = material::first_call(std::slice::from_ref(item), lib)?;
         let decl = decls.get(name);
         let d = decl.as_deref();
         match name {

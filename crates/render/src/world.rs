@@ -2,34 +2,13 @@
 //! compact `f32` form the integrators read.
 
 use glam::{Affine3A, Mat3A, Vec3A};
+use material::SurfaceMaterial;
 use scene::Scene;
-use shade::model::Shading;
-use shade::SurfaceMaterial;
+use shader::Shading;
 
 use crate::camera::CameraModel;
 use crate::light::LightSource;
-
-/// A triangle mesh, object space.
-#[derive(Clone, Debug, Default)]
-pub struct MeshData {
-    /// Vertex positions.
-    pub positions: Vec<Vec3A>,
-    /// Vertex shading normals (empty: use the geometric normal).
-    pub normals: Vec<Vec3A>,
-    /// Vertex coordinates of each texture space (mental ray's `tex_list`).
-    pub textures: Vec<Vec<Vec3A>>,
-    /// Vertex bump basis vectors (u, v) of the first texture space, object space (empty if
-    /// the geometry gives none).
-    pub bump_basis: Vec<[Vec3A; 2]>,
-    /// Triangles (counter-clockwise is the front).
-    pub triangles: Vec<[u32; 3]>,
-    /// Material slot of each triangle.
-    pub slots: Vec<u32>,
-    /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
-    pub hair: Option<crate::hair::HairData>,
-    /// Vertex motion vectors, object space per shutter interval (empty: none).
-    pub motion: Vec<Vec3A>,
-}
+use crate::mesh::MeshData;
 
 /// An instance of a mesh.
 #[derive(Clone, Debug)]
@@ -120,7 +99,7 @@ impl World {
         let mut warnings = Vec::new();
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
         for (i, m) in scene.materials.iter().enumerate() {
-            let (mat, w) = shade::material::translate(m, &scene.library, shading.map(|s| (s, i)));
+            let (mat, w) = material::translate(m, &scene.library, shading.map(|s| (s, i)));
             warnings.extend(w);
             materials.push(mat);
         }

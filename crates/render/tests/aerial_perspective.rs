@@ -5,9 +5,9 @@
 mod support;
 
 use glam::Vec3A;
+use mia::aerial::{aerial_transmittance, haze_color};
+use mia::sky::PhysicalSky;
 use render::EngineKind;
-use shade::mia::aerial::{aerial_transmittance, haze_color};
-use shade::mia::sky::PhysicalSky;
 
 /// Renders `text` with the classic engine: the pixels (RGBA, rows from the top).
 fn render(text: &str) -> Vec<[f32; 4]> {

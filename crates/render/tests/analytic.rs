@@ -5,15 +5,17 @@
 
 use std::sync::atomic::AtomicBool;
 
+use bsdf::Rgb;
 use glam::{Affine3A, Mat3A, Vec3A};
+use material::SurfaceMaterial;
 use render::camera::CameraModel;
 use render::integrator::PathSettings;
 use render::light::{LightSource, Output, Shape};
-use render::world::{InstanceData, MeshData, World};
+use render::mesh::MeshData;
+use render::world::{InstanceData, World};
 use render::{accel, Backend, Settings};
 use scene::options::{Filter, FilterKind, Options};
 use scene::LightKind;
-use shade::{Rgb, SurfaceMaterial};
 
 /// A UV sphere of radius `r` around the origin.
 fn sphere(r: f32, rings: u32, segments: u32) -> MeshData {
@@ -147,8 +149,8 @@ fn white_furnace_closed_sphere() {
 /// glossy reflections lose a little to masking and never gain: at most that.
 #[test]
 fn mia_material_in_the_furnace_conserves_energy() {
-    use shade::material::SurfaceModel;
-    use shade::mia::params::Mia;
+    use material::SurfaceModel;
+    use mia::params::Mia;
     for gloss in [1.0f32, 0.5] {
         let mia = Mia {
             diffuse: Rgb::splat(0.6),

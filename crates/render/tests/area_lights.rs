@@ -3,10 +3,10 @@
 
 use std::sync::atomic::AtomicBool;
 
+use bsdf::Rgb;
 use render::light::{Output, Shape};
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
-use shade::Rgb;
+use shader::{Shading, ShadingOptions};
 
 /// An orthographic camera looking down −Z at a 2×2 view (`res`² pixels) and a 4×4 plane
 /// at z = −5 of material "plane_mtl"; `body` adds the rest, `extra` names instances.
@@ -36,7 +36,7 @@ fn build(text: &str) -> (render::World, Shading, Vec<String>) {
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene(&scene);

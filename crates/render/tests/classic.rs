@@ -4,7 +4,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// An orthographic camera at the origin looking down −Z at a 2×2 view, `res`² pixels, a
 /// one-pixel box filter; a unit-square-plus plane at z = −5 facing the camera carries
@@ -38,7 +38,7 @@ fn render(text: &str, spp: Option<u32>) -> (Vec<[f32; 4]>, Vec<String>, u64) {
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene(&scene);

@@ -5,13 +5,14 @@
 
 use std::sync::atomic::AtomicBool;
 
+use bsdf::Rgb;
 use glam::Vec3A;
 use render::environment::{Environment, Source};
-use render::integrator::{trace_path, PathSettings, RayCounts};
+use render::integrator::{trace_path, PathSettings};
+use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
-use shade::Rgb;
+use shader::{Shading, ShadingOptions};
 
 /// An orthographic camera at the origin looking down −Z at a 2×2 view (`res`² pixels),
 /// the camera's environment `env`; `body` holds the rest, `extra` names its instances.
@@ -40,7 +41,7 @@ fn build(text: &str) -> (render::World, Shading, Vec<String>) {
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene_shaded(&scene, Some(&shading));

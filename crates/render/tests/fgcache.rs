@@ -5,7 +5,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings, Stats};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// Resolution of the test images.
 const RES: usize = 48;
@@ -49,7 +49,7 @@ fn render(text: &str, spp: u32, fg_rays: Option<u32>) -> (Vec<[f32; 4]>, Stats) 
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
     let options = ShadingOptions { finalgather_rays: fg_rays, ..ShadingOptions::default() };
-    let (shading, _) = Shading::build(&scene, &options);
+    let (shading, _) = Shading::build(&scene, &options, &material::registry());
     let world = render::World::from_scene(&scene);
     let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(spp), ..Settings::default() };

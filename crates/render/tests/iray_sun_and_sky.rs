@@ -7,9 +7,9 @@ mod support;
 use std::f32::consts::PI;
 
 use glam::Vec3A;
+use mdl::sky::SunAndSky;
+use mia::sky::PhysicalSky;
 use render::EngineKind;
-use shade::mdl::sky::SunAndSky;
-use shade::mia::sky::PhysicalSky;
 
 /// Z up; the sun 60° up, its disk `scale` × the real sun's.
 fn sky_params(scale: f32) -> String {

@@ -5,7 +5,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// Renders `text` with the classic engine at `spp` samples per pixel: RGBA pixels (rows
 /// from the top) and every diagnostic.
@@ -14,7 +14,7 @@ fn render(text: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene(&scene);

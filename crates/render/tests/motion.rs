@@ -4,7 +4,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// An orthographic 2×2 view at 8×8 pixels (4 pixels per unit) onto a quad at z = −5 whose
 /// instance carries `motion`.
@@ -29,7 +29,7 @@ render "root" "cam_inst" "opt"
     assert!(parsed.diagnostics.list.is_empty(), "parse diagnostics");
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, _) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     let world = render::World::from_scene(&scene);
     let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(1), ..Settings::default() };

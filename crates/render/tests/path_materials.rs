@@ -8,7 +8,7 @@
 mod support;
 
 use render::EngineKind;
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// Renders `body` (materials, shaders and the square's instance `material`) with the path
 /// engine at 8×8: the pixels (RGBA, rows from the top) and the diagnostics.
@@ -174,7 +174,7 @@ render "root" "cam_inst" "opt"
     let parsed = mi::parse_str("t.mi", text);
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (_, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (_, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     let messages: Vec<String> = shade_diags.iter().map(|d| d.render(&parsed.sources)).collect();
     assert!(messages.is_empty(), "{messages:#?}");
 }

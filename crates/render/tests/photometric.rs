@@ -6,8 +6,8 @@ use std::sync::atomic::AtomicBool;
 
 use glam::Vec3A;
 use render::{EngineKind, Settings};
-use shade::light::ies::Profile;
-use shade::model::{Shading, ShadingOptions};
+use shader::light::ies::Profile;
+use shader::{Shading, ShadingOptions};
 
 const RES: usize = 16;
 /// Height of the light above the plane.
@@ -47,7 +47,7 @@ fn render(text: &str, engine: EngineKind) -> Vec<[f32; 4]> {
     assert!(parsed.diagnostics.list.is_empty());
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     let lights: Vec<String> =
         shade_diags.iter().map(|d| d.render(&parsed.sources)).filter(|m| m.contains("profile")).collect();
     assert!(lights.is_empty(), "{lights:?}");

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 
 use glam::Vec3A;
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// The scene text around `body` (materials, objects, lights and their instances listed in
 /// `instances`), with `options` in the options block.
@@ -72,7 +72,7 @@ fn build(text: &str) -> (scene::Scene, Shading) {
     assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, _) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     (scene, shading)
 }
 

@@ -7,7 +7,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// Pixels across (and down).
 const RES: usize = 8;
@@ -51,7 +51,7 @@ fn render(text: &str) -> Vec<[f32; 4]> {
         let all: Vec<String> = diags.iter().map(|d| d.render(&parsed.sources)).collect();
         panic!("no scene: {messages:?} {all:?}");
     };
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     assert!(messages.is_empty(), "{messages:?}");

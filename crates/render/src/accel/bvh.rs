@@ -14,7 +14,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
 use super::{intersect_triangle, Accel, Backend, Hit};
-use crate::integrator::mask;
+use crate::ray::mask;
 use crate::ray::Ray;
 use crate::world::World;
 

@@ -240,7 +240,7 @@ impl Accel for EmbreeAccel {
 ///
 /// # Safety
 /// `device` must be a live Embree device.
-unsafe fn triangle_geometry(device: RtcDevice, m: &crate::world::MeshData, transform: glam::Affine3A) -> RtcGeometry {
+unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transform: glam::Affine3A) -> RtcGeometry {
     // SAFETY: the buffers Embree returns hold exactly the item counts asked for.
     unsafe {
         let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);

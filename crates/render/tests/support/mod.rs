@@ -4,7 +4,7 @@
 use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shade::model::{Shading, ShadingOptions};
+use shader::{Shading, ShadingOptions};
 
 /// Renders the scene `text` with `engine` (`spp` samples per pixel, or the scene's own):
 /// the pixels (RGBA, rows from the top) and every message the reader, the scene layer and
@@ -14,7 +14,7 @@ pub fn render_text(text: &str, engine: EngineKind, spp: Option<u32>) -> (Vec<[f3
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default());
+    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene_shaded(&scene, Some(&shading));

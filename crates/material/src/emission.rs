@@ -1,0 +1,193 @@
+//! What lights emit: MDL light materials (`light_omni`, `light_spot`, `light_ies`) with
+//! MDL's units, mental ray's base light shaders (`mib_light_point`, `mib_light_spot`,
+//! `mib_light_infinite`, `mib_light_photometric`) and the Architectural library's
+//! `mia_photometric_light` and `mia_portal_light`.
+
+use std::sync::Arc;
+
+use scene::{Library, Light};
+
+use crate::{color_param, declaration_name, first_call, scalar_param, string_param};
+use bsdf::Rgb;
+use mia::photometric::{positive_or_one, Settings};
+use shader::light::ies::Profile;
+pub use shader::light::profiles::Distribution;
+
+/// How a light's colour is to be read.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Power {
+    /// Radiant exitance of the light's surface (MDL `lumen_m2`): L = E / π.
+    Exitance(Rgb),
+    /// Radiance of the light's surface (MDL `nit`).
+    Radiance(Rgb),
+    /// Total power over the whole light (MDL `lumen`).
+    Flux(Rgb),
+    /// Radiant intensity along the main direction (MDL `candela`; point lights).
+    Intensity(Rgb),
+    /// mental ray base light shaders: the colour arriving at a lit point, with no distance
+    /// falloff (area lights average it over their samples); `atten` gives a linear falloff
+    /// between `start` and `stop`.
+    Constant {
+        /// The colour.
+        color: Rgb,
+        /// Linear falloff distances, if `atten` is on.
+        falloff: Option<(f32, f32)>,
+    },
+    /// Photometric point lights (`mib_light_photometric`, `mia_photometric_light`): the
+    /// colour arriving is `color` × the [`Emission::distribution`] towards the point ×
+    /// d^−exponent (no falloff for exponent 0, nor outside `range` when one is given).
+    Photometric {
+        /// The colour at unit distance along the distribution's peak.
+        color: Rgb,
+        /// Distance falloff exponent (2: inverse square).
+        exponent: f32,
+        /// `(start, stop)`: the falloff applies only between them.
+        range: Option<(f32, f32)>,
+    },
+    /// `mia_portal_light` (area lights over windows): the surface radiance along a
+    /// direction is `scale` × the environment's radiance along it, emitted to the side of
+    /// the shape's normal (the other side with `reverse`). `use_custom_environment`,
+    /// `cutoff_threshold` and `shadows` are not read: the scene's environment is used, and
+    /// every sample is shadowed.
+    Portal {
+        /// `tint_color` × `multiplier` (zero when `on` is off).
+        scale: Rgb,
+        /// `reverse`.
+        reverse: bool,
+    },
+}
+
+/// A light's emission, and whether it is a spot with an exponent distribution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Emission {
+    /// The amount and its unit.
+    pub power: Power,
+    /// MDL `light_spot`: cosine power of the spot distribution around the light's −Z.
+    pub spot_exponent: Option<f32>,
+    /// mental ray `mib_light_spot`: cosine of the inner (full-intensity) cone.
+    pub cone: Option<f32>,
+    /// How a point light's intensity varies with direction in the light's local frame
+    /// (a light profile or a cosine power; `None`: uniform). MDL `light_ies` and mental
+    /// ray's photometric lights.
+    pub distribution: Option<Distribution>,
+}
+
+/// The emission of `light`, or a message saying why it cannot be read; light profiles
+/// are not available (see [`emission_with`]).
+pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
+    emission_with(light, lib, &|_| None)
+}
+
+/// The emission of `light`, with `profiles` giving the light profile of a `lightprofile`
+/// element's name (`None` where it is unknown or unreadable: the light is then uniform).
+/// A profile parameter that is not set falls back to the light's `lightprofile` statement.
+pub fn emission_with(
+    light: &Light,
+    lib: &Library,
+    profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
+) -> Result<Emission, String> {
+    let Some(list) = &light.shader else {
+        return Err(format!("light '{}' has no light shader", light.name));
+    };
+    let Some((decl, params)) = first_call(&list.0, lib) else {
+        return Err(format!("light '{}': its shader cannot be found", light.name));
+    };
+    let color = |name: &str, default: Rgb| match color_param(params, name) {
+        Some(Ok(c)) => c,
+        _ => default,
+    };
+    let profile = || string_param(params, "profile").or(light.lightprofile.as_deref()).and_then(profiles);
+    let scalar = |name: &str, default: f64| scalar_param(params, name).unwrap_or(default) as f32;
+    match declaration_name(decl) {
+        "mdl::nvidia::core_definitions::light_omni" | "mdl::nvidia::core_definitions::light_spot" => {
+            let amount = color("tint", Rgb::ONE)
+                * (scalar_param(params, "intensity").unwrap_or(1000.0)
+                    * scalar_param(params, "unit_scale").unwrap_or(1.0)) as f32;
+            let power = match string_param(params, "unit").unwrap_or("lumen_m2") {
+                "lumen" => Power::Flux(amount),
+                "candela" => Power::Intensity(amount),
+                "nit" => Power::Radiance(amount),
+                _ => Power::Exitance(amount),
+            };
+            let spot_exponent = declaration_name(decl)
+                .ends_with("light_spot")
+                .then(|| scalar_param(params, "spot_exponent").unwrap_or(30.0) as f32);
+            Ok(Emission { power, spot_exponent, cone: None, distribution: None })
+        }
+        "mdl::nvidia::core_definitions::light_ies" => {
+            // The profile's measured candela, times tint · intensity · unit_scale.
+            let amount = color("tint", Rgb::ONE) * scalar("intensity", 1.0) * scalar("unit_scale", 1.0);
+            let distribution = profile().map(|profile| Distribution::Profile { profile, scale: 1.0 });
+            Ok(Emission {
+                power: Power::Photometric { color: amount, exponent: 2.0, range: None },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
+        }
+        "mib_light_photometric" => {
+            let (start, stop) = (scalar("start", 0.0), scalar("stop", 0.0));
+            let distribution = profile()
+                .filter(|p| p.peak() > 0.0)
+                .map(|profile| Distribution::Profile { scale: 1.0 / profile.peak(), profile });
+            Ok(Emission {
+                power: Power::Photometric {
+                    color: color("color", Rgb::ZERO),
+                    exponent: light.exponent.max(0.0) as f32,
+                    range: (stop > start && stop > 0.0).then_some((start, stop)),
+                },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
+        }
+        "mia_photometric_light" => {
+            let settings = Settings {
+                intensity_mode: scalar("intensity_mode", 0.0) as i32,
+                peak_cd: scalar("manual_peak_intensity_cd", 0.0),
+                flux_lm: scalar("manual_flux_lm", 0.0),
+                distribution_mode: scalar("distribution_mode", 0.0) as i32,
+                cosine_bias: scalar("spotlight_cosine_bias", 0.0),
+            };
+            let (peak, distribution) = settings.resolve(profile());
+            let on = scalar("on", 1.0) != 0.0;
+            let u = positive_or_one(scalar("units_to_meter_scale", 1.0));
+            let cm2 = positive_or_one(scalar("cm2_factor", 1.0));
+            let k = if on { scalar("multiplier", 1.0) * peak / (u * u * cm2) } else { 0.0 };
+            Ok(Emission {
+                power: Power::Photometric { color: color("color", Rgb::ONE) * k, exponent: 2.0, range: None },
+                spot_exponent: None,
+                cone: None,
+                distribution,
+            })
+        }
+        "mia_portal_light" => {
+            let on = scalar("on", 1.0) != 0.0;
+            let scale = if on { color("tint_color", Rgb::ONE) * scalar("multiplier", 1.0) } else { Rgb::ZERO };
+            Ok(Emission {
+                power: Power::Portal { scale, reverse: scalar("reverse", 0.0) != 0.0 },
+                spot_exponent: None,
+                cone: None,
+                distribution: None,
+            })
+        }
+        "mib_light_point" | "mib_light_spot" | "mib_light_infinite" => {
+            let atten = scalar_param(params, "atten").unwrap_or(0.0) != 0.0;
+            let falloff = atten.then(|| {
+                (
+                    scalar_param(params, "start").unwrap_or(0.0) as f32,
+                    scalar_param(params, "stop").unwrap_or(0.0) as f32,
+                )
+            });
+            let cone = (declaration_name(decl) == "mib_light_spot")
+                .then(|| scalar_param(params, "cone").unwrap_or(0.0) as f32);
+            Ok(Emission {
+                power: Power::Constant { color: color("color", Rgb::ZERO), falloff },
+                spot_exponent: None,
+                cone,
+                distribution: None,
+            })
+        }
+        other => Err(format!("light '{}': light shader '{other}' is not supported yet", light.name)),
+    }
+}

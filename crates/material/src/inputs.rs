@@ -1,0 +1,291 @@
+//! Material parameters driven by shaders, evaluated at each hit of the path engine.
+//!
+//! A material whose parameters are connected (to MDL `::base` textures, mental ray
+//! texture shaders, bump or normal maps) keeps, besides its constant model, the list of
+//! what drives what ([`Varying`]). At a hit the integrator describes the point as a shader
+//! [`State`](shader::State) and calls [`SurfaceMaterial::at`], which runs the
+//! connected shaders through the shader graph (lazily and cached, as in the classic
+//! engine) and returns the material at that point ([`HitMaterial`]).
+
+use std::borrow::Cow;
+use std::sync::Arc;
+
+use glam::Vec3A;
+
+use super::{SurfaceMaterial, SurfaceModel};
+use bsdf::Rgb;
+use bsdf::{Unified, UnifiedParams};
+use mia::params::{Mia, P};
+use shader::{Ctx, Graph, NodeId, Slot, Tag, Value};
+
+/// What a connected parameter drives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// The diffuse colour (Lambert, Oren–Nayar; also what the classic stand-in shows).
+    Diffuse,
+    /// Oren–Nayar roughness σ (radians).
+    DiffuseRoughness,
+    /// The unified material's base colour.
+    BaseColor,
+    /// The unified material's transmission colour.
+    TransmissionColor,
+    /// The unified material's metal edge tint.
+    EdgeTint,
+    /// Emitted radiance (the binding's scale converts MDL's units).
+    Emission,
+    /// Unified `metallic`.
+    Metallic,
+    /// Unified `roughness`.
+    Roughness,
+    /// Unified `anisotropic`.
+    Anisotropic,
+    /// Unified `spec_trans`.
+    SpecTrans,
+    /// Unified `ior`.
+    Ior,
+    /// Unified `specular`.
+    Specular,
+    /// Unified `specular_tint`.
+    SpecularTint,
+    /// Unified `sheen`.
+    Sheen,
+    /// Unified `sheen_tint`.
+    SheenTint,
+    /// Unified `clearcoat`.
+    Clearcoat,
+    /// Unified `clearcoat_gloss`.
+    ClearcoatGloss,
+    /// Coverage (cutouts): 1 solid, 0 absent.
+    Opacity,
+    /// A world-space shading normal (MDL normal and bump maps).
+    Normal,
+    /// A mental ray bump shader, run for its change of the state's normal.
+    Bump,
+}
+
+/// One connected parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Binding {
+    /// The shader node whose result drives it.
+    pub node: NodeId,
+    /// The member of a struct result (`"tex.tint"`); `None`: the whole result.
+    pub member: Option<Arc<str>>,
+    /// What it drives.
+    pub target: Target,
+    /// A factor on the value (the mapping's own scale, such as MDL emission units).
+    pub scale: f32,
+}
+
+/// What of a material varies over its surface.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Varying {
+    /// Nothing: the constant model is the material everywhere.
+    #[default]
+    Constant,
+    /// Connected parameters.
+    Bindings(Vec<Binding>),
+    /// A `mia_material` node with connections: all its parameters are read per hit, its
+    /// bump shaders run, as the classic engine does.
+    Mia {
+        /// The `mia_material` node.
+        node: NodeId,
+        /// A passthrough bump shader before it in the material's shader list.
+        bump: Option<NodeId>,
+    },
+}
+
+/// A material at one shading point (borrowing the material's model where nothing varies).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HitMaterial<'a> {
+    /// Diffuse colour.
+    pub diffuse: Rgb,
+    /// Emitted radiance.
+    pub emission: Rgb,
+    /// The scattering model with the point's parameters.
+    pub model: Cow<'a, SurfaceModel>,
+    /// Coverage.
+    pub opacity: f32,
+    /// The shading normal the material asks for (world space, unit), if it bends it.
+    pub normal: Option<Vec3A>,
+}
+
+/// A value as a colour: a `texture_return` struct gives its `tint`.
+fn as_rgb(v: &Value) -> Rgb {
+    let c = v.member("tint").unwrap_or(v).color();
+    Rgb::new(c.x, c.y, c.z)
+}
+
+/// A value as a number: a `texture_return` struct gives its `mono`, a colour its average.
+fn as_scalar(v: &Value) -> f32 {
+    match v.member("mono").unwrap_or(v) {
+        Value::Color(c) => (c.x + c.y + c.z) / 3.0,
+        other => other.scalar(),
+    }
+}
+
+/// Finds the shaders of a material's shader list (starting at `head`) that the path
+/// engine evaluates per hit: a `mia_material` with connected parameters (and a passthrough
+/// bump shader before it), or a passthrough bump shader before another shader.
+pub(super) fn bind_material_shaders(surface: &mut SurfaceMaterial, graph: &Graph, head: NodeId) {
+    let mut bump = None;
+    let mut node = Some(head);
+    let mut guard = 0;
+    while let Some(n) = node {
+        let entry = &graph.nodes[n as usize];
+        let name = entry.imp.map_or("", |i| i.name);
+        if name == "mib_passthrough_bump_map" {
+            bump = Some(n);
+        } else if name.starts_with("mia_material") {
+            let connected = entry.slots.iter().enumerate().any(|(i, s)| {
+                matches!(s, Slot::Connect { .. } | Slot::Array(_) | Slot::Struct(_))
+                    || (i == P::Bump as usize && matches!(s, Slot::Value(Value::Tag(Tag::Shader(_)))))
+                    || (i == P::OverallBump as usize || i == P::StandardBump as usize)
+                        && matches!(s, Slot::Value(Value::Vector(v)) if *v != Vec3A::ZERO)
+            });
+            if connected || bump.is_some() {
+                surface.varying = Varying::Mia { node: n, bump };
+            }
+            return;
+        }
+        guard += 1;
+        node = entry.next.filter(|_| guard < 64);
+    }
+    if let Some(b) = bump {
+        let binding = Binding { node: b, member: None, target: Target::Bump, scale: 1.0 };
+        match &mut surface.varying {
+            Varying::Bindings(list) => list.insert(0, binding),
+            other => *other = Varying::Bindings(vec![binding]),
+        }
+    }
+}
+
+impl SurfaceMaterial {
+    /// Whether anything of the material varies over its surface.
+    pub fn is_varying(&self) -> bool {
+        self.varying != Varying::Constant
+    }
+
+    /// The material with its constant parameters (what it is where nothing varies).
+    pub fn constant(&self) -> HitMaterial<'_> {
+        HitMaterial {
+            diffuse: self.diffuse,
+            emission: self.emission,
+            model: Cow::Borrowed(&self.model),
+            opacity: self.opacity,
+            normal: None,
+        }
+    }
+
+    /// Whether rays may pass through the material somewhere (a constant opacity below 1,
+    /// or an opacity driven by a shader of `graph`).
+    pub fn may_cut_out(&self, graph: Option<&Graph>) -> bool {
+        self.opacity < 1.0
+            || match &self.varying {
+                Varying::Constant => false,
+                Varying::Bindings(b) => b.iter().any(|b| b.target == Target::Opacity),
+                Varying::Mia { node, .. } => graph.is_some_and(|g| {
+                    matches!(g.nodes[*node as usize].slots.get(P::CutoutOpacity as usize), Some(Slot::Connect { .. }))
+                }),
+            }
+    }
+
+    /// The material at the shading point `ctx.state` (its normal facing the viewer, its
+    /// texture coordinates and derivatives filled in), running the connected shaders.
+    pub fn at(&self, ctx: &mut Ctx) -> HitMaterial<'_> {
+        let mut hit = self.constant();
+        match &self.varying {
+            Varying::Constant => {}
+            Varying::Bindings(bindings) => self.apply(bindings, ctx, &mut hit),
+            Varying::Mia { node, bump } => {
+                let unbumped = ctx.state.normal;
+                if let Some(b) = bump {
+                    let mut ignored = Value::Null;
+                    ctx.call(*b, &mut ignored);
+                }
+                let mia = Mia::read(ctx, *node);
+                let refr_gloss = ctx.scalar(*node, P::RefrGloss as usize);
+                let extended = ctx.node(*node).imp.is_some_and(|i| i.name != "mia_material");
+                mia::material::bump(ctx, *node, extended);
+                hit.opacity = ctx.scalar(*node, P::CutoutOpacity as usize);
+                hit.diffuse = mia.diffuse;
+                hit.model = Cow::Owned(SurfaceModel::Mia(Box::new((mia, refr_gloss))));
+                if ctx.state.normal != unbumped {
+                    hit.normal = Some(ctx.state.normal);
+                }
+            }
+        }
+        hit
+    }
+
+    fn apply(&self, bindings: &[Binding], ctx: &mut Ctx, hit: &mut HitMaterial<'_>) {
+        let mut unified: Option<UnifiedParams> = match &self.model {
+            SurfaceModel::Unified(u) => Some(*u.params()),
+            _ => None,
+        };
+        let unbumped = ctx.state.normal;
+        for b in bindings {
+            let result = ctx.result(b.node);
+            let value = match &b.member {
+                Some(m) => result.member(m).cloned().unwrap_or(Value::Null),
+                None => result,
+            };
+            let rgb = || as_rgb(&value) * b.scale;
+            let num = || as_scalar(&value) * b.scale;
+            let set = |f: &mut dyn FnMut(&mut UnifiedParams), u: &mut Option<UnifiedParams>| {
+                if let Some(p) = u {
+                    f(p);
+                }
+            };
+            match b.target {
+                Target::Diffuse => hit.diffuse = rgb(),
+                Target::DiffuseRoughness => {
+                    if let SurfaceModel::OrenNayar(_) = *hit.model {
+                        hit.model = Cow::Owned(SurfaceModel::OrenNayar(num()));
+                    }
+                }
+                Target::Emission => hit.emission = rgb(),
+                Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
+                Target::Normal => {
+                    let n = value.vector();
+                    if n.length_squared() > 0.0 {
+                        hit.normal = Some(n.normalize());
+                    }
+                }
+                Target::Bump => {
+                    if ctx.state.normal != unbumped {
+                        hit.normal = Some(ctx.state.normal);
+                    } else if let Value::Vector(n) = value {
+                        if n.length_squared() > 0.0 && n.normalize() != unbumped {
+                            hit.normal = Some(n.normalize());
+                        }
+                    }
+                }
+                Target::BaseColor => {
+                    let c = rgb();
+                    set(&mut |p| p.base_color = c, &mut unified);
+                    if unified.is_none() {
+                        hit.diffuse = c;
+                    }
+                }
+                Target::TransmissionColor => set(&mut |p| p.transmission_color = Some(rgb()), &mut unified),
+                Target::EdgeTint => set(&mut |p| p.edge_tint = Some(rgb()), &mut unified),
+                Target::Metallic => set(&mut |p| p.metallic = num(), &mut unified),
+                Target::Roughness => set(&mut |p| p.roughness = num(), &mut unified),
+                Target::Anisotropic => set(&mut |p| p.anisotropic = num(), &mut unified),
+                Target::SpecTrans => set(&mut |p| p.spec_trans = num(), &mut unified),
+                Target::Ior => set(&mut |p| p.ior = num(), &mut unified),
+                Target::Specular => set(&mut |p| p.specular = num(), &mut unified),
+                Target::SpecularTint => set(&mut |p| p.specular_tint = num(), &mut unified),
+                Target::Sheen => set(&mut |p| p.sheen = num(), &mut unified),
+                Target::SheenTint => set(&mut |p| p.sheen_tint = num(), &mut unified),
+                Target::Clearcoat => set(&mut |p| p.clearcoat = num(), &mut unified),
+                Target::ClearcoatGloss => set(&mut |p| p.clearcoat_gloss = num(), &mut unified),
+            }
+        }
+        if let (Some(p), SurfaceModel::Unified(u)) = (unified, &self.model) {
+            if p != *u.params() {
+                hit.model = Cow::Owned(SurfaceModel::Unified(Box::new(Unified::new(&p))));
+            }
+        }
+    }
+}

@@ -1,0 +1,279 @@
+//! Surface materials for the path integrator, translated from the scene's materials.
+//!
+//! Each material becomes a [`SurfaceModel`] — a BSDF family — and an emission:
+//! - mira's `unified_material` shader: the unified material with its own parameters;
+//! - MDL (`::nvidia::core_definitions`): `flex_material` and `flex_material_v2`, `metal`,
+//!   `plastic`, `thin_glass` and `thick_glass` become unified materials; `diffuse` an
+//!   Oren–Nayar surface; `add_emission` its base material plus emission in MDL's units;
+//! - `mia_material` and `mia_material_x`: [`bsdf::mia::MiaBsdf`], whose layer
+//!   weights come from the author's curve and conservation at each viewing angle;
+//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert).
+//!
+//! Constant parameters are read once ([`reader`]). Parameters connected to shaders —
+//! MDL `::base` textures, mental ray texture and bump shaders — are evaluated at every
+//! hit through the scene's shader graph ([`inputs`]), when the graph is given. Anything
+//! else is rendered as a grey diffuse surface or with the parameter's default, with a
+//! warning naming what was not understood.
+
+pub mod emission;
+pub mod inputs;
+mod reader;
+
+use mi::ast::{Num, Param, ShaderItem, Value};
+use scene::{Library, Material, MaterialKind};
+
+use bsdf::mia::{anisotropic_roughness, gloss_to_roughness, MiaBsdf};
+use bsdf::microfacet::Ggx;
+use bsdf::Rgb;
+use bsdf::{Bsdf, Lambert, OrenNayar, Unified};
+pub use inputs::{Binding, HitMaterial, Target, Varying};
+use mia::params::Mia;
+use reader::Reader;
+use shader::Shading;
+
+use std::sync::{Arc, OnceLock};
+
+/// Every shader library mira has, in lookup order: the base and physics libraries, the
+/// Architectural library, MDL's `::base` functions.
+pub static LIBRARIES: &[&shader::Library] = &[&baselib::LIBRARY, &mia::LIBRARY, &mdl::LIBRARY];
+
+/// The registry of [`LIBRARIES`], with this crate's translation as the classic engine's
+/// stand-in for materials without mental ray shaders; built once.
+pub fn registry() -> Arc<shader::Registry> {
+    static REGISTRY: OnceLock<Arc<shader::Registry>> = OnceLock::new();
+    REGISTRY.get_or_init(|| Arc::new(shader::Registry::new(LIBRARIES).with_stand_in(stand_in))).clone()
+}
+
+/// The classic engine's stand-in colours of material `m` (diffuse, emission): what the path
+/// engine's translation finds.
+fn stand_in(m: &Material, lib: &Library) -> (glam::Vec3A, glam::Vec3A) {
+    let (surface, _) = translate(m, lib, None);
+    (surface.diffuse, surface.emission)
+}
+
+/// The scattering model of a surface, with constant parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SurfaceModel {
+    /// Lambertian reflection of the material's `diffuse` colour.
+    Lambert,
+    /// Oren–Nayar reflection of the `diffuse` colour with roughness σ (radians).
+    OrenNayar(f32),
+    /// The unified material (built once: its constants, such as the Fresnel average, are
+    /// not recomputed per hit).
+    Unified(Box<Unified>),
+    /// `mia_material`: its parameters and `refr_gloss`.
+    Mia(Box<(Mia, f32)>),
+    /// A mental ray built-in BSDF (a material's `bsdf` slot, `builtin_bsdf_*`).
+    Builtin(Box<bsdf::BuiltinBsdf>),
+}
+
+/// A surface's scattering and emission.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceMaterial {
+    /// The material's name.
+    pub name: String,
+    /// The diffuse colour (the Lambert and Oren–Nayar models' reflectance, and the colour
+    /// the classic engine's stand-in shades with).
+    pub diffuse: Rgb,
+    /// Emitted radiance (W·m⁻²·sr⁻¹ in scene units), both sides.
+    pub emission: Rgb,
+    /// How the surface scatters.
+    pub model: SurfaceModel,
+    /// Coverage: 1 is solid, 0 lets rays through untouched (cutouts).
+    pub opacity: f32,
+    /// `emission` is for the whole emitting surface (radiance × area, from MDL's `lumen`
+    /// and `candela` units): the renderer divides it by the material's total area.
+    pub emission_over_area: bool,
+    /// Parameters driven by shaders, evaluated at each hit.
+    pub varying: Varying,
+}
+
+impl SurfaceMaterial {
+    /// A grey diffuse surface (the fallback for what is not understood).
+    pub fn grey(name: &str) -> SurfaceMaterial {
+        SurfaceMaterial::lambert(name, Rgb::splat(0.5))
+    }
+
+    /// A Lambertian surface of reflectance `diffuse`.
+    pub fn lambert(name: &str, diffuse: Rgb) -> SurfaceMaterial {
+        SurfaceMaterial {
+            name: name.to_string(),
+            diffuse,
+            emission: Rgb::ZERO,
+            model: SurfaceModel::Lambert,
+            opacity: 1.0,
+            emission_over_area: false,
+            varying: Varying::Constant,
+        }
+    }
+
+    /// The BSDF at a shading point seen from `wo` (local shading frame: some layer
+    /// weights depend on the viewing angle), for the material's constant parameters.
+    pub fn bsdf(&self, wo: glam::Vec3A) -> Bsdf {
+        self.model.bsdf(self.diffuse, wo)
+    }
+
+    /// Whether light can enter the surface (then its two sides differ: the path tracer
+    /// keeps the geometric orientation instead of facing the normal towards the ray).
+    pub fn has_inside(&self) -> bool {
+        self.model.has_inside()
+    }
+}
+
+impl SurfaceModel {
+    /// The BSDF seen from `wo` (local shading frame), with diffuse colour `diffuse`.
+    pub fn bsdf(&self, diffuse: Rgb, wo: glam::Vec3A) -> Bsdf {
+        match self {
+            SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: diffuse }),
+            SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(diffuse, *sigma)),
+            SurfaceModel::Unified(u) => Bsdf::Unified(**u),
+            SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
+            SurfaceModel::Mia(m) => {
+                let (mia, refr_gloss) = &**m;
+                let w = mia.weights(wo.z.abs(), true);
+                let (ax, ay) = anisotropic_roughness(gloss_to_roughness(mia.refl_gloss), mia.anisotropy);
+                Bsdf::Mia(MiaBsdf {
+                    diffuse: OrenNayar::new(w.diffuse, mia.roughness),
+                    reflect: w.reflect,
+                    reflect_ggx: Ggx { alpha_x: ax, alpha_y: ay },
+                    transmit: w.refract,
+                    transmit_ggx: Ggx::isotropic(gloss_to_roughness(*refr_gloss)),
+                    eta: mia.ior.max(1e-3),
+                    thin: mia.thin_walled,
+                    transl: w.transl,
+                })
+            }
+        }
+    }
+
+    /// Whether light can enter the surface.
+    pub fn has_inside(&self) -> bool {
+        match self {
+            SurfaceModel::Unified(u) => u.params().spec_trans > 0.0 && !u.params().thin,
+            SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
+            _ => false,
+        }
+    }
+}
+
+pub use shader::decl::declaration_name;
+
+/// A constant colour parameter (`"p" r g b [a]` or a single grey value).
+pub fn color_param(params: &[Param], name: &str) -> Option<Result<Rgb, String>> {
+    let p = params.iter().rev().find(|p| p.name.text == name)?;
+    Some(match &p.value {
+        Value::Tuple(v) if v.len() >= 3 => {
+            Ok(Rgb::new(v[0].as_f64() as f32, v[1].as_f64() as f32, v[2].as_f64() as f32))
+        }
+        Value::Num(n) => Ok(Rgb::splat(n.as_f64() as f32)),
+        Value::Connect(c) => Err(format!("'{name}' is connected to '{}'", c.text)),
+        _ => Err(format!("'{name}' is not a colour")),
+    })
+}
+
+/// A constant scalar parameter.
+pub fn scalar_param(params: &[Param], name: &str) -> Option<f64> {
+    params.iter().rev().find(|p| p.name.text == name).and_then(|p| match &p.value {
+        Value::Num(n) => Some(n.as_f64()),
+        Value::Tuple(v) => v.first().map(|n: &Num| n.as_f64()),
+        Value::Bool(b) => Some(f64::from(u8::from(*b))),
+        _ => None,
+    })
+}
+
+/// A string parameter.
+pub fn string_param<'a>(params: &'a [Param], name: &str) -> Option<&'a str> {
+    params.iter().rev().find(|p| p.name.text == name).and_then(|p| match &p.value {
+        Value::Str(s) => Some(s.text.as_str()),
+        _ => None,
+    })
+}
+
+/// The declaration and parameters of a shader list's first shader (following one `= "x"`).
+pub fn first_call<'a>(items: &'a [ShaderItem], lib: &'a Library) -> Option<(&'a str, &'a [Param])> {
+    match items.first()? {
+        ShaderItem::Call { decl, params, .. } => Some((decl.text.as_str(), params.as_slice())),
+        ShaderItem::Ref(name) => {
+            let def = lib.shaders.get(&name.text)?;
+            match def.list.0.first()? {
+                ShaderItem::Call { decl, params, .. } => Some((decl.text.as_str(), params.as_slice())),
+                _ => None,
+            }
+        }
+        ShaderItem::Define { list, .. } => match list.0.first()? {
+            ShaderItem::Call { decl, params, .. } => Some((decl.text.as_str(), params.as_slice())),
+            _ => None,
+        },
+    }
+}
+
+/// Translates a scene material; the strings are warnings about what was approximated.
+/// Parameters connected to shaders are evaluated per hit when `shading` (the scene's
+/// compiled shader graph, with `m` as its material `index`) is given, else they take their
+/// defaults.
+pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>) -> (SurfaceMaterial, Vec<String>) {
+    let mut warnings = Vec::new();
+    let call = match &m.kind {
+        MaterialKind::Shader(def) => first_call(&def.list.0, lib),
+        MaterialKind::Material(defs) => defs.iter().rev().find_map(|d| d.shaders.as_ref()).and_then(|l| {
+            // In a shader list the last shader's result is the material's; a passthrough
+            // bump shader comes first.
+            let illum = l.0.iter().rev().find_map(|item| first_call(std::slice::from_ref(item), lib));
+            illum.or_else(|| first_call(&l.0, lib))
+        }),
+    };
+    let Some((decl, params)) = call else {
+        if let Some(surface) = shading.and_then(|(s, i)| builtin_bsdf(m, s, i)) {
+            return (surface, warnings);
+        }
+        warnings.push(format!("material '{}' has no shader mira understands; rendered grey", m.name));
+        return (SurfaceMaterial::grey(&m.name), warnings);
+    };
+    let graph = shading.map(|(s, _)| &s.graph);
+    let head = shading.and_then(|(s, i)| s.materials.get(i)).and_then(|ms| ms.surface);
+    let mut reader = Reader::new(&m.name, &mut warnings, graph);
+    let mut surface = reader.call(decl, params, lib, 0);
+    surface.varying = reader.finish();
+    if let (Some(graph), Some(head)) = (graph, head) {
+        inputs::bind_material_shaders(&mut surface, graph, head);
+    }
+    (surface, warnings)
+}
+
+/// The material of a `bsdf` slot holding one of mental ray's built-in BSDFs, with its
+/// constant parameters (connected ones take their defaults).
+fn builtin_bsdf(m: &Material, shading: &Shading, index: usize) -> Option<SurfaceMaterial> {
+    let node = &shading.graph.nodes[shading.materials.get(index)?.bsdf? as usize];
+    let imp = node.imp?;
+    let param = |name: &str| {
+        let i = imp.params.iter().position(|p| *p == name)?;
+        match node.slots.get(i)? {
+            shader::Slot::Value(v) => Some(v.clone()),
+            _ => None,
+        }
+    };
+    let bsdf = baselib::bsdf_builtin::builtin_bsdf_surface(imp.name, &param)?;
+    let diffuse = match &bsdf {
+        bsdf::BuiltinBsdf::Lambert(l) => l.albedo,
+        _ => Rgb::splat(0.5),
+    };
+    Some(SurfaceMaterial { model: SurfaceModel::Builtin(Box::new(bsdf)), ..SurfaceMaterial::lambert(&m.name, diffuse) })
+}
+
+impl SurfaceMaterial {
+    /// Divides an emission given for the whole surface by the surface's `area` (scene
+    /// units²), also in emission driven by shaders; nothing when the emission is per area.
+    pub fn spread_emission_over(&mut self, area: f32) {
+        if !self.emission_over_area {
+            return;
+        }
+        let scale = if area > 0.0 { 1.0 / area } else { 0.0 };
+        self.emission *= scale;
+        if let Varying::Bindings(bindings) = &mut self.varying {
+            for b in bindings.iter_mut().filter(|b| b.target == Target::Emission) {
+                b.scale *= scale;
+            }
+        }
+        self.emission_over_area = false;
+    }
+}

@@ -1,0 +1,312 @@
+//! The shader model's ray casting over the world: [`SceneTracer`] implements
+//! [`shader::Tracer`] on the acceleration structure for both engines (the classic engine's
+//! shaders, and the path engine's connected material parameters and environment), and fills
+//! the shading state of a hit ([`fill_state`]).
+
+use std::cell::{Cell, RefCell};
+
+use glam::{Vec2, Vec3A};
+use shader::{Color, RayType, State, Tracer, VertexData};
+
+use crate::accel::{Accel, Hit};
+use crate::ray::{mask, FirstHit, Ray, RayCounts};
+use crate::world::World;
+
+/// The ray casting of one rendering thread for one eye sample.
+pub struct SceneTracer<'a> {
+    world: &'a World,
+    accel: &'a dyn Accel,
+    /// Counts of rays cast.
+    pub counts: Cell<RayCounts>,
+    /// The first surface the eye ray hit.
+    pub first: Cell<Option<FirstHit>>,
+    /// World-space motion of that hit over the shutter interval (`state.motion`).
+    pub first_motion: Cell<Vec3A>,
+    /// `fb_put` writes of this sample: (buffer, value).
+    pub fb: RefCell<Vec<(u32, Color)>>,
+    /// The render's final gather interpolation cache, if it has one.
+    pub fg_cache: Option<&'a shader::fgcache::FgCache>,
+}
+
+impl<'a> SceneTracer<'a> {
+    /// A tracer over a built world.
+    pub fn new(world: &'a World, accel: &'a dyn Accel) -> SceneTracer<'a> {
+        SceneTracer {
+            world,
+            accel,
+            counts: Cell::new(RayCounts::default()),
+            first: Cell::new(None),
+            first_motion: Cell::new(Vec3A::ZERO),
+            fb: RefCell::new(Vec::new()),
+            fg_cache: None,
+        }
+    }
+
+    fn count(&self, shadow: bool) {
+        let mut c = self.counts.get();
+        if shadow {
+            c.shadow_rays += 1;
+        } else {
+            c.rays += 1;
+        }
+        self.counts.set(c);
+    }
+}
+
+/// The instances a ray of `kind` may see.
+fn ray_mask(kind: RayType) -> u32 {
+    match kind {
+        RayType::Eye => mask::CAMERA,
+        RayType::Reflect => mask::REFLECT,
+        RayType::Refract => mask::REFRACT,
+        RayType::Transparent => mask::TRANSPARENT,
+        RayType::Finalgather => mask::FINALGATHER,
+        RayType::Shadow | RayType::Light => mask::SHADOW,
+        RayType::Environment | RayType::Probe => u32::MAX,
+    }
+}
+
+/// Fills in the surface part of `s` for `hit` on the ray `s.org + t s.dir`.
+pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
+    let inst = &world.instances[hit.instance as usize];
+    let mesh = &world.meshes[inst.mesh as usize];
+    let tri = mesh.triangles[hit.prim as usize];
+    let [i0, i1, i2] = tri.map(|i| i as usize);
+    let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);
+    let (b1, b2) = (hit.u, hit.v);
+    let b0 = 1.0 - b1 - b2;
+    s.dist = hit.t;
+    s.point = s.org + s.dir * hit.t;
+    s.bary = [b0, b1, b2];
+    let ng = (inst.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    s.shadow_point = s.point;
+    let mut ns = if mesh.normals.is_empty() {
+        ng
+    } else {
+        let (n0, n1, n2) = (mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
+        // Lift the point onto the vertices' tangent planes (object space), where it lies
+        // below them.
+        let p_obj = p0 * b0 + p1 * b1 + p2 * b2;
+        let lift = |p_i: Vec3A, n_i: Vec3A| {
+            let n_i = n_i.normalize_or_zero();
+            let d = (p_obj - p_i).dot(n_i);
+            if d < 0.0 {
+                p_obj - n_i * d
+            } else {
+                p_obj
+            }
+        };
+        let lifted = lift(p0, n0) * b0 + lift(p1, n1) * b1 + lift(p2, n2) * b2;
+        s.shadow_point = inst.object_to_world.transform_point3a(lifted);
+        let n = n0 * b0 + n1 * b1 + n2 * b2;
+        (inst.normal_to_world * n).normalize_or(ng)
+    };
+    if ns.dot(ng) < 0.0 {
+        ns = -ns;
+    }
+    // Face the ray: a back-side hit flips both normals and says so.
+    s.inv_normal = ng.dot(s.dir) > 0.0;
+    let (ng, ns) = if s.inv_normal { (-ng, -ns) } else { (ng, ns) };
+    s.normal_geom = ng;
+    s.normal = ns;
+    s.dot_nd = ns.dot(s.dir);
+    s.tex_count = mesh.textures.len().min(shader::state::MAX_TEXTURES);
+    for (k, space) in mesh.textures.iter().take(s.tex_count).enumerate() {
+        s.tex_list[k] = space[i0] * b0 + space[i1] * b1 + space[i2] * b2;
+    }
+    // Surface derivatives from the first texture space: dP/du, dP/dv of the triangle.
+    s.derivs = [Vec3A::ZERO; 2];
+    if let Some(space) = mesh.textures.first() {
+        let (t0, t1, t2) = (space[i0], space[i1], space[i2]);
+        let (du1, dv1, du2, dv2) = (t1.x - t0.x, t1.y - t0.y, t2.x - t0.x, t2.y - t0.y);
+        let det = du1 * dv2 - du2 * dv1;
+        if det.abs() > 1e-20 {
+            let (e1, e2) = (p1 - p0, p2 - p0);
+            let dpdu = (e1 * dv2 - e2 * dv1) / det;
+            let dpdv = (e2 * du1 - e1 * du2) / det;
+            s.derivs = [inst.object_to_world.transform_vector3a(dpdu), inst.object_to_world.transform_vector3a(dpdv)];
+        }
+    }
+    s.bump_basis = (!mesh.bump_basis.is_empty()).then(|| {
+        let [a, b, c] = [mesh.bump_basis[i0], mesh.bump_basis[i1], mesh.bump_basis[i2]];
+        let u = a[0] * b0 + b[0] * b1 + c[0] * b2;
+        let v = a[1] * b0 + b[1] * b1 + c[1] * b2;
+        [inst.object_to_world.transform_vector3a(u), inst.object_to_world.transform_vector3a(v)]
+    });
+    s.hair = None;
+    if let Some(hair) = &mesh.hair {
+        // mental ray's hair state: the normal faces the ray, perpendicular to the hair.
+        let [t, root] = hair.tangents[hit.prim as usize];
+        let t = inst.object_to_world.transform_vector3a(t).normalize_or(Vec3A::Y);
+        let root = inst.object_to_world.transform_vector3a(root).normalize_or(t);
+        let back = -s.dir;
+        let n = (back - t * t.dot(back)).normalize_or(back);
+        let along = hair.along[i0] * b0 + hair.along[i1] * b1 + hair.along[i2] * b2;
+        let across = hair.across[i0] * b0 + hair.across[i1] * b1 + hair.across[i2] * b2;
+        s.normal = n;
+        s.normal_geom = n;
+        s.inv_normal = false;
+        s.dot_nd = n.dot(s.dir);
+        s.shadow_point = s.point;
+        s.derivs = [t, Vec3A::ZERO];
+        s.bary = [across, along, 0.0];
+        s.hair = Some(shader::state::HairState { tangent: t, root, across, along });
+    }
+    s.label = inst.tag;
+    s.instance = inst.scene_index;
+    s.geometry = hit.instance;
+    s.prim = hit.prim;
+    let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
+    s.material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
+    s.object_to_world = inst.object_to_world;
+    s.world_to_object = inst.world_to_object;
+    s.footprint += s.spread * hit.t;
+    s.motion = motion(inst, mesh, [i0, i1, i2], s);
+    // Pixel differentials across the footprint (raster x along the camera's right), and
+    // the first texture space's dUV/dx, dUV/dy over the triangle.
+    s.set_pixel_derivs(world.camera.camera_to_world.transform_vector3a(Vec3A::X));
+    s.tex_derivs = [glam::Vec2::ZERO; 2];
+    if let (Some(space), None) = (mesh.textures.first(), &s.hair) {
+        let corners = [p0, p1, p2].map(|p| inst.object_to_world.transform_point3a(p));
+        s.tex_derivs = s.texture_derivs(corners, [space[i0], space[i1], space[i2]]).unwrap_or_default();
+    }
+}
+
+/// World-space motion of the hit point over the shutter interval: where the instance's
+/// `motion transform` carries it by the end of the interval, plus the interpolated vertex
+/// motion vectors (object space, carried to world space by the instance transform).
+fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [usize; 3], s: &State) -> Vec3A {
+    let mut m = Vec3A::ZERO;
+    if let Some(to_world) = inst.motion_to_world {
+        m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+    }
+    if let (Some(a), Some(b), Some(c)) = (mesh.motion.get(v[0]), mesh.motion.get(v[1]), mesh.motion.get(v[2])) {
+        if s.hair.is_none() {
+            let [b0, b1, b2] = s.bary;
+            m += inst.object_to_world.transform_vector3a(*a * b0 + *b * b1 + *c * b2);
+        }
+    }
+    m
+}
+
+/// World-space motion over the shutter interval of `point` on `hit` (as [`fill_state`]
+/// finds it; for the path engine's first hit).
+pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
+    let inst = &world.instances[hit.instance as usize];
+    let mesh = &world.meshes[inst.mesh as usize];
+    let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
+    let s = State {
+        point,
+        bary: [1.0 - hit.u - hit.v, hit.u, hit.v],
+        hair: mesh.hair.as_ref().map(|_| shader::state::HairState::default()),
+        ..State::default()
+    };
+    motion(inst, mesh, tri, &s)
+}
+
+/// The raster position (pixels, origin at the lower left as mental ray's raster space) of
+/// world point `p`, or `None` behind a perspective camera.
+pub fn raster_position(cam: &crate::camera::CameraModel, p: Vec3A) -> Option<Vec2> {
+    let c = cam.world_to_camera.transform_point3a(p);
+    let (w, h) = (cam.width as f32, cam.height as f32);
+    let sx = cam.aperture / (cam.focal * w);
+    let sy = cam.aperture / (cam.focal * cam.aspect * h);
+    let (x, y) = if cam.orthographic {
+        (c.x, c.y)
+    } else {
+        if c.z >= 0.0 {
+            return None;
+        }
+        (c.x / -c.z, c.y / -c.z)
+    };
+    Some(Vec2::new(x / sx + w * 0.5 - cam.offset.0, y / sy + h * 0.5 - cam.offset.1))
+}
+
+/// The raster-space motion (pixels, y up) of world point `p` moving by `m`.
+pub fn raster_motion(cam: &crate::camera::CameraModel, p: Vec3A, m: Vec3A) -> Vec2 {
+    if m == Vec3A::ZERO {
+        return Vec2::ZERO;
+    }
+    match (raster_position(cam, p), raster_position(cam, p + m)) {
+        (Some(a), Some(b)) => b - a,
+        _ => Vec2::ZERO,
+    }
+}
+
+impl Tracer for SceneTracer<'_> {
+    fn intersect(&self, s: &mut State, max_dist: f32) -> bool {
+        self.count(false);
+        let mut ray = Ray { mask: ray_mask(s.ray_type), origin: s.org, dir: s.dir, tmin: 0.0, tmax: max_dist };
+        if s.ray_type == RayType::Eye {
+            let cam = &self.world.camera;
+            let r = cam.clip_ray(s.org, s.dir);
+            ray.tmin = r.tmin;
+            ray.tmax = ray.tmax.min(r.tmax);
+        }
+        let Some(hit) = self.accel.intersect(&ray) else { return false };
+        fill_state(self.world, &hit, s);
+        if s.ray_type == RayType::Eye && s.reflection_level == 0 && s.refraction_level == 0 {
+            let first = self.first.get();
+            if first.is_none() {
+                self.first.set(Some(FirstHit { point: s.point, normal: s.normal, tag: s.label, motion: s.motion }));
+                self.first_motion.set(s.motion);
+            }
+        }
+        true
+    }
+
+    fn shadow_hits(&self, s: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool) {
+        let mut origin = s.org;
+        let mut remaining = max_dist;
+        // A shadow ray crosses at most this many surfaces before it counts as blocked.
+        for _ in 0..64 {
+            self.count(true);
+            let ray = Ray { mask: mask::SHADOW, origin, dir: s.dir, tmin: 0.0, tmax: remaining };
+            let Some(hit) = self.accel.intersect(&ray) else { return };
+            let mut h = s.child(RayType::Shadow, origin, s.dir);
+            h.light = s.light;
+            fill_state(self.world, &hit, &mut h);
+            if !visit(&h) {
+                return;
+            }
+            origin = shader::trace::offset_point(h.point, h.normal_geom, s.dir);
+            remaining -= hit.t;
+            if remaining <= 0.0 {
+                return;
+            }
+        }
+        // Too many layers: treat the light as blocked.
+        let mut h = s.child(RayType::Shadow, origin, s.dir);
+        h.material = None;
+        visit(&h);
+    }
+
+    fn triangle(&self, hit: &State, data: VertexData) -> Option<[Vec3A; 3]> {
+        let inst = self.world.instances.get(hit.geometry as usize)?;
+        let mesh = &self.world.meshes[inst.mesh as usize];
+        let tri = mesh.triangles.get(hit.prim as usize)?.map(|i| i as usize);
+        match data {
+            VertexData::Point => Some(tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i]))),
+            VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
+            VertexData::Normal => Some(tri.map(|i| (inst.normal_to_world * mesh.normals[i]).normalize_or_zero())),
+            VertexData::Motion if mesh.motion.is_empty() => Some([Vec3A::ZERO; 3]),
+            VertexData::Motion => Some(
+                tri.map(|i| inst.object_to_world.transform_vector3a(mesh.motion.get(i).copied().unwrap_or_default())),
+            ),
+            VertexData::Texture(k) => mesh.textures.get(k).map(|t| tri.map(|i| t[i])),
+        }
+    }
+
+    fn fb_put(&self, buffer: u32, value: Color) -> bool {
+        if (buffer as usize) < self.world.user_buffers.len() {
+            self.fb.borrow_mut().push((buffer, value));
+            true
+        } else {
+            false
+        }
+    }
+
+    fn fg_cache(&self) -> Option<&shader::fgcache::FgCache> {
+        self.fg_cache
+    }
+}

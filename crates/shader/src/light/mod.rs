@@ -1,0 +1,48 @@
+//! Lights as shading sees them ([`ShadingLight`]): their shapes, their photometric profiles
+//! (IES files), and
+//! (in the `material` crate's `emission`) what they emit.
+
+pub mod ies;
+pub mod mesh;
+pub mod profiles;
+pub mod shape;
+
+pub use mesh::MeshShape;
+pub use shape::Shape;
+
+/// A light instance as the shader model sees it, world space.
+#[derive(Clone, Debug)]
+pub struct ShadingLight {
+    /// The light instance's name.
+    pub name: String,
+    /// The head of its light shader list.
+    pub shader: Option<crate::graph::NodeId>,
+    /// Point, spot or directional.
+    pub kind: scene::LightKind,
+    /// Position (centre of an area light).
+    pub origin: glam::Vec3A,
+    /// Direction the light shines (spot, directional), unit.
+    pub direction: glam::Vec3A,
+    /// Cosine of the spot's outer half-angle.
+    pub spread: f32,
+    /// The area shape, for area lights.
+    pub shape: Option<Shape>,
+    /// A `user` area light: its shader picks each sample's point on the light itself
+    /// (see `Ctx::sample_light`).
+    pub user: bool,
+    /// Area samples in u and v.
+    pub samples: (u32, u32),
+    /// From this reflection/refraction level on, use these sample counts instead.
+    pub low: Option<(u32, u32, u32)>,
+    /// Seen by eye and secondary rays (area lights).
+    pub visible: bool,
+    /// Distance falloff exponent of physical lights.
+    pub exponent: f32,
+    /// World → light-local rotation of directions (light profile lookups; see
+    /// [`crate::light::ies`] for the axes).
+    pub to_local: glam::Mat3A,
+    /// The light's own `lightprofile` statement (index into `Shading::lightprofiles`).
+    pub profile: Option<u32>,
+    /// Photon emission, if the light has `energy`.
+    pub photons: Option<crate::photonmap::LightPhotons>,
+}

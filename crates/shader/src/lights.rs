@@ -1,0 +1,286 @@
+//! The light loop of mental ray shaders: light lists and their modes, sampling each
+//! light (several points on area lights), calling its light shader, and shadow rays with
+//! shadow shaders.
+//!
+//! A material shader's loop reads:
+//!
+//! ```text
+//! for light in ctx.light_list(mode, &lights) {
+//!     let mut l = ctx.light_loop(light);
+//!     while let Some(s) = ctx.sample_light(&mut l) { sum += f(s.color, s.dir, s.dot_nl) }
+//!     if l.samples > 0 { result += sum / l.samples }
+//! }
+//! ```
+//!
+//! Light shaders (`mib_light_point` …) see a light state: `org` the point on the light,
+//! `point` the illuminated point, `dir` from the light to that point, `dist` between them.
+//! They call [`Ctx::trace_shadow`], which walks the surfaces in between and runs their
+//! shadow shaders on the light's colour; a surface without a shadow shader blocks it.
+//! The light's result then passes through the volume of the medium the point is seen in
+//! ([`super::volume`]).
+
+use glam::{Vec2, Vec3A};
+use scene::LightKind;
+
+use super::ctx::Ctx;
+use super::state::{RayType, State};
+use super::value::{Color, Tag, Value};
+
+/// One sample of a light (what mental ray's `mi_sample_light` hands back).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// The light's colour arriving, after its shader (attenuation, shadows).
+    pub color: Color,
+    /// Unit direction from the shading point towards the light.
+    pub dir: Vec3A,
+    /// `dot(normal, dir)`.
+    pub dot_nl: f32,
+    /// Distance to the sampled point on the light (infinite for directional lights).
+    pub dist: f32,
+}
+
+/// The progress of sampling one light.
+#[derive(Clone, Copy, Debug)]
+pub struct LightLoop {
+    /// The light.
+    pub light: u32,
+    /// Samples taken so far: divide the summed contributions by this.
+    pub samples: u32,
+    next: u32,
+    grid: (u32, u32),
+    site: u32,
+    /// Accept points behind the surface (for translucency: the shader flips the normal).
+    pub both_sides: bool,
+}
+
+impl Ctx<'_> {
+    /// The lights a shader with light `mode` (0 listed, 1 listed ∩ all, 2 all but listed,
+    /// 3 all, 4 the instance's light list) and light array `lights` uses.
+    pub fn light_list(&self, mode: i32, lights: &Value) -> Vec<u32> {
+        let all = self.shading().lights.len() as u32;
+        let listed: Vec<u32> = lights
+            .array()
+            .iter()
+            .filter_map(|v| match v.tag() {
+                Some(Tag::Light(i)) if i < all => Some(i),
+                _ => None,
+            })
+            .collect();
+        match mode {
+            0 | 1 => {
+                let mut l = listed;
+                l.dedup();
+                l
+            }
+            2 => (0..all).filter(|i| !listed.contains(i)).collect(),
+            4 => self.instance_lights(),
+            _ => (0..all).collect(),
+        }
+    }
+
+    /// The light list of the instance being shaded (all lights when it has none).
+    pub fn instance_lights(&self) -> Vec<u32> {
+        let all = self.shading().lights.len() as u32;
+        match self.shading().instance_lights.get(self.state.instance as usize).and_then(Option::as_ref) {
+            None => (0..all).collect(),
+            Some(link) if link.exclusive => (0..all).filter(|i| !link.lights.contains(i)).collect(),
+            Some(link) => link.lights.iter().copied().filter(|&i| i < all).collect(),
+        }
+    }
+
+    /// Starts sampling `light`.
+    pub fn light_loop(&mut self, light: u32) -> LightLoop {
+        let l = &self.shading().lights[light as usize];
+        let level = self.state.reflection_level + self.state.refraction_level;
+        let area = l.shape.is_some() || l.user;
+        let grid = match l.low {
+            _ if !area => (1, 1),
+            Some((from, u, v)) if level >= from => (u.max(1), v.max(1)),
+            _ => (l.samples.0.max(1), l.samples.1.max(1)),
+        };
+        let site = self.next_site();
+        LightLoop { light, samples: 0, next: 0, grid, site, both_sides: false }
+    }
+
+    /// The next sample of the light that reaches the point, or `None` when the light's
+    /// samples are used up. Samples that do not reach (behind the surface, rejected by the
+    /// light shader, fully shadowed) count in `samples` but are not returned.
+    ///
+    /// A `user` area light's shader is called again and again while it returns true, at
+    /// most u·v times (its `samples`): each call sets the sample's point on the light
+    /// (`org`, with `dir` and `dist` to match) itself and finds its number in the light
+    /// loop in `sample_index`; it arrives with `org` at the light's origin. The call
+    /// that returns false ends the loop and is no sample.
+    pub fn sample_light(&mut self, lp: &mut LightLoop) -> Option<LightSample> {
+        let count = lp.grid.0 * lp.grid.1;
+        let user = self.shading().lights[lp.light as usize].user;
+        while lp.next < count {
+            let i = lp.next;
+            lp.next += 1;
+            if user {
+                match self.user_light_sample(lp, i) {
+                    None => {
+                        lp.next = count;
+                        return None;
+                    }
+                    Some(s) => {
+                        lp.samples += 1;
+                        if s.is_some() {
+                            return s;
+                        }
+                    }
+                }
+                continue;
+            }
+            lp.samples += 1;
+            if let Some(s) = self.light_sample(lp, i, count) {
+                return Some(s);
+            }
+        }
+        None
+    }
+
+    /// One call of a user area light's shader: `None` when it returned false (the loop
+    /// ends), else the sample if it reaches the point.
+    fn user_light_sample(&mut self, lp: &LightLoop, i: u32) -> Option<Option<LightSample>> {
+        let shading = self.shading();
+        let light = &shading.lights[lp.light as usize];
+        let shader = light.shader?;
+        let p = self.state.point;
+        let d = p - light.origin;
+        let dist = d.length();
+        let mut ls = self.state.child(RayType::Light, light.origin, d.normalize_or(-light.direction));
+        ls.point = p;
+        ls.shadow_point = self.state.shadow_point;
+        ls.dist = dist;
+        ls.normal = self.state.normal;
+        ls.normal_geom = self.state.normal_geom;
+        ls.instance = self.state.instance;
+        ls.light = Some(lp.light);
+        ls.dot_nd = self.state.normal.dot(-ls.dir);
+        ls.sample_index = i;
+        let mut ctx = Ctx::new(shading, self.tracer, ls);
+        let mut result = Value::Color(Color::ZERO);
+        let ok = ctx.run_list(shader, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        if !ok {
+            return None;
+        }
+        // Where the shader put the sample.
+        let to = ctx.state.org - p;
+        let dist = to.length();
+        if !(dist > 0.0 && dist.is_finite()) {
+            return Some(None);
+        }
+        let dir = to / dist;
+        let dot_nl = self.state.normal.dot(dir);
+        let mut color = result.color();
+        if self.volume_of(&ctx.state).is_some() {
+            let mut light_ray = ctx.state.clone();
+            (light_ray.dir, light_ray.point, light_ray.dist) = (-dir, p, dist);
+            color = self.light_volume(&light_ray, color);
+        }
+        let reaches = (dot_nl > 0.0 || lp.both_sides) && (color.x != 0.0 || color.y != 0.0 || color.z != 0.0);
+        Some(reaches.then_some(LightSample { color, dir, dot_nl, dist }))
+    }
+
+    fn light_sample(&mut self, lp: &LightLoop, i: u32, count: u32) -> Option<LightSample> {
+        let shading = self.shading();
+        let light = &shading.lights[lp.light as usize];
+        let p = self.state.point;
+        let (to_light, dist, on_light) = match (light.kind, &light.shape) {
+            (LightKind::Directional, _) => (-light.direction, f32::INFINITY, p - light.direction * 1e30),
+            (_, None) => {
+                let d = light.origin - p;
+                let dist = d.length();
+                (d / dist, dist, light.origin)
+            }
+            (_, Some(shape)) => {
+                // Stratified over the u×v grid, jittered.
+                let j = self.sample2(lp.site, i, count);
+                let (gu, gv) = lp.grid;
+                let u = Vec2::new(((i % gu) as f32 + j.x) / gu as f32, ((i / gu) as f32 + j.y) / gv as f32);
+                let (q, _) = shape.point_on(light.origin, u);
+                let d = q - p;
+                let dist = d.length();
+                (d / dist, dist, q)
+            }
+        };
+        if dist.is_nan() || dist <= 0.0 || !to_light.is_finite() {
+            return None;
+        }
+        let dot_nl = self.state.normal.dot(to_light);
+        if dot_nl <= 0.0 && !lp.both_sides {
+            return None;
+        }
+        let shader = light.shader?;
+        let mut ls = self.state.child(RayType::Light, on_light, -to_light);
+        ls.point = p;
+        ls.shadow_point = self.state.shadow_point;
+        ls.dist = dist;
+        ls.normal = self.state.normal;
+        ls.normal_geom = self.state.normal_geom;
+        ls.instance = self.state.instance;
+        ls.light = Some(lp.light);
+        ls.dot_nd = dot_nl;
+        let mut ctx = Ctx::new(shading, self.tracer, ls);
+        let mut result = Value::Color(Color::ZERO);
+        let ok = ctx.run_list(shader, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        if !ok {
+            return None;
+        }
+        let color = result.color();
+        let color = if crate::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
+        (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
+            color,
+            dir: to_light,
+            dot_nl,
+            dist,
+        })
+    }
+
+    /// For a light shader: sends a shadow ray from the illuminated point to the light and
+    /// lets the surfaces in between filter `color` with their shadow shaders (mental ray's
+    /// `mi_trace_shadow`). Returns false when nothing gets through.
+    pub fn trace_shadow(&mut self, color: &mut Color) -> bool {
+        let shading = self.shading();
+        if !shading.shadows {
+            return true;
+        }
+        let s = &self.state;
+        let to_light = -s.dir;
+        let org = crate::trace::offset_point(s.shadow_point, s.normal_geom, to_light);
+        let mut ray = s.child(RayType::Shadow, org, to_light);
+        ray.light = s.light;
+        let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+        let mut filter = *color;
+        let mut blocked = false;
+        let tracer = self.tracer;
+        let mut calls = 0;
+        tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
+            let shader = hit.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.shadow);
+            let Some(shader) = shader else {
+                blocked = true;
+                return false;
+            };
+            let mut ctx = Ctx::new(shading, tracer, hit.clone());
+            let mut result = Value::Color(filter);
+            let ok = ctx.run_list(shader, &mut result);
+            calls += ctx.counts.calls;
+            filter = result.color();
+            if !ok || (filter.x <= 0.0 && filter.y <= 0.0 && filter.z <= 0.0) {
+                blocked = true;
+                return false;
+            }
+            true
+        });
+        self.counts.calls += calls;
+        if blocked {
+            *color = Color::ZERO;
+            return false;
+        }
+        *color = filter;
+        true
+    }
+}
