@@ -1,0 +1,280 @@
+//! Expressions: names, operators, member access, indexing, `let`, assignment.
+
+use super::{Checker, Local};
+use crate::ast::*;
+use crate::symbols::SymbolKind;
+
+impl Checker<'_> {
+    /// Resolves the names in `e`, checks what can be checked, and records its type.
+    pub(super) fn expr(&mut self, e: &mut Expr) -> Option<Type> {
+        let span = e.span;
+        let ty = match &mut e.kind {
+            ExprKind::Bool(_) => Some(Type::BOOL),
+            ExprKind::Int(_) => Some(Type::INT),
+            ExprKind::Float { double, .. } => Some(if *double { Type::DOUBLE } else { Type::FLOAT }),
+            ExprKind::Str(_) => Some(Type::String),
+            ExprKind::Name(n) => self.name(n, span),
+            ExprKind::Call(call) => self.call(call, span),
+            ExprKind::Unary { op, operand } => {
+                let t = self.expr(operand);
+                match (op, t) {
+                    (UnaryOp::Not, _) => Some(Type::BOOL),
+                    (_, Some(t)) if is_arithmetic(&t) => Some(t),
+                    (op, Some(t)) => {
+                        self.error(span, format!("operator `{}` is not defined for `{t}`", unary_text(*op)));
+                        None
+                    }
+                    (_, None) => None,
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (op, l, r) = (*op, self.expr(lhs), self.expr(rhs));
+                self.binary(op, l, r, span)
+            }
+            ExprKind::Conditional { cond, then, otherwise } => {
+                if let Some(c) = self.expr(cond) {
+                    if !c.converts_to(&Type::BOOL) {
+                        self.error(cond.span, format!("the condition of `?:` is of type `{c}`, expected `bool`"));
+                    }
+                }
+                let (a, b) = (self.expr(then), self.expr(otherwise));
+                match (a, b) {
+                    (Some(a), Some(b)) if b.converts_to(&a) => Some(a),
+                    (Some(a), Some(b)) if a.converts_to(&b) => Some(b),
+                    (Some(a), Some(b)) => {
+                        self.error(span, format!("the branches of `?:` have different types, `{a}` and `{b}`"));
+                        None
+                    }
+                    _ => None,
+                }
+            }
+            ExprKind::Member { base, field } => {
+                let t = self.expr(base);
+                let field = field.clone();
+                t.and_then(|t| self.member(&t, &field, span))
+            }
+            ExprKind::Index { base, index } => {
+                let t = self.expr(base);
+                if let Some(i) = self.expr(index) {
+                    if !i.converts_to(&Type::INT) {
+                        self.error(index.span, format!("an index is of type `{i}`, expected `int`"));
+                    }
+                }
+                match t {
+                    Some(t) => match t.element() {
+                        Some(elem) if !matches!(t, Type::Color) => Some(elem),
+                        _ => {
+                            self.error(span, format!("a value of type `{t}` cannot be indexed"));
+                            None
+                        }
+                    },
+                    None => None,
+                }
+            }
+            ExprKind::Let { decls, body } => {
+                let mark = self.locals.len();
+                for d in decls.iter_mut() {
+                    self.var_decl(d);
+                }
+                let t = self.expr(body);
+                self.locals.truncate(mark);
+                t
+            }
+            ExprKind::Assign { op, target, value } => {
+                let (t, v) = (self.expr(target), self.expr(value));
+                if !is_assignable(target) {
+                    self.error(target.span, "only variables, their fields and elements can be assigned to");
+                }
+                if let (Some(t), Some(v)) = (&t, &v) {
+                    if *op == AssignOp::Set && !v.converts_to(t) {
+                        self.error(value.span, format!("cannot assign a value of type `{v}` to one of type `{t}`"));
+                    }
+                }
+                t
+            }
+        };
+        e.ty = ty.clone();
+        ty
+    }
+
+    /// Declares a local (in a `let` or a statement) after checking its initialiser.
+    pub(super) fn var_decl(&mut self, d: &mut VarDecl) {
+        let span = d.ty.span;
+        self.resolve_type(&mut d.ty.ty, span);
+        if let Some(init) = &mut d.init {
+            self.expr(init);
+            let ty = d.ty.ty.clone();
+            self.expect_type(init, &ty, &format!("the initial value of `{}`", d.name));
+        }
+        self.annotations(&mut d.annotations);
+        self.locals.push(Local { name: d.name.clone(), res: Resolution::Local(d.id), ty: d.ty.ty.clone() });
+    }
+
+    fn name(&mut self, n: &mut NameRef, span: mi::Span) -> Option<Type> {
+        if !n.name.is_qualified() {
+            if let Some(local) = self.locals.iter().rev().find(|l| l.name == n.name.last()) {
+                n.res = local.res.clone();
+                return Some(local.ty.clone());
+            }
+        }
+        let syms = match self.lookup(&n.name) {
+            Ok(s) => s,
+            Err(e) => {
+                self.error(span, e);
+                return None;
+            }
+        };
+        let sym = syms[0].clone();
+        let decl_name = self.decl_of(&sym).map(|d| d.name().to_string()).unwrap_or_default();
+        match (&sym.kind, self.decl_of(&sym)) {
+            (SymbolKind::Const, Some(Decl::Const(c))) => {
+                let ty = c.ty.ty.clone();
+                n.res = Resolution::Constant { module: sym.module.clone(), name: decl_name };
+                Some(ty)
+            }
+            (SymbolKind::EnumValue { value }, Some(Decl::Enum(e))) => {
+                let enum_type = crate::symbols::type_name(&sym.module, &e.name);
+                n.res = Resolution::EnumValue { enum_type: enum_type.clone(), value: *value };
+                Some(Type::Enum(enum_type))
+            }
+            (SymbolKind::Function | SymbolKind::Material, _) => {
+                let name = n.name.clone();
+                self.error(span, format!("`{name}` is a function or material: call it with `(…)`"));
+                None
+            }
+            _ => {
+                let name = n.name.clone();
+                self.error(span, format!("`{name}` is not a value"));
+                None
+            }
+        }
+    }
+
+    fn member(&mut self, t: &Type, field: &str, span: mi::Span) -> Option<Type> {
+        match t {
+            Type::Vector(s, n) => {
+                let index = ["x", "y", "z", "w"].iter().position(|c| *c == field);
+                match index {
+                    Some(i) if i < *n as usize => Some(Type::Scalar(*s)),
+                    _ => {
+                        self.error(span, format!("`{t}` has no component `{field}`"));
+                        None
+                    }
+                }
+            }
+            Type::Struct(name) => self.struct_field(name, field, span),
+            Type::Material => self.struct_field("material", field, span),
+            Type::Named(_) => None,
+            _ => {
+                self.error(span, format!("a value of type `{t}` has no field `{field}`"));
+                None
+            }
+        }
+    }
+
+    fn struct_field(&mut self, struct_name: &str, field: &str, span: mi::Span) -> Option<Type> {
+        let fields = self.struct_fields(struct_name)?;
+        match fields.iter().find(|(n, _)| n == field) {
+            Some((_, t)) => Some(t.clone()),
+            None => {
+                self.error(span, format!("struct `{struct_name}` has no field `{field}`"));
+                None
+            }
+        }
+    }
+
+    /// The fields (name, type) of the struct of absolute type name `name`.
+    pub(super) fn struct_fields(&self, name: &str) -> Option<Vec<(String, Type)>> {
+        let (module, local) = crate::module_set::split_type_name(name);
+        let decl = if module == self.module_name {
+            self.decls.iter().find_map(|d| match d {
+                Decl::Struct(s) if s.name == local => Some(s),
+                _ => None,
+            })
+        } else {
+            self.set.struct_decl(name)
+        }?;
+        Some(decl.fields.iter().map(|f| (f.name.clone(), f.ty.ty.clone())).collect())
+    }
+
+    fn binary(&mut self, op: BinaryOp, l: Option<Type>, r: Option<Type>, span: mi::Span) -> Option<Type> {
+        if matches!(op, BinaryOp::And | BinaryOp::Or) {
+            return Some(Type::BOOL);
+        }
+        let (l, r) = (l?, r?);
+        let text = binary_text(op);
+        for t in [&l, &r] {
+            let comparable = matches!(op, BinaryOp::Eq | BinaryOp::Ne) && matches!(t, Type::String);
+            if !is_arithmetic(t) && !comparable {
+                self.error(span, format!("operator `{text}` is not defined for `{t}`"));
+                return None;
+            }
+        }
+        if op.is_boolean() {
+            return Some(Type::BOOL);
+        }
+        let result = match (&l, &r) {
+            (a, b) if b.converts_to(a) => Some(a.clone()),
+            (a, b) if a.converts_to(b) => Some(b.clone()),
+            (a, b) if a.is_numeric_scalar() => Some(b.clone()),
+            (a, b) if b.is_numeric_scalar() => Some(a.clone()),
+            (Type::Matrix(s, c, r), Type::Vector(_, n)) if op == BinaryOp::Mul && c == n => Some(Type::Vector(*s, *r)),
+            (Type::Vector(_, n), Type::Matrix(s, c, r)) if op == BinaryOp::Mul && r == n => Some(Type::Vector(*s, *c)),
+            (Type::Matrix(s, _, r), Type::Matrix(_, c, _)) if op == BinaryOp::Mul => Some(Type::Matrix(*s, *c, *r)),
+            _ => None,
+        };
+        if result.is_none() {
+            self.error(span, format!("operator `{text}` cannot combine `{l}` and `{r}`"));
+        }
+        result
+    }
+}
+
+/// Whether operators apply to values of this type (numbers, vectors, matrices, colours,
+/// enums and bools).
+fn is_arithmetic(t: &Type) -> bool {
+    matches!(t, Type::Scalar(_) | Type::Vector(..) | Type::Matrix(..) | Type::Color | Type::Enum(_))
+}
+
+fn is_assignable(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Name(n) => matches!(n.res, Resolution::Local(_) | Resolution::Param(_)),
+        ExprKind::Member { base, .. } | ExprKind::Index { base, .. } => is_assignable(base),
+        _ => false,
+    }
+}
+
+fn unary_text(op: UnaryOp) -> &'static str {
+    match op {
+        UnaryOp::Neg => "-",
+        UnaryOp::Plus => "+",
+        UnaryOp::Not => "!",
+        UnaryOp::BitNot => "~",
+        UnaryOp::PreInc | UnaryOp::PostInc => "++",
+        UnaryOp::PreDec | UnaryOp::PostDec => "--",
+    }
+}
+
+fn binary_text(op: BinaryOp) -> &'static str {
+    match op {
+        BinaryOp::Mul => "*",
+        BinaryOp::Div => "/",
+        BinaryOp::Rem => "%",
+        BinaryOp::Add => "+",
+        BinaryOp::Sub => "-",
+        BinaryOp::Shl => "<<",
+        BinaryOp::Shr => ">>",
+        BinaryOp::UShr => ">>>",
+        BinaryOp::Lt => "<",
+        BinaryOp::Le => "<=",
+        BinaryOp::Gt => ">",
+        BinaryOp::Ge => ">=",
+        BinaryOp::Eq => "==",
+        BinaryOp::Ne => "!=",
+        BinaryOp::BitAnd => "&",
+        BinaryOp::BitXor => "^",
+        BinaryOp::BitOr => "|",
+        BinaryOp::And => "&&",
+        BinaryOp::Or => "||",
+    }
+}
