@@ -11,7 +11,8 @@
 //!   missing modules are errors at the import), with the standard modules (`::df`, `::base`,
 //!   `::math`, `::tex`, `::state`, `::anno`, `::limits`, `::nvidia::core_definitions`) built in
 //!   as declarations ([`std_modules`]).
-//! - [`sema`](crate::ast#semantic-pass): resolves names across imports, chooses overloads,
+//! - the semantic pass (run by the loader on every module): resolves names across imports,
+//!   chooses overloads,
 //!   types expressions where simple, checks defaults and arguments, expands material
 //!   variants; the tree it leaves is what a material compiler evaluates, binding arguments
 //!   with [`Function::bind_args`] / [`Function::instantiate`].

@@ -149,6 +149,9 @@ pub enum Resolution {
     Param(usize),
     /// A local declared by `let` or a statement; `id` is unique within the definition.
     Local(u32),
+    /// The size symbol `N` of a deferred-size array parameter `T[<N>] p`: the length of the
+    /// argument bound to parameter number `index`.
+    ArraySize(usize),
     /// A module-level constant: its module and name.
     Constant {
         /// Absolute module name.

@@ -2,7 +2,7 @@
 //!
 //! A [`Module`] holds its version line, imports and declarations in source order. Materials
 //! and functions keep their parameters with types and default expressions, and their bodies
-//! as [`Expr`] / [`Stmt`] trees; the semantic pass ([`crate::sema`]) fills in types and name
+//! as [`Expr`] / [`Stmt`] trees; the semantic pass fills in types and name
 //! resolutions in place.
 
 mod expr;
@@ -55,7 +55,7 @@ impl fmt::Display for QualName {
     }
 }
 
-/// A parsed (and, after [`crate::sema`], checked) MDL module.
+/// A parsed (and, after the semantic pass, checked) MDL module.
 #[derive(Clone, Debug)]
 pub struct Module {
     /// Absolute module name, `::pkg::module`.

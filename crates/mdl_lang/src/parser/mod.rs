@@ -1,8 +1,8 @@
 //! Parser: tokens to a [`Module`] tree. The first error ends parsing and is returned as a
 //! [`Diagnostic`] at the offending token.
 //!
-//! Declarations are read here; types and annotations in [`types`], expressions in [`expr`],
-//! statements in [`stmt`].
+//! Declarations are read here; types and annotations in `types`, expressions in `expr`,
+//! statements in `stmt`.
 
 mod expr;
 mod stmt;
@@ -15,13 +15,13 @@ use crate::lexer::{tokenize, Token, TokenKind};
 
 /// Words MDL reserves for constructs mira does not read yet: meeting one is an error naming it.
 const UNSUPPORTED: &[(&str, &str)] = &[
-    ("switch", "`switch` statements"),
-    ("case", "`switch` statements"),
+    ("switch", "a `switch` statement"),
+    ("case", "a `switch` statement"),
     ("cast", "the `cast<T>(…)` operator"),
-    ("auto", "`auto` declarations"),
-    ("declarative", "`declarative` definitions"),
+    ("auto", "an `auto` declaration"),
+    ("declarative", "a `declarative` definition"),
     ("operator", "operator overloading"),
-    ("namespace", "`namespace` blocks"),
+    ("namespace", "a `namespace` block"),
     ("goto", "`goto`"),
 ];
 
@@ -135,7 +135,7 @@ impl Parser {
     fn check_unsupported(&self) -> PResult<()> {
         if let TokenKind::Ident(w) = self.peek() {
             if let Some((_, what)) = UNSUPPORTED.iter().find(|(k, _)| k == w) {
-                return self.error(format!("{what} are not supported yet"));
+                return self.error(format!("{what} is not supported yet"));
             }
         }
         Ok(())

@@ -396,6 +396,11 @@ impl Checker<'_> {
             }
             self.annotations(&mut p.annotations);
             self.locals.push(Local { name: p.name.clone(), res: Resolution::Param(i), ty: p.ty.ty.clone() });
+            if let Type::Array(_, ArrayLen::Deferred(n)) = &p.ty.ty {
+                if !self.locals.iter().any(|l| l.name == *n) {
+                    self.locals.push(Local { name: n.clone(), res: Resolution::ArraySize(i), ty: Type::INT });
+                }
+            }
         }
     }
 

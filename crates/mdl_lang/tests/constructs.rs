@@ -1,0 +1,299 @@
+//! Each MDL construct, read from a module in `tests/modules/` and checked in the tree.
+
+use std::path::PathBuf;
+
+use mdl_lang::ast::*;
+use mdl_lang::{load_module, MdlSearchPath, ModuleSet};
+
+fn modules_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/modules")
+}
+
+fn load(name: &str) -> ModuleSet {
+    let search = MdlSearchPath::for_scene(Some(&modules_dir()), &[], None);
+    match load_module(name, &search) {
+        Ok(set) => set,
+        Err(e) => panic!("{name} failed to load:\n{e}"),
+    }
+}
+
+/// The body expression of a definition.
+fn body(f: &Function) -> &Expr {
+    match &f.body {
+        Body::Expr(e) => e,
+        other => panic!("{} has no expression body: {other:?}", f.name),
+    }
+}
+
+/// The call an expression is, with its callee's resolution.
+fn call(e: &Expr) -> &Call {
+    match &e.kind {
+        ExprKind::Call(c) => c,
+        other => panic!("not a call: {other:?}"),
+    }
+}
+
+/// The argument named `name` of a call.
+fn arg<'a>(c: &'a Call, name: &str) -> &'a Expr {
+    &c.args.iter().find(|a| a.name.as_deref() == Some(name)).unwrap_or_else(|| panic!("no argument {name}")).value
+}
+
+fn float(e: &Expr) -> f64 {
+    match &e.kind {
+        ExprKind::Float { value, .. } => *value,
+        ExprKind::Int(i) => *i as f64,
+        other => panic!("not a number: {other:?}"),
+    }
+}
+
+#[test]
+fn exporter_module_matte_has_typed_parameters_and_a_diffuse_body() {
+    let set = load("::export_multi");
+    let matte = set.material("::export_multi::matte").expect("matte is exported");
+    assert_eq!(matte.params.len(), 2);
+    assert_eq!((matte.params[0].name.as_str(), &matte.params[0].ty.ty), ("tint", &Type::Color));
+    assert_eq!((matte.params[1].name.as_str(), &matte.params[1].ty.ty), ("roughness", &Type::FLOAT));
+    // The default `color(0.8)` is a constructor of a colour from one float.
+    let default = matte.params[0].default.as_ref().unwrap();
+    assert_eq!(call(default).res, Resolution::Constructor(Type::Color));
+    assert_eq!(float(&call(default).args[0].value), 0.8);
+    // material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(tint: tint, …)))
+    let m = call(body(matte));
+    assert_eq!(m.res, Resolution::Constructor(Type::Material));
+    let surface = call(arg(m, "surface"));
+    assert_eq!(surface.res, Resolution::Constructor(Type::Struct("material_surface".into())));
+    let bsdf = call(arg(surface, "scattering"));
+    assert_eq!(
+        bsdf.res,
+        Resolution::Function { module: "::df".into(), name: "diffuse_reflection_bsdf".into(), overload: Some(0) }
+    );
+    match &arg(bsdf, "tint").kind {
+        ExprKind::Name(n) => assert_eq!(n.res, Resolution::Param(0)),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(body(matte).ty, Some(Type::Material));
+    assert_eq!(matte.display_name(), Some("Matte"));
+    // Every exported material of the module is there.
+    let names: Vec<&str> = set.module("::export_multi").unwrap().materials().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["matte", "glossy", "emitter", "glass"]);
+}
+
+#[test]
+fn instance_arguments_replace_parameters_and_defaults_fill_the_rest() {
+    let set = load("::export_multi");
+    let matte = set.material("::export_multi::matte").unwrap();
+    let red = Expr::new(ExprKind::Float { value: 0.5, double: false }, Default::default());
+    let values = matte.bind_args(&[("tint", red)]).unwrap();
+    assert_eq!(float(&values[0]), 0.5);
+    assert_eq!(float(&values[1]), 0.0, "roughness keeps its default 0.0");
+    let inst = matte.instantiate(&[]).unwrap().unwrap();
+    let bsdf = call(arg(call(arg(call(&inst), "surface")), "scattering"));
+    assert_eq!(float(&call(arg(bsdf, "tint")).args[0].value), 0.8, "tint default color(0.8) substituted");
+    assert!(matte.bind_args(&[("tnt", Expr::new(ExprKind::Int(1), Default::default()))]).is_err());
+}
+
+#[test]
+fn let_material_binds_locals_and_overrides_reach_them() {
+    let set = load("::let_material");
+    let plaster = set.material("::let_material::plaster").unwrap();
+    let ExprKind::Let { decls, body: inner } = &body(plaster).kind else { panic!("not a let") };
+    let names: Vec<(&str, &Type)> = decls.iter().map(|d| (d.name.as_str(), &d.ty.ty)).collect();
+    assert_eq!(names, [("dirty", &Type::Color), ("rough", &Type::FLOAT), ("diffuse", &Type::Bsdf)]);
+    // `dirty` = base * (1.0 - dirt): colour times float is a colour.
+    assert_eq!(decls[0].init.as_ref().unwrap().ty, Some(Type::Color));
+    assert_eq!(inner.ty, Some(Type::Material));
+    // The layer's `base: diffuse` names the third local.
+    let layer = call(arg(call(arg(call(inner), "surface")), "scattering"));
+    match &arg(layer, "base").kind {
+        ExprKind::Name(n) => assert_eq!(n.res, Resolution::Local(decls[2].id)),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(arg(layer, "weight").ty, Some(Type::FLOAT), "?: of two floats is a float");
+    // Overriding `base` replaces the parameter inside the let's first declaration.
+    let grey = Expr::new(ExprKind::Float { value: 0.25, double: false }, Default::default());
+    let inst = plaster.instantiate(&[("base", grey)]).unwrap().unwrap();
+    let ExprKind::Let { decls, .. } = &inst.kind else { panic!() };
+    let ExprKind::Binary { lhs, .. } = &decls[0].init.as_ref().unwrap().kind else { panic!() };
+    assert_eq!(float(lhs), 0.25);
+    assert!(set.material("::let_material::shade").is_some());
+}
+
+#[test]
+fn import_chain_of_three_modules_with_using_and_alias() {
+    let set = load("::chain::top");
+    for m in ["::chain::top", "::chain::middle", "::chain::bottom"] {
+        assert!(set.module(m).is_some(), "{m} loaded");
+    }
+    // `rough_diffuse(tint)` in the middle module, imported by `using`, resolves to the bottom.
+    let coated = set.material("::chain::middle::coated").unwrap();
+    let layer = call(arg(call(arg(call(body(coated)), "surface")), "scattering"));
+    assert_eq!(
+        call(arg(layer, "base")).res,
+        Resolution::Function { module: "::chain::bottom".into(), name: "rough_diffuse".into(), overload: Some(0) }
+    );
+    // The enum default through `using`, with its explicit value 4.
+    let f = coated.param("f").unwrap().1;
+    assert_eq!(f.ty.ty, Type::Enum("::chain::bottom::finish".into()));
+    match &f.default.as_ref().unwrap().kind {
+        ExprKind::Name(n) => {
+            assert_eq!(n.res, Resolution::EnumValue { enum_type: "::chain::bottom::finish".into(), value: 4 })
+        }
+        other => panic!("{other:?}"),
+    }
+    // The alias `b::` reaches the bottom module's constant; the re-export is seen as middle's.
+    let plain = set.material("::chain::top::plain").unwrap();
+    match &plain.params[0].default.as_ref().unwrap().kind {
+        ExprKind::Name(n) => assert_eq!(
+            n.res,
+            Resolution::Constant { module: "::chain::bottom".into(), name: "DEFAULT_ROUGHNESS".into() }
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(set.functions("::chain::middle::rough_diffuse").len(), 1);
+    // The variant takes the middle material's parameters with its own defaults.
+    let red = set.material("::chain::top::red_coat").unwrap();
+    assert_eq!(red.params.len(), 2);
+    let gloss = red.param("f").unwrap().1.default.as_ref().unwrap();
+    match &gloss.kind {
+        ExprKind::Name(n) => {
+            assert_eq!(n.res, Resolution::EnumValue { enum_type: "::chain::bottom::finish".into(), value: 5 })
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn enums_number_their_values_and_convert_to_int() {
+    let set = load("::enums");
+    let e = set.enum_decl("::enums::surface_kind").unwrap();
+    let values: Vec<(&str, i64)> = e.values.iter().map(|v| (v.name.as_str(), v.value)).collect();
+    assert_eq!(
+        values,
+        [("kind_paint", 0), ("kind_metal", 10), ("kind_glass", 11), ("kind_skin", -3), ("kind_cloth", -2)]
+    );
+    let code = &set.functions("::enums::code")[0];
+    assert_eq!(body(code).ty, Some(Type::INT));
+    let by_kind = set.material("::enums::by_kind").unwrap();
+    assert_eq!(by_kind.params[1].ty.ty, Type::Enum("::df::scatter_mode".into()));
+    let cond = arg(call(arg(call(body(by_kind)), "surface")), "scattering");
+    assert!(matches!(cond.kind, ExprKind::Conditional { .. }));
+    assert_eq!(cond.ty, Some(Type::Bsdf));
+}
+
+#[test]
+fn arrays_sized_deferred_and_constructed() {
+    let set = load("::arrays");
+    let sum3 = &set.functions("::arrays::sum3")[0];
+    assert_eq!(sum3.params[0].ty.ty, Type::Array(Box::new(Type::FLOAT), ArrayLen::Fixed(3)));
+    assert_eq!(body(sum3).ty, Some(Type::FLOAT));
+    let average = &set.functions("::arrays::average")[0];
+    assert_eq!(average.params[0].ty.ty, Type::Array(Box::new(Type::FLOAT), ArrayLen::Deferred("N".into())));
+    let ramp = &set.functions("::arrays::ramp")[0];
+    assert_eq!(ramp.ret.ty, Type::Array(Box::new(Type::FLOAT), ArrayLen::Fixed(4)), "COUNT resolved to 4");
+    let mixed = set.material("::arrays::mixed").unwrap();
+    let mix = call(arg(call(arg(call(body(mixed)), "surface")), "scattering"));
+    let components = &mix.args[0].value;
+    assert_eq!(
+        components.ty,
+        Some(Type::Array(Box::new(Type::Struct("::df::bsdf_component".into())), ArrayLen::Fixed(2)))
+    );
+    let mean = &set.functions("::arrays::mean_of_four")[0];
+    assert_eq!(body(mean).ty, Some(Type::FLOAT));
+}
+
+#[test]
+fn annotations_are_resolved_and_kept() {
+    let set = load("::annotations");
+    let module = set.module("::annotations").unwrap();
+    assert_eq!(module.annotations.len(), 2);
+    assert_eq!(module.annotations[0].string_arg(), Some("mira tests"));
+    let painted = set.material("::annotations::painted").unwrap();
+    assert_eq!(painted.display_name(), Some("Painted surface"));
+    assert_eq!(painted.annotations.len(), 3);
+    assert_eq!(
+        painted.annotations[0].res,
+        Resolution::Annotation { module: "::anno".into(), name: "display_name".into() }
+    );
+    let tint = &painted.params[0];
+    let names: Vec<String> = tint.annotations.iter().map(|a| a.name.to_string()).collect();
+    assert_eq!(names, ["anno::display_name", "anno::in_group"]);
+    assert_eq!(tint.annotations[0].string_arg(), Some("Paint colour"));
+    assert_eq!(painted.params[1].ty.frequency, Frequency::Uniform);
+    let tone = set.enum_decl("::annotations::tone").unwrap();
+    assert_eq!(tone.values[1].annotations[0].string_arg(), Some("Cold"));
+}
+
+#[test]
+fn variants_take_the_base_parameters_with_new_defaults() {
+    let set = load("::variants");
+    let red = set.material("::variants::red_matte").unwrap();
+    let v = red.variant.as_ref().unwrap();
+    assert_eq!(v.resolved, Some(("::export_multi".to_string(), "matte".to_string())));
+    let names: Vec<&str> = red.params.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["tint", "roughness"]);
+    let tint = call(red.params[0].default.as_ref().unwrap());
+    let rgb: Vec<f64> = tint.args.iter().map(|a| float(&a.value)).collect();
+    assert_eq!(rgb, [0.8, 0.05, 0.05]);
+    assert_eq!(float(red.params[1].default.as_ref().unwrap()), 0.0, "roughness keeps matte's default");
+    assert_eq!(call(body(red)).res, Resolution::Material { module: "::export_multi".into(), name: "matte".into() });
+    // A variant of a variant keeps the first variant's defaults and adds its own.
+    let dg = set.material("::variants::dim_green").unwrap();
+    assert_eq!(float(dg.param("amount").unwrap().1.default.as_ref().unwrap()), 0.25);
+    assert_eq!(call(dg.param("tint").unwrap().1.default.as_ref().unwrap()).args.len(), 3);
+    assert_eq!(set.material("::variants::dim").unwrap().display_name(), Some("Dim"));
+}
+
+#[test]
+fn functions_with_expression_and_statement_bodies() {
+    let set = load("::functions");
+    let square = &set.functions("::functions::square")[0];
+    assert_eq!(body(square).ty, Some(Type::FLOAT));
+    let ramp = &set.functions("::functions::smooth_ramp")[0];
+    let Body::Block(stmts) = &ramp.body else { panic!() };
+    assert!(matches!(stmts[0].kind, StmtKind::If { otherwise: Some(_), .. }));
+    let StmtKind::Var(decls) = &stmts[1].kind else { panic!("{:?}", stmts[1].kind) };
+    assert_eq!(decls.iter().map(|d| d.name.as_str()).collect::<Vec<_>>(), ["t", "u"]);
+    assert!(
+        matches!(stmts[3].kind, StmtKind::Expr(ref e) if matches!(e.kind, ExprKind::Assign { op: AssignOp::Compound(BinaryOp::Mul), .. }))
+    );
+    let count = &set.functions("::functions::count_down")[0];
+    let Body::Block(stmts) = &count.body else { panic!() };
+    assert!(matches!(stmts[1].kind, StmtKind::While { .. }));
+    assert!(matches!(stmts[2].kind, StmtKind::DoWhile { .. }));
+    let checker = &set.functions("::functions::checker")[0];
+    assert_eq!(checker.frequency, Frequency::Varying);
+    let checkered = set.material("::functions::checkered").unwrap();
+    let geometry = call(arg(call(body(checkered)), "geometry"));
+    assert_eq!(arg(geometry, "normal").ty, Some(Type::Vector(Scalar::Float, 3)));
+}
+
+#[test]
+fn std_declarations_are_reachable_by_qualified_name() {
+    let set = load("::export_multi");
+    let specular = &set.functions("::df::specular_bsdf")[0];
+    assert_eq!(specular.params[1].ty.ty, Type::Enum("::df::scatter_mode".into()));
+    assert!(set.struct_decl("material_surface").is_some());
+    assert!(set.struct_decl("::df::bsdf_component").is_some());
+    assert!(set.material("::export_multi::nothing").is_none());
+}
+
+#[test]
+fn scene_copies_of_the_modules_load() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mdl");
+    let search = MdlSearchPath::for_scene(Some(&dir), &[], None);
+    let mut set = ModuleSet::new(search);
+    let mut loaded = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "mdl") {
+            if let Err(e) = set.load_file(&path) {
+                panic!("{}: {e}", path.display());
+            }
+            loaded += 1;
+        }
+    }
+    assert_eq!(loaded, 7);
+    assert!(set.module("::chain::top").is_none(), "only what is asked for and imported is loaded");
+    set.load("::chain::top").unwrap();
+    assert!(set.material("::export_multi::matte").is_some());
+}
