@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::parser::parse_module;
 use crate::search_path::MdlSearchPath;
 use crate::std_modules::{std_module, PRELUDE};
-use crate::symbols::{declared, Scope, Symbol};
+use crate::symbols::{declared, Scope, Symbol, SymbolKind};
 
 /// Largest module file mira reads, in bytes.
 const MAX_MODULE_SIZE: u64 = 64 << 20;
@@ -191,9 +191,34 @@ impl ModuleSet {
                 (import.exported, &import.kind, &import.resolved)
             {
                 let from = &self.modules[self.index[target]].exports;
-                for (n, syms) in from {
-                    if matches!(names, ImportNames::All) || matches!(names, ImportNames::Some(l) if l.contains(n)) {
-                        exports.entry(n.clone()).or_default().extend(syms.iter().cloned());
+                let mut wanted: Vec<String> = match names {
+                    ImportNames::All => from.keys().cloned().collect(),
+                    ImportNames::Some(list) => list.clone(),
+                };
+                // Re-exporting an enum type re-exports its values.
+                let enums: Vec<&Symbol> = wanted
+                    .iter()
+                    .filter_map(|n| from.get(n))
+                    .flatten()
+                    .filter(|s| s.kind == SymbolKind::Enum)
+                    .collect();
+                let values: Vec<String> = enums
+                    .into_iter()
+                    .filter_map(|s| match self.decl(s) {
+                        Some(Decl::Enum(e)) => Some(e.values.iter().map(|v| v.name.clone())),
+                        _ => None,
+                    })
+                    .flatten()
+                    .collect();
+                wanted.extend(values);
+                for n in wanted {
+                    if let Some(syms) = from.get(&n) {
+                        let entry = exports.entry(n).or_default();
+                        for s in syms {
+                            if !entry.contains(s) {
+                                entry.push(s.clone());
+                            }
+                        }
                     }
                 }
             }

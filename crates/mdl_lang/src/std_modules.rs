@@ -27,6 +27,8 @@ pub const STD_MODULES: &[StdModule] = &[
     StdModule { name: "::state", file: "state.mdl", text: include_str!("../std/state.mdl"), overridable: false },
     StdModule { name: "::tex", file: "tex.mdl", text: include_str!("../std/tex.mdl"), overridable: false },
     StdModule { name: "::df", file: "df.mdl", text: include_str!("../std/df.mdl"), overridable: false },
+    StdModule { name: "::scene", file: "scene.mdl", text: include_str!("../std/scene.mdl"), overridable: false },
+    StdModule { name: "::std", file: "std.mdl", text: include_str!("../std/std.mdl"), overridable: false },
     StdModule { name: "::base", file: "base.mdl", text: include_str!("../std/base.mdl"), overridable: false },
     StdModule {
         name: "::nvidia::core_definitions",

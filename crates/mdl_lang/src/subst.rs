@@ -61,6 +61,11 @@ impl Expr {
                 }
                 body.substitute_in_place(args);
             }
+            ExprKind::Sequence(list) => {
+                for e in list {
+                    e.substitute_in_place(args);
+                }
+            }
             ExprKind::Assign { target, value, .. } => {
                 target.substitute_in_place(args);
                 value.substitute_in_place(args);

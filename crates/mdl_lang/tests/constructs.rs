@@ -297,3 +297,61 @@ fn scene_copies_of_the_modules_load() {
     set.load("::chain::top").unwrap();
     assert!(set.material("::export_multi::matte").is_some());
 }
+
+#[test]
+fn switch_comma_step_constructor_constants_joined_strings_and_overload_choice() {
+    let set = load("::functions");
+    let classify = &set.functions("::functions::classify")[0];
+    let Body::Block(stmts) = &classify.body else { panic!() };
+    let StmtKind::Switch { cases, .. } = &stmts[1].kind else { panic!("{:?}", stmts[1].kind) };
+    let labels: Vec<Option<i64>> = cases
+        .iter()
+        .map(|c| {
+            c.label.as_ref().map(|l| match l.kind {
+                ExprKind::Int(i) => i,
+                _ => panic!(),
+            })
+        })
+        .collect();
+    assert_eq!(labels, [Some(0), Some(1), Some(2), None]);
+    assert_eq!(cases[1].body.len(), 2, "case 1: the assignment and the break");
+    let StmtKind::For { step: Some(step), .. } = &stmts[2].kind else { panic!() };
+    assert!(matches!(&step.kind, ExprKind::Sequence(list) if list.len() == 2));
+    let joined = &set.functions("::functions::joined")[0];
+    assert!(matches!(&body(joined).kind, ExprKind::Str(s) if s == "first part, second part"));
+    let Some(Decl::Const(axis)) = set.module("::functions").unwrap().decls.iter().find(|d| d.name() == "AXIS") else {
+        panic!()
+    };
+    assert_eq!(call(&axis.value).res, Resolution::Constructor(Type::Vector(Scalar::Float, 3)));
+    // math::pow(float3, float) picks the (float3, float) overload, not (color, color).
+    let power = &set.functions("::functions::scaled_power")[0];
+    let ExprKind::Binary { lhs, .. } = &body(power).kind else { panic!() };
+    let Resolution::Function { overload: Some(k), .. } = call(lhs).res else { panic!("{:?}", call(lhs).res) };
+    let chosen = set.functions("::math::pow")[k];
+    let types: Vec<&Type> = chosen.params.iter().map(|p| &p.ty.ty).collect();
+    assert_eq!(types, [&Type::Vector(Scalar::Float, 3), &Type::FLOAT]);
+    assert_eq!(body(power).ty, Some(Type::Vector(Scalar::Float, 3)));
+}
+
+#[test]
+fn std_reexports_every_standard_module_and_enum_imports_bring_values() {
+    let mut set = ModuleSet::new(MdlSearchPath::new());
+    set.load_source(
+        "::uses_std",
+        "mdl 1.7;\nimport ::std::*;\nusing ::df import scatter_mode;\n\
+         export bsdf b(scatter_mode m = scatter_transmit) = std::specular_bsdf(mode: m);\n\
+         export float big() = std::FLOAT_MAX * std::PI;\n",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let b = &set.functions("::uses_std::b")[0];
+    match &b.params[0].default.as_ref().unwrap().kind {
+        ExprKind::Name(n) => {
+            assert_eq!(n.res, Resolution::EnumValue { enum_type: "::df::scatter_mode".into(), value: 1 })
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        call(body(b)).res,
+        Resolution::Function { module: "::df".into(), name: "specular_bsdf".into(), overload: Some(0) }
+    );
+}

@@ -63,11 +63,26 @@ fn missing_semicolon_after_material() {
 }
 
 #[test]
-fn switch_is_named_as_unsupported() {
+fn declarative_is_named_as_unsupported() {
+    check("mdl 1.7;\nexport @@declarative struct s { float a; };\n", "a `declarative` definition is not supported yet");
+}
+
+#[test]
+fn quoted_module_names_are_named_as_unsupported() {
+    check("mdl 1.8;\nusing m = @@\"my module\";\n", "quoted (Unicode) module names are not supported yet");
+}
+
+#[test]
+fn switch_on_a_string() {
     check(
-        "mdl 1.7;\nexport int f(int x)\n{\n    @@switch (x) { case 0: return 1; }\n    return 0;\n}\n",
-        "a `switch` statement is not supported yet",
+        "mdl 1.7;\nexport int f(string s)\n{\n    switch (@@s) { case 0: return 1; }\n    return 0;\n}\n",
+        "a `switch` value is of type `string`",
     );
+}
+
+#[test]
+fn case_outside_a_switch() {
+    check("mdl 1.7;\nexport int f(int x)\n{\n    @@case 1: return 0;\n}\n", "`case` or `default` outside a `switch`");
 }
 
 #[test]

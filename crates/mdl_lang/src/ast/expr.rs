@@ -95,6 +95,8 @@ pub enum ExprKind {
         /// The value.
         body: Box<Expr>,
     },
+    /// `a, b, c`: evaluated in order, the value is the last (the step of a `for` loop only).
+    Sequence(Vec<Expr>),
     /// An assignment (statement context only): `target op value`.
     Assign {
         /// `=`, `+=`, ….
@@ -395,6 +397,13 @@ pub enum StmtKind {
         /// The condition.
         cond: Box<Expr>,
     },
+    /// `switch (value) { case a: … default: … }`.
+    Switch {
+        /// The value switched on (an integer or an enum).
+        value: Box<Expr>,
+        /// The cases in order; control falls through to the next one without `break`.
+        cases: Vec<SwitchCase>,
+    },
     /// `return value;`.
     Return(Option<Box<Expr>>),
     /// `break;`.
@@ -403,6 +412,17 @@ pub enum StmtKind {
     Continue,
     /// `;`.
     Empty,
+}
+
+/// One `case label:` (or `default:`) of a `switch` and the statements after it.
+#[derive(Clone, Debug)]
+pub struct SwitchCase {
+    /// The label's value; `None` for `default`.
+    pub label: Option<Expr>,
+    /// The statements up to the next label.
+    pub body: Vec<Stmt>,
+    /// Where the label was written.
+    pub span: Span,
 }
 
 /// An annotation application `name(args)` inside `[[ … ]]`.

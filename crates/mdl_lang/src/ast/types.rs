@@ -158,12 +158,22 @@ impl Type {
         matches!(self, Type::Scalar(Scalar::Int | Scalar::Float | Scalar::Double))
     }
 
-    /// Whether a value of this type may be passed where `to` is expected: equal types, MDL's
-    /// implicit widening (`bool`→`int`→`float`→`double`, element-wise for vectors),
-    /// `enum`→`int`, a scalar to `color`, and arrays whose element types agree where the
-    /// target's size is deferred or the source's is unsized.
+    /// Whether a value of this type may be passed where `to` is expected: equal types,
+    /// conversions between the numeric scalars (widening `bool`→`int`→`float`→`double`, and
+    /// narrowing, which MDL compilers accept with a warning; element-wise for vectors and
+    /// matrices), `enum`→`int`, a scalar or a `float3` to `color` and back to `float3`, a file
+    /// name (string) to a resource,
+    /// and arrays whose element types agree
+    /// where the target's size is deferred or the source's is unsized.
     pub fn converts_to(&self, to: &Type) -> bool {
-        fn rank(s: Scalar) -> u8 {
+        self.conversion_cost(to).is_some()
+    }
+
+    /// How far a conversion of a value of this type to `to` goes (0 for none, more for each
+    /// widening step, most for a change of kind such as a scalar to `color`), or `None` if
+    /// there is no implicit conversion. Overload resolution picks the cheapest candidate.
+    pub fn conversion_cost(&self, to: &Type) -> Option<u32> {
+        fn rank(s: Scalar) -> u32 {
             match s {
                 Scalar::Bool => 0,
                 Scalar::Int => 1,
@@ -171,21 +181,26 @@ impl Type {
                 Scalar::Double => 3,
             }
         }
+        // Widening costs one per step; narrowing (`float` to `int`), which MDL compilers accept
+        // with a warning, costs more than any widening.
+        let widen = |a: Scalar, b: Scalar| Some(if rank(a) <= rank(b) { rank(b) - rank(a) } else { 10 });
         match (self, to) {
-            (a, b) if a == b => true,
-            (Type::Scalar(a), Type::Scalar(b)) => rank(*a) <= rank(*b),
-            (Type::Vector(a, n), Type::Vector(b, m)) => n == m && rank(*a) <= rank(*b),
-            (Type::Matrix(a, c, r), Type::Matrix(b, c2, r2)) => c == c2 && r == r2 && rank(*a) <= rank(*b),
-            (Type::Enum(_), Type::Scalar(Scalar::Int | Scalar::Float | Scalar::Double)) => true,
-            (Type::Scalar(_), Type::Color) => true,
+            (a, b) if a == b => Some(0),
+            (Type::Scalar(a), Type::Scalar(b)) => widen(*a, *b),
+            (Type::Vector(a, n), Type::Vector(b, m)) if n == m => widen(*a, *b),
+            (Type::Matrix(a, c, r), Type::Matrix(b, c2, r2)) if c == c2 && r == r2 => widen(*a, *b),
+            (Type::Enum(_), Type::Scalar(Scalar::Int | Scalar::Float | Scalar::Double)) => Some(4),
+            (Type::Scalar(_), Type::Color) => Some(5),
+            (Type::Vector(Scalar::Int | Scalar::Float, 3), Type::Color) => Some(5),
+            (Type::Color, Type::Vector(Scalar::Float | Scalar::Double, 3)) => Some(5),
+            (Type::String, Type::Texture(_) | Type::LightProfile | Type::BsdfMeasurement) => Some(5),
             (Type::Array(a, la), Type::Array(b, lb)) => {
                 let len_ok = la == lb
-                    || matches!(lb, ArrayLen::Deferred(_) | ArrayLen::Unsized)
-                    || matches!(la, ArrayLen::Unsized | ArrayLen::Deferred(_) | ArrayLen::Named(_))
-                    || matches!(lb, ArrayLen::Named(_));
-                len_ok && a.converts_to(b) && b.converts_to(a)
+                    || matches!(lb, ArrayLen::Deferred(_) | ArrayLen::Unsized | ArrayLen::Named(_))
+                    || matches!(la, ArrayLen::Unsized | ArrayLen::Deferred(_) | ArrayLen::Named(_));
+                (len_ok && a == b).then_some(1)
             }
-            _ => false,
+            _ => None,
         }
     }
 

@@ -126,12 +126,14 @@ impl Parser {
             TokenKind::Ident(w) if w == "true" || w == "false" => Some(ExprKind::Bool(w == "true")),
             _ => None,
         };
-        if let Some(kind) = literal {
+        if let Some(mut kind) = literal {
             self.bump();
-            if let (ExprKind::Str(_), TokenKind::Str(_)) = (&kind, self.peek()) {
-                return self.error("adjacent string literals are not joined in MDL");
+            // Adjacent string literals are joined, as in C.
+            while let (ExprKind::Str(joined), TokenKind::Str(next)) = (&mut kind, self.peek()) {
+                joined.push_str(next);
+                self.bump();
             }
-            return Ok(Expr::new(kind, span));
+            return Ok(Expr::new(kind, span.to(self.prev_span())));
         }
         if self.eat_punct("(") {
             let inner = self.nested(Parser::expr_no_assign)?;
@@ -237,17 +239,7 @@ impl Parser {
                 Some(self.nested(Parser::expr_no_assign)?)
             } else if self.is_punct("(") {
                 // `float3 v(1, 2, 3);` constructs the value.
-                let start = self.span();
-                let args = self.call_args()?;
-                let callee = type_callee(&ty.ty);
-                let Some(callee) = callee else {
-                    return Err(Diagnostic::error(
-                        start,
-                        "constructor-style initialisation of an array is not supported yet",
-                    ));
-                };
-                let call = Call { callee, array: None, args, res: Resolution::Unresolved };
-                Some(Expr::new(ExprKind::Call(call), start.to(self.prev_span())))
+                Some(self.constructor_init(&ty.ty)?)
             } else {
                 None
             };
@@ -267,11 +259,23 @@ impl Parser {
     }
 }
 
-/// The name of a type's constructor (`float3`, `::m::s`), for non-array types.
-fn type_callee(ty: &Type) -> Option<QualName> {
+impl Parser {
+    /// The argument list of a constructor-style initialisation `T name(args)`, as a call of
+    /// the constructor of `ty`.
+    pub(super) fn constructor_init(&mut self, ty: &Type) -> PResult<Expr> {
+        let start = self.span();
+        let args = self.call_args()?;
+        let (callee, array) = type_callee(ty);
+        let call = Call { callee, array, args, res: Resolution::Unresolved };
+        Ok(Expr::new(ExprKind::Call(call), start.to(self.prev_span())))
+    }
+}
+
+/// The name of a type's constructor (`float3`, `::m::s`) and, for arrays, the length.
+fn type_callee(ty: &Type) -> (QualName, Option<ArrayLen>) {
     match ty {
-        Type::Named(q) => Some(q.clone()),
-        Type::Array(..) => None,
-        t => Some(QualName::simple(&t.to_string())),
+        Type::Named(q) => (q.clone(), None),
+        Type::Array(elem, len) => (type_callee(elem).0, Some(len.clone())),
+        t => (QualName::simple(&t.to_string()), None),
     }
 }

@@ -15,8 +15,6 @@ use crate::lexer::{tokenize, Token, TokenKind};
 
 /// Words MDL reserves for constructs mira does not read yet: meeting one is an error naming it.
 const UNSUPPORTED: &[(&str, &str)] = &[
-    ("switch", "a `switch` statement"),
-    ("case", "a `switch` statement"),
     ("cast", "the `cast<T>(…)` operator"),
     ("auto", "an `auto` declaration"),
     ("declarative", "a `declarative` definition"),
@@ -30,7 +28,7 @@ const UNSUPPORTED: &[(&str, &str)] = &[
 /// `builtin` allows declarations without a body (for mira's built-in standard modules).
 pub fn parse_module(name: &str, file: FileId, bytes: &[u8], builtin: bool) -> Result<Module, Diagnostic> {
     let tokens = tokenize(file, bytes)?;
-    let mut p = Parser { tokens, pos: 0, builtin, next_local: 0, depth: 0 };
+    let mut p = Parser { tokens, pos: 0, builtin, next_local: 0, depth: 0, src: bytes.to_vec() };
     p.module(name, file)
 }
 
@@ -43,6 +41,8 @@ pub(crate) struct Parser {
     next_local: u32,
     /// Current nesting depth of expressions and statements.
     depth: u32,
+    /// The source text (for the version number as written).
+    src: Vec<u8>,
 }
 
 type PResult<T> = Result<T, Diagnostic>;
@@ -190,22 +190,26 @@ impl Parser {
             return self.expected("the version line `mdl X.Y;` at the start of the module");
         }
         self.bump();
-        let version = match *self.peek() {
-            TokenKind::Float { value, double: false } => {
-                let text = format!("{value}");
-                let (major, minor) = text.split_once('.').unwrap_or((&text, "0"));
-                (major.parse().unwrap_or(0), minor.parse().unwrap_or(0))
+        let at = self.span();
+        let written = String::from_utf8_lossy(&self.src[at.lo as usize..at.hi as usize]).into_owned();
+        let version = match self.peek() {
+            TokenKind::Float { double: false, .. } | TokenKind::Int(_) => {
+                let (major, minor) = written.split_once('.').unwrap_or((&written, "0"));
+                let minor = if minor.is_empty() { "0" } else { minor };
+                (major.parse::<u32>().ok(), minor.parse::<u32>().ok())
             }
-            TokenKind::Int(major) => (major.clamp(0, 99) as u32, 0),
             _ => return self.expected("a version number such as `1.7`"),
         };
-        let at = self.bump().span;
-        if version.0 != 1 || version.1 > 9 {
-            return Err(Diagnostic::error(
-                at,
-                format!("MDL version {}.{} is not supported (mira reads MDL 1.0 to 1.9)", version.0, version.1),
-            ));
-        }
+        self.bump();
+        let version = match version {
+            (Some(1), Some(minor)) => (1, minor),
+            _ => {
+                return Err(Diagnostic::error(
+                    at,
+                    format!("MDL version {written} is not supported (mira reads MDL 1.x)"),
+                ))
+            }
+        };
         self.expect_punct(";")?;
         Ok(version)
     }
@@ -351,10 +355,14 @@ impl Parser {
     fn const_decl(&mut self, exported: bool) -> PResult<Decl> {
         let ty = self.type_ref()?;
         let (name, span) = self.ident("a constant name")?;
-        if !self.eat_punct("=") {
+        let value = if self.eat_punct("=") {
+            self.expr_no_assign()?
+        } else if self.is_punct("(") {
+            // `const float3 v(1, 2, 3);` constructs the value.
+            self.constructor_init(&ty.ty)?
+        } else {
             return self.expected("`=` and the constant's value");
-        }
-        let value = self.expr()?;
+        };
         let annotations = self.annotations()?.unwrap_or_default();
         if self.is_punct(",") {
             return self.error("several constants in one declaration are not supported yet");
@@ -528,6 +536,9 @@ fn is_keyword(word: &str) -> bool {
             | "return"
             | "break"
             | "continue"
+            | "switch"
+            | "case"
+            | "default"
             | "struct"
             | "enum"
             | "typedef"

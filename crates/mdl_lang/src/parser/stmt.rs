@@ -55,6 +55,10 @@ impl Parser {
             let cond = self.paren_cond("do … while")?;
             self.expect_punct(";")?;
             StmtKind::DoWhile { body, cond }
+        } else if self.eat_word("switch") {
+            self.switch()?
+        } else if self.is_word("case") || self.is_word("default") {
+            return self.error("`case` or `default` outside a `switch`");
         } else if self.eat_word("for") {
             self.for_loop()?
         } else if self.eat_word("return") {
@@ -93,6 +97,40 @@ impl Parser {
         Ok(Box::new(cond))
     }
 
+    /// `(value) { case …: … }` after `switch`.
+    fn switch(&mut self) -> PResult<StmtKind> {
+        let value = self.paren_cond("switch")?;
+        let open = self.expect_punct("{")?;
+        let mut cases: Vec<SwitchCase> = Vec::new();
+        loop {
+            if self.eat_punct("}") {
+                return Ok(StmtKind::Switch { value, cases });
+            }
+            let start = self.span();
+            let label = if self.eat_word("case") {
+                Some(self.expr_no_assign()?)
+            } else if self.eat_word("default") {
+                if cases.iter().any(|c| c.label.is_none()) {
+                    return Err(Diagnostic::error(start, "a second `default` in one `switch`"));
+                }
+                None
+            } else if *self.peek() == TokenKind::Eof {
+                return Err(Diagnostic::error(open, "`switch` block is not closed: `{` without a matching `}`"));
+            } else {
+                return self.expected("`case` or `default` in a `switch`");
+            };
+            self.expect_punct(":")?;
+            let mut body = Vec::new();
+            while !(self.is_word("case") || self.is_word("default") || self.is_punct("}")) {
+                if *self.peek() == TokenKind::Eof {
+                    return Err(Diagnostic::error(open, "`switch` block is not closed: `{` without a matching `}`"));
+                }
+                body.push(self.statement()?);
+            }
+            cases.push(SwitchCase { label, body, span: start });
+        }
+    }
+
     /// `for (init; cond; step) body` after `for`.
     fn for_loop(&mut self) -> PResult<StmtKind> {
         self.expect_punct("(")?;
@@ -111,10 +149,21 @@ impl Parser {
         };
         let cond = if self.is_punct(";") { None } else { Some(Box::new(self.expr()?)) };
         self.expect_punct(";")?;
-        let step = if self.is_punct(")") { None } else { Some(Box::new(self.expr()?)) };
-        if self.is_punct(",") {
-            return self.error("the comma operator in a `for` step is not supported yet");
-        }
+        let step = if self.is_punct(")") {
+            None
+        } else {
+            let first = self.expr()?;
+            if self.is_punct(",") {
+                let mut list = vec![first];
+                while self.eat_punct(",") {
+                    list.push(self.expr()?);
+                }
+                let span = list[0].span.to(list[list.len() - 1].span);
+                Some(Box::new(Expr::new(ExprKind::Sequence(list), span)))
+            } else {
+                Some(Box::new(first))
+            }
+        };
         self.expect_punct(")")?;
         let body = Box::new(self.statement()?);
         Ok(StmtKind::For { init, cond, step, body })

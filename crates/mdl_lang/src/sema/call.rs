@@ -36,22 +36,27 @@ impl Checker<'_> {
         match syms[0].kind {
             SymbolKind::Function | SymbolKind::Material => {
                 let mut rejections = Vec::new();
+                let mut best: Option<(u32, usize)> = None;
                 for (k, sym) in syms.iter().enumerate() {
                     let Some(Decl::Function(f)) = self.decl_of(sym) else { continue };
                     let sig: Signature =
                         f.params.iter().map(|p| (p.name.clone(), p.ty.ty.clone(), p.default.is_some())).collect();
                     match bind(&sig, &call.args, &arg_types) {
-                        Ok(()) => {
-                            let (ret, name, material) = (f.ret.ty.clone(), f.name.clone(), f.is_material());
-                            call.res = if material {
-                                Resolution::Material { module: sym.module.clone(), name }
-                            } else {
-                                Resolution::Function { module: sym.module.clone(), name, overload: Some(k) }
-                            };
-                            return Some(ret);
-                        }
+                        Ok(cost) if best.is_none_or(|(c, _)| cost < c) => best = Some((cost, k)),
+                        Ok(_) => {}
                         Err(why) => rejections.push(why),
                     }
+                }
+                if let Some((_, k)) = best {
+                    let sym = &syms[k];
+                    let Some(Decl::Function(f)) = self.decl_of(sym) else { return None };
+                    let (ret, name, material) = (f.ret.ty.clone(), f.name.clone(), f.is_material());
+                    call.res = if material {
+                        Resolution::Material { module: sym.module.clone(), name }
+                    } else {
+                        Resolution::Function { module: sym.module.clone(), name, overload: Some(k) }
+                    };
+                    return Some(ret);
                 }
                 if rejections.len() == 1 {
                     self.error(span, format!("in the call of `{callee}`: {}", rejections[0]));
@@ -76,7 +81,7 @@ impl Checker<'_> {
                     _ => None,
                 }?;
                 let sig: Signature = fields.into_iter().map(|(n, t)| (n, t, true)).collect();
-                if let Err(why) = bind(&sig, &call.args, &arg_types) {
+                if let Err(why) = bind(&sig, &call.args, &arg_types).map(|_| ()) {
                     self.error(span, format!("in the constructor `{callee}`: {why}"));
                 }
                 call.res = Resolution::Constructor(ty.clone());
@@ -178,10 +183,11 @@ impl Checker<'_> {
 }
 
 /// Whether arguments fit a signature: positional ones in order, named ones by name, every
-/// parameter without a default given, every known argument type convertible. The error
-/// says why not.
-fn bind(sig: &Signature, args: &[Arg], types: &[Option<Type>]) -> Result<(), String> {
+/// parameter without a default given, every known argument type convertible. The total
+/// conversion cost if they do; the error says why not.
+fn bind(sig: &Signature, args: &[Arg], types: &[Option<Type>]) -> Result<u32, String> {
     let mut given = vec![false; sig.len()];
+    let mut cost = 0;
     for (i, (arg, t)) in args.iter().zip(types).enumerate() {
         let idx = match &arg.name {
             Some(n) => match sig.iter().position(|(p, _, _)| p == n) {
@@ -196,13 +202,14 @@ fn bind(sig: &Signature, args: &[Arg], types: &[Option<Type>]) -> Result<(), Str
         }
         given[idx] = true;
         if let Some(t) = t {
-            if !t.converts_to(&sig[idx].1) {
-                return Err(format!("argument `{}` is of type `{t}`, expected `{}`", sig[idx].0, sig[idx].1));
+            match t.conversion_cost(&sig[idx].1) {
+                Some(c) => cost += c,
+                None => return Err(format!("argument `{}` is of type `{t}`, expected `{}`", sig[idx].0, sig[idx].1)),
             }
         }
     }
     if let Some(((name, _, _), _)) = sig.iter().zip(&given).find(|((_, _, default), g)| !**g && !default) {
         return Err(format!("parameter `{name}` has no default and is not given"));
     }
-    Ok(())
+    Ok(cost)
 }

@@ -80,6 +80,13 @@ impl Checker<'_> {
                 self.locals.truncate(mark);
                 t
             }
+            ExprKind::Sequence(list) => {
+                let mut last = None;
+                for e in list {
+                    last = self.expr(e);
+                }
+                last
+            }
             ExprKind::Assign { op, target, value } => {
                 let (t, v) = (self.expr(target), self.expr(value));
                 if !is_assignable(target) {

@@ -148,13 +148,23 @@ impl Checker<'_> {
                     continue;
                 }
             };
-            if let ImportNames::Some(list) = &names {
-                for n in list {
-                    if !loaded.exports.contains_key(n) {
+            let mut names = names;
+            if let ImportNames::Some(list) = &mut names {
+                let mut values = Vec::new();
+                for n in list.iter() {
+                    let Some(syms) = loaded.exports.get(n) else {
                         let why = if loaded.declared.contains_key(n) { "does not export" } else { "has no" };
                         self.error(import.span, format!("module `{target}` {why} `{n}`"));
+                        continue;
+                    };
+                    // Importing an enum type imports its values.
+                    for sym in syms.iter().filter(|s| s.kind == SymbolKind::Enum) {
+                        if let Some(Decl::Enum(e)) = self.set.decl(sym) {
+                            values.extend(e.values.iter().map(|v| v.name.clone()));
+                        }
                     }
                 }
+                list.extend(values);
             }
             if written.parts != abs_parts && !written.absolute {
                 self.qualified.push(QualifiedImport {

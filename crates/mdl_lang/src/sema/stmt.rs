@@ -68,6 +68,26 @@ impl Checker<'_> {
                 self.loops -= 1;
                 self.condition(cond, "do … while");
             }
+            StmtKind::Switch { value, cases } => {
+                if let Some(t) = self.expr(value) {
+                    if !matches!(t, Type::Scalar(Scalar::Int) | Type::Enum(_)) {
+                        self.error(value.span, format!("a `switch` value is of type `{t}`, expected `int` or an enum"));
+                    }
+                }
+                // `break` leaves a switch as it leaves a loop.
+                self.loops += 1;
+                let mark = self.locals.len();
+                for case in cases {
+                    if let Some(label) = &mut case.label {
+                        self.expr(label);
+                    }
+                    for s in &mut case.body {
+                        self.stmt(s);
+                    }
+                }
+                self.locals.truncate(mark);
+                self.loops -= 1;
+            }
             StmtKind::Return(value) => {
                 let ret = self.ret.clone();
                 match (value, ret) {
