@@ -7,7 +7,7 @@ use std::path::Path;
 
 use mi::{Diagnostic, Origin, SourceMap, Span};
 
-use crate::ast::{Decl, EnumDecl, Function, ImportKind, ImportNames, Module, ModulePath, StructDecl};
+use crate::ast::{Decl, EnumDecl, Function, ImportKind, ImportNames, Module, ModulePath, Resolution, StructDecl};
 use crate::error::Error;
 use crate::parser::parse_module;
 use crate::search_path::MdlSearchPath;
@@ -328,6 +328,19 @@ impl ModuleSet {
                 _ => None,
             })
             .collect()
+    }
+
+    /// The definition a call's resolution ([`Resolution::Function`] or [`Resolution::Material`])
+    /// points at.
+    pub fn definition(&self, res: &Resolution) -> Option<&Function> {
+        let (module, decl) = match res {
+            Resolution::Function { module, decl, .. } | Resolution::Material { module, decl, .. } => (module, *decl),
+            _ => return None,
+        };
+        match self.module(module)?.decls.get(decl)? {
+            Decl::Function(f) => Some(f),
+            _ => None,
+        }
     }
 
     /// The struct of absolute type name `name` (`::base::texture_return`, `material_surface`).

@@ -174,9 +174,9 @@ pub enum Resolution {
         module: String,
         /// The function's name.
         name: String,
-        /// Index of the chosen overload among the module's functions of that name, when one was
-        /// chosen by the argument types.
-        overload: Option<usize>,
+        /// Index of the chosen overload's declaration in its module's `decls` (see
+        /// `ModuleSet::definition`).
+        decl: usize,
     },
     /// A material definition: its module and name.
     Material {
@@ -184,6 +184,8 @@ pub enum Resolution {
         module: String,
         /// The material's name.
         name: String,
+        /// Index of its declaration in its module's `decls`.
+        decl: usize,
     },
     /// A constructor of this type.
     Constructor(Type),

@@ -51,10 +51,11 @@ impl Checker<'_> {
                     let sym = &syms[k];
                     let Some(Decl::Function(f)) = self.decl_of(sym) else { return None };
                     let (ret, name, material) = (f.ret.ty.clone(), f.name.clone(), f.is_material());
+                    let (module, decl) = (sym.module.clone(), sym.decl);
                     call.res = if material {
-                        Resolution::Material { module: sym.module.clone(), name }
+                        Resolution::Material { module, name, decl }
                     } else {
-                        Resolution::Function { module: sym.module.clone(), name, overload: Some(k) }
+                        Resolution::Function { module, name, decl }
                     };
                     return Some(ret);
                 }

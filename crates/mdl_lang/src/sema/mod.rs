@@ -522,7 +522,7 @@ impl Checker<'_> {
                 Arg { name: Some(p.name.clone()), value, span }
             })
             .collect();
-        let res = Resolution::Material { module: sym.module.clone(), name: base.name.clone() };
+        let res = Resolution::Material { module: sym.module.clone(), name: base.name.clone(), decl: sym.decl };
         let call = Call { callee: base_name, array: None, args, res };
         f.body = Body::Expr(Expr { kind: ExprKind::Call(call), span, ty: Some(Type::Material) });
         if let Some(v) = &mut f.variant {
