@@ -43,7 +43,7 @@ pub mod symbols;
 
 pub use ast::{Body, Decl, Expr, ExprKind, Function, Module, Param, QualName, Resolution, Type};
 pub use error::{Error, Problem};
-pub use module_set::{load_module, LoadedModule, ModuleSet};
+pub use module_set::{load_module, split_mi_name, LoadedModule, ModuleSet};
 pub use search_path::MdlSearchPath;
 pub use subst::BindError;
 

@@ -379,3 +379,40 @@ fn read_module(path: &Path) -> Result<Vec<u8>, String> {
     }
     std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
 }
+
+/// The MDL module and item a `.mi` shader name refers to: `mdl::a::b::matte` or
+/// `mdl::a::b::matte(color,float)` (Iray's form with a signature) gives `("::a::b", "matte")`.
+/// `None` for a name without the `mdl::` prefix or without a module part.
+pub fn split_mi_name(name: &str) -> Option<(String, String)> {
+    let rest = name.strip_prefix("mdl::")?;
+    let rest = rest.split_once('(').map_or(rest, |(n, _)| n);
+    let (module, item) = rest.trim_start_matches("::").rsplit_once("::")?;
+    if module.is_empty() || item.is_empty() {
+        return None;
+    }
+    Some((format!("::{module}"), item.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mi_shader_names_split_into_module_and_item() {
+        let split = |n| split_mi_name(n);
+        assert_eq!(split("mdl::export_multi::matte"), Some(("::export_multi".into(), "matte".into())));
+        assert_eq!(
+            split("mdl::nvidia::core_definitions::flex_material(color,float)"),
+            Some(("::nvidia::core_definitions".into(), "flex_material".into()))
+        );
+        assert_eq!(split("mdl::::m::x"), Some(("::m".into(), "x".into())));
+        assert_eq!(split("mdl::matte"), None);
+        assert_eq!(split("mib_illum_lambert"), None);
+    }
+
+    #[test]
+    fn type_names_split_into_module_and_name() {
+        assert_eq!(split_type_name("::base::texture_return"), ("::base", "texture_return"));
+        assert_eq!(split_type_name("material_surface"), (PRELUDE, "material_surface"));
+    }
+}

@@ -295,7 +295,7 @@ fn scene_copies_of_the_modules_load() {
             loaded += 1;
         }
     }
-    assert_eq!(loaded, 7);
+    assert_eq!(loaded, 8);
     assert!(set.module("::chain::top").is_none(), "only what is asked for and imported is loaded");
     set.load("::chain::top").unwrap();
     assert!(set.material("::export_multi::matte").is_some());
@@ -355,4 +355,43 @@ fn std_reexports_every_standard_module_and_enum_imports_bring_values() {
     }
     assert!(matches!(&call(body(b)).res, Resolution::Function { module, name, .. }
         if module == "::df" && name == "specular_bsdf"));
+}
+
+#[test]
+fn user_structs_construct_typedef_and_field_access() {
+    let set = load("::structs");
+    let s = set.struct_decl("::structs::layer_info").unwrap();
+    let fields: Vec<(&str, &Type)> = s.fields.iter().map(|f| (f.name.as_str(), &f.ty.ty)).collect();
+    assert_eq!(fields, [("tint", &Type::Color), ("weight", &Type::FLOAT), ("enabled", &Type::BOOL)]);
+    assert_eq!(s.fields[2].ty.frequency, Frequency::Uniform);
+    let make = &set.functions("::structs::make_info")[0];
+    let info = Type::Struct("::structs::layer_info".into());
+    assert_eq!(make.ret.ty, info, "the typedef names the struct");
+    assert_eq!(call(body(make)).res, Resolution::Constructor(info.clone()));
+    let m = set.material("::structs::from_info").unwrap();
+    assert_eq!(m.params[0].ty.ty, info);
+    let cond = arg(call(arg(call(body(m)), "surface")), "scattering");
+    let ExprKind::Conditional { cond: test, then, .. } = &cond.kind else { panic!() };
+    assert_eq!(test.ty, Some(Type::BOOL), "info.enabled is a bool");
+    assert_eq!(arg(call(then), "tint").ty, Some(Type::Color), "info.tint * info.weight is a colour");
+}
+
+#[test]
+fn unexported_names_are_invisible_to_importers_and_several_errors_are_reported() {
+    let mut set = ModuleSet::new(MdlSearchPath::new());
+    set.load_source("::lib", "mdl 1.7;\nfloat hidden() = 1.0;\nexport float shown() = 2.0;\n").unwrap();
+    let err = set
+        .load_source(
+            "::user",
+            "mdl 1.7;\nimport ::lib::*;\nexport float a() = lib::hidden();\nexport float b() = lib::shown() + nope;\n",
+        )
+        .unwrap_err();
+    let found: Vec<(u32, u32, &str)> = err.problems.iter().map(|p| (p.line, p.col, p.message.as_str())).collect();
+    assert_eq!(found.len(), 2, "{err}");
+    assert_eq!((found[0].0, found[0].1), (3, 20));
+    assert!(found[0].2.contains("no exported `hidden`"), "{err}");
+    assert_eq!((found[1].0, found[1].1), (4, 35));
+    assert!(found[1].2.contains("unknown name `nope`"), "{err}");
+    assert!(set.module("::user").is_none(), "a module with errors is not kept");
+    assert!(set.functions("::lib::hidden").is_empty() && set.functions("::lib::shown").len() == 1);
 }
