@@ -271,3 +271,71 @@ pub struct TypeRef {
     /// Where it was written.
     pub span: Span,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_type_name_is_known_and_prints_back() {
+        let names = [
+            "bool",
+            "int",
+            "float",
+            "double",
+            "color",
+            "string",
+            "float2",
+            "float3",
+            "float4",
+            "int2",
+            "int3",
+            "int4",
+            "bool2",
+            "bool3",
+            "bool4",
+            "double3",
+            "float2x2",
+            "float3x3",
+            "float4x4",
+            "float3x4",
+            "double4x3",
+            "texture_2d",
+            "texture_3d",
+            "texture_cube",
+            "texture_ptex",
+            "light_profile",
+            "bsdf_measurement",
+            "bsdf",
+            "edf",
+            "vdf",
+            "hair_bsdf",
+            "material",
+        ];
+        for n in names {
+            let t = Type::builtin(n).unwrap_or_else(|| panic!("{n} unknown"));
+            assert_eq!(t.to_string(), n);
+        }
+        assert_eq!(Type::builtin("float3x3"), Some(Type::Matrix(Scalar::Float, 3, 3)));
+        for bad in ["float5", "float1", "int3x3", "bool2x2", "float22", "vec3", "float3x", "Color"] {
+            assert_eq!(Type::builtin(bad), None, "{bad}");
+        }
+    }
+
+    #[test]
+    fn conversions_widen_and_rank_exact_matches_first() {
+        let f3 = Type::Vector(Scalar::Float, 3);
+        assert_eq!(Type::FLOAT.conversion_cost(&Type::FLOAT), Some(0));
+        assert_eq!(Type::INT.conversion_cost(&Type::FLOAT), Some(1));
+        assert!(Type::FLOAT.conversion_cost(&Type::INT).unwrap() > Type::INT.conversion_cost(&Type::DOUBLE).unwrap());
+        assert!(Type::FLOAT.converts_to(&Type::Color) && f3.converts_to(&Type::Color));
+        assert!(!Type::String.converts_to(&Type::Color));
+        assert!(!Type::Vector(Scalar::Float, 2).converts_to(&f3));
+        assert!(!Type::Bsdf.converts_to(&Type::Edf));
+        let deferred = Type::Array(Box::new(Type::Color), ArrayLen::Deferred("N".into()));
+        assert!(Type::Array(Box::new(Type::Color), ArrayLen::Fixed(4)).converts_to(&deferred));
+        assert!(!Type::Array(Box::new(Type::FLOAT), ArrayLen::Fixed(4)).converts_to(&deferred));
+        assert!(!Type::Array(Box::new(Type::FLOAT), ArrayLen::Fixed(3))
+            .converts_to(&Type::Array(Box::new(Type::FLOAT), ArrayLen::Fixed(4))));
+    }
+}
