@@ -395,3 +395,16 @@ fn unexported_names_are_invisible_to_importers_and_several_errors_are_reported()
     assert!(set.module("::user").is_none(), "a module with errors is not kept");
     assert!(set.functions("::lib::hidden").is_empty() && set.functions("::lib::shown").len() == 1);
 }
+
+#[test]
+fn uniform_values_pass_to_uniform_parameters() {
+    // Literals, uniform parameters and parameters without a modifier are accepted.
+    let mut set = ModuleSet::new(MdlSearchPath::new());
+    set.load_source(
+        "::uniform_ok",
+        "mdl 1.7;\nimport ::df::*;\nimport ::math::*;\n\
+         export edf a(uniform float e = 2.0) = df::spot_edf(exponent: e * math::PI);\n\
+         export edf b(float e) = df::spot_edf(exponent: e, spread: 1.0);\n",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+}

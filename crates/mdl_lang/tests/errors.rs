@@ -238,3 +238,28 @@ fn module_asked_for_by_name_and_not_found() {
     assert_eq!(err.first().line, 0);
     assert!(err.to_string().contains("module `::nowhere` not found"), "{err}");
 }
+
+#[test]
+fn varying_value_for_a_uniform_parameter() {
+    check(
+        "mdl 1.7;\nimport ::df::*;\nimport ::state::*;\nexport edf e() = df::spot_edf(@@exponent: state::normal().x);\n",
+        "parameter `exponent` of `df::spot_edf` is uniform, but this value varies",
+    );
+}
+
+#[test]
+fn varying_default_of_a_uniform_parameter() {
+    check(
+        "mdl 1.7;\nimport ::state::*;\nexport float f(uniform float3 n = @@state::normal()) = n.x;\n",
+        "parameter `n` is uniform, but its default varies",
+    );
+}
+
+#[test]
+fn varying_local_flows_into_a_uniform_parameter() {
+    check(
+        "mdl 1.7;\nimport ::df::*;\nimport ::state::*;\n\
+         export edf e() = let float x = state::position().y; in df::spot_edf(@@exponent: x * 2.0);\n",
+        "parameter `exponent` of `df::spot_edf` is uniform",
+    );
+}

@@ -50,6 +50,26 @@ impl Checker<'_> {
                 if let Some((_, k)) = best {
                     let sym = &syms[k];
                     let Some(Decl::Function(f)) = self.decl_of(sym) else { return None };
+                    // A uniform parameter takes no value that varies over the surface.
+                    let mut varying_args = Vec::new();
+                    for (i, a) in call.args.iter().enumerate() {
+                        let p = match &a.name {
+                            Some(n) => f.param(n).map(|(_, p)| p),
+                            None => f.params.get(i),
+                        };
+                        if let Some(p) = p.filter(|p| p.ty.frequency == Frequency::Uniform) {
+                            if self.varies(&a.value) {
+                                varying_args.push((a.span, p.name.clone()));
+                            }
+                        }
+                    }
+                    for (span, name) in varying_args {
+                        let message = format!(
+                            "parameter `{name}` of `{callee}` is uniform, but this value varies over the surface"
+                        );
+                        self.error(span, message);
+                    }
+                    let Some(Decl::Function(f)) = self.decl_of(sym) else { return None };
                     let (ret, name, material) = (f.ret.ty.clone(), f.name.clone(), f.is_material());
                     let (module, decl) = (sym.module.clone(), sym.decl);
                     call.res = if material {

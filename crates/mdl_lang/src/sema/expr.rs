@@ -114,7 +114,70 @@ impl Checker<'_> {
             self.expect_type(init, &ty, &format!("the initial value of `{}`", d.name));
         }
         self.annotations(&mut d.annotations);
-        self.locals.push(Local { name: d.name.clone(), res: Resolution::Local(d.id), ty: d.ty.ty.clone() });
+        let varying = d.init.as_ref().is_some_and(|e| self.varies(e));
+        if varying && d.ty.frequency == Frequency::Uniform {
+            let span = d.init.as_ref().map_or(d.span, |e| e.span);
+            self.error(span, format!("`{}` is uniform, but its initial value varies over the surface", d.name));
+        }
+        let (name, res, ty) = (d.name.clone(), Resolution::Local(d.id), d.ty.ty.clone());
+        self.locals.push(Local { name, res, ty, varying });
+    }
+
+    /// Whether the value of a checked expression may vary over the surface: it calls a
+    /// function declared `varying` (the `state::` functions), reads a `varying` parameter, or
+    /// a local initialised from such a value. Parameters without a modifier count as uniform,
+    /// so that this never reports a uniform value as varying.
+    pub(super) fn varies(&self, e: &Expr) -> bool {
+        let mut varying_lets = Vec::new();
+        self.varies_in(e, &mut varying_lets)
+    }
+
+    fn varies_in(&self, e: &Expr, varying_lets: &mut Vec<u32>) -> bool {
+        match &e.kind {
+            ExprKind::Bool(_) | ExprKind::Int(_) | ExprKind::Float { .. } | ExprKind::Str(_) => false,
+            ExprKind::Name(n) => match &n.res {
+                Resolution::Local(id) if varying_lets.contains(id) => true,
+                Resolution::Param(_) | Resolution::Local(_) => {
+                    self.locals.iter().rev().find(|l| l.res == n.res).is_some_and(|l| l.varying)
+                }
+                _ => false,
+            },
+            ExprKind::Call(call) => {
+                let declared_varying = match &call.res {
+                    Resolution::Function { module, decl, .. } => {
+                        let decl = if *module == self.module_name {
+                            self.decls.get(*decl)
+                        } else {
+                            self.set.module(module).and_then(|m| m.decls.get(*decl))
+                        };
+                        matches!(decl, Some(Decl::Function(f)) if f.frequency == Frequency::Varying)
+                    }
+                    _ => false,
+                };
+                declared_varying || call.args.iter().any(|a| self.varies_in(&a.value, varying_lets))
+            }
+            ExprKind::Unary { operand, .. } => self.varies_in(operand, varying_lets),
+            ExprKind::Binary { lhs, rhs, .. } => self.varies_in(lhs, varying_lets) || self.varies_in(rhs, varying_lets),
+            ExprKind::Conditional { cond, then, otherwise } => {
+                self.varies_in(cond, varying_lets)
+                    || self.varies_in(then, varying_lets)
+                    || self.varies_in(otherwise, varying_lets)
+            }
+            ExprKind::Member { base, .. } => self.varies_in(base, varying_lets),
+            ExprKind::Index { base, index } => {
+                self.varies_in(base, varying_lets) || self.varies_in(index, varying_lets)
+            }
+            ExprKind::Let { decls, body } => {
+                for d in decls {
+                    if d.init.as_ref().is_some_and(|i| self.varies_in(i, varying_lets)) {
+                        varying_lets.push(d.id);
+                    }
+                }
+                self.varies_in(body, varying_lets)
+            }
+            ExprKind::Sequence(list) => list.iter().any(|x| self.varies_in(x, varying_lets)),
+            ExprKind::Assign { value, .. } => self.varies_in(value, varying_lets),
+        }
     }
 
     fn name(&mut self, n: &mut NameRef, span: mi::Span) -> Option<Type> {

@@ -84,6 +84,8 @@ struct Local {
     name: String,
     res: Resolution,
     ty: Type,
+    /// Whether its value may vary over the surface (see `Checker::varies`).
+    varying: bool,
 }
 
 pub(crate) struct Checker<'a> {
@@ -403,12 +405,18 @@ impl Checker<'_> {
                 self.expr(default);
                 let ty = p.ty.ty.clone();
                 self.expect_type(default, &ty, &format!("the default of parameter `{}`", p.name));
+                if p.ty.frequency == Frequency::Uniform && self.varies(default) {
+                    let message = format!("parameter `{}` is uniform, but its default varies over the surface", p.name);
+                    self.error(default.span, message);
+                }
             }
             self.annotations(&mut p.annotations);
-            self.locals.push(Local { name: p.name.clone(), res: Resolution::Param(i), ty: p.ty.ty.clone() });
+            let varying = p.ty.frequency == Frequency::Varying;
+            self.locals.push(Local { name: p.name.clone(), res: Resolution::Param(i), ty: p.ty.ty.clone(), varying });
             if let Type::Array(_, ArrayLen::Deferred(n)) = &p.ty.ty {
                 if !self.locals.iter().any(|l| l.name == *n) {
-                    self.locals.push(Local { name: n.clone(), res: Resolution::ArraySize(i), ty: Type::INT });
+                    let res = Resolution::ArraySize(i);
+                    self.locals.push(Local { name: n.clone(), res, ty: Type::INT, varying: false });
                 }
             }
         }
