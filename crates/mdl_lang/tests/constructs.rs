@@ -172,6 +172,9 @@ fn enums_number_their_values_and_convert_to_int() {
         values,
         [("kind_paint", 0), ("kind_metal", 10), ("kind_glass", 11), ("kind_skin", -3), ("kind_cloth", -2)]
     );
+    let flags = set.enum_decl("::enums::flags").unwrap();
+    let values: Vec<i64> = flags.values.iter().map(|v| v.value).collect();
+    assert_eq!(values, [0, 1, 2, 3, 4]);
     let code = &set.functions("::enums::code")[0];
     assert_eq!(body(code).ty, Some(Type::INT));
     let by_kind = set.material("::enums::by_kind").unwrap();

@@ -263,3 +263,11 @@ fn varying_local_flows_into_a_uniform_parameter() {
         "parameter `exponent` of `df::spot_edf` is uniform",
     );
 }
+
+#[test]
+fn enum_value_that_is_not_constant() {
+    check(
+        "mdl 1.7;\nimport ::math::*;\nexport enum e { a = 1, b = @@math::max(1, 2) };\n",
+        "enum value is not a constant integer expression",
+    );
+}

@@ -404,10 +404,11 @@ impl Parser {
             let (vname, vspan) = self.ident("an enum value name")?;
             let init = if self.eat_punct("=") { Some(self.expr_no_assign()?) } else { None };
             let value = match &init {
-                Some(e) => const_int(e).ok_or_else(|| {
+                Some(e) => const_int(e, &values).ok_or_else(|| {
                     Diagnostic::error(
                         e.span,
-                        "enum values must be integer literals (constant expressions are not supported yet)",
+                        "enum value is not a constant integer expression mira can evaluate \
+                         (integers, earlier values of the enum, + - * / % << >> & | ^ ~)",
                     )
                 })?,
                 None => values.last().map_or(Ok(0), |v| {
@@ -552,12 +553,39 @@ fn is_keyword(word: &str) -> bool {
     ) || UNSUPPORTED.iter().any(|(k, _)| *k == word)
 }
 
-/// The value of an integer literal, possibly negated.
-fn const_int(e: &Expr) -> Option<i64> {
+/// The value of a constant integer expression: literals, earlier values of the same enum
+/// (`known`), parentheses and the integer operators (`+ - * / % << >> & | ^ ~`, unary `-`).
+/// `None` for anything else, including overflow and division by zero.
+fn const_int(e: &Expr, known: &[EnumValue]) -> Option<i64> {
     match &e.kind {
         ExprKind::Int(i) => Some(*i),
-        ExprKind::Unary { op: UnaryOp::Neg, operand } => const_int(operand).and_then(i64::checked_neg),
-        ExprKind::Unary { op: UnaryOp::Plus, operand } => const_int(operand),
+        ExprKind::Name(n) if !n.name.is_qualified() => known.iter().find(|v| v.name == n.name.last()).map(|v| v.value),
+        ExprKind::Unary { op, operand } => {
+            let v = const_int(operand, known)?;
+            match op {
+                UnaryOp::Neg => v.checked_neg(),
+                UnaryOp::Plus => Some(v),
+                UnaryOp::BitNot => Some(!v),
+                _ => None,
+            }
+        }
+        ExprKind::Binary { op, lhs, rhs } => {
+            let (a, b) = (const_int(lhs, known)?, const_int(rhs, known)?);
+            let shift = u32::try_from(b).ok().filter(|s| *s < 64);
+            match op {
+                BinaryOp::Add => a.checked_add(b),
+                BinaryOp::Sub => a.checked_sub(b),
+                BinaryOp::Mul => a.checked_mul(b),
+                BinaryOp::Div => a.checked_div(b),
+                BinaryOp::Rem => a.checked_rem(b),
+                BinaryOp::Shl => shift.and_then(|s| a.checked_shl(s)),
+                BinaryOp::Shr => shift.and_then(|s| a.checked_shr(s)),
+                BinaryOp::BitAnd => Some(a & b),
+                BinaryOp::BitOr => Some(a | b),
+                BinaryOp::BitXor => Some(a ^ b),
+                _ => None,
+            }
+        }
         _ => None,
     }
 }
