@@ -15,7 +15,8 @@
 //!   chooses overloads,
 //!   types expressions where simple, checks defaults and arguments, expands material
 //!   variants; the tree it leaves is what a material compiler evaluates, binding arguments
-//!   with [`Function::bind_args`] / [`Function::instantiate`].
+//!   with [`Function::bind_args`] / [`Function::instantiate`], and tells which
+//!   sub-expressions depend on the shading point ([`HitDependence`]).
 //!
 //! What mira does not read yet (`switch`, `cast<>`, quoted module names, …) is an error that
 //! names the construct and its line, never a silent default.
@@ -32,6 +33,7 @@
 
 pub mod ast;
 mod error;
+mod frequency;
 pub mod lexer;
 mod module_set;
 pub mod parser;
@@ -43,6 +45,7 @@ pub mod symbols;
 
 pub use ast::{Body, Decl, Expr, ExprKind, Function, Module, Param, QualName, Resolution, Type};
 pub use error::{Error, Problem};
+pub use frequency::HitDependence;
 pub use module_set::{load_module, split_mi_name, LoadedModule, ModuleSet};
 pub use search_path::MdlSearchPath;
 pub use subst::BindError;

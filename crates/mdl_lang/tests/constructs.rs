@@ -411,3 +411,52 @@ fn uniform_values_pass_to_uniform_parameters() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[test]
+fn hit_dependence_follows_state_calls_through_functions_defaults_and_lets() {
+    let mut set = ModuleSet::new(MdlSearchPath::for_scene(Some(&modules_dir()), &[], None));
+    set.load("::functions").unwrap();
+    set.load("::export_multi").unwrap();
+    set.load_source(
+        "::hits",
+        "mdl 1.7;\nimport ::df::*;\nimport ::base::*;\nimport ::math::*;\nimport ::state::*;\nimport ::functions::*;\n\
+             export color fixed() = math::lerp(color(0.0), color(1.0), 0.5) * functions::square(0.5);\n\
+             export float3 per_hit() = functions::bent_normal(0.2);\n\
+             export color checked() = functions::checker(8.0);\n\
+             export color textured() = base::file_texture(texture: texture_2d(\"wood.png\")).tint;\n\
+             export color textured_at_a_point() = base::file_texture(texture: texture_2d(\"wood.png\"),\n\
+                 uvw: base::texture_coordinate_info(float3(0.5), float3(1.0, 0.0, 0.0), float3(0.0, 1.0, 0.0))).tint;\n\
+             export bsdf rough() = df::diffuse_reflection_bsdf(tint: color(0.5), roughness: 0.2);\n\
+             export float let_fixed() = let float k = 2.0; in k * 3.0;\n\
+             export float let_hit() = let float k = state::position().x; in k * 3.0;\n",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let m = set.module("::hits").unwrap();
+    let expected = [
+        ("fixed", false),
+        ("per_hit", true),
+        ("checked", true),
+        ("textured", true),
+        ("textured_at_a_point", false),
+        ("rough", false),
+        ("let_fixed", false),
+        ("let_hit", true),
+    ];
+    let found: Vec<(&str, bool)> = expected
+        .iter()
+        .map(|(name, _)| {
+            let f = m.functions().find(|f| f.name == *name).unwrap();
+            (*name, set.varies_per_hit(body(f)))
+        })
+        .collect();
+    assert_eq!(found, expected);
+    // A material instance: constant arguments keep the BSDF fixed; a varying one does not.
+    let matte = set.material("::export_multi::matte").unwrap();
+    let inst = matte.instantiate(&[]).unwrap().unwrap();
+    let scattering = arg(call(arg(call(&inst), "surface")), "scattering");
+    assert!(!set.varies_per_hit(scattering));
+    let per_hit_tint = body(m.functions().find(|f| f.name == "checked").unwrap()).clone();
+    let inst = matte.instantiate(&[("tint", per_hit_tint)]).unwrap().unwrap();
+    let scattering = arg(call(arg(call(&inst), "surface")), "scattering");
+    assert!(set.varies_per_hit(scattering));
+}
