@@ -159,6 +159,12 @@ impl Kind {
         !matches!(self, Kind::Jpeg | Kind::Ppm | Kind::Hdr | Kind::AliasPix)
     }
 
+    /// Whether [`crate::write`] writes this format (all but `Zpic`, `map` and
+    /// [`Kind::Unwritten`]).
+    pub fn writable(self) -> bool {
+        !matches!(self, Kind::SoftimageZpic | Kind::MemoryMap | Kind::Unwritten(_))
+    }
+
     /// The usual file extension.
     pub fn extension(self) -> &'static str {
         match self {
