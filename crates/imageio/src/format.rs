@@ -26,7 +26,7 @@ pub enum Kind {
     Tiff,
     /// Portable pixmap `ppm`: 8-bit RGB.
     Ppm,
-    /// Truevision Targa `tga`: 8-bit RGB(A), run-length encoded.
+    /// Truevision Targa `tga`: 8-bit RGB(A), uncompressed.
     Targa,
     /// Microsoft bitmap `bmp`: 8-bit RGB(A).
     Bmp,

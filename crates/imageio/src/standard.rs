@@ -1,4 +1,5 @@
-//! PNG, JPEG, TIFF, Targa, BMP, PPM and Radiance HDR through the `image` crate.
+//! PNG, JPEG, TIFF, Targa (uncompressed), BMP, PPM and Radiance HDR through the `image`
+//! crate.
 
 use std::fs::File;
 use std::io::BufWriter;
@@ -47,7 +48,9 @@ pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<()
                 Kind::Png => png::PngEncoder::new(&mut out).write_image(buf, w, h, ct),
                 Kind::Jpeg => jpeg::JpegEncoder::new_with_quality(&mut out, JPEG_QUALITY).write_image(buf, w, h, ct),
                 Kind::Tiff => tiff::TiffEncoder::new(&mut out).write_image(buf, w, h, ct),
-                Kind::Targa => tga::TgaEncoder::new(&mut out).write_image(buf, w, h, ct),
+                // Uncompressed: the image crate's run-length packets run across scanlines, which
+                // Targa 2.0 forbids and readers such as Pillow reject.
+                Kind::Targa => tga::TgaEncoder::new(&mut out).disable_rle().write_image(buf, w, h, ct),
                 Kind::Bmp => bmp::BmpEncoder::new(&mut out).write_image(buf, w, h, ct),
                 Kind::Ppm => pnm::PnmEncoder::new(&mut out)
                     .with_subtype(pnm::PnmSubtype::Pixmap(pnm::SampleEncoding::Binary))
