@@ -208,3 +208,52 @@ fn formats_refuse_buffers_they_do_not_hold_with_a_clear_error() {
     assert!(write(&dir.join("z.zt"), format("zt", ""), &short).is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn every_format_and_buffer_combination_writes_or_says_why() {
+    let dir = scratch("all");
+    let names = [
+        "pic", "Zpic", "alias", "rgb", "jpg", "png", "exr", "tif", "tif16", "ppm", "tga", "bmp", "hdr", "iff", "ct",
+        "ct16", "cth", "ctfp", "st", "st16", "stfp", "zt", "nt", "mt", "tt", "bit", "map", "rla", "qntpal",
+    ];
+    let types = ["", "rgb", "rgba", "rgba_16", "rgb_h", "rgba_fp", "a", "a_16", "z", "n", "m", "tag"];
+    let (w, h) = (3, 2);
+    let buffers = [
+        colour(w, h).pixels,
+        Pixels::Scalar(vec![0.5; 6]),
+        Pixels::Depth(vec![2.0; 6]),
+        Pixels::Normal(vec![[0.0, 1.0, 0.0]; 6]),
+        Pixels::Motion(vec![[1.0, -1.0]; 6]),
+        Pixels::Tag(vec![7; 6]),
+    ];
+    let (mut written, mut refused) = (0, 0);
+    for name in names {
+        for t in types {
+            for (b, pixels) in buffers.iter().enumerate() {
+                let f = format(name, t);
+                let path = dir.join(format!("{name}-{t}-{b}.out"));
+                match write(&path, f, &ImageData::new(w, h, pixels.clone())) {
+                    Ok(()) => {
+                        assert!(std::fs::metadata(&path).unwrap().len() > 0, "{name} {t} {b}");
+                        written += 1;
+                    }
+                    Err(e) => {
+                        assert!(e.to_string().contains(&format!("'{}'", f.kind)), "{name} {t} {b}: {e}");
+                        // Colour goes into every writable colour format, whatever the type says.
+                        let data_format = ["st", "zt", "nt", "mt", "tt", "bit"].iter().any(|d| name.starts_with(d));
+                        assert!(b != 0 || !f.kind.writable() || data_format, "{name} {t}: colour refused: {e}");
+                        refused += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(written > 300 && refused > 500, "{written} written, {refused} refused");
+    // Sizes beyond a format's 16-bit fields are refused, not truncated.
+    let wide = ImageData::new(65_536, 1, Pixels::Scalar(vec![0.0; 65_536]));
+    for name in ["rgb", "pic", "iff", "st", "tga"] {
+        let e = write(&dir.join(format!("wide.{name}")), format(name, "a"), &wide).unwrap_err().to_string();
+        assert!(e.contains("65535") || e.contains("65536"), "{name}: {e}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
