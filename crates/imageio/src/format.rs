@@ -165,6 +165,26 @@ impl Kind {
         !matches!(self, Kind::SoftimageZpic | Kind::MemoryMap | Kind::Unwritten(_))
     }
 
+    /// Whether files of this format hold a buffer of type `buffer` as [`crate::Pixels::type_name`]
+    /// names it (`rgba`, `a`, `z`, `n`, `m`, `tag`): colour formats hold colour and scalars
+    /// (as grey), EXR every buffer, the mental images data formats their own.
+    pub fn holds(self, buffer: &str) -> bool {
+        if !self.writable() {
+            return false;
+        }
+        match self {
+            Kind::Exr => true,
+            Kind::MentalColor => buffer == "rgba",
+            Kind::MentalScalar => buffer == "a",
+            Kind::MentalDepth => buffer == "z",
+            Kind::MentalNormal => buffer == "n",
+            Kind::MentalMotion => buffer == "m",
+            Kind::MentalTag => buffer == "tag",
+            Kind::MentalBit => buffer == "a" || buffer == "tag",
+            _ => buffer == "rgba" || buffer == "a",
+        }
+    }
+
     /// The usual file extension.
     pub fn extension(self) -> &'static str {
         match self {

@@ -232,7 +232,13 @@ fn every_format_and_buffer_combination_writes_or_says_why() {
             for (b, pixels) in buffers.iter().enumerate() {
                 let f = format(name, t);
                 let path = dir.join(format!("{name}-{t}-{b}.out"));
-                match write(&path, f, &ImageData::new(w, h, pixels.clone())) {
+                let result = write(&path, f, &ImageData::new(w, h, pixels.clone()));
+                assert_eq!(
+                    result.is_ok(),
+                    f.kind.holds(pixels.type_name()),
+                    "{name} {t} {b}: holds() and write() agree"
+                );
+                match result {
                     Ok(()) => {
                         assert!(std::fs::metadata(&path).unwrap().len() > 0, "{name} {t} {b}");
                         written += 1;

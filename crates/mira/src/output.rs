@@ -158,6 +158,13 @@ pub fn targets(camera: &Camera, dash_o: Option<&Path>, scene: &Path) -> Result<V
                 );
             }
             let format = kind.with_data_type(first);
+            if !holds(format.kind, &buffer) {
+                eprintln!(
+                    "mira: warning: '{format_name}' files do not hold the '{first}' frame buffer ('{file}'); skipped",
+                    format_name = format.kind
+                );
+                continue;
+            }
             targets.push(Target { path: PathBuf::from(file), format, buffer, extras: Extras::from_types(types) });
         }
     }
@@ -183,6 +190,13 @@ pub fn targets(camera: &Camera, dash_o: Option<&Path>, scene: &Path) -> Result<V
             }
         };
         let format = format.with_data_type(&fb.datatype);
+        if !holds(format.kind, &buffer) {
+            eprintln!(
+                "mira: warning: '{}' files do not hold the '{}' frame buffer '{}' ('{file}'); skipped",
+                format.kind, fb.datatype, fb.name
+            );
+            continue;
+        }
         targets.push(Target { path: PathBuf::from(file), format, buffer, extras: Extras::from_types(&[&fb.datatype]) });
     }
     if targets.is_empty() {
@@ -194,6 +208,18 @@ pub fn targets(camera: &Camera, dash_o: Option<&Path>, scene: &Path) -> Result<V
         });
     }
     Ok(targets)
+}
+
+/// Whether files of `kind` hold `buffer`.
+fn holds(kind: Kind, buffer: &Buffer) -> bool {
+    kind.holds(match buffer {
+        Buffer::Color | Buffer::User(_) => "rgba",
+        Buffer::Alpha | Buffer::Intensity => "a",
+        Buffer::Depth => "z",
+        Buffer::Normal => "n",
+        Buffer::Motion => "m",
+        Buffer::Tag => "tag",
+    })
 }
 
 /// Linear and display-referred (tone mapped by `tone`) colour of RGBA pixels.

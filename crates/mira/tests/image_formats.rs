@@ -149,8 +149,15 @@ fn dash_o_chooses_the_format_by_extension() {
 
 #[test]
 fn unsupported_formats_are_warned_about_by_file_name() {
-    let (dir, stderr) = render("warn", r#"output "rgba" "qntpal" "DIR/x.qnt""#, &[]);
+    let (dir, stderr) = render(
+        "warn",
+        r#"output "rgba" "qntpal" "DIR/x.qnt"
+    output "z" "png" "DIR/z.png""#,
+        &[],
+    );
     assert!(stderr.contains("warning: mira does not write 'qntpal' files") && stderr.contains("x.qnt"), "{stderr}");
+    assert!(stderr.contains("'png' files do not hold the 'z' frame buffer ('") && stderr.contains("z.png"), "{stderr}");
+    assert!(!dir.join("z.png").exists());
     // Nothing else asked: the scene's EXR is written instead, the Quantel file is not.
     assert!(!dir.join("x.qnt").exists());
     assert!(dir.join("s.exr").exists());
