@@ -11,8 +11,8 @@ use image::{ExtendedColorType, ImageEncoder};
 use crate::pixels::{f32s, sample, u16s, u8s};
 use crate::{Error, Format, ImageData, Kind, Sample};
 
-/// JPEG quality (mental ray's default when the `output` statement gives none).
-const JPEG_QUALITY: u8 = 90;
+/// JPEG quality, 1–100: the `image` crate's default, as mira wrote JPEG before this crate.
+const JPEG_QUALITY: u8 = 75;
 
 fn colour_type(channels: usize, sample: Sample) -> ExtendedColorType {
     match (channels, sample) {

@@ -112,7 +112,7 @@ fn jpeg_is_within_its_compression_error() {
     let errors: Vec<f64> = got.iter().zip(&want).map(|(a, b)| (*a as f64 - *b as f64).abs()).collect();
     let mean = errors.iter().sum::<f64>() / errors.len() as f64;
     let max = errors.iter().cloned().fold(0.0, f64::max);
-    // Quality 90 on a smooth gradient: about one code on average.
+    // Quality 75 on a smooth gradient: about one code on average.
     assert!(mean < 2.0 && max < 16.0, "mean {mean}, max {max}");
     std::fs::remove_dir_all(&dir).ok();
 }
