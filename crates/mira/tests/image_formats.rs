@@ -163,3 +163,35 @@ fn unsupported_formats_are_warned_about_by_file_name() {
     assert!(dir.join("s.exr").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn file_framebuffers_write_their_buffers() {
+    let (dir, _) = render(
+        "fb",
+        r#"framebuffer "main" datatype "rgba_16" primary on filetype "rgb" filename "DIR/main.sgi"
+    framebuffer "depth" datatype "z" filtering off filetype "exr" filename "DIR/depth.exr"
+    framebuffer "depth2" datatype "z" filetype "zt" filename "DIR/depth.zt""#,
+        &[],
+    );
+    let (w, h, z, bpc, main) = read_sgi(&dir.join("main.sgi"));
+    assert_eq!((w, h, z, bpc), (8, 6, 4, 2));
+    // Alpha: 1 on the quad (lower rows), 0 above.
+    for (i, a) in main.iter().skip(3).step_by(4).enumerate() {
+        assert_eq!(*a, if i / w >= 3 { 65535 } else { 0 }, "alpha of pixel {i}");
+    }
+    // The depth EXR holds the one channel Z: 5 on the quad, 0 above (rows top first).
+    let image = exr::prelude::read_all_flat_layers_from_file(dir.join("depth.exr")).unwrap();
+    let channels = &image.layer_data[0].channel_data.list;
+    assert_eq!(channels.len(), 1);
+    assert_eq!(channels[0].name.to_string(), "Z");
+    let depth: Vec<f32> = channels[0].sample_data.values_as_f32().collect();
+    for (i, d) in depth.iter().enumerate() {
+        assert!((d - if i / w >= 3 { 5.0 } else { 0.0 }).abs() < 1e-4, "depth {i}: {d}");
+    }
+    let zt = std::fs::read(dir.join("depth.zt")).unwrap();
+    let zt: Vec<f32> = zt[8..].chunks(4).map(|b| f32::from_be_bytes(b.try_into().unwrap())).collect();
+    // zt rows run bottom first: the same values, rows reversed.
+    let flipped: Vec<f32> = depth.chunks(w).rev().flatten().copied().collect();
+    assert_eq!(zt, flipped);
+    std::fs::remove_dir_all(&dir).ok();
+}
