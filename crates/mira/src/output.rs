@@ -1,47 +1,17 @@
-//! Writing images: multi-channel linear EXR with every frame buffer (the motion buffer when
-//! an output asks for it), and 8-bit PNG (or JPEG, TIFF) through the scene's tone mapper,
-//! Radiance HDR linear.
+//! Writing images: which files the scene's `output` and `framebuffer` statements (or `-o`)
+//! ask for, and each one's pixels from the film, written by the `imageio` crate in every
+//! format of mental ray's `output` statement. EXR files hold every frame buffer (the motion
+//! buffer when an output asks for it); 8- and 16-bit colour files go through the scene's tone
+//! mapper; float files, Radiance HDR and the data formats (`zt`, `nt`, `mt`, `tt`, `st`, …)
+//! hold linear values.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use bsdf::Rgb;
-use exr::prelude::*;
+use imageio::{Format, ImageData, Kind, Pixels};
 use render::film::Film;
 use render::tonemap::ToneMapper;
-
-/// An image file format mira writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// OpenEXR, linear, all buffers.
-    Exr,
-    /// 8-bit PNG through the tone mapper.
-    Png,
-    /// 8-bit JPEG through the tone mapper.
-    Jpeg,
-    /// 8-bit TIFF through the tone mapper.
-    Tiff,
-    /// Radiance HDR, linear RGB.
-    Hdr,
-}
-
-impl Format {
-    /// From a file extension or a mental ray format name (`exr`, `png`, `jpg`, `tif`, `hdr`).
-    pub fn from_name(name: &str) -> Option<Format> {
-        Some(match name.to_ascii_lowercase().as_str() {
-            "exr" => Format::Exr,
-            "png" => Format::Png,
-            "jpg" | "jpeg" => Format::Jpeg,
-            "tif" | "tiff" => Format::Tiff,
-            "hdr" | "pic" | "rgbe" => Format::Hdr,
-            _ => return None,
-        })
-    }
-
-    /// From a path's extension.
-    pub fn from_path(path: &Path) -> Option<Format> {
-        Format::from_name(path.extension()?.to_str()?)
-    }
-}
+use scene::camera::{Camera, Output};
+use bsdf::Rgb;
 
 /// Buffers an output asks for beyond what every file of its format holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -55,7 +25,7 @@ impl Extras {
     /// From an `output` statement's frame buffer types (`rgba`, `+m`, `-z`, …) or a
     /// `framebuffer`'s data type.
     pub fn from_types<S: AsRef<str>>(types: &[S]) -> Extras {
-        Extras { motion: types.iter().any(|t| t.as_ref().trim().trim_start_matches(['+', '-']) == "m") }
+        Extras { motion: types.iter().any(|t| base_type(t.as_ref()) == "m") }
     }
 
     /// Both sets of buffers.
@@ -64,78 +34,266 @@ impl Extras {
     }
 }
 
-/// Writes `film` to `path` in `format` with the buffers of `extras` (EXR only; other
-/// formats hold the colour buffer alone).
-pub fn write(
-    film: &Film,
-    path: &Path,
-    format: Format,
-    tone: &ToneMapper,
-    extras: Extras,
-) -> std::result::Result<(), String> {
-    match format {
-        Format::Exr => write_exr(film, path, extras),
-        Format::Hdr => {
-            let rgba = film.rgba();
-            let img = image::Rgb32FImage::from_fn(film.width, film.height, |x, y| {
-                let p = rgba[(y * film.width + x) as usize];
-                image::Rgb([p[0], p[1], p[2]])
-            });
-            image::DynamicImage::ImageRgb32F(img).save(path).map_err(|e| e.to_string())
-        }
-        Format::Png | Format::Jpeg | Format::Tiff => {
-            let rgba = film.rgba();
-            let img = image::RgbaImage::from_fn(film.width, film.height, |x, y| {
-                let p = rgba[(y * film.width + x) as usize];
-                let c = tone.map_at(Rgb::new(p[0], p[1], p[2]), x, y, film.width, film.height);
-                let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-                image::Rgba([q(c.x), q(c.y), q(c.z), q(p[3])])
-            });
-            if format == Format::Jpeg {
-                image::DynamicImage::ImageRgba8(img).to_rgb8().save(path).map_err(|e| e.to_string())
-            } else {
-                img.save(path).map_err(|e| e.to_string())
-            }
+/// A frame buffer type without its `+`/`-` prefix and size suffix, lower case (`rgba_16` →
+/// `rgba`).
+fn base_type(t: &str) -> String {
+    let t = t.trim().trim_start_matches(['+', '-']).to_ascii_lowercase();
+    match t.split_once('_') {
+        Some((b, "16" | "h" | "fp")) => b.to_string(),
+        _ => t,
+    }
+}
+
+/// Which frame buffer a file holds.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Buffer {
+    /// The colour buffer (RGBA), with every other buffer in EXR files.
+    Color,
+    /// Alpha as one channel (`a`).
+    Alpha,
+    /// Intensity as one channel (`s`): Rec. 709 luminance of the linear colour.
+    Intensity,
+    /// Depth (`z`).
+    Depth,
+    /// Normals (`n`).
+    Normal,
+    /// Motion vectors (`m`).
+    Motion,
+    /// Labels (`tag`).
+    Tag,
+    /// A user frame buffer by name.
+    User(String),
+}
+
+impl Buffer {
+    /// From a frame buffer type (`rgba`, `+z`, `a_16`, `fb0`, …); `None` for types mira has
+    /// no buffer for (`coverage`, `bit`, `vta`, `vts`).
+    fn from_type(t: &str) -> Option<Buffer> {
+        Some(match base_type(t).as_str() {
+            "" | "rgb" | "rgba" | "rgbe" => Buffer::Color,
+            "a" => Buffer::Alpha,
+            "s" => Buffer::Intensity,
+            "z" => Buffer::Depth,
+            "n" => Buffer::Normal,
+            "m" => Buffer::Motion,
+            "tag" => Buffer::Tag,
+            "coverage" | "bit" | "vta" | "vts" => return None,
+            _ => Buffer::User(t.trim().trim_start_matches(['+', '-']).to_string()),
+        })
+    }
+
+    /// The buffer a data format holds when nothing names one (`-o x.zt`).
+    fn for_kind(kind: Kind) -> Buffer {
+        match kind {
+            Kind::MentalDepth => Buffer::Depth,
+            Kind::MentalNormal => Buffer::Normal,
+            Kind::MentalMotion => Buffer::Motion,
+            Kind::MentalTag => Buffer::Tag,
+            Kind::MentalScalar | Kind::MentalBit => Buffer::Alpha,
+            _ => Buffer::Color,
         }
     }
 }
 
-/// One EXR part with channels R, G, B, A (linear colour), Z (depth), N.X/N.Y/N.Z (normal),
-/// tag (label, unsigned integer), `name.R/G/B/A` for each user frame buffer and, when
-/// `extras` asks for it, M.X/M.Y (motion of each pixel's first hit over the shutter
-/// interval in raster pixels, x right, y up as mental ray's raster space).
-fn write_exr(film: &Film, path: &Path, extras: Extras) -> std::result::Result<(), String> {
-    let (w, h) = (film.width as usize, film.height as usize);
-    let rgba = film.rgba();
-    let normals = film.normals();
-    let channel = |name: &str, data: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(data));
-    let mut user: Vec<AnyChannel<FlatSamples>> = Vec::new();
-    for b in &film.user {
-        for (k, c) in ["R", "G", "B", "A"].iter().enumerate() {
-            user.push(channel(&format!("{}.{c}", b.name), b.data.iter().map(|p| p[k]).collect()));
+/// One file to write.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Target {
+    /// Where.
+    pub path: PathBuf,
+    /// In which format and variant.
+    pub format: Format,
+    /// Which buffer.
+    pub buffer: Buffer,
+    /// Buffers EXR files add.
+    pub extras: Extras,
+}
+
+/// The formats `-o` understands, for its error message.
+const EXTENSIONS: &str =
+    ".exr, .png, .jpg, .tif, .hdr, .rgb/.sgi, .pic, .iff, .tga, .ppm, .bmp, .pix, .ct, .st, .zt, .nt, .mt, .tt, .bit";
+
+/// The files to write: `-o`'s (format from its extension), else the camera's file outputs
+/// and file frame buffers, else `SCENE.exr`. Outputs mira cannot write are warned about
+/// (naming the file) and skipped.
+pub fn targets(camera: &Camera, dash_o: Option<&Path>, scene: &Path) -> Result<Vec<Target>, String> {
+    // Buffers beyond colour some output asks for (`-o` writes them too).
+    let asked = camera
+        .outputs
+        .iter()
+        .filter_map(|o| match o {
+            Output::File { types, .. } => Some(Extras::from_types(types)),
+            _ => None,
+        })
+        .chain(camera.framebuffers.iter().map(|fb| Extras::from_types(&[&fb.datatype])))
+        .fold(Extras::default(), Extras::union);
+    if let Some(o) = dash_o {
+        return match Format::from_path(o) {
+            Some(format) => {
+                Ok(vec![Target { path: o.to_path_buf(), format, buffer: Buffer::for_kind(format.kind), extras: asked }])
+            }
+            None => Err(format!("cannot tell the image format of '{}' (use {EXTENSIONS})", o.display())),
+        };
+    }
+    let mut targets = Vec::new();
+    for out in &camera.outputs {
+        if let Output::File { types, format, file } = out {
+            let Some(kind) = Format::from_name(format) else {
+                eprintln!("mira: warning: output format '{format}' of '{file}' is not supported; skipped");
+                continue;
+            };
+            if !kind.kind.writable() {
+                eprintln!("mira: warning: mira does not write '{format}' files ('{file}'); skipped");
+                continue;
+            }
+            let first = types.first().map(String::as_str).unwrap_or("");
+            let Some(buffer) = Buffer::from_type(first) else {
+                eprintln!("mira: warning: mira has no '{first}' frame buffer to write to '{file}'; skipped");
+                continue;
+            };
+            if kind.kind != Kind::Exr && types.len() > 1 {
+                eprintln!(
+                    "mira: warning: '{file}' holds one frame buffer ('{first}'); the others it lists ({}) are \
+                     written only to EXR files",
+                    types[1..].join(",")
+                );
+            }
+            let format = kind.with_data_type(first);
+            if !holds(format.kind, &buffer) {
+                eprintln!(
+                    "mira: warning: '{format_name}' files do not hold the '{first}' frame buffer ('{file}'); skipped",
+                    format_name = format.kind
+                );
+                continue;
+            }
+            targets.push(Target { path: PathBuf::from(file), format, buffer, extras: Extras::from_types(types) });
         }
     }
-    if extras.motion {
-        let motion = film.motion();
-        user.push(channel("M.X", motion.iter().map(|m| m[0]).collect()));
-        user.push(channel("M.Y", motion.iter().map(|m| m[1]).collect()));
+    for fb in &camera.framebuffers {
+        let Some(file) = &fb.filename else { continue };
+        let Some(format) =
+            fb.filetype.as_deref().and_then(Format::from_name).or_else(|| Format::from_path(Path::new(file)))
+        else {
+            eprintln!("mira: warning: cannot tell the file format of frame buffer '{}' ('{file}'); skipped", fb.name);
+            continue;
+        };
+        if !format.kind.writable() {
+            eprintln!("mira: warning: mira does not write '{}' files ('{file}'); skipped", format.kind);
+            continue;
+        }
+        let buffer = match Buffer::from_type(&fb.datatype) {
+            _ if fb.primary => Buffer::Color,
+            Some(Buffer::Color) => Buffer::User(fb.name.clone()),
+            Some(b) => b,
+            None => {
+                eprintln!("mira: warning: mira has no '{}' frame buffer to write to '{file}'; skipped", fb.datatype);
+                continue;
+            }
+        };
+        let format = format.with_data_type(&fb.datatype);
+        if !holds(format.kind, &buffer) {
+            eprintln!(
+                "mira: warning: '{}' files do not hold the '{}' frame buffer '{}' ('{file}'); skipped",
+                format.kind, fb.datatype, fb.name
+            );
+            continue;
+        }
+        targets.push(Target { path: PathBuf::from(file), format, buffer, extras: Extras::from_types(&[&fb.datatype]) });
     }
-    let channels = AnyChannels::sort(
-        vec![
-            channel("R", rgba.iter().map(|p| p[0]).collect()),
-            channel("G", rgba.iter().map(|p| p[1]).collect()),
-            channel("B", rgba.iter().map(|p| p[2]).collect()),
-            channel("A", rgba.iter().map(|p| p[3]).collect()),
-            channel("Z", film.depth()),
-            channel("N.X", normals.iter().map(|n| n[0]).collect()),
-            channel("N.Y", normals.iter().map(|n| n[1]).collect()),
-            channel("N.Z", normals.iter().map(|n| n[2]).collect()),
-            AnyChannel::new("tag", FlatSamples::U32(film.tags())),
-        ]
-        .into_iter()
-        .chain(user)
-        .collect(),
-    );
-    let layer = Layer::new((w, h), LayerAttributes::default(), Encoding::FAST_LOSSLESS, channels);
-    Image::from_layer(layer).write().to_file(path).map_err(|e| e.to_string())
+    if targets.is_empty() {
+        targets.push(Target {
+            path: scene.with_extension("exr"),
+            format: Format::of(Kind::Exr),
+            buffer: Buffer::Color,
+            extras: asked,
+        });
+    }
+    Ok(targets)
+}
+
+/// Whether files of `kind` hold `buffer`.
+fn holds(kind: Kind, buffer: &Buffer) -> bool {
+    kind.holds(match buffer {
+        Buffer::Color | Buffer::User(_) => "rgba",
+        Buffer::Alpha | Buffer::Intensity => "a",
+        Buffer::Depth => "z",
+        Buffer::Normal => "n",
+        Buffer::Motion => "m",
+        Buffer::Tag => "tag",
+    })
+}
+
+/// Linear and display-referred (tone mapped by `tone`) colour of RGBA pixels.
+fn colour(rgba: Vec<[f32; 4]>, film: &Film, tone: &ToneMapper) -> Pixels {
+    let w = film.width.max(1);
+    let display = rgba
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let (x, y) = (i as u32 % w, i as u32 / w);
+            let c = tone.map_at(Rgb::new(p[0], p[1], p[2]), x, y, film.width, film.height);
+            [c.x, c.y, c.z, p[3]]
+        })
+        .collect();
+    Pixels::Color { linear: rgba, display }
+}
+
+/// The pixels `target` writes.
+fn image(film: &Film, target: &Target, tone: &ToneMapper) -> Result<ImageData, String> {
+    let pixels = match &target.buffer {
+        Buffer::Color => colour(film.rgba(), film, tone),
+        Buffer::Alpha => Pixels::Scalar(film.rgba().iter().map(|p| p[3]).collect()),
+        Buffer::Intensity => {
+            Pixels::Scalar(film.rgba().iter().map(|p| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]).collect())
+        }
+        Buffer::Depth => Pixels::Depth(film.depth()),
+        Buffer::Normal => Pixels::Normal(film.normals()),
+        Buffer::Motion => Pixels::Motion(film.motion()),
+        Buffer::Tag => Pixels::Tag(film.tags()),
+        Buffer::User(name) => match film.user.iter().find(|b| b.name == *name) {
+            Some(b) => colour(b.data.clone(), film, tone),
+            None => return Err(format!("the scene declares no frame buffer '{name}'")),
+        },
+    };
+    let mut image = ImageData::new(film.width, film.height, pixels);
+    if target.format.kind == Kind::Exr && target.buffer == Buffer::Color {
+        image = image
+            .with_layer("", Pixels::Depth(film.depth()))
+            .with_layer("", Pixels::Normal(film.normals()))
+            .with_layer("", Pixels::Tag(film.tags()));
+        for b in &film.user {
+            image = image.with_layer(&b.name, Pixels::Color { linear: b.data.clone(), display: b.data.clone() });
+        }
+        if target.extras.motion {
+            image = image.with_layer("", Pixels::Motion(film.motion()));
+        }
+    }
+    Ok(image)
+}
+
+/// Writes `target` from `film`; 8- and 16-bit colour through `tone`.
+///
+/// EXR files of the colour buffer hold channels R, G, B, A (linear colour), Z (depth),
+/// N.X/N.Y/N.Z (normal), tag (label, unsigned integer), `name.R/G/B/A` for each user frame
+/// buffer and, when `extras` asks for it, M.X/M.Y (motion of each pixel's first hit over the
+/// shutter interval in raster pixels, x right, y up as mental ray's raster space).
+pub fn write(film: &Film, target: &Target, tone: &ToneMapper) -> Result<(), String> {
+    let image = image(film, target, tone)?;
+    imageio::write(&target.path, target.format, &image).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn buffer_types() {
+        assert_eq!(Buffer::from_type("+rgba_16"), Some(Buffer::Color));
+        assert_eq!(Buffer::from_type("-z"), Some(Buffer::Depth));
+        assert_eq!(Buffer::from_type("a_fp"), Some(Buffer::Alpha));
+        assert_eq!(Buffer::from_type("tag"), Some(Buffer::Tag));
+        assert_eq!(Buffer::from_type("fb0"), Some(Buffer::User("fb0".into())));
+        assert_eq!(Buffer::from_type("coverage"), None);
+        assert!(Extras::from_types(&["+rgba", "m"]).motion);
+        assert!(!Extras::from_types(&["rgba"]).motion);
+    }
 }

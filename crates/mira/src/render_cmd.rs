@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use render::accel::Backend;
 use render::tonemap::ToneMapper;
 
-use crate::output::{self, Format};
+use crate::output;
 use crate::IncludeArgs;
 
 /// Which acceleration structure to use.
@@ -42,7 +42,8 @@ pub struct RenderArgs {
     #[arg(value_name = "SCENE")]
     scene: PathBuf,
     /// Write this image instead of the scene's outputs (format from the extension: .exr
-    /// linear with every frame buffer; .png, .jpg, .tif tone mapped; .hdr linear).
+    /// linear with every frame buffer; .png, .jpg, .tif, .rgb/.sgi, .pic, .iff, .tga, .ppm,
+    /// .bmp, .pix tone mapped; .hdr linear; .zt, .nt, .mt, .tt, .ct, .st mental ray's own).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
     /// Image size in pixels (overrides the camera's resolution, keeping its field of view).
@@ -229,70 +230,18 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     if stats.cancelled {
         eprintln!("mira: interrupted at {} samples per pixel; writing what was rendered", stats.spp);
     }
-    // Outputs: -o, else the camera's file outputs in formats mira writes, else SCENE.exr.
+    // Outputs: -o, else the camera's file outputs and file frame buffers, else SCENE.exr.
     let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
-    let mut targets: Vec<(PathBuf, Format, output::Extras)> = Vec::new();
-    // Buffers beyond colour some output asks for (`-o` writes them too).
-    let asked = sc
-        .camera
-        .outputs
-        .iter()
-        .filter_map(|o| match o {
-            scene::camera::Output::File { types, .. } => Some(output::Extras::from_types(types)),
-            _ => None,
-        })
-        .chain(sc.camera.framebuffers.iter().map(|fb| output::Extras::from_types(&[&fb.datatype])))
-        .fold(output::Extras::default(), output::Extras::union);
-    if let Some(o) = &args.output {
-        match Format::from_path(o) {
-            Some(f) => targets.push((o.clone(), f, asked)),
-            None => {
-                return err(format!(
-                    "cannot tell the image format of '{}' (use .exr, .png, .jpg, .tif or .hdr)",
-                    o.display()
-                ))
-            }
-        }
-    } else {
-        for out in &sc.camera.outputs {
-            if let scene::camera::Output::File { types, format, file } = out {
-                let extras = output::Extras::from_types(types);
-                match Format::from_name(format) {
-                    Some(f) if extras.motion && f != Format::Exr => {
-                        eprintln!("mira: warning: the motion buffer of '{file}' is written only to EXR files; skipped")
-                    }
-                    Some(f) => targets.push((PathBuf::from(file), f, extras)),
-                    None => eprintln!("mira: warning: output format '{format}' of '{file}' is not supported; skipped"),
-                }
-            }
-        }
-        for fb in &sc.camera.framebuffers {
-            let extras = output::Extras::from_types(&[&fb.datatype]);
-            if let (Some(file), true) = (&fb.filename, fb.primary || fb.datatype.starts_with("rgb") || extras.motion) {
-                let format =
-                    fb.filetype.as_deref().and_then(Format::from_name).or_else(|| Format::from_path(Path::new(file)));
-                match format {
-                    Some(f) if extras.motion && f != Format::Exr => {
-                        eprintln!(
-                            "mira: warning: the motion buffer '{}' is written only to EXR files; skipped",
-                            fb.name
-                        )
-                    }
-                    Some(f) => targets.push((PathBuf::from(file), f, extras)),
-                    None => {}
-                }
-            }
-        }
-        if targets.is_empty() {
-            targets.push((args.scene.with_extension("exr"), Format::Exr, asked));
-        }
-    }
+    let targets = match output::targets(&sc.camera, args.output.as_deref(), &args.scene) {
+        Ok(t) => t,
+        Err(e) => return err(e),
+    };
     let mut failed = false;
-    for (path, format, extras) in &targets {
-        match output::write(&film, path, *format, &tone, *extras) {
-            Ok(()) => eprintln!("mira: wrote {}", path.display()),
+    for target in &targets {
+        match output::write(&film, target, &tone) {
+            Ok(()) => eprintln!("mira: wrote {}", target.path.display()),
             Err(e) => {
-                eprintln!("mira: error: cannot write {}: {e}", path.display());
+                eprintln!("mira: error: cannot write {}: {e}", target.path.display());
                 failed = true;
             }
         }
