@@ -181,6 +181,25 @@ fn connection_cycles_are_errors_not_stack_overflows() {
     run(&c, &Empty::default(), c.material("m"), lit());
 }
 
+/// A chain of 50 000 connected shaders (a hostile file) is an error at the depth limit, not
+/// a stack overflow while building or running it.
+#[test]
+fn connection_chains_deeper_than_the_limit_are_errors_not_stack_overflows() {
+    let n = 50_000;
+    let mut body = String::from("shader \"s0\" \"mib_color_average\" (\"input\" 1 1 1 1, \"factor\" 1)\n");
+    for i in 1..n {
+        body += &format!("shader \"s{i}\" \"mib_color_average\" (\"input\" = \"s{}\", \"factor\" 1)\n", i - 1);
+    }
+    body += &format!("material \"m\" \"mib_illum_lambert\" (\"diffuse\" = \"s{}\") end material", n - 1);
+    let c = compile(&body, &["m"]);
+    let limit = shader::graph::MAX_NESTING;
+    let errors: Vec<_> = c.messages.iter().filter(|m| m.contains("error:")).collect();
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(errors[0].contains(&format!("nest more than {limit} deep")), "{errors:?}");
+    // What was built runs.
+    run(&c, &Empty::default(), c.material("m"), lit());
+}
+
 #[test]
 fn unknown_parameters_and_type_mismatches_warn_at_line_and_column() {
     let c = compile(

@@ -87,6 +87,11 @@ pub struct Graph {
     pub names: Names,
 }
 
+/// Most shader lists built inside one another (each connection to a named shader and each
+/// phenomenon body is one level). Real shader networks nest a few dozen deep; the limit keeps
+/// a hostile chain from exhausting the stack, here or when the shaders run.
+pub const MAX_NESTING: u32 = 256;
+
 /// Builds the graph.
 pub struct Builder<'a> {
     decls: &'a Decls,
@@ -94,6 +99,10 @@ pub struct Builder<'a> {
     graph: Graph,
     /// Named shaders being built (cycle detection).
     building: Vec<String>,
+    /// Shader lists being built inside one another (connections, phenomenon bodies).
+    depth: u32,
+    /// The nesting limit was reported.
+    too_deep: bool,
     /// Phenomenon scopes: local shader names and interface values.
     scopes: Vec<Scope>,
     /// Problems found.
@@ -141,6 +150,8 @@ impl<'a> Builder<'a> {
             shaders,
             graph: Graph { names, ..Graph::default() },
             building: Vec::new(),
+            depth: 0,
+            too_deep: false,
             scopes: Vec::new(),
             diags: Vec::new(),
             counter: 0,
@@ -201,8 +212,31 @@ impl<'a> Builder<'a> {
         head
     }
 
-    /// Builds a shader list; returns its first node. `name` names the first node.
+    /// Builds a shader list; returns its first node. `name` names the first node. Lists
+    /// nested deeper than [`MAX_NESTING`] (a connection chain or phenomena inside phenomena)
+    /// are an error and not built.
     pub fn list(&mut self, list: &ShaderList, name: Option<&str>) -> Option<NodeId> {
+        if self.depth >= MAX_NESTING {
+            if !self.too_deep {
+                self.too_deep = true;
+                let span = list.0.first().map_or(Span::default(), item_span);
+                self.diags.push(Diagnostic::error(
+                    span,
+                    format!(
+                        "shader connections nest more than {MAX_NESTING} deep here (through {}): the shaders below are not built",
+                        self.building.last().map_or("a phenomenon", String::as_str)
+                    ),
+                ));
+            }
+            return None;
+        }
+        self.depth += 1;
+        let head = self.list_items(list, name);
+        self.depth -= 1;
+        head
+    }
+
+    fn list_items(&mut self, list: &ShaderList, name: Option<&str>) -> Option<NodeId> {
         let mut head: Option<NodeId> = None;
         let mut prev: Option<NodeId> = None;
         for (k, item) in list.0.iter().enumerate() {
@@ -402,8 +436,18 @@ impl<'a> Builder<'a> {
                 return Slot::Connect { node: n, member: Some(Arc::from(member)) };
             }
         }
-        self.diags.push(Diagnostic::error(name.span, format!("unknown shader '{}'", name.text)));
+        // A defined shader that could not be built (a cycle, the nesting limit) was
+        // reported where it failed; it is no unknown one.
+        if !self.defined(&name.text) {
+            self.diags.push(Diagnostic::error(name.span, format!("unknown shader '{}'", name.text)));
+        }
         Slot::Value(Value::Null)
+    }
+
+    /// Whether `name` (or `name` without its `.member`) is a shader the scene defines.
+    fn defined(&self, name: &str) -> bool {
+        let known = |n: &str| self.shaders.contains_key(n) || self.shaders.contains_key(n.trim_start_matches("::"));
+        known(name) || name.rsplit_once('.').is_some_and(|(base, _)| known(base))
     }
 
     /// Converts a written value to the declared type.
@@ -486,7 +530,9 @@ impl<'a> Builder<'a> {
             (ParamType::Shader, V::Str(s)) => match self.named(&s.text, s.span) {
                 Some(n) => Value::Tag(Tag::Shader(n)),
                 None => {
-                    self.diags.push(Diagnostic::warning(s.span, format!("unknown shader '{}'", s.text)));
+                    if !self.defined(&s.text) {
+                        self.diags.push(Diagnostic::warning(s.span, format!("unknown shader '{}'", s.text)));
+                    }
                     Value::Null
                 }
             },
@@ -552,6 +598,15 @@ fn constant_array(items: Vec<Slot>) -> Slot {
         Slot::Value(Value::Array(values.into()))
     } else {
         Slot::Array(items)
+    }
+}
+
+/// Where a list item is written.
+fn item_span(item: &ShaderItem) -> Span {
+    match item {
+        ShaderItem::Call { span, .. } => *span,
+        ShaderItem::Ref(r) => r.span,
+        ShaderItem::Define { name, .. } => name.span,
     }
 }
 
