@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Renders every scene in scenes/ at a low resolution and prints the SHA-256 of each image
-# (EXR: every frame buffer, linear floats), one "HASH  SCENE" line per scene, sorted.
+# Renders every scene in scenes/ at a low resolution and prints a digest of each image's
+# pixels (EXR: every frame buffer, linear floats; the digest covers every channel's samples
+# bit for bit, not the file's bytes: crates/imageio/examples/exr_digest.rs), one
+# "DIGEST  SCENE" line per scene, sorted.
 #
-#   tools/scene_hashes.sh [MIRA]            print the hashes (MIRA: the binary to run,
+#   tools/scene_hashes.sh [MIRA]            print the digests (MIRA: the binary to run,
 #                                           default target/release/mira)
 #   tools/scene_hashes.sh --check [MIRA]    compare with tools/scene_hashes.txt; exit 1
 #                                           naming every scene whose image changed
@@ -28,6 +30,9 @@ reference=tools/scene_hashes.txt
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 
+cargo build --quiet --release -p imageio --example exr_digest
+digest=target/release/examples/exr_digest
+
 for scene in scenes/*.mi; do
     name="$(basename "$scene" .mi)"
     "$mira" render "$scene" --resolution 40 30 --spp 4 --fg-rays 8 --threads 2 --seed 7 \
@@ -36,7 +41,7 @@ for scene in scenes/*.mi; do
         cat "$out/$name.log" >&2
         exit 1
     }
-    echo "$(sha256sum "$out/$name.exr" | cut -d' ' -f1)  $scene"
+    echo "$("$digest" "$out/$name.exr" | cut -d' ' -f1)  $scene"
 done | sort -k2 >"$out/hashes.txt"
 
 case "$mode" in
