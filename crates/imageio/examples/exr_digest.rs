@@ -30,7 +30,7 @@ fn digest(path: &str) -> Result<u64, String> {
         hash.bytes(&(layer.size.0 as u64).to_le_bytes());
         hash.bytes(&(layer.size.1 as u64).to_le_bytes());
         let mut channels: Vec<_> = layer.channel_data.list.iter().collect();
-        channels.sort_by(|a, b| a.name.to_string().cmp(&b.name.to_string()));
+        channels.sort_by_key(|c| c.name.to_string());
         for channel in channels {
             hash.bytes(channel.name.to_string().as_bytes());
             hash.bytes(&[0]);

@@ -7,11 +7,11 @@
 
 use std::path::{Path, PathBuf};
 
+use bsdf::Rgb;
 use imageio::{Format, ImageData, Kind, Pixels};
 use render::film::Film;
 use render::tonemap::ToneMapper;
 use scene::camera::{Camera, Output};
-use bsdf::Rgb;
 
 /// Buffers an output asks for beyond what every file of its format holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
