@@ -19,10 +19,13 @@ pub struct CheckArgs {
     /// Print warnings too (errors are always printed).
     #[arg(short = 'W', long)]
     warnings: bool,
-    /// Also build the world (resolve names, flatten instances, tessellate) and report
-    /// instances, triangles, bounds, camera, lights and materials per object.
+    /// Also build the world (resolve names, flatten instances, tessellate), check the
+    /// image's memory against --max-memory, and report instances, triangles, bounds,
+    /// camera, lights and materials per object.
     #[arg(long)]
     scene: bool,
+    #[command(flatten)]
+    memory: crate::limits::MemoryArgs,
 }
 
 /// Runs the command.
@@ -45,6 +48,9 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         if args.scene && !diags.has_errors() {
             let mut list = Vec::new();
             world = scene::Scene::build(&parsed, 0, &mut list);
+            if let Some(w) = &world {
+                list.extend(crate::limits::check_film(w, w.camera.resolution, args.memory.limit(), false));
+            }
             diags.list.extend(list);
         }
         for d in &diags.list {
