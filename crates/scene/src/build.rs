@@ -123,12 +123,17 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
     };
     crate::references::check(&table, diags);
     crate::shader_graph::check(&table, diags);
+    crate::sanity::check_numbers(&table, diags);
     let r = render.render;
     let scope = &render.scope;
     let dialect = dialect(&table);
     let options = match table.lookup(&r.options, scope, "options") {
         Ok((_, e)) => match &e.def {
-            Def::Options(blocks) => Options::from_blocks(blocks, dialect),
+            Def::Options(blocks) => {
+                let mut o = Options::from_blocks(blocks, dialect);
+                crate::sanity::options(&mut o, blocks, diags);
+                o
+            }
             other => {
                 diags.push(Diagnostic::error(
                     r.options.span,
@@ -385,7 +390,8 @@ impl<'a> Builder<'a, '_> {
                                 format!("light instance '{full}': its transform is singular; the light is left out"),
                             ));
                         };
-                        let light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        let mut light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        crate::sanity::light(&mut light, blocks, self.diags);
                         self.lights.push(light);
                     }
                     Def::Camera(_) => {
