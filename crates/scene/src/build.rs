@@ -441,7 +441,7 @@ impl<'a> Builder<'a, '_> {
             Some(&i) => i,
             None => {
                 // Incremental objects: flags accumulate, the last geometry wins.
-                let geometry = match defs.iter().rev().find(|o| !o.geometry.is_empty()) {
+                let mut geometry = match defs.iter().rev().find(|o| !o.geometry.is_empty()) {
                     Some(o) if uv_texsurf => {
                         let mut o = (*o).clone();
                         if tessellate::freeform::add_uv_texture_surfaces(&mut o) == 0 {
@@ -459,6 +459,7 @@ impl<'a> Builder<'a, '_> {
                     Some(o) => tessellate::tessellate(o, self.diags),
                     None => ObjectGeometry::default(),
                 };
+                crate::sanity::mesh(&mut geometry, full, defs[0].span, self.diags);
                 let stmts: Vec<&Stmt> = defs.iter().flat_map(|d| d.stmts.iter()).collect();
                 let tagged = defs.iter().rev().find_map(|o| {
                     o.stmts.iter().rev().find_map(|s| match s {

@@ -14,9 +14,12 @@
 use mi::ast::{Arg, Block, KwStmt, Param, ShaderItem, ShaderList, Stmt, Value};
 use mi::Diagnostic;
 
+use glam::Vec3;
+
 use crate::light::{AreaShape, Light};
 use crate::names::{Def, Table};
 use crate::options::Options;
+use crate::tessellate::ObjectGeometry;
 use crate::values::last;
 
 /// Widest pixel filter footprint, in pixels (mental ray's filters are a few pixels wide).
@@ -172,4 +175,64 @@ pub fn light(l: &mut Light, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
         format!("area light '{}' has no area: it is used without its shape", l.instance),
     ));
     l.area = None;
+}
+
+/// Vertex data no renderer can use: a position that is not finite or lies beyond
+/// ±[`crate::build::WORLD_LIMIT`] leaves out the triangles that use it (the position is set
+/// to the origin, unused); non-finite normals, texture, user, motion and derivative values
+/// become zero. One warning per object, at its definition.
+pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: &mut Vec<Diagnostic>) {
+    let mesh = &mut geometry.mesh;
+    let limit = crate::build::WORLD_LIMIT as f32;
+    let bad: Vec<bool> = mesh.positions.iter().map(|p| !(p.is_finite() && p.abs().max_element() <= limit)).collect();
+    let bad_positions = bad.iter().filter(|b| **b).count();
+    let mut bad_values = 0usize;
+    let mut zero = |v: &mut Vec3| {
+        if !v.is_finite() {
+            *v = Vec3::ZERO;
+            bad_values += 1;
+        }
+    };
+    mesh.normals.iter_mut().for_each(&mut zero);
+    mesh.motion.iter_mut().for_each(&mut zero);
+    for space in mesh.textures.iter_mut().chain(mesh.user.iter_mut()) {
+        space.coords.iter_mut().for_each(&mut zero);
+    }
+    for pair in mesh.derivatives.iter_mut().chain(mesh.bump_basis.iter_mut()) {
+        pair.iter_mut().for_each(&mut zero);
+    }
+    if bad_positions == 0 && bad_values == 0 {
+        return;
+    }
+    let mut dropped = 0usize;
+    if bad_positions > 0 {
+        for (p, b) in mesh.positions.iter_mut().zip(&bad) {
+            if *b {
+                *p = Vec3::ZERO;
+            }
+        }
+        let keep: Vec<bool> =
+            mesh.triangles.iter().map(|t| t.iter().all(|&v| !bad.get(v as usize).copied().unwrap_or(true))).collect();
+        dropped = keep.iter().filter(|k| !**k).count();
+        let mut i = 0;
+        mesh.triangles.retain(|_| {
+            i += 1;
+            keep[i - 1]
+        });
+        if mesh.triangle_slots.len() == keep.len() {
+            let mut i = 0;
+            mesh.triangle_slots.retain(|_| {
+                i += 1;
+                keep[i - 1]
+            });
+        }
+    }
+    diags.push(Diagnostic::warning(
+        span,
+        format!(
+            "object '{object}': {bad_positions} vertex positions are not finite or lie beyond ±{:e} ({dropped} \
+             triangles using them are left out) and {bad_values} other vertex values are not finite (zero is used)",
+            crate::build::WORLD_LIMIT
+        ),
+    ));
 }

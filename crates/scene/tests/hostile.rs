@@ -137,3 +137,24 @@ fn objects_beyond_single_precision_are_left_out_with_a_warning() {
     assert!(scene.is_none());
     assert_eq!(d, ["t.mi:5:1: error: the camera's position is beyond single precision (±1e30)"]);
 }
+
+/// Fuzz finding (scene target, on `crates/mira/tests/hostile/vertex_infinite.mi`): a vertex
+/// at infinity stayed in the mesh after its polygon was skipped, and reached the world's
+/// bounds. Positions that are not finite or lie beyond ±1e30 are now zeroed (triangles
+/// using them left out), with one warning per object.
+#[test]
+fn non_finite_vertices_do_not_reach_the_world() {
+    let text = with_camera("resolution 8 8").replace("group 0 0 0 1 0 0", "group 0 0 0 1e999 0 0");
+    let (scene, d) = build(&text);
+    assert_eq!(
+        d.last().map(String::as_str),
+        Some(
+            "t.mi:6:1: warning: object 't': 1 vertex positions are not finite or lie beyond ±1e30 (0 triangles \
+             using them are left out) and 0 other vertex values are not finite (zero is used)"
+        ),
+        "{d:?}"
+    );
+    let scene = scene.expect("a scene");
+    assert!(scene.objects.iter().all(|o| o.geometry.mesh.positions.iter().all(|p| p.is_finite())));
+    assert!(scene.bounds().is_none_or(|(lo, hi)| lo.is_finite() && hi.is_finite()));
+}
