@@ -425,6 +425,14 @@ impl TokenStream {
                 return IncludeTarget::Builtin(name);
             }
         }
+        // Something is there, but it cannot be read as a file (a directory, a device, a pipe).
+        if let Some(other) = searched.iter().find(|p| p.exists()) {
+            let what = if other.is_dir() { "a directory" } else { "not a regular file" };
+            let message =
+                format!("include file '{}' is {what} ({})", clip(&expanded), clip(&other.display().to_string()));
+            self.diags.push(Diagnostic::error(span, message));
+            return IncludeTarget::Missing;
+        }
         let mut d = Diagnostic::error(span, format!("cannot find include file '{}'", clip(&expanded)));
         if searched.is_empty() {
             d = d.with_note(None, "no include directories are set: pass -I DIR or set MI_INCLUDE_PATH");
@@ -505,6 +513,10 @@ fn split_args(text: &str) -> Vec<String> {
 /// Reads a source file, refusing files too large for 32-bit spans.
 pub fn read_source(path: &Path) -> Result<Vec<u8>, String> {
     let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        // A device such as /dev/zero never ends; a directory has no text.
+        return Err(if meta.is_dir() { "is a directory".into() } else { "is not a regular file".into() });
+    }
     if meta.len() > MAX_FILE_SIZE {
         return Err(format!("file is {} bytes; mira reads .mi files up to 4 GiB", meta.len()));
     }

@@ -23,6 +23,23 @@ struct Printer {
     indent: usize,
 }
 
+/// The key of `$lookup` as written. The preprocessor reads the rest of the line as it is
+/// (no escapes), drops a `#` comment outside quotes and trims spaces and quotes: the key
+/// between bare quotes reads back the same in all but contrived cases (a quote, a `#` and
+/// leading spaces together), where the bare key is tried too.
+fn lookup_key(key: &str) -> String {
+    let reads_back = |written: &str| {
+        let line = format!("$lookup {written}");
+        String::from_utf8_lossy(crate::lexer::directive_args(line.as_bytes())).trim_matches('"') == key
+    };
+    let quoted = format!("\"{key}\"");
+    if reads_back(&quoted) || !reads_back(key) {
+        quoted
+    } else {
+        key.to_string()
+    }
+}
+
 /// A number as text. Infinities become ±1e999 (which read back as infinities); NaN, which
 /// only binary data can hold and text cannot express, is written as -1e999.
 fn float(v: f64) -> String {
@@ -284,7 +301,7 @@ impl Printer {
                 self.line();
                 self.w("$lookup ");
                 if let Some(Arg::Name(n)) = k.args.first() {
-                    self.w(&quote(&n.text));
+                    self.w(&lookup_key(&n.text));
                 }
                 self.w("\n");
             }

@@ -102,3 +102,33 @@ fn corpus_round_trips() {
     let failures: Vec<String> = files.iter().filter_map(|f| round_trip(f).err()).collect();
     assert!(failures.is_empty(), "{} of {} files:\n{}", failures.len(), files.len(), failures.join("\n"));
 }
+
+/// Fuzz finding 4 (`fuzz/seeds/parse/found-4.mi`, the parse target's 68 k-th execution in
+/// issue 15's campaign): a `$lookup` key holding a quote was printed with a backslash
+/// escape, which the preprocessor (reading the directive's line as written) kept. Keys with
+/// quotes, `#` and backslashes now print back to the same tree.
+#[test]
+fn lookup_keys_round_trip() {
+    for text in [
+        "$lookup \"{key}\"\n",
+        "$lookup EY}R\"MG{\"\n",
+        "$lookup a\"b#c\n",
+        "$lookup \"a#b\" # comment\n",
+        "$lookup back\\slash\n",
+    ]
+    .map(str::as_bytes)
+    .into_iter()
+    .chain([&include_bytes!("../../../fuzz/seeds/parse/found-4.mi")[..]])
+    {
+        let first = mi::parse_source(mi::Origin::Memory("l.mi".into()), text.to_vec(), &Default::default());
+        let printed = mi::print(&first.items);
+        let second = mi::parse_source(mi::Origin::Memory("l.mi".into()), printed.clone(), &Default::default());
+        assert_eq!(
+            first.items,
+            second.items,
+            "{:?} printed as {:?}",
+            String::from_utf8_lossy(text),
+            String::from_utf8_lossy(&printed)
+        );
+    }
+}

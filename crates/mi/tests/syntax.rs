@@ -647,3 +647,72 @@ fn unquoted_and_missing_names_where_the_grammar_allows_them() {
     let Item::Instance(i) = &parsed.items[1] else { panic!() };
     assert!(matches!(&i.target, InstanceTarget::Element(n) if n.text == "pCubeShape1"));
 }
+
+/// Every declaration option of the mental ray 3.x manual ("Declaration Options"), in the
+/// forms real files write, after the parameters of `declare shader` and `declare
+/// phenomenon`: each is read as its own statement with its arguments.
+#[test]
+fn declaration_options() {
+    let text = "declare shader color \"s\" (color \"c\")\n\
+        version 3\n apply material, shadow, photon\n apply material,shadow\n scanline off\n trace on\n\
+        shadow sort\n shadow segments\n shadow on\n face both\n derivative 1 2\n derivative 1\n derivative\n\
+        object space\n camera space\n mixed space\n world space\n volume level 2\n parallel\n\
+        texture 2\n bump 1\n hardware\n end declare\n\
+        declare phenomenon color \"p\" (color \"c\")\n shader \"x\" \"s\" (\"c\" = interface \"c\")\n root = \"x\"\n\
+        version 2\n apply material\n scanline on\n trace off\n shadow off\n face front\n derivative 2\n\
+        volume level 1\n parallel\n output priority 3\n end declare\n";
+    let parsed = parse(text);
+    let decls: Vec<&Declaration> =
+        parsed.items.iter().filter_map(|i| if let Item::Declare(d) = i { Some(d) } else { None }).collect();
+    let keys = |d: &Declaration| -> Vec<(&'static str, usize)> {
+        d.body.iter().filter_map(|b| if let DeclItem::Kw(k) = b { Some((k.key, k.args.len())) } else { None }).collect()
+    };
+    assert_eq!(
+        keys(decls[0]),
+        [
+            ("version", 1),
+            ("apply", 1),
+            ("apply", 1),
+            ("scanline", 1),
+            ("trace", 1),
+            ("shadow", 1),
+            ("shadow", 1),
+            ("shadow", 1),
+            ("face", 1),
+            ("derivative", 2),
+            ("derivative", 1),
+            ("derivative", 0),
+            ("object space", 0),
+            ("camera space", 0),
+            ("mixed space", 0),
+            ("world space", 0),
+            ("volume level", 1),
+            ("parallel", 0),
+            ("texture", 1),
+            ("bump", 1),
+            ("hardware", 0),
+        ]
+    );
+    let DeclItem::Kw(apply) = &decls[0].body[1] else { panic!() };
+    let Arg::List(names) = &apply.args[0] else { panic!("{apply:?}") };
+    assert_eq!(names.iter().map(|n| n.text.as_str()).collect::<Vec<_>>(), ["material", "shadow", "photon"]);
+    assert_eq!(
+        keys(decls[1]),
+        [
+            ("root", 1),
+            ("version", 1),
+            ("apply", 1),
+            ("scanline", 1),
+            ("trace", 1),
+            ("shadow", 1),
+            ("face", 1),
+            ("derivative", 1),
+            ("volume level", 1),
+            ("parallel", 0),
+            ("output priority", 1),
+        ]
+    );
+    // Printed and read again, the declarations are the same.
+    let again = parse(std::str::from_utf8(&mi::print(&parsed.items)).unwrap());
+    assert_eq!(again.items, parsed.items);
+}

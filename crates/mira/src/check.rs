@@ -19,10 +19,14 @@ pub struct CheckArgs {
     /// Print warnings too (errors are always printed).
     #[arg(short = 'W', long)]
     warnings: bool,
-    /// Also build the world (resolve names, flatten instances, tessellate) and report
-    /// instances, triangles, bounds, camera, lights and materials per object.
+    /// Also build the world (resolve names, flatten instances, tessellate), check the
+    /// image's memory against --max-memory, compile the shaders (reading textures) as
+    /// render does, and report instances, triangles, bounds,
+    /// camera, lights and materials per object.
     #[arg(long)]
     scene: bool,
+    #[command(flatten)]
+    memory: crate::limits::MemoryArgs,
 }
 
 /// Runs the command.
@@ -45,6 +49,22 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         if args.scene && !diags.has_errors() {
             let mut list = Vec::new();
             world = scene::Scene::build(&parsed, 0, &mut list);
+            if let Some(w) = &world {
+                list.extend(crate::limits::check_film(w, w.camera.resolution, args.memory.limit(), false));
+                // The shaders are compiled as render compiles them (textures read), so that
+                // their errors are reported here too; only for a world without errors, which
+                // the shader graph checks have made safe to compile.
+                if !list.iter().any(|d| d.is_error()) {
+                    let mut dirs: Vec<PathBuf> = path.parent().map(std::path::Path::to_path_buf).into_iter().collect();
+                    dirs.extend(options.include_paths.iter().cloned());
+                    let shading_options = shade::model::ShadingOptions {
+                        search: shade::texture::SearchPath { dirs },
+                        seed: 0,
+                        finalgather_rays: None,
+                    };
+                    list.extend(shade::model::Shading::build(w, &shading_options).1);
+                }
+            }
             diags.list.extend(list);
         }
         for d in &diags.list {

@@ -1,6 +1,7 @@
 //! `mira`: render mental ray and Iray `.mi` scenes.
 
 mod check;
+mod limits;
 mod output;
 mod render_cmd;
 

@@ -82,6 +82,8 @@ pub struct RenderArgs {
     warnings: bool,
     #[command(flatten)]
     include: IncludeArgs,
+    #[command(flatten)]
+    memory: crate::limits::MemoryArgs,
 }
 
 /// Peak resident memory of this process, in bytes (Linux).
@@ -122,7 +124,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
     let Some(mut sc) = world_scene else { return err("no world to render".into()) };
     if let Some(res) = &args.resolution {
-        let (w, h) = (res[0].clamp(1, scene::camera::MAX_RESOLUTION), res[1].clamp(1, scene::camera::MAX_RESOLUTION));
+        let max = scene::camera::MAX_RESOLUTION;
+        if !(1..=max).contains(&res[0]) || !(1..=max).contains(&res[1]) {
+            return err(format!("--resolution {} {} is outside 1 … {max} pixels per side", res[0], res[1]));
+        }
+        let (w, h) = (res[0], res[1]);
         let old = sc.camera.resolution;
         // Keep the image plane: aspect stays as the camera had it relative to its pixels.
         let pixel_aspect = old.0 as f64 / (sc.camera.aspect * old.1 as f64);
@@ -134,6 +140,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             let sy = h as f64 / old.1 as f64;
             [(a as f64 * sx) as i64, (b as f64 * sy) as i64, (c as f64 * sx) as i64, (d as f64 * sy) as i64]
         });
+    }
+    if let Some(d) =
+        crate::limits::check_film(&sc, sc.camera.resolution, args.memory.limit(), args.resolution.is_some())
+    {
+        eprint!("{}", d.render(&parsed.sources));
+        return err(format!("{} needs too much memory; nothing rendered", args.scene.display()));
     }
     let classic = match args.engine {
         EngineArg::Classic => true,
@@ -156,6 +168,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             if d.is_error() || args.warnings {
                 let _ = write!(stderr, "{}", d.render(&parsed.sources));
             }
+        }
+        drop(stderr);
+        // An error of the shaders is an error of the scene: nothing is rendered.
+        if shade_diags.iter().any(|d| d.is_error()) {
+            return err(format!("{} has errors; nothing rendered", args.scene.display()));
         }
         shading
     };

@@ -22,6 +22,34 @@ use crate::{Library, Material, MaterialKind, Object, Scene};
 /// How deeply instgroups may nest.
 pub const MAX_DAG_DEPTH: usize = 256;
 
+/// Largest world-space coordinate of a placed object or the camera: beyond it, the
+/// renderer's single-precision positions and ray arithmetic overflow to infinity.
+pub const WORLD_LIMIT: f64 = 1e30;
+
+/// Whether every vertex of `geometry` (its object-space bounding box) stays within
+/// ±[`WORLD_LIMIT`] once placed by `object_to_world`.
+fn fits_single_precision(geometry: &ObjectGeometry, object_to_world: DMat4) -> bool {
+    let points = geometry.mesh.positions.iter().chain(geometry.hair.iter().flat_map(|h| h.points.iter()));
+    let mut lo = glam::DVec3::splat(f64::INFINITY);
+    let mut hi = glam::DVec3::splat(f64::NEG_INFINITY);
+    for p in points {
+        lo = lo.min(p.as_dvec3());
+        hi = hi.max(p.as_dvec3());
+    }
+    if lo.x > hi.x {
+        return true;
+    }
+    (0..8).all(|i| {
+        let corner = glam::DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        let w = object_to_world.transform_point3(corner);
+        w.is_finite() && w.abs().max_element() <= WORLD_LIMIT
+    })
+}
+
 /// A material inherited down the DAG: one name or an array (for labels), where it was
 /// written, and whether it overrides materials below.
 #[derive(Clone, Debug)]
@@ -94,12 +122,18 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
         return None;
     };
     crate::references::check(&table, diags);
+    crate::shader_graph::check(&table, diags);
+    crate::sanity::check_numbers(&table, diags);
     let r = render.render;
     let scope = &render.scope;
     let dialect = dialect(&table);
     let options = match table.lookup(&r.options, scope, "options") {
         Ok((_, e)) => match &e.def {
-            Def::Options(blocks) => Options::from_blocks(blocks, dialect),
+            Def::Options(blocks) => {
+                let mut o = Options::from_blocks(blocks, dialect);
+                crate::sanity::options(&mut o, blocks, diags);
+                o
+            }
             other => {
                 diags.push(Diagnostic::error(
                     r.options.span,
@@ -158,6 +192,14 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
     })
 }
 
+/// An instgroup path for a message: all of it when short, else its two ends.
+fn path_text(path: &[String]) -> String {
+    if path.len() <= 8 {
+        return path.join(" -> ");
+    }
+    format!("{} -> … {} more … -> {}", path[..3].join(" -> "), path.len() - 6, path[path.len() - 3..].join(" -> "))
+}
+
 fn item_span(item: &ast::Item) -> mi::Span {
     match item {
         ast::Item::Render(r) => r.span,
@@ -186,10 +228,22 @@ impl<'a> Builder<'a, '_> {
                 format!("'{}' is a {}, not an instgroup", name.text, element.def.kind()),
             ));
         };
-        if self.path.contains(&full) || self.path.len() >= MAX_DAG_DEPTH {
+        if self.path.contains(&full) {
             return self.error(Diagnostic::error(
                 name.span,
-                format!("instgroup '{}' contains itself (through {})", name.text, self.path.join(" -> ")),
+                format!("instgroup '{}' contains itself (through {})", name.text, path_text(&self.path)),
+            ));
+        }
+        if self.path.len() >= MAX_DAG_DEPTH {
+            return self.error(Diagnostic::error(
+                name.span,
+                format!(
+                    "instgroup '{}' is nested {} levels deep; mira follows at most {MAX_DAG_DEPTH} levels of \
+                     instgroups (through {})",
+                    name.text,
+                    self.path.len() + 1,
+                    path_text(&self.path)
+                ),
             ));
         }
         self.path.push(full);
@@ -330,8 +384,14 @@ impl<'a> Builder<'a, '_> {
                         self.place_object(full, &target_full, &objs, &next, span);
                     }
                     Def::Light(blocks) => {
-                        let Some(light_to_world) = transform::inverse(next.world_to_local) else { return };
-                        let light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        let Some(light_to_world) = transform::inverse(next.world_to_local) else {
+                            return self.diags.push(Diagnostic::warning(
+                                span,
+                                format!("light instance '{full}': its transform is singular; the light is left out"),
+                            ));
+                        };
+                        let mut light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        crate::sanity::light(&mut light, blocks, self.diags);
                         self.lights.push(light);
                     }
                     Def::Camera(_) => {
@@ -381,7 +441,7 @@ impl<'a> Builder<'a, '_> {
             Some(&i) => i,
             None => {
                 // Incremental objects: flags accumulate, the last geometry wins.
-                let geometry = match defs.iter().rev().find(|o| !o.geometry.is_empty()) {
+                let mut geometry = match defs.iter().rev().find(|o| !o.geometry.is_empty()) {
                     Some(o) if uv_texsurf => {
                         let mut o = (*o).clone();
                         if tessellate::freeform::add_uv_texture_surfaces(&mut o) == 0 {
@@ -399,6 +459,7 @@ impl<'a> Builder<'a, '_> {
                     Some(o) => tessellate::tessellate(o, self.diags),
                     None => ObjectGeometry::default(),
                 };
+                crate::sanity::mesh(&mut geometry, full, defs[0].span, self.diags);
                 let stmts: Vec<&Stmt> = defs.iter().flat_map(|d| d.stmts.iter()).collect();
                 let tagged = defs.iter().rev().find_map(|o| {
                     o.stmts.iter().rev().find_map(|s| match s {
@@ -426,8 +487,23 @@ impl<'a> Builder<'a, '_> {
     /// Places object number `object` under `instance`: its flags resolved and its
     /// material slots bound.
     fn place(&mut self, instance: &str, object: u32, inherited: &Inherited, span: mi::Span) {
-        let Some(object_to_world) = transform::inverse(inherited.world_to_local) else { return };
+        let Some(object_to_world) = transform::inverse(inherited.world_to_local) else {
+            return self.diags.push(Diagnostic::warning(
+                span,
+                format!("instance '{instance}': its transform is singular; the object is left out"),
+            ));
+        };
         let obj = &self.objects[object as usize];
+        if !fits_single_precision(&obj.geometry, object_to_world) {
+            return self.diags.push(Diagnostic::warning(
+                span,
+                format!(
+                    "instance '{instance}': object '{}' placed in world space reaches beyond single precision \
+                     (±{WORLD_LIMIT:e}); the object is left out",
+                    obj.name
+                ),
+            ));
+        }
         let flags = inherited.flags.or(obj.flags).resolve(self.options.face);
         let slots = obj.geometry.mesh.slots.clone();
         let hair_slots: Vec<MaterialSlot> = obj.geometry.hair.iter().map(|h| h.slot.clone()).collect();
@@ -574,7 +650,15 @@ impl<'a> Builder<'a, '_> {
             self.error(Diagnostic::error(element.span, "the camera's transform is singular"));
             return None;
         };
-        Some(Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world))
+        let eye = camera_to_world.transform_point3(glam::DVec3::ZERO);
+        if !(eye.is_finite() && eye.abs().max_element() <= WORLD_LIMIT) {
+            self.error(Diagnostic::error(
+                element.span,
+                format!("the camera's position is beyond single precision (±{WORLD_LIMIT:e})"),
+            ));
+            return None;
+        }
+        Some(Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world, self.diags))
     }
 
     /// Resolves instance light lists to light indices.

@@ -6,7 +6,8 @@
 //! view is `2·atan(aperture / (2·focal))`.
 
 use glam::{DMat4, DVec3};
-use mi::ast::{Arg, Block, OutputKind, ShaderList, Stmt};
+use mi::ast::{Arg, Block, KwStmt, OutputKind, ShaderList, Stmt};
+use mi::Diagnostic;
 
 use crate::values::{attributes, f64_arg, int_arg, last, str_arg, Attributes};
 
@@ -65,6 +66,9 @@ pub struct Camera {
     pub aspect: f64,
     /// Pixels (width, height).
     pub resolution: (u32, u32),
+    /// Where the resolution is written: the `resolution` statement, or the camera element
+    /// when it has none (the default 768 × 576 applies).
+    pub resolution_span: mi::Span,
     /// Image centre shift in pixels.
     pub offset: (f64, f64),
     /// `window xl yl xh yh`: the pixel rectangle to render.
@@ -96,37 +100,119 @@ pub const MAX_RESOLUTION: u32 = 1 << 16;
 
 impl Camera {
     /// Reads the camera's definitions; `world_to_camera` comes from its instance path.
-    pub fn from_blocks(blocks: &[&Block], instance: &str, world_to_camera: DMat4, camera_to_world: DMat4) -> Camera {
+    ///
+    /// Values no camera model can use are reported at their statement: a focal length or
+    /// aperture that is not a positive finite number and a resolution outside 1 …
+    /// [`MAX_RESOLUTION`] are errors (the values read are then replaced by the defaults, so
+    /// that the returned camera is still finite); a non-positive or non-finite aspect ratio,
+    /// image offset or clipping range is a warning and the default is used.
+    pub fn from_blocks(
+        blocks: &[&Block],
+        instance: &str,
+        world_to_camera: DMat4,
+        camera_to_world: DMat4,
+        diags: &mut Vec<Diagnostic>,
+    ) -> Camera {
         let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+        let element_span = blocks.first().map(|b| b.span).unwrap_or_default();
+        let positive = |v: f64| v > 0.0 && v.is_finite();
         let focal = match last(&stmts, "focal") {
             Some(k) if str_arg(k, 0) == Some("infinity") => None,
-            Some(k) => f64_arg(k, 0),
+            Some(k) => match f64_arg(k, 0) {
+                Some(f) if positive(f) => Some(f),
+                f => {
+                    diags.push(Diagnostic::error(
+                        k.span,
+                        format!(
+                            "camera focal length {} is not a positive finite number (or 'infinity' for an \
+                             orthographic camera)",
+                            number(f)
+                        ),
+                    ));
+                    Some(1.0)
+                }
+            },
             None => Some(1.0),
         };
-        let resolution = last(&stmts, "resolution")
-            .map(|k| {
-                let clamp = |v: Option<i64>| v.unwrap_or(1).clamp(1, i64::from(MAX_RESOLUTION)) as u32;
-                (clamp(int_arg(k, 0)), clamp(int_arg(k, 1)))
-            })
-            .unwrap_or((768, 576));
-        let aspect = last(&stmts, "aspect")
-            .and_then(|k| f64_arg(k, 0))
-            .filter(|a| *a > 0.0 && a.is_finite())
-            .unwrap_or(resolution.0 as f64 / resolution.1 as f64);
+        let aperture = match last(&stmts, "aperture") {
+            Some(k) => match f64_arg(k, 0) {
+                Some(a) if positive(a) => a,
+                a => {
+                    diags.push(Diagnostic::error(
+                        k.span,
+                        format!("camera aperture {} is not a positive finite number", number(a)),
+                    ));
+                    1.0
+                }
+            },
+            None => 1.0,
+        };
+        let (resolution, resolution_span) = match last(&stmts, "resolution") {
+            Some(k) => (read_resolution(k, diags), k.span),
+            None => ((768, 576), element_span),
+        };
+        let default_aspect = resolution.0 as f64 / resolution.1 as f64;
+        let aspect = match last(&stmts, "aspect") {
+            Some(k) => match f64_arg(k, 0) {
+                Some(a) if positive(a) => a,
+                a => {
+                    diags.push(Diagnostic::warning(
+                        k.span,
+                        format!(
+                            "camera aspect {} is not a positive finite number: the resolution's ratio {} is used",
+                            number(a),
+                            number(Some(default_aspect))
+                        ),
+                    ));
+                    default_aspect
+                }
+            },
+            None => default_aspect,
+        };
+        let offset = match last(&stmts, "offset") {
+            Some(k) => {
+                let o = (f64_arg(k, 0).unwrap_or(0.0), f64_arg(k, 1).unwrap_or(0.0));
+                if o.0.is_finite() && o.1.is_finite() {
+                    o
+                } else {
+                    diags.push(Diagnostic::warning(k.span, "camera offset is not finite: no offset is used"));
+                    (0.0, 0.0)
+                }
+            }
+            None => (0.0, 0.0),
+        };
+        let default_clip = (0.001, 1e30);
+        let clip = match last(&stmts, "clip") {
+            Some(k) => {
+                let c = (f64_arg(k, 0).unwrap_or(default_clip.0), f64_arg(k, 1).unwrap_or(default_clip.1));
+                if c.0 >= 0.0 && c.0 < c.1 && !c.0.is_nan() && !c.1.is_nan() {
+                    c
+                } else {
+                    diags.push(Diagnostic::warning(
+                        k.span,
+                        format!(
+                            "camera clip {} {} is not a range from a near distance ≥ 0 to a farther one: \
+                             0.001 1e30 is used",
+                            number(Some(c.0)),
+                            number(Some(c.1))
+                        ),
+                    ));
+                    default_clip
+                }
+            }
+            None => default_clip,
+        };
         let mut cam = Camera {
             name: blocks.first().map(|b| b.name.text.clone()).unwrap_or_default(),
             instance: instance.to_string(),
             focal,
-            aperture: last(&stmts, "aperture").and_then(|k| f64_arg(k, 0)).unwrap_or(1.0),
+            aperture,
             aspect,
             resolution,
-            offset: last(&stmts, "offset")
-                .map(|k| (f64_arg(k, 0).unwrap_or(0.0), f64_arg(k, 1).unwrap_or(0.0)))
-                .unwrap_or((0.0, 0.0)),
+            resolution_span,
+            offset,
             window: last(&stmts, "window").map(|k| [0, 1, 2, 3].map(|i| int_arg(k, i).unwrap_or(0))),
-            clip: last(&stmts, "clip")
-                .map(|k| (f64_arg(k, 0).unwrap_or(0.001), f64_arg(k, 1).unwrap_or(1e30)))
-                .unwrap_or((0.001, 1e30)),
+            clip,
             frame: last(&stmts, "frame")
                 .map(|k| (int_arg(k, 0).unwrap_or(1), f64_arg(k, 1).unwrap_or(0.0)))
                 .unwrap_or((1, 0.0)),
@@ -233,5 +319,32 @@ impl Camera {
     /// The up direction (camera +Y), world space, unit length.
     pub fn up(&self) -> DVec3 {
         self.camera_to_world.transform_vector3(DVec3::Y).normalize_or_zero()
+    }
+}
+
+/// `resolution x y`, each side checked against 1 … [`MAX_RESOLUTION`]; an error (and
+/// 768 × 576) when either side is outside.
+fn read_resolution(k: &KwStmt, diags: &mut Vec<Diagnostic>) -> (u32, u32) {
+    let (x, y) = (int_arg(k, 0), int_arg(k, 1));
+    let fits = |v: Option<i64>| v.is_some_and(|v| (1..=i64::from(MAX_RESOLUTION)).contains(&v));
+    if fits(x) && fits(y) {
+        return (x.unwrap_or(1) as u32, y.unwrap_or(1) as u32);
+    }
+    let side = |v: Option<i64>| v.map_or("?".to_string(), |v| v.to_string());
+    diags.push(Diagnostic::error(
+        k.span,
+        format!("camera resolution {} x {} is outside 1 … {MAX_RESOLUTION} pixels per side", side(x), side(y)),
+    ));
+    (768, 576)
+}
+
+/// A number for a message (`?` when absent or not a number).
+fn number(v: Option<f64>) -> String {
+    match v {
+        Some(v) if v.is_finite() => format!("{v}"),
+        Some(v) if v.is_nan() => "NaN".into(),
+        Some(v) if v > 0.0 => "infinity".into(),
+        Some(_) => "-infinity".into(),
+        None => "?".into(),
     }
 }

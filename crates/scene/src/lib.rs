@@ -18,6 +18,8 @@ pub mod names;
 pub mod options;
 pub mod references;
 pub mod report;
+pub mod sanity;
+pub mod shader_graph;
 pub mod tessellate;
 pub mod transform;
 pub mod values;

@@ -1,0 +1,238 @@
+//! Values no renderer can use, reported at the statement that writes them before the
+//! world reaches shaders or the renderer.
+//!
+//! - A number that is not finite (`1e999` reads as infinity; binary data may hold NaN) in
+//!   an options, light or camera statement or in any shader parameter is an error: there is
+//!   no meaningful fallback for an infinite light colour or filter width.
+//! - A pixel filter wider than [`MAX_FILTER_SIZE`] pixels is narrowed with a warning.
+//! - An area light without area (zero edges, radius ≤ 0) becomes the point, spot or
+//!   directional light it would be without its shape, with a warning.
+//!
+//! Camera values (focal length, aperture, resolution, …) are checked by
+//! [`crate::camera::Camera::from_blocks`]; vertex data by the tessellators.
+
+use mi::ast::{Arg, Block, KwStmt, Param, ShaderItem, ShaderList, Stmt, Value};
+use mi::Diagnostic;
+
+use glam::Vec3;
+
+use crate::light::{AreaShape, Light};
+use crate::names::{Def, Table};
+use crate::options::Options;
+use crate::tessellate::ObjectGeometry;
+use crate::values::last;
+
+/// Widest pixel filter footprint, in pixels (mental ray's filters are a few pixels wide).
+pub const MAX_FILTER_SIZE: f64 = 64.0;
+
+/// Camera statements whose values the camera reader checks itself.
+const CAMERA_CHECKED: &[&str] = &["focal", "aperture", "aspect", "offset", "clip", "resolution"];
+
+/// Reports every non-finite number written in options, lights, cameras and shader
+/// parameters of the elements of `table`.
+pub fn check_numbers(table: &Table, diags: &mut Vec<Diagnostic>) {
+    let mut elements: Vec<_> = table.elements.values().collect();
+    elements.sort_by_key(|e| (e.span.file, e.span.lo));
+    for e in elements {
+        match &e.def {
+            Def::Options(blocks) | Def::Light(blocks) => blocks.iter().for_each(|b| stmts(&b.stmts, &[], diags)),
+            Def::Camera(blocks) => blocks.iter().for_each(|b| stmts(&b.stmts, CAMERA_CHECKED, diags)),
+            Def::Shader(defs) => defs.iter().for_each(|d| list(&d.list, diags)),
+            Def::Material(defs) => {
+                for m in defs {
+                    if let Some(l) = &m.shaders {
+                        list(l, diags);
+                    }
+                    stmts(&m.stmts, &[], diags);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn stmts(stmts: &[Stmt], skip: &[&str], diags: &mut Vec<Diagnostic>) {
+    for s in stmts {
+        match s {
+            Stmt::Kw(k) if !skip.contains(&k.key) => kw(k, diags),
+            Stmt::Shaders(l) => list(l, diags),
+            _ => {}
+        }
+    }
+}
+
+fn kw(k: &KwStmt, diags: &mut Vec<Diagnostic>) {
+    let mut bad = None;
+    for a in &k.args {
+        match a {
+            Arg::Float(v) if !v.is_finite() => bad = bad.or(Some(*v)),
+            Arg::Floats(vs) => bad = bad.or(vs.iter().copied().find(|v| !v.is_finite())),
+            Arg::Num(n) if !n.as_f64().is_finite() => bad = bad.or(Some(n.as_f64())),
+            Arg::Shaders(l) | Arg::ShaderArray(l) => list(l, diags),
+            _ => {}
+        }
+    }
+    if let Some(v) = bad {
+        diags.push(Diagnostic::error(k.span, format!("'{}' has a number that is not finite ({})", k.key, word(v))));
+    }
+}
+
+fn list(l: &ShaderList, diags: &mut Vec<Diagnostic>) {
+    for item in &l.0 {
+        match item {
+            ShaderItem::Call { params, .. } => params.iter().for_each(|p| param(p, diags)),
+            ShaderItem::Define { list: inner, .. } => list(inner, diags),
+            ShaderItem::Ref(_) => {}
+        }
+    }
+}
+
+fn param(p: &Param, diags: &mut Vec<Diagnostic>) {
+    if let Some(v) = non_finite(&p.value, diags) {
+        diags.push(Diagnostic::error(
+            p.span,
+            format!("shader parameter '{}' has a number that is not finite ({})", p.name.text, word(v)),
+        ));
+    }
+}
+
+/// The first non-finite number directly in `v` (struct fields are reported as parameters
+/// of their own). Recursion follows one value's nesting, which the parser bounds.
+fn non_finite(v: &Value, diags: &mut Vec<Diagnostic>) -> Option<f64> {
+    match v {
+        Value::Num(n) => Some(n.as_f64()).filter(|x| !x.is_finite()),
+        Value::Tuple(ns) => ns.iter().map(|n| n.as_f64()).find(|x| !x.is_finite()),
+        Value::Struct(fields) => {
+            fields.iter().for_each(|f| param(f, diags));
+            None
+        }
+        Value::Array(vs) | Value::Seq(vs) => vs.iter().find_map(|v| non_finite(v, diags)),
+        Value::Define(item) => {
+            list(&ShaderList(vec![(**item).clone()]), diags);
+            None
+        }
+        _ => None,
+    }
+}
+
+fn word(v: f64) -> &'static str {
+    if v.is_nan() {
+        "NaN"
+    } else if v > 0.0 {
+        "infinity"
+    } else {
+        "-infinity"
+    }
+}
+
+/// Narrows a filter wider than [`MAX_FILTER_SIZE`], warning at its statement.
+pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
+    let f = &mut o.filter;
+    let (o_w, o_h) = (f.width, f.height);
+    if f.width > MAX_FILTER_SIZE || f.height > MAX_FILTER_SIZE || !(f.width > 0.0 && f.height > 0.0) {
+        let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+        let span =
+            last(&stmts, "filter").map_or_else(|| blocks.first().map(|b| b.span).unwrap_or_default(), |k| k.span);
+        let fix = |v: f64| if v > 0.0 { v.min(MAX_FILTER_SIZE) } else { 1.0 };
+        let (w, h) = (fix(f.width), fix(f.height));
+        let finite = f.width.is_finite() && f.height.is_finite(); // else already an error
+        f.width = w;
+        f.height = h;
+        if !finite {
+            return;
+        }
+        diags.push(Diagnostic::warning(
+            span,
+            format!("filter {} x {} pixels is outside (0, {MAX_FILTER_SIZE}]: {w} x {h} is used", o_w, o_h),
+        ));
+    }
+}
+
+/// Turns an area light without area into the light it is without its shape.
+pub fn light(l: &mut Light, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
+    let Some(area) = &l.area else { return };
+    let usable = |r: f64| r > 0.0 && r.is_finite();
+    let has_area = match &area.shape {
+        AreaShape::Rectangle { edge_u, edge_v, .. } => usable(edge_u.cross(*edge_v).length()),
+        AreaShape::Disc { radius, .. } | AreaShape::Sphere { radius } => usable(*radius),
+        AreaShape::Cylinder { axis, radius } => usable(*radius) && usable(axis.length()),
+        AreaShape::Object { .. } | AreaShape::User => true,
+    };
+    if has_area {
+        return;
+    }
+    let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+    let span = stmts
+        .iter()
+        .rev()
+        .find_map(|s| match s {
+            Stmt::Kw(k) if matches!(k.key, "rectangle" | "disc" | "sphere" | "cylinder") => Some(k.span),
+            _ => None,
+        })
+        .unwrap_or_else(|| blocks.first().map(|b| b.span).unwrap_or_default());
+    diags.push(Diagnostic::warning(
+        span,
+        format!("area light '{}' has no area: it is used without its shape", l.instance),
+    ));
+    l.area = None;
+}
+
+/// Vertex data no renderer can use: a position that is not finite or lies beyond
+/// ±[`crate::build::WORLD_LIMIT`] leaves out the triangles that use it (the position is set
+/// to the origin, unused); non-finite normals, texture, user, motion and derivative values
+/// become zero. One warning per object, at its definition.
+pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: &mut Vec<Diagnostic>) {
+    let mesh = &mut geometry.mesh;
+    let limit = crate::build::WORLD_LIMIT as f32;
+    let bad: Vec<bool> = mesh.positions.iter().map(|p| !(p.is_finite() && p.abs().max_element() <= limit)).collect();
+    let bad_positions = bad.iter().filter(|b| **b).count();
+    let mut bad_values = 0usize;
+    let mut zero = |v: &mut Vec3| {
+        if !v.is_finite() {
+            *v = Vec3::ZERO;
+            bad_values += 1;
+        }
+    };
+    mesh.normals.iter_mut().for_each(&mut zero);
+    mesh.motion.iter_mut().for_each(&mut zero);
+    for space in mesh.textures.iter_mut().chain(mesh.user.iter_mut()) {
+        space.coords.iter_mut().for_each(&mut zero);
+    }
+    for pair in mesh.derivatives.iter_mut().chain(mesh.bump_basis.iter_mut()) {
+        pair.iter_mut().for_each(&mut zero);
+    }
+    if bad_positions == 0 && bad_values == 0 {
+        return;
+    }
+    let mut dropped = 0usize;
+    if bad_positions > 0 {
+        for (p, b) in mesh.positions.iter_mut().zip(&bad) {
+            if *b {
+                *p = Vec3::ZERO;
+            }
+        }
+        let keep: Vec<bool> =
+            mesh.triangles.iter().map(|t| t.iter().all(|&v| !bad.get(v as usize).copied().unwrap_or(true))).collect();
+        dropped = keep.iter().filter(|k| !**k).count();
+        let mut i = 0;
+        mesh.triangles.retain(|_| {
+            i += 1;
+            keep[i - 1]
+        });
+        if mesh.triangle_slots.len() == keep.len() {
+            let mut i = 0;
+            mesh.triangle_slots.retain(|_| {
+                i += 1;
+                keep[i - 1]
+            });
+        }
+    }
+    diags.push(Diagnostic::warning(
+        span,
+        format!(
+            "object '{object}': {bad_positions} vertex positions are not finite or lie beyond ±{:e} ({dropped} \
+             triangles using them are left out) and {bad_values} other vertex values are not finite (zero is used)",
+            crate::build::WORLD_LIMIT
+        ),
+    ));
+}
