@@ -57,12 +57,12 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                 if !list.iter().any(|d| d.is_error()) {
                     let mut dirs: Vec<PathBuf> = path.parent().map(std::path::Path::to_path_buf).into_iter().collect();
                     dirs.extend(options.include_paths.iter().cloned());
-                    let shading_options = shade::model::ShadingOptions {
-                        search: shade::texture::SearchPath { dirs },
+                    let shading_options = shader::ShadingOptions {
+                        search: shader::texture::SearchPath { dirs },
                         seed: 0,
                         finalgather_rays: None,
                     };
-                    list.extend(shade::model::Shading::build(w, &shading_options).1);
+                    list.extend(shader::Shading::build(w, &shading_options, &material::registry()).1);
                 }
             }
             diags.list.extend(list);
