@@ -21,6 +21,7 @@
 pub mod engine;
 pub mod light;
 pub mod material;
+pub mod matte;
 pub mod specular;
 pub mod standin;
 pub mod texture;
@@ -60,6 +61,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &material::ADSK_PHONGE,
     &material::SURFACESHADER,
     &material::ADSK_SURFACESHADER,
+    &matte::USEBACKGROUND,
+    &matte::ADSK_USEBACKGROUND,
     &texture::PLACE2D,
     &texture::ADSK_PLACE2D,
     &texture::FILE,

@@ -4,7 +4,7 @@
 
 mod support;
 
-use support::{assert_rgb, compile, point, run, Compiled, Empty, Occluder};
+use support::{assert_rgb, compile, compile_with_camera, point, run, Compiled, Empty, Occluder};
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 
@@ -332,4 +332,29 @@ fn transparency_blends_with_what_lies_behind_and_sets_alpha() {
     let got = shade(&c, [0.0, 0.0]);
     assert_rgb(got, [0.75; 3], 1e-5);
     assert!((got.w - 0.75).abs() < 1e-5, "alpha {}", got.w);
+}
+
+#[test]
+fn use_background_shows_the_background_and_catches_a_shadow() {
+    // Background (the camera's environment) (0.2, 0.4, 0.6); shadowMask 0.8. Unshadowed:
+    // the background, alpha 0. Behind an opaque occluder (no shadow shader): the
+    // background darkened by 0.8, alpha 0.8.
+    let light = directional("sun", "maya_directionallight", "", [0.0, -1.0, 0.0]);
+    let body = format!(
+        r#"{LIBS}{light}
+        shader "bg" "maya_usebackground" ("shadowMask" 0.8, "reflectivity" 0)
+        material "m" "maya_shadingengine" ("surfaceShader" = "bg.outColor") end material
+        shader "lam" "maya_lambert" ()
+        material "blocker" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#
+    );
+    let camera = r#"environment "maya_surfaceshader" ("outColor" 0.2 0.4 0.6)"#;
+    let c = compile_with_camera(camera, "", &body, &["m", "blocker"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let clear = run(&c, &Empty, c.material("m"), point([0.0, 0.0])).color();
+    assert_rgb(clear, [0.2, 0.4, 0.6], 1e-5);
+    assert!(clear.w.abs() < 1e-6, "alpha {}", clear.w);
+    let tracer = Occluder { material: c.material_index("blocker") };
+    let shadowed = run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color();
+    assert_rgb(shadowed, [0.04, 0.08, 0.12], 1e-5);
+    assert!((shadowed.w - 0.8).abs() < 1e-5, "alpha {}", shadowed.w);
 }

@@ -7,10 +7,11 @@
 use glam::Vec3A;
 use shade::model::{Color, Ctx, NodeId, RayType, Shading, ShadingOptions, State, Tracer, Value, VertexData};
 
-/// Camera and options every test scene has; `{OPTIONS}` takes extra option statements.
+/// Camera and options every test scene has; `{OPTIONS}` and `{CAMERA}` take extra
+/// statements.
 const HEADER: &str = r#"
 options "opt" {OPTIONS} end options
-camera "cam" focal 1 aperture 1 aspect 1 resolution 8 8 end camera
+camera "cam" focal 1 aperture 1 aspect 1 resolution 8 8 {CAMERA} end camera
 instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
 "#;
 
@@ -52,7 +53,18 @@ impl Compiled {
 /// one has `instance_extra` in its instance block) so that the scene uses it. Every `instance`
 /// of `body` joins the root group.
 pub fn compile(options: &str, body: &str, materials: &[&str], instance_extra: &str) -> Compiled {
-    let mut text = HEADER.replace("{OPTIONS}", options);
+    compile_with_camera("", options, body, materials, instance_extra)
+}
+
+/// [`compile`] with extra statements in the camera (an environment shader).
+pub fn compile_with_camera(
+    camera: &str,
+    options: &str,
+    body: &str,
+    materials: &[&str],
+    instance_extra: &str,
+) -> Compiled {
+    let mut text = HEADER.replace("{OPTIONS}", options).replace("{CAMERA}", camera);
     text.push_str(body);
     text.push('\n');
     let mut objects = String::new();
