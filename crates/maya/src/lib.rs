@@ -22,6 +22,7 @@ pub mod engine;
 pub mod light;
 pub mod material;
 pub mod matte;
+pub mod output;
 pub mod specular;
 pub mod standin;
 pub mod texture;
