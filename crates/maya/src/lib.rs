@@ -23,6 +23,7 @@ pub mod light;
 pub mod material;
 pub mod matte;
 pub mod output;
+pub mod path;
 pub mod specular;
 pub mod standin;
 pub mod texture;
