@@ -86,4 +86,17 @@ mod tests {
         assert!((phong(n, n, l, 20.0) - t.cos().powf(20.0)).abs() < 1e-5);
         assert_eq!(phong(n, n, -l, 20.0), 0.0);
     }
+
+    #[test]
+    fn phong_e_peak_is_the_highlight_size() {
+        let n = Vec3A::Z;
+        assert!((phong_e(n, n, n, 0.4, 0.6) - 0.6).abs() < 1e-6);
+        // Light 20° off the viewer on the normal: H is 10° off, (cos 10°)^(1/0.16).
+        let t = 20f32.to_radians();
+        let l = Vec3A::new(t.sin(), 0.0, t.cos());
+        let want = 0.6 * 10f32.to_radians().cos().powf(1.0 / 0.16);
+        assert!((phong_e(n, n, l, 0.4, 0.6) - want).abs() < 1e-5);
+        // Rougher: a wider highlight, larger off the peak.
+        assert!(phong_e(n, n, l, 0.8, 0.6) > phong_e(n, n, l, 0.4, 0.6));
+    }
 }

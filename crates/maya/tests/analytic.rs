@@ -4,7 +4,7 @@
 
 mod support;
 
-use support::{assert_rgb, compile, compile_with_camera, point, run, Compiled, Empty, Occluder};
+use support::{assert_rgb, compile, compile_with_camera, point, run, Compiled, Empty, HalfSpace, Occluder};
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 
@@ -357,4 +357,68 @@ fn use_background_shows_the_background_and_catches_a_shadow() {
     let shadowed = run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color();
     assert_rgb(shadowed, [0.04, 0.08, 0.12], 1e-5);
     assert!((shadowed.w - 0.8).abs() < 1e-5, "alpha {}", shadowed.w);
+}
+
+/// The lambert's colour under `light` (with its instance) where shadow rays towards +x
+/// are blocked by an opaque occluder.
+fn half_shadowed(light: &str) -> glam::Vec4 {
+    let body = format!(
+        r#"{LIBS}{light}{LAMBERT}
+        shader "lam2" "maya_lambert" ()
+        material "blocker" opaque "maya_shadingengine" ("surfaceShader" = "lam2.outColor") end material"#
+    );
+    let c = compile("", &body, &["m", "blocker"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let tracer = HalfSpace { material: c.material_index("blocker") };
+    run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color()
+}
+
+#[test]
+fn soft_shadows_from_light_radius_and_light_angle() {
+    let lit = [0.6 * 0.7, 0.5 * 0.7, 0.4 * 0.7];
+    let point_light = |radius: f32| {
+        format!(
+            r#"light "pt" "maya_pointlight" ("useRayTraceShadows" on, "shadowRays" 64, "lightRadius" {radius})
+                origin 0 0 0 end light
+            instance "pt_inst" "pt" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 -2 0 1 end instance
+            "#
+        )
+    };
+    // A hard shadow ray goes straight up (x = 0): not blocked.
+    assert_rgb(half_shadowed(&point_light(0.0)), lit, 1e-5);
+    // A sphere of radius 1 seen from below: the rays to its +x half are blocked.
+    let soft = half_shadowed(&point_light(1.0));
+    assert_rgb(soft, lit.map(|v| 0.5 * v), 0.03 * lit[0]);
+    // A directional light of angular diameter 10°: half its cone is blocked.
+    let sun = directional(
+        "sun",
+        "maya_directionallight",
+        r#""useRayTraceShadows" on, "shadowRays" 64, "lightAngle" 0.17453"#,
+        [0.0, -1.0, 0.0],
+    );
+    assert_rgb(half_shadowed(&sun), lit.map(|v| 0.5 * v), 0.03 * lit[0]);
+}
+
+#[test]
+fn area_light_averages_both_cosines_over_its_rectangle() {
+    // A 1 × 1 light 2 units above, facing down (its local −z), 8 × 8 samples: the mean
+    // over the rectangle of cos θ_surface · cos θ_light = h² / r².
+    let c = scene(&format!(
+        r#"light "area" "maya_arealight" ("intensity" 1)
+            origin 0 0 0
+            rectangle 1 0 0 0 1 0 8 8
+        end light
+        instance "area_inst" "area" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -2 1 end instance
+        {LAMBERT}"#
+    ));
+    let n = 400;
+    let mut mean = 0.0f64;
+    for i in 0..n {
+        for j in 0..n {
+            let (x, z) = ((i as f64 + 0.5) / n as f64 - 0.5, (j as f64 + 0.5) / n as f64 - 0.5);
+            mean += 4.0 / (4.0 + x * x + z * z);
+        }
+    }
+    let k = 0.7 * (mean / (n * n) as f64) as f32;
+    assert_rgb(shade(&c, [0.0, 0.0]), [0.6 * k, 0.5 * k, 0.4 * k], 2e-3);
 }

@@ -153,6 +153,34 @@ impl Tracer for Occluder {
     }
 }
 
+/// A tracer whose shadow rays are blocked (by an occluder of material `material`) when
+/// they travel towards +x, and pass otherwise: half of a light spread symmetrically about
+/// the y axis is hidden.
+pub struct HalfSpace {
+    /// The occluder's material index.
+    pub material: u32,
+}
+
+impl Tracer for HalfSpace {
+    fn intersect(&self, _ray: &mut State, _max_dist: f32) -> bool {
+        false
+    }
+
+    fn shadow_hits(&self, ray: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool) {
+        if ray.dir.x > 0.0 {
+            Occluder { material: self.material }.shadow_hits(ray, max_dist, visit);
+        }
+    }
+
+    fn triangle(&self, _hit: &State, _data: VertexData) -> Option<[Vec3A; 3]> {
+        None
+    }
+
+    fn fb_put(&self, _buffer: u32, _value: Color) -> bool {
+        false
+    }
+}
+
 /// A shading point at the origin on a surface of normal +y, seen from straight above,
 /// with texture coordinate `uv` and dP/du = +x, dP/dv = −z.
 pub fn point(uv: [f32; 2]) -> State {
