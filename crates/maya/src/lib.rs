@@ -22,6 +22,7 @@ pub mod engine;
 pub mod light;
 pub mod material;
 pub mod matte;
+pub mod noise;
 pub mod output;
 pub mod path;
 pub mod specular;
@@ -75,6 +76,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &texture::ADSK_GRID,
     &texture::RAMP,
     &texture::ADSK_RAMP,
+    &noise::NOISE,
+    &noise::ADSK_NOISE,
     &texture::BUMP2D,
     &texture::ADSK_BUMP2D,
     &utility::MULTIPLYDIVIDE,

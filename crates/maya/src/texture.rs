@@ -32,7 +32,7 @@ macro_rules! texture_params {
 const EXTRA: usize = 8;
 
 /// The coordinate a 2D texture looks up, modulo 1; `None` outside its placement frame.
-fn texture_uv(ctx: &mut Ctx, n: NodeId) -> Option<Vec2> {
+pub(crate) fn texture_uv(ctx: &mut Ctx, n: NodeId) -> Option<Vec2> {
     let uv = if ctx.is_connected(n, 0) {
         let v = ctx.vector(n, 0);
         if v.z < 0.0 {
@@ -48,7 +48,7 @@ fn texture_uv(ctx: &mut Ctx, n: NodeId) -> Option<Vec2> {
 
 /// Applies the colour balance to a texture colour `c` of alpha `a` and writes the
 /// result (`outColor`, `outAlpha`, `outTransparency`).
-fn balance(ctx: &mut Ctx, n: NodeId, c: Vec3A, a: f32, out: &mut Value) -> bool {
+pub(crate) fn balance(ctx: &mut Ctx, n: NodeId, c: Vec3A, a: f32, out: &mut Value) -> bool {
     let (mut c, mut a) = (c, a);
     if ctx.bool(n, 1) {
         c = Vec3A::ONE - c;
@@ -71,7 +71,7 @@ fn balance(ctx: &mut Ctx, n: NodeId, c: Vec3A, a: f32, out: &mut Value) -> bool 
 }
 
 /// The default colour, for points outside the placement frame.
-fn outside(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+pub(crate) fn outside(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let d = ctx.color(n, 7);
     write_struct(
         out,
