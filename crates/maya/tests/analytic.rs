@@ -422,3 +422,43 @@ fn area_light_averages_both_cosines_over_its_rectangle() {
     let k = 0.7 * (mean / (n * n) as f64) as f32;
     assert_rgb(shade(&c, [0.0, 0.0]), [0.6 * k, 0.5 * k, 0.4 * k], 2e-3);
 }
+
+#[test]
+fn cut_away_opacity_removes_nearly_transparent_surfaces() {
+    // Transparency 0.8 (opacity 0.2) under a unit light: kept with cutAwayOpacity 0.1
+    // (c·(1 − T) = 0.2, alpha 0.2 over nothing), cut away with 0.5 (what lies behind:
+    // nothing, transparent black).
+    let light = directional("sun", "maya_directionallight", "", [0.0, -1.0, 0.0]);
+    let with_cut = |cut: f32| {
+        let c = scene(&format!(
+            r#"{light}
+            shader "lam" "maya_lambert" ("color" 1 1 1, "diffuse" 1, "transparency" 0.8 0.8 0.8)
+            material "m" "maya_shadingengine" ("surfaceShader" = "lam.outColor", "cutAwayOpacity" {cut}) end material"#
+        ));
+        shade(&c, [0.0, 0.0])
+    };
+    let kept = with_cut(0.1);
+    assert_rgb(kept, [0.2; 3], 1e-5);
+    assert!((kept.w - 0.2).abs() < 1e-5);
+    let cut = with_cut(0.5);
+    assert_rgb(cut, [0.0; 3], 1e-7);
+    assert!(cut.w.abs() < 1e-7);
+}
+
+#[test]
+fn maya_shadow_filters_by_the_material_transparency() {
+    // The occluder's shadow shader is maya_shadow on a material of transparency
+    // (0.5, 0.25, 1): the light arrives filtered per channel.
+    let light = directional("sun", "maya_directionallight", r#""useRayTraceShadows" on"#, [0.0, -1.0, 0.0]);
+    let body = format!(
+        r#"{LIBS}{light}{LAMBERT}
+        shader "tinted" "maya_lambert" ("transparency" 0.5 0.25 1)
+        material "g" "maya_shadingengine" ("surfaceShader" = "tinted.outColor")
+            shadow "maya_shadow" ("surfaceShader" = "tinted.outColor") end material"#
+    );
+    let c = compile("", &body, &["m", "g"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let tracer = Occluder { material: c.material_index("g") };
+    let got = run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color();
+    assert_rgb(got, [0.6 * 0.7 * 0.5, 0.5 * 0.7 * 0.25, 0.4 * 0.7], 1e-5);
+}

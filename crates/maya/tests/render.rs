@@ -104,11 +104,13 @@ fn the_maya_exports_render_with_the_classic_engine() {
 
 /// Writes the README picture of the Maya 2012 export:
 /// `cargo test -p maya --test render -- --ignored --nocapture write_picture`
-/// (`MAYA_PICTURE` names the output, `docs/images/maya_export.png` by default).
+/// (`MAYA_PICTURE` names the output, `docs/images/maya_export.png` by default;
+/// `MAYA_SCENE` another scene of `scenes/maya`).
 #[test]
 #[ignore]
 fn write_picture() {
-    let l = export("maya2012_export.mi", (480, 320));
+    let scene = std::env::var("MAYA_SCENE").unwrap_or_else(|_| "maya2012_export.mi".into());
+    let l = export(&scene, (480, 320));
     let t = std::time::Instant::now();
     let (w, h, px) = render_classic(&l, 16);
     let tone = render::tonemap::ToneMapper::for_camera(&l.scene.camera, &l.scene.library, true);
