@@ -19,6 +19,7 @@
 //! compiled shader graph that the shader model left without an implementation.
 
 pub mod engine;
+pub mod layered;
 pub mod light;
 pub mod material;
 pub mod matte;
@@ -76,6 +77,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &texture::ADSK_GRID,
     &texture::RAMP,
     &texture::ADSK_RAMP,
+    &layered::LAYEREDTEXTURE,
+    &layered::ADSK_LAYEREDTEXTURE,
     &noise::NOISE,
     &noise::ADSK_NOISE,
     &texture::BUMP2D,

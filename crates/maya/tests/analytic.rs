@@ -462,3 +462,20 @@ fn maya_shadow_filters_by_the_material_transparency() {
     let got = run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color();
     assert_rgb(got, [0.6 * 0.7 * 0.5, 0.5 * 0.7 * 0.25, 0.4 * 0.7], 1e-5);
 }
+
+#[test]
+fn layered_texture_blends_a_connected_layer_over_a_constant_one() {
+    // A half-transparent checker (red / blue) over opaque grey.
+    let c = scene(
+        r#"
+        shader "chk" "maya_checker" ("color1" 1 0 0, "color2" 0 0 1)
+        shader "lt" "maya_layeredtexture" ("inputs" [
+            { "color" = "chk.outColor", "alpha" 0.5, "blendMode" 1, "isVisible" on },
+            { "color" 0.5 0.5 0.5, "alpha" 1, "blendMode" 1, "isVisible" on },
+            { "color" 0 1 0, "alpha" 1, "blendMode" 0, "isVisible" off } ])
+        shader "flat" "maya_surfaceshader" ("outColor" = "lt.outColor")
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#,
+    );
+    assert_rgb(shade(&c, [0.25, 0.25]), [0.75, 0.25, 0.25], 1e-5);
+    assert_rgb(shade(&c, [0.75, 0.25]), [0.25, 0.25, 0.75], 1e-5);
+}
