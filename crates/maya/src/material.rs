@@ -33,6 +33,11 @@
 //! Where mental ray for Maya and Maya's own renderer differ, mira follows mental ray for
 //! Maya: final gathering (not Maya's irradiance attributes) supplies indirect light, and
 //! reflections are raytraced up to `reflectionLimit` (no reflection maps).
+//!
+//! Not read: `shadowAttenuation` (Maya brightens the middle of transparent objects'
+//! shadows with it), `chromaticAberration`, `lightAbsorbance`, `surfaceThickness`,
+//! `translucenceDepth`, `translucenceFocus`, `matteOpacityMode`, `hideSource`,
+//! `reflectionSpecularity`.
 
 use glam::Vec3A;
 use shade::model::{Color, Ctx, NodeId, RayType, Value};

@@ -13,6 +13,8 @@
 //! `outAlpha = α · alphaGain + alphaOffset`.
 //!
 //! UV space: u to the right, v up, as in Maya and in mental ray's image lookups.
+//! `uvFilterSize`, `filter` and `filterOffset` are not read: image lookups are filtered
+//! by the ray footprint (mira's mip-mapping), procedural textures are point-sampled.
 
 use glam::{Vec2, Vec3A};
 use shade::model::{Color, Ctx, NodeId, Tag, Value};
