@@ -57,14 +57,20 @@ fn fade(t: f32) -> f32 {
     t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
 }
 
-/// Gradient noise at `p`, in [−1, 1], zero at integer points.
+/// Gradient noise at `p`, in [−1, 1], zero at integer points (and at infinity).
 pub fn gradient_noise(p: Vec3A) -> f32 {
+    if !p.is_finite() {
+        return 0.0;
+    }
     let f = p.floor();
     let (i, j, k) = (f.x as i32, f.y as i32, f.z as i32);
     let d = p - f;
     let (u, v, w) = (fade(d.x), fade(d.y), fade(d.z));
-    let corner =
-        |a: i32, b: i32, c: i32| gradient(lattice(i + a, j + b, k + c), d.x - a as f32, d.y - b as f32, d.z - c as f32);
+    let corner = |a: i32, b: i32, c: i32| {
+        // Wrapping: a hostile frequency puts the lattice at the edge of i32.
+        let h = lattice(i.wrapping_add(a), j.wrapping_add(b), k.wrapping_add(c));
+        gradient(h, d.x - a as f32, d.y - b as f32, d.z - c as f32)
+    };
     let lerp = |t: f32, a: f32, b: f32| a + t * (b - a);
     let x00 = lerp(u, corner(0, 0, 0), corner(1, 0, 0));
     let x10 = lerp(u, corner(0, 1, 0), corner(1, 1, 0));
@@ -202,6 +208,11 @@ mod tests {
         let mean = sum / f64::from(count);
         assert!((mean - 0.5).abs() < 0.05, "mean {mean}");
         assert!(max - min > 0.3, "range {min}..{max}");
+        // Hostile settings stay finite and in range (no lattice overflow).
+        for f in [1e30f32, -1e30, f32::INFINITY] {
+            let v = Noise { frequency: f, ..n }.value(Vec2::new(0.3, 0.6));
+            assert!((0.0..=1.0).contains(&v), "frequency {f}: {v}");
+        }
         // Amplitude 0: the constant threshold + 0.5.
         assert!((Noise { amplitude: 0.0, ..n }.value(Vec2::new(0.3, 0.6)) - 0.5).abs() < 1e-6);
     }
