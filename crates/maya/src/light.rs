@@ -234,7 +234,7 @@ pub fn spot_factor(alpha: f32, cone: f32, penumbra: f32, dropoff: f32) -> f32 {
     } else {
         (outer - alpha) / (outer - inner)
     };
-    if edge <= 0.0 {
+    if edge.is_nan() || edge <= 0.0 {
         return 0.0;
     }
     let c = alpha.cos().max(0.0);
@@ -356,5 +356,7 @@ mod tests {
         // Dropoff 2 at 10°: cos² 10°.
         let a = 10f32.to_radians();
         assert!((spot_factor(a, cone, 0.0, 2.0) - a.cos().powi(2)).abs() < 1e-6);
+        // A NaN cone (a hostile file) gives no light rather than NaN.
+        assert_eq!(spot_factor(a, f32::NAN, 0.0, 0.0), 0.0);
     }
 }
