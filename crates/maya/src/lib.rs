@@ -26,6 +26,7 @@ pub mod matte;
 pub mod noise;
 pub mod output;
 pub mod path;
+pub mod path_light;
 pub mod specular;
 pub mod standin;
 pub mod texture;
