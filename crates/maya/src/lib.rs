@@ -15,6 +15,13 @@
 //!   alpha of the sample;
 //! - angles are in radians (the unit Maya stores and exports).
 //!
+//! Modules: [`engine`] (shading engine, shadow shaders), [`material`] and [`specular`]
+//! (lambert, blinn, phong, phongE, surfaceShader), [`matte`] (useBackground),
+//! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
+//! [`utility`], [`light`]; outside the shader model: [`output`] (`maya_colormgt`'s view
+//! transform for the image), [`path`] and [`path_light`] (materials and lights for the
+//! path engine), [`standin`] (the colour of an unknown plug-in shader).
+//!
 //! [`REGISTRY`] lists every implementation; [`attach`] binds them to the nodes of a
 //! compiled shader graph that the shader model left without an implementation.
 
