@@ -479,3 +479,29 @@ fn layered_texture_blends_a_connected_layer_over_a_constant_one() {
     assert_rgb(shade(&c, [0.25, 0.25]), [0.75, 0.25, 0.25], 1e-5);
     assert_rgb(shade(&c, [0.75, 0.25]), [0.25, 0.25, 0.75], 1e-5);
 }
+
+#[test]
+fn declared_plug_in_materials_get_a_stand_in_of_their_colour() {
+    // Two plug-in shaders the scene declares but mira cannot run: one behind a shading
+    // engine (struct result), one as a material's shader (colour result). Under a unit
+    // light straight above each shows its colour parameter, with a warning naming it.
+    let light = directional("sun", "maya_directionallight", "", [0.0, -1.0, 0.0]);
+    let body = format!(
+        r#"{LIBS}{light}
+        declare shader struct {{ color "outColor", color "outTransparency" }} "vendorMaterial" (
+            scalar "rough", color "baseColor") end declare
+        declare shader color "vendor_mtl" (color "Diffuse_Color", scalar "gloss") end declare
+        shader "vm" "vendorMaterial" ("baseColor" 0.8 0.2 0.1, "rough" 0.3)
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "vm.outColor") end material
+        material "v" opaque "vendor_mtl" ("Diffuse_Color" 0.1 0.5 0.3) end material"#
+    );
+    let mut c = compile("", &body, &["m", "v"], "");
+    let warnings = maya::standin::attach_stand_ins(&mut c.shading);
+    let text: Vec<String> = warnings.iter().map(|d| d.message.clone()).collect();
+    assert_eq!(text.len(), 2, "{text:?}");
+    assert!(text.iter().any(|w| w.contains("'vendorMaterial'") && w.contains("'baseColor'")), "{text:?}");
+    assert!(text.iter().any(|w| w.contains("'vendor_mtl'") && w.contains("'Diffuse_Color'")), "{text:?}");
+    assert_rgb(shade(&c, [0.0, 0.0]), [0.8, 0.2, 0.1], 1e-5);
+    let v = run(&c, &Empty, c.material("v"), point([0.0, 0.0])).color();
+    assert_rgb(v, [0.1, 0.5, 0.3], 1e-5);
+}
