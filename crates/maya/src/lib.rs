@@ -107,6 +107,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &utility::ADSK_SETRANGE,
     &utility::REMAPVALUE,
     &utility::ADSK_REMAPVALUE,
+    &utility::REMAPCOLOR,
+    &utility::ADSK_REMAPCOLOR,
     &utility::LUMINANCE,
     &utility::ADSK_LUMINANCE,
     &utility::GAMMACORRECT,

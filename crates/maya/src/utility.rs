@@ -231,28 +231,39 @@ pub fn curve_at(points: &[(f32, Vec3A, i32)], t: f32) -> Vec3A {
     points[points.len() - 1].1
 }
 
+/// The points of a ramp array of structs {`<p>_Position`, `<p>_<value>`,
+/// `<p>_Interp`}, sorted by position.
+fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
+    let (pos, val, interp) = (format!("{prefix}_Position"), format!("{prefix}_{value}"), format!("{prefix}_Interp"));
+    let mut pts: Vec<(f32, Vec3A, i32)> = v
+        .array()
+        .iter()
+        .map(|e| {
+            let p = e.member(&pos).map_or(0.0, Value::scalar);
+            let value = e.member(&val).map_or(Vec3A::ZERO, |m| match m {
+                Value::Color(c) => rgb(*c),
+                other => Vec3A::splat(other.scalar()),
+            });
+            (p, value, e.member(&interp).map_or(1, Value::int))
+        })
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts
+}
+
+/// `x` normalised by [`lo`, `hi`] and clamped to [0, 1] (0 for an empty range).
+fn normalised(x: f32, lo: f32, hi: f32) -> f32 {
+    if hi != lo {
+        ((x - lo) / (hi - lo)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
 fn remap_value(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let (x, lo, hi) = (ctx.scalar(n, 0), ctx.scalar(n, 1), ctx.scalar(n, 2));
-    let t = if hi != lo { (x - lo) / (hi - lo) } else { 0.0 };
-    let read = |v: &Value, pos: &str, val: &str, interp: &str| -> Vec<(f32, Vec3A, i32)> {
-        let mut pts: Vec<(f32, Vec3A, i32)> = v
-            .array()
-            .iter()
-            .map(|e| {
-                let p = e.member(pos).map_or(0.0, Value::scalar);
-                let value = e.member(val).map_or(Vec3A::ZERO, |m| match m {
-                    Value::Color(c) => rgb(*c),
-                    other => Vec3A::splat(other.scalar()),
-                });
-                (p, value, e.member(interp).map_or(1, Value::int))
-            })
-            .collect();
-        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        pts
-    };
-    let curve = read(&ctx.array(n, 5), "value_Position", "value_FloatValue", "value_Interp");
-    let gradient = read(&ctx.array(n, 6), "color_Position", "color_Color", "color_Interp");
-    let tc = t.clamp(0.0, 1.0);
+    let tc = normalised(ctx.scalar(n, 0), ctx.scalar(n, 1), ctx.scalar(n, 2));
+    let curve = ramp_points(&ctx.array(n, 5), "value", "FloatValue");
+    let gradient = ramp_points(&ctx.array(n, 6), "color", "Color");
     let v = if curve.is_empty() { tc } else { curve_at(&curve, tc).x };
     let (omin, omax) = (ctx.scalar(n, 3), ctx.scalar(n, 4));
     let c = curve_at(&gradient, tc);
@@ -260,6 +271,32 @@ fn remap_value(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         out,
         &[("outValue", Value::Scalar(omin + v * (omax - omin))), ("outColor", Value::Color(rgba(c, 1.0)))],
     );
+    true
+}
+
+maya_shader!(
+    /// remapColor: each channel of `color`, normalised by [`inputMin`, `inputMax`], is
+    /// looked up in its own curve (`red`, `green`, `blue`: arrays of {position, value,
+    /// interp}; empty: the identity) and scaled into [`outputMin`, `outputMax`].
+    REMAPCOLOR,
+    ADSK_REMAPCOLOR,
+    "maya_remapcolor",
+    "adskMayaRemapColor",
+    &["color", "inputMin", "inputMax", "outputMin", "outputMax", "red", "green", "blue"],
+    remap_color
+);
+
+fn remap_color(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let c = rgb(ctx.color(n, 0));
+    let (lo, hi, omin, omax) = (ctx.scalar(n, 1), ctx.scalar(n, 2), ctx.scalar(n, 3), ctx.scalar(n, 4));
+    let mut o = Vec3A::ZERO;
+    for (i, name) in ["red", "green", "blue"].into_iter().enumerate() {
+        let curve = ramp_points(&ctx.array(n, 5 + i), name, "FloatValue");
+        let t = normalised(c[i], lo, hi);
+        let v = if curve.is_empty() { t } else { curve_at(&curve, t).x };
+        o[i] = omin + v * (omax - omin);
+    }
+    write_struct(out, &[("outColor", Value::Color(rgba(o, 1.0)))]);
     true
 }
 

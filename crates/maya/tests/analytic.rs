@@ -505,3 +505,20 @@ fn declared_plug_in_materials_get_a_stand_in_of_their_colour() {
     let v = run(&c, &Empty, c.material("v"), point([0.0, 0.0])).color();
     assert_rgb(v, [0.1, 0.5, 0.3], 1e-5);
 }
+
+#[test]
+fn remap_color_maps_each_channel_through_its_curve() {
+    // Red through 0→0, 1→0.5; green through a step (interp none) 0→0.2, 0.5→0.9; blue
+    // unmapped; output range [0, 2].
+    let c = scene(
+        r#"
+        shader "rc" "maya_remapcolor" ("color" 0.4 0.7 0.25, "outputMax" 2,
+            "red" [ { "red_Position" 0, "red_FloatValue" 0, "red_Interp" 1 },
+                    { "red_Position" 1, "red_FloatValue" 0.5, "red_Interp" 1 } ],
+            "green" [ { "green_Position" 0, "green_FloatValue" 0.2, "green_Interp" 0 },
+                      { "green_Position" 0.5, "green_FloatValue" 0.9, "green_Interp" 0 } ])
+        shader "flat" "maya_surfaceshader" ("outColor" = "rc.outColor")
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#,
+    );
+    assert_rgb(shade(&c, [0.0, 0.0]), [0.4, 1.8, 0.5], 1e-5);
+}
