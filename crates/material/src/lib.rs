@@ -17,6 +17,7 @@
 
 pub mod emission;
 pub mod inputs;
+pub mod maya;
 mod reader;
 
 use mi::ast::{Num, Param, ShaderItem, Value};
@@ -34,8 +35,8 @@ use shader::Shading;
 use std::sync::{Arc, OnceLock};
 
 /// Every shader library mira has, in lookup order: the base and physics libraries, the
-/// Architectural library, MDL's `::base` functions.
-pub static LIBRARIES: &[&shader::Library] = &[&baselib::LIBRARY, &mia::LIBRARY, &mdl::LIBRARY];
+/// Architectural library, Maya's libraries, MDL's `::base` functions.
+pub static LIBRARIES: &[&shader::Library] = &[&baselib::LIBRARY, &mia::LIBRARY, &::maya::LIBRARY, &mdl::LIBRARY];
 
 /// The registry of [`LIBRARIES`], with this crate's translation as the classic engine's
 /// stand-in for materials without mental ray shaders; built once.
@@ -212,6 +213,11 @@ pub fn first_call<'a>(items: &'a [ShaderItem], lib: &'a Library) -> Option<(&'a 
 /// compiled shader graph, with `m` as its material `index`) is given, else they take their
 /// defaults.
 pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>) -> (SurfaceMaterial, Vec<String>) {
+    // A Maya shading engine: its surface shader's material (see [`maya`]).
+    let maya_engine = shading.and_then(|(s, i)| Some((&s.graph, s.materials.get(i)?.surface?)));
+    if let Some(found) = maya_engine.and_then(|(graph, head)| maya::surface_material(&m.name, graph, head)) {
+        return found;
+    }
     let mut warnings = Vec::new();
     let call = match &m.kind {
         MaterialKind::Shader(def) => first_call(&def.list.0, lib),

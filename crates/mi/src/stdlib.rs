@@ -9,6 +9,13 @@ pub const FILES: &[(&str, &str)] = &[
     ("contour.mi", include_str!("../std/contour.mi")),
     ("architectural.mi", include_str!("../std/architectural.mi")),
     ("production.mi", include_str!("../std/production.mi")),
+    ("mayabase.mi", include_str!("../std/mayabase.mi")),
+    ("AdskShaderSDK.mi", include_str!("../std/AdskShaderSDK.mi")),
+    ("MayaShaders.mi", include_str!("../std/MayaShaders.mi")),
+    ("coreutil.mi", include_str!("../std/coreutil.mi")),
+    ("object_light_phen.mi", include_str!("../std/object_light_phen.mi")),
+    ("lookdevKitMR.mi", include_str!("../std/lookdevKitMR.mi")),
+    ("syncolor_shaders.mi", include_str!("../std/syncolor_shaders.mi")),
 ];
 
 /// The built-in file standing in for an include of `file_name`, if any.

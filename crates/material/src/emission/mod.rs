@@ -3,6 +3,8 @@
 //! `mib_light_infinite`, `mib_light_photometric`) and the Architectural library's
 //! `mia_photometric_light` and `mia_portal_light`.
 
+pub mod maya;
+
 use std::sync::Arc;
 
 use scene::{Library, Light};
@@ -92,6 +94,10 @@ pub fn emission_with(
     let Some((decl, params)) = first_call(&list.0, lib) else {
         return Err(format!("light '{}': its shader cannot be found", light.name));
     };
+    // Maya's lights (see [`maya`]).
+    if let Some(maya) = maya::emission_of(declaration_name(decl), params) {
+        return maya;
+    }
     let color = |name: &str, default: Rgb| match color_param(params, name) {
         Some(Ok(c)) => c,
         _ => default,

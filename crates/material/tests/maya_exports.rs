@@ -1,0 +1,79 @@
+//! The repository's Maya export scenes (`scenes/maya/`) compile with every Maya shader
+//! they call bound to an implementation of this crate, and their materials shade.
+
+mod maya_support;
+
+use std::path::PathBuf;
+
+use maya_support::{point, run_in, Empty};
+use shader::{Shading, ShadingOptions};
+
+/// Shaders the scenes call that this crate declares but leaves to the renderer: the
+/// state shader and the image-level output shaders.
+const NOT_SHADING: &[&str] = &["adskFrameBufferState", "maya_state", "maya_colormgt", "maya_shaderglow"];
+
+struct Export {
+    shading: Shading,
+    warnings: Vec<String>,
+}
+
+fn load(name: &str) -> Export {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/maya");
+    let parsed = mi::parse_file(&dir.join(name), &mi::ReadOptions::default()).expect("readable");
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let options =
+        ShadingOptions { search: shader::texture::SearchPath { dirs: vec![dir] }, ..ShadingOptions::default() };
+    let (shading, shade_diags) = Shading::build(&scene, &options, &material::registry());
+    diags.extend(shade_diags);
+    let maya_nodes = shading
+        .graph
+        .nodes
+        .iter()
+        .filter(|n| n.imp.is_some_and(|i| maya::REGISTRY.iter().any(|m| std::ptr::eq(*m, i))));
+    assert!(maya_nodes.count() > 0);
+    let warnings = diags.iter().map(|d| d.render(&parsed.sources)).collect();
+    Export { shading, warnings }
+}
+
+/// Every node of a Maya shader is bound (but the non-shading ones), the only warnings
+/// are the shader model's "not implemented" ones for nodes this crate bound or for the
+/// non-shading shaders, and each material shades to a finite, opaque, lit colour at a
+/// point on the ground.
+fn check(name: &str) {
+    let e = load(name);
+    for node in &e.shading.graph.nodes {
+        let decl = node.decl.name.as_str();
+        let maya = decl.starts_with("maya_") || decl.starts_with("adsk");
+        if maya && !NOT_SHADING.contains(&decl) {
+            assert!(node.imp.is_some(), "{name}: {} ({decl}) has no implementation", node.name);
+        }
+    }
+    for w in &e.warnings {
+        let bound_later = w.contains("is not implemented by mira");
+        assert!(bound_later, "{name}: unexpected warning {w}");
+    }
+    for (i, m) in e.shading.materials.iter().enumerate() {
+        let surface = m.surface.expect("a surface shader");
+        let mut s = point([0.3, 0.6]);
+        s.material = Some(i as u32);
+        let c = run_in(&e.shading, &Empty, surface, s).color();
+        assert!(c.is_finite() && c.x > 0.0 && c.y > 0.0 && c.z > 0.0, "{name}: {} gives {c}", m.name);
+        assert!((c.w - 1.0).abs() < 1e-5, "{name}: {} alpha {}", m.name, c.w);
+    }
+    // The ground's instance excludes the point light.
+    let linked: Vec<_> = e.shading.instance_lights.iter().flatten().collect();
+    assert_eq!(linked.len(), 1, "{name}: one instance has a light list");
+    assert!(linked[0].exclusive && linked[0].lights.len() == 1);
+}
+
+#[test]
+fn maya2017_export_compiles_and_shades() {
+    check("maya2017_export.mi");
+}
+
+#[test]
+fn maya2012_export_compiles_and_shades() {
+    check("maya2012_export.mi");
+}

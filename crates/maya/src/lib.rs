@@ -1,0 +1,202 @@
+//! Maya's shader libraries as mental ray for Maya exports call them: the `maya_*` names
+//! (Maya 8.5–2015, `mayabase.mi`) and the `adskMaya*` names (Maya 2016–2018,
+//! `AdskShaderSDK.mi`), on mental ray's shader model (the `shader` crate). The library plugs
+//! into the model as [`LIBRARY`].
+//!
+//! Each family lives in its own module; every shader is a [`ShaderImpl`] whose `params`
+//! list the declared parameter names (see `crates/mi/std/mayabase.mi`) in the order its
+//! code reads them, registered once under each of its two names.
+//!
+//! Conventions (Maya's, which mental ray for Maya follows):
+//! - colours are linear RGB; a light of colour c and intensity I delivers c·I, divided by
+//!   d^decayRate at distance d (scene units), with no 1/π: a lambert of colour c and
+//!   diffuse d under a directional light at angle θ gives c·d·I·cos θ;
+//! - a material returns Maya's output struct (`outColor`, `outTransparency`,
+//!   `outGlowColor`, `outMatteOpacity`); the shading engine turns it into the colour and
+//!   alpha of the sample;
+//! - angles are in radians (the unit Maya stores and exports).
+//!
+//! Modules: [`engine`] (shading engine, shadow shaders), [`material`] and [`specular`]
+//! (lambert, blinn, phong, phongE, surfaceShader), [`matte`] (useBackground),
+//! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
+//! [`utility`], [`light`]; outside the shader model: [`output`] (`maya_colormgt`'s view
+//! transform for the image), [`standin`] (the colour of an unknown plug-in shader). Their
+//! path-engine translation (materials and lights) is in the `material` crate (`maya` module).
+//!
+//! [`REGISTRY`] lists every implementation.
+
+pub mod engine;
+pub mod layered;
+pub mod light;
+pub mod material;
+pub mod matte;
+pub mod noise;
+pub mod output;
+pub mod specular;
+pub mod standin;
+pub mod texture;
+pub mod utility;
+mod values;
+
+use shader::{Library, ShaderImpl};
+
+/// The library as the shader model's registry sees it (its declarations, `mayabase.mi` and
+/// `AdskShaderSDK.mi`, are among the `mi` crate's standard files).
+pub static LIBRARY: Library = Library { name: "maya", shaders: REGISTRY, declarations: &[] };
+
+/// Declares a shader under its `maya_*` and `adskMaya*` names with one parameter list.
+macro_rules! maya_shader {
+    ($(#[$doc:meta])* $maya:ident, $adsk:ident, $maya_name:literal, $adsk_name:literal, $params:expr, $run:expr) => {
+        $(#[$doc])*
+        pub static $maya: shader::ShaderImpl =
+            shader::ShaderImpl { name: $maya_name, params: $params, run: $run, ..shader::ShaderImpl::PLAIN };
+        $(#[$doc])*
+        pub static $adsk: shader::ShaderImpl =
+            shader::ShaderImpl { name: $adsk_name, params: $params, run: $run, ..shader::ShaderImpl::PLAIN };
+    };
+}
+pub(crate) use maya_shader;
+
+/// Every shader this crate implements, under both name families.
+pub static REGISTRY: &[&ShaderImpl] = &[
+    &engine::SHADINGENGINE,
+    &engine::ADSK_SHADINGENGINE,
+    &engine::SHADOW,
+    &engine::ADSK_SHADOW,
+    &engine::TRANSPARENT,
+    &engine::ADSK_TRANSPARENT,
+    &material::LAMBERT,
+    &material::ADSK_LAMBERT,
+    &material::BLINN,
+    &material::ADSK_BLINN,
+    &material::PHONG,
+    &material::ADSK_PHONG,
+    &material::PHONGE,
+    &material::ADSK_PHONGE,
+    &material::SURFACESHADER,
+    &material::ADSK_SURFACESHADER,
+    &matte::USEBACKGROUND,
+    &matte::ADSK_USEBACKGROUND,
+    &texture::PLACE2D,
+    &texture::ADSK_PLACE2D,
+    &texture::FILE,
+    &texture::ADSK_FILE,
+    &texture::CHECKER,
+    &texture::ADSK_CHECKER,
+    &texture::GRID,
+    &texture::ADSK_GRID,
+    &texture::RAMP,
+    &texture::ADSK_RAMP,
+    &layered::LAYEREDTEXTURE,
+    &layered::ADSK_LAYEREDTEXTURE,
+    &noise::NOISE,
+    &noise::ADSK_NOISE,
+    &texture::BUMP2D,
+    &texture::ADSK_BUMP2D,
+    &utility::MULTIPLYDIVIDE,
+    &utility::ADSK_MULTIPLYDIVIDE,
+    &utility::PLUSMINUSAVERAGE,
+    &utility::ADSK_PLUSMINUSAVERAGE,
+    &utility::REVERSE,
+    &utility::ADSK_REVERSE,
+    &utility::BLENDCOLORS,
+    &utility::ADSK_BLENDCOLORS,
+    &utility::CONDITION,
+    &utility::ADSK_CONDITION,
+    &utility::CLAMP,
+    &utility::ADSK_CLAMP,
+    &utility::SETRANGE,
+    &utility::ADSK_SETRANGE,
+    &utility::REMAPVALUE,
+    &utility::ADSK_REMAPVALUE,
+    &utility::REMAPCOLOR,
+    &utility::ADSK_REMAPCOLOR,
+    &utility::LUMINANCE,
+    &utility::ADSK_LUMINANCE,
+    &utility::GAMMACORRECT,
+    &utility::ADSK_GAMMACORRECT,
+    &utility::RGBTOHSV,
+    &utility::ADSK_RGBTOHSV,
+    &utility::HSVTORGB,
+    &utility::ADSK_HSVTORGB,
+    &utility::VECTORPRODUCT,
+    &utility::ADSK_VECTORPRODUCT,
+    &utility::SAMPLERINFO,
+    &utility::ADSK_SAMPLERINFO,
+    &light::POINT,
+    &light::ADSK_POINT,
+    &light::SPOT,
+    &light::ADSK_SPOT,
+    &light::DIRECTIONAL,
+    &light::ADSK_DIRECTIONAL,
+    &light::AMBIENT,
+    &light::ADSK_AMBIENT,
+    &light::AREA,
+    &light::ADSK_AREA,
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shader::decl::Decls;
+
+    /// Every implementation's parameters are declared under its name in mira's built-in
+    /// declarations (a misspelt name would silently read zero), and no name is registered
+    /// twice.
+    #[test]
+    fn implementations_match_their_declarations() {
+        let decls = Decls::default();
+        for imp in REGISTRY {
+            let decl = decls.get(imp.name).unwrap_or_else(|| panic!("{} is not declared", imp.name));
+            for p in imp.params {
+                assert!(decl.param(p).is_some(), "{} has no parameter '{p}'", imp.name);
+            }
+        }
+        let mut names: Vec<&str> = REGISTRY.iter().map(|s| s.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), REGISTRY.len(), "a shader is registered twice");
+    }
+
+    /// `mayabase.mi` and `AdskShaderSDK.mi` declare the same interfaces in the same
+    /// order (parameters, types, defaults, results, apply lists): each declaration printed
+    /// with its name blanked reads the same.
+    #[test]
+    fn both_declaration_files_declare_the_same_interfaces() {
+        let decls = |file: &str| -> Vec<(String, String)> {
+            let text = mi::stdlib::text(file).expect("built in");
+            let parsed = mi::parse_str(file, text);
+            assert!(!parsed.diagnostics.has_errors(), "{file}");
+            parsed
+                .items
+                .into_iter()
+                .filter_map(|item| {
+                    let mi::ast::Item::Declare(d) = &item else { return None };
+                    let name = d.name.text.clone();
+                    let printed = String::from_utf8(mi::print(std::slice::from_ref(&item))).expect("utf-8");
+                    Some((name.clone(), printed.replace(&format!("\"{name}\""), "\"X\"")))
+                })
+                .collect()
+        };
+        let (maya, adsk) = (decls("mayabase.mi"), decls("AdskShaderSDK.mi"));
+        assert_eq!(maya.len(), adsk.len());
+        assert!(maya.len() >= 40);
+        for ((m, mt), (a, at)) in maya.iter().zip(&adsk) {
+            assert!(m.starts_with("maya_") && a.starts_with("adsk"), "{m} / {a}");
+            assert!(mt.contains("\"X\" ("), "{m} printed as {mt}");
+            assert_eq!(mt, at, "{m} and {a} differ");
+        }
+    }
+
+    /// Both families are registered: every maya_* implementation has an adskMaya* twin
+    /// with the same parameter list.
+    #[test]
+    fn both_name_families_are_registered() {
+        for pair in REGISTRY.chunks(2) {
+            let (m, a) = (pair[0], pair[1]);
+            assert!(m.name.starts_with("maya_") && a.name.starts_with("adsk"), "{} / {}", m.name, a.name);
+            assert_eq!(m.params, a.params, "{}", m.name);
+            assert!(std::ptr::fn_addr_eq(m.run, a.run), "{}", m.name);
+        }
+    }
+}

@@ -1,0 +1,362 @@
+//! Maya's light shaders: point, spot, directional, ambient and area lights.
+//!
+//! A light shader runs in the light state of `shader::lights`: `org` is the point
+//! on the light, `dir` runs from the light to the illuminated point, `dist` between them.
+//! Every Maya light delivers `color · intensity`, divided by `dist^decayRate` for the
+//! lights that decay (Maya's `nonAmbientLightShapeNode`: 0 none, 1 linear, 2 quadratic,
+//! 3 cubic; the division applies below one unit too, where it brightens, as in Maya).
+//!
+//! Parameters shared by all (see `mayabase.mi`):
+//! - `color` (colour, 1 1 1), `intensity` (scalar, 1);
+//! - `useRayTraceShadows` (boolean): shadow rays filtered by the occluders' shadow
+//!   shaders; `shadowColor` (colour, black): what a fully shadowed point receives, as a
+//!   fraction of the light (Maya tints shadows with it: received = light ⊙ (f + (1 − f) ⊙
+//!   shadowColor), f the fraction let through);
+//! - `shadowRays` (integer, 1): shadow rays per light sample, to soften the shadows of a
+//!   light of `lightRadius` > 0 (point, spot, ambient: a sphere of that radius around the
+//!   light) or `lightAngle` > 0 (directional: the angular diameter, radians);
+//! - `emitDiffuse`, `emitSpecular` (booleans, on): read by the Maya materials
+//!   ([`light_role`]), which leave out the diffuse or specular part of such a light.
+//!
+//! The spot penumbra fades linearly in the angle across its width (mira's reading: Maya
+//! documents the penumbra's extent, not its profile). The ambient light's split into an
+//! omnidirectional part and a part from the light's position follows Maya's description
+//! of `ambientShade`; the materials apply it ([`LightRole`]).
+
+use glam::Vec3A;
+use scene::LightKind;
+use shader::{Color, Ctx, NodeId, Value};
+
+use crate::maya_shader;
+
+/// Whether the light being sampled is a directional (infinite) light.
+fn is_directional(ctx: &Ctx) -> bool {
+    ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)).is_some_and(|l| l.kind == LightKind::Directional)
+}
+
+/// Parameters every Maya light but the ambient one reads first, in this order.
+const COMMON: [&str; 7] =
+    ["color", "intensity", "useRayTraceShadows", "shadowColor", "shadowRays", "emitDiffuse", "emitSpecular"];
+
+const I_COLOR: usize = 0;
+const I_INTENSITY: usize = 1;
+const I_SHADOWS: usize = 2;
+const I_SHADOW_COLOR: usize = 3;
+const I_SHADOW_RAYS: usize = 4;
+
+/// `dist^-rate` for Maya's decay rate `rate` (clamped to 0–3).
+pub fn decay(dist: f32, rate: i32) -> f32 {
+    match rate.clamp(0, 3) {
+        0 => 1.0,
+        r => 1.0 / dist.max(1e-6).powi(r),
+    }
+}
+
+/// How a light takes part in a Maya material's shading.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightRole {
+    /// Contributes to the diffuse term (`emitDiffuse`).
+    pub diffuse: bool,
+    /// Contributes to the specular term (`emitSpecular`).
+    pub specular: bool,
+    /// An ambient light with this `ambientShade` (0: light from all sides, 1: from the
+    /// light's position only).
+    pub ambient_shade: Option<f32>,
+}
+
+/// The role of light `light` (an index into the scene's lights): from its Maya light
+/// shader's flags, or diffuse and specular for any other light shader.
+pub fn light_role(ctx: &mut Ctx, light: u32) -> LightRole {
+    let mut role = LightRole { diffuse: true, specular: true, ambient_shade: None };
+    let Some(node) = ctx.shading().lights.get(light as usize).and_then(|l| l.shader) else { return role };
+    let n = ctx.node(node);
+    let param = |name: &str| -> Option<usize> {
+        match n.imp {
+            Some(imp) => imp.params.iter().position(|p| *p == name),
+            None => n.decl.param(name),
+        }
+    };
+    let (d, s, a) = (param("emitDiffuse"), param("emitSpecular"), param("ambientShade"));
+    let ambient = n.decl.name.ends_with("ambientlight") || n.decl.name.ends_with("AmbientLight");
+    if let Some(i) = d {
+        role.diffuse = ctx.bool(node, i);
+    }
+    if let Some(i) = s {
+        role.specular = ctx.bool(node, i);
+    }
+    if ambient {
+        role.ambient_shade = Some(a.map_or(0.45, |i| ctx.scalar(node, i)).clamp(0.0, 1.0));
+    }
+    role
+}
+
+/// Where shadow rays start their way to the light: jittered over a sphere of `radius`
+/// around the light's point (`radius` 0: the point itself).
+enum Spread {
+    Radius(f32),
+    /// Half the angular diameter of a directional light, radians.
+    Angle(f32),
+}
+
+/// Applies raytraced shadows to `color` (in the light state): the fraction let through,
+/// averaged over `shadowRays` rays when the light is soft, mixed with `shadowColor`.
+fn shadows(ctx: &mut Ctx, n: NodeId, color: Color, spread: Spread) -> Color {
+    if !ctx.bool(n, I_SHADOWS) {
+        return color;
+    }
+    let soft = match spread {
+        Spread::Radius(r) => r > 0.0,
+        Spread::Angle(a) => a > 0.0,
+    };
+    let rays = if soft { ctx.int(n, I_SHADOW_RAYS).clamp(1, 1024) as u32 } else { 1 };
+    let saved = ctx.state.clone();
+    let point = saved.point;
+    let site = ctx.next_site();
+    let mut through = Color::ZERO;
+    for i in 0..rays {
+        let u = if soft { ctx.sample2(site, i, rays) } else { glam::Vec2::splat(0.5) };
+        match spread {
+            Spread::Radius(r) if r > 0.0 => {
+                let q = saved.org + r * uniform_sphere(u);
+                let d = point - q;
+                let dist = d.length();
+                if dist > 0.0 {
+                    ctx.state.dir = d / dist;
+                    ctx.state.dist = dist;
+                }
+            }
+            Spread::Angle(a) if a > 0.0 => {
+                ctx.state.dir = cone_dir(saved.dir, a, u);
+            }
+            _ => {}
+        }
+        let mut f = Color::ONE;
+        ctx.trace_shadow(&mut f);
+        through += f;
+        ctx.state.dir = saved.dir;
+        ctx.state.dist = saved.dist;
+    }
+    let f = through / rays as f32;
+    let shadow = ctx.color(n, I_SHADOW_COLOR);
+    let filter = f + (Color::ONE - f) * shadow;
+    let mut out = color * filter;
+    out.w = color.w;
+    out
+}
+
+/// A point on the unit sphere from two uniform numbers.
+fn uniform_sphere(u: glam::Vec2) -> Vec3A {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * u.y;
+    Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// A direction within the cone of half-angle `half` around the unit `axis`, uniform in
+/// solid angle.
+fn cone_dir(axis: Vec3A, half: f32, u: glam::Vec2) -> Vec3A {
+    let cos_max = half.cos();
+    let c = 1.0 - u.x * (1.0 - cos_max);
+    let s = (1.0 - c * c).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * u.y;
+    let f = bsdf::Frame::from_normal(axis);
+    (f.tangent * (s * phi.cos()) + f.bitangent * (s * phi.sin()) + axis * c).normalize()
+}
+
+/// `color · intensity` of light shader `n`, alpha 1.
+fn emitted(ctx: &mut Ctx, n: NodeId) -> Color {
+    let c = ctx.color(n, I_COLOR) * ctx.scalar(n, I_INTENSITY);
+    Color::new(c.x, c.y, c.z, 1.0)
+}
+
+fn finish(out: &mut Value, c: Color) -> bool {
+    *out = Value::Color(c);
+    c.x != 0.0 || c.y != 0.0 || c.z != 0.0
+}
+
+const POINT_PARAMS: &[&str] =
+    &[COMMON[0], COMMON[1], COMMON[2], COMMON[3], COMMON[4], COMMON[5], COMMON[6], "decayRate", "lightRadius"];
+
+maya_shader!(
+    /// Point light: `color · intensity / dist^decayRate`, raytraced shadows softened by
+    /// `lightRadius`.
+    POINT,
+    ADSK_POINT,
+    "maya_pointlight",
+    "adskMayaPointLight",
+    POINT_PARAMS,
+    point
+);
+
+fn point(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let c = emitted(ctx, n) * decay(ctx.state.dist, ctx.int(n, 7));
+    let radius = ctx.scalar(n, 8);
+    let c = shadows(ctx, n, c, Spread::Radius(radius));
+    finish(out, c)
+}
+
+const SPOT_PARAMS: &[&str] = &[
+    COMMON[0],
+    COMMON[1],
+    COMMON[2],
+    COMMON[3],
+    COMMON[4],
+    COMMON[5],
+    COMMON[6],
+    "decayRate",
+    "lightRadius",
+    "coneAngle",
+    "penumbraAngle",
+    "dropoff",
+];
+
+maya_shader!(
+    /// Spot light: a point light limited to a cone about the light's direction.
+    /// `coneAngle` (radians, 40° by default) is the full opening; `penumbraAngle` widens
+    /// (> 0) or narrows (< 0) it with a linear fade across the penumbra; `dropoff` is the
+    /// exponent of cos α (α from the axis) that dims the light away from the axis.
+    SPOT,
+    ADSK_SPOT,
+    "maya_spotlight",
+    "adskMayaSpotLight",
+    SPOT_PARAMS,
+    spot
+);
+
+/// The spot factor at angle `alpha` from the axis (radians).
+pub fn spot_factor(alpha: f32, cone: f32, penumbra: f32, dropoff: f32) -> f32 {
+    let half = 0.5 * cone;
+    let (inner, outer) = if penumbra >= 0.0 { (half, half + penumbra) } else { (half + penumbra, half) };
+    let edge = if alpha <= inner {
+        1.0
+    } else if alpha >= outer {
+        0.0
+    } else {
+        (outer - alpha) / (outer - inner)
+    };
+    if edge.is_nan() || edge <= 0.0 {
+        return 0.0;
+    }
+    let c = alpha.cos().max(0.0);
+    edge * if dropoff > 0.0 { c.powf(dropoff) } else { 1.0 }
+}
+
+fn spot(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let axis = light.direction;
+    let alpha = axis.dot(ctx.state.dir).clamp(-1.0, 1.0).acos();
+    let f = spot_factor(alpha, ctx.scalar(n, 9), ctx.scalar(n, 10), ctx.scalar(n, 11));
+    if f <= 0.0 {
+        return false;
+    }
+    let c = emitted(ctx, n) * (f * decay(ctx.state.dist, ctx.int(n, 7)));
+    let radius = ctx.scalar(n, 8);
+    let c = shadows(ctx, n, c, Spread::Radius(radius));
+    finish(out, c)
+}
+
+const DIRECTIONAL_PARAMS: &[&str] =
+    &[COMMON[0], COMMON[1], COMMON[2], COMMON[3], COMMON[4], COMMON[5], COMMON[6], "lightAngle"];
+
+maya_shader!(
+    /// Directional light: `color · intensity` from one direction, no decay; `lightAngle`
+    /// (radians) is the angular diameter its soft shadows are sampled over.
+    DIRECTIONAL,
+    ADSK_DIRECTIONAL,
+    "maya_directionallight",
+    "adskMayaDirectionalLight",
+    DIRECTIONAL_PARAMS,
+    directional
+);
+
+fn directional(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let c = emitted(ctx, n);
+    let angle = ctx.scalar(n, 7);
+    let c = shadows(ctx, n, c, Spread::Angle(0.5 * angle));
+    finish(out, c)
+}
+
+const AMBIENT_PARAMS: &[&str] =
+    &["color", "intensity", "useRayTraceShadows", "shadowColor", "shadowRays", "ambientShade", "lightRadius"];
+
+maya_shader!(
+    /// Ambient light: `color · intensity`, no decay. How much of it comes from the
+    /// light's position rather than from all sides (`ambientShade`, 0.45 by default) is
+    /// applied by the materials ([`light_role`]); shadows only darken that directional
+    /// part.
+    AMBIENT,
+    ADSK_AMBIENT,
+    "maya_ambientlight",
+    "adskMayaAmbientLight",
+    AMBIENT_PARAMS,
+    ambient
+);
+
+fn ambient(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let c = emitted(ctx, n);
+    let shade = ctx.scalar(n, 5).clamp(0.0, 1.0);
+    let radius = ctx.scalar(n, 6);
+    let lit = if shade > 0.0 && !is_directional(ctx) { shadows(ctx, n, c, Spread::Radius(radius)) } else { c };
+    // Only the directional share is shadowed.
+    let c = c * (1.0 - shade) + lit * shade;
+    finish(out, Color::new(c.x, c.y, c.z, 1.0))
+}
+
+const AREA_PARAMS: &[&str] =
+    &[COMMON[0], COMMON[1], COMMON[2], COMMON[3], COMMON[4], COMMON[5], COMMON[6], "decayRate"];
+
+maya_shader!(
+    /// Area light: at each point the scene's area light samples, `color · intensity /
+    /// dist^decayRate` times the cosine at the emitter (the light faces its direction,
+    /// which is its −z axis in Maya), raytraced shadows to that point.
+    AREA,
+    ADSK_AREA,
+    "maya_arealight",
+    "adskMayaAreaLight",
+    AREA_PARAMS,
+    area
+);
+
+fn area(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let cos_emit = light.direction.dot(ctx.state.dir);
+    if cos_emit <= 0.0 {
+        return false;
+    }
+    let c = emitted(ctx, n) * (cos_emit * decay(ctx.state.dist, ctx.int(n, 7)));
+    let c = shadows(ctx, n, c, Spread::Radius(0.0));
+    finish(out, c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decay_rates_divide_by_powers_of_the_distance() {
+        for (rate, want) in [(0, 1.0), (1, 0.25), (2, 0.0625), (3, 0.015625)] {
+            assert!((decay(4.0, rate) - want).abs() < 1e-7, "rate {rate}");
+        }
+        // Out-of-range rates are clamped.
+        assert_eq!(decay(2.0, 7), decay(2.0, 3));
+        assert_eq!(decay(2.0, -1), 1.0);
+    }
+
+    #[test]
+    fn spot_cone_penumbra_and_dropoff() {
+        let cone = 40f32.to_radians();
+        // Inside the half-angle: full; outside: none.
+        assert_eq!(spot_factor(0.0, cone, 0.0, 0.0), 1.0);
+        assert_eq!(spot_factor(21f32.to_radians(), cone, 0.0, 0.0), 0.0);
+        // A 10° penumbra: halfway across it (25°) half the light.
+        let pen = 10f32.to_radians();
+        assert!((spot_factor(25f32.to_radians(), cone, pen, 0.0) - 0.5).abs() < 1e-5);
+        // Negative penumbra fades inside the cone: at 15° (halfway from 10° to 20°).
+        assert!((spot_factor(15f32.to_radians(), cone, -pen, 0.0) - 0.5).abs() < 1e-5);
+        // Dropoff 2 at 10°: cos² 10°.
+        let a = 10f32.to_radians();
+        assert!((spot_factor(a, cone, 0.0, 2.0) - a.cos().powi(2)).abs() < 1e-6);
+        // A NaN cone (a hostile file) gives no light rather than NaN.
+        assert_eq!(spot_factor(a, f32::NAN, 0.0, 0.0), 0.0);
+    }
+}

@@ -1,0 +1,369 @@
+//! Maya's surface materials: lambert, blinn, phong, phongE and surfaceShader.
+//!
+//! Parameters read (Maya's attribute names; defaults in `mayabase.mi`):
+//! - `color` c (0.5 grey), `diffuse` d (0.8), `ambientColor` a (black), `incandescence`
+//!   (black), `translucence` t (0), `transparency` T (black), `normalCamera` (the
+//!   shading normal when connected, e.g. to bump2d's `outNormal`: mira passes normals in
+//!   world space), `refractions`, `refractiveIndex`, `refractionLimit`,
+//!   `matteOpacityMode`, `matteOpacity`, `glowIntensity`;
+//! - the reflective ones add `specularColor` s (0.5 grey), `reflectivity` r (0.5),
+//!   `reflectedColor` (black), `reflectionLimit` (1), `reflectionSpecularity`; then blinn
+//!   `eccentricity`, `specularRollOff`, `reflectionRolloff`; phong `cosinePower`; phongE
+//!   `roughness`, `highlightSize`, `whiteness`.
+//!
+//! The colour (Maya's lambert model, which mental ray for Maya reproduces; no 1/π):
+//!
+//! ```text
+//! D   = Σ_lights light · cos θ            (emitDiffuse lights, in front)
+//! A   = Σ_ambient lights light · ((1 − ambientShade) + ambientShade · cos θ)
+//! B   = Σ_lights behind light · |cos θ|   (translucence)
+//! out = (c ⊙ (a + A + d·(D + E_fg) + t·B) + incandescence) ⊙ (1 − T)
+//!       + s ⊙ Σ_lights light · highlight   (emitSpecular lights)
+//!       + r · s ⊙ (reflectedColor + traced reflection) [· Fresnel for blinn's rolloff]
+//!       + T ⊙ behind                     (a transparency or refraction ray)
+//! ```
+//!
+//! E_fg is final gathering's irradiance (mental ray's convention, no 1/π). As in Maya,
+//! transparency fades the diffuse part, not the highlights and reflections. Raytraced
+//! reflections stop at `reflectionLimit` (and at the scene's trace depth). The lights are
+//! the instance's light list (`light "exclusive"` links), as the Maya materials have no
+//! light array. In a shadow ray the material filters the light by T (exports make the
+//! shading engine the material's shadow shader too; see [`crate::engine`]).
+//!
+//! Where mental ray for Maya and Maya's own renderer differ, mira follows mental ray for
+//! Maya: final gathering (not Maya's irradiance attributes) supplies indirect light, and
+//! reflections are raytraced up to `reflectionLimit` (no reflection maps).
+//!
+//! Not read: `shadowAttenuation` (Maya brightens the middle of transparent objects'
+//! shadows with it), `chromaticAberration`, `lightAbsorbance`, `surfaceThickness`,
+//! `translucenceDepth`, `translucenceFocus`, `matteOpacityMode`, `hideSource`,
+//! `reflectionSpecularity`.
+
+use glam::Vec3A;
+use shader::{Color, Ctx, NodeId, RayType, Value};
+
+use crate::light::light_role;
+use crate::maya_shader;
+use crate::specular;
+use crate::values::{rgb, rgba, write_struct};
+
+const COLOR: usize = 0;
+const TRANSPARENCY: usize = 1;
+const AMBIENT_COLOR: usize = 2;
+const INCANDESCENCE: usize = 3;
+const NORMAL_CAMERA: usize = 4;
+const DIFFUSE: usize = 5;
+const TRANSLUCENCE: usize = 6;
+const REFRACTIONS: usize = 7;
+const REFRACTIVE_INDEX: usize = 8;
+const REFRACTION_LIMIT: usize = 9;
+const MATTE_OPACITY: usize = 10;
+const GLOW_INTENSITY: usize = 11;
+const SPECULAR_COLOR: usize = 12;
+const REFLECTIVITY: usize = 13;
+const REFLECTED_COLOR: usize = 14;
+const REFLECTION_LIMIT: usize = 15;
+/// The first parameter a reflective material adds to the shared ones.
+const EXTRA: usize = REFLECTION_LIMIT + 1;
+
+/// Parameters of lambert, in the order the code reads them.
+const LAMBERT_PARAMS: &[&str] = &[
+    "color",
+    "transparency",
+    "ambientColor",
+    "incandescence",
+    "normalCamera",
+    "diffuse",
+    "translucence",
+    "refractions",
+    "refractiveIndex",
+    "refractionLimit",
+    "matteOpacity",
+    "glowIntensity",
+];
+
+macro_rules! reflective_params {
+    ($($extra:literal),*) => {
+        &[
+            "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
+            "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
+            "glowIntensity", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            $($extra),*
+        ]
+    };
+}
+
+/// Which highlight a material adds.
+#[derive(Clone, Copy, Debug)]
+enum Highlight {
+    None,
+    Blinn { eccentricity: f32, rolloff: f32, reflection_rolloff: bool },
+    Phong { power: f32 },
+    PhongE { roughness: f32, size: f32, whiteness: Vec3A },
+}
+
+impl Highlight {
+    fn value(self, n: Vec3A, v: Vec3A, l: Vec3A) -> Vec3A {
+        match self {
+            Highlight::None => Vec3A::ZERO,
+            Highlight::Blinn { eccentricity, rolloff, .. } => {
+                Vec3A::splat(specular::blinn(n, v, l, eccentricity, rolloff))
+            }
+            Highlight::Phong { power } => Vec3A::splat(specular::phong(n, v, l, power)),
+            Highlight::PhongE { roughness, size, whiteness } => whiteness * specular::phong_e(n, v, l, roughness, size),
+        }
+    }
+}
+
+maya_shader!(
+    /// Maya's lambert: the diffuse model above without highlights.
+    LAMBERT,
+    ADSK_LAMBERT,
+    "maya_lambert",
+    "adskMayaLambert",
+    LAMBERT_PARAMS,
+    lambert
+);
+
+fn lambert(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    surface(ctx, n, out, |_, _| Highlight::None)
+}
+
+maya_shader!(
+    /// Maya's blinn: lambert plus Blinn's highlight ([`specular::blinn`]) of
+    /// `eccentricity` (0.3) and `specularRollOff` (0.7); with `reflectionRolloff` the
+    /// reflections fade by the same Fresnel factor at N·V.
+    BLINN,
+    ADSK_BLINN,
+    "maya_blinn",
+    "adskMayaBlinn",
+    reflective_params!("eccentricity", "specularRollOff", "reflectionRolloff"),
+    blinn
+);
+
+fn blinn(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    surface(ctx, n, out, |ctx, n| Highlight::Blinn {
+        eccentricity: ctx.scalar(n, EXTRA),
+        rolloff: ctx.scalar(n, EXTRA + 1),
+        reflection_rolloff: ctx.bool(n, EXTRA + 2),
+    })
+}
+
+maya_shader!(
+    /// Maya's phong: lambert plus (R·L)^`cosinePower` (20).
+    PHONG,
+    ADSK_PHONG,
+    "maya_phong",
+    "adskMayaPhong",
+    reflective_params!("cosinePower"),
+    phong
+);
+
+fn phong(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    surface(ctx, n, out, |ctx, n| Highlight::Phong { power: ctx.scalar(n, EXTRA) })
+}
+
+maya_shader!(
+    /// Maya's phongE: lambert plus [`specular::phong_e`] of `roughness` (0.5) and
+    /// `highlightSize` (0.5), tinted by `whiteness` (0.5 grey).
+    PHONGE,
+    ADSK_PHONGE,
+    "maya_phonge",
+    "adskMayaPhongE",
+    reflective_params!("roughness", "highlightSize", "whiteness"),
+    phong_e
+);
+
+fn phong_e(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    surface(ctx, n, out, |ctx, n| Highlight::PhongE {
+        roughness: ctx.scalar(n, EXTRA),
+        size: ctx.scalar(n, EXTRA + 1),
+        whiteness: rgb(ctx.color(n, EXTRA + 2)),
+    })
+}
+
+/// A shadow ray through a Maya material: called as a shadow shader (the arriving light
+/// in `out`), the light is filtered by the transparency; called through a shading engine
+/// (`out` holds the output struct), the transparency is reported in `outTransparency`
+/// for the engine to filter with.
+fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
+    if let Value::Struct(_) = out {
+        write_struct(out, &[("outTransparency", Value::Color(rgba(transparency, 1.0)))]);
+        return true;
+    }
+    let c = out.color();
+    let f = rgb(c) * transparency;
+    *out = Value::Color(rgba(f, c.w));
+    f != Vec3A::ZERO
+}
+
+/// The light arriving at the point, split by how the material uses it.
+#[derive(Default)]
+struct Received {
+    diffuse: Vec3A,
+    ambient: Vec3A,
+    behind: Vec3A,
+    specular: Vec3A,
+}
+
+fn gather_lights(ctx: &mut Ctx, highlight: Highlight, translucent: bool) -> Received {
+    let mut r = Received::default();
+    let (n, v) = (ctx.state.normal, -ctx.state.dir);
+    for light in ctx.instance_lights() {
+        let role = light_role(ctx, light);
+        let mut lp = ctx.light_loop(light);
+        lp.both_sides = role.ambient_shade.is_some() || translucent;
+        let mut sum = Received::default();
+        while let Some(s) = ctx.sample_light(&mut lp) {
+            let c = rgb(s.color);
+            if let Some(shade) = role.ambient_shade {
+                sum.ambient += c * ((1.0 - shade) + shade * s.dot_nl.max(0.0));
+            } else if s.dot_nl > 0.0 {
+                if role.diffuse {
+                    sum.diffuse += c * s.dot_nl;
+                }
+                if role.specular {
+                    sum.specular += c * highlight.value(n, v, s.dir);
+                }
+            } else if role.diffuse {
+                sum.behind += c * -s.dot_nl;
+            }
+        }
+        if lp.samples > 0 {
+            let k = 1.0 / lp.samples as f32;
+            r.diffuse += sum.diffuse * k;
+            r.ambient += sum.ambient * k;
+            r.behind += sum.behind * k;
+            r.specular += sum.specular * k;
+        }
+    }
+    r
+}
+
+/// What lies behind a transparent point: a refraction ray when `refractions` is on and
+/// the index is not 1 (within `refractionLimit`), else a transparency ray.
+fn behind(ctx: &mut Ctx, n: NodeId) -> Color {
+    let refract = ctx.bool(n, REFRACTIONS);
+    let ior = ctx.scalar(n, REFRACTIVE_INDEX);
+    let limit = ctx.int(n, REFRACTION_LIMIT).max(0) as u32;
+    let traced = if refract && ior > 0.0 && (ior - 1.0).abs() > 1e-6 && ctx.state.refraction_level < limit {
+        let (from, to) = if ctx.state.inv_normal { (ior, 1.0) } else { (1.0, ior) };
+        match ctx.refraction_dir(from, to) {
+            Some(d) => ctx.trace_refraction(d),
+            None => ctx.trace_reflection(ctx.reflection_dir()),
+        }
+    } else {
+        ctx.trace_transparent()
+    };
+    traced.unwrap_or(Color::ZERO)
+}
+
+/// The shading of every Maya material but surfaceShader (see the module doc).
+fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, NodeId) -> Highlight) -> bool {
+    let transparency = rgb(ctx.color(n, TRANSPARENCY)).clamp(Vec3A::ZERO, Vec3A::ONE);
+    if ctx.state.ray_type == RayType::Shadow {
+        return shadow_filter(out, transparency);
+    }
+    if !ctx.state.ray_type.is_visible() {
+        return false;
+    }
+    let saved_normal = ctx.state.normal;
+    if ctx.is_connected(n, NORMAL_CAMERA) {
+        if let Some(bumped) = ctx.vector(n, NORMAL_CAMERA).try_normalize() {
+            ctx.state.normal = if bumped.dot(ctx.state.dir) > 0.0 { -bumped } else { bumped };
+        }
+    }
+    let color = rgb(ctx.color(n, COLOR));
+    let diffuse = ctx.scalar(n, DIFFUSE);
+    let translucence = ctx.scalar(n, TRANSLUCENCE);
+    let highlight = highlight(ctx, n);
+    let reflective = !matches!(highlight, Highlight::None);
+    let received = gather_lights(ctx, highlight, translucence > 0.0);
+    let fg = if diffuse > 0.0 && color != Vec3A::ZERO { rgb(ctx.compute_irradiance()) } else { Vec3A::ZERO };
+    let ambient = rgb(ctx.color(n, AMBIENT_COLOR)) + received.ambient;
+    let lit = color * (ambient + diffuse * (received.diffuse + fg) + translucence * received.behind)
+        + rgb(ctx.color(n, INCANDESCENCE));
+    let mut result = lit * (Vec3A::ONE - transparency);
+    if reflective {
+        let spec_color = rgb(ctx.color(n, SPECULAR_COLOR));
+        result += spec_color * received.specular;
+        let r = ctx.scalar(n, REFLECTIVITY);
+        let limit = ctx.int(n, REFLECTION_LIMIT).max(0) as u32;
+        if r > 0.0 {
+            let mut reflected = rgb(ctx.color(n, REFLECTED_COLOR));
+            if ctx.state.reflection_level < limit {
+                if let Some(t) = ctx.trace_reflection(ctx.reflection_dir()) {
+                    reflected += rgb(t);
+                }
+            }
+            let fresnel = match highlight {
+                Highlight::Blinn { rolloff, reflection_rolloff: true, .. } => {
+                    specular::schlick(rolloff, ctx.state.normal.dot(-ctx.state.dir))
+                }
+                _ => 1.0,
+            };
+            result += r * fresnel * spec_color * reflected;
+        }
+    }
+    let t_mean = (transparency.x + transparency.y + transparency.z) / 3.0;
+    let mut alpha = 1.0;
+    if transparency != Vec3A::ZERO {
+        let b = behind(ctx, n);
+        result += transparency * rgb(b);
+        alpha = 1.0 - t_mean + t_mean * b.w;
+    }
+    ctx.state.normal = saved_normal;
+    let glow = color * ctx.scalar(n, GLOW_INTENSITY);
+    let matte = ctx.scalar(n, MATTE_OPACITY);
+    write_struct(
+        out,
+        &[
+            ("outColor", Value::Color(rgba(result, alpha))),
+            ("outTransparency", Value::Color(rgba(transparency, t_mean))),
+            ("outGlowColor", Value::Color(rgba(glow, 1.0))),
+            ("outMatteOpacity", Value::Color(Color::new(matte, matte, matte, 1.0))),
+        ],
+    );
+    true
+}
+
+maya_shader!(
+    /// Maya's surfaceShader: returns its `outColor` unlit, composited over what lies
+    /// behind by its `outTransparency`; its glow and matte pass through.
+    SURFACESHADER,
+    ADSK_SURFACESHADER,
+    "maya_surfaceshader",
+    "adskMayaSurfaceShader",
+    &["outColor", "outTransparency", "outGlowColor", "outMatteOpacity"],
+    surface_shader
+);
+
+fn surface_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let transparency = rgb(ctx.color(n, 1)).clamp(Vec3A::ZERO, Vec3A::ONE);
+    if ctx.state.ray_type == RayType::Shadow {
+        return shadow_filter(out, transparency);
+    }
+    if !ctx.state.ray_type.is_visible() {
+        return false;
+    }
+    let mut result = rgb(ctx.color(n, 0)) * (Vec3A::ONE - transparency);
+    let t_mean = (transparency.x + transparency.y + transparency.z) / 3.0;
+    let mut alpha = 1.0;
+    if transparency != Vec3A::ZERO {
+        let b = ctx.trace_transparent().unwrap_or(Color::ZERO);
+        result += transparency * rgb(b);
+        alpha = 1.0 - t_mean + t_mean * b.w;
+    }
+    let glow = ctx.color(n, 2);
+    let matte = ctx.color(n, 3);
+    write_struct(
+        out,
+        &[
+            ("outColor", Value::Color(rgba(result, alpha))),
+            ("outTransparency", Value::Color(rgba(transparency, t_mean))),
+            ("outGlowColor", Value::Color(glow)),
+            ("outMatteOpacity", Value::Color(matte)),
+        ],
+    );
+    true
+}

@@ -1,0 +1,102 @@
+//! Maya's highlight models as functions of the unit shading normal `n`, the unit
+//! direction `v` towards the viewer and the unit direction `l` towards the light (all in
+//! one space). Each returns the factor that multiplies `specularColor ⊙ light`; there is
+//! no 1/π and no N·L factor beyond the formula's own (Maya's convention).
+
+use glam::Vec3A;
+
+/// Schlick's approximation with reflectance `r0` at normal incidence, for the cosine `c`
+/// between the view direction and the half vector (or the normal).
+pub fn schlick(r0: f32, c: f32) -> f32 {
+    r0 + (1.0 - r0) * (1.0 - c.clamp(0.0, 1.0)).powi(5)
+}
+
+/// Blinn's highlight (Blinn 1977, "Models of light reflection for computer synthesized
+/// pictures", the model Maya's Blinn material names its parameters after): the
+/// Trowbridge–Reitz distribution of eccentricity `ecc`, D = (e² / ((e² − 1)(N·H)² +
+/// 1))², which is 1 at the peak; the Torrance–Sparrow masking G = min(1, 2(N·H)(N·V)/(V·H),
+/// 2(N·H)(N·L)/(V·H)); a Fresnel factor whose value at normal incidence is
+/// `specularRollOff`, F = schlick(rolloff, V·H); all over N·V:
+/// D·G·F / (N·V). At the mirror peak seen head-on (V = L = N) it equals `rolloff`.
+/// mira's reading: Maya's documentation names the parameters but not the Fresnel form.
+pub fn blinn(n: Vec3A, v: Vec3A, l: Vec3A, ecc: f32, rolloff: f32) -> f32 {
+    let (nv, nl) = (n.dot(v), n.dot(l));
+    if nv <= 0.0 || nl <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let (nh, vh) = (n.dot(h).max(0.0), v.dot(h).max(1e-6));
+    let e2 = (ecc * ecc).clamp(1e-6, 0.9999);
+    let d = e2 / ((e2 - 1.0) * nh * nh + 1.0);
+    let g = 1f32.min(2.0 * nh * nv / vh).min(2.0 * nh * nl / vh);
+    d * d * g * schlick(rolloff, vh) / nv
+}
+
+/// Phong's highlight: (R·L)^cosinePower, R the mirror image of the view direction.
+pub fn phong(n: Vec3A, v: Vec3A, l: Vec3A, power: f32) -> f32 {
+    if n.dot(l) <= 0.0 {
+        return 0.0;
+    }
+    let r = 2.0 * n.dot(v) * n - v;
+    r.dot(l).max(0.0).powf(power.max(0.0))
+}
+
+/// PhongE's highlight: (N·H)^p with p = 1/roughness² (a rough surface spreads it),
+/// scaled by `highlightSize`; the caller tints it with `whiteness`. mira's reading:
+/// Maya documents PhongE only qualitatively (a softer, cheaper Phong).
+pub fn phong_e(n: Vec3A, v: Vec3A, l: Vec3A, roughness: f32, size: f32) -> f32 {
+    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let r = roughness.clamp(0.01, 1.0);
+    size * n.dot(h).max(0.0).powf(1.0 / (r * r))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn blinn_peak_is_the_rolloff_and_falls_off_with_eccentricity() {
+        let n = Vec3A::Z;
+        assert!((blinn(n, n, n, 0.3, 0.7) - 0.7).abs() < 1e-6);
+        // Off the peak: light 20° from the normal, viewer on the normal; H is 10° off.
+        let t = 20f32.to_radians();
+        let l = Vec3A::new(t.sin(), 0.0, t.cos());
+        let h = (n + l).normalize();
+        let (nh, vh) = (h.z, h.z);
+        let e2 = 0.09f32;
+        let d = (e2 / ((e2 - 1.0) * nh * nh + 1.0)).powi(2);
+        let g = 1f32.min(2.0 * nh / vh).min(2.0 * nh * l.z / vh);
+        let f = 0.7 + 0.3 * (1.0 - vh).powi(5);
+        assert!((blinn(n, n, l, 0.3, 0.7) - d * g * f).abs() < 1e-6);
+        // A smaller eccentricity gives a tighter highlight.
+        assert!(blinn(n, n, l, 0.1, 0.7) < blinn(n, n, l, 0.3, 0.7));
+    }
+
+    #[test]
+    fn phong_is_a_cosine_power_of_the_mirror_direction() {
+        let n = Vec3A::Z;
+        let t = 10f32.to_radians();
+        let v = Vec3A::new(-t.sin(), 0.0, t.cos());
+        let l = Vec3A::new(t.sin(), 0.0, t.cos());
+        assert!((phong(n, v, l, 20.0) - 1.0).abs() < 1e-5);
+        // Viewer on the normal, light at 10°: R·L = cos 10°.
+        assert!((phong(n, n, l, 20.0) - t.cos().powf(20.0)).abs() < 1e-5);
+        assert_eq!(phong(n, n, -l, 20.0), 0.0);
+    }
+
+    #[test]
+    fn phong_e_peak_is_the_highlight_size() {
+        let n = Vec3A::Z;
+        assert!((phong_e(n, n, n, 0.4, 0.6) - 0.6).abs() < 1e-6);
+        // Light 20° off the viewer on the normal: H is 10° off, (cos 10°)^(1/0.16).
+        let t = 20f32.to_radians();
+        let l = Vec3A::new(t.sin(), 0.0, t.cos());
+        let want = 0.6 * 10f32.to_radians().cos().powf(1.0 / 0.16);
+        assert!((phong_e(n, n, l, 0.4, 0.6) - want).abs() < 1e-5);
+        // Rougher: a wider highlight, larger off the peak.
+        assert!(phong_e(n, n, l, 0.8, 0.6) > phong_e(n, n, l, 0.4, 0.6));
+    }
+}
