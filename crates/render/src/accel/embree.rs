@@ -172,7 +172,10 @@ impl<'w> EmbreeAccel<'w> {
                 .collect();
             let top = rtcNewScene(device);
             rtcSetSceneBuildQuality(top, BUILD_QUALITY);
-            let flat_triangles: usize = (world.instances.iter().zip(&flat))
+            let flat_triangles: usize = world
+                .instances
+                .iter()
+                .zip(&flat)
                 .filter(|(_, &f)| f)
                 .map(|(i, _)| world.meshes[i.mesh as usize].triangles.len())
                 .sum();
