@@ -176,7 +176,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
         shading
     };
+    // The file's text and syntax tree are not needed past this point, nor the scene's
+    // meshes once the world has its own copy: freed early, they do not add to the peak
+    // memory of the world and acceleration structure builds.
+    drop(parsed);
     let world = render::World::from_scene_shaded(&sc, Some(&shading));
+    sc.release_geometry();
     if args.warnings && !classic {
         for w in &world.warnings {
             eprintln!("mira: warning: {w}");

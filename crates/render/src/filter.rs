@@ -25,6 +25,8 @@ struct Axis {
     cdf: Vec<f32>,
     /// Sign of f in each step.
     sign: Vec<f32>,
+    /// Whether f is negative anywhere (else every sample's sign is 1, not looked up).
+    signed: bool,
     /// Offsets at u = k / INVERSE, k = 0..=INVERSE (the inverse of `cdf`).
     inverse: Vec<f32>,
 }
@@ -95,7 +97,8 @@ impl Axis {
         for c in &mut cdf {
             *c /= acc;
         }
-        let mut axis = Axis { radius, cdf, sign, inverse: Vec::new() };
+        let signed = sign.iter().any(|&s| s < 0.0);
+        let mut axis = Axis { radius, cdf, sign, signed, inverse: Vec::new() };
         axis.inverse = (0..=INVERSE).map(|k| axis.search(k as f32 / INVERSE as f32)).collect();
         axis
     }
@@ -114,6 +117,9 @@ impl Axis {
         let x = u * INVERSE as f32;
         let k = (x as usize).min(INVERSE - 1);
         let d = self.inverse[k] + (self.inverse[k + 1] - self.inverse[k]) * (x - k as f32);
+        if !self.signed {
+            return (d, 1.0);
+        }
         let cell = (((d + self.radius) / (2.0 * self.radius)) * TABLE as f32) as usize;
         (d, self.sign[cell.min(TABLE - 1)])
     }

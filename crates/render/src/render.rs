@@ -306,9 +306,11 @@ pub fn render(
                 if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged {
                     continue;
                 }
-                let seed = pixel_seed(x, y, settings.seed);
+                // One sampler per pixel, restarted for each sample: the scrambles that depend
+                // on the pixel alone are hashed once.
+                let mut sampler = Sampler::new(pixel_seed(x, y, settings.seed), done);
                 for index in done..done + pass {
-                    let mut sampler = Sampler::new(seed, index);
+                    sampler.restart(index);
                     let u = sampler.next_2d();
                     // The path engine samples the filter; the classic engine samples the
                     // pixel and splats.

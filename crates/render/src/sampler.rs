@@ -1,6 +1,16 @@
 //! Sample numbers: Owen-scrambled Sobol points (Burley 2020), one independent scramble per
 //! pixel, dimensions assigned in a fixed order so that every pixel's samples are the same
 //! whatever the thread count or tile order.
+//!
+//! The numbers are exactly `sobol_burley::sample_4d`'s, computed from its parts so that
+//! the work that depends only on the pixel (the per-dimension Owen scramble hashes) or
+//! only on the sample (the shuffled sample index) is done once, not for every four
+//! dimensions: a [`Sampler`] is made once per pixel and [`Sampler::restart`]ed for each of
+//! its samples.
+
+use std::sync::OnceLock;
+
+use sobol_burley::parts::{self, Int4};
 
 /// Hashes pixel coordinates and the render seed into a scramble seed.
 pub fn pixel_seed(x: u32, y: u32, seed: u32) -> u32 {
@@ -14,20 +24,105 @@ pub fn pixel_seed(x: u32, y: u32, seed: u32) -> u32 {
     h as u32
 }
 
+/// Dimension sets (four dimensions each) whose scramble hashes a [`Sampler`] keeps: the
+/// first 64 dimensions, more than a path of nine bounces uses. Later sets hash each time.
+const KEPT_SETS: usize = 16;
+
+/// Sobol points of the kept dimension sets for each nibble of the sample index (the top
+/// 16 bits of the bit-reversed index, which are the ones Sobol's table uses): the
+/// construction is linear over XOR in the index bits, so a point is the XOR of four
+/// entries instead of one table row per set bit. Entry `[set][k][v]` is the point of the
+/// index whose nibble `k` (bits 16 + 4k …) is `v` and whose other bits are 0.
+type NibbleTable = [[[[u32; 4]; 16]; 4]; KEPT_SETS];
+
+fn nibble_table() -> &'static NibbleTable {
+    static TABLE: OnceLock<Box<NibbleTable>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut table = Box::new([[[[0u32; 4]; 16]; 4]; KEPT_SETS]);
+        for (set, nibbles) in table.iter_mut().enumerate() {
+            for (k, points) in nibbles.iter_mut().enumerate() {
+                for (v, point) in points.iter_mut().enumerate() {
+                    *point = parts::sobol_int4_rev((v as u32) << (16 + 4 * k), set as u32).into();
+                }
+            }
+        }
+        table
+    })
+}
+
+/// The hashed Owen scramble of dimension set `set` under `seed` (one per lane), as
+/// `sobol_burley::sample_4d` makes it.
+#[inline]
+fn set_scramble(seed: u32, set: u32) -> Int4 {
+    let s = seed.wrapping_mul(0x9c8f_2d3b) ^ set;
+    let lanes: Int4 = [s ^ 0x912f_69ba, s ^ 0x174f_18ab, s ^ 0x691e_72ca, s ^ 0xb40c_c1b8].into();
+    parts::hash_int4(lanes)
+}
+
 /// The sample stream of one pixel sample. Numbers are made four dimensions at a time
-/// (`sobol_burley::sample_4d`, which computes them together) and handed out one by one.
+/// (Sobol's four dimensions together) and handed out one by one.
 #[derive(Clone, Debug)]
 pub struct Sampler {
     index: u32,
     seed: u32,
+    /// The sample index bit-reversed and Owen-shuffled by the seed (which Sobol point of
+    /// the pixel's sequence this sample is).
+    shuffled: u32,
     dimension: u32,
     buffer: [f32; 4],
+    /// Scramble hashes of the first dimension sets (they depend on the seed alone, so they
+    /// outlive [`Sampler::restart`]).
+    scrambles: [[u32; 4]; KEPT_SETS],
+    /// How many of `scrambles` are computed.
+    kept: u32,
+    nibbles: &'static NibbleTable,
 }
 
 impl Sampler {
     /// Sample `index` of the pixel whose scramble seed is `seed`.
     pub fn new(seed: u32, index: u32) -> Sampler {
-        Sampler { index, seed, dimension: 0, buffer: [0.0; 4] }
+        Sampler {
+            index,
+            seed,
+            shuffled: Self::shuffle(seed, index),
+            dimension: 0,
+            buffer: [0.0; 4],
+            scrambles: [[0; 4]; KEPT_SETS],
+            kept: 0,
+            nibbles: nibble_table(),
+        }
+    }
+
+    /// Starts sample `index` of the same pixel (dimension 0 again), keeping what depends on
+    /// the pixel alone.
+    #[inline]
+    pub fn restart(&mut self, index: u32) {
+        self.index = index;
+        self.shuffled = Self::shuffle(self.seed, index);
+        self.dimension = 0;
+    }
+
+    #[inline]
+    fn shuffle(seed: u32, index: u32) -> u32 {
+        parts::owen_scramble_rev(index.reverse_bits(), parts::hash(seed ^ 0x79c6_8e4a))
+    }
+
+    /// Dimensions `4·set … 4·set + 3` of this sample.
+    #[inline]
+    fn set(&mut self, set: u32) -> [f32; 4] {
+        let (sobol, scramble) = if (set as usize) < KEPT_SETS {
+            while self.kept <= set {
+                self.scrambles[self.kept as usize] = set_scramble(self.seed, self.kept).into();
+                self.kept += 1;
+            }
+            let table = &self.nibbles[set as usize];
+            let n = self.shuffled >> 16;
+            let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
+            (point(0) ^ point(1) ^ point(2) ^ point(3), self.scrambles[set as usize].into())
+        } else {
+            (parts::sobol_int4_rev(self.shuffled, set), set_scramble(self.seed, set))
+        };
+        parts::owen_scramble_int4_rev(sobol, scramble).reverse_bits().to_f32_norm()
     }
 
     /// The next number in [0, 1).
@@ -38,7 +133,7 @@ impl Sampler {
         let lane = (d % 4) as usize;
         if d < sobol_burley::NUM_DIMENSIONS {
             if lane == 0 {
-                self.buffer = sobol_burley::sample_4d(self.index, d / 4, self.seed);
+                self.buffer = self.set(d / 4);
             }
             self.buffer[lane]
         } else {
@@ -70,6 +165,30 @@ mod tests {
         let mut s = Sampler::new(1234, 7);
         for d in 0..40 {
             assert_eq!(s.next_1d(), sobol_burley::sample(7, d, 1234), "dimension {d}");
+        }
+    }
+
+    /// A sampler restarted for each sample of a pixel gives, bit for bit, the numbers of
+    /// `sobol_burley::sample_4d` (all 256 table dimensions, kept and recomputed scramble
+    /// sets alike), whatever order the samples come in.
+    #[test]
+    fn restarted_samplers_equal_sample_4d() {
+        for seed in [0u32, 1, 0xdead_beef, pixel_seed(3, 9, 42)] {
+            let mut s = Sampler::new(seed, 0);
+            for index in [0u32, 1, 2, 63, 5, 1000, 65_535, 17] {
+                s.restart(index);
+                for set in 0..sobol_burley::NUM_DIMENSION_SETS_4D {
+                    let expect = sobol_burley::sample_4d(index, set, seed);
+                    let got = [s.next_1d(), s.next_1d(), s.next_1d(), s.next_1d()];
+                    assert_eq!(got.map(f32::to_bits), expect.map(f32::to_bits), "seed {seed} index {index} set {set}");
+                }
+                // Past the table: the hashed numbers of a fresh sampler.
+                let mut fresh = Sampler::new(seed, index);
+                for _ in 0..sobol_burley::NUM_DIMENSIONS {
+                    fresh.next_1d();
+                }
+                assert_eq!(s.next_1d().to_bits(), fresh.next_1d().to_bits());
+            }
         }
     }
 }

@@ -149,6 +149,16 @@ impl Scene {
         self.instances.iter().map(|i| self.objects[i.object as usize].geometry.mesh.triangles.len()).sum()
     }
 
+    /// Frees every object's tessellated geometry (meshes and hair), keeping the objects
+    /// themselves: for a caller that has translated the geometry (the renderer's world)
+    /// and needs the rest of the scene (camera, outputs, library) only. Geometry queries
+    /// answer as for empty objects afterwards.
+    pub fn release_geometry(&mut self) {
+        for o in &mut self.objects {
+            o.geometry = tessellate::ObjectGeometry::default();
+        }
+    }
+
     /// Triangles of the unique objects.
     pub fn unique_triangles(&self) -> usize {
         self.objects.iter().map(|o| o.geometry.mesh.triangles.len()).sum()

@@ -25,7 +25,8 @@ const BUFFER_TYPE_VERTEX: c_uint = 1;
 const FORMAT_UINT3: c_uint = 0x5003;
 const FORMAT_FLOAT3: c_uint = 0x9003;
 const FORMAT_FLOAT3X4_COLUMN_MAJOR: c_uint = 0x9234;
-const BUILD_QUALITY_HIGH: c_uint = 2;
+const BUILD_QUALITY_MEDIUM: c_uint = 1;
+const SCENE_FLAG_COMPACT: c_uint = 2;
 const INVALID_ID: c_uint = c_uint::MAX;
 
 /// `struct RTCIntersectContext` of Embree 3.13 built with one instance level.
@@ -87,6 +88,17 @@ extern "C" {
         byte_stride: usize,
         item_count: usize,
     ) -> *mut c_void;
+    fn rtcSetSharedGeometryBuffer(
+        geometry: RtcGeometry,
+        kind: c_uint,
+        slot: c_uint,
+        format: c_uint,
+        ptr: *const c_void,
+        byte_offset: usize,
+        byte_stride: usize,
+        item_count: usize,
+    );
+    fn rtcSetSceneFlags(scene: RtcScene, flags: c_uint);
     fn rtcSetGeometryInstancedScene(geometry: RtcGeometry, scene: RtcScene);
     fn rtcSetGeometryTransform(geometry: RtcGeometry, time_step: c_uint, format: c_uint, xfm: *const f32);
     fn rtcSetGeometryMask(geometry: RtcGeometry, mask: c_uint);
@@ -97,24 +109,39 @@ extern "C" {
     fn rtcOccluded1(scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay);
 }
 
+/// Triangles stored (shared meshes once, flattened instances each) from which the scene's
+/// BVH is built compact (`RTC_SCENE_FLAG_COMPACT`: indexed triangle leaves instead of
+/// copied vertices). Measured on the 4 M-triangle heavy scene: peak memory 604 → 481 MB
+/// for about 12 % more traversal time; small scenes keep the faster layout.
+const COMPACT_FROM_TRIANGLES: usize = 500_000;
+
+/// Embree's build quality: medium (binned SAH). Measured against high (spatial splits):
+/// the Cornell box traces with 3.5 % fewer instructions (2.19 G against 2.27 G for
+/// 128², 16 spp) and the heavy scene builds in the same CPU time.
+const BUILD_QUALITY: c_uint = BUILD_QUALITY_MEDIUM;
+
 /// Scenes built by Embree for a [`World`].
-pub struct EmbreeAccel {
+///
+/// Meshes placed without a transform are not copied: Embree reads the world's own vertex
+/// and index arrays (shared buffers), which the borrow `'w` keeps alive and unchanged.
+pub struct EmbreeAccel<'w> {
     device: RtcDevice,
     top: RtcScene,
     meshes: Vec<RtcScene>,
+    world: std::marker::PhantomData<&'w World>,
 }
 
 // SAFETY: Embree devices and committed scenes may be used from any thread; after
 // construction mira only queries them (rtcIntersect1/rtcOccluded1 are thread-safe on a
 // committed scene) and releases them in `drop`.
-unsafe impl Send for EmbreeAccel {}
+unsafe impl Send for EmbreeAccel<'_> {}
 // SAFETY: as above: queries on a committed scene are thread-safe.
-unsafe impl Sync for EmbreeAccel {}
+unsafe impl Sync for EmbreeAccel<'_> {}
 
-impl EmbreeAccel {
+impl<'w> EmbreeAccel<'w> {
     /// Builds Embree scenes for a world (falls back to an empty scene on device errors,
     /// which are reported by [`EmbreeAccel::error`]).
-    pub fn new(world: &World) -> EmbreeAccel {
+    pub fn new(world: &'w World) -> EmbreeAccel<'w> {
         // SAFETY: a null config string asks for the default device; every pointer passed
         // below comes from Embree itself or from live Rust buffers of the stated sizes.
         unsafe {
@@ -130,7 +157,10 @@ impl EmbreeAccel {
                 .zip(&shared)
                 .map(|(m, &used)| {
                     let scene = rtcNewScene(device);
-                    rtcSetSceneBuildQuality(scene, BUILD_QUALITY_HIGH);
+                    rtcSetSceneBuildQuality(scene, BUILD_QUALITY);
+                    if m.triangles.len() >= COMPACT_FROM_TRIANGLES {
+                        rtcSetSceneFlags(scene, SCENE_FLAG_COMPACT);
+                    }
                     if used && !m.triangles.is_empty() {
                         let geom = triangle_geometry(device, m, glam::Affine3A::IDENTITY);
                         rtcAttachGeometryByID(scene, geom, 0);
@@ -141,7 +171,17 @@ impl EmbreeAccel {
                 })
                 .collect();
             let top = rtcNewScene(device);
-            rtcSetSceneBuildQuality(top, BUILD_QUALITY_HIGH);
+            rtcSetSceneBuildQuality(top, BUILD_QUALITY);
+            let flat_triangles: usize = world
+                .instances
+                .iter()
+                .zip(&flat)
+                .filter(|(_, &f)| f)
+                .map(|(i, _)| world.meshes[i.mesh as usize].triangles.len())
+                .sum();
+            if flat_triangles >= COMPACT_FROM_TRIANGLES {
+                rtcSetSceneFlags(top, SCENE_FLAG_COMPACT);
+            }
             for (i, inst) in world.instances.iter().enumerate() {
                 if flat[i] {
                     // A mesh used once: its triangles go into the top scene in world space.
@@ -164,7 +204,7 @@ impl EmbreeAccel {
                 rtcReleaseGeometry(geom);
             }
             rtcCommitScene(top);
-            EmbreeAccel { device, top, meshes }
+            EmbreeAccel { device, top, meshes, world: std::marker::PhantomData }
         }
     }
 
@@ -193,7 +233,7 @@ impl EmbreeAccel {
     }
 }
 
-impl Accel for EmbreeAccel {
+impl Accel for EmbreeAccel<'_> {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut rh = RtcRayHit {
             ray: Self::rtc_ray(ray),
@@ -241,31 +281,50 @@ impl Accel for EmbreeAccel {
 /// # Safety
 /// `device` must be a live Embree device.
 unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transform: glam::Affine3A) -> RtcGeometry {
-    // SAFETY: the buffers Embree returns hold exactly the item counts asked for.
+    // SAFETY: the buffers Embree returns hold exactly the item counts asked for; the shared
+    // buffers are the mesh's own arrays, which outlive the accel (it borrows the world).
     unsafe {
         let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
-        let verts =
-            rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len()) as *mut f32;
-        if !verts.is_null() {
-            let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
-            for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
-                o.copy_from_slice(&transform.transform_point3a(*p).to_array());
+        if transform == glam::Affine3A::IDENTITY {
+            // Vec3A is three f32 and 4 bytes of padding: a float3 buffer with a 16-byte
+            // stride, whose last element can be read with a 16-byte load as Embree wants.
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_VERTEX,
+                0,
+                FORMAT_FLOAT3,
+                m.positions.as_ptr().cast(),
+                0,
+                std::mem::size_of::<glam::Vec3A>(),
+                m.positions.len(),
+            );
+        } else {
+            let verts =
+                rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len()) as *mut f32;
+            if !verts.is_null() {
+                let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
+                for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
+                    o.copy_from_slice(&transform.transform_point3a(*p).to_array());
+                }
             }
         }
-        let idx = rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3, 12, m.triangles.len()) as *mut u32;
-        if !idx.is_null() {
-            let out = std::slice::from_raw_parts_mut(idx, 3 * m.triangles.len());
-            for (o, t) in out.chunks_exact_mut(3).zip(&m.triangles) {
-                o.copy_from_slice(t);
-            }
-        }
+        rtcSetSharedGeometryBuffer(
+            geom,
+            BUFFER_TYPE_INDEX,
+            0,
+            FORMAT_UINT3,
+            m.triangles.as_ptr().cast(),
+            0,
+            12,
+            m.triangles.len(),
+        );
         // Committed again by the caller after setting the mask.
         rtcCommitGeometry(geom);
         geom
     }
 }
 
-impl Drop for EmbreeAccel {
+impl Drop for EmbreeAccel<'_> {
     fn drop(&mut self) {
         // SAFETY: the scenes and device were created by `new` and are released once.
         unsafe {

@@ -76,8 +76,9 @@ pub fn flat_instances(world: &World) -> Vec<bool> {
 }
 
 /// Builds the acceleration structure of `world` with `backend` (falling back to the Rust
-/// backend if the requested one is not compiled in).
-pub fn build(world: &World, backend: Backend) -> Box<dyn Accel> {
+/// backend if the requested one is not compiled in). It may read the world's mesh arrays in
+/// place, so it borrows the world.
+pub fn build(world: &World, backend: Backend) -> Box<dyn Accel + '_> {
     match backend {
         #[cfg(embree)]
         Backend::Embree => Box::new(embree::EmbreeAccel::new(world)),
