@@ -45,6 +45,21 @@ pub fn registry() -> Arc<shader::Registry> {
     REGISTRY.get_or_init(|| Arc::new(shader::Registry::new(LIBRARIES).with_stand_in(stand_in))).clone()
 }
 
+/// Compiles the shading of `scene` with every library mira has ([`registry`]), then gives
+/// each material shader that no library implements (a third-party plug-in's shader the
+/// scene declares) a stand-in showing the colour among its parameters a user would expect
+/// (`color`, `diffuse_color`, `base_color`, …, `outColor`; see `maya::standin`), with a
+/// warning naming it at its line: never a silent black. What `mira render` and `mira check`
+/// compile scenes with.
+pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -> (Shading, Vec<mi::Diagnostic>) {
+    let (mut shading, mut diags) = Shading::build(scene, options, &registry());
+    let stand_ins = ::maya::standin::attach_stand_ins(&mut shading);
+    // The stand-in's warning replaces the model's "not implemented" one for that shader.
+    diags.retain(|d| !(d.message.contains("is not implemented by mira") && stand_ins.iter().any(|s| s.span == d.span)));
+    diags.extend(stand_ins);
+    (shading, diags)
+}
+
 /// The classic engine's stand-in colours of material `m` (diffuse, emission): what the path
 /// engine's translation finds.
 fn stand_in(m: &Material, lib: &Library) -> (glam::Vec3A, glam::Vec3A) {

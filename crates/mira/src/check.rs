@@ -62,7 +62,7 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                         seed: 0,
                         finalgather_rays: None,
                     };
-                    list.extend(shader::Shading::build(w, &shading_options, &material::registry()).1);
+                    list.extend(material::compile_shading(w, &shading_options).1);
                 }
             }
             diags.list.extend(list);

@@ -162,7 +162,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             seed: args.seed,
             finalgather_rays: args.fg_rays,
         };
-        let (shading, shade_diags) = shader::Shading::build(&sc, &shading_options, &material::registry());
+        let (shading, shade_diags) = material::compile_shading(&sc, &shading_options);
         let mut stderr = std::io::stderr().lock();
         for d in &shade_diags {
             if d.is_error() || args.warnings {
