@@ -1,12 +1,12 @@
 //! Object area lights against the equivalent rectangle in both engines, and
 //! `mia_portal_light` over a window against final gathering through the open window.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use bsdf::Rgb;
 use render::light::{Output, Shape};
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
+use shader::Shading;
 
 /// An orthographic camera looking down −Z at a 2×2 view (`res`² pixels) and a 4×4 plane
 /// at z = −5 of material "plane_mtl"; `body` adds the rest, `extra` names instances.
@@ -32,23 +32,15 @@ render "root" "cam_inst" "opt"
 
 /// Builds a scene: world, shading and diagnostics.
 fn build(text: &str) -> (render::World, Shading, Vec<String>) {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let support::Compiled { scene, shading, mut messages, .. } = support::compile(text);
     let world = render::World::from_scene(&scene);
     messages.extend(world.warnings.iter().cloned());
     (world, shading, messages)
 }
 
 fn render(world: &render::World, shading: &Shading, engine: EngineKind, spp: u32) -> Vec<[f32; 4]> {
-    let accel = render::accel::build(world, render::Backend::default_available());
     let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(world, accel.as_ref(), Some(shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    support::render_world(world, shading, &settings).0.rgba()
 }
 
 fn mean(px: &[[f32; 4]]) -> f32 {

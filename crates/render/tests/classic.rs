@@ -1,10 +1,9 @@
 //! The classic engine end to end: `.mi` text in, pixels out, checked against values worked
 //! out by hand from the shaders' formulas.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
 
 /// An orthographic camera at the origin looking down −Z at a 2×2 view, `res`² pixels, a
 /// one-pixel box filter; a unit-square-plus plane at z = −5 facing the camera carries
@@ -34,18 +33,10 @@ render "root" "cam_inst" "opt"
 /// Renders `text` with the classic engine: the pixels (RGBA, rows from the top), the
 /// diagnostics and the samples taken.
 fn render(text: &str, spp: Option<u32>) -> (Vec<[f32; 4]>, Vec<String>, u64) {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let support::Compiled { scene, shading, messages, .. } = support::compile(text);
     let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp, ..Settings::default() };
-    let (film, stats) =
-        render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
+    let (film, stats) = support::render_world(&world, &shading, &settings);
     (film.rgba(), messages, stats.samples)
 }
 

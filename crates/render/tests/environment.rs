@@ -3,7 +3,7 @@
 //! sampling of a bright region against cosine sampling, and `mia_portal_light` over a
 //! window against the environment through the open window.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use bsdf::Rgb;
 use glam::Vec3A;
@@ -12,7 +12,7 @@ use render::integrator::{trace_path, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
+use shader::Shading;
 
 /// An orthographic camera at the origin looking down −Z at a 2×2 view (`res`² pixels),
 /// the camera's environment `env`; `body` holds the rest, `extra` names its instances.
@@ -37,24 +37,16 @@ fn constant_env(l: f32) -> String {
 
 /// Builds a scene: world, shading and diagnostics.
 fn build(text: &str) -> (render::World, Shading, Vec<String>) {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let support::Compiled { scene, shading, mut messages, .. } = support::compile(text);
     let world = render::World::from_scene_shaded(&scene, Some(&shading));
     messages.extend(world.warnings.iter().cloned());
     (world, shading, messages)
 }
 
 fn render(world: &render::World, shading: &Shading, spp: u32, mis: bool) -> Vec<[f32; 4]> {
-    let accel = render::accel::build(world, render::Backend::default_available());
     let path = PathSettings { mis, ..PathSettings::default() };
     let settings = Settings { engine: EngineKind::Path, spp: Some(spp), path, ..Settings::default() };
-    let (film, _) = render::render(world, accel.as_ref(), Some(shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    support::render_world(world, shading, &settings).0.rgba()
 }
 
 fn mean(px: &[[f32; 4]]) -> f32 {

@@ -2,10 +2,10 @@
 //! gathering and the analytic irradiance of a floor beside a black wall under a uniform
 //! sky.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use render::{EngineKind, Settings, Stats};
-use shader::{Shading, ShadingOptions};
+use shader::ShadingOptions;
 
 /// Resolution of the test images.
 const RES: usize = 48;
@@ -44,17 +44,12 @@ render "root" "cam_inst" "opt"
 /// Builds and renders a scene with the classic engine at `spp` samples per pixel, brute
 /// force gathers casting `fg_rays` rays.
 fn render(text: &str, spp: u32, fg_rays: Option<u32>) -> (Vec<[f32; 4]>, Stats) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
     let options = ShadingOptions { finalgather_rays: fg_rays, ..ShadingOptions::default() };
-    let (shading, _) = Shading::build(&scene, &options, &material::registry());
+    let support::Compiled { scene, shading, messages, read } = support::compile_with(text, &options);
+    assert!(!messages[..read].iter().any(|m| m.contains("error:")), "{messages:?}");
     let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(spp), ..Settings::default() };
-    let (film, stats) =
-        render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
+    let (film, stats) = support::render_world(&world, &shading, &settings);
     (film.rgba(), stats)
 }
 

@@ -2,26 +2,17 @@
 //! on a box's edge, `mia_lens_bokeh`'s focus and circle of confusion, and `mia_envblur` at
 //! blur 0 against its input.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
 
 /// Renders `text` with the classic engine at `spp` samples per pixel: RGBA pixels (rows
 /// from the top) and every diagnostic.
 fn render(text: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let support::Compiled { scene, shading, messages, .. } = support::compile(text);
     let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    (film.rgba(), messages)
+    (support::render_world(&world, &shading, &settings).0.rgba(), messages)
 }
 
 /// An axis-aligned box as an object with six outward-facing quads.

@@ -2,12 +2,11 @@
 //! pixel is E = I(θ, φ) · cos θ / r², I the IES profile's intensity towards the pixel's
 //! point (light-local direction; the profile's nadir is the light's local −Z).
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use glam::Vec3A;
 use render::{EngineKind, Settings};
 use shader::light::ies::Profile;
-use shader::{Shading, ShadingOptions};
 
 const RES: usize = 16;
 /// Height of the light above the plane.
@@ -43,20 +42,14 @@ render "root" "cam_inst" "opt"
 }
 
 fn render(text: &str, engine: EngineKind) -> Vec<[f32; 4]> {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(parsed.diagnostics.list.is_empty());
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    let lights: Vec<String> =
-        shade_diags.iter().map(|d| d.render(&parsed.sources)).filter(|m| m.contains("profile")).collect();
+    let support::Compiled { scene, shading, messages, read } = support::compile(text);
+    assert!(read == 0);
+    let lights: Vec<&String> = messages.iter().filter(|m| m.contains("profile")).collect();
     assert!(lights.is_empty(), "{lights:?}");
     let world = render::World::from_scene_shaded(&scene, Some(&shading));
     assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine, spp: Some(16), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    support::render_world(&world, &shading, &settings).0.rgba()
 }
 
 /// The irradiance a pixel's footprint receives on average (8×8 points), for intensity

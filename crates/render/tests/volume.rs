@@ -4,10 +4,9 @@
 //! shaders' formulas; the single-scattering one by quadrature of the single-scatter
 //! integral.
 
-use std::sync::atomic::AtomicBool;
+mod support;
 
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
 
 /// Pixels across (and down).
 const RES: usize = 8;
@@ -41,25 +40,12 @@ render "root" "cam_inst" "opt"
     )
 }
 
-/// Renders `text` with the classic engine (pixels RGBA, rows from the top); no
-/// diagnostics allowed.
 fn render(text: &str) -> Vec<[f32; 4]> {
-    let parsed = mi::parse_str("t.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let Some(scene) = scene::Scene::build(&parsed, 0, &mut diags) else {
-        let all: Vec<String> = diags.iter().map(|d| d.render(&parsed.sources)).collect();
-        panic!("no scene: {messages:?} {all:?}");
-    };
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let support::Compiled { scene, shading, messages, .. } = support::compile(text);
     assert!(messages.is_empty(), "{messages:?}");
     let world = render::World::from_scene(&scene);
-    let accel = render::accel::build(&world, render::Backend::default_available());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(4), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba()
+    support::render_world(&world, &shading, &settings).0.rgba()
 }
 
 fn pixel(px: &[[f32; 4]], x: usize, y: usize) -> [f32; 4] {
