@@ -7,7 +7,9 @@
 //!   Oren–Nayar surface; `add_emission` its base material plus emission in MDL's units;
 //! - `mia_material` and `mia_material_x`: [`bsdf::mia::MiaBsdf`], whose layer
 //!   weights come from the author's curve and conservation at each viewing angle;
-//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert).
+//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert);
+//! - materials of MDL modules on the search path: compiled by [`mdl_modules`] (see
+//!   [`translate_with`]).
 //!
 //! Constant parameters are read once ([`reader`]). Parameters connected to shaders —
 //! MDL `::base` textures, mental ray texture and bump shaders — are evaluated at every
@@ -17,6 +19,7 @@
 
 pub mod emission;
 pub mod inputs;
+pub mod mdl_modules;
 mod reader;
 
 use mi::ast::{Num, Param, ShaderItem, Value};
@@ -212,6 +215,41 @@ pub fn first_call<'a>(items: &'a [ShaderItem], lib: &'a Library) -> Option<(&'a 
 /// compiled shader graph, with `m` as its material `index`) is given, else they take their
 /// defaults.
 pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>) -> (SurfaceMaterial, Vec<String>) {
+    translate_with(m, lib, shading, None)
+}
+
+/// The span of the shader call behind a material, following one named reference.
+fn call_span(items: &[ShaderItem], lib: &Library) -> Option<mi::Span> {
+    let first = |items: &[ShaderItem]| match items.first()? {
+        ShaderItem::Call { span, .. } => Some(*span),
+        _ => None,
+    };
+    match items.first()? {
+        ShaderItem::Call { span, .. } => Some(*span),
+        ShaderItem::Ref(name) => first(&lib.shaders.get(&name.text)?.list.0),
+        ShaderItem::Define { list, .. } => first(&list.0),
+    }
+}
+
+/// [`translate`] with the scene's compiled MDL module materials: a material that is an
+/// instance of one of them is that compiled material.
+pub fn translate_with(
+    m: &Material,
+    lib: &Library,
+    shading: Option<(&Shading, usize)>,
+    mdl: Option<&mdl_modules::MdlMaterials>,
+) -> (SurfaceMaterial, Vec<String>) {
+    let items: Option<&[ShaderItem]> = match &m.kind {
+        MaterialKind::Shader(def) => Some(&def.list.0),
+        MaterialKind::Material(defs) => {
+            defs.iter().rev().find_map(|d| d.shaders.as_ref()).map(|l| &l.0[l.0.len().saturating_sub(1)..])
+        }
+    };
+    if let Some(compiled) = mdl.zip(items).and_then(|(mdl, items)| mdl.get(call_span(items, lib)?)) {
+        let (mut surface, warnings) = compiled.clone();
+        surface.name = m.name.clone();
+        return (surface, warnings);
+    }
     let mut warnings = Vec::new();
     let call = match &m.kind {
         MaterialKind::Shader(def) => first_call(&def.list.0, lib),
