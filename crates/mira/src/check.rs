@@ -45,6 +45,11 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         if args.scene && !diags.has_errors() {
             let mut list = Vec::new();
             world = scene::Scene::build(&parsed, 0, &mut list);
+            // MDL module materials: modules found, instances bound and type-checked.
+            if let Some(w) = &world {
+                let search = material::mdl_modules::search_path(&w.library, &args.include.mdl_paths);
+                list.extend(material::mdl_modules::compile(&w.library, search).1);
+            }
             diags.list.extend(list);
         }
         for d in &diags.list {

@@ -158,7 +158,17 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
         shading
     };
-    let world = render::World::from_scene_shaded(&sc, Some(&shading));
+    let (mdl, mdl_diags) = material::mdl_modules::compile(
+        &sc.library,
+        material::mdl_modules::search_path(&sc.library, &args.include.mdl_paths),
+    );
+    {
+        let mut stderr = std::io::stderr().lock();
+        for d in mdl_diags.iter().filter(|d| d.is_error() || args.warnings) {
+            let _ = write!(stderr, "{}", d.render(&parsed.sources));
+        }
+    }
+    let world = render::World::from_scene_with_mdl(&sc, Some(&shading), &mdl);
     if args.warnings && !classic {
         for w in &world.warnings {
             eprintln!("mira: warning: {w}");
