@@ -224,3 +224,20 @@ shader "b" "mdl::export_multi::no_such_material" ()"#,
     );
     assert!(diags.iter().any(|d| d.contains("t.mi:2:") && d.contains("exports no `no_such_material`")), "{diags:#?}");
 }
+
+#[test]
+fn a_module_matte_equals_the_native_core_definitions_diffuse() {
+    let (mdl, lib, diags) = compile_text(
+        r#"$include "export_multi.mdl"
+shader "module" "mdl::export_multi::matte" ("tint" 0.5 0.25 0, "roughness" 0.2)
+shader "native" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 0.5 0.25 0, "roughness" 0.2)"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let (module, _) = get(&mdl, &lib, "module");
+    let native =
+        scene::Material { name: "native".into(), kind: scene::MaterialKind::Shader(lib.shaders["native"].clone()) };
+    let (native, w) = material::translate_with(&native, &lib, None, Some(&mdl));
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(module.model, native.model);
+    assert_eq!(module.diffuse, native.diffuse);
+}
