@@ -246,9 +246,10 @@ pub fn translate_with(
         }
     };
     if let Some(compiled) = mdl.zip(items).and_then(|(mdl, items)| mdl.get(call_span(items, lib)?)) {
-        let (mut surface, warnings) = compiled.clone();
+        // Its problems were reported by the compiler, at the `.mi` instance.
+        let mut surface = compiled.clone();
         surface.name = m.name.clone();
-        return (surface, warnings);
+        return (surface, Vec::new());
     }
     let mut warnings = Vec::new();
     let call = match &m.kind {

@@ -33,8 +33,8 @@ fn compile_text(text: &str) -> (MdlMaterials, scene::Library, Vec<String>) {
     (mdl, scene.library, rendered)
 }
 
-/// The compiled material of shader `name` and its warnings.
-fn get<'a>(mdl: &'a MdlMaterials, lib: &scene::Library, name: &str) -> &'a (SurfaceMaterial, Vec<String>) {
+/// The compiled material of shader `name`.
+fn get<'a>(mdl: &'a MdlMaterials, lib: &scene::Library, name: &str) -> &'a SurfaceMaterial {
     let Some(ShaderItem::Call { span, .. }) = lib.shaders[name].list.0.first() else { panic!("no call") };
     mdl.get(*span).unwrap_or_else(|| panic!("'{name}' was not compiled"))
 }
@@ -56,12 +56,11 @@ shader "red" "mdl::export_multi::matte" ("tint" 0.5 0 0, "roughness" 0)
 shader "rough" "mdl::export_multi::matte" ("roughness" 0.3)"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
-    let (red, w) = get(&mdl, &lib, "red");
-    assert!(w.is_empty(), "{w:?}");
+    let red = get(&mdl, &lib, "red");
     assert_eq!(red.model, SurfaceModel::Lambert);
     assert!(close(red.diffuse, Rgb::new(0.5, 0.0, 0.0), 1e-6), "{:?}", red.diffuse);
     // The default tint (0.8) and an Oren–Nayar roughness.
-    let (rough, _) = get(&mdl, &lib, "rough");
+    let rough = get(&mdl, &lib, "rough");
     assert_eq!(rough.model, SurfaceModel::OrenNayar(0.3));
     assert!(close(rough.diffuse, Rgb::splat(0.8), 1e-6));
 }
@@ -72,15 +71,18 @@ fn let_material_reads_its_overridden_parameters() {
         r#"shader "p" "mdl::let_material::plaster" ("base" 0.8 0.8 0.8, "dirt" 0.5, "gloss" 0.4)
 shader "s" "mdl::let_material::shade" ("level" 0.25)"#,
     );
-    assert!(diags.is_empty(), "{diags:#?}");
     // dirty = 0.8 · (1 − 0.5) = 0.4; gloss 0.4 ≤ 0.5 gives the glossy layer weight 0.1, so the
     // diffuse base keeps 0.9 of it: 0.36. The glossy layer itself has no path-engine form
     // without a Fresnel term yet: a warning names the construct.
-    let (p, w) = get(&mdl, &lib, "p");
+    let p = get(&mdl, &lib, "p");
     assert!(close(p.diffuse, Rgb::splat(0.36), 1e-6), "{:?}", p.diffuse);
-    assert!(w.iter().any(|m| m.contains("weighted_layer(glossy bsdf, diffuse_reflection_bsdf)")), "{w:?}");
-    let (s, w) = get(&mdl, &lib, "s");
-    assert!(w.is_empty() && close(s.diffuse, Rgb::splat(0.25), 1e-6), "{w:?} {:?}", s.diffuse);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(
+        diags[0].contains("t.mi:1:") && diags[0].contains("weighted_layer(glossy bsdf, diffuse_reflection_bsdf)"),
+        "{diags:?}"
+    );
+    let s = get(&mdl, &lib, "s");
+    assert!(close(s.diffuse, Rgb::splat(0.25), 1e-6), "{:?}", s.diffuse);
 }
 
 #[test]
@@ -92,14 +94,13 @@ shader "plain" "mdl::chain::top::plain" ("r" 0.2)"#,
     assert!(diags.is_empty(), "{diags:#?}");
     // red_coat: a gloss (weight 1) specular coat of IOR 1.5 over the bottom module's
     // rough diffuse of tint (0.8, 0.1, 0.1).
-    let (coat, w) = get(&mdl, &lib, "coat");
-    assert!(w.is_empty(), "{w:?}");
+    let coat = get(&mdl, &lib, "coat");
     let SurfaceModel::Unified(u) = &coat.model else { panic!("{:?}", coat.model) };
     let p = u.params();
     assert!(
         close(p.base_color, Rgb::new(0.8, 0.1, 0.1), 1e-6) && p.ior == 1.5 && p.specular == 1.0 && p.roughness == 0.0
     );
-    let (plain, _) = get(&mdl, &lib, "plain");
+    let plain = get(&mdl, &lib, "plain");
     assert_eq!(plain.model, SurfaceModel::OrenNayar(0.2));
     assert!(close(plain.diffuse, Rgb::splat(0.5), 1e-6));
 }
@@ -114,17 +115,17 @@ shader "l" "mdl::mixes::layered" ()"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
     // 0.7 + 0.6 of white, normalized: albedo 1 (lossless).
-    let (n, w) = get(&mdl, &lib, "n");
-    assert!(w.is_empty() && close(n.diffuse, Rgb::ONE, 1e-6), "{w:?} {:?}", n.diffuse);
+    let n = get(&mdl, &lib, "n");
+    assert!(close(n.diffuse, Rgb::ONE, 1e-6), "{:?}", n.diffuse);
     // Clamped: 0.7 red + 0.3 green.
-    let (c, _) = get(&mdl, &lib, "c");
+    let c = get(&mdl, &lib, "c");
     assert!(close(c.diffuse, Rgb::new(0.7, 0.3, 0.0), 1e-6), "{:?}", c.diffuse);
     // Per channel: red 1 + 1 → ½ each: ½ + ¼; green 0.5 + 1 → ⅓, ⅔: ⅓ + ⅓; blue 0 + 0.25·0.5; times 0.5.
-    let (k, _) = get(&mdl, &lib, "k");
+    let k = get(&mdl, &lib, "k");
     let want = Rgb::new(0.75, 2.0 / 3.0, 0.125) * 0.5;
     assert!(close(k.diffuse, want, 1e-6), "{:?} vs {want:?}", k.diffuse);
     // A quarter red over three quarters blue.
-    let (l, _) = get(&mdl, &lib, "l");
+    let l = get(&mdl, &lib, "l");
     assert!(close(l.diffuse, Rgb::new(0.25, 0.0, 0.75), 1e-6), "{:?}", l.diffuse);
     for (name, m, lossless) in
         [("normalized", n, true), ("clamped", c, false), ("coloured", k, false), ("layered", l, false)]
@@ -148,19 +149,18 @@ shader "m" "mdl::mixes::metal" ()
 shader "leaf" "mdl::mixes::leaf" ()"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
-    let (g, w) = get(&mdl, &lib, "g");
-    assert!(w.is_empty(), "{w:?}");
+    let g = get(&mdl, &lib, "g");
     let SurfaceModel::Unified(u) = &g.model else { panic!("{:?}", g.model) };
     assert!(u.params().spec_trans == 1.0 && u.params().ior == 1.33 && !u.params().thin);
     assert!(g.has_inside());
-    let (t, _) = get(&mdl, &lib, "t");
+    let t = get(&mdl, &lib, "t");
     assert!(!t.has_inside(), "thin-walled glass has no inside");
     // Thin glass is lossless: what it does not reflect passes.
     for wo in incidences() {
         let a = bsdf::testing::albedo(&t.bsdf(wo), wo, 20_000);
         assert!((a - Rgb::ONE).abs().max_element() <= 0.01, "thin glass: albedo {a:?} at {wo:?}");
     }
-    let (m, _) = get(&mdl, &lib, "m");
+    let m = get(&mdl, &lib, "m");
     let SurfaceModel::Unified(u) = &m.model else { panic!("{:?}", m.model) };
     assert!(u.params().metallic == 1.0 && (u.params().roughness - 0.2).abs() < 1e-6);
     assert!(close(u.params().base_color, Rgb::new(0.9, 0.6, 0.3), 1e-6));
@@ -168,7 +168,7 @@ shader "leaf" "mdl::mixes::leaf" ()"#,
         let a = bsdf::testing::albedo(&m.bsdf(wo), wo, 20_000);
         assert!(a.max_element() <= 1.01, "metal: albedo {a:?}");
     }
-    let (leaf, _) = get(&mdl, &lib, "leaf");
+    let leaf = get(&mdl, &lib, "leaf");
     assert_eq!(leaf.opacity, 0.25);
 }
 
@@ -177,8 +177,7 @@ fn emission_is_radiance_from_the_exitance() {
     let (mdl, lib, diags) =
         compile_text(r#"shader "e" "mdl::export_multi::emitter" ("tint" 1 0.5 0.25, "intensity" 20)"#);
     assert!(diags.is_empty(), "{diags:#?}");
-    let (e, w) = get(&mdl, &lib, "e");
-    assert!(w.is_empty(), "{w:?}");
+    let e = get(&mdl, &lib, "e");
     // Radiant exitance 20 · tint of a Lambertian emitter: radiance 20 · tint / π.
     let want = Rgb::new(1.0, 0.5, 0.25) * 20.0 / std::f32::consts::PI;
     assert!(close(e.emission, want, 1e-5) && !e.emission_over_area, "{:?}", e.emission);
@@ -198,17 +197,18 @@ shader "bad" "mdl::export_multi::matte" ("tint" "red",
         diags[0]
     );
     assert!(diags[1].contains("t.mi:3:") && diags[1].contains("no parameter 'shine'"), "{}", diags[1]);
-    let (bad, w) = get(&mdl, &lib, "bad");
-    assert_eq!(bad.diffuse, Rgb::splat(0.5));
-    assert!(w.iter().any(|m| m.contains("rendered grey")), "{w:?}");
+    let bad = get(&mdl, &lib, "bad");
+    assert_eq!(bad.diffuse, Rgb::splat(0.5), "rendered grey");
 }
 
 #[test]
 fn hit_dependent_expressions_are_named_with_their_module_line() {
     let (mdl, lib, diags) = compile_text(r#"shader "p" "mdl::mixes::by_position" ()"#);
-    assert!(diags.is_empty(), "{diags:#?}");
-    let (_, w) = get(&mdl, &lib, "p");
-    assert!(w.len() == 1 && w[0].contains("mixes.mdl:50:") && w[0].contains("shading point"), "{w:?}");
+    // At the .mi instance, naming the module's line.
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let d = &diags[0];
+    assert!(d.contains("t.mi:1:") && d.contains("mixes.mdl:50:") && d.contains("shading point"), "{d}");
+    assert_eq!(get(&mdl, &lib, "p").diffuse, Rgb::splat(0.5), "rendered grey");
 }
 
 #[test]
@@ -233,7 +233,7 @@ shader "module" "mdl::export_multi::matte" ("tint" 0.5 0.25 0, "roughness" 0.2)
 shader "native" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 0.5 0.25 0, "roughness" 0.2)"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
-    let (module, _) = get(&mdl, &lib, "module");
+    let module = get(&mdl, &lib, "module");
     let native =
         scene::Material { name: "native".into(), kind: scene::MaterialKind::Shader(lib.shaders["native"].clone()) };
     let (native, w) = material::translate_with(&native, &lib, None, Some(&mdl));

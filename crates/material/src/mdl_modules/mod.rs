@@ -8,8 +8,8 @@
 //! parameters (type errors and unknown names are errors at the `.mi` parameter; absent ones
 //! take the definition's defaults), the material's expression is evaluated to constants
 //! ([`eval`], [`natives`]) and lowered to mira's BSDF families ([`lower`]). What depends on
-//! the shading point is not compiled yet: a warning names the construct, the module line and
-//! the `.mi` line, and the material is rendered grey.
+//! the shading point is not compiled yet: a warning at the `.mi` instance names the construct
+//! and its module `file:line:col`, and the material is rendered grey.
 //!
 //! The `::nvidia::core_definitions` materials keep mira's native translation unless a
 //! `core_definitions.mdl` on the search path replaces them.
@@ -37,12 +37,12 @@ const CORE: &str = "::nvidia::core_definitions";
 /// The compiled MDL material instances of a scene, by the place of their `.mi` call.
 #[derive(Debug, Default)]
 pub struct MdlMaterials {
-    by_call: HashMap<(u32, u32), (SurfaceMaterial, Vec<String>)>,
+    by_call: HashMap<(u32, u32), SurfaceMaterial>,
 }
 
 impl MdlMaterials {
-    /// The compiled material of the shader call at `span` and its warnings, if it is one.
-    pub fn get(&self, span: Span) -> Option<&(SurfaceMaterial, Vec<String>)> {
+    /// The compiled material of the shader call at `span`, if it is one.
+    pub fn get(&self, span: Span) -> Option<&SurfaceMaterial> {
         self.by_call.get(&(span.file.0, span.lo))
     }
 
@@ -118,7 +118,9 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         }
         let mut warnings = Vec::new();
         let surface = instance(&set, &qualified, shader, params, &mut diags, &mut warnings);
-        out.by_call.insert((span.file.0, span.lo), (surface, warnings));
+        // What was approximated or not compiled: warnings at the instance's `.mi` call.
+        diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
+        out.by_call.insert((span.file.0, span.lo), surface);
     }
     (out, diags)
 }
@@ -160,7 +162,7 @@ fn instance(
         }
     }
     if bad {
-        warnings.push(format!("material '{shader}': its parameters have errors; rendered grey"));
+        // The errors say what is wrong; the material renders grey.
         return SurfaceMaterial::grey(shader);
     }
     let mut ev = Evaluator::new(set);
