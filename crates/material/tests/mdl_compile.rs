@@ -241,3 +241,28 @@ shader "native" "mdl::nvidia::core_definitions::diffuse" ("diffuse_color" 0.5 0.
     assert_eq!(module.model, native.model);
     assert_eq!(module.diffuse, native.diffuse);
 }
+
+#[test]
+fn a_core_definitions_module_on_the_search_path_replaces_the_native_translation() {
+    let text = r#"shader "d" "mdl::nvidia::core_definitions::diffuse" ()
+options "o" end options
+camera "test_cam" end camera
+instance "ci" "test_cam" end instance
+instgroup "root" "ci" end instgroup
+render "root" "ci" "o"
+"#;
+    let parsed = mi::parse_str("t.mi", text);
+    let scene = scene::Scene::build(&parsed, 0, &mut Vec::new()).expect("a scene");
+    let d = scene::Material { name: "d".into(), kind: scene::MaterialKind::Shader(scene.library.shaders["d"].clone()) };
+    // Without it: mira's own `diffuse` (default colour 0.8), nothing compiled.
+    let (mdl, diags) = compile(&scene.library, MdlSearchPath::for_scene(None, &dirs(), None));
+    assert!(diags.is_empty() && mdl.is_empty(), "{diags:?}");
+    let (native, _) = material::translate_with(&d, &scene.library, None, Some(&mdl));
+    assert_eq!(native.diffuse, Rgb::splat(0.8));
+    // With tests/override/nvidia/core_definitions.mdl (its `diffuse` defaults to 0.25).
+    let over = Path::new(env!("CARGO_MANIFEST_DIR")).join("../mdl_lang/tests/override");
+    let (mdl, diags) = compile(&scene.library, MdlSearchPath::for_scene(None, &[over], None));
+    assert!(diags.is_empty() && mdl.len() == 1, "{diags:?}");
+    let (replaced, _) = material::translate_with(&d, &scene.library, None, Some(&mdl));
+    assert_eq!(replaced.diffuse, Rgb::splat(0.25));
+}
