@@ -266,3 +266,20 @@ render "root" "ci" "o"
     let (replaced, _) = material::translate_with(&d, &scene.library, None, Some(&mdl));
     assert_eq!(replaced.diffuse, Rgb::splat(0.25));
 }
+
+#[test]
+fn a_connected_parameter_is_a_warning_and_takes_its_default() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "tex" "mdl::base::file_texture" ()
+shader "m" "mdl::export_multi::matte" ("tint" = "tex.tint", "roughness" 0.1)"#,
+    );
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(
+        diags[0].contains("t.mi:2:") && diags[0].contains("warning") && diags[0].contains("'tex.tint'"),
+        "{}",
+        diags[0]
+    );
+    let m = get(&mdl, &lib, "m");
+    assert_eq!(m.diffuse, Rgb::splat(0.8));
+    assert_eq!(m.model, SurfaceModel::OrenNayar(0.1));
+}

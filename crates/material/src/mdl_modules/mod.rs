@@ -150,6 +150,16 @@ fn instance(
             bad = true;
             continue;
         };
+        if let mi::ast::Value::Connect(target) = &p.value {
+            diags.push(Diagnostic::warning(
+                p.span,
+                format!(
+                    "parameter '{}' of `{qualified}` is connected to '{}': shader connections of module materials are not evaluated per hit yet; its default is used",
+                    p.name.text, target.text
+                ),
+            ));
+            continue;
+        }
         match value::from_mi(&p.value, &decl.ty.ty, &enum_value) {
             Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
             Err(why) => {
