@@ -68,6 +68,10 @@ pub enum SurfaceModel {
     Mia(Box<(Mia, f32)>),
     /// A mental ray built-in BSDF (a material's `bsdf` slot, `builtin_bsdf_*`).
     Builtin(Box<bsdf::BuiltinBsdf>),
+    /// A sum of lobes with constant weights (MDL mixes and weighted layers of diffuse,
+    /// glossy reflection and diffuse transmission): Oren–Nayar, GGX reflection without
+    /// Fresnel, Lambert translucency.
+    Lobes(Box<MiaBsdf>),
 }
 
 /// A surface's scattering and emission.
@@ -131,6 +135,7 @@ impl SurfaceModel {
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(diffuse, *sigma)),
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
+            SurfaceModel::Lobes(l) => Bsdf::Mia(**l),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
@@ -154,6 +159,7 @@ impl SurfaceModel {
         match self {
             SurfaceModel::Unified(u) => u.params().spec_trans > 0.0 && !u.params().thin,
             SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
+            SurfaceModel::Lobes(l) => l.transmit != Rgb::ZERO && !l.thin,
             _ => false,
         }
     }

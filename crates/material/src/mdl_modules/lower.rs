@@ -9,14 +9,18 @@
 //! - a glossy or specular reflection layered over such a diffuse base by `fresnel_layer`
 //!   (a dielectric coat) is the unified material's dielectric: specular weight, GGX
 //!   roughness √α, index of refraction;
-//! - a glossy or specular reflection alone is a metal of its tint;
+//! - a constant-weight sum (mixes, tints, weighted layers) of diffuse reflection, one
+//!   glossy or specular reflection distribution and diffuse transmission is
+//!   [`SurfaceModel::Lobes`]: Oren–Nayar, GGX reflection weighted by its tint (MDL's glossy
+//!   BSDFs have no Fresnel term), Lambert translucency;
 //! - a specular or glossy `scatter_reflect_transmit` lobe with the material's `ior` is the
 //!   unified material's glass, thin when the material is `thin_walled`.
 //!
 //! Other combinations are approximated by their diffuse part, with a warning naming the
 //! construct.
 
-use bsdf::{Rgb, Unified, UnifiedParams};
+use bsdf::microfacet::Ggx;
+use bsdf::{MiaBsdf, OrenNayar, Rgb, Unified, UnifiedParams};
 
 use super::value::{Df, Edf, ScatterMode, Value};
 use crate::{SurfaceMaterial, SurfaceModel};
@@ -44,6 +48,77 @@ fn diffuse_only(df: &Df) -> Option<(Rgb, f32)> {
         }
         _ => None,
     }
+}
+
+/// The weights of a tree's lobes when it is a constant-weight sum of diffuse reflection,
+/// one glossy reflection distribution and diffuse transmission.
+#[derive(Default)]
+struct LobeSum {
+    diffuse: Rgb,
+    /// Σ σ · luminance of the diffuse parts (σ averaged by the diffuse luminance).
+    sigma: f32,
+    glossy: Rgb,
+    alpha: Option<(f32, f32)>,
+    transl: Rgb,
+}
+
+/// Adds `df` scaled by `scale` to `sum`; false if it is not such a sum.
+fn add_lobes(df: &Df, scale: Rgb, sum: &mut LobeSum) -> bool {
+    match df {
+        Df::Black => true,
+        Df::Diffuse { tint, roughness } => {
+            sum.diffuse += scale * *tint;
+            sum.sigma += roughness * bsdf::color::luminance(scale * *tint);
+            true
+        }
+        Df::DiffuseTransmission(tint) => {
+            sum.transl += scale * *tint;
+            true
+        }
+        Df::Specular { tint, mode: ScatterMode::Reflect } => add_glossy(*tint, (0.0, 0.0), scale, sum),
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect } => add_glossy(*tint, *roughness, scale, sum),
+        Df::Mix(parts) => parts.iter().all(|(w, d)| add_lobes(d, scale * *w, sum)),
+        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+            add_lobes(layer, scale * *weight, sum) && add_lobes(base, scale * (Rgb::ONE - *weight), sum)
+        }
+        _ => false,
+    }
+}
+
+fn add_glossy(tint: Rgb, alpha: (f32, f32), scale: Rgb, sum: &mut LobeSum) -> bool {
+    if sum.alpha.is_some_and(|a| a != alpha) {
+        return false;
+    }
+    sum.alpha = Some(alpha);
+    sum.glossy += scale * tint;
+    true
+}
+
+/// The tree as a [`SurfaceModel::Lobes`] material, if it is a constant-weight sum of
+/// diffuse reflection, one glossy reflection and diffuse transmission.
+fn lobes(name: &str, df: &Df) -> Option<SurfaceMaterial> {
+    let mut sum = LobeSum::default();
+    if !add_lobes(df, Rgb::ONE, &mut sum) {
+        return None;
+    }
+    let lum = bsdf::color::luminance(sum.diffuse);
+    let sigma = if lum > 0.0 { sum.sigma / lum } else { 0.0 };
+    let (ax, ay) = sum.alpha.unwrap_or((0.0, 0.0));
+    let clamp = |c: Rgb| c.clamp(Rgb::ZERO, Rgb::ONE);
+    let lobes = MiaBsdf {
+        diffuse: OrenNayar::new(clamp(sum.diffuse), sigma),
+        reflect: clamp(sum.glossy),
+        reflect_ggx: Ggx { alpha_x: ax, alpha_y: ay },
+        transmit: Rgb::ZERO,
+        transmit_ggx: Ggx::isotropic(0.0),
+        eta: 1.0,
+        thin: true,
+        transl: clamp(sum.transl),
+    };
+    Some(SurfaceMaterial {
+        model: SurfaceModel::Lobes(Box::new(lobes)),
+        ..SurfaceMaterial::lambert(name, clamp(sum.diffuse))
+    })
 }
 
 /// The albedo of a tree's diffuse reflection lobes, ignoring the rest (the approximation of
@@ -132,11 +207,13 @@ fn lower_bsdf(name: &str, df: &Df, ior: f32, thin: bool, warnings: &mut Vec<Stri
     }
     if let Some((tint, alpha, mode)) = glossy(df) {
         return match mode {
-            ScatterMode::Reflect => unified(UnifiedParams {
-                base_color: tint.clamp(Rgb::ZERO, Rgb::ONE),
-                metallic: 1.0,
-                roughness: alpha.sqrt(),
-                ..Default::default()
+            ScatterMode::Reflect => lobes(name, df).unwrap_or_else(|| {
+                unified(UnifiedParams {
+                    base_color: tint,
+                    metallic: 1.0,
+                    roughness: alpha.sqrt(),
+                    ..Default::default()
+                })
             }),
             ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
                 if mode == ScatterMode::Transmit {
@@ -169,6 +246,9 @@ fn lower_bsdf(name: &str, df: &Df, ior: f32, thin: bool, warnings: &mut Vec<Stri
                 ..Default::default()
             });
         }
+    }
+    if let Some(surface) = lobes(name, df) {
+        return surface;
     }
     let albedo = diffuse_part(df).clamp(Rgb::ZERO, Rgb::ONE);
     warnings.push(format!(
