@@ -7,7 +7,9 @@
 //!   Oren–Nayar surface; `add_emission` its base material plus emission in MDL's units;
 //! - `mia_material` and `mia_material_x`: [`bsdf::mia::MiaBsdf`], whose layer
 //!   weights come from the author's curve and conservation at each viewing angle;
-//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert).
+//! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert);
+//! - materials of MDL modules on the search path: compiled by [`mdl_modules`] (see
+//!   [`translate_with`]).
 //!
 //! Constant parameters are read once ([`reader`]). Parameters connected to shaders —
 //! MDL `::base` textures, mental ray texture and bump shaders — are evaluated at every
@@ -18,6 +20,7 @@
 pub mod emission;
 pub mod inputs;
 pub mod maya;
+pub mod mdl_modules;
 mod reader;
 
 use mi::ast::{Num, Param, ShaderItem, Value};
@@ -81,6 +84,10 @@ pub enum SurfaceModel {
     Mia(Box<(Mia, f32)>),
     /// A mental ray built-in BSDF (a material's `bsdf` slot, `builtin_bsdf_*`).
     Builtin(Box<bsdf::BuiltinBsdf>),
+    /// A sum of lobes with constant weights (MDL mixes and weighted layers of diffuse,
+    /// glossy reflection and diffuse transmission): Oren–Nayar, GGX reflection without
+    /// Fresnel, Lambert translucency.
+    Lobes(Box<MiaBsdf>),
 }
 
 /// A surface's scattering and emission.
@@ -144,6 +151,7 @@ impl SurfaceModel {
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(diffuse, *sigma)),
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
+            SurfaceModel::Lobes(l) => Bsdf::Mia(**l),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
@@ -167,6 +175,7 @@ impl SurfaceModel {
         match self {
             SurfaceModel::Unified(u) => u.params().spec_trans > 0.0 && !u.params().thin,
             SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
+            SurfaceModel::Lobes(l) => l.transmit != Rgb::ZERO && !l.thin,
             _ => false,
         }
     }
@@ -228,6 +237,42 @@ pub fn first_call<'a>(items: &'a [ShaderItem], lib: &'a Library) -> Option<(&'a 
 /// compiled shader graph, with `m` as its material `index`) is given, else they take their
 /// defaults.
 pub fn translate(m: &Material, lib: &Library, shading: Option<(&Shading, usize)>) -> (SurfaceMaterial, Vec<String>) {
+    translate_with(m, lib, shading, None)
+}
+
+/// The span of the shader call behind a material, following one named reference.
+fn call_span(items: &[ShaderItem], lib: &Library) -> Option<mi::Span> {
+    let first = |items: &[ShaderItem]| match items.first()? {
+        ShaderItem::Call { span, .. } => Some(*span),
+        _ => None,
+    };
+    match items.first()? {
+        ShaderItem::Call { span, .. } => Some(*span),
+        ShaderItem::Ref(name) => first(&lib.shaders.get(&name.text)?.list.0),
+        ShaderItem::Define { list, .. } => first(&list.0),
+    }
+}
+
+/// [`translate`] with the scene's compiled MDL module materials: a material that is an
+/// instance of one of them is that compiled material.
+pub fn translate_with(
+    m: &Material,
+    lib: &Library,
+    shading: Option<(&Shading, usize)>,
+    mdl: Option<&mdl_modules::MdlMaterials>,
+) -> (SurfaceMaterial, Vec<String>) {
+    let items: Option<&[ShaderItem]> = match &m.kind {
+        MaterialKind::Shader(def) => Some(&def.list.0),
+        MaterialKind::Material(defs) => {
+            defs.iter().rev().find_map(|d| d.shaders.as_ref()).map(|l| &l.0[l.0.len().saturating_sub(1)..])
+        }
+    };
+    if let Some(compiled) = mdl.zip(items).and_then(|(mdl, items)| mdl.get(call_span(items, lib)?)) {
+        // Its problems were reported by the compiler, at the `.mi` instance.
+        let mut surface = compiled.clone();
+        surface.name = m.name.clone();
+        return (surface, Vec::new());
+    }
     // A Maya shading engine: its surface shader's material (see [`maya`]).
     let maya_engine = shading.and_then(|(s, i)| Some((&s.graph, s.materials.get(i)?.surface?)));
     if let Some(found) = maya_engine.and_then(|(graph, head)| maya::surface_material(&m.name, graph, head)) {

@@ -10,7 +10,9 @@
 //! - [`ModuleSet`] / [`load_module`]: loads a module and its imports recursively (cycles and
 //!   missing modules are errors at the import), with the standard modules (`::df`, `::base`,
 //!   `::math`, `::tex`, `::state`, `::anno`, `::limits`, `::nvidia::core_definitions`) built in
-//!   as declarations ([`std_modules`]).
+//!   as declarations ([`std_modules`]); the set reads as the [`ModuleTable`] of the checked
+//!   modules (lookups of materials, functions, structs, enums), which the semantic pass reads
+//!   too.
 //! - the semantic pass (run by the loader on every module): resolves names across imports,
 //!   chooses overloads,
 //!   types expressions where simple, checks defaults and arguments, expands material
@@ -36,6 +38,7 @@ mod error;
 mod frequency;
 pub mod lexer;
 mod module_set;
+mod module_table;
 pub mod parser;
 mod search_path;
 mod sema;
@@ -46,7 +49,8 @@ pub mod symbols;
 pub use ast::{Body, Decl, Expr, ExprKind, Function, Module, Param, QualName, Resolution, Type};
 pub use error::{Error, Problem};
 pub use frequency::HitDependence;
-pub use module_set::{load_module, split_mi_name, LoadedModule, ModuleSet};
+pub use module_set::{load_module, split_mi_name, ModuleSet};
+pub use module_table::{LoadedModule, ModuleTable};
 pub use search_path::MdlSearchPath;
 pub use subst::BindError;
 

@@ -2,39 +2,37 @@
 //! parsing it, loading its imports recursively, checking it, and keeping every loaded module
 //! in a table looked up by absolute name.
 
-use std::collections::HashMap;
+use std::ops::Deref;
 use std::path::Path;
 
 use mi::{Diagnostic, Origin, SourceMap, Span};
 
-use crate::ast::{Decl, EnumDecl, Function, ImportKind, ImportNames, Module, ModulePath, Resolution, StructDecl};
+use crate::ast::{Decl, ImportKind, ImportNames, Module, ModulePath};
 use crate::error::Error;
+use crate::module_table::{absolute, LoadedModule, ModuleTable};
 use crate::parser::parse_module;
 use crate::search_path::MdlSearchPath;
 use crate::std_modules::{std_module, PRELUDE};
-use crate::symbols::{declared, Scope, Symbol, SymbolKind};
+use crate::symbols::{declared, Symbol, SymbolKind};
 
 /// Largest module file mira reads, in bytes.
 const MAX_MODULE_SIZE: u64 = 64 << 20;
-
-/// A loaded, checked module and its symbol tables.
-#[derive(Debug)]
-pub struct LoadedModule {
-    /// The checked tree.
-    pub module: Module,
-    /// Every name it declares.
-    pub declared: Scope,
-    /// The names other modules may import from it (its exported declarations and re-exports).
-    pub exports: Scope,
-}
 
 /// Every module loaded so far, with the sources they were read from.
 #[derive(Debug)]
 pub struct ModuleSet {
     search: MdlSearchPath,
     sources: SourceMap,
-    modules: Vec<LoadedModule>,
-    index: HashMap<String, usize>,
+    table: ModuleTable,
+}
+
+/// A set is read like the table of its loaded modules (`set.material("::m::matte")`).
+impl Deref for ModuleSet {
+    type Target = ModuleTable;
+
+    fn deref(&self) -> &ModuleTable {
+        &self.table
+    }
 }
 
 /// Why loading stopped, before it becomes an [`Error`].
@@ -52,19 +50,10 @@ pub fn load_module(name: &str, search: &MdlSearchPath) -> Result<ModuleSet, Erro
     Ok(set)
 }
 
-/// The absolute form of a module or qualified name: a leading `::` added if missing.
-fn absolute(name: &str) -> String {
-    if name.starts_with("::") {
-        name.to_string()
-    } else {
-        format!("::{name}")
-    }
-}
-
 impl ModuleSet {
     /// An empty set that finds modules on `search` (and the built-in ones).
     pub fn new(search: MdlSearchPath) -> ModuleSet {
-        ModuleSet { search, sources: SourceMap::new(), modules: Vec::new(), index: HashMap::new() }
+        ModuleSet { search, sources: SourceMap::new(), table: ModuleTable::default() }
     }
 
     /// The search path.
@@ -82,7 +71,7 @@ impl ModuleSet {
         let name = absolute(name);
         let mut stack = Vec::new();
         match self.load_inner(&name, None, &mut stack) {
-            Ok(i) => Ok(&self.modules[i].module),
+            Ok(i) => Ok(&self.table.at(i).module),
             Err(fail) => Err(self.error(fail)),
         }
     }
@@ -99,13 +88,13 @@ impl ModuleSet {
             let dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
             self.search.push(dir);
         }
-        if let Some(&i) = self.index.get(&name) {
-            return Ok(&self.modules[i].module);
+        if let Some(&i) = self.table.position(&name) {
+            return Ok(&self.table.at(i).module);
         }
         let bytes = read_module(path).map_err(Error::unlocated)?;
         let mut stack = Vec::new();
         match self.finish(&name, Origin::Disk(path.to_path_buf()), bytes, false, &mut stack) {
-            Ok(i) => Ok(&self.modules[i].module),
+            Ok(i) => Ok(&self.table.at(i).module),
             Err(fail) => Err(self.error(fail)),
         }
     }
@@ -113,13 +102,13 @@ impl ModuleSet {
     /// Loads module `name` from `text` held in memory (its imports come from the search path).
     pub fn load_source(&mut self, name: &str, text: &str) -> Result<&Module, Error> {
         let name = absolute(name);
-        if self.index.contains_key(&name) || std_module(&name).is_some() {
+        if self.table.contains(&name) || std_module(&name).is_some() {
             return Err(Error::unlocated(format!("module `{name}` is already loaded")));
         }
         let file = format!("{}.mdl", name.trim_start_matches("::").replace("::", "/"));
         let mut stack = Vec::new();
         match self.finish(&name, Origin::Memory(file), text.as_bytes().to_vec(), false, &mut stack) {
-            Ok(i) => Ok(&self.modules[i].module),
+            Ok(i) => Ok(&self.table.at(i).module),
             Err(fail) => Err(self.error(fail)),
         }
     }
@@ -132,7 +121,7 @@ impl ModuleSet {
     }
 
     fn load_inner(&mut self, name: &str, from: Option<Span>, stack: &mut Vec<String>) -> Result<usize, Fail> {
-        if let Some(&i) = self.index.get(name) {
+        if let Some(&i) = self.table.position(name) {
             return Ok(i);
         }
         let fail = |message: String| match from {
@@ -181,7 +170,7 @@ impl ModuleSet {
         let result = self.load_imports(&mut module, stack);
         stack.pop();
         result?;
-        let diags = crate::sema::check(&mut module, self);
+        let diags = crate::sema::check(&mut module, &self.table);
         if !diags.is_empty() {
             return Err(Fail::Located(diags));
         }
@@ -190,7 +179,7 @@ impl ModuleSet {
             if let (true, ImportKind::Using { names, .. }, Some(target)) =
                 (import.exported, &import.kind, &import.resolved)
             {
-                let from = &self.modules[self.index[target]].exports;
+                let Some(from) = self.table.loaded(target).map(|m| &m.exports) else { continue };
                 let mut wanted: Vec<String> = match names {
                     ImportNames::All => from.keys().cloned().collect(),
                     ImportNames::Some(list) => list.clone(),
@@ -223,10 +212,7 @@ impl ModuleSet {
                 }
             }
         }
-        let i = self.modules.len();
-        self.modules.push(LoadedModule { module, declared, exports });
-        self.index.insert(name.to_string(), i);
-        Ok(i)
+        Ok(self.table.insert(name, LoadedModule { module, declared, exports }))
     }
 
     fn load_imports(&mut self, module: &mut Module, stack: &mut Vec<String>) -> Result<(), Fail> {
@@ -272,7 +258,7 @@ impl ModuleSet {
         // Weak relative: the current package first, then the top level.
         if !package.is_empty() {
             let candidate = joined(&package);
-            if self.index.contains_key(&candidate)
+            if self.table.contains(&candidate)
                 || std_module(&candidate).is_some()
                 || self.search.find(&candidate).is_some()
             {
@@ -280,94 +266,6 @@ impl ModuleSet {
             }
         }
         Ok(joined(&[]))
-    }
-
-    /// A loaded module by absolute name (`::a::b`; `a::b` is accepted too).
-    pub fn module(&self, name: &str) -> Option<&Module> {
-        self.loaded(name).map(|m| &m.module)
-    }
-
-    /// A loaded module with its symbol tables.
-    pub fn loaded(&self, name: &str) -> Option<&LoadedModule> {
-        self.index.get(&absolute(name)).map(|&i| &self.modules[i])
-    }
-
-    /// Every loaded module, in the order loading finished (imports before importers).
-    pub fn modules(&self) -> impl Iterator<Item = &Module> {
-        self.modules.iter().map(|m| &m.module)
-    }
-
-    /// The declaration a symbol points at.
-    pub fn decl(&self, sym: &Symbol) -> Option<&Decl> {
-        self.module(&sym.module)?.decls.get(sym.decl)
-    }
-
-    /// The exported symbols named `qualified` (`::m::name` or `m::name`).
-    pub fn exported(&self, qualified: &str) -> &[Symbol] {
-        let q = absolute(qualified);
-        let Some((module, name)) = q.rsplit_once("::") else {
-            return &[];
-        };
-        self.loaded(module).and_then(|m| m.exports.get(name)).map_or(&[], Vec::as_slice)
-    }
-
-    /// The exported material `qualified` (`::m::matte`), following re-exports.
-    pub fn material(&self, qualified: &str) -> Option<&Function> {
-        self.exported(qualified).iter().find_map(|s| match self.decl(s) {
-            Some(Decl::Function(f)) if f.is_material() => Some(f),
-            _ => None,
-        })
-    }
-
-    /// The exported overloads of function `qualified` (`::math::lerp`), in declaration order.
-    pub fn functions(&self, qualified: &str) -> Vec<&Function> {
-        self.exported(qualified)
-            .iter()
-            .filter_map(|s| match self.decl(s) {
-                Some(Decl::Function(f)) if !f.is_material() => Some(f),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The definition a call's resolution ([`Resolution::Function`] or [`Resolution::Material`])
-    /// points at.
-    pub fn definition(&self, res: &Resolution) -> Option<&Function> {
-        let (module, decl) = match res {
-            Resolution::Function { module, decl, .. } | Resolution::Material { module, decl, .. } => (module, *decl),
-            _ => return None,
-        };
-        match self.module(module)?.decls.get(decl)? {
-            Decl::Function(f) => Some(f),
-            _ => None,
-        }
-    }
-
-    /// The struct of absolute type name `name` (`::base::texture_return`, `material_surface`).
-    pub fn struct_decl(&self, name: &str) -> Option<&StructDecl> {
-        let (module, local) = split_type_name(name);
-        self.module(module)?.decls.iter().find_map(|d| match d {
-            Decl::Struct(s) if s.name == local => Some(s),
-            _ => None,
-        })
-    }
-
-    /// The enum of absolute type name `name` (`::df::scatter_mode`, `intensity_mode`).
-    pub fn enum_decl(&self, name: &str) -> Option<&EnumDecl> {
-        let (module, local) = split_type_name(name);
-        self.module(module)?.decls.iter().find_map(|d| match d {
-            Decl::Enum(e) if e.name == local => Some(e),
-            _ => None,
-        })
-    }
-}
-
-/// The module and local name of an absolute type name; names without a module are the
-/// prelude's.
-pub(crate) fn split_type_name(name: &str) -> (&str, &str) {
-    match name.rsplit_once("::") {
-        Some((m, n)) if !m.is_empty() => (m, n),
-        _ => (PRELUDE, name.trim_start_matches("::")),
     }
 }
 
@@ -408,11 +306,5 @@ mod tests {
         assert_eq!(split("mdl::::m::x"), Some(("::m".into(), "x".into())));
         assert_eq!(split("mdl::matte"), None);
         assert_eq!(split("mib_illum_lambert"), None);
-    }
-
-    #[test]
-    fn type_names_split_into_module_and_name() {
-        assert_eq!(split_type_name("::base::texture_return"), ("::base", "texture_return"));
-        assert_eq!(split_type_name("material_surface"), (PRELUDE, "material_surface"));
     }
 }

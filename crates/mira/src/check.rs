@@ -65,6 +65,11 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                     list.extend(material::compile_shading(w, &shading_options).1);
                 }
             }
+            // MDL module materials: modules found, instances bound and type-checked.
+            if let Some(w) = &world {
+                let search = material::mdl_modules::search_path(&w.library, &args.include.mdl_paths);
+                list.extend(material::mdl_modules::compile(&w.library, search).1);
+            }
             diags.list.extend(list);
         }
         for d in &diags.list {

@@ -38,6 +38,10 @@ pub struct IncludeArgs {
     /// directories of the MI_INCLUDE_PATH environment variable).
     #[arg(short = 'I', long = "include", value_name = "DIR")]
     pub include: Vec<PathBuf>,
+    /// Directory to search for MDL modules (repeatable; after the scene's own directory,
+    /// before the directories of the MDL_PATHS environment variable).
+    #[arg(short = 'M', long = "mdl-path", value_name = "DIR")]
+    pub mdl_paths: Vec<PathBuf>,
 }
 
 impl IncludeArgs {

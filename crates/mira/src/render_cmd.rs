@@ -176,11 +176,21 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
         shading
     };
+    let (mdl, mdl_diags) = material::mdl_modules::compile(
+        &sc.library,
+        material::mdl_modules::search_path(&sc.library, &args.include.mdl_paths),
+    );
+    {
+        let mut stderr = std::io::stderr().lock();
+        for d in mdl_diags.iter().filter(|d| d.is_error() || args.warnings) {
+            let _ = write!(stderr, "{}", d.render(&parsed.sources));
+        }
+    }
     // The file's text and syntax tree are not needed past this point, nor the scene's
     // meshes once the world has its own copy: freed early, they do not add to the peak
     // memory of the world and acceleration structure builds.
     drop(parsed);
-    let world = render::World::from_scene_shaded(&sc, Some(&shading));
+    let world = render::World::from_scene_with_mdl(&sc, Some(&shading), &mdl);
     sc.release_geometry();
     if args.warnings && !classic {
         for w in &world.warnings {

@@ -108,3 +108,31 @@ fn render_refuses_scenes_with_errors() {
     assert_eq!(code, 1);
     assert!(err.contains("bad.mi:2:15: error: unknown camera instance 'cam'"), "{err}");
 }
+
+#[test]
+fn mdl_modules_are_found_with_dash_m_and_their_materials_checked() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-mdl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The Cornell box without its module beside it.
+    let scene = std::fs::read_to_string("../../scenes/mdl/cornell_mdl.mi").unwrap();
+    let s = dir.join("cornell.mi");
+    std::fs::write(&s, &scene).unwrap();
+    let (code, _, err) = mira(&["check", "--scene", "-W", s.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("MDL module `::export_multi` could not be loaded"), "{err}");
+    let (code, _, err) = mira(&["check", "--scene", "-W", "-M", "../../scenes/mdl", s.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("could not be loaded"), "{err}");
+    // A parameter of the wrong type is an error at its .mi line.
+    let bad = dir.join("bad.mi");
+    std::fs::write(&bad, scene.replace(r#"("tint" 0.5 0 0, "roughness" 0)"#, r#"("tint" "red")"#)).unwrap();
+    let (code, _, err) = mira(&["check", "--scene", "-M", "../../scenes/mdl", bad.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("bad.mi:20:") && err.contains("expected a colour"), "{err}");
+    // Rendering by default (the automatic engine: path for MDL materials).
+    let png = dir.join("cornell.png");
+    let (code, _, err) =
+        mira(&["render", "-M", "../../scenes/mdl", s.to_str().unwrap(), "-o", png.to_str().unwrap(), "--spp", "2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(png.is_file());
+}

@@ -96,10 +96,24 @@ impl World {
     /// connected parameters are evaluated through it at each hit (pass the same shading
     /// to the render).
     pub fn from_scene_shaded(scene: &Scene, shading: Option<&Shading>) -> World {
+        let search = material::mdl_modules::search_path(&scene.library, &[]);
+        let (mdl, diags) = material::mdl_modules::compile(&scene.library, search);
+        let mut world = World::from_scene_with_mdl(scene, shading, &mdl);
+        world.warnings.extend(diags.into_iter().map(|d| d.message));
+        world
+    }
+
+    /// [`World::from_scene_shaded`] with the scene's MDL module materials compiled by the
+    /// caller (who reports their diagnostics with the scene's sources).
+    pub fn from_scene_with_mdl(
+        scene: &Scene,
+        shading: Option<&Shading>,
+        mdl: &material::mdl_modules::MdlMaterials,
+    ) -> World {
         let mut warnings = Vec::new();
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
         for (i, m) in scene.materials.iter().enumerate() {
-            let (mat, w) = material::translate(m, &scene.library, shading.map(|s| (s, i)));
+            let (mat, w) = material::translate_with(m, &scene.library, shading.map(|s| (s, i)), Some(mdl));
             warnings.extend(w);
             materials.push(mat);
         }

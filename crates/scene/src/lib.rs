@@ -104,6 +104,9 @@ pub struct Library {
     pub lightprofiles: BTreeMap<String, Vec<ast::Block>>,
     /// MDL modules the scene includes.
     pub mdl_modules: Vec<String>,
+    /// The directories of the scene files that include MDL modules (searched first for
+    /// them, in order; see `material::mdl`).
+    pub mdl_dirs: Vec<std::path::PathBuf>,
 }
 
 impl Library {
@@ -136,12 +139,35 @@ impl Library {
     }
 }
 
+/// Appends the directory of each file that `$include`s an MDL module among `items` (once).
+fn mdl_include_dirs(items: &[ast::Item], sources: &mi::SourceMap, dirs: &mut Vec<std::path::PathBuf>) {
+    for item in items {
+        match item {
+            ast::Item::Include(inc) => {
+                if inc.target == mi::IncludeTarget::Mdl {
+                    let dir =
+                        sources.file(inc.path.span.file).dir().map(std::path::Path::to_path_buf).unwrap_or_default();
+                    let dir = if dir.as_os_str().is_empty() { std::path::PathBuf::from(".") } else { dir };
+                    if !dirs.contains(&dir) {
+                        dirs.push(dir);
+                    }
+                }
+                mdl_include_dirs(&inc.items, sources, dirs);
+            }
+            ast::Item::Namespace(ns) => mdl_include_dirs(&ns.items, sources, dirs),
+            _ => {}
+        }
+    }
+}
+
 impl Scene {
     /// Builds the world at the `frame`-th `render` statement of a parsed file (0: the
     /// first). Problems are appended to `diagnostics`; `None` when no world can be built
     /// (no render statement, unknown root group, camera or options).
     pub fn build(parsed: &mi::Parsed, frame: usize, diagnostics: &mut Vec<mi::Diagnostic>) -> Option<Scene> {
-        build::build(&parsed.items, frame, diagnostics)
+        let mut scene = build::build(&parsed.items, frame, diagnostics)?;
+        mdl_include_dirs(&parsed.items, &parsed.sources, &mut scene.library.mdl_dirs);
+        Some(scene)
     }
 
     /// Triangles of all instances (instanced geometry counted once per instance).

@@ -1,7 +1,8 @@
 //! What lights emit: MDL light materials (`light_omni`, `light_spot`, `light_ies`) with
 //! MDL's units, mental ray's base light shaders (`mib_light_point`, `mib_light_spot`,
 //! `mib_light_infinite`, `mib_light_photometric`) and the Architectural library's
-//! `mia_photometric_light` and `mia_portal_light`.
+//! `mia_photometric_light` and `mia_portal_light`, and the physics library's
+//! `physical_light`.
 
 pub mod maya;
 
@@ -87,6 +88,24 @@ pub fn emission_with(
     light: &Light,
     lib: &Library,
     profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
+) -> Result<Emission, String> {
+    emission_scaled(light, lib, profiles, 1.0)
+}
+
+/// The string option `"light relative scale"` of a scene (mental ray 3.12 MDL scenes carry
+/// it): the factor mira applies to the emission of mental ray's physical light shaders
+/// (`physical_light`) in the path engine, 1 when absent.
+pub fn light_relative_scale(options: &scene::Options) -> f32 {
+    options.string_options.get("light relative scale").and_then(|v| v.as_f64()).map_or(1.0, |s| s.max(0.0) as f32)
+}
+
+/// [`emission_with`], with `physical_light` emission multiplied by `light_relative_scale`
+/// (see [`light_relative_scale`]).
+pub fn emission_scaled(
+    light: &Light,
+    lib: &Library,
+    profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
+    light_relative_scale: f32,
 ) -> Result<Emission, String> {
     let Some(list) = &light.shader else {
         return Err(format!("light '{}' has no light shader", light.name));
@@ -189,6 +208,27 @@ pub fn emission_with(
                 .then(|| scalar_param(params, "cone").unwrap_or(0.0) as f32);
             Ok(Emission {
                 power: Power::Constant { color: color("color", Rgb::ZERO), falloff },
+                spot_exponent: None,
+                cone,
+                distribution: None,
+            })
+        }
+        "physical_light" => {
+            // mental ray gives point, spot and sphere lights color / (4π r²) — an intensity
+            // of color / 4π — and each sample of a flat area light color · cos / (π r²),
+            // which over the shape is a Lambertian emitter of radiance color / (π A): in
+            // both cases the light's flux is `color`.
+            let cos_exp = scalar("cos_exp", 0.0);
+            if cos_exp > 1.0 {
+                return Err(format!(
+                    "light '{}': physical_light with cos_exp {cos_exp} (narrowed area lights) is not supported by the path engine yet",
+                    light.name
+                ));
+            }
+            let cone = (light.kind == scene::LightKind::Spot).then(|| scalar("cone", 0.0));
+            let scale = light_relative_scale;
+            Ok(Emission {
+                power: Power::Flux(color("color", Rgb::splat(1000.0)) * scale),
                 spot_exponent: None,
                 cone,
                 distribution: None,

@@ -255,7 +255,7 @@ impl Checker<'_> {
 
     /// The fields (name, type) of the struct of absolute type name `name`.
     pub(super) fn struct_fields(&self, name: &str) -> Option<Vec<(String, Type)>> {
-        let (module, local) = crate::module_set::split_type_name(name);
+        let (module, local) = crate::module_table::split_type_name(name);
         let decl = if module == self.module_name {
             self.decls.iter().find_map(|d| match d {
                 Decl::Struct(s) if s.name == local => Some(s),

@@ -13,7 +13,7 @@ mod stmt;
 use mi::{Diagnostic, Span};
 
 use crate::ast::*;
-use crate::module_set::ModuleSet;
+use crate::module_table::ModuleTable;
 use crate::std_modules::PRELUDE;
 use crate::symbols::{declared, type_name, Scope, Symbol, SymbolKind};
 
@@ -21,7 +21,7 @@ use crate::symbols::{declared, type_name, Scope, Symbol, SymbolKind};
 const MAX_ERRORS: usize = 50;
 
 /// Checks `module` (whose imports are loaded in `set`) in place; returns the errors found.
-pub(crate) fn check(module: &mut Module, set: &ModuleSet) -> Vec<Diagnostic> {
+pub(crate) fn check(module: &mut Module, set: &ModuleTable) -> Vec<Diagnostic> {
     let (own, _) = declared(module);
     let mut c = Checker {
         set,
@@ -89,7 +89,7 @@ struct Local {
 }
 
 pub(crate) struct Checker<'a> {
-    set: &'a ModuleSet,
+    set: &'a ModuleTable,
     module_name: String,
     /// Every name the module declares.
     own: Scope,

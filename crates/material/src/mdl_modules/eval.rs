@@ -1,0 +1,465 @@
+//! Evaluating a material's expression to a constant [`Value`] once per material instance:
+//! arguments bound to parameters (defaults where absent), `let` and calls of
+//! expression-bodied definitions followed, operators folded, struct constructors and the
+//! `::df` distribution functions built. What depends on the shading point (texture lookups,
+//! `state::` values used in arithmetic) or is not evaluated yet stops the evaluation with a
+//! [`Problem`] at its place in the module.
+
+use std::collections::HashMap;
+
+use bsdf::Rgb;
+use mdl_lang::ast::{Arg, BinaryOp, Body, Decl, Scalar, UnaryOp};
+use mdl_lang::{Expr, ExprKind, Function, ModuleSet, Resolution, Type};
+use mi::Span;
+
+use super::natives;
+use super::value::Value;
+
+/// Deepest nesting of calls followed (recursion in a module is an error, not a hang).
+const MAX_DEPTH: u32 = 64;
+
+/// Why an expression has no constant value: the place (in the module's sources) and what.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// Where, in the module set's sources.
+    pub span: Span,
+    /// What is not evaluated.
+    pub message: String,
+}
+
+/// The result of evaluating.
+pub type Eval = Result<Value, Problem>;
+
+/// The bound parameters and the locals of the definition being evaluated.
+#[derive(Default)]
+pub struct Env {
+    /// Parameter values by index.
+    pub params: Vec<Value>,
+    locals: HashMap<u32, Value>,
+}
+
+impl Env {
+    /// An environment with `params` bound.
+    pub fn with_params(params: Vec<Value>) -> Env {
+        Env { params, locals: HashMap::new() }
+    }
+}
+
+/// The evaluator over one module set.
+pub struct Evaluator<'a> {
+    /// The modules the expressions come from.
+    pub set: &'a ModuleSet,
+    depth: u32,
+}
+
+/// A problem at `span`.
+pub fn problem(span: Span, message: impl Into<String>) -> Problem {
+    Problem { span, message: message.into() }
+}
+
+impl<'a> Evaluator<'a> {
+    /// An evaluator of `set`'s definitions.
+    pub fn new(set: &'a ModuleSet) -> Evaluator<'a> {
+        Evaluator { set, depth: 0 }
+    }
+
+    /// The value of `e` in `env`.
+    pub fn eval(&mut self, e: &Expr, env: &mut Env) -> Eval {
+        let span = e.span;
+        match &e.kind {
+            ExprKind::Bool(b) => Ok(Value::Bool(*b)),
+            ExprKind::Int(i) => Ok(Value::Int(*i)),
+            ExprKind::Float { value, .. } => Ok(Value::Float(*value)),
+            ExprKind::Str(s) => Ok(Value::Str(s.clone())),
+            ExprKind::Name(n) => match &n.res {
+                Resolution::Param(i) => env
+                    .params
+                    .get(*i)
+                    .cloned()
+                    .ok_or_else(|| problem(span, format!("parameter `{}` is not bound", n.name))),
+                Resolution::Local(id) => {
+                    env.locals.get(id).cloned().ok_or_else(|| problem(span, format!("`{}` has no value yet", n.name)))
+                }
+                Resolution::EnumValue { enum_type, value } => Ok(Value::Enum(enum_type.clone(), *value)),
+                Resolution::Constant { module, name } => self.constant(module, name, span),
+                other => Err(problem(span, format!("`{}` ({other:?}) is not evaluated yet", n.name))),
+            },
+            ExprKind::Call(call) => match &call.res {
+                Resolution::Constructor(ty) => self.construct(ty, &call.args, env, span),
+                res @ (Resolution::Function { .. } | Resolution::Material { .. }) => {
+                    let Some(def) = self.set.definition(res) else {
+                        return Err(problem(span, format!("`{}` has no definition", call.callee)));
+                    };
+                    let args = self.bind(def, &call.args, env, span)?;
+                    self.call(def, res, args, span)
+                }
+                _ => Err(problem(span, format!("call of `{}` is not evaluated yet", call.callee))),
+            },
+            ExprKind::Unary { op, operand } => {
+                let v = self.eval(operand, env)?;
+                unary(*op, v).ok_or_else(|| problem(span, format!("operator {op:?} is not evaluated for this operand")))
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let a = self.eval(lhs, env)?;
+                if let (BinaryOp::And | BinaryOp::Or, Value::Bool(x)) = (op, &a) {
+                    if (*op == BinaryOp::And) != *x {
+                        return Ok(Value::Bool(*x));
+                    }
+                }
+                let b = self.eval(rhs, env)?;
+                binary(*op, &a, &b).ok_or_else(|| problem(span, describe_binary(*op, &a, &b)))
+            }
+            ExprKind::Conditional { cond, then, otherwise } => match self.eval(cond, env)? {
+                Value::Bool(true) => self.eval(then, env),
+                Value::Bool(false) => self.eval(otherwise, env),
+                v => Err(problem(cond.span, format!("condition is not a constant boolean ({})", kind(&v)))),
+            },
+            ExprKind::Member { base, field } => {
+                let v = self.eval(base, env)?;
+                member(&v, field).ok_or_else(|| problem(span, format!("`.{field}` of {} is not evaluated", kind(&v))))
+            }
+            ExprKind::Index { base, index } => {
+                let (v, i) = (self.eval(base, env)?, self.eval(index, env)?);
+                match (&v, i) {
+                    (Value::Array(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => Ok(a[i as usize].clone()),
+                    (Value::Vector(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => {
+                        Ok(Value::Float(a[i as usize]))
+                    }
+                    _ => Err(problem(span, "index out of range or not constant")),
+                }
+            }
+            ExprKind::Let { decls, body } => {
+                for d in decls {
+                    let v = match &d.init {
+                        Some(init) => self.eval(init, env)?,
+                        None => return Err(problem(span, format!("`{}` is declared without a value", d.name))),
+                    };
+                    env.locals.insert(d.id, v);
+                }
+                self.eval(body, env)
+            }
+            ExprKind::Sequence(_) | ExprKind::Assign { .. } => {
+                Err(problem(span, "statements are not evaluated in material expressions"))
+            }
+        }
+    }
+
+    /// The values of `def`'s parameters for a call with `args` (evaluated in the caller's
+    /// `env`): given by name or position, defaults (which may use earlier parameters) else.
+    pub fn bind(&mut self, def: &Function, args: &[Arg], env: &mut Env, span: Span) -> Result<Vec<Value>, Problem> {
+        let mut given: Vec<Option<Value>> = vec![None; def.params.len()];
+        for (i, a) in args.iter().enumerate() {
+            let slot = match &a.name {
+                Some(n) => def.param(n).map(|(i, _)| i),
+                None => Some(i),
+            };
+            let Some(slot) = slot.filter(|&s| s < given.len()) else {
+                return Err(problem(a.span, format!("`{}` has no such parameter", def.name)));
+            };
+            given[slot] = Some(self.eval(&a.value, env)?);
+        }
+        self.complete(def, given, span)
+    }
+
+    /// Fills the parameters not given with their defaults, in order.
+    pub fn complete(&mut self, def: &Function, given: Vec<Option<Value>>, span: Span) -> Result<Vec<Value>, Problem> {
+        let mut callee = Env::default();
+        for (p, g) in def.params.iter().zip(given) {
+            let v = match (g, &p.default) {
+                (Some(v), _) => v,
+                (None, Some(d)) => self.eval(d, &mut callee)?,
+                (None, None) => {
+                    return Err(problem(
+                        span,
+                        format!("parameter `{}` of `{}` has no default and is not given", p.name, def.name),
+                    ))
+                }
+            };
+            callee.params.push(v);
+        }
+        Ok(callee.params)
+    }
+
+    /// Calls `def` (resolved as `res`) with bound `args`.
+    pub fn call(&mut self, def: &Function, res: &Resolution, args: Vec<Value>, span: Span) -> Eval {
+        if self.depth >= MAX_DEPTH {
+            return Err(problem(span, format!("calls nested more than {MAX_DEPTH} deep (recursion?)")));
+        }
+        match &def.body {
+            Body::Expr(body) => {
+                self.depth += 1;
+                let v = self.eval(body, &mut Env::with_params(args));
+                self.depth -= 1;
+                v
+            }
+            Body::Native => {
+                let module = match res {
+                    Resolution::Function { module, .. } | Resolution::Material { module, .. } => module.as_str(),
+                    _ => "",
+                };
+                natives::call(module, def, &args, span)
+            }
+            Body::Block(_) => Err(problem(
+                span,
+                format!("`{}` has a statement body; mira evaluates only expression-bodied functions yet", def.name),
+            )),
+        }
+    }
+
+    fn constant(&mut self, module: &str, name: &str, span: Span) -> Eval {
+        let decl = self.set.module(module).and_then(|m| {
+            m.decls.iter().find_map(|d| match d {
+                Decl::Const(c) if c.name == name => Some(c.value.clone()),
+                _ => None,
+            })
+        });
+        match decl {
+            Some(v) if self.depth < MAX_DEPTH => {
+                self.depth += 1;
+                let r = self.eval(&v, &mut Env::default());
+                self.depth -= 1;
+                r
+            }
+            _ => natives::constant(module, name)
+                .ok_or_else(|| problem(span, format!("constant `{module}::{name}` has no value"))),
+        }
+    }
+
+    /// A value of type `ty` built from `args`.
+    fn construct(&mut self, ty: &Type, args: &[Arg], env: &mut Env, span: Span) -> Eval {
+        let mut values = Vec::with_capacity(args.len());
+        if !matches!(ty, Type::Struct(_) | Type::Material) {
+            for a in args {
+                values.push(self.eval(&a.value, env)?);
+            }
+        }
+        let floats = |vs: &[Value]| -> Option<Vec<f64>> {
+            let mut out = Vec::new();
+            for v in vs {
+                match v {
+                    Value::Vector(x) => out.extend(x),
+                    Value::Color(c) => out.extend([c.x as f64, c.y as f64, c.z as f64]),
+                    v => out.push(v.float()?),
+                }
+            }
+            Some(out)
+        };
+        let bad = || problem(span, format!("`{ty}(…)` with these arguments is not evaluated"));
+        match ty {
+            Type::Scalar(Scalar::Bool) => {
+                values.first().and_then(Value::float).map(|f| Value::Bool(f != 0.0)).ok_or_else(bad)
+            }
+            Type::Scalar(Scalar::Int) => {
+                values.first().and_then(Value::float).map(|f| Value::Int(f as i64)).ok_or_else(bad)
+            }
+            Type::Scalar(_) => match values.as_slice() {
+                [] => Ok(Value::Float(0.0)),
+                [v] => v.float().map(Value::Float).ok_or_else(bad),
+                _ => Err(bad()),
+            },
+            Type::Color => match floats(&values).as_deref() {
+                Some([]) => Ok(Value::Color(Rgb::ZERO)),
+                Some([g]) => Ok(Value::Color(Rgb::splat(*g as f32))),
+                Some([r, g, b]) => Ok(Value::Color(Rgb::new(*r as f32, *g as f32, *b as f32))),
+                _ => Err(bad()),
+            },
+            Type::Vector(_, n) => match floats(&values) {
+                Some(v) if v.is_empty() => Ok(Value::Vector(vec![0.0; *n as usize])),
+                Some(v) if v.len() == 1 => Ok(Value::Vector(vec![v[0]; *n as usize])),
+                Some(v) if v.len() == *n as usize => Ok(Value::Vector(v)),
+                _ => Err(bad()),
+            },
+            Type::String => match values.as_slice() {
+                [] => Ok(Value::Str(String::new())),
+                [v @ Value::Str(_)] => Ok(v.clone()),
+                _ => Err(bad()),
+            },
+            Type::Bsdf if values.is_empty() => Ok(Value::Bsdf(super::value::Df::Black)),
+            Type::Edf if values.is_empty() => Ok(Value::Edf(super::value::Edf::Black)),
+            Type::Vdf if values.is_empty() => Ok(Value::Vdf),
+            Type::HairBsdf if values.is_empty() => Ok(Value::HairBsdf),
+            Type::Array(..) => Ok(Value::Array(values)),
+            Type::Material => self.construct_struct("material", args, env, span),
+            Type::Struct(name) => self.construct_struct(name, args, env, span),
+            _ => Err(bad()),
+        }
+    }
+
+    fn construct_struct(&mut self, name: &str, args: &[Arg], env: &mut Env, span: Span) -> Eval {
+        let Some(decl) = self.set.struct_decl(name) else {
+            return Err(problem(span, format!("struct `{name}` is not known")));
+        };
+        let mut fields: Vec<(String, Option<Value>)> = decl.fields.iter().map(|f| (f.name.clone(), None)).collect();
+        for (i, a) in args.iter().enumerate() {
+            let slot = match &a.name {
+                Some(n) => fields.iter().position(|(f, _)| f == n),
+                None => (i < fields.len()).then_some(i),
+            };
+            let Some(slot) = slot else {
+                return Err(problem(a.span, format!("struct `{name}` has no such field")));
+            };
+            fields[slot].1 = Some(self.eval(&a.value, env)?);
+        }
+        let defaults: Vec<Option<Expr>> = decl.fields.iter().map(|f| f.default.clone()).collect();
+        let mut out = Vec::with_capacity(fields.len());
+        for ((field, v), default) in fields.into_iter().zip(defaults) {
+            let v = match (v, default) {
+                (Some(v), _) => v,
+                (None, Some(d)) => self.eval(&d, &mut Env::default())?,
+                (None, None) => return Err(problem(span, format!("field `{field}` of `{name}` has no default"))),
+            };
+            out.push((field, v));
+        }
+        let ty = if name == "material" {
+            "material".to_string()
+        } else {
+            name.rsplit("::").next().unwrap_or(name).to_string()
+        };
+        Ok(Value::Struct(ty, out))
+    }
+}
+
+/// A short description of a value's kind, for messages.
+pub fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Bool(_) => "a bool",
+        Value::Int(_) => "an int",
+        Value::Float(_) => "a float",
+        Value::Vector(_) => "a vector",
+        Value::Color(_) => "a color",
+        Value::Str(_) => "a string",
+        Value::Enum(..) => "an enum value",
+        Value::Struct(..) => "a struct",
+        Value::Array(_) => "an array",
+        Value::Bsdf(_) => "a bsdf",
+        Value::Edf(_) => "an edf",
+        Value::Vdf => "a vdf",
+        Value::HairBsdf => "a hair_bsdf",
+        Value::State(_) => "a value that depends on the shading point",
+    }
+}
+
+fn describe_binary(op: BinaryOp, a: &Value, b: &Value) -> String {
+    if let Value::State(s) = a {
+        return format!("`state::{s}()` depends on the shading point; per-hit evaluation of it is not compiled yet");
+    }
+    if let Value::State(s) = b {
+        return format!("`state::{s}()` depends on the shading point; per-hit evaluation of it is not compiled yet");
+    }
+    format!("operator {op:?} on {} and {} is not evaluated", kind(a), kind(b))
+}
+
+fn unary(op: UnaryOp, v: Value) -> Option<Value> {
+    match (op, v) {
+        (UnaryOp::Plus, v) => Some(v),
+        (UnaryOp::Neg, Value::Int(i)) => Some(Value::Int(-i)),
+        (UnaryOp::Neg, Value::Float(f)) => Some(Value::Float(-f)),
+        (UnaryOp::Neg, Value::Color(c)) => Some(Value::Color(-c)),
+        (UnaryOp::Neg, Value::Vector(v)) => Some(Value::Vector(v.iter().map(|x| -x).collect())),
+        (UnaryOp::Not, Value::Bool(b)) => Some(Value::Bool(!b)),
+        (UnaryOp::BitNot, Value::Int(i)) => Some(Value::Int(!i)),
+        _ => None,
+    }
+}
+
+/// Folds a binary operator on constants.
+pub fn binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
+    use BinaryOp::*;
+    let cmp = |x: f64, y: f64| -> Option<bool> {
+        Some(match op {
+            Lt => x < y,
+            Le => x <= y,
+            Gt => x > y,
+            Ge => x >= y,
+            Eq => x == y,
+            Ne => x != y,
+            _ => return None,
+        })
+    };
+    match (a, b) {
+        (Value::Bool(x), Value::Bool(y)) => match op {
+            And => Some(Value::Bool(*x && *y)),
+            Or => Some(Value::Bool(*x || *y)),
+            Eq => Some(Value::Bool(x == y)),
+            Ne => Some(Value::Bool(x != y)),
+            _ => None,
+        },
+        (Value::Enum(t, x), Value::Enum(u, y)) if t == u => match op {
+            Eq => Some(Value::Bool(x == y)),
+            Ne => Some(Value::Bool(x != y)),
+            _ => None,
+        },
+        (Value::Int(x), Value::Int(y)) => {
+            if let Some(c) = cmp(*x as f64, *y as f64) {
+                return Some(Value::Bool(c));
+            }
+            Some(Value::Int(match op {
+                Add => x.wrapping_add(*y),
+                Sub => x.wrapping_sub(*y),
+                Mul => x.wrapping_mul(*y),
+                Div => x.checked_div(*y)?,
+                Rem => x.checked_rem(*y)?,
+                BitAnd => x & y,
+                BitOr => x | y,
+                BitXor => x ^ y,
+                _ => return None,
+            }))
+        }
+        (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_)) => {
+            let (x, y) = (a.float()?, b.float()?);
+            if let Some(c) = cmp(x, y) {
+                return Some(Value::Bool(c));
+            }
+            Some(Value::Float(arith(op, x, y)?))
+        }
+        (Value::Color(_), _) | (_, Value::Color(_)) => {
+            let (x, y) = (a.color()?, b.color()?);
+            match op {
+                Eq => return Some(Value::Bool(x == y)),
+                Ne => return Some(Value::Bool(x != y)),
+                _ => {}
+            }
+            let f = |p: f32, q: f32| arith(op, p as f64, q as f64).map(|r| r as f32);
+            Some(Value::Color(Rgb::new(f(x.x, y.x)?, f(x.y, y.y)?, f(x.z, y.z)?)))
+        }
+        (Value::Vector(_), _) | (_, Value::Vector(_)) => {
+            let n = match (a, b) {
+                (Value::Vector(v), _) | (_, Value::Vector(v)) => v.len(),
+                _ => return None,
+            };
+            let comp = |v: &Value, i: usize| match v {
+                Value::Vector(x) if x.len() == n => Some(x[i]),
+                Value::Vector(_) => None,
+                other => other.float(),
+            };
+            let mut out = Vec::with_capacity(n);
+            for i in 0..n {
+                out.push(arith(op, comp(a, i)?, comp(b, i)?)?);
+            }
+            Some(Value::Vector(out))
+        }
+        _ => None,
+    }
+}
+
+fn arith(op: BinaryOp, x: f64, y: f64) -> Option<f64> {
+    Some(match op {
+        BinaryOp::Add => x + y,
+        BinaryOp::Sub => x - y,
+        BinaryOp::Mul => x * y,
+        BinaryOp::Div => x / y,
+        BinaryOp::Rem => x % y,
+        _ => return None,
+    })
+}
+
+fn member(v: &Value, field: &str) -> Option<Value> {
+    match v {
+        Value::Struct(..) => v.field(field).cloned(),
+        Value::Vector(x) => {
+            let i = "xyzw".find(field).filter(|_| field.len() == 1)?;
+            x.get(i).map(|f| Value::Float(*f))
+        }
+        _ => None,
+    }
+}

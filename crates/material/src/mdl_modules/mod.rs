@@ -1,0 +1,214 @@
+//! The MDL material compiler: a `.mi` shader instance `"mdl::m::mat" (params)` of a
+//! material from a module on the MDL search path becomes a path-engine
+//! [`SurfaceMaterial`].
+//!
+//! The scene's modules (its `$include "x.mdl"` lines, and any module a shader names) are
+//! loaded with `mdl_lang` from the search path: the directories of the scene files that
+//! include them, `-M DIR`, `MDL_PATHS`. Each instance's parameters bind to the material's
+//! parameters (type errors and unknown names are errors at the `.mi` parameter; absent ones
+//! take the definition's defaults), the material's expression is evaluated to constants
+//! ([`eval`], [`natives`]) and lowered to mira's BSDF families ([`lower`]). What depends on
+//! the shading point is not compiled yet: a warning at the `.mi` instance names the construct
+//! and its module `file:line:col`, and the material is rendered grey.
+//!
+//! The `::nvidia::core_definitions` materials keep mira's native translation unless a
+//! `core_definitions.mdl` on the search path replaces them.
+
+pub mod eval;
+pub mod lower;
+pub mod natives;
+pub mod value;
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use mdl_lang::{split_mi_name, MdlSearchPath, ModuleSet, Resolution, Type};
+use mi::ast::{Param, ShaderItem};
+use mi::{Diagnostic, Span};
+use scene::Library;
+
+use crate::SurfaceMaterial;
+use eval::Evaluator;
+use value::Value;
+
+/// The module whose materials mira translates natively (unless a file replaces it).
+const CORE: &str = "::nvidia::core_definitions";
+
+/// The compiled MDL material instances of a scene, by the place of their `.mi` call.
+#[derive(Debug, Default)]
+pub struct MdlMaterials {
+    by_call: HashMap<(u32, u32), SurfaceMaterial>,
+}
+
+impl MdlMaterials {
+    /// The compiled material of the shader call at `span`, if it is one.
+    pub fn get(&self, span: Span) -> Option<&SurfaceMaterial> {
+        self.by_call.get(&(span.file.0, span.lo))
+    }
+
+    /// How many instances were compiled.
+    pub fn len(&self) -> usize {
+        self.by_call.len()
+    }
+
+    /// Whether none was.
+    pub fn is_empty(&self) -> bool {
+        self.by_call.is_empty()
+    }
+}
+
+/// The search path of a scene: the directories of its files that include MDL modules
+/// (`Library::mdl_dirs`), then `extra` (`-M DIR`), then `MDL_PATHS`.
+pub fn search_path(lib: &Library, extra: &[PathBuf]) -> MdlSearchPath {
+    let mut dirs: Vec<PathBuf> = lib.mdl_dirs.clone();
+    dirs.extend(extra.iter().cloned());
+    MdlSearchPath::from_env(None, &dirs)
+}
+
+/// The absolute module name of a `$include` of an MDL module: `"x.mdl"` is `::x`,
+/// `"::a::b.mdl"` is `::a::b`, `"a/b.mdl"` is `::b` (the file's own name).
+fn included_module(written: &str) -> String {
+    let stem = written.strip_suffix(".mdl").unwrap_or(written);
+    if stem.starts_with("::") {
+        return stem.to_string();
+    }
+    let file = stem.rsplit(['/', '\\']).next().unwrap_or(stem);
+    format!("::{file}")
+}
+
+/// Compiles every MDL material instance of `lib` (the named shaders whose declaration is
+/// `mdl::…`) with modules from `search`. Problems are diagnostics at the `.mi` places.
+pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagnostic>) {
+    let mut out = MdlMaterials::default();
+    let mut diags = Vec::new();
+    let core_on_path = search.find(CORE).is_some();
+    let mut set = ModuleSet::new(search);
+    let mut failed: HashMap<String, String> = HashMap::new();
+    for written in &lib.mdl_modules {
+        let name = included_module(written);
+        if let Err(e) = set.load(&name) {
+            failed.insert(name, e.to_string());
+        }
+    }
+    for (shader, def) in &lib.shaders {
+        let Some(ShaderItem::Call { decl, params, span }) = def.list.0.first() else { continue };
+        let Some((module, item)) = split_mi_name(&decl.text) else { continue };
+        if module == "::base" || (module == CORE && !core_on_path) {
+            continue;
+        }
+        if set.module(&module).is_none() && !failed.contains_key(&module) {
+            if let Err(e) = set.load(&module) {
+                failed.insert(module.clone(), e.to_string());
+            }
+        }
+        if let Some(why) = failed.get(&module) {
+            diags.push(Diagnostic::warning(
+                decl.span,
+                format!("MDL module `{module}` could not be loaded; '{shader}' renders grey:\n{why}"),
+            ));
+            continue;
+        }
+        let qualified = format!("{module}::{item}");
+        if set.material(&qualified).is_none() {
+            // A function used as a shader (a texture lookup connected to a parameter).
+            if set.functions(&qualified).is_empty() {
+                diags.push(Diagnostic::error(decl.span, format!("MDL module `{module}` exports no `{item}`")));
+            }
+            continue;
+        }
+        let mut warnings = Vec::new();
+        let surface = instance(&set, &qualified, shader, params, &mut diags, &mut warnings);
+        // What was approximated or not compiled: warnings at the instance's `.mi` call.
+        diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
+        out.by_call.insert((span.file.0, span.lo), surface);
+    }
+    (out, diags)
+}
+
+/// Compiles one instance of material `qualified` with the `.mi` `params`.
+fn instance(
+    set: &ModuleSet,
+    qualified: &str,
+    shader: &str,
+    params: &[Param],
+    diags: &mut Vec<Diagnostic>,
+    warnings: &mut Vec<String>,
+) -> SurfaceMaterial {
+    let Some(def) = set.material(qualified) else { return SurfaceMaterial::grey(shader) };
+    let enum_value = |ty: &str, name: &str| {
+        set.enum_decl(ty).and_then(|e| e.values.iter().find(|v| v.name == name).map(|v| v.value))
+    };
+    let mut given: Vec<Option<Value>> = vec![None; def.params.len()];
+    let mut bad = false;
+    for p in params {
+        let Some((i, decl)) = def.param(&p.name.text) else {
+            let known: Vec<&str> = def.params.iter().map(|p| p.name.as_str()).collect();
+            diags.push(Diagnostic::error(
+                p.name.span,
+                format!("`{qualified}` has no parameter '{}' (it has: {})", p.name.text, known.join(", ")),
+            ));
+            bad = true;
+            continue;
+        };
+        if let mi::ast::Value::Connect(target) = &p.value {
+            diags.push(Diagnostic::warning(
+                p.span,
+                format!(
+                    "parameter '{}' of `{qualified}` is connected to '{}': shader connections of module materials are not evaluated per hit yet; its default is used",
+                    p.name.text, target.text
+                ),
+            ));
+            continue;
+        }
+        match value::from_mi(&p.value, &decl.ty.ty, &enum_value) {
+            Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
+            Err(why) => {
+                diags.push(Diagnostic::error(
+                    p.span,
+                    format!("parameter '{}' of `{qualified}` is of type `{}`: {why}", p.name.text, decl.ty.ty),
+                ));
+                bad = true;
+            }
+        }
+    }
+    if bad {
+        // The errors say what is wrong; the material renders grey.
+        return SurfaceMaterial::grey(shader);
+    }
+    let mut ev = Evaluator::new(set);
+    let res = Resolution::Material {
+        module: qualified.rsplit_once("::").map_or("", |(m, _)| m).to_string(),
+        name: def.name.clone(),
+        decl: 0,
+    };
+    let result = ev.complete(def, given, def.span).and_then(|args| ev.call(def, &res, args, def.span));
+    match result {
+        Ok(v @ Value::Struct(..)) => lower::surface(shader, &v, warnings),
+        Ok(other) => {
+            warnings.push(format!(
+                "material '{shader}': `{qualified}` gave {}, not a material; rendered grey",
+                eval::kind(&other)
+            ));
+            SurfaceMaterial::grey(shader)
+        }
+        Err(p) => {
+            warnings.push(format!(
+                "material '{shader}' (`{qualified}`): {}: {}; rendered grey",
+                set.sources().location(p.span),
+                p.message
+            ));
+            SurfaceMaterial::grey(shader)
+        }
+    }
+}
+
+/// A `.mi` value converted to the parameter's type where MDL converts implicitly (an int
+/// for a float).
+fn coerce(v: Value, ty: &Type) -> Value {
+    match (v, ty) {
+        (Value::Int(i), Type::Scalar(mdl_lang::ast::Scalar::Float | mdl_lang::ast::Scalar::Double)) => {
+            Value::Float(i as f64)
+        }
+        (v, _) => v,
+    }
+}
