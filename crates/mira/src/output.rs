@@ -136,6 +136,9 @@ fn write_exr(film: &Film, path: &Path, extras: Extras) -> std::result::Result<()
         .chain(user)
         .collect(),
     );
-    let layer = Layer::new((w, h), LayerAttributes::default(), Encoding::FAST_LOSSLESS, channels);
+    // Tiles in increasing order: the same image gives the same file, byte for byte (the
+    // default order is whichever parallel compression finishes first).
+    let encoding = Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS };
+    let layer = Layer::new((w, h), LayerAttributes::default(), encoding, channels);
     Image::from_layer(layer).write().to_file(path).map_err(|e| e.to_string())
 }

@@ -158,7 +158,8 @@ pub fn write(film: &Film, info: &PartInfo, path: &Path) -> std::result::Result<(
             AttributeValue::Text(Text::from_slice_unchecked(v.as_bytes())),
         );
     }
-    let layer = Layer::new((w, rows.len()), attributes, Encoding::FAST_LOSSLESS, AnyChannels::sort(channels.into()));
+    let encoding = Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS };
+    let layer = Layer::new((w, rows.len()), attributes, encoding, AnyChannels::sort(channels.into()));
     Image::from_layer(layer).write().to_file(path).map_err(|e| e.to_string())
 }
 

@@ -55,14 +55,15 @@ fn assert_merge_identical(tag: &str, scene: &Path, n: u32, options: &[&str], ext
     parts
 }
 
-/// The Cornell box (path engine) in 4 parts at 40 × 30, 4 spp: EXR (every buffer) and PNG.
+/// The Cornell box (path engine) in 4 parts at 80 × 70 (four EXR tiles), 4 spp: EXR (every
+/// buffer) and PNG.
 #[test]
 fn path_engine_parts_merge_bit_identically() {
     let scene = Path::new("../../scenes/iray_cornell_box.mi");
-    let options = ["--resolution", "40", "30", "--spp", "4"];
+    let options = ["--resolution", "80", "70", "--spp", "4"];
     assert_merge_identical("path4", scene, 4, &options, "exr");
-    // An uneven split (30 rows in 7 parts) and a tone-mapped output.
-    assert_merge_identical("path7", scene, 7, &options, "png");
+    // An uneven split (70 rows in 8 parts) and a tone-mapped output.
+    assert_merge_identical("path8", scene, 8, &options, "png");
 }
 
 /// A classic scene with adaptive sampling (samples 0 2, contrast 0.02), a Gaussian filter
