@@ -191,3 +191,60 @@ fn a_terminated_part_is_written_partial_and_refused() {
     assert!(err.contains("p1.exr is partial"), "{err}");
     assert!(err.contains("part 2/2 is missing"), "{err}");
 }
+
+/// `--frames A..B` renders each render statement to its own numbered file; a frame the file
+/// does not have is an error naming it.
+#[test]
+fn frames_render_each_render_statement() {
+    let dir = temp_dir("frames");
+    let scene = dir.join("two.mi");
+    let text = std::fs::read_to_string("../../scenes/iray_cornell_box.mi").unwrap();
+    let render = text.lines().rev().find(|l| l.starts_with("render ")).unwrap().to_string();
+    std::fs::write(&scene, format!("{text}\n{render}\n")).unwrap();
+    let out = dir.join("f.exr");
+    let (code, err) =
+        mira(&["render", s(&scene), "--frames", "1..2", "--resolution", "8", "6", "--spp", "1", "-o", s(&out)]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("f.0001.exr").exists() && dir.join("f.0002.exr").exists(), "{err}");
+    let (code, err) =
+        mira(&["render", s(&scene), "--frames", "2..3", "--resolution", "8", "6", "--spp", "1", "-o", s(&out)]);
+    assert_eq!(code, 1);
+    assert!(err.contains("no render statement number 3"), "{err}");
+    let (code, err) = mira(&["render", s(&scene), "--frames", "3..2"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("'3..2' is not a frame range"), "{err}");
+}
+
+/// `mira farm slurm` without --submit writes and prints a job array of parts × frames and a
+/// merge job per frame that names every part file.
+#[test]
+fn farm_slurm_writes_a_job_array_and_a_merge_job() {
+    let dir = temp_dir("slurm");
+    let out = dir.join("anim.png");
+    let out_s = out.to_str().unwrap().to_string();
+    let args = ["farm", "slurm", "../../scenes/iray_cornell_box.mi", "-o", &out_s, "--parts", "3"];
+    let output = Command::new(env!("CARGO_BIN_EXE_mira"))
+        .args(args)
+        .args(["--frames", "2..3", "--spp", "8", "--partition", "render", "--time", "30:00"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let farm = dir.join("anim.png.farm");
+    let render = std::fs::read_to_string(farm.join("render.sbatch")).unwrap();
+    let merge = std::fs::read_to_string(farm.join("merge.sbatch")).unwrap();
+    for line in ["#SBATCH --array=0-5", "#SBATCH --partition=render", "#SBATCH --time=30:00", "#SBATCH --requeue"] {
+        assert!(render.contains(line), "{line}: {render}");
+    }
+    assert!(render.contains("frame=$(( 2 + task / 3 ))") && render.contains("--part \"$part/3\""), "{render}");
+    assert!(render.contains("--spp 8") && render.contains("scontrol requeue"), "{render}");
+    assert!(render.contains("logs/render-%A_%a.log"), "one log per task: {render}");
+    for frame in ["0002", "0003"] {
+        let parts: Vec<String> =
+            (1..=3).map(|k| farm.join(format!("part-{frame}-{k}-of-3.exr")).display().to_string()).collect();
+        let want = format!("merge {} -o {}", parts.join(" "), dir.join(format!("anim.{frame}.png")).display());
+        assert!(merge.contains(&want), "{want}\n{merge}");
+    }
+    let printed = String::from_utf8_lossy(&output.stdout);
+    assert!(printed.contains("--dependency=afterok:$id"), "{printed}");
+}
