@@ -17,6 +17,13 @@ fn temp_dir(tag: &str) -> PathBuf {
     dir
 }
 
+/// Removes the temporary folders of `tags`.
+fn clean(tags: &[&str]) {
+    for tag in tags {
+        std::fs::remove_dir_all(temp_dir(tag)).ok();
+    }
+}
+
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
@@ -64,6 +71,7 @@ fn path_engine_parts_merge_bit_identically() {
     assert_merge_identical("path4", scene, 4, &options, "exr");
     // An uneven split (70 rows in 8 parts) and a tone-mapped output.
     assert_merge_identical("path8", scene, 8, &options, "png");
+    clean(&["path4", "path8"]);
 }
 
 /// A classic scene with adaptive sampling (samples 0 2, contrast 0.02), a Gaussian filter
@@ -107,6 +115,7 @@ render "root" "cam_inst" "opt"
     assert!(lo == 1.0 && hi == 16.0, "sample counts {lo} to {hi}");
     let (_, err) = mira(&["merge", "-o", s(&dir.join("x.exr")), s(&parts[0])]);
     assert!(err.contains("part 2/3 is missing") && err.contains("part 3/3 is missing"), "{err}");
+    clean(&["classic-scene", "classic3"]);
 }
 
 /// Merge refuses a missing part, a part of another scene, a part given twice and a partial
@@ -157,6 +166,7 @@ fn merge_refuses_parts_that_do_not_belong_together() {
     assert!(err.contains("seed.exr was rendered with other settings (seed=7)"), "{err}");
     let (code, err) = merge(&[&p1, &p2, &p3]);
     assert_eq!(code, 0, "{err}");
+    clean(&["refuse"]);
 }
 
 /// SIGTERM (a scheduler's time limit) makes a part write what it rendered, marked partial;
@@ -190,6 +200,7 @@ fn a_terminated_part_is_written_partial_and_refused() {
     assert_eq!(code, 1);
     assert!(err.contains("p1.exr is partial"), "{err}");
     assert!(err.contains("part 2/2 is missing"), "{err}");
+    clean(&["sigterm"]);
 }
 
 /// `--frames A..B` renders each render statement to its own numbered file; a frame the file
@@ -213,6 +224,7 @@ fn frames_render_each_render_statement() {
     let (code, err) = mira(&["render", s(&scene), "--frames", "3..2"]);
     assert_eq!(code, 1);
     assert!(err.contains("'3..2' is not a frame range"), "{err}");
+    clean(&["frames"]);
 }
 
 /// `mira farm slurm` without --submit writes and prints a job array of parts × frames and a
@@ -247,4 +259,5 @@ fn farm_slurm_writes_a_job_array_and_a_merge_job() {
     }
     let printed = String::from_utf8_lossy(&output.stdout);
     assert!(printed.contains("--dependency=afterok:$id"), "{printed}");
+    clean(&["slurm"]);
 }
