@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
-use exr::prelude::{f16, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, WritableImage};
+use exr::prelude::{
+    f16, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, LineOrder, WritableImage,
+};
 
 use crate::{Error, Format, ImageData, Pixels, Sample};
 
@@ -79,7 +81,9 @@ pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<()
         })
         .collect();
     let size = (image.width as usize, image.height as usize);
-    let layer =
-        Layer::new(size, LayerAttributes::default(), Encoding::FAST_LOSSLESS, AnyChannels::sort(channels.into()));
+    // Tiles in increasing order: the same image gives the same file, byte for byte (the
+    // default order is whichever parallel compression finishes first).
+    let encoding = Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS };
+    let layer = Layer::new(size, LayerAttributes::default(), encoding, AnyChannels::sort(channels.into()));
     Image::from_layer(layer).write().to_file(path).map_err(|e| Error::Encode(e.to_string()))
 }

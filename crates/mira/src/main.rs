@@ -1,8 +1,11 @@
 //! `mira`: render mental ray and Iray `.mi` scenes.
 
 mod check;
+mod farm_cmd;
 mod limits;
+mod merge_cmd;
 mod output;
+mod part_file;
 mod render_cmd;
 
 use std::path::PathBuf;
@@ -27,8 +30,17 @@ enum Command {
     /// Render a scene.
     ///
     /// Writes the images the scene's camera asks for (or -o FILE), rendered by progressive
-    /// path tracing. Ctrl-C stops early and still writes the image rendered so far.
+    /// path tracing. Ctrl-C (or SIGTERM) stops early and still writes the image rendered so
+    /// far. With --part K/N, renders one part of the image for `mira merge`.
     Render(render_cmd::RenderArgs),
+    /// Merge the parts of an image rendered with `mira render --part K/N`.
+    ///
+    /// Checks that the parts belong together (same scene text, settings and frame; every
+    /// part once; none stopped early unless --allow-partial) and writes the image, bit for
+    /// bit what one `mira render` with the same settings writes.
+    Merge(merge_cmd::MergeArgs),
+    /// Render on a cluster scheduler: one task per part (and frame), then a merge.
+    Farm(farm_cmd::FarmArgs),
 }
 
 /// Include-path options shared by every command that reads scenes.
@@ -56,5 +68,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(&args),
         Command::Render(args) => render_cmd::run(&args),
+        Command::Merge(args) => merge_cmd::run(&args),
+        Command::Farm(args) => farm_cmd::run(&args),
     }
 }

@@ -1,4 +1,6 @@
-//! `mira render`: build the world, render it progressively, write the images.
+//! `mira render`: turns its arguments into settings and runs the render crate's stages
+//! (load, build the world, prepare, render) on one frame or several, then writes the images
+//! (or, with `--part`, a partial EXR for `mira merge`).
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -8,7 +10,9 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use render::accel::Backend;
+use render::part::Part;
 use render::tonemap::ToneMapper;
+use render::EngineKind;
 
 use crate::output;
 use crate::IncludeArgs;
@@ -35,6 +39,67 @@ pub enum EngineArg {
     Path,
 }
 
+/// Render options that `mira render` and `mira farm` share (what a farm task passes on).
+#[derive(clap::Args, Clone, Debug)]
+pub struct RenderOptions {
+    /// Image size in pixels (overrides the camera's resolution, keeping its field of view).
+    #[arg(long, num_args = 2, value_names = ["W", "H"])]
+    pub resolution: Option<Vec<u32>>,
+    /// Samples per pixel (overrides the scene's progressive settings).
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    /// Worker threads (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Seed of the sample patterns.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Acceleration structure.
+    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
+    pub accel: AccelArg,
+    /// Rendering engine.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    pub engine: EngineArg,
+    /// Final gather rays at each eye-ray hit of the classic engine (default: the scene's
+    /// finalgather accuracy / 16, from 4 to 64).
+    #[arg(long, value_name = "N")]
+    pub fg_rays: Option<u32>,
+    #[command(flatten)]
+    pub include: IncludeArgs,
+    #[command(flatten)]
+    pub memory: crate::limits::MemoryArgs,
+}
+
+impl RenderOptions {
+    /// The options as `mira render` arguments.
+    pub fn to_args(&self) -> Vec<String> {
+        let mut a = Vec::new();
+        if let Some(r) = &self.resolution {
+            a.extend(["--resolution".into(), r[0].to_string(), r[1].to_string()]);
+        }
+        if let Some(n) = self.spp {
+            a.extend(["--spp".into(), n.to_string()]);
+        }
+        a.extend(["--threads".into(), self.threads.to_string(), "--seed".into(), self.seed.to_string()]);
+        a.extend(["--accel".into(), value_name(&self.accel), "--engine".into(), value_name(&self.engine)]);
+        if let Some(n) = self.fg_rays {
+            a.extend(["--fg-rays".into(), n.to_string()]);
+        }
+        for dir in &self.include.include {
+            a.extend(["-I".into(), dir.display().to_string()]);
+        }
+        for dir in &self.include.mdl_paths {
+            a.extend(["-M".into(), dir.display().to_string()]);
+        }
+        a
+    }
+}
+
+/// The command-line spelling of an option's value.
+fn value_name<V: clap::ValueEnum>(v: &V) -> String {
+    v.to_possible_value().map(|p| p.get_name().to_string()).unwrap_or_default()
+}
+
 /// Arguments of `mira render`.
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -42,48 +107,95 @@ pub struct RenderArgs {
     #[arg(value_name = "SCENE")]
     scene: PathBuf,
     /// Write this image instead of the scene's outputs (format from the extension: .exr
-    /// linear with every frame buffer; .png, .jpg, .tif, .rgb/.sgi, .pic, .iff, .tga, .ppm,
-    /// .bmp, .pix tone mapped; .hdr linear; .zt, .nt, .mt, .tt, .ct, .st mental ray's own).
+    /// linear with every frame buffer; .png, .jpg, .tif tone mapped; .hdr linear).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// Image size in pixels (overrides the camera's resolution, keeping its field of view).
-    #[arg(long, num_args = 2, value_names = ["W", "H"])]
-    resolution: Option<Vec<u32>>,
-    /// Samples per pixel (overrides the scene's progressive settings).
-    #[arg(long, value_name = "N")]
-    spp: Option<u32>,
-    /// Worker threads (0: one per core).
-    #[arg(long, default_value_t = 0)]
-    threads: usize,
-    /// Seed of the sample patterns.
-    #[arg(long, default_value_t = 0)]
-    seed: u32,
+    #[command(flatten)]
+    options: RenderOptions,
     /// Stop after this many seconds.
     #[arg(long, value_name = "SECONDS")]
     time: Option<f64>,
-    /// Acceleration structure.
-    #[arg(long, value_enum, default_value_t = AccelArg::Auto)]
-    accel: AccelArg,
-    /// Rendering engine.
-    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    engine: EngineArg,
-    /// Final gather rays at each eye-ray hit of the classic engine (default: the scene's
-    /// finalgather accuracy / 16, from 4 to 64).
-    #[arg(long, value_name = "N")]
-    fg_rays: Option<u32>,
     /// Which `render` statement of the file (1 = the first).
     #[arg(long, default_value_t = 1)]
     frame: usize,
+    /// Render the `render` statements A to B (inclusive, 1 = the first) one after the
+    /// other; file names get the frame number (`out.0003.exr`).
+    #[arg(long, value_name = "A..B", conflicts_with = "frame")]
+    frames: Option<String>,
+    /// Render only part K of N of the image and write it as a partial EXR (-o, else
+    /// SCENE.partK-of-N.exr) for `mira merge`.
+    #[arg(long, value_name = "K/N")]
+    part: Option<String>,
     /// Print rays, samples per second, Mrays/s, memory and timings.
     #[arg(long)]
     stats: bool,
     /// Print warnings.
     #[arg(short = 'W', long)]
     warnings: bool,
-    #[command(flatten)]
-    include: IncludeArgs,
-    #[command(flatten)]
-    memory: crate::limits::MemoryArgs,
+}
+
+/// Parses `A..B` (inclusive, from 1).
+pub fn parse_frames(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{s}' is not a frame range: give A..B with 1 ≤ A ≤ B, e.g. 1..24");
+    let (a, b) = s.split_once("..").ok_or_else(bad)?;
+    let (a, b): (usize, usize) = (a.trim().parse().map_err(|_| bad())?, b.trim().parse().map_err(|_| bad())?);
+    if a == 0 || b < a {
+        return Err(bad());
+    }
+    Ok((a, b))
+}
+
+/// `path` with the frame number before its extension (`out.exr` → `out.0003.exr`).
+pub fn frame_path(path: &Path, frame: usize) -> PathBuf {
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match path.extension() {
+        Some(e) => format!("{stem}.{frame:04}.{}", e.to_string_lossy()),
+        None => format!("{stem}.{frame:04}"),
+    };
+    path.with_file_name(name)
+}
+
+/// A scene loaded for rendering or merging.
+pub struct LoadedScene {
+    /// The parsed file (its sources, for messages).
+    pub parsed: mi::Parsed,
+    /// The scene at the chosen render statement, resolution applied.
+    pub scene: scene::Scene,
+    /// Hash of the scene's text.
+    pub content_hash: u64,
+}
+
+/// Stage 1 for the commands: loads `path` at `frame` (1 = the first render statement),
+/// prints its errors (and warnings when asked), applies `resolution`.
+pub fn load_scene(
+    path: &Path,
+    include: &[PathBuf],
+    frame: usize,
+    resolution: Option<(u32, u32)>,
+    warnings: bool,
+) -> Result<LoadedScene, String> {
+    let options = IncludeArgs { include: include.to_vec(), mdl_paths: Vec::new() }.read_options();
+    let loaded = render::pipeline::load(path, &options, frame.saturating_sub(1))?;
+    let mut stderr = std::io::stderr().lock();
+    for d in &loaded.diagnostics {
+        if d.is_error() || warnings {
+            let _ = write!(stderr, "{}", d.render(&loaded.parsed.sources));
+        }
+    }
+    drop(stderr);
+    if loaded.has_errors() {
+        return Err(format!("{} has errors; nothing rendered", path.display()));
+    }
+    let content_hash = loaded.content_hash();
+    let Some(mut scene) = loaded.scene else { return Err("no world to render".into()) };
+    if let Some((w, h)) = resolution {
+        let max = scene::camera::MAX_RESOLUTION;
+        if !(1..=max).contains(&w) || !(1..=max).contains(&h) {
+            return Err(format!("--resolution {w} {h} is outside 1 … {max} pixels per side"));
+        }
+        render::pipeline::set_resolution(&mut scene, w, h);
+    }
+    Ok(LoadedScene { parsed: loaded.parsed, scene, content_hash })
 }
 
 /// Peak resident memory of this process, in bytes (Linux).
@@ -96,125 +208,16 @@ fn peak_memory() -> Option<u64> {
 
 /// Runs the command.
 pub fn run(args: &RenderArgs) -> ExitCode {
-    let err = |msg: String| {
-        eprintln!("mira: error: {msg}");
-        ExitCode::FAILURE
-    };
-    let t0 = Instant::now();
-    let options = args.include.read_options();
-    let parsed = match mi::parse_file(&args.scene, &options) {
-        Ok(p) => p,
-        Err(e) => return err(e.to_string()),
-    };
-    let mut diags = parsed.diagnostics.list.clone();
-    let world_scene = if parsed.diagnostics.has_errors() {
-        None
-    } else {
-        scene::Scene::build(&parsed, args.frame.saturating_sub(1), &mut diags)
-    };
-    let mut stderr = std::io::stderr().lock();
-    for d in &diags {
-        if d.is_error() || args.warnings {
-            let _ = write!(stderr, "{}", d.render(&parsed.sources));
+    let (first, last) = match args.frames.as_deref().map(parse_frames) {
+        Some(Ok(r)) => r,
+        Some(Err(e)) => {
+            eprintln!("mira: error: {e}");
+            return ExitCode::FAILURE;
         }
-    }
-    drop(stderr);
-    if diags.iter().any(|d| d.is_error()) {
-        return err(format!("{} has errors; nothing rendered", args.scene.display()));
-    }
-    let Some(mut sc) = world_scene else { return err("no world to render".into()) };
-    if let Some(res) = &args.resolution {
-        let max = scene::camera::MAX_RESOLUTION;
-        if !(1..=max).contains(&res[0]) || !(1..=max).contains(&res[1]) {
-            return err(format!("--resolution {} {} is outside 1 … {max} pixels per side", res[0], res[1]));
-        }
-        let (w, h) = (res[0], res[1]);
-        let old = sc.camera.resolution;
-        // Keep the image plane: aspect stays as the camera had it relative to its pixels.
-        let pixel_aspect = old.0 as f64 / (sc.camera.aspect * old.1 as f64);
-        sc.camera.aspect = w as f64 / (h as f64 * pixel_aspect);
-        sc.camera.resolution = (w, h);
-        sc.camera.offset = (sc.camera.offset.0 * w as f64 / old.0 as f64, sc.camera.offset.1 * h as f64 / old.1 as f64);
-        sc.camera.window = sc.camera.window.map(|[a, b, c, d]| {
-            let sx = w as f64 / old.0 as f64;
-            let sy = h as f64 / old.1 as f64;
-            [(a as f64 * sx) as i64, (b as f64 * sy) as i64, (c as f64 * sx) as i64, (d as f64 * sy) as i64]
-        });
-    }
-    if let Some(d) =
-        crate::limits::check_film(&sc, sc.camera.resolution, args.memory.limit(), args.resolution.is_some())
-    {
-        eprint!("{}", d.render(&parsed.sources));
-        return err(format!("{} needs too much memory; nothing rendered", args.scene.display()));
-    }
-    let classic = match args.engine {
-        EngineArg::Classic => true,
-        EngineArg::Path => false,
-        EngineArg::Auto => shader::Shading::wants_classic(&sc),
+        None => (args.frame, args.frame),
     };
-    // Both engines use the compiled shading: the classic one runs the material shaders,
-    // the path engine the shaders connected to material parameters (textures, bumps).
-    let shading = {
-        let mut dirs: Vec<PathBuf> = args.scene.parent().map(Path::to_path_buf).into_iter().collect();
-        dirs.extend(options.include_paths.iter().cloned());
-        let shading_options = shader::ShadingOptions {
-            search: shader::texture::SearchPath { dirs },
-            seed: args.seed,
-            finalgather_rays: args.fg_rays,
-        };
-        let (shading, shade_diags) = material::compile_shading(&sc, &shading_options);
-        let mut stderr = std::io::stderr().lock();
-        for d in &shade_diags {
-            if d.is_error() || args.warnings {
-                let _ = write!(stderr, "{}", d.render(&parsed.sources));
-            }
-        }
-        drop(stderr);
-        // An error of the shaders is an error of the scene: nothing is rendered.
-        if shade_diags.iter().any(|d| d.is_error()) {
-            return err(format!("{} has errors; nothing rendered", args.scene.display()));
-        }
-        shading
-    };
-    let (mdl, mdl_diags) = material::mdl_modules::compile(
-        &sc.library,
-        material::mdl_modules::search_path(&sc.library, &args.include.mdl_paths),
-    );
-    {
-        let mut stderr = std::io::stderr().lock();
-        for d in mdl_diags.iter().filter(|d| d.is_error() || args.warnings) {
-            let _ = write!(stderr, "{}", d.render(&parsed.sources));
-        }
-    }
-    // The file's text and syntax tree are not needed past this point, nor the scene's
-    // meshes once the world has its own copy: freed early, they do not add to the peak
-    // memory of the world and acceleration structure builds.
-    drop(parsed);
-    let world = render::World::from_scene_with_mdl(&sc, Some(&shading), &mdl);
-    sc.release_geometry();
-    if args.warnings && !classic {
-        for w in &world.warnings {
-            eprintln!("mira: warning: {w}");
-        }
-    }
-    let t_scene = t0.elapsed();
-    let backend = match args.accel {
-        AccelArg::Auto => Backend::default_available(),
-        AccelArg::Rust => Backend::Rust,
-        AccelArg::Embree => {
-            if !Backend::Embree.available() {
-                return err("this mira was built without Embree (install libembree-dev and rebuild)".into());
-            }
-            Backend::Embree
-        }
-    };
-    let pool = match rayon::ThreadPoolBuilder::new().num_threads(args.threads).build() {
-        Ok(p) => p,
-        Err(e) => return err(format!("cannot start worker threads: {e}")),
-    };
-    let t1 = Instant::now();
-    let accel = pool.install(|| render::accel::build(&world, backend));
-    let t_accel = t1.elapsed();
+    // SIGINT and SIGTERM (what schedulers send at a time limit) stop the render at the
+    // next row; the image rendered so far is written. A second signal exits at once.
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let cancel = cancel.clone();
@@ -224,13 +227,128 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             }
         });
     }
+    for frame in first..=last {
+        let numbered = (args.frames.is_some()).then_some(frame);
+        match render_frame(args, frame, numbered, &cancel) {
+            Ok(()) => {}
+            Err(code) => return code,
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+/// The settings of a render as `key=value` lines: what parts of one image must share.
+fn settings_text(settings: &render::Settings, size: (u32, u32), backend: Backend, fg_rays: Option<u32>) -> String {
+    format!(
+        "engine={:?}\nresolution={}x{}\nspp={:?}\nseed={}\nfg_rays={:?}\naccel={:?}\npath={:?}\nband={}",
+        settings.engine, size.0, size.1, settings.spp, settings.seed, fg_rays, backend, settings.path, settings.band
+    )
+}
+
+/// Renders `frame` (1 = the first render statement); `numbered` puts the frame number
+/// into output names.
+fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel: &AtomicBool) -> Result<(), ExitCode> {
+    let err = |msg: String| {
+        eprintln!("mira: error: {msg}");
+        ExitCode::FAILURE
+    };
+    let opts = &args.options;
+    let part = match args.part.as_deref().map(Part::parse) {
+        Some(Err(e)) => return Err(err(e)),
+        Some(Ok(p)) => Some(p),
+        None => None,
+    };
+    let t0 = Instant::now();
+    // Stage 1: load.
+    let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
+    let loaded = load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings).map_err(err)?;
+    let sc = &loaded.scene;
+    let asked = match opts.engine {
+        EngineArg::Classic => Some(EngineKind::Classic),
+        EngineArg::Path => Some(EngineKind::Path),
+        EngineArg::Auto => None,
+    };
+    let engine = render::pipeline::choose_engine(sc, asked);
+    let classic = engine == EngineKind::Classic;
+    // Stage 2: build the world.
+    let read_options = opts.include.read_options();
+    if let Some(d) = crate::limits::check_film(sc, sc.camera.resolution, opts.memory.limit(), resolution.is_some()) {
+        eprint!("{}", d.render(&loaded.parsed.sources));
+        return Err(err(format!("{} needs too much memory; nothing rendered", args.scene.display())));
+    }
+    let shading_options = shader::ShadingOptions {
+        search: shader::texture::SearchPath {
+            dirs: render::pipeline::texture_dirs(&args.scene, &read_options.include_paths),
+        },
+        seed: opts.seed,
+        finalgather_rays: opts.fg_rays,
+    };
+    let built = render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths);
+    {
+        let mut stderr = std::io::stderr().lock();
+        for d in &built.diagnostics {
+            if d.is_error() || args.warnings {
+                let _ = write!(stderr, "{}", d.render(&loaded.parsed.sources));
+            }
+        }
+    }
+    // An error of the shaders is an error of the scene: nothing is rendered.
+    if built.diagnostics.iter().any(|d| d.is_error()) {
+        return Err(err(format!("{} has errors; nothing rendered", args.scene.display())));
+    }
+    // The file's text and syntax tree are not needed past this point, nor the scene's
+    // meshes once the world has its own copy: freed early, they do not add to the peak
+    // memory of the acceleration structure build.
+    let LoadedScene { parsed, scene: mut loaded_scene, content_hash } = loaded;
+    drop(parsed);
+    loaded_scene.release_geometry();
+    let sc = &loaded_scene;
+    let (world, shading) = (&built.world, &built.shading);
+    if args.warnings && !classic {
+        for w in &world.warnings {
+            eprintln!("mira: warning: {w}");
+        }
+    }
+    let t_scene = t0.elapsed();
+    let backend = match opts.accel {
+        AccelArg::Auto => Backend::default_available(),
+        AccelArg::Rust => Backend::Rust,
+        AccelArg::Embree => {
+            if !Backend::Embree.available() {
+                return Err(err("this mira was built without Embree (install libembree-dev and rebuild)".into()));
+            }
+            Backend::Embree
+        }
+    };
     let settings = render::Settings {
-        engine: if classic { render::EngineKind::Classic } else { render::EngineKind::Path },
-        spp: args.spp,
-        seed: args.seed,
+        engine,
+        spp: opts.spp,
+        seed: opts.seed,
         max_time: args.time.map(Duration::from_secs_f64),
+        part,
         ..render::Settings::default()
     };
+    if let Some(p) = part {
+        if let Some(problem) = render::render::part_problem(world, &settings) {
+            return Err(err(format!("cannot render part {p}: {problem}")));
+        }
+        if p.count > world.camera.height {
+            return Err(err(format!(
+                "the image has {} rows: it cannot be cut into {} parts",
+                world.camera.height, p.count
+            )));
+        }
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+        .map_err(|e| err(format!("cannot start worker threads: {e}")))?;
+    // Stage 3: prepare (acceleration, then the pre-passes).
+    let t1 = Instant::now();
+    let accel = pool.install(|| render::accel::build(world, backend));
+    let t_accel = t1.elapsed();
+    let prepared = pool.install(|| render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, cancel));
+    // Stage 4: render.
     let target = if classic {
         render::render::classic_samples(&world.options, settings.spp).1
     } else {
@@ -254,82 +372,147 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             }
         }
     };
-    let (film, stats) =
-        pool.install(|| render::render(&world, accel.as_ref(), Some(&shading), &settings, &cancel, &on_progress));
+    let (film, stats) = pool.install(|| {
+        render::render_prepared(world, accel.as_ref(), Some(shading), &prepared, &settings, cancel, &on_progress)
+    });
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
     if stats.cancelled {
         eprintln!("mira: interrupted at {} samples per pixel; writing what was rendered", stats.spp);
     }
-    // Outputs: -o, else the camera's file outputs and file frame buffers, else SCENE.exr.
-    let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
-    let targets = match output::targets(&sc.camera, args.output.as_deref(), &args.scene) {
-        Ok(t) => t,
-        Err(e) => return err(e),
-    };
+    // Stage 6: write.
     let mut failed = false;
-    for target in &targets {
-        match output::write(&film, target, &tone) {
-            Ok(()) => eprintln!("mira: wrote {}", target.path.display()),
+    if let Some(p) = part {
+        let default = args.scene.with_extension(format!("part{}-of-{}.exr", p.index, p.count));
+        let path = args.output.clone().unwrap_or(default);
+        let path = numbered.map_or(path.clone(), |f| frame_path(&path, f));
+        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+            return Err(err(format!("a part is written as OpenEXR: '{}' must end in .exr", path.display())));
+        }
+        let split = render::part::Split::for_engine(engine);
+        let owned = split.owned_rows(p, film.height);
+        let info = crate::part_file::PartInfo {
+            scene: std::path::absolute(&args.scene).unwrap_or_else(|_| args.scene.clone()),
+            include: opts
+                .include
+                .include
+                .iter()
+                .map(|d| std::path::absolute(d).unwrap_or_else(|_| d.clone()))
+                .collect(),
+            scene_hash: content_hash,
+            settings: settings_text(&settings, (film.width, film.height), backend, opts.fg_rays),
+            settings_hash: render::pipeline::Fnv::of(
+                settings_text(&settings, (film.width, film.height), backend, opts.fg_rays).as_bytes(),
+            ),
+            part: p,
+            split,
+            frame,
+            classic,
+            size: (film.width, film.height),
+            spp: stats.spp,
+            samples: owned
+                .iter()
+                .flat_map(|&y| &film.pixels[(y * film.width) as usize..((y + 1) * film.width) as usize])
+                .map(|px| u64::from(px.samples))
+                .sum(),
+            weight: owned.len() as f64 / f64::from(film.height.max(1)),
+            partial: stats.cancelled,
+            user: film.user.iter().map(|b| (b.name.clone(), b.datatype.clone())).collect(),
+        };
+        match crate::part_file::write(&film, &info, &path) {
+            Ok(()) => eprintln!(
+                "mira: wrote part {p} to {}{}",
+                path.display(),
+                if stats.cancelled { " (partial)" } else { "" }
+            ),
             Err(e) => {
-                eprintln!("mira: error: cannot write {}: {e}", target.path.display());
+                eprintln!("mira: error: cannot write {}: {e}", path.display());
                 failed = true;
+            }
+        }
+    } else {
+        // Outputs: -o, else the camera's file outputs and file frame buffers, else
+        // SCENE.exr; numbered per frame with --frames.
+        let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
+        let mut targets = output::targets(&sc.camera, args.output.as_deref(), &args.scene).map_err(err)?;
+        if let Some(f) = numbered {
+            for t in &mut targets {
+                t.path = frame_path(&t.path, f);
+            }
+        }
+        for target in &targets {
+            match output::write(&film, target, &tone) {
+                Ok(()) => eprintln!("mira: wrote {}", target.path.display()),
+                Err(e) => {
+                    eprintln!("mira: error: cannot write {}: {e}", target.path.display());
+                    failed = true;
+                }
             }
         }
     }
     if args.stats {
-        let secs = stats.render_time.as_secs_f64().max(1e-9);
-        println!(
-            "scene:          {:.3} s (parse, build, translate), {} instances, {} triangles",
-            t_scene.as_secs_f64(),
-            world.instances.len(),
-            world.instanced_triangles()
-        );
-        println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
-        let engine = if classic { "classic" } else { "path" };
-        println!(
-            "render:         {:.3} s ({engine}), {} x {} pixels, {} spp",
-            secs, film.width, film.height, stats.spp
-        );
-        println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
-        println!(
-            "rays:           {} ({} shadow), {:.2} Mrays/s",
-            stats.total_rays(),
-            stats.shadow_rays,
-            stats.total_rays() as f64 / secs / 1e6
-        );
-        if let Some(p) = &stats.photons {
-            println!(
-                "photons:        {} emitted, {} caustic + {} global stored, {:.1} MiB, {:.3} s",
-                p.emitted,
-                p.caustic,
-                p.global,
-                p.memory as f64 / (1 << 20) as f64,
-                p.time.as_secs_f64()
-            );
-        }
-        if stats.fg_points > 0 {
-            println!(
-                "final gather:   {} interpolation points, pre-pass {:.3} s",
-                stats.fg_points,
-                stats.fg_time.as_secs_f64()
-            );
-        }
-        if let Some(t) = stats.first_pixels {
-            println!("first pixels:   {:.3} s", t.as_secs_f64() + t_scene.as_secs_f64() + t_accel.as_secs_f64());
-        }
-        println!("non-finite:     {} channels stored as 1.0", stats.nonfinite);
-        if let Some(m) = peak_memory() {
-            println!("peak memory:    {:.1} MiB", m as f64 / (1 << 20) as f64);
-        }
+        print_stats(world, accel.as_ref(), &film, &stats, classic, t_scene, t_accel);
     }
     if failed {
-        ExitCode::FAILURE
+        Err(ExitCode::FAILURE)
     } else if stats.cancelled {
         // 128 + SIGINT, as shells report an interrupted command.
-        ExitCode::from(130)
+        Err(ExitCode::from(130))
     } else {
-        ExitCode::SUCCESS
+        Ok(())
+    }
+}
+
+/// Prints `--stats`.
+fn print_stats(
+    world: &render::World,
+    accel: &dyn render::Accel,
+    film: &render::film::Film,
+    stats: &render::Stats,
+    classic: bool,
+    t_scene: Duration,
+    t_accel: Duration,
+) {
+    let secs = stats.render_time.as_secs_f64().max(1e-9);
+    println!(
+        "scene:          {:.3} s (parse, build, translate), {} instances, {} triangles",
+        t_scene.as_secs_f64(),
+        world.instances.len(),
+        world.instanced_triangles()
+    );
+    println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
+    let engine = if classic { "classic" } else { "path" };
+    println!("render:         {:.3} s ({engine}), {} x {} pixels, {} spp", secs, film.width, film.height, stats.spp);
+    println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
+    println!(
+        "rays:           {} ({} shadow), {:.2} Mrays/s",
+        stats.total_rays(),
+        stats.shadow_rays,
+        stats.total_rays() as f64 / secs / 1e6
+    );
+    if let Some(p) = &stats.photons {
+        println!(
+            "photons:        {} emitted, {} caustic + {} global stored, {:.1} MiB, {:.3} s",
+            p.emitted,
+            p.caustic,
+            p.global,
+            p.memory as f64 / (1 << 20) as f64,
+            p.time.as_secs_f64()
+        );
+    }
+    if stats.fg_points > 0 {
+        println!(
+            "final gather:   {} interpolation points, pre-pass {:.3} s",
+            stats.fg_points,
+            stats.fg_time.as_secs_f64()
+        );
+    }
+    if let Some(t) = stats.first_pixels {
+        println!("first pixels:   {:.3} s", t.as_secs_f64() + t_scene.as_secs_f64() + t_accel.as_secs_f64());
+    }
+    println!("non-finite:     {} channels stored as 1.0", stats.nonfinite);
+    if let Some(m) = peak_memory() {
+        println!("peak memory:    {:.1} MiB", m as f64 / (1 << 20) as f64);
     }
 }

@@ -1,13 +1,31 @@
 //! Light transport: acceleration structures, the camera, sample generation, lights, the
-//! path integrator, the film and its filters, tone mapping.
+//! path and classic engines, the film and its filters, tone mapping.
 //!
-//! A render goes [`world::World::from_scene`] → [`accel::build`] → [`render::render`] →
-//! [`film::Film`]. Everything is in world space unless a name says otherwise; colours are
-//! linear Rec.709 RGB.
+//! A render is a pipeline of named stages, each a function or type of this crate:
+//!
+//! 1. **load** — [`pipeline::load`]: parse the `.mi` file and build the scene at one
+//!    `render` statement ([`pipeline::Loaded`]); settings that change the scene apply here
+//!    ([`pipeline::set_resolution`], [`pipeline::choose_engine`]).
+//! 2. **build the world** — [`pipeline::build_world`]: compile the shading and translate
+//!    the scene into the [`World`] the engines trace (meshes, materials, lights).
+//! 3. **prepare** — [`accel::build`] (the acceleration structure), then
+//!    [`prepare::prepare`]: the environment's importance table, the photon maps, the final
+//!    gather points ([`prepare::Prepared`]).
+//! 4. **render** — [`render::render_prepared`]: the progressive sample passes, of the whole
+//!    image or of one [`part`] of it ([`Settings`]); [`render::render`] runs stages 3 and 4.
+//! 5. **film** — [`film::Film`]: the per-pixel accumulators and the frame buffers made from
+//!    them (colour, depth, normals, labels, motion, user buffers); [`tonemap`] maps colour
+//!    for 8-bit files.
+//! 6. **write** — the `mira` command's `output` module writes the film's buffers to image
+//!    files (and a part's to a partial EXR that `mira merge` reassembles).
+//!
+//! Everything is in world space unless a name says otherwise; colours are linear Rec.709
+//! RGB.
 
 pub mod accel;
 pub mod camera;
 pub mod classic;
+pub mod engine;
 pub mod environment;
 pub mod fgcache;
 pub mod film;
@@ -16,7 +34,10 @@ pub mod hair;
 pub mod integrator;
 pub mod light;
 pub mod mesh;
+pub mod part;
 pub mod photons;
+pub mod pipeline;
+pub mod prepare;
 pub mod ray;
 pub mod render;
 pub mod sampler;
@@ -25,5 +46,5 @@ pub mod tracer;
 pub mod world;
 
 pub use accel::{Accel, Backend};
-pub use render::{render, EngineKind, Progress, Settings, Stats};
+pub use render::{render, render_prepared, EngineKind, Progress, Settings, Stats};
 pub use world::World;

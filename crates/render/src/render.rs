@@ -19,18 +19,13 @@ use crate::accel::Accel;
 use crate::film::{Film, Pixel};
 use crate::filter::PixelFilter;
 use crate::integrator::{trace_path, PathSettings};
+use crate::part::{Part, Split};
+use crate::prepare::{prepare, Prepared};
 use crate::ray::RayCounts;
 use crate::sampler::{pixel_seed, Sampler};
 use crate::world::World;
 
-/// Which engine makes the samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EngineKind {
-    /// Iray-style progressive path tracing of physical materials.
-    Path,
-    /// mental ray's shader-driven ray tracing: material shaders decide.
-    Classic,
-}
+pub use crate::engine::EngineKind;
 
 /// How to render.
 #[derive(Clone, Debug)]
@@ -47,6 +42,8 @@ pub struct Settings {
     pub path: PathSettings,
     /// Rows per parallel work item.
     pub band: u32,
+    /// Render only this part of the image (see [`crate::part`]); `None`: all of it.
+    pub part: Option<Part>,
 }
 
 impl Default for Settings {
@@ -58,6 +55,7 @@ impl Default for Settings {
             max_time: None,
             path: PathSettings::default(),
             band: 4,
+            part: None,
         }
     }
 }
@@ -219,13 +217,48 @@ fn needs_more(film: &Film, i: usize, contrast: [f32; 4], neighbours: bool) -> bo
     })
 }
 
-/// Renders `world` progressively. `progress` is called after each pass; `cancel` stops the
-/// render at the next row (the image keeps what was done). The classic engine needs the
-/// scene's compiled `shading`.
+/// Renders `world` progressively: [`prepare`], then [`render_prepared`]. `progress` is
+/// called after each pass; `cancel` stops the render at the next row (the image keeps what
+/// was done). The classic engine needs the scene's compiled `shading`.
 pub fn render(
     world: &World,
     accel: &dyn Accel,
     shading: Option<&Shading>,
+    settings: &Settings,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> (Film, Stats) {
+    let prepared = prepare(world, accel, shading, settings.engine, cancel);
+    render_prepared(world, accel, shading, &prepared, settings, cancel, progress)
+}
+
+/// Why a part of an image cannot be rendered on its own, if it cannot: a stop that looks at
+/// the whole image (the path engine's convergence test) or at the clock.
+pub fn part_problem(world: &World, settings: &Settings) -> Option<String> {
+    let prog = &world.options.progressive;
+    settings.part?;
+    if settings.max_time.is_some() {
+        return Some("a part cannot stop on a time limit (parts would differ in samples); drop --time".into());
+    }
+    if let Some(t) = prog.max_time {
+        return Some(format!(
+            "the scene stops rendering after {t} s (progressive max time), and parts stopped by the clock do not fit together"
+        ));
+    }
+    if settings.engine == EngineKind::Path && settings.spp.is_none() && prog.quality_enabled {
+        return Some("the scene stops the path engine by its convergence over the whole image, which no part can see; give --spp".into());
+    }
+    None
+}
+
+/// Stage 4, **render**: the sample passes over the pixels of `world` (of
+/// `settings.part` only, when set), with the pre-passes of `prepared`. Returns the film
+/// (stage 5) and what was done.
+pub fn render_prepared(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    prepared: &Prepared,
     settings: &Settings,
     cancel: &AtomicBool,
     progress: &(dyn Fn(Progress) + Sync),
@@ -238,15 +271,11 @@ pub fn render(
     }
     let filter = PixelFilter::new(&world.options.filter);
     let prog = &world.options.progressive;
-    let classic = match (settings.engine, shading) {
+    let classic = match (prepared.engine, shading) {
         (EngineKind::Classic, Some(s)) => Some(s),
         _ => None,
     };
-    // The path engine's environment, its importance grid tabulated now.
-    let env = match (classic, shading) {
-        (None, Some(s)) => crate::environment::Environment::of_scene(world, accel, s),
-        _ => None,
-    };
+    let env = prepared.env.as_ref();
     let (first_pass, target) = match classic {
         Some(_) => classic_samples(&world.options, settings.spp),
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
@@ -254,6 +283,14 @@ pub fn render(
     let contrast = world.options.contrast.map(|c| c as f32);
     let max_time = settings.max_time.or(prog.max_time.map(Duration::from_secs_f64));
     let quality = (classic.is_none() && settings.spp.is_none() && prog.quality_enabled).then_some(prog);
+    // The rows this render samples: all, or a part's (with its halo).
+    let rows_on: Vec<bool> = match settings.part {
+        None => vec![true; h as usize],
+        Some(part) => {
+            let split = Split::for_engine(if classic.is_some() { EngineKind::Classic } else { EngineKind::Path });
+            split.rendered_rows(part, h, filter.radius().1.ceil() as u32 + 1)
+        }
+    };
     let start = Instant::now();
     let rays = AtomicU64::new(0);
     let shadow_rays = AtomicU64::new(0);
@@ -264,19 +301,17 @@ pub fn render(
     let (x0, y0, x1, y1) = cam.window;
     let band = settings.band.max(1) as usize;
     let fb_writes: Mutex<Vec<(usize, u32, [f32; 4])>> = Mutex::new(Vec::new());
-    // The classic engine's photon maps, then its final gather points, before the image.
-    if let Some(p) = classic.and_then(|s| crate::photons::build(world, accel, s, cancel)) {
+    if let Some(p) = prepared.photons {
         rays.fetch_add(p.rays, Ordering::Relaxed);
         stats.photons = Some(p);
     }
-    let fg = classic.and_then(|s| crate::fgcache::prepass(world, accel, s, cancel));
-    if let Some(p) = &fg {
+    if let Some(p) = &prepared.fg {
         rays.fetch_add(p.counts.rays, Ordering::Relaxed);
         shadow_rays.fetch_add(p.counts.shadow_rays, Ordering::Relaxed);
         stats.fg_points = p.cache.len() as u64;
-        stats.fg_time = start.elapsed();
+        stats.fg_time = prepared.fg_time;
     }
-    let fg_cache = fg.as_ref().map(|p| &p.cache);
+    let fg_cache = prepared.fg.as_ref().map(|p| &p.cache);
     // The classic engine's per-band splat buffers, kept across passes.
     let band_count = (h as usize).div_ceil(band);
     let mut band_splats: Vec<Splat> = match classic {
@@ -303,7 +338,7 @@ pub fn render(
                 }
                 let x = (k % w as usize) as u32;
                 let y = (b * band + k / w as usize) as u32;
-                if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged {
+                if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged || !rows_on[y as usize] {
                     continue;
                 }
                 // One sampler per pixel, restarted for each sample: the scrambles that depend
@@ -336,16 +371,8 @@ pub fn render(
                         }
                         None => {
                             let ray = cam.ray(raster.x, raster.y);
-                            let r = trace_path(
-                                world,
-                                accel,
-                                shading,
-                                env.as_ref(),
-                                ray,
-                                &mut sampler,
-                                &settings.path,
-                                &mut counts,
-                            );
+                            let r =
+                                trace_path(world, accel, shading, env, ray, &mut sampler, &settings.path, &mut counts);
                             if let Some(f) = r.first {
                                 motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
                             }
@@ -371,7 +398,7 @@ pub fn render(
             nonfinite.fetch_add(bad, Ordering::Relaxed);
             let mut first = first_pixels.lock().unwrap_or_else(|e| e.into_inner());
             if first.is_none() {
-                *first = Some(start.elapsed());
+                *first = Some(prepared.time + start.elapsed());
             }
         });
         if cancel.load(Ordering::Relaxed) {
@@ -429,8 +456,9 @@ pub fn render(
                 }
             }
         }
-        progress(Progress { samples: done, target, converged: converged_ratio, elapsed: start.elapsed() });
-        if stats.converged || max_time.is_some_and(|t| start.elapsed() >= t) {
+        let elapsed = prepared.time + start.elapsed();
+        progress(Progress { samples: done, target, converged: converged_ratio, elapsed });
+        if stats.converged || max_time.is_some_and(|t| elapsed >= t) {
             break;
         }
     }
@@ -438,7 +466,7 @@ pub fn render(
     stats.shadow_rays = shadow_rays.load(Ordering::Relaxed);
     stats.nonfinite = nonfinite.load(Ordering::Relaxed);
     stats.samples = film.pixels.iter().map(|p| u64::from(p.samples)).sum();
-    stats.render_time = start.elapsed();
+    stats.render_time = prepared.time + start.elapsed();
     stats.first_pixels = *first_pixels.lock().unwrap_or_else(|e| e.into_inner());
     stats.spp = done;
     (film, stats)

@@ -1,0 +1,162 @@
+//! The first stages of a render: **load** a `.mi` file into a scene ([`load`]), apply the
+//! settings that change the scene ([`set_resolution`], [`choose_engine`]) and **build the
+//! world** the engines trace ([`build_world`]). The stages after these are
+//! [`crate::prepare::prepare`], [`crate::render::render_prepared`] and the [`crate::film`];
+//! the crate's front page lists them all.
+
+use std::path::{Path, PathBuf};
+
+use scene::Scene;
+use shader::{Shading, ShadingOptions};
+
+use crate::engine::EngineKind;
+use crate::world::World;
+
+/// What the load stage read: the parsed file (its sources, for messages), the scene at the
+/// chosen `render` statement (`None` when the file has errors) and every message so far.
+pub struct Loaded {
+    /// The parsed file and everything it included.
+    pub parsed: mi::Parsed,
+    /// The scene, when the file and the scene layer found no error.
+    pub scene: Option<Scene>,
+    /// The reader's and the scene layer's messages, in order.
+    pub diagnostics: Vec<mi::Diagnostic>,
+}
+
+impl Loaded {
+    /// Whether any message is an error.
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(mi::Diagnostic::is_error)
+    }
+
+    /// A hash of every file the scene was read from (the main file and its `$include`s,
+    /// in reading order): equal hashes mean the same scene text. FNV-1a, 64 bits: it tells
+    /// files apart, it is no protection against a crafted collision.
+    pub fn content_hash(&self) -> u64 {
+        let mut h = Fnv::new();
+        for (_, file) in self.parsed.sources.files() {
+            h.write(&(file.bytes.len() as u64).to_le_bytes());
+            h.write(&file.bytes);
+        }
+        h.finish()
+    }
+}
+
+/// Stage 1, **load**: reads the file at `path` (following `$include`s by `options`) and
+/// builds the scene at its `frame`-th `render` statement (0 for the first). An unreadable
+/// file is an error; problems in the text are in [`Loaded::diagnostics`].
+pub fn load(path: &Path, options: &mi::ReadOptions, frame: usize) -> Result<Loaded, String> {
+    let parsed = mi::parse_file(path, options).map_err(|e| e.to_string())?;
+    let mut diagnostics = parsed.diagnostics.list.clone();
+    let scene = if parsed.diagnostics.has_errors() { None } else { Scene::build(&parsed, frame, &mut diagnostics) };
+    Ok(Loaded { parsed, scene, diagnostics })
+}
+
+/// Overrides the camera's resolution with `width` × `height` pixels (each clamped to
+/// 1 … [`scene::camera::MAX_RESOLUTION`]), keeping the image plane: the field of view, the
+/// pixel aspect, and the offset and window scaled to the new size.
+pub fn set_resolution(scene: &mut Scene, width: u32, height: u32) {
+    let (w, h) = (width.clamp(1, scene::camera::MAX_RESOLUTION), height.clamp(1, scene::camera::MAX_RESOLUTION));
+    let cam = &mut scene.camera;
+    let old = cam.resolution;
+    // Keep the image plane: aspect stays as the camera had it relative to its pixels.
+    let pixel_aspect = old.0 as f64 / (cam.aspect * old.1 as f64);
+    cam.aspect = w as f64 / (h as f64 * pixel_aspect);
+    cam.resolution = (w, h);
+    cam.offset = (cam.offset.0 * w as f64 / old.0 as f64, cam.offset.1 * h as f64 / old.1 as f64);
+    cam.window = cam.window.map(|[a, b, c, d]| {
+        let sx = w as f64 / old.0 as f64;
+        let sy = h as f64 / old.1 as f64;
+        [(a as f64 * sx) as i64, (b as f64 * sy) as i64, (c as f64 * sx) as i64, (d as f64 * sy) as i64]
+    });
+}
+
+/// The engine for `scene`: `asked` when given, else the classic engine when the scene's
+/// materials are mental ray shaders and the path engine otherwise.
+pub fn choose_engine(scene: &Scene, asked: Option<EngineKind>) -> EngineKind {
+    asked.unwrap_or(if Shading::wants_classic(scene) { EngineKind::Classic } else { EngineKind::Path })
+}
+
+/// The world and the compiled shading it was translated with (both engines use the
+/// shading: the classic one runs the material shaders, the path engine the shaders
+/// connected to material parameters).
+pub struct Built {
+    /// The compiled shaders, lights and final gather settings.
+    pub shading: Shading,
+    /// The world the engines trace.
+    pub world: World,
+    /// The shading compiler's messages.
+    pub diagnostics: Vec<mi::Diagnostic>,
+}
+
+/// Where textures are looked up for a scene read from `scene_path`: its directory, then
+/// the include directories.
+pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
+    let mut dirs: Vec<PathBuf> = scene_path.parent().map(Path::to_path_buf).into_iter().collect();
+    dirs.extend(include.iter().cloned());
+    dirs
+}
+
+/// Stage 2, **build the world**: compiles the scene's shading with every library
+/// ([`material::compile_shading`]: plug-in shaders get stand-ins) and its MDL module
+/// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), and
+/// translates the scene into the world the engines trace.
+pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
+    let (shading, mut diagnostics) = material::compile_shading(scene, options);
+    let search = material::mdl_modules::search_path(&scene.library, mdl_paths);
+    let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
+    diagnostics.extend(mdl_diagnostics);
+    let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
+    Built { shading, world, diagnostics }
+}
+
+/// FNV-1a, 64 bits: a small, stable hash for telling files and settings apart (the same
+/// value on every machine and build, unlike the standard library's hasher).
+#[derive(Clone, Copy, Debug)]
+pub struct Fnv(u64);
+
+impl Fnv {
+    /// The empty hash.
+    pub fn new() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+
+    /// Adds bytes.
+    pub fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    /// The hash.
+    pub fn finish(self) -> u64 {
+        self.0
+    }
+
+    /// The hash of `bytes`.
+    pub fn of(bytes: &[u8]) -> u64 {
+        let mut h = Fnv::new();
+        h.write(bytes);
+        h.finish()
+    }
+}
+
+impl Default for Fnv {
+    fn default() -> Fnv {
+        Fnv::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// FNV-1a's published test vectors (64-bit): "" and "a".
+    #[test]
+    fn fnv_matches_reference_vectors() {
+        assert_eq!(Fnv::of(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(Fnv::of(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(Fnv::of(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+}
