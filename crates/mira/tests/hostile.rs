@@ -70,6 +70,8 @@ const CHECK: &[Case] = &[
     Case { file: "no_render.mi", exit: 1, expect: Diag("no_render.mi:1:1: error: the file has no 'render' statement") },
     Case { file: "nul_bytes.mi", exit: 1, expect: Diag("nul_bytes.mi:2:14: error: unexpected character byte 0x00") },
     Case { file: "ok_baseline.mi", exit: 0, expect: Report("ok_baseline.mi: 0 errors, 0 warnings;") },
+    Case { file: "phenomenon_cycle.mi", exit: 1, expect: Diag("phenomenon_cycle.mi:27:20: error: phenomenon 'pb' nests too deeply") },
+    Case { file: "phenomenon_self.mi", exit: 1, expect: Diag("phenomenon_self.mi:23:20: error: phenomenon 'ph' nests too deeply") },
     Case { file: "photons_absurd.mi", exit: 1, expect: Diag("photons_absurd.mi:7:5: error: 'caustic accuracy' has a number that is not finite (infinity)") },
     Case { file: "polygon_index_out_of_range.mi", exit: 1, expect: Diag("polygon_index_out_of_range.mi:31:9: error: polygon uses vertex 7 but the group has 3 vertices") },
     Case { file: "progressive_absurd.mi", exit: 0, expect: Report("progressive max samples 1000000000") },
@@ -116,7 +118,8 @@ const RENDER: &[Case] = &[
     },
 ];
 
-/// Cases whose tessellation is capped at 2^23 faces (about 10 s each in a test build):
+/// Cases whose tessellation is capped at 2^23 faces (93 s for the three on a loaded 2-core
+/// machine):
 /// `cargo test -p mira --test hostile -- --ignored`.
 const HEAVY: &[Case] = &[
     Case {
