@@ -85,6 +85,9 @@ pub struct RenderArgs {
     memory: crate::limits::MemoryArgs,
 }
 
+/// Most worker threads `--threads` may ask for.
+const MAX_THREADS: usize = 4096;
+
 /// Peak resident memory of this process, in bytes (Linux).
 fn peak_memory() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -99,6 +102,14 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         eprintln!("mira: error: {msg}");
         ExitCode::FAILURE
     };
+    if let Some(t) = args.time {
+        if !(t.is_finite() && t >= 0.0) {
+            return err(format!("--time {t} is not a number of seconds ≥ 0"));
+        }
+    }
+    if args.threads > MAX_THREADS {
+        return err(format!("--threads {} is more than mira starts ({MAX_THREADS})", args.threads));
+    }
     let t0 = Instant::now();
     let options = args.include.read_options();
     let parsed = match mi::parse_file(&args.scene, &options) {

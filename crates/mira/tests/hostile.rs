@@ -285,3 +285,31 @@ fn twenty_thousand_nested_instgroups() {
     );
     assert!(!stderr.contains("contains itself"), "{stderr}");
 }
+
+/// Command-line values that would panic (`Duration` of an infinite time), start
+/// millions of threads or allocate an absurd film are errors before anything is read.
+#[test]
+fn absurd_command_line_values_are_errors() {
+    for (args, message) in [
+        (&["--time", "inf"][..], "mira: error: --time inf is not a number of seconds ≥ 0"),
+        (&["--time", "NaN"][..], "mira: error: --time NaN is not a number of seconds ≥ 0"),
+        (&["--threads", "100000000"][..], "mira: error: --threads 100000000 is more than mira starts (4096)"),
+        (&["--resolution", "0", "10"][..], "mira: error: --resolution 0 10 is outside 1 … 65536 pixels per side"),
+        (
+            &["--resolution", "30000", "30000", "--max-memory", "8G"][..],
+            // The size depends on the film's pixel layout (296 bytes a pixel when written).
+            "ok_baseline.mi:10:5: error: --resolution 30000 x 30000 needs * GiB of film and frame buffers, more than \
+             the limit of 8.00 GiB (--max-memory)",
+        ),
+    ] {
+        let out = std::env::temp_dir().join(format!("mira-hostile-cli-{}.png", std::process::id()));
+        let mut all = vec!["render", "-o", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        all.push("ok_baseline.mi");
+        let (code, _, stderr) = mira(&dir(), &all);
+        assert_eq!(code, 1, "{args:?}: {stderr}");
+        let first = stderr.lines().next().unwrap_or_default();
+        let (head, tail) = message.split_once('*').unwrap_or((message, ""));
+        assert!(first.starts_with(head) && first.ends_with(tail) && first.len() >= message.len(), "{stderr}");
+    }
+}
