@@ -28,8 +28,7 @@ struct Case {
 }
 
 /// `mira check --scene` cases. Fallbacks without a diagnostic: 2000 frame buffers that are
-/// not `user` take no film memory; progressive samples are capped at 10^9 and trace depths
-/// at 65536 (options.rs); `samples 100 200` is kept and capped by the classic engine; a
+/// not `user` take no film memory; progressive samples are capped at 10^9 (options.rs); a
 /// window beyond the image is clipped to it by the renderer.
 const CHECK: &[Case] = &[
     Case { file: "binary_garbage.mi", exit: 1, expect: Diag("binary_garbage.mi:1:2: error: unexpected character byte 0xfc") },
@@ -79,11 +78,11 @@ const CHECK: &[Case] = &[
     Case { file: "resolution_large.mi", exit: 1, expect: Diag("resolution_large.mi:10:5: error: resolution 65536 x 65536 needs 1.16 TiB of film and frame buffers, more than the limit of 1.00 GiB (--max-memory)") },
     Case { file: "resolution_negative.mi", exit: 1, expect: Diag("resolution_negative.mi:10:5: error: camera resolution -640 x 480 is outside 1 … 65536 pixels per side") },
     Case { file: "resolution_zero.mi", exit: 1, expect: Diag("resolution_zero.mi:10:5: error: camera resolution 0 x 0 is outside 1 … 65536 pixels per side") },
-    Case { file: "samples_absurd.mi", exit: 0, expect: Report("samples 100 200,") },
+    Case { file: "samples_absurd.mi", exit: 0, expect: Diag("samples_absurd.mi:4:5: warning: samples level 200 asks for more than the 1024 samples per pixel mira takes: level 5 is used") },
     Case { file: "shader_cycle.mi", exit: 1, expect: Diag("shader_cycle.mi:23:50: error: shader connections form a cycle: 'a' -> 'b' -> 'a'") },
     Case { file: "shader_self.mi", exit: 1, expect: Diag("shader_self.mi:22:50: error: shader connections form a cycle: 'a' -> 'a'") },
     Case { file: "shader_unknown_reference.mi", exit: 1, expect: Diag("shader_unknown_reference.mi:23:38: error: unknown shader 'nowhere'") },
-    Case { file: "trace_depth_absurd.mi", exit: 0, expect: Report("trace depth 65536 65536 65536,") },
+    Case { file: "trace_depth_absurd.mi", exit: 0, expect: Diag("trace_depth_absurd.mi:5:5: warning: trace depth 2000000000 is deeper than mira traces: 65536 is used") },
     Case { file: "triangle_zero_area.mi", exit: 0, expect: Diag("triangle_zero_area.mi:31:9: warning: degenerate polygon (no area or invalid coordinates) skipped") },
     Case { file: "trilist_huge_header.mi", exit: 1, expect: Diag("trilist_huge_header.mi:26:5: error: trilist of 4000000000 vertex lines of 3 numbers is too large") },
     Case { file: "truncated.mi", exit: 1, expect: Diag("truncated.mi:26:5: error: 'group' is not closed by 'end group'") },
