@@ -184,12 +184,14 @@ impl Printer {
             }
             Item::Instgroup(g) => {
                 self.block_open("instgroup", &g.name);
-                for s in &g.stmts {
-                    self.stmt(s);
-                }
+                // Members first: a flag attribute without a value (`attribute hide`) would
+                // take a quoted member written after it as its value.
                 for m in &g.members {
                     self.line();
                     self.name(m);
+                }
+                for s in &g.stmts {
+                    self.stmt(s);
                 }
                 self.block_close("instgroup");
             }

@@ -162,7 +162,11 @@ fn missing_include_names_the_file() {
     std::fs::write(dir.join("s.mi"), "$include \"base.mi\"\n$include \"vrayBase.mi\"\n").unwrap();
     let parsed = mi::parse_file(&dir.join("s.mi"), &mi::ReadOptions::default()).unwrap();
     let errors: Vec<_> = parsed.diagnostics.list.iter().filter(|d| d.is_error()).collect();
-    assert_eq!(errors.len(), 1, "base.mi is built in; only vrayBase.mi (a plug-in library mira does not ship) is missing");
+    assert_eq!(
+        errors.len(),
+        1,
+        "base.mi is built in; only vrayBase.mi (a plug-in library mira does not ship) is missing"
+    );
     assert!(errors[0].message.contains("cannot find include file 'vrayBase.mi'"));
     assert_eq!(parsed.sources.file(errors[0].span.file).line_col(errors[0].span.lo), (2, 11));
 }

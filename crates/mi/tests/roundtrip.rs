@@ -132,3 +132,21 @@ fn lookup_keys_round_trip() {
         );
     }
 }
+
+/// Fuzz finding 5 (`fuzz/seeds/parse/found-5.mi`, issue 15's second parse campaign): an
+/// instgroup's members were printed after its statements, so a flag attribute without a
+/// value (`attribute hide`) took the first quoted member as its value. Members are now
+/// printed first.
+#[test]
+fn instgroup_members_after_a_bare_flag_attribute_round_trip() {
+    for text in [
+        &b"instgroup \"g\"\n    attribute hide\n    a \"b\"\nend instgroup\n"[..],
+        &include_bytes!("../../../fuzz/seeds/parse/found-5.mi")[..],
+    ] {
+        let first = mi::parse_source(mi::Origin::Memory("g.mi".into()), text.to_vec(), &Default::default());
+        assert!(!first.diagnostics.has_errors(), "{}", first.diagnostics.render(&first.sources));
+        let printed = mi::print(&first.items);
+        let second = mi::parse_source(mi::Origin::Memory("g.mi".into()), printed.clone(), &Default::default());
+        assert_eq!(first.items, second.items, "printed as {:?}", String::from_utf8_lossy(&printed));
+    }
+}

@@ -198,6 +198,9 @@ pub fn load_scene(
     Ok(LoadedScene { parsed: loaded.parsed, scene, content_hash })
 }
 
+/// Most worker threads `--threads` may ask for.
+const MAX_THREADS: usize = 4096;
+
 /// Peak resident memory of this process, in bytes (Linux).
 fn peak_memory() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -208,6 +211,16 @@ fn peak_memory() -> Option<u64> {
 
 /// Runs the command.
 pub fn run(args: &RenderArgs) -> ExitCode {
+    if let Some(t) = args.time {
+        if !(t.is_finite() && t >= 0.0) {
+            eprintln!("mira: error: --time {t} is not a number of seconds ≥ 0");
+            return ExitCode::FAILURE;
+        }
+    }
+    if args.options.threads > MAX_THREADS {
+        eprintln!("mira: error: --threads {} is more than mira starts ({MAX_THREADS})", args.options.threads);
+        return ExitCode::FAILURE;
+    }
     let (first, last) = match args.frames.as_deref().map(parse_frames) {
         Some(Ok(r)) => r,
         Some(Err(e)) => {

@@ -22,9 +22,7 @@ use crate::{Library, Material, MaterialKind, Object, Scene};
 /// How deeply instgroups may nest.
 pub const MAX_DAG_DEPTH: usize = 256;
 
-/// Largest world-space coordinate of a placed object or the camera: beyond it, the
-/// renderer's single-precision positions and ray arithmetic overflow to infinity.
-pub const WORLD_LIMIT: f64 = 1e30;
+pub use crate::sanity::WORLD_LIMIT;
 
 /// Whether every vertex of `geometry` (its object-space bounding box) stays within
 /// ±[`WORLD_LIMIT`] once placed by `object_to_world`.

@@ -11,6 +11,10 @@
 //! Camera values (focal length, aperture, resolution, …) are checked by
 //! [`crate::camera::Camera::from_blocks`]; vertex data by the tessellators.
 
+/// Largest world-space coordinate of a placed object or the camera: beyond it, the
+/// renderer's single-precision positions and ray arithmetic overflow to infinity.
+pub const WORLD_LIMIT: f64 = 1e30;
+
 use mi::ast::{Arg, Block, KwStmt, Param, ShaderItem, ShaderList, Stmt, Value};
 use mi::Diagnostic;
 
@@ -125,12 +129,52 @@ fn word(v: f64) -> &'static str {
     }
 }
 
-/// Narrows a filter wider than [`MAX_FILTER_SIZE`], warning at its statement.
+/// Highest `samples` level the classic engine takes (4^5 = 1024 samples per pixel).
+pub const MAX_SAMPLES_LEVEL: i64 = 5;
+
+/// Deepest trace depth the options keep (`trace depth`, `finalgather trace depth`).
+pub const MAX_TRACE_DEPTH: i64 = 1 << 16;
+
+/// Deepest `photon trace depth` the options keep.
+pub const MAX_PHOTON_TRACE_DEPTH: i64 = 1 << 10;
+
+/// Warns where the options ask for more than mira takes: `samples` levels above
+/// [`MAX_SAMPLES_LEVEL`], trace depths above [`MAX_TRACE_DEPTH`] (both read capped), and
+/// narrows a filter wider than [`MAX_FILTER_SIZE`].
 pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
+    let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+    if let Some(k) = last(&stmts, "samples") {
+        let levels: Vec<i64> = (0..k.args.len()).filter_map(|i| crate::values::int_arg(k, i)).collect();
+        if levels.iter().any(|l| *l > MAX_SAMPLES_LEVEL) {
+            diags.push(Diagnostic::warning(
+                k.span,
+                format!(
+                    "samples level {} asks for more than the {} samples per pixel mira takes: level \
+                     {MAX_SAMPLES_LEVEL} is used",
+                    levels.iter().max().copied().unwrap_or_default(),
+                    4u32.pow(MAX_SAMPLES_LEVEL as u32)
+                ),
+            ));
+        }
+    }
+    for s in &stmts {
+        let Stmt::Kw(k) = s else { continue };
+        let max = match k.key {
+            "trace depth" | "finalgather trace depth" => MAX_TRACE_DEPTH,
+            "photon trace depth" => MAX_PHOTON_TRACE_DEPTH,
+            _ => continue,
+        };
+        let deepest = (0..k.args.len()).filter_map(|i| crate::values::int_arg(k, i)).max().unwrap_or(0);
+        if deepest > max {
+            diags.push(Diagnostic::warning(
+                k.span,
+                format!("{} {deepest} is deeper than mira traces: {max} is used", k.key),
+            ));
+        }
+    }
     let f = &mut o.filter;
     let (o_w, o_h) = (f.width, f.height);
     if f.width > MAX_FILTER_SIZE || f.height > MAX_FILTER_SIZE || !(f.width > 0.0 && f.height > 0.0) {
-        let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
         let span =
             last(&stmts, "filter").map_or_else(|| blocks.first().map(|b| b.span).unwrap_or_default(), |k| k.span);
         let fix = |v: f64| if v > 0.0 { v.min(MAX_FILTER_SIZE) } else { 1.0 };
@@ -178,12 +222,12 @@ pub fn light(l: &mut Light, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
 }
 
 /// Vertex data no renderer can use: a position that is not finite or lies beyond
-/// ±[`crate::build::WORLD_LIMIT`] leaves out the triangles that use it (the position is set
+/// ±[`WORLD_LIMIT`] leaves out the triangles that use it (the position is set
 /// to the origin, unused); non-finite normals, texture, user, motion and derivative values
 /// become zero. One warning per object, at its definition.
 pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: &mut Vec<Diagnostic>) {
     let mesh = &mut geometry.mesh;
-    let limit = crate::build::WORLD_LIMIT as f32;
+    let limit = WORLD_LIMIT as f32;
     let bad: Vec<bool> = mesh.positions.iter().map(|p| !(p.is_finite() && p.abs().max_element() <= limit)).collect();
     let bad_positions = bad.iter().filter(|b| **b).count();
     let mut bad_values = 0usize;
@@ -232,7 +276,7 @@ pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: 
         format!(
             "object '{object}': {bad_positions} vertex positions are not finite or lie beyond ±{:e} ({dropped} \
              triangles using them are left out) and {bad_values} other vertex values are not finite (zero is used)",
-            crate::build::WORLD_LIMIT
+            WORLD_LIMIT
         ),
     ));
 }
