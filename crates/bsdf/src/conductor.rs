@@ -364,23 +364,8 @@ mod tests {
                 expected[(i / SUB) * PHI + j / SUB] += f64::from(c.pdf(wo, wi)) * d_area * f64::from(SAMPLES);
             }
         }
-        let (mut chi2, mut dof, mut pool_o, mut pool_e) = (0.0, 0usize, 0.0, 0.0);
-        for (o, e) in observed.iter().zip(&expected) {
-            if *e < 5.0 {
-                pool_o += o;
-                pool_e += e;
-            } else {
-                chi2 += (o - e) * (o - e) / e;
-                dof += 1;
-            }
-        }
-        if pool_e >= 5.0 {
-            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-            dof += 1;
-        }
-        let dof = dof.saturating_sub(1).max(1) as f64;
-        let z = 2.326;
-        let limit = dof * (1.0 - 2.0 / (9.0 * dof) + z * (2.0 / (9.0 * dof)).sqrt()).powi(3);
+        let p = testing::pooled_chi_square(&observed, &expected);
+        let (chi2, limit) = (p.chi2, testing::chi_square_limit_99(p.dof));
         assert!(chi2 < limit, "{:?} wo {wo}: chi-square {chi2:.1} over the 99% limit {limit:.1}", c.ggx);
     }
 

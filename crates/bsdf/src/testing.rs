@@ -106,27 +106,50 @@ pub fn chi_square(bsdf: &Bsdf, wo: Vec3A) {
             expected[cell(w)] += f64::from(bsdf.pdf(wo, w)) * area * f64::from(SAMPLES);
         }
     }
-    // Pool cells with expected < 5 into one.
-    let (mut chi2, mut dof) = (0.0, 0usize);
-    let (mut pool_o, mut pool_e) = (0.0, 0.0);
-    for (o, e) in observed.iter().zip(&expected) {
-        if *e < 5.0 {
-            pool_o += o;
-            pool_e += e;
-        } else {
-            chi2 += (o - e) * (o - e) / e;
-            dof += 1;
-        }
-    }
-    if pool_e >= 5.0 {
-        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-        dof += 1;
-    } else {
+    let p = pooled_chi_square(&observed, &expected);
+    if p.pool_expected < 5.0 {
+        let (pool_o, pool_e) = (p.pool_observed, p.pool_expected);
         assert!(pool_o < 5.0 + 10.0 * pool_e.max(1.0), "{pool_o} samples fell where the pdf is ~0 ({pool_e})");
     }
-    let dof = dof.saturating_sub(1).max(1) as f64;
-    // Wilson–Hilferty approximation of the 99% quantile of χ²(dof).
-    let z = 2.326;
-    let limit = dof * (1.0 - 2.0 / (9.0 * dof) + z * (2.0 / (9.0 * dof)).sqrt()).powi(3);
+    let (chi2, dof, limit) = (p.chi2, p.dof, chi_square_limit_99(p.dof));
     assert!(chi2 < limit, "chi-square {chi2:.1} over the 99% limit {limit:.1} ({dof} dof) for wo = {wo}");
+}
+
+/// Pearson's statistic of `observed` against `expected` counts, cells expecting fewer than
+/// 5 pooled into one (counted as a cell when it expects 5 or more).
+pub struct PooledChiSquare {
+    /// The statistic.
+    pub chi2: f64,
+    /// Degrees of freedom: the cells counted less one (at least 1).
+    pub dof: f64,
+    /// Samples observed in the pooled cells.
+    pub pool_observed: f64,
+    /// Samples expected in the pooled cells.
+    pub pool_expected: f64,
+}
+
+/// Pearson's χ² over cells, with the cells expecting fewer than 5 samples pooled.
+pub fn pooled_chi_square(observed: &[f64], expected: &[f64]) -> PooledChiSquare {
+    let (mut chi2, mut cells) = (0.0, 0usize);
+    let (mut pool_observed, mut pool_expected) = (0.0, 0.0);
+    for (o, e) in observed.iter().zip(expected) {
+        if *e < 5.0 {
+            pool_observed += o;
+            pool_expected += e;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
+            cells += 1;
+        }
+    }
+    if pool_expected >= 5.0 {
+        chi2 += (pool_observed - pool_expected) * (pool_observed - pool_expected) / pool_expected;
+        cells += 1;
+    }
+    PooledChiSquare { chi2, dof: cells.saturating_sub(1).max(1) as f64, pool_observed, pool_expected }
+}
+
+/// The 99 % quantile of χ²(`dof`), by the Wilson–Hilferty approximation.
+pub fn chi_square_limit_99(dof: f64) -> f64 {
+    let z = 2.326;
+    dof * (1.0 - 2.0 / (9.0 * dof) + z * (2.0 / (9.0 * dof)).sqrt()).powi(3)
 }
