@@ -2,7 +2,7 @@
 //! reads: `mira prepass` computes the photon maps and final gather points once, parts that
 //! read them (`--prepass`) merge into the same bytes as one `mira render`, as parts that
 //! compute them do; a pre-pass file of another scene or other settings is refused; parts
-//! rendered against a changed texture do not merge.
+//! rendered against a changed texture or MDL module do not merge.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -202,5 +202,25 @@ fn farm_slurm_adds_a_prepass_job_when_the_scene_has_prepasses() {
     let (code, err) = mira(&["farm", "slurm", "../../scenes/iray_cornell_box.mi", "-o", s(&path_out), "--parts", "2"]);
     assert_eq!(code, 0, "{err}");
     assert!(!dir.join("cornell.exr.farm/prepass.sbatch").exists(), "no pre-pass job for the path engine");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The same for an MDL module the scene's materials come from: a part rendered after the
+/// module changed does not merge with one rendered before.
+#[test]
+fn parts_rendered_against_a_changed_mdl_module_do_not_merge() {
+    let dir = temp_dir("mdl");
+    let scene = dir.join("cornell_mdl.mi");
+    std::fs::copy("../../scenes/mdl/cornell_mdl.mi", &scene).unwrap();
+    let module = dir.join("export_multi.mdl");
+    let text = std::fs::read_to_string("../../scenes/mdl/export_multi.mdl").unwrap();
+    std::fs::write(&module, &text).unwrap();
+    let opts = ["--resolution", "12", "8", "--spp", "1"];
+    let p1 = part(&scene, &dir, "p1.exr", 1, 2, &opts);
+    std::fs::write(&module, format!("{text}\n// changed\n")).unwrap();
+    let p2 = part(&scene, &dir, "p2.exr", 2, 2, &opts);
+    let (code, err) = merge(&[p1, p2], &dir.join("m.exr"));
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("was rendered against other files than the other parts"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
