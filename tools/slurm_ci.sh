@@ -3,7 +3,9 @@
 # munge (when missing), writes a slurm.conf for this host (CPUs = nproc, proctrack/linuxproc,
 # state and spool directories in a temporary folder), starts munged, slurmctld and slurmd in
 # the background (no systemd needed), renders a small scene with `mira farm slurm --parts 4
-# --submit --wait`, and compares the merged image bit for bit with a one-process render.
+# --submit --wait`, and compares the merged image bit for bit with a one-process render;
+# then a classic scene with pre-passes (a pre-pass job before the parts), then a task made
+# to fail once (requeued).
 # The daemons it started are stopped by their pids when it exits.
 #
 # usage: tools/slurm_ci.sh [MIRA]    (MIRA: the mira binary, default target/release/mira)
@@ -104,6 +106,24 @@ echo "slurm_ci: 4 parts and the merge ran in $(awk "BEGIN { print $end - $start 
 ls "$tmp/farm/logs"
 cmp "$tmp/one.exr" "$tmp/farm.exr"
 echo "slurm_ci: the merged image is bit-identical to the one-process render"
+
+# A classic scene with pre-passes (caustics, photon global illumination and final
+# gathering): the farm adds a pre-pass job that the parts wait for and read.
+sed -e 's/^    finalgather off$/    finalgather on\n    finalgather accuracy 48/' \
+    -e 's/caustic photons 200000/caustic photons 20000/' -e 's/globillum photons 100000/globillum photons 10000/' \
+    scenes/photons.mi > "$tmp/photons_fg.mi"
+grep -q "finalgather on" "$tmp/photons_fg.mi"
+copts=(--resolution 60 40)
+"$mira" render "$tmp/photons_fg.mi" "${copts[@]}" -o "$tmp/classic_one.exr"
+start=$(date +%s.%N)
+"$mira" farm slurm "$tmp/photons_fg.mi" -o "$tmp/classic.exr" --parts 4 "${copts[@]}" --dir "$tmp/classic" \
+    --submit --wait
+end=$(date +%s.%N)
+echo "slurm_ci: the pre-pass, 4 parts and the merge ran in $(awk "BEGIN { print $end - $start }") s"
+ls "$tmp/classic/logs" | grep -q '^prepass-'
+grep -q -- '--prepass' "$tmp/classic/render.sbatch"
+cmp "$tmp/classic_one.exr" "$tmp/classic.exr"
+echo "slurm_ci: the classic parts read the pre-pass file; the merge is bit-identical to the one-process render"
 
 # A task that fails is requeued once: the same scripts, with task 1's first attempt made to
 # fail, still give the same image.

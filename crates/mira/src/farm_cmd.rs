@@ -1,6 +1,7 @@
-//! `mira farm slurm`: render a scene on a Slurm cluster — a job array of `mira render
-//! --part` tasks (one per part and frame) and a merge job that runs after all of them
-//! succeeded (`--dependency=afterok`). The parts, logs and scripts go to a folder that every
+//! `mira farm slurm`: render a scene on a Slurm cluster — for a classic scene with
+//! pre-passes, a job array of `mira prepass` tasks (one per frame); a job array of `mira
+//! render --part` tasks (one per part and frame) after it; and a merge job that runs after
+//! all of them succeeded (`--dependency=afterok`). The parts, logs and scripts go to a folder that every
 //! node sees at the same path (a shared filesystem).
 
 use std::path::{Path, PathBuf};
@@ -79,8 +80,12 @@ pub fn part_path(dir: &Path, frame: usize, k: u32, n: u32) -> PathBuf {
     dir.join(format!("part-{frame:04}-{k}-of-{n}.exr"))
 }
 
-/// The two sbatch scripts: the render array and the merge job.
+/// The sbatch scripts: the pre-pass array (when the scene has pre-passes), the render array
+/// and the merge job.
 pub struct Scripts {
+    /// The pre-pass job array, one task per frame: `mira prepass` writes the photon maps
+    /// and final gather points every part of the frame reads.
+    pub prepass: Option<String>,
     /// The job array: task i renders part `i mod N + 1` of frame `A + i / N`.
     pub render: String,
     /// The merge job: one `mira merge` per frame.
@@ -89,8 +94,21 @@ pub struct Scripts {
     pub tasks: u32,
 }
 
-/// Writes the scripts for `args` with the mira binary `mira` and the farm folder `dir`.
-pub fn scripts(args: &SlurmArgs, mira: &Path, dir: &Path) -> Result<Scripts, String> {
+/// The lines of a task script that requeue it once when it failed (`status`).
+const REQUEUE_ONCE: &str = "status=$?\nif [ \"$status\" -ne 0 ]; then
+    # A failed task is requeued once (Slurm counts restarts in SLURM_RESTART_COUNT).
+    if [ \"${SLURM_RESTART_COUNT:-0}\" -lt 1 ]; then
+        echo \"mira farm: task $task failed ($status); requeueing it once\" >&2
+        scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}\"
+    fi
+    exit \"$status\"
+fi
+";
+
+/// Writes the scripts for `args` with the mira binary `mira` and the farm folder `dir`;
+/// `with_prepass`: the scene's classic pre-passes are computed once per frame by a job
+/// before the parts.
+pub fn scripts(args: &SlurmArgs, mira: &Path, dir: &Path, with_prepass: bool) -> Result<Scripts, String> {
     let (a, b) = match &args.frames {
         Some(f) => parse_frames(f)?,
         None => (1, 1),
@@ -111,6 +129,26 @@ pub fn scripts(args: &SlurmArgs, mira: &Path, dir: &Path) -> Result<Scripts, Str
         head += &format!("#SBATCH --cpus-per-task={c}\n");
     }
     let options: Vec<String> = args.options.to_args().iter().map(|s| quote(s)).collect();
+    let prepass = with_prepass.then(|| {
+        let mut p = head.clone();
+        p += "#SBATCH --job-name=mira-prepass\n";
+        p += &format!("#SBATCH --array=0-{}\n", frames - 1);
+        p += &format!("#SBATCH --output={}/prepass-%A_%a.log\n", q(&logs));
+        p += "#SBATCH --requeue\n#SBATCH --open-mode=append\n";
+        if let Some(t) = &args.time {
+            p += &format!("#SBATCH --time={}\n", quote(t));
+        }
+        p += &format!("# mira farm slurm: the pre-passes of {frames} frame(s) of {}\nset -u\n", args.scene.display());
+        p += &format!("task=$SLURM_ARRAY_TASK_ID\nframe=$(( {a} + task ))\n");
+        p += &format!("out={}/prepass-$(printf %04d \"$frame\").bin\n", q(dir));
+        p += &format!(
+            "{} prepass {} --frame \"$frame\" -o \"$out\" {}\n",
+            q(mira),
+            q(&abs(&args.scene)),
+            options.join(" ")
+        );
+        p + REQUEUE_ONCE
+    });
     let mut render = head.clone();
     render += "#SBATCH --job-name=mira-render\n";
     render += &format!("#SBATCH --array=0-{}\n", tasks - 1);
@@ -128,17 +166,18 @@ pub fn scripts(args: &SlurmArgs, mira: &Path, dir: &Path) -> Result<Scripts, Str
     );
     render += &format!("task=$SLURM_ARRAY_TASK_ID\nframe=$(( {a} + task / {n} ))\npart=$(( task % {n} + 1 ))\n");
     render += &format!("out={}/part-$(printf %04d \"$frame\")-$part-of-{n}.exr\n", q(dir));
+    let read_prepass = if with_prepass {
+        format!(" --prepass {}/prepass-$(printf %04d \"$frame\").bin", q(dir))
+    } else {
+        String::new()
+    };
     render += &format!(
-        "{} render {} --frame \"$frame\" --part \"$part/{n}\" -o \"$out\" {}\nstatus=$?\nif [ \"$status\" -ne 0 ]; then\n",
+        "{} render {} --frame \"$frame\" --part \"$part/{n}\"{read_prepass} -o \"$out\" {}\n",
         q(mira),
         q(&abs(&args.scene)),
         options.join(" ")
     );
-    render += "    # A failed task is requeued once (Slurm counts restarts in SLURM_RESTART_COUNT).\n";
-    render += "    if [ \"${SLURM_RESTART_COUNT:-0}\" -lt 1 ]; then\n";
-    render += "        echo \"mira farm: task $task failed ($status); requeueing it once\" >&2\n";
-    render += "        scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}\"\n";
-    render += "    fi\n    exit \"$status\"\nfi\n";
+    render += REQUEUE_ONCE;
     let mut merge = head;
     merge += "#SBATCH --job-name=mira-merge\n";
     merge += &format!("#SBATCH --output={}/merge-%j.log\n", q(&logs));
@@ -148,7 +187,21 @@ pub fn scripts(args: &SlurmArgs, mira: &Path, dir: &Path) -> Result<Scripts, Str
         let out = if args.frames.is_some() { frame_path(&abs(&args.output), frame) } else { abs(&args.output) };
         merge += &format!("{} merge {} -o {}\n", q(mira), parts.join(" "), q(&out));
     }
-    Ok(Scripts { render, merge, tasks })
+    Ok(Scripts { prepass, render, merge, tasks })
+}
+
+/// Whether the farm render of `args` gets a pre-pass job: when its first frame renders
+/// with the classic engine and has pre-passes (photon maps, cached final gathering).
+fn needs_prepass(args: &SlurmArgs) -> Result<bool, String> {
+    let first = match &args.frames {
+        Some(f) => parse_frames(f)?.0,
+        None => 1,
+    };
+    let o = &args.options;
+    let resolution = o.resolution.as_ref().map(|r| (r[0], r[1]));
+    let loaded = crate::render_cmd::load_scene(&args.scene, &o.include.include, first, resolution, false)?;
+    let engine = render::pipeline::choose_engine(&loaded.scene, crate::render_cmd::asked_engine(o.engine));
+    Ok(engine == render::EngineKind::Classic && render::prepass_file::scene_has_prepass(&loaded.scene.options))
 }
 
 /// Runs `sbatch ARGS SCRIPT` and returns the job id.
@@ -183,7 +236,12 @@ pub fn run(args: &FarmArgs) -> ExitCode {
         name.push(".farm");
         args.output.with_file_name(name)
     }));
-    let s = match scripts(args, &mira, &dir) {
+    // A scene that cannot be read here gets no pre-pass job; its tasks report why.
+    let with_prepass = needs_prepass(args).unwrap_or_else(|e| {
+        eprintln!("mira: warning: {e}; no pre-pass job");
+        false
+    });
+    let s = match scripts(args, &mira, &dir, with_prepass) {
         Ok(s) => s,
         Err(e) => return err(e),
     };
@@ -191,22 +249,44 @@ pub fn run(args: &FarmArgs) -> ExitCode {
         return err(format!("cannot make {}: {e}", dir.display()));
     }
     let (render_path, merge_path) = (dir.join("render.sbatch"), dir.join("merge.sbatch"));
-    for (path, text) in [(&render_path, &s.render), (&merge_path, &s.merge)] {
+    let prepass_path = dir.join("prepass.sbatch");
+    let mut files = vec![(&render_path, &s.render), (&merge_path, &s.merge)];
+    if let Some(p) = &s.prepass {
+        files.insert(0, (&prepass_path, p));
+    }
+    for (path, text) in &files {
         if let Err(e) = std::fs::write(path, text) {
             return err(format!("cannot write {}: {e}", path.display()));
         }
     }
     if !(args.submit || args.wait) {
-        println!("# {}\n{}", render_path.display(), s.render);
-        println!("# {}\n{}", merge_path.display(), s.merge);
+        for (path, text) in &files {
+            println!("# {}\n{}", path.display(), text);
+        }
+        let first = match &s.prepass {
+            Some(_) => format!(
+                "pre=$(sbatch --parsable {}) && id=$(sbatch --parsable --dependency=afterok:$pre --kill-on-invalid-dep=yes {})",
+                prepass_path.display(),
+                render_path.display()
+            ),
+            None => format!("id=$(sbatch --parsable {})", render_path.display()),
+        };
         println!(
-            "# submit with:\n# id=$(sbatch --parsable {}) && sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}",
-            render_path.display(),
+            "# submit with:\n# {first} && sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}",
             merge_path.display()
         );
         return ExitCode::SUCCESS;
     }
-    let render_id = match sbatch(&[], &render_path) {
+    let mut render_args = Vec::new();
+    if s.prepass.is_some() {
+        let prepass_id = match sbatch(&[], &prepass_path) {
+            Ok(id) => id,
+            Err(e) => return err(e),
+        };
+        eprintln!("mira: submitted pre-pass job {prepass_id}; logs in {}", dir.join("logs").display());
+        render_args = vec![format!("--dependency=afterok:{prepass_id}"), "--kill-on-invalid-dep=yes".to_string()];
+    }
+    let render_id = match sbatch(&render_args, &render_path) {
         Ok(id) => id,
         Err(e) => return err(e),
     };

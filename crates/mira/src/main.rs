@@ -6,6 +6,7 @@ mod limits;
 mod merge_cmd;
 mod output;
 mod part_file;
+mod prepass_cmd;
 mod render_cmd;
 
 use std::path::PathBuf;
@@ -39,6 +40,11 @@ enum Command {
     /// part once; none stopped early unless --allow-partial) and writes the image, bit for
     /// bit what one `mira render` with the same settings writes.
     Merge(merge_cmd::MergeArgs),
+    /// Compute a classic scene's pre-passes (photon maps, final gather points) once.
+    ///
+    /// Writes them to a file that `mira render --part K/N --prepass FILE` reads instead of
+    /// computing them in every part; the image stays bit for bit the same.
+    Prepass(prepass_cmd::PrepassArgs),
     /// Render on a cluster scheduler: one task per part (and frame), then a merge.
     Farm(farm_cmd::FarmArgs),
 }
@@ -69,6 +75,7 @@ fn main() -> ExitCode {
         Command::Check(args) => check::run(&args),
         Command::Render(args) => render_cmd::run(&args),
         Command::Merge(args) => merge_cmd::run(&args),
+        Command::Prepass(args) => prepass_cmd::run(&args),
         Command::Farm(args) => farm_cmd::run(&args),
     }
 }

@@ -26,9 +26,9 @@ pub struct MergeArgs {
 }
 
 /// What makes parts belong to one image.
-fn identity(p: &PartFile) -> (u64, u64, u32, &'static str, usize, (u32, u32)) {
+fn identity(p: &PartFile) -> (u64, u64, u64, u32, &'static str, usize, (u32, u32)) {
     let i = &p.info;
-    (i.scene_hash, i.settings_hash, i.part.count, i.split.name(), i.frame, i.size)
+    (i.scene_hash, i.inputs_hash, i.settings_hash, i.part.count, i.split.name(), i.frame, i.size)
 }
 
 /// Every reason the `parts` (with their file names) do not make one whole image.
@@ -57,6 +57,12 @@ pub fn problems(parts: &[(PathBuf, PartFile)], allow_partial: bool) -> Vec<Strin
                 i.scene_hash,
                 r.scene.display(),
                 r.scene_hash
+            ));
+        } else if i.inputs_hash != r.inputs_hash {
+            out.push(format!(
+                "{name} was rendered against other files than the other parts (textures, light profiles or MDL \
+                 modules changed: hash {:016x}, the other parts' {:016x})",
+                i.inputs_hash, r.inputs_hash
             ));
         } else if i.settings_hash != r.settings_hash {
             let theirs: Vec<&str> = r.settings.lines().collect();

@@ -7,7 +7,8 @@
 //! frame buffer — and `samples` (samples taken per pixel). Colour is stored as the f32 the
 //! one-process render writes, so merging copies pixels and is exact. The header's `mira.*`
 //! text attributes say what merging checks: the scene (path and a hash of its text), the
-//! settings (a hash and the readable list), the part, the split, the frame, the engine, the
+//! files it reads (textures, light profiles, MDL modules: a second hash), the settings (a
+//! hash and the readable list), the part, the split, the frame, the engine, the
 //! sample counts, the part's weight (its share of the rows) and whether it was cut short
 //! (`mira.partial`).
 
@@ -19,7 +20,7 @@ use render::film::Film;
 use render::part::{Part, Split};
 
 /// Version of the part file layout.
-const LAYOUT: &str = "1";
+const LAYOUT: &str = "2";
 
 /// What a part file's header records.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,6 +31,9 @@ pub struct PartInfo {
     pub include: Vec<PathBuf>,
     /// Hash of the scene's text (all its files).
     pub scene_hash: u64,
+    /// Hash of the files the scene reads besides its text: textures, light profiles, MDL
+    /// modules ([`render::pipeline::inputs_hash`]).
+    pub inputs_hash: u64,
     /// The settings, one `key=value` per line.
     pub settings: String,
     /// Hash of `settings`.
@@ -64,6 +68,7 @@ impl PartInfo {
             ("mira.scene", self.scene.display().to_string()),
             ("mira.include", lines(&self.include)),
             ("mira.scenehash", format!("{:016x}", self.scene_hash)),
+            ("mira.inputshash", format!("{:016x}", self.inputs_hash)),
             ("mira.settings", self.settings.clone()),
             ("mira.settingshash", format!("{:016x}", self.settings_hash)),
             ("mira.part", self.part.to_string()),
@@ -100,6 +105,7 @@ impl PartInfo {
             scene: PathBuf::from(get("mira.scene")?),
             include: get("mira.include")?.lines().filter(|l| !l.is_empty()).map(PathBuf::from).collect(),
             scene_hash: hex("mira.scenehash")?,
+            inputs_hash: hex("mira.inputshash")?,
             settings: get("mira.settings")?,
             settings_hash: hex("mira.settingshash")?,
             part: Part::parse(&get("mira.part")?)?,

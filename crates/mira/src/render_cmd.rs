@@ -126,6 +126,11 @@ pub struct RenderArgs {
     /// SCENE.partK-of-N.exr) for `mira merge`.
     #[arg(long, value_name = "K/N")]
     part: Option<String>,
+    /// Read the classic engine's pre-passes (photon maps, final gather points) from this
+    /// file, written by `mira prepass` for the same scene and settings, instead of
+    /// computing them.
+    #[arg(long, value_name = "FILE")]
+    prepass: Option<PathBuf>,
     /// Print rays, samples per second, Mrays/s, memory and timings.
     #[arg(long)]
     stats: bool,
@@ -258,6 +263,56 @@ fn settings_text(settings: &render::Settings, size: (u32, u32), backend: Backend
     )
 }
 
+/// The settings the classic engine's pre-passes depend on, as `key=value` lines: what a
+/// pre-pass file must have been computed with (the scene itself is in the hash beside it).
+pub fn prepass_settings_text(
+    frame: usize,
+    size: (u32, u32),
+    seed: u32,
+    fg_rays: Option<u32>,
+    backend: Backend,
+) -> String {
+    format!("frame={frame}\nresolution={}x{}\nseed={seed}\nfg_rays={fg_rays:?}\naccel={backend:?}", size.0, size.1)
+}
+
+/// The hash a pre-pass file is keyed by: the scene's text and the files it reads.
+pub fn prepass_scene_hash(text_hash: u64, inputs_hash: u64) -> u64 {
+    let mut h = render::pipeline::Fnv::new();
+    h.write(&text_hash.to_le_bytes());
+    h.write(&inputs_hash.to_le_bytes());
+    h.finish()
+}
+
+/// The acceleration structure `accel` asks for, or why it cannot be had.
+pub fn backend_of(accel: AccelArg) -> Result<Backend, String> {
+    match accel {
+        AccelArg::Auto => Ok(Backend::default_available()),
+        AccelArg::Rust => Ok(Backend::Rust),
+        AccelArg::Embree if Backend::Embree.available() => Ok(Backend::Embree),
+        AccelArg::Embree => Err("this mira was built without Embree (install libembree-dev and rebuild)".into()),
+    }
+}
+
+/// The engine `engine` asks for (`None`: the scene's choice).
+pub fn asked_engine(engine: EngineArg) -> Option<EngineKind> {
+    match engine {
+        EngineArg::Classic => Some(EngineKind::Classic),
+        EngineArg::Path => Some(EngineKind::Path),
+        EngineArg::Auto => None,
+    }
+}
+
+/// The shading options of a render of `scene` with `opts`.
+pub fn shading_options(scene: &Path, opts: &RenderOptions) -> shader::ShadingOptions {
+    shader::ShadingOptions {
+        search: shader::texture::SearchPath {
+            dirs: render::pipeline::texture_dirs(scene, &opts.include.read_options().include_paths),
+        },
+        seed: opts.seed,
+        finalgather_rays: opts.fg_rays,
+    }
+}
+
 /// Renders `frame` (1 = the first render statement); `numbered` puts the frame number
 /// into output names.
 fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel: &AtomicBool) -> Result<(), ExitCode> {
@@ -276,26 +331,14 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
     let loaded = load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings).map_err(err)?;
     let sc = &loaded.scene;
-    let asked = match opts.engine {
-        EngineArg::Classic => Some(EngineKind::Classic),
-        EngineArg::Path => Some(EngineKind::Path),
-        EngineArg::Auto => None,
-    };
-    let engine = render::pipeline::choose_engine(sc, asked);
+    let engine = render::pipeline::choose_engine(sc, asked_engine(opts.engine));
     let classic = engine == EngineKind::Classic;
     // Stage 2: build the world.
-    let read_options = opts.include.read_options();
     if let Some(d) = crate::limits::check_film(sc, sc.camera.resolution, opts.memory.limit(), resolution.is_some()) {
         eprint!("{}", d.render(&loaded.parsed.sources));
         return Err(err(format!("{} needs too much memory; nothing rendered", args.scene.display())));
     }
-    let shading_options = shader::ShadingOptions {
-        search: shader::texture::SearchPath {
-            dirs: render::pipeline::texture_dirs(&args.scene, &read_options.include_paths),
-        },
-        seed: opts.seed,
-        finalgather_rays: opts.fg_rays,
-    };
+    let shading_options = shading_options(&args.scene, opts);
     let built = render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths);
     {
         let mut stderr = std::io::stderr().lock();
@@ -312,6 +355,13 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     // The file's text and syntax tree are not needed past this point, nor the scene's
     // meshes once the world has its own copy: freed early, they do not add to the peak
     // memory of the acceleration structure build.
+    // What the scene reads besides its text (textures, light profiles, MDL modules): parts
+    // and pre-pass files rendered against other files must not be mixed.
+    let inputs_hash = if part.is_some() || args.prepass.is_some() {
+        render::pipeline::inputs_hash(sc, &shading_options.search, &built)
+    } else {
+        0
+    };
     let LoadedScene { parsed, scene: mut loaded_scene, content_hash } = loaded;
     drop(parsed);
     loaded_scene.release_geometry();
@@ -323,16 +373,7 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         }
     }
     let t_scene = t0.elapsed();
-    let backend = match opts.accel {
-        AccelArg::Auto => Backend::default_available(),
-        AccelArg::Rust => Backend::Rust,
-        AccelArg::Embree => {
-            if !Backend::Embree.available() {
-                return Err(err("this mira was built without Embree (install libembree-dev and rebuild)".into()));
-            }
-            Backend::Embree
-        }
-    };
+    let backend = backend_of(opts.accel).map_err(err)?;
     let settings = render::Settings {
         engine,
         spp: opts.spp,
@@ -360,7 +401,31 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let t1 = Instant::now();
     let accel = pool.install(|| render::accel::build(world, backend));
     let t_accel = t1.elapsed();
-    let prepared = pool.install(|| render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, cancel));
+    let prepared = match &args.prepass {
+        Some(file) => {
+            if !classic {
+                return Err(err(format!(
+                    "--prepass {}: the path engine has no pre-pass to read (it is for the classic engine)",
+                    file.display()
+                )));
+            }
+            let bytes = std::fs::read(file).map_err(|e| err(format!("cannot read {}: {e}", file.display())))?;
+            let key = render::prepass_file::PrepassKey {
+                scene_hash: prepass_scene_hash(content_hash, inputs_hash),
+                settings: prepass_settings_text(
+                    frame,
+                    (world.camera.width, world.camera.height),
+                    opts.seed,
+                    opts.fg_rays,
+                    backend,
+                ),
+            };
+            let saved = render::prepass_file::decode(&bytes, &file.display().to_string(), &key).map_err(err)?;
+            render::prepare::prepare_saved(shading, saved)
+                .ok_or_else(|| err("the pre-passes were already made".into()))?
+        }
+        None => pool.install(|| render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, cancel)),
+    };
     // Stage 4: render.
     let target = if classic {
         render::render::classic_samples(&world.options, settings.spp).1
@@ -414,6 +479,7 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
                 .map(|d| std::path::absolute(d).unwrap_or_else(|_| d.clone()))
                 .collect(),
             scene_hash: content_hash,
+            inputs_hash,
             settings: settings_text(&settings, (film.width, film.height), backend, opts.fg_rays),
             settings_hash: render::pipeline::Fnv::of(
                 settings_text(&settings, (film.width, film.height), backend, opts.fg_rays).as_bytes(),

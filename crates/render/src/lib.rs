@@ -10,7 +10,8 @@
 //!    the scene into the [`World`] the engines trace (meshes, materials, lights).
 //! 3. **prepare** — [`accel::build`] (the acceleration structure), then
 //!    [`prepare::prepare`]: the environment's importance table, the photon maps, the final
-//!    gather points ([`prepare::Prepared`]).
+//!    gather points ([`prepare::Prepared`]); a farm's parts may read the classic pre-passes
+//!    from a file instead ([`prepass_file`], [`prepare::prepare_saved`]).
 //! 4. **render** — [`render::render_prepared`]: the progressive sample passes, of the whole
 //!    image or of one [`part`] of it ([`Settings`]); [`render::render`] runs stages 3 and 4.
 //! 5. **film** — [`film::Film`]: the per-pixel accumulators and the frame buffers made from
@@ -38,6 +39,7 @@ pub mod part;
 pub mod photons;
 pub mod pipeline;
 pub mod prepare;
+pub mod prepass_file;
 pub mod ray;
 pub mod render;
 pub mod sampler;

@@ -18,8 +18,9 @@
 //!   Interleaved rows would make the halo the whole image.
 //!
 //! Pre-passes (photon maps, final gather points, the environment's importance table) are
-//! computed by every part over the whole image; they are deterministic for any thread
-//! count, so every part's copy is the same.
+//! computed by every part over the whole image, or read from a file that `mira prepass`
+//! wrote once ([`crate::prepass_file`]); they are deterministic for any thread count, so
+//! every part's copy is the same.
 
 use crate::engine::EngineKind;
 

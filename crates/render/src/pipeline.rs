@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use scene::Scene;
+use shader::texture::SearchPath;
 use shader::{Shading, ShadingOptions};
 
 use crate::engine::EngineKind;
@@ -87,6 +88,8 @@ pub struct Built {
     pub world: World,
     /// The shading compiler's messages.
     pub diagnostics: Vec<mi::Diagnostic>,
+    /// The text of every MDL module file read for the scene's materials.
+    pub mdl_sources: Vec<std::sync::Arc<[u8]>>,
 }
 
 /// Where textures are looked up for a scene read from `scene_path`: its directory, then
@@ -107,7 +110,42 @@ pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf
     let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
     diagnostics.extend(mdl_diagnostics);
     let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
-    Built { shading, world, diagnostics }
+    Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
+}
+
+/// A hash of what a scene reads besides its `.mi` text ([`Loaded::content_hash`]): each
+/// texture file and light profile (its name as written, then the bytes of the file it
+/// resolves to on `search`, or a mark that none was found) and the text of every MDL
+/// module `built` read. Two renders of the same text against a changed texture get
+/// different hashes. Reads those files again (call it only where the hash is needed).
+pub fn inputs_hash(scene: &Scene, search: &SearchPath, built: &Built) -> u64 {
+    let mut h = Fnv::new();
+    let file = |h: &mut Fnv, name: &str| {
+        h.write(&(name.len() as u64).to_le_bytes());
+        h.write(name.as_bytes());
+        match search.resolve(name).and_then(|p| std::fs::read(p).ok()) {
+            Some(bytes) => {
+                h.write(&(bytes.len() as u64).to_le_bytes());
+                h.write(&bytes);
+            }
+            None => h.write(&u64::MAX.to_le_bytes()),
+        }
+    };
+    for t in scene.library.textures.values() {
+        if let mi::ast::TextureSource::File { file: name, .. } = &t.source {
+            file(&mut h, &name.text);
+        }
+    }
+    for blocks in scene.library.lightprofiles.values() {
+        if let Some(name) = blocks.last().and_then(shader::light::profiles::file_name) {
+            file(&mut h, &name);
+        }
+    }
+    for text in &built.mdl_sources {
+        h.write(&(text.len() as u64).to_le_bytes());
+        h.write(text);
+    }
+    h.finish()
 }
 
 /// FNV-1a, 64 bits: a small, stable hash for telling files and settings apart (the same

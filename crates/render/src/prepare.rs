@@ -14,6 +14,7 @@ use crate::engine::EngineKind;
 use crate::environment::Environment;
 use crate::fgcache::Prepass;
 use crate::photons::PhotonStats;
+use crate::prepass_file::SavedPrepass;
 use crate::world::World;
 
 /// What [`prepare`] computed for one render.
@@ -67,4 +68,35 @@ pub fn prepare<'a>(
         fg_time,
         time: start.elapsed(),
     }
+}
+
+/// Prepares a classic render from pre-passes saved by an earlier run
+/// ([`crate::prepass_file`]) instead of computing them: the photon maps go into `shading`,
+/// the final gather cache is rebuilt from the saved points (the same points in the same
+/// order give the same cache). `None` when the photon maps of `shading` were already made
+/// (a shading is prepared once).
+pub fn prepare_saved<'a>(shading: &Shading, saved: SavedPrepass) -> Option<Prepared<'a>> {
+    let start = Instant::now();
+    if shading.photons.get().is_some() {
+        return None;
+    }
+    let photons = saved.photons.map(|(maps, stats)| {
+        let _ = shading.photons.set(maps);
+        stats
+    });
+    let fg_start = Instant::now();
+    let nearest = shading.finalgather.cache.and_then(|c| c.nearest());
+    let fg = saved.fg.map(|(points, counts, eye_rays)| Prepass {
+        cache: shader::fgcache::FgCache::new(points, nearest),
+        counts,
+        eye_rays,
+    });
+    Some(Prepared {
+        engine: EngineKind::Classic,
+        env: None,
+        photons,
+        fg,
+        fg_time: fg_start.elapsed(),
+        time: start.elapsed(),
+    })
 }

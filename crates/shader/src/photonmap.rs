@@ -141,6 +141,20 @@ impl PhotonMap {
         &self.photons
     }
 
+    /// The split axis (0 = x, 1 = y, 2 = z) of the node at each position of
+    /// [`PhotonMap::photons`].
+    pub fn axes(&self) -> &[u8] {
+        &self.axes
+    }
+
+    /// A map from photons already in tree order and their split axes, as
+    /// [`PhotonMap::photons`] and [`PhotonMap::axes`] gave them (a map saved to a file and
+    /// read back): the same map, searched in the same order. `None` when the lengths differ
+    /// or an axis is not 0, 1 or 2.
+    pub fn from_tree(photons: Vec<Photon>, axes: Vec<u8>) -> Option<PhotonMap> {
+        (photons.len() == axes.len() && axes.iter().all(|&a| a <= 2)).then_some(PhotonMap { photons, axes })
+    }
+
     /// Bytes the map holds.
     pub fn memory(&self) -> usize {
         self.photons.len() * (std::mem::size_of::<Photon>() + 1)
@@ -351,6 +365,25 @@ mod tests {
             all.truncate(25);
             assert_eq!(d, all, "query {q}");
         }
+    }
+
+    #[test]
+    fn a_map_rebuilt_from_its_tree_searches_the_same() {
+        let mut photons = grid(30, 1.0);
+        for (k, p) in photons.iter_mut().enumerate() {
+            p.position.z = ((k * 7919) % 101) as f32 / 101.0 - 0.5;
+        }
+        let map = PhotonMap::new(photons);
+        let copy = PhotonMap::from_tree(map.photons().to_vec(), map.axes().to_vec()).unwrap();
+        let l = Lookup { count: 50, radius: 0.4, filter: Filter::Cone(1.1), scale: Vec3A::ONE };
+        for q in [Vec3A::new(0.1, -0.3, 0.0), Vec3A::new(0.7, 0.2, 0.3)] {
+            assert_eq!(map.nearest(q, 50, 0.4), copy.nearest(q, 50, 0.4));
+            assert_eq!(map.irradiance(q, Vec3A::Z, &l).to_array(), copy.irradiance(q, Vec3A::Z, &l).to_array());
+        }
+        assert!(PhotonMap::from_tree(map.photons().to_vec(), vec![0; 3]).is_none(), "lengths differ");
+        let mut bad = map.axes().to_vec();
+        bad[0] = 3;
+        assert!(PhotonMap::from_tree(map.photons().to_vec(), bad).is_none(), "axis 3");
     }
 
     #[test]

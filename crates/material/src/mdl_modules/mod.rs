@@ -38,6 +38,9 @@ const CORE: &str = "::nvidia::core_definitions";
 #[derive(Debug, Default)]
 pub struct MdlMaterials {
     by_call: HashMap<(u32, u32), SurfaceMaterial>,
+    /// The text of every MDL module file that was read (imports included), in reading
+    /// order: what a farm part's scene hash covers besides the `.mi` files.
+    pub module_sources: Vec<std::sync::Arc<[u8]>>,
 }
 
 impl MdlMaterials {
@@ -122,6 +125,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
         out.by_call.insert((span.file.0, span.lo), surface);
     }
+    out.module_sources = set.sources().files().map(|(_, f)| f.bytes.clone()).collect();
     (out, diags)
 }
 

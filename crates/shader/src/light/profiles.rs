@@ -52,6 +52,15 @@ fn statement<'a>(block: &'a Block, key: &str) -> Option<&'a [Arg]> {
     })
 }
 
+/// The file a `lightprofile` block reads (its last `file` statement), as written.
+pub fn file_name(block: &Block) -> Option<String> {
+    statement(block, "file").and_then(|a| match a.first()? {
+        Arg::Word(w) => Some(w.to_string()),
+        Arg::Name(n) => Some(n.text.clone()),
+        _ => None,
+    })
+}
+
 /// Reads one `lightprofile` block's file.
 fn load(block: &Block, search: &SearchPath) -> Result<(Profile, Vec<String>), String> {
     let word = |a: &Arg| match a {
@@ -72,7 +81,7 @@ fn load(block: &Block, search: &SearchPath) -> Result<(Profile, Vec<String>), St
             format!("format {format} is not read yet (only ies)")
         });
     }
-    let Some(file) = statement(block, "file").and_then(|a| a.first().and_then(word)) else {
+    let Some(file) = file_name(block) else {
         return Err("no `file` statement".into());
     };
     let Some(path) = search.resolve(&file) else {
