@@ -16,6 +16,7 @@ pub struct Frame {
 impl Frame {
     /// A frame around unit normal `n` (Duff et al. 2017, "Building an orthonormal basis,
     /// revisited": continuous everywhere except on a measure-zero set, branch-free).
+    #[inline]
     pub fn from_normal(n: Vec3A) -> Frame {
         let sign = 1.0f32.copysign(n.z);
         let a = -1.0 / (sign + n.z);

@@ -14,6 +14,7 @@ pub struct Lambert {
 
 impl Lambert {
     /// f(ωo, ωi): albedo/π when both are on the same side, else 0.
+    #[inline]
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         if wo.z * wi.z > 0.0 {
             self.albedo * std::f32::consts::FRAC_1_PI
@@ -23,11 +24,13 @@ impl Lambert {
     }
 
     /// Cosine-weighted sampling on ωo's side.
+    #[inline]
     pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
         crate::sample_cosine_lobe(wo, u, |wi| self.eval(wo, wi))
     }
 
     /// |cos θi| / π on ωo's side.
+    #[inline]
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         cosine_pdf_on_side(wo, wi)
     }

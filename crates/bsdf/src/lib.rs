@@ -43,6 +43,7 @@ pub struct BsdfSample {
 
 impl BsdfSample {
     /// `f · |cos θi| / pdf`, the path throughput factor.
+    #[inline]
     pub fn weight(&self) -> Rgb {
         if self.pdf > 0.0 {
             self.f * (self.wi.z.abs() / self.pdf)
@@ -73,6 +74,7 @@ pub enum Bsdf {
 
 impl Bsdf {
     /// f(ωo, ωi) of the non-delta lobes.
+    #[inline]
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         match self {
             Bsdf::Lambert(l) => l.eval(wo, wi),
@@ -87,6 +89,7 @@ impl Bsdf {
 
     /// Samples ωi given ωo, two uniform numbers for the direction and one for choosing a
     /// lobe.
+    #[inline]
     pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
         match self {
             Bsdf::Lambert(l) => l.sample(wo, u),
@@ -100,6 +103,7 @@ impl Bsdf {
     }
 
     /// Density of sampling ωi given ωo (non-delta lobes).
+    #[inline]
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         match self {
             Bsdf::Lambert(l) => l.pdf(wo, wi),
@@ -113,6 +117,7 @@ impl Bsdf {
     }
 
     /// Whether every lobe is a delta (no light sampling helps).
+    #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
             Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
@@ -126,6 +131,7 @@ impl Bsdf {
 }
 
 /// Cosine-weighted direction on the +Z hemisphere (Malley's method, concentric disc).
+#[inline]
 pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
     let d = concentric_disc(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
@@ -133,6 +139,7 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
 }
 
 /// A cosine-distributed direction on ωo's side of the surface (`None` when ωo lies in it).
+#[inline]
 pub fn cosine_on_side(wo: Vec3A, u: Vec2) -> Option<Vec3A> {
     if wo.z == 0.0 {
         return None;
@@ -142,6 +149,7 @@ pub fn cosine_on_side(wo: Vec3A, u: Vec2) -> Option<Vec3A> {
 }
 
 /// The density of [`cosine_on_side`]: |cos θi|/π on ωo's side, 0 on the other.
+#[inline]
 pub fn cosine_pdf_on_side(wo: Vec3A, wi: Vec3A) -> f32 {
     if wo.z * wi.z > 0.0 {
         wi.z.abs() * std::f32::consts::FRAC_1_PI
@@ -152,6 +160,7 @@ pub fn cosine_pdf_on_side(wo: Vec3A, wi: Vec3A) -> f32 {
 
 /// Samples a lobe sampled by cosine-weighted directions on ωo's side (Lambert,
 /// Oren–Nayar): `eval(ωi)` is the lobe's f(ωo, ωi); the pdf is |cos θi|/π.
+#[inline]
 pub(crate) fn sample_cosine_lobe(wo: Vec3A, u: Vec2, eval: impl FnOnce(Vec3A) -> Rgb) -> Option<BsdfSample> {
     let wi = cosine_on_side(wo, u)?;
     let pdf = cosine_pdf_on_side(wo, wi);
@@ -159,6 +168,7 @@ pub(crate) fn sample_cosine_lobe(wo: Vec3A, u: Vec2, eval: impl FnOnce(Vec3A) ->
 }
 
 /// Uniform point on the unit disc (Shirley–Chiu concentric mapping).
+#[inline]
 pub fn concentric_disc(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
     if o.x == 0.0 && o.y == 0.0 {

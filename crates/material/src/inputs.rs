@@ -161,11 +161,13 @@ pub(super) fn bind_material_shaders(surface: &mut SurfaceMaterial, graph: &Graph
 
 impl SurfaceMaterial {
     /// Whether anything of the material varies over its surface.
+    #[inline]
     pub fn is_varying(&self) -> bool {
         self.varying != Varying::Constant
     }
 
     /// The material with its constant parameters (what it is where nothing varies).
+    #[inline]
     pub fn constant(&self) -> HitMaterial<'_> {
         HitMaterial {
             diffuse: self.diffuse,

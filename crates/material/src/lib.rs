@@ -145,6 +145,7 @@ impl SurfaceMaterial {
 
 impl SurfaceModel {
     /// The BSDF seen from `wo` (local shading frame), with diffuse colour `diffuse`.
+    #[inline]
     pub fn bsdf(&self, diffuse: Rgb, wo: glam::Vec3A) -> Bsdf {
         match self {
             SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: diffuse }),

@@ -66,11 +66,13 @@ pub fn parse_str(name: &str, text: &str) -> Parsed {
     parse_source(Origin::Memory(name.to_string()), text.as_bytes().to_vec(), &ReadOptions::default())
 }
 
-/// Parses `.mi` bytes from any origin.
-pub fn parse_source(origin: Origin, bytes: Vec<u8>, options: &ReadOptions) -> Parsed {
+/// Parses `.mi` bytes from any origin (a `Vec<u8>`, or an `Arc<[u8]>` the parser shares
+/// without copying).
+pub fn parse_source(origin: Origin, bytes: impl Into<std::sync::Arc<[u8]>>, options: &ReadOptions) -> Parsed {
+    let bytes: std::sync::Arc<[u8]> = bytes.into();
     let mut sources = SourceMap::new();
     let too_big = bytes.len() as u64 > source::MAX_FILE_SIZE;
-    let root = sources.add(origin, if too_big { Vec::new() } else { bytes });
+    let root = sources.add(origin, if too_big { std::sync::Arc::from(Vec::new()) } else { bytes });
     let stream = preprocess::TokenStream::new(sources, root, options.clone());
     let mut parser = parser::Parser::new(stream, options.max_errors);
     let items = parser.items(parser::Until::Eof);

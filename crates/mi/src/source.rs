@@ -66,6 +66,8 @@ pub struct SourceFile {
     /// The raw bytes (a `.mi` file may hold binary blocks, so this is not `str`).
     pub bytes: Arc<[u8]>,
     line_starts: OnceLock<Vec<u32>>,
+    /// Whether [`SourceMap::release_text`] freed `bytes` (to be read again from disk).
+    released: bool,
 }
 
 impl SourceFile {
@@ -133,8 +135,55 @@ impl SourceMap {
     /// Adds a file and returns its id.
     pub fn add(&mut self, origin: Origin, bytes: impl Into<Arc<[u8]>>) -> FileId {
         let id = FileId(self.files.len() as u32);
-        self.files.push(SourceFile { origin, bytes: bytes.into(), line_starts: OnceLock::new() });
+        self.files.push(SourceFile { origin, bytes: bytes.into(), line_starts: OnceLock::new(), released: false });
         id
+    }
+
+    /// Frees the text of the files read from disk that are at least `min_bytes` long (once
+    /// parsed, a big geometry file's text is not needed until a message quotes it);
+    /// returns the bytes freed. Their [`SourceFile::bytes`] are empty until
+    /// [`SourceMap::restore_text`] reads them again.
+    pub fn release_text(&mut self, min_bytes: usize) -> usize {
+        let mut freed = 0;
+        for f in &mut self.files {
+            if matches!(f.origin, Origin::Disk(_)) && !f.released && f.bytes.len() >= min_bytes {
+                freed += f.bytes.len();
+                f.bytes = Arc::from(Vec::new());
+                f.line_starts = OnceLock::new();
+                f.released = true;
+            }
+        }
+        freed
+    }
+
+    /// Whether some file's text was released.
+    pub fn has_released_text(&self) -> bool {
+        self.files.iter().any(|f| f.released)
+    }
+
+    /// Reads the released files again from disk, so that messages can quote them. A file
+    /// that cannot be read (or changed length) since is left empty, and the error says which.
+    pub fn restore_text(&mut self) -> Result<(), String> {
+        let mut problems = Vec::new();
+        for f in &mut self.files {
+            let Origin::Disk(path) = &f.origin else { continue };
+            if !f.released {
+                continue;
+            }
+            match crate::preprocess::read_source(path) {
+                Ok(bytes) => {
+                    f.bytes = bytes;
+                    f.line_starts = OnceLock::new();
+                    f.released = false;
+                }
+                Err(e) => problems.push(format!("{}: {e}", path.display())),
+            }
+        }
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("cannot read again to quote it: {}", problems.join("; ")))
+        }
     }
 
     /// The file with this id.
@@ -163,6 +212,36 @@ impl SourceMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Released text is gone (empty bytes), only for disk files at or above the size, and
+    /// read back byte for byte with its lines and columns by `restore_text`.
+    #[test]
+    fn released_text_is_read_again_from_disk() {
+        let dir = std::env::temp_dir().join(format!("mi-release-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big.mi");
+        let text = b"line one\nline two\r\nthird".to_vec();
+        std::fs::write(&path, &text).unwrap();
+        let mut map = SourceMap::new();
+        let big = map.add(Origin::Disk(path.clone()), crate::preprocess::read_source(&path).unwrap());
+        let memory = map.add(Origin::Memory("m.mi".into()), text.clone());
+        assert_eq!(&*map.file(big).bytes, &text[..], "read_source reads the whole file");
+        assert_eq!(map.release_text(8), text.len(), "only the disk file is released");
+        assert!(map.file(big).bytes.is_empty() && map.has_released_text());
+        assert_eq!(&*map.file(memory).bytes, &text[..]);
+        map.restore_text().unwrap();
+        assert!(!map.has_released_text());
+        assert_eq!(&*map.file(big).bytes, &text[..]);
+        assert_eq!(map.file(big).line_col(13), (2, 5));
+        assert_eq!(map.file(big).line_text(2), "line two");
+        // Too small to release; a vanished file is an error naming it.
+        assert_eq!(map.release_text(1 << 20), 0);
+        map.release_text(1);
+        std::fs::remove_file(&path).unwrap();
+        let e = map.restore_text().unwrap_err();
+        assert!(e.contains("big.mi"), "{e}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     #[test]
     fn line_and_column_are_one_based() {

@@ -137,7 +137,15 @@ pub struct RenderArgs {
     /// Print warnings.
     #[arg(short = 'W', long)]
     warnings: bool,
+    /// Write the image rendered so far after a pass once this many seconds have passed
+    /// since the render started or the last preview (0: no previews; none with --part).
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_PREVIEW_SECONDS)]
+    preview: f64,
 }
+
+/// Seconds between progressive previews (`--preview`): a render that takes longer shows a
+/// first picture this soon after its first passes, a short one writes none.
+const DEFAULT_PREVIEW_SECONDS: f64 = 2.0;
 
 /// Parses `A..B` (inclusive, from 1).
 pub fn parse_frames(s: &str) -> Result<(usize, usize), String> {
@@ -221,6 +229,10 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             eprintln!("mira: error: --time {t} is not a number of seconds ≥ 0");
             return ExitCode::FAILURE;
         }
+    }
+    if !(args.preview.is_finite() && args.preview >= 0.0) {
+        eprintln!("mira: error: --preview {} is not a number of seconds ≥ 0", args.preview);
+        return ExitCode::FAILURE;
     }
     if args.options.threads > MAX_THREADS {
         eprintln!("mira: error: --threads {} is more than mira starts ({MAX_THREADS})", args.options.threads);
@@ -329,17 +341,24 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let t0 = Instant::now();
     // Stage 1: load.
     let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
-    let loaded = load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings).map_err(err)?;
+    let mut loaded = load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings).map_err(err)?;
+    // The syntax tree is not needed past the scene: freed now, it does not add to the peak
+    // memory of building the world (the sources stay, for messages).
+    loaded.parsed.items = Vec::new();
     let sc = &loaded.scene;
     let engine = render::pipeline::choose_engine(sc, asked_engine(opts.engine));
     let classic = engine == EngineKind::Classic;
     // Stage 2: build the world.
     if let Some(d) = crate::limits::check_film(sc, sc.camera.resolution, opts.memory.limit(), resolution.is_some()) {
+        restore_sources(&mut loaded.parsed.sources);
         eprint!("{}", d.render(&loaded.parsed.sources));
         return Err(err(format!("{} needs too much memory; nothing rendered", args.scene.display())));
     }
     let shading_options = shading_options(&args.scene, opts);
     let built = render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths);
+    if built.diagnostics.iter().any(|d| d.is_error() || args.warnings) {
+        restore_sources(&mut loaded.parsed.sources);
+    }
     {
         let mut stderr = std::io::stderr().lock();
         for d in &built.diagnostics {
@@ -442,16 +461,47 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         );
         bar
     });
-    let on_progress = |p: render::Progress| {
+    // The files to write (whole images): known before rendering, so that previews go
+    // where the final image will.
+    let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
+    let mut targets = match part {
+        Some(_) => Vec::new(),
+        None => output::targets(&sc.camera, args.output.as_deref(), &args.scene).map_err(err)?,
+    };
+    if let Some(f) = numbered {
+        for t in &mut targets {
+            t.path = frame_path(&t.path, f);
+        }
+    }
+    let render_start = Instant::now();
+    let mut last_preview = render_start;
+    let mut on_pass = |film: &render::film::Film, p: render::Progress| {
         if let Some(bar) = &bar {
             bar.set_position(u64::from(p.samples));
             if let Some(c) = p.converged {
                 bar.set_message(format!("{:.1}% converged", c * 100.0));
             }
         }
+        let due = args.preview > 0.0 && last_preview.elapsed().as_secs_f64() >= args.preview;
+        if due && p.samples < p.target && !cancel.load(Ordering::Relaxed) {
+            let message = write_preview(film, &targets, &tone, p.samples);
+            match &bar {
+                Some(bar) => bar.println(message),
+                None => eprintln!("{message}"),
+            }
+            last_preview = Instant::now();
+        }
     };
     let (film, stats) = pool.install(|| {
-        render::render_prepared(world, accel.as_ref(), Some(shading), &prepared, &settings, cancel, &on_progress)
+        render::render::render_prepared_with_film(
+            world,
+            accel.as_ref(),
+            Some(shading),
+            &prepared,
+            &settings,
+            cancel,
+            &mut on_pass,
+        )
     });
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -513,13 +563,6 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     } else {
         // Outputs: -o, else the camera's file outputs and file frame buffers, else
         // SCENE.exr; numbered per frame with --frames.
-        let tone = ToneMapper::for_camera(&sc.camera, &sc.library, classic);
-        let mut targets = output::targets(&sc.camera, args.output.as_deref(), &args.scene).map_err(err)?;
-        if let Some(f) = numbered {
-            for t in &mut targets {
-                t.path = frame_path(&t.path, f);
-            }
-        }
         for target in &targets {
             match output::write(&film, target, &tone) {
                 Ok(()) => eprintln!("mira: wrote {}", target.path.display()),
@@ -541,6 +584,39 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     } else {
         Ok(())
     }
+}
+
+/// Reads the source text freed after parsing again, for messages that quote it.
+fn restore_sources(sources: &mut mi::SourceMap) {
+    if let Err(e) = sources.restore_text() {
+        eprintln!("mira: warning: {e}");
+    }
+}
+
+/// Writes the image rendered so far (`samples` per pixel) to every target, each through a
+/// hidden file beside it renamed into place, so that a viewer never reads half a file;
+/// returns the line to show. A preview that cannot be written is reported, not fatal.
+fn write_preview(film: &render::film::Film, targets: &[output::Target], tone: &ToneMapper, samples: u32) -> String {
+    let mut written = Vec::new();
+    let mut failed = Vec::new();
+    for target in targets {
+        let name = target.path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let hidden = output::Target { path: target.path.with_file_name(format!(".{name}.preview")), ..target.clone() };
+        let result = output::write(film, &hidden, tone)
+            .and_then(|()| std::fs::rename(&hidden.path, &target.path).map_err(|e| e.to_string()));
+        match result {
+            Ok(()) => written.push(target.path.display().to_string()),
+            Err(e) => {
+                let _ = std::fs::remove_file(&hidden.path);
+                failed.push(format!("{}: {e}", target.path.display()));
+            }
+        }
+    }
+    let mut line = format!("mira: preview at {samples} spp: {}", written.join(", "));
+    if !failed.is_empty() {
+        line.push_str(&format!(" (not written: {})", failed.join("; ")));
+    }
+    line
 }
 
 /// Prints `--stats`.

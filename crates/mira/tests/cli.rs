@@ -136,3 +136,38 @@ fn mdl_modules_are_found_with_dash_m_and_their_materials_checked() {
     assert_eq!(code, 0, "{err}");
     assert!(png.is_file());
 }
+
+/// `--preview` writes the image rendered so far after every pass but the last (passes of
+/// 1, 1, 2 and 4 samples for 8 spp), changes no pixel of the final image, and leaves no
+/// hidden file behind; `--preview 0` writes none, and a negative interval is an error.
+#[test]
+fn previews_are_written_between_passes_and_change_no_pixel() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-preview-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let render = |out: &str, preview: &str| {
+        let path = dir.join(out);
+        let args = ["render", "../../scenes/iray_cornell_box.mi", "-o", path.to_str().unwrap(), "--resolution", "16"];
+        let rest = ["16", "--spp", "8", "--threads", "2", "--preview", preview];
+        let (code, _, err) = mira(&[&args[..], &rest[..]].concat());
+        assert_eq!(code, 0, "{err}");
+        (std::fs::read(path).unwrap(), err)
+    };
+    let (with, err) = render("with.exr", "0.000001");
+    for spp in [1, 2, 4] {
+        assert!(err.contains(&format!("mira: preview at {spp} spp: ")), "{err}");
+    }
+    assert!(!err.contains("preview at 8 spp"), "the last pass writes the final image only: {err}");
+    let (without, err) = render("without.exr", "0");
+    assert!(!err.contains("mira: preview at"), "{err}");
+    assert!(with == without, "a preview changes no pixel of the final image");
+    let hidden: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with('.'))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+    let (code, _, err) = mira(&["render", "../../scenes/iray_cornell_box.mi", "--preview=-1"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--preview -1 is not a number of seconds"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

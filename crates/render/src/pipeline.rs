@@ -22,6 +22,8 @@ pub struct Loaded {
     pub scene: Option<Scene>,
     /// The reader's and the scene layer's messages, in order.
     pub diagnostics: Vec<mi::Diagnostic>,
+    /// [`Loaded::content_hash`], taken while the text was at hand.
+    content_hash: u64,
 }
 
 impl Loaded {
@@ -34,23 +36,53 @@ impl Loaded {
     /// in reading order): equal hashes mean the same scene text. FNV-1a, 64 bits: it tells
     /// files apart, it is no protection against a crafted collision.
     pub fn content_hash(&self) -> u64 {
-        let mut h = Fnv::new();
-        for (_, file) in self.parsed.sources.files() {
-            h.write(&(file.bytes.len() as u64).to_le_bytes());
-            h.write(&file.bytes);
-        }
-        h.finish()
+        self.content_hash
     }
 }
+
+/// The hash of every file of `sources`, in reading order (see [`Loaded::content_hash`]).
+fn sources_hash(sources: &mi::SourceMap) -> u64 {
+    let mut h = Fnv::new();
+    for (_, file) in sources.files() {
+        h.write(&(file.bytes.len() as u64).to_le_bytes());
+        h.write(&file.bytes);
+    }
+    h.finish()
+}
+
+/// Source files at least this long have their text freed between parsing and building the
+/// scene (read again only if a message quotes them): a 4 M-triangle file's text is 47
+/// bytes per triangle, more than the renderer's own geometry.
+pub const RELEASE_TEXT_FROM_BYTES: usize = 16 << 20;
 
 /// Stage 1, **load**: reads the file at `path` (following `$include`s by `options`) and
 /// builds the scene at its `frame`-th `render` statement (0 for the first). An unreadable
 /// file is an error; problems in the text are in [`Loaded::diagnostics`].
+///
+/// The text of big files ([`RELEASE_TEXT_FROM_BYTES`]) is freed once parsed, unless a
+/// message needs it; it is read again when the scene layer has something to say, so the
+/// sources of the result quote every message in [`Loaded::diagnostics`].
 pub fn load(path: &Path, options: &mi::ReadOptions, frame: usize) -> Result<Loaded, String> {
-    let parsed = mi::parse_file(path, options).map_err(|e| e.to_string())?;
+    load_releasing(path, options, frame, RELEASE_TEXT_FROM_BYTES)
+}
+
+/// [`load`], freeing the text of files of at least `release_from` bytes.
+fn load_releasing(path: &Path, options: &mi::ReadOptions, frame: usize, release_from: usize) -> Result<Loaded, String> {
+    let mut parsed = mi::parse_file(path, options).map_err(|e| e.to_string())?;
+    let content_hash = sources_hash(&parsed.sources);
     let mut diagnostics = parsed.diagnostics.list.clone();
-    let scene = if parsed.diagnostics.has_errors() { None } else { Scene::build(&parsed, frame, &mut diagnostics) };
-    Ok(Loaded { parsed, scene, diagnostics })
+    let scene = if parsed.diagnostics.has_errors() {
+        None
+    } else {
+        if diagnostics.is_empty() {
+            parsed.sources.release_text(release_from);
+        }
+        Scene::build(&parsed, frame, &mut diagnostics)
+    };
+    if !diagnostics.is_empty() && parsed.sources.has_released_text() {
+        parsed.sources.restore_text()?;
+    }
+    Ok(Loaded { parsed, scene, diagnostics, content_hash })
 }
 
 /// Overrides the camera's resolution with `width` × `height` pixels (each clamped to
@@ -189,6 +221,46 @@ impl Default for Fnv {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A scene the scene layer has nothing to say about is built with its text freed; one
+    /// it warns or errs about gets its text back, so the message quotes the line. The
+    /// content hash is the text's either way.
+    #[test]
+    fn text_is_freed_unless_a_message_quotes_it() {
+        let dir = std::env::temp_dir().join(format!("render-release-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let scene = |root: &str| {
+            format!(
+                "options \"opt\" end options\ncamera \"cam\" resolution 8 8 end camera\n\
+                 instance \"cam_inst\" \"cam\" end instance\n{root}\nrender \"root\" \"cam_inst\" \"opt\"\n"
+            )
+        };
+        let hash = |text: &str| {
+            let mut h = Fnv::new();
+            h.write(&(text.len() as u64).to_le_bytes());
+            h.write(text.as_bytes());
+            h.finish()
+        };
+        let clean = scene("instgroup \"root\" \"cam_inst\" end instgroup");
+        let path = dir.join("clean.mi");
+        std::fs::write(&path, &clean).unwrap();
+        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1).unwrap();
+        assert!(loaded.diagnostics.is_empty() && loaded.scene.is_some());
+        assert!(loaded.parsed.sources.has_released_text());
+        assert!(loaded.parsed.sources.files().all(|(_, f)| f.bytes.is_empty()));
+        assert_eq!(loaded.content_hash(), hash(&clean));
+
+        let broken = scene("instgroup \"root\" \"cam_inst\" \"no_such_thing\" end instgroup");
+        let path = dir.join("broken.mi");
+        std::fs::write(&path, &broken).unwrap();
+        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1).unwrap();
+        assert!(!loaded.diagnostics.is_empty());
+        assert!(!loaded.parsed.sources.has_released_text());
+        let message = loaded.diagnostics[0].render(&loaded.parsed.sources);
+        assert!(message.contains("\"no_such_thing\" end instgroup"), "{message}");
+        assert_eq!(loaded.content_hash(), hash(&broken));
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     /// FNV-1a's published test vectors (64-bit): "" and "a".
     #[test]

@@ -263,6 +263,21 @@ pub fn render_prepared(
     cancel: &AtomicBool,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> (Film, Stats) {
+    render_prepared_with_film(world, accel, shading, prepared, settings, cancel, &mut |_, p| progress(p))
+}
+
+/// [`render_prepared`] that hands `after_pass` the film as it stands after each pass (every
+/// pixel's samples so far, the classic engine's splats merged) with the progress: what a
+/// progressive preview writes. It is called on the calling thread, between passes.
+pub fn render_prepared_with_film(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    prepared: &Prepared,
+    settings: &Settings,
+    cancel: &AtomicBool,
+    after_pass: &mut dyn FnMut(&Film, Progress),
+) -> (Film, Stats) {
     let cam = &world.camera;
     let (w, h) = (cam.width, cam.height);
     let mut film = Film::new(w, h);
@@ -457,7 +472,7 @@ pub fn render_prepared(
             }
         }
         let elapsed = prepared.time + start.elapsed();
-        progress(Progress { samples: done, target, converged: converged_ratio, elapsed });
+        after_pass(&film, Progress { samples: done, target, converged: converged_ratio, elapsed });
         if stats.converged || max_time.is_some_and(|t| elapsed >= t) {
             break;
         }

@@ -126,16 +126,26 @@ impl Sampler {
     }
 
     /// The next number in [0, 1).
-    #[inline]
+    #[inline(always)]
     pub fn next_1d(&mut self) -> f32 {
         let d = self.dimension;
         self.dimension += 1;
         let lane = (d % 4) as usize;
-        if d < sobol_burley::NUM_DIMENSIONS {
-            if lane == 0 {
-                self.buffer = self.set(d / 4);
-            }
+        // Three numbers in four come from the buffer filled at the set's first dimension:
+        // that path stays small enough to inline into the integrator.
+        if lane != 0 && d < sobol_burley::NUM_DIMENSIONS {
             self.buffer[lane]
+        } else {
+            self.refill(d)
+        }
+    }
+
+    /// Dimension `d`, the first of its set (which fills the buffer) or past the table.
+    #[inline(never)]
+    fn refill(&mut self, d: u32) -> f32 {
+        if d < sobol_burley::NUM_DIMENSIONS {
+            self.buffer = self.set(d / 4);
+            self.buffer[0]
         } else {
             // Past the Sobol table: a hashed random number (still deterministic).
             let h = pixel_seed(self.index, d, self.seed);
@@ -150,7 +160,7 @@ impl Sampler {
     }
 
     /// The next two numbers.
-    #[inline]
+    #[inline(always)]
     pub fn next_2d(&mut self) -> glam::Vec2 {
         glam::Vec2::new(self.next_1d(), self.next_1d())
     }

@@ -19,6 +19,7 @@ use bsdf::Frame;
 /// `dir` leaves to), by a few ulps of the coordinates: no fixed epsilon, so it works at
 /// every scene scale (Wächter and Binder, "A fast and robust method for avoiding
 /// self-intersection", Ray Tracing Gems, 2019).
+#[inline]
 pub fn offset_point(p: Vec3A, n: Vec3A, dir: Vec3A) -> Vec3A {
     const ORIGIN: f32 = 1.0 / 32.0;
     const FLOAT_SCALE: f32 = 1.0 / 65536.0;

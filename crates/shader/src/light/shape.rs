@@ -91,6 +91,7 @@ impl Shape {
 
     /// A point on the shape centred at `center` (uniform by area for `u` uniform in
     /// [0,1)²) and the unit surface normal there (zero for a point).
+    #[inline]
     pub fn point_on(&self, center: Vec3A, u: Vec2) -> (Vec3A, Vec3A) {
         match *self {
             Shape::Point => (center, Vec3A::ZERO),
@@ -135,6 +136,7 @@ impl Shape {
     /// Where the ray `origin + t·dir` (t in `(tmin, tmax)`) meets the shape centred at
     /// `center`: the distance and whether the ray arrives at the front (the side the normal
     /// faces; the outside of a sphere). Cylinders and points are never hit.
+    #[inline]
     pub fn intersect(&self, center: Vec3A, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<(f32, bool)> {
         let plane = |n: Vec3A| {
             let denom = dir.dot(n);
