@@ -34,6 +34,7 @@ pub mod hair;
 pub mod integrator;
 pub mod light;
 pub mod mesh;
+pub mod motion;
 pub mod part;
 pub mod photons;
 pub mod pipeline;

@@ -62,6 +62,7 @@ fn instance(mesh: u32, material: u32) -> InstanceData {
         tag: 0,
         scene_index: 0,
         motion_to_world: None,
+        keys: Vec::new(),
     }
 }
 
@@ -79,6 +80,7 @@ fn camera(camera_to_world: Affine3A, size: u32, aperture: f32, ortho: bool) -> C
         offset: (0.0, 0.0),
         clip: (0.0, f32::INFINITY),
         window: (0, 0, size, size),
+        keys: Vec::new(),
     }
 }
 
@@ -103,6 +105,7 @@ fn world(
         options: options(),
         user_buffers: Vec::new(),
         warnings: Vec::new(),
+        shutter: None,
     }
 }
 

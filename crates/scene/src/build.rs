@@ -656,7 +656,12 @@ impl<'a> Builder<'a, '_> {
             ));
             return None;
         }
-        Some(Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world, self.diags))
+        let mut camera = Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world, self.diags);
+        camera.motion_world_to_camera = match self.camera {
+            Some((_, Some(m))) if m != world_to_camera && transform::inverse(m).is_some() => Some(m),
+            _ => None,
+        };
+        Some(camera)
     }
 
     /// Resolves instance light lists to light indices.

@@ -1,0 +1,187 @@
+//! Motion blur against coverage worked out by hand: an orthographic camera looks at the
+//! edge of a large quad that moves across the view while the shutter is open; a pixel's
+//! alpha is then the fraction of the (shape-weighted) shutter time during which the quad
+//! covers it. Both engines, both acceleration backends, moving objects and a moving
+//! camera, vertex motion over two motion steps, box and triangle shutters.
+
+mod support;
+
+use std::sync::atomic::AtomicBool;
+
+use render::{Backend, EngineKind, Settings};
+
+/// Image width and height (pixels) and the view's width (scene units): 16 columns over
+/// x ∈ [−2, 2], a quarter unit each; 4 rows.
+const W: usize = 16;
+const H: usize = 4;
+
+/// A scene: a 16×4 orthographic view of x ∈ [−2, 2] and a white quad over x ∈ [−10, 0]
+/// at z = −5; `options` go into the options block, `quad` into the quad's instance,
+/// `camera` into the camera's, and `vertex_motion` after each of the quad's vertices.
+fn scene(options: &str, quad: &str, camera: &str, vertex_motion: [&str; 4], extra_vectors: &str) -> String {
+    let [m0, m1, m2, m3] = vertex_motion;
+    format!(
+        r#"
+options "opt" filter box 1 1 {options} end options
+camera "cam" focal infinity aperture 4 aspect 4 resolution {W} {H} end camera
+instance "cam_inst" "cam" {camera} end instance
+material "m" "mib_illum_lambert" ("ambience" 1 1 1, "ambient" 1 1 1, "diffuse" 0 0 0) end material
+object "quad" group
+    -10 -10 -5  0 -10 -5  0 10 -5  -10 10 -5
+    {extra_vectors}
+    v 0 {m0} v 1 {m1} v 2 {m2} v 3 {m3}
+    c "m" 0 1 2 3
+end group end object
+instance "quad_inst" "quad" material "m" {quad} end instance
+instgroup "root" "cam_inst" "quad_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// Renders `text` with `engine` on `backend` at 64 samples per pixel: the alpha of each
+/// pixel, rows from the top.
+fn alpha(text: &str, engine: EngineKind, backend: Backend) -> Vec<f32> {
+    let c = support::compile(text);
+    assert!(c.messages.is_empty(), "{:?}", c.messages);
+    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
+    let accel = render::accel::build(&world, backend);
+    let settings = Settings { engine, spp: Some(64), ..Settings::default() };
+    let (film, _) =
+        render::render(&world, accel.as_ref(), Some(&c.shading), &settings, &AtomicBool::new(false), &|_| {});
+    film.rgba().iter().map(|p| p[3]).collect()
+}
+
+/// The backends compiled in.
+fn backends() -> Vec<Backend> {
+    [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()).collect()
+}
+
+/// The centre of pixel column `i` (scene units).
+fn column_x(i: usize) -> f32 {
+    -2.0 + (i as f32 + 0.5) * 4.0 / W as f32
+}
+
+/// Checks that each column's alpha, averaged over the rows, is `expect(x)` at the column's
+/// centre x within 0.03 (the coverage is linear across each pixel, so its mean over the
+/// pixel is its value at the centre).
+fn assert_profile(a: &[f32], expect: impl Fn(f32) -> f32, what: &str) {
+    for i in 0..W {
+        let mean = (0..H).map(|y| a[y * W + i]).sum::<f32>() / H as f32;
+        let want = expect(column_x(i));
+        assert!((mean - want).abs() < 0.03, "{what}: column {i} (x = {}): {mean} vs {want}", column_x(i));
+    }
+}
+
+/// Coverage of a quad edge that moves from x = 0 to x = 2 at constant speed over a box
+/// shutter: 1 left of 0, then falling linearly to 0 at x = 2.
+fn box_ramp(x: f32) -> f32 {
+    if x <= 0.0 {
+        1.0
+    } else {
+        (1.0 - x / 2.0).max(0.0)
+    }
+}
+
+const MOVE_RIGHT_2: &str = "motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1";
+
+#[test]
+fn a_moving_quad_covers_each_pixel_for_its_share_of_the_shutter() {
+    let text = scene("motion on shutter 0 1", MOVE_RIGHT_2, "", [""; 4], "");
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        for backend in backends() {
+            let a = alpha(&text, engine, backend);
+            assert_profile(&a, box_ramp, &format!("{engine:?} {backend:?}"));
+        }
+    }
+}
+
+/// The same quad instanced twice (the second far behind the camera): the acceleration
+/// structures keep the shared mesh once and move the instance, instead of flattening it.
+#[test]
+fn a_moving_instance_of_a_shared_mesh_blurs_the_same() {
+    let text = scene("motion on shutter 0 1", MOVE_RIGHT_2, "", [""; 4], "").replace(
+        r#"instgroup "root" "cam_inst" "quad_inst" end instgroup"#,
+        r#"instance "far" "quad" material "m" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -100 1 end instance
+instgroup "root" "cam_inst" "quad_inst" "far" end instgroup"#,
+    );
+    for backend in backends() {
+        let a = alpha(&text, EngineKind::Path, backend);
+        assert_profile(&a, box_ramp, &format!("shared {backend:?}"));
+    }
+}
+
+/// A camera moving 2 units to the left over the shutter sees the static quad move 2 units
+/// to the right: the same ramp.
+#[test]
+fn a_moving_camera_blurs_the_static_quad() {
+    let text = scene("motion on shutter 0 1", "", "motion transform 1 0 0 0  0 1 0 0  0 0 1 0  2 0 0 1", [""; 4], "");
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        for backend in backends() {
+            let a = alpha(&text, engine, backend);
+            assert_profile(&a, box_ramp, &format!("camera {engine:?} {backend:?}"));
+        }
+    }
+}
+
+/// A shutter from 0.25 to 0.75 of the motion interval (`shutter 0.25 0.75`) sees half
+/// the motion: the edge goes from x = 0.5 to x = 1.5.
+#[test]
+fn a_shorter_shutter_makes_a_shorter_trail() {
+    let text = scene("motion on shutter 0.25 0.75", MOVE_RIGHT_2, "", [""; 4], "");
+    let a = alpha(&text, EngineKind::Path, Backend::default_available());
+    assert_profile(&a, |x| (1.5 - x).clamp(0.0, 1.0), "shutter 0.25 0.75");
+}
+
+/// The triangle shutter (`"shutter full open" 0.5`, `"shutter full close" 0.5`): the
+/// coverage at x is the chance that the time s ≥ x/2 under the triangle density, 1 − F(x/2)
+/// with F(s) = 2s² below ½ and 1 − 2(1 − s)² above.
+#[test]
+fn a_triangle_shutter_weights_the_middle_of_the_interval() {
+    let text = scene(
+        r#"motion on shutter 0 1 "shutter full open" 0.5 "shutter full close" 0.5"#,
+        MOVE_RIGHT_2,
+        "",
+        [""; 4],
+        "",
+    );
+    let cdf = |s: f32| if s < 0.5 { 2.0 * s * s } else { 1.0 - 2.0 * (1.0 - s) * (1.0 - s) };
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let a = alpha(&text, engine, Backend::default_available());
+        assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 1.0 - cdf((x / 2.0).min(1.0)) }, &format!("{engine:?}"));
+    }
+}
+
+/// Per-vertex motion vectors (`m`) instead of an instance motion: the right edge's
+/// vertices move +2 in x, the left edge's stay, so the quad stretches; the coverage of the
+/// moving edge is the same ramp.
+#[test]
+fn vertex_motion_vectors_blur_like_instance_motion() {
+    let text = scene("motion on shutter 0 1", "", "", ["m 4", "m 5", "m 5", "m 4"], "0 0 0  2 0 0");
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        for backend in backends() {
+            let a = alpha(&text, engine, backend);
+            assert_profile(&a, box_ramp, &format!("vertex motion {engine:?} {backend:?}"));
+        }
+    }
+}
+
+/// A scene where nothing moves renders bit for bit the same with `motion on` and a
+/// shutter as without: no time is drawn, nothing is interpolated.
+#[test]
+fn a_static_scene_is_the_same_with_motion_on() {
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let still = support::render_text(&scene("", "", "", [""; 4], ""), engine, Some(16)).0;
+        let on = support::render_text(&scene("motion on shutter 0 1", "", "", [""; 4], ""), engine, Some(16)).0;
+        assert!(still.iter().any(|p| p[3] > 0.0) && still.iter().any(|p| p[3] == 0.0));
+        assert_eq!(still, on, "{engine:?}");
+    }
+}
+
+/// With `motion off` on the instance, its motion transform is ignored: a sharp edge.
+#[test]
+fn motion_off_keeps_an_instance_still() {
+    let text = scene("motion on shutter 0 1", &format!("{MOVE_RIGHT_2} motion off"), "", [""; 4], "");
+    let a = alpha(&text, EngineKind::Path, Backend::default_available());
+    assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 0.0 }, "motion off");
+}
