@@ -24,8 +24,8 @@ pub struct MeshData {
     /// Vertex motion vectors, object space per shutter interval (empty: none).
     pub motion: Vec<Vec3A>,
     /// The motion vectors of motion steps 2…n (object space, offsets from the position at
-    /// motion time 0): vertex i's `n − 1` are at `[i·(n−1), (i+1)·(n−1))` (empty: one step).
-    pub motion_more: Vec<Vec3A>,
+    /// motion time 0): `motion_more[k][i]` is vertex i's of step k + 2 (empty: one step).
+    pub motion_more: Vec<Vec<Vec3A>>,
     /// Vertex positions at shutter times spread evenly over the shutter (see
     /// [`crate::motion`]), when the vertices move while it is open; empty: they stay at
     /// `positions`.
@@ -47,16 +47,15 @@ impl MeshData {
         if self.motion.is_empty() {
             0
         } else {
-            1 + self.motion_more.len() / self.positions.len().max(1)
+            1 + self.motion_more.len()
         }
     }
 
     /// The first `n` motion vectors of vertex `i` (the offsets from its position at motion
-    /// times `1/n, 2/n, … 1`).
+    /// time 0 at motion times `1/n, 2/n, … 1`).
     pub fn motion_vectors(&self, i: usize, n: usize) -> Vec<Vec3A> {
-        let more = self.motion_steps().saturating_sub(1);
         let mut v = vec![self.motion.get(i).copied().unwrap_or_default()];
-        v.extend(self.motion_more.iter().skip(i * more).take(more.min(n.saturating_sub(1))));
+        v.extend(self.motion_more.iter().take(n.saturating_sub(1)).map(|m| m.get(i).copied().unwrap_or_default()));
         v
     }
 

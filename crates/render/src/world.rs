@@ -188,7 +188,7 @@ impl World {
                     slots: m.triangle_slots.clone(),
                     hair: None,
                     motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
-                    motion_more: Vec::new(),
+                    motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
                     position_keys: Vec::new(),
                 }
             })
@@ -357,12 +357,16 @@ fn set_motion_keys(
             moving = true;
         }
     }
-    let steps = (scene.options.motion_steps.max(1) as usize).min(crate::mesh::MAX_MOTION_STEPS);
     for mesh in meshes.iter_mut() {
-        if mesh.motion.is_empty() || mesh.motion.iter().all(|m| *m == Vec3A::ZERO) || mesh.hair.is_some() {
+        let still = |m: &[Vec3A]| m.iter().all(|v| *v == Vec3A::ZERO);
+        if mesh.motion.is_empty()
+            || mesh.hair.is_some()
+            || still(&mesh.motion) && mesh.motion_more.iter().all(|m| still(m))
+        {
             continue;
         }
-        let vectors = mesh.motion_steps().min(steps).max(1);
+        // One key per motion step (each vertex's `m` vectors are its motion path's corners).
+        let vectors = mesh.motion_steps().min(crate::mesh::MAX_MOTION_STEPS);
         let keys = vectors;
         mesh.position_keys = shutter
             .key_times(keys)

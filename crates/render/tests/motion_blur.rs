@@ -97,17 +97,22 @@ fn a_moving_quad_covers_each_pixel_for_its_share_of_the_shutter() {
 }
 
 /// The same quad instanced twice (the second far behind the camera): the acceleration
-/// structures keep the shared mesh once and move the instance, instead of flattening it.
+/// structures keep the shared mesh once and move the instance (or the mesh's vertices)
+/// instead of flattening it.
 #[test]
-fn a_moving_instance_of_a_shared_mesh_blurs_the_same() {
-    let text = scene("motion on shutter 0 1", MOVE_RIGHT_2, "", [""; 4], "").replace(
-        r#"instgroup "root" "cam_inst" "quad_inst" end instgroup"#,
-        r#"instance "far" "quad" material "m" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -100 1 end instance
+fn a_moving_shared_mesh_blurs_the_same() {
+    let moving_instance = scene("motion on shutter 0 1", MOVE_RIGHT_2, "", [""; 4], "");
+    let moving_vertices = scene("motion on shutter 0 1", "", "", ["m 4", "m 5", "m 5", "m 4"], "0 0 0  2 0 0");
+    for text in [moving_instance, moving_vertices] {
+        let text = text.replace(
+            r#"instgroup "root" "cam_inst" "quad_inst" end instgroup"#,
+            r#"instance "far" "quad" material "m" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -100 1 end instance
 instgroup "root" "cam_inst" "quad_inst" "far" end instgroup"#,
-    );
-    for backend in backends() {
-        let a = alpha(&text, EngineKind::Path, backend);
-        assert_profile(&a, box_ramp, &format!("shared {backend:?}"));
+        );
+        for backend in backends() {
+            let a = alpha(&text, EngineKind::Path, backend);
+            assert_profile(&a, box_ramp, &format!("shared {backend:?}"));
+        }
     }
 }
 
@@ -184,4 +189,35 @@ fn motion_off_keeps_an_instance_still() {
     let text = scene("motion on shutter 0 1", &format!("{MOVE_RIGHT_2} motion off"), "", [""; 4], "");
     let a = alpha(&text, EngineKind::Path, Backend::default_available());
     assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 0.0 }, "motion off");
+}
+
+/// Two motion steps (two `m` vectors per vertex, `motion steps 2`): the right edge moves
+/// along a bent path, 1.5 right and 1 up by the middle of the interval, then to 2 right and
+/// back down by its end. The edge's x runs at 3 units per interval, then at 1, so the
+/// coverage falls as 1 − x/3 up to x = 1.5 and as 2 − x beyond (one step would give
+/// 1 − x/2: 0.25 more at x = 1.5).
+#[test]
+fn two_motion_steps_follow_a_bent_path() {
+    let text = scene(
+        "motion on motion steps 2 shutter 0 1",
+        "",
+        "",
+        ["m 6 m 6", "m 4 m 5", "m 4 m 5", "m 6 m 6"],
+        "1.5 1 0  2 0 0  0 0 0",
+    );
+    let expect = |x: f32| {
+        if x <= 0.0 {
+            1.0
+        } else if x <= 1.5 {
+            1.0 - x / 3.0
+        } else {
+            (2.0 - x).max(0.0)
+        }
+    };
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        for backend in backends() {
+            let a = alpha(&text, engine, backend);
+            assert_profile(&a, expect, &format!("two steps {engine:?} {backend:?}"));
+        }
+    }
 }
