@@ -345,7 +345,7 @@ pub fn trace_path(
             let weight = if depth == 0 || last_delta {
                 1.0
             } else if settings.mis {
-                power_heuristic(last_pdf, pick * world.lights[li].pdf(ray.origin, ray.dir, t))
+                power_heuristic(last_pdf, pick * world.lights[li].pdf_at(ray.origin, ray.dir, t, ray.time))
             } else {
                 0.0
             };
@@ -383,7 +383,7 @@ pub fn trace_path(
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
         } else if k < light_count && !bsdf.is_delta() {
             let light = &world.lights[k];
-            if let Some(mut ls) = light.sample(s.p, u_light) {
+            if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
                 let f = bsdf.eval(wo, wi);

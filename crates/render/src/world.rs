@@ -277,7 +277,7 @@ impl World {
         let mut lights = Vec::new();
         for l in &scene.lights {
             match LightSource::in_scene_shaded(l, scene, shading) {
-                Ok(src) => lights.push(src),
+                Ok(src) => lights.push((src, l.light_to_world, l.motion_light_to_world)),
                 Err(w) => warnings.push(w),
             }
         }
@@ -293,8 +293,11 @@ impl World {
             }
         }
         let mut camera = CameraModel::new(&scene.camera);
-        let shutter = Shutter::from_options(&scene.options, &mut warnings)
-            .filter(|shutter| set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera));
+        let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
+            let lights_move = set_light_keys(shutter, &mut lights);
+            set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera) | lights_move
+        });
+        let lights = lights.into_iter().map(|(l, _, _)| l).collect();
         World {
             meshes,
             instances,
@@ -384,6 +387,20 @@ fn set_motion_keys(
             camera.keys = shutter.key_times(1).map(|tau| Affine3A::lerp(camera.camera_to_world, end, tau)).collect();
             moving = true;
         }
+    }
+    moving
+}
+
+/// Keys over the shutter of the lights whose instances move (their world → world
+/// displacement from where they are at motion time 0); returns whether any moves.
+fn set_light_keys(shutter: &Shutter, lights: &mut [(LightSource, glam::DMat4, Option<glam::DMat4>)]) -> bool {
+    let mut moving = false;
+    for (light, start, end) in lights.iter_mut() {
+        let Some(end) = end else { continue };
+        let (start, end) = (affine(*start), affine(*end));
+        let back = start.inverse();
+        light.motion = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
+        moving = true;
     }
     moving
 }

@@ -217,6 +217,7 @@ fn lambertian_plane_under_a_point_light() {
         spot_exponent: None,
         visible: false,
         shadow: true,
+        motion: Vec::new(),
     };
     // An orthographic camera 5 units up looking down, 4 units wide, 32×32 pixels.
     let cam = camera(Affine3A::from_translation(glam::Vec3::new(0.0, 0.0, 5.0)), 32, 4.0, true);
@@ -260,6 +261,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         spot_exponent: None,
         visible: true,
         shadow: true,
+        motion: Vec::new(),
     };
     // Seen from below, through its middle: radiance E/π exactly.
     let from_below = Affine3A::from_rotation_x(std::f32::consts::PI) * Affine3A::IDENTITY;

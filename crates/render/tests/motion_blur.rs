@@ -221,3 +221,54 @@ fn two_motion_steps_follow_a_bent_path() {
         }
     }
 }
+
+/// A point light at height h = 1 that moves from x = −a to x = a (a = 1) over the shutter
+/// lights the point below its path's middle with the time average of its irradiance there.
+/// `mib_light_point` without attenuation does not fall off with distance (mental ray's
+/// non-physical light), so the irradiance is I·cos θ = I·h/d and its average over the path
+/// is I·(h/a)·asinh(a/h): asinh(1) = 0.88137 of what the light standing at x = 0 gives.
+/// Path engine, both backends; the view is a 0.02-wide patch of the lit plane.
+#[test]
+fn a_moving_light_lights_with_its_time_average() {
+    let text = |light: &str| {
+        format!(
+            r#"
+options "opt" filter box 1 1 motion on shutter 0 1 end options
+camera "cam" focal infinity aperture 0.02 aspect 1 resolution 4 4 end camera
+instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
+light "l" "mib_light_point" ("color" 1 1 1) origin 0 0 0 end light
+instance "l_inst" "l" {light} end instance
+material "m" "mib_illum_lambert" ("diffuse" 0.6 0.6 0.6, "lights" ["l_inst"]) end material
+object "plane" group
+    -10 -10 0  10 -10 0  10 10 0  -10 10 0
+    v 0 v 1 v 2 v 3
+    c "m" 0 1 2 3
+end group end object
+instance "plane_inst" "plane" material "m" end instance
+instgroup "root" "cam_inst" "l_inst" "plane_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+        )
+    };
+    let mean_red = |text: &str, backend: Backend| {
+        let c = support::compile(text);
+        let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
+        let accel = render::accel::build(&world, backend);
+        let settings = Settings { engine: EngineKind::Path, spp: Some(64), ..Settings::default() };
+        let (film, _) =
+            render::render(&world, accel.as_ref(), Some(&c.shading), &settings, &AtomicBool::new(false), &|_| {});
+        film.rgba().iter().map(|p| p[0]).sum::<f32>() / 16.0
+    };
+    for backend in backends() {
+        let still = mean_red(&text("transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -1 1"), backend);
+        let moving = mean_red(
+            &text(
+                "transform 1 0 0 0  0 1 0 0  0 0 1 0  1 0 -1 1  motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 0 -1 1",
+            ),
+            backend,
+        );
+        assert!(still > 0.0, "{still}");
+        let ratio = moving / still;
+        assert!((ratio - 1.0f32.asinh()).abs() < 0.005, "{backend:?}: {ratio}");
+    }
+}

@@ -389,6 +389,10 @@ impl<'a> Builder<'a, '_> {
                             ));
                         };
                         let mut light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        light.motion_light_to_world = next
+                            .motion_world_to_local
+                            .filter(|m| *m != next.world_to_local)
+                            .and_then(transform::inverse);
                         crate::sanity::light(&mut light, blocks, self.diags);
                         self.lights.push(light);
                     }
