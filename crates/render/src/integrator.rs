@@ -355,7 +355,7 @@ pub fn trace_path(
         let Some((stop, s, material)) = found else { break };
         if depth == 0 {
             alpha = 1.0;
-            let motion = crate::tracer::hit_motion(world, &stop, s.p);
+            let motion = crate::tracer::hit_motion(world, &stop, s.p, ray.time);
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
         }
         if material.emission != Rgb::ZERO {

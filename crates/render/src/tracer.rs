@@ -181,7 +181,14 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
 fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [usize; 3], s: &State) -> Vec3A {
     let mut m = Vec3A::ZERO;
     if let Some(to_world) = inst.motion_to_world {
-        m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+        if inst.moves() {
+            // The hit is where the instance is at the sample's time: the motion is that
+            // material point's, from the interval's start to its end.
+            let p_obj = inst.placement(s.time).world_to_object.transform_point3a(s.point);
+            m += to_world.transform_point3a(p_obj) - inst.object_to_world.transform_point3a(p_obj);
+        } else {
+            m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+        }
     }
     if let (Some(a), Some(b), Some(c)) = (mesh.motion.get(v[0]), mesh.motion.get(v[1]), mesh.motion.get(v[2])) {
         if s.hair.is_none() {
@@ -193,8 +200,8 @@ fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [u
 }
 
 /// World-space motion over the shutter interval of `point` on `hit` (as [`fill_state`]
-/// finds it; for the path engine's first hit).
-pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
+/// finds it at shutter time `time`; for the path engine's first hit).
+pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A, time: f32) -> Vec3A {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
     let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
@@ -202,6 +209,7 @@ pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
         point,
         bary: [1.0 - hit.u - hit.v, hit.u, hit.v],
         hair: mesh.hair.as_ref().map(|_| shader::state::HairState::default()),
+        time,
         ..State::default()
     };
     motion(inst, mesh, tri, &s)
