@@ -294,7 +294,7 @@ impl World {
         }
         let mut camera = CameraModel::new(&scene.camera);
         let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
-            let lights_move = set_light_keys(shutter, &mut lights);
+            let lights_move = set_light_keys(shutter, &mut lights, &mut warnings);
             set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera) | lights_move
         });
         let lights = lights.into_iter().map(|(l, _, _)| l).collect();
@@ -393,10 +393,19 @@ fn set_motion_keys(
 
 /// Keys over the shutter of the lights whose instances move (their world → world
 /// displacement from where they are at motion time 0); returns whether any moves.
-fn set_light_keys(shutter: &Shutter, lights: &mut [(LightSource, glam::DMat4, Option<glam::DMat4>)]) -> bool {
+fn set_light_keys(
+    shutter: &Shutter,
+    lights: &mut [(LightSource, glam::DMat4, Option<glam::DMat4>)],
+    warnings: &mut Vec<String>,
+) -> bool {
     let mut moving = false;
     for (light, start, end) in lights.iter_mut() {
         let Some(end) = end else { continue };
+        warnings.push(format!(
+            "light '{}' moves while the shutter is open: the path engine moves it, the classic engine's light \
+             shaders see it where it is at the shutter's opening",
+            light.name
+        ));
         let (start, end) = (affine(*start), affine(*end));
         let back = start.inverse();
         light.motion = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
