@@ -295,7 +295,7 @@ impl World {
         let mut camera = CameraModel::new(&scene.camera);
         let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
             let lights_move = set_light_keys(shutter, &mut lights, &mut warnings);
-            set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera) | lights_move
+            set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings) | lights_move
         });
         let lights = lights.into_iter().map(|(l, _, _)| l).collect();
         World {
@@ -352,12 +352,26 @@ fn set_motion_keys(
     meshes: &mut [MeshData],
     instances: &mut [InstanceData],
     camera: &mut CameraModel,
+    warnings: &mut Vec<String>,
 ) -> bool {
+    let limit = scene::sanity::WORLD_LIMIT as f32;
+    let placed_in_range = |m: &Affine3A| m.is_finite() && m.translation.abs().max_element() <= limit;
+    let mut out_of_range = |what: String| {
+        warnings.push(format!(
+            "{what} moves beyond single precision (±{limit:e}) while the shutter is open: it is kept still"
+        ))
+    };
     let mut moving = false;
     for inst in instances.iter_mut() {
         if let Some(end) = inst.motion_to_world.filter(|m| *m != inst.object_to_world) {
-            inst.keys = shutter.key_times(1).map(|tau| Affine3A::lerp(inst.object_to_world, end, tau)).collect();
-            moving = true;
+            let keys: Vec<Affine3A> =
+                shutter.key_times(1).map(|tau| Affine3A::lerp(inst.object_to_world, end, tau)).collect();
+            if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
+                inst.keys = keys;
+                moving = true;
+            } else {
+                out_of_range(format!("instance {}", inst.scene_index));
+            }
         }
     }
     for mesh in meshes.iter_mut() {
@@ -371,7 +385,7 @@ fn set_motion_keys(
         // One key per motion step (each vertex's `m` vectors are its motion path's corners).
         let vectors = mesh.motion_steps().min(crate::mesh::MAX_MOTION_STEPS);
         let keys = vectors;
-        mesh.position_keys = shutter
+        let position_keys: Vec<Vec<Vec3A>> = shutter
             .key_times(keys)
             .map(|tau| {
                 (0..mesh.positions.len())
@@ -379,13 +393,24 @@ fn set_motion_keys(
                     .collect()
             })
             .collect();
-        moving = true;
+        if position_keys.iter().flatten().all(|p| p.is_finite() && p.abs().max_element() <= limit) {
+            mesh.position_keys = position_keys;
+            moving = true;
+        } else {
+            out_of_range("a mesh's motion vectors: the mesh".into());
+        }
     }
     if let Some(end) = scene.camera.motion_world_to_camera {
         let end = affine(end).inverse();
         if end != camera.camera_to_world {
-            camera.keys = shutter.key_times(1).map(|tau| Affine3A::lerp(camera.camera_to_world, end, tau)).collect();
-            moving = true;
+            let keys: Vec<Affine3A> =
+                shutter.key_times(1).map(|tau| Affine3A::lerp(camera.camera_to_world, end, tau)).collect();
+            if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
+                camera.keys = keys;
+                moving = true;
+            } else {
+                out_of_range("the camera".into());
+            }
         }
     }
     moving
@@ -408,7 +433,13 @@ fn set_light_keys(
         ));
         let (start, end) = (affine(*start), affine(*end));
         let back = start.inverse();
-        light.motion = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
+        let keys: Vec<Affine3A> = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
+        if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= scene::sanity::WORLD_LIMIT as f32)
+        {
+            warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.name));
+            continue;
+        }
+        light.motion = keys;
         moving = true;
     }
     moving

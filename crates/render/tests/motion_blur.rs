@@ -272,3 +272,17 @@ render "root" "cam_inst" "opt"
         assert!((ratio - 1.0f32.asinh()).abs() < 0.005, "{backend:?}: {ratio}");
     }
 }
+
+/// A shutter that carries a moving quad beyond single precision (`shutter 0 1e30`) does
+/// not break the render: the quad is kept still, with a warning that says so.
+#[test]
+fn motion_beyond_single_precision_is_kept_still_with_a_warning() {
+    let text = scene("motion on shutter 0 1e30", MOVE_RIGHT_2, "", [""; 4], "");
+    let c = support::compile(&text);
+    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
+    assert!(world.warnings.iter().any(|w| w.contains("beyond single precision")), "{:?}", world.warnings);
+    for backend in backends() {
+        let a = alpha(&text, EngineKind::Path, backend);
+        assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 0.0 }, &format!("{backend:?}"));
+    }
+}
