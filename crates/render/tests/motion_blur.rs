@@ -286,3 +286,22 @@ fn motion_beyond_single_precision_is_kept_still_with_a_warning() {
         assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 0.0 }, &format!("{backend:?}"));
     }
 }
+
+/// The same seed gives the same blurred image bit for bit on one thread and on three (the
+/// time is drawn from each pixel sample's own numbers), in both engines.
+#[test]
+fn blurred_images_do_not_depend_on_the_thread_count() {
+    let text = scene("motion on shutter 0 1", MOVE_RIGHT_2, "", ["m 4", "m 5", "m 5", "m 4"], "0 0 0  0.5 0.3 0");
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
+            pool.install(|| alpha(&text, engine, Backend::Rust))
+        };
+        let (one, three) = (on(1), on(3));
+        assert!(one.iter().any(|a| *a > 0.0 && *a < 1.0), "{engine:?}: no blur");
+        assert_eq!(
+            one.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
+            three.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
+        );
+    }
+}
