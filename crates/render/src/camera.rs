@@ -36,6 +36,10 @@ pub struct CameraModel {
     pub clip: (f32, f32),
     /// Pixel rectangle to render, top-left origin: x0, y0 inclusive, x1, y1 exclusive.
     pub window: (u32, u32, u32, u32),
+    /// Camera → world at shutter times spread evenly over the shutter (see
+    /// [`crate::motion`]), when the camera moves while it is open; empty: it stays at
+    /// `camera_to_world`.
+    pub keys: Vec<Affine3A>,
 }
 
 impl CameraModel {
@@ -64,6 +68,7 @@ impl CameraModel {
             offset: (c.offset.0 as f32, c.offset.1 as f32),
             clip: (c.clip.0.max(0.0) as f32, c.clip.1 as f32),
             window,
+            keys: Vec::new(),
         }
     }
 
@@ -85,6 +90,22 @@ impl CameraModel {
     /// The primary ray through raster position (x, y), top-left origin; the direction has
     /// unit length and the range is limited by the clip planes.
     pub fn ray(&self, x: f32, y: f32) -> Ray {
+        self.ray_at(x, y, 0.0)
+    }
+
+    /// Camera → world at shutter time `time`.
+    #[inline]
+    pub fn camera_to_world_at(&self, time: f32) -> Affine3A {
+        if self.keys.is_empty() {
+            self.camera_to_world
+        } else {
+            crate::motion::lerp_keys(&self.keys, time)
+        }
+    }
+
+    /// [`CameraModel::ray`] from where the camera is at shutter time `time` (the ray
+    /// carries the time).
+    pub fn ray_at(&self, x: f32, y: f32, time: f32) -> Ray {
         let (w, h) = (self.width as f32, self.height as f32);
         let rx = x - w * 0.5 + self.offset.0;
         let ry = (h - y) - h * 0.5 + self.offset.1;
@@ -95,8 +116,9 @@ impl CameraModel {
         } else {
             (Vec3A::ZERO, Vec3A::new(rx * sx, ry * sy, -1.0).normalize())
         };
-        let origin = self.camera_to_world.transform_point3a(origin_cam);
-        let dir = self.camera_to_world.transform_vector3a(dir_cam);
+        let camera_to_world = self.camera_to_world_at(time);
+        let origin = camera_to_world.transform_point3a(origin_cam);
+        let dir = camera_to_world.transform_vector3a(dir_cam);
         let len = dir.length();
         // Clip distances are along −Z; along the ray they grow by 1/cos.
         let cos = -dir_cam.z;
@@ -106,6 +128,7 @@ impl CameraModel {
             dir: dir / len,
             tmin: self.clip.0 / cos * len,
             tmax: self.clip.1 / cos * len,
+            time,
         }
     }
 
@@ -114,7 +137,7 @@ impl CameraModel {
     pub fn clip_ray(&self, origin: Vec3A, dir: Vec3A) -> Ray {
         let cos = -self.world_to_camera.transform_vector3a(dir).z;
         let (tmin, tmax) = if cos > 0.0 { (self.clip.0 / cos, self.clip.1 / cos) } else { (0.0, f32::INFINITY) };
-        Ray { mask: crate::ray::mask::CAMERA, origin, dir, tmin, tmax }
+        Ray { mask: crate::ray::mask::CAMERA, origin, dir, tmin, tmax, time: 0.0 }
     }
 
     /// The angle one pixel subtends at the centre of the image (radians; 0 for orthographic
@@ -159,6 +182,7 @@ mod tests {
             offset,
             clip: (0.0, f32::INFINITY),
             window: (0, 0, 200, 100),
+            keys: Vec::new(),
         }
     }
 

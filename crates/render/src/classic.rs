@@ -28,7 +28,8 @@ pub struct ClassicSample {
 }
 
 /// Renders one eye sample through raster position `raster` (pixels, top-left origin) of
-/// pixel `pixel`, sample `index`; final gathering interpolates from `fg_cache` if given.
+/// pixel `pixel`, sample `index` at shutter time `time` (`sample = (index, time)`, see
+/// [`crate::motion`]); final gathering interpolates from `fg_cache` if given.
 pub fn eye_sample(
     world: &World,
     accel: &dyn Accel,
@@ -36,12 +37,13 @@ pub fn eye_sample(
     fg_cache: Option<&shader::fgcache::FgCache>,
     raster: Vec2,
     pixel: [u32; 2],
-    index: u32,
+    sample: (u32, f32),
 ) -> ClassicSample {
+    let (index, time) = sample;
     let mut tracer = SceneTracer::new(world, accel);
     tracer.fg_cache = fg_cache;
     let cam = &world.camera;
-    let ray = cam.ray(raster.x, raster.y);
+    let ray = cam.ray_at(raster.x, raster.y, time);
     let mut state = State {
         ray_type: RayType::Eye,
         org: ray.origin,
@@ -56,6 +58,7 @@ pub fn eye_sample(
         ior_in: 1.0,
         ior: 1.0,
         child_dist: f32::INFINITY,
+        time,
         ..State::default()
     };
     state.normal = -ray.dir;

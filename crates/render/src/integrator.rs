@@ -55,19 +55,22 @@ struct Surface {
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
-    let [i0, i1, i2] = mesh.triangles[hit.prim as usize];
-    let (p0, p1, p2) = (mesh.positions[i0 as usize], mesh.positions[i1 as usize], mesh.positions[i2 as usize]);
+    let tri = mesh.triangles[hit.prim as usize];
+    let [i0, i1, i2] = tri;
+    // Where the instance and its vertices are at the ray's time (see `crate::motion`).
+    let placed = inst.placement(ray.time);
+    let [p0, p1, p2] = mesh.triangle_at(tri, ray.time);
     let w = 1.0 - hit.u - hit.v;
     let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
-    let p = inst.object_to_world.transform_point3a(p_obj);
+    let p = placed.object_to_world.transform_point3a(p_obj);
     // Normals go to world space with the inverse transpose, so mirroring transforms keep
     // the counter-clockwise side as the front.
-    let ng = (inst.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
     let ns = if mesh.normals.is_empty() {
         ng
     } else {
         let n = mesh.normals[i0 as usize] * w + mesh.normals[i1 as usize] * hit.u + mesh.normals[i2 as usize] * hit.v;
-        let n = (inst.normal_to_world * n).normalize_or(ng);
+        let n = (placed.normal_to_world * n).normalize_or(ng);
         if n.dot(ng) < 0.0 {
             -n
         } else {
@@ -76,7 +79,6 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    let _ = ray;
     Surface { p, ng, ns, material, tag: inst.tag }
 }
 
@@ -147,6 +149,8 @@ fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool),
 /// A shading point as next-event estimation sees it.
 struct Vertex<'v> {
     p: Vec3A,
+    /// The path's shutter time.
+    time: f32,
     ng: Vec3A,
     frame: &'v Frame,
     wo: Vec3A,
@@ -186,7 +190,7 @@ fn environment_light(
         return Rgb::ZERO;
     }
     counts.shadow_rays += 1;
-    let shadow = Ray { mask: mask::SHADOW, origin, dir: es.dir, tmin: 0.0, tmax: f32::INFINITY };
+    let shadow = Ray { mask: mask::SHADOW, origin, dir: es.dir, tmin: 0.0, tmax: f32::INFINITY, time: v.time };
     if shadow_blocked(world, accel, shading, &shadow, seed) {
         return Rgb::ZERO;
     }
@@ -219,6 +223,7 @@ fn material_at<'w>(
                 ior_in: 1.0,
                 ior: 1.0,
                 child_dist: f32::INFINITY,
+                time: ray.time,
                 ..State::default()
             };
             crate::tracer::fill_state(world, hit, &mut state);
@@ -340,7 +345,7 @@ pub fn trace_path(
             let weight = if depth == 0 || last_delta {
                 1.0
             } else if settings.mis {
-                power_heuristic(last_pdf, pick * world.lights[li].pdf(ray.origin, ray.dir, t))
+                power_heuristic(last_pdf, pick * world.lights[li].pdf_at(ray.origin, ray.dir, t, ray.time))
             } else {
                 0.0
             };
@@ -350,7 +355,7 @@ pub fn trace_path(
         let Some((stop, s, material)) = found else { break };
         if depth == 0 {
             alpha = 1.0;
-            let motion = crate::tracer::hit_motion(world, &stop, s.p);
+            let motion = crate::tracer::hit_motion(world, &stop, s.p, ray.time);
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
         }
         if material.emission != Rgb::ZERO {
@@ -373,12 +378,12 @@ pub fn trace_path(
         let u_light = sampler.next_2d();
         let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
-            let v = Vertex { p: s.p, ng, frame: &frame, wo, bsdf: &bsdf };
+            let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
         } else if k < light_count && !bsdf.is_delta() {
             let light = &world.lights[k];
-            if let Some(mut ls) = light.sample(s.p, u_light) {
+            if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
                 let f = bsdf.eval(wo, wi);
@@ -388,7 +393,7 @@ pub fn trace_path(
                     let origin = offset_origin(s.p, ng, ls.wi);
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
-                    let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax };
+                    let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
                     if !light.shadow || !shadow_blocked(world, accel, shading, &shadow, seed) {
                         let weight = if ls.delta || !settings.mis {
                             1.0
@@ -421,8 +426,14 @@ pub fn trace_path(
             }
             throughput /= q;
         }
-        ray =
-            Ray { mask: mask::SECONDARY, origin: offset_origin(s.p, ng, wi), dir: wi, tmin: 0.0, tmax: f32::INFINITY };
+        ray = Ray {
+            mask: mask::SECONDARY,
+            origin: offset_origin(s.p, ng, wi),
+            dir: wi,
+            tmin: 0.0,
+            tmax: f32::INFINITY,
+            time: ray.time,
+        };
     }
     PathResult { radiance, alpha, first }
 }

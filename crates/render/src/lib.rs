@@ -35,6 +35,7 @@ pub mod hair;
 pub mod integrator;
 pub mod light;
 pub mod mesh;
+pub mod motion;
 pub mod part;
 pub mod photons;
 pub mod pipeline;

@@ -107,6 +107,10 @@ pub struct LightSource {
     pub visible: bool,
     /// Casts shadows.
     pub shadow: bool,
+    /// World → world displacement of the light at shutter times spread evenly over the
+    /// shutter (see [`crate::motion`]) when its instance moves while the shutter is open
+    /// (the light is taken to move rigidly); empty: it stays where it is.
+    pub motion: Vec<glam::Affine3A>,
 }
 
 /// A sampled light contribution towards a shading point.
@@ -215,6 +219,7 @@ impl LightSource {
             spot_exponent: emission.spot_exponent,
             visible: (light.visible && radiant || portal) && is_area,
             shadow: light.shadow,
+            motion: Vec::new(),
         })
     }
 
@@ -371,6 +376,19 @@ impl LightSource {
 
     /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        if !self.motion.is_empty() {
+            // Where the light is at the ray's time: the ray carried back to where it is at
+            // the shutter's opening (a rigid motion keeps distances along it).
+            let back = crate::motion::lerp_keys(&self.motion, ray.time).inverse();
+            let still =
+                Ray { origin: back.transform_point3a(ray.origin), dir: back.transform_vector3a(ray.dir), ..*ray };
+            return self.intersect_still(&still);
+        }
+        self.intersect_still(ray)
+    }
+
+    /// [`LightSource::intersect`] with the light where it is at the shutter's opening.
+    fn intersect_still(&self, ray: &Ray) -> Option<(f32, Rgb)> {
         let (l, two_sided, reverse) = match self.output {
             Output::Radiance { l, two_sided } => (l, two_sided, false),
             // A portal's radiance is its scale (× the environment, which the caller adds).
@@ -379,5 +397,26 @@ impl LightSource {
         };
         let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
         (facing != reverse || two_sided).then_some((t, l))
+    }
+
+    /// [`LightSource::sample`] with the light where it is at shutter time `time`.
+    pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
+        if self.motion.is_empty() {
+            return self.sample(p, u);
+        }
+        let moved = crate::motion::lerp_keys(&self.motion, time);
+        let back = moved.inverse();
+        let mut ls = self.sample(back.transform_point3a(p), u)?;
+        ls.wi = moved.transform_vector3a(ls.wi).normalize_or(ls.wi);
+        Some(ls)
+    }
+
+    /// [`LightSource::pdf`] with the light where it is at shutter time `time`.
+    pub fn pdf_at(&self, p: Vec3A, wi: Vec3A, t: f32, time: f32) -> f32 {
+        if self.motion.is_empty() {
+            return self.pdf(p, wi, t);
+        }
+        let back = crate::motion::lerp_keys(&self.motion, time).inverse();
+        self.pdf(back.transform_point3a(p), back.transform_vector3a(wi).normalize_or(wi), t)
     }
 }

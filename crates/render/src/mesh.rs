@@ -23,6 +23,64 @@ pub struct MeshData {
     pub hair: Option<HairData>,
     /// Vertex motion vectors, object space per shutter interval (empty: none).
     pub motion: Vec<Vec3A>,
+    /// The motion vectors of motion steps 2…n (object space, offsets from the position at
+    /// motion time 0): `motion_more[k][i]` is vertex i's of step k + 2 (empty: one step).
+    pub motion_more: Vec<Vec<Vec3A>>,
+    /// Vertex positions at shutter times spread evenly over the shutter (see
+    /// [`crate::motion`]), when the vertices move while it is open; empty: they stay at
+    /// `positions`.
+    pub position_keys: Vec<Vec<Vec3A>>,
+}
+
+/// Most motion steps (motion vectors per vertex) mental ray takes.
+pub const MAX_MOTION_STEPS: usize = 15;
+
+impl MeshData {
+    /// Whether the vertices move while the shutter is open.
+    #[inline]
+    pub fn moves(&self) -> bool {
+        !self.position_keys.is_empty()
+    }
+
+    /// Motion vectors per vertex (0: none).
+    pub fn motion_steps(&self) -> usize {
+        if self.motion.is_empty() {
+            0
+        } else {
+            1 + self.motion_more.len()
+        }
+    }
+
+    /// The first `n` motion vectors of vertex `i` (the offsets from its position at motion
+    /// time 0 at motion times `1/n, 2/n, … 1`).
+    pub fn motion_vectors(&self, i: usize, n: usize) -> Vec<Vec3A> {
+        let mut v = vec![self.motion.get(i).copied().unwrap_or_default()];
+        v.extend(self.motion_more.iter().take(n.saturating_sub(1)).map(|m| m.get(i).copied().unwrap_or_default()));
+        v
+    }
+
+    /// The object-space vertices of triangle `tri` at shutter time `time`.
+    #[inline]
+    pub fn triangle_at(&self, tri: [u32; 3], time: f32) -> [Vec3A; 3] {
+        if self.position_keys.is_empty() {
+            tri.map(|i| self.positions[i as usize])
+        } else {
+            let (j, f) = crate::motion::key_segment(self.position_keys.len(), time);
+            let (a, b) = (&self.position_keys[j], &self.position_keys[j + 1]);
+            tri.map(|i| a[i as usize] + (b[i as usize] - a[i as usize]) * f)
+        }
+    }
+
+    /// All object-space vertex positions at shutter time `time`.
+    pub fn positions_at(&self, time: f32) -> Vec<Vec3A> {
+        if self.position_keys.is_empty() {
+            self.positions.clone()
+        } else {
+            let (j, f) = crate::motion::key_segment(self.position_keys.len(), time);
+            let (a, b) = (&self.position_keys[j], &self.position_keys[j + 1]);
+            a.iter().zip(b).map(|(a, b)| *a + (*b - *a) * f).collect()
+        }
+    }
 }
 
 /// Per-vertex and per-triangle hair data of a ribbon mesh.

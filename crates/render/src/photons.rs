@@ -279,7 +279,7 @@ fn trace_photon(
         let mut from = org;
         for _ in 0..MAX_PASS {
             rays += 1;
-            let ray = Ray { mask: u32::MAX, origin: from, dir, tmin: 0.0, tmax: f32::INFINITY };
+            let ray = Ray { mask: u32::MAX, origin: from, dir, tmin: 0.0, tmax: f32::INFINITY, time: 0.0 };
             let Some(h) = accel.intersect(&ray) else { break };
             let mut s = State { ray_type: RayType::Probe, org: from, dir, ..State::default() };
             fill_state(world, &h, &mut s);

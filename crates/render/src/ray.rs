@@ -17,12 +17,15 @@ pub struct Ray {
     pub tmin: f32,
     /// Farthest accepted distance.
     pub tmax: f32,
+    /// Shutter time in `[0, 1]` at which the ray sees the scene (0: shutter open; see
+    /// [`crate::motion`]); 0 in scenes without motion blur.
+    pub time: f32,
 }
 
 impl Ray {
     /// A ray from `origin` along `dir` with no upper limit.
     pub fn new(origin: Vec3A, dir: Vec3A) -> Ray {
-        Ray { mask: u32::MAX, origin, dir, tmin: 0.0, tmax: f32::INFINITY }
+        Ray { mask: u32::MAX, origin, dir, tmin: 0.0, tmax: f32::INFINITY, time: 0.0 }
     }
 
     /// The point at distance `t`.

@@ -362,6 +362,10 @@ pub fn render_prepared_with_film(
                 for index in done..done + pass {
                     sampler.restart(index);
                     let u = sampler.next_2d();
+                    // Motion blur: the sample's shutter time is the next dimension, so that a
+                    // pixel's samples are stratified in (x, y, time) together; scenes where
+                    // nothing moves draw none and keep their numbers.
+                    let time = world.shutter.map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
                     // The path engine samples the filter; the classic engine samples the
                     // pixel and splats.
                     let (raster, weight) = if classic.is_some() {
@@ -373,7 +377,15 @@ pub fn render_prepared_with_film(
                     let mut motion = [0.0; 2];
                     let (color, alpha, first) = match classic {
                         Some(shading) => {
-                            let s = crate::classic::eye_sample(world, accel, shading, fg_cache, raster, [x, y], index);
+                            let s = crate::classic::eye_sample(
+                                world,
+                                accel,
+                                shading,
+                                fg_cache,
+                                raster,
+                                [x, y],
+                                (index, time),
+                            );
                             counts.rays += s.counts.rays;
                             counts.shadow_rays += s.counts.shadow_rays;
                             let i = b * band * w as usize + k;
@@ -385,7 +397,7 @@ pub fn render_prepared_with_film(
                             (bsdf::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
                         }
                         None => {
-                            let ray = cam.ray(raster.x, raster.y);
+                            let ray = cam.ray_at(raster.x, raster.y, time);
                             let r =
                                 trace_path(world, accel, shading, env, ray, &mut sampler, &settings.path, &mut counts);
                             if let Some(f) = r.first {

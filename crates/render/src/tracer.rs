@@ -72,13 +72,15 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     let mesh = &world.meshes[inst.mesh as usize];
     let tri = mesh.triangles[hit.prim as usize];
     let [i0, i1, i2] = tri.map(|i| i as usize);
-    let (p0, p1, p2) = (mesh.positions[i0], mesh.positions[i1], mesh.positions[i2]);
+    // Where the instance and its vertices are at the ray's time (see `crate::motion`).
+    let placed = inst.placement(s.time);
+    let [p0, p1, p2] = mesh.triangle_at(tri, s.time);
     let (b1, b2) = (hit.u, hit.v);
     let b0 = 1.0 - b1 - b2;
     s.dist = hit.t;
     s.point = s.org + s.dir * hit.t;
     s.bary = [b0, b1, b2];
-    let ng = (inst.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
     s.shadow_point = s.point;
     let mut ns = if mesh.normals.is_empty() {
         ng
@@ -97,9 +99,9 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
             }
         };
         let lifted = lift(p0, n0) * b0 + lift(p1, n1) * b1 + lift(p2, n2) * b2;
-        s.shadow_point = inst.object_to_world.transform_point3a(lifted);
+        s.shadow_point = placed.object_to_world.transform_point3a(lifted);
         let n = n0 * b0 + n1 * b1 + n2 * b2;
-        (inst.normal_to_world * n).normalize_or(ng)
+        (placed.normal_to_world * n).normalize_or(ng)
     };
     if ns.dot(ng) < 0.0 {
         ns = -ns;
@@ -124,21 +126,22 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
             let (e1, e2) = (p1 - p0, p2 - p0);
             let dpdu = (e1 * dv2 - e2 * dv1) / det;
             let dpdv = (e2 * du1 - e1 * du2) / det;
-            s.derivs = [inst.object_to_world.transform_vector3a(dpdu), inst.object_to_world.transform_vector3a(dpdv)];
+            s.derivs =
+                [placed.object_to_world.transform_vector3a(dpdu), placed.object_to_world.transform_vector3a(dpdv)];
         }
     }
     s.bump_basis = (!mesh.bump_basis.is_empty()).then(|| {
         let [a, b, c] = [mesh.bump_basis[i0], mesh.bump_basis[i1], mesh.bump_basis[i2]];
         let u = a[0] * b0 + b[0] * b1 + c[0] * b2;
         let v = a[1] * b0 + b[1] * b1 + c[1] * b2;
-        [inst.object_to_world.transform_vector3a(u), inst.object_to_world.transform_vector3a(v)]
+        [placed.object_to_world.transform_vector3a(u), placed.object_to_world.transform_vector3a(v)]
     });
     s.hair = None;
     if let Some(hair) = &mesh.hair {
         // mental ray's hair state: the normal faces the ray, perpendicular to the hair.
         let [t, root] = hair.tangents[hit.prim as usize];
-        let t = inst.object_to_world.transform_vector3a(t).normalize_or(Vec3A::Y);
-        let root = inst.object_to_world.transform_vector3a(root).normalize_or(t);
+        let t = placed.object_to_world.transform_vector3a(t).normalize_or(Vec3A::Y);
+        let root = placed.object_to_world.transform_vector3a(root).normalize_or(t);
         let back = -s.dir;
         let n = (back - t * t.dot(back)).normalize_or(back);
         let along = hair.along[i0] * b0 + hair.along[i1] * b1 + hair.along[i2] * b2;
@@ -158,8 +161,8 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.prim = hit.prim;
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     s.material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
-    s.object_to_world = inst.object_to_world;
-    s.world_to_object = inst.world_to_object;
+    s.object_to_world = placed.object_to_world;
+    s.world_to_object = placed.world_to_object;
     s.footprint += s.spread * hit.t;
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
     // Pixel differentials across the footprint (raster x along the camera's right), and
@@ -167,7 +170,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.set_pixel_derivs(world.camera.camera_to_world.transform_vector3a(Vec3A::X));
     s.tex_derivs = [glam::Vec2::ZERO; 2];
     if let (Some(space), None) = (mesh.textures.first(), &s.hair) {
-        let corners = [p0, p1, p2].map(|p| inst.object_to_world.transform_point3a(p));
+        let corners = [p0, p1, p2].map(|p| placed.object_to_world.transform_point3a(p));
         s.tex_derivs = s.texture_derivs(corners, [space[i0], space[i1], space[i2]]).unwrap_or_default();
     }
 }
@@ -178,7 +181,14 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
 fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [usize; 3], s: &State) -> Vec3A {
     let mut m = Vec3A::ZERO;
     if let Some(to_world) = inst.motion_to_world {
-        m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+        if inst.moves() {
+            // The hit is where the instance is at the sample's time: the motion is that
+            // material point's, from the interval's start to its end.
+            let p_obj = inst.placement(s.time).world_to_object.transform_point3a(s.point);
+            m += to_world.transform_point3a(p_obj) - inst.object_to_world.transform_point3a(p_obj);
+        } else {
+            m += to_world.transform_point3a(inst.world_to_object.transform_point3a(s.point)) - s.point;
+        }
     }
     if let (Some(a), Some(b), Some(c)) = (mesh.motion.get(v[0]), mesh.motion.get(v[1]), mesh.motion.get(v[2])) {
         if s.hair.is_none() {
@@ -190,8 +200,8 @@ fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [u
 }
 
 /// World-space motion over the shutter interval of `point` on `hit` (as [`fill_state`]
-/// finds it; for the path engine's first hit).
-pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
+/// finds it at shutter time `time`; for the path engine's first hit).
+pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A, time: f32) -> Vec3A {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
     let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
@@ -199,6 +209,7 @@ pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A) -> Vec3A {
         point,
         bary: [1.0 - hit.u - hit.v, hit.u, hit.v],
         hair: mesh.hair.as_ref().map(|_| shader::state::HairState::default()),
+        time,
         ..State::default()
     };
     motion(inst, mesh, tri, &s)
@@ -236,7 +247,8 @@ pub fn raster_motion(cam: &crate::camera::CameraModel, p: Vec3A, m: Vec3A) -> Ve
 impl Tracer for SceneTracer<'_> {
     fn intersect(&self, s: &mut State, max_dist: f32) -> bool {
         self.count(false);
-        let mut ray = Ray { mask: ray_mask(s.ray_type), origin: s.org, dir: s.dir, tmin: 0.0, tmax: max_dist };
+        let mut ray =
+            Ray { mask: ray_mask(s.ray_type), origin: s.org, dir: s.dir, tmin: 0.0, tmax: max_dist, time: s.time };
         if s.ray_type == RayType::Eye {
             let cam = &self.world.camera;
             let r = cam.clip_ray(s.org, s.dir);
@@ -261,7 +273,7 @@ impl Tracer for SceneTracer<'_> {
         // A shadow ray crosses at most this many surfaces before it counts as blocked.
         for _ in 0..64 {
             self.count(true);
-            let ray = Ray { mask: mask::SHADOW, origin, dir: s.dir, tmin: 0.0, tmax: remaining };
+            let ray = Ray { mask: mask::SHADOW, origin, dir: s.dir, tmin: 0.0, tmax: remaining, time: s.time };
             let Some(hit) = self.accel.intersect(&ray) else { return };
             let mut h = s.child(RayType::Shadow, origin, s.dir);
             h.light = s.light;
@@ -285,14 +297,20 @@ impl Tracer for SceneTracer<'_> {
         let inst = self.world.instances.get(hit.geometry as usize)?;
         let mesh = &self.world.meshes[inst.mesh as usize];
         let tri = mesh.triangles.get(hit.prim as usize)?.map(|i| i as usize);
+        let placed = inst.placement(hit.time);
         match data {
-            VertexData::Point => Some(tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i]))),
+            VertexData::Point => {
+                let p = mesh.triangle_at(tri.map(|i| i as u32), hit.time);
+                Some(p.map(|p| placed.object_to_world.transform_point3a(p)))
+            }
             VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
-            VertexData::Normal => Some(tri.map(|i| (inst.normal_to_world * mesh.normals[i]).normalize_or_zero())),
+            VertexData::Normal => Some(tri.map(|i| (placed.normal_to_world * mesh.normals[i]).normalize_or_zero())),
             VertexData::Motion if mesh.motion.is_empty() => Some([Vec3A::ZERO; 3]),
-            VertexData::Motion => Some(
-                tri.map(|i| inst.object_to_world.transform_vector3a(mesh.motion.get(i).copied().unwrap_or_default())),
-            ),
+            VertexData::Motion => {
+                Some(tri.map(|i| {
+                    placed.object_to_world.transform_vector3a(mesh.motion.get(i).copied().unwrap_or_default())
+                }))
+            }
             VertexData::Texture(k) => mesh.textures.get(k).map(|t| tri.map(|i| t[i])),
         }
     }

@@ -9,6 +9,7 @@ use shader::Shading;
 use crate::camera::CameraModel;
 use crate::light::LightSource;
 use crate::mesh::MeshData;
+use crate::motion::{lerp_keys, motion_path, Lerp, Shutter};
 
 /// An instance of a mesh.
 #[derive(Clone, Debug)]
@@ -32,6 +33,58 @@ pub struct InstanceData {
     /// Object → world at the end of the shutter interval, when the instance moves
     /// (`motion transform`).
     pub motion_to_world: Option<Affine3A>,
+    /// Object → world at shutter times spread evenly over the shutter (see
+    /// [`crate::motion`]), when the instance moves while the shutter is open; empty: it
+    /// stays at `object_to_world`.
+    pub keys: Vec<Affine3A>,
+}
+
+/// Where an instance is at one shutter time: its transforms then.
+#[derive(Clone, Copy, Debug)]
+pub struct Placement {
+    /// Object → world.
+    pub object_to_world: Affine3A,
+    /// World → object.
+    pub world_to_object: Affine3A,
+    /// Object-space normals → world space (inverse transpose).
+    pub normal_to_world: Mat3A,
+}
+
+impl InstanceData {
+    /// Whether the instance moves while the shutter is open.
+    #[inline]
+    pub fn moves(&self) -> bool {
+        !self.keys.is_empty()
+    }
+
+    /// Object → world at shutter time `time` (see [`crate::motion`]).
+    #[inline]
+    pub fn object_to_world_at(&self, time: f32) -> Affine3A {
+        if self.keys.is_empty() {
+            self.object_to_world
+        } else {
+            lerp_keys(&self.keys, time)
+        }
+    }
+
+    /// The instance's transforms at shutter time `time` (the stored ones when it does not
+    /// move).
+    #[inline]
+    pub fn placement(&self, time: f32) -> Placement {
+        if self.keys.is_empty() {
+            return Placement {
+                object_to_world: self.object_to_world,
+                world_to_object: self.world_to_object,
+                normal_to_world: self.normal_to_world,
+            };
+        }
+        let object_to_world = lerp_keys(&self.keys, time);
+        Placement {
+            object_to_world,
+            world_to_object: object_to_world.inverse(),
+            normal_to_world: object_to_world.matrix3.inverse().transpose(),
+        }
+    }
 }
 
 /// Everything an integrator needs.
@@ -55,6 +108,9 @@ pub struct World {
     /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
     /// look at what they cross.
     pub has_cutouts: bool,
+    /// The shutter, when the scene renders motion blur and something moves while it is
+    /// open (`None`: every ray sees the scene at shutter time 0 and draws no time).
+    pub shutter: Option<Shutter>,
 }
 
 /// Divides the emission of materials given for their whole surface (MDL `lumen`,
@@ -132,6 +188,8 @@ impl World {
                     slots: m.triangle_slots.clone(),
                     hair: None,
                     motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
+                    motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
+                    position_keys: Vec::new(),
                 }
             })
             .collect();
@@ -165,6 +223,7 @@ impl World {
                     tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
                     scene_index: scene_index as u32,
                     motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
+                    keys: Vec::new(),
                 }
             })
             .collect();
@@ -207,6 +266,7 @@ impl World {
                 tag: i.tag.unwrap_or(0).clamp(0, i64::from(u32::MAX)) as u32,
                 scene_index: scene_index as u32,
                 motion_to_world: i.motion_world_to_object.map(|m| affine(m).inverse()),
+                keys: Vec::new(),
             };
             instances.push(placed(mesh, crossed_flags));
             if let Some(facing_mesh) = facing_mesh {
@@ -217,7 +277,7 @@ impl World {
         let mut lights = Vec::new();
         for l in &scene.lights {
             match LightSource::in_scene_shaded(l, scene, shading) {
-                Ok(src) => lights.push(src),
+                Ok(src) => lights.push((src, l.light_to_world, l.motion_light_to_world)),
                 Err(w) => warnings.push(w),
             }
         }
@@ -232,28 +292,45 @@ impl World {
                 user_buffers.push((fb.name.clone(), fb.datatype.clone()));
             }
         }
+        let mut camera = CameraModel::new(&scene.camera);
+        let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
+            let lights_move = set_light_keys(shutter, &mut lights, &mut warnings);
+            set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings) | lights_move
+        });
+        let lights = lights.into_iter().map(|(l, _, _)| l).collect();
         World {
             meshes,
             instances,
             materials,
             lights,
-            camera: CameraModel::new(&scene.camera),
+            camera,
             options: scene.options.clone(),
             user_buffers,
             warnings,
             has_cutouts,
+            shutter,
         }
     }
 
-    /// World-space bounds of all instances.
+    /// World-space bounds of all instances (over the whole shutter when things move).
     pub fn bounds(&self) -> (Vec3A, Vec3A) {
         let mut lo = Vec3A::splat(f32::INFINITY);
         let mut hi = Vec3A::splat(f32::NEG_INFINITY);
         for inst in &self.instances {
-            for p in &self.meshes[inst.mesh as usize].positions {
-                let w = inst.object_to_world.transform_point3a(*p);
-                lo = lo.min(w);
-                hi = hi.max(w);
+            let mesh = &self.meshes[inst.mesh as usize];
+            if !inst.moves() && !mesh.moves() {
+                for p in &mesh.positions {
+                    let w = inst.object_to_world.transform_point3a(*p);
+                    lo = lo.min(w);
+                    hi = hi.max(w);
+                }
+                continue;
+            }
+            for key in world_key_positions(inst, mesh) {
+                for w in key {
+                    lo = lo.min(w);
+                    hi = hi.max(w);
+                }
             }
         }
         (lo, hi)
@@ -263,4 +340,121 @@ impl World {
     pub fn instanced_triangles(&self) -> usize {
         self.instances.iter().map(|i| self.meshes[i.mesh as usize].triangles.len()).sum()
     }
+}
+
+/// Keys over the shutter of everything that moves while it is open: instances with a
+/// `motion transform` (object → world interpolated linearly over the motion interval, as
+/// mental ray moves instances), meshes with motion vectors (one key per motion step) and
+/// the camera. Returns whether anything moves.
+fn set_motion_keys(
+    shutter: &Shutter,
+    scene: &Scene,
+    meshes: &mut [MeshData],
+    instances: &mut [InstanceData],
+    camera: &mut CameraModel,
+    warnings: &mut Vec<String>,
+) -> bool {
+    let limit = scene::sanity::WORLD_LIMIT as f32;
+    let placed_in_range = |m: &Affine3A| m.is_finite() && m.translation.abs().max_element() <= limit;
+    let mut out_of_range = |what: String| {
+        warnings.push(format!(
+            "{what} moves beyond single precision (±{limit:e}) while the shutter is open: it is kept still"
+        ))
+    };
+    let mut moving = false;
+    for inst in instances.iter_mut() {
+        if let Some(end) = inst.motion_to_world.filter(|m| *m != inst.object_to_world) {
+            let keys: Vec<Affine3A> =
+                shutter.key_times(1).map(|tau| Affine3A::lerp(inst.object_to_world, end, tau)).collect();
+            if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
+                inst.keys = keys;
+                moving = true;
+            } else {
+                out_of_range(format!("instance {}", inst.scene_index));
+            }
+        }
+    }
+    for mesh in meshes.iter_mut() {
+        let still = |m: &[Vec3A]| m.iter().all(|v| *v == Vec3A::ZERO);
+        if mesh.motion.is_empty()
+            || mesh.hair.is_some()
+            || still(&mesh.motion) && mesh.motion_more.iter().all(|m| still(m))
+        {
+            continue;
+        }
+        // One key per motion step (each vertex's `m` vectors are its motion path's corners).
+        let vectors = mesh.motion_steps().min(crate::mesh::MAX_MOTION_STEPS);
+        let keys = vectors;
+        let position_keys: Vec<Vec<Vec3A>> = shutter
+            .key_times(keys)
+            .map(|tau| {
+                (0..mesh.positions.len())
+                    .map(|i| motion_path(mesh.positions[i], &mesh.motion_vectors(i, vectors), tau))
+                    .collect()
+            })
+            .collect();
+        if position_keys.iter().flatten().all(|p| p.is_finite() && p.abs().max_element() <= limit) {
+            mesh.position_keys = position_keys;
+            moving = true;
+        } else {
+            out_of_range("a mesh's motion vectors: the mesh".into());
+        }
+    }
+    if let Some(end) = scene.camera.motion_world_to_camera {
+        let end = affine(end).inverse();
+        if end != camera.camera_to_world {
+            let keys: Vec<Affine3A> =
+                shutter.key_times(1).map(|tau| Affine3A::lerp(camera.camera_to_world, end, tau)).collect();
+            if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
+                camera.keys = keys;
+                moving = true;
+            } else {
+                out_of_range("the camera".into());
+            }
+        }
+    }
+    moving
+}
+
+/// Keys over the shutter of the lights whose instances move (their world → world
+/// displacement from where they are at motion time 0); returns whether any moves.
+fn set_light_keys(
+    shutter: &Shutter,
+    lights: &mut [(LightSource, glam::DMat4, Option<glam::DMat4>)],
+    warnings: &mut Vec<String>,
+) -> bool {
+    let mut moving = false;
+    for (light, start, end) in lights.iter_mut() {
+        let Some(end) = end else { continue };
+        warnings.push(format!(
+            "light '{}' moves while the shutter is open: the path engine moves it, the classic engine's light \
+             shaders see it where it is at the shutter's opening",
+            light.name
+        ));
+        let (start, end) = (affine(*start), affine(*end));
+        let back = start.inverse();
+        let keys: Vec<Affine3A> = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
+        if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= scene::sanity::WORLD_LIMIT as f32)
+        {
+            warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.name));
+            continue;
+        }
+        light.motion = keys;
+        moving = true;
+    }
+    moving
+}
+
+/// World-space positions of an instance's mesh at each key of its motion (the more keys of
+/// the instance's and the mesh's), for acceleration structures that store moving
+/// triangles in world space.
+pub fn world_key_positions(inst: &InstanceData, mesh: &MeshData) -> Vec<Vec<Vec3A>> {
+    let keys = inst.keys.len().max(mesh.position_keys.len()).max(1);
+    (0..keys)
+        .map(|j| {
+            let s = if keys == 1 { 0.0 } else { j as f32 / (keys - 1) as f32 };
+            let to_world = inst.object_to_world_at(s);
+            mesh.positions_at(s).into_iter().map(|p| to_world.transform_point3a(p)).collect()
+        })
+        .collect()
 }

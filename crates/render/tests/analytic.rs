@@ -62,6 +62,7 @@ fn instance(mesh: u32, material: u32) -> InstanceData {
         tag: 0,
         scene_index: 0,
         motion_to_world: None,
+        keys: Vec::new(),
     }
 }
 
@@ -79,6 +80,7 @@ fn camera(camera_to_world: Affine3A, size: u32, aperture: f32, ortho: bool) -> C
         offset: (0.0, 0.0),
         clip: (0.0, f32::INFINITY),
         window: (0, 0, size, size),
+        keys: Vec::new(),
     }
 }
 
@@ -103,6 +105,7 @@ fn world(
         options: options(),
         user_buffers: Vec::new(),
         warnings: Vec::new(),
+        shutter: None,
     }
 }
 
@@ -214,6 +217,7 @@ fn lambertian_plane_under_a_point_light() {
         spot_exponent: None,
         visible: false,
         shadow: true,
+        motion: Vec::new(),
     };
     // An orthographic camera 5 units up looking down, 4 units wide, 32×32 pixels.
     let cam = camera(Affine3A::from_translation(glam::Vec3::new(0.0, 0.0, 5.0)), 32, 4.0, true);
@@ -257,6 +261,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         spot_exponent: None,
         visible: true,
         shadow: true,
+        motion: Vec::new(),
     };
     // Seen from below, through its middle: radiance E/π exactly.
     let from_below = Affine3A::from_rotation_x(std::f32::consts::PI) * Affine3A::IDENTITY;

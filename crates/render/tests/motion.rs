@@ -9,9 +9,14 @@ use shader::{Shading, ShadingOptions};
 /// An orthographic 2×2 view at 8×8 pixels (4 pixels per unit) onto a quad at z = −5 whose
 /// instance carries `motion`.
 fn motion_buffer(motion: &str) -> Vec<[f32; 2]> {
+    motion_buffer_with(motion, "")
+}
+
+/// [`motion_buffer`] with more `options` statements.
+fn motion_buffer_with(motion: &str, options: &str) -> Vec<[f32; 2]> {
     let text = format!(
         r#"
-options "opt" filter box 1 1 shutter 0 1 end options
+options "opt" filter box 1 1 shutter 0 1 {options} end options
 camera "cam" focal infinity aperture 2 aspect 1 resolution 8 8 end camera
 instance "cam_inst" "cam" end instance
 material "m" "mib_illum_lambert" ("ambience" 1 1 1, "ambient" 0.5 0.5 0.5) end material
@@ -54,4 +59,15 @@ fn a_quad_moving_one_unit_right_moves_four_pixels() {
 fn a_static_quad_has_no_motion() {
     let m = motion_buffer("");
     assert!(m.iter().all(|v| *v == [0.0, 0.0]));
+}
+
+/// With motion blur on (`motion on`), the quad is hit where it is at each sample's time,
+/// and the motion buffer still holds the motion over the whole interval: 4 pixels right
+/// wherever the first sample hit it (the quad covers the whole view all the time).
+#[test]
+fn the_motion_buffer_is_the_same_with_motion_blur() {
+    let m = motion_buffer_with("motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 0 0 1", "motion on");
+    for (i, v) in m.iter().enumerate() {
+        assert!((v[0] - 4.0).abs() < 1e-3 && v[1].abs() < 1e-3, "pixel {i}: {v:?}");
+    }
 }

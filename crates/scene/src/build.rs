@@ -389,6 +389,10 @@ impl<'a> Builder<'a, '_> {
                             ));
                         };
                         let mut light = Light::from_blocks(blocks, full, light_to_world, own.visible);
+                        light.motion_light_to_world = next
+                            .motion_world_to_local
+                            .filter(|m| *m != next.world_to_local)
+                            .and_then(transform::inverse);
                         crate::sanity::light(&mut light, blocks, self.diags);
                         self.lights.push(light);
                     }
@@ -656,7 +660,12 @@ impl<'a> Builder<'a, '_> {
             ));
             return None;
         }
-        Some(Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world, self.diags))
+        let mut camera = Camera::from_blocks(&blocks, &full, world_to_camera, camera_to_world, self.diags);
+        camera.motion_world_to_camera = match self.camera {
+            Some((_, Some(m))) if m != world_to_camera && transform::inverse(m).is_some() => Some(m),
+            _ => None,
+        };
+        Some(camera)
     }
 
     /// Resolves instance light lists to light indices.

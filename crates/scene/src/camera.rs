@@ -81,6 +81,9 @@ pub struct Camera {
     pub world_to_camera: DMat4,
     /// Camera → world space.
     pub camera_to_world: DMat4,
+    /// World → camera space at the end of the motion interval, when the camera's instance
+    /// path moves (`motion transform`, see [`crate::Instance::motion_world_to_object`]).
+    pub motion_world_to_camera: Option<DMat4>,
     /// `lens` shaders, in order.
     pub lens: Vec<ShaderList>,
     /// `environment` shaders.
@@ -217,6 +220,7 @@ impl Camera {
                 .map(|k| (int_arg(k, 0).unwrap_or(1), f64_arg(k, 1).unwrap_or(0.0)))
                 .unwrap_or((1, 0.0)),
             world_to_camera,
+            motion_world_to_camera: None,
             camera_to_world,
             lens: Vec::new(),
             environment: None,

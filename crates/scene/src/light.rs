@@ -115,6 +115,9 @@ pub struct Light {
     pub lightprofile: Option<String>,
     /// Light space → world space.
     pub light_to_world: DMat4,
+    /// Light space → world space at the end of the motion interval, when the light's
+    /// instance path moves (`motion transform`).
+    pub motion_light_to_world: Option<DMat4>,
     /// Attributes.
     pub attributes: Attributes,
 }
@@ -233,6 +236,7 @@ impl Light {
             shadowmap: last(&stmts, "shadowmap").map(|k| bool_arg(k, 0)).unwrap_or(false),
             lightprofile: last(&stmts, "lightprofile").and_then(|k| str_arg(k, 0)).map(String::from),
             light_to_world,
+            motion_light_to_world: None,
             attributes: attributes(&stmts),
         }
     }

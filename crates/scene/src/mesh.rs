@@ -45,6 +45,10 @@ pub struct Mesh {
     /// Per-vertex motion vectors (the first `m`), object space per shutter interval; empty
     /// when there are none.
     pub motion: Vec<Vec3>,
+    /// The further motion vectors of `motion steps` 2…n (each vertex's second, third, …
+    /// `m`): `motion_more[k]` holds every vertex's vector of step k + 2, aligned with
+    /// `positions` (vertices without it get zero); empty with one step or none.
+    pub motion_more: Vec<Vec<Vec3>>,
     /// Per-vertex surface derivatives (dP/du, dP/dv) when the geometry gives them (`d`);
     /// empty otherwise.
     pub derivatives: Vec<[Vec3; 2]>,
@@ -100,6 +104,7 @@ impl Mesh {
             + spaces(&self.textures)
             + spaces(&self.user)
             + self.motion.len() * 12
+            + self.motion_more.iter().map(|m| m.len() * 12).sum::<usize>()
             + self.derivatives.len() * 24
             + self.bump_basis.len() * 24
             + self.triangles.len() * 12
@@ -117,6 +122,13 @@ impl Mesh {
         let n_other = other.positions.len();
         pad_merge(&mut self.normals, other.normals, had, n_other, Vec3::ZERO);
         pad_merge(&mut self.motion, other.motion, had, n_other, Vec3::ZERO);
+        let steps = self.motion_more.len().max(other.motion_more.len());
+        self.motion_more.resize(steps, Vec::new());
+        let mut other_more = other.motion_more;
+        other_more.resize(steps, Vec::new());
+        for (mine, theirs) in self.motion_more.iter_mut().zip(other_more) {
+            pad_merge(mine, theirs, had, n_other, Vec3::ZERO);
+        }
         pad_merge(&mut self.derivatives, other.derivatives, had, n_other, [Vec3::ZERO; 2]);
         pad_merge(&mut self.bump_basis, other.bump_basis, had, n_other, [Vec3::ZERO; 2]);
         merge_spaces(&mut self.textures, other.textures, had, n_other);

@@ -239,6 +239,7 @@ pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: 
     };
     mesh.normals.iter_mut().for_each(&mut zero);
     mesh.motion.iter_mut().for_each(&mut zero);
+    mesh.motion_more.iter_mut().flatten().for_each(&mut zero);
     for space in mesh.textures.iter_mut().chain(mesh.user.iter_mut()) {
         space.coords.iter_mut().for_each(&mut zero);
     }

@@ -4,6 +4,13 @@
 //! BVH over those instances' world bounds. Rays enter an instance's BVH transformed to its
 //! object space (the parameter t is the same in both spaces, since the direction is not
 //! renormalised).
+//!
+//! Moving geometry (see [`crate::motion`]) lives apart from the static: its triangles keep
+//! their vertices at each key over the shutter, are bounded by the union of their boxes
+//! at the keys (which holds the triangle at every time in between, since the vertices move
+//! linearly from key to key) and are intersected where they are at the ray's time; moving
+//! instances of shared meshes are bounded the same way and enter at the ray's time. A
+//! static scene has none of them and traces exactly as before.
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
@@ -32,12 +39,136 @@ struct Tri {
 struct MeshBvh {
     bvh: CwBvh,
     tris: Vec<Tri>,
+    /// The mesh's triangles when its vertices move (then `tris` is empty).
+    moving: Option<MovingBvh>,
+}
+
+/// A moving triangle in BVH order: where its keys start in [`MovingBvh::verts`], how many
+/// there are, its index in the mesh and its instance.
+#[derive(Clone, Copy)]
+struct MovingTri {
+    first: u32,
+    keys: u32,
+    index: u32,
+    instance: u32,
+}
+
+/// A moving triangle to build from: its index in the mesh, its instance, its vertex
+/// indices and its mesh's vertex positions at each key.
+type MovingSource<'k> = (u32, u32, [u32; 3], &'k [Vec<Vec3A>]);
+
+/// A BVH over moving triangles, bounded over the whole shutter.
+struct MovingBvh {
+    bvh: CwBvh,
+    tris: Vec<MovingTri>,
+    /// Each triangle's vertices at each of its keys.
+    verts: Vec<[Vec3A; 3]>,
+}
+
+impl MovingBvh {
+    /// A BVH over the triangles `tris` (index in the mesh, instance) of meshes whose vertex
+    /// keys are `keys` (one list of positions per key, evenly over the shutter).
+    fn build(source: Vec<MovingSource>, params: BvhBuildParams) -> Option<MovingBvh> {
+        if source.is_empty() {
+            return None;
+        }
+        let mut tris = Vec::with_capacity(source.len());
+        let mut verts = Vec::new();
+        let mut boxes = Vec::with_capacity(source.len());
+        for (index, instance, tri, keys) in source {
+            let mut b = Aabb::empty();
+            tris.push(MovingTri { first: verts.len() as u32, keys: keys.len() as u32, index, instance });
+            for key in keys {
+                let v = tri.map(|i| key[i as usize]);
+                for p in v {
+                    b.extend(p);
+                }
+                verts.push(v);
+            }
+            boxes.push(b);
+        }
+        let bvh = build_cwbvh(&boxes, params, &mut Default::default());
+        let tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
+        Some(MovingBvh { bvh, tris, verts })
+    }
+
+    /// The vertices of `t` at shutter time `time`.
+    #[inline]
+    fn at(&self, t: &MovingTri, time: f32) -> [Vec3A; 3] {
+        let first = t.first as usize;
+        if t.keys < 2 {
+            return self.verts[first];
+        }
+        let (j, f) = crate::motion::key_segment(t.keys as usize, time);
+        let (a, b) = (self.verts[first + j], self.verts[first + j + 1]);
+        [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f]
+    }
+
+    /// The closest hit of `ray` among triangles that `accept` lets through, updating
+    /// `best` (the hit's instance is `instance` if given, else the triangle's); returns the
+    /// closest distance found (`ray.tmax` if none).
+    fn closest(
+        &self,
+        ray: &Ray,
+        instance: Option<u32>,
+        accept: impl Fn(&MovingTri) -> bool,
+        best: &mut Option<Hit>,
+    ) -> f32 {
+        let mut found = ray.tmax;
+        let mut hit = RayHit::none();
+        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        self.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+            let t = &self.tris[id];
+            if !accept(t) {
+                return f32::INFINITY;
+            }
+            let [p0, p1, p2] = self.at(t, ray.time);
+            match intersect_triangle(&Ray { tmax: r.tmax, ..*ray }, p0, p1, p2) {
+                Some((d, u, v)) => {
+                    if d < found {
+                        found = d;
+                        *best = Some(Hit { t: d, instance: instance.unwrap_or(t.instance), prim: t.index, u, v });
+                    }
+                    d
+                }
+                None => f32::INFINITY,
+            }
+        });
+        found
+    }
+
+    /// Whether `ray` hits a triangle that `accept` lets through.
+    fn any(&self, ray: &Ray, accept: impl Fn(&MovingTri) -> bool) -> bool {
+        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        !self.bvh.ray_traverse_miss(bvh_ray, |_, id| {
+            let t = &self.tris[id];
+            if !accept(t) {
+                return f32::INFINITY;
+            }
+            let [p0, p1, p2] = self.at(t, ray.time);
+            intersect_triangle(ray, p0, p1, p2).map_or(f32::INFINITY, |h| h.0)
+        })
+    }
 }
 
 struct InstanceRef {
     mesh: u32,
     world_to_object: glam::Affine3A,
     mask: u32,
+    /// Object → world at keys over the shutter when the instance moves (else empty).
+    keys: Vec<glam::Affine3A>,
+}
+
+impl InstanceRef {
+    /// World → object at shutter time `time`.
+    #[inline]
+    fn world_to_object_at(&self, time: f32) -> glam::Affine3A {
+        if self.keys.is_empty() {
+            self.world_to_object
+        } else {
+            crate::motion::lerp_keys(&self.keys, time).inverse()
+        }
+    }
 }
 
 /// Two-level BVH over a [`World`], with singly-used meshes flattened into world space.
@@ -49,17 +180,19 @@ pub struct BvhAccel {
     tlas: Option<CwBvh>,
     /// The world-space BVH of the flattened instances.
     flat: Option<MeshBvh>,
+    /// The world-space BVH of the flattened instances that move.
+    flat_moving: Option<MovingBvh>,
 }
 
 /// A BVH over triangles (each carrying its mesh index and instance).
 fn triangle_bvh(source: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
     if source.is_empty() {
-        return MeshBvh { bvh: CwBvh::default(), tris: Vec::new() };
+        return MeshBvh { bvh: CwBvh::default(), tris: Vec::new(), moving: None };
     }
     let boxes: Vec<Triangle> = source.iter().map(|t| Triangle { v0: t.p0, v1: t.p1, v2: t.p2 }).collect();
     let bvh = build_cwbvh_from_tris(&boxes, params, &mut Default::default());
     let tris = bvh.primitive_indices.iter().map(|&i| source[i as usize]).collect();
-    MeshBvh { bvh, tris }
+    MeshBvh { bvh, tris, moving: None }
 }
 
 /// The traversal ray for `origin + t·dir`, t in [tmin, tmax]. Negative zeros in the
@@ -111,6 +244,13 @@ impl BvhAccel {
             .iter()
             .zip(&shared)
             .map(|(m, &used)| {
+                if used && m.moves() {
+                    let source =
+                        m.triangles.iter().enumerate().map(|(i, t)| (i as u32, 0, *t, &m.position_keys[..])).collect();
+                    let mut empty = triangle_bvh(Vec::new(), params);
+                    empty.moving = MovingBvh::build(source, params);
+                    return empty;
+                }
                 let source = if used {
                     m.triangles
                         .iter()
@@ -132,11 +272,21 @@ impl BvhAccel {
         let instances: Vec<InstanceRef> = world
             .instances
             .iter()
-            .map(|i| InstanceRef { mesh: i.mesh, world_to_object: i.world_to_object, mask: instance_mask(&i.flags) })
+            .map(|i| InstanceRef {
+                mesh: i.mesh,
+                world_to_object: i.world_to_object,
+                mask: instance_mask(&i.flags),
+                keys: i.keys.clone(),
+            })
             .collect();
         let mut world_tris = Vec::new();
+        let mut moving_keys = Vec::new();
         for (k, inst) in world.instances.iter().enumerate().filter(|(k, _)| flat[*k]) {
             let m = &world.meshes[inst.mesh as usize];
+            if inst.moves() || m.moves() {
+                moving_keys.push((k as u32, crate::world::world_key_positions(inst, m)));
+                continue;
+            }
             let w = |i: u32| inst.object_to_world.transform_point3a(m.positions[i as usize]);
             world_tris.extend(m.triangles.iter().enumerate().map(|(i, t)| Tri {
                 p0: w(t[0]),
@@ -147,20 +297,37 @@ impl BvhAccel {
             }));
         }
         let flat_bvh = (!world_tris.is_empty()).then(|| triangle_bvh(world_tris, params));
+        let moving_source = moving_keys
+            .iter()
+            .flat_map(|(k, keys)| {
+                let m = &world.meshes[world.instances[*k as usize].mesh as usize];
+                m.triangles.iter().enumerate().map(move |(i, t)| (i as u32, *k, *t, &keys[..]))
+            })
+            .collect();
+        let flat_moving = MovingBvh::build(moving_source, params);
         let tlas_instances: Vec<u32> = (0..world.instances.len() as u32).filter(|k| !flat[*k as usize]).collect();
         let bounds: Vec<Aabb> = tlas_instances
             .iter()
             .map(|&k| {
                 let i = &world.instances[k as usize];
+                let mesh = &world.meshes[i.mesh as usize];
                 let mut b = Aabb::empty();
-                for p in &world.meshes[i.mesh as usize].positions {
+                if i.moves() || mesh.moves() {
+                    for key in crate::world::world_key_positions(i, mesh) {
+                        for p in key {
+                            b.extend(p);
+                        }
+                    }
+                    return b;
+                }
+                for p in &mesh.positions {
                     b.extend(i.object_to_world.transform_point3a(*p));
                 }
                 b
             })
             .collect();
         let tlas = (!bounds.is_empty()).then(|| build_cwbvh(&bounds, params, &mut Default::default()));
-        BvhAccel { meshes, instances, tlas_instances, tlas, flat: flat_bvh }
+        BvhAccel { meshes, instances, tlas_instances, tlas, flat: flat_bvh, flat_moving }
     }
 
     /// Closest hit among the flattened instances, updating `best`.
@@ -193,13 +360,19 @@ impl BvhAccel {
             return f32::INFINITY;
         }
         let mesh = &self.meshes[inst.mesh as usize];
+        let world_to_object = inst.world_to_object_at(ray.time);
         let local = Ray {
-            origin: inst.world_to_object.transform_point3a(ray.origin),
-            dir: inst.world_to_object.transform_vector3a(ray.dir),
+            origin: world_to_object.transform_point3a(ray.origin),
+            dir: world_to_object.transform_vector3a(ray.dir),
             tmin: ray.tmin,
             tmax,
             mask: ray.mask,
+            time: ray.time,
         };
+        if let Some(moving) = &mesh.moving {
+            let found = moving.closest(&local, Some(instance), |_| true, best);
+            return if found < tmax { found } else { f32::INFINITY };
+        }
         let mut found = f32::INFINITY;
         let mut hit = RayHit::none();
         let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
@@ -223,7 +396,11 @@ impl BvhAccel {
 impl Accel for BvhAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut best = None;
-        let tmax = self.intersect_flat(ray, &mut best);
+        let mut tmax = self.intersect_flat(ray, &mut best);
+        if let Some(moving) = &self.flat_moving {
+            let accept = |t: &MovingTri| self.instances[t.instance as usize].mask & ray.mask != 0;
+            tmax = moving.closest(&Ray { tmax, ..*ray }, None, accept, &mut best);
+        }
         let Some(tlas) = self.tlas.as_ref() else { return best };
         let mut hit = RayHit::none();
         let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, tmax);
@@ -248,6 +425,11 @@ impl Accel for BvhAccel {
                 return true;
             }
         }
+        if let Some(moving) = &self.flat_moving {
+            if moving.any(ray, |t| self.instances[t.instance as usize].mask & ray.mask != 0) {
+                return true;
+            }
+        }
         let Some(tlas) = self.tlas.as_ref() else { return false };
         let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
         !tlas.ray_traverse_miss(bvh_ray, |_, id| {
@@ -256,11 +438,15 @@ impl Accel for BvhAccel {
                 return f32::INFINITY;
             }
             let mesh = &self.meshes[inst.mesh as usize];
+            let world_to_object = inst.world_to_object_at(ray.time);
             let local = Ray {
-                origin: inst.world_to_object.transform_point3a(ray.origin),
-                dir: inst.world_to_object.transform_vector3a(ray.dir),
+                origin: world_to_object.transform_point3a(ray.origin),
+                dir: world_to_object.transform_vector3a(ray.dir),
                 ..*ray
             };
+            if let Some(moving) = &mesh.moving {
+                return if moving.any(&local, |_| true) { ray.tmin } else { f32::INFINITY };
+            }
             let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
             let missed = mesh.bvh.ray_traverse_miss(bvh_ray, |_, id| {
                 let t = &mesh.tris[id];

@@ -4,6 +4,10 @@
 //!
 //! This module is the one place in mira with `unsafe` code: calls into the C library. Each
 //! call's preconditions are stated next to it.
+//!
+//! Moving geometry (see [`crate::motion`]) uses Embree's motion blur: a moving mesh's
+//! triangle geometry has one vertex buffer per key (`rtcSetGeometryTimeStepCount`), a
+//! moving instance one transform per key, and `ray.time` is the ray's shutter time.
 #![allow(unsafe_code)]
 
 use std::ffi::c_void;
@@ -102,6 +106,7 @@ extern "C" {
     fn rtcSetGeometryInstancedScene(geometry: RtcGeometry, scene: RtcScene);
     fn rtcSetGeometryTransform(geometry: RtcGeometry, time_step: c_uint, format: c_uint, xfm: *const f32);
     fn rtcSetGeometryMask(geometry: RtcGeometry, mask: c_uint);
+    fn rtcSetGeometryTimeStepCount(geometry: RtcGeometry, count: c_uint);
     fn rtcCommitGeometry(geometry: RtcGeometry);
     fn rtcAttachGeometryByID(scene: RtcScene, geometry: RtcGeometry, id: c_uint);
     fn rtcReleaseGeometry(geometry: RtcGeometry);
@@ -161,7 +166,11 @@ impl<'w> EmbreeAccel<'w> {
                     if m.triangles.len() >= COMPACT_FROM_TRIANGLES {
                         rtcSetSceneFlags(scene, SCENE_FLAG_COMPACT);
                     }
-                    if used && !m.triangles.is_empty() {
+                    if used && !m.triangles.is_empty() && m.moves() {
+                        let geom = moving_triangle_geometry(device, m, &m.position_keys);
+                        rtcAttachGeometryByID(scene, geom, 0);
+                        rtcReleaseGeometry(geom);
+                    } else if used && !m.triangles.is_empty() {
                         let geom = triangle_geometry(device, m, glam::Affine3A::IDENTITY);
                         rtcAttachGeometryByID(scene, geom, 0);
                         rtcReleaseGeometry(geom);
@@ -183,9 +192,20 @@ impl<'w> EmbreeAccel<'w> {
                 rtcSetSceneFlags(top, SCENE_FLAG_COMPACT);
             }
             for (i, inst) in world.instances.iter().enumerate() {
+                let mesh = &world.meshes[inst.mesh as usize];
+                if flat[i] && (inst.moves() || mesh.moves()) {
+                    // A moving mesh used once: in world space at each key.
+                    let keys = crate::world::world_key_positions(inst, mesh);
+                    let geom = moving_triangle_geometry(device, mesh, &keys);
+                    rtcSetGeometryMask(geom, instance_mask(&inst.flags));
+                    rtcCommitGeometry(geom);
+                    rtcAttachGeometryByID(top, geom, i as c_uint);
+                    rtcReleaseGeometry(geom);
+                    continue;
+                }
                 if flat[i] {
                     // A mesh used once: its triangles go into the top scene in world space.
-                    let geom = triangle_geometry(device, &world.meshes[inst.mesh as usize], inst.object_to_world);
+                    let geom = triangle_geometry(device, mesh, inst.object_to_world);
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
                     rtcAttachGeometryByID(top, geom, i as c_uint);
@@ -194,10 +214,15 @@ impl<'w> EmbreeAccel<'w> {
                 }
                 let geom = rtcNewGeometry(device, GEOMETRY_TYPE_INSTANCE);
                 rtcSetGeometryInstancedScene(geom, meshes[inst.mesh as usize]);
-                let m = inst.object_to_world;
-                let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis, m.translation];
-                let xfm: Vec<f32> = cols.iter().flat_map(|c| c.to_array()).collect();
-                rtcSetGeometryTransform(geom, 0, FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.as_ptr());
+                let keys = if inst.moves() { &inst.keys[..] } else { std::slice::from_ref(&inst.object_to_world) };
+                if keys.len() > 1 {
+                    rtcSetGeometryTimeStepCount(geom, keys.len() as c_uint);
+                }
+                for (step, m) in keys.iter().enumerate() {
+                    let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis, m.translation];
+                    let xfm: Vec<f32> = cols.iter().flat_map(|c| c.to_array()).collect();
+                    rtcSetGeometryTransform(geom, step as c_uint, FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.as_ptr());
+                }
                 rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                 rtcCommitGeometry(geom);
                 rtcAttachGeometryByID(top, geom, i as c_uint);
@@ -220,7 +245,7 @@ impl<'w> EmbreeAccel<'w> {
             org: ray.origin.to_array(),
             tnear: ray.tmin,
             dir: ray.dir.to_array(),
-            time: 0.0,
+            time: ray.time,
             tfar: ray.tmax,
             mask: ray.mask,
             id: 0,
@@ -319,6 +344,46 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
             m.triangles.len(),
         );
         // Committed again by the caller after setting the mask.
+        rtcCommitGeometry(geom);
+        geom
+    }
+}
+
+/// A committed triangle geometry of `mesh` whose vertices are at `keys[j]` at the j-th of
+/// `keys.len()` time steps spread evenly over the shutter.
+///
+/// # Safety
+/// `device` must be a live Embree device.
+unsafe fn moving_triangle_geometry(
+    device: RtcDevice,
+    m: &crate::mesh::MeshData,
+    keys: &[Vec<glam::Vec3A>],
+) -> RtcGeometry {
+    // SAFETY: the buffers Embree returns hold exactly the item counts asked for; the index
+    // buffer is the mesh's own array, which outlives the accel (it borrows the world).
+    unsafe {
+        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryTimeStepCount(geom, keys.len() as c_uint);
+        for (step, key) in keys.iter().enumerate() {
+            let verts = rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, step as c_uint, FORMAT_FLOAT3, 12, key.len())
+                as *mut f32;
+            if !verts.is_null() {
+                let out = std::slice::from_raw_parts_mut(verts, 3 * key.len());
+                for (o, p) in out.chunks_exact_mut(3).zip(key) {
+                    o.copy_from_slice(&p.to_array());
+                }
+            }
+        }
+        rtcSetSharedGeometryBuffer(
+            geom,
+            BUFFER_TYPE_INDEX,
+            0,
+            FORMAT_UINT3,
+            m.triangles.as_ptr().cast(),
+            0,
+            12,
+            m.triangles.len(),
+        );
         rtcCommitGeometry(geom);
         geom
     }

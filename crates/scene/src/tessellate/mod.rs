@@ -136,6 +136,7 @@ fn group_mesh(
         mesh.textures.clear();
         mesh.user.clear();
         mesh.motion.clear();
+        mesh.motion_more.clear();
         mesh.derivatives.clear();
         mesh.bump_basis.clear();
     } else {

@@ -57,7 +57,7 @@ pub fn group_vertices(group: &Group, mesh: &mut Mesh, diags: &mut Vec<Diagnostic
         }
         let mut tex = 0;
         let mut user = 0;
-        let mut motion_seen = false;
+        let mut motion_step = 0usize;
         for attr in group.vertex_attrs(i) {
             match *attr {
                 VertexAttr::Tex { index, basis } => {
@@ -73,10 +73,20 @@ pub fn group_vertices(group: &Group, mesh: &mut Mesh, diags: &mut Vec<Diagnostic
                     set_space(&mut mesh.user, user, i, n, vector(index, "user vector", diags)?);
                     user += 1;
                 }
-                VertexAttr::Motion(index) if !motion_seen => {
-                    motion_seen = true;
-                    mesh.motion.resize(n, Vec3::ZERO);
-                    mesh.motion[i] = vector(index, "motion vector", diags)?;
+                VertexAttr::Motion(index) => {
+                    let m = vector(index, "motion vector", diags)?;
+                    if motion_step == 0 {
+                        mesh.motion.resize(n, Vec3::ZERO);
+                        mesh.motion[i] = m;
+                    } else if motion_step < MAX_MOTION_STEPS {
+                        if mesh.motion_more.len() < motion_step {
+                            mesh.motion_more.resize(motion_step, Vec::new());
+                        }
+                        let more = &mut mesh.motion_more[motion_step - 1];
+                        more.resize(n, Vec3::ZERO);
+                        more[i] = m;
+                    }
+                    motion_step += 1;
                 }
                 VertexAttr::Deriv { count, idx } if count == 2 || count == 5 => {
                     mesh.derivatives.resize(n, [Vec3::ZERO; 2]);
@@ -88,6 +98,9 @@ pub fn group_vertices(group: &Group, mesh: &mut Mesh, diags: &mut Vec<Diagnostic
     }
     Ok(())
 }
+
+/// Most motion vectors a vertex carries (mental ray's `motion steps` limit).
+const MAX_MOTION_STEPS: usize = 15;
 
 /// Stores coordinate `value` of vertex `i` (of `n`) in texture space `space`.
 fn set_space(spaces: &mut Vec<TexSpace>, space: usize, i: usize, n: usize, value: Vec3) {

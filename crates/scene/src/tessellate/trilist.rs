@@ -35,7 +35,10 @@ pub fn trilist_mesh(list: &Trilist, name: &str, diags: &mut Vec<Diagnostic>) -> 
                 let (du, dv) = (column(0), column(1));
                 mesh.derivatives = du.into_iter().zip(dv).map(|(a, b)| [a, b]).collect();
             }
-            LayoutItem::M(_) => mesh.motion = column(0),
+            LayoutItem::M(k) => {
+                mesh.motion = column(0);
+                mesh.motion_more = (1..k.unwrap_or(1).min(15) as usize).map(&column).collect();
+            }
             LayoutItem::B(k) => {
                 if k.unwrap_or(1) >= 2 {
                     let (bu, bv) = (column(0), column(1));
