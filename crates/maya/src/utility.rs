@@ -233,7 +233,7 @@ pub fn curve_at(points: &[(f32, Vec3A, i32)], t: f32) -> Vec3A {
 
 /// The points of a ramp array of structs {`<p>_Position`, `<p>_<value>`,
 /// `<p>_Interp`}, sorted by position.
-fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
+pub(crate) fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
     let (pos, val, interp) = (format!("{prefix}_Position"), format!("{prefix}_{value}"), format!("{prefix}_Interp"));
     let mut pts: Vec<(f32, Vec3A, i32)> = v
         .array()
