@@ -1,12 +1,13 @@
 //! The repository's Maya export scenes (`scenes/maya/`) compile with every Maya shader
 //! they call bound to an implementation of this crate, and their materials shade.
 
-mod maya_support;
+mod support;
 
 use std::path::PathBuf;
 
-use maya_support::{point, run_in, Empty};
 use shader::{Shading, ShadingOptions};
+use support::maya::{point, run_in};
+use support::Empty;
 
 /// Shaders the scenes call that this crate declares but leaves to the renderer: the
 /// state shader and the image-level output shaders.
@@ -58,7 +59,7 @@ fn check(name: &str) {
         let surface = m.surface.expect("a surface shader");
         let mut s = point([0.3, 0.6]);
         s.material = Some(i as u32);
-        let c = run_in(&e.shading, &Empty, surface, s).color();
+        let c = run_in(&e.shading, &Empty::default(), surface, s).color();
         assert!(c.is_finite() && c.x > 0.0 && c.y > 0.0 && c.z > 0.0, "{name}: {} gives {c}", m.name);
         assert!((c.w - 1.0).abs() < 1e-5, "{name}: {} alpha {}", m.name, c.w);
     }

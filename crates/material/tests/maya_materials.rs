@@ -1,12 +1,13 @@
 //! Maya's anisotropic, rampShader and layeredShader in compiled scenes, in the classic
 //! engine (against the formulas of their module docs, worked out here by hand) and
 //! translated for the path engine (the same albedo). The shading point is the origin,
-//! normal +y, seen from straight above, dP/du = +x (see `maya_support::point`).
+//! normal +y, seen from straight above, dP/du = +x (see `support::maya::point`).
 
-mod maya_support;
+mod support;
 
 use material::SurfaceModel;
-use maya_support::{assert_rgb, compile, point, run, Compiled, Empty};
+use support::maya::{assert_rgb, compile, point, run, Compiled};
+use support::Empty;
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 
@@ -18,7 +19,7 @@ fn scene(body: &str) -> Compiled {
 }
 
 fn shade(c: &Compiled) -> glam::Vec4 {
-    run(c, &Empty, c.material("m"), point([0.0, 0.0])).color()
+    run(c, &Empty::default(), c.material("m"), point([0.0, 0.0])).color()
 }
 
 fn translate(c: &Compiled) -> (material::SurfaceMaterial, Vec<String>) {

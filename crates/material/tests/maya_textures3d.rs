@@ -1,10 +1,11 @@
 //! Maya's 3D textures, place3dTexture, projection, envSphere and bump3d in compiled
 //! scenes, read through a surfaceShader (unlit: the texture's colour is the pixel's) or a
-//! lambert. The shading point is the world origin, normal +y (see `maya_support::point`).
+//! lambert. The shading point is the world origin, normal +y (see `support::maya::point`).
 
-mod maya_support;
+mod support;
 
-use maya_support::{assert_rgb, compile, point, run, Compiled, Empty};
+use support::maya::{assert_rgb, compile, point, run, Compiled};
+use support::Empty;
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 /// A 2×2 texture: red, green (bottom row), blue, white (top row).
@@ -25,7 +26,7 @@ fn show(source: &str) -> String {
 }
 
 fn shade(c: &Compiled, state: shader::State) -> glam::Vec4 {
-    run(c, &Empty, c.material("m"), state).color()
+    run(c, &Empty::default(), c.material("m"), state).color()
 }
 
 #[test]
