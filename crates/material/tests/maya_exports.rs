@@ -1,5 +1,7 @@
-//! The repository's Maya export scenes (`scenes/maya/`) compile with every Maya shader
-//! they call bound to an implementation of this crate, and their materials shade.
+//! The repository's Maya export scenes (`scenes/maya/`: the Maya 2012 and 2017 exports
+//! and `maya_materials.mi`, Maya's rampShader, layeredShader, anisotropic and 3D textures)
+//! compile with every Maya shader they call bound to an implementation of this crate, and
+//! their materials shade.
 
 mod support;
 
@@ -41,8 +43,8 @@ fn load(name: &str) -> Export {
 /// Every node of a Maya shader is bound (but the non-shading ones), the only warnings
 /// are the shader model's "not implemented" ones for nodes this crate bound or for the
 /// non-shading shaders, and each material shades to a finite, opaque, lit colour at a
-/// point on the ground.
-fn check(name: &str) {
+/// point on the ground; `linked` instances have a light list (each excluding one light).
+fn check(name: &str, linked: usize) {
     let e = load(name);
     for node in &e.shading.graph.nodes {
         let decl = node.decl.name.as_str();
@@ -64,17 +66,22 @@ fn check(name: &str) {
         assert!((c.w - 1.0).abs() < 1e-5, "{name}: {} alpha {}", m.name, c.w);
     }
     // The ground's instance excludes the point light.
-    let linked: Vec<_> = e.shading.instance_lights.iter().flatten().collect();
-    assert_eq!(linked.len(), 1, "{name}: one instance has a light list");
-    assert!(linked[0].exclusive && linked[0].lights.len() == 1);
+    let lists: Vec<_> = e.shading.instance_lights.iter().flatten().collect();
+    assert_eq!(lists.len(), linked, "{name}: instances with a light list");
+    assert!(lists.iter().all(|l| l.exclusive && l.lights.len() == 1));
 }
 
 #[test]
 fn maya2017_export_compiles_and_shades() {
-    check("maya2017_export.mi");
+    check("maya2017_export.mi", 1);
 }
 
 #[test]
 fn maya2012_export_compiles_and_shades() {
-    check("maya2012_export.mi");
+    check("maya2012_export.mi", 1);
+}
+
+#[test]
+fn maya_materials_scene_compiles_and_shades() {
+    check("maya_materials.mi", 0);
 }

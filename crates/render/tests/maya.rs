@@ -90,7 +90,7 @@ fn summary(px: &[[f32; 4]]) -> ([f32; 3], f32) {
 
 #[test]
 fn the_maya_exports_render_with_the_classic_engine() {
-    for name in ["maya2017_export.mi", "maya2012_export.mi"] {
+    for name in ["maya2017_export.mi", "maya2012_export.mi", "maya_materials.mi"] {
         let l = export(name, (24, 16));
         let (_, _, px) = render_classic(&l, 1);
         let (mean, opaque) = summary(&px);
