@@ -204,3 +204,24 @@ fn a_material_light_list_picks_its_lights() {
         assert_rgb(shade(&c), [0.5 * k; 3], 1e-5);
     }
 }
+
+#[test]
+fn a_volume_light_fills_its_shape_with_its_colour_range() {
+    // A sphere volume light of radius 2 centred `h` above the point: inside (h = 1) the
+    // point lies halfway to the boundary, so the colour range (black at the boundary,
+    // white at the centre, linear) gives half of intensity 2: a lambert of colour 0.5 and
+    // diffuse 1 shows 0.5. Outside (h = 3): no light.
+    for (h, want) in [(1.0, 0.5), (3.0, 0.0)] {
+        let c = scene(&format!(
+            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" 1,
+                "colorRange" [ {{ "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 }},
+                               {{ "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 }} ])
+                origin 0 0 0 end light
+            instance "vol_inst" "vol" transform 0.5 0 0 0  0 0.5 0 0  0 0 0.5 0  0 {} 0 1 end instance
+            shader "lam" "adskMayaLambert" ("color" 0.5 0.5 0.5, "diffuse" 1)
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+            -0.5 * h
+        ));
+        assert_rgb(shade(&c), [want; 3], 1e-5);
+    }
+}

@@ -21,10 +21,11 @@
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`projection`]
-//! (projection, envSphere),
-//! [`utility`], [`light`]; outside the shader model: [`output`] (`maya_colormgt`'s view
-//! transform for the image), [`standin`] (the colour of an unknown plug-in shader). Their
-//! path-engine translation (materials and lights) is in the `material` crate (`maya` module).
+//! (projection, envSphere), [`utility`], [`light`] (point, spot, directional, ambient,
+//! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
+//! for the image), [`standin`] (the colour of an unknown plug-in shader). Their
+//! path-engine translation (materials and lights) is in the `material` crate (`maya`
+//! module).
 //!
 //! [`REGISTRY`] lists every implementation.
 
@@ -160,6 +161,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &light::ADSK_AMBIENT,
     &light::AREA,
     &light::ADSK_AREA,
+    &light::VOLUME,
+    &light::ADSK_VOLUME,
 ];
 
 #[cfg(test)]
