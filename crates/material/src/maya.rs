@@ -240,7 +240,7 @@ fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb 
         return empty;
     };
     let e = glam::Vec3A::new(empty.x, empty.y, empty.z);
-    let c = ::maya::ramp_shader::Ramp::read(&v, name, member, e).at(x);
+    let c = ::maya::utility::Ramp::read(&v, name, member, e).at(x);
     Rgb::new(c.x, c.y, c.z)
 }
 

@@ -371,7 +371,7 @@ fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
     let local = light.to_local * (ctx.state.point - light.origin);
     let Some(d) = volume_distance(ctx.int(n, 7), local) else { return false };
-    let range = crate::ramp_shader::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - d);
+    let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - d);
     let c = emitted(ctx, n) * range.extend(1.0);
     let c = shadows(ctx, n, c, Spread::Radius(0.0));
     finish(out, c)

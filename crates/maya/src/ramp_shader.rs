@@ -47,7 +47,7 @@ use shader::{Ctx, NodeId, RayType, Value};
 use crate::light::light_role;
 use crate::material::{behind_with, material_lights, shadow_filter};
 use crate::maya_shader;
-use crate::utility::{curve_at, ramp_points};
+use crate::utility::Ramp;
 use crate::values::{luma, rgb, rgba, write_struct};
 
 const COLOR_INPUT: usize = 0;
@@ -71,29 +71,6 @@ const REFRACTION_LIMIT: usize = 17;
 const MATTE_OPACITY: usize = 18;
 const GLOW_INTENSITY: usize = 19;
 const LIGHT_LIST: usize = 20;
-
-/// A ramp read from its array: sorted points and the value of an empty ramp.
-pub struct Ramp {
-    points: Vec<(f32, Vec3A, i32)>,
-    empty: Vec3A,
-}
-
-impl Ramp {
-    /// The ramp of array `value` whose members are `<prefix>_Position`,
-    /// `<prefix>_<member>` and `<prefix>_Interp`; `empty` when it has no points.
-    pub fn read(value: &Value, prefix: &str, member: &str, empty: Vec3A) -> Ramp {
-        Ramp { points: ramp_points(value, prefix, member), empty }
-    }
-
-    /// The ramp at `x` (the first point's value before it, the last one's after it).
-    pub fn at(&self, x: f32) -> Vec3A {
-        if self.points.is_empty() {
-            self.empty
-        } else {
-            curve_at(&self.points, x)
-        }
-    }
-}
 
 /// What indexes the colour ramp (`colorInput`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -300,7 +277,7 @@ mod tests {
     use super::*;
 
     fn ramp(points: &[(f32, Vec3A)], interp: i32) -> Ramp {
-        Ramp { points: points.iter().map(|&(p, c)| (p, c, interp)).collect(), empty: Vec3A::ZERO }
+        Ramp::new(points.iter().map(|&(p, c)| (p, c, interp)).collect(), Vec3A::ZERO)
     }
 
     /// Maya's documented recipe: black at 0.5, colour c at 1, linear, diffuse 0,
