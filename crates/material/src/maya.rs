@@ -15,6 +15,19 @@
 //!   (0.5, Maya's default, is the unified BSDF's default 0.5 too). Maya's non-physical
 //!   highlight strengths (`specularRollOff`, `highlightSize`) and `reflectivity` have no
 //!   lobe of their own: the reflection is the specular lobe's;
+//! - anisotropic: the unified BSDF as blinn's, its GGX α the geometric mean √(α_x α_y)
+//!   of the classic highlight's widths (`roughness`/√`spreadX`, `roughness`/√`spreadY`):
+//!   the path engine's frame has no groove direction, so the lobe is isotropic (a warning
+//!   says so);
+//! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
+//!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
+//!   input, whose documented lambert recipe this reproduces exactly); the transparency
+//!   and incandescence ramps at facing ratio 1; with `specularity` > 0 the unified BSDF
+//!   with blinn's α = `eccentricity`. Ramps indexed by the view angle or the brightness
+//!   vary in ways a BSDF's albedo cannot (a warning says so);
+//! - layeredShader: the layers' translations mixed by the share of each that shows,
+//!   w_i = mean(T_0 ⋯ T_(i−1) (1 − T_i)) (`compositingFlag` 0 or 1 alike): their
+//!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - transparency T (without refraction): coverage 1 − mean(T), so that the surface is
 //!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
@@ -49,6 +62,19 @@ fn constant<'a>(graph: &'a Graph, node: NodeId, name: &str) -> Option<&'a Value>
         Slot::Value(v) => Some(v),
         _ => None,
     }
+}
+
+/// The value of a slot without connections (arrays and structs of constants included);
+/// `None` if anything in it is connected.
+fn constant_value(s: &Slot) -> Option<Value> {
+    Some(match s {
+        Slot::Value(v) => v.clone(),
+        Slot::Connect { .. } => return None,
+        Slot::Array(items) => Value::Array(items.iter().map(constant_value).collect::<Option<Vec<_>>>()?.into()),
+        Slot::Struct(members) => Value::Struct(
+            members.iter().map(|(n, s)| Some((n.clone(), constant_value(s)?))).collect::<Option<Vec<_>>>()?.into(),
+        ),
+    })
 }
 
 /// The node and member a parameter is connected to.
@@ -101,7 +127,14 @@ impl Reader<'_> {
 
 /// The GGX α of a Maya highlight.
 fn highlight_alpha(decl: &str, r: &mut Reader) -> f32 {
-    let alpha = if decl.contains("blinn") || decl.contains("Blinn") {
+    let alpha = if decl.ends_with("anisotropic") || decl.ends_with("Anisotropic") {
+        let (ax, ay) = ::maya::specular::anisotropic_widths(
+            r.scalar("roughness", 0.7),
+            r.scalar("spreadX", 13.0),
+            r.scalar("spreadY", 3.0),
+        );
+        (ax * ay).sqrt()
+    } else if decl.contains("blinn") || decl.contains("Blinn") {
         r.scalar("eccentricity", 0.3)
     } else if decl.ends_with("phong") || decl.ends_with("Phong") {
         let n = r.scalar("cosinePower", 20.0).max(0.0);
@@ -121,12 +154,18 @@ pub fn surface_material(name: &str, graph: &Graph, engine: NodeId) -> Option<(Su
         return None;
     }
     let (node, _) = connection(graph, engine, "surfaceShader")?;
+    Some(translate(name, graph, node))
+}
+
+/// The Maya material `node` (a lambert, blinn, … node of `graph`) translated, with its
+/// warnings prefixed by the material's `name`.
+fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<String>) {
     let material = graph.nodes[node as usize].decl.name.clone();
     let family = material.trim_start_matches("maya_").trim_start_matches("adskMaya").to_ascii_lowercase();
     let mut r = Reader { graph, node, bindings: Vec::new(), warnings: Vec::new() };
     let mut surface = SurfaceMaterial::lambert(name, Rgb::ZERO);
     match family.as_str() {
-        "lambert" | "blinn" | "phong" | "phonge" => {
+        "lambert" | "blinn" | "phong" | "phonge" | "anisotropic" => {
             let d = r.scalar("diffuse", 0.8);
             let reflective = family != "lambert";
             let target = if reflective { Target::BaseColor } else { Target::Diffuse };
@@ -143,15 +182,18 @@ pub fn surface_material(name: &str, graph: &Graph, engine: NodeId) -> Option<(Su
             }
             if reflective {
                 let alpha = highlight_alpha(&material, &mut r);
+                if family == "anisotropic" {
+                    r.warnings.push(format!("the anisotropic highlight is an isotropic GGX lobe of α {alpha:.3}"));
+                }
                 let s = r.color("specularColor", Rgb::splat(0.5));
-                let params = UnifiedParams {
-                    base_color: albedo,
-                    roughness: alpha.sqrt(),
-                    specular: bsdf::luminance(s).clamp(0.0, 1.0),
-                    ..UnifiedParams::default()
-                };
-                surface.model = SurfaceModel::Unified(Box::new(Unified::new(&params)));
+                surface.model = unified(albedo, alpha, bsdf::luminance(s));
             }
+        }
+        "rampshader" => ramp_shader(&mut r, &mut surface),
+        "layeredshader" => {
+            let (layered, warnings) = layered_shader(name, graph, node);
+            surface = layered;
+            r.warnings.extend(warnings);
         }
         "surfaceshader" => {
             surface.emission = r.driven("outColor", Target::Emission, 1.0, Rgb::ZERO);
@@ -171,5 +213,133 @@ pub fn surface_material(name: &str, graph: &Graph, engine: NodeId) -> Option<(Su
         surface.varying = Varying::Bindings(r.bindings);
     }
     let warnings = r.warnings.into_iter().map(|w| format!("material '{name}' ({material}): {w}")).collect();
-    Some((surface, warnings))
+    (surface, warnings)
+}
+
+/// The unified BSDF of a Maya highlight: base colour `albedo`, GGX α `alpha`, dielectric
+/// specular weight `specular` (clamped to 0..1).
+fn unified(albedo: Rgb, alpha: f32, specular: f32) -> SurfaceModel {
+    let params = UnifiedParams {
+        base_color: albedo,
+        roughness: alpha.sqrt(),
+        specular: specular.clamp(0.0, 1.0),
+        ..UnifiedParams::default()
+    };
+    SurfaceModel::Unified(Box::new(Unified::new(&params)))
+}
+
+/// A constant ramp parameter of the reader's node at `x` (`empty` when the ramp has no
+/// points or is connected, with a warning for the latter).
+fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb {
+    if connection(r.graph, r.node, name).is_some() {
+        r.warnings.push(format!("the ramp '{name}' is connected; the path engine uses its default"));
+        return empty;
+    }
+    let Some(v) = slot(r.graph, r.node, name).and_then(constant_value) else {
+        r.warnings.push(format!("the ramp '{name}' has connected points; the path engine uses its default"));
+        return empty;
+    };
+    let e = glam::Vec3A::new(empty.x, empty.y, empty.z);
+    let c = ::maya::utility::Ramp::read(&v, name, member, e).at(x);
+    Rgb::new(c.x, c.y, c.z)
+}
+
+/// rampShader (see the module doc).
+fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
+    use ::maya::ramp_shader::ColorInput;
+    let input = ColorInput::from_maya(r.scalar("colorInput", 0.0) as i32);
+    let (d, t) = (r.scalar("diffuse", 0.8), r.scalar("translucence", 0.0));
+    let c = ramp_at(r, "color", "Color", Rgb::splat(0.5), 1.0);
+    let albedo = if input == ColorInput::LightAngle {
+        c * (d + t)
+    } else {
+        r.warnings.push(format!("the colour ramp indexed by {input:?} is taken at 1 (albedo = colour at 1 · diffuse)"));
+        c * d
+    };
+    surface.diffuse = albedo;
+    surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0);
+    let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
+    surface.opacity = 1.0 - (tr.x + tr.y + tr.z) / 3.0;
+    if let Some((bump, member)) = connection(r.graph, r.node, "normalCamera") {
+        r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
+    }
+    let specularity = r.scalar("specularity", 0.0);
+    if specularity > 0.0 {
+        let alpha = r.scalar("eccentricity", 0.3).clamp(1e-3, 1.0);
+        let s = ramp_at(r, "specularColor", "Color", Rgb::splat(0.5), 1.0);
+        surface.model = unified(albedo, alpha, specularity * bsdf::luminance(s));
+    }
+}
+
+/// layeredShader (see the module doc): the layers of its `inputs` array mixed.
+fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<String>) {
+    let mut warnings = Vec::new();
+    let mut surface = SurfaceMaterial::lambert(name, Rgb::ZERO);
+    let texture = constant(graph, node, "compositingFlag").is_some_and(|v| v.int() == 1);
+    let elements: &[Slot] = match slot(graph, node, "inputs") {
+        Some(Slot::Array(e)) => e,
+        Some(Slot::Value(Value::Array(_))) | None => &[],
+        Some(_) => {
+            warnings.push("'inputs' is connected as a whole; rendered grey".into());
+            return (SurfaceMaterial::grey(name), warnings);
+        }
+    };
+    let member = |e: &'_ Slot, m: &str| -> Option<Slot> {
+        match e {
+            Slot::Struct(members) => members.iter().find(|(n, _)| &**n == m).map(|(_, s)| s.clone()),
+            _ => None,
+        }
+    };
+    let mut through = Rgb::ONE;
+    let mut lobe: Option<SurfaceModel> = None;
+    for e in elements {
+        let t = match member(e, "transparency") {
+            Some(Slot::Value(v)) => rgb_of(&v).clamp(Rgb::ZERO, Rgb::ONE),
+            Some(Slot::Connect { node: m, .. }) => {
+                // A material's outTransparency: its own constant transparency.
+                let c = constant(graph, m, "transparency")
+                    .or_else(|| constant(graph, m, "outTransparency"))
+                    .map_or(Rgb::ZERO, rgb_of);
+                c.clamp(Rgb::ZERO, Rgb::ONE)
+            }
+            _ => Rgb::ZERO,
+        };
+        let shown = through * (Rgb::ONE - t);
+        let w = (shown.x + shown.y + shown.z) / 3.0;
+        match member(e, "color") {
+            Some(Slot::Connect { node: m, .. })
+                if graph.nodes[m as usize].decl.members().iter().any(|x| &**x == "outTransparency") =>
+            {
+                let (layer, w_layer) = translate(name, graph, m);
+                warnings.extend(w_layer);
+                if !matches!(layer.varying, Varying::Constant) {
+                    warnings.push(format!(
+                        "layer '{}' varies over the surface; its constant colour is used",
+                        graph.nodes[m as usize].name
+                    ));
+                }
+                surface.diffuse += layer.diffuse * w;
+                surface.emission += layer.emission * w;
+                if lobe.is_none() && matches!(layer.model, SurfaceModel::Unified(_)) {
+                    lobe = Some(layer.model);
+                }
+            }
+            Some(Slot::Value(v)) => {
+                // A plain colour: already weighted by its opacity in shader mode.
+                let c = rgb_of(&v);
+                surface.diffuse += if texture { c * w } else { c * (through.x + through.y + through.z) / 3.0 };
+            }
+            Some(_) => {
+                warnings.push("a layer's colour is connected to a texture; the path engine leaves it out".into())
+            }
+            None => {}
+        }
+        through *= t;
+    }
+    surface.opacity = 1.0 - (through.x + through.y + through.z) / 3.0;
+    if let Some(SurfaceModel::Unified(u)) = lobe {
+        let p = u.params();
+        surface.model = unified(surface.diffuse, p.roughness * p.roughness, p.specular);
+    }
+    (surface, warnings)
 }

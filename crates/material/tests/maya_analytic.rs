@@ -1,10 +1,11 @@
 //! Maya materials, lights, textures and utilities in compiled scenes, against values
 //! worked out by hand from Maya's conventions (no 1/π; decay I/d^rate). The shading
-//! point is the origin, normal +y, seen from straight above (see `maya_support::point`).
+//! point is the origin, normal +y, seen from straight above (see `support::maya::point`).
 
-mod maya_support;
+mod support;
 
-use maya_support::{assert_rgb, compile, compile_with_camera, point, run, Compiled, Empty, HalfSpace, Occluder};
+use support::maya::{assert_rgb, compile, compile_with_camera, point, run, Compiled, HalfSpace, Occluder};
+use support::Empty;
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 
@@ -18,7 +19,7 @@ fn scene(body: &str) -> Compiled {
 
 /// The colour of material `m` at `uv` with no occluders.
 fn shade(c: &Compiled, uv: [f32; 2]) -> glam::Vec4 {
-    run(c, &Empty, c.material("m"), point(uv)).color()
+    run(c, &Empty::default(), c.material("m"), point(uv)).color()
 }
 
 /// A directional light shining along `dir` (normalised here).
@@ -173,12 +174,12 @@ fn light_linking_excludes_a_light() {
     assert!(c.messages.is_empty(), "{:#?}", c.messages);
     let mut s = point([0.0, 0.0]);
     s.instance = c.linked_instance();
-    let got = run(&c, &Empty, c.material("m"), s).color();
+    let got = run(&c, &Empty::default(), c.material("m"), s).color();
     assert_rgb(got, [0.6 * 0.7, 0.5 * 0.7, 0.4 * 0.7], 1e-5);
     // An instance without a light list sees both lights.
     let mut s = point([0.0, 0.0]);
     s.instance = c.unlinked_instance();
-    let got = run(&c, &Empty, c.material("m"), s).color();
+    let got = run(&c, &Empty::default(), c.material("m"), s).color();
     assert_rgb(got, [0.6 * 2.8, 0.5 * 2.8, 0.4 * 2.8], 1e-5);
 }
 
@@ -350,7 +351,7 @@ fn use_background_shows_the_background_and_catches_a_shadow() {
     let camera = r#"environment "maya_surfaceshader" ("outColor" 0.2 0.4 0.6)"#;
     let c = compile_with_camera(camera, "", &body, &["m", "blocker"], "");
     assert!(c.messages.is_empty(), "{:#?}", c.messages);
-    let clear = run(&c, &Empty, c.material("m"), point([0.0, 0.0])).color();
+    let clear = run(&c, &Empty::default(), c.material("m"), point([0.0, 0.0])).color();
     assert_rgb(clear, [0.2, 0.4, 0.6], 1e-5);
     assert!(clear.w.abs() < 1e-6, "alpha {}", clear.w);
     let tracer = Occluder { material: c.material_index("blocker") };
@@ -502,7 +503,7 @@ fn declared_plug_in_materials_get_a_stand_in_of_their_colour() {
     assert!(text.iter().any(|w| w.contains("'vendorMaterial'") && w.contains("'baseColor'")), "{text:?}");
     assert!(text.iter().any(|w| w.contains("'vendor_mtl'") && w.contains("'Diffuse_Color'")), "{text:?}");
     assert_rgb(shade(&c, [0.0, 0.0]), [0.8, 0.2, 0.1], 1e-5);
-    let v = run(&c, &Empty, c.material("v"), point([0.0, 0.0])).color();
+    let v = run(&c, &Empty::default(), c.material("v"), point([0.0, 0.0])).color();
     assert_rgb(v, [0.1, 0.5, 0.3], 1e-5);
 }
 

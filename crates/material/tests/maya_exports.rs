@@ -1,12 +1,15 @@
-//! The repository's Maya export scenes (`scenes/maya/`) compile with every Maya shader
-//! they call bound to an implementation of this crate, and their materials shade.
+//! The repository's Maya export scenes (`scenes/maya/`: the Maya 2012 and 2017 exports
+//! and `maya_materials.mi`, Maya's rampShader, layeredShader, anisotropic and 3D textures)
+//! compile with every Maya shader they call bound to an implementation of this crate, and
+//! their materials shade.
 
-mod maya_support;
+mod support;
 
 use std::path::PathBuf;
 
-use maya_support::{point, run_in, Empty};
 use shader::{Shading, ShadingOptions};
+use support::maya::{point, run_in};
+use support::Empty;
 
 /// Shaders the scenes call that this crate declares but leaves to the renderer: the
 /// state shader and the image-level output shaders.
@@ -40,8 +43,8 @@ fn load(name: &str) -> Export {
 /// Every node of a Maya shader is bound (but the non-shading ones), the only warnings
 /// are the shader model's "not implemented" ones for nodes this crate bound or for the
 /// non-shading shaders, and each material shades to a finite, opaque, lit colour at a
-/// point on the ground.
-fn check(name: &str) {
+/// point on the ground; `linked` instances have a light list (each excluding one light).
+fn check(name: &str, linked: usize) {
     let e = load(name);
     for node in &e.shading.graph.nodes {
         let decl = node.decl.name.as_str();
@@ -58,22 +61,27 @@ fn check(name: &str) {
         let surface = m.surface.expect("a surface shader");
         let mut s = point([0.3, 0.6]);
         s.material = Some(i as u32);
-        let c = run_in(&e.shading, &Empty, surface, s).color();
+        let c = run_in(&e.shading, &Empty::default(), surface, s).color();
         assert!(c.is_finite() && c.x > 0.0 && c.y > 0.0 && c.z > 0.0, "{name}: {} gives {c}", m.name);
         assert!((c.w - 1.0).abs() < 1e-5, "{name}: {} alpha {}", m.name, c.w);
     }
     // The ground's instance excludes the point light.
-    let linked: Vec<_> = e.shading.instance_lights.iter().flatten().collect();
-    assert_eq!(linked.len(), 1, "{name}: one instance has a light list");
-    assert!(linked[0].exclusive && linked[0].lights.len() == 1);
+    let lists: Vec<_> = e.shading.instance_lights.iter().flatten().collect();
+    assert_eq!(lists.len(), linked, "{name}: instances with a light list");
+    assert!(lists.iter().all(|l| l.exclusive && l.lights.len() == 1));
 }
 
 #[test]
 fn maya2017_export_compiles_and_shades() {
-    check("maya2017_export.mi");
+    check("maya2017_export.mi", 1);
 }
 
 #[test]
 fn maya2012_export_compiles_and_shades() {
-    check("maya2012_export.mi");
+    check("maya2012_export.mi", 1);
+}
+
+#[test]
+fn maya_materials_scene_compiles_and_shades() {
+    check("maya_materials.mi", 0);
 }

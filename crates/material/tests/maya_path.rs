@@ -2,11 +2,12 @@
 //! shaders give (compared at the same point under a unit light straight above), constant
 //! and texture-driven.
 
-mod maya_support;
+mod support;
 
 use material::{SurfaceModel, Target, Varying};
-use maya_support::{compile, point, run, Compiled, Empty};
 use shader::Ctx;
+use support::maya::{compile, point, run, Compiled};
+use support::Empty;
 
 const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
 const SUN: &str = r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
@@ -33,7 +34,7 @@ fn lambert_albedo_matches_the_classic_shader() {
     let (s, warnings) = translate(&c);
     assert!(warnings.is_empty(), "{warnings:?}");
     assert_eq!(s.model, SurfaceModel::Lambert);
-    let classic = run(&c, &Empty, c.material("m"), point([0.0, 0.0])).color();
+    let classic = run(&c, &Empty::default(), c.material("m"), point([0.0, 0.0])).color();
     // Classic: c·d·I·cos θ + incandescence with I = cos θ = 1.
     for (got, want) in [(s.diffuse.x, classic.x - 0.1), (s.diffuse.y, classic.y), (s.diffuse.z, classic.z)] {
         assert!((got - want).abs() < 1e-5, "{got} vs {want}");
@@ -52,10 +53,11 @@ fn a_file_texture_drives_the_diffuse_colour_per_hit() {
     let (s, _) = translate(&c);
     let Varying::Bindings(b) = &s.varying else { panic!("no bindings: {:?}", s.varying) };
     assert_eq!((b[0].target, b[0].member.as_deref(), b[0].scale), (Target::Diffuse, Some("outColor"), 0.5));
+    let tracer = Empty::default();
     for (uv, want) in [([0.25, 0.25], [0.5, 0.0, 0.0]), ([0.75, 0.75], [0.5, 0.5, 0.5])] {
-        let mut ctx = Ctx::new(&c.shading, &Empty, point(uv));
+        let mut ctx = Ctx::new(&c.shading, &tracer, point(uv));
         let hit = s.at(&mut ctx);
-        let classic = run(&c, &Empty, c.material("m"), point(uv)).color();
+        let classic = run(&c, &Empty::default(), c.material("m"), point(uv)).color();
         for i in 0..3 {
             assert!((hit.diffuse[i] - want[i]).abs() < 1e-3, "{uv:?}: {}", hit.diffuse);
             assert!((hit.diffuse[i] - classic[i]).abs() < 1e-5, "{uv:?}: path {} classic {classic}", hit.diffuse);

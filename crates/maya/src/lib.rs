@@ -17,24 +17,32 @@
 //! - angles are in radians (the unit Maya stores and exports).
 //!
 //! Modules: [`engine`] (shading engine, shadow shaders), [`material`] and [`specular`]
-//! (lambert, blinn, phong, phongE, surfaceShader), [`matte`] (useBackground),
+//! (lambert, blinn, phong, phongE, anisotropic, surfaceShader), [`ramp_shader`]
+//! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
-//! [`utility`], [`light`]; outside the shader model: [`output`] (`maya_colormgt`'s view
-//! transform for the image), [`standin`] (the colour of an unknown plug-in shader). Their
-//! path-engine translation (materials and lights) is in the `material` crate (`maya` module).
+//! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`projection`]
+//! (projection, envSphere), [`utility`], [`light`] (point, spot, directional, ambient,
+//! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
+//! for the image), [`standin`] (the colour of an unknown plug-in shader). Their
+//! path-engine translation (materials and lights) is in the `material` crate (`maya`
+//! module).
 //!
 //! [`REGISTRY`] lists every implementation.
 
 pub mod engine;
 pub mod layered;
+pub mod layered_shader;
 pub mod light;
 pub mod material;
 pub mod matte;
 pub mod noise;
 pub mod output;
+pub mod projection;
+pub mod ramp_shader;
 pub mod specular;
 pub mod standin;
 pub mod texture;
+pub mod texture3d;
 pub mod utility;
 mod values;
 
@@ -73,6 +81,12 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &material::ADSK_PHONG,
     &material::PHONGE,
     &material::ADSK_PHONGE,
+    &material::ANISOTROPIC,
+    &material::ADSK_ANISOTROPIC,
+    &ramp_shader::RAMPSHADER,
+    &ramp_shader::ADSK_RAMPSHADER,
+    &layered_shader::LAYEREDSHADER,
+    &layered_shader::ADSK_LAYEREDSHADER,
     &material::SURFACESHADER,
     &material::ADSK_SURFACESHADER,
     &matte::USEBACKGROUND,
@@ -93,6 +107,20 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &noise::ADSK_NOISE,
     &texture::BUMP2D,
     &texture::ADSK_BUMP2D,
+    &texture3d::PLACE3D,
+    &texture3d::ADSK_PLACE3D,
+    &texture3d::SOLIDFRACTAL,
+    &texture3d::ADSK_SOLIDFRACTAL,
+    &texture3d::MARBLE,
+    &texture3d::ADSK_MARBLE,
+    &texture3d::WOOD,
+    &texture3d::ADSK_WOOD,
+    &texture3d::BUMP3D,
+    &texture3d::ADSK_BUMP3D,
+    &projection::PROJECTION,
+    &projection::ADSK_PROJECTION,
+    &projection::ENVSPHERE,
+    &projection::ADSK_ENVSPHERE,
     &utility::MULTIPLYDIVIDE,
     &utility::ADSK_MULTIPLYDIVIDE,
     &utility::PLUSMINUSAVERAGE,
@@ -133,6 +161,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &light::ADSK_AMBIENT,
     &light::AREA,
     &light::ADSK_AREA,
+    &light::VOLUME,
+    &light::ADSK_VOLUME,
 ];
 
 #[cfg(test)]

@@ -1,4 +1,4 @@
-//! Maya's light shaders: point, spot, directional, ambient and area lights.
+//! Maya's light shaders: point, spot, directional, ambient, area and volume lights.
 //!
 //! A light shader runs in the light state of `shader::lights`: `org` is the point
 //! on the light, `dir` runs from the light to the illuminated point, `dist` between them.
@@ -328,6 +328,55 @@ fn area(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     finish(out, c)
 }
 
+const VOLUME_PARAMS: &[&str] =
+    &[COMMON[0], COMMON[1], COMMON[2], COMMON[3], COMMON[4], COMMON[5], COMMON[6], "lightShape", "colorRange"];
+
+/// Where a point lies in a volume light's unit shape (`lightShape`: 0 box, 1 sphere, 2
+/// cylinder, 3 cone; other values read as the sphere), `local` being the point in the
+/// light's own space (the light's transform maps the unit shape onto the volume): the
+/// normalised distance from the shape's centre or axis, 0 there and 1 on the boundary,
+/// `None` outside. The box is [−1, 1]³, the sphere of radius 1, the cylinder of radius 1
+/// about the local z axis for z in [−1, 1], the cone with its apex at the origin opening
+/// along −z to radius 1 at z = −1 (the spot light's axis). mira's reading: Maya documents
+/// the four shapes and that the light fills them, not their local axes.
+pub fn volume_distance(shape: i32, local: Vec3A) -> Option<f32> {
+    let radial = (local.x * local.x + local.y * local.y).sqrt();
+    let d = match shape {
+        0 => local.abs().max_element(),
+        2 if local.z.abs() <= 1.0 => radial,
+        2 => return None,
+        3 if (-1.0..0.0).contains(&local.z) => radial / -local.z,
+        3 => return None,
+        _ => local.length(),
+    };
+    (d <= 1.0).then_some(d)
+}
+
+maya_shader!(
+    /// Volume light: `color · intensity` inside the light's volume (see
+    /// [`volume_distance`]) times the `colorRange` ramp (array of {`colorRange_Position`,
+    /// `colorRange_Color`, `colorRange_Interp`}; empty: white) at 1 − d (position 0 on the
+    /// boundary, 1 at the centre or axis), nothing outside; no decay (the ramp is the
+    /// falloff), raytraced shadows. Not read: `volumeLightDir` (light flows outwards from
+    /// the light's centre), `arc`, `coneEndRadius`, `emitAmbient`, the penumbra ramp.
+    VOLUME,
+    ADSK_VOLUME,
+    "maya_volumelight",
+    "adskMayaVolumeLight",
+    VOLUME_PARAMS,
+    volume
+);
+
+fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let local = light.to_local * (ctx.state.point - light.origin);
+    let Some(d) = volume_distance(ctx.int(n, 7), local) else { return false };
+    let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - d);
+    let c = emitted(ctx, n) * range.extend(1.0);
+    let c = shadows(ctx, n, c, Spread::Radius(0.0));
+    finish(out, c)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -358,5 +407,21 @@ mod tests {
         assert!((spot_factor(a, cone, 0.0, 2.0) - a.cos().powi(2)).abs() < 1e-6);
         // A NaN cone (a hostile file) gives no light rather than NaN.
         assert_eq!(spot_factor(a, f32::NAN, 0.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn volume_shapes_and_distances() {
+        // Sphere: the normalised radius; outside: none.
+        assert_eq!(volume_distance(1, Vec3A::new(0.0, 0.5, 0.0)), Some(0.5));
+        assert_eq!(volume_distance(1, Vec3A::new(0.8, 0.8, 0.0)), None);
+        // Box: the largest coordinate.
+        assert_eq!(volume_distance(0, Vec3A::new(0.8, -0.9, 0.2)), Some(0.9));
+        // Cylinder about z: the radial distance within |z| ≤ 1.
+        assert_eq!(volume_distance(2, Vec3A::new(0.6, 0.0, 0.9)), Some(0.6));
+        assert_eq!(volume_distance(2, Vec3A::new(0.1, 0.0, 1.5)), None);
+        // Cone along −z: the radius over the depth.
+        assert_eq!(volume_distance(3, Vec3A::new(0.25, 0.0, -0.5)), Some(0.5));
+        assert_eq!(volume_distance(3, Vec3A::new(0.0, 0.0, 0.5)), None);
+        assert_eq!(volume_distance(3, Vec3A::new(0.6, 0.0, -0.5)), None);
     }
 }

@@ -1,4 +1,4 @@
-//! Maya's surface materials: lambert, blinn, phong, phongE and surfaceShader.
+//! Maya's surface materials: lambert, blinn, phong, phongE, anisotropic and surfaceShader.
 //!
 //! Parameters read (Maya's attribute names; defaults in `mayabase.mi`):
 //! - `color` c (0.5 grey), `diffuse` d (0.8), `ambientColor` a (black), `incandescence`
@@ -9,7 +9,9 @@
 //! - the reflective ones add `specularColor` s (0.5 grey), `reflectivity` r (0.5),
 //!   `reflectedColor` (black), `reflectionLimit` (1), `reflectionSpecularity`; then blinn
 //!   `eccentricity`, `specularRollOff`, `reflectionRolloff`; phong `cosinePower`; phongE
-//!   `roughness`, `highlightSize`, `whiteness`.
+//!   `roughness`, `highlightSize`, `whiteness`; anisotropic `angle` (radians, 0),
+//!   `spreadX` (13), `spreadY` (3), `roughness` (0.7), `fresnelRefractiveIndex` (6)
+//!   ([`specular::anisotropic`]: grooves along dP/du turned by `angle`).
 //!
 //! The colour (Maya's lambert model, which mental ray for Maya reproduces; no 1/π):
 //!
@@ -26,18 +28,23 @@
 //! E_fg is final gathering's irradiance (mental ray's convention, no 1/π). As in Maya,
 //! transparency fades the diffuse part, not the highlights and reflections. Raytraced
 //! reflections stop at `reflectionLimit` (and at the scene's trace depth). The lights are
-//! the instance's light list (`light "exclusive"` links), as the Maya materials have no
-//! light array. In a shadow ray the material filters the light by T (exports make the
-//! shading engine the material's shadow shader too; see [`crate::engine`]).
+//! the material's `lightList` or the instance's light list (see below). In a shadow ray
+//! the material filters the light by T (exports make the shading engine the material's
+//! shadow shader too; see [`crate::engine`]).
 //!
 //! Where mental ray for Maya and Maya's own renderer differ, mira follows mental ray for
 //! Maya: final gathering (not Maya's irradiance attributes) supplies indirect light, and
 //! reflections are raytraced up to `reflectionLimit` (no reflection maps).
 //!
+//! Lights: the material's `lightList` (exports fill it in with `lightMode` 0) when it is
+//! not empty, else the instance's light list. `lightMode` itself is not read (its other
+//! values are not documented).
+//!
 //! Not read: `shadowAttenuation` (Maya brightens the middle of transparent objects'
 //! shadows with it), `chromaticAberration`, `lightAbsorbance`, `surfaceThickness`,
 //! `translucenceDepth`, `translucenceFocus`, `matteOpacityMode`, `hideSource`,
-//! `reflectionSpecularity`.
+//! `reflectionSpecularity`; anisotropic's `anisotropicReflectivity` (Maya then derives the
+//! reflectivity from the roughness by an unpublished rule; mira uses `reflectivity`).
 
 use glam::Vec3A;
 use shader::{Color, Ctx, NodeId, RayType, Value};
@@ -59,10 +66,11 @@ const REFRACTIVE_INDEX: usize = 8;
 const REFRACTION_LIMIT: usize = 9;
 const MATTE_OPACITY: usize = 10;
 const GLOW_INTENSITY: usize = 11;
-const SPECULAR_COLOR: usize = 12;
-const REFLECTIVITY: usize = 13;
-const REFLECTED_COLOR: usize = 14;
-const REFLECTION_LIMIT: usize = 15;
+const LIGHT_LIST: usize = 12;
+const SPECULAR_COLOR: usize = 13;
+const REFLECTIVITY: usize = 14;
+const REFLECTED_COLOR: usize = 15;
+const REFLECTION_LIMIT: usize = 16;
 /// The first parameter a reflective material adds to the shared ones.
 const EXTRA: usize = REFLECTION_LIMIT + 1;
 
@@ -80,6 +88,7 @@ const LAMBERT_PARAMS: &[&str] = &[
     "refractionLimit",
     "matteOpacity",
     "glowIntensity",
+    "lightList",
 ];
 
 macro_rules! reflective_params {
@@ -87,7 +96,7 @@ macro_rules! reflective_params {
         &[
             "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
             "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
-            "glowIntensity", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            "glowIntensity", "lightList", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
             $($extra),*
         ]
     };
@@ -100,6 +109,7 @@ enum Highlight {
     Blinn { eccentricity: f32, rolloff: f32, reflection_rolloff: bool },
     Phong { power: f32 },
     PhongE { roughness: f32, size: f32, whiteness: Vec3A },
+    Anisotropic { grooves: Vec3A, alpha_x: f32, alpha_y: f32, ior: f32 },
 }
 
 impl Highlight {
@@ -111,6 +121,9 @@ impl Highlight {
             }
             Highlight::Phong { power } => Vec3A::splat(specular::phong(n, v, l, power)),
             Highlight::PhongE { roughness, size, whiteness } => whiteness * specular::phong_e(n, v, l, roughness, size),
+            Highlight::Anisotropic { grooves, alpha_x, alpha_y, ior } => {
+                Vec3A::splat(specular::anisotropic(n, v, l, grooves, alpha_x, alpha_y, ior))
+            }
         }
     }
 }
@@ -168,7 +181,7 @@ maya_shader!(
     /// `highlightSize` (0.5), tinted by `whiteness` (0.5 grey).
     PHONGE,
     ADSK_PHONGE,
-    "maya_phonge",
+    "maya_phongE",
     "adskMayaPhongE",
     reflective_params!("roughness", "highlightSize", "whiteness"),
     phong_e
@@ -182,11 +195,33 @@ fn phong_e(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     })
 }
 
+maya_shader!(
+    /// Maya's anisotropic: lambert plus [`specular::anisotropic`], grooves along dP/du
+    /// turned by `angle`, widths from `roughness`, `spreadX` and `spreadY`
+    /// ([`specular::anisotropic_widths`]), Fresnel of `fresnelRefractiveIndex`.
+    ANISOTROPIC,
+    ADSK_ANISOTROPIC,
+    "maya_anisotropic",
+    "adskMayaAnisotropic",
+    reflective_params!("angle", "spreadX", "spreadY", "roughness", "fresnelRefractiveIndex"),
+    anisotropic
+);
+
+fn anisotropic(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    surface(ctx, n, out, |ctx, n| {
+        let angle = ctx.scalar(n, EXTRA);
+        let (alpha_x, alpha_y) =
+            specular::anisotropic_widths(ctx.scalar(n, EXTRA + 3), ctx.scalar(n, EXTRA + 1), ctx.scalar(n, EXTRA + 2));
+        let grooves = specular::groove_direction(ctx.state.normal, ctx.state.derivs[0], angle);
+        Highlight::Anisotropic { grooves, alpha_x, alpha_y, ior: ctx.scalar(n, EXTRA + 4) }
+    })
+}
+
 /// A shadow ray through a Maya material: called as a shadow shader (the arriving light
 /// in `out`), the light is filtered by the transparency; called through a shading engine
 /// (`out` holds the output struct), the transparency is reported in `outTransparency`
 /// for the engine to filter with.
-fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
+pub(crate) fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
     if let Value::Struct(_) = out {
         write_struct(out, &[("outTransparency", Value::Color(rgba(transparency, 1.0)))]);
         return true;
@@ -195,6 +230,17 @@ fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
     let f = rgb(c) * transparency;
     *out = Value::Color(rgba(f, c.w));
     f != Vec3A::ZERO
+}
+
+/// The lights a Maya material shades with: its `lightList` (parameter `i` of `node`) when
+/// the export filled it in, else the instance's light list (`light "exclusive"` links).
+pub(crate) fn material_lights(ctx: &mut Ctx, node: NodeId, i: usize) -> Vec<u32> {
+    let listed = ctx.array(node, i);
+    if listed.array().is_empty() {
+        ctx.instance_lights()
+    } else {
+        ctx.light_list(0, &listed)
+    }
 }
 
 /// The light arriving at the point, split by how the material uses it.
@@ -206,10 +252,10 @@ struct Received {
     specular: Vec3A,
 }
 
-fn gather_lights(ctx: &mut Ctx, highlight: Highlight, translucent: bool) -> Received {
+fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, translucent: bool) -> Received {
     let mut r = Received::default();
     let (n, v) = (ctx.state.normal, -ctx.state.dir);
-    for light in ctx.instance_lights() {
+    for light in material_lights(ctx, node, LIGHT_LIST) {
         let role = light_role(ctx, light);
         let mut lp = ctx.light_loop(light);
         lp.both_sides = role.ambient_shade.is_some() || translucent;
@@ -246,6 +292,12 @@ fn behind(ctx: &mut Ctx, n: NodeId) -> Color {
     let refract = ctx.bool(n, REFRACTIONS);
     let ior = ctx.scalar(n, REFRACTIVE_INDEX);
     let limit = ctx.int(n, REFRACTION_LIMIT).max(0) as u32;
+    behind_with(ctx, refract, ior, limit)
+}
+
+/// [`behind`] with the refraction parameters given: `refract` (`refractions`), the
+/// index `ior` and `limit` (`refractionLimit`).
+pub(crate) fn behind_with(ctx: &mut Ctx, refract: bool, ior: f32, limit: u32) -> Color {
     let traced = if refract && ior > 0.0 && (ior - 1.0).abs() > 1e-6 && ctx.state.refraction_level < limit {
         let (from, to) = if ctx.state.inv_normal { (ior, 1.0) } else { (1.0, ior) };
         match ctx.refraction_dir(from, to) {
@@ -278,7 +330,7 @@ fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, No
     let translucence = ctx.scalar(n, TRANSLUCENCE);
     let highlight = highlight(ctx, n);
     let reflective = !matches!(highlight, Highlight::None);
-    let received = gather_lights(ctx, highlight, translucence > 0.0);
+    let received = gather_lights(ctx, n, highlight, translucence > 0.0);
     let fg = if diffuse > 0.0 && color != Vec3A::ZERO { rgb(ctx.compute_irradiance()) } else { Vec3A::ZERO };
     let ambient = rgb(ctx.color(n, AMBIENT_COLOR)) + received.ambient;
     let lit = color * (ambient + diffuse * (received.diffuse + fg) + translucence * received.behind)

@@ -53,6 +53,46 @@ pub fn phong_e(n: Vec3A, v: Vec3A, l: Vec3A, roughness: f32, size: f32) -> f32 {
     size * n.dot(h).max(0.0).powf(1.0 / (r * r))
 }
 
+/// The Ward-style slope widths (α_x, α_y) of Maya's anisotropic highlight: α = `roughness`
+/// / √spread in each groove direction, so that a larger `spreadX`/`spreadY` (Maya: the
+/// surface varies more smoothly that way) shrinks the highlight along it. mira's reading:
+/// Maya documents the direction of the effect, not the formula.
+pub fn anisotropic_widths(roughness: f32, spread_x: f32, spread_y: f32) -> (f32, f32) {
+    let r = roughness.clamp(0.01, 1.0);
+    (r / spread_x.max(0.1).sqrt(), r / spread_y.max(0.1).sqrt())
+}
+
+/// Maya's anisotropic highlight for the unit groove direction `x` (in the tangent plane of
+/// `n`, the U direction turned by `angle`): a Ward distribution of half-vector slopes of
+/// widths (`alpha_x`, `alpha_y`) along x and n × x, exp(−((H·x/α_x)² + (H·y/α_y)²)/(N·H)²),
+/// 1 at the peak, times the dielectric Fresnel reflectance of index `ior`
+/// (`fresnelRefractiveIndex`) at V·H relative to its value head-on, so that the peak seen
+/// head-on is 1 and the highlight brightens towards grazing angles as Fresnel does.
+pub fn anisotropic(n: Vec3A, v: Vec3A, l: Vec3A, x: Vec3A, alpha_x: f32, alpha_y: f32, ior: f32) -> f32 {
+    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let nh = n.dot(h);
+    if nh <= 0.0 {
+        return 0.0;
+    }
+    let y = n.cross(x);
+    let (sx, sy) = (h.dot(x) / alpha_x.max(1e-4), h.dot(y) / alpha_y.max(1e-4));
+    let d = (-(sx * sx + sy * sy) / (nh * nh)).exp();
+    let eta = ior.max(1.0 + 1e-4);
+    d * bsdf::dielectric::fresnel(v.dot(h).max(0.0), eta) / bsdf::dielectric::fresnel(1.0, eta)
+}
+
+/// The groove direction of the anisotropic material: the surface's dP/du made
+/// perpendicular to `n` and turned by `angle` (radians, counter-clockwise about `n`); any
+/// tangent when dP/du is unknown or along `n`.
+pub fn groove_direction(n: Vec3A, dpdu: Vec3A, angle: f32) -> Vec3A {
+    let u = (dpdu - n * n.dot(dpdu)).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
+    let w = n.cross(u);
+    u * angle.cos() + w * angle.sin()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,5 +138,28 @@ mod tests {
         assert!((phong_e(n, n, l, 0.4, 0.6) - want).abs() < 1e-5);
         // Rougher: a wider highlight, larger off the peak.
         assert!(phong_e(n, n, l, 0.8, 0.6) > phong_e(n, n, l, 0.4, 0.6));
+    }
+    #[test]
+    fn anisotropic_peak_is_one_and_the_larger_spread_gives_the_narrower_highlight() {
+        let n = Vec3A::Z;
+        let x = groove_direction(n, Vec3A::X, 0.0);
+        let (ax, ay) = anisotropic_widths(0.7, 13.0, 3.0);
+        assert!((ax - 0.7 / 13f32.sqrt()).abs() < 1e-6 && (ay - 0.7 / 3f32.sqrt()).abs() < 1e-6);
+        assert!((anisotropic(n, n, n, x, ax, ay, 6.0) - 1.0).abs() < 1e-5);
+        // Light 20° off the normal, viewer on it: H is 10° off, tilted along x or along y.
+        let t = 20f32.to_radians();
+        let along_x = Vec3A::new(t.sin(), 0.0, t.cos());
+        let along_y = Vec3A::new(0.0, t.sin(), t.cos());
+        let (hx, hy) = (anisotropic(n, n, along_x, x, ax, ay, 6.0), anisotropic(n, n, along_y, x, ax, ay, 6.0));
+        assert!(hx < hy, "spreadX 13 > spreadY 3: narrower along x ({hx} vs {hy})");
+        // Against the formula: tan²(10°)/α_x² in the exponent, times the Fresnel ratio.
+        let h = (n + along_x).normalize();
+        let f = bsdf::dielectric::fresnel(h.z, 6.0) / bsdf::dielectric::fresnel(1.0, 6.0);
+        let want = (-(10f32.to_radians().tan() / ax).powi(2)).exp() * f;
+        assert!((hx - want).abs() < 1e-5, "{hx} vs {want}");
+        // Turning the grooves by 90° swaps the two directions.
+        let turned = groove_direction(n, Vec3A::X, std::f32::consts::FRAC_PI_2);
+        assert!((turned - Vec3A::Y).length() < 1e-6);
+        assert!((anisotropic(n, n, along_y, turned, ax, ay, 6.0) - hx).abs() < 1e-6);
     }
 }

@@ -233,7 +233,7 @@ pub fn curve_at(points: &[(f32, Vec3A, i32)], t: f32) -> Vec3A {
 
 /// The points of a ramp array of structs {`<p>_Position`, `<p>_<value>`,
 /// `<p>_Interp`}, sorted by position.
-fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
+pub(crate) fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
     let (pos, val, interp) = (format!("{prefix}_Position"), format!("{prefix}_{value}"), format!("{prefix}_Interp"));
     let mut pts: Vec<(f32, Vec3A, i32)> = v
         .array()
@@ -249,6 +249,35 @@ fn ramp_points(v: &Value, prefix: &str, value: &str) -> Vec<(f32, Vec3A, i32)> {
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
     pts
+}
+
+/// A ramp read from its array: sorted points and the value of an empty ramp.
+pub struct Ramp {
+    points: Vec<(f32, Vec3A, i32)>,
+    empty: Vec3A,
+}
+
+impl Ramp {
+    /// A ramp of sorted `points` (position, value, Maya interpolation), `empty` when
+    /// there are none.
+    pub fn new(points: Vec<(f32, Vec3A, i32)>, empty: Vec3A) -> Ramp {
+        Ramp { points, empty }
+    }
+
+    /// The ramp of array `value` whose members are `<prefix>_Position`,
+    /// `<prefix>_<member>` and `<prefix>_Interp`; `empty` when it has no points.
+    pub fn read(value: &Value, prefix: &str, member: &str, empty: Vec3A) -> Ramp {
+        Ramp { points: ramp_points(value, prefix, member), empty }
+    }
+
+    /// The ramp at `x` (the first point's value before it, the last one's after it).
+    pub fn at(&self, x: f32) -> Vec3A {
+        if self.points.is_empty() {
+            self.empty
+        } else {
+            curve_at(&self.points, x)
+        }
+    }
 }
 
 /// `x` normalised by [`lo`, `hi`] and clamped to [0, 1] (0 for an empty range).

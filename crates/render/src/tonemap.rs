@@ -1,9 +1,13 @@
 //! Tone mapping for display images: the camera's `mia_exposure_photographic` (as Iray
 //! camera attributes, an output shader, or a lens shader when the path engine ran, which
 //! does not run lens shaders), `mia_exposure_simple`, or plain sRGB encoding. The curves
-//! are `mia::exposure`'s.
+//! are `mia::exposure`'s. A Maya export's `maya_colormgt` / `adskMayaColorMgt` output
+//! shader encodes the display image with its view transform (`maya::output`), after the
+//! camera's `mia_exposure_simple` when there is one (Maya exports give it gamma 1 and
+//! leave the display encoding to colour management).
 
 use bsdf::Rgb;
+use maya::output::ViewTransform;
 use mi::ast::{Param, ShaderList};
 use mia::exposure::{Photographic, Simple};
 use scene::camera::Output;
@@ -42,6 +46,21 @@ pub enum ToneMapper {
     Photographic(Photographic, (f32, f32)),
     /// The pixels are display values already (a lens shader mapped every sample): clamp.
     Display,
+    /// A Maya colour-management view transform of the (clamped) linear value, or of the
+    /// values a lens shader already mapped.
+    View(ViewTransform),
+    /// `mia_exposure_simple`, then a Maya view transform.
+    SimpleThenView(Simple, ViewTransform),
+}
+
+/// The view transform of a Maya colour-management output shader in `list`, if it holds
+/// one (an unknown view name falls back to sRGB, `maya::output::colormgt_view`'s choice).
+fn maya_view_in(list: &ShaderList, lib: &scene::Library) -> Option<ViewTransform> {
+    list.0.iter().find_map(|item| {
+        let (name, params) = material::first_call(std::slice::from_ref(item), lib)?;
+        matches!(name, "maya_colormgt" | "adskMayaColorMgt")
+            .then(|| maya::output::colormgt_view(params).unwrap_or(ViewTransform::Srgb))
+    })
 }
 
 /// A value of a shader call's parameter, else the declaration's default, else 0.
@@ -130,12 +149,21 @@ impl ToneMapper {
                 }
             }
         }
+        let view = c.outputs.iter().find_map(|out| match out {
+            Output::Shader { shaders, .. } => maya_view_in(shaders, lib),
+            _ => None,
+        });
         for lens in &c.lens {
             if let Some(t) = exposure_in(lens, lib) {
-                return if lens_applied { ToneMapper::Display } else { with_tan(t) };
+                return match (lens_applied, view, t) {
+                    (true, Some(v), _) => ToneMapper::View(v),
+                    (true, None, _) => ToneMapper::Display,
+                    (false, Some(v), ToneMapper::Simple(s)) => ToneMapper::SimpleThenView(s, v),
+                    (false, _, t) => with_tan(t),
+                };
             }
         }
-        ToneMapper::Srgb
+        view.map_or(ToneMapper::Srgb, ToneMapper::View)
     }
 
     /// Display value in [0, 1] of a linear colour at pixel (x, y) of a w × h image.
@@ -149,6 +177,8 @@ impl ToneMapper {
                 p.map(c, 1.0 / (1.0 + u * u + v * v).sqrt())
             }
             ToneMapper::Display => c,
+            ToneMapper::View(v) => view(*v, c),
+            ToneMapper::SimpleThenView(s, v) => view(*v, s.map(c)),
         };
         out.clamp(Rgb::ZERO, Rgb::ONE)
     }
@@ -157,6 +187,12 @@ impl ToneMapper {
     pub fn map(&self, c: Rgb) -> Rgb {
         self.map_at(c, 0, 0, 1, 1)
     }
+}
+
+/// A view transform of a colour clamped to [0, 1].
+fn view(v: ViewTransform, c: Rgb) -> Rgb {
+    let c = c.clamp(Rgb::ZERO, Rgb::ONE);
+    Rgb::new(v.encode(c.x), v.encode(c.y), v.encode(c.z))
 }
 
 /// The sRGB transfer function of a linear value, clamped to [0, 1].
@@ -201,5 +237,46 @@ render "root" "ci" "o"
         let sc = scene::Scene::build(&parsed, 0, &mut d).unwrap();
         assert_eq!(ToneMapper::for_camera(&sc.camera, &sc.library, true), ToneMapper::Display);
         assert!(matches!(ToneMapper::for_camera(&sc.camera, &sc.library, false), ToneMapper::Simple(_)));
+    }
+
+    /// A Maya export's colour management: the view transform encodes the image, after
+    /// the exposure lens shader (which Maya exports give gamma 1).
+    #[test]
+    fn maya_colormgt_encodes_after_the_exposure_lens_shader() {
+        let text = r#"
+$include "mayabase.mi"
+options "o" end options
+camera "c" focal 1 aperture 1 aspect 1 resolution 4 4
+    output "maya_colormgt" ("frameBuffer" "mayaColor", "enable" on, "viewTransform" "Rec 709 gamma")
+    LENS
+end camera
+instance "ci" "c" end instance
+instgroup "root" "ci" end instgroup
+render "root" "ci" "o"
+"#;
+        let camera = |lens: &str| {
+            let parsed = mi::parse_str("t.mi", &text.replace("LENS", lens));
+            let mut d = Vec::new();
+            scene::Scene::build(&parsed, 0, &mut d).unwrap()
+        };
+        let sc = camera("");
+        let t = ToneMapper::for_camera(&sc.camera, &sc.library, false);
+        assert_eq!(t, ToneMapper::View(ViewTransform::Rec709));
+        // 18 % grey is 0.409 in Rec. 709 (not sRGB's 0.4614).
+        assert!((t.map(Rgb::splat(0.18)).x - 0.409).abs() < 1e-3);
+        let sc = camera(r#"lens "mia_exposure_simple" ("gain" 0.5, "gamma" 1)"#);
+        assert_eq!(ToneMapper::for_camera(&sc.camera, &sc.library, true), ToneMapper::View(ViewTransform::Rec709));
+        let t = ToneMapper::for_camera(&sc.camera, &sc.library, false);
+        let ToneMapper::SimpleThenView(s, ViewTransform::Rec709) = t else { panic!("{t:?}") };
+        let c = Rgb::splat(0.3);
+        let want = ViewTransform::Rec709.encode(s.map(c).x.clamp(0.0, 1.0));
+        assert!((t.map(c).x - want).abs() < 1e-6);
+        // Colour management off: the raw values.
+        let parsed = mi::parse_str("t.mi", &text.replace("LENS", "").replace("\"enable\" on", "\"enable\" off"));
+        let mut d = Vec::new();
+        let sc = scene::Scene::build(&parsed, 0, &mut d).unwrap();
+        let t = ToneMapper::for_camera(&sc.camera, &sc.library, false);
+        assert_eq!(t, ToneMapper::View(ViewTransform::Raw));
+        assert!((t.map(Rgb::splat(0.18)).x - 0.18).abs() < 1e-6);
     }
 }

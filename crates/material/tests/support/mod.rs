@@ -1,23 +1,41 @@
 //! Test support: compiling small scenes' shading and running material shaders at a
-//! hand-made shading point with a tracer that has no geometry.
+//! hand-made shading point with a tracer that has no geometry; [`maya`] adds what the
+//! Maya tests use (a scene without the key light, occluding tracers, Maya's shading
+//! point).
 
 #![allow(dead_code)]
+
+pub mod maya;
 
 use std::cell::RefCell;
 
 use glam::Vec3A;
 use shader::{Color, Ctx, NodeId, RayType, Shading, ShadingOptions, State, Tracer, Value, VertexData};
 
-/// The camera, options and a light every test scene has: `key`, a `mib_light_point` of
-/// colour (0.8, 0.6, 0.4) ten units above the origin (instance `key_inst`). `{OPTIONS}`
-/// and `{CAMERA}` take extra statements.
-pub const HEADER: &str = r#"
+/// The options, camera and camera instance of every test scene (a macro so that
+/// [`HEADER`] can extend the literal).
+macro_rules! camera_header {
+    () => {
+        r#"
 options "opt" {OPTIONS} end options
 camera "cam" focal 1 aperture 1 aspect 1 resolution 8 8 {CAMERA} end camera
 instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
-light "key" "mib_light_point" ("color" 0.8 0.6 0.4) origin 0 0 0 end light
+"#
+    };
+}
+
+/// The options, camera and camera instance alone; `{OPTIONS}` and `{CAMERA}` take extra
+/// statements.
+pub const CAMERA: &str = camera_header!();
+
+/// [`CAMERA`] and a light: `key`, a `mib_light_point` of colour (0.8, 0.6, 0.4) ten units
+/// above the origin (instance `key_inst`).
+pub const HEADER: &str = concat!(
+    camera_header!(),
+    r#"light "key" "mib_light_point" ("color" 0.8 0.6 0.4) origin 0 0 0 end light
 instance "key_inst" "key" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 -10 0 1 end instance
-"#;
+"#
+);
 
 /// A compiled test scene.
 pub struct Compiled {
@@ -48,25 +66,47 @@ pub fn compile(body: &str, materials: &[&str]) -> Compiled {
 
 /// [`compile`] with extra statements in the options and the camera.
 pub fn compile_with(options: &str, camera: &str, body: &str, materials: &[&str]) -> Compiled {
-    let mut text = HEADER.replace("{OPTIONS}", options).replace("{CAMERA}", camera);
-    text.push_str(body);
-    text.push('\n');
-    let mut objects = String::new();
+    let header = HEADER.replace("{OPTIONS}", options).replace("{CAMERA}", camera);
+    let text = scene_text(&header, &["key_inst"], body, materials, "");
+    let (shading, messages) = build_shading(&text);
+    Compiled { shading, messages }
+}
+
+/// The text of a test scene: `header`, then `body`, then one triangle object per
+/// material of `materials` (instance `obj{i}_inst`, the first with `instance_extra` in
+/// its instance block), a root group of the camera, the `header_instances`, every
+/// `instance` of `body` and the objects, and the render statement.
+pub fn scene_text(
+    header: &str,
+    header_instances: &[&str],
+    body: &str,
+    materials: &[&str],
+    instance_extra: &str,
+) -> String {
+    let mut text = format!("{header}{body}\n");
+    let mut members: String = header_instances.iter().map(|n| format!(" \"{n}\"")).collect();
+    members.extend(
+        body.lines()
+            .filter_map(|l| l.trim().strip_prefix("instance \"").and_then(|r| r.split('"').next()))
+            .map(|n| format!(" \"{n}\"")),
+    );
     for (i, m) in materials.iter().enumerate() {
+        let instance_extra = if i == 0 { instance_extra } else { "" };
         text.push_str(&format!(
             "object \"obj{i}\" group 0 0 0 1 0 0 0 0 1 v 0 v 1 v 2 c \"{m}\" 0 1 2 end group end object\n\
-             instance \"obj{i}_inst\" \"obj{i}\" end instance\n"
+             instance \"obj{i}_inst\" \"obj{i}\" {instance_extra} end instance\n"
         ));
-        objects.push_str(&format!(" \"obj{i}_inst\""));
+        members.push_str(&format!(" \"obj{i}_inst\""));
     }
-    let lights: String = body
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("instance \"").and_then(|r| r.split('"').next()))
-        .map(|n| format!(" \"{n}\""))
-        .collect();
-    text.push_str(&format!("instgroup \"root\" \"cam_inst\" \"key_inst\"{lights}{objects} end instgroup\n"));
+    text.push_str(&format!("instgroup \"root\" \"cam_inst\"{members} end instgroup\n"));
     text.push_str("render \"root\" \"cam_inst\" \"opt\"\n");
-    let parsed = mi::parse_str("test.mi", &text);
+    text
+}
+
+/// Parses `text`, builds its scene and compiles its shading with every library mira has:
+/// the shading and every diagnostic, rendered. Panics (with the text) if no scene results.
+pub fn build_shading(text: &str) -> (Shading, Vec<String>) {
+    let parsed = mi::parse_str("test.mi", text);
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let Some(scene) = scene::Scene::build(&parsed, 0, &mut diags) else {
@@ -76,7 +116,7 @@ pub fn compile_with(options: &str, camera: &str, body: &str, materials: &[&str])
     let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    Compiled { shading, messages }
+    (shading, messages)
 }
 
 /// A tracer without geometry: every ray misses (and is recorded), no shadows.

@@ -1,19 +1,11 @@
-//! Test support: compiling small Maya scenes' shading with this crate's implementations
-//! attached, and running a material's shaders at a hand-made shading point with tracers
-//! that have no geometry (or one occluder).
-
-#![allow(dead_code)]
+//! Maya test support: small Maya scenes (no key light) compiled with the Maya library's
+//! implementations counted, tracers with one occluder or a half-space of them, and the
+//! shading point the Maya tests use. Rays that miss use [`super::Empty`].
 
 use glam::Vec3A;
-use shader::{Color, Ctx, NodeId, RayType, Shading, ShadingOptions, State, Tracer, Value, VertexData};
+use shader::{Color, Ctx, NodeId, RayType, Shading, State, Tracer, Value, VertexData};
 
-/// Camera and options every test scene has; `{OPTIONS}` and `{CAMERA}` take extra
-/// statements.
-const HEADER: &str = r#"
-options "opt" {OPTIONS} end options
-camera "cam" focal 1 aperture 1 aspect 1 resolution 8 8 {CAMERA} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
-"#;
+use super::{build_shading, scene_text, CAMERA};
 
 /// A compiled test scene.
 pub struct Compiled {
@@ -64,35 +56,8 @@ pub fn compile_with_camera(
     materials: &[&str],
     instance_extra: &str,
 ) -> Compiled {
-    let mut text = HEADER.replace("{OPTIONS}", options).replace("{CAMERA}", camera);
-    text.push_str(body);
-    text.push('\n');
-    let mut objects = String::new();
-    for (i, m) in materials.iter().enumerate() {
-        let instance_extra = if i == 0 { instance_extra } else { "" };
-        text.push_str(&format!(
-            "object \"obj{i}\" group 0 0 0 1 0 0 0 0 1 v 0 v 1 v 2 c \"{m}\" 0 1 2 end group end object\n\
-             instance \"obj{i}_inst\" \"obj{i}\" {instance_extra} end instance\n"
-        ));
-        objects.push_str(&format!(" \"obj{i}_inst\""));
-    }
-    let insts: String = body
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("instance \"").and_then(|r| r.split('"').next()))
-        .map(|n| format!(" \"{n}\""))
-        .collect();
-    text.push_str(&format!("instgroup \"root\" \"cam_inst\"{insts}{objects} end instgroup\n"));
-    text.push_str("render \"root\" \"cam_inst\" \"opt\"\n");
-    let parsed = mi::parse_str("test.mi", &text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let Some(scene) = scene::Scene::build(&parsed, 0, &mut diags) else {
-        let all: Vec<String> = diags.iter().map(|d| d.render(&parsed.sources)).collect();
-        panic!("no scene:\n{}\n{}\n{text}", messages.join("\n"), all.join("\n"));
-    };
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
+    let header = CAMERA.replace("{OPTIONS}", options).replace("{CAMERA}", camera);
+    let (shading, messages) = build_shading(&scene_text(&header, &[], body, materials, instance_extra));
     // Nodes implemented by the Maya library (found through the registry).
     let attached = shading
         .graph
@@ -101,26 +66,6 @@ pub fn compile_with_camera(
         .filter(|n| n.imp.is_some_and(|i| maya::REGISTRY.iter().any(|m| std::ptr::eq(*m, i))))
         .count();
     Compiled { shading, messages, attached }
-}
-
-/// A tracer without geometry: every ray misses, shadow rays find nothing.
-#[derive(Default)]
-pub struct Empty;
-
-impl Tracer for Empty {
-    fn intersect(&self, _ray: &mut State, _max_dist: f32) -> bool {
-        false
-    }
-
-    fn shadow_hits(&self, _ray: &State, _max_dist: f32, _visit: &mut dyn FnMut(&State) -> bool) {}
-
-    fn triangle(&self, _hit: &State, _data: VertexData) -> Option<[Vec3A; 3]> {
-        None
-    }
-
-    fn fb_put(&self, _buffer: u32, _value: Color) -> bool {
-        false
-    }
 }
 
 /// A tracer whose every shadow ray passes one occluder of material `material` (at the

@@ -1,0 +1,227 @@
+//! Maya's anisotropic, rampShader and layeredShader in compiled scenes, in the classic
+//! engine (against the formulas of their module docs, worked out here by hand) and
+//! translated for the path engine (the same albedo). The shading point is the origin,
+//! normal +y, seen from straight above, dP/du = +x (see `support::maya::point`).
+
+mod support;
+
+use material::SurfaceModel;
+use support::maya::{assert_rgb, compile, point, run, Compiled};
+use support::Empty;
+
+const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
+
+fn scene(body: &str) -> Compiled {
+    let c = compile("", &format!("{LIBS}{body}"), &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    assert!(c.attached > 0);
+    c
+}
+
+fn shade(c: &Compiled) -> glam::Vec4 {
+    run(c, &Empty::default(), c.material("m"), point([0.0, 0.0])).color()
+}
+
+fn translate(c: &Compiled) -> (material::SurfaceMaterial, Vec<String>) {
+    material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine")
+}
+
+/// A directional light of intensity `i` shining along `dir` (normalised here).
+fn sun(i: f32, dir: [f32; 3]) -> String {
+    let d = glam::Vec3::from_array(dir).normalize();
+    format!(
+        "light \"sun\" \"maya_directionallight\" (\"intensity\" {i}) direction {} {} {} end light\n\
+         instance \"sun_inst\" \"sun\" end instance\n",
+        d.x, d.y, d.z
+    )
+}
+
+fn anisotropic_material(family: &str, engine: &str) -> String {
+    format!(
+        r#"shader "an" "{family}" ("color" 0.6 0.5 0.4, "diffuse" 0.7, "specularColor" 0.3 0.3 0.3,
+            "reflectivity" 0, "spreadX" 13, "spreadY" 3, "roughness" 0.7, "fresnelRefractiveIndex" 6)
+        material "m" opaque "{engine}" ("surfaceShader" = "an.outColor") end material"#
+    )
+}
+
+#[test]
+fn anisotropic_peak_and_groove_direction() {
+    // Light and viewer on the normal: c·d·I + s·I (the highlight's peak is 1).
+    let c = scene(&format!(
+        "{}{}",
+        sun(1.0, [0.0, -1.0, 0.0]),
+        anisotropic_material("maya_anisotropic", "maya_shadingengine")
+    ));
+    assert_rgb(shade(&c), [0.6 * 0.7 + 0.3, 0.5 * 0.7 + 0.3, 0.4 * 0.7 + 0.3], 1e-5);
+    // Light 20° off the normal towards +x (along the grooves, dP/du) or +z: lambert
+    // c·d·cos 20° plus s times the highlight of the formula.
+    let (ax, ay) = maya::specular::anisotropic_widths(0.7, 13.0, 3.0);
+    let t = 20f32.to_radians();
+    let mut peaks = Vec::new();
+    for to_light in [glam::Vec3A::new(t.sin(), t.cos(), 0.0), glam::Vec3A::new(0.0, t.cos(), t.sin())] {
+        let c = scene(&format!(
+            "{}{}",
+            sun(1.0, (-to_light).to_array()),
+            anisotropic_material("adskMayaAnisotropic", "adskMayaShadingEngine")
+        ));
+        let h = maya::specular::anisotropic(glam::Vec3A::Y, glam::Vec3A::Y, to_light, glam::Vec3A::X, ax, ay, 6.0);
+        let got = shade(&c);
+        assert_rgb(
+            got,
+            [0.6 * 0.7 * t.cos() + 0.3 * h, 0.5 * 0.7 * t.cos() + 0.3 * h, 0.4 * 0.7 * t.cos() + 0.3 * h],
+            1e-5,
+        );
+        peaks.push(got.x - 0.6 * 0.7 * t.cos());
+    }
+    assert!(peaks[0] < peaks[1], "spreadX 13 > spreadY 3: the highlight is narrower along the grooves {peaks:?}");
+    // Path engine: the unified BSDF of base colour c·d, GGX α = √(α_x α_y), a warning.
+    let (s, warnings) = translate(&c);
+    let SurfaceModel::Unified(u) = &s.model else { panic!("{:?}", s.model) };
+    let p = u.params();
+    assert!((p.base_color - bsdf::Rgb::new(0.42, 0.35, 0.28)).abs().max_element() < 1e-6);
+    assert!((p.roughness * p.roughness - (ax * ay).sqrt()).abs() < 1e-5);
+    assert!(warnings.iter().any(|w| w.contains("isotropic")), "{warnings:?}");
+}
+
+/// Maya's documented recipe: black at 0.5, the colour at 1, linear, diffuse 0,
+/// translucence 1 — a lambert falloff — in both engines.
+const RAMP_RECIPE: &str = r#"shader "rs" "maya_rampshader" ("colorInput" 0, "diffuse" 0, "translucence" 1,
+    "color" [ { "color_Position" 0.5, "color_Color" 0 0 0, "color_Interp" 1 },
+              { "color_Position" 1, "color_Color" 0.8 0.6 0.4, "color_Interp" 1 } ])
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "rs.outColor") end material
+"#;
+
+#[test]
+fn ramp_shader_light_angle_recipe_is_lambert() {
+    for deg in [0.0f32, 60.0, 120.0] {
+        let t = deg.to_radians();
+        let c = scene(&format!("{}{RAMP_RECIPE}", sun(2.0, [-t.sin(), -t.cos(), 0.0])));
+        let k = 2.0 * t.cos().max(0.0);
+        assert_rgb(shade(&c), [0.8 * k, 0.6 * k, 0.4 * k], 1e-5);
+        // The path engine's Lambertian albedo is the colour at 1 · (d + t): the same c·I·cos θ.
+        let (s, warnings) = translate(&c);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(s.model, SurfaceModel::Lambert);
+        assert!((s.diffuse - bsdf::Rgb::new(0.8, 0.6, 0.4)).abs().max_element() < 1e-6, "{}", s.diffuse);
+    }
+}
+
+#[test]
+fn ramp_shader_facing_input_transparency_incandescence_and_highlight() {
+    // Seen head-on (facing ratio 1): the ramps are read at 1. Colour 0.5 at 1, diffuse
+    // 0.8, light 1 at 60°: 0.5·0.8·0.5 = 0.2; incandescence 0.1 red; transparency 0.25
+    // scales both by 0.75 (nothing behind); alpha 0.75.
+    let t = 60f32.to_radians();
+    let c = scene(&format!(
+        r#"{}shader "rs" "adskMayaRampShader" ("colorInput" 1, "diffuse" 0.8,
+            "color" [ {{ "color_Position" 0, "color_Color" 1 0 0, "color_Interp" 1 }},
+                      {{ "color_Position" 1, "color_Color" 0.5 0.5 0.5, "color_Interp" 1 }} ],
+            "transparency" [ {{ "transparency_Position" 0, "transparency_Color" 0.25 0.25 0.25, "transparency_Interp" 1 }} ],
+            "incandescence" [ {{ "incandescence_Position" 0, "incandescence_Color" 0.1 0 0, "incandescence_Interp" 1 }} ])
+        material "m" opaque "adskMayaShadingEngine" ("surfaceShader" = "rs.outColor") end material"#,
+        sun(1.0, [-t.sin(), -t.cos(), 0.0])
+    ));
+    let got = shade(&c);
+    assert_rgb(got, [(0.2 + 0.1) * 0.75, 0.2 * 0.75, 0.2 * 0.75], 1e-5);
+    assert!((got.w - 0.75).abs() < 1e-5, "alpha {}", got.w);
+    let (s, warnings) = translate(&c);
+    assert!((s.diffuse - bsdf::Rgb::splat(0.4)).abs().max_element() < 1e-6, "{}", s.diffuse);
+    assert!((s.opacity - 0.75).abs() < 1e-6 && (s.emission.x - 0.1).abs() < 1e-6);
+    assert!(warnings.iter().any(|w| w.contains("FacingAngle")), "{warnings:?}");
+
+    // A highlight: light and viewer on the normal, specularity 0.5, specular colour ramp
+    // 0.4 at the peak: 0.5 · 0.4 · I on top of the diffuse 0.5·0.8·I.
+    let c = scene(&format!(
+        r#"{}shader "rs" "maya_rampshader" ("colorInput" 1, "diffuse" 0.8, "specularity" 0.5, "eccentricity" 0.3,
+            "specularColor" [ {{ "specularColor_Position" 1, "specularColor_Color" 0.4 0.4 0.4, "specularColor_Interp" 1 }} ])
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "rs.outColor") end material"#,
+        sun(1.0, [0.0, -1.0, 0.0])
+    ));
+    assert_rgb(shade(&c), [0.4 + 0.2; 3], 1e-5);
+}
+
+#[test]
+fn layered_shader_composites_materials_by_their_transparency() {
+    // A red surfaceShader 25 % transparent over an opaque green lambert lit by 1 straight
+    // above (0.5 green · 0.8): 0.75 red + 0.25 · (0, 0.4, 0), nothing behind.
+    let c = scene(&format!(
+        r#"{}shader "top" "maya_surfaceshader" ("outColor" 1 0 0, "outTransparency" 0.25 0.25 0.25)
+        shader "bottom" "maya_lambert" ("color" 0 0.5 0, "diffuse" 0.8)
+        shader "ls" "maya_layeredshader" ("inputs" [
+            {{ "color" = "top.outColor", "transparency" = "top.outTransparency" }},
+            {{ "color" = "bottom.outColor", "transparency" = "bottom.outTransparency" }} ])
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "ls.outColor") end material"#,
+        sun(1.0, [0.0, -1.0, 0.0])
+    ));
+    let got = shade(&c);
+    assert_rgb(got, [0.75, 0.25 * 0.4, 0.0], 1e-5);
+    assert!((got.w - 1.0).abs() < 1e-6);
+    // Path engine: the visible shares 0.75 and 0.25 of the layers' albedos; the
+    // surfaceShader's colour is emitted, the lambert's scatters.
+    let (s, _) = translate(&c);
+    assert!((s.diffuse - bsdf::Rgb::new(0.0, 0.1, 0.0)).abs().max_element() < 1e-6, "{}", s.diffuse);
+    assert!((s.emission - bsdf::Rgb::new(0.75, 0.0, 0.0)).abs().max_element() < 1e-6, "{}", s.emission);
+    assert!((s.opacity - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn layered_shader_in_texture_mode_and_over_what_is_behind() {
+    // Texture mode, constant colours: red at transparency 0.6 over grey 0.5 at 0.5, over
+    // an empty background (black): 0.4 red + 0.6·0.5·grey; 0.3 of the background shows.
+    let c = scene(
+        r#"shader "ls" "adskMayaLayeredShader" ("compositingFlag" 1, "inputs" [
+            { "color" 1 0 0, "transparency" 0.6 0.6 0.6 },
+            { "color" 0.5 0.5 0.5, "transparency" 0.5 0.5 0.5 } ])
+        material "m" opaque "adskMayaShadingEngine" ("surfaceShader" = "ls.outColor") end material"#,
+    );
+    let got = shade(&c);
+    assert_rgb(got, [0.4 + 0.15, 0.15, 0.15], 1e-5);
+    assert!((got.w - 0.7).abs() < 1e-5, "alpha {}", got.w);
+    let (s, _) = translate(&c);
+    assert!((s.opacity - 0.7).abs() < 1e-6);
+    assert!((s.diffuse - bsdf::Rgb::new(0.55, 0.15, 0.15)).abs().max_element() < 1e-6, "{}", s.diffuse);
+}
+
+#[test]
+fn a_material_light_list_picks_its_lights() {
+    // Two lights straight above, intensities 1 and 2: all lights give c·d·3; a lightList
+    // naming the second gives c·d·2 (exports fill it in with lightMode 0).
+    let lights = r#"light "one" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+        instance "one_inst" "one" end instance
+        light "two" "maya_directionallight" ("intensity" 2) direction 0 -1 0 end light
+        instance "two_inst" "two" end instance
+        "#;
+    for (list, k) in [("", 3.0), (r#", "lightMode" 0, "lightList" ["two_inst"]"#, 2.0)] {
+        let c = scene(&format!(
+            r#"{lights}shader "lam" "maya_lambert" ("color" 0.5 0.5 0.5, "diffuse" 1{list})
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#
+        ));
+        assert_rgb(shade(&c), [0.5 * k; 3], 1e-5);
+        let c = scene(&format!(
+            r#"{lights}shader "rs" "adskMayaRampShader" ("colorInput" 1, "diffuse" 1{list})
+            material "m" opaque "adskMayaShadingEngine" ("surfaceShader" = "rs.outColor") end material"#
+        ));
+        assert_rgb(shade(&c), [0.5 * k; 3], 1e-5);
+    }
+}
+
+#[test]
+fn a_volume_light_fills_its_shape_with_its_colour_range() {
+    // A sphere volume light of radius 2 centred `h` above the point: inside (h = 1) the
+    // point lies halfway to the boundary, so the colour range (black at the boundary,
+    // white at the centre, linear) gives half of intensity 2: a lambert of colour 0.5 and
+    // diffuse 1 shows 0.5. Outside (h = 3): no light.
+    for (h, want) in [(1.0, 0.5), (3.0, 0.0)] {
+        let c = scene(&format!(
+            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" 1,
+                "colorRange" [ {{ "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 }},
+                               {{ "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 }} ])
+                origin 0 0 0 end light
+            instance "vol_inst" "vol" transform 0.5 0 0 0  0 0.5 0 0  0 0 0.5 0  0 {} 0 1 end instance
+            shader "lam" "adskMayaLambert" ("color" 0.5 0.5 0.5, "diffuse" 1)
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+            -0.5 * h
+        ));
+        assert_rgb(shade(&c), [want; 3], 1e-5);
+    }
+}

@@ -1,0 +1,177 @@
+//! Maya's projection and envSphere: 2D textures laid over space.
+//!
+//! projection (parameters after the 3D textures' shared ones, see [`crate::texture3d`]):
+//! `projType` (1), `image` (the colour of the 2D texture it projects, usually connected to
+//! its `outColor`), `transparency` (not read), `uAngle` (180) and `vAngle` (90), in
+//! degrees. The shading point p in the placement space of `placementMatrix` gives the
+//! coordinate (u, v) at which `image` is evaluated (the connected texture reads it as its
+//! surface coordinate, through its place2dTexture if it has one):
+//!
+//! | projType | (u, v) |
+//! |---|---|
+//! | 1 planar | ((x + 1)/2, (y + 1)/2): the placement's XY square [−1, 1]² |
+//! | 2 spherical | (½ + φ/uAngle, ½ + λ/vAngle), φ = atan2(x, z) the longitude about Y from +Z, λ = asin(y/‖p‖) the latitude |
+//! | 3 cylindrical | (½ + φ/uAngle, (y + 1)/2) |
+//! | 4 ball | ½ + ½ (θ/π) (x, y)/‖(x, y)‖, θ the angle of p from +Z |
+//! | 5 cubic | planar along the axis on which p is largest: (YZ, XZ or XY) |
+//!
+//! Triplanar (6), concentric (7) and perspective (8) projections, and `projType` 0
+//! (off), return `defaultColor`. envSphere: `image` wrapped over the sphere of
+//! directions, the ray direction d (world) giving u = ½ + atan2(d_x, −d_z)/2π (the −Z
+//! axis at the centre of the image), v = ½ + asin(d_y)/π, sheared by `shearU`,
+//! `shearV` (u += shearU·v, v += shearV·u) and mirrored in u by `flip`. The layouts are
+//! Maya's descriptions of the projections (a plane, a sphere, a cylinder, a ball)
+//! written out by mira; Maya's exact seams are not published.
+
+use glam::{Vec2, Vec3A};
+use shader::{Ctx, NodeId, Value};
+
+use crate::maya_shader;
+use crate::texture::{balance, outside};
+use crate::texture3d::{placement_point, texture3d_params, EXTRA};
+use crate::values::{rgb, rgba, write_struct};
+
+/// The surface coordinate of placement-space point `p` under `proj_type` (Maya's
+/// enumeration) with `u_angle` and `v_angle` in degrees; `None` for the projections mira
+/// does not lay out (and 0, off).
+pub fn project(proj_type: i32, p: Vec3A, u_angle: f32, v_angle: f32) -> Option<Vec2> {
+    let span = |deg: f32| deg.to_radians().abs().max(1e-4);
+    let planar = |a: f32, b: f32| Vec2::new(0.5 * (a + 1.0), 0.5 * (b + 1.0));
+    match proj_type {
+        1 => Some(planar(p.x, p.y)),
+        2 => {
+            let r = p.length();
+            if r <= 0.0 {
+                return Some(Vec2::splat(0.5));
+            }
+            let phi = p.x.atan2(p.z);
+            let lat = (p.y / r).clamp(-1.0, 1.0).asin();
+            Some(Vec2::new(0.5 + phi / span(u_angle), 0.5 + lat / span(v_angle)))
+        }
+        3 => Some(Vec2::new(0.5 + p.x.atan2(p.z) / span(u_angle), 0.5 * (p.y + 1.0))),
+        4 => {
+            let d = p.try_normalize()?;
+            let theta = d.z.clamp(-1.0, 1.0).acos();
+            let xy = Vec2::new(d.x, d.y);
+            let dir = xy.try_normalize().unwrap_or(Vec2::ZERO);
+            Some(Vec2::splat(0.5) + 0.5 * (theta / std::f32::consts::PI) * dir)
+        }
+        5 => {
+            let a = p.abs();
+            Some(if a.x >= a.y && a.x >= a.z {
+                planar(p.z, p.y)
+            } else if a.y >= a.z {
+                planar(p.x, p.z)
+            } else {
+                planar(p.x, p.y)
+            })
+        }
+        _ => None,
+    }
+}
+
+/// Evaluates colour parameter `i` of `n` (a connected 2D texture) at surface coordinate
+/// `uv`: the first texture space is replaced while it runs, and the shader cache flushed
+/// before and after so that nothing computed at the true coordinate is reused.
+fn image_at(ctx: &mut Ctx, n: NodeId, i: usize, uv: Vec2) -> shader::Color {
+    let (saved, saved_count) = (ctx.state.tex_list[0], ctx.state.tex_count);
+    ctx.flush_cache();
+    ctx.state.tex_list[0] = Vec3A::new(uv.x, uv.y, 0.0);
+    ctx.state.tex_count = saved_count.max(1);
+    let c = ctx.color(n, i);
+    ctx.flush_cache();
+    ctx.state.tex_list[0] = saved;
+    ctx.state.tex_count = saved_count;
+    c
+}
+
+maya_shader!(
+    /// Maya's projection (see the module doc).
+    PROJECTION,
+    ADSK_PROJECTION,
+    "maya_projection",
+    "adskMayaProjection",
+    texture3d_params!("projType", "image", "uAngle", "vAngle"),
+    projection
+);
+
+fn projection(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let Some(p) = placement_point(ctx, n) else { return outside(ctx, n, out) };
+    let kind = ctx.int(n, EXTRA);
+    let (ua, va) = (ctx.scalar(n, EXTRA + 2), ctx.scalar(n, EXTRA + 3));
+    let Some(uv) = project(kind, p, ua, va) else { return outside(ctx, n, out) };
+    let c = image_at(ctx, n, EXTRA + 1, uv);
+    balance(ctx, n, rgb(c), c.w, out)
+}
+
+/// envSphere's coordinate of world direction `d` (see the module doc).
+pub fn env_sphere_uv(d: Vec3A, shear: Vec2, flip: bool) -> Vec2 {
+    let d = d.try_normalize().unwrap_or(Vec3A::NEG_Z);
+    let u = 0.5 + d.x.atan2(-d.z) / std::f32::consts::TAU;
+    let v = 0.5 + d.y.clamp(-1.0, 1.0).asin() / std::f32::consts::PI;
+    let (u, v) = (u + shear.x * v, v + shear.y * u);
+    Vec2::new(if flip { 1.0 - u } else { u }, v)
+}
+
+maya_shader!(
+    /// Maya's envSphere (see the module doc); usable as a texture or a camera's
+    /// environment shader.
+    ENVSPHERE,
+    ADSK_ENVSPHERE,
+    "maya_envsphere",
+    "adskMayaEnvSphere",
+    &["image", "shearU", "shearV", "flip"],
+    env_sphere
+);
+
+fn env_sphere(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let shear = Vec2::new(ctx.scalar(n, 1), ctx.scalar(n, 2));
+    let uv = env_sphere_uv(ctx.state.dir, shear, ctx.bool(n, 3));
+    let c = image_at(ctx, n, 0, uv);
+    match out {
+        Value::Struct(_) => {
+            write_struct(out, &[("outColor", Value::Color(rgba(rgb(c), 1.0))), ("outAlpha", Value::Scalar(c.w))])
+        }
+        _ => *out = Value::Color(rgba(rgb(c), 1.0)),
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Vec2, b: Vec2) {
+        assert!((a - b).length() < 1e-5, "{a} vs {b}");
+    }
+
+    #[test]
+    fn planar_spherical_cylindrical_ball_and_cubic_layouts() {
+        close(project(1, Vec3A::new(-1.0, 1.0, 7.0), 180.0, 90.0).unwrap(), Vec2::new(0.0, 1.0));
+        close(project(1, Vec3A::new(0.5, 0.0, 0.0), 180.0, 90.0).unwrap(), Vec2::new(0.75, 0.5));
+        // Spherical, 360° × 180°: +Z is the centre, +X a quarter turn right, +Y the top.
+        close(project(2, Vec3A::Z, 360.0, 180.0).unwrap(), Vec2::new(0.5, 0.5));
+        close(project(2, Vec3A::X * 3.0, 360.0, 180.0).unwrap(), Vec2::new(0.75, 0.5));
+        close(project(2, Vec3A::Y, 360.0, 180.0).unwrap(), Vec2::new(0.5, 1.0));
+        // Halving uAngle doubles the spread in u.
+        close(project(2, Vec3A::new(1.0, 0.0, 1.0), 180.0, 90.0).unwrap(), Vec2::new(0.75, 0.5));
+        // Cylindrical: longitude in u, height in v.
+        close(project(3, Vec3A::new(-1.0, 0.5, 0.0), 360.0, 90.0).unwrap(), Vec2::new(0.25, 0.75));
+        // Ball: +Z at the centre, −Z on the rim.
+        close(project(4, Vec3A::Z, 0.0, 0.0).unwrap(), Vec2::new(0.5, 0.5));
+        close(project(4, Vec3A::X, 0.0, 0.0).unwrap(), Vec2::new(0.75, 0.5));
+        // Cubic: the largest axis picks the plane.
+        close(project(5, Vec3A::new(0.9, 0.2, -0.4), 0.0, 0.0).unwrap(), Vec2::new(0.3, 0.6));
+        assert_eq!(project(6, Vec3A::X, 180.0, 90.0), None);
+        assert_eq!(project(0, Vec3A::X, 180.0, 90.0), None);
+    }
+
+    #[test]
+    fn env_sphere_centres_minus_z_and_flips() {
+        close(env_sphere_uv(Vec3A::NEG_Z, Vec2::ZERO, false), Vec2::new(0.5, 0.5));
+        close(env_sphere_uv(Vec3A::X, Vec2::ZERO, false), Vec2::new(0.75, 0.5));
+        close(env_sphere_uv(Vec3A::new(0.0, 1.0, -1.0), Vec2::ZERO, false), Vec2::new(0.5, 0.75));
+        close(env_sphere_uv(Vec3A::X, Vec2::ZERO, true), Vec2::new(0.25, 0.5));
+        close(env_sphere_uv(Vec3A::NEG_Z, Vec2::new(0.2, 0.0), false), Vec2::new(0.6, 0.5));
+    }
+}
