@@ -30,7 +30,7 @@ use bsdf::mia::{anisotropic_roughness, gloss_to_roughness, MiaBsdf};
 use bsdf::microfacet::Ggx;
 use bsdf::Rgb;
 use bsdf::{Bsdf, Lambert, OrenNayar, Unified};
-pub use inputs::{Binding, HitMaterial, Target, Varying};
+pub use inputs::{Binding, Evaluated, HitEvaluator, HitMaterial, Target, Varying};
 use mia::params::Mia;
 use reader::Reader;
 use shader::Shading;

@@ -3,45 +3,16 @@
 //! compiled model against what the MDL expression means (weights, defaults, overrides),
 //! and the mixers and layerers pass a white furnace (`bsdf::testing::albedo`).
 
-use std::path::{Path, PathBuf};
+mod mdl_support;
+
+use std::path::Path;
 
 use bsdf::Rgb;
 use glam::Vec3A;
-use material::mdl_modules::{compile, MdlMaterials};
-use material::{SurfaceMaterial, SurfaceModel};
+use material::mdl_modules::compile;
+use material::SurfaceModel;
 use mdl_lang::MdlSearchPath;
-use mi::ast::ShaderItem;
-
-fn dirs() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    vec![root.join("tests/mdl"), root.join("../../scenes/mdl")]
-}
-
-/// Compiles the shaders of `text` (a `.mi` fragment): the compiled set, the library and
-/// the rendered diagnostics.
-fn compile_text(text: &str) -> (MdlMaterials, scene::Library, Vec<String>) {
-    let full = format!(
-        "{text}\noptions \"o\" end options\ncamera \"test_cam\" end camera\ninstance \"ci\" \"test_cam\" end instance\n\
-         instgroup \"root\" \"ci\" end instgroup\nrender \"root\" \"ci\" \"o\"\n"
-    );
-    let parsed = mi::parse_str("t.mi", &full);
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (mdl, more) = compile(&scene.library, MdlSearchPath::for_scene(None, &dirs(), None));
-    diags.extend(more);
-    let rendered = diags.iter().map(|d| d.render(&parsed.sources)).collect();
-    (mdl, scene.library, rendered)
-}
-
-/// The compiled material of shader `name`.
-fn get<'a>(mdl: &'a MdlMaterials, lib: &scene::Library, name: &str) -> &'a SurfaceMaterial {
-    let Some(ShaderItem::Call { span, .. }) = lib.shaders[name].list.0.first() else { panic!("no call") };
-    mdl.get(*span).unwrap_or_else(|| panic!("'{name}' was not compiled"))
-}
-
-fn close(a: Rgb, b: Rgb, tol: f32) -> bool {
-    (a - b).abs().max_element() <= tol
-}
+use mdl_support::{close, compile_text, dirs, get};
 
 /// Directions of incidence for the furnace (local frame, z up).
 fn incidences() -> [Vec3A; 3] {
@@ -202,12 +173,12 @@ shader "bad" "mdl::export_multi::matte" ("tint" "red",
 }
 
 #[test]
-fn hit_dependent_expressions_are_named_with_their_module_line() {
-    let (mdl, lib, diags) = compile_text(r#"shader "p" "mdl::mixes::by_position" ()"#);
+fn what_is_not_compiled_is_named_with_its_module_line() {
+    let (mdl, lib, diags) = compile_text(r#"shader "p" "mdl::textured::noisy" ()"#);
     // At the .mi instance, naming the module's line.
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let d = &diags[0];
-    assert!(d.contains("t.mi:1:") && d.contains("mixes.mdl:50:") && d.contains("shading point"), "{d}");
+    assert!(d.contains("t.mi:1:") && d.contains("textured.mdl:50:") && d.contains("flake_noise_texture"), "{d}");
     assert_eq!(get(&mdl, &lib, "p").diffuse, Rgb::splat(0.5), "rendered grey");
 }
 
