@@ -296,7 +296,10 @@ impl<'a> Evaluator<'a> {
         }
         match ty {
             Type::Texture(mdl_lang::ast::TextureShape::Tex2d) => {
-                let Some(Value::Str(name)) = values.first() else { return Err(bad()) };
+                // `texture_2d()`: the invalid texture (lookups give black).
+                let Some(Value::Str(name)) = values.first() else {
+                    return if values.is_empty() { Ok(Value::Texture(None)) } else { Err(bad()) };
+                };
                 let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
                 return match self.textures.file(name, dir.as_deref()) {
                     Ok(image) => Ok(Value::Texture(Some(image))),

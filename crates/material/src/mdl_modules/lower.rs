@@ -331,10 +331,22 @@ pub fn surface(
         }
     }
     // Lowered once at a default point (the whole material when nothing depends on the hit;
-    // otherwise what the classic stand-in shows and where the warnings come from).
-    let state = shader::State::default();
+    // otherwise where the warnings come from).
+    let mut state =
+        shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
     let values: Vec<Vec4> = leaves.iter().map(|e| e.eval(&state)).collect();
-    let (diffuse, model) = lower_bsdf(&scattering, &values, ior, thin, Some((name, warnings)));
+    let (mut diffuse, model) = lower_bsdf(&scattering, &values, ior, thin, Some((name, warnings)));
+    if !leaves.is_empty() {
+        // The diffuse colour (what the classic engine's stand-in shows) is the mean over
+        // the first texture space's unit square, 8 × 8 points.
+        let mut sum = Rgb::ZERO;
+        for k in 0..64 {
+            state.tex_list[0] = Vec3A::new((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5, 0.0) / 8.0;
+            let values: Vec<Vec4> = leaves.iter().map(|e| e.eval(&state)).collect();
+            sum += lower_bsdf(&scattering, &values, ior, thin, None).0;
+        }
+        diffuse = sum / 64.0;
+    }
     let mut out = SurfaceMaterial { model, ..SurfaceMaterial::lambert(name, diffuse) };
     out.emission = radiance;
     out.emission_over_area = over_area;

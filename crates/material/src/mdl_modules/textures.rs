@@ -51,15 +51,16 @@ impl Textures {
             .clone()
     }
 
-    /// The image a `.mi` parameter names: a `color texture` element of `lib` (its file),
-    /// else a file.
+    /// The image a `.mi` parameter names: a `color texture` element of `lib` (its file or
+    /// inline pixels), else a file.
     pub fn from_mi(&mut self, name: &str, lib: &scene::Library) -> Result<Image, String> {
-        match lib.textures.get(name) {
-            Some(t) => match texture::file_name(t) {
-                Some(file) => self.file(file, None),
-                None => Err(format!("texture '{name}' is not an image file (inline and shader textures are not read by module materials)")),
-            },
-            None => self.file(name, None),
+        let Some(t) = lib.textures.get(name) else { return self.file(name, None) };
+        match &t.source {
+            mi::ast::TextureSource::File { file, .. } => self.file(&file.text, None),
+            mi::ast::TextureSource::Pixels { dims, pieces } => texture::inline_pixels(dims, &pieces.concat())
+                .map(|image| Image(Arc::new(Texture::Image { image: Arc::new(image), filter: None, kind: t.kind })))
+                .map_err(|e| format!("texture '{name}': {e}")),
+            _ => Err(format!("texture '{name}' is a shader texture (not read by module materials)")),
         }
     }
 }
