@@ -146,3 +146,22 @@ fn a_textured_emission_is_radiance_per_hit() {
     let (_, _, emission, _) = at(g, &uv(0.75, 0.75));
     assert!(close(emission, GREEN / std::f32::consts::PI, 1e-6), "{emission:?}");
 }
+
+#[test]
+fn a_parameter_connected_to_an_mdl_function_shader_is_evaluated_per_hit() {
+    let (mdl, lib, diags) = compile_text(
+        r#"color texture "q" "quad.ppm"
+shader "uvw" "mdl::base::coordinate_source(::base::texture_coordinate_system,int)" ("texture_space" 0)
+shader "tex" "mdl::base::file_texture" ("texture" "q", "uvw" = "uvw", "color_scale" 0.5 0.5 0.5)
+shader "m" "mdl::export_multi::matte" ("tint" = "tex.tint", "roughness" 0)
+shader "whole" "mdl::export_multi::matte" ("tint" = "tex")"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    // The texel times color_scale; a whole texture_return connected to a colour is its tint.
+    for name in ["m", "whole"] {
+        let (red, _, _, _) = at(get(&mdl, &lib, name), &uv(0.25, 0.75));
+        assert!(close(red, RED * 0.5, 1e-6), "{name}: {red:?}");
+        let (white, _, _, _) = at(get(&mdl, &lib, name), &uv(0.75, 0.25));
+        assert!(close(white, Rgb::splat(0.5), 1e-6), "{name}: {white:?}");
+    }
+}

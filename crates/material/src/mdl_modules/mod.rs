@@ -17,6 +17,7 @@
 //! The `::nvidia::core_definitions` materials keep mira's native translation unless a
 //! `core_definitions.mdl` on the search path replaces them.
 
+pub mod connections;
 pub mod eval;
 pub mod hit;
 pub mod hit_natives;
@@ -93,6 +94,8 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
     texture_dirs.extend(search.dirs().iter().cloned());
     let mut textures = Textures::new(texture_dirs);
     let mut set = ModuleSet::new(search);
+    // The `::base` functions `.mi` connections may name (a built-in module: it loads).
+    let _ = set.load("::base");
     let mut failed: HashMap<String, String> = HashMap::new();
     for written in &lib.mdl_modules {
         let name = included_module(written);
@@ -157,6 +160,7 @@ impl Instance<'_> {
         };
         let mut given: Vec<Option<Value>> = vec![None; def.params.len()];
         let mut bad = false;
+        let mut ev = Evaluator::new(set, self.textures);
         for p in params {
             let Some((i, decl)) = def.param(&p.name.text) else {
                 let known: Vec<&str> = def.params.iter().map(|p| p.name.as_str()).collect();
@@ -168,17 +172,20 @@ impl Instance<'_> {
                 continue;
             };
             if let mi::ast::Value::Connect(target) = &p.value {
-                diags.push(Diagnostic::warning(
-                p.span,
-                format!(
-                    "parameter '{}' of `{qualified}` is connected to '{}': shader connections of module materials are not evaluated per hit yet; its default is used",
-                    p.name.text, target.text
-                ),
-            ));
+                match connections::value(&mut ev, self.lib, &target.text, &decl.ty.ty, 0) {
+                    Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
+                    Err(why) => diags.push(Diagnostic::warning(
+                        p.span,
+                        format!(
+                            "parameter '{}' of `{qualified}` is connected to '{}', which is not compiled ({why}); its default is used",
+                            p.name.text, target.text
+                        ),
+                    )),
+                }
                 continue;
             }
             if let (Type::Texture(_), mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
-                match self.textures.from_mi(&name.text, self.lib) {
+                match ev.textures.from_mi(&name.text, self.lib) {
                     Ok(image) => given[i] = Some(Value::Texture(Some(image))),
                     Err(why) => {
                         diags.push(Diagnostic::warning(
@@ -205,7 +212,6 @@ impl Instance<'_> {
             // The errors say what is wrong; the material renders grey.
             return SurfaceMaterial::grey(shader);
         }
-        let mut ev = Evaluator::new(set, self.textures);
         let res = Resolution::Material {
             module: qualified.rsplit_once("::").map_or("", |(m, _)| m).to_string(),
             name: def.name.clone(),
