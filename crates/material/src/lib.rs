@@ -113,6 +113,9 @@ pub enum SurfaceModel {
     /// glossy reflection and diffuse transmission): Oren–Nayar, GGX reflection without
     /// Fresnel, Lambert translucency.
     Lobes(Box<MiaBsdf>),
+    /// A sum of up to four elemental lobes (MDL mixes and weighted layers of diffuse,
+    /// diffuse transmission, GGX and Beckmann reflection of any roughness, sheen).
+    MdlLobes(Box<bsdf::Lobes>),
 }
 
 /// A surface's scattering and emission.
@@ -177,6 +180,7 @@ impl SurfaceModel {
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
             SurfaceModel::Lobes(l) => Bsdf::Mia(**l),
+            SurfaceModel::MdlLobes(l) => Bsdf::Lobes(**l),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

@@ -277,3 +277,43 @@ shader "tr" "mdl::mixes::translucent" ()"#,
         assert!((a - Rgb::ONE).abs().max_element() <= 0.01, "diffuse reflection + transmission: {a:?} at {wo:?}");
     }
 }
+
+#[test]
+fn beckmann_two_roughnesses_and_sheen_are_general_lobe_sums_that_pass_the_white_furnace() {
+    use bsdf::beckmann::Beckmann;
+    use bsdf::microfacet::Ggx;
+    use bsdf::Lobe;
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "b" "mdl::lobes::beckmann_over_diffuse" ()
+shader "g" "mdl::lobes::two_glossy" ()
+shader "v" "mdl::lobes::velvet" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let lobes = |name: &str| {
+        let m = get(&mdl, &lib, name);
+        let SurfaceModel::MdlLobes(l) = &m.model else { panic!("{name}: {:?}", m.model) };
+        (m, l.parts[..l.count].to_vec())
+    };
+    // Layer weight 0.4 on the Beckmann lobe; the base keeps 0.6 of its 0.5.
+    let (b, parts) = lobes("b");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.4), Lobe::Beckmann(Beckmann::new(0.3, 0.3))), (Rgb::splat(0.3), Lobe::Diffuse(0.0))]
+    );
+    assert!(close(b.diffuse, Rgb::splat(0.3), 1e-6));
+    let (g, parts) = lobes("g");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.5), Lobe::Ggx(Ggx::isotropic(0.05))), (Rgb::splat(0.5), Lobe::Ggx(Ggx::isotropic(0.4)))]
+    );
+    // The sheen of the tint over the diffuse base tinted by ½: 0.5 · tint.
+    let (v, parts) = lobes("v");
+    let tint = Rgb::new(0.8, 0.2, 0.3);
+    assert_eq!(parts, vec![(tint, Lobe::Sheen(0.4)), (tint * 0.5, Lobe::Diffuse(0.0))]);
+    for (name, m) in [("beckmann", b), ("two glossy", g), ("velvet", v)] {
+        for wo in incidences() {
+            let a = bsdf::testing::albedo(&m.bsdf(wo), wo, 20_000);
+            assert!(a.max_element() <= 1.01, "{name}: albedo {a:?} at {wo:?}");
+        }
+    }
+}

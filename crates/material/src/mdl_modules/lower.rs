@@ -26,8 +26,9 @@
 
 use std::sync::Arc;
 
+use bsdf::beckmann::Beckmann;
 use bsdf::microfacet::Ggx;
-use bsdf::{MiaBsdf, OrenNayar, Rgb, Unified, UnifiedParams};
+use bsdf::{Lobe, Lobes, MiaBsdf, OrenNayar, Rgb, Unified, UnifiedParams};
 use glam::{Vec3A, Vec4};
 
 use super::hit::HitExpr;
@@ -121,7 +122,7 @@ fn add_lobes(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut LobeSum) -> bool {
             true
         }
         Df::Specular { tint, mode: ScatterMode::Reflect } => add_glossy(tint.get(hit), (0.0, 0.0), scale, sum),
-        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect } => {
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann: false } => {
             add_glossy(tint.get(hit), alpha(roughness), scale, sum)
         }
         Df::Mix { parts, clamped } => {
@@ -170,6 +171,60 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
     Some((clamp(sum.diffuse.albedo), SurfaceModel::Lobes(Box::new(lobes))))
 }
 
+/// Adds `df` scaled by `scale` to a general sum of lobes (two glossy roughnesses,
+/// Beckmann, sheen…); false if the tree has anything else or more than
+/// [`bsdf::lobes::MAX_LOBES`] lobes.
+fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes) -> bool {
+    let alpha = |(u, v): &(Leaf, Leaf)| (u.get(hit).x.max(0.0), v.get(hit).x.max(0.0));
+    match df {
+        Df::Black => true,
+        Df::Diffuse { tint, roughness } => {
+            sum.push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0)))
+        }
+        Df::DiffuseTransmission(tint) => sum.push(scale * tint.get(hit), Lobe::Translucent),
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann } => {
+            let (au, av) = alpha(roughness);
+            let lobe = if *beckmann {
+                Lobe::Beckmann(Beckmann::new(au, av))
+            } else {
+                let g = Ggx { alpha_x: au, alpha_y: av };
+                if g.is_smooth() {
+                    return false;
+                }
+                Lobe::Ggx(g)
+            };
+            sum.push(scale * tint.get(hit), lobe)
+        }
+        Df::Sheen { tint, roughness, multiscatter_tint, multiscatter } => {
+            sum.push(scale * tint.get(hit), Lobe::Sheen(roughness.get(hit).x))
+                && add_general(multiscatter, scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE), hit, sum)
+        }
+        Df::Mix { parts, clamped } => {
+            let mut ok = true;
+            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum));
+            ok
+        }
+        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+            let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            add_general(layer, scale * w, hit, sum) && add_general(base, scale * (Rgb::ONE - w), hit, sum)
+        }
+        _ => false,
+    }
+}
+
+/// The tree as a [`SurfaceModel::MdlLobes`] sum and its diffuse colour, if it is one.
+fn general(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
+    let mut sum = Lobes::default();
+    if !add_general(df, Rgb::ONE, hit, &mut sum) {
+        return None;
+    }
+    let diffuse = sum.parts[..sum.count]
+        .iter()
+        .filter(|(_, l)| matches!(l, Lobe::Diffuse(_)))
+        .fold(Rgb::ZERO, |s, (w, _)| s + *w);
+    Some((diffuse.clamp(Rgb::ZERO, Rgb::ONE), SurfaceModel::MdlLobes(Box::new(sum))))
+}
+
 /// The albedo of a tree's diffuse reflection lobes, ignoring the rest (the approximation of
 /// what cannot be lowered).
 fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
@@ -193,7 +248,7 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
 fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
     match df {
         Df::Specular { tint, mode } => Some((tint.get(hit), 0.0, *mode)),
-        Df::Glossy { tint, roughness: (u, v), mode } => {
+        Df::Glossy { tint, roughness: (u, v), mode, beckmann: false } => {
             Some((tint.get(hit), (u.get(hit).x.max(0.0) * v.get(hit).x.max(0.0)).sqrt(), *mode))
         }
         Df::Mix { parts, clamped } if parts.len() == 1 => {
@@ -425,7 +480,7 @@ fn lower_bsdf(
             });
         }
     }
-    if let Some(lowered) = lobes(df, hit) {
+    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit)) {
         return lowered;
     }
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, Rgb::ONE);
@@ -448,7 +503,9 @@ pub fn describe(df: &Df) -> String {
         Df::Diffuse { .. } => "diffuse_reflection_bsdf".into(),
         Df::DiffuseTransmission(_) => "diffuse_transmission_bsdf".into(),
         Df::Specular { .. } => "specular_bsdf".into(),
+        Df::Glossy { beckmann: true, .. } => "microfacet_beckmann bsdf".into(),
         Df::Glossy { .. } => "glossy bsdf".into(),
+        Df::Sheen { .. } => "sheen_bsdf".into(),
         Df::Mix { parts, .. } => {
             format!("mix({})", parts.iter().map(|(_, d)| describe(d)).collect::<Vec<_>>().join(", "))
         }

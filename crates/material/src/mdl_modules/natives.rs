@@ -97,13 +97,22 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         "diffuse_reflection_bsdf" => Ok(Value::Bsdf(Df::Diffuse { tint: tint?, roughness: number("roughness")? })),
         "diffuse_transmission_bsdf" => Ok(Value::Bsdf(Df::DiffuseTransmission(tint?))),
         "specular_bsdf" => Ok(Value::Bsdf(Df::Specular { tint: tint?, mode: mode() })),
-        "simple_glossy_bsdf" | "microfacet_ggx_smith_bsdf" | "microfacet_ggx_vcavities_bsdf" => {
-            Ok(Value::Bsdf(Df::Glossy {
-                tint: tint?,
-                roughness: (number("roughness_u")?, number("roughness_v")?),
-                mode: mode(),
-            }))
-        }
+        "simple_glossy_bsdf"
+        | "microfacet_ggx_smith_bsdf"
+        | "microfacet_ggx_vcavities_bsdf"
+        | "microfacet_beckmann_smith_bsdf"
+        | "microfacet_beckmann_vcavities_bsdf" => Ok(Value::Bsdf(Df::Glossy {
+            tint: tint?,
+            roughness: (number("roughness_u")?, number("roughness_v")?),
+            mode: mode(),
+            beckmann: name.contains("beckmann"),
+        })),
+        "sheen_bsdf" => Ok(Value::Bsdf(Df::Sheen {
+            tint: tint?,
+            roughness: number("roughness")?,
+            multiscatter_tint: number("multiscatter_tint")?,
+            multiscatter: Box::new(bsdf("multiscatter")?),
+        })),
         "normalized_mix" | "clamped_mix" | "color_normalized_mix" | "color_clamped_mix" => {
             let Some(Value::Array(components)) = args.first() else {
                 return Err(problem(span, format!("`df::{name}` needs an array of components")));

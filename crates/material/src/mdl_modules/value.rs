@@ -101,14 +101,28 @@ pub enum Df {
         /// The scatter mode.
         mode: ScatterMode,
     },
-    /// `df::simple_glossy_bsdf` and `df::microfacet_*_bsdf`: GGX with α = roughness.
+    /// `df::simple_glossy_bsdf` and `df::microfacet_*_bsdf`: micro-mirrors with α =
+    /// roughness.
     Glossy {
         /// Tint.
         tint: Leaf,
-        /// GGX α along u and v (first channels).
+        /// α along u and v (first channels).
         roughness: (Leaf, Leaf),
         /// The scatter mode.
         mode: ScatterMode,
+        /// Beckmann's distribution (`microfacet_beckmann_*`), else GGX.
+        beckmann: bool,
+    },
+    /// `df::sheen_bsdf`: a sheen lobe over `multiscatter` tinted by `multiscatter_tint`.
+    Sheen {
+        /// Tint of the sheen.
+        tint: Leaf,
+        /// Its roughness.
+        roughness: Leaf,
+        /// Tint of the base.
+        multiscatter_tint: Leaf,
+        /// The base.
+        multiscatter: Box<Df>,
     },
     /// A mix of weighted components (`normalized_mix`, `clamped_mix` and the `color_`
     /// forms, `tint`): the weights as given (never negative); `clamped` says how those
