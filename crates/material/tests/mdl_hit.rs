@@ -165,3 +165,24 @@ shader "whole" "mdl::export_multi::matte" ("tint" = "tex")"#,
         assert!(close(white, Rgb::splat(0.5), 1e-6), "{name}: {white:?}");
     }
 }
+
+#[test]
+fn a_tangent_space_normal_map_bends_the_normal_per_hit() {
+    let (mdl, lib, diags) = compile_text(r#"shader "n" "mdl::textured::normal_mapped" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let n = get(&mdl, &lib, "n");
+    let Varying::Evaluated(hit) = &n.varying else { panic!("{:?}", n.varying) };
+    // Without surface derivatives the tangents are the frame around the normal (+z).
+    let frame = bsdf::Frame::from_normal(Vec3A::Z);
+    // Texel t maps to 2t − 1: white (1, 1, 1) leans along +u and +v with z = 1; red
+    // (1, 0, 0) along +u and −v with z = −1, clamped to 0.
+    for (u, v, want) in [
+        (0.75, 0.25, (frame.tangent + frame.bitangent + Vec3A::Z).normalize()),
+        (0.25, 0.75, (frame.tangent - frame.bitangent).normalize()),
+    ] {
+        let mut h = n.constant();
+        hit.0.apply(&uv(u, v), &mut h);
+        let got = h.normal.expect("a bent normal");
+        assert!((got - want).length() < 1e-5, "({u}, {v}): {got:?} vs {want:?}");
+    }
+}
