@@ -279,14 +279,15 @@ shader "tr" "mdl::mixes::translucent" ()"#,
 }
 
 #[test]
-fn beckmann_two_roughnesses_and_sheen_are_general_lobe_sums_that_pass_the_white_furnace() {
+fn beckmann_ward_two_roughnesses_and_sheen_are_general_lobe_sums_that_pass_the_white_furnace() {
     use bsdf::beckmann::Beckmann;
     use bsdf::microfacet::Ggx;
     use bsdf::Lobe;
     let (mdl, lib, diags) = compile_text(
         r#"shader "b" "mdl::lobes::beckmann_over_diffuse" ()
 shader "g" "mdl::lobes::two_glossy" ()
-shader "v" "mdl::lobes::velvet" ()"#,
+shader "v" "mdl::lobes::velvet" ()
+shader "w" "mdl::lobes::ward_over_diffuse" ()"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
     let lobes = |name: &str| {
@@ -310,7 +311,12 @@ shader "v" "mdl::lobes::velvet" ()"#,
     let (v, parts) = lobes("v");
     let tint = Rgb::new(0.8, 0.2, 0.3);
     assert_eq!(parts, vec![(tint, Lobe::Sheen(0.4)), (tint * 0.5, Lobe::Diffuse(0.0))]);
-    for (name, m) in [("beckmann", b), ("two glossy", g), ("velvet", v)] {
+    let (w, parts) = lobes("w");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.5), Lobe::Ward(Beckmann::new(0.2, 0.1))), (Rgb::splat(0.25), Lobe::Diffuse(0.0))]
+    );
+    for (name, m) in [("beckmann", b), ("two glossy", g), ("velvet", v), ("ward", w)] {
         for wo in incidences() {
             let a = bsdf::testing::albedo(&m.bsdf(wo), wo, 20_000);
             assert!(a.max_element() <= 1.01, "{name}: albedo {a:?} at {wo:?}");
