@@ -4,16 +4,19 @@
 //! away from the surface; `eval` returns f(ωo, ωi) without the cosine; `sample` returns a
 //! direction with `f · |cos θi| / pdf` as its weight; `pdf` is per unit solid angle.
 
+pub mod beckmann;
 pub mod builtin;
 pub mod color;
 pub mod conductor;
 pub mod dielectric;
 pub mod frame;
 mod lambert;
+pub mod lobes;
 pub mod mia;
 pub mod microfacet;
 mod oren_nayar;
 pub mod reflectance;
+pub mod sheen;
 pub mod unified;
 
 pub use builtin::BuiltinBsdf;
@@ -22,6 +25,7 @@ pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use frame::Frame;
 pub use lambert::Lambert;
+pub use lobes::{Lobe, Lobes};
 pub use mia::MiaBsdf;
 pub use oren_nayar::OrenNayar;
 pub use unified::{Unified, UnifiedParams};
@@ -70,6 +74,8 @@ pub enum Bsdf {
     Unified(Unified),
     /// mental ray's built-in BSDFs (`builtin_bsdf_*`).
     Builtin(BuiltinBsdf),
+    /// A weighted sum of elemental lobes (MDL's mixes and layers of them).
+    Lobes(Lobes),
 }
 
 impl Bsdf {
@@ -84,6 +90,7 @@ impl Bsdf {
             Bsdf::Mia(l) => l.eval(wo, wi),
             Bsdf::Unified(l) => l.eval(wo, wi),
             Bsdf::Builtin(l) => l.eval(wo, wi),
+            Bsdf::Lobes(l) => l.eval(wo, wi),
         }
     }
 
@@ -99,6 +106,7 @@ impl Bsdf {
             Bsdf::Mia(l) => l.sample(wo, u, u_lobe),
             Bsdf::Unified(l) => l.sample(wo, u, u_lobe),
             Bsdf::Builtin(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Lobes(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -113,6 +121,7 @@ impl Bsdf {
             Bsdf::Mia(l) => l.pdf(wo, wi),
             Bsdf::Unified(l) => l.pdf(wo, wi),
             Bsdf::Builtin(l) => l.pdf(wo, wi),
+            Bsdf::Lobes(l) => l.pdf(wo, wi),
         }
     }
 
@@ -120,7 +129,7 @@ impl Bsdf {
     #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
-            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
+            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) | Bsdf::Lobes(_) => false,
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
             Bsdf::Conductor(c) => c.ggx.is_smooth(),
             Bsdf::Mia(m) => m.is_delta(),

@@ -92,6 +92,27 @@ pub enum Varying {
         /// A passthrough bump shader before it in the material's shader list.
         bump: Option<NodeId>,
     },
+    /// A material that evaluates itself at each hit (an MDL module material whose
+    /// expressions depend on the shading point: lowered again from their values).
+    Evaluated(Evaluated),
+}
+
+/// A material's own evaluation at each hit, without the shader graph.
+pub trait HitEvaluator: std::fmt::Debug + Send + Sync {
+    /// Sets what of `hit` (the material's constants) varies, at the shading point `state`.
+    fn apply(&self, state: &shader::State, hit: &mut HitMaterial<'_>);
+    /// Whether its opacity may be below 1 somewhere.
+    fn may_cut_out(&self) -> bool;
+}
+
+/// A shared [`HitEvaluator`] (equal only to itself).
+#[derive(Clone, Debug)]
+pub struct Evaluated(pub Arc<dyn HitEvaluator>);
+
+impl PartialEq for Evaluated {
+    fn eq(&self, other: &Evaluated) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// A material at one shading point (borrowing the material's model where nothing varies).
@@ -185,6 +206,7 @@ impl SurfaceMaterial {
             || match &self.varying {
                 Varying::Constant => false,
                 Varying::Bindings(b) => b.iter().any(|b| b.target == Target::Opacity),
+                Varying::Evaluated(e) => e.0.may_cut_out(),
                 Varying::Mia { node, .. } => graph.is_some_and(|g| {
                     matches!(g.nodes[*node as usize].slots.get(P::CutoutOpacity as usize), Some(Slot::Connect { .. }))
                 }),
@@ -198,6 +220,7 @@ impl SurfaceMaterial {
         match &self.varying {
             Varying::Constant => {}
             Varying::Bindings(bindings) => self.apply(bindings, ctx, &mut hit),
+            Varying::Evaluated(e) => e.0.apply(&ctx.state, &mut hit),
             Varying::Mia { node, bump } => {
                 let unbumped = ctx.state.normal;
                 if let Some(b) = bump {

@@ -30,7 +30,7 @@ use bsdf::mia::{anisotropic_roughness, gloss_to_roughness, MiaBsdf};
 use bsdf::microfacet::Ggx;
 use bsdf::Rgb;
 use bsdf::{Bsdf, Lambert, OrenNayar, Unified};
-pub use inputs::{Binding, HitMaterial, Target, Varying};
+pub use inputs::{Binding, Evaluated, HitEvaluator, HitMaterial, Target, Varying};
 use mia::params::Mia;
 use reader::Reader;
 use shader::Shading;
@@ -64,10 +64,35 @@ pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -
 }
 
 /// The classic engine's stand-in colours of material `m` (diffuse, emission): what the path
-/// engine's translation finds.
+/// engine's translation finds (module materials get theirs from
+/// [`module_stand_ins`] once they are compiled).
 fn stand_in(m: &Material, lib: &Library) -> (glam::Vec3A, glam::Vec3A) {
     let (surface, _) = translate(m, lib, None);
     (surface.diffuse, surface.emission)
+}
+
+/// Gives the classic engine's stand-ins (`mira_diffuse` nodes of `shading`) of the
+/// instances of module materials in `scene` the diffuse colour and emission of their
+/// compiled materials in `mdl`: a module material's classic look is a Lambertian surface
+/// of its diffuse colour (averaged over the texture space where it varies) plus its
+/// emission.
+pub fn module_stand_ins(shading: &mut Shading, scene: &scene::Scene, mdl: &mdl_modules::MdlMaterials) {
+    for (i, m) in scene.materials.iter().enumerate() {
+        let items: Option<&[ShaderItem]> = match &m.kind {
+            MaterialKind::Shader(def) => Some(&def.list.0),
+            MaterialKind::Material(defs) => {
+                defs.iter().rev().find_map(|d| d.shaders.as_ref()).map(|l| &l.0[l.0.len().saturating_sub(1)..])
+            }
+        };
+        let Some(compiled) = items.and_then(|items| mdl.get(call_span(items, &scene.library)?)) else { continue };
+        let Some(node) = shading.materials.get(i).and_then(|ms| ms.surface) else { continue };
+        let node = &mut shading.graph.nodes[node as usize];
+        if node.imp.is_some_and(|imp| imp.name == "mira_diffuse") && node.slots.len() >= 2 {
+            let c = |c: Rgb| shader::Slot::Value(shader::Value::Color(shader::Color::new(c.x, c.y, c.z, 1.0)));
+            node.slots[0] = c(compiled.diffuse);
+            node.slots[1] = c(compiled.emission);
+        }
+    }
 }
 
 /// The scattering model of a surface, with constant parameters.
@@ -88,6 +113,9 @@ pub enum SurfaceModel {
     /// glossy reflection and diffuse transmission): Oren–Nayar, GGX reflection without
     /// Fresnel, Lambert translucency.
     Lobes(Box<MiaBsdf>),
+    /// A sum of up to four elemental lobes (MDL mixes and weighted layers of diffuse,
+    /// diffuse transmission, GGX and Beckmann reflection of any roughness, sheen).
+    MdlLobes(Box<bsdf::Lobes>),
 }
 
 /// A surface's scattering and emission.
@@ -153,6 +181,7 @@ impl SurfaceModel {
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
             SurfaceModel::Lobes(l) => Bsdf::Mia(**l),
+            SurfaceModel::MdlLobes(l) => Bsdf::Lobes(**l),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

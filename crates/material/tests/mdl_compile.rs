@@ -3,45 +3,16 @@
 //! compiled model against what the MDL expression means (weights, defaults, overrides),
 //! and the mixers and layerers pass a white furnace (`bsdf::testing::albedo`).
 
-use std::path::{Path, PathBuf};
+mod mdl_support;
+
+use std::path::Path;
 
 use bsdf::Rgb;
 use glam::Vec3A;
-use material::mdl_modules::{compile, MdlMaterials};
-use material::{SurfaceMaterial, SurfaceModel};
+use material::mdl_modules::compile;
+use material::SurfaceModel;
 use mdl_lang::MdlSearchPath;
-use mi::ast::ShaderItem;
-
-fn dirs() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    vec![root.join("tests/mdl"), root.join("../../scenes/mdl")]
-}
-
-/// Compiles the shaders of `text` (a `.mi` fragment): the compiled set, the library and
-/// the rendered diagnostics.
-fn compile_text(text: &str) -> (MdlMaterials, scene::Library, Vec<String>) {
-    let full = format!(
-        "{text}\noptions \"o\" end options\ncamera \"test_cam\" end camera\ninstance \"ci\" \"test_cam\" end instance\n\
-         instgroup \"root\" \"ci\" end instgroup\nrender \"root\" \"ci\" \"o\"\n"
-    );
-    let parsed = mi::parse_str("t.mi", &full);
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (mdl, more) = compile(&scene.library, MdlSearchPath::for_scene(None, &dirs(), None));
-    diags.extend(more);
-    let rendered = diags.iter().map(|d| d.render(&parsed.sources)).collect();
-    (mdl, scene.library, rendered)
-}
-
-/// The compiled material of shader `name`.
-fn get<'a>(mdl: &'a MdlMaterials, lib: &scene::Library, name: &str) -> &'a SurfaceMaterial {
-    let Some(ShaderItem::Call { span, .. }) = lib.shaders[name].list.0.first() else { panic!("no call") };
-    mdl.get(*span).unwrap_or_else(|| panic!("'{name}' was not compiled"))
-}
-
-fn close(a: Rgb, b: Rgb, tol: f32) -> bool {
-    (a - b).abs().max_element() <= tol
-}
+use mdl_support::{close, compile_text, dirs, get};
 
 /// Directions of incidence for the furnace (local frame, z up).
 fn incidences() -> [Vec3A; 3] {
@@ -202,12 +173,12 @@ shader "bad" "mdl::export_multi::matte" ("tint" "red",
 }
 
 #[test]
-fn hit_dependent_expressions_are_named_with_their_module_line() {
-    let (mdl, lib, diags) = compile_text(r#"shader "p" "mdl::mixes::by_position" ()"#);
+fn what_is_not_compiled_is_named_with_its_module_line() {
+    let (mdl, lib, diags) = compile_text(r#"shader "p" "mdl::textured::noisy" ()"#);
     // At the .mi instance, naming the module's line.
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let d = &diags[0];
-    assert!(d.contains("t.mi:1:") && d.contains("mixes.mdl:50:") && d.contains("shading point"), "{d}");
+    assert!(d.contains("t.mi:1:") && d.contains("textured.mdl:50:") && d.contains("flake_noise_texture"), "{d}");
     assert_eq!(get(&mdl, &lib, "p").diffuse, Rgb::splat(0.5), "rendered grey");
 }
 
@@ -304,5 +275,51 @@ shader "tr" "mdl::mixes::translucent" ()"#,
         assert!(a.max_element() <= 1.01 && a.min_element() >= 0.9, "glossy over diffuse: {a:?} at {wo:?}");
         let a = bsdf::testing::albedo(&tr.bsdf(wo), wo, 50_000);
         assert!((a - Rgb::ONE).abs().max_element() <= 0.01, "diffuse reflection + transmission: {a:?} at {wo:?}");
+    }
+}
+
+#[test]
+fn beckmann_ward_two_roughnesses_and_sheen_are_general_lobe_sums_that_pass_the_white_furnace() {
+    use bsdf::beckmann::Beckmann;
+    use bsdf::microfacet::Ggx;
+    use bsdf::Lobe;
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "b" "mdl::lobes::beckmann_over_diffuse" ()
+shader "g" "mdl::lobes::two_glossy" ()
+shader "v" "mdl::lobes::velvet" ()
+shader "w" "mdl::lobes::ward_over_diffuse" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let lobes = |name: &str| {
+        let m = get(&mdl, &lib, name);
+        let SurfaceModel::MdlLobes(l) = &m.model else { panic!("{name}: {:?}", m.model) };
+        (m, l.parts[..l.count].to_vec())
+    };
+    // Layer weight 0.4 on the Beckmann lobe; the base keeps 0.6 of its 0.5.
+    let (b, parts) = lobes("b");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.4), Lobe::Beckmann(Beckmann::new(0.3, 0.3))), (Rgb::splat(0.3), Lobe::Diffuse(0.0))]
+    );
+    assert!(close(b.diffuse, Rgb::splat(0.3), 1e-6));
+    let (g, parts) = lobes("g");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.5), Lobe::Ggx(Ggx::isotropic(0.05))), (Rgb::splat(0.5), Lobe::Ggx(Ggx::isotropic(0.4)))]
+    );
+    // The sheen of the tint over the diffuse base tinted by ½: 0.5 · tint.
+    let (v, parts) = lobes("v");
+    let tint = Rgb::new(0.8, 0.2, 0.3);
+    assert_eq!(parts, vec![(tint, Lobe::Sheen(0.4)), (tint * 0.5, Lobe::Diffuse(0.0))]);
+    let (w, parts) = lobes("w");
+    assert_eq!(
+        parts,
+        vec![(Rgb::splat(0.5), Lobe::Ward(Beckmann::new(0.2, 0.1))), (Rgb::splat(0.25), Lobe::Diffuse(0.0))]
+    );
+    for (name, m) in [("beckmann", b), ("two glossy", g), ("velvet", v), ("ward", w)] {
+        for wo in incidences() {
+            let a = bsdf::testing::albedo(&m.bsdf(wo), wo, 20_000);
+            assert!(a.max_element() <= 1.01, "{name}: albedo {a:?} at {wo:?}");
+        }
     }
 }

@@ -43,11 +43,12 @@ impl Coordinate {
     }
 }
 
-/// Surface tangents at the shading point: the first texture space's dP/du and dP/dv when
-/// the geometry has them, else any frame around the normal.
-fn surface_tangents(ctx: &Ctx) -> (Vec3A, Vec3A) {
-    let n = ctx.state.normal.normalize_or(Vec3A::Z);
-    let [du, dv] = ctx.state.derivs;
+/// Surface tangents at the shading point `state` (world space, unit, perpendicular to its
+/// normal): the first texture space's dP/du and dP/dv when the geometry has them, else any
+/// frame around the normal. MDL's `state::texture_tangent_u`/`_v`.
+pub fn surface_tangents(state: &shader::State) -> (Vec3A, Vec3A) {
+    let n = state.normal.normalize_or(Vec3A::Z);
+    let [du, dv] = state.derivs;
     let u = (du - n * n.dot(du)).normalize_or_zero();
     if u == Vec3A::ZERO {
         let frame = bsdf::Frame::from_normal(n);
@@ -59,7 +60,7 @@ fn surface_tangents(ctx: &Ctx) -> (Vec3A, Vec3A) {
 
 /// MDL's default coordinate: texture space `space` with the surface tangents.
 fn uvw_space(ctx: &Ctx, space: usize) -> Coordinate {
-    let (tangent_u, tangent_v) = surface_tangents(ctx);
+    let (tangent_u, tangent_v) = surface_tangents(&ctx.state);
     Coordinate { position: ctx.state.tex(space), tangent_u, tangent_v }
 }
 
@@ -139,8 +140,9 @@ fn rotation_translation_scale(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool
     true
 }
 
-/// MDL's `texture_wrap_mode` on one coordinate: `None` where the texture is clipped away.
-fn wrap(x: f32, mode: &str) -> Option<f32> {
+/// MDL's `texture_wrap_mode` (by its enumerator's name) on one coordinate: `None` where the
+/// texture is clipped away.
+pub fn wrap(x: f32, mode: &str) -> Option<f32> {
     const BELOW_ONE: f32 = 1.0 - f32::EPSILON;
     match mode {
         "wrap_clamp" => Some(x.clamp(0.0, BELOW_ONE)),
@@ -163,8 +165,8 @@ fn sample(ctx: &mut Ctx, tex: Option<Tag>, c: Vec3A, wrap_u: &str, wrap_v: &str,
     ctx.lookup_color_texture(tex, coord)
 }
 
-/// MDL's `mono_mode`: how a colour with alpha becomes one number.
-fn mono(c: Vec4, mode: &str) -> f32 {
+/// MDL's `mono_mode` (by its enumerator's name): how a colour with alpha becomes one number.
+pub fn mono(c: Vec4, mode: &str) -> f32 {
     match mode {
         "mono_alpha" => c.w,
         "mono_luminance" => luminance(Rgb::new(c.x, c.y, c.z)),

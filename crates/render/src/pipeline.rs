@@ -137,10 +137,11 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 /// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), and
 /// translates the scene into the world the engines trace.
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
-    let (shading, mut diagnostics) = material::compile_shading(scene, options);
+    let (mut shading, mut diagnostics) = material::compile_shading(scene, options);
     let search = material::mdl_modules::search_path(&scene.library, mdl_paths);
     let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
     diagnostics.extend(mdl_diagnostics);
+    material::module_stand_ins(&mut shading, scene, &mdl);
     let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }

@@ -4,7 +4,8 @@
 //! green walls lit by the lamp's flux.
 //!
 //! Also `physical_light` on a rectangle over a Lambertian MDL plane against the analytic
-//! irradiance of a square source.
+//! irradiance of a square source, and a module material painted by a texture (evaluated at
+//! each hit) against its texels.
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -16,21 +17,33 @@ use shader::{Shading, ShadingOptions};
 /// every message.
 /// `extra` directories are searched for MDL modules after the scene's.
 fn render_parsed(parsed: &mi::Parsed, res: u32, spp: u32, extra: &[PathBuf]) -> (Vec<[f32; 4]>, Vec<String>, bool) {
+    render_parsed_with(parsed, res, spp, extra, EngineKind::Path)
+}
+
+/// [`render_parsed`] with `engine`.
+fn render_parsed_with(
+    parsed: &mi::Parsed,
+    res: u32,
+    spp: u32,
+    extra: &[PathBuf],
+    engine: EngineKind,
+) -> (Vec<[f32; 4]>, Vec<String>, bool) {
     let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
     let mut diags = Vec::new();
     let mut scene = scene::Scene::build(parsed, 0, &mut diags).expect("a scene");
     scene.camera.resolution = (res, res);
     let classic = Shading::wants_classic(&scene);
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
+    let (mut shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     diags.extend(shade_diags);
     let search = material::mdl_modules::search_path(&scene.library, extra);
     let (mdl, mdl_diags) = material::mdl_modules::compile(&scene.library, search);
     diags.extend(mdl_diags);
+    material::module_stand_ins(&mut shading, &scene, &mdl);
     messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
     let world = render::World::from_scene_with_mdl(&scene, Some(&shading), &mdl);
     messages.extend(world.warnings.iter().cloned());
     let accel = render::accel::build(&world, render::Backend::default_available());
-    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
+    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
     let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
     (film.rgba(), messages, classic)
 }
@@ -123,5 +136,94 @@ render "root" "cam_inst" "opt"
     eprintln!("plane radiance {got:?}, analytic {want}");
     for c in got {
         assert!((c - want).abs() < 0.03 * want, "{c} vs {want}");
+    }
+}
+
+/// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,
+/// top right white (rows listed from the bottom).
+const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
+    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
+    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'"#;
+
+/// A square seen head-on at `res`², lit head-on by a directional light of irradiance π (a
+/// Lambertian pixel's value is its albedo), with shader `shader` of scenes/mdl/painted.mdl.
+fn painted_square(shader: &str, res: u32) -> (Vec<[f32; 4]>, Vec<String>) {
+    painted_square_with(shader, res, EngineKind::Path)
+}
+
+/// [`painted_square`] rendered by `engine`.
+fn painted_square_with(shader: &str, res: u32, engine: EngineKind) -> (Vec<[f32; 4]>, Vec<String>) {
+    let text = format!(
+        r#"
+options "opt" filter box 1 1 end options
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+{QUADRANTS}
+{shader}
+object "square" group
+    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
+    0 0 0  1 0 0  1 1 0  0 1 0
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
+    p 0 1 2 3
+end group end object
+instance "square_inst" "square" material "mat" end instance
+instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    );
+    let modules = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"));
+    let parsed = mi::parse_str("t.mi", &text);
+    let (px, messages, _) = render_parsed_with(&parsed, res, 16, &[modules], engine);
+    (px, messages)
+}
+
+#[test]
+fn a_module_material_painted_by_a_texture_shows_its_texels_in_the_path_engine() {
+    // Pixels whose footprints lie inside one texel block: (x, y from the top, RGB).
+    let inside = [(1, 6, [1.0, 0.0, 0.0]), (6, 6, [0.0, 1.0, 0.0]), (1, 1, [0.0, 0.0, 1.0]), (6, 1, [1.0, 1.0, 1.0])];
+    for shader in [
+        r#"shader "mat" "mdl::painted::painted" ("tex" "quadrants")"#,
+        r#"shader "mat" "mdl::painted::looked_up" ("tex" "quadrants")"#,
+    ] {
+        let (px, messages) = painted_square(shader, 8);
+        assert!(messages.is_empty(), "{messages:#?}");
+        for (x, y, want) in inside {
+            let got = px[y * 8 + x];
+            assert!((0..3).all(|k| (got[k] - want[k]).abs() <= 1e-3), "{shader}: pixel ({x}, {y}) {got:?} vs {want:?}");
+        }
+    }
+    // Tiled twice, at 16×16: pixels whose footprints stay half a texel inside a block of
+    // either tile (x, y from the top): the blue top-left block in both tiles, white and green.
+    let (px, messages) = painted_square(r#"shader "mat" "mdl::painted::painted" ("tex" "quadrants", "tiles" 2)"#, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let blue = [0.0, 0.0, 1.0];
+    for (x, y, want) in
+        [(1usize, 9usize, blue), (9, 9, blue), (1, 1, blue), (5, 9, [1.0, 1.0, 1.0]), (5, 13, [0.0, 1.0, 0.0])]
+    {
+        let got = px[y * 16 + x];
+        assert!((0..3).all(|k| (got[k] - want[k]).abs() <= 1e-3), "tiled: pixel ({x}, {y}) {got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn the_classic_engine_shades_module_materials_with_their_compiled_colour() {
+    // mental ray's base lights carry no 1/π: a Lambertian stand-in of colour c under a
+    // head-on light of colour π shows π·c. A constant module matte shows its tint; a
+    // textured one the mean of its texture over the texture space (the four blocks: ½ grey).
+    let pi = std::f32::consts::PI;
+    for (shader, want) in [
+        (
+            r#"$include "export_multi.mdl"
+shader "mat" "mdl::export_multi::matte" ("tint" 0.5 0.25 0)"#,
+            [0.5, 0.25, 0.0],
+        ),
+        (r#"shader "mat" "mdl::painted::painted" ("tex" "quadrants")"#, [0.5, 0.5, 0.5]),
+    ] {
+        let (px, messages) = painted_square_with(shader, 4, EngineKind::Classic);
+        assert!(messages.iter().all(|m| !m.contains("grey")), "{messages:#?}");
+        let got = mean(&px, 4, (0, 4), (0, 4));
+        assert!((0..3).all(|k| (got[k] - pi * want[k]).abs() <= 1e-3), "{shader}: {got:?} vs π·{want:?}");
     }
 }

@@ -1,19 +1,23 @@
 //! Evaluating a material's expression to a constant [`Value`] once per material instance:
 //! arguments bound to parameters (defaults where absent), `let` and calls of
 //! expression-bodied definitions followed, operators folded, struct constructors and the
-//! `::df` distribution functions built. What depends on the shading point (texture lookups,
-//! `state::` values used in arithmetic) or is not evaluated yet stops the evaluation with a
+//! `::df` distribution functions built. What depends on the shading point (`state::`
+//! values, texture lookups and what is computed from them) becomes a [`Value::Hit`]
+//! expression evaluated at each hit; what is not evaluated yet stops the evaluation with a
 //! [`Problem`] at its place in the module.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use bsdf::Rgb;
 use mdl_lang::ast::{Arg, BinaryOp, Body, Decl, Scalar, UnaryOp};
 use mdl_lang::{Expr, ExprKind, Function, ModuleSet, Resolution, Type};
 use mi::Span;
 
+use super::hit::{BinOp as HitBinOp, HitExpr, UnOp as HitUnOp};
 use super::natives;
-use super::value::Value;
+use super::textures::Textures;
+use super::value::{HitType, Value};
 
 /// Deepest nesting of calls followed (recursion in a module is an error, not a hang).
 const MAX_DEPTH: u32 = 64;
@@ -50,6 +54,10 @@ pub struct Evaluator<'a> {
     /// The modules the expressions come from.
     pub set: &'a ModuleSet,
     depth: u32,
+    /// The hit-dependent numbers the distribution functions read ([`super::value::Leaf`]).
+    pub leaves: Vec<Arc<HitExpr>>,
+    /// The texture files read.
+    pub textures: &'a mut Textures,
 }
 
 /// A problem at `span`.
@@ -59,8 +67,8 @@ pub fn problem(span: Span, message: impl Into<String>) -> Problem {
 
 impl<'a> Evaluator<'a> {
     /// An evaluator of `set`'s definitions.
-    pub fn new(set: &'a ModuleSet) -> Evaluator<'a> {
-        Evaluator { set, depth: 0 }
+    pub fn new(set: &'a ModuleSet, textures: &'a mut Textures) -> Evaluator<'a> {
+        Evaluator { set, depth: 0, leaves: Vec::new(), textures }
     }
 
     /// The value of `e` in `env`.
@@ -97,6 +105,15 @@ impl<'a> Evaluator<'a> {
             },
             ExprKind::Unary { op, operand } => {
                 let v = self.eval(operand, env)?;
+                if let Value::Hit(e, ty) = &v {
+                    let op = match op {
+                        UnaryOp::Plus => return Ok(v.clone()),
+                        UnaryOp::Neg => HitUnOp::Neg,
+                        UnaryOp::Not => HitUnOp::Not,
+                        _ => return Err(problem(span, format!("operator {op:?} on a value of the hit"))),
+                    };
+                    return Ok(Value::from_hit(HitExpr::Unary(op, e.clone()), *ty));
+                }
                 unary(*op, v).ok_or_else(|| problem(span, format!("operator {op:?} is not evaluated for this operand")))
             }
             ExprKind::Binary { op, lhs, rhs } => {
@@ -107,19 +124,48 @@ impl<'a> Evaluator<'a> {
                     }
                 }
                 let b = self.eval(rhs, env)?;
+                if matches!(a, Value::Hit(..)) || matches!(b, Value::Hit(..)) {
+                    return hit_binary(*op, &a, &b).ok_or_else(|| problem(span, describe_binary(*op, &a, &b)));
+                }
                 binary(*op, &a, &b).ok_or_else(|| problem(span, describe_binary(*op, &a, &b)))
             }
             ExprKind::Conditional { cond, then, otherwise } => match self.eval(cond, env)? {
                 Value::Bool(true) => self.eval(then, env),
                 Value::Bool(false) => self.eval(otherwise, env),
+                Value::Hit(c, _) => {
+                    let (a, b) = (self.eval(then, env)?, self.eval(otherwise, env)?);
+                    match (a.to_hit(), b.to_hit(), a.hit_type()) {
+                        (Some(x), Some(y), Some(ty)) => Ok(Value::from_hit(HitExpr::Select(c, x, y), ty)),
+                        _ => Err(problem(
+                            span,
+                            format!(
+                                "a choice between {} and {} by a condition of the hit is not compiled",
+                                kind(&a),
+                                kind(&b)
+                            ),
+                        )),
+                    }
+                }
                 v => Err(problem(cond.span, format!("condition is not a constant boolean ({})", kind(&v)))),
             },
             ExprKind::Member { base, field } => {
                 let v = self.eval(base, env)?;
+                if let Value::Hit(e, ty) = &v {
+                    let lane = "xyzw".find(field.as_str()).filter(|i| field.len() == 1 && (*i as u8) < ty.width());
+                    return match lane {
+                        Some(i) => Ok(Value::from_hit(HitExpr::Lane(e.clone(), i as u8), HitType::Float)),
+                        None => Err(problem(span, format!("`.{field}` of a value of the hit is not evaluated"))),
+                    };
+                }
                 member(&v, field).ok_or_else(|| problem(span, format!("`.{field}` of {} is not evaluated", kind(&v))))
             }
             ExprKind::Index { base, index } => {
                 let (v, i) = (self.eval(base, env)?, self.eval(index, env)?);
+                if let (Value::Hit(e, ty), Value::Int(i)) = (&v, &i) {
+                    if (0..i64::from(ty.width())).contains(i) {
+                        return Ok(Value::from_hit(HitExpr::Lane(e.clone(), *i as u8), HitType::Float));
+                    }
+                }
                 match (&v, i) {
                     (Value::Array(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => Ok(a[i as usize].clone()),
                     (Value::Vector(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => {
@@ -197,7 +243,7 @@ impl<'a> Evaluator<'a> {
                     Resolution::Function { module, .. } | Resolution::Material { module, .. } => module.as_str(),
                     _ => "",
                 };
-                natives::call(module, def, &args, span)
+                natives::call(module, def, &args, span, &mut self.leaves)
             }
             Body::Block(_) => Err(problem(
                 span,
@@ -245,6 +291,39 @@ impl<'a> Evaluator<'a> {
             Some(out)
         };
         let bad = || problem(span, format!("`{ty}(…)` with these arguments is not evaluated"));
+        if values.iter().any(|v| matches!(v, Value::Hit(..))) {
+            return construct_hit(ty, &values).ok_or_else(bad);
+        }
+        match ty {
+            Type::Texture(mdl_lang::ast::TextureShape::Tex2d) => {
+                // `texture_2d()`: the invalid texture (lookups give black).
+                let Some(Value::Str(name)) = values.first() else {
+                    return if values.is_empty() { Ok(Value::Texture(None)) } else { Err(bad()) };
+                };
+                let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
+                return match self.textures.file(name, dir.as_deref()) {
+                    Ok(image) => Ok(Value::Texture(Some(image))),
+                    Err(why) => Err(problem(span, why)),
+                };
+            }
+            Type::Matrix(_, c, r) => {
+                let n = usize::from(*c) * usize::from(*r);
+                return match floats(&values).as_deref() {
+                    Some([d]) => Ok(Value::Vector(
+                        (0..n).map(|k| if k / usize::from(*r) == k % usize::from(*r) { *d } else { 0.0 }).collect(),
+                    )),
+                    Some(v) if v.len() == n => Ok(Value::Vector(v.to_vec())),
+                    _ => Err(bad()),
+                };
+            }
+            _ => {}
+        }
+        // An enum value converts to its integer.
+        for v in values.iter_mut() {
+            if let Value::Enum(_, i) = v {
+                *v = Value::Int(*i);
+            }
+        }
         match ty {
             Type::Scalar(Scalar::Bool) => {
                 values.first().and_then(Value::float).map(|f| Value::Bool(f != 0.0)).ok_or_else(bad)
@@ -335,18 +414,71 @@ pub fn kind(v: &Value) -> &'static str {
         Value::Edf(_) => "an edf",
         Value::Vdf => "a vdf",
         Value::HairBsdf => "a hair_bsdf",
-        Value::State(_) => "a value that depends on the shading point",
+        Value::Hit(..) => "a value of the shading point",
+        Value::Texture(_) => "a texture",
     }
 }
 
 fn describe_binary(op: BinaryOp, a: &Value, b: &Value) -> String {
-    if let Value::State(s) = a {
-        return format!("`state::{s}()` depends on the shading point; per-hit evaluation of it is not compiled yet");
-    }
-    if let Value::State(s) = b {
-        return format!("`state::{s}()` depends on the shading point; per-hit evaluation of it is not compiled yet");
-    }
     format!("operator {op:?} on {} and {} is not evaluated", kind(a), kind(b))
+}
+
+/// A binary operator on values one of which depends on the hit.
+fn hit_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
+    use BinaryOp::*;
+    let (x, y) = (a.to_hit()?, b.to_hit()?);
+    let (ta, tb) = (a.hit_type()?, b.hit_type()?);
+    let wider = if ta.width() >= tb.width() { ta } else { tb };
+    let (hop, ty) = match op {
+        Add => (HitBinOp::Add, wider),
+        Sub => (HitBinOp::Sub, wider),
+        Mul => (HitBinOp::Mul, wider),
+        Div => (HitBinOp::Div, wider),
+        Rem => (HitBinOp::Rem, wider),
+        Lt => (HitBinOp::Lt, HitType::Bool),
+        Le => (HitBinOp::Le, HitType::Bool),
+        Gt => (HitBinOp::Gt, HitType::Bool),
+        Ge => (HitBinOp::Ge, HitType::Bool),
+        Eq => (HitBinOp::Eq, HitType::Bool),
+        Ne => (HitBinOp::Ne, HitType::Bool),
+        And => (HitBinOp::And, HitType::Bool),
+        Or => (HitBinOp::Or, HitType::Bool),
+        _ => return None,
+    };
+    // Integer division truncates.
+    if op == Div && ta == HitType::Int && tb == HitType::Int {
+        let q = super::hit::fold(HitExpr::Binary(hop, x, y));
+        return Some(Value::from_hit(HitExpr::Math(super::hit::MathFn::Trunc, [q].into()), ty));
+    }
+    Some(Value::from_hit(HitExpr::Binary(hop, x, y), ty))
+}
+
+/// A number, vector or colour of type `ty` built from `values`, some of which depend on
+/// the hit: one value fills every lane (a scalar) or converts; several fill the lanes in
+/// order.
+fn construct_hit(ty: &Type, values: &[Value]) -> Option<Value> {
+    let target = super::value::HitType::of(ty)?;
+    match values {
+        [v] => {
+            let t = v.hit_type()?;
+            if t.width() == 1 || t.width() >= target.width() || matches!(target, HitType::Color) {
+                let e = v.to_hit()?;
+                let e = if target.width() == 1 && t.width() > 1 { HitExpr::Lane(e, 0) } else { (*e).clone() };
+                return Some(Value::from_hit(e, target));
+            }
+            None
+        }
+        _ => {
+            let mut parts = Vec::with_capacity(values.len());
+            let mut lanes = 0;
+            for v in values {
+                let w = v.hit_type()?.width();
+                lanes += w;
+                parts.push((v.to_hit()?, w));
+            }
+            (lanes == target.width()).then(|| Value::from_hit(HitExpr::Compose(parts.into()), target))
+        }
+    }
 }
 
 fn unary(op: UnaryOp, v: Value) -> Option<Value> {

@@ -8,15 +8,22 @@
 //! parameters (type errors and unknown names are errors at the `.mi` parameter; absent ones
 //! take the definition's defaults), the material's expression is evaluated to constants
 //! ([`eval`], [`natives`]) and lowered to mira's BSDF families ([`lower`]). What depends on
-//! the shading point is not compiled yet: a warning at the `.mi` instance names the construct
-//! and its module `file:line:col`, and the material is rendered grey.
+//! the shading point (`state::` values, `tex::` lookups, `::base` textures and what is
+//! computed from them) is compiled once into expression trees ([`hit`], [`hit_natives`])
+//! that the path engine evaluates at each hit; textures are read once ([`textures`]). What
+//! is not compiled is a warning at the `.mi` instance naming the construct and its module
+//! `file:line:col`, and the material is rendered grey.
 //!
 //! The `::nvidia::core_definitions` materials keep mira's native translation unless a
 //! `core_definitions.mdl` on the search path replaces them.
 
+pub mod connections;
 pub mod eval;
+pub mod hit;
+pub mod hit_natives;
 pub mod lower;
 pub mod natives;
+pub mod textures;
 pub mod value;
 
 use std::collections::HashMap;
@@ -29,6 +36,7 @@ use scene::Library;
 
 use crate::SurfaceMaterial;
 use eval::Evaluator;
+use textures::Textures;
 use value::Value;
 
 /// The module whose materials mira translates natively (unless a file replaces it).
@@ -85,7 +93,12 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
     let mut out = MdlMaterials::default();
     let mut diags = Vec::new();
     let core_on_path = search.find(CORE).is_some();
+    let mut texture_dirs = lib.mdl_dirs.clone();
+    texture_dirs.extend(search.dirs().iter().cloned());
+    let mut textures = Textures::new(texture_dirs);
     let mut set = ModuleSet::new(search);
+    // The `::base` functions `.mi` connections may name (a built-in module: it loads).
+    let _ = set.load("::base");
     let mut failed: HashMap<String, String> = HashMap::new();
     for written in &lib.mdl_modules {
         let name = included_module(written);
@@ -120,7 +133,8 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
             continue;
         }
         let mut warnings = Vec::new();
-        let surface = instance(&set, &qualified, shader, params, &mut diags, &mut warnings);
+        let mut cx = Instance { set: &set, lib, textures: &mut textures, diags: &mut diags, warnings: &mut warnings };
+        let surface = cx.compile(&qualified, shader, params);
         // What was approximated or not compiled: warnings at the instance's `.mi` call.
         diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
         out.by_call.insert((span.file.0, span.lo), surface);
@@ -129,79 +143,102 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
     (out, diags)
 }
 
-/// Compiles one instance of material `qualified` with the `.mi` `params`.
-fn instance(
-    set: &ModuleSet,
-    qualified: &str,
-    shader: &str,
-    params: &[Param],
-    diags: &mut Vec<Diagnostic>,
-    warnings: &mut Vec<String>,
-) -> SurfaceMaterial {
-    let Some(def) = set.material(qualified) else { return SurfaceMaterial::grey(shader) };
-    let enum_value = |ty: &str, name: &str| {
-        set.enum_decl(ty).and_then(|e| e.values.iter().find(|v| v.name == name).map(|v| v.value))
-    };
-    let mut given: Vec<Option<Value>> = vec![None; def.params.len()];
-    let mut bad = false;
-    for p in params {
-        let Some((i, decl)) = def.param(&p.name.text) else {
-            let known: Vec<&str> = def.params.iter().map(|p| p.name.as_str()).collect();
-            diags.push(Diagnostic::error(
-                p.name.span,
-                format!("`{qualified}` has no parameter '{}' (it has: {})", p.name.text, known.join(", ")),
-            ));
-            bad = true;
-            continue;
+/// What compiling one instance reads and writes.
+struct Instance<'a> {
+    set: &'a ModuleSet,
+    lib: &'a Library,
+    textures: &'a mut Textures,
+    diags: &'a mut Vec<Diagnostic>,
+    warnings: &'a mut Vec<String>,
+}
+
+impl Instance<'_> {
+    /// Compiles one instance of material `qualified` with the `.mi` `params`.
+    fn compile(&mut self, qualified: &str, shader: &str, params: &[Param]) -> SurfaceMaterial {
+        let set = self.set;
+        let diags = &mut *self.diags;
+        let warnings = &mut *self.warnings;
+        let Some(def) = set.material(qualified) else { return SurfaceMaterial::grey(shader) };
+        let enum_value = |ty: &str, name: &str| {
+            set.enum_decl(ty).and_then(|e| e.values.iter().find(|v| v.name == name).map(|v| v.value))
         };
-        if let mi::ast::Value::Connect(target) = &p.value {
-            diags.push(Diagnostic::warning(
-                p.span,
-                format!(
-                    "parameter '{}' of `{qualified}` is connected to '{}': shader connections of module materials are not evaluated per hit yet; its default is used",
-                    p.name.text, target.text
-                ),
-            ));
-            continue;
-        }
-        match value::from_mi(&p.value, &decl.ty.ty, &enum_value) {
-            Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
-            Err(why) => {
+        let mut given: Vec<Option<Value>> = vec![None; def.params.len()];
+        let mut bad = false;
+        let mut ev = Evaluator::new(set, self.textures);
+        for p in params {
+            let Some((i, decl)) = def.param(&p.name.text) else {
+                let known: Vec<&str> = def.params.iter().map(|p| p.name.as_str()).collect();
                 diags.push(Diagnostic::error(
-                    p.span,
-                    format!("parameter '{}' of `{qualified}` is of type `{}`: {why}", p.name.text, decl.ty.ty),
+                    p.name.span,
+                    format!("`{qualified}` has no parameter '{}' (it has: {})", p.name.text, known.join(", ")),
                 ));
                 bad = true;
+                continue;
+            };
+            if let mi::ast::Value::Connect(target) = &p.value {
+                match connections::value(&mut ev, self.lib, &target.text, &decl.ty.ty, 0) {
+                    Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
+                    Err(why) => diags.push(Diagnostic::warning(
+                        p.span,
+                        format!(
+                            "parameter '{}' of `{qualified}` is connected to '{}', which is not compiled ({why}); its default is used",
+                            p.name.text, target.text
+                        ),
+                    )),
+                }
+                continue;
+            }
+            if let (Type::Texture(_), mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
+                match ev.textures.from_mi(&name.text, self.lib) {
+                    Ok(image) => given[i] = Some(Value::Texture(Some(image))),
+                    Err(why) => {
+                        diags.push(Diagnostic::warning(
+                            p.span,
+                            format!("parameter '{}' of `{qualified}`: {why}; an invalid texture is used", p.name.text),
+                        ));
+                        given[i] = Some(Value::Texture(None));
+                    }
+                }
+                continue;
+            }
+            match value::from_mi(&p.value, &decl.ty.ty, &enum_value) {
+                Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
+                Err(why) => {
+                    diags.push(Diagnostic::error(
+                        p.span,
+                        format!("parameter '{}' of `{qualified}` is of type `{}`: {why}", p.name.text, decl.ty.ty),
+                    ));
+                    bad = true;
+                }
             }
         }
-    }
-    if bad {
-        // The errors say what is wrong; the material renders grey.
-        return SurfaceMaterial::grey(shader);
-    }
-    let mut ev = Evaluator::new(set);
-    let res = Resolution::Material {
-        module: qualified.rsplit_once("::").map_or("", |(m, _)| m).to_string(),
-        name: def.name.clone(),
-        decl: 0,
-    };
-    let result = ev.complete(def, given, def.span).and_then(|args| ev.call(def, &res, args, def.span));
-    match result {
-        Ok(v @ Value::Struct(..)) => lower::surface(shader, &v, warnings),
-        Ok(other) => {
-            warnings.push(format!(
-                "material '{shader}': `{qualified}` gave {}, not a material; rendered grey",
-                eval::kind(&other)
-            ));
-            SurfaceMaterial::grey(shader)
+        if bad {
+            // The errors say what is wrong; the material renders grey.
+            return SurfaceMaterial::grey(shader);
         }
-        Err(p) => {
-            warnings.push(format!(
-                "material '{shader}' (`{qualified}`): {}: {}; rendered grey",
-                set.sources().location(p.span),
-                p.message
-            ));
-            SurfaceMaterial::grey(shader)
+        let res = Resolution::Material {
+            module: qualified.rsplit_once("::").map_or("", |(m, _)| m).to_string(),
+            name: def.name.clone(),
+            decl: 0,
+        };
+        let result = ev.complete(def, given, def.span).and_then(|args| ev.call(def, &res, args, def.span));
+        match result {
+            Ok(v @ Value::Struct(..)) => lower::surface(shader, &v, std::mem::take(&mut ev.leaves), warnings),
+            Ok(other) => {
+                warnings.push(format!(
+                    "material '{shader}': `{qualified}` gave {}, not a material; rendered grey",
+                    eval::kind(&other)
+                ));
+                SurfaceMaterial::grey(shader)
+            }
+            Err(p) => {
+                warnings.push(format!(
+                    "material '{shader}' (`{qualified}`): {}: {}; rendered grey",
+                    set.sources().location(p.span),
+                    p.message
+                ));
+                SurfaceMaterial::grey(shader)
+            }
         }
     }
 }

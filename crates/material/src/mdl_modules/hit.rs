@@ -1,0 +1,486 @@
+//! Expressions of a module material that depend on the shading point, compiled once per
+//! material instance into a small tree ([`HitExpr`]) that the path engine evaluates at
+//! every hit without parsing or allocating.
+//!
+//! Values are four lanes of `f32` (`Vec4`): a colour or `float3` uses x, y, z; a scalar
+//! (`float`, `int`, `bool` as 0/1) is the same number in all four lanes, so that scalars
+//! and vectors combine lane by lane without conversions. Every node whose operands are
+//! constants is folded when it is built ([`fold`]): what does not depend on the hit is
+//! computed once, and a material without hit-dependent parts compiles to constants.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3A, Vec4};
+use shader::texture::Texture;
+use shader::State;
+
+/// A value of the shading state (MDL's `::state` functions; world space, scene units).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StateFn {
+    /// `state::position()`: the hit point.
+    Position,
+    /// `state::normal()`: the shading normal, facing the ray.
+    Normal,
+    /// `state::geometry_normal()`: the geometric normal, facing the ray.
+    GeometryNormal,
+    /// `state::direction()`: the direction of the ray that hit (towards the point).
+    Direction,
+    /// `state::motion()`.
+    Motion,
+    /// `state::texture_coordinate(i)`.
+    TextureCoordinate(u8),
+    /// `state::texture_tangent_u(i)` (the surface tangents of the first texture space).
+    TangentU,
+    /// `state::texture_tangent_v(i)`.
+    TangentV,
+    /// The hit point in object space (`base::coordinate_source` object coordinates).
+    ObjectPosition,
+    /// The object's x axis in world space, unit.
+    ObjectAxisX,
+    /// The object's y axis in world space, unit.
+    ObjectAxisY,
+}
+
+/// A unary operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnOp {
+    /// `-x`.
+    Neg,
+    /// `!x` (0 → 1, else 0).
+    Not,
+}
+
+/// A binary operator, lane by lane (comparisons and logic give 0 or 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`.
+    Add,
+    /// `-`.
+    Sub,
+    /// `*`.
+    Mul,
+    /// `/`.
+    Div,
+    /// `%` (sign of the dividend, as C's `fmod`).
+    Rem,
+    /// `<`.
+    Lt,
+    /// `<=`.
+    Le,
+    /// `>`.
+    Gt,
+    /// `>=`.
+    Ge,
+    /// `==` (all lanes).
+    Eq,
+    /// `!=` (any lane).
+    Ne,
+    /// `&&`.
+    And,
+    /// `||`.
+    Or,
+}
+
+/// A `::math` function (or a helper of the `::base` and `::tex` lowerings). Functions of a
+/// vector's lanes carry how many lanes the vector has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MathFn {
+    /// `min(a, b)`.
+    Min,
+    /// `max(a, b)`.
+    Max,
+    /// `clamp(a, lo, hi)`.
+    Clamp,
+    /// `saturate(a)`.
+    Saturate,
+    /// `lerp(a, b, t)`.
+    Lerp,
+    /// `step(edge, x)`.
+    Step,
+    /// `smoothstep(a, b, x)`.
+    Smoothstep,
+    /// `sqrt`.
+    Sqrt,
+    /// `exp`.
+    Exp,
+    /// `exp2`.
+    Exp2,
+    /// `log` (natural).
+    Log,
+    /// `log2`.
+    Log2,
+    /// `log10`.
+    Log10,
+    /// `pow(a, b)`.
+    Pow,
+    /// `abs`.
+    Abs,
+    /// `sign`.
+    Sign,
+    /// `floor`.
+    Floor,
+    /// `ceil`.
+    Ceil,
+    /// `round`.
+    Round,
+    /// Towards zero (integer division).
+    Trunc,
+    /// `frac` (x − floor x).
+    Frac,
+    /// `fmod(a, b)`.
+    Fmod,
+    /// `sin`.
+    Sin,
+    /// `cos`.
+    Cos,
+    /// `tan`.
+    Tan,
+    /// `asin`.
+    Asin,
+    /// `acos`.
+    Acos,
+    /// `atan`.
+    Atan,
+    /// `atan2(y, x)`.
+    Atan2,
+    /// `radians`.
+    Radians,
+    /// `degrees`.
+    Degrees,
+    /// `dot(a, b)` of n lanes.
+    Dot(u8),
+    /// `length` of n lanes.
+    Length(u8),
+    /// `distance(a, b)` of n lanes.
+    Distance(u8),
+    /// `normalize` of n lanes.
+    Normalize(u8),
+    /// `cross` of two `float3`.
+    Cross,
+    /// `luminance` of a colour (Rec. 709 weights).
+    Luminance,
+    /// `average` of n lanes.
+    Average(u8),
+    /// `max_value` of n lanes.
+    MaxValue(u8),
+    /// `min_value` of n lanes.
+    MinValue(u8),
+    /// `base::mono_mode` of a texel (RGBA): `mono_alpha`, `_average`, `_luminance`,
+    /// `_maximum`, by the enumerator's name.
+    Mono(&'static str),
+}
+
+/// A texture image as the expressions hold it (compared by identity).
+#[derive(Clone, Debug)]
+pub struct Image(pub Arc<Texture>);
+
+impl PartialEq for Image {
+    fn eq(&self, other: &Image) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Image {
+    /// Width and height in texels (0 × 0 for a texture that could not be read).
+    pub fn size(&self) -> (usize, usize) {
+        match &*self.0 {
+            Texture::Image { image, .. } => image.size(),
+            _ => (0, 0),
+        }
+    }
+}
+
+/// An expression over the shading point.
+#[derive(Clone, Debug, PartialEq)]
+pub enum HitExpr {
+    /// A constant.
+    Const(Vec4),
+    /// A value of the state.
+    State(StateFn),
+    /// A unary operator.
+    Unary(UnOp, Arc<HitExpr>),
+    /// A binary operator.
+    Binary(BinOp, Arc<HitExpr>, Arc<HitExpr>),
+    /// `c ? a : b` (c's x lane).
+    Select(Arc<HitExpr>, Arc<HitExpr>, Arc<HitExpr>),
+    /// A function of the operands.
+    Math(MathFn, Box<[Arc<HitExpr>]>),
+    /// Lane `i` of a vector, as a scalar.
+    Lane(Arc<HitExpr>, u8),
+    /// A vector built from parts: each part gives its first `width` lanes, in order.
+    Compose(Box<[(Arc<HitExpr>, u8)]>),
+    /// A point (w = 1, divided by the result's w) or direction (3×3 part, normalized)
+    /// through a 4×4 matrix.
+    Transform {
+        /// The matrix (MDL's column-vector convention).
+        matrix: Mat4,
+        /// What is transformed.
+        of: Arc<HitExpr>,
+        /// A point, else a direction.
+        point: bool,
+    },
+    /// The RGBA texel of a 2D texture at a coordinate's x and y, with MDL's wrap modes
+    /// (by enumerator name) per axis; black outside [0, 1)² when `clip`.
+    Lookup {
+        /// The texture.
+        image: Image,
+        /// The coordinate.
+        coord: Arc<HitExpr>,
+        /// `wrap_u`, `wrap_v`.
+        wrap: [&'static str; 2],
+        /// `clip`.
+        clip: bool,
+    },
+}
+
+/// Builds `e`, folded to a constant when it does not depend on the hit.
+pub fn fold(e: HitExpr) -> Arc<HitExpr> {
+    let constant = |x: &Arc<HitExpr>| matches!(**x, HitExpr::Const(_));
+    let foldable = match &e {
+        HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
+        HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => constant(a),
+        HitExpr::Transform { of, .. } => constant(of),
+        HitExpr::Binary(_, a, b) => constant(a) && constant(b),
+        HitExpr::Select(c, a, b) => {
+            // A constant condition picks its branch whatever the branches are.
+            if let HitExpr::Const(v) = **c {
+                return if v.x != 0.0 { a.clone() } else { b.clone() };
+            }
+            false
+        }
+        HitExpr::Math(_, args) => args.iter().all(constant),
+        HitExpr::Compose(parts) => parts.iter().all(|(p, _)| constant(p)),
+    };
+    if foldable {
+        Arc::new(HitExpr::Const(e.eval(&State::default())))
+    } else {
+        Arc::new(e)
+    }
+}
+
+/// A scalar in all four lanes.
+fn splat(x: f32) -> Vec4 {
+    Vec4::splat(x)
+}
+
+fn truth(b: bool) -> Vec4 {
+    splat(if b { 1.0 } else { 0.0 })
+}
+
+fn lanes(v: Vec4, n: u8) -> Vec4 {
+    match n {
+        1 => Vec4::new(v.x, 0.0, 0.0, 0.0),
+        2 => Vec4::new(v.x, v.y, 0.0, 0.0),
+        3 => v.truncate().extend(0.0),
+        _ => v,
+    }
+}
+
+fn map(v: Vec4, f: impl Fn(f32) -> f32) -> Vec4 {
+    Vec4::new(f(v.x), f(v.y), f(v.z), f(v.w))
+}
+
+fn map2(a: Vec4, b: Vec4, f: impl Fn(f32, f32) -> f32) -> Vec4 {
+    Vec4::new(f(a.x, b.x), f(a.y, b.y), f(a.z, b.z), f(a.w, b.w))
+}
+
+impl HitExpr {
+    /// The constant, if it is one.
+    pub fn constant(&self) -> Option<Vec4> {
+        match self {
+            HitExpr::Const(v) => Some(*v),
+            _ => None,
+        }
+    }
+
+    /// The value at the shading point `s`.
+    pub fn eval(&self, s: &State) -> Vec4 {
+        match self {
+            HitExpr::Const(v) => *v,
+            HitExpr::State(f) => state_value(*f, s),
+            HitExpr::Unary(op, a) => {
+                let a = a.eval(s);
+                match op {
+                    UnOp::Neg => -a,
+                    UnOp::Not => truth(a.x == 0.0),
+                }
+            }
+            HitExpr::Binary(op, a, b) => binary(*op, a.eval(s), b.eval(s)),
+            HitExpr::Select(c, a, b) => {
+                if c.eval(s).x != 0.0 {
+                    a.eval(s)
+                } else {
+                    b.eval(s)
+                }
+            }
+            HitExpr::Math(f, args) => {
+                let arg = |i: usize| args.get(i).map_or(Vec4::ZERO, |a| a.eval(s));
+                math(*f, arg(0), arg(1), arg(2))
+            }
+            HitExpr::Lane(a, i) => splat(a.eval(s)[(*i as usize).min(3)]),
+            HitExpr::Compose(parts) => {
+                let mut out = [0.0f32; 4];
+                let mut at = 0;
+                for (p, width) in parts.iter() {
+                    let v = p.eval(s);
+                    for k in 0..*width as usize {
+                        if at < 4 {
+                            out[at] = v[k.min(3)];
+                            at += 1;
+                        }
+                    }
+                }
+                Vec4::from_array(out)
+            }
+            HitExpr::Transform { matrix, of, point } => {
+                let v = of.eval(s).truncate();
+                if *point {
+                    let p = *matrix * v.extend(1.0);
+                    let p3 = if p.w != 0.0 && p.w != 1.0 { p.truncate() / p.w } else { p.truncate() };
+                    p3.extend(0.0)
+                } else {
+                    let d = matrix.transform_vector3(v);
+                    d.normalize_or(v).extend(0.0)
+                }
+            }
+            HitExpr::Lookup { image, coord, wrap, clip } => {
+                let c = coord.eval(s);
+                if *clip && !((0.0..1.0).contains(&c.x) && (0.0..1.0).contains(&c.y)) {
+                    return Vec4::ZERO;
+                }
+                let (Some(u), Some(v)) = (mdl::texture::wrap(c.x, wrap[0]), mdl::texture::wrap(c.y, wrap[1])) else {
+                    return Vec4::ZERO;
+                };
+                image.0.lookup(Vec3A::new(u, v, 0.0), 0.0).unwrap_or(Vec4::ZERO)
+            }
+        }
+    }
+}
+
+fn state_value(f: StateFn, s: &State) -> Vec4 {
+    let v = match f {
+        StateFn::Position => s.point,
+        StateFn::Normal => s.normal,
+        StateFn::GeometryNormal => s.normal_geom,
+        StateFn::Direction => s.dir,
+        StateFn::Motion => s.motion,
+        StateFn::TextureCoordinate(i) => s.tex(i as usize),
+        StateFn::TangentU => mdl::texture::surface_tangents(s).0,
+        StateFn::TangentV => mdl::texture::surface_tangents(s).1,
+        StateFn::ObjectPosition => s.world_to_object.transform_point3a(s.point),
+        StateFn::ObjectAxisX => s.object_to_world.transform_vector3a(Vec3A::X).normalize_or(Vec3A::X),
+        StateFn::ObjectAxisY => s.object_to_world.transform_vector3a(Vec3A::Y).normalize_or(Vec3A::Y),
+    };
+    v.extend(0.0)
+}
+
+fn binary(op: BinOp, a: Vec4, b: Vec4) -> Vec4 {
+    match op {
+        BinOp::Add => a + b,
+        BinOp::Sub => a - b,
+        BinOp::Mul => a * b,
+        BinOp::Div => a / b,
+        BinOp::Rem => map2(a, b, |x, y| x % y),
+        BinOp::Lt => truth(a.x < b.x),
+        BinOp::Le => truth(a.x <= b.x),
+        BinOp::Gt => truth(a.x > b.x),
+        BinOp::Ge => truth(a.x >= b.x),
+        BinOp::Eq => truth(a == b),
+        BinOp::Ne => truth(a != b),
+        BinOp::And => truth(a.x != 0.0 && b.x != 0.0),
+        BinOp::Or => truth(a.x != 0.0 || b.x != 0.0),
+    }
+}
+
+fn math(f: MathFn, a: Vec4, b: Vec4, c: Vec4) -> Vec4 {
+    use MathFn::*;
+    match f {
+        Min => a.min(b),
+        Max => a.max(b),
+        Clamp => a.max(b).min(c),
+        Saturate => a.clamp(Vec4::ZERO, Vec4::ONE),
+        Lerp => a + (b - a) * c,
+        Step => map2(a, b, |edge, x| if x < edge { 0.0 } else { 1.0 }),
+        Smoothstep => {
+            let t = ((c - a) / (b - a)).clamp(Vec4::ZERO, Vec4::ONE);
+            t * t * (Vec4::splat(3.0) - 2.0 * t)
+        }
+        Sqrt => map(a, f32::sqrt),
+        Exp => map(a, f32::exp),
+        Exp2 => map(a, f32::exp2),
+        Log => map(a, f32::ln),
+        Log2 => map(a, f32::log2),
+        Log10 => map(a, f32::log10),
+        Pow => map2(a, b, f32::powf),
+        Abs => a.abs(),
+        Sign => map(a, |x| {
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }),
+        Floor => a.floor(),
+        Ceil => a.ceil(),
+        Round => a.round(),
+        Trunc => a.trunc(),
+        Frac => a - a.floor(),
+        Fmod => map2(a, b, |x, y| x % y),
+        Sin => map(a, f32::sin),
+        Cos => map(a, f32::cos),
+        Tan => map(a, f32::tan),
+        Asin => map(a, f32::asin),
+        Acos => map(a, f32::acos),
+        Atan => map(a, f32::atan),
+        Atan2 => map2(a, b, f32::atan2),
+        Radians => a * (std::f32::consts::PI / 180.0),
+        Degrees => a * (180.0 / std::f32::consts::PI),
+        Dot(n) => splat(lanes(a, n).dot(lanes(b, n))),
+        Length(n) => splat(lanes(a, n).length()),
+        Distance(n) => splat(lanes(a - b, n).length()),
+        Normalize(n) => lanes(a, n).normalize_or_zero(),
+        Cross => a.truncate().cross(b.truncate()).extend(0.0),
+        Luminance => splat(bsdf::color::luminance(bsdf::Rgb::new(a.x, a.y, a.z))),
+        Average(n) => splat(lanes(a, n).element_sum() / f32::from(n.max(1))),
+        MaxValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MIN, f32::max)),
+        MinValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MAX, f32::min)),
+        Mono(mode) => splat(mdl::texture::mono(a, mode)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn c(v: f32) -> Arc<HitExpr> {
+        Arc::new(HitExpr::Const(splat(v)))
+    }
+
+    #[test]
+    fn constants_fold_and_hit_values_do_not() {
+        let sum = fold(HitExpr::Binary(BinOp::Add, c(1.0), c(2.0)));
+        assert_eq!(sum.constant(), Some(splat(3.0)));
+        let uv = fold(HitExpr::State(StateFn::TextureCoordinate(0)));
+        let scaled = fold(HitExpr::Binary(BinOp::Mul, uv.clone(), c(2.0)));
+        assert!(scaled.constant().is_none());
+        let mut s = State { tex_count: 1, ..State::default() };
+        s.tex_list[0] = Vec3A::new(0.25, 0.5, 0.0);
+        assert_eq!(scaled.eval(&s), Vec4::new(0.5, 1.0, 0.0, 0.0));
+        // A constant condition picks its branch, even a hit-dependent one.
+        assert_eq!(fold(HitExpr::Select(c(1.0), uv.clone(), c(0.0))), uv);
+    }
+
+    #[test]
+    fn vector_functions_use_their_lanes() {
+        let v = Vec4::new(3.0, 4.0, 0.0, 9.0);
+        assert_eq!(math(MathFn::Length(3), v, Vec4::ZERO, Vec4::ZERO), splat(5.0));
+        assert_eq!(math(MathFn::Dot(2), v, Vec4::ONE, Vec4::ZERO), splat(7.0));
+        assert_eq!(math(MathFn::MaxValue(3), v, Vec4::ZERO, Vec4::ZERO), splat(4.0));
+        let n = math(MathFn::Normalize(3), v, Vec4::ZERO, Vec4::ZERO);
+        assert!((n - Vec4::new(0.6, 0.8, 0.0, 0.0)).length() < 1e-6);
+        let s = math(MathFn::Smoothstep, splat(0.0), splat(1.0), splat(0.5));
+        assert_eq!(s, splat(0.5));
+    }
+}

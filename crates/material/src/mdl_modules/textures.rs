@@ -1,0 +1,73 @@
+//! The `texture_2d` resources of module materials: image files named by MDL
+//! (`texture_2d("./wood.png")`, relative to the module's file or on the MDL search path) or
+//! by a `.mi` parameter (the name of a `color texture` element of the scene, or a file),
+//! read once per file through the renderer's texture code (`shader::texture`) and shared by
+//! every instance. Texel values are used as stored, as for `.mi` textures (no gamma).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use shader::texture::{self, Texture};
+
+use super::hit::Image;
+
+/// The images read so far, by file.
+#[derive(Default)]
+pub struct Textures {
+    by_path: HashMap<PathBuf, Result<Image, String>>,
+    /// Directories searched after the one of the module: the scene files' and the MDL
+    /// search path's.
+    pub dirs: Vec<PathBuf>,
+}
+
+impl Textures {
+    /// A resource set searching `dirs` (after the naming module's directory).
+    pub fn new(dirs: Vec<PathBuf>) -> Textures {
+        Textures { by_path: HashMap::new(), dirs }
+    }
+
+    /// The image of file `name` as written in a module whose file is in `module_dir` (an
+    /// MDL path: `/` separators, a leading `/` meaning the search path's roots, `./` the
+    /// module's directory). `Err` says why it could not be read.
+    pub fn file(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Image, String> {
+        let relative = name.trim_start_matches('/').trim_start_matches("./");
+        let mut dirs: Vec<PathBuf> = module_dir.map(Path::to_path_buf).into_iter().collect();
+        dirs.extend(self.dirs.iter().cloned());
+        let search = texture::SearchPath { dirs };
+        let Some(path) = search.resolve(relative) else {
+            return Err(format!("texture file '{name}' not found (searched {})", describe(&search.dirs)));
+        };
+        self.by_path
+            .entry(path.clone())
+            .or_insert_with(|| {
+                texture::load_image(&path)
+                    .map(|image| {
+                        let kind = mi::ast::TextureKind::Color;
+                        Image(Arc::new(Texture::Image { image: Arc::new(image), filter: None, kind }))
+                    })
+                    .map_err(|e| format!("texture file '{}': {e}", path.display()))
+            })
+            .clone()
+    }
+
+    /// The image a `.mi` parameter names: a `color texture` element of `lib` (its file or
+    /// inline pixels), else a file.
+    pub fn from_mi(&mut self, name: &str, lib: &scene::Library) -> Result<Image, String> {
+        let Some(t) = lib.textures.get(name) else { return self.file(name, None) };
+        match &t.source {
+            mi::ast::TextureSource::File { file, .. } => self.file(&file.text, None),
+            mi::ast::TextureSource::Pixels { dims, pieces } => texture::inline_pixels(dims, &pieces.concat())
+                .map(|image| Image(Arc::new(Texture::Image { image: Arc::new(image), filter: None, kind: t.kind })))
+                .map_err(|e| format!("texture '{name}': {e}")),
+            _ => Err(format!("texture '{name}' is a shader texture (not read by module materials)")),
+        }
+    }
+}
+
+fn describe(dirs: &[PathBuf]) -> String {
+    if dirs.is_empty() {
+        return "the current directory".into();
+    }
+    dirs.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
+}
