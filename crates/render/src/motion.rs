@@ -164,12 +164,12 @@ fn decompose(m: Affine3A) -> Option<Decomposed> {
         return None;
     }
     let (scale, rotation, translation) = m.to_scale_rotation_translation();
-    if !scale.is_finite() || !rotation.is_finite() || scale.min_element().abs() == 0.0 {
+    if !scale.is_finite() || !rotation.is_finite() || scale.abs().min_element() == 0.0 {
         return None;
     }
     let back = glam::Mat3A::from_quat(rotation) * glam::Mat3A::from_diagonal(scale);
     let size = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis].iter().map(|c| c.length()).fold(0.0, f32::max);
-    back.abs_diff_eq(m.matrix3, 1e-4 * size).then_some(Decomposed { scale, rotation, translation: translation.into() })
+    back.abs_diff_eq(m.matrix3, 1e-4 * size).then_some(Decomposed { scale, rotation, translation })
 }
 
 /// Keys over `shutter` of a transform that is `start` at motion time 0 and `end` at
