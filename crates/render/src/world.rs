@@ -9,7 +9,7 @@ use shader::Shading;
 use crate::camera::CameraModel;
 use crate::light::LightSource;
 use crate::mesh::MeshData;
-use crate::motion::{lerp_keys, motion_path, Lerp, Shutter};
+use crate::motion::{lerp_keys, motion_path, transform_keys, Shutter};
 
 /// An instance of a mesh.
 #[derive(Clone, Debug)]
@@ -343,8 +343,8 @@ impl World {
 }
 
 /// Keys over the shutter of everything that moves while it is open: instances with a
-/// `motion transform` (object → world interpolated linearly over the motion interval, as
-/// mental ray moves instances), meshes with motion vectors (one key per motion step) and
+/// `motion transform` (object → world moved over the motion interval as mental ray moves
+/// instances: linearly, or as a rotation when it turns; see [`transform_keys`]), meshes with motion vectors (one key per motion step) and
 /// the camera. Returns whether anything moves.
 fn set_motion_keys(
     shutter: &Shutter,
@@ -364,8 +364,7 @@ fn set_motion_keys(
     let mut moving = false;
     for inst in instances.iter_mut() {
         if let Some(end) = inst.motion_to_world.filter(|m| *m != inst.object_to_world) {
-            let keys: Vec<Affine3A> =
-                shutter.key_times(1).map(|tau| Affine3A::lerp(inst.object_to_world, end, tau)).collect();
+            let keys = transform_keys(inst.object_to_world, end, shutter);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 inst.keys = keys;
                 moving = true;
@@ -403,8 +402,7 @@ fn set_motion_keys(
     if let Some(end) = scene.camera.motion_world_to_camera {
         let end = affine(end).inverse();
         if end != camera.camera_to_world {
-            let keys: Vec<Affine3A> =
-                shutter.key_times(1).map(|tau| Affine3A::lerp(camera.camera_to_world, end, tau)).collect();
+            let keys = transform_keys(camera.camera_to_world, end, shutter);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 camera.keys = keys;
                 moving = true;
@@ -433,7 +431,7 @@ fn set_light_keys(
         ));
         let (start, end) = (affine(*start), affine(*end));
         let back = start.inverse();
-        let keys: Vec<Affine3A> = shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau) * back).collect();
+        let keys: Vec<Affine3A> = transform_keys(start, end, shutter).into_iter().map(|k| k * back).collect();
         if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= scene::sanity::WORLD_LIMIT as f32)
         {
             warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.name));
