@@ -12,7 +12,8 @@
 //!    [`prepare::prepare`]: the environment's importance table, the photon maps, the final
 //!    gather points ([`prepare::Prepared`]).
 //! 4. **render** — [`render::render_prepared`]: the progressive sample passes, of the whole
-//!    image or of one [`part`] of it ([`Settings`]); [`render::render`] runs stages 3 and 4.
+//!    image, of one [`part`] of it, or of one of the [`strips`] of rows an image too large
+//!    for one film is rendered in ([`Settings`]); [`render::render`] runs stages 3 and 4.
 //! 5. **film** — [`film::Film`]: the per-pixel accumulators and the frame buffers made from
 //!    them (colour, depth, normals, labels, motion, user buffers); [`tonemap`] maps colour
 //!    for 8-bit files.
@@ -41,6 +42,7 @@ pub mod prepare;
 pub mod ray;
 pub mod render;
 pub mod sampler;
+pub mod strips;
 pub mod tonemap;
 pub mod tracer;
 pub mod world;
