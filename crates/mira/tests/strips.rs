@@ -90,3 +90,24 @@ fn strip_rows_must_be_a_multiple_of_64() {
     assert_eq!(code, 1);
     assert!(err.contains("--strip-rows 100 is not a positive multiple of 64"), "{err}");
 }
+
+/// `check --scene` says what `render` will do: an image over the limit that strips can
+/// render is a warning naming the strips, not an error.
+#[test]
+fn check_reports_strips_as_a_warning() {
+    let d = scratch();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hostile/ok_baseline.mi"))
+        .unwrap()
+        .replace("resolution 8 8", "resolution 64 600");
+    let scene = d.join("tall.mi");
+    std::fs::write(&scene, text).unwrap();
+    let (code, _, err) = mira(&["check", "--scene", "-W", "--max-memory", "10500K", scene.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("tall.mi:10:5: warning: resolution 64 x 600 needs 10.84 MiB of film and frame buffers, more than the limit of 10.25 MiB (--max-memory): mira render renders it in strips of 64 rows"),
+        "{err}"
+    );
+    let (code, _, err) = mira(&["check", "--scene", "--max-memory", "1M", scene.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("tall.mi:10:5: error: resolution 64 x 600 needs"), "{err}");
+}
