@@ -7,12 +7,79 @@
 //! a resolution within 1 … 65536, finite transforms, finite vertex positions, finite light
 //! positions and directions.
 //!
+//! A world built without errors is then rendered as `mira render` would, at 8 × 8 pixels
+//! and 1 sample per pixel with mira's own BVH on one thread, stopped after
+//! [`RENDER_SECONDS`] (the render's time limit and its cancel flag, which the pre-passes
+//! honour too): compiling the shading (errors stop there, as in `mira render`), the
+//! acceleration structure, the pre-passes (environment, photon maps, final gather points)
+//! and the sample passes must not panic, and every pixel of the film must come out finite.
+//!
 //! As for the `parse` target, run it from an empty working directory (relative `$include`
 //! of a `Memory` origin resolves against the current directory).
 
 #![no_main]
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
+
 use libfuzzer_sys::fuzz_target;
+
+/// Seconds an input may render before it is stopped (libFuzzer's `-timeout` catches what
+/// does not stop).
+const RENDER_SECONDS: f64 = 2.0;
+
+/// One worker thread for every input: libFuzzer runs one input at a time, and one thread
+/// keeps a run reproducible.
+fn pool() -> &'static rayon::ThreadPool {
+    static POOL: OnceLock<rayon::ThreadPool> = OnceLock::new();
+    POOL.get_or_init(|| rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("one worker thread"))
+}
+
+/// Renders `scene` at 8 × 8, 1 spp, and checks the film.
+fn render_small(mut scene: scene::Scene) {
+    render::pipeline::set_resolution(&mut scene, 8, 8);
+    let engine = render::pipeline::choose_engine(&scene, None);
+    let options = shader::ShadingOptions {
+        search: shader::texture::SearchPath { dirs: vec![] },
+        seed: 0,
+        finalgather_rays: Some(4),
+    };
+    let built = render::pipeline::build_world(&scene, &options, &[]);
+    if built.diagnostics.iter().any(|d| d.is_error()) {
+        return;
+    }
+    let settings = render::Settings {
+        engine,
+        spp: Some(1),
+        max_time: Some(Duration::from_secs_f64(RENDER_SECONDS)),
+        ..render::Settings::default()
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    let done = Arc::new(AtomicBool::new(false));
+    let watchdog = {
+        let (cancel, done) = (cancel.clone(), done.clone());
+        std::thread::spawn(move || {
+            let start = std::time::Instant::now();
+            while !done.load(Ordering::Relaxed) && start.elapsed().as_secs_f64() < RENDER_SECONDS {
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            cancel.store(true, Ordering::Relaxed);
+        })
+    };
+    let (world, shading) = (&built.world, &built.shading);
+    let (film, _stats) = pool().install(|| {
+        let accel = render::accel::build(world, render::accel::Backend::Rust);
+        let prepared = render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, &cancel);
+        render::render_prepared(world, accel.as_ref(), Some(shading), &prepared, &settings, &cancel, &|_| {})
+    });
+    done.store(true, Ordering::Relaxed);
+    let _ = watchdog.join();
+    assert_eq!((film.width, film.height), (8, 8), "film size");
+    for (i, p) in film.rgba().iter().enumerate() {
+        assert!(p.iter().all(|v| v.is_finite()), "pixel {i} is not finite: {p:?}");
+    }
+}
 
 fuzz_target!(|data: &[u8]| {
     let options = mi::ReadOptions { include_paths: vec![], builtin_declarations: true, max_errors: 50 };
@@ -52,4 +119,5 @@ fuzz_target!(|data: &[u8]| {
     for l in &world.lights {
         assert!(l.position.is_finite() && l.direction.is_finite(), "light '{}'", l.instance);
     }
+    render_small(world);
 });

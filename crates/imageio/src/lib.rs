@@ -13,6 +13,7 @@
 
 mod alias;
 pub mod data;
+pub mod exr_strips;
 pub mod format;
 mod iff;
 mod mental;

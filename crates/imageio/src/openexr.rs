@@ -51,10 +51,11 @@ pub enum ChannelValues {
     Uint(Vec<u32>),
 }
 
-/// Writes every buffer of `image` to one single-part scan-line EXR (ZIP-16 compression);
-/// colour and scalar channels are half when `format.sample` is [`Sample::Half`], else float.
-/// Colour channels without alpha (`format.alpha` false) leave out `A`.
-pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<(), Error> {
+/// The EXR channels of every buffer of `image`, in the order the buffers list them:
+/// colour and scalar channels half when `format.sample` is [`Sample::Half`], else float;
+/// colour without alpha (`format.alpha` false) leaves out `A`. Two buffers writing one
+/// channel name is an error.
+pub(crate) fn channel_list(format: Format, image: &ImageData) -> Result<Vec<(String, ChannelValues)>, Error> {
     let half = format.sample == Sample::Half;
     let mut list: Vec<(String, ChannelValues)> = Vec::new();
     for (name, pixels) in std::iter::once(("", &image.pixels)).chain(image.layers.iter().map(|(n, p)| (n.as_str(), p)))
@@ -69,6 +70,18 @@ pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<()
             list.push((channel, values));
         }
     }
+    Ok(list)
+}
+
+/// How mira's EXR files are encoded: RLE in 64 × 64 tiles written in increasing order
+/// (the same image gives the same file, byte for byte; the default order is whichever
+/// parallel compression finishes first).
+pub(crate) const ENCODING: Encoding = Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS };
+
+/// Writes every buffer of `image` to one single-part EXR (see [`channel_list`] and
+/// [`ENCODING`]).
+pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<(), Error> {
+    let list = channel_list(format, image)?;
     let channels: Vec<AnyChannel<FlatSamples>> = list
         .into_iter()
         .map(|(name, values)| {
@@ -81,9 +94,6 @@ pub(crate) fn write(path: &Path, format: Format, image: &ImageData) -> Result<()
         })
         .collect();
     let size = (image.width as usize, image.height as usize);
-    // Tiles in increasing order: the same image gives the same file, byte for byte (the
-    // default order is whichever parallel compression finishes first).
-    let encoding = Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS };
-    let layer = Layer::new(size, LayerAttributes::default(), encoding, AnyChannels::sort(channels.into()));
+    let layer = Layer::new(size, LayerAttributes::default(), ENCODING, AnyChannels::sort(channels.into()));
     Image::from_layer(layer).write().to_file(path).map_err(|e| Error::Encode(e.to_string()))
 }

@@ -50,7 +50,22 @@ pub fn run(args: &CheckArgs) -> ExitCode {
             let mut list = Vec::new();
             world = scene::Scene::build(&parsed, 0, &mut list);
             if let Some(w) = &world {
-                list.extend(crate::limits::check_film(w, w.camera.resolution, args.memory.limit(), false));
+                let limit = args.memory.limit();
+                if let Some(d) = crate::limits::check_film(w, w.camera.resolution, limit, false) {
+                    // `mira render` renders such an image in strips when they fit and the
+                    // scene writes one EXR file (its own outputs, or SCENE.exr).
+                    let strips =
+                        crate::limits::strip_rows(w.camera.resolution.0, crate::limits::user_buffers(w), limit.0);
+                    let one_exr = crate::output::targets(&w.camera, None, path)
+                        .is_ok_and(|t| t.len() == 1 && t[0].format.kind == imageio::Kind::Exr);
+                    list.push(match strips {
+                        Some(rows) if one_exr => mi::Diagnostic::warning(
+                            d.span,
+                            format!("{}: mira render renders it in strips of {rows} rows", d.message),
+                        ),
+                        _ => d,
+                    });
+                }
                 // The shaders are compiled as render compiles them (textures read), so that
                 // their errors are reported here too; only for a world without errors, which
                 // the shader graph checks have made safe to compile.

@@ -129,6 +129,29 @@ pub fn check_film(
     ))
 }
 
+/// Most rows a strip holds when an image is rendered in strips (more gives no speed).
+pub const MAX_STRIP_ROWS: u32 = 1024;
+
+/// Rows of the strips an image `width` pixels wide with `user_buffers` user frame buffers
+/// is rendered in when its whole film needs more than `limit` bytes: the most (a multiple
+/// of [`imageio::exr_strips::STRIP_ALIGNMENT`], at most [`MAX_STRIP_ROWS`]) whose film,
+/// with a classic halo of up to 70 rows (filters up to 64 pixels wide, band alignment),
+/// needs at most a quarter of the limit (the rest is left to the scene, the acceleration
+/// structure and the encoder). `None` when not even one aligned strip fits.
+pub fn strip_rows(width: u32, user_buffers: u64, limit: u64) -> Option<u32> {
+    let align = imageio::exr_strips::STRIP_ALIGNMENT;
+    let budget = u128::from(limit / 4);
+    let fits = |rows: u32| film_bytes(u64::from(width), u64::from(rows + 70), user_buffers) <= budget;
+    let mut rows = MAX_STRIP_ROWS;
+    while rows >= align {
+        if fits(rows) {
+            return Some(rows);
+        }
+        rows -= align;
+    }
+    None
+}
+
 /// Bytes for a message: `1.50 GiB`.
 pub fn size_text(bytes: u128) -> String {
     let units = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
@@ -172,6 +195,17 @@ mod tests {
         std::fs::write(&f, "MemTotal: 5 kB\n").unwrap();
         assert_eq!(available_memory(&f), None);
         assert_eq!(available_memory(&dir.join("none")), None);
+    }
+
+    #[test]
+    fn strips_fit_a_quarter_of_the_limit() {
+        // 16384 wide: 1024 rows need ≈ 5.2 GiB with their halo, so 8 GiB takes 384 rows.
+        let rows = strip_rows(16384, 0, 8 << 30).unwrap();
+        assert_eq!(rows % 64, 0);
+        assert!(film_bytes(16384, u64::from(rows) + 70, 0) <= 2 << 30);
+        assert!(film_bytes(16384, u64::from(rows) + 64 + 70, 0) > 2 << 30);
+        assert_eq!(strip_rows(100, 0, 1 << 40), Some(MAX_STRIP_ROWS));
+        assert_eq!(strip_rows(65536, 0, 1 << 20), None);
     }
 
     #[test]

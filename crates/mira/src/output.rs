@@ -281,6 +281,32 @@ pub fn write(film: &Film, target: &Target, tone: &ToneMapper) -> Result<(), Stri
     imageio::write(&target.path, target.format, &image).map_err(|e| e.to_string())
 }
 
+/// Writes `target`, an EXR of a `width` × `height` image, strip by strip: `next` renders
+/// and returns each strip's kept rows as a film of their own ([`Film::rows`]), top to
+/// bottom, and `None` after the last; each is written as it comes, so only one strip is in
+/// memory. `layout` is a film with the image's user frame buffers (any height). The file is
+/// the one [`write`] makes of the whole film.
+pub fn write_strips(
+    target: &Target,
+    tone: &ToneMapper,
+    (width, height): (u32, u32),
+    layout: &Film,
+    mut next: impl FnMut() -> Option<Film>,
+) -> Result<(), String> {
+    if target.format.kind != Kind::Exr {
+        return Err(format!("'{}': an image rendered in strips is written only as OpenEXR", target.path.display()));
+    }
+    let layout = image(layout, target, tone)?;
+    imageio::exr_strips::write_exr_strips(&target.path, target.format, width, height, &layout, |sink| {
+        while let Some(strip) = next() {
+            let data = image(&strip, target, tone).map_err(imageio::Error::Unsupported)?;
+            sink.put(strip.y0, &data)?;
+        }
+        Ok(())
+    })
+    .map_err(|e| e.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -131,6 +131,11 @@ pub struct RenderArgs {
     /// computing them.
     #[arg(long, value_name = "FILE")]
     prepass: Option<PathBuf>,
+    /// Render the image in strips of N rows (a multiple of 64), each written to the EXR as
+    /// it finishes, so that memory holds one strip (done by itself when the whole image
+    /// needs more than --max-memory).
+    #[arg(long, value_name = "N")]
+    strip_rows: Option<u32>,
     /// Print rays, samples per second, Mrays/s, memory and timings.
     #[arg(long)]
     stats: bool,
@@ -345,15 +350,11 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     // The syntax tree is not needed past the scene: freed now, it does not add to the peak
     // memory of building the world (the sources stay, for messages).
     loaded.parsed.items = Vec::new();
-    let sc = &loaded.scene;
-    let engine = render::pipeline::choose_engine(sc, asked_engine(opts.engine));
+    let engine = render::pipeline::choose_engine(&loaded.scene, asked_engine(opts.engine));
     let classic = engine == EngineKind::Classic;
-    // Stage 2: build the world.
-    if let Some(d) = crate::limits::check_film(sc, sc.camera.resolution, opts.memory.limit(), resolution.is_some()) {
-        restore_sources(&mut loaded.parsed.sources);
-        eprint!("{}", d.render(&loaded.parsed.sources));
-        return Err(err(format!("{} needs too much memory; nothing rendered", args.scene.display())));
-    }
+    // Stage 2: build the world (an image too large for one film renders in strips).
+    let strip_rows = choose_strips(args, &mut loaded, part).map_err(err)?;
+    let sc = &loaded.scene;
     let shading_options = shading_options(&args.scene, opts);
     let built = render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths);
     if built.diagnostics.iter().any(|d| d.is_error() || args.warnings) {
@@ -401,6 +402,11 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         part,
         ..render::Settings::default()
     };
+    if strip_rows.is_some() {
+        if let Some(problem) = render::strips::problem(world, &settings) {
+            return Err(err(format!("cannot render in strips: {problem}")));
+        }
+    }
     if let Some(p) = part {
         if let Some(problem) = render::render::part_problem(world, &settings) {
             return Err(err(format!("cannot render part {p}: {problem}")));
@@ -443,7 +449,9 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             render::prepare::prepare_saved(shading, saved)
                 .ok_or_else(|| err("the pre-passes were already made".into()))?
         }
-        None => pool.install(|| render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, cancel)),
+        None => prepare_within(args.time, cancel, |stop| {
+            pool.install(|| render::prepare::prepare(world, accel.as_ref(), Some(shading), engine, stop))
+        }),
     };
     // Stage 4: render.
     let target = if classic {
@@ -472,6 +480,73 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         for t in &mut targets {
             t.path = frame_path(&t.path, f);
         }
+    }
+    if let Some(rows) = strip_rows {
+        // Strips: rendered and written one after the other (stage 4 and 6 together).
+        // `choose_strips` made sure there is exactly one target, an EXR file.
+        let target = targets.first().cloned().ok_or_else(|| err("no image to write".into()))?;
+        let on_progress = |p: render::Progress| {
+            if let Some(bar) = &bar {
+                bar.set_position(u64::from(p.samples));
+            }
+        };
+        let (w, h) = (world.camera.width, world.camera.height);
+        let filter = render::filter::PixelFilter::new(&world.options.filter);
+        let strips = render::strips::strips(h, rows, engine, &filter, settings.band);
+        let mut layout = render::film::Film::new(w, 0);
+        for (name, datatype) in &world.user_buffers {
+            layout.add_user_buffer(name, datatype);
+        }
+        let mut total = render::Stats::default();
+        let start = Instant::now();
+        let mut next = strips.iter().enumerate();
+        let written = output::write_strips(&target, &tone, (w, h), &layout, || {
+            let (i, strip) = next.next()?;
+            if let Some(bar) = &bar {
+                bar.set_message(format!("strip {}/{}", i + 1, strips.len()));
+            }
+            let settings = render::Settings { rows: Some(strip.render.clone()), ..settings.clone() };
+            let (film, stats) = pool.install(|| {
+                render::render_prepared(
+                    world,
+                    accel.as_ref(),
+                    Some(shading),
+                    &prepared,
+                    &settings,
+                    cancel,
+                    &on_progress,
+                )
+            });
+            add_strip_stats(&mut total, &stats, i == 0);
+            Some(film.rows(strip.keep.clone()))
+        });
+        total.render_time = prepared.time + start.elapsed();
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        if total.cancelled {
+            eprintln!("mira: interrupted; strips not rendered are black");
+        }
+        let failed = match written {
+            Ok(()) => {
+                eprintln!("mira: wrote {} ({} strips of {rows} rows)", target.path.display(), strips.len());
+                false
+            }
+            Err(e) => {
+                eprintln!("mira: error: cannot write {}: {e}", target.path.display());
+                true
+            }
+        };
+        if args.stats {
+            print_stats(world, accel.as_ref(), (w, h), &total, classic, t_scene, t_accel);
+        }
+        return if failed {
+            Err(ExitCode::FAILURE)
+        } else if total.cancelled {
+            Err(ExitCode::from(130))
+        } else {
+            Ok(())
+        };
     }
     let render_start = Instant::now();
     let mut last_preview = render_start;
@@ -574,7 +649,7 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         }
     }
     if args.stats {
-        print_stats(world, accel.as_ref(), &film, &stats, classic, t_scene, t_accel);
+        print_stats(world, accel.as_ref(), (film.width, film.height), &stats, classic, t_scene, t_accel);
     }
     if failed {
         Err(ExitCode::FAILURE)
@@ -619,11 +694,130 @@ fn write_preview(film: &render::film::Film, targets: &[output::Target], tone: &T
     line
 }
 
+/// Runs the pre-passes (`prepare`) with a stop flag that is set once `time` seconds have
+/// passed or `cancel` is set, so that `--time` bounds the photon and final gather passes as
+/// well as the sample passes (they stop early with what they have); warns when the clock
+/// stopped them.
+fn prepare_within<T>(time: Option<f64>, cancel: &AtomicBool, prepare: impl FnOnce(&AtomicBool) -> T) -> T {
+    let stop = AtomicBool::new(false);
+    let start = Instant::now();
+    let done = AtomicBool::new(false);
+    let out = std::thread::scope(|s| {
+        s.spawn(|| {
+            while !done.load(Ordering::Relaxed) {
+                if cancel.load(Ordering::Relaxed) || time.is_some_and(|t| start.elapsed().as_secs_f64() >= t) {
+                    stop.store(true, Ordering::SeqCst);
+                    return;
+                }
+                std::thread::sleep(Duration::from_millis(5));
+            }
+        });
+        let out = prepare(&stop);
+        done.store(true, Ordering::Relaxed);
+        out
+    });
+    if stop.load(Ordering::SeqCst) && !cancel.load(Ordering::Relaxed) {
+        if let Some(t) = time {
+            eprintln!(
+                "mira: warning: --time {t} s ran out in the pre-passes (photon maps, final gather points); they \
+                 stopped early with what they had, and one sample pass follows"
+            );
+        }
+    }
+    out
+}
+
+/// Adds one strip's counts to the whole image's (the pre-passes' once: every strip reports
+/// the same).
+fn add_strip_stats(total: &mut render::Stats, strip: &render::Stats, first: bool) {
+    total.rays += strip.rays;
+    total.shadow_rays += strip.shadow_rays;
+    total.samples += strip.samples;
+    total.nonfinite += strip.nonfinite;
+    total.cancelled |= strip.cancelled;
+    if first {
+        total.first_pixels = strip.first_pixels;
+        total.spp = strip.spp;
+        total.fg_points = strip.fg_points;
+        total.fg_time = strip.fg_time;
+        total.photons = strip.photons;
+    } else {
+        total.spp = total.spp.min(strip.spp);
+    }
+}
+
+/// Whether to render in strips, and of how many rows: `--strip-rows`, else strips when the
+/// whole image's film and frame buffers need more than `--max-memory` (an error when they
+/// cannot be used: a farm part, or outputs other than one EXR file).
+fn choose_strips(args: &RenderArgs, loaded: &mut LoadedScene, part: Option<Part>) -> Result<Option<u32>, String> {
+    let limit = args.options.memory.limit();
+    let too_large =
+        crate::limits::check_film(&loaded.scene, loaded.scene.camera.resolution, limit, args.options.resolution.is_some());
+    if too_large.is_some() {
+        // The diagnostic quotes the source text, freed after parsing.
+        restore_sources(&mut loaded.parsed.sources);
+    }
+    let sc = &loaded.scene;
+    let show = |d: &Option<mi::Diagnostic>| {
+        if let Some(d) = d {
+            eprint!("{}", d.render(&loaded.parsed.sources));
+        }
+    };
+    let rows = match (args.strip_rows, &too_large) {
+        (None, None) => return Ok(None),
+        (Some(n), _) => {
+            let align = imageio::exr_strips::STRIP_ALIGNMENT;
+            if n == 0 || n % align != 0 {
+                return Err(format!("--strip-rows {n} is not a positive multiple of {align}"));
+            }
+            n
+        }
+        (None, Some(_)) => {
+            let (w, _) = sc.camera.resolution;
+            match crate::limits::strip_rows(w, crate::limits::user_buffers(sc), limit.0) {
+                Some(n) => n,
+                None => {
+                    show(&too_large);
+                    return Err(format!(
+                        "{} needs too much memory, even in strips of {} rows; nothing rendered",
+                        args.scene.display(),
+                        imageio::exr_strips::STRIP_ALIGNMENT
+                    ));
+                }
+            }
+        }
+    };
+    let targets = output::targets(&sc.camera, args.output.as_deref(), &args.scene)?;
+    let problem = if part.is_some() {
+        Some("a farm part is not rendered in strips".to_string())
+    } else if targets.len() != 1 || targets[0].format.kind != imageio::Kind::Exr {
+        Some(format!(
+            "an image rendered in strips is written to one OpenEXR file (-o FILE.exr), not to {}",
+            targets.iter().map(|t| format!("'{}'", t.path.display())).collect::<Vec<_>>().join(", ")
+        ))
+    } else {
+        None
+    };
+    if let Some(p) = problem {
+        show(&too_large);
+        return Err(format!("cannot render in strips: {p}"));
+    }
+    if too_large.is_some() && args.strip_rows.is_none() {
+        let (w, h) = sc.camera.resolution;
+        eprintln!(
+            "mira: {w} x {h} pixels need more film memory than {} ({}): rendering in strips of {rows} rows",
+            crate::limits::size_text(u128::from(limit.0)),
+            limit.1
+        );
+    }
+    Ok(Some(rows))
+}
+
 /// Prints `--stats`.
 fn print_stats(
     world: &render::World,
     accel: &dyn render::Accel,
-    film: &render::film::Film,
+    (width, height): (u32, u32),
     stats: &render::Stats,
     classic: bool,
     t_scene: Duration,
@@ -638,7 +832,7 @@ fn print_stats(
     );
     println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
     let engine = if classic { "classic" } else { "path" };
-    println!("render:         {:.3} s ({engine}), {} x {} pixels, {} spp", secs, film.width, film.height, stats.spp);
+    println!("render:         {:.3} s ({engine}), {} x {} pixels, {} spp", secs, width, height, stats.spp);
     println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
     println!(
         "rays:           {} ({} shadow), {:.2} Mrays/s",

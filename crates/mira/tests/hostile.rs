@@ -28,8 +28,8 @@ struct Case {
 }
 
 /// `mira check --scene` cases. Fallbacks without a diagnostic: 2000 frame buffers that are
-/// not `user` take no film memory; progressive samples are capped at 10^9 (options.rs); a
-/// window beyond the image is clipped to it by the renderer.
+/// not `user` take no film memory; a window beyond the image is clipped to it by the
+/// renderer; two billion photons are what the file asks for (`--time` bounds their pass).
 const CHECK: &[Case] = &[
     Case { file: "binary_garbage.mi", exit: 1, expect: Diag("binary_garbage.mi:1:2: error: unexpected character byte 0xfc") },
     Case { file: "camera_aperture_infinite.mi", exit: 1, expect: Diag("camera_aperture_infinite.mi:8:5: error: camera aperture -infinity is not a positive finite number") },
@@ -72,8 +72,9 @@ const CHECK: &[Case] = &[
     Case { file: "phenomenon_cycle.mi", exit: 1, expect: Diag("phenomenon_cycle.mi:27:20: error: phenomenon 'pb' nests too deeply") },
     Case { file: "phenomenon_self.mi", exit: 1, expect: Diag("phenomenon_self.mi:23:20: error: phenomenon 'ph' nests too deeply") },
     Case { file: "photons_absurd.mi", exit: 1, expect: Diag("photons_absurd.mi:7:5: error: 'caustic accuracy' has a number that is not finite (infinity)") },
+    Case { file: "photons_many.mi", exit: 0, expect: Report("photons_many.mi: 0 errors, 0 warnings;") },
     Case { file: "polygon_index_out_of_range.mi", exit: 1, expect: Diag("polygon_index_out_of_range.mi:31:9: error: polygon uses vertex 7 but the group has 3 vertices") },
-    Case { file: "progressive_absurd.mi", exit: 0, expect: Report("progressive max samples 1000000000") },
+    Case { file: "progressive_absurd.mi", exit: 0, expect: Diag("progressive_absurd.mi:6:5: warning: \"progressive max samples\" 2000000000 is more than mira takes: 1000000000 is used") },
     Case { file: "resolution_huge.mi", exit: 1, expect: Diag("resolution_huge.mi:10:5: error: camera resolution 4000000000 x 4000000000 is outside 1 … 65536 pixels per side") },
     Case { file: "resolution_large.mi", exit: 1, expect: Diag("resolution_large.mi:10:5: error: resolution 65536 x 65536 needs 1.16 TiB of film and frame buffers, more than the limit of 1.00 GiB (--max-memory)") },
     Case { file: "resolution_negative.mi", exit: 1, expect: Diag("resolution_negative.mi:10:5: error: camera resolution -640 x 480 is outside 1 … 65536 pixels per side") },
@@ -106,6 +107,13 @@ const RENDER: &[Case] = &[
         exit: 0,
         expect: Diag(
             "texture_huge_header.mi:22:21: warning: texture file 'huge_header.png': cannot read: Memory limit exceeded",
+        ),
+    },
+    Case {
+        file: "texture_nonfinite.mi",
+        exit: 0,
+        expect: Diag(
+            "texture_nonfinite.mi:22:21: warning: texture file 'nan_texels.exr': 3 texel components are NaN or infinite; they are read as 0",
         ),
     },
     Case {
@@ -236,6 +244,33 @@ fn scratch(name: &str, text: &str) -> PathBuf {
     d
 }
 
+/// `--time` bounds the photon pre-pass too (it ignored the clock and traced two billion
+/// photons): the render stops within seconds, warns, and writes its image.
+#[test]
+fn time_limit_stops_the_photon_pass() {
+    let out = std::env::temp_dir().join(format!("mira-hostile-photons-{}.png", std::process::id()));
+    let start = std::time::Instant::now();
+    let args = ["render", "--time", "1", "--spp", "1", "-o", out.to_str().unwrap(), "photons_many.mi"];
+    let (code, _, stderr) = mira(&dir(), &args);
+    let secs = start.elapsed().as_secs_f64();
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("mira: warning: --time 1 s ran out in the pre-passes"), "{stderr}");
+    // Generous for a loaded machine: the pass alone takes hours.
+    assert!(secs < 60.0, "{secs} s");
+    assert!(out.is_file());
+}
+
+/// NaN and infinite texels are read as 0: none reaches the film (without the sanitising,
+/// every sample that looks up the texel is NaN and `--stats` counts it).
+#[test]
+fn nonfinite_texels_never_reach_the_film() {
+    let out = std::env::temp_dir().join(format!("mira-hostile-nan-{}.exr", std::process::id()));
+    let args = ["render", "--spp", "4", "--stats", "-o", out.to_str().unwrap(), "texture_nonfinite.mi"];
+    let (code, stdout, _) = mira(&dir(), &args);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("non-finite:     0 channels"), "{stdout}");
+}
+
 /// Issue 15: a chain of 50 000 connected shaders overflowed the stack.
 #[test]
 fn fifty_thousand_connected_shaders() {
@@ -260,6 +295,63 @@ fn fifty_thousand_connected_shaders() {
             "{command}"
         );
     }
+}
+
+/// A phenomenon whose body chains `n` local shaders, each connected to the one before
+/// (local shaders are built in order, so the graph builder's nesting limit never sees the
+/// chain), used by the material through shader "use".
+fn phenomenon_chain(n: usize) -> String {
+    let mut body = String::from(
+        "declare phenomenon color \"longchain\" (color \"c\")\n\
+         shader \"s0\" \"mib_color_mix\" (\"num\" 0, \"color_base\" = interface \"c\")\n",
+    );
+    for i in 1..n {
+        body += &format!("shader \"s{i}\" \"mib_color_mix\" (\"num\" 1, \"color_0\" = \"s{}\")\n", i - 1);
+    }
+    body += &format!("root = \"s{}\"\nend declare\nshader \"use\" \"longchain\" (\"c\" 1 0 0)\n", n - 1);
+    baseline_with(&body, "\"diffuse\" = \"use\"")
+}
+
+/// Issue 15: a chain of connections inside a phenomenon body escaped the graph's nesting
+/// limit (each local shader is built before the next uses it) and its evaluation recursed
+/// once per shader. Chains longer than the evaluation limit are now an error where the
+/// graph is built, naming the shader that starts them; a chain at the limit renders.
+#[test]
+fn long_chains_inside_phenomena() {
+    let d = scratch("phen_chain.mi", &phenomenon_chain(50_000));
+    for args in [&["check", "--scene", "phen_chain.mi"][..], &["render", "--spp", "1", "-o", "p.png", "phen_chain.mi"]]
+    {
+        let (code, _, stderr) = mira(&d, args);
+        assert_eq!(code, 1, "{stderr}");
+        let first = first_diagnostic(&stderr).unwrap_or_default();
+        assert!(
+            first.starts_with("phen_chain.mi:")
+                && first.ends_with(
+                    "error: shader 'mib_illum_lambert#1' starts a chain of 50002 connected shaders ('use' -> \
+                     's49999' -> 's49998' -> …, counting those inside phenomena); mira evaluates chains of at \
+                     most 256"
+                ),
+            "{first}"
+        );
+    }
+    // The material's shader, the phenomenon's node and 254 shaders in its body: 256, the
+    // limit, renders (evaluated 256 deep on a worker thread's stack).
+    let d = scratch("phen_chain_256.mi", &phenomenon_chain(254));
+    let (code, _, stderr) = mira(&d, &["render", "--spp", "1", "-o", "p.png", "phen_chain_256.mi"]);
+    assert_eq!(code, 0, "{stderr}");
+}
+
+/// Includes nest at most 64 files deep; deeper is an error at the `$include` (the
+/// preprocessor keeps its files on a stack of its own, not the call stack).
+#[test]
+fn deep_include_nesting_is_an_error_at_the_include() {
+    let d = scratch("inc0.mi", "$include \"inc1.mi\"\n");
+    for i in 1..100 {
+        std::fs::write(d.join(format!("inc{i}.mi")), format!("# level {i}\n$include \"inc{}.mi\"\n", i + 1)).unwrap();
+    }
+    let (code, _, stderr) = mira(&d, &["check", "inc0.mi"]);
+    assert_eq!(code, 1);
+    assert_eq!(first_diagnostic(&stderr), Some("inc64.mi:2:11: error: includes nest deeper than 64 files"), "{stderr}");
 }
 
 /// Issue 15: 20 000 nested instgroups were reported as "contains itself".

@@ -138,6 +138,9 @@ pub struct Film {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
+    /// The image row of this film's first row: 0, unless the film holds a strip of a larger
+    /// image's rows (see [`crate::render::Settings::rows`]).
+    pub y0: u32,
     /// Pixels, row by row from the top.
     pub pixels: Vec<Pixel>,
     /// User frame buffers.
@@ -153,6 +156,7 @@ impl Film {
         Film {
             width,
             height,
+            y0: 0,
             pixels: vec![Pixel::default(); width as usize * height as usize],
             user: Vec::new(),
             splat: Vec::new(),
@@ -168,6 +172,33 @@ impl Film {
             data: vec![[0.0; 4]; n],
             writes: vec![0; n],
         });
+    }
+
+    /// The pixels of image rows `rows` (within this film's; see [`Film::y0`]) as a film of
+    /// their own: what a strip keeps (see [`crate::strips`]).
+    pub fn rows(&self, rows: std::ops::Range<u32>) -> Film {
+        let w = self.width as usize;
+        let start = (rows.start.clamp(self.y0, self.y0 + self.height) - self.y0) as usize;
+        let end = (rows.end.clamp(self.y0, self.y0 + self.height) - self.y0) as usize;
+        let end = end.max(start);
+        let cut = |i: usize| i * w;
+        Film {
+            width: self.width,
+            height: (end - start) as u32,
+            y0: self.y0 + start as u32,
+            pixels: self.pixels[cut(start)..cut(end)].to_vec(),
+            user: self
+                .user
+                .iter()
+                .map(|b| UserBuffer {
+                    name: b.name.clone(),
+                    datatype: b.datatype.clone(),
+                    data: b.data[cut(start)..cut(end)].to_vec(),
+                    writes: b.writes[cut(start)..cut(end)].to_vec(),
+                })
+                .collect(),
+            splat: if self.splat.is_empty() { Vec::new() } else { self.splat[cut(start)..cut(end)].to_vec() },
+        }
     }
 
     /// The colour buffer, RGBA per pixel, row by row from the top.

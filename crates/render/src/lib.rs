@@ -13,7 +13,8 @@
 //!    gather points ([`prepare::Prepared`]); a farm's parts may read the classic pre-passes
 //!    from a file instead ([`prepass_file`], [`prepare::prepare_saved`]).
 //! 4. **render** — [`render::render_prepared`]: the progressive sample passes, of the whole
-//!    image or of one [`part`] of it ([`Settings`]); [`render::render`] runs stages 3 and 4.
+//!    image, of one [`part`] of it, or of one of the [`strips`] of rows an image too large
+//!    for one film is rendered in ([`Settings`]); [`render::render`] runs stages 3 and 4.
 //! 5. **film** — [`film::Film`]: the per-pixel accumulators and the frame buffers made from
 //!    them (colour, depth, normals, labels, motion, user buffers); [`tonemap`] maps colour
 //!    for 8-bit files.
@@ -44,6 +45,7 @@ pub mod prepass_file;
 pub mod ray;
 pub mod render;
 pub mod sampler;
+pub mod strips;
 pub mod tonemap;
 pub mod tracer;
 pub mod world;

@@ -44,6 +44,10 @@ pub struct Settings {
     pub band: u32,
     /// Render only this part of the image (see [`crate::part`]); `None`: all of it.
     pub part: Option<Part>,
+    /// Render only these image rows, into a film of just these rows (its
+    /// [`Film::y0`](crate::film::Film::y0) is their first): a strip of an image too large
+    /// for one film (see [`crate::strips`]). `None`: every row. Not with `part`.
+    pub rows: Option<std::ops::Range<u32>>,
 }
 
 impl Default for Settings {
@@ -56,6 +60,7 @@ impl Default for Settings {
             path: PathSettings::default(),
             band: 4,
             part: None,
+            rows: None,
         }
     }
 }
@@ -279,8 +284,14 @@ pub fn render_prepared_with_film(
     after_pass: &mut dyn FnMut(&Film, Progress),
 ) -> (Film, Stats) {
     let cam = &world.camera;
-    let (w, h) = (cam.width, cam.height);
+    let w = cam.width;
+    // The film's rows: the whole image, or a strip of it (`fy0` its first image row).
+    let (fy0, h) = match &settings.rows {
+        Some(r) => (r.start.min(cam.height), r.end.min(cam.height).saturating_sub(r.start)),
+        None => (0, cam.height),
+    };
     let mut film = Film::new(w, h);
+    film.y0 = fy0;
     for (name, datatype) in &world.user_buffers {
         film.add_user_buffer(name, datatype);
     }
@@ -352,8 +363,8 @@ pub fn render_prepared_with_film(
                     break;
                 }
                 let x = (k % w as usize) as u32;
-                let y = (b * band + k / w as usize) as u32;
-                if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged || !rows_on[y as usize] {
+                let y = fy0 + (b * band + k / w as usize) as u32;
+                if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged || !rows_on[(y - fy0) as usize] {
                     continue;
                 }
                 // One sampler per pixel, restarted for each sample: the scrambles that depend
@@ -391,7 +402,8 @@ pub fn render_prepared_with_film(
                             let i = b * band * w as usize + k;
                             writes.extend(s.fb.iter().map(|(buf, v)| (i, *buf, v.to_array())));
                             if let Some(splat) = splat.as_deref_mut() {
-                                splat.add(&filter, raster, s.color.to_array());
+                                // Splats are kept in the film's rows.
+                                splat.add(&filter, raster - Vec2::new(0.0, fy0 as f32), s.color.to_array());
                             }
                             motion = s.motion.to_array();
                             (bsdf::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
@@ -466,7 +478,7 @@ pub fn render_prepared_with_film(
                 let mut count = 0usize;
                 let mut total = 0usize;
                 for (i, p) in film.pixels.iter_mut().enumerate() {
-                    let (x, y) = ((i % w as usize) as u32, (i / w as usize) as u32);
+                    let (x, y) = ((i % w as usize) as u32, fy0 + (i / w as usize) as u32);
                     if x < x0 || x >= x1 || y < y0 || y >= y1 {
                         continue;
                     }

@@ -5,6 +5,21 @@ use mi::ast::{Arg, Block, Stmt};
 
 use crate::values::{attributes, bool_arg, f64_arg, floats_arg, int_arg, last, str_arg, AttrValue, Attributes};
 
+/// Most photons a map's lookups gather (`caustic accuracy`, `globillum accuracy`) and most
+/// final gather rays (`finalgather accuracy`) the options keep.
+pub const MAX_ACCURACY: i64 = 1 << 20;
+
+/// Most motion steps the options keep (`motion steps`).
+pub const MAX_MOTION_STEPS: i64 = 15;
+
+/// Highest frame buffer number (`frame buffer n`) and most final gather points
+/// (`finalgather points`) the options keep.
+pub const MAX_BUFFER_OR_POINTS: i64 = 1 << 16;
+
+/// Most progressive samples per pixel the options keep (`progressive max samples`,
+/// `progressive_rendering_max_samples`, and the minimum).
+pub const MAX_PROGRESSIVE_SAMPLES: f64 = 1e9;
+
 /// Which dialect the scene is written in; it changes how some statements are read.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Dialect {
@@ -163,7 +178,7 @@ impl Photons {
     /// Reads the photon statements among an options element's statements.
     fn read(&mut self, stmts: &[&Stmt]) {
         let accuracy = |k: &mi::ast::KwStmt, old: (u32, Option<f64>)| {
-            let n = int_arg(k, 0).map_or(old.0, |n| n.clamp(1, 1 << 20) as u32);
+            let n = int_arg(k, 0).map_or(old.0, |n| n.clamp(1, MAX_ACCURACY) as u32);
             (n, f64_arg(k, 1).filter(|r| *r > 0.0))
         };
         if let Some(k) = last(stmts, "caustic accuracy") {
@@ -411,7 +426,7 @@ impl Options {
             let base = usize::from(view);
             o.finalgather.view = view;
             if let Some(r) = int_arg(k, base) {
-                o.finalgather.rays = r.clamp(1, 1 << 20) as u32;
+                o.finalgather.rays = r.clamp(1, MAX_ACCURACY) as u32;
             }
             if let Some(max) = f64_arg(k, base + 1) {
                 let min = f64_arg(k, base + 2).unwrap_or(max * 0.1);
@@ -445,7 +460,7 @@ impl Options {
             o.motion = bool_arg(k, 0);
         }
         if let Some(v) = last(&stmts, "motion steps").and_then(|k| int_arg(k, 0)) {
-            o.motion_steps = v.clamp(1, 15) as u32;
+            o.motion_steps = v.clamp(1, MAX_MOTION_STEPS) as u32;
         }
         if let Some(k) = last(&stmts, "shutter") {
             o.shutter = match (f64_arg(k, 0), f64_arg(k, 1)) {
@@ -457,7 +472,7 @@ impl Options {
         for s in &stmts {
             if let Stmt::Kw(k) = s {
                 if k.key == "frame buffer" {
-                    let n = int_arg(k, 0).unwrap_or(0).clamp(0, 1 << 16) as u32;
+                    let n = int_arg(k, 0).unwrap_or(0).clamp(0, MAX_BUFFER_OR_POINTS) as u32;
                     let ty = str_arg(k, 1).unwrap_or("").to_string();
                     o.frame_buffers.retain(|(m, _)| *m != n);
                     o.frame_buffers.push((n, ty));
@@ -497,7 +512,7 @@ impl Options {
     fn read_finalgather(&mut self, stmts: &[&Stmt]) {
         let fg = &mut self.finalgather;
         if let Some(v) = last(stmts, "finalgather points").and_then(|k| int_arg(k, 0)) {
-            fg.points = v.clamp(0, 1 << 16) as u32;
+            fg.points = v.clamp(0, MAX_BUFFER_OR_POINTS) as u32;
         }
         if let Some(k) = last(stmts, "finalgather mode") {
             let words: Vec<String> = (0..k.args.len())
@@ -509,7 +524,7 @@ impl Options {
             fg.presample_density = v;
         }
         if let Some(v) = self.string_options.get("finalgather points").and_then(|v| v.as_f64()) {
-            fg.points = v.clamp(0.0, 65536.0) as u32;
+            fg.points = v.clamp(0.0, MAX_BUFFER_OR_POINTS as f64) as u32;
         }
         if let Some(AttrValue::Str(m)) = self.string_options.get("finalgather mode") {
             fg.mode = m.to_ascii_lowercase();
@@ -527,11 +542,11 @@ impl Options {
         let p = &mut self.progressive;
         if let Some(v) = get(&["progressive_rendering_max_samples", "progressive max samples"]).and_then(|v| v.as_f64())
         {
-            p.max_samples = v.clamp(1.0, 1e9) as u32;
+            p.max_samples = v.clamp(1.0, MAX_PROGRESSIVE_SAMPLES) as u32;
         }
         if let Some(v) = get(&["progressive_rendering_min_samples", "progressive min samples"]).and_then(|v| v.as_f64())
         {
-            p.min_samples = v.clamp(1.0, 1e9) as u32;
+            p.min_samples = v.clamp(1.0, MAX_PROGRESSIVE_SAMPLES) as u32;
         }
         if let Some(v) = get(&["progressive_rendering_max_time", "progressive max time"]).and_then(|v| v.as_f64()) {
             p.max_time = (v > 0.0).then_some(v);

@@ -172,6 +172,7 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
             ));
         }
     }
+    capped(&stmts, diags);
     let f = &mut o.filter;
     let (o_w, o_h) = (f.width, f.height);
     if f.width > MAX_FILTER_SIZE || f.height > MAX_FILTER_SIZE || !(f.width > 0.0 && f.height > 0.0) {
@@ -189,6 +190,60 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
             span,
             format!("filter {} x {} pixels is outside (0, {MAX_FILTER_SIZE}]: {w} x {h} is used", o_w, o_h),
         ));
+    }
+}
+
+/// Warns where an options statement, string option or attribute asks for more (or less)
+/// than the options keep: the value read is clamped (`crate::options`), and the warning says
+/// to what.
+fn capped(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
+    use crate::options::{MAX_ACCURACY, MAX_BUFFER_OR_POINTS, MAX_MOTION_STEPS, MAX_PROGRESSIVE_SAMPLES};
+    let mut warn = |span: mi::Span, what: &str, v: f64, (lo, hi): (f64, f64)| {
+        if v > hi {
+            diags.push(Diagnostic::warning(span, format!("{what} {v} is more than mira takes: {hi} is used")));
+        } else if v < lo {
+            diags.push(Diagnostic::warning(span, format!("{what} {v} is less than {lo}: {lo} is used")));
+        }
+    };
+    for s in stmts {
+        match s {
+            Stmt::Kw(k) => {
+                let (index, range) = match k.key {
+                    "caustic accuracy" | "globillum accuracy" => (0, (1, MAX_ACCURACY)),
+                    "finalgather accuracy" => {
+                        (usize::from(crate::values::str_arg(k, 0) == Some("view")), (1, MAX_ACCURACY))
+                    }
+                    "motion steps" => (0, (1, MAX_MOTION_STEPS)),
+                    "frame buffer" | "finalgather points" => (0, (0, MAX_BUFFER_OR_POINTS)),
+                    _ => continue,
+                };
+                if let Some(v) = crate::values::int_arg(k, index) {
+                    warn(k.span, &format!("'{}'", k.key), v as f64, (range.0 as f64, range.1 as f64));
+                }
+            }
+            Stmt::StringOption { name, value } => {
+                let range = match name.text.as_str() {
+                    "progressive max samples" | "progressive min samples" => (1.0, MAX_PROGRESSIVE_SAMPLES),
+                    "finalgather points" => (0.0, MAX_BUFFER_OR_POINTS as f64),
+                    _ => continue,
+                };
+                if let Some(v) = crate::values::AttrValue::from_value(value).and_then(|v| v.as_f64()) {
+                    warn(name.span, &format!("\"{}\"", name.text), v, range);
+                }
+            }
+            Stmt::Attribute(mi::ast::Attribute { name: Some(name), value: Some(value), .. }) => {
+                if !matches!(
+                    name.text.as_str(),
+                    "progressive_rendering_max_samples" | "progressive_rendering_min_samples"
+                ) {
+                    continue;
+                }
+                if let Some(v) = crate::values::AttrValue::from_value(value).and_then(|v| v.as_f64()) {
+                    warn(name.span, &format!("attribute '{}'", name.text), v, (1.0, MAX_PROGRESSIVE_SAMPLES));
+                }
+            }
+            _ => {}
+        }
     }
 }
 

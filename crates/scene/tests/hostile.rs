@@ -158,3 +158,32 @@ fn non_finite_vertices_do_not_reach_the_world() {
     assert!(scene.objects.iter().all(|o| o.geometry.mesh.positions.iter().all(|p| p.is_finite())));
     assert!(scene.bounds().is_none_or(|(lo, hi)| lo.is_finite() && hi.is_finite()));
 }
+
+/// Options values beyond what mira keeps are clamped with a warning at their statement
+/// (they were clamped silently: two billion progressive samples became 10^9 unannounced).
+#[test]
+fn capped_options_warn_at_their_statement() {
+    let text = with_camera("resolution 8 8").replace(
+        "options \"o\" end options",
+        "options \"o\"\n\"progressive max samples\" 2000000000\nmotion steps 100\nframe buffer 100000 \"rgba\"\n\
+         finalgather accuracy view 5000000 1 0.1\ncaustic accuracy 0\nfinalgather points 70000\nend options",
+    );
+    let (scene, d) = build(&text);
+    assert_eq!(
+        d,
+        [
+            "t.mi:2:1: warning: \"progressive max samples\" 2000000000 is more than mira takes: 1000000000 is used",
+            "t.mi:3:1: warning: 'motion steps' 100 is more than mira takes: 15 is used",
+            "t.mi:4:1: warning: 'frame buffer' 100000 is more than mira takes: 65536 is used",
+            "t.mi:5:1: warning: 'finalgather accuracy' 5000000 is more than mira takes: 1048576 is used",
+            "t.mi:6:1: warning: 'caustic accuracy' 0 is less than 1: 1 is used",
+            "t.mi:7:1: warning: 'finalgather points' 70000 is more than mira takes: 65536 is used",
+        ]
+    );
+    let o = scene.expect("a scene").options;
+    assert_eq!(o.progressive.max_samples, 1_000_000_000);
+    assert_eq!(o.motion_steps, 15);
+    assert_eq!(o.finalgather.rays, 1 << 20);
+    assert_eq!(o.photons.caustic_accuracy.0, 1);
+    assert_eq!(o.finalgather.points, 1 << 16);
+}

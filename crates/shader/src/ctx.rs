@@ -16,8 +16,10 @@ use super::state::State;
 use super::tracer::Tracer;
 use super::value::{Color, Tag, Value};
 
-/// Deepest chain of connections evaluated inside each other; deeper ones give zero.
-const MAX_EVAL_DEPTH: u32 = 256;
+/// Deepest chain of connections evaluated inside each other; deeper ones give zero. Graphs
+/// with deeper chains are errors when they are built ([`super::graph::Builder::finish`]), so
+/// this guard is never reached by a scene that rendered without errors.
+const MAX_EVAL_DEPTH: u32 = super::graph::MAX_NESTING;
 
 /// Counts kept per rendering thread.
 #[derive(Clone, Copy, Debug, Default)]

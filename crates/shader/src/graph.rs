@@ -92,6 +92,10 @@ pub struct Graph {
 /// a hostile chain from exhausting the stack, here or when the shaders run.
 pub const MAX_NESTING: u32 = 256;
 
+/// Most nodes phenomenon expansion grows a graph to (a scene's own shaders are bounded by
+/// its size; expansions inside expansions multiply).
+pub const MAX_NODES: usize = 1 << 22;
+
 /// Builds the graph.
 pub struct Builder<'a> {
     decls: &'a Decls,
@@ -103,6 +107,8 @@ pub struct Builder<'a> {
     depth: u32,
     /// The nesting limit was reported.
     too_deep: bool,
+    /// The node limit was reported.
+    too_many: bool,
     /// Phenomenon scopes: local shader names and interface values.
     scopes: Vec<Scope>,
     /// Problems found.
@@ -114,6 +120,65 @@ pub struct Builder<'a> {
 struct Scope {
     local: HashMap<String, NodeId>,
     interface: HashMap<String, Slot>,
+}
+
+/// The nodes `slots` connect to (inside arrays and structs too).
+fn connections(slots: &[Slot]) -> impl Iterator<Item = NodeId> + '_ {
+    let mut stack: Vec<&Slot> = slots.iter().rev().collect();
+    std::iter::from_fn(move || {
+        while let Some(s) = stack.pop() {
+            match s {
+                Slot::Connect { node, .. } => return Some(*node),
+                Slot::Array(items) => stack.extend(items.iter().rev()),
+                Slot::Struct(members) => stack.extend(members.iter().rev().map(|(_, s)| s)),
+                Slot::Value(_) => {}
+            }
+        }
+        None
+    })
+}
+
+/// For every node, the longest chain of connections evaluation follows from it: 1 for a
+/// node connected to nothing, 1 + the deepest node it connects to otherwise (a phenomenon's
+/// node connects to its root). Walked with an explicit stack, so that no graph can
+/// overflow the call stack here; a connection back into the chain being walked (a cycle,
+/// reported where the graph was built) is not followed.
+pub fn chain_depths(graph: &Graph) -> Vec<usize> {
+    const NEW: usize = 0;
+    const OPEN: usize = usize::MAX;
+    let n = graph.nodes.len();
+    let mut depth = vec![NEW; n];
+    for root in 0..n {
+        if depth[root] != NEW {
+            continue;
+        }
+        depth[root] = OPEN;
+        let mut stack: Vec<(usize, Vec<NodeId>)> = vec![(root, connections(&graph.nodes[root].slots).collect())];
+        while let Some((node, pending)) = stack.last_mut() {
+            let node = *node;
+            match pending.pop() {
+                Some(next) => {
+                    let next = next as usize;
+                    if next < n && depth[next] == NEW {
+                        depth[next] = OPEN;
+                        let below = connections(&graph.nodes[next].slots).collect();
+                        stack.push((next, below));
+                    }
+                }
+                None => {
+                    stack.pop();
+                    let below = connections(&graph.nodes[node].slots)
+                        .map(|c| c as usize)
+                        .filter(|&c| c < n && depth[c] != OPEN)
+                        .map(|c| depth[c])
+                        .max()
+                        .unwrap_or(0);
+                    depth[node] = below + 1;
+                }
+            }
+        }
+    }
+    depth
 }
 
 /// The zero value of a type (mental ray's omitted-parameter value).
@@ -152,6 +217,7 @@ impl<'a> Builder<'a> {
             building: Vec::new(),
             depth: 0,
             too_deep: false,
+            too_many: false,
             scopes: Vec::new(),
             diags: Vec::new(),
             counter: 0,
@@ -172,8 +238,49 @@ impl<'a> Builder<'a> {
         Some(self.push(Node { name: Arc::from(name.as_str()), decl, imp: Some(imp), slots, next: None, span }))
     }
 
-    /// The finished graph.
-    pub fn finish(self) -> (Graph, Vec<Diagnostic>) {
+    /// The finished graph, with an error at every shader that starts a chain of connections
+    /// deeper than [`MAX_NESTING`] (see [`chain_depths`]): evaluating one recurses once per
+    /// connection, and [`crate::Ctx`] stops at that depth.
+    pub fn finish(mut self) -> (Graph, Vec<Diagnostic>) {
+        let depths = chain_depths(&self.graph);
+        let limit = MAX_NESTING as usize;
+        // Report the over-deep chains at their first shaders: those no over-deep chain reaches.
+        let mut reached = vec![false; depths.len()];
+        for (j, n) in self.graph.nodes.iter().enumerate() {
+            if depths[j] > limit {
+                for c in connections(&n.slots) {
+                    if let Some(r) = reached.get_mut(c as usize) {
+                        *r = true;
+                    }
+                }
+            }
+        }
+        let starts = depths.iter().enumerate().filter(|&(i, &d)| d > limit && !reached[i]);
+        for (i, &d) in starts.take(8) {
+            // The chain's next shaders: each the deepest connection of the one before.
+            let mut names = Vec::new();
+            let mut at = i;
+            while names.len() < 3 {
+                let next = connections(&self.graph.nodes[at].slots).max_by_key(|&c| depths.get(c as usize));
+                match next {
+                    Some(c) if (c as usize) < depths.len() && depths[c as usize] < depths[at] => {
+                        at = c as usize;
+                        names.push(format!("'{}'", self.graph.nodes[at].name));
+                    }
+                    _ => break,
+                }
+            }
+            let node = &self.graph.nodes[i];
+            self.diags.push(Diagnostic::error(
+                node.span,
+                format!(
+                    "shader '{}' starts a chain of {d} connected shaders ({} -> …, counting those inside \
+                     phenomena); mira evaluates chains of at most {MAX_NESTING}",
+                    node.name,
+                    names.join(" -> ")
+                ),
+            ));
+        }
         (self.graph, self.diags)
     }
 
@@ -369,6 +476,22 @@ impl<'a> Builder<'a> {
     fn phenomenon(&mut self, decl: &Arc<Decl>, slots: Vec<Slot>, name: String, span: Span) -> Option<NodeId> {
         if self.scopes.len() > 16 {
             self.diags.push(Diagnostic::error(span, format!("phenomenon '{}' nests too deeply", decl.name)));
+            return None;
+        }
+        // Phenomena that use phenomena several times each multiply: 16 levels of ten uses
+        // would be 10^16 nodes. The graph stops growing at MAX_NODES, with one error.
+        if self.graph.nodes.len() >= MAX_NODES {
+            if !self.too_many {
+                self.too_many = true;
+                self.diags.push(Diagnostic::error(
+                    span,
+                    format!(
+                        "phenomenon '{}' is not expanded: the scene's shaders and phenomenon expansions already \
+                         make {} nodes, the most mira builds",
+                        decl.name, MAX_NODES
+                    ),
+                ));
+            }
             return None;
         }
         let interface = decl.params.iter().zip(slots.iter()).map(|(p, s)| (p.name.to_string(), s.clone())).collect();

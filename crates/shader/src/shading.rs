@@ -332,7 +332,19 @@ fn load_file(
         return Texture::Missing;
     };
     match texture::load_image(&path) {
-        Ok(m) => image_texture(m, t),
+        Ok(loaded) => {
+            if loaded.non_finite > 0 {
+                diags.push(Diagnostic::warning(
+                    span,
+                    format!(
+                        "texture file '{}': {} texel components are NaN or infinite; they are read as 0",
+                        path.display(),
+                        loaded.non_finite
+                    ),
+                ));
+            }
+            image_texture(loaded.image, t)
+        }
         Err(e) => {
             diags.push(Diagnostic::warning(span, format!("texture file '{}': {e}", path.display())));
             Texture::Missing

@@ -42,9 +42,10 @@ impl Textures {
             .entry(path.clone())
             .or_insert_with(|| {
                 texture::load_image(&path)
-                    .map(|image| {
+                    .map(|loaded| {
+                        // NaN and infinite texels were read as 0 by the loader.
                         let kind = mi::ast::TextureKind::Color;
-                        Image(Arc::new(Texture::Image { image: Arc::new(image), filter: None, kind }))
+                        Image(Arc::new(Texture::Image { image: Arc::new(loaded.image), filter: None, kind }))
                     })
                     .map_err(|e| format!("texture file '{}': {e}", path.display()))
             })

@@ -84,8 +84,18 @@ impl SearchPath {
     }
 }
 
-/// Reads an image file into a pyramid.
-pub fn load_image(path: &Path) -> Result<MipMap, String> {
+/// An image file read into a pyramid.
+pub struct LoadedImage {
+    /// The pyramid.
+    pub image: MipMap,
+    /// Texel components of the file that were NaN or infinite, read as 0 (they would
+    /// otherwise reach the film through every lookup that touches them).
+    pub non_finite: usize,
+}
+
+/// Reads an image file into a pyramid; NaN and infinite texel components are read as 0
+/// and counted ([`LoadedImage::non_finite`]).
+pub fn load_image(path: &Path) -> Result<LoadedImage, String> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext == "map" {
         return Err("mental ray .map files cannot be read; convert the texture to EXR or TIFF".into());
@@ -104,7 +114,8 @@ pub fn load_image(path: &Path) -> Result<MipMap, String> {
         .map_err(|e| format!("cannot read: {e}"))?;
     let channels = img.color().channel_count();
     let (w, h) = (img.width() as usize, img.height() as usize);
-    Ok(match img {
+    let mut non_finite = 0;
+    let image = match img {
         image::DynamicImage::ImageLuma8(_)
         | image::DynamicImage::ImageLumaA8(_)
         | image::DynamicImage::ImageRgb8(_)
@@ -115,10 +126,23 @@ pub fn load_image(path: &Path) -> Result<MipMap, String> {
         }
         _ => {
             let rgba = img.to_rgba32f();
-            let texels: Vec<[f32; 4]> = rgba.pixels().map(|p| p.0).collect();
+            let texels: Vec<[f32; 4]> = rgba
+                .pixels()
+                .map(|p| {
+                    p.0.map(|v| {
+                        if v.is_finite() {
+                            v
+                        } else {
+                            non_finite += 1;
+                            0.0
+                        }
+                    })
+                })
+                .collect();
             MipMap::from_rgba32f(w, h, &texels, channels)
         }
-    })
+    };
+    Ok(LoadedImage { image, non_finite })
 }
 
 /// Builds a pyramid from a texture's inline pixels: `[ w h [bytes per component] ]` and
@@ -207,7 +231,7 @@ mod tests {
         img.put_pixel(0, 1, image::Rgb([0, 0, 255])); // bottom left
         let png = dir.join("t.png");
         img.save(&png).unwrap();
-        let m = load_image(&png).unwrap();
+        let m = load_image(&png).unwrap().image;
         assert_eq!(m.size(), (4, 2));
         assert_eq!(m.texel(0, 0), Vec4::new(0.0, 0.0, 1.0, 1.0), "row 0 is the bottom");
         assert_eq!(m.texel(0, 1), Vec4::new(1.0, 0.0, 0.0, 1.0));
@@ -215,8 +239,21 @@ mod tests {
         hdr.put_pixel(0, 0, image::Rgb([4.5, 0.25, 1e3]));
         let exr = dir.join("t.exr");
         hdr.save(&exr).unwrap();
-        let m = load_image(&exr).unwrap();
+        let m = load_image(&exr).unwrap().image;
         assert_eq!(m.texel(0, 0).truncate(), glam::Vec3::new(4.5, 0.25, 1e3));
+        // NaN and infinities (issue 15) are read as 0 and counted.
+        let mut bad = image::Rgb32FImage::new(2, 1);
+        bad.put_pixel(0, 0, image::Rgb([f32::NAN, f32::INFINITY, 0.5]));
+        bad.put_pixel(1, 0, image::Rgb([f32::NEG_INFINITY, 2.0, 0.25]));
+        let exr = dir.join("nan.exr");
+        bad.save(&exr).unwrap();
+        let loaded = load_image(&exr).unwrap();
+        assert_eq!(loaded.non_finite, 3);
+        assert_eq!(loaded.image.texel(0, 0).truncate(), glam::Vec3::new(0.0, 0.0, 0.5));
+        assert_eq!(loaded.image.texel(1, 0).truncate(), glam::Vec3::new(0.0, 2.0, 0.25));
+        for level_texel in [loaded.image.lookup(0.5, 0.5, 1.0), loaded.image.lookup(0.3, 0.5, 0.0)] {
+            assert!(level_texel.is_finite(), "{level_texel}");
+        }
         let search = SearchPath { dirs: vec![dir.clone()] };
         assert_eq!(search.resolve("C:\\maps\\t.png"), Some(png));
         std::fs::remove_dir_all(&dir).ok();
