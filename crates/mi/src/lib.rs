@@ -56,8 +56,7 @@ pub struct ReadError {
 
 /// Parses a `.mi` file from disk.
 pub fn parse_file(path: &Path, options: &ReadOptions) -> Result<Parsed, ReadError> {
-    let bytes =
-        preprocess::read_source(path).map_err(|message| ReadError { path: path.display().to_string(), message })?;
+    let bytes = source::read_source(path).map_err(|message| ReadError { path: path.display().to_string(), message })?;
     Ok(parse_source(Origin::Disk(path.to_path_buf()), bytes, options))
 }
 

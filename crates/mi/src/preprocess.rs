@@ -11,11 +11,10 @@
 
 use std::collections::{HashMap, VecDeque};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use crate::diag::Diagnostic;
 use crate::lexer::{Directive, Lexer, SkipEnd, Tok, Token};
-use crate::source::{FileId, Origin, SourceMap, Span, MAX_FILE_SIZE};
+use crate::source::{read_source, FileId, Origin, SourceMap, Span};
 use crate::stdlib;
 
 /// How deeply `$include`s may nest.
@@ -509,40 +508,6 @@ fn split_args(text: &str) -> Vec<String> {
         }
     }
     words
-}
-
-/// Reads a source file, refusing files too large for 32-bit spans.
-pub fn read_source(path: &Path) -> Result<Arc<[u8]>, String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
-    if !meta.is_file() {
-        // A device such as /dev/zero never ends; a directory has no text.
-        return Err(if meta.is_dir() { "is a directory".into() } else { "is not a regular file".into() });
-    }
-    if meta.len() > MAX_FILE_SIZE {
-        return Err(format!("file is {} bytes; mira reads .mi files up to 4 GiB", meta.len()));
-    }
-    read_shared(path, meta.len() as usize).map_err(|e| e.to_string())
-}
-
-/// The bytes of the file at `path`, `len` long by its metadata, read straight into the
-/// shared buffer the source map keeps (a `Vec` turned into an `Arc<[u8]>` would be copied,
-/// holding the text twice for a moment). A file whose length changed meanwhile is read
-/// whole the ordinary way.
-fn read_shared(path: &Path, len: usize) -> std::io::Result<Arc<[u8]>> {
-    use std::io::Read;
-    let mut file = std::fs::File::open(path)?;
-    // `repeat_n` knows its length: the Arc is allocated once, at its final size.
-    let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
-    let whole = match Arc::get_mut(&mut bytes) {
-        Some(buf) => file.read_exact(buf).is_ok() && file.read(&mut [0u8; 1])? == 0,
-        None => false,
-    };
-    if whole {
-        Ok(bytes)
-    } else {
-        drop(bytes);
-        Ok(std::fs::read(path)?.into())
-    }
 }
 
 /// A name shortened for a message (a registry expansion can be long).

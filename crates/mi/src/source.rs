@@ -170,7 +170,7 @@ impl SourceMap {
             if !f.released {
                 continue;
             }
-            match crate::preprocess::read_source(path) {
+            match read_source(path) {
                 Ok(bytes) => {
                     f.bytes = bytes;
                     f.line_starts = OnceLock::new();
@@ -209,6 +209,40 @@ impl SourceMap {
     }
 }
 
+/// Reads a source file, refusing files too large for 32-bit spans.
+pub fn read_source(path: &Path) -> Result<Arc<[u8]>, String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        // A device such as /dev/zero never ends; a directory has no text.
+        return Err(if meta.is_dir() { "is a directory".into() } else { "is not a regular file".into() });
+    }
+    if meta.len() > MAX_FILE_SIZE {
+        return Err(format!("file is {} bytes; mira reads .mi files up to 4 GiB", meta.len()));
+    }
+    read_shared(path, meta.len() as usize).map_err(|e| e.to_string())
+}
+
+/// The bytes of the file at `path`, `len` long by its metadata, read straight into the
+/// shared buffer the source map keeps (a `Vec` turned into an `Arc<[u8]>` would be copied,
+/// holding the text twice for a moment). A file whose length changed meanwhile is read
+/// whole the ordinary way.
+fn read_shared(path: &Path, len: usize) -> std::io::Result<Arc<[u8]>> {
+    use std::io::Read;
+    let mut file = std::fs::File::open(path)?;
+    // `repeat_n` knows its length: the Arc is allocated once, at its final size.
+    let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
+    let whole = match Arc::get_mut(&mut bytes) {
+        Some(buf) => file.read_exact(buf).is_ok() && file.read(&mut [0u8; 1])? == 0,
+        None => false,
+    };
+    if whole {
+        Ok(bytes)
+    } else {
+        drop(bytes);
+        Ok(std::fs::read(path)?.into())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,7 +257,7 @@ mod tests {
         let text = b"line one\nline two\r\nthird".to_vec();
         std::fs::write(&path, &text).unwrap();
         let mut map = SourceMap::new();
-        let big = map.add(Origin::Disk(path.clone()), crate::preprocess::read_source(&path).unwrap());
+        let big = map.add(Origin::Disk(path.clone()), read_source(&path).unwrap());
         let memory = map.add(Origin::Memory("m.mi".into()), text.clone());
         assert_eq!(&*map.file(big).bytes, &text[..], "read_source reads the whole file");
         assert_eq!(map.release_text(8), text.len(), "only the disk file is released");

@@ -751,8 +751,12 @@ fn add_strip_stats(total: &mut render::Stats, strip: &render::Stats, first: bool
 /// cannot be used: a farm part, or outputs other than one EXR file).
 fn choose_strips(args: &RenderArgs, loaded: &mut LoadedScene, part: Option<Part>) -> Result<Option<u32>, String> {
     let limit = args.options.memory.limit();
-    let too_large =
-        crate::limits::check_film(&loaded.scene, loaded.scene.camera.resolution, limit, args.options.resolution.is_some());
+    let too_large = crate::limits::check_film(
+        &loaded.scene,
+        loaded.scene.camera.resolution,
+        limit,
+        args.options.resolution.is_some(),
+    );
     if too_large.is_some() {
         // The diagnostic quotes the source text, freed after parsing.
         restore_sources(&mut loaded.parsed.sources);
