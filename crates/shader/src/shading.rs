@@ -296,15 +296,21 @@ impl Shading {
     }
 
     /// Whether a scene is for the classic engine: some material of it has a mental ray
-    /// material shader (not an MDL material). Decided without compiling anything.
+    /// material shader (not an MDL material). Decided without compiling anything. A shader
+    /// no declaration names (an exporter's helper: the shader graph warns and ignores it)
+    /// decides nothing, so that one helper on an MDL scene's lamp does not send the whole
+    /// scene to the classic engine.
     pub fn wants_classic(scene: &Scene) -> bool {
+        let mental_ray = |decl: &str| {
+            !decl.starts_with("mdl::") && (decl == "unified_material" || scene.library.declarations.contains_key(decl))
+        };
         scene.materials.iter().any(|m| match &m.kind {
             MaterialKind::Material(defs) => defs.last().and_then(|d| d.shaders.as_ref()).is_some_and(|list| {
                 list.0.first().is_some_and(|item| match item {
-                    mi::ast::ShaderItem::Call { decl, .. } => !decl.text.starts_with("mdl::"),
+                    mi::ast::ShaderItem::Call { decl, .. } => mental_ray(&decl.text),
                     mi::ast::ShaderItem::Ref(r) => {
                         scene.library.shaders.get(&r.text).is_some_and(|d| match d.list.0.first() {
-                            Some(mi::ast::ShaderItem::Call { decl, .. }) => !decl.text.starts_with("mdl::"),
+                            Some(mi::ast::ShaderItem::Call { decl, .. }) => mental_ray(&decl.text),
                             _ => true,
                         })
                     }
