@@ -196,6 +196,19 @@ pub fn decode(bytes: &[u8], name: &str, expected: &PrepassKey) -> Result<SavedPr
             let normal = r.vec3()?;
             let irradiance = shader::Color::new(r.f32()?, r.f32()?, r.f32()?, r.f32()?);
             let radius = r.f32()?;
+            // A crafted file passes the checksum: values the pre-pass never makes are refused
+            // here rather than reaching the film (NaN) or the cache's index (radii 0 or ∞).
+            let sound = position.is_finite()
+                && normal.is_finite()
+                && irradiance.is_finite()
+                && radius.is_finite()
+                && radius > 0.0;
+            if !sound {
+                return Err(format!(
+                    "{name}: final gather point {} has a value that is not finite or a radius ≤ 0",
+                    points.len()
+                ));
+            }
             points.push(FgPoint { position, normal, irradiance, radius, gradient: [Vec3A::ZERO; 3] });
         }
         let counts = RayCounts { rays: r.u64()?, shadow_rays: r.u64()? };
@@ -321,18 +334,33 @@ impl Reader<'_> {
             2 => Filter::Gauss,
             _ => return Err(format!("{}: unknown photon filter {kind}", self.name)),
         };
-        Ok(Lookup { count, radius, filter, scale: self.vec3()? })
+        let scale = self.vec3()?;
+        // The scene's options never give a lookup more than MAX_ACCURACY photons (a lookup
+        // allocates room for `count`), a negative or NaN radius, a cone constant below 1
+        // (its normalisation would be ≤ 0) or a NaN scale.
+        let max = scene::options::MAX_ACCURACY as u32;
+        if !(1..=max).contains(&count) {
+            return Err(format!("{}: a photon lookup of {count} photons is outside 1 … {max}", self.name));
+        }
+        let cone_ok = kind != 1 || (k.is_finite() && k >= 1.0);
+        if !(radius >= 0.0 && cone_ok && !scale.is_nan()) {
+            return Err(format!(
+                "{}: a photon lookup's radius {radius}, cone constant {k} or scale {scale} is out of its range",
+                self.name
+            ));
+        }
+        Ok(Lookup { count, radius, filter, scale })
     }
     fn map(&mut self) -> Result<PhotonMap, String> {
         let n = self.count(12 * 4 + 1)?;
         let mut photons = Vec::with_capacity(n);
-        for _ in 0..n {
-            photons.push(Photon {
-                position: self.vec3()?,
-                power: self.vec3()?,
-                dir: self.vec3()?,
-                normal: self.vec3()?,
-            });
+        for i in 0..n {
+            let photon =
+                Photon { position: self.vec3()?, power: self.vec3()?, dir: self.vec3()?, normal: self.vec3()? };
+            if ![photon.position, photon.power, photon.dir, photon.normal].iter().all(|v| v.is_finite()) {
+                return Err(format!("{}: photon {i} of a map has a value that is not finite", self.name));
+            }
+            photons.push(photon);
         }
         let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len()).ok_or_else(|| self.truncated())?;
         let axes = self.bytes[self.at..end].to_vec();
@@ -431,6 +459,67 @@ mod tests {
         for n in 0..bytes.len() {
             assert!(decode(&bytes[..n], "f", &key()).is_err());
         }
+    }
+
+    /// `bytes` with its checksum made right again: what a crafted (not a damaged) file is.
+    fn reseal(mut bytes: Vec<u8>) -> Vec<u8> {
+        let body = bytes.len() - 8;
+        let sum = Fnv::of(&bytes[..body]);
+        bytes[body..].copy_from_slice(&sum.to_le_bytes());
+        bytes
+    }
+
+    /// Where the values after the settings text begin.
+    fn after_settings() -> usize {
+        MAGIC.len() + 4 + 8 + 4 + key().settings.len()
+    }
+
+    /// Crafted files whose checksum is right but whose values the pre-passes never make are
+    /// refused with a message, never read into an allocation the size of a count (a photon
+    /// lookup of 2^32 − 1 photons allocated a 32 GiB heap per lookup before) nor an index
+    /// the size of a radius, nor NaN onto the film.
+    #[test]
+    fn a_crafted_file_with_a_good_checksum_is_refused() {
+        let (maps, stats, fg) = sample();
+        let bytes = encode(&key(), Some((&maps, &stats)), Some(&fg));
+        // The caustic lookup: has photons, 5 u64 + f64 of stats, caustic present, count.
+        let count_at = after_settings() + 1 + 48 + 1;
+        assert_eq!(&bytes[count_at..count_at + 4], &7u32.to_le_bytes());
+        for (count, word) in [(u32::MAX, "4294967295"), (0, "0")] {
+            let mut b = bytes.clone();
+            b[count_at..count_at + 4].copy_from_slice(&count.to_le_bytes());
+            let e = decode(&reseal(b), "f", &key()).unwrap_err();
+            assert!(e.contains(&format!("a photon lookup of {word} photons is outside 1 … 1048576")), "{e}");
+        }
+        // Its radius NaN, then its cone constant 0.5 (the filter's norm would be ≤ 0).
+        for (at, v) in [(count_at + 4, f32::NAN), (count_at + 9, 0.5)] {
+            let mut b = bytes.clone();
+            b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+            let e = decode(&reseal(b), "f", &key()).unwrap_err();
+            assert!(e.contains("a photon lookup's radius"), "{e}");
+        }
+        // The first caustic photon's power NaN.
+        let photon_at = count_at + 4 + 4 + 1 + 4 + 12 + 8;
+        let mut b = bytes.clone();
+        b[photon_at + 12..photon_at + 16].copy_from_slice(&f32::NAN.to_le_bytes());
+        let e = decode(&reseal(b), "f", &key()).unwrap_err();
+        assert!(e.contains("photon 0 of a map has a value that is not finite"), "{e}");
+        // Final gather points alone: a huge count, a NaN irradiance, radii 0 and ∞.
+        let bytes = encode(&key(), None, Some(&fg));
+        let n_at = after_settings() + 2;
+        assert_eq!(&bytes[n_at..n_at + 8], &30u64.to_le_bytes());
+        let mut b = bytes.clone();
+        b[n_at..n_at + 8].copy_from_slice(&(u64::MAX / 4).to_le_bytes());
+        assert!(decode(&reseal(b), "f", &key()).unwrap_err().contains("is truncated"));
+        let point_at = n_at + 8 + 44;
+        for (offset, v) in [(24, f32::NAN), (40, 0.0), (40, f32::INFINITY)] {
+            let mut b = bytes.clone();
+            b[point_at + offset..point_at + offset + 4].copy_from_slice(&v.to_le_bytes());
+            let e = decode(&reseal(b), "f", &key()).unwrap_err();
+            assert!(e.contains("final gather point 1 has a value that is not finite or a radius ≤ 0"), "{e}");
+        }
+        // Untouched, both files still read.
+        assert!(decode(&bytes, "f", &key()).is_ok());
     }
 
     /// A file with neither pre-pass (nothing to save) still round-trips.

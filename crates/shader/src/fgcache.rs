@@ -223,7 +223,13 @@ impl FgCache {
     /// Indexes `points`; lookups blend all valid points, or the `nearest` nearest of them.
     pub fn new(points: Vec<FgPoint>, nearest: Option<usize>) -> FgCache {
         let finite = |p: &&FgPoint| p.radius.is_finite() && p.position.is_finite();
+        // Levels double in cell size from the smallest radius; radii spanning more than the
+        // levels can hold start the levels higher (the smallest points then share cells), so
+        // that no point covers more than 3 cells a side (a radius 2^100 times another's
+        // covered 2^32 cells a side of the finest level: a hang, then an abort).
+        let largest = points.iter().filter(finite).map(|p| p.radius).fold(0.0, f32::max);
         let smallest = points.iter().filter(finite).map(|p| p.radius).fold(f32::INFINITY, f32::min);
+        let smallest = smallest.max(largest / (1u64 << (MAX_LEVELS - 1)) as f32);
         let mut levels: Vec<Level> = Vec::new();
         if smallest.is_finite() {
             for (i, p) in points.iter().enumerate() {
@@ -411,6 +417,19 @@ mod tests {
         assert!(cache.lookup(Vec3A::ZERO, tilted).is_none());
         // The small point far away is found through its own grid level.
         assert!((cache.lookup(Vec3A::new(10.005, 0.0, 0.0), Vec3A::Z).unwrap().x - 5.0).abs() < 1e-6);
+    }
+
+    /// Radii 10^60 apart (a point gathered into the void, clamped to a huge strict radius,
+    /// beside one in a corner; or a crafted pre-pass file) index in a few cells each: this
+    /// hung, covering 2^32 cells a side, before the levels were started higher. Both points
+    /// are still found where they are valid.
+    #[test]
+    fn radii_far_apart_index_in_bounded_cells() {
+        let cache = FgCache::new(vec![point(-1e30, 2.0, 1e30), point(5.0, 7.0, 1e-30)], None);
+        let cells: usize = cache.levels.iter().map(|l| l.cells.values().map(Vec::len).sum::<usize>()).sum();
+        assert!(cells <= 2 * 27, "{cells} cell entries");
+        assert!((cache.lookup(Vec3A::new(5.0, 0.0, 0.0), Vec3A::Z).unwrap().x - 7.0).abs() < 1e-3);
+        assert!((cache.lookup(Vec3A::new(-1e30, 0.0, 0.0), Vec3A::Z).unwrap().x - 2.0).abs() < 1e-3);
     }
 
     #[test]
