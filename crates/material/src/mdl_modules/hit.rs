@@ -7,7 +7,15 @@
 //! and vectors combine lane by lane without conversions. Every node whose operands are
 //! constants is folded when it is built ([`fold`]): what does not depend on the hit is
 //! computed once, and a material without hit-dependent parts compiles to constants.
+//!
+//! Hostile modules: a tree is refused before it is first evaluated ([`too_costly`]) when
+//! one evaluation would visit more than [`MAX_HIT_NODES`] nodes (a `let` used twice is
+//! shared, not copied, but evaluated twice: forty chained lets each used twice took 2^40
+//! visits a hit) or recurse deeper than [`MAX_HIT_DEPTH`]; and values that come out NaN
+//! or infinite (a division by zero, `sqrt` or `log` of a negative number) are read as 0
+//! where the material uses them ([`HitExpr::eval_finite`]), as non-finite texels are.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3A, Vec4};
@@ -258,6 +266,60 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
     }
 }
 
+/// Most nodes one evaluation of a material's hit expression may visit (a shared
+/// subexpression counts each time it is reached).
+pub const MAX_HIT_NODES: u64 = 1 << 16;
+
+/// Deepest hit expression evaluated ([`HitExpr::eval`] recurses once per level, on a render
+/// thread's stack).
+pub const MAX_HIT_DEPTH: usize = 1024;
+
+/// Why `e` is too costly to evaluate at every hit, if it is: more than [`MAX_HIT_NODES`]
+/// visits or deeper than [`MAX_HIT_DEPTH`] (see [`cost`]).
+pub fn too_costly(e: &Arc<HitExpr>) -> Option<String> {
+    let (visits, depth) = cost(e);
+    if visits > MAX_HIT_NODES {
+        Some(format!(
+            "an expression that depends on the hit takes {visits} steps to evaluate, more than mira takes \
+             ({MAX_HIT_NODES}; shared values count each time they are used)"
+        ))
+    } else if depth > MAX_HIT_DEPTH {
+        Some(format!(
+            "an expression that depends on the hit nests {depth} operations deep, more than mira evaluates \
+             ({MAX_HIT_DEPTH})"
+        ))
+    } else {
+        None
+    }
+}
+
+/// The nodes one evaluation of `e` visits (a shared subexpression counted each time it is
+/// reached; saturating) and its depth, computed without recursion, once per shared node.
+pub fn cost(e: &Arc<HitExpr>) -> (u64, usize) {
+    let mut done: HashMap<*const HitExpr, (u64, usize)> = HashMap::new();
+    let mut stack: Vec<(&HitExpr, bool)> = vec![(&**e, false)];
+    while let Some((node, ready)) = stack.pop() {
+        let key = std::ptr::from_ref(node);
+        if done.contains_key(&key) {
+            continue;
+        }
+        let operands = node.operands();
+        if ready {
+            let (mut visits, mut depth) = (1u64, 0usize);
+            for o in operands {
+                let (v, d) = done.get(&Arc::as_ptr(o)).copied().unwrap_or((1, 1));
+                visits = visits.saturating_add(v);
+                depth = depth.max(d);
+            }
+            done.insert(key, (visits, depth + 1));
+        } else {
+            stack.push((node, true));
+            stack.extend(operands.into_iter().filter(|o| !done.contains_key(&Arc::as_ptr(o))).map(|o| (&**o, false)));
+        }
+    }
+    done.get(&Arc::as_ptr(e)).copied().unwrap_or((1, 1))
+}
+
 /// A scalar in all four lanes.
 fn splat(x: f32) -> Vec4 {
     Vec4::splat(x)
@@ -290,6 +352,33 @@ impl HitExpr {
         match self {
             HitExpr::Const(v) => Some(*v),
             _ => None,
+        }
+    }
+
+    /// The subexpressions this node evaluates (both branches of a `?:`).
+    fn operands(&self) -> Vec<&Arc<HitExpr>> {
+        match self {
+            HitExpr::Const(_) | HitExpr::State(_) => Vec::new(),
+            HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],
+            HitExpr::Transform { of, .. } => vec![of],
+            HitExpr::Lookup { coord, .. } => vec![coord],
+            HitExpr::Binary(_, a, b) => vec![a, b],
+            HitExpr::Select(c, a, b) => vec![c, a, b],
+            HitExpr::Math(_, args) => args.iter().collect(),
+            HitExpr::Compose(parts) => parts.iter().map(|(p, _)| p).collect(),
+        }
+    }
+
+    /// [`HitExpr::eval`] with every lane that is NaN or infinite read as 0: what a material
+    /// uses (a colour, a weight, a roughness), so that no division by zero in a module
+    /// reaches the film.
+    #[inline]
+    pub fn eval_finite(&self, s: &State) -> Vec4 {
+        let v = self.eval(s);
+        if v.is_finite() {
+            v
+        } else {
+            map(v, |x| if x.is_finite() { x } else { 0.0 })
         }
     }
 
@@ -470,6 +559,59 @@ mod tests {
         assert_eq!(scaled.eval(&s), Vec4::new(0.5, 1.0, 0.0, 0.0));
         // A constant condition picks its branch, even a hit-dependent one.
         assert_eq!(fold(HitExpr::Select(c(1.0), uv.clone(), c(0.0))), uv);
+    }
+
+    /// Divisions by zero, square roots and logarithms of negative numbers and overflows
+    /// come out NaN or infinite from `eval` and 0 from `eval_finite`, lane by lane.
+    #[test]
+    fn nonfinite_results_are_read_as_zero() {
+        let u = fold(HitExpr::State(StateFn::TextureCoordinate(0)));
+        let mut s = State { tex_count: 1, ..State::default() };
+        s.tex_list[0] = Vec3A::new(0.0, 2.0, 0.0);
+        let inv = fold(HitExpr::Binary(BinOp::Div, c(1.0), u.clone()));
+        assert!(inv.eval(&s).x.is_infinite());
+        assert_eq!(inv.eval_finite(&s), Vec4::new(0.0, 0.5, 0.0, 0.0));
+        let zero_by_zero = fold(HitExpr::Binary(BinOp::Div, u.clone(), u.clone()));
+        assert!(zero_by_zero.eval(&s).x.is_nan());
+        assert_eq!(zero_by_zero.eval_finite(&s).x, 0.0);
+        let neg = fold(HitExpr::Unary(UnOp::Neg, u.clone()));
+        for f in [MathFn::Sqrt, MathFn::Log] {
+            let e = fold(HitExpr::Math(f, Box::new([fold(HitExpr::Binary(BinOp::Sub, neg.clone(), c(1.0)))])));
+            assert!(!e.eval(&s).x.is_finite(), "{f:?}");
+            assert_eq!(e.eval_finite(&s).x, 0.0, "{f:?}");
+        }
+        let huge = fold(HitExpr::Math(MathFn::Exp, Box::new([fold(HitExpr::Binary(BinOp::Mul, u, c(1000.0)))])));
+        s.tex_list[0] = Vec3A::new(1.0, 0.0, 0.0);
+        assert_eq!(huge.eval_finite(&s).x, 0.0);
+        assert_eq!(huge.eval_finite(&s).y, 1.0);
+    }
+
+    /// Forty chained values each used twice (`b = a·a`, `c = b·b`, …) share their nodes,
+    /// but an evaluation visits 2^41 − 1 of them: refused, with the count, after a walk
+    /// that meets each shared node once. A deep chain is refused by its depth; a modest
+    /// tree passes.
+    #[test]
+    fn shared_and_deep_trees_are_measured_without_recursion() {
+        let mut e = fold(HitExpr::State(StateFn::Position));
+        for _ in 0..40 {
+            e = fold(HitExpr::Binary(BinOp::Mul, e.clone(), e));
+        }
+        assert_eq!(cost(&e), ((1u64 << 41) - 1, 41));
+        let why = too_costly(&e).unwrap();
+        assert!(why.contains("takes 2199023255551 steps to evaluate, more than mira takes (65536"), "{why}");
+        let mut deep = fold(HitExpr::State(StateFn::Position));
+        for _ in 0..100_000 {
+            deep = Arc::new(HitExpr::Unary(UnOp::Neg, deep));
+        }
+        assert_eq!(cost(&deep), (100_001, 100_001));
+        assert!(too_costly(&deep).is_some());
+        // Dropping a tree this deep recurses too: let it go on a thread with room.
+        std::thread::Builder::new().stack_size(256 << 20).spawn(move || drop(deep)).unwrap().join().unwrap();
+        let mut modest = fold(HitExpr::State(StateFn::Position));
+        for _ in 0..10 {
+            modest = fold(HitExpr::Binary(BinOp::Mul, modest.clone(), modest));
+        }
+        assert_eq!(too_costly(&modest), None);
     }
 
     #[test]

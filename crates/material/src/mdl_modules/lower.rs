@@ -295,7 +295,7 @@ impl HitEvaluator for MdlHit {
     fn apply(&self, state: &shader::State, hit: &mut HitMaterial<'_>) {
         let mut values = [Vec4::ZERO; MAX_LEAVES];
         for (v, e) in values.iter_mut().zip(&self.leaves) {
-            *v = e.eval(state);
+            *v = e.eval_finite(state);
         }
         let values = &values[..self.leaves.len()];
         let (diffuse, model) = lower_bsdf(&self.df, values, self.ior, self.thin, None);
@@ -389,11 +389,17 @@ pub fn surface(
             warnings.push(format!("material '{name}': volume absorption and scattering are not compiled yet; ignored"));
         }
     }
+    // Expressions too costly to evaluate at every hit (or deep enough to overflow a render
+    // thread's stack) are refused before they are evaluated even once.
+    if let Some(why) = leaves.iter().find_map(super::hit::too_costly) {
+        warnings.push(format!("material '{name}': {why}; rendered grey"));
+        return SurfaceMaterial::grey(name);
+    }
     // Lowered once at a default point (the whole material when nothing depends on the hit;
     // otherwise where the warnings come from).
     let mut state =
         shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
-    let values: Vec<Vec4> = leaves.iter().map(|e| e.eval(&state)).collect();
+    let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
     let (mut diffuse, model) = lower_bsdf(&scattering, &values, ior, thin, Some((name, warnings)));
     if !leaves.is_empty() {
         // The diffuse colour (what the classic engine's stand-in shows) is the mean over
@@ -401,7 +407,7 @@ pub fn surface(
         let mut sum = Rgb::ZERO;
         for k in 0..64 {
             state.tex_list[0] = Vec3A::new((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5, 0.0) / 8.0;
-            let values: Vec<Vec4> = leaves.iter().map(|e| e.eval(&state)).collect();
+            let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
             sum += lower_bsdf(&scattering, &values, ior, thin, None).0;
         }
         diffuse = sum / 64.0;
