@@ -7,8 +7,13 @@
 //! the element it was in and carries on, so one run reports several independent errors.
 
 mod elements;
+mod freeform;
 mod geometry;
+mod group;
+mod hair;
 mod stmt;
+mod subdiv;
+mod trilist;
 mod values;
 
 use crate::ast::*;
