@@ -23,22 +23,58 @@ use glam::{Affine3A, Quat, Vec3, Vec3A};
 /// The shutter's opening over its interval (mental ray 3.7's `"shutter full open"` and
 /// `"shutter full close"`, fractions of the interval): the weight rises linearly from 0 at
 /// the shutter's opening to 1 at `full_open`, stays 1 until `full_close` and falls to 0 at
-/// its close. `0, 1` is the box shutter; `0.5, 0.5` the triangle.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// its close. `0, 1` is the box shutter; `0.5, 0.5` the triangle. A `"shutter shape
+/// function"` shader's table replaces it ([`ShutterShape::table`]).
+#[derive(Clone, Debug, PartialEq)]
 pub struct ShutterShape {
     /// Shutter time (fraction of the interval) at which the shutter is fully open.
     pub full_open: f32,
     /// Shutter time at which it starts to close.
     pub full_close: f32,
+    /// The shape shader's weights tabulated over the interval, as their running sums
+    /// normalised to end at 1 (`cdf[i]`: the share of the shutter's opening before the end
+    /// of bin `i` of `cdf.len()` equal bins, the weight constant within each bin); when
+    /// set, it is the shape and `full_open`/`full_close` play no part.
+    pub cdf: Option<std::sync::Arc<[f32]>>,
 }
 
 impl ShutterShape {
     /// The box shutter: fully open from the opening to the close.
-    pub const BOX: ShutterShape = ShutterShape { full_open: 0.0, full_close: 1.0 };
+    pub const BOX: ShutterShape = ShutterShape { full_open: 0.0, full_close: 1.0, cdf: None };
+
+    /// A shape from weights at the centres of equal bins over the interval (a shutter
+    /// shape shader's table); `None` if they are not finite, negative or all 0.
+    pub fn tabulated(weights: &[f32]) -> Option<ShutterShape> {
+        if weights.is_empty() || weights.iter().any(|w| !w.is_finite() || *w < 0.0) {
+            return None;
+        }
+        let mut sum = 0.0f64;
+        let sums: Vec<f64> = weights
+            .iter()
+            .map(|w| {
+                sum += f64::from(*w);
+                sum
+            })
+            .collect();
+        if sum <= 0.0 {
+            return None;
+        }
+        let cdf: Vec<f32> = sums.iter().map(|s| (s / sum) as f32).collect();
+        Some(ShutterShape { cdf: Some(cdf.into()), ..ShutterShape::BOX })
+    }
 
     /// The shutter time for `u` in `[0, 1)`, distributed as the shape's weight (its CDF
-    /// inverted in closed form: quadratic ramps, linear plateau).
+    /// inverted in closed form: quadratic ramps, linear plateau; a table's CDF is
+    /// piecewise linear and inverted by search).
     pub fn sample(&self, u: f32) -> f32 {
+        if let Some(cdf) = &self.cdf {
+            // The first bin whose running sum passes u, then linearly within it.
+            let i = cdf.partition_point(|c| *c <= u).min(cdf.len() - 1);
+            let before = if i == 0 { 0.0 } else { cdf[i - 1] };
+            let width = cdf[i] - before;
+            let f = if width > 0.0 { ((u - before) / width).clamp(0.0, 1.0) } else { 0.5 };
+            return ((i as f32 + f) / cdf.len() as f32).clamp(0.0, 1.0);
+        }
         let (a, b) = (self.full_open, self.full_close);
         if a <= 0.0 && b >= 1.0 {
             return u;
@@ -56,8 +92,15 @@ impl ShutterShape {
         s.clamp(0.0, 1.0)
     }
 
-    /// The shape's weight at shutter time `s` (1 on the plateau), for tests and documents.
+    /// The shape's weight at shutter time `s` (1 on the plateau; a table's weight relative
+    /// to its mean), for tests and documents.
     pub fn weight(&self, s: f32) -> f32 {
+        if let Some(cdf) = &self.cdf {
+            let n = cdf.len();
+            let i = ((s * n as f32) as usize).min(n - 1);
+            let before = if i == 0 { 0.0 } else { cdf[i - 1] };
+            return (cdf[i] - before) * n as f32;
+        }
         let (a, b) = (self.full_open, self.full_close);
         if s < a {
             s / a
@@ -70,7 +113,7 @@ impl ShutterShape {
 }
 
 /// The shutter interval in motion time and its shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shutter {
     /// Motion time at which the shutter opens (`shutter delay`).
     pub open: f32,
@@ -82,8 +125,10 @@ pub struct Shutter {
 
 impl Shutter {
     /// The scene's shutter when it renders motion blur (`motion on` and a shutter that
-    /// closes after it opens), with the warnings of what it could not take.
-    pub fn from_options(options: &scene::Options, warnings: &mut Vec<String>) -> Option<Shutter> {
+    /// closes after it opens). Its shape is the table of the `"shutter shape function"`
+    /// shader when the shading has one (`shutter_weights`, see `shader::shutter`), else the
+    /// `"shutter full open"`/`"shutter full close"` shape.
+    pub fn from_options(options: &scene::Options, shutter_weights: Option<&[f32]>) -> Option<Shutter> {
         let (open, close) = options.shutter;
         if !options.motion || close <= open || !open.is_finite() || !close.is_finite() {
             return None;
@@ -91,14 +136,11 @@ impl Shutter {
         let number = |name: &str| options.string_options.get(name).and_then(|v| v.as_f64());
         let full_open = number("shutter full open").unwrap_or(0.0).clamp(0.0, 1.0) as f32;
         let full_close = number("shutter full close").unwrap_or(1.0).clamp(0.0, 1.0) as f32;
-        if options.string_options.contains_key("shutter shape function") {
-            warnings.push(
-                "string option \"shutter shape function\": shutter shape shaders are not run; the shape of \
-                 \"shutter full open\"/\"shutter full close\" is used"
-                    .into(),
-            );
-        }
-        let shape = ShutterShape { full_open, full_close: full_close.max(full_open) };
+        let shape = shutter_weights.and_then(ShutterShape::tabulated).unwrap_or(ShutterShape {
+            full_open,
+            full_close: full_close.max(full_open),
+            cdf: None,
+        });
         Some(Shutter { open: open as f32, close: close as f32, shape })
     }
 
@@ -261,8 +303,17 @@ mod tests {
     fn sampled_times_follow_the_shape() {
         for shape in [
             ShutterShape::BOX,
-            ShutterShape { full_open: 0.5, full_close: 0.5 },
-            ShutterShape { full_open: 0.2, full_close: 0.7 },
+            ShutterShape { full_open: 0.5, full_close: 0.5, cdf: None },
+            ShutterShape { full_open: 0.2, full_close: 0.7, cdf: None },
+            // A table: weight 1 + sin²(π s) at 64 bin centres, and one with closed bins.
+            ShutterShape::tabulated(
+                &(0..64)
+                    .map(|i| 1.0 + (std::f32::consts::PI * (i as f32 + 0.5) / 64.0).sin().powi(2))
+                    .collect::<Vec<_>>(),
+            )
+            .expect("a table"),
+            ShutterShape::tabulated(&(0..64).map(|i| if i % 8 < 3 { 0.0 } else { 2.0 }).collect::<Vec<_>>())
+                .expect("a table"),
         ] {
             let n = 64_000;
             let mut bins = [0u32; 16];

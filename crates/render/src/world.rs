@@ -300,7 +300,8 @@ impl World {
         }
         let mut camera = CameraModel::new(&scene.camera);
         let mut light_motion = Vec::new();
-        let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
+        let weights = shading.and_then(|s| s.shutter_weights.as_deref());
+        let shutter = Shutter::from_options(&scene.options, weights).filter(|shutter| {
             light_motion = light_keys(shutter, &scene.lights, &mut warnings);
             for (light, index) in &mut lights {
                 light.motion = light_motion[*index].clone();
