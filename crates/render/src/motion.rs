@@ -225,7 +225,13 @@ fn decompose(m: Affine3A) -> Option<Decomposed> {
 /// no turn to speak of (pure translation, a small turn), shear, a change of handedness —
 /// the two matrices are interpolated linearly: two keys. Since the translation moves
 /// linearly, an object turns about its own origin (its object space's (0, 0, 0)).
-pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter) -> Vec<Affine3A> {
+///
+/// `steps` is mental ray's `motion steps` (options): the motion path is cut into at least
+/// that many segments. On a turning transform that places keys on the turn (a turn under
+/// [`MAX_KEY_TURN`] with `steps` 4 gets 4 intervals instead of the two matrices' straight
+/// line); where the path is a straight line anyway (no turn, or a matrix that does not
+/// split) more keys on it would change nothing, and two keys are kept.
+pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter, steps: usize) -> Vec<Affine3A> {
     let linear = || shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau)).collect();
     let (Some(a), Some(b)) = (decompose(start), decompose(end)) else {
         return linear();
@@ -240,10 +246,11 @@ pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter) -> Vec<
     }
     let (axis, angle) = turn.to_axis_angle();
     let swept = angle * (shutter.close - shutter.open).abs();
-    if !swept.is_finite() || swept <= MAX_KEY_TURN {
+    let by_turn = if swept > MAX_KEY_TURN { (swept / MAX_KEY_TURN).ceil() as usize } else { 1 };
+    let segments = by_turn.max(steps).min(MAX_TURN_SEGMENTS);
+    if !swept.is_finite() || swept <= 0.0 || segments < 2 {
         return linear();
     }
-    let segments = ((swept / MAX_KEY_TURN).ceil() as usize).clamp(2, MAX_TURN_SEGMENTS);
     shutter
         .key_times(segments)
         .map(|tau| {
@@ -354,7 +361,7 @@ mod tests {
         let centre = Vec3A::new(3.0, 0.0, 0.0);
         let start = Affine3A::from_translation(centre.into());
         let end = start * Affine3A::from_rotation_z(std::f32::consts::FRAC_PI_2);
-        let keys = transform_keys(start, end, &shutter);
+        let keys = transform_keys(start, end, &shutter, 1);
         assert_eq!(keys.len(), 13, "90° in 7.5° steps: 12 intervals");
         let corner = Vec3A::new(0.5, 0.5, 0.0);
         let mid = lerp_keys(&keys, 0.5).transform_point3a(corner);
@@ -387,7 +394,7 @@ mod tests {
             Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
             Vec3::new(0.0, 4.0, 0.0),
         );
-        let keys = transform_keys(start, end, &shutter);
+        let keys = transform_keys(start, end, &shutter, 1);
         assert_eq!(keys.len(), 25);
         // Shutter time 1 is motion time 2: scale 4, turned 180° about y, moved 8 up.
         let p = keys[24].transform_point3a(Vec3A::X);
@@ -404,16 +411,44 @@ mod tests {
             shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau)).collect()
         };
         let moved = Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0)) * start;
-        assert_eq!(transform_keys(start, moved, &shutter), linear(moved));
+        assert_eq!(transform_keys(start, moved, &shutter, 1), linear(moved));
         let small = Affine3A::from_rotation_x(0.3 + 0.1);
-        assert_eq!(transform_keys(start, small, &shutter), linear(small));
+        assert_eq!(transform_keys(start, small, &shutter, 1), linear(small));
         let mut sheared = Affine3A::from_rotation_z(1.0);
         sheared.matrix3.y_axis += Vec3A::X;
-        assert_eq!(transform_keys(start, sheared, &shutter), linear(sheared));
+        assert_eq!(transform_keys(start, sheared, &shutter, 1), linear(sheared));
         let mirrored = Affine3A::from_rotation_z(1.0) * Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-        assert_eq!(transform_keys(start, mirrored, &shutter), linear(mirrored));
+        assert_eq!(transform_keys(start, mirrored, &shutter, 1), linear(mirrored));
         let singular = Affine3A::from_scale(Vec3::new(0.0, 1.0, 1.0));
-        assert_eq!(transform_keys(start, singular, &shutter).len(), 2);
+        assert_eq!(transform_keys(start, singular, &shutter, 1).len(), 2);
+    }
+
+    /// `motion steps 4` on a 6° turn (under [`MAX_KEY_TURN`], two keys on their own): four
+    /// intervals on the turn, so a corner 0.7071 from the centre stays within
+    /// 1 − cos(6°/8) = 0.0086 % of that distance (plus 1e-5 for rounding) all along, where
+    /// the two matrices' straight line brings it 1 − cos 3° = 0.137 % closer at mid-shutter.
+    /// On a straight path (a translation) more steps keep the two keys: they would lie on
+    /// the line between them.
+    #[test]
+    fn motion_steps_cut_a_small_turn_into_intervals() {
+        let shutter = Shutter { open: 0.0, close: 1.0, shape: ShutterShape::BOX };
+        let start = Affine3A::IDENTITY;
+        let end = Affine3A::from_rotation_z(6f32.to_radians());
+        let corner = Vec3A::new(0.5, 0.5, 0.0);
+        let r = corner.length();
+        let two = transform_keys(start, end, &shutter, 1);
+        assert_eq!(two.len(), 2);
+        let mid = lerp_keys(&two, 0.5).transform_point3a(corner).length() / r;
+        assert!((mid - 3f32.to_radians().cos()).abs() < 1e-5, "{mid}");
+        let four = transform_keys(start, end, &shutter, 4);
+        assert_eq!(four.len(), 5);
+        for i in 0..=100 {
+            let s = i as f32 / 100.0;
+            let d = lerp_keys(&four, s).transform_point3a(corner).length() / r;
+            assert!((1.0 - d).abs() < 1.0 - 0.75f32.to_radians().cos() + 1e-5, "s = {s}: {d}");
+        }
+        let moved = Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(transform_keys(start, moved, &shutter, 4).len(), 2);
     }
 
     #[test]

@@ -302,7 +302,7 @@ impl World {
         let mut light_motion = Vec::new();
         let weights = shading.and_then(|s| s.shutter_weights.as_deref());
         let shutter = Shutter::from_options(&scene.options, weights).filter(|shutter| {
-            light_motion = light_keys(shutter, &scene.lights, &mut warnings);
+            light_motion = light_keys(shutter, scene, &mut warnings);
             for (light, index) in &mut lights {
                 light.motion = light_motion[*index].clone();
             }
@@ -371,6 +371,7 @@ fn set_motion_keys(
     warnings: &mut Vec<String>,
 ) -> bool {
     let limit = scene::sanity::WORLD_LIMIT as f32;
+    let steps = scene.options.motion_steps as usize;
     let placed_in_range = |m: &Affine3A| m.is_finite() && m.translation.abs().max_element() <= limit;
     let mut out_of_range = |what: String| {
         warnings.push(format!(
@@ -380,7 +381,7 @@ fn set_motion_keys(
     let mut moving = false;
     for inst in instances.iter_mut() {
         if let Some(end) = inst.motion_to_world.filter(|m| *m != inst.object_to_world) {
-            let keys = transform_keys(inst.object_to_world, end, shutter);
+            let keys = transform_keys(inst.object_to_world, end, shutter, steps);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 inst.keys = keys;
                 moving = true;
@@ -418,7 +419,7 @@ fn set_motion_keys(
     if let Some(end) = scene.camera.motion_world_to_camera {
         let end = affine(end).inverse();
         if end != camera.camera_to_world {
-            let keys = transform_keys(camera.camera_to_world, end, shutter);
+            let keys = transform_keys(camera.camera_to_world, end, shutter, steps);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 camera.keys = keys;
                 moving = true;
@@ -433,9 +434,11 @@ fn set_motion_keys(
 /// Keys over the shutter of each of the scene's lights (scene order) whose instance moves:
 /// its world → world displacement from where it is at motion time 0 (empty for a light
 /// that stays).
-fn light_keys(shutter: &Shutter, lights: &[scene::Light], warnings: &mut Vec<String>) -> Vec<Vec<Affine3A>> {
+fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> Vec<Vec<Affine3A>> {
     let limit = scene::sanity::WORLD_LIMIT as f32;
-    lights
+    let steps = scene.options.motion_steps as usize;
+    scene
+        .lights
         .iter()
         .map(|light| {
             let Some(end) = light.motion_light_to_world else { return Vec::new() };
@@ -444,7 +447,8 @@ fn light_keys(shutter: &Shutter, lights: &[scene::Light], warnings: &mut Vec<Str
                 return Vec::new();
             }
             let back = start.inverse();
-            let keys: Vec<Affine3A> = transform_keys(start, end, shutter).into_iter().map(|k| k * back).collect();
+            let keys: Vec<Affine3A> =
+                transform_keys(start, end, shutter, steps).into_iter().map(|k| k * back).collect();
             if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= limit) {
                 warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.instance));
                 return Vec::new();
