@@ -88,7 +88,7 @@ pub fn spot_factor(c: f32, spread: f32, cone: f32) -> Option<f32> {
 }
 
 fn spot(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let c_axis = light.direction.dot(ctx.state.dir);
     let cone = ctx.scalar(n, 6);
     let Some(s) = spot_factor(c_axis, light.spread, cone) else { return false };
@@ -135,7 +135,7 @@ pub static PHOTOMETRIC: ShaderImpl = ShaderImpl {
 };
 
 fn photometric(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let (exponent, kind, to_local, own) = (light.exponent, light.kind, light.to_local, light.profile);
     let mut c = ctx.color(n, 0);
     let (start, stop) = (ctx.scalar(n, 3), ctx.scalar(n, 4));
@@ -178,7 +178,7 @@ pub static PHYSICAL: ShaderImpl = ShaderImpl {
 
 fn physical(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     use shader::light::Shape;
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let (kind, shape, spread, direction, exponent) =
         (light.kind, &light.shape, light.spread, light.direction, light.exponent);
     let r = ctx.state.dist;

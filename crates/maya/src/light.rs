@@ -31,7 +31,7 @@ use crate::maya_shader;
 
 /// Whether the light being sampled is a directional (infinite) light.
 fn is_directional(ctx: &Ctx) -> bool {
-    ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)).is_some_and(|l| l.kind == LightKind::Directional)
+    ctx.state.light.and_then(|l| ctx.light(l)).is_some_and(|l| l.kind == LightKind::Directional)
 }
 
 /// Parameters every Maya light but the ambient one reads first, in this order.
@@ -242,7 +242,7 @@ pub fn spot_factor(alpha: f32, cone: f32, penumbra: f32, dropoff: f32) -> f32 {
 }
 
 fn spot(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let axis = light.direction;
     let alpha = axis.dot(ctx.state.dir).clamp(-1.0, 1.0).acos();
     let f = spot_factor(alpha, ctx.scalar(n, 9), ctx.scalar(n, 10), ctx.scalar(n, 11));
@@ -318,7 +318,7 @@ maya_shader!(
 );
 
 fn area(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let cos_emit = light.direction.dot(ctx.state.dir);
     if cos_emit <= 0.0 {
         return false;
@@ -368,7 +368,7 @@ maya_shader!(
 );
 
 fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let local = light.to_local * (ctx.state.point - light.origin);
     let Some(d) = volume_distance(ctx.int(n, 7), local) else { return false };
     let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - d);

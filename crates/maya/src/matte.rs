@@ -40,7 +40,7 @@ pub fn shadow_fraction(ctx: &mut Ctx) -> f32 {
     let saved = ctx.state.clone();
     let (mut blocked, mut total) = (0.0, 0.0);
     for l in lights {
-        let Some(light) = ctx.shading().lights.get(l as usize) else { continue };
+        let Some(light) = ctx.light(l) else { continue };
         let (to_light, dist) = match light.kind {
             LightKind::Directional => (-light.direction, f32::INFINITY),
             _ => {

@@ -90,7 +90,7 @@ fn run(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         return false;
     }
     let shading = ctx.shading();
-    let Some(light) = ctx.state.light.and_then(|l| shading.lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let (to_local, own) = (light.to_local, light.profile);
     let settings = Settings {
         intensity_mode: ctx.int(n, 3),

@@ -47,7 +47,7 @@ fn portal_light(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     if !ctx.bool(n, 0) {
         return false;
     }
-    let Some(light) = ctx.state.light.and_then(|l| ctx.shading().lights.get(l as usize)) else { return false };
+    let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let Some(shape) = &light.shape else { return false };
     let area = shape.area();
     let mut normal = shape.normal_at(light.origin, ctx.state.org);

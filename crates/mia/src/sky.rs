@@ -94,7 +94,7 @@ pub static MIA_PHYSICALSKY: ShaderImpl = ShaderImpl {
 /// The sky parameters of node `n`.
 pub fn sky_of(ctx: &mut Ctx, n: NodeId) -> PhysicalSky {
     let sun_light = match ctx.tag(n, 11) {
-        Some(Tag::Light(l)) => ctx.shading().lights.get(l as usize).map(|l| -l.direction),
+        Some(Tag::Light(l)) => ctx.light(l).map(|l| -l.direction),
         _ => None,
     };
     PhysicalSky {

@@ -105,7 +105,13 @@ fn point_at(
 ) -> (Option<FgPoint>, RayCounts) {
     let tracer = SceneTracer::new(world, accel);
     let cam = &world.camera;
-    let ray = cam.ray(raster.x, raster.y);
+    // When things move, each point is found at a shutter time of its own (a number of
+    // its grid position and level), so the cache blurs what moves like the image does.
+    let time = world.shutter.as_ref().map_or(0.0, |shutter| {
+        let seed = crate::sampler::pixel_seed(raster.x.to_bits(), raster.y.to_bits() ^ level, shading.seed);
+        shutter.shape.sample(crate::sampler::Sampler::new(seed, 0x4647).next_1d())
+    });
+    let ray = if world.shutter.is_some() { cam.ray_at(raster.x, raster.y, time) } else { cam.ray(raster.x, raster.y) };
     let root = State {
         ray_type: RayType::Eye,
         org: ray.origin,
@@ -119,6 +125,7 @@ fn point_at(
         ior_in: 1.0,
         ior: 1.0,
         child_dist: f32::INFINITY,
+        time,
         ..State::default()
     };
     let mut hit = root.child(RayType::Eye, ray.origin, ray.dir);

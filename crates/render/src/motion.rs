@@ -23,22 +23,58 @@ use glam::{Affine3A, Quat, Vec3, Vec3A};
 /// The shutter's opening over its interval (mental ray 3.7's `"shutter full open"` and
 /// `"shutter full close"`, fractions of the interval): the weight rises linearly from 0 at
 /// the shutter's opening to 1 at `full_open`, stays 1 until `full_close` and falls to 0 at
-/// its close. `0, 1` is the box shutter; `0.5, 0.5` the triangle.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// its close. `0, 1` is the box shutter; `0.5, 0.5` the triangle. A `"shutter shape
+/// function"` shader's table replaces it ([`ShutterShape::table`]).
+#[derive(Clone, Debug, PartialEq)]
 pub struct ShutterShape {
     /// Shutter time (fraction of the interval) at which the shutter is fully open.
     pub full_open: f32,
     /// Shutter time at which it starts to close.
     pub full_close: f32,
+    /// The shape shader's weights tabulated over the interval, as their running sums
+    /// normalised to end at 1 (`cdf[i]`: the share of the shutter's opening before the end
+    /// of bin `i` of `cdf.len()` equal bins, the weight constant within each bin); when
+    /// set, it is the shape and `full_open`/`full_close` play no part.
+    pub cdf: Option<std::sync::Arc<[f32]>>,
 }
 
 impl ShutterShape {
     /// The box shutter: fully open from the opening to the close.
-    pub const BOX: ShutterShape = ShutterShape { full_open: 0.0, full_close: 1.0 };
+    pub const BOX: ShutterShape = ShutterShape { full_open: 0.0, full_close: 1.0, cdf: None };
+
+    /// A shape from weights at the centres of equal bins over the interval (a shutter
+    /// shape shader's table); `None` if they are not finite, negative or all 0.
+    pub fn tabulated(weights: &[f32]) -> Option<ShutterShape> {
+        if weights.is_empty() || weights.iter().any(|w| !w.is_finite() || *w < 0.0) {
+            return None;
+        }
+        let mut sum = 0.0f64;
+        let sums: Vec<f64> = weights
+            .iter()
+            .map(|w| {
+                sum += f64::from(*w);
+                sum
+            })
+            .collect();
+        if sum <= 0.0 {
+            return None;
+        }
+        let cdf: Vec<f32> = sums.iter().map(|s| (s / sum) as f32).collect();
+        Some(ShutterShape { cdf: Some(cdf.into()), ..ShutterShape::BOX })
+    }
 
     /// The shutter time for `u` in `[0, 1)`, distributed as the shape's weight (its CDF
-    /// inverted in closed form: quadratic ramps, linear plateau).
+    /// inverted in closed form: quadratic ramps, linear plateau; a table's CDF is
+    /// piecewise linear and inverted by search).
     pub fn sample(&self, u: f32) -> f32 {
+        if let Some(cdf) = &self.cdf {
+            // The first bin whose running sum passes u, then linearly within it.
+            let i = cdf.partition_point(|c| *c <= u).min(cdf.len() - 1);
+            let before = if i == 0 { 0.0 } else { cdf[i - 1] };
+            let width = cdf[i] - before;
+            let f = if width > 0.0 { ((u - before) / width).clamp(0.0, 1.0) } else { 0.5 };
+            return ((i as f32 + f) / cdf.len() as f32).clamp(0.0, 1.0);
+        }
         let (a, b) = (self.full_open, self.full_close);
         if a <= 0.0 && b >= 1.0 {
             return u;
@@ -56,8 +92,15 @@ impl ShutterShape {
         s.clamp(0.0, 1.0)
     }
 
-    /// The shape's weight at shutter time `s` (1 on the plateau), for tests and documents.
+    /// The shape's weight at shutter time `s` (1 on the plateau; a table's weight relative
+    /// to its mean), for tests and documents.
     pub fn weight(&self, s: f32) -> f32 {
+        if let Some(cdf) = &self.cdf {
+            let n = cdf.len();
+            let i = ((s * n as f32) as usize).min(n - 1);
+            let before = if i == 0 { 0.0 } else { cdf[i - 1] };
+            return (cdf[i] - before) * n as f32;
+        }
         let (a, b) = (self.full_open, self.full_close);
         if s < a {
             s / a
@@ -70,7 +113,7 @@ impl ShutterShape {
 }
 
 /// The shutter interval in motion time and its shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shutter {
     /// Motion time at which the shutter opens (`shutter delay`).
     pub open: f32,
@@ -82,8 +125,10 @@ pub struct Shutter {
 
 impl Shutter {
     /// The scene's shutter when it renders motion blur (`motion on` and a shutter that
-    /// closes after it opens), with the warnings of what it could not take.
-    pub fn from_options(options: &scene::Options, warnings: &mut Vec<String>) -> Option<Shutter> {
+    /// closes after it opens). Its shape is the table of the `"shutter shape function"`
+    /// shader when the shading has one (`shutter_weights`, see `shader::shutter`), else the
+    /// `"shutter full open"`/`"shutter full close"` shape.
+    pub fn from_options(options: &scene::Options, shutter_weights: Option<&[f32]>) -> Option<Shutter> {
         let (open, close) = options.shutter;
         if !options.motion || close <= open || !open.is_finite() || !close.is_finite() {
             return None;
@@ -91,14 +136,11 @@ impl Shutter {
         let number = |name: &str| options.string_options.get(name).and_then(|v| v.as_f64());
         let full_open = number("shutter full open").unwrap_or(0.0).clamp(0.0, 1.0) as f32;
         let full_close = number("shutter full close").unwrap_or(1.0).clamp(0.0, 1.0) as f32;
-        if options.string_options.contains_key("shutter shape function") {
-            warnings.push(
-                "string option \"shutter shape function\": shutter shape shaders are not run; the shape of \
-                 \"shutter full open\"/\"shutter full close\" is used"
-                    .into(),
-            );
-        }
-        let shape = ShutterShape { full_open, full_close: full_close.max(full_open) };
+        let shape = shutter_weights.and_then(ShutterShape::tabulated).unwrap_or(ShutterShape {
+            full_open,
+            full_close: full_close.max(full_open),
+            cdf: None,
+        });
         Some(Shutter { open: open as f32, close: close as f32, shape })
     }
 
@@ -183,7 +225,13 @@ fn decompose(m: Affine3A) -> Option<Decomposed> {
 /// no turn to speak of (pure translation, a small turn), shear, a change of handedness —
 /// the two matrices are interpolated linearly: two keys. Since the translation moves
 /// linearly, an object turns about its own origin (its object space's (0, 0, 0)).
-pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter) -> Vec<Affine3A> {
+///
+/// `steps` is mental ray's `motion steps` (options): the motion path is cut into at least
+/// that many segments. On a turning transform that places keys on the turn (a turn under
+/// [`MAX_KEY_TURN`] with `steps` 4 gets 4 intervals instead of the two matrices' straight
+/// line); where the path is a straight line anyway (no turn, or a matrix that does not
+/// split) more keys on it would change nothing, and two keys are kept.
+pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter, steps: usize) -> Vec<Affine3A> {
     let linear = || shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau)).collect();
     let (Some(a), Some(b)) = (decompose(start), decompose(end)) else {
         return linear();
@@ -198,10 +246,11 @@ pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter) -> Vec<
     }
     let (axis, angle) = turn.to_axis_angle();
     let swept = angle * (shutter.close - shutter.open).abs();
-    if !swept.is_finite() || swept <= MAX_KEY_TURN {
+    let by_turn = if swept > MAX_KEY_TURN { (swept / MAX_KEY_TURN).ceil() as usize } else { 1 };
+    let segments = by_turn.max(steps).min(MAX_TURN_SEGMENTS);
+    if !swept.is_finite() || swept <= 0.0 || segments < 2 {
         return linear();
     }
-    let segments = ((swept / MAX_KEY_TURN).ceil() as usize).clamp(2, MAX_TURN_SEGMENTS);
     shutter
         .key_times(segments)
         .map(|tau| {
@@ -261,8 +310,17 @@ mod tests {
     fn sampled_times_follow_the_shape() {
         for shape in [
             ShutterShape::BOX,
-            ShutterShape { full_open: 0.5, full_close: 0.5 },
-            ShutterShape { full_open: 0.2, full_close: 0.7 },
+            ShutterShape { full_open: 0.5, full_close: 0.5, cdf: None },
+            ShutterShape { full_open: 0.2, full_close: 0.7, cdf: None },
+            // A table: weight 1 + sin²(π s) at 64 bin centres, and one with closed bins.
+            ShutterShape::tabulated(
+                &(0..64)
+                    .map(|i| 1.0 + (std::f32::consts::PI * (i as f32 + 0.5) / 64.0).sin().powi(2))
+                    .collect::<Vec<_>>(),
+            )
+            .expect("a table"),
+            ShutterShape::tabulated(&(0..64).map(|i| if i % 8 < 3 { 0.0 } else { 2.0 }).collect::<Vec<_>>())
+                .expect("a table"),
         ] {
             let n = 64_000;
             let mut bins = [0u32; 16];
@@ -303,7 +361,7 @@ mod tests {
         let centre = Vec3A::new(3.0, 0.0, 0.0);
         let start = Affine3A::from_translation(centre.into());
         let end = start * Affine3A::from_rotation_z(std::f32::consts::FRAC_PI_2);
-        let keys = transform_keys(start, end, &shutter);
+        let keys = transform_keys(start, end, &shutter, 1);
         assert_eq!(keys.len(), 13, "90° in 7.5° steps: 12 intervals");
         let corner = Vec3A::new(0.5, 0.5, 0.0);
         let mid = lerp_keys(&keys, 0.5).transform_point3a(corner);
@@ -336,7 +394,7 @@ mod tests {
             Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
             Vec3::new(0.0, 4.0, 0.0),
         );
-        let keys = transform_keys(start, end, &shutter);
+        let keys = transform_keys(start, end, &shutter, 1);
         assert_eq!(keys.len(), 25);
         // Shutter time 1 is motion time 2: scale 4, turned 180° about y, moved 8 up.
         let p = keys[24].transform_point3a(Vec3A::X);
@@ -353,16 +411,44 @@ mod tests {
             shutter.key_times(1).map(|tau| Affine3A::lerp(start, end, tau)).collect()
         };
         let moved = Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0)) * start;
-        assert_eq!(transform_keys(start, moved, &shutter), linear(moved));
+        assert_eq!(transform_keys(start, moved, &shutter, 1), linear(moved));
         let small = Affine3A::from_rotation_x(0.3 + 0.1);
-        assert_eq!(transform_keys(start, small, &shutter), linear(small));
+        assert_eq!(transform_keys(start, small, &shutter, 1), linear(small));
         let mut sheared = Affine3A::from_rotation_z(1.0);
         sheared.matrix3.y_axis += Vec3A::X;
-        assert_eq!(transform_keys(start, sheared, &shutter), linear(sheared));
+        assert_eq!(transform_keys(start, sheared, &shutter, 1), linear(sheared));
         let mirrored = Affine3A::from_rotation_z(1.0) * Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-        assert_eq!(transform_keys(start, mirrored, &shutter), linear(mirrored));
+        assert_eq!(transform_keys(start, mirrored, &shutter, 1), linear(mirrored));
         let singular = Affine3A::from_scale(Vec3::new(0.0, 1.0, 1.0));
-        assert_eq!(transform_keys(start, singular, &shutter).len(), 2);
+        assert_eq!(transform_keys(start, singular, &shutter, 1).len(), 2);
+    }
+
+    /// `motion steps 4` on a 6° turn (under [`MAX_KEY_TURN`], two keys on their own): four
+    /// intervals on the turn, so a corner 0.7071 from the centre stays within
+    /// 1 − cos(6°/8) = 0.0086 % of that distance (plus 1e-5 for rounding) all along, where
+    /// the two matrices' straight line brings it 1 − cos 3° = 0.137 % closer at mid-shutter.
+    /// On a straight path (a translation) more steps keep the two keys: they would lie on
+    /// the line between them.
+    #[test]
+    fn motion_steps_cut_a_small_turn_into_intervals() {
+        let shutter = Shutter { open: 0.0, close: 1.0, shape: ShutterShape::BOX };
+        let start = Affine3A::IDENTITY;
+        let end = Affine3A::from_rotation_z(6f32.to_radians());
+        let corner = Vec3A::new(0.5, 0.5, 0.0);
+        let r = corner.length();
+        let two = transform_keys(start, end, &shutter, 1);
+        assert_eq!(two.len(), 2);
+        let mid = lerp_keys(&two, 0.5).transform_point3a(corner).length() / r;
+        assert!((mid - 3f32.to_radians().cos()).abs() < 1e-5, "{mid}");
+        let four = transform_keys(start, end, &shutter, 4);
+        assert_eq!(four.len(), 5);
+        for i in 0..=100 {
+            let s = i as f32 / 100.0;
+            let d = lerp_keys(&four, s).transform_point3a(corner).length() / r;
+            assert!((1.0 - d).abs() < 1.0 - 0.75f32.to_radians().cos() + 1e-5, "s = {s}: {d}");
+        }
+        let moved = Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(transform_keys(start, moved, &shutter, 4).len(), 2);
     }
 
     #[test]

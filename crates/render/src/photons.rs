@@ -164,7 +164,7 @@ fn trace_map(
             continue;
         }
         let cap = emit.unwrap_or(store.saturating_mul(100)).max(1);
-        let Some(emitter) = Emitter::new(light, bounds) else { continue };
+        let Some(emitter) = Emitter::new(light, li, bounds) else { continue };
         let seed = pixel_seed(li as u32, map as u32, shading.seed);
         let mut stored: Vec<Photon> = Vec::new();
         let mut emitted = 0u32;
@@ -197,33 +197,44 @@ fn trace_map(
 /// Where and in which direction one light sends photons.
 struct Emitter<'a> {
     light: &'a ShadingLight,
-    /// Directional lights: the emitting disc's centre and radius.
-    disc: (Vec3A, f32),
+    /// Its index in the scene's lights (for its motion, `World::light_motion`).
+    index: usize,
+    /// Directional lights: the centre and radius of the scene's bounding sphere, which the
+    /// emitting disc covers.
+    bounds: (Vec3A, f32),
 }
 
 impl<'a> Emitter<'a> {
-    fn new(light: &'a ShadingLight, (lo, hi): (Vec3A, Vec3A)) -> Option<Emitter<'a>> {
-        let disc = if light.kind == LightKind::Directional {
+    fn new(light: &'a ShadingLight, index: usize, (lo, hi): (Vec3A, Vec3A)) -> Option<Emitter<'a>> {
+        let bounds = if light.kind == LightKind::Directional {
             if lo.x > hi.x {
                 return None;
             }
-            let centre = (lo + hi) * 0.5;
-            let radius = ((hi - lo).length() * 0.5).max(1e-6);
-            (centre - light.direction * (radius * 1.01), radius)
+            ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-6))
         } else {
             (Vec3A::ZERO, 0.0)
         };
-        Some(Emitter { light, disc })
+        Some(Emitter { light, index, bounds })
     }
 
-    /// A photon's origin and unit direction for the sample numbers `a`, `b`, and whether
-    /// the exponent's falloff applies.
-    fn emit(&self, a: Vec2, b: Vec2) -> (Vec3A, Vec3A, bool) {
-        let l = self.light;
+    /// The light where it is at shutter time `time` (moved with its instance when that
+    /// moves while the shutter is open).
+    fn light_at(&self, world: &World, time: f32) -> std::borrow::Cow<'a, ShadingLight> {
+        match world.light_motion.get(self.index).filter(|keys| !keys.is_empty()) {
+            Some(keys) => std::borrow::Cow::Owned(self.light.moved(crate::motion::lerp_keys(keys, time))),
+            None => std::borrow::Cow::Borrowed(self.light),
+        }
+    }
+
+    /// A photon's origin and unit direction from light `l` (this emitter's light, maybe
+    /// moved) for the sample numbers `a`, `b`, and whether the exponent's falloff applies.
+    fn emit(&self, l: &ShadingLight, a: Vec2, b: Vec2) -> (Vec3A, Vec3A, bool) {
         if l.kind == LightKind::Directional {
+            let (centre, radius) = self.bounds;
+            let disc = centre - l.direction * (radius * 1.01);
             let frame = Frame::from_normal(l.direction);
-            let (r, phi) = (a.x.sqrt() * self.disc.1, std::f32::consts::TAU * a.y);
-            let origin = self.disc.0 + frame.to_world(Vec3A::new(r * phi.cos(), r * phi.sin(), 0.0));
+            let (r, phi) = (a.x.sqrt() * radius, std::f32::consts::TAU * a.y);
+            let origin = disc + frame.to_world(Vec3A::new(r * phi.cos(), r * phi.sin(), 0.0));
             return (origin, l.direction, false);
         }
         if let Some(shape) = l.shape.as_ref().filter(|s| !matches!(s, shader::light::Shape::Point)) {
@@ -263,7 +274,10 @@ fn trace_photon(
 ) -> u64 {
     let mut sampler = Sampler::new(pixel_seed(index >> 16, 0x5eed, seed), index & 0xffff);
     let (a, b) = (sampler.next_2d(), sampler.next_2d());
-    let (mut org, mut dir, falloff) = emitter.emit(a, b);
+    // Each photon leaves at a shutter time of its own when things move (drawn after the
+    // emission's numbers, so a still scene's photons are what they were).
+    let time = world.shutter.as_ref().map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
+    let (mut org, mut dir, falloff) = emitter.emit(&emitter.light_at(world, time), a, b);
     let mut power = Vec3A::ONE;
     let depth = world.options.photons.trace_depth;
     let (mut reflections, mut refractions, mut events) = (0u32, 0u32, 0u32);
@@ -279,9 +293,9 @@ fn trace_photon(
         let mut from = org;
         for _ in 0..MAX_PASS {
             rays += 1;
-            let ray = Ray { mask: u32::MAX, origin: from, dir, tmin: 0.0, tmax: f32::INFINITY, time: 0.0 };
+            let ray = Ray { mask: u32::MAX, origin: from, dir, tmin: 0.0, tmax: f32::INFINITY, time };
             let Some(h) = accel.intersect(&ray) else { break };
-            let mut s = State { ray_type: RayType::Probe, org: from, dir, ..State::default() };
+            let mut s = State { ray_type: RayType::Probe, org: from, dir, time, ..State::default() };
             fill_state(world, &h, &mut s);
             let flags = world.instances[h.instance as usize].flags;
             let mode = if map == Map::Caustic { flags.caustic } else { flags.globillum };

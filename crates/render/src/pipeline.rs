@@ -134,7 +134,8 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 
 /// Stage 2, **build the world**: compiles the scene's shading with every library
 /// ([`material::compile_shading`]: plug-in shaders get stand-ins) and its MDL module
-/// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), and
+/// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), tabulates
+/// its `"shutter shape function"` shader ([`shader::shutter::tabulate_into`]), and
 /// translates the scene into the world the engines trace.
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
     let (mut shading, mut diagnostics) = material::compile_shading(scene, options);
@@ -142,6 +143,7 @@ pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf
     let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
     diagnostics.extend(mdl_diagnostics);
     material::module_stand_ins(&mut shading, scene, &mdl);
+    shader::shutter::tabulate_into(&mut shading, &scene.options, &mut diagnostics);
     let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }

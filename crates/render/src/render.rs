@@ -376,7 +376,7 @@ pub fn render_prepared_with_film(
                     // Motion blur: the sample's shutter time is the next dimension, so that a
                     // pixel's samples are stratified in (x, y, time) together; scenes where
                     // nothing moves draw none and keep their numbers.
-                    let time = world.shutter.map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
+                    let time = world.shutter.as_ref().map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
                     // The path engine samples the filter; the classic engine samples the
                     // pixel and splats.
                     let (raster, weight) = if classic.is_some() {

@@ -327,4 +327,10 @@ impl Tracer for SceneTracer<'_> {
     fn fg_cache(&self) -> Option<&shader::fgcache::FgCache> {
         self.fg_cache
     }
+
+    #[inline]
+    fn light_motion(&self, light: u32, time: f32) -> Option<glam::Affine3A> {
+        let keys = self.world.light_motion.get(light as usize)?;
+        (!keys.is_empty()).then(|| crate::motion::lerp_keys(keys, time))
+    }
 }

@@ -111,6 +111,12 @@ pub struct World {
     /// The shutter, when the scene renders motion blur and something moves while it is
     /// open (`None`: every ray sees the scene at shutter time 0 and draws no time).
     pub shutter: Option<Shutter>,
+    /// The scene's lights in scene order (the shading's `Tag::Light` numbers): the
+    /// world → world displacement keys of each light whose instance moves while the
+    /// shutter is open (as [`LightSource::motion`]), empty for a light that stays; empty
+    /// altogether when no light moves. The classic engine's light loop reads it
+    /// through [`shader::Tracer::light_motion`].
+    pub light_motion: Vec<Vec<Affine3A>>,
 }
 
 /// Divides the emission of materials given for their whole surface (MDL `lumen`,
@@ -275,9 +281,9 @@ impl World {
         }
         spread_emission(&mut materials, &meshes, &instances);
         let mut lights = Vec::new();
-        for l in &scene.lights {
+        for (index, l) in scene.lights.iter().enumerate() {
             match LightSource::in_scene_shaded(l, scene, shading) {
-                Ok(src) => lights.push((src, l.light_to_world, l.motion_light_to_world)),
+                Ok(src) => lights.push((src, index)),
                 Err(w) => warnings.push(w),
             }
         }
@@ -293,11 +299,20 @@ impl World {
             }
         }
         let mut camera = CameraModel::new(&scene.camera);
-        let shutter = Shutter::from_options(&scene.options, &mut warnings).filter(|shutter| {
-            let lights_move = set_light_keys(shutter, &mut lights, &mut warnings);
+        let mut light_motion = Vec::new();
+        let weights = shading.and_then(|s| s.shutter_weights.as_deref());
+        let shutter = Shutter::from_options(&scene.options, weights).filter(|shutter| {
+            light_motion = light_keys(shutter, scene, &mut warnings);
+            for (light, index) in &mut lights {
+                light.motion = light_motion[*index].clone();
+            }
+            let lights_move = light_motion.iter().any(|k| !k.is_empty());
             set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings) | lights_move
         });
-        let lights = lights.into_iter().map(|(l, _, _)| l).collect();
+        if shutter.is_none() || light_motion.iter().all(Vec::is_empty) {
+            light_motion = Vec::new();
+        }
+        let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
             meshes,
             instances,
@@ -309,6 +324,7 @@ impl World {
             warnings,
             has_cutouts,
             shutter,
+            light_motion,
         }
     }
 
@@ -355,6 +371,7 @@ fn set_motion_keys(
     warnings: &mut Vec<String>,
 ) -> bool {
     let limit = scene::sanity::WORLD_LIMIT as f32;
+    let steps = scene.options.motion_steps as usize;
     let placed_in_range = |m: &Affine3A| m.is_finite() && m.translation.abs().max_element() <= limit;
     let mut out_of_range = |what: String| {
         warnings.push(format!(
@@ -364,7 +381,7 @@ fn set_motion_keys(
     let mut moving = false;
     for inst in instances.iter_mut() {
         if let Some(end) = inst.motion_to_world.filter(|m| *m != inst.object_to_world) {
-            let keys = transform_keys(inst.object_to_world, end, shutter);
+            let keys = transform_keys(inst.object_to_world, end, shutter, steps);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 inst.keys = keys;
                 moving = true;
@@ -402,7 +419,7 @@ fn set_motion_keys(
     if let Some(end) = scene.camera.motion_world_to_camera {
         let end = affine(end).inverse();
         if end != camera.camera_to_world {
-            let keys = transform_keys(camera.camera_to_world, end, shutter);
+            let keys = transform_keys(camera.camera_to_world, end, shutter, steps);
             if keys.iter().all(|k| placed_in_range(k) && k.matrix3.determinant() != 0.0) {
                 camera.keys = keys;
                 moving = true;
@@ -414,33 +431,38 @@ fn set_motion_keys(
     moving
 }
 
-/// Keys over the shutter of the lights whose instances move (their world → world
-/// displacement from where they are at motion time 0); returns whether any moves.
-fn set_light_keys(
-    shutter: &Shutter,
-    lights: &mut [(LightSource, glam::DMat4, Option<glam::DMat4>)],
-    warnings: &mut Vec<String>,
-) -> bool {
-    let mut moving = false;
-    for (light, start, end) in lights.iter_mut() {
-        let Some(end) = end else { continue };
-        warnings.push(format!(
-            "light '{}' moves while the shutter is open: the path engine moves it, the classic engine's light \
-             shaders see it where it is at the shutter's opening",
-            light.name
-        ));
-        let (start, end) = (affine(*start), affine(*end));
-        let back = start.inverse();
-        let keys: Vec<Affine3A> = transform_keys(start, end, shutter).into_iter().map(|k| k * back).collect();
-        if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= scene::sanity::WORLD_LIMIT as f32)
-        {
-            warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.name));
-            continue;
-        }
-        light.motion = keys;
-        moving = true;
-    }
-    moving
+/// Keys over the shutter of each of the scene's lights (scene order) whose instance moves:
+/// its world → world displacement from where it is at motion time 0 (empty for a light
+/// that stays).
+fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> Vec<Vec<Affine3A>> {
+    let limit = scene::sanity::WORLD_LIMIT as f32;
+    let steps = scene.options.motion_steps as usize;
+    scene
+        .lights
+        .iter()
+        .map(|light| {
+            let Some(end) = light.motion_light_to_world else { return Vec::new() };
+            let (start, end) = (affine(light.light_to_world), affine(end));
+            if start == end {
+                return Vec::new();
+            }
+            let back = start.inverse();
+            let keys: Vec<Affine3A> =
+                transform_keys(start, end, shutter, steps).into_iter().map(|k| k * back).collect();
+            if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= limit) {
+                warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.instance));
+                return Vec::new();
+            }
+            if matches!(&light.area, Some(a) if matches!(a.shape, scene::AreaShape::Object { .. })) {
+                warnings.push(format!(
+                    "light '{}' moves while the shutter is open: the classic engine's light shaders see its object \
+                     light's triangles where they are at the shutter's opening (its position and direction move)",
+                    light.instance
+                ));
+            }
+            keys
+        })
+        .collect()
 }
 
 /// World-space positions of an instance's mesh at each key of its motion (the more keys of

@@ -106,6 +106,7 @@ fn world(
         user_buffers: Vec::new(),
         warnings: Vec::new(),
         shutter: None,
+        light_motion: Vec::new(),
     }
 }
 

@@ -284,6 +284,8 @@ pub struct Options {
     pub progressive: Progressive,
     /// String options (`"name" value`), last one wins.
     pub string_options: Attributes,
+    /// Where each string option's (last) statement is, for messages about its value.
+    pub string_option_spans: std::collections::HashMap<String, mi::Span>,
     /// Typed attributes (Iray).
     pub attributes: Attributes,
 }
@@ -334,6 +336,7 @@ impl Default for Options {
                 converged_pixel_ratio: 0.95,
             },
             string_options: Attributes::new(),
+            string_option_spans: Default::default(),
             attributes: Attributes::new(),
         }
     }
@@ -498,6 +501,7 @@ impl Options {
             if let Stmt::StringOption { name, value } = s {
                 if let Some(v) = AttrValue::from_value(value) {
                     o.string_options.insert(name.text.clone(), v);
+                    o.string_option_spans.insert(name.text.clone(), name.span);
                 }
             }
         }

@@ -34,6 +34,7 @@ pub mod photonmap;
 pub mod precomputed;
 pub mod registry;
 pub mod shading;
+pub mod shutter;
 pub mod state;
 pub mod texture;
 pub mod trace;

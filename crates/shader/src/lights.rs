@@ -19,10 +19,13 @@
 //! The light's result then passes through the volume of the medium the point is seen in
 //! ([`super::volume`]).
 
+use std::borrow::Cow;
+
 use glam::{Vec2, Vec3A};
 use scene::LightKind;
 
 use super::ctx::Ctx;
+use super::light::ShadingLight;
 use super::state::{RayType, State};
 use super::value::{Color, Tag, Value};
 
@@ -53,7 +56,19 @@ pub struct LightLoop {
     pub both_sides: bool,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    /// Light `light` (index into `Shading::lights`) where it is at this point's shutter
+    /// time (`state.time`): the scene's light itself when it does not move, else a copy
+    /// moved there with its instance ([`ShadingLight::moved`]). The light loop and light
+    /// shaders read their light through this.
+    pub fn light(&self, light: u32) -> Option<Cow<'a, ShadingLight>> {
+        let l = self.shading().lights.get(light as usize)?;
+        Some(match self.tracer.light_motion(light, self.state.time) {
+            None => Cow::Borrowed(l),
+            Some(by) => Cow::Owned(l.moved(by)),
+        })
+    }
+
     /// The lights a shader with light `mode` (0 listed, 1 listed ∩ all, 2 all but listed,
     /// 3 all, 4 the instance's light list) and light array `lights` uses.
     pub fn light_list(&self, mode: i32, lights: &Value) -> Vec<u32> {
@@ -144,7 +159,7 @@ impl Ctx<'_> {
     /// ends), else the sample if it reaches the point.
     fn user_light_sample(&mut self, lp: &LightLoop, i: u32) -> Option<Option<LightSample>> {
         let shading = self.shading();
-        let light = &shading.lights[lp.light as usize];
+        let light = self.light(lp.light)?;
         let shader = light.shader?;
         let p = self.state.point;
         let d = p - light.origin;
@@ -186,7 +201,7 @@ impl Ctx<'_> {
 
     fn light_sample(&mut self, lp: &LightLoop, i: u32, count: u32) -> Option<LightSample> {
         let shading = self.shading();
-        let light = &shading.lights[lp.light as usize];
+        let light = self.light(lp.light)?;
         let p = self.state.point;
         let (to_light, dist, on_light) = match (light.kind, &light.shape) {
             (LightKind::Directional, _) => (-light.direction, f32::INFINITY, p - light.direction * 1e30),

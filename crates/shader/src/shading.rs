@@ -94,6 +94,14 @@ pub struct Shading {
     /// The photon maps, once the renderer's photon pass made them (`caustic on`,
     /// `globillum on`); unset: `compute_irradiance` is final gathering alone.
     pub photons: std::sync::OnceLock<super::photonmap::PhotonMaps>,
+    /// The shader the string option `"shutter shape function"` names (mental ray 3.7:
+    /// the shutter's opening as a function of time), if it names one.
+    pub shutter_shape: Option<NodeId>,
+    /// That shader's result tabulated over the shutter interval, once the renderer
+    /// evaluated it (`shutter::tabulate_into`; how far the shutter is open at shutter
+    /// times `(i + ½) / n`); `None` when there is no such shader or it could not be used
+    /// (a warning says why).
+    pub shutter_weights: Option<Vec<f32>>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -235,6 +243,7 @@ impl Shading {
             cache: super::fgcache::CacheSettings::of_options(fg),
         };
         let volume = scene.camera.volume.as_ref().and_then(|v| b.list(v, None));
+        let shutter_shape = shutter_shape(&mut b, &scene.options, &mut diags);
         let (graph, graph_diags) = b.finish();
         diags.extend(graph_diags);
         let shading = Shading {
@@ -260,6 +269,8 @@ impl Shading {
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
             precomputed: Default::default(),
             photons: Default::default(),
+            shutter_shape,
+            shutter_weights: None,
         };
         (shading, diags)
     }
@@ -401,6 +412,33 @@ fn material(b: &mut Builder, m: &scene::Material, lib: &scene::Library, registry
         }
     }
     out
+}
+
+/// The shader the options' string option `"shutter shape function"` names, if it names
+/// one; a warning at the string option's statement when it names none (the full open/close
+/// shape is used then).
+fn shutter_shape(b: &mut Builder, options: &scene::Options, diags: &mut Vec<Diagnostic>) -> Option<NodeId> {
+    const OPTION: &str = "shutter shape function";
+    let value = options.string_options.get(OPTION)?;
+    let span = options.string_option_spans.get(OPTION).copied().unwrap_or_default();
+    let warn = |diags: &mut Vec<Diagnostic>, why: String| {
+        diags.push(Diagnostic::warning(
+            span,
+            format!(
+                "string option \"{OPTION}\" {why}: the shutter's shape is that of \"shutter full open\" and \
+                 \"shutter full close\""
+            ),
+        ))
+    };
+    let scene::values::AttrValue::Str(name) = value else {
+        warn(diags, "is not a shader's name".into());
+        return None;
+    };
+    let node = b.named(name, span);
+    if node.is_none() {
+        warn(diags, format!("names '{name}', which is no shader"));
+    }
+    node
 }
 
 /// Iray: the shader named by the options attribute `environment_function` (the scene's

@@ -60,4 +60,14 @@ pub trait Tracer {
     fn fg_cache(&self) -> Option<&super::fgcache::FgCache> {
         None
     }
+
+    /// Where light `light` (its index in `Shading::lights`) has moved to at shutter time
+    /// `time` (see `State::time`): the world → world displacement from where the light is
+    /// at the shutter's opening, or `None` when the light does not move (motion blur off,
+    /// or its instance has no motion). Shading places the light with it
+    /// ([`super::light::ShadingLight::moved`]).
+    fn light_motion(&self, light: u32, time: f32) -> Option<glam::Affine3A> {
+        let _ = (light, time);
+        None
+    }
 }

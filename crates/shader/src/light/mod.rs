@@ -46,3 +46,30 @@ pub struct ShadingLight {
     /// Photon emission, if the light has `energy`.
     pub photons: Option<crate::photonmap::LightPhotons>,
 }
+
+impl ShadingLight {
+    /// This light displaced by `by` (world → world, the light instance's motion at some
+    /// time; see [`crate::Tracer::light_motion`]): its position, its direction, its frame
+    /// for light profiles and its area shape move with it. `by` is a rigid motion (as
+    /// mental ray moves an instance: rotation, translation, and a scale that moves with
+    /// them): directions turn with its rotation and area shapes' edges scale with it. An
+    /// object light's triangles ([`Shape::Mesh`]) stay where they are (the renderer warns).
+    pub fn moved(&self, by: glam::Affine3A) -> ShadingLight {
+        let (_, rotation, _) = by.to_scale_rotation_translation();
+        let turn = glam::Mat3A::from_quat(rotation);
+        let edge = |v: glam::Vec3A| by.transform_vector3a(v);
+        let shape = self.shape.as_ref().map(|shape| match shape {
+            Shape::Point | Shape::Sphere { .. } | Shape::Mesh(_) => shape.clone(),
+            &Shape::Rect { u, v, normal } => Shape::Rect { u: edge(u), v: edge(v), normal: turn * normal },
+            &Shape::Disc { normal, radius } => Shape::Disc { normal: turn * normal, radius },
+            &Shape::Cylinder { axis, radius } => Shape::Cylinder { axis: edge(axis), radius },
+        });
+        ShadingLight {
+            origin: by.transform_point3a(self.origin),
+            direction: (turn * self.direction).normalize_or(self.direction),
+            to_local: self.to_local * turn.transpose(),
+            shape,
+            ..self.clone()
+        }
+    }
+}
