@@ -38,6 +38,7 @@ pub mod state;
 pub mod texture;
 pub mod trace;
 pub mod tracer;
+pub mod user_data;
 pub mod value;
 pub mod volume;
 

@@ -68,6 +68,11 @@ pub struct Shading {
     pub lights: Vec<ShadingLight>,
     /// Each scene instance's light list (mode 4).
     pub instance_lights: Vec<Option<LightLink>>,
+    /// The scene's user data elements (`Tag::Data`), read as written.
+    pub data: Vec<super::user_data::UserData>,
+    /// For each scene instance, the user data its object carries (indices into
+    /// [`Shading::data`], in the order of the object's `data` statements).
+    pub instance_data: Vec<Vec<u32>>,
     /// The camera's environment shader list.
     pub environment: Option<NodeId>,
     /// The camera's volume shader list (the atmosphere rays outside any object's volume
@@ -161,12 +166,23 @@ impl Shading {
         for (i, name) in lib.data.keys().enumerate() {
             names.data.insert(name.clone(), i as u32);
         }
+        let data_index = names.data.clone();
+        let mut unknown_data = Vec::new();
+        for o in &scene.objects {
+            for n in o.data.iter().filter(|n| !data_index.contains_key(n.as_str())) {
+                unknown_data.push(Diagnostic::warning(
+                    o.span,
+                    format!("object '{}': data '{n}' is not defined; it is left out", o.name),
+                ));
+            }
+        }
         for (i, name) in lib.lightprofiles.keys().enumerate() {
             names.lightprofiles.insert(name.clone(), i as u32);
         }
         let profile_names = names.lightprofiles.clone();
         let mut b = Builder::new(&decls, &lib.shaders, names);
         let (lightprofiles, mut diags) = crate::light::profiles::load_all(lib, &options.search);
+        diags.append(&mut unknown_data);
 
         let mut textures = Vec::with_capacity(lib.textures.len());
         for t in lib.textures.values() {
@@ -244,6 +260,15 @@ impl Shading {
             materials,
             lights,
             instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
+            data: lib.data.values().map(super::user_data::UserData::read).collect(),
+            instance_data: scene
+                .instances
+                .iter()
+                .map(|i| {
+                    let names = scene.objects.get(i.object as usize).map_or(&[][..], |o| &o.data[..]);
+                    names.iter().filter_map(|n| data_index.get(n.as_str()).copied()).collect()
+                })
+                .collect(),
             environment,
             volume,
             lens,
