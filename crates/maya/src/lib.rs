@@ -24,13 +24,14 @@
 //! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
 //! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
-//! for the image), [`standin`] (the colour of an unknown plug-in shader). Their
-//! path-engine translation (materials and lights) is in the `material` crate (`maya`
-//! module).
+//! for the image), [`glow`] (`maya_shaderglow`'s post pass on the image), [`standin`]
+//! (the colour of an unknown plug-in shader). Their path-engine translation (materials
+//! and lights) is in the `material` crate (`maya` module).
 //!
 //! [`REGISTRY`] lists every implementation.
 
 pub mod engine;
+pub mod glow;
 pub mod layered;
 pub mod layered_shader;
 pub mod light;
