@@ -94,6 +94,12 @@ pub struct Shading {
     pub resolution: (u32, u32),
     /// World → camera space.
     pub world_to_camera: glam::Affine3A,
+    /// Half the width and height of the camera's image plane at distance 1 in front of it
+    /// (the tangents of the half fields of view); for an orthographic camera, half the
+    /// view's width and height in camera units.
+    pub image_plane: glam::Vec2,
+    /// The camera is orthographic.
+    pub orthographic: bool,
     /// Data shader nodes compute once per render (pre-blurred environments).
     pub precomputed: super::precomputed::Precomputed,
     /// The photon maps, once the renderer's photon pass made them (`caustic on`,
@@ -283,6 +289,12 @@ impl Shading {
             seed: options.seed,
             resolution: scene.camera.resolution,
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
+            image_plane: {
+                let c = &scene.camera;
+                let half_width = 0.5 * c.aperture / c.focal.unwrap_or(1.0).abs().max(1e-12);
+                glam::Vec2::new(half_width as f32, (half_width / c.aspect.abs().max(1e-12)) as f32)
+            },
+            orthographic: scene.camera.focal.is_none(),
             precomputed: Default::default(),
             photons: Default::default(),
         };
