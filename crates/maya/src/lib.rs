@@ -21,15 +21,17 @@
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`projection`]
-//! (projection, envSphere), [`utility`], [`light`] (point, spot, directional, ambient,
+//! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
+//! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
-//! for the image), [`standin`] (the colour of an unknown plug-in shader). Their
-//! path-engine translation (materials and lights) is in the `material` crate (`maya`
-//! module).
+//! for the image), [`glow`] (`maya_shaderglow`'s post pass on the image), [`standin`]
+//! (the colour of an unknown plug-in shader). Their path-engine translation (materials
+//! and lights) is in the `material` crate (`maya` module).
 //!
 //! [`REGISTRY`] lists every implementation.
 
 pub mod engine;
+pub mod glow;
 pub mod layered;
 pub mod layered_shader;
 pub mod light;
@@ -45,6 +47,7 @@ pub mod texture;
 pub mod texture3d;
 pub mod utility;
 mod values;
+pub mod vertex_data;
 
 use shader::{Library, ShaderImpl};
 
@@ -151,6 +154,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &utility::ADSK_VECTORPRODUCT,
     &utility::SAMPLERINFO,
     &utility::ADSK_SAMPLERINFO,
+    &vertex_data::UVCHOOSER,
+    &vertex_data::ADSK_UVCHOOSER,
+    &vertex_data::VERTEXCOLORS,
+    &vertex_data::ADSK_VERTEXCOLORS,
     &light::POINT,
     &light::ADSK_POINT,
     &light::SPOT,

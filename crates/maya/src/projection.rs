@@ -13,10 +13,14 @@
 //! | 2 spherical | (½ + φ/uAngle, ½ + λ/vAngle), φ = atan2(x, z) the longitude about Y from +Z, λ = asin(y/‖p‖) the latitude |
 //! | 3 cylindrical | (½ + φ/uAngle, (y + 1)/2) |
 //! | 4 ball | ½ + ½ (θ/π) (x, y)/‖(x, y)‖, θ the angle of p from +Z |
-//! | 5 cubic | planar along the axis on which p is largest: (YZ, XZ or XY) |
+//! | 5 cubic | planar along the axis on which p is largest: (z, y), (x, z) or (x, y) |
+//! | 6 triplanar | the cubic layout, the plane chosen by the largest component of the surface normal n (placement space) instead of p |
+//! | 7 concentric | (fract ‖p‖, fract ‖p‖): the image's diagonal repeated over shells one placement unit apart about the origin |
+//! | 8 perspective (camera) | the point's position in the render camera's image: (½ + ½ (x_c/−z_c)/h_x, ½ + ½ (y_c/−z_c)/h_y), p_c in camera space, h the image plane's half size at distance 1 (orthographic cameras: x_c/h_x, y_c/h_y); behind the camera: `defaultColor` |
 //!
-//! Triplanar (6), concentric (7) and perspective (8) projections, and `projType` 0
-//! (off), return `defaultColor`. envSphere: `image` wrapped over the sphere of
+//! The perspective projection uses the render camera, not a linked camera (exports'
+//! `linkedCamera`, `fitType` and `fitFill` are not read), and ignores the placement.
+//! `projType` 0 (off) returns `defaultColor`. envSphere: `image` wrapped over the sphere of
 //! directions, the ray direction d (world) giving u = ½ + atan2(d_x, −d_z)/2π (the −Z
 //! axis at the centre of the image), v = ½ + asin(d_y)/π, sheared by `shearU`,
 //! `shearV` (u += shearU·v, v += shearV·u) and mirrored in u by `flip`. The layouts are
@@ -27,8 +31,8 @@ use glam::{Vec2, Vec3A};
 use shader::{Ctx, NodeId, Value};
 
 use crate::maya_shader;
-use crate::texture::{balance, outside};
-use crate::texture3d::{placement_point, texture3d_params, EXTRA};
+use crate::texture::{at_uv, balance, outside};
+use crate::texture3d::{placement_matrix, placement_point, texture3d_params, EXTRA};
 use crate::values::{rgb, rgba, write_struct};
 
 /// The surface coordinate of placement-space point `p` under `proj_type` (Maya's
@@ -36,9 +40,8 @@ use crate::values::{rgb, rgba, write_struct};
 /// does not lay out (and 0, off).
 pub fn project(proj_type: i32, p: Vec3A, u_angle: f32, v_angle: f32) -> Option<Vec2> {
     let span = |deg: f32| deg.to_radians().abs().max(1e-4);
-    let planar = |a: f32, b: f32| Vec2::new(0.5 * (a + 1.0), 0.5 * (b + 1.0));
     match proj_type {
-        1 => Some(planar(p.x, p.y)),
+        1 => Some(cube_face(p, Vec3A::Z)),
         2 => {
             let r = p.length();
             if r <= 0.0 {
@@ -56,33 +59,54 @@ pub fn project(proj_type: i32, p: Vec3A, u_angle: f32, v_angle: f32) -> Option<V
             let dir = xy.try_normalize().unwrap_or(Vec2::ZERO);
             Some(Vec2::splat(0.5) + 0.5 * (theta / std::f32::consts::PI) * dir)
         }
-        5 => {
-            let a = p.abs();
-            Some(if a.x >= a.y && a.x >= a.z {
-                planar(p.z, p.y)
-            } else if a.y >= a.z {
-                planar(p.x, p.z)
-            } else {
-                planar(p.x, p.y)
-            })
+        5 => Some(cube_face(p, p)),
+        7 => {
+            let r = p.length().fract();
+            Some(Vec2::splat(r))
         }
         _ => None,
     }
 }
 
+/// The triplanar layout of placement-space point `p` on a surface of placement-space
+/// normal `n`: the cubic layout of the plane `n` is most nearly perpendicular to.
+pub fn triplanar(p: Vec3A, n: Vec3A) -> Vec2 {
+    cube_face(p, n)
+}
+
+/// The planar layout of `p` on the cube face `axis` points at most nearly: (z, y) for
+/// ±X, (x, z) for ±Y, (x, y) for ±Z, each mapped from [−1, 1] to [0, 1].
+fn cube_face(p: Vec3A, axis: Vec3A) -> Vec2 {
+    let planar = |a: f32, b: f32| Vec2::new(0.5 * (a + 1.0), 0.5 * (b + 1.0));
+    let a = axis.abs();
+    if a.x >= a.y && a.x >= a.z {
+        planar(p.z, p.y)
+    } else if a.y >= a.z {
+        planar(p.x, p.z)
+    } else {
+        planar(p.x, p.y)
+    }
+}
+
+/// The position of camera-space point `p_camera` in the camera's image as (u, v) in
+/// [0, 1]² across the image (v up), for an image plane of half size `half` at distance 1
+/// (orthographic: the view's half size); `None` behind a perspective camera.
+pub fn camera_uv(p_camera: Vec3A, half: Vec2, orthographic: bool) -> Option<Vec2> {
+    let s = if orthographic {
+        Vec2::new(p_camera.x, p_camera.y)
+    } else {
+        if p_camera.z >= 0.0 {
+            return None;
+        }
+        Vec2::new(p_camera.x, p_camera.y) / -p_camera.z
+    };
+    Some(Vec2::splat(0.5) + 0.5 * s / half.max(Vec2::splat(1e-6)))
+}
+
 /// Evaluates colour parameter `i` of `n` (a connected 2D texture) at surface coordinate
-/// `uv`: the first texture space is replaced while it runs, and the shader cache flushed
-/// before and after so that nothing computed at the true coordinate is reused.
+/// `uv` (the first texture space replaced while it runs).
 fn image_at(ctx: &mut Ctx, n: NodeId, i: usize, uv: Vec2) -> shader::Color {
-    let (saved, saved_count) = (ctx.state.tex_list[0], ctx.state.tex_count);
-    ctx.flush_cache();
-    ctx.state.tex_list[0] = Vec3A::new(uv.x, uv.y, 0.0);
-    ctx.state.tex_count = saved_count.max(1);
-    let c = ctx.color(n, i);
-    ctx.flush_cache();
-    ctx.state.tex_list[0] = saved;
-    ctx.state.tex_count = saved_count;
-    c
+    at_uv(ctx, Vec3A::new(uv.x, uv.y, 0.0), |c| c.color(n, i))
 }
 
 maya_shader!(
@@ -99,7 +123,21 @@ fn projection(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(p) = placement_point(ctx, n) else { return outside(ctx, n, out) };
     let kind = ctx.int(n, EXTRA);
     let (ua, va) = (ctx.scalar(n, EXTRA + 2), ctx.scalar(n, EXTRA + 3));
-    let Some(uv) = project(kind, p, ua, va) else { return outside(ctx, n, out) };
+    let uv = match kind {
+        6 => {
+            // Normals go to placement space by the inverse transpose of the placement.
+            let m = placement_matrix(&ctx.eval(n, 0));
+            let normal = Vec3A::from(m.inverse().transpose().transform_vector3(ctx.state.normal.into()));
+            Some(triplanar(p, normal))
+        }
+        8 => {
+            let shading = ctx.shading();
+            let p_camera = shading.world_to_camera.transform_point3a(ctx.state.point);
+            camera_uv(p_camera, shading.image_plane, shading.orthographic)
+        }
+        _ => project(kind, p, ua, va),
+    };
+    let Some(uv) = uv else { return outside(ctx, n, out) };
     let c = image_at(ctx, n, EXTRA + 1, uv);
     balance(ctx, n, rgb(c), c.w, out)
 }
@@ -162,8 +200,32 @@ mod tests {
         close(project(4, Vec3A::X, 0.0, 0.0).unwrap(), Vec2::new(0.75, 0.5));
         // Cubic: the largest axis picks the plane.
         close(project(5, Vec3A::new(0.9, 0.2, -0.4), 0.0, 0.0).unwrap(), Vec2::new(0.3, 0.6));
-        assert_eq!(project(6, Vec3A::X, 180.0, 90.0), None);
+        assert_eq!(project(6, Vec3A::X, 180.0, 90.0), None, "triplanar needs the normal");
         assert_eq!(project(0, Vec3A::X, 180.0, 90.0), None);
+    }
+
+    /// Triplanar, concentric and perspective layouts of points worked out by hand.
+    #[test]
+    fn triplanar_concentric_and_perspective_layouts() {
+        // Triplanar: a point far out in x on a surface facing +Y lies on the XZ plane
+        // (cubic would pick the YZ plane by the point).
+        let p = Vec3A::new(0.9, 0.2, -0.4);
+        close(triplanar(p, Vec3A::Y), Vec2::new(0.95, 0.3));
+        close(triplanar(p, Vec3A::new(-0.8, 0.1, 0.3)), project(5, p, 0.0, 0.0).unwrap());
+        close(triplanar(p, Vec3A::new(0.1, 0.2, -0.9)), Vec2::new(0.95, 0.6));
+        // Concentric: ‖(0.6, 0.8, 0)‖ = 1 starts the next shell; ‖(0, 1.5, 2)‖ = 2.5.
+        close(project(7, Vec3A::new(0.3, 0.4, 0.0), 0.0, 0.0).unwrap(), Vec2::splat(0.5));
+        close(project(7, Vec3A::new(0.0, 1.5, 2.0), 0.0, 0.0).unwrap(), Vec2::splat(0.5));
+        close(project(7, Vec3A::new(0.0, 0.0, -1.25), 0.0, 0.0).unwrap(), Vec2::splat(0.25));
+        // Perspective: a 90° × 60° view (half size 1 × tan 30°). On the axis: the centre;
+        // at 45° right: the right edge; x_c = 0.5, y_c = −tan 30° / 2 at z_c = −1: (¾, ¼).
+        let half = Vec2::new(1.0, 30f32.to_radians().tan());
+        close(camera_uv(Vec3A::new(0.0, 0.0, -5.0), half, false).unwrap(), Vec2::splat(0.5));
+        close(camera_uv(Vec3A::new(3.0, 0.0, -3.0), half, false).unwrap(), Vec2::new(1.0, 0.5));
+        close(camera_uv(Vec3A::new(1.0, -half.y, -2.0), half, false).unwrap(), Vec2::new(0.75, 0.25));
+        assert_eq!(camera_uv(Vec3A::new(0.0, 0.0, 1.0), half, false), None, "behind the camera");
+        // Orthographic: the view's half size 2 × 1; depth does not matter.
+        close(camera_uv(Vec3A::new(1.0, 0.5, 7.0), Vec2::new(2.0, 1.0), true).unwrap(), Vec2::new(0.75, 0.75));
     }
 
     #[test]

@@ -365,26 +365,41 @@ maya_shader!(
     bump2d
 );
 
-fn bump2d(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let base = if ctx.is_connected(n, 2) {
-        ctx.vector(n, 2).try_normalize().unwrap_or(ctx.state.normal)
+/// The normal (world space) a bump node starts from: its connected `normalCamera`
+/// (parameter `i`), else the shading normal.
+pub(crate) fn bump_base_normal(ctx: &mut Ctx, n: NodeId, i: usize) -> Vec3A {
+    if ctx.is_connected(n, i) {
+        ctx.vector(n, i).try_normalize().unwrap_or(ctx.state.normal)
     } else {
         ctx.state.normal
-    };
+    }
+}
+
+/// Runs `f` with the first texture space's coordinate replaced by `uv` (the shader cache
+/// flushed before and after, so that nothing computed at the true coordinate is reused),
+/// then restores the coordinate.
+pub(crate) fn at_uv<T>(ctx: &mut Ctx, uv: Vec3A, f: impl FnOnce(&mut Ctx) -> T) -> T {
+    let (saved, saved_count) = (ctx.state.tex_list[0], ctx.state.tex_count);
+    ctx.flush_cache();
+    ctx.state.tex_list[0] = uv;
+    ctx.state.tex_count = saved_count.max(1);
+    let result = f(ctx);
+    ctx.flush_cache();
+    ctx.state.tex_list[0] = saved;
+    ctx.state.tex_count = saved_count;
+    result
+}
+
+fn bump2d(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let base = bump_base_normal(ctx, n, 2);
     let depth = ctx.scalar(n, 1);
     let [pu, pv] = ctx.state.derivs;
     let area = pu.cross(pv).length();
     let normal = if depth != 0.0 && area > 0.0 && ctx.is_connected(n, 0) && ctx.state.tex_count > 0 {
-        let saved = ctx.state.tex_list[0];
+        let uv = ctx.state.tex_list[0];
         let h = ctx.scalar(n, 0);
-        ctx.flush_cache();
-        ctx.state.tex_list[0] = saved + Vec3A::new(BUMP_STEP, 0.0, 0.0);
-        let hu = (ctx.scalar(n, 0) - h) / BUMP_STEP;
-        ctx.flush_cache();
-        ctx.state.tex_list[0] = saved + Vec3A::new(0.0, BUMP_STEP, 0.0);
-        let hv = (ctx.scalar(n, 0) - h) / BUMP_STEP;
-        ctx.flush_cache();
-        ctx.state.tex_list[0] = saved;
+        let hu = (at_uv(ctx, uv + Vec3A::new(BUMP_STEP, 0.0, 0.0), |c| c.scalar(n, 0)) - h) / BUMP_STEP;
+        let hv = (at_uv(ctx, uv + Vec3A::new(0.0, BUMP_STEP, 0.0), |c| c.scalar(n, 0)) - h) / BUMP_STEP;
         let tilt = depth * (hv * pu.cross(base) + hu * base.cross(pv)) / area;
         (base + tilt).try_normalize().unwrap_or(base)
     } else {

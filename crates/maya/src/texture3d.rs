@@ -47,7 +47,7 @@ use shader::{Ctx, NodeId, Value};
 
 use crate::maya_shader;
 use crate::noise::gradient_noise;
-use crate::texture::{balance, outside};
+use crate::texture::{balance, bump_base_normal, outside};
 use crate::values::{rgb, write_struct};
 
 /// Parameters every 3D texture reads first, in this order (the colour balance at the
@@ -279,11 +279,7 @@ maya_shader!(
 );
 
 fn bump3d(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let base = if ctx.is_connected(n, 2) {
-        ctx.vector(n, 2).try_normalize().unwrap_or(ctx.state.normal)
-    } else {
-        ctx.state.normal
-    };
+    let base = bump_base_normal(ctx, n, 2);
     let depth = ctx.scalar(n, 1);
     let normal = if depth != 0.0 && ctx.is_connected(n, 0) {
         let saved = ctx.state.point;

@@ -149,6 +149,10 @@ pub fn run(args: &MergeArgs) -> ExitCode {
             return err(format!("cannot read part {}: {e}", path.display()));
         }
     }
+    // The camera's output shaders (Maya's glow) on the reassembled image.
+    for w in render::output_shaders::run(&mut film, &sc.camera, &sc.library) {
+        eprintln!("mira: warning: {w}");
+    }
     let tone = ToneMapper::for_camera(&sc.camera, &sc.library, info.classic);
     // -o's format by its extension, with the buffers the scene's outputs ask for.
     let targets = match output::targets(&sc.camera, Some(&args.output), &info.scene) {

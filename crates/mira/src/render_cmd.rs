@@ -485,6 +485,9 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         // Strips: rendered and written one after the other (stage 4 and 6 together).
         // `choose_strips` made sure there is exactly one target, an EXR file.
         let target = targets.first().cloned().ok_or_else(|| err("no image to write".into()))?;
+        if sc.camera.outputs.iter().any(|o| matches!(o, scene::camera::Output::Shader { .. })) {
+            eprintln!("mira: warning: output shaders are not run on an image rendered in strips");
+        }
         let on_progress = |p: render::Progress| {
             if let Some(bar) = &bar {
                 bar.set_position(u64::from(p.samples));
@@ -567,7 +570,7 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             last_preview = Instant::now();
         }
     };
-    let (film, stats) = pool.install(|| {
+    let (mut film, stats) = pool.install(|| {
         render::render::render_prepared_with_film(
             world,
             accel.as_ref(),
@@ -636,6 +639,10 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             }
         }
     } else {
+        // The camera's output shaders (Maya's glow) on the whole image.
+        for w in render::output_shaders::run(&mut film, &sc.camera, &sc.library) {
+            eprintln!("mira: warning: {w}");
+        }
         // Outputs: -o, else the camera's file outputs and file frame buffers, else
         // SCENE.exr; numbered per frame with --frames.
         for target in &targets {

@@ -201,6 +201,19 @@ impl Film {
         }
     }
 
+    /// Replaces the colour buffer by `rgba` (RGBA per pixel, rows from the top: a post
+    /// pass's result); each pixel then resolves to its new value, with its sample weight
+    /// kept (1 for a pixel no sample reached).
+    pub fn set_rgba(&mut self, rgba: &[[f32; 4]]) {
+        self.splat.clear();
+        for (p, c) in self.pixels.iter_mut().zip(rgba) {
+            if p.weight <= 0.0 {
+                p.weight = 1.0;
+            }
+            p.sum = c.map(|v| f64::from(v) * p.weight);
+        }
+    }
+
     /// The colour buffer, RGBA per pixel, row by row from the top.
     pub fn rgba(&self) -> Vec<[f32; 4]> {
         if self.splat.is_empty() {

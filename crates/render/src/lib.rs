@@ -16,8 +16,9 @@
 //!    image, of one [`part`] of it, or of one of the [`strips`] of rows an image too large
 //!    for one film is rendered in ([`Settings`]); [`render::render`] runs stages 3 and 4.
 //! 5. **film** — [`film::Film`]: the per-pixel accumulators and the frame buffers made from
-//!    them (colour, depth, normals, labels, motion, user buffers); [`tonemap`] maps colour
-//!    for 8-bit files.
+//!    them (colour, depth, normals, labels, motion, user buffers); [`output_shaders`] runs
+//!    the camera's output shaders on it (Maya's glow); [`tonemap`] maps colour for 8-bit
+//!    files.
 //! 6. **write** — the `mira` command's `output` module writes the film's buffers to image
 //!    files (and a part's to a partial EXR that `mira merge` reassembles).
 //!
@@ -37,6 +38,7 @@ pub mod integrator;
 pub mod light;
 pub mod mesh;
 pub mod motion;
+pub mod output_shaders;
 pub mod part;
 pub mod photons;
 pub mod pipeline;

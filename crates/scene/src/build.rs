@@ -191,6 +191,23 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
 }
 
 /// An instgroup path for a message: all of it when short, else its two ends.
+/// The data element names of an object's `data` statements, in order (`data null`
+/// clears those before it).
+fn data_names(stmts: &[&Stmt]) -> Vec<String> {
+    let mut names = Vec::new();
+    for s in stmts {
+        if let Stmt::Kw(k) = s {
+            if k.key == "data" {
+                match k.args.first() {
+                    Some(Arg::Name(n)) => names.push(n.text.clone()),
+                    _ => names.clear(),
+                }
+            }
+        }
+    }
+    names
+}
+
 fn path_text(path: &[String]) -> String {
     if path.len() <= 8 {
         return path.join(" -> ");
@@ -475,6 +492,7 @@ impl<'a> Builder<'a, '_> {
                     flags: FlagSet::read(stmts.iter().copied(), FlagOwner::Object),
                     tagged: tagged.unwrap_or(false),
                     tag,
+                    data: data_names(&stmts),
                     geometry,
                     span: defs[0].span,
                 });

@@ -65,6 +65,9 @@ pub struct Object {
     pub tagged: bool,
     /// `tag` (label for the tag frame buffer).
     pub tag: Option<i64>,
+    /// The user data elements its `data` statements name (full names into
+    /// [`Library::data`], in the order written; `data null` clears the list).
+    pub data: Vec<String>,
     /// The tessellated geometry.
     pub geometry: ObjectGeometry,
     /// Where the object is defined.

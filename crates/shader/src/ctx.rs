@@ -68,6 +68,14 @@ impl<'a> Ctx<'a> {
         self.shading
     }
 
+    /// The user data elements the hit instance's object carries (its `data` statements),
+    /// in the order written.
+    pub fn object_data(&self) -> impl Iterator<Item = &'a super::user_data::UserData> + 'a {
+        let shading = self.shading;
+        let indices = shading.instance_data.get(self.state.instance as usize).map_or(&[][..], Vec::as_slice);
+        indices.iter().filter_map(move |&i| shading.data.get(i as usize))
+    }
+
     /// The node `node`.
     pub fn node(&self, node: NodeId) -> &'a Node {
         &self.shading.graph.nodes[node as usize]

@@ -39,6 +39,7 @@ pub mod state;
 pub mod texture;
 pub mod trace;
 pub mod tracer;
+pub mod user_data;
 pub mod value;
 pub mod volume;
 

@@ -68,6 +68,11 @@ pub struct Shading {
     pub lights: Vec<ShadingLight>,
     /// Each scene instance's light list (mode 4).
     pub instance_lights: Vec<Option<LightLink>>,
+    /// The scene's user data elements (`Tag::Data`), read as written.
+    pub data: Vec<super::user_data::UserData>,
+    /// For each scene instance, the user data its object carries (indices into
+    /// [`Shading::data`], in the order of the object's `data` statements).
+    pub instance_data: Vec<Vec<u32>>,
     /// The camera's environment shader list.
     pub environment: Option<NodeId>,
     /// The camera's volume shader list (the atmosphere rays outside any object's volume
@@ -89,6 +94,12 @@ pub struct Shading {
     pub resolution: (u32, u32),
     /// World → camera space.
     pub world_to_camera: glam::Affine3A,
+    /// Half the width and height of the camera's image plane at distance 1 in front of it
+    /// (the tangents of the half fields of view); for an orthographic camera, half the
+    /// view's width and height in camera units.
+    pub image_plane: glam::Vec2,
+    /// The camera is orthographic.
+    pub orthographic: bool,
     /// Data shader nodes compute once per render (pre-blurred environments).
     pub precomputed: super::precomputed::Precomputed,
     /// The photon maps, once the renderer's photon pass made them (`caustic on`,
@@ -169,12 +180,23 @@ impl Shading {
         for (i, name) in lib.data.keys().enumerate() {
             names.data.insert(name.clone(), i as u32);
         }
+        let data_index = names.data.clone();
+        let mut unknown_data = Vec::new();
+        for o in &scene.objects {
+            for n in o.data.iter().filter(|n| !data_index.contains_key(n.as_str())) {
+                unknown_data.push(Diagnostic::warning(
+                    o.span,
+                    format!("object '{}': data '{n}' is not defined; it is left out", o.name),
+                ));
+            }
+        }
         for (i, name) in lib.lightprofiles.keys().enumerate() {
             names.lightprofiles.insert(name.clone(), i as u32);
         }
         let profile_names = names.lightprofiles.clone();
         let mut b = Builder::new(&decls, &lib.shaders, names);
         let (lightprofiles, mut diags) = crate::light::profiles::load_all(lib, &options.search);
+        diags.append(&mut unknown_data);
 
         let mut textures = Vec::with_capacity(lib.textures.len());
         for t in lib.textures.values() {
@@ -253,6 +275,15 @@ impl Shading {
             materials,
             lights,
             instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
+            data: lib.data.values().map(super::user_data::UserData::read).collect(),
+            instance_data: scene
+                .instances
+                .iter()
+                .map(|i| {
+                    let names = scene.objects.get(i.object as usize).map_or(&[][..], |o| &o.data[..]);
+                    names.iter().filter_map(|n| data_index.get(n.as_str()).copied()).collect()
+                })
+                .collect(),
             environment,
             volume,
             lens,
@@ -267,6 +298,12 @@ impl Shading {
             seed: options.seed,
             resolution: scene.camera.resolution,
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
+            image_plane: {
+                let c = &scene.camera;
+                let half_width = 0.5 * c.aperture / c.focal.unwrap_or(1.0).abs().max(1e-12);
+                glam::Vec2::new(half_width as f32, (half_width / c.aspect.abs().max(1e-12)) as f32)
+            },
+            orthographic: scene.camera.focal.is_none(),
             precomputed: Default::default(),
             photons: Default::default(),
             shutter_shape,

@@ -114,7 +114,7 @@ pub fn emission_scaled(
         return Err(format!("light '{}': its shader cannot be found", light.name));
     };
     // Maya's lights (see [`maya`]).
-    if let Some(maya) = maya::emission_of(declaration_name(decl), params) {
+    if let Some(maya) = maya::emission_of(declaration_name(decl), params, light.light_to_world) {
         return maya;
     }
     let color = |name: &str, default: Rgb| match color_param(params, name) {

@@ -96,6 +96,7 @@ impl<'a> Builder<'a, '_> {
                         flags: shape_flags(),
                         tagged: false,
                         tag: None,
+                        data: Vec::new(),
                         geometry: ObjectGeometry { mesh, hair: Vec::new() },
                         span: call.span,
                     });
