@@ -11,12 +11,14 @@ pub mod conductor;
 pub mod dielectric;
 pub mod frame;
 mod lambert;
+pub mod layer_curve;
 pub mod lobes;
 pub mod mia;
 pub mod microfacet;
 mod oren_nayar;
 pub mod reflectance;
 pub mod sheen;
+pub mod sheen_albedo;
 pub mod unified;
 
 pub use builtin::BuiltinBsdf;
@@ -25,7 +27,8 @@ pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use frame::Frame;
 pub use lambert::Lambert;
-pub use lobes::{Lobe, Lobes};
+pub use layer_curve::{CurveKind, LayerCurve};
+pub use lobes::{Lobe, Lobes, Role};
 pub use mia::MiaBsdf;
 pub use oren_nayar::OrenNayar;
 pub use unified::{Unified, UnifiedParams};
@@ -129,7 +132,8 @@ impl Bsdf {
     #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
-            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) | Bsdf::Lobes(_) => false,
+            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
+            Bsdf::Lobes(l) => l.is_delta(),
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
             Bsdf::Conductor(c) => c.ggx.is_smooth(),
             Bsdf::Mia(m) => m.is_delta(),

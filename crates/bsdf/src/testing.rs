@@ -26,6 +26,24 @@ pub fn r3(i: u32) -> (Vec2, f32) {
     (Vec2::new(a as f32, b as f32), c as f32)
 }
 
+/// Three directions of incidence the standard checks use: normal, 37° and 72° (local
+/// frame, z up).
+pub fn incidences() -> [Vec3A; 3] {
+    [Vec3A::Z, Vec3A::new(0.6, 0.0, 0.8), Vec3A::new(0.0, 0.95, 0.312_25).normalize()]
+}
+
+/// The standard checks of a BSDF: reciprocity to 1e-4, an albedo of at most `max_albedo`
+/// at every one of [`incidences`] (50 000 samples; `what` names the case), and chi-square
+/// sampling of its density there.
+pub fn standard_checks(bsdf: &Bsdf, max_albedo: f32, what: &str) {
+    reciprocity(bsdf, 1e-4);
+    for wo in incidences() {
+        let a = albedo(bsdf, wo, 50_000);
+        assert!(a.max_element() <= max_albedo, "{what}: albedo {a:?} at {wo:?}");
+        chi_square(bsdf, wo);
+    }
+}
+
 /// Directions on the sphere for testing.
 fn directions() -> Vec<Vec3A> {
     (0..64)

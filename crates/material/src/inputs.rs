@@ -120,8 +120,10 @@ impl PartialEq for Evaluated {
 pub struct HitMaterial<'a> {
     /// Diffuse colour.
     pub diffuse: Rgb,
-    /// Emitted radiance.
+    /// Emitted radiance (towards the normal for a spot: see `emission_spot`).
     pub emission: Rgb,
+    /// The directional spread of the emission, if not Lambertian.
+    pub emission_spot: Option<crate::spot_edf::SpotEdf>,
     /// The scattering model with the point's parameters.
     pub model: Cow<'a, SurfaceModel>,
     /// Coverage.
@@ -193,6 +195,7 @@ impl SurfaceMaterial {
         HitMaterial {
             diffuse: self.diffuse,
             emission: self.emission,
+            emission_spot: self.emission_spot,
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
             normal: None,

@@ -22,6 +22,7 @@ pub mod inputs;
 pub mod maya;
 pub mod mdl_modules;
 mod reader;
+pub mod spot_edf;
 
 use mi::ast::{Num, Param, ShaderItem, Value};
 use scene::{Library, Material, MaterialKind};
@@ -135,6 +136,9 @@ pub struct SurfaceMaterial {
     /// `emission` is for the whole emitting surface (radiance × area, from MDL's `lumen`
     /// and `candela` units): the renderer divides it by the material's total area.
     pub emission_over_area: bool,
+    /// How the emission is spread over directions when it is not Lambertian (MDL's
+    /// `spot_edf`): the radiance towards a direction is `emission` times its factor.
+    pub emission_spot: Option<spot_edf::SpotEdf>,
     /// Parameters driven by shaders, evaluated at each hit.
     pub varying: Varying,
 }
@@ -154,6 +158,7 @@ impl SurfaceMaterial {
             model: SurfaceModel::Lambert,
             opacity: 1.0,
             emission_over_area: false,
+            emission_spot: None,
             varying: Varying::Constant,
         }
     }

@@ -359,7 +359,8 @@ pub fn trace_path(
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
         }
         if material.emission != Rgb::ZERO {
-            radiance += throughput * material.emission;
+            let spread = material.emission_spot.map_or(1.0, |spot| spot.factor(s.ns, -ray.dir));
+            radiance += throughput * material.emission * spread;
         }
         // Two-sided shading: face the normals towards the ray, unless light can enter the
         // surface — then the front is outside, and a ray from behind sees the inside.

@@ -131,6 +131,52 @@ pub enum Df {
         /// The base.
         multiscatter: Box<Df>,
     },
+    /// `df::backscattering_glossy_reflection_bsdf`: GGX micro-mirrors around the direction
+    /// back to the viewer, α = roughness.
+    Backscatter {
+        /// Tint.
+        tint: Leaf,
+        /// α along u and v (first channels).
+        roughness: (Leaf, Leaf),
+    },
+    /// `df::custom_curve_layer` and `color_custom_curve_layer`: the layer weighted by
+    /// weight · (normal + (grazing − normal)(1 − cos θ)^exponent), the base by what it
+    /// leaves (see [`bsdf::LayerCurve`]).
+    CurveLayer {
+        /// The layer's weight.
+        weight: Leaf,
+        /// Reflectivity at normal incidence.
+        normal: Leaf,
+        /// Reflectivity at grazing incidence.
+        grazing: Leaf,
+        /// The curve's exponent (first channel).
+        exponent: Leaf,
+        /// The top layer.
+        layer: Box<Df>,
+        /// The base.
+        base: Box<Df>,
+    },
+    /// `df::directional_factor`: the base scaled by normal + (grazing − normal)(1 − cos θ)^exponent.
+    DirectionalFactor {
+        /// The factor at normal incidence.
+        normal: Leaf,
+        /// The factor at grazing incidence.
+        grazing: Leaf,
+        /// The curve's exponent (first channel).
+        exponent: Leaf,
+        /// What is scaled.
+        base: Box<Df>,
+    },
+    /// `df::thin_film`: a film of `thickness` nanometres and index `ior` on the Fresnel
+    /// layer `base`.
+    ThinFilm {
+        /// Thickness in nanometres (first channel).
+        thickness: Leaf,
+        /// The film's index of refraction per channel.
+        ior: Leaf,
+        /// The layer the film lies on.
+        base: Box<Df>,
+    },
     /// A mix of weighted components (`normalized_mix`, `clamped_mix` and the `color_`
     /// forms, `tint`): the weights as given (never negative); `clamped` says how those
     /// above 1 in sum are cut (see [`super::natives::mix_weights`]).
@@ -184,6 +230,8 @@ pub enum Edf {
     Black,
     /// `df::diffuse_edf`: Lambertian emission.
     Diffuse,
+    /// `df::spot_edf`.
+    Spot(crate::spot_edf::SpotEdf),
 }
 
 /// A constant MDL value.
