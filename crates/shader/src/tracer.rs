@@ -60,4 +60,30 @@ pub trait Tracer {
     fn fg_cache(&self) -> Option<&super::fgcache::FgCache> {
         None
     }
+
+    /// The path engine's scattering of the surface at `ctx.state` (a hit [`intersect`]
+    /// filled in), for material shaders that shade a material through its compiled BSDF
+    /// (mira's classic form of MDL module materials): the material's BSDF at the point, its
+    /// shading frame and emission. `None` where the renderer has no such material (the
+    /// shader then falls back on its own parameters). It may run shaders connected to the
+    /// material's parameters through `ctx`.
+    ///
+    /// [`intersect`]: Tracer::intersect
+    fn surface_scatter(&self, ctx: &mut super::Ctx) -> Option<SurfaceScatter> {
+        let _ = ctx;
+        None
+    }
+}
+
+/// A material's scattering at one shading point, as [`Tracer::surface_scatter`] gives it.
+#[derive(Clone, Debug)]
+pub struct SurfaceScatter {
+    /// The BSDF in the local frame of `frame` (its `eval` without the cosine).
+    pub bsdf: bsdf::Bsdf,
+    /// The shading frame (world space; +Z the shading normal, facing the ray).
+    pub frame: bsdf::Frame,
+    /// The reflectance of the BSDF's diffuse part (what final gathering's irradiance lights).
+    pub diffuse: bsdf::Rgb,
+    /// Emitted radiance (W·m⁻²·sr⁻¹ in scene units, the path engine's).
+    pub emission: bsdf::Rgb,
 }
