@@ -27,8 +27,9 @@ fn bsdf_material(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     if !ctx.state.ray_type.is_visible() {
         return false;
     }
-    let tracer = ctx.tracer;
-    let Some(scatter) = tracer.surface_scatter(ctx) else { return (crate::illum::MIRA_DIFFUSE.run)(ctx, n, out) };
+    let Some(scatter) = ctx.tracer.surface_scatter(&ctx.state) else {
+        return (crate::illum::MIRA_DIFFUSE.run)(ctx, n, out);
+    };
     let (bsdf, frame) = (scatter.bsdf, scatter.frame);
     let wo = frame.to_local(-ctx.state.dir);
     let mut result = scatter.emission;

@@ -328,17 +328,20 @@ impl Tracer for SceneTracer<'_> {
         self.fg_cache
     }
 
-    fn surface_scatter(&self, ctx: &mut shader::Ctx) -> Option<shader::SurfaceScatter> {
+    fn surface_scatter(&self, hit: &State) -> Option<shader::SurfaceScatter> {
         // The shading state's material is the scene's; the world's list starts with the
         // default material.
-        let m = self.world.materials.get(ctx.state.material? as usize + 1)?;
-        let h = m.at(ctx);
-        let facing = h.normal.unwrap_or(ctx.state.normal);
+        let m = self.world.materials.get(hit.material? as usize + 1)?;
+        let mut h = m.constant();
+        if let material::Varying::Evaluated(e) = &m.varying {
+            e.0.apply(hit, &mut h);
+        }
+        let facing = h.normal.unwrap_or(hit.normal);
         // Materials light enters keep their geometric orientation (as the path engine
         // does): from inside, the frame's normal points away from the ray.
-        let normal = if m.has_inside() && ctx.state.inv_normal { -facing } else { facing };
+        let normal = if m.has_inside() && hit.inv_normal { -facing } else { facing };
         let frame = bsdf::Frame::from_normal(normal);
-        let wo = frame.to_local(-ctx.state.dir);
+        let wo = frame.to_local(-hit.dir);
         Some(shader::SurfaceScatter {
             bsdf: h.model.bsdf(h.diffuse, wo),
             frame,

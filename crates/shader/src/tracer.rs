@@ -61,16 +61,16 @@ pub trait Tracer {
         None
     }
 
-    /// The path engine's scattering of the surface at `ctx.state` (a hit [`intersect`]
-    /// filled in), for material shaders that shade a material through its compiled BSDF
-    /// (mira's classic form of MDL module materials): the material's BSDF at the point, its
-    /// shading frame and emission. `None` where the renderer has no such material (the
-    /// shader then falls back on its own parameters). It may run shaders connected to the
-    /// material's parameters through `ctx`.
+    /// The path engine's scattering of the surface `hit` (a state [`intersect`] filled
+    /// in), for material shaders that shade a material through its compiled BSDF (mira's
+    /// classic form of MDL module materials): the material's BSDF at the point, its shading
+    /// frame and emission, evaluated from the state alone (a material that evaluates
+    /// itself per hit; no shader graph). `None` where the renderer has no such material
+    /// (the shader then falls back on its own parameters).
     ///
     /// [`intersect`]: Tracer::intersect
-    fn surface_scatter(&self, ctx: &mut super::Ctx) -> Option<SurfaceScatter> {
-        let _ = ctx;
+    fn surface_scatter(&self, hit: &State) -> Option<SurfaceScatter> {
+        let _ = hit;
         None
     }
 }
