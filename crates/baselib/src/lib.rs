@@ -8,6 +8,7 @@
 //! shader's behaviour is mira's reading of an unclear text, its doc comment says so.
 
 pub mod bsdf_builtin;
+pub mod bsdf_material;
 pub mod color;
 pub mod environment;
 pub mod glossy;
@@ -37,6 +38,7 @@ pub static SHADERS: &[&ShaderImpl] = &[
     &illum::WARD_DERIV,
     &illum::HAIR,
     &illum::MIRA_DIFFUSE,
+    &bsdf_material::MIRA_BSDF_MATERIAL,
     &raytrace::REFLECT,
     &raytrace::REFRACT,
     &raytrace::TRANSPARENCY,

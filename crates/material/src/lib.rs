@@ -72,11 +72,13 @@ fn stand_in(m: &Material, lib: &Library) -> (glam::Vec3A, glam::Vec3A) {
     (surface.diffuse, surface.emission)
 }
 
-/// Gives the classic engine's stand-ins (`mira_diffuse` nodes of `shading`) of the
-/// instances of module materials in `scene` the diffuse colour and emission of their
-/// compiled materials in `mdl`: a module material's classic look is a Lambertian surface
-/// of its diffuse colour (averaged over the texture space where it varies) plus its
-/// emission.
+/// Turns the classic engine's stand-ins (`mira_diffuse` nodes of `shading`) of the
+/// instances of module materials in `scene` into `mira_bsdf_material` nodes: the classic
+/// engine shades a module material through the same compiled BSDF the path engine uses
+/// (given per hit by the renderer, see `baselib::bsdf_material`), lit by the classic light
+/// loop, final gathering and traced rays. The diffuse colour (averaged over the texture
+/// space where it varies) and emission of the compiled material in `mdl` stay in the node
+/// as its fallback.
 pub fn module_stand_ins(shading: &mut Shading, scene: &scene::Scene, mdl: &mdl_modules::MdlMaterials) {
     for (i, m) in scene.materials.iter().enumerate() {
         let items: Option<&[ShaderItem]> = match &m.kind {
@@ -92,6 +94,9 @@ pub fn module_stand_ins(shading: &mut Shading, scene: &scene::Scene, mdl: &mdl_m
             let c = |c: Rgb| shader::Slot::Value(shader::Value::Color(shader::Color::new(c.x, c.y, c.z, 1.0)));
             node.slots[0] = c(compiled.diffuse);
             node.slots[1] = c(compiled.emission);
+            // Shaded through the compiled BSDF the renderer gives per hit; the colours are
+            // its fallback.
+            node.imp = Some(&::baselib::bsdf_material::MIRA_BSDF_MATERIAL);
         }
     }
 }

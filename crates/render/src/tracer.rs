@@ -333,4 +333,26 @@ impl Tracer for SceneTracer<'_> {
         let keys = self.world.light_motion.get(light as usize)?;
         (!keys.is_empty()).then(|| crate::motion::lerp_keys(keys, time))
     }
+
+    fn surface_scatter(&self, hit: &State) -> Option<shader::SurfaceScatter> {
+        // The shading state's material is the scene's; the world's list starts with the
+        // default material.
+        let m = self.world.materials.get(hit.material? as usize + 1)?;
+        let mut h = m.constant();
+        if let material::Varying::Evaluated(e) = &m.varying {
+            e.0.apply(hit, &mut h);
+        }
+        let facing = h.normal.unwrap_or(hit.normal);
+        // Materials light enters keep their geometric orientation (as the path engine
+        // does): from inside, the frame's normal points away from the ray.
+        let normal = if m.has_inside() && hit.inv_normal { -facing } else { facing };
+        let frame = bsdf::Frame::from_normal(normal);
+        let wo = frame.to_local(-hit.dir);
+        Some(shader::SurfaceScatter {
+            bsdf: h.model.bsdf(h.diffuse, wo),
+            frame,
+            diffuse: h.diffuse,
+            emission: h.emission,
+        })
+    }
 }

@@ -251,21 +251,28 @@ fn a_module_material_painted_by_a_texture_shows_its_texels_in_the_path_engine() 
 
 #[test]
 fn the_classic_engine_shades_module_materials_with_their_compiled_colour() {
-    // mental ray's base lights carry no 1/π: a Lambertian stand-in of colour c under a
-    // head-on light of colour π shows π·c. A constant module matte shows its tint; a
-    // textured one the mean of its texture over the texture space (the four blocks: ½ grey).
+    // mental ray's base lights carry no 1/π: a Lambertian module material of colour c under
+    // a head-on light of colour π shows π·c. A constant module matte shows its tint; a
+    // textured one, shaded through its compiled BSDF per hit, its texels (pixels whose
+    // footprints lie inside one block, as in the path engine's test above).
     let pi = std::f32::consts::PI;
-    for (shader, want) in [
-        (
-            r#"$include "export_multi.mdl"
+    let (px, messages) = painted_square_with(
+        r#"$include "export_multi.mdl"
 shader "mat" "mdl::export_multi::matte" ("tint" 0.5 0.25 0)"#,
-            [0.5, 0.25, 0.0],
-        ),
-        (r#"shader "mat" "mdl::painted::painted" ("tex" "quadrants")"#, [0.5, 0.5, 0.5]),
-    ] {
-        let (px, messages) = painted_square_with(shader, 4, EngineKind::Classic);
-        assert!(messages.iter().all(|m| !m.contains("grey")), "{messages:#?}");
-        let got = mean(&px, 4, (0, 4), (0, 4));
-        assert!((0..3).all(|k| (got[k] - pi * want[k]).abs() <= 1e-3), "{shader}: {got:?} vs π·{want:?}");
+        4,
+        EngineKind::Classic,
+    );
+    assert!(messages.iter().all(|m| !m.contains("grey")), "{messages:#?}");
+    let got = mean(&px, 4, (0, 4), (0, 4));
+    let want = [0.5, 0.25, 0.0];
+    assert!((0..3).all(|k| (got[k] - pi * want[k]).abs() <= 1e-3), "matte: {got:?} vs π·{want:?}");
+    let (px, messages) =
+        painted_square_with(r#"shader "mat" "mdl::painted::painted" ("tex" "quadrants")"#, 8, EngineKind::Classic);
+    assert!(messages.iter().all(|m| !m.contains("grey")), "{messages:#?}");
+    for (x, y, want) in
+        [(1, 6, [1.0, 0.0, 0.0]), (6, 6, [0.0, 1.0, 0.0]), (1, 1, [0.0, 0.0, 1.0]), (6, 1, [1.0, 1.0, 1.0])]
+    {
+        let got = px[y * 8 + x];
+        assert!((0..3).all(|k| (got[k] - pi * want[k]).abs() <= 1e-3), "pixel ({x}, {y}) {got:?} vs π·{want:?}");
     }
 }

@@ -82,6 +82,9 @@ const INTERNAL: &str = r#"
 # stand-in for materials it has no mental ray shader for (MDL materials). A library
 # implements it (the base library does).
 declare shader color "mira_diffuse" (color "diffuse", color "emission") end declare
+# The classic engine's form of a material with a path-engine BSDF (MDL module materials):
+# the renderer gives the BSDF per hit; the parameters are the stand-in's, its fallback.
+declare shader color "mira_bsdf_material" (color "diffuse", color "emission") end declare
 "#;
 
 /// What a render has built in: declarations (mental ray's standard `.mi` files, the

@@ -70,4 +70,30 @@ pub trait Tracer {
         let _ = (light, time);
         None
     }
+
+    /// The path engine's scattering of the surface `hit` (a state [`intersect`] filled
+    /// in), for material shaders that shade a material through its compiled BSDF (mira's
+    /// classic form of MDL module materials): the material's BSDF at the point, its shading
+    /// frame and emission, evaluated from the state alone (a material that evaluates
+    /// itself per hit; no shader graph). `None` where the renderer has no such material
+    /// (the shader then falls back on its own parameters).
+    ///
+    /// [`intersect`]: Tracer::intersect
+    fn surface_scatter(&self, hit: &State) -> Option<SurfaceScatter> {
+        let _ = hit;
+        None
+    }
+}
+
+/// A material's scattering at one shading point, as [`Tracer::surface_scatter`] gives it.
+#[derive(Clone, Debug)]
+pub struct SurfaceScatter {
+    /// The BSDF in the local frame of `frame` (its `eval` without the cosine).
+    pub bsdf: bsdf::Bsdf,
+    /// The shading frame (world space; +Z the shading normal, facing the ray).
+    pub frame: bsdf::Frame,
+    /// The reflectance of the BSDF's diffuse part (what final gathering's irradiance lights).
+    pub diffuse: bsdf::Rgb,
+    /// Emitted radiance (W·m⁻²·sr⁻¹ in scene units, the path engine's).
+    pub emission: bsdf::Rgb,
 }

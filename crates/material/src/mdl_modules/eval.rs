@@ -306,6 +306,19 @@ impl<'a> Evaluator<'a> {
                     Err(why) => Err(problem(span, why)),
                 };
             }
+            Type::Texture(_) => {
+                // Only 2D images are read: a 3D, cube or ptex file is an error here, at its
+                // line, rather than an invalid texture that would look black. `texture_3d()`
+                // is the invalid texture.
+                return if values.is_empty() {
+                    Ok(Value::Texture(None))
+                } else {
+                    Err(problem(
+                        span,
+                        format!("`{ty}(…)`: mira reads only 2D textures in modules (no loader for this shape yet)"),
+                    ))
+                };
+            }
             Type::Matrix(_, c, r) => {
                 let n = usize::from(*c) * usize::from(*r);
                 return match floats(&values).as_deref() {

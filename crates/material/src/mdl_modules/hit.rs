@@ -22,6 +22,8 @@ use glam::{Mat4, Vec3A, Vec4};
 use shader::texture::Texture;
 use shader::State;
 
+use super::procedural::Pattern;
+
 /// A value of the shading state (MDL's `::state` functions; world space, scene units).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StateFn {
@@ -176,6 +178,10 @@ pub enum MathFn {
     /// `base::mono_mode` of a texel (RGBA): `mono_alpha`, `_average`, `_luminance`,
     /// `_maximum`, by the enumerator's name.
     Mono(&'static str),
+    /// `base::blend_color_layers`' blend of a layer (b) over the colour so far (a) with
+    /// weight c (clamped to [0, 1]), by `color_layer_mode`'s enumerator name
+    /// ([`mdl::texture::blend_layer`]).
+    Blend(&'static str),
 }
 
 /// A texture image as the expressions hold it (compared by identity).
@@ -189,6 +195,22 @@ impl PartialEq for Image {
 }
 
 impl Image {
+    /// The texel at integer position (x, y), y up; black outside the image. Grey images
+    /// give their grey in all three colour channels, as lookups do.
+    pub fn texel(&self, x: f32, y: f32) -> Vec4 {
+        let Texture::Image { image, .. } = &*self.0 else { return Vec4::ZERO };
+        let (w, h) = image.size();
+        if !(x >= 0.0 && y >= 0.0 && (x as usize) < w && (y as usize) < h) {
+            return Vec4::ZERO;
+        }
+        let c = image.texel(x as usize, y as usize);
+        if image.channels < 3 {
+            let a = if image.channels == 2 { c.y } else { 1.0 };
+            return Vec4::new(c.x, c.x, c.x, a);
+        }
+        c
+    }
+
     /// Width and height in texels (0 × 0 for a texture that could not be read).
     pub fn size(&self) -> (usize, usize) {
         match &*self.0 {
@@ -238,6 +260,38 @@ pub enum HitExpr {
         wrap: [&'static str; 2],
         /// `clip`.
         clip: bool,
+        /// `crop_u` and `crop_v`: the part of the image [0, 1)² maps to (u0, u1, v0, v1).
+        crop: [f32; 4],
+    },
+    /// The RGBA texel at the integer position of a coordinate's x and y (`tex::texel_*`;
+    /// (0, 0) the lower left texel; black outside the image).
+    Texel {
+        /// The texture.
+        image: Image,
+        /// The texel position (lanes x and y, rounded down).
+        coord: Arc<HitExpr>,
+    },
+    /// A procedural pattern of `::base` at a texture-space position.
+    Pattern(Arc<Pattern>, Arc<HitExpr>),
+    /// A normal bent by the slope of a pattern's height (`::base` bump textures): the
+    /// height (lane x) is differenced over `delta` along the coordinate's u and v, and
+    /// the normal leans against the rise along the tangents by `factor` times those
+    /// differences, then is normalized (world space).
+    Bump {
+        /// The height.
+        height: Arc<Pattern>,
+        /// Texture-space position.
+        position: Arc<HitExpr>,
+        /// The coordinate's u tangent (world space).
+        tangent_u: Arc<HitExpr>,
+        /// Its v tangent.
+        tangent_v: Arc<HitExpr>,
+        /// The normal bent.
+        normal: Arc<HitExpr>,
+        /// `factor`.
+        factor: f32,
+        /// The steps in u and v.
+        delta: [f32; 2],
     },
 }
 
@@ -246,6 +300,11 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
     let constant = |x: &Arc<HitExpr>| matches!(**x, HitExpr::Const(_));
     let foldable = match &e {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
+        HitExpr::Texel { coord, .. } => constant(coord),
+        HitExpr::Pattern(_, p) => constant(p),
+        HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
+            constant(position) && constant(tangent_u) && constant(tangent_v) && constant(normal)
+        }
         HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => constant(a),
         HitExpr::Transform { of, .. } => constant(of),
         HitExpr::Binary(_, a, b) => constant(a) && constant(b),
@@ -432,7 +491,7 @@ impl HitExpr {
                     d.normalize_or(v).extend(0.0)
                 }
             }
-            HitExpr::Lookup { image, coord, wrap, clip } => {
+            HitExpr::Lookup { image, coord, wrap, clip, crop } => {
                 let c = coord.eval(s);
                 if *clip && !((0.0..1.0).contains(&c.x) && (0.0..1.0).contains(&c.y)) {
                     return Vec4::ZERO;
@@ -440,7 +499,25 @@ impl HitExpr {
                 let (Some(u), Some(v)) = (mdl::texture::wrap(c.x, wrap[0]), mdl::texture::wrap(c.y, wrap[1])) else {
                     return Vec4::ZERO;
                 };
+                // The wrapped coordinate covers the crop window of the image.
+                let u = crop[0] + u * (crop[1] - crop[0]);
+                let v = crop[2] + v * (crop[3] - crop[2]);
                 image.0.lookup(Vec3A::new(u, v, 0.0), 0.0).unwrap_or(Vec4::ZERO)
+            }
+            HitExpr::Texel { image, coord } => {
+                let c = coord.eval(s);
+                image.texel(c.x.floor(), c.y.floor())
+            }
+            HitExpr::Pattern(p, at) => p.eval(at.eval(s).truncate().into()),
+            HitExpr::Bump { height, position, tangent_u, tangent_v, normal, factor, delta } => {
+                let p = Vec3A::from(position.eval(s).truncate());
+                let n = Vec3A::from(normal.eval(s).truncate());
+                let h0 = height.eval(p).x;
+                let hu = height.eval(p + Vec3A::X * delta[0]).x;
+                let hv = height.eval(p + Vec3A::Y * delta[1]).x;
+                let (tu, tv) = (Vec3A::from(tangent_u.eval(s).truncate()), Vec3A::from(tangent_v.eval(s).truncate()));
+                let bent = n - (tu * (hu - h0) + tv * (hv - h0)) * *factor;
+                bent.normalize_or(n).extend(0.0)
             }
         }
     }
@@ -536,6 +613,10 @@ fn math(f: MathFn, a: Vec4, b: Vec4, c: Vec4) -> Vec4 {
         MaxValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MIN, f32::max)),
         MinValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MAX, f32::min)),
         Mono(mode) => splat(mdl::texture::mono(a, mode)),
+        Blend(mode) => {
+            let below = Vec3A::from(a.truncate());
+            mdl::texture::blend_layer(mode, below, Vec3A::from(b.truncate()), c.x.clamp(0.0, 1.0)).extend(0.0)
+        }
     }
 }
 

@@ -123,7 +123,7 @@ pub fn math(def: &Function, args: &[Value], span: Span) -> Eval {
 }
 
 /// An enum argument's value (`default` when absent or not constant).
-fn enum_arg(v: Option<&Value>, default: i64) -> i64 {
+pub fn enum_arg(v: Option<&Value>, default: i64) -> i64 {
     match v {
         Some(Value::Enum(_, i)) => *i,
         Some(Value::Int(i)) => *i,
@@ -132,7 +132,7 @@ fn enum_arg(v: Option<&Value>, default: i64) -> i64 {
 }
 
 /// `tex::wrap_mode`'s enumerator names, by value.
-fn wrap_name(v: i64) -> &'static str {
+pub fn wrap_name(v: i64) -> &'static str {
     match v {
         0 => "wrap_clamp",
         2 => "wrap_mirrored_repeat",
@@ -142,7 +142,7 @@ fn wrap_name(v: i64) -> &'static str {
 }
 
 /// `base::mono_mode`'s enumerator names, by value.
-fn mono_name(v: i64) -> &'static str {
+pub fn mono_name(v: i64) -> &'static str {
     match v {
         1 => "mono_average",
         2 => "mono_luminance",
@@ -151,20 +151,38 @@ fn mono_name(v: i64) -> &'static str {
     }
 }
 
-/// Whether a `float2` crop argument is absent or the whole range (0, 1).
-fn whole_crop(v: Option<&Value>) -> bool {
+/// A `float2` crop argument (`crop_u`/`crop_v`): the part of the image [0, 1) maps to;
+/// (0, 1) when absent. A crop that is not a constant pair within [0, 1] is an error.
+pub fn crop(v: Option<&Value>, name: &str, span: Span) -> Result<[f32; 2], Problem> {
     match v {
-        None => true,
-        Some(Value::Vector(c)) => c.len() == 2 && c[0] == 0.0 && c[1] == 1.0,
-        _ => false,
+        None => Ok([0.0, 1.0]),
+        Some(Value::Vector(c)) if c.len() == 2 && c.iter().all(|x| (0.0..=1.0).contains(x)) => {
+            Ok([c[0] as f32, c[1] as f32])
+        }
+        Some(v) => {
+            Err(problem(span, format!("a `{name}` crop that is {} (a constant float2 in [0, 1] is needed)", kind(v))))
+        }
     }
 }
 
-/// The RGBA texel expression of `texture` at `coord` with wrap modes and clip.
-fn lookup(texture: &Value, coord: &Value, wrap: [&'static str; 2], clip: bool, span: Span) -> Result<HitExpr, Problem> {
+/// The `crop_u` and `crop_v` arguments of a lookup as (u0, u1, v0, v1).
+pub fn crops(u: Option<&Value>, v: Option<&Value>, span: Span) -> Result<[f32; 4], Problem> {
+    let (u, v) = (crop(u, "crop_u", span)?, crop(v, "crop_v", span)?);
+    Ok([u[0], u[1], v[0], v[1]])
+}
+
+/// The RGBA texel expression of `texture` at `coord` with wrap modes, clip and crop.
+pub fn lookup(
+    texture: &Value,
+    coord: &Value,
+    wrap: [&'static str; 2],
+    clip: bool,
+    crop: [f32; 4],
+    span: Span,
+) -> Result<HitExpr, Problem> {
     let coord = coord.to_hit().ok_or_else(|| problem(span, format!("a texture coordinate that is {}", kind(coord))))?;
     match texture {
-        Value::Texture(Some(image)) => Ok(HitExpr::Lookup { image: image.clone(), coord, wrap, clip }),
+        Value::Texture(Some(image)) => Ok(HitExpr::Lookup { image: image.clone(), coord, wrap, clip, crop }),
         Value::Texture(None) => Ok(HitExpr::Const(Vec4::ZERO)),
         v => Err(problem(span, format!("a texture lookup of {}", kind(v)))),
     }
@@ -188,26 +206,58 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
         "height" if is_2d => Ok(Value::Int(size().1 as i64)),
         "texture_isvalid" => Ok(Value::Bool(matches!(texture, Value::Texture(Some(_))))),
         "lookup_color" | "lookup_float" | "lookup_float2" | "lookup_float3" | "lookup_float4" if is_2d => {
-            if !whole_crop(arg("crop_u")) || !whole_crop(arg("crop_v")) {
-                return Err(problem(span, format!("`tex::{name}` with a crop is not compiled yet")));
-            }
+            let crop = crops(arg("crop_u"), arg("crop_v"), span)?;
             let coord = arg("coord").ok_or_else(|| problem(span, "a lookup without a coordinate"))?;
             let wrap = [wrap_name(enum_arg(arg("wrap_u"), 1)), wrap_name(enum_arg(arg("wrap_v"), 1))];
-            let texel = Arc::new(lookup(texture, coord, wrap, false, span)?);
-            Ok(match name {
-                "lookup_float" => Value::from_hit(HitExpr::Lane(texel, 0), HitType::Float),
-                "lookup_float2" => Value::from_hit(HitExpr::Compose([(texel, 2)].into()), HitType::Vector(2)),
-                "lookup_float3" => Value::from_hit(HitExpr::Compose([(texel, 3)].into()), HitType::Vector(3)),
-                "lookup_float4" => Value::from_hit((*texel).clone(), HitType::Vector(4)),
-                _ => Value::from_hit(HitExpr::Compose([(texel, 3)].into()), HitType::Color),
-            })
+            let texel = Arc::new(lookup(texture, coord, wrap, false, crop, span)?);
+            Ok(texel_value(name, texel))
         }
-        _ => Err(problem(span, format!("`tex::{name}` is not compiled yet (only 2D textures are)"))),
+        "texel_color" | "texel_float" | "texel_float2" | "texel_float3" | "texel_float4" if is_2d => {
+            if !is_zero(arg("uv_tile")) {
+                return Err(problem(span, format!("`tex::{name}` of a uv tile other than (0, 0) is not compiled (mira reads no tiled textures)")));
+            }
+            let coord = arg("coord").ok_or_else(|| problem(span, "a texel read without a coordinate"))?;
+            let coord = coord.to_hit().ok_or_else(|| problem(span, format!("a texel position that is {}", kind(coord))))?;
+            let texel = match texture {
+                Value::Texture(Some(image)) => super::hit::fold(HitExpr::Texel { image: image.clone(), coord }),
+                _ => Arc::new(HitExpr::Const(Vec4::ZERO)),
+            };
+            Ok(texel_value(name, texel))
+        }
+        _ if !is_2d => Err(problem(
+            span,
+            format!(
+                "`tex::{name}` of a `{}` is not compiled: mira reads only 2D textures in modules (no 3D, cube or ptex texture loader)",
+                def.params.first().map_or_else(String::new, |p| p.ty.ty.to_string())
+            ),
+        )),
+        _ => Err(problem(span, format!("`tex::{name}` is not compiled yet"))),
+    }
+}
+
+/// Whether an optional `int2` argument is absent or (0, 0).
+fn is_zero(v: Option<&Value>) -> bool {
+    match v {
+        None => true,
+        Some(Value::Vector(c)) => c.iter().all(|x| *x == 0.0),
+        _ => false,
+    }
+}
+
+/// The value a `tex::lookup_*` or `tex::texel_*` function `name` returns from the RGBA texel.
+fn texel_value(name: &str, texel: Arc<HitExpr>) -> Value {
+    let suffix = name.rsplit('_').next().unwrap_or("");
+    match suffix {
+        "float" => Value::from_hit(HitExpr::Lane(texel, 0), HitType::Float),
+        "float2" => Value::from_hit(HitExpr::Compose([(texel, 2)].into()), HitType::Vector(2)),
+        "float3" => Value::from_hit(HitExpr::Compose([(texel, 3)].into()), HitType::Vector(3)),
+        "float4" => Value::from_hit((*texel).clone(), HitType::Vector(4)),
+        _ => Value::from_hit(HitExpr::Compose([(texel, 3)].into()), HitType::Color),
     }
 }
 
 /// A `texture_coordinate_info` struct of the three expressions.
-fn coordinate_info(position: Value, tangent_u: Value, tangent_v: Value) -> Value {
+pub fn coordinate_info(position: Value, tangent_u: Value, tangent_v: Value) -> Value {
     Value::Struct(
         "texture_coordinate_info".into(),
         vec![
@@ -219,7 +269,8 @@ fn coordinate_info(position: Value, tangent_u: Value, tangent_v: Value) -> Value
     )
 }
 
-fn state_value(f: StateFn) -> Value {
+/// A `float3` value of the state.
+pub fn state_value(f: StateFn) -> Value {
     Value::Hit(Arc::new(HitExpr::State(f)), HitType::Vector(3))
 }
 
@@ -296,14 +347,12 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
             Ok(coordinate_info(through("position", true)?, through("tangent_u", false)?, through("tangent_v", false)?))
         }
         "file_texture" => {
-            if !whole_crop(arg("crop_u")) || !whole_crop(arg("crop_v")) {
-                return Err(problem(span, "`base::file_texture` with a crop is not compiled yet"));
-            }
+            let crop = crops(arg("crop_u"), arg("crop_v"), span)?;
             let texture = arg("texture").ok_or_else(|| problem(span, "`base::file_texture` without a texture"))?;
             let position = field(arg("uvw"), "position").unwrap_or(Value::Vector(vec![0.0; 3]));
             let wrap = [wrap_name(enum_arg(arg("wrap_u"), 1)), wrap_name(enum_arg(arg("wrap_v"), 1))];
             let clip = matches!(arg("clip"), Some(Value::Bool(true)));
-            let texel = Arc::new(lookup(texture, &position, wrap, clip, span)?);
+            let texel = Arc::new(lookup(texture, &position, wrap, clip, crop, span)?);
             let colour = |p: &str, d: f32| {
                 arg(p).and_then(Value::to_hit).unwrap_or_else(|| Arc::new(HitExpr::Const(Vec4::splat(d))))
             };
@@ -318,7 +367,7 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
             Ok(Value::Struct("texture_return".into(), vec![("tint".into(), tint), ("mono".into(), mono)]))
         }
         "tangent_space_normal_texture" => tangent_space_normal(def, args, span),
-        _ => Err(problem(span, format!("`base::{name}` is not compiled in module materials yet"))),
+        _ => super::hit_base::base(def, args, span),
     }
 }
 
@@ -337,7 +386,8 @@ fn tangent_space_normal(def: &Function, args: &[Value], span: Span) -> Eval {
     };
     let wrap = [wrap_name(enum_arg(arg("wrap_u"), 1)), wrap_name(enum_arg(arg("wrap_v"), 1))];
     let clip = matches!(arg("clip"), Some(Value::Bool(true)));
-    let texel = Arc::new(lookup(texture, &Value::Hit(part("position")?, HitType::Vector(3)), wrap, clip, span)?);
+    let crop = crops(arg("crop_u"), arg("crop_v"), span)?;
+    let texel = Arc::new(lookup(texture, &Value::Hit(part("position")?, HitType::Vector(3)), wrap, clip, crop, span)?);
     let scale = num("scale", 1.0);
     let scale = if scale != 0.0 { scale } else { 1.0 };
     let c = |v: f32| Arc::new(HitExpr::Const(Vec4::splat(v)));

@@ -363,6 +363,8 @@ pub struct MdlHit {
     pub df: Df,
     /// The material's `ior` (mean of its channels).
     pub ior: f32,
+    /// The expression of the `ior` when it depends on the hit (then it replaces `ior`).
+    pub ior_hit: Option<u16>,
     /// `thin_walled`.
     pub thin: bool,
     /// Emitted radiance per unit of the emission's intensity (1/π for a Lambertian EDF)
@@ -386,7 +388,8 @@ impl HitEvaluator for MdlHit {
             *v = e.eval_finite(state);
         }
         let values = &values[..self.leaves.len()];
-        let (diffuse, model) = lower_bsdf(&self.df, values, self.ior, self.thin, None);
+        let ior = self.ior_hit.map_or(self.ior, |i| mean_ior(values[i as usize]));
+        let (diffuse, model) = lower_bsdf(&self.df, values, ior, self.thin, None);
         hit.diffuse = diffuse;
         hit.model = std::borrow::Cow::Owned(model);
         if let Some((scale, intensity)) = self.emission {
@@ -414,11 +417,19 @@ pub fn surface(
 ) -> SurfaceMaterial {
     let field = |v: &Value, f: &str| v.field(f).cloned();
     let thin = matches!(field(material, "thin_walled"), Some(Value::Bool(true)));
+    // An `ior` that depends on the hit is one of the expressions, read at each hit.
+    let mut ior_hit = None;
     let ior = match field(material, "ior") {
-        Some(Value::Hit(..)) => {
-            warnings.push(format!("material '{name}': an `ior` that varies over the surface is not compiled yet; 1.5"));
-            1.5
-        }
+        Some(v @ Value::Hit(..)) => match leaf(&v, &mut leaves) {
+            Some(Leaf::Hit(i)) => {
+                ior_hit = Some(i);
+                1.5
+            }
+            _ => {
+                warnings.push(format!("material '{name}': its `ior` varies in a way not compiled; 1.5"));
+                1.5
+            }
+        },
         v => v.and_then(|v| v.color()).map_or(1.5, |c| (c.x + c.y + c.z) / 3.0),
     };
     let surf = field(material, "surface");
@@ -496,7 +507,8 @@ pub fn surface(
     let mut state =
         shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
     let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
-    let (mut diffuse, model) = lower_bsdf(&scattering, &values, ior, thin, Some((name, warnings)));
+    let ior_at = |values: &[Vec4]| ior_hit.map_or(ior, |i| mean_ior(values[i as usize]));
+    let (mut diffuse, model) = lower_bsdf(&scattering, &values, ior_at(&values), thin, Some((name, warnings)));
     if !leaves.is_empty() {
         // The diffuse colour (what the classic engine's stand-in shows) is the mean over
         // the first texture space's unit square, 8 × 8 points.
@@ -504,7 +516,7 @@ pub fn surface(
         for k in 0..64 {
             state.tex_list[0] = Vec3A::new((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5, 0.0) / 8.0;
             let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
-            sum += lower_bsdf(&scattering, &values, ior, thin, None).0;
+            sum += lower_bsdf(&scattering, &values, ior_at(&values), thin, None).0;
         }
         diffuse = sum / 64.0;
     }
@@ -517,10 +529,16 @@ pub fn surface(
         if let Some((scale, l)) = emission {
             out.emission = l.get(&values) * scale;
         }
-        let varying = MdlHit { leaves, df: scattering, ior, thin, emission, opacity, normal };
+        let varying = MdlHit { leaves, df: scattering, ior, ior_hit, thin, emission, opacity, normal };
         out.varying = Varying::Evaluated(Evaluated(Arc::new(varying)));
     }
     out
+}
+
+/// An `ior` value (a colour or a number in all lanes) as one index: the mean of its
+/// channels.
+fn mean_ior(v: Vec4) -> f32 {
+    (v.x + v.y + v.z) / 3.0
 }
 
 /// The diffuse colour and model of a tree at the point whose expressions have `hit`;

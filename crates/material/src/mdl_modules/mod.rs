@@ -20,9 +20,11 @@
 pub mod connections;
 pub mod eval;
 pub mod hit;
+pub mod hit_base;
 pub mod hit_natives;
 pub mod lower;
 pub mod natives;
+pub mod procedural;
 pub mod textures;
 pub mod value;
 
@@ -135,8 +137,11 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         let mut warnings = Vec::new();
         let mut cx = Instance { set: &set, lib, textures: &mut textures, diags: &mut diags, warnings: &mut warnings };
         let surface = cx.compile(&qualified, shader, params);
-        // What was approximated or not compiled: warnings at the instance's `.mi` call.
+        // What was approximated or not compiled, and texture files with NaN or infinite
+        // texels (once per file: the first instance that reads it): warnings at the
+        // instance's `.mi` call.
         diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
+        diags.extend(textures.warnings.drain(..).map(|w| Diagnostic::warning(decl.span, w)));
         out.by_call.insert((span.file.0, span.lo), surface);
     }
     out.module_sources = set.sources().files().map(|(_, f)| f.bytes.clone()).collect();

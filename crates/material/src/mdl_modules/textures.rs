@@ -19,12 +19,15 @@ pub struct Textures {
     /// Directories searched after the one of the module: the scene files' and the MDL
     /// search path's.
     pub dirs: Vec<PathBuf>,
+    /// What reading the files found that the user should hear about (NaN or infinite
+    /// texels), once per file, until the compiler reports them.
+    pub warnings: Vec<String>,
 }
 
 impl Textures {
     /// A resource set searching `dirs` (after the naming module's directory).
     pub fn new(dirs: Vec<PathBuf>) -> Textures {
-        Textures { by_path: HashMap::new(), dirs }
+        Textures { by_path: HashMap::new(), dirs, warnings: Vec::new() }
     }
 
     /// The image of file `name` as written in a module whose file is in `module_dir` (an
@@ -38,12 +41,26 @@ impl Textures {
         let Some(path) = search.resolve(relative) else {
             return Err(format!("texture file '{name}' not found (searched {})", describe(&search.dirs)));
         };
+        self.load(path)
+    }
+
+    /// The image of the file at `path`, read once.
+    fn load(&mut self, path: PathBuf) -> Result<Image, String> {
+        let warnings = &mut self.warnings;
         self.by_path
             .entry(path.clone())
             .or_insert_with(|| {
                 texture::load_image(&path)
                     .map(|loaded| {
-                        // NaN and infinite texels were read as 0 by the loader.
+                        // NaN and infinite texels were read as 0 by the loader: said once,
+                        // as the `.mi` texture loader says it.
+                        if loaded.non_finite > 0 {
+                            warnings.push(format!(
+                                "texture file '{}': {} texel components are NaN or infinite; they are read as 0",
+                                path.display(),
+                                loaded.non_finite
+                            ));
+                        }
                         let kind = mi::ast::TextureKind::Color;
                         Image(Arc::new(Texture::Image { image: Arc::new(loaded.image), filter: None, kind }))
                     })
@@ -55,9 +72,18 @@ impl Textures {
     /// The image a `.mi` parameter names: a `color texture` element of `lib` (its file or
     /// inline pixels), else a file.
     pub fn from_mi(&mut self, name: &str, lib: &scene::Library) -> Result<Image, String> {
-        let Some(t) = lib.textures.get(name) else { return self.file(name, None) };
+        // A `.mi` file name may be absolute (an MDL name's leading `/` is the search path's).
+        let mi_file = |this: &mut Textures, file: &str| {
+            let path = Path::new(file);
+            if path.is_absolute() && path.is_file() {
+                this.load(path.to_path_buf())
+            } else {
+                this.file(file, None)
+            }
+        };
+        let Some(t) = lib.textures.get(name) else { return mi_file(self, name) };
         match &t.source {
-            mi::ast::TextureSource::File { file, .. } => self.file(&file.text, None),
+            mi::ast::TextureSource::File { file, .. } => mi_file(self, &file.text),
             mi::ast::TextureSource::Pixels { dims, pieces } => texture::inline_pixels(dims, &pieces.concat())
                 .map(|image| Image(Arc::new(Texture::Image { image: Arc::new(image), filter: None, kind: t.kind })))
                 .map_err(|e| format!("texture '{name}': {e}")),
