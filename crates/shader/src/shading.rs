@@ -94,6 +94,9 @@ pub struct Shading {
     /// The photon maps, once the renderer's photon pass made them (`caustic on`,
     /// `globillum on`); unset: `compute_irradiance` is final gathering alone.
     pub photons: std::sync::OnceLock<super::photonmap::PhotonMaps>,
+    /// Whether some material has a shadow shader list, found on first use
+    /// ([`Shading::has_shadow_shaders`]).
+    shadow_shaders: std::sync::OnceLock<bool>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -260,8 +263,15 @@ impl Shading {
             world_to_camera: glam::Affine3A::from_mat4(scene.camera.world_to_camera.as_mat4()),
             precomputed: Default::default(),
             photons: Default::default(),
+            shadow_shaders: Default::default(),
         };
         (shading, diags)
+    }
+
+    /// Whether some material has a shadow shader list (without one, every surface stops
+    /// shadow rays). Found once, on the first question: the materials are set by then.
+    pub fn has_shadow_shaders(&self) -> bool {
+        *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some()))
     }
 
     /// Whether a final gather ray from `org` along unit `dir` (world space) meets a portal
