@@ -293,6 +293,13 @@ impl Tracer for SceneTracer<'_> {
         visit(&h);
     }
 
+    fn shadow_blocked(&self, org: Vec3A, dir: Vec3A, max_dist: f32, time: f32) -> bool {
+        // The ray of `shadow_hits`' first query, as an any-hit query that stops at the
+        // first surface it finds.
+        self.count(true);
+        self.accel.occluded(&Ray { mask: mask::SHADOW, origin: org, dir, tmin: 0.0, tmax: max_dist, time })
+    }
+
     fn triangle(&self, hit: &State, data: VertexData) -> Option<[Vec3A; 3]> {
         let inst = self.world.instances.get(hit.geometry as usize)?;
         let mesh = &self.world.meshes[inst.mesh as usize];

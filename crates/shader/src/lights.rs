@@ -266,12 +266,21 @@ impl<'a> Ctx<'a> {
         let s = &self.state;
         let to_light = -s.dir;
         let org = crate::trace::offset_point(s.shadow_point, s.normal_geom, to_light);
+        let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+        let tracer = self.tracer;
+        if !shading.has_shadow_shaders() {
+            // Every surface stops the light (no material filters it): the first surface
+            // found on the way decides, with no need for the nearest one or its state.
+            if tracer.shadow_blocked(org, to_light, max_dist, s.time) {
+                *color = Color::ZERO;
+                return false;
+            }
+            return true;
+        }
         let mut ray = s.child(RayType::Shadow, org, to_light);
         ray.light = s.light;
-        let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
         let mut filter = *color;
         let mut blocked = false;
-        let tracer = self.tracer;
         let mut calls = 0;
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
             let shader = hit.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.shadow);

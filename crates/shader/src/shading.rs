@@ -113,6 +113,9 @@ pub struct Shading {
     /// times `(i + ½) / n`); `None` when there is no such shader or it could not be used
     /// (a warning says why).
     pub shutter_weights: Option<Vec<f32>>,
+    /// Whether some material has a shadow shader list, found on first use
+    /// ([`Shading::has_shadow_shaders`]).
+    shadow_shaders: std::sync::OnceLock<bool>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -308,8 +311,15 @@ impl Shading {
             photons: Default::default(),
             shutter_shape,
             shutter_weights: None,
+            shadow_shaders: Default::default(),
         };
         (shading, diags)
+    }
+
+    /// Whether some material has a shadow shader list (without one, every surface stops
+    /// shadow rays). Found once, on the first question: the materials are set by then.
+    pub fn has_shadow_shaders(&self) -> bool {
+        *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some()))
     }
 
     /// Whether a final gather ray from `org` along unit `dir` (world space) meets a portal

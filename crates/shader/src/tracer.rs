@@ -45,6 +45,22 @@ pub trait Tracer {
     /// [`intersect`]: Tracer::intersect
     fn shadow_hits(&self, ray: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool);
 
+    /// Whether a shadow ray from `org` along unit `dir` (world space) at shutter time
+    /// `time` meets any surface that casts shadows before `max_dist`: whether
+    /// [`shadow_hits`] would visit one. A renderer answers it with an any-hit query that
+    /// stops at the first surface found, without finding the nearest or describing it.
+    ///
+    /// [`shadow_hits`]: Tracer::shadow_hits
+    fn shadow_blocked(&self, org: Vec3A, dir: Vec3A, max_dist: f32, time: f32) -> bool {
+        let ray = State { ray_type: super::RayType::Shadow, org, dir, time, ..State::default() };
+        let mut any = false;
+        self.shadow_hits(&ray, max_dist, &mut |_| {
+            any = true;
+            false
+        });
+        any
+    }
+
     /// The three vertices' `data` of the triangle `hit` (a state [`intersect`] filled in)
     /// lies on; `None` if the geometry has no such data.
     ///
