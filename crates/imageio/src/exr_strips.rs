@@ -41,13 +41,19 @@ impl<W: ChunksWriter> ExrStrips<'_, W> {
     /// buffer the layout had, in the same order). Strips come top to bottom without gaps,
     /// and every strip but the last holds a multiple of [`STRIP_ALIGNMENT`] rows.
     pub fn put(&mut self, y0: u32, strip: &ImageData) -> Result<(), Error> {
-        if y0 != self.next_row || strip.width != self.width || y0 + strip.height > self.height {
+        let end = u64::from(y0) + u64::from(strip.height);
+        if y0 != self.next_row || strip.width != self.width || end > u64::from(self.height) {
             return Err(Error::Size(format!(
                 "strip of {} × {} at row {y0} does not continue the {} × {} image at row {}",
                 strip.width, strip.height, self.width, self.height, self.next_row
             )));
         }
-        let end = y0 + strip.height;
+        let end = end as u32;
+        if strip.height == 0 {
+            return Ok(());
+        }
+        // Every buffer must hold the strip's pixels: the tiles index them by row and column.
+        crate::check(strip)?;
         if end < self.height && strip.height % STRIP_ALIGNMENT != 0 {
             return Err(Error::Size(format!(
                 "a strip that is not the last must hold a multiple of {STRIP_ALIGNMENT} rows, not {}",
@@ -237,6 +243,19 @@ mod tests {
         let short =
             write_exr_strips(&bad, Format::of(Kind::Exr), 70, 150, &image(0..0), |sink| sink.put(0, &image(0..64)));
         assert!(matches!(short, Err(Error::Size(m)) if m.contains("only 64 of 150 rows")));
+        assert!(!bad.exists());
+        // A strip whose buffers do not hold its pixels (a short depth buffer), or whose
+        // height runs past the image (and past u32), is an error, not an index out of range
+        // or an overflow.
+        let mut short_depth = image(0..64);
+        short_depth.layers[0].1 = Pixels::Depth(vec![0.0; 10]);
+        let e = write_exr_strips(&bad, Format::of(Kind::Exr), 70, 150, &image(0..0), |sink| sink.put(0, &short_depth));
+        assert!(matches!(&e, Err(Error::Size(m)) if m.contains("has 10 pixels")), "{e:?}");
+        let e = write_exr_strips(&bad, Format::of(Kind::Exr), 70, 150, &image(0..0), |sink| {
+            sink.put(0, &image(0..64))?;
+            sink.put(64, &ImageData { height: u32::MAX, ..image(64..128) })
+        });
+        assert!(matches!(&e, Err(Error::Size(m)) if m.contains("does not continue")), "{e:?}");
         assert!(!bad.exists());
         std::fs::remove_dir_all(&dir).ok();
     }

@@ -144,3 +144,24 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
     let lets = format!("mdl 1.7;\nexport float f() = {}1.0;\n", "let float x = 1.0; in ".repeat(50_000));
     assert!(set.load_source("::lets", &lets).is_err());
 }
+
+/// A long chain of operators (`1.0 + 1.0 + …`, `v.x.x.x…`, `a[0][0]…`) builds a tree as deep
+/// as the chain is long without any nesting in the text: each operator counts as a level,
+/// so 100 000 of them are an error at the operator past the limit (the chain loaded before,
+/// and the passes over its tree, and dropping it, overflowed the stack), and a chain of 150
+/// still loads.
+#[test]
+fn long_operator_chains_are_an_error_not_a_stack_overflow() {
+    let mut set = ModuleSet::new(MdlSearchPath::new());
+    for (name, body) in [
+        ("sum", format!("1.0{}", " + 1.0".repeat(100_000))),
+        ("member", format!("float3(1.0){}", ".x".repeat(100_000))),
+        ("index", format!("float3(1.0){}", "[0]".repeat(100_000))),
+    ] {
+        let text = format!("mdl 1.7;\nexport float f() = {body};\n");
+        let err = set.load_source(&format!("::{name}"), &text).unwrap_err();
+        assert!(err.first().message.contains("expression is nested too deeply"), "{name}: {err}");
+    }
+    let ok = format!("mdl 1.7;\nexport float f() = 1.0{};\n", " + 1.0".repeat(150));
+    assert!(set.load_source("::ok", &ok).is_ok());
+}

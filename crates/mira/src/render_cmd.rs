@@ -503,12 +503,16 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         let mut total = render::Stats::default();
         let start = Instant::now();
         let mut next = strips.iter().enumerate();
+        // Under a time limit, the samples per pixel the first strip reached in its share of
+        // the time: every later strip stops there.
+        let mut first_spp = 0;
         let written = output::write_strips(&target, &tone, (w, h), &layout, || {
             let (i, strip) = next.next()?;
             if let Some(bar) = &bar {
                 bar.set_message(format!("strip {}/{}", i + 1, strips.len()));
             }
-            let settings = render::Settings { rows: Some(strip.render.clone()), ..settings.clone() };
+            let settings =
+                render::strips::strip_settings(&world.options, &settings, &strips, i, prepared.time, first_spp);
             let (film, stats) = pool.install(|| {
                 render::render_prepared(
                     world,
@@ -521,6 +525,9 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
                 )
             });
             add_strip_stats(&mut total, &stats, i == 0);
+            if i == 0 {
+                first_spp = stats.spp;
+            }
             Some(film.rows(strip.keep.clone()))
         });
         total.render_time = prepared.time + start.elapsed();
@@ -800,7 +807,7 @@ fn choose_strips(args: &RenderArgs, loaded: &mut LoadedScene, part: Option<Part>
     };
     let targets = output::targets(&sc.camera, args.output.as_deref(), &args.scene)?;
     let problem = if part.is_some() {
-        Some("a farm part is not rendered in strips".to_string())
+        Some(render::strips::PART_PROBLEM.to_string())
     } else if targets.len() != 1 || targets[0].format.kind != imageio::Kind::Exr {
         Some(format!(
             "an image rendered in strips is written to one OpenEXR file (-o FILE.exr), not to {}",

@@ -111,3 +111,59 @@ fn check_reports_strips_as_a_warning() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("tall.mi:10:5: error: resolution 64 x 600 needs"), "{err}");
 }
+
+/// `--time` with strips (refused before): the first strip stops on its share of the time,
+/// every later strip at the samples per pixel the first reached, so all pixels hold the
+/// same count (`--stats`: samples = spp × pixels) and the whole stops near the limit.
+#[test]
+fn a_time_limit_renders_every_strip_to_the_first_ones_samples() {
+    let d = scratch();
+    let out = d.join("timed.exr");
+    let args = [
+        "render",
+        "../../scenes/iray_cornell_box.mi",
+        "--resolution",
+        "40",
+        "150",
+        "--spp",
+        "1000000",
+        "--time",
+        "2",
+        "--strip-rows",
+        "64",
+        "--threads",
+        "1",
+        "--stats",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let start = std::time::Instant::now();
+    let (code, stdout, err) = mira(&args);
+    let secs = start.elapsed().as_secs_f64();
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("(3 strips of 64 rows)"), "{err}");
+    let field = |prefix: &str, word: usize| -> u64 {
+        let line = stdout.lines().find(|l| l.starts_with(prefix)).unwrap_or_else(|| panic!("{stdout}"));
+        let words: Vec<&str> = line.split_whitespace().collect();
+        words[word].trim_end_matches(',').parse().unwrap_or_else(|_| panic!("{line}"))
+    };
+    // "render: T s (path), 40 x 150 pixels, N spp" and "samples: M (…)".
+    let spp = field("render:", 8);
+    let samples = field("samples:", 1);
+    assert!(spp >= 1 && spp < 1_000_000, "{stdout}");
+    assert_eq!(samples, spp * 40 * 150, "every strip stops at the first one's {spp} spp:\n{stdout}");
+    // Generous for a loaded machine: without the time limit the render takes hours.
+    assert!(secs < 60.0, "{secs} s");
+}
+
+/// A farm part is not rendered in strips: a clear error before anything renders.
+#[test]
+fn a_part_in_strips_is_an_error_at_the_command_line() {
+    let (code, _, err) =
+        mira(&["render", "../../scenes/iray_cornell_box.mi", "--part", "1/2", "--strip-rows", "64", "-o", "x.exr"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("mira: error: cannot render in strips: a farm part is not rendered in strips (a part is rendered in one film of the whole image"),
+        "{err}"
+    );
+}

@@ -10,51 +10,26 @@
 //!
 //! Run with `cargo bench -p render --bench mdl_modules`.
 
-use std::path::PathBuf;
+#[path = "../tests/support/mod.rs"]
+mod support;
+
 use std::sync::atomic::AtomicBool;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use render::{EngineKind, Settings};
-use shader::ShadingOptions;
-
-fn modules() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"))
-}
+use support::QUADRANTS;
 
 /// The scene `text` built for the path engine at `res`², with MDL modules from scenes/mdl.
 fn build(text: &str, res: u32) -> render::pipeline::Built {
-    let parsed = mi::parse_str("bench.mi", text);
-    let mut diags = Vec::new();
-    let mut scene = scene::Scene::build(&parsed, 0, &mut diags).expect("the scene builds");
-    scene.camera.resolution = (res, res);
-    let built = render::pipeline::build_world(&scene, &ShadingOptions::default(), &[modules()]);
-    assert!(built.world.warnings.is_empty(), "{:?}", built.world.warnings);
-    built
+    let b = support::build_parsed(&mi::parse_str("bench.mi", text), res, &[support::mdl_modules()]);
+    assert!(b.built.world.warnings.is_empty(), "{:?}", b.built.world.warnings);
+    b.built
 }
 
+/// The lit square of [`support::lit_square`] painted by the quadrants texture through
+/// `material` (which defines "mat").
 fn textured(material: &str) -> String {
-    format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-color texture "quadrants" [ 4 4 ]
-    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
-    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'
-{material}
-object "square" group
-    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
-    0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
-    p 0 1 2 3
-end group end object
-instance "square_inst" "square" material "mat" end instance
-instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    support::lit_square(&format!("{QUADRANTS}\n{material}"), "mat")
 }
 
 fn bench(c: &mut Criterion) {

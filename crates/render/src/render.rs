@@ -48,6 +48,11 @@ pub struct Settings {
     /// [`Film::y0`](crate::film::Film::y0) is their first): a strip of an image too large
     /// for one film (see [`crate::strips`]). `None`: every row. Not with `part`.
     pub rows: Option<std::ops::Range<u32>>,
+    /// Stop after the pass that reaches this many samples per pixel, and not on the clock:
+    /// the strips after the first of a time-limited render in strips take the first one's
+    /// count (see [`crate::strips::strip_settings`]). Unlike `spp` it changes neither the
+    /// target nor the classic engine's adaptive sampling.
+    pub stop_at_samples: Option<u32>,
 }
 
 impl Default for Settings {
@@ -61,6 +66,7 @@ impl Default for Settings {
             band: 4,
             part: None,
             rows: None,
+            stop_at_samples: None,
         }
     }
 }
@@ -307,7 +313,10 @@ pub fn render_prepared_with_film(
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
     };
     let contrast = world.options.contrast.map(|c| c as f32);
-    let max_time = settings.max_time.or(prog.max_time.map(Duration::from_secs_f64));
+    let max_time = match settings.stop_at_samples {
+        Some(_) => None,
+        None => settings.max_time.or(prog.max_time.map(Duration::from_secs_f64)),
+    };
     let quality = (classic.is_none() && settings.spp.is_none() && prog.quality_enabled).then_some(prog);
     // The rows this render samples: all, or a part's (with its halo).
     let rows_on: Vec<bool> = match settings.part {
@@ -497,7 +506,10 @@ pub fn render_prepared_with_film(
         }
         let elapsed = prepared.time + start.elapsed();
         after_pass(&film, Progress { samples: done, target, converged: converged_ratio, elapsed });
-        if stats.converged || max_time.is_some_and(|t| elapsed >= t) {
+        if stats.converged
+            || max_time.is_some_and(|t| elapsed >= t)
+            || settings.stop_at_samples.is_some_and(|n| done >= n)
+        {
             break;
         }
     }

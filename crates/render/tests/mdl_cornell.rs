@@ -7,14 +7,16 @@
 //! irradiance of a square source, and a module material painted by a texture (evaluated at
 //! each hit) against its texels.
 
+mod support;
+
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
+use shader::Shading;
+use support::{mean, QUADRANTS};
 
-/// Renders the parsed scene with the path engine at `res`², `spp` samples: the pixels and
-/// every message.
+/// Renders the parsed scene with the path engine at `res`², `spp` samples: the pixels,
+/// every message and whether the scene by itself would render in the classic engine.
 /// `extra` directories are searched for MDL modules after the scene's.
 fn render_parsed(parsed: &mi::Parsed, res: u32, spp: u32, extra: &[PathBuf]) -> (Vec<[f32; 4]>, Vec<String>, bool) {
     render_parsed_with(parsed, res, spp, extra, EngineKind::Path)
@@ -28,40 +30,11 @@ fn render_parsed_with(
     extra: &[PathBuf],
     engine: EngineKind,
 ) -> (Vec<[f32; 4]>, Vec<String>, bool) {
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let mut scene = scene::Scene::build(parsed, 0, &mut diags).expect("a scene");
-    scene.camera.resolution = (res, res);
-    let classic = Shading::wants_classic(&scene);
-    let (mut shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    let search = material::mdl_modules::search_path(&scene.library, extra);
-    let (mdl, mdl_diags) = material::mdl_modules::compile(&scene.library, search);
-    diags.extend(mdl_diags);
-    material::module_stand_ins(&mut shading, &scene, &mdl);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    let world = render::World::from_scene_with_mdl(&scene, Some(&shading), &mdl);
-    messages.extend(world.warnings.iter().cloned());
-    let accel = render::accel::build(&world, render::Backend::default_available());
+    let b = support::build_parsed(parsed, res, extra);
+    let classic = Shading::wants_classic(&b.scene);
     let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    (film.rgba(), messages, classic)
-}
-
-/// The mean colour of the pixels in columns `x0..x1` and rows `y0..y1` (from the top) of a
-/// `res`-wide image.
-fn mean(px: &[[f32; 4]], res: usize, (x0, x1): (usize, usize), (y0, y1): (usize, usize)) -> [f32; 3] {
-    let mut sum = [0.0; 3];
-    let mut n = 0.0;
-    for y in y0..y1 {
-        for x in x0..x1 {
-            for k in 0..3 {
-                sum[k] += px[y * res + x][k];
-            }
-            n += 1.0;
-        }
-    }
-    sum.map(|s| s / n)
+    let (film, _) = support::render_world(&b.built.world, &b.built.shading, &settings);
+    (film.rgba(), b.messages, classic)
 }
 
 #[test]
@@ -91,7 +64,7 @@ fn cornell_box_of_mdl_modules_has_red_and_green_walls_in_the_path_engine() {
 /// original scene's, 32², 32 spp, same seed), the walls keep their colours.
 #[test]
 fn an_undeclared_helper_shader_on_the_emitter_warns_and_keeps_the_light() {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"));
+    let dir = support::mdl_modules();
     let original = std::fs::read_to_string(dir.join("cornell_mdl.mi")).expect("the scene");
     let lamp = "    p \"white\" 0 1 2 3\nend group end object\ninstance \"lamp_inst\"";
     assert!(original.contains(lamp), "the scene's lamp geometry changed");
@@ -165,9 +138,8 @@ instance "plane_inst" "plane" end instance
 instgroup "root" "cam_inst" "lamp_inst" "plane_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#;
-    let modules = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"));
     let parsed = mi::parse_str("t.mi", text);
-    let (px, messages, _) = render_parsed(&parsed, 4, 256, &[modules]);
+    let (px, messages, _) = render_parsed(&parsed, 4, 256, &[support::mdl_modules()]);
     assert!(messages.is_empty(), "{messages:#?}");
     // Radiance of the square: flux / (π A) = 50 / π; the plane reflects 0.5 / π of the
     // irradiance. The camera sees a 0.2-wide patch below the centre: irradiance varies
@@ -181,12 +153,6 @@ render "root" "cam_inst" "opt"
     }
 }
 
-/// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,
-/// top right white (rows listed from the bottom).
-const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
-    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
-    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'"#;
-
 /// A square seen head-on at `res`², lit head-on by a directional light of irradiance π (a
 /// Lambertian pixel's value is its albedo), with shader `shader` of scenes/mdl/painted.mdl.
 fn painted_square(shader: &str, res: u32) -> (Vec<[f32; 4]>, Vec<String>) {
@@ -195,29 +161,9 @@ fn painted_square(shader: &str, res: u32) -> (Vec<[f32; 4]>, Vec<String>) {
 
 /// [`painted_square`] rendered by `engine`.
 fn painted_square_with(shader: &str, res: u32, engine: EngineKind) -> (Vec<[f32; 4]>, Vec<String>) {
-    let text = format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-{QUADRANTS}
-{shader}
-object "square" group
-    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
-    0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
-    p 0 1 2 3
-end group end object
-instance "square_inst" "square" material "mat" end instance
-instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    );
-    let modules = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"));
+    let text = support::lit_square(&format!("{QUADRANTS}\n{shader}"), "mat");
     let parsed = mi::parse_str("t.mi", &text);
-    let (px, messages, _) = render_parsed_with(&parsed, res, 16, &[modules], engine);
+    let (px, messages, _) = render_parsed_with(&parsed, res, 16, &[support::mdl_modules()], engine);
     (px, messages)
 }
 

@@ -9,37 +9,14 @@ mod support;
 
 use render::EngineKind;
 use shader::{Shading, ShadingOptions};
+use support::QUADRANTS;
 
-/// Renders `body` (materials, shaders and the square's instance `material`) with the path
-/// engine at 8×8: the pixels (RGBA, rows from the top) and the diagnostics.
+/// Renders `body` (materials, shaders) before the lit square of [`support::lit_square`],
+/// whose instance takes `material`, with the path engine at 8×8: the pixels (RGBA, rows
+/// from the top) and the diagnostics.
 fn render(body: &str, material: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
-    let text = format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-{body}
-object "square" group
-    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
-    0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
-    p 0 1 2 3
-end group end object
-instance "square_inst" "square" material "{material}" end instance
-instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    );
-    support::render_text(&text, EngineKind::Path, Some(spp))
+    support::render_text(&support::lit_square(body, material), EngineKind::Path, Some(spp))
 }
-
-/// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,
-/// top right white (rows listed from the bottom).
-const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
-    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
-    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'"#;
 
 /// Pixels whose footprints lie inside one texel block (away from block edges, where
 /// bilinear filtering blends): (x, y from the top, expected RGB).

@@ -316,10 +316,17 @@ impl<'a> Builder<'a, '_> {
                     _ => local = DMat4::IDENTITY,
                 },
                 "motion transform" => {
-                    own_motion = Some(match k.args.first() {
+                    let motion = match k.args.first() {
                         Some(Arg::Floats(m)) => transform::from_mi(m).filter(|t| transform::inverse(*t).is_some()),
                         _ => None,
-                    })
+                    };
+                    if motion.is_none() && matches!(k.args.first(), Some(Arg::Floats(_))) {
+                        self.diags.push(Diagnostic::warning(
+                            k.span,
+                            "singular or invalid motion transform: the instance does not move",
+                        ));
+                    }
+                    own_motion = Some(motion);
                 }
                 "motion" => {
                     if matches!(k.args.first(), Some(Arg::Bool(false))) {

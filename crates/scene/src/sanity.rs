@@ -198,6 +198,21 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
 /// to what.
 fn capped(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
     use crate::options::{MAX_ACCURACY, MAX_BUFFER_OR_POINTS, MAX_MOTION_STEPS, MAX_PROGRESSIVE_SAMPLES};
+    // `shutter delay close` with close before delay: mira, as mental ray, takes it as a
+    // closed shutter (no motion blur); said, since the file asked for blur.
+    for s in stmts {
+        if let Stmt::Kw(k) = s {
+            let (delay, close) = (crate::values::f64_arg(k, 0), crate::values::f64_arg(k, 1));
+            if let ("shutter", Some(d), Some(c)) = (k.key, delay, close) {
+                if c < d {
+                    diags.push(Diagnostic::warning(
+                        k.span,
+                        format!("shutter closes at {c} before it opens at {d}: no motion blur is rendered"),
+                    ));
+                }
+            }
+        }
+    }
     let mut warn = |span: mi::Span, what: &str, v: f64, (lo, hi): (f64, f64)| {
         if v > hi {
             diags.push(Diagnostic::warning(span, format!("{what} {v} is more than mira takes: {hi} is used")));

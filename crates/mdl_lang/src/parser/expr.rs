@@ -58,13 +58,30 @@ impl Parser {
 
     fn binary(&mut self, min_prec: u8) -> PResult<Expr> {
         let mut lhs = self.unary()?;
+        // Each operator of a chain (`a + b + c …`) puts the tree one level deeper on its
+        // left, as nesting does: counted as nesting, so that no chain makes a tree deeper
+        // than MAX_DEPTH (every later pass over the tree, and dropping it, recurses).
+        let depth = self.depth;
         while let Some(op) = self.binary_op(min_prec) {
             self.bump();
+            self.deeper()?;
             let rhs = self.nested(|p| p.binary(op.precedence() + 1))?;
             let span = lhs.span.to(rhs.span);
             lhs = Expr::new(ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) }, span);
         }
+        self.depth = depth;
         Ok(lhs)
+    }
+
+    /// One level deeper for an operator that wraps the tree so far (a chain of binary
+    /// operators, member accesses, indices): an error past [`MAX_DEPTH`].
+    fn deeper(&mut self) -> PResult<()> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return self
+                .error("expression is nested too deeply (more than 200 levels, counting each operator of a chain)");
+        }
+        Ok(())
     }
 
     /// The binary operator at the cursor if it binds at least as tightly as `min_prec`.
@@ -92,7 +109,11 @@ impl Parser {
             return Ok(Expr::new(ExprKind::Unary { op, operand: Box::new(operand) }, span));
         }
         let mut e = self.primary()?;
+        let depth = self.depth;
         loop {
+            if self.is_punct(".") || self.is_punct("[") || self.is_punct("++") || self.is_punct("--") {
+                self.deeper()?;
+            }
             if self.eat_punct(".") {
                 let (field, fspan) = self.ident("a field name after `.`")?;
                 let span = e.span.to(fspan);
@@ -111,6 +132,7 @@ impl Parser {
             } else if self.is_punct("(") {
                 return self.error("only names can be called (a call of an expression is not MDL)");
             } else {
+                self.depth = depth;
                 return Ok(e);
             }
         }

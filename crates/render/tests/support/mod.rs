@@ -1,9 +1,12 @@
 //! The integration tests' way from `.mi` text to pixels: parse, build the scene and compile
 //! its shading ([`compile`]), translate the world and render it ([`render_world`]), or all of
-//! it at once ([`render_text`]).
+//! it at once ([`render_text`]); scenes with MDL module materials through the render
+//! pipeline's world stage ([`build_parsed`]); and the textured square the material tests and
+//! benchmarks look at ([`lit_square`]). The benchmarks include this file too.
 
 #![allow(dead_code)]
 
+use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 use render::film::Film;
@@ -65,4 +68,85 @@ pub fn render_text(text: &str, engine: EngineKind, spp: Option<u32>) -> (Vec<[f3
     let settings = Settings { engine, spp, ..Settings::default() };
     let (film, _) = render_world(&world, &shading, &settings);
     (film.rgba(), messages)
+}
+
+/// The directory of the example MDL modules (`scenes/mdl`).
+pub fn mdl_modules() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mdl"))
+}
+
+/// A scene built through the render pipeline's world stage, with every message.
+pub struct BuiltScene {
+    /// The scene (its camera at the asked resolution).
+    pub scene: scene::Scene,
+    /// Its shading, MDL module materials and world ([`render::pipeline::build_world`]).
+    pub built: render::pipeline::Built,
+    /// The messages of the reader, the scene layer, the compilers and the world's
+    /// translation (file:line:col where they have one).
+    pub messages: Vec<String>,
+}
+
+/// Builds `parsed` at `res`² as `mira render` does: shading with every library, MDL modules
+/// from the scene's directory then `mdl_paths`, the world. Panics, with every message, when
+/// no scene can be built.
+pub fn build_parsed(parsed: &mi::Parsed, res: u32, mdl_paths: &[PathBuf]) -> BuiltScene {
+    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
+    let mut diags = Vec::new();
+    let Some(mut scene) = scene::Scene::build(parsed, 0, &mut diags) else {
+        let all: Vec<String> = diags.iter().map(|d| d.render(&parsed.sources)).collect();
+        panic!("no scene: {messages:?} {all:?}");
+    };
+    scene.camera.resolution = (res, res);
+    let built = render::pipeline::build_world(&scene, &ShadingOptions::default(), mdl_paths);
+    messages.extend(diags.iter().chain(&built.diagnostics).map(|d| d.render(&parsed.sources)));
+    messages.extend(built.world.warnings.iter().cloned());
+    BuiltScene { scene, built, messages }
+}
+
+/// A 4×4 texture of four 2×2 blocks: bottom left red, bottom right green, top left blue,
+/// top right white (rows listed from the bottom).
+pub const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
+    'ff0000' 'ff0000' '00ff00' '00ff00'  'ff0000' 'ff0000' '00ff00' '00ff00'
+    '0000ff' '0000ff' 'ffffff' 'ffffff'  '0000ff' '0000ff' 'ffffff' 'ffffff'"#;
+
+/// A 2 × 2 square (texture coordinates 0…1) seen head-on by an 8×8 camera and lit head-on
+/// by a directional light of irradiance π, so that a Lambertian pixel's value is its
+/// albedo: `body` (textures, shaders, materials) goes before the square, whose instance
+/// takes `material`.
+pub fn lit_square(body: &str, material: &str) -> String {
+    format!(
+        r#"
+options "opt" filter box 1 1 end options
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+{body}
+object "square" group
+    -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
+    0 0 0  1 0 0  1 1 0  0 1 0
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
+    p 0 1 2 3
+end group end object
+instance "square_inst" "square" material "{material}" end instance
+instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// The mean colour of the pixels in columns `x0..x1` and rows `y0..y1` (from the top) of a
+/// `width`-wide image.
+pub fn mean(px: &[[f32; 4]], width: usize, (x0, x1): (usize, usize), (y0, y1): (usize, usize)) -> [f32; 3] {
+    let mut sum = [0.0; 3];
+    let mut n = 0.0;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            for k in 0..3 {
+                sum[k] += px[y * width + x][k];
+            }
+            n += 1.0;
+        }
+    }
+    sum.map(|s| s / n)
 }
