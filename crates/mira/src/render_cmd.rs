@@ -181,6 +181,8 @@ pub struct LoadedScene {
     pub scene: scene::Scene,
     /// Hash of the scene's text.
     pub content_hash: u64,
+    /// How long parsing and building the scene took.
+    pub times: render::pipeline::LoadTimes,
 }
 
 /// Stage 1 for the commands: loads `path` at `frame` (1 = the first render statement),
@@ -205,6 +207,7 @@ pub fn load_scene(
         return Err(format!("{} has errors; nothing rendered", path.display()));
     }
     let content_hash = loaded.content_hash();
+    let times = loaded.times;
     let Some(mut scene) = loaded.scene else { return Err("no world to render".into()) };
     if let Some((w, h)) = resolution {
         let max = scene::camera::MAX_RESOLUTION;
@@ -213,7 +216,7 @@ pub fn load_scene(
         }
         render::pipeline::set_resolution(&mut scene, w, h);
     }
-    Ok(LoadedScene { parsed: loaded.parsed, scene, content_hash })
+    Ok(LoadedScene { parsed: loaded.parsed, scene, content_hash, times })
 }
 
 /// Most worker threads `--threads` may ask for.
@@ -343,10 +346,17 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         Some(Ok(p)) => Some(p),
         None => None,
     };
+    // The worker threads: they also read big number lists while parsing.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+        .map_err(|e| err(format!("cannot start worker threads: {e}")))?;
     let t0 = Instant::now();
     // Stage 1: load.
     let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
-    let mut loaded = load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings).map_err(err)?;
+    let mut loaded = pool
+        .install(|| load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings))
+        .map_err(err)?;
     // The syntax tree is not needed past the scene: freed now, it does not add to the peak
     // memory of building the world (the sources stay, for messages).
     loaded.parsed.items = Vec::new();
@@ -356,7 +366,8 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let strip_rows = choose_strips(args, &mut loaded, part).map_err(err)?;
     let sc = &loaded.scene;
     let shading_options = shading_options(&args.scene, opts);
-    let built = render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths);
+    let t_world = Instant::now();
+    let built = pool.install(|| render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths));
     if built.diagnostics.iter().any(|d| d.is_error() || args.warnings) {
         restore_sources(&mut loaded.parsed.sources);
     }
@@ -382,9 +393,10 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     } else {
         0
     };
-    let LoadedScene { parsed, scene: mut loaded_scene, content_hash } = loaded;
+    let LoadedScene { parsed, scene: mut loaded_scene, content_hash, times: load_times } = loaded;
     drop(parsed);
     loaded_scene.release_geometry();
+    let t_world = t_world.elapsed();
     let sc = &loaded_scene;
     let (world, shading) = (&built.world, &built.shading);
     if args.warnings && !classic {
@@ -418,10 +430,6 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             )));
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads)
-        .build()
-        .map_err(|e| err(format!("cannot start worker threads: {e}")))?;
     // Stage 3: prepare (acceleration, then the pre-passes).
     let t1 = Instant::now();
     let accel = pool.install(|| render::accel::build(world, backend));
@@ -548,7 +556,8 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             }
         };
         if args.stats {
-            print_stats(world, accel.as_ref(), (w, h), &total, classic, t_scene, t_accel);
+            let stages = StageTimes { load: load_times, world: t_world, scene: t_scene, accel: t_accel };
+            print_stats(world, accel.as_ref(), (w, h), &total, classic, &stages);
         }
         return if failed {
             Err(ExitCode::FAILURE)
@@ -663,7 +672,8 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         }
     }
     if args.stats {
-        print_stats(world, accel.as_ref(), (film.width, film.height), &stats, classic, t_scene, t_accel);
+        let stages = StageTimes { load: load_times, world: t_world, scene: t_scene, accel: t_accel };
+        print_stats(world, accel.as_ref(), (film.width, film.height), &stats, classic, &stages);
     }
     if failed {
         Err(ExitCode::FAILURE)
@@ -831,6 +841,18 @@ fn choose_strips(args: &RenderArgs, loaded: &mut LoadedScene, part: Option<Part>
     Ok(Some(rows))
 }
 
+/// Wall-clock times of the stages before rendering, for `--stats`.
+struct StageTimes {
+    /// Parsing and building the scene.
+    load: render::pipeline::LoadTimes,
+    /// Building the world (shading, MDL, meshes) and freeing what it no longer needs.
+    world: Duration,
+    /// From the start to the world built: the load and world stages and what lies between.
+    scene: Duration,
+    /// Building the acceleration structure.
+    accel: Duration,
+}
+
 /// Prints `--stats`.
 fn print_stats(
     world: &render::World,
@@ -838,15 +860,22 @@ fn print_stats(
     (width, height): (u32, u32),
     stats: &render::Stats,
     classic: bool,
-    t_scene: Duration,
-    t_accel: Duration,
+    stages: &StageTimes,
 ) {
+    let (t_scene, t_accel) = (stages.scene, stages.accel);
     let secs = stats.render_time.as_secs_f64().max(1e-9);
     println!(
         "scene:          {:.3} s (parse, build, translate), {} instances, {} triangles",
         t_scene.as_secs_f64(),
         world.instances.len(),
         world.instanced_triangles()
+    );
+    println!(
+        "stages:         parse {:.3} s, scene {:.3} s, world {:.3} s, acceleration {:.3} s",
+        stages.load.parse.as_secs_f64(),
+        stages.load.scene.as_secs_f64(),
+        stages.world.as_secs_f64(),
+        t_accel.as_secs_f64()
     );
     println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
     let engine = if classic { "classic" } else { "path" };

@@ -17,7 +17,8 @@ pub struct MeshData {
     pub bump_basis: Vec<[Vec3A; 2]>,
     /// Triangles (counter-clockwise is the front).
     pub triangles: Vec<[u32; 3]>,
-    /// Material slot of each triangle.
+    /// Material slot of each triangle; empty when every triangle has slot 0 (readers take
+    /// a missing entry as slot 0), which saves 4 bytes per triangle of one-material meshes.
     pub slots: Vec<u32>,
     /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
     pub hair: Option<HairData>,

@@ -191,7 +191,8 @@ impl World {
                     textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
                     bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
                     triangles: m.triangles.clone(),
-                    slots: m.triangle_slots.clone(),
+                    // One slot for every triangle (the common case) is stored as none.
+                    slots: if m.triangle_slots.iter().all(|&s| s == 0) { Vec::new() } else { m.triangle_slots.clone() },
                     hair: None,
                     motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
                     motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),

@@ -111,8 +111,16 @@ impl Mesh {
             + self.triangle_slots.len() * 4
     }
 
-    /// Appends `other`, offsetting its indices and merging its slots.
+    /// Appends `other`, offsetting its indices and merging its slots. Appended to an empty
+    /// mesh (an object's only geometry, the common case), `other` moves in whole: its
+    /// arrays are not copied (for a 4 M-triangle trilist, 112 MB less to copy and to hold
+    /// twice while the scene is built).
     pub fn append(&mut self, other: Mesh) {
+        if self.is_blank() && other.is_merged_form() {
+            let name = std::mem::take(&mut self.name);
+            *self = Mesh { name, ..other };
+            return;
+        }
         let base = self.positions.len() as u32;
         let had = self.positions.len();
         let slot_map: Vec<u32> = other.slots.iter().map(|s| self.slot(s.clone())).collect();
@@ -134,6 +142,32 @@ impl Mesh {
         merge_spaces(&mut self.textures, other.textures, had, n_other);
         merge_spaces(&mut self.user, other.user, had, n_other);
         self.positions.extend(other.positions);
+    }
+}
+
+impl Mesh {
+    /// Whether the mesh holds nothing at all (its name aside).
+    fn is_blank(&self) -> bool {
+        self.positions.is_empty()
+            && self.normals.is_empty()
+            && self.textures.is_empty()
+            && self.user.is_empty()
+            && self.motion.is_empty()
+            && self.motion_more.is_empty()
+            && self.derivatives.is_empty()
+            && self.bump_basis.is_empty()
+            && self.triangles.is_empty()
+            && self.triangle_slots.is_empty()
+            && self.slots.is_empty()
+    }
+
+    /// Whether appending the mesh to a blank one would give it back unchanged: its texture
+    /// and user spaces hold a coordinate per vertex and its slots are distinct (what
+    /// [`Mesh::append`]'s merge would otherwise pad or fold together).
+    fn is_merged_form(&self) -> bool {
+        let n = self.positions.len();
+        self.textures.iter().chain(&self.user).all(|t| t.coords.len() == n)
+            && self.slots.iter().enumerate().all(|(i, s)| !self.slots[..i].contains(s))
     }
 }
 
@@ -220,5 +254,29 @@ mod tests {
         assert_eq!(a.triangle_slots, vec![0, 0]);
         assert_eq!(a.normals, vec![Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, Vec3::Z, Vec3::Z, Vec3::Z]);
         assert_eq!(a.area(), 1.0);
+    }
+
+    /// Appended to a blank mesh, a mesh comes back as it was (moved, not merged), and one
+    /// the merge would change (a texture space without coordinates) is still merged.
+    #[test]
+    fn append_to_a_blank_mesh_keeps_the_mesh() {
+        let mut m = Mesh::new("object");
+        m.positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE];
+        m.normals = vec![Vec3::Z; 4];
+        m.motion = vec![Vec3::X; 4];
+        m.textures = vec![TexSpace { dim: 2, coords: vec![Vec3::ONE; 4] }];
+        m.triangles = vec![[0, 1, 2], [1, 3, 2]];
+        m.slots = vec![MaterialSlot::Label(7), MaterialSlot::Inherit];
+        m.triangle_slots = vec![1, 0];
+        let mut blank = Mesh::new("kept name");
+        blank.append(m.clone());
+        assert_eq!(blank, Mesh { name: "kept name".into(), ..m.clone() });
+
+        let mut partial = m.clone();
+        partial.user = vec![TexSpace { dim: 3, coords: Vec::new() }];
+        let mut blank = Mesh::new("");
+        blank.append(partial);
+        assert_eq!(blank.user, vec![TexSpace { dim: 3, coords: vec![Vec3::ZERO; 4] }]);
+        assert_eq!((blank.triangles, blank.triangle_slots), (m.triangles, m.triangle_slots));
     }
 }

@@ -15,9 +15,11 @@ use crate::source::{FileId, Span};
 mod bulk;
 mod directive;
 mod number;
+mod parallel;
 mod token;
 
 pub use directive::directive_args;
+pub use parallel::PARALLEL_FROM_BYTES;
 pub use token::{Directive, SkipEnd, Tok, Token};
 
 /// The lexer for one source file.

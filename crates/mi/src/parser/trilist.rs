@@ -133,6 +133,9 @@ impl Parser {
 
     /// `[ numbers… ]` read fast into `out` (the `[` already consumed).
     fn float_block(&mut self, out: &mut Vec<f32>) -> PResult<()> {
+        if self.lexer()?.f32_list_parallel(out) {
+            return Ok(());
+        }
         loop {
             let lx = self.lexer()?;
             while let Some(x) = lx.try_f32()? {
@@ -155,6 +158,9 @@ impl Parser {
     fn int_block(&mut self, out: &mut Vec<u32>) -> PResult<Vec<(u32, Name)>> {
         self.expect_tok(Tok::LBracket, "'['")?;
         let mut names = Vec::new();
+        if self.lexer()?.u32_list_parallel(out) {
+            return Ok(names);
+        }
         loop {
             let lx = self.lexer()?;
             while let Some(x) = lx.try_u32()? {

@@ -1,0 +1,289 @@
+//! Bulk number lists read on several threads: a bracketed list of plain numbers (a
+//! trilist's vertex data or triangle indices) is cut at line breaks into pieces that the
+//! rayon pool parses at once, each number exactly as the one-at-a-time fast paths
+//! ([`Lexer::try_f32`], [`Lexer::try_u32`]) read it, appended in order to the output.
+//!
+//! A list holding anything but numbers, whitespace and comments (a material name, a
+//! directive, a malformed number) is left to the one-at-a-time path, which reads it or
+//! reports the error at its place: the parallel path only ever answers "read it all" or
+//! "not mine".
+
+use rayon::prelude::*;
+
+use super::number::parse_f32_simple;
+use super::{is_delimiter, Lexer};
+
+/// Lists of at least this many bytes are read in parallel (smaller ones are not worth a
+/// thread's wake-up).
+pub const PARALLEL_FROM_BYTES: usize = 1 << 20;
+
+/// Bytes of text per piece (about 40 000 floats of a trilist's vertex lines).
+const PIECE_BYTES: usize = 256 << 10;
+
+/// Pieces read per round; their numbers are appended to the output before the next round,
+/// so the pieces' own buffers stay small whatever the list's size.
+const PIECES_PER_ROUND: usize = 64;
+
+impl Lexer {
+    /// Reads the rest of a bracketed list of numbers (the `[` consumed) as `f32`, its `]`
+    /// included, appending to `out`, when the list is long and holds nothing but numbers and
+    /// comments. Returns `false`, having consumed nothing, otherwise.
+    pub fn f32_list_parallel(&mut self, out: &mut Vec<f32>) -> bool {
+        self.list_parallel(out, parse_f32_piece)
+    }
+
+    /// [`Lexer::f32_list_parallel`] for non-negative integers that fit `u32` (indices).
+    pub fn u32_list_parallel(&mut self, out: &mut Vec<u32>) -> bool {
+        self.list_parallel(out, parse_u32_piece)
+    }
+
+    fn list_parallel<T: Send>(&mut self, out: &mut Vec<T>, parse: fn(&[u8], &mut Vec<T>) -> bool) -> bool {
+        let start = self.pos;
+        let Some(end) = list_end(&self.src[start..]).map(|e| start + e) else { return false };
+        if end - start < PARALLEL_FROM_BYTES {
+            return false;
+        }
+        let pieces = pieces(&self.src[start..end]);
+        let keep = out.len();
+        for round in pieces.chunks(PIECES_PER_ROUND) {
+            let read: Option<Vec<Vec<T>>> = round
+                .par_iter()
+                .map(|piece| {
+                    let mut v = Vec::with_capacity(piece.len() / 4);
+                    parse(piece, &mut v).then_some(v)
+                })
+                .collect();
+            let Some(read) = read else {
+                out.truncate(keep);
+                return false;
+            };
+            for mut v in read {
+                out.append(&mut v);
+            }
+        }
+        self.pos = end + 1;
+        true
+    }
+}
+
+/// Offset of the `]` that closes a list starting at `text[0]`, skipping comments; `None`
+/// when the text ends first or a `[` (a nested list: not a plain number list) comes first.
+fn list_end(text: &[u8]) -> Option<usize> {
+    let mut i = 0;
+    loop {
+        i += memchr::memchr3(b']', b'#', b'[', &text[i..])?;
+        match text[i] {
+            b']' => return Some(i),
+            b'#' => i += memchr::memchr(b'\n', &text[i..])?,
+            _ => return None,
+        }
+    }
+}
+
+/// `text` cut into pieces of about [`PIECE_BYTES`], each ending just after a line break
+/// (numbers and comments never span one) or at the end.
+fn pieces(text: &[u8]) -> Vec<&[u8]> {
+    let mut out = Vec::with_capacity(text.len() / PIECE_BYTES + 1);
+    let mut at = 0;
+    while at < text.len() {
+        let cut = at + PIECE_BYTES;
+        let end = if cut >= text.len() {
+            text.len()
+        } else {
+            memchr::memchr(b'\n', &text[cut..]).map_or(text.len(), |i| cut + i + 1)
+        };
+        out.push(&text[at..end]);
+        at = end;
+    }
+    out
+}
+
+/// Skips whitespace and comments from `i`; the offset of the next byte (or the end).
+#[inline]
+fn skip_trivia(text: &[u8], mut i: usize) -> usize {
+    while let Some(&b) = text.get(i) {
+        match b {
+            b' ' | b'\t' | b'\n' | b'\r' | 0x0c => i += 1,
+            b'#' => match memchr::memchr(b'\n', &text[i..]) {
+                Some(k) => i += k + 1,
+                None => return text.len(),
+            },
+            _ => break,
+        }
+    }
+    i
+}
+
+/// Whether a number ending at `end` is cut off properly: by the end of the piece (a line
+/// break or the list's `]` follows it in the file) or by a delimiter.
+#[inline]
+fn ends_at(text: &[u8], end: usize) -> bool {
+    end == text.len() || is_delimiter(text[end])
+}
+
+/// Reads a piece holding only floats, whitespace and comments, as [`Lexer::try_f32`]
+/// would; `false` at anything else.
+fn parse_f32_piece(text: &[u8], out: &mut Vec<f32>) -> bool {
+    let mut i = skip_trivia(text, 0);
+    while i < text.len() {
+        let signed = matches!(text[i], b'-' | b'+');
+        let first = if signed { text.get(i + 1) } else { Some(&text[i]) };
+        if !matches!(first, Some(b'0'..=b'9' | b'.')) {
+            return false;
+        }
+        let rest = &text[i..];
+        let (v, len) = match parse_f32_simple(rest) {
+            Some((v, len)) if ends_at(text, i + len) => (v, len),
+            _ => match fast_float2::parse_partial::<f32, _>(rest) {
+                Ok((v, len)) if ends_at(text, i + len) => (v, len),
+                _ => return false,
+            },
+        };
+        out.push(v);
+        i = skip_trivia(text, i + len);
+    }
+    true
+}
+
+/// Reads a piece holding only non-negative integers that fit `u32`, whitespace and
+/// comments, as [`Lexer::try_u32`] would; `false` at anything else.
+fn parse_u32_piece(text: &[u8], out: &mut Vec<u32>) -> bool {
+    let mut i = skip_trivia(text, 0);
+    while i < text.len() {
+        let start = i;
+        let mut v: u64 = 0;
+        while let Some(&d) = text.get(i) {
+            if !d.is_ascii_digit() {
+                break;
+            }
+            v = v * 10 + u64::from(d - b'0');
+            if v > u64::from(u32::MAX) {
+                return false;
+            }
+            i += 1;
+        }
+        if i == start || !ends_at(text, i) {
+            return false;
+        }
+        out.push(v as u32);
+        i = skip_trivia(text, i);
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::source::FileId;
+
+    fn lexer(text: &str) -> Lexer {
+        Lexer::new(FileId(0), Arc::from(text.as_bytes()))
+    }
+
+    /// Vertex lines in every form exporters write, with comments and blank lines, longer
+    /// than the parallel threshold, closed by `]`.
+    fn float_list(lines: usize) -> String {
+        let forms = ["0.136563", "-12.5", "1.", ".5", "-2.5e-05", "1E+3", "7", "-0", "3.4028236e38", "1e-50"];
+        let mut s = String::new();
+        for i in 0..lines {
+            let a = forms[i % forms.len()];
+            let b = (i as f64 * 0.001 - 17.0).to_string();
+            let c = format!("{}.{:03}", i % 997, i % 1000);
+            s.push_str(&format!("{a} {b}\t{c}\n"));
+            if i % 5000 == 0 {
+                s.push_str("# a comment with ] and [ in it\n\n");
+            }
+        }
+        s.push_str("]\nend trilist\n");
+        s
+    }
+
+    /// The same numbers, read one at a time by the serial fast path.
+    fn serial_f32(text: &str) -> Vec<f32> {
+        let mut lx = lexer(text);
+        let mut out = Vec::new();
+        while let Some(x) = lx.try_f32().unwrap() {
+            out.push(x);
+        }
+        out
+    }
+
+    #[test]
+    fn parallel_floats_equal_the_serial_path_bit_for_bit() {
+        let text = float_list(120_000);
+        assert!(text.len() > 2 * PARALLEL_FROM_BYTES, "the list must span several pieces");
+        let mut lx = lexer(&text);
+        let mut out = vec![42.0];
+        assert!(lx.f32_list_parallel(&mut out));
+        let serial = serial_f32(&text);
+        assert_eq!(serial.len(), 3 * 120_000);
+        assert_eq!(out.len(), serial.len() + 1, "appends after what was there");
+        assert!(out[1..].iter().zip(&serial).all(|(a, b)| a.to_bits() == b.to_bits()));
+        // The `]` is consumed; the lexer stands before `end trilist`.
+        assert_eq!(lx.peek_word(), Some(&b"end"[..]));
+    }
+
+    #[test]
+    fn parallel_indices_equal_the_serial_path() {
+        let mut text = String::new();
+        for i in 0..300_000u32 {
+            text.push_str(&format!("{} {} {}\n", i, i.wrapping_mul(2_654_435_761) % 1_000_000, u32::MAX - i));
+        }
+        text.push_str("] x");
+        let mut lx = lexer(&text);
+        let mut out = Vec::new();
+        assert!(lx.u32_list_parallel(&mut out));
+        let mut serial = Vec::new();
+        let mut s = lexer(&text);
+        while let Some(x) = s.try_u32().unwrap() {
+            serial.push(x);
+        }
+        assert_eq!(out, serial);
+        assert_eq!(lx.peek_word(), Some(&b"x"[..]));
+    }
+
+    /// Anything but plain numbers leaves the list to the serial path, untouched.
+    #[test]
+    fn lists_with_anything_else_are_not_taken() {
+        let base = float_list(100_000);
+        let cut = base.len() / 2;
+        let cut = cut + base[cut..].find('\n').unwrap() + 1;
+        for intruder in ["\"mat\" ", "$ifdef x\n", "1.5x ", "`abc` ", "[ ", "- ", "1e "] {
+            let text = format!("{}{intruder}{}", &base[..cut], &base[cut..]);
+            let mut lx = lexer(&text);
+            let mut out = vec![1.0];
+            assert!(!lx.f32_list_parallel(&mut out), "{intruder:?} was taken");
+            assert_eq!((out.len(), lx.pos), (1, 0), "{intruder:?}: something was consumed");
+        }
+        let mut ints = String::from("1 2 3\n").repeat(200_000);
+        ints.push_str("4294967296 ]");
+        let mut out = Vec::new();
+        assert!(
+            !lexer(&ints).u32_list_parallel(&mut out) && out.is_empty(),
+            "an index past u32 is the serial path's error"
+        );
+        // Short lists and unclosed lists are not taken either.
+        assert!(!lexer("1 2 3 ]").f32_list_parallel(&mut Vec::new()));
+        assert!(!lexer(&base[..base.len() - 14]).f32_list_parallel(&mut Vec::new()));
+    }
+
+    /// A malformed number deep in a long trilist is reported where it is, as before.
+    #[test]
+    fn an_error_in_a_long_list_points_at_its_line() {
+        let lines = 100_000;
+        let mut text = format!("object \"o\"\ntrilist vertex {lines} p\ntriangle 1\n[\n");
+        for i in 0..lines {
+            text.push_str(if i == 90_000 { "1.0 2.0q 3.0\n" } else { "1.0 2.0 3.0\n" });
+        }
+        text.push_str("]\n[ 0 1 2 ]\nend trilist\nend object\n");
+        assert!(text.len() > PARALLEL_FROM_BYTES);
+        let parsed = crate::parse_str("big.mi", &text);
+        let error = parsed.diagnostics.list.iter().find(|d| d.is_error()).expect("an error");
+        let at = error.span.lo as usize;
+        let line = text[..at].matches('\n').count() + 1;
+        assert_eq!(line, 4 + 90_000 + 1, "{}", error.message);
+        assert!(error.message.contains("malformed number"), "{}", error.message);
+    }
+}
