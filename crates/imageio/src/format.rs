@@ -10,7 +10,8 @@ use std::path::Path;
 pub enum Kind {
     /// Softimage `pic`: 8-bit RGB(A), run-length encoded.
     SoftimagePic,
-    /// Softimage depth map `Zpic` (not written: no public description of its layout).
+    /// Softimage depth map `Zpic` (headerless big-endian floats, one per pixel; see
+    /// `softimage::encode_zpic`).
     SoftimageZpic,
     /// Alias `pix` (`alias`): 8-bit RGB, run-length encoded.
     AliasPix,
@@ -136,7 +137,12 @@ impl Kind {
     /// The sample type written when the data type does not say.
     pub fn default_sample(self) -> Sample {
         match self {
-            Kind::Exr | Kind::Hdr | Kind::MentalDepth | Kind::MentalNormal | Kind::MentalMotion => Sample::F32,
+            Kind::Exr
+            | Kind::Hdr
+            | Kind::MentalDepth
+            | Kind::MentalNormal
+            | Kind::MentalMotion
+            | Kind::SoftimageZpic => Sample::F32,
             _ => Sample::U8,
         }
     }
@@ -148,8 +154,10 @@ impl Kind {
             Kind::Tiff | Kind::MentalScalar => &[Sample::U8, Sample::U16, Sample::F32],
             Kind::MentalColor => &[Sample::U8, Sample::U16, Sample::Half, Sample::F32],
             Kind::Exr => &[Sample::Half, Sample::F32],
-            Kind::Hdr | Kind::MentalDepth | Kind::MentalNormal | Kind::MentalMotion => &[Sample::F32],
-            Kind::MentalTag | Kind::MentalBit | Kind::SoftimageZpic | Kind::MemoryMap | Kind::Unwritten(_) => &[],
+            Kind::Hdr | Kind::MentalDepth | Kind::MentalNormal | Kind::MentalMotion | Kind::SoftimageZpic => {
+                &[Sample::F32]
+            }
+            Kind::MentalTag | Kind::MentalBit | Kind::MemoryMap | Kind::Unwritten(_) => &[],
             _ => &[Sample::U8],
         }
     }
@@ -159,10 +167,9 @@ impl Kind {
         !matches!(self, Kind::Jpeg | Kind::Ppm | Kind::Hdr | Kind::AliasPix)
     }
 
-    /// Whether [`crate::write`] writes this format (all but `Zpic`, `map` and
-    /// [`Kind::Unwritten`]).
+    /// Whether [`crate::write`] writes this format (all but `map` and [`Kind::Unwritten`]).
     pub fn writable(self) -> bool {
-        !matches!(self, Kind::SoftimageZpic | Kind::MemoryMap | Kind::Unwritten(_))
+        !matches!(self, Kind::MemoryMap | Kind::Unwritten(_))
     }
 
     /// Whether files of this format hold a buffer of type `buffer` as [`crate::Pixels::type_name`]
@@ -176,7 +183,7 @@ impl Kind {
             Kind::Exr => true,
             Kind::MentalColor => buffer == "rgba",
             Kind::MentalScalar => buffer == "a",
-            Kind::MentalDepth => buffer == "z",
+            Kind::MentalDepth | Kind::SoftimageZpic => buffer == "z",
             Kind::MentalNormal => buffer == "n",
             Kind::MentalMotion => buffer == "m",
             Kind::MentalTag => buffer == "tag",

@@ -68,7 +68,8 @@ pub fn write(path: &Path, format: Format, image: &ImageData) -> Result<(), Error
         | Kind::MentalMotion
         | Kind::MentalTag
         | Kind::MentalBit => mental::encode(format, image)?,
-        Kind::SoftimageZpic | Kind::MemoryMap | Kind::Unwritten(_) => {
+        Kind::SoftimageZpic => softimage::encode_zpic(image)?,
+        Kind::MemoryMap | Kind::Unwritten(_) => {
             return Err(Error::Unsupported(format!("mira does not write '{}' files", format.kind)))
         }
     };

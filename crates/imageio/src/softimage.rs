@@ -88,3 +88,20 @@ pub(crate) fn encode(format: Format, image: &ImageData) -> Result<Vec<u8>, Error
     }
     Ok(out)
 }
+
+/// The farthest depth a Softimage `Zpic` file holds (scene units; its values run from 0
+/// at the camera to this).
+pub const ZPIC_FAR: f32 = -100_000.0;
+
+/// A Softimage `Zpic` depth file, written by hand (no crate writes it): no header, one
+/// big-endian 32-bit float per pixel, rows top first, `width × height` of the `pic` image
+/// it goes with (which says the size). Values are camera-space z — the depth along −Z
+/// negated, 0 at the camera, negative in front of it — clamped to [`ZPIC_FAR`]; pixels where
+/// nothing was hit (depth 0 or not finite) get [`ZPIC_FAR`], behind everything.
+pub(crate) fn encode_zpic(image: &ImageData) -> Result<Vec<u8>, Error> {
+    let crate::Pixels::Depth(depth) = &image.pixels else {
+        return Err(Error::Unsupported(format!("'Zpic' files hold the z buffer, not '{}'", image.pixels.type_name())));
+    };
+    let z = |d: f32| if d > 0.0 && d.is_finite() { (-d).max(ZPIC_FAR) } else { ZPIC_FAR };
+    Ok(depth.iter().flat_map(|d| z(*d).to_be_bytes()).collect())
+}

@@ -401,3 +401,22 @@ fn mental_images_depth_normal_motion_tag_scalar_and_bit() {
     assert_eq!(kind, 0x0d);
     assert_eq!(rows.concat(), v.iter().map(|s| u8::from(*s >= 0.5)).collect::<Vec<_>>());
 }
+
+/// Softimage `Zpic` as its description gives it: no header, big-endian 32-bit floats, one
+/// per pixel, rows top first (the size is the companion `pic`'s), depth as camera-space z
+/// from 0 at the camera to −100000. Depths d come back as −d bit for bit, pixels with
+/// nothing (0) and depths beyond the range as −100000.
+#[test]
+fn softimage_zpic_depth() {
+    let n = (W * H) as usize;
+    let depth: Vec<f32> = (0..n).map(|i| if i % 5 == 0 { 0.0 } else { 0.25 + i as f32 }).collect();
+    let mut far = depth.clone();
+    far[1] = 3.0e5;
+    let bytes = written("zpic", "Zpic", "z", &ImageData::new(W, H, Pixels::Depth(far)));
+    assert_eq!(bytes.len(), n * 4, "no header: four bytes a pixel");
+    let read = be_f32s(&[bytes]);
+    for (i, (z, d)) in read.iter().zip(&depth).enumerate() {
+        let want = if i == 1 || *d == 0.0 { -100_000.0 } else { -d };
+        assert_eq!(z.to_bits(), want.to_bits(), "pixel {i}");
+    }
+}
