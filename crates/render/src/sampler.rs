@@ -6,10 +6,11 @@
 //! the work that depends only on the pixel (the per-dimension Owen scramble hashes) or
 //! only on the sample (the shuffled sample index) is done once, not for every four
 //! dimensions: a [`Sampler`] is made once per pixel and [`Sampler::restart`]ed for each of
-//! its samples. The Sobol points come from [`shader::sobol`]'s table of index nibbles.
+//! its samples.
 
-use shader::sobol::{set_scramble, sobol_int4_rev};
-use sobol_burley::parts;
+use std::sync::OnceLock;
+
+use sobol_burley::parts::{self, Int4};
 
 /// Hashes pixel coordinates and the render seed into a scramble seed.
 pub fn pixel_seed(x: u32, y: u32, seed: u32) -> u32 {
@@ -27,6 +28,37 @@ pub fn pixel_seed(x: u32, y: u32, seed: u32) -> u32 {
 /// first 64 dimensions, more than a path of nine bounces uses. Later sets hash each time.
 const KEPT_SETS: usize = 16;
 
+/// Sobol points of the kept dimension sets for each nibble of the sample index (the top
+/// 16 bits of the bit-reversed index, which are the ones Sobol's table uses): the
+/// construction is linear over XOR in the index bits, so a point is the XOR of four
+/// entries instead of one table row per set bit. Entry `[set][k][v]` is the point of the
+/// index whose nibble `k` (bits 16 + 4k …) is `v` and whose other bits are 0.
+type NibbleTable = [[[[u32; 4]; 16]; 4]; KEPT_SETS];
+
+fn nibble_table() -> &'static NibbleTable {
+    static TABLE: OnceLock<Box<NibbleTable>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut table = Box::new([[[[0u32; 4]; 16]; 4]; KEPT_SETS]);
+        for (set, nibbles) in table.iter_mut().enumerate() {
+            for (k, points) in nibbles.iter_mut().enumerate() {
+                for (v, point) in points.iter_mut().enumerate() {
+                    *point = parts::sobol_int4_rev((v as u32) << (16 + 4 * k), set as u32).into();
+                }
+            }
+        }
+        table
+    })
+}
+
+/// The hashed Owen scramble of dimension set `set` under `seed` (one per lane), as
+/// `sobol_burley::sample_4d` makes it.
+#[inline]
+fn set_scramble(seed: u32, set: u32) -> Int4 {
+    let s = seed.wrapping_mul(0x9c8f_2d3b) ^ set;
+    let lanes: Int4 = [s ^ 0x912f_69ba, s ^ 0x174f_18ab, s ^ 0x691e_72ca, s ^ 0xb40c_c1b8].into();
+    parts::hash_int4(lanes)
+}
+
 /// The sample stream of one pixel sample. Numbers are made four dimensions at a time
 /// (Sobol's four dimensions together) and handed out one by one.
 #[derive(Clone, Debug)]
@@ -43,6 +75,7 @@ pub struct Sampler {
     scrambles: [[u32; 4]; KEPT_SETS],
     /// How many of `scrambles` are computed.
     kept: u32,
+    nibbles: &'static NibbleTable,
 }
 
 impl Sampler {
@@ -56,6 +89,7 @@ impl Sampler {
             buffer: [0.0; 4],
             scrambles: [[0; 4]; KEPT_SETS],
             kept: 0,
+            nibbles: nibble_table(),
         }
     }
 
@@ -76,16 +110,19 @@ impl Sampler {
     /// Dimensions `4·set … 4·set + 3` of this sample.
     #[inline]
     fn set(&mut self, set: u32) -> [f32; 4] {
-        let scramble = if (set as usize) < KEPT_SETS {
+        let (sobol, scramble) = if (set as usize) < KEPT_SETS {
             while self.kept <= set {
                 self.scrambles[self.kept as usize] = set_scramble(self.seed, self.kept).into();
                 self.kept += 1;
             }
-            self.scrambles[set as usize].into()
+            let table = &self.nibbles[set as usize];
+            let n = self.shuffled >> 16;
+            let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
+            (point(0) ^ point(1) ^ point(2) ^ point(3), self.scrambles[set as usize].into())
         } else {
-            set_scramble(self.seed, set)
+            (parts::sobol_int4_rev(self.shuffled, set), set_scramble(self.seed, set))
         };
-        parts::owen_scramble_int4_rev(sobol_int4_rev(self.shuffled, set), scramble).reverse_bits().to_f32_norm()
+        parts::owen_scramble_int4_rev(sobol, scramble).reverse_bits().to_f32_norm()
     }
 
     /// The next number in [0, 1).

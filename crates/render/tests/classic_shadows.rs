@@ -13,8 +13,10 @@ use shader::{RayType, State, Tracer};
 
 /// A 4×4 floor at z = −5 seen from above by an orthographic camera, lit by a 1×1
 /// rectangle light (4×4 samples, hard shadows) at z = −3 over a 0.6×0.6 card at z = −4
-/// whose shadow has a penumbra on the floor; `extra` adds statements.
+/// whose shadow has a penumbra on the floor; `extra` adds statements (and its instance
+/// "far_inst" to the scene, if it defines one).
 fn scene(extra: &str) -> String {
+    let instances = if extra.contains("far_inst") { " \"far_inst\"" } else { "" };
     format!(
         r#"
 options "opt" filter box 1 1 samples 0 2 shadow on end options
@@ -34,7 +36,7 @@ object "floor" group
     c "floor_mtl" 4 5 6 7
 end group end object
 instance "floor_inst" "floor" end instance
-instgroup "root" "cam_inst" "L_inst" "floor_inst" end instgroup
+instgroup "root" "cam_inst" "L_inst" "floor_inst"{instances} end instgroup
 render "root" "cam_inst" "opt"
 "#
     )
@@ -78,17 +80,24 @@ fn shadow_blocked_answers_what_shadow_hits_visits() {
 }
 
 /// The same scene rendered through the any-hit query (no shadow shader anywhere) and
-/// through the visits (an unused material with a shadow shader turns the query off): the
+/// through the visits (a material with a shadow shader, on a triangle far outside the view
+/// and every ray's way, turns the query off): the
 /// pixels are bit-identical, and the floor shows a penumbra (values strictly between the
 /// darkest and the brightest) so that partly blocked lights were compared too.
 #[test]
 fn renders_through_the_any_hit_query_equal_the_visits() {
-    let unused = r#"material "glass" "mib_illum_lambert" ("diffuse" 1 1 1 1)
+    let far = r#"material "glass" "mib_illum_lambert" ("diffuse" 1 1 1 1)
     shadow "mib_shadow_transparency" ("color" 1 1 1 1, "transp" 0.5 0.5 0.5 0.5)
-end material"#;
+end material
+object "far" group
+    100 100 -5  101 100 -5  100 101 -5
+    v 0 v 1 v 2
+    c "glass" 0 1 2
+end group end object
+instance "far_inst" "far" end instance"#;
     let settings = Settings { engine: EngineKind::Classic, spp: Some(4), ..Settings::default() };
     let mut images = Vec::new();
-    for (extra, shadow_shaders) in [("", false), (unused, true)] {
+    for (extra, shadow_shaders) in [("", false), (far, true)] {
         let support::Compiled { scene, shading, messages, .. } = support::compile(&scene(extra));
         assert_eq!(shading.has_shadow_shaders(), shadow_shaders, "{messages:?}");
         let world = render::World::from_scene(&scene);

@@ -13,7 +13,7 @@
 //! - [`fgcache`]: the final gather interpolation cache.
 //! - [`photonmap`]: caustic and global illumination photon maps and their estimates.
 //! - [`shading`]: a scene's shading compiled (graph, textures, materials, lights, options).
-//! - [`sobol`]: the Owen-scrambled Sobol numbers shaders and the path engine sample with.
+//! - [`sobol`]: the Owen-scrambled Sobol numbers shaders sample with.
 //! - [`tracer`]: the contract with the renderer's ray casting.
 //! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes).
 //! - [`photon`]: how surfaces scatter photons.
