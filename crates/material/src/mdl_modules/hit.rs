@@ -420,7 +420,11 @@ impl HitExpr {
             HitExpr::Const(_) | HitExpr::State(_) => Vec::new(),
             HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],
             HitExpr::Transform { of, .. } => vec![of],
-            HitExpr::Lookup { coord, .. } => vec![coord],
+            HitExpr::Lookup { coord, .. } | HitExpr::Texel { coord, .. } => vec![coord],
+            HitExpr::Pattern(_, at) => vec![at],
+            HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
+                vec![position, tangent_u, tangent_v, normal]
+            }
             HitExpr::Binary(_, a, b) => vec![a, b],
             HitExpr::Select(c, a, b) => vec![c, a, b],
             HitExpr::Math(_, args) => args.iter().collect(),
