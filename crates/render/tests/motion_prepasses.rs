@@ -4,16 +4,9 @@
 
 use std::sync::atomic::AtomicBool;
 
-use shader::{Shading, ShadingOptions};
+mod support;
 
-fn build(text: &str) -> (scene::Scene, Shading) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    (scene, shading)
-}
+use support::build_clean as build;
 
 /// A point light of energy 100 at height 1 over a 10 × 10 floor (reflectance 0.5) under a
 /// dark ceiling at height 2, placed by `placement`; `options` in the options block.

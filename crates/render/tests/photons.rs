@@ -7,7 +7,9 @@ use std::sync::atomic::AtomicBool;
 
 use glam::Vec3A;
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
+mod support;
+
+use support::build_clean as build;
 
 /// The scene text around `body` (materials, objects, lights and their instances listed in
 /// `instances`), with `options` in the options block.
@@ -65,15 +67,6 @@ fn sphere(name: &str, mtl: &str, r: f32, z: f32) -> String {
     }
     s += &format!("end group end object\ninstance \"{name}_inst\" \"{name}\" end instance\n");
     s
-}
-
-fn build(text: &str) -> (scene::Scene, Shading) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    (scene, shading)
 }
 
 const LAMBERT: &str = r#"material "white" "mib_illum_lambert" ("ambient" 0 0 0 1, "diffuse" 0.5 0.5 0.5 1) end material

@@ -49,6 +49,18 @@ pub fn compile_with(text: &str, options: &ShadingOptions) -> Compiled {
     Compiled { scene, shading, messages, read }
 }
 
+/// Reads, builds and compiles `text` (file name `t.mi`) with the default shading options,
+/// asserting that the reader found no error (the scene layer's and the shading's warnings
+/// are dropped): the scene and its shading.
+pub fn build_clean(text: &str) -> (scene::Scene, Shading) {
+    let parsed = mi::parse_str("t.mi", text);
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
+    (scene, shading)
+}
+
 /// Renders `world` with `shading` and `settings` on the default acceleration structure:
 /// the film and the statistics.
 pub fn render_world(world: &render::World, shading: &Shading, settings: &Settings) -> (Film, Stats) {
