@@ -39,18 +39,17 @@ fn area_light_cornell(finalgather: bool) -> String {
         .replace("shadow on", options)
 }
 
-fn bench(c: &mut Criterion) {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/classic_reflections.mi"))
-        .expect("the scene")
-        .replace("resolution 600 400", "resolution 96 64");
-    let parsed = mi::parse_str("classic_reflections.mi", &text);
+/// Benchmarks the scene `text` (named `file` in messages) in the classic engine at 4 samples
+/// per pixel, `pixels` pixels, on each backend compiled in, as the group `name`.
+fn bench_scene(c: &mut Criterion, name: &str, file: &str, text: &str, pixels: u64) {
+    let parsed = mi::parse_str(file, text);
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("scene builds");
     let world = World::from_scene(&scene);
     let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
     let settings = Settings { engine: EngineKind::Classic, spp: Some(4), ..Settings::default() };
-    let mut group = c.benchmark_group("classic_reflections_96x64_4spp");
-    group.throughput(Throughput::Elements(96 * 64 * 4));
+    let mut group = c.benchmark_group(name);
+    group.throughput(Throughput::Elements(pixels * 4));
     group.sample_size(10);
     for backend in [Backend::Rust, Backend::Embree] {
         if !backend.available() {
@@ -64,32 +63,17 @@ fn bench(c: &mut Criterion) {
         });
     }
     group.finish();
+}
 
+fn bench(c: &mut Criterion) {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/classic_reflections.mi"))
+        .expect("the scene")
+        .replace("resolution 600 400", "resolution 96 64");
+    bench_scene(c, "classic_reflections_96x64_4spp", "classic_reflections.mi", &text, 96 * 64);
     for finalgather in [false, true] {
         let text = area_light_cornell(finalgather).replace("resolution 1024 1024", "resolution 64 64");
-        let parsed = mi::parse_str("area_light_cornell.mi", &text);
-        let mut diags = Vec::new();
-        let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("scene builds");
-        let world = World::from_scene(&scene);
-        let (shading, _) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-        let settings = Settings { engine: EngineKind::Classic, spp: Some(4), ..Settings::default() };
         let name = if finalgather { "area_light_cornell_fg_64x64_4spp" } else { "area_light_cornell_64x64_4spp" };
-        let mut group = c.benchmark_group(name);
-        group.throughput(Throughput::Elements(64 * 64 * 4));
-        group.sample_size(10);
-        for backend in [Backend::Rust, Backend::Embree] {
-            if !backend.available() {
-                continue;
-            }
-            let accel = accel::build(&world, backend);
-            group.bench_function(format!("{backend:?}"), |b| {
-                b.iter(|| {
-                    render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {})
-                        .1
-                })
-            });
-        }
-        group.finish();
+        bench_scene(c, name, "area_light_cornell.mi", &text, 64 * 64);
     }
 }
 
