@@ -186,3 +186,25 @@ fn a_tangent_space_normal_map_bends_the_normal_per_hit() {
         assert!((got - want).length() < 1e-5, "({u}, {v}): {got:?} vs {want:?}");
     }
 }
+
+/// A module whose two tints are the same 40-level chain of squares built by two calls
+/// (41 values, 2^41 paths each; tests/mdl/shared.mdl): compiling it compares the two
+/// graphs pair of nodes by pair of nodes (not path by path, which would not finish) and
+/// then refuses the material for its evaluation cost, with the count. The 12-level
+/// chain compiles and gives u^4096.
+#[test]
+fn shared_subexpressions_built_twice_compile_in_bounded_time() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "hostile" "mdl::shared::twice_built" ()
+shader "modest" "mdl::shared::twice_built_modest" ()"#,
+    );
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(diags[0].contains("steps to evaluate"), "{}", diags[0]);
+    assert_eq!(get(&mdl, &lib, "hostile").varying, Varying::Constant);
+    let modest = get(&mdl, &lib, "modest");
+    let u: f32 = 0.9999;
+    let (diffuse, model, _, _) = at(modest, &uv(u, 0.5));
+    let want = f64::from(u).powi(4096) as f32;
+    assert!(close(diffuse, Rgb::splat(want), 1e-3), "{diffuse:?} vs {want}");
+    assert_eq!(model, SurfaceModel::Lambert);
+}

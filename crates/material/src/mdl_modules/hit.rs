@@ -220,8 +220,10 @@ impl Image {
     }
 }
 
-/// An expression over the shading point.
-#[derive(Clone, Debug, PartialEq)]
+/// An expression over the shading point. Two expressions are equal (`==`) when they
+/// compute the same thing node for node; shared subexpressions are compared once
+/// ([`super::hit_eq`]).
+#[derive(Clone, Debug)]
 pub enum HitExpr {
     /// A constant.
     Const(Vec4),
@@ -415,7 +417,7 @@ impl HitExpr {
     }
 
     /// The subexpressions this node evaluates (both branches of a `?:`).
-    fn operands(&self) -> Vec<&Arc<HitExpr>> {
+    pub(super) fn operands(&self) -> Vec<&Arc<HitExpr>> {
         match self {
             HitExpr::Const(_) | HitExpr::State(_) => Vec::new(),
             HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],

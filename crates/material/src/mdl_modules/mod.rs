@@ -21,6 +21,7 @@ pub mod connections;
 pub mod eval;
 pub mod hit;
 pub mod hit_base;
+pub mod hit_eq;
 pub mod hit_natives;
 pub mod lower;
 pub mod natives;
