@@ -305,3 +305,38 @@ shader "g175" "mdl::base_functions::glass" ("ior" 1.75)"#,
     hit.0.apply(&uv(0.75, 0.5), &mut b);
     assert_ne!(a.model, b.model, "the ior changes the model");
 }
+
+/// `tile_texture`: the tile colour on a tile, the grout colour in the grout (the first
+/// 0.05 of each of the 4 columns and rows), odd rows shifted half a tile; its variations
+/// other than the defaults are an error naming the parameter. `gradient3_recolor`: a
+/// number that varies (here v) through the gradient, linear between the stops and clamped
+/// beyond them.
+#[test]
+fn tile_colours_and_recoloured_numbers() {
+    let (mdl, lib) = one("tiled_colors", "");
+    let m = get(&mdl, &lib, "m");
+    let (tile, grout) = (Rgb::new(0.8, 0.2, 0.1), Rgb::splat(0.9));
+    for (u, v, want) in [
+        (0.125, 0.125, tile),
+        (0.27, 0.125, grout),
+        (0.125, 0.26, grout),
+        // Row 1 (odd) is shifted by half a tile: u = 0.14 is 0.015 into a column there.
+        (0.14, 0.4, grout),
+        (0.14, 0.125, tile),
+    ] {
+        let (c, _) = at(m, &uv(u, v));
+        assert!(close(c, want, 1e-6), "({u}, {v}): {c:?} vs {want:?}");
+    }
+    let (mdl, lib) = one("recolored", "");
+    let m = get(&mdl, &lib, "m");
+    for (v, want) in [
+        (0.25, Rgb::new(0.5, 0.5, 0.0)),
+        (0.75, Rgb::new(0.0, 0.5, 0.5)),
+        (0.6, Rgb::new(0.0, 0.8, 0.2)),
+        (1.3, Rgb::new(0.0, 0.0, 1.0)),
+        (-0.2, Rgb::new(1.0, 0.0, 0.0)),
+    ] {
+        let (c, _) = at(m, &uv(0.3, v));
+        assert!(close(c, want, 1e-5), "v {v}: {c:?} vs {want:?}");
+    }
+}

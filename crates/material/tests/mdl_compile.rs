@@ -178,7 +178,13 @@ fn what_is_not_compiled_is_named_with_its_module_line() {
     // At the .mi instance, naming the module's line.
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let d = &diags[0];
-    assert!(d.contains("t.mi:1:") && d.contains("textured.mdl:50:") && d.contains("tile_texture"), "{d}");
+    assert!(
+        d.contains("t.mi:1:")
+            && d.contains("textured.mdl:50:")
+            && d.contains("tile_texture")
+            && d.contains("missing_tile_amount"),
+        "{d}"
+    );
     assert_eq!(get(&mdl, &lib, "p").diffuse, Rgb::splat(0.5), "rendered grey");
 }
 
@@ -322,4 +328,18 @@ shader "w" "mdl::lobes::ward_over_diffuse" ()"#,
             assert!(a.max_element() <= 1.01, "{name}: albedo {a:?} at {wo:?}");
         }
     }
+}
+
+/// A mix of five distinct lobes, one more than `bsdf::Lobes` holds: its diffuse part
+/// (0.2 · 0.5) with a warning that says the sum is full, not that the BSDFs are unknown.
+#[test]
+fn a_sum_past_the_lobe_limit_says_so() {
+    let (mdl, lib, diags) = compile_text(r#"shader "five" "mdl::lobes::five_lobes" ()"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let want =
+        format!("needs more than the {} lobes and {} layer curves", bsdf::lobes::MAX_LOBES, bsdf::lobes::MAX_CURVES);
+    assert!(diags[0].contains(&want) && diags[0].contains("t.mi:1:"), "{}", diags[0]);
+    let m = get(&mdl, &lib, "five");
+    assert_eq!(m.model, SurfaceModel::Lambert);
+    assert!(close(m.diffuse, Rgb::splat(0.1), 1e-6), "{:?}", m.diffuse);
 }

@@ -94,11 +94,35 @@ fn white_bases_under_curves_films_and_sheen_pass_the_white_furnace() {
     }
 }
 
+/// A film changes the Fresnel terms under it: on `color_fresnel_layer`, through a `tint`
+/// and on a `custom_curve_layer` of normal reflectivity 0.04 (read as the Fresnel layer of
+/// index 1.5) it gives the same Airy curve as on `fresnel_layer` of index 1.5 (1e-5 at
+/// five angles), each over a white base lossless (1 %); a film over a diffuse lobe (no
+/// Fresnel term) leaves it a Lambertian lobe of its tint, without a warning.
 #[test]
-fn a_film_on_what_is_not_a_fresnel_layer_is_named_in_a_warning() {
-    let (mdl, lib, diags) = compile_text(r#"shader "f" "mdl::layers::film_on_diffuse" ()"#);
-    let m = get(&mdl, &lib, "f");
-    assert!(diags.iter().any(|d| d.contains("thin_film(diffuse_reflection_bsdf)")), "{diags:#?}");
+fn a_film_applies_to_every_fresnel_form_and_leaves_the_rest_unchanged() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "film" "mdl::layers::film" ()
+shader "color_fresnel" "mdl::layers::film_color_fresnel" ()
+shader "through_tint" "mdl::layers::film_through_tint" ()
+shader "on_curve" "mdl::layers::film_on_curve" ()
+shader "on_diffuse" "mdl::layers::film_on_diffuse" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let reference = lobes(get(&mdl, &lib, "film")).curves[0].kind;
+    for name in ["color_fresnel", "through_tint", "on_curve"] {
+        let m = get(&mdl, &lib, name);
+        let l = lobes(m);
+        assert_eq!(l.curve_count, 1, "{name}");
+        assert!(matches!(l.curves[0].kind, CurveKind::ThinFilm { .. }), "{name}: {:?}", l.curves[0].kind);
+        for c in [1.0, 0.8, 0.5, 0.3, 0.1] {
+            let (a, b) = (l.curves[0].kind.eval(c), reference.eval(c));
+            assert!((a - b).abs().max_element() < 1e-5, "{name} at cos {c}: {a:?} vs {b:?}");
+        }
+        lossless(m);
+        standard_checks(&m.bsdf(Vec3A::Z), 1.01, name);
+    }
+    let m = get(&mdl, &lib, "on_diffuse");
     assert_eq!(m.model, SurfaceModel::Lambert);
     assert!((m.diffuse - Rgb::splat(0.6)).abs().max_element() < 1e-6);
 }

@@ -238,21 +238,40 @@ fn three(a: &Args, p: &str, f: impl Fn(&Value) -> Option<Vec3A>) -> Result<[Vec3
     }
 }
 
-fn gradient(a: &Args) -> Result<Pattern, Problem> {
+/// The three stops of a gradient: positions, colours, interpolation modes (constants).
+type Stops = ([f32; 3], [Vec3A; 3], [i32; 3]);
+
+fn stops(a: &Args) -> Result<Stops, Problem> {
     let positions = three(a, "gradient_positions", |v| v.float().map(|f| Vec3A::splat(f as f32)))?;
     let colors = three(a, "gradient_colors", |v| v.color().map(|c| Vec3A::new(c.x, c.y, c.z)))?;
     let modes = three(a, "interpolation_modes", |v| match v {
         Value::Enum(_, i) | Value::Int(i) => Some(Vec3A::splat(*i as f32)),
         _ => None,
     })?;
+    Ok((positions.map(|v| v.x), colors, modes.map(|v| v.x as i32)))
+}
+
+/// `gradient3_recolor`: `position` + `distortion` (which may vary) through the gradient;
+/// mono by `mono_source` of the colour with alpha 1.
+fn gradient_recolor(a: &Args) -> Eval {
+    let (positions, colors, interpolation) = stops(a)?;
+    let at = fold(HitExpr::Binary(BinOp::Add, a.hit("position", 0.0)?, a.hit("distortion", 0.0)?));
+    let tint = fold(HitExpr::Pattern(Arc::new(Pattern::Recolor { positions, colors, interpolation }), at));
+    let rgba = fold(HitExpr::Compose([(tint.clone(), 3), (constant(1.0), 1)].into()));
+    let mono = fold(HitExpr::Math(MathFn::Mono(mono_name(enum_arg(a.get("mono_source"), 0))), [rgba].into()));
+    Ok(texture_return(tint, mono))
+}
+
+fn gradient(a: &Args) -> Result<Pattern, Problem> {
+    let (positions, colors, interpolation) = stops(a)?;
     if let Some(d) = a.get("distortion").filter(|d| d.float().is_none()) {
         return Err(a.not_constant("distortion", d));
     }
     Ok(Pattern::Gradient {
         mode: a.int("mode", 0)?,
-        positions: positions.map(|v| v.x),
+        positions,
         colors,
-        interpolation: modes.map(|v| v.x as i32),
+        interpolation,
         distortion: a.num("distortion", 0.0)?,
     })
 }
@@ -395,6 +414,11 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
         "gradient3_texture" => {
             let tint = at(gradient(&a)?, &a)?;
             Ok(texture_return(tint, constant(0.0)))
+        }
+        "gradient3_recolor" => gradient_recolor(&a),
+        // 1 on a tile, 0 in the grout; mono 0 as for the checker.
+        "tile_texture" => {
+            Ok(blended(at(tiles(&a)?, &a)?, a.hit("grout_color", 1.0)?, a.hit("tile_color", 0.0)?, false))
         }
         "tile_bump_texture" => {
             let t = tiles(&a)?;

@@ -88,6 +88,8 @@ fn add_diffuse(df: &Df, scale: Rgb, hit: &[Vec4], acc: &mut DiffuseSum) -> bool 
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             add_diffuse(layer, scale * w, hit, acc) && add_diffuse(base, scale * (Rgb::ONE - w), hit, acc)
         }
+        // A film changes Fresnel terms; diffuse lobes have none.
+        Df::ThinFilm { base, .. } => add_diffuse(base, scale, hit, acc),
         _ => false,
     }
 }
@@ -134,6 +136,8 @@ fn add_lobes(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut LobeSum) -> bool {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             add_lobes(layer, scale * w, hit, sum) && add_lobes(base, scale * (Rgb::ONE - w), hit, sum)
         }
+        // None of these lobes has a Fresnel term for a film to change.
+        Df::ThinFilm { base, .. } => add_lobes(base, scale, hit, sum),
         _ => false,
     }
 }
@@ -176,12 +180,16 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
 /// `film` is a `thin_film` (thickness in nm, film index) over `df`. False if the tree has
 /// anything else, or more than [`bsdf::lobes::MAX_LOBES`] lobes or
 /// [`bsdf::lobes::MAX_CURVES`] curves.
+///
+/// A film changes the Fresnel terms of what it covers (MDL's `thin_film`): it reaches
+/// through mixes, tints, weighted layers, directional factors and a sheen's base to each
+/// `fresnel_layer` / `color_fresnel_layer` (whose curve becomes the film's Airy
+/// reflectance over the layer's index) and `custom_curve_layer` (read as the Fresnel layer
+/// whose normal reflectivity it has, index (1 + √R₀)/(1 − √R₀), R₀ the mean of
+/// `normal_reflectivity`); elemental BSDFs in reflection have no Fresnel term for it to
+/// change and are unchanged.
 fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, film: Option<(f32, Rgb)>) -> bool {
     let alpha = |(u, v): &(Leaf, Leaf)| (u.get(hit).x.max(0.0), v.get(hit).x.max(0.0));
-    if film.is_some() && !matches!(df, Df::Layer { fresnel_ior: Some(_), .. }) {
-        // A film lies on a Fresnel layer; on anything else it has no path-engine form.
-        return false;
-    }
     let mut push = |w: Rgb, lobe: Lobe| sum.push_with_role(w, lobe, role);
     match df {
         Df::Black => true,
@@ -224,18 +232,18 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
                     hit,
                     sum,
                     under,
-                    None,
+                    film,
                 )
         }
         Df::Mix { parts, clamped } => {
             let mut ok = true;
-            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, None));
+            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film));
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
-            add_general(layer, scale * w, hit, sum, role, None)
-                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, None)
+            add_general(layer, scale * w, hit, sum, role, film)
+                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film)
         }
         Df::Layer { weight, fresnel_ior: Some(ior), layer, base } => {
             let curve = match film {
@@ -245,10 +253,16 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role)
         }
         Df::CurveLayer { weight, normal, grazing, exponent, layer, base } => {
-            let curve = CurveKind::Schlick {
-                normal: normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
-                grazing: grazing.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
-                exponent: exponent.get(hit).x.max(0.0),
+            let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            let curve = match film {
+                Some((thickness_nm, film_ior)) => {
+                    CurveKind::ThinFilm { ior: ior_of_reflectivity(normal), film_ior, thickness_nm }
+                }
+                None => CurveKind::Schlick {
+                    normal,
+                    grazing: grazing.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
+                    exponent: exponent.get(hit).x.max(0.0),
+                },
             };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role)
         }
@@ -259,13 +273,20 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
                 exponent: exponent.get(hit).x.max(0.0),
             };
             let Some(k) = sum.add_curve(LayerCurve::new(curve, Rgb::ONE, false)) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, None)
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film)
         }
         Df::ThinFilm { thickness, ior, base } => {
             add_general(base, scale, hit, sum, role, Some((thickness.get(hit).x.max(0.0), ior.get(hit))))
         }
         _ => false,
     }
+}
+
+/// The index of refraction of the dielectric whose Fresnel reflectance at normal incidence
+/// is the mean of `r0` (channels in [0, 1]): (1 + √R₀)/(1 − √R₀), at most 100.
+fn ior_of_reflectivity(r0: Rgb) -> f32 {
+    let s = ((r0.x + r0.y + r0.z) / 3.0).clamp(0.0, 1.0).sqrt();
+    ((1.0 + s) / (1.0 - s).max(1e-6)).min(100.0)
 }
 
 /// Adds the curve of a layer of weight `weight` over `base` to `sum`: the roles of the
@@ -613,9 +634,18 @@ fn lower_bsdf(
         return lowered;
     }
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, Rgb::ONE);
+    let why = if filled_up(df, hit) {
+        format!(
+            "needs more than the {} lobes and {} layer curves mira's lobe sums hold",
+            bsdf::lobes::MAX_LOBES,
+            bsdf::lobes::MAX_CURVES
+        )
+    } else {
+        "has no path-engine form yet".to_string()
+    };
     say(&|name| {
         format!(
-            "material '{name}': its bsdf ({}) has no path-engine form yet; rendered as its diffuse part {:.3} {:.3} {:.3}",
+            "material '{name}': its bsdf ({}) {why}; rendered as its diffuse part {:.3} {:.3} {:.3}",
             describe(df),
             albedo.x,
             albedo.y,
@@ -623,6 +653,15 @@ fn lower_bsdf(
         )
     });
     (albedo, SurfaceModel::Lambert)
+}
+
+/// Whether lowering `df` as a general lobe sum stopped with the sum full (a lobe or a
+/// curve more than it holds: [`Lobes::push_with_role`] and [`Lobes::add_curve`] refuse
+/// only then).
+fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
+    let mut sum = Lobes::default();
+    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None)
+        && (sum.count == bsdf::lobes::MAX_LOBES || sum.curve_count == bsdf::lobes::MAX_CURVES)
 }
 
 /// The constructs of a tree, for messages (`fresnel_layer(diffuse_transmission_bsdf, …)`).

@@ -146,6 +146,16 @@ pub enum Pattern {
         /// `distortion`, added to the position.
         distortion: f32,
     },
+    /// `gradient3_recolor`: the colour of the number in the position's x on a three-stop
+    /// gradient.
+    Recolor {
+        /// `gradient_positions`.
+        positions: [f32; 3],
+        /// `gradient_colors`.
+        colors: [Vec3A; 3],
+        /// `interpolation_modes` of the two spans (the third is not used).
+        interpolation: [i32; 3],
+    },
     /// `flake_noise_bump_texture`'s random unit vector of the flake at the position /
     /// `scale` (in x, y, z).
     FlakeDirection {
@@ -212,6 +222,9 @@ impl Pattern {
             Pattern::Gradient { mode, positions, colors, interpolation, distortion } => {
                 let t = gradient_position(*mode, p.x, p.y);
                 recolor(t, *distortion, positions, colors, interpolation).extend(0.0)
+            }
+            Pattern::Recolor { positions, colors, interpolation } => {
+                recolor(p.x, 0.0, positions, colors, interpolation).extend(0.0)
             }
             Pattern::Tiles { rows, columns, grout_width, grout_height, odd_row_offset } => {
                 Vec4::splat(tile_height(p, *rows, *columns, *grout_width, *grout_height, *odd_row_offset))
