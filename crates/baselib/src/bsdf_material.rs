@@ -3,7 +3,9 @@
 //! each hit ([`shader::Tracer::surface_scatter`]); the shader lights it as mental ray's
 //! BSDF illumination does (see [`crate::bsdf_builtin`], same units): the light loop over
 //! the BSDF's non-delta part (π · f · cos θi · light colour, the base shaders' light units),
-//! final gathering's irradiance on its diffuse reflectance, and one BSDF-sampled ray for
+//! final gathering's irradiance E on its diffuse reflectance ρ as ρ E / π (the physically
+//! correct Lambertian term: an MDL emitter lights a module material as in the path
+//! engine), and one BSDF-sampled ray for
 //! what is left — specular reflection and refraction always, glossy lobes (less their
 //! diffuse part) — traced by the classic tracer, weighted f · |cos θi| / pdf. Where the
 //! renderer has no BSDF for the hit it shades as [`crate::illum::MIRA_DIFFUSE`] does.
@@ -48,7 +50,12 @@ fn bsdf_material(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
             }
         }
         if scatter.diffuse != Rgb::ZERO {
-            result += scatter.diffuse * rgb(ctx.compute_irradiance());
+            // The gathered irradiance E = ∫ L cos θ dω of what the scene's surfaces emit and
+            // reflect (radiances, in the same units as the path engine's) reflects as the
+            // Lambertian term ρ E / π. (The base shaders use mental ray's ρ E; for a module
+            // material that would show an MDL emitter's light π times brighter than the
+            // path engine does.)
+            result += scatter.diffuse * rgb(ctx.compute_irradiance()) * FRAC_1_PI;
         }
     }
     // One sampled direction for the rest: delta lobes always, glossy ones less the

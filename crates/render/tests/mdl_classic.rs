@@ -8,6 +8,9 @@
 //!   relative scale" 1): the classic engine without final gathering against the path engine
 //!   limited to direct light agree on the walls' colours, up to the engines' factor π
 //!   (the classic light loop's light colours carry no 1/π, as mental ray's).
+//! - A module floor lit only by a module material's emission (`diffuse_edf`) through final
+//!   gathering: the same pixels in both engines (radiance, no light convention between
+//!   them), and the floor's value is ρ · E / π of the emitter's radiance.
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -126,5 +129,47 @@ fn the_module_cornell_box_agrees_between_the_engines_on_its_walls() {
         for k in 0..3 {
             assert!((c[k] / lc - p[k] / lp).abs() <= 0.02, "{name} wall's colour: classic {c:?} vs path {p:?}");
         }
+    }
+}
+
+#[test]
+fn an_mdl_emitter_lights_a_module_floor_alike_in_both_engines() {
+    // The camera at the origin looks down −z at a matte floor (ρ = 0.5) at z = −1; a large
+    // emitter (radiant exitance 10, radiance 10/π) at z = +0.5 faces it from behind the
+    // camera and fills nearly all of the floor's sky: the floor shows ρ/π · E with
+    // E = π · 10/π · (1 − ε), ε ≈ 1.5²/(50² + 1.5²) ≈ 9e-4, so 10ρ/π ≈ 1.590.
+    let text = r#"
+$include "export_multi.mdl"
+options "opt" filter box 1 1 finalgather on finalgather accuracy 128 end options
+camera "cam" focal 1 aperture 0.5 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+shader "floor_mat" "mdl::export_multi::matte" ("tint" 0.5 0.5 0.5, "roughness" 0)
+shader "lamp_mat" "mdl::export_multi::emitter" ("intensity" 10)
+object "floor" group
+    -50 -50 -1  50 -50 -1  50 50 -1  -50 50 -1
+    v 0 v 1 v 2 v 3
+    p 0 1 2 3
+end group end object
+instance "floor_inst" "floor" material "floor_mat" end instance
+object "lamp" group
+    -50 -50 0.5  -50 50 0.5  50 50 0.5  50 -50 0.5
+    v 0 v 1 v 2 v 3
+    p 0 1 2 3
+end group end object
+instance "lamp_inst" "lamp" material "lamp_mat" end instance
+instgroup "root" "cam_inst" "floor_inst" "lamp_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+    let (classic, messages) = render(text, 8, 4, EngineKind::Classic, PathSettings::default());
+    assert!(messages.is_empty(), "{messages:#?}");
+    let (path, _) = render(text, 8, 16, EngineKind::Path, PathSettings::default());
+    let (c, p) = (mean(&classic, 8, (0, 8), (0, 8)), mean(&path, 8, (0, 8), (0, 8)));
+    let want = 10.0 * 0.5 / std::f32::consts::PI;
+    for k in 0..3 {
+        // Both are Monte Carlo estimates of a nearly uniform sky (final gathering: 128
+        // rays a point, interpolated; the path engine: 16 samples a pixel): 3 %.
+        assert!((c[k] - want).abs() <= 0.03 * want, "classic {c:?} vs {want}");
+        assert!((p[k] - want).abs() <= 0.03 * want, "path {p:?} vs {want}");
+        assert!((c[k] - p[k]).abs() <= 0.03 * want, "classic {c:?} vs path {p:?}");
     }
 }
