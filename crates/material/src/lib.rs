@@ -146,6 +146,9 @@ pub struct SurfaceMaterial {
     pub emission_spot: Option<spot_edf::SpotEdf>,
     /// Parameters driven by shaders, evaluated at each hit.
     pub varying: Varying,
+    /// The participating medium inside the surface (MDL's `material_volume`), when light
+    /// can enter it ([`SurfaceMaterial::has_inside`]) and it absorbs or scatters.
+    pub medium: Option<bsdf::Medium>,
 }
 
 impl SurfaceMaterial {
@@ -165,6 +168,7 @@ impl SurfaceMaterial {
             emission_over_area: false,
             emission_spot: None,
             varying: Varying::Constant,
+            medium: None,
         }
     }
 
@@ -208,6 +212,21 @@ impl SurfaceModel {
                 })
             }
         }
+    }
+
+    /// The tint of light crossing the surface straight on, when it is an index-matched
+    /// boundary (smooth transmission with index of refraction 1, no reflection, no coat):
+    /// rays keep their direction through it, so shadow rays may cross it too.
+    pub fn index_matched(&self) -> Option<Rgb> {
+        let SurfaceModel::Unified(u) = self else { return None };
+        let p = u.params();
+        let matched = (p.ior - 1.0).abs() < 1e-6
+            && p.spec_trans >= 1.0
+            && p.metallic <= 0.0
+            && p.clearcoat <= 0.0
+            && !p.thin
+            && u.is_delta();
+        matched.then(|| p.transmission_color.unwrap_or(p.base_color).clamp(Rgb::ZERO, Rgb::ONE))
     }
 
     /// Whether light can enter the surface.

@@ -271,6 +271,14 @@ impl<'a> Reader<'a> {
                     ..Default::default()
                 });
                 surface.diffuse = base_color;
+                // The volume inside: absorption reaching `volume_color` after
+                // `base_thickness`, σa = −ln(volume_color) / base_thickness.
+                let volume_color = self.color(params, "volume_color", Rgb::ONE).clamp(Rgb::splat(1e-6), Rgb::ONE);
+                let thickness = self.scalar(params, "base_thickness", 0.1);
+                if volume_color != Rgb::ONE && thickness > 0.0 && surface.has_inside() {
+                    let sigma_a = -Rgb::from(volume_color.to_array().map(f32::ln));
+                    surface.medium = Some(bsdf::Medium::new(sigma_a / thickness, Rgb::ZERO, 0.0));
+                }
                 // Without reflection, transparency or metal the layers reduce to the
                 // diffuse base (Oren–Nayar, Lambert at roughness 0): cheaper, and exactly so.
                 let layered =

@@ -1,5 +1,8 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling
-//! (power heuristic), Russian roulette after a few bounces.
+//! (power heuristic), Russian roulette after a few bounces; participating media inside
+//! surfaces in [`media`].
+
+mod media;
 
 use bsdf::Bsdf;
 use bsdf::{Frame, Rgb};
@@ -13,6 +16,7 @@ use crate::light::LightSource;
 use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
+use media::{Departure, MediumStack};
 
 /// Integrator settings.
 #[derive(Clone, Copy, Debug)]
@@ -155,6 +159,8 @@ struct Vertex<'v> {
     frame: &'v Frame,
     wo: Vec3A,
     bsdf: &'v Bsdf,
+    /// Where its shadow rays leave from (the media they start in).
+    departure: Departure<'v>,
 }
 
 /// Next-event estimation towards the environment (chosen with probability `pick`): one
@@ -191,11 +197,12 @@ fn environment_light(
     }
     counts.shadow_rays += 1;
     let shadow = Ray { mask: mask::SHADOW, origin, dir: es.dir, tmin: 0.0, tmax: f32::INFINITY, time: v.time };
-    if shadow_blocked(world, accel, shading, &shadow, seed) {
+    let tr = media::shadow_transmittance(world, accel, shading, &v.departure, &shadow, seed);
+    if tr == Rgb::ZERO {
         return Rgb::ZERO;
     }
     let weight = if mis { power_heuristic(pick * es.pdf, v.bsdf.pdf(v.wo, wi)) } else { 1.0 };
-    f * es.radiance * (env.lighting_scale * wi.z.abs() * weight / (pick * es.pdf))
+    f * es.radiance * tr * (env.lighting_scale * wi.z.abs() * weight / (pick * es.pdf))
 }
 
 /// Most cutout surfaces a ray passes through before it stops at the next one.
@@ -304,6 +311,8 @@ pub fn trace_path(
     let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
     let pick = if choices > 0 { 1.0 / choices as f32 } else { 0.0 };
     let seed = sampler.stream();
+    // The media the path is in (none at the camera).
+    let mut media = MediumStack::default();
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
@@ -325,6 +334,36 @@ pub fn trace_path(
         let hit = found.as_ref().map(|(h, _, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
         let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
+        if !media.is_empty() {
+            // In a medium the ray may scatter before what it found.
+            let t_end = light_hit.map_or(tmax, |(_, t, _)| t);
+            match media::fly(world, &media, t_end, sampler) {
+                Some(bsdf::medium::Flight::Scattered { t, weight }) => {
+                    throughput *= weight;
+                    let Some(medium) = media.current(world) else { break };
+                    let p = ray.origin + ray.dir * t;
+                    let lighting =
+                        media::Lighting { world, accel, shading, env, pick, choices, seed, mis: settings.mis };
+                    radiance += throughput
+                        * media::direct_light(&lighting, medium, &media, p, ray.dir, ray.time, sampler, counts);
+                    let (dir, pdf) = medium.phase.sample(ray.dir, sampler.next_2d());
+                    last_pdf = pdf;
+                    last_delta = false;
+                    let u_rr = sampler.next_1d();
+                    if depth + 1 >= settings.rr_depth {
+                        let q = throughput.max_element().min(0.95);
+                        if q <= 0.0 || u_rr >= q {
+                            break;
+                        }
+                        throughput /= q;
+                    }
+                    ray = Ray { mask: mask::SECONDARY, origin: p, dir, tmin: 0.0, tmax: f32::INFINITY, time: ray.time };
+                    continue;
+                }
+                Some(bsdf::medium::Flight::Through { weight }) => throughput *= weight,
+                None => {}
+            }
+        }
         if let (None, None, Some(env)) = (&light_hit, &found, env) {
             // Left the scene: the environment.
             let le = environment_seen(env, &ray, depth, (last_pdf, last_delta), pick, settings.mis);
@@ -373,13 +412,14 @@ pub fn trace_path(
         let frame = Frame::from_normal(ns);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.model.bsdf(material.diffuse, wo);
+        let departure = Departure { media: &media, surface: Some((s.material, s.ng, ray.dir)) };
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
         let u_light = sampler.next_2d();
         let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
-            let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf };
+            let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
         } else if k < light_count && !bsdf.is_delta() {
@@ -395,13 +435,18 @@ pub fn trace_path(
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
-                    if !light.shadow || !shadow_blocked(world, accel, shading, &shadow, seed) {
+                    let tr = if light.shadow {
+                        media::shadow_transmittance(world, accel, shading, &departure, &shadow, seed)
+                    } else {
+                        Rgb::ONE
+                    };
+                    if tr != Rgb::ZERO {
                         let weight = if ls.delta || !settings.mis {
                             1.0
                         } else {
                             power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi))
                         };
-                        radiance += throughput * f * ls.radiance * (wi.z.abs() * weight / (pick * ls.pdf));
+                        radiance += throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
                     }
                 }
             }
@@ -417,8 +462,12 @@ pub fn trace_path(
             break;
         }
         throughput *= bs.weight();
-        last_pdf = bs.pdf;
-        last_delta = bs.delta;
+        // Straight through an index-matched medium boundary is no bounce for MIS: what is
+        // found next is weighed against the sampling at the vertex before.
+        if !(world.has_media && media.follow(world, s.material, s.ng, ray.dir, wi)) {
+            last_pdf = bs.pdf;
+            last_delta = bs.delta;
+        }
         let u_rr = sampler.next_1d();
         if depth + 1 >= settings.rr_depth {
             let q = throughput.max_element().min(0.95);

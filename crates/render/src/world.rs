@@ -108,6 +108,9 @@ pub struct World {
     /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
     /// look at what they cross.
     pub has_cutouts: bool,
+    /// Whether some material has a participating medium inside (the path engine then
+    /// tracks the media its paths are in; see `integrator::media`).
+    pub has_media: bool,
     /// The shutter, when the scene renders motion blur and something moves while it is
     /// open (`None`: every ray sees the scene at shutter time 0 and draws no time).
     pub shutter: Option<Shutter>,
@@ -180,6 +183,7 @@ impl World {
             materials.push(mat);
         }
         let has_cutouts = materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)));
+        let has_media = materials.iter().any(|m| m.medium.is_some() && m.has_inside());
         let meshes: Vec<MeshData> = scene
             .objects
             .iter()
@@ -324,6 +328,7 @@ impl World {
             user_buffers,
             warnings,
             has_cutouts,
+            has_media,
             shutter,
             light_motion,
         }

@@ -97,6 +97,7 @@ fn world(
 ) -> World {
     World {
         has_cutouts: false,
+        has_media: false,
         meshes,
         instances,
         materials,

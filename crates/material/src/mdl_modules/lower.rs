@@ -1,6 +1,6 @@
 //! Lowering an evaluated `material` struct to a path-engine [`SurfaceMaterial`]: the BSDF
 //! tree onto mira's BSDF families, the emission to radiance, `thin_walled`, `ior` and the
-//! cutout opacity read.
+//! cutout opacity read (the volume: [`super::volume`]).
 //!
 //! The families used are exact for what they cover:
 //! - any tree of diffuse reflection lobes under mixes, tints and weighted layers is one
@@ -509,12 +509,6 @@ pub fn surface(
             _ => warnings.push(format!(
                 "material '{name}': its geometry normal is a constant (not a direction of the surface); the shading normal is used"
             )),
-        }
-    }
-    if let Some(Value::Struct(_, vol)) = field(material, "volume") {
-        let absorbs = vol.iter().any(|(f, v)| f.ends_with("coefficient") && v.color().is_some_and(|c| c != Rgb::ZERO));
-        if absorbs {
-            warnings.push(format!("material '{name}': volume absorption and scattering are not compiled yet; ignored"));
         }
     }
     // Expressions too costly to evaluate at every hit (or deep enough to overflow a render

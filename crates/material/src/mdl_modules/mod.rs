@@ -28,6 +28,7 @@ pub mod natives;
 pub mod procedural;
 pub mod textures;
 pub mod value;
+pub mod volume;
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -229,7 +230,12 @@ impl Instance<'_> {
         };
         let result = ev.complete(def, given, def.span).and_then(|args| ev.call(def, &res, args, def.span));
         match result {
-            Ok(v @ Value::Struct(..)) => lower::surface(shader, &v, std::mem::take(&mut ev.leaves), warnings),
+            Ok(v @ Value::Struct(..)) => {
+                let mut surface = lower::surface(shader, &v, std::mem::take(&mut ev.leaves), warnings);
+                let location = |span| set.sources().location(span);
+                surface.medium = volume::medium(shader, &v, &location, warnings);
+                surface
+            }
             Ok(other) => {
                 warnings.push(format!(
                     "material '{shader}': `{qualified}` gave {}, not a material; rendered grey",

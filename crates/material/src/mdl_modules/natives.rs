@@ -12,7 +12,7 @@ use mi::Span;
 use super::eval::{kind, problem, Eval};
 use super::hit::{HitExpr, StateFn};
 use super::hit_natives;
-use super::value::{Df, Edf, Leaf, ScatterMode, Value};
+use super::value::{Df, Edf, Leaf, ScatterMode, Value, Vdf};
 
 /// The value of a module constant mira implements (`::math::PI`…).
 pub fn constant(module: &str, name: &str) -> Option<Value> {
@@ -201,6 +201,16 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 base: Box::new(bsdf("base")?),
             }))
         }
+        "anisotropic_vdf" => match arg("directional_bias").map(|v| (v, v.float())) {
+            None => Ok(Value::Vdf(Vdf::HenyeyGreenstein(0.0))),
+            Some((_, Some(g))) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(g as f32))),
+            Some((Value::Hit(..), None)) => Ok(Value::Vdf(Vdf::Unsupported(
+                "`df::anisotropic_vdf` with a directional_bias that varies over the surface".into(),
+                span,
+            ))),
+            Some((v, None)) => Err(not_constant(name, "directional_bias", v, span)),
+        },
+        "fog_vdf" => Ok(Value::Vdf(Vdf::Unsupported("`df::fog_vdf`".into(), span))),
         "diffuse_edf" => Ok(Value::Edf(Edf::Diffuse)),
         "spot_edf" => {
             let float = |p: &str, default: f64| arg(p).and_then(Value::float).unwrap_or(default) as f32;

@@ -234,6 +234,17 @@ pub enum Edf {
     Spot(crate::spot_edf::SpotEdf),
 }
 
+/// A volume distribution function.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Vdf {
+    /// Henyey–Greenstein scattering of asymmetry g: `df::anisotropic_vdf`'s
+    /// `directional_bias`, 0 (isotropic) for the default `vdf()`.
+    HenyeyGreenstein(f32),
+    /// A vdf mira does not compile: its name and where it was called (the volume then
+    /// scatters isotropically, with a warning at that place).
+    Unsupported(String, mi::Span),
+}
+
 /// A constant MDL value.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -259,8 +270,8 @@ pub enum Value {
     Bsdf(Df),
     /// An `edf`.
     Edf(Edf),
-    /// A `vdf` (volume scattering is not read; only `vdf()` is accepted).
-    Vdf,
+    /// A `vdf`: how a material's volume scatters.
+    Vdf(Vdf),
     /// `hair_bsdf()`.
     HairBsdf,
     /// A value that depends on the shading point: its expression and type.

@@ -1,0 +1,102 @@
+//! MDL `material_volume` lowered to the path engine's medium: absorption and scattering
+//! coefficients (per metre, one scene unit), `df::anisotropic_vdf`'s directional bias as the
+//! Henyey–Greenstein g, the default `vdf()` isotropic, an unsupported vdf warned at its line
+//! in the module, thin-walled materials and volumes that do nothing without a medium.
+//! The module is scenes/mdl/media.mdl.
+
+mod mdl_support;
+
+use bsdf::Rgb;
+use mdl_support::{close, compile_text, get};
+
+#[test]
+fn volume_coefficients_and_the_vdf_become_the_medium() {
+    let (mdl, lib, messages) = compile_text(
+        r#"$include "media.mdl"
+shader "gel" "mdl::media::tinted_gel" ()
+shader "smoke" "mdl::media::smoke" ("scattering" 0.5 1 2, "absorption" 0.1 0 0.3, "bias" 0.6)
+shader "back" "mdl::media::smoke" ("bias" -0.4)
+shader "milky" "mdl::media::milky_glass" ()
+shader "clear" "mdl::media::smoke" ("scattering" 0 0 0)
+shader "glow" "mdl::media::glow" ()
+"#,
+    );
+    assert!(messages.is_empty(), "{messages:#?}");
+    let gel = get(&mdl, &lib, "gel").medium.expect("the gel has a medium");
+    assert!(close(gel.sigma_a, Rgb::new(0.5, 1.0, 2.0), 1e-6) && gel.sigma_s == Rgb::ZERO, "{gel:?}");
+    assert!(get(&mdl, &lib, "gel").has_inside(), "light enters the gel");
+    assert_eq!(get(&mdl, &lib, "gel").model.index_matched(), Some(Rgb::ONE), "ior 1: an index-matched boundary");
+    let smoke = get(&mdl, &lib, "smoke").medium.expect("the smoke has a medium");
+    assert!(close(smoke.sigma_s, Rgb::new(0.5, 1.0, 2.0), 1e-6), "{smoke:?}");
+    assert!(close(smoke.sigma_a, Rgb::new(0.1, 0.0, 0.3), 1e-6), "{smoke:?}");
+    assert!((smoke.phase.g - 0.6).abs() < 1e-6, "{smoke:?}");
+    assert!((get(&mdl, &lib, "back").medium.expect("a medium").phase.g + 0.4).abs() < 1e-6);
+    let milky = get(&mdl, &lib, "milky");
+    assert!(
+        milky.medium.is_some() && milky.model.index_matched().is_none(),
+        "glass of ior 1.5 is no index-matched boundary"
+    );
+    assert_eq!(get(&mdl, &lib, "clear").medium, None, "a volume that neither absorbs nor scatters is no medium");
+    assert_eq!(get(&mdl, &lib, "glow").medium, None, "no volume");
+}
+
+#[test]
+fn the_default_vdf_is_isotropic_and_thin_walled_materials_have_no_medium() {
+    let (mdl, lib, messages) = compile_text(
+        "$include \"media.mdl\"\nshader \"thick\" \"mdl::media::haze\" ()\nshader \"thin\" \"mdl::media::haze\" (\"thin\" on)\n",
+    );
+    assert!(messages.is_empty(), "{messages:#?}");
+    let thick = get(&mdl, &lib, "thick").medium.expect("a medium");
+    assert_eq!(thick.phase.g, 0.0, "vdf() scatters isotropically");
+    assert!(close(thick.sigma_s, Rgb::splat(2.0), 1e-6));
+    assert_eq!(get(&mdl, &lib, "thin").medium, None, "a thin-walled material has no inside");
+}
+
+#[test]
+fn an_unsupported_vdf_is_a_warning_at_its_line() {
+    let (mdl, lib, messages) = compile_text("$include \"media.mdl\"\nshader \"fog\" \"mdl::media::fog\" ()\n");
+    let line = include_str!("../../../scenes/mdl/media.mdl")
+        .lines()
+        .position(|l| l.contains("df::fog_vdf()"))
+        .expect("the module calls fog_vdf")
+        + 1;
+    assert!(
+        messages.iter().any(|m| m.contains("fog_vdf") && m.contains(&format!("media.mdl:{line}:"))),
+        "a warning naming fog_vdf at media.mdl:{line}: {messages:#?}"
+    );
+    let fog = get(&mdl, &lib, "fog").medium.expect("the fog still scatters");
+    assert_eq!(fog.phase.g, 0.0, "isotropically");
+}
+
+/// `core_definitions::flex_material` (translated natively): a transparent, thick material
+/// absorbs σa = −ln(volume_color) / base_thickness inside; the default volume colour 1
+/// and a thin-walled one give no medium.
+#[test]
+fn flex_material_volume_colour_becomes_absorption() {
+    let text = r#"
+shader "flex" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1, "volume_color" 0.5 0.25 1, "base_thickness" 0.2)
+shader "plain" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1)
+shader "thin" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1, "volume_color" 0.5 0.5 0.5, "thin_walled" on)
+options "o" end options
+camera "c" end camera
+instance "ci" "c" end instance
+object "tri" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 c "flex" 0 1 2 c "plain" 0 1 2 c "thin" 0 1 2 end group end object
+instance "ti" "tri" end instance
+instgroup "root" "ci" "ti" end instgroup
+render "root" "ci" "o"
+"#;
+    let parsed = mi::parse_str("t.mi", text);
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let medium = |name: &str| {
+        let m = scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no material {name}"));
+        let (surface, warnings) = material::translate(m, &scene.library, None);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        surface.medium
+    };
+    let flex = medium("flex").expect("a medium");
+    let want = Rgb::new(-(0.5f32.ln()), -(0.25f32.ln()), 0.0) / 0.2;
+    assert!(close(flex.sigma_a, want, 1e-5) && flex.sigma_s == Rgb::ZERO, "{flex:?} vs σa {want:?}");
+    assert_eq!(medium("plain"), None);
+    assert_eq!(medium("thin"), None);
+}
