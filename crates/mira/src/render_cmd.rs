@@ -364,10 +364,13 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let classic = engine == EngineKind::Classic;
     // Stage 2: build the world (an image too large for one film renders in strips).
     let strip_rows = choose_strips(args, &mut loaded, part).map_err(err)?;
-    let sc = &loaded.scene;
     let shading_options = shading_options(&args.scene, opts);
     let t_world = Instant::now();
-    let built = pool.install(|| render::pipeline::build_world(sc, &shading_options, &opts.include.mdl_paths));
+    // The world takes the scene's meshes (nothing past this point reads them).
+    let scene_mut = &mut loaded.scene;
+    let built = pool
+        .install(|| render::pipeline::build_world_taking_meshes(scene_mut, &shading_options, &opts.include.mdl_paths));
+    let sc = &loaded.scene;
     if built.diagnostics.iter().any(|d| d.is_error() || args.warnings) {
         restore_sources(&mut loaded.parsed.sources);
     }
@@ -384,8 +387,8 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         return Err(err(format!("{} has errors; nothing rendered", args.scene.display())));
     }
     // The file's text and syntax tree are not needed past this point, nor the scene's
-    // meshes once the world has its own copy: freed early, they do not add to the peak
-    // memory of the acceleration structure build.
+    // other geometry (hair) once the world has its own: freed early, they do not add to
+    // the peak memory of the acceleration structure build.
     // What the scene reads besides its text (textures, light profiles, MDL modules): parts
     // and pre-pass files rendered against other files must not be mixed.
     let inputs_hash = if part.is_some() || args.prepass.is_some() {

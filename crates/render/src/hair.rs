@@ -144,7 +144,7 @@ pub fn ribbons(blocks: &[HairGeometry], facing: Facing) -> Option<(MeshData, Hai
                 for (s0, s1) in pairs {
                     let base = mesh.positions.len() as u32;
                     let (r0, r1) = (radii[k], radii[k + 1]);
-                    mesh.positions.extend([p0 - s0 * r0, p0 + s0 * r0, p1 + s1 * r1, p1 - s1 * r1]);
+                    mesh.positions.extend([p0 - s0 * r0, p0 + s0 * r0, p1 + s1 * r1, p1 - s1 * r1].map(Vec3::from));
                     hair.along.extend([a0, a0, a1, a1]);
                     hair.across.extend([0.0, 1.0, 1.0, 0.0]);
                     for (s, space) in mesh.textures.iter_mut().enumerate() {
@@ -200,7 +200,7 @@ mod tests {
         let (lo, hi) = mesh
             .positions
             .iter()
-            .map(|p| p.dot(across))
+            .map(|&p| Vec3A::from(p).dot(across))
             .fold((f32::MAX, f32::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)));
         hi - lo
     }

@@ -73,7 +73,7 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let ns = if mesh.normals.is_empty() {
         ng
     } else {
-        let n = mesh.normals[i0 as usize] * w + mesh.normals[i1 as usize] * hit.u + mesh.normals[i2 as usize] * hit.v;
+        let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;
         let n = (placed.normal_to_world * n).normalize_or(ng);
         if n.dot(ng) < 0.0 {
             -n

@@ -1,15 +1,20 @@
 //! Triangle meshes as the renderer stores them (object space), hair ribbons' extra data
 //! included; the world holds them, the acceleration structures and engines read them.
 
-use glam::Vec3A;
+use glam::{Vec3, Vec3A};
 
 /// A triangle mesh, object space.
+///
+/// Positions and normals are stored packed (`Vec3`, 12 bytes a vertex each, as the scene
+/// builds them, so the world takes the scene's arrays without copying them); readers widen
+/// them to `Vec3A` ([`MeshData::position`], [`MeshData::normal`]) before any arithmetic, so
+/// results are the same as with `Vec3A` storage.
 #[derive(Clone, Debug, Default)]
 pub struct MeshData {
     /// Vertex positions.
-    pub positions: Vec<Vec3A>,
+    pub positions: Vec<Vec3>,
     /// Vertex shading normals (empty: use the geometric normal).
-    pub normals: Vec<Vec3A>,
+    pub normals: Vec<Vec3>,
     /// Vertex coordinates of each texture space (mental ray's `tex_list`).
     pub textures: Vec<Vec<Vec3A>>,
     /// Vertex bump basis vectors (u, v) of the first texture space, object space (empty if
@@ -37,6 +42,18 @@ pub struct MeshData {
 pub const MAX_MOTION_STEPS: usize = 15;
 
 impl MeshData {
+    /// Object-space position of vertex `i`.
+    #[inline(always)]
+    pub fn position(&self, i: u32) -> Vec3A {
+        Vec3A::from(self.positions[i as usize])
+    }
+
+    /// Object-space shading normal of vertex `i` (the mesh must have normals).
+    #[inline(always)]
+    pub fn normal(&self, i: u32) -> Vec3A {
+        Vec3A::from(self.normals[i as usize])
+    }
+
     /// Whether the vertices move while the shutter is open.
     #[inline]
     pub fn moves(&self) -> bool {
@@ -64,7 +81,7 @@ impl MeshData {
     #[inline]
     pub fn triangle_at(&self, tri: [u32; 3], time: f32) -> [Vec3A; 3] {
         if self.position_keys.is_empty() {
-            tri.map(|i| self.positions[i as usize])
+            tri.map(|i| self.position(i))
         } else {
             let (j, f) = crate::motion::key_segment(self.position_keys.len(), time);
             let (a, b) = (&self.position_keys[j], &self.position_keys[j + 1]);
@@ -75,7 +92,7 @@ impl MeshData {
     /// All object-space vertex positions at shutter time `time`.
     pub fn positions_at(&self, time: f32) -> Vec<Vec3A> {
         if self.position_keys.is_empty() {
-            self.positions.clone()
+            self.positions.iter().map(|&p| Vec3A::from(p)).collect()
         } else {
             let (j, f) = crate::motion::key_segment(self.position_keys.len(), time);
             let (a, b) = (&self.position_keys[j], &self.position_keys[j + 1]);

@@ -183,16 +183,37 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 /// ([`material::compile_shading`]: plug-in shaders get stand-ins) and its MDL module
 /// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), tabulates
 /// its `"shutter shape function"` shader ([`shader::shutter::tabulate_into`]), and
-/// translates the scene into the world the engines trace.
+/// translates the scene into the world the engines trace (copying the scene's meshes;
+/// [`build_world_taking_meshes`] moves them).
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
+    let (shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
+    Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
+}
+
+/// [`build_world`], moving the scene's vertex, normal and triangle arrays into the world
+/// instead of copying them ([`World::from_scene_taking_meshes`]): for callers that need
+/// the scene's geometry no more (the scene's object meshes are left empty).
+pub fn build_world_taking_meshes(scene: &mut Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
+    let (shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let world = World::from_scene_taking_meshes(scene, Some(&shading), &mdl);
+    Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
+}
+
+/// The shading half of [`build_world`]: the compiled shading, the MDL module materials and
+/// the messages of both.
+fn compile_scene_shading(
+    scene: &Scene,
+    options: &ShadingOptions,
+    mdl_paths: &[PathBuf],
+) -> (Shading, material::mdl_modules::MdlMaterials, Vec<mi::Diagnostic>) {
     let (mut shading, mut diagnostics) = material::compile_shading(scene, options);
     let search = material::mdl_modules::search_path(&scene.library, mdl_paths);
     let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
     diagnostics.extend(mdl_diagnostics);
     material::module_stand_ins(&mut shading, scene, &mdl);
     shader::shutter::tabulate_into(&mut shading, &scene.options, &mut diagnostics);
-    let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
-    Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
+    (shading, mdl, diagnostics)
 }
 
 /// A hash of what a scene reads besides its `.mi` text ([`Loaded::content_hash`]): each

@@ -85,7 +85,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     let mut ns = if mesh.normals.is_empty() {
         ng
     } else {
-        let (n0, n1, n2) = (mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
+        let (n0, n1, n2) = (mesh.normal(tri[0]), mesh.normal(tri[1]), mesh.normal(tri[2]));
         // Lift the point onto the vertices' tangent planes (object space), where it lies
         // below them.
         let p_obj = p0 * b0 + p1 * b1 + p2 * b2;
@@ -311,7 +311,9 @@ impl Tracer for SceneTracer<'_> {
                 Some(p.map(|p| placed.object_to_world.transform_point3a(p)))
             }
             VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
-            VertexData::Normal => Some(tri.map(|i| (placed.normal_to_world * mesh.normals[i]).normalize_or_zero())),
+            VertexData::Normal => {
+                Some(tri.map(|i| (placed.normal_to_world * mesh.normal(i as u32)).normalize_or_zero()))
+            }
             VertexData::Motion if mesh.motion.is_empty() => Some([Vec3A::ZERO; 3]),
             VertexData::Motion => {
                 Some(tri.map(|i| {

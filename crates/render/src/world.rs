@@ -137,12 +137,67 @@ fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], insta
             if !materials.get(m).is_some_and(|m| m.emission_over_area) {
                 continue;
             }
-            let [a, b, c] = tri.map(|i| inst.object_to_world.transform_point3a(mesh.positions[i as usize]));
+            let [a, b, c] = tri.map(|i| inst.object_to_world.transform_point3a(mesh.position(i)));
             area[m] += 0.5 * f64::from((b - a).cross(c - a).length());
         }
     }
     for (m, a) in materials.iter_mut().zip(area) {
         m.spread_emission_over(a as f32);
+    }
+}
+
+/// The scene's lights that translate, each with its index in the scene's list, and the
+/// warnings of those that do not.
+type SceneLights = (Vec<(LightSource, usize)>, Vec<String>);
+
+/// The lights of `scene` (object area lights read its meshes).
+fn scene_lights(scene: &Scene, shading: Option<&Shading>) -> SceneLights {
+    let mut lights = Vec::new();
+    let mut warnings = Vec::new();
+    for (index, l) in scene.lights.iter().enumerate() {
+        match LightSource::in_scene_shaded(l, scene, shading) {
+            Ok(src) => lights.push((src, index)),
+            Err(w) => warnings.push(w),
+        }
+    }
+    (lights, warnings)
+}
+
+/// A copy of the arrays of `m` that the renderer keeps (see [`mesh_data`]).
+fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
+    scene::Mesh {
+        positions: m.positions.clone(),
+        normals: m.normals.clone(),
+        textures: m.textures.clone(),
+        bump_basis: m.bump_basis.clone(),
+        triangles: m.triangles.clone(),
+        triangle_slots: m.triangle_slots.clone(),
+        motion: m.motion.clone(),
+        motion_more: m.motion_more.clone(),
+        ..scene::Mesh::default()
+    }
+}
+
+/// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
+/// moved out of `m`, not copied.
+fn mesh_data(m: &mut scene::Mesh) -> MeshData {
+    let mut positions = std::mem::take(&mut m.positions);
+    // Room for one more vertex past the end: Embree reads the last vertex of a shared
+    // 12-byte-stride buffer with a 16-byte load (a large vector grows in place).
+    positions.reserve_exact(1);
+    let slots = std::mem::take(&mut m.triangle_slots);
+    MeshData {
+        positions,
+        normals: std::mem::take(&mut m.normals),
+        textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
+        bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
+        triangles: std::mem::take(&mut m.triangles),
+        // One slot for every triangle (the common case) is stored as none.
+        slots: if slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
+        hair: None,
+        motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
+        motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
+        position_keys: Vec::new(),
     }
 }
 
@@ -169,11 +224,41 @@ impl World {
     }
 
     /// [`World::from_scene_shaded`] with the scene's MDL module materials compiled by the
-    /// caller (who reports their diagnostics with the scene's sources).
+    /// caller (who reports their diagnostics with the scene's sources). The scene's meshes
+    /// are copied; [`World::from_scene_taking_meshes`] moves them instead.
     pub fn from_scene_with_mdl(
         scene: &Scene,
         shading: Option<&Shading>,
         mdl: &material::mdl_modules::MdlMaterials,
+    ) -> World {
+        let lights = scene_lights(scene, shading);
+        let meshes = scene.objects.iter().map(|o| mesh_data(&mut copy_of_rendered_arrays(&o.geometry.mesh))).collect();
+        World::assemble(scene, shading, mdl, meshes, lights)
+    }
+
+    /// [`World::from_scene_with_mdl`], moving the scene's vertex, normal and triangle arrays
+    /// into the world instead of copying them (for a 4 M-triangle mesh, 96 MB neither copied
+    /// nor held twice): the scene's object meshes are left empty (its hair and everything
+    /// else stay).
+    pub fn from_scene_taking_meshes(
+        scene: &mut Scene,
+        shading: Option<&Shading>,
+        mdl: &material::mdl_modules::MdlMaterials,
+    ) -> World {
+        // Object area lights read the scene's meshes: they are made before the meshes move.
+        let lights = scene_lights(scene, shading);
+        let meshes = scene.objects.iter_mut().map(|o| mesh_data(&mut o.geometry.mesh)).collect();
+        World::assemble(scene, shading, mdl, meshes, lights)
+    }
+
+    /// The world of `scene` whose object meshes (object order) are `meshes` and whose lights
+    /// are `lights` (as [`scene_lights`] makes them).
+    fn assemble(
+        scene: &Scene,
+        shading: Option<&Shading>,
+        mdl: &material::mdl_modules::MdlMaterials,
+        meshes: Vec<MeshData>,
+        (lights, light_warnings): SceneLights,
     ) -> World {
         let mut warnings = Vec::new();
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
@@ -184,26 +269,7 @@ impl World {
         }
         let has_cutouts = materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)));
         let has_media = materials.iter().any(|m| m.medium.is_some() && m.has_inside());
-        let meshes: Vec<MeshData> = scene
-            .objects
-            .iter()
-            .map(|o| {
-                let m = &o.geometry.mesh;
-                MeshData {
-                    positions: m.positions.iter().map(|p| Vec3A::from(*p)).collect(),
-                    normals: m.normals.iter().map(|n| Vec3A::from(*n)).collect(),
-                    textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
-                    bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
-                    triangles: m.triangles.clone(),
-                    // One slot for every triangle (the common case) is stored as none.
-                    slots: if m.triangle_slots.iter().all(|&s| s == 0) { Vec::new() } else { m.triangle_slots.clone() },
-                    hair: None,
-                    motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
-                    motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
-                    position_keys: Vec::new(),
-                }
-            })
-            .collect();
+        let object_has_triangles: Vec<bool> = meshes.iter().map(|m| !m.triangles.is_empty()).collect();
         let mut meshes = meshes;
         // Hair: one ribbon mesh per object with hair, after the objects' meshes.
         let hair_mesh: Vec<Option<u32>> = scene
@@ -221,7 +287,7 @@ impl World {
             .instances
             .iter()
             .enumerate()
-            .filter(|(_, i)| !scene.objects[i.object as usize].geometry.mesh.triangles.is_empty())
+            .filter(|(_, i)| object_has_triangles.get(i.object as usize).copied().unwrap_or(false))
             .map(|(scene_index, i)| {
                 let object_to_world = affine(i.object_to_world);
                 InstanceData {
@@ -285,13 +351,8 @@ impl World {
             }
         }
         spread_emission(&mut materials, &meshes, &instances);
-        let mut lights = Vec::new();
-        for (index, l) in scene.lights.iter().enumerate() {
-            match LightSource::in_scene_shaded(l, scene, shading) {
-                Ok(src) => lights.push((src, index)),
-                Err(w) => warnings.push(w),
-            }
-        }
+        let mut lights = lights;
+        warnings.extend(light_warnings);
         let mut user_buffers: Vec<(String, String)> = scene
             .options
             .frame_buffers
@@ -341,8 +402,8 @@ impl World {
         for inst in &self.instances {
             let mesh = &self.meshes[inst.mesh as usize];
             if !inst.moves() && !mesh.moves() {
-                for p in &mesh.positions {
-                    let w = inst.object_to_world.transform_point3a(*p);
+                for &p in &mesh.positions {
+                    let w = inst.object_to_world.transform_point3a(p.into());
                     lo = lo.min(w);
                     hi = hi.max(w);
                 }
@@ -411,7 +472,7 @@ fn set_motion_keys(
             .key_times(keys)
             .map(|tau| {
                 (0..mesh.positions.len())
-                    .map(|i| motion_path(mesh.positions[i], &mesh.motion_vectors(i, vectors), tau))
+                    .map(|i| motion_path(mesh.position(i as u32), &mesh.motion_vectors(i, vectors), tau))
                     .collect()
             })
             .collect();

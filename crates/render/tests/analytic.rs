@@ -6,7 +6,7 @@
 use std::sync::atomic::AtomicBool;
 
 use bsdf::Rgb;
-use glam::{Affine3A, Mat3A, Vec3A};
+use glam::{Affine3A, Mat3A, Vec3, Vec3A};
 use material::SurfaceMaterial;
 use render::camera::CameraModel;
 use render::integrator::PathSettings;
@@ -24,7 +24,7 @@ fn sphere(r: f32, rings: u32, segments: u32) -> MeshData {
         let theta = std::f32::consts::PI * i as f32 / rings as f32;
         for j in 0..segments {
             let phi = std::f32::consts::TAU * j as f32 / segments as f32;
-            m.positions.push(Vec3A::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()) * r);
+            m.positions.push(Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()) * r);
         }
     }
     for i in 0..rings {
@@ -44,7 +44,7 @@ fn sphere(r: f32, rings: u32, segments: u32) -> MeshData {
 fn plane(s: f32) -> MeshData {
     let h = s / 2.0;
     MeshData {
-        positions: vec![Vec3A::new(-h, -h, 0.0), Vec3A::new(h, -h, 0.0), Vec3A::new(h, h, 0.0), Vec3A::new(-h, h, 0.0)],
+        positions: vec![Vec3::new(-h, -h, 0.0), Vec3::new(h, -h, 0.0), Vec3::new(h, h, 0.0), Vec3::new(-h, h, 0.0)],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         slots: vec![0, 0],
         ..MeshData::default()

@@ -41,7 +41,7 @@ fn brute_force(world: &World, ray: &Ray) -> Option<(u32, u32, f32)> {
             ..*ray
         };
         for (p, t) in mesh.triangles.iter().enumerate() {
-            let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+            let [a, b, c] = t.map(|k| mesh.position(k));
             if let Some((d, _, _)) = intersect_triangle(&local, a, b, c) {
                 if best.is_none_or(|x| d < x.2) {
                     best = Some((i as u32, p as u32, d));

@@ -256,9 +256,9 @@ impl BvhAccel {
                         .iter()
                         .enumerate()
                         .map(|(i, t)| Tri {
-                            p0: m.positions[t[0] as usize],
-                            p1: m.positions[t[1] as usize],
-                            p2: m.positions[t[2] as usize],
+                            p0: m.position(t[0]),
+                            p1: m.position(t[1]),
+                            p2: m.position(t[2]),
                             index: i as u32,
                             instance: 0,
                         })
@@ -287,7 +287,7 @@ impl BvhAccel {
                 moving_keys.push((k as u32, crate::world::world_key_positions(inst, m)));
                 continue;
             }
-            let w = |i: u32| inst.object_to_world.transform_point3a(m.positions[i as usize]);
+            let w = |i: u32| inst.object_to_world.transform_point3a(m.position(i));
             world_tris.extend(m.triangles.iter().enumerate().map(|(i, t)| Tri {
                 p0: w(t[0]),
                 p1: w(t[1]),
@@ -320,8 +320,8 @@ impl BvhAccel {
                     }
                     return b;
                 }
-                for p in &mesh.positions {
-                    b.extend(i.object_to_world.transform_point3a(*p));
+                for &p in &mesh.positions {
+                    b.extend(i.object_to_world.transform_point3a(p.into()));
                 }
                 b
             })

@@ -310,9 +310,9 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
     // buffers are the mesh's own arrays, which outlive the accel (it borrows the world).
     unsafe {
         let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
-        if transform == glam::Affine3A::IDENTITY {
-            // Vec3A is three f32 and 4 bytes of padding: a float3 buffer with a 16-byte
-            // stride, whose last element can be read with a 16-byte load as Embree wants.
+        if transform == glam::Affine3A::IDENTITY && m.positions.capacity() > m.positions.len() {
+            // Vec3 is three f32: a float3 buffer with a 12-byte stride; the vector's room
+            // for one more vertex lets Embree read the last one with a 16-byte load.
             rtcSetSharedGeometryBuffer(
                 geom,
                 BUFFER_TYPE_VERTEX,
@@ -320,7 +320,7 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
                 FORMAT_FLOAT3,
                 m.positions.as_ptr().cast(),
                 0,
-                std::mem::size_of::<glam::Vec3A>(),
+                std::mem::size_of::<glam::Vec3>(),
                 m.positions.len(),
             );
         } else {
@@ -328,8 +328,12 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
                 rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len()) as *mut f32;
             if !verts.is_null() {
                 let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
-                for (o, p) in out.chunks_exact_mut(3).zip(&m.positions) {
-                    o.copy_from_slice(&transform.transform_point3a(*p).to_array());
+                // Identity placements land here when the vector has no room past its end:
+                // their vertices are copied as they are.
+                let identity = transform == glam::Affine3A::IDENTITY;
+                for (o, &p) in out.chunks_exact_mut(3).zip(&m.positions) {
+                    let p = if identity { p.into() } else { transform.transform_point3a(p.into()) };
+                    o.copy_from_slice(&glam::Vec3A::to_array(&p));
                 }
             }
         }
