@@ -124,13 +124,26 @@ pub struct Shutter {
 }
 
 impl Shutter {
-    /// The scene's shutter when it renders motion blur (`motion on` and a shutter that
-    /// closes after it opens). Its shape is the table of the `"shutter shape function"`
+    /// The scene's shutter when it renders motion (`motion on` and a shutter that closes
+    /// after it opens, or a *zero-length* shutter that opens and closes at the same motion
+    /// time other than 0). Its shape is the table of the `"shutter shape function"`
     /// shader when the shading has one (`shutter_weights`, see `shader::shutter`), else the
     /// `"shutter full open"`/`"shutter full close"` shape.
+    ///
+    /// mental ray's manual: the shutter opens at time `delay` and closes at its close, and
+    /// "setting the shutter open and close times to the same value" renders without blur
+    /// (it leaves the motion to output shaders); the scene is then seen at that time, so
+    /// `shutter 0.3 0.3` shows everything where it is at motion time 0.3 (a shutter whose
+    /// keys all lie at that time). `shutter 0 0`, the default, is motion time 0: no shutter.
     pub fn from_options(options: &scene::Options, shutter_weights: Option<&[f32]>) -> Option<Shutter> {
         let (open, close) = options.shutter;
-        if !options.motion || close <= open || !open.is_finite() || !close.is_finite() {
+        if !options.motion || !open.is_finite() || !close.is_finite() {
+            return None;
+        }
+        if close == open && open != 0.0 {
+            return Some(Shutter { open: open as f32, close: open as f32, shape: ShutterShape::BOX });
+        }
+        if close <= open {
             return None;
         }
         let number = |name: &str| options.string_options.get(name).and_then(|v| v.as_f64());
@@ -247,8 +260,11 @@ pub fn transform_keys(start: Affine3A, end: Affine3A, shutter: &Shutter, steps: 
     let (axis, angle) = turn.to_axis_angle();
     let swept = angle * (shutter.close - shutter.open).abs();
     let by_turn = if swept > MAX_KEY_TURN { (swept / MAX_KEY_TURN).ceil() as usize } else { 1 };
-    let segments = by_turn.max(steps).min(MAX_TURN_SEGMENTS);
-    if !swept.is_finite() || swept <= 0.0 || segments < 2 {
+    let mut segments = by_turn.max(steps).min(MAX_TURN_SEGMENTS);
+    if shutter.close == shutter.open && angle.is_finite() && angle > 0.0 {
+        // A zero-length shutter: the turn's one point in time, as two equal keys.
+        segments = 1;
+    } else if !swept.is_finite() || swept <= 0.0 || segments < 2 {
         return linear();
     }
     shutter
@@ -449,6 +465,30 @@ mod tests {
         }
         let moved = Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0));
         assert_eq!(transform_keys(start, moved, &shutter, 4).len(), 2);
+    }
+
+    /// A zero-length shutter at motion time ½ (`shutter 0.5 0.5`, `motion on`) is a
+    /// shutter whose keys all sit at that time: a transform turning 90° is there turned
+    /// 45° at its full size (not the matrices' average, shrunk by cos 45°); `shutter 0 0`
+    /// is no shutter at all.
+    #[test]
+    fn a_zero_length_shutter_holds_one_time() {
+        let mut options = scene::Options { motion: true, shutter: (0.5, 0.5), ..scene::Options::default() };
+        let shutter = Shutter::from_options(&options, None).expect("a zero-length shutter");
+        assert_eq!((shutter.open, shutter.close), (0.5, 0.5));
+        assert!(shutter.key_times(3).all(|t| t == 0.5));
+        let start = Affine3A::IDENTITY;
+        let end = Affine3A::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let keys = transform_keys(start, end, &shutter, 1);
+        assert_eq!(keys.len(), 2);
+        let corner = lerp_keys(&keys, 0.7).transform_point3a(Vec3A::X);
+        let want = Vec3A::new(std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2, 0.0);
+        assert!((corner - want).length() < 1e-5, "{corner}");
+        options.shutter = (0.0, 0.0);
+        assert!(Shutter::from_options(&options, None).is_none());
+        options.shutter = (0.5, 0.5);
+        options.motion = false;
+        assert!(Shutter::from_options(&options, None).is_none());
     }
 
     #[test]

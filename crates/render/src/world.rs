@@ -304,6 +304,7 @@ impl World {
                 }
             })
             .collect();
+        let mut facing_hair = Vec::new();
         for (scene_index, i) in scene.instances.iter().enumerate() {
             let Some(mesh) = hair_mesh[i.object as usize] else { continue };
             let object_to_world = affine(i.object_to_world);
@@ -333,6 +334,9 @@ impl World {
                     meshes.push(m);
                     (meshes.len() - 1) as u32
                 });
+            if let Some(facing_mesh) = facing_mesh {
+                facing_hair.push(FacingHair { mesh: facing_mesh, instance: instances.len() + 1, object: i.object });
+            }
             let placed = |mesh: u32, flags: scene::Flags| InstanceData {
                 mesh,
                 object_to_world,
@@ -373,7 +377,11 @@ impl World {
                 light.motion = light_motion[*index].clone();
             }
             let lights_move = light_motion.iter().any(|k| !k.is_empty());
-            set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings) | lights_move
+            let moving = set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings);
+            for hair in &facing_hair {
+                turn_facing_ribbons(hair, scene, &mut meshes[hair.mesh as usize], &instances[hair.instance], &camera);
+            }
+            moving | lights_move
         });
         if shutter.is_none() || light_motion.iter().all(Vec::is_empty) {
             light_motion = Vec::new();
@@ -409,12 +417,9 @@ impl World {
                 }
                 continue;
             }
-            for key in world_key_positions(inst, mesh) {
-                for w in key {
-                    lo = lo.min(w);
-                    hi = hi.max(w);
-                }
-            }
+            let (l, h) = world_motion_bounds(inst, mesh);
+            lo = lo.min(l);
+            hi = hi.max(h);
         }
         (lo, hi)
     }
@@ -422,6 +427,50 @@ impl World {
     /// Number of triangles over all instances.
     pub fn instanced_triangles(&self) -> usize {
         self.instances.iter().map(|i| self.meshes[i.mesh as usize].triangles.len()).sum()
+    }
+}
+
+/// A mesh of hair ribbons turned towards the camera (see [`crate::hair`]): its index, the
+/// index of the instance placing it and of the object whose hair it is.
+struct FacingHair {
+    mesh: u32,
+    instance: usize,
+    object: u32,
+}
+
+/// Turns camera-facing hair ribbons towards the camera at every time while the shutter is
+/// open, when the camera or the hair's instance moves: the ribbons are rebuilt facing the
+/// camera as seen from the instance at each key of the two (the more keys of the two),
+/// as the mesh's position keys. (mental ray turns each ribbon towards each ray; between
+/// keys the ribbons' corners move linearly.) Nothing changes when neither moves.
+fn turn_facing_ribbons(
+    hair: &FacingHair,
+    scene: &Scene,
+    mesh: &mut MeshData,
+    inst: &InstanceData,
+    camera: &CameraModel,
+) {
+    let keys = inst.keys.len().max(camera.keys.len());
+    if keys < 2 {
+        return;
+    }
+    let blocks = &scene.objects[hair.object as usize].geometry.hair;
+    let position_keys: Option<Vec<Vec<Vec3A>>> = (0..keys)
+        .map(|j| {
+            let s = j as f32 / (keys - 1) as f32;
+            let cam_to_object = inst.object_to_world_at(s).inverse() * camera.camera_to_world_at(s);
+            let facing = if camera.orthographic {
+                crate::hair::Facing::Direction(cam_to_object.transform_vector3a(Vec3A::Z))
+            } else {
+                crate::hair::Facing::Point(cam_to_object.transform_point3a(Vec3A::ZERO))
+            };
+            crate::hair::ribbons(blocks, facing)
+                .map(|(m, _)| m.positions)
+                .filter(|p| p.len() == mesh.positions.len() && p.iter().all(|v| v.is_finite()))
+        })
+        .collect();
+    if let Some(position_keys) = position_keys {
+        mesh.position_keys = position_keys;
     }
 }
 
@@ -498,43 +547,118 @@ fn set_motion_keys(
     moving
 }
 
-/// Keys over the shutter of each of the scene's lights (scene order) whose instance moves:
-/// its world → world displacement from where it is at motion time 0 (empty for a light
-/// that stays).
+/// Keys over the shutter of each of the scene's lights (scene order) that moves: its world
+/// → world displacement from where it is at motion time 0 (empty for a light that stays).
+///
+/// A light moves with its instance. An `object` area light's triangles are the geometry
+/// instance's it names, placed by that instance: they move with that instance too, so
+/// its displacement is the light instance's composed with the geometry instance's (the
+/// triangles carried rigidly; their vertices' own motion vectors are not followed, with a
+/// warning).
 fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> Vec<Vec<Affine3A>> {
     let limit = scene::sanity::WORLD_LIMIT as f32;
     let steps = scene.options.motion_steps as usize;
+    // The displacement keys of a transform that is `start` at motion time 0 and `end` at
+    // motion time 1 (both something → world); empty when it does not move.
+    let displacement = |start: Affine3A, end: Affine3A| -> Vec<Affine3A> {
+        if start == end {
+            return Vec::new();
+        }
+        let back = start.inverse();
+        transform_keys(start, end, shutter, steps).into_iter().map(|k| k * back).collect()
+    };
     scene
         .lights
         .iter()
         .map(|light| {
-            let Some(end) = light.motion_light_to_world else { return Vec::new() };
-            let (start, end) = (affine(light.light_to_world), affine(end));
-            if start == end {
-                return Vec::new();
-            }
-            let back = start.inverse();
-            let keys: Vec<Affine3A> =
-                transform_keys(start, end, shutter, steps).into_iter().map(|k| k * back).collect();
+            let own = match light.motion_light_to_world {
+                Some(end) => displacement(affine(light.light_to_world), affine(end)),
+                None => Vec::new(),
+            };
+            let emitter = match &light.area {
+                Some(scene::light::AreaLight { shape: scene::AreaShape::Object { instance }, .. }) => {
+                    emitter_keys(scene, instance, &light.instance, &displacement, warnings)
+                }
+                _ => Vec::new(),
+            };
+            let keys = compose_keys(&own, &emitter);
             if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= limit) {
                 warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.instance));
                 return Vec::new();
-            }
-            if matches!(&light.area, Some(a) if matches!(a.shape, scene::AreaShape::Object { .. })) {
-                warnings.push(format!(
-                    "light '{}' moves while the shutter is open: the classic engine's light shaders see its object \
-                     light's triangles where they are at the shutter's opening (its position and direction move)",
-                    light.instance
-                ));
             }
             keys
         })
         .collect()
 }
 
+/// The displacement keys of the geometry instance `name` an object light named `light`
+/// takes its triangles from (picked as [`shader::light::MeshShape::of_instance`] picks
+/// them: the instance of that name, else every instance of the object of that name).
+/// Several picked instances that do not move alike are kept still, with a warning.
+fn emitter_keys(
+    scene: &Scene,
+    name: &str,
+    light: &str,
+    displacement: &dyn Fn(Affine3A, Affine3A) -> Vec<Affine3A>,
+    warnings: &mut Vec<String>,
+) -> Vec<Affine3A> {
+    let mut picked: Vec<&scene::Instance> = scene.instances.iter().filter(|i| i.name == name).collect();
+    if picked.is_empty() {
+        picked = scene
+            .instances
+            .iter()
+            .filter(|i| scene.objects.get(i.object as usize).is_some_and(|o| o.name == name))
+            .collect();
+    }
+    let moves: Vec<Vec<Affine3A>> = picked
+        .iter()
+        .map(|i| match i.motion_world_to_object {
+            Some(end) => displacement(affine(i.object_to_world), affine(end).inverse()),
+            None => Vec::new(),
+        })
+        .collect();
+    if picked.iter().any(|i| scene.objects.get(i.object as usize).is_some_and(|o| !o.geometry.mesh.motion.is_empty())) {
+        warnings.push(format!(
+            "light '{light}': the object light's triangles follow their instance's motion, not their vertices' \
+             motion vectors"
+        ));
+    }
+    match moves.split_first() {
+        Some((first, rest)) if rest.iter().all(|k| k == first) => first.clone(),
+        Some(_) => {
+            warnings.push(format!(
+                "light '{light}': the object light's instances of '{name}' move differently while the shutter is \
+                 open: its triangles are kept where they are at the shutter's opening"
+            ));
+            Vec::new()
+        }
+        None => Vec::new(),
+    }
+}
+
+/// Keys of `outer ∘ inner` (two displacements' keys spread evenly over the shutter;
+/// empty: no displacement) at the more keys of the two.
+fn compose_keys(outer: &[Affine3A], inner: &[Affine3A]) -> Vec<Affine3A> {
+    match (outer.is_empty(), inner.is_empty()) {
+        (true, _) => inner.to_vec(),
+        (_, true) => outer.to_vec(),
+        _ => {
+            let count = outer.len().max(inner.len());
+            (0..count)
+                .map(|j| {
+                    let s = j as f32 / (count - 1) as f32;
+                    lerp_keys(outer, s) * lerp_keys(inner, s)
+                })
+                .collect()
+        }
+    }
+}
+
 /// World-space positions of an instance's mesh at each key of its motion (the more keys of
 /// the instance's and the mesh's), for acceleration structures that store moving
-/// triangles in world space.
+/// triangles in world space. Exact between keys when only one of the two moves (the
+/// instances [`crate::accel::flat_instances`] flattens); when both do, the world-space
+/// path between keys is not linear (see [`world_motion_bounds`]).
 pub fn world_key_positions(inst: &InstanceData, mesh: &MeshData) -> Vec<Vec<Vec3A>> {
     let keys = inst.keys.len().max(mesh.position_keys.len()).max(1);
     (0..keys)
@@ -544,4 +668,34 @@ pub fn world_key_positions(inst: &InstanceData, mesh: &MeshData) -> Vec<Vec<Vec3
             mesh.positions_at(s).into_iter().map(|p| to_world.transform_point3a(p)).collect()
         })
         .collect()
+}
+
+/// World-space bounds of an instance's mesh over the whole shutter, when the instance or
+/// the mesh's vertices move. Between the times where either has a key both move linearly,
+/// so a vertex at `A(t)·p(t)` follows a parabola: its chord between those times plus
+/// `−f(1 − f)·ΔM·Δp` (`ΔM` the change of the instance's matrix, `Δp` the vertex's, `f` the
+/// fraction of the interval), at most a quarter of `|ΔM·Δp|` off the chord in each axis.
+/// The box holds every point at every time (the key boxes alone do when only one of
+/// the two moves).
+pub fn world_motion_bounds(inst: &InstanceData, mesh: &MeshData) -> (Vec3A, Vec3A) {
+    let mut lo = Vec3A::splat(f32::INFINITY);
+    let mut hi = Vec3A::splat(f32::NEG_INFINITY);
+    let times = |keys: usize| (0..keys).map(move |j| j as f32 / (keys.max(2) - 1) as f32);
+    let mut cuts: Vec<f32> = times(inst.keys.len()).chain(times(mesh.position_keys.len())).chain([0.0, 1.0]).collect();
+    cuts.sort_by(f32::total_cmp);
+    cuts.dedup();
+    let at = |s: f32| (inst.object_to_world_at(s), mesh.positions_at(s));
+    let (mut a0, mut p0) = at(cuts[0]);
+    for &s in &cuts[1..] {
+        let (a1, p1) = at(s);
+        let dm = a1.matrix3 - a0.matrix3;
+        for (q0, q1) in p0.iter().zip(&p1) {
+            let (w0, w1) = (a0.transform_point3a(*q0), a1.transform_point3a(*q1));
+            let bulge = (dm * (*q1 - *q0)).abs() * 0.25;
+            lo = lo.min(w0.min(w1) - bulge);
+            hi = hi.max(w0.max(w1) + bulge);
+        }
+        (a0, p0) = (a1, p1);
+    }
+    (lo, hi)
 }

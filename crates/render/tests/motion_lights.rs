@@ -150,3 +150,78 @@ fn a_turning_spot_light_lights_while_it_points_at_the_point() {
         assert!((ratio - 0.5).abs() < 0.02, "{backend:?}: {ratio}");
     }
 }
+
+/// A 0.05-wide square (two triangles, facing down, invisible to every ray) at height 1
+/// centred at x = −1, and its instance (with `placement`).
+fn lamp(placement: &str) -> String {
+    format!(
+        r#"
+object "lamp" group
+    -1.025 -0.025 1  -0.975 -0.025 1  -0.975 0.025 1  -1.025 0.025 1
+    v 0 v 1 v 2 v 3
+    c "m" 0 3 2 1
+end group end object
+instance "lamp_inst" "lamp" visible off shadow off trace off {placement} end instance
+"#
+    )
+}
+
+/// The light of an object light over the lamp's triangles (4×4 samples).
+const OBJECT_LIGHT: &str =
+    r#"light "l" "mib_light_point" ("color" 1 1 1) origin 0 0 0 object "lamp_inst" 4 4 end light"#;
+
+/// The light instance standing where the lamp is at time 0 (x = −1, height 1).
+const AT_LAMP: &str = "transform 1 0 0 0  0 1 0 0  0 0 1 0  1 0 -1 1";
+/// That light instance sliding 2 units right over the shutter.
+const AT_LAMP_SLIDING: &str =
+    "transform 1 0 0 0  0 1 0 0  0 0 1 0  1 0 -1 1  motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 0 -1 1";
+/// The lamp's geometry instance sliding 2 units right over the shutter.
+const LAMP_SLIDING: &str = "motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1";
+
+/// An `object` area light's triangles move with a moving light instance and with their
+/// own geometry instance: the lamp sliding from x = −1 to 1 at height 1 lights the origin
+/// like the sliding point light, with asinh(1) = 0.88137 of what it gives standing over
+/// it (the still lamp moved to x = 0), within 0.006. Left at x = −1 (the old behaviour)
+/// it would give 1/√2.
+#[test]
+fn a_sliding_object_light_lights_with_its_time_average() {
+    let over = lamp("transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 0 0 1");
+    let still = mean_red(&scene(OBJECT_LIGHT, AT_LAMP, &over, "\"lamp_inst\""));
+    for (light, placement) in [(AT_LAMP_SLIDING, ""), (AT_LAMP, LAMP_SLIDING)] {
+        let moving = mean_red(&scene(OBJECT_LIGHT, light, &lamp(placement), "\"lamp_inst\""));
+        for ((backend, s), (_, m)) in still.iter().zip(&moving) {
+            assert!(*s > 0.0, "{s}");
+            let ratio = m / s;
+            eprintln!("{backend:?}: sliding object light {ratio} vs asinh(1) = {}", 1.0f32.asinh());
+            assert!((ratio - 1.0f32.asinh()).abs() < 0.006, "{backend:?} {light} {placement}: {ratio}");
+        }
+    }
+}
+
+/// The path engine samples and hits a moving object light where it is too: made physical
+/// (radiance 1 from the lamp's underside), the lamp gives the origin an irradiance
+/// L·A·cos θ·cos θ′/d² = L·A/(1 + x²)² at x, so sliding from −1 to 1 it gives
+/// ½∫ dx/(1 + x²)² = ¼ + π/8 = 0.64270 of what it gives standing over the origin, within
+/// 0.01 (64 samples per pixel, one light sample each).
+#[test]
+fn the_path_engine_samples_a_sliding_object_light_where_it_is() {
+    let physical = |text: &str| -> f32 {
+        let c = support::compile(text);
+        assert!(c.messages.is_empty(), "{:?}", c.messages);
+        let mut world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
+        assert!(!world.warnings.iter().any(|w| w.contains("moves")), "{:?}", world.warnings);
+        world.lights[0].output = render::light::Output::Radiance { l: bsdf::Rgb::splat(1.0), two_sided: false };
+        let settings = Settings { engine: EngineKind::Path, spp: Some(64), ..Settings::default() };
+        let (film, _) = support::render_world(&world, &c.shading, &settings);
+        film.rgba().iter().map(|p| p[0]).sum::<f32>() / 16.0
+    };
+    let over = lamp("transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 0 0 1");
+    let still = physical(&scene(OBJECT_LIGHT, AT_LAMP, &over, "\"lamp_inst\""));
+    let want = 0.25 + std::f32::consts::PI / 8.0;
+    for (light, placement) in [(AT_LAMP_SLIDING, ""), (AT_LAMP, LAMP_SLIDING)] {
+        let moving = physical(&scene(OBJECT_LIGHT, light, &lamp(placement), "\"lamp_inst\""));
+        let ratio = moving / still;
+        eprintln!("path: sliding object light {ratio} vs {want}");
+        assert!((ratio - want).abs() < 0.01, "{light} {placement}: {ratio}");
+    }
+}

@@ -313,11 +313,9 @@ impl BvhAccel {
                 let mesh = &world.meshes[i.mesh as usize];
                 let mut b = Aabb::empty();
                 if i.moves() || mesh.moves() {
-                    for key in crate::world::world_key_positions(i, mesh) {
-                        for p in key {
-                            b.extend(p);
-                        }
-                    }
+                    let (lo, hi) = crate::world::world_motion_bounds(i, mesh);
+                    b.extend(lo);
+                    b.extend(hi);
                     return b;
                 }
                 for &p in &mesh.positions {

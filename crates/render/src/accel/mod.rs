@@ -67,12 +67,22 @@ pub trait Accel: Send + Sync {
 /// Which instances are placed flat in world space (their mesh is used by no other
 /// instance, so a world-space copy costs no extra memory over instancing and saves the
 /// top-level traversal and ray transforms), and which keep a shared mesh BVH.
+///
+/// An instance that moves and whose mesh's vertices move too is never flat: where it is
+/// at time `t` is the product of the instance's transform and the vertices at `t`, not
+/// linear between keys, and both backends form that product exactly only by carrying the
+/// ray into the moving mesh with the instance's transform at the ray's time (as shading
+/// places the hit, [`crate::world::InstanceData::placement`] × [`crate::mesh::MeshData::triangle_at`]).
 pub fn flat_instances(world: &World) -> Vec<bool> {
     let mut uses = vec![0u32; world.meshes.len()];
     for i in &world.instances {
         uses[i.mesh as usize] += 1;
     }
-    world.instances.iter().map(|i| uses[i.mesh as usize] == 1).collect()
+    world
+        .instances
+        .iter()
+        .map(|i| uses[i.mesh as usize] == 1 && !(i.moves() && world.meshes[i.mesh as usize].moves()))
+        .collect()
 }
 
 /// Builds the acceleration structure of `world` with `backend` (falling back to the Rust

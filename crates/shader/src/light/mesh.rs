@@ -4,12 +4,25 @@
 
 use std::fmt;
 
-use glam::{DMat4, Vec2, Vec3A};
+use std::sync::Arc;
+
+use glam::{Affine3A, DMat4, Mat3A, Vec2, Vec3A};
 use scene::Scene;
 
-/// The emitting triangles of an object light, world space.
+/// The emitting triangles of an object light, world space: the triangles where the
+/// scene puts them, and (for a moving light, see [`MeshShape::displaced`]) where that
+/// light's motion has carried them at one shutter time.
 #[derive(Clone, PartialEq)]
 pub struct MeshShape {
+    /// The triangles at motion time 0, shared by every displaced copy.
+    still: Arc<Triangles>,
+    /// World → world displacement applied to `still` on the fly (`None`: none).
+    placed: Option<Displacement>,
+}
+
+/// World-space triangles and their sampling data.
+#[derive(PartialEq)]
+struct Triangles {
     /// Triangle vertices, world space, counter-clockwise seen from the emitting side.
     triangles: Vec<[Vec3A; 3]>,
     /// Unit normal of each triangle's emitting side.
@@ -21,9 +34,23 @@ pub struct MeshShape {
     hi: Vec3A,
 }
 
+/// A similarity (rotation, translation, uniform scale, maybe a mirror) carrying the still
+/// triangles to where they are: uniform sampling by area stays uniform under it.
+#[derive(Clone, Copy, PartialEq)]
+struct Displacement {
+    /// Still → displaced, world space.
+    by: Affine3A,
+    /// Displaced → still.
+    back: Affine3A,
+    /// Still normals → displaced normals (inverse transpose; normalise after).
+    normals: Mat3A,
+    /// Displaced area over still area (the scale squared).
+    area_scale: f32,
+}
+
 impl fmt::Debug for MeshShape {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "MeshShape {{ {} triangles, area {} }}", self.triangles.len(), self.area())
+        write!(f, "MeshShape {{ {} triangles, area {} }}", self.len(), self.area())
     }
 }
 
@@ -31,7 +58,7 @@ impl MeshShape {
     /// A mesh shape from world-space triangles (front: counter-clockwise). Triangles without
     /// area are dropped; `None` if none is left.
     pub fn new(triangles: impl IntoIterator<Item = [Vec3A; 3]>) -> Option<MeshShape> {
-        let mut out = MeshShape {
+        let mut out = Triangles {
             triangles: Vec::new(),
             normals: Vec::new(),
             cdf: Vec::new(),
@@ -54,7 +81,42 @@ impl MeshShape {
                 out.hi = out.hi.max(p);
             }
         }
-        (!out.triangles.is_empty()).then_some(out)
+        (!out.triangles.is_empty()).then_some(MeshShape { still: Arc::new(out), placed: None })
+    }
+
+    /// These triangles carried by `by` (world → world: a moving light's displacement at
+    /// one shutter time, see `Tracer::light_motion`), on top of any displacement they
+    /// already have. A similarity (what a rigid motion with a uniform scale gives) shares
+    /// the triangles and moves each point, normal and ray on the fly; any other affine map
+    /// (a non-uniform scale changes the triangles' relative areas) builds the moved
+    /// triangles, so that sampling stays uniform by area. A map that flattens them (or is
+    /// not finite) leaves them where they are.
+    pub fn displaced(&self, by: Affine3A) -> MeshShape {
+        let by = match self.placed {
+            Some(d) => by * d.by,
+            None => by,
+        };
+        let m = by.matrix3;
+        let det = m.determinant();
+        if !by.is_finite() || !det.is_finite() || det == 0.0 {
+            return self.clone();
+        }
+        let gram = m.transpose() * m;
+        let s2 = (gram.x_axis.x + gram.y_axis.y + gram.z_axis.z) / 3.0;
+        if gram.abs_diff_eq(Mat3A::from_diagonal(glam::Vec3::splat(s2)), 1e-5 * s2) {
+            let placed = Displacement { by, back: by.inverse(), normals: m.inverse().transpose(), area_scale: s2 };
+            return MeshShape { still: Arc::clone(&self.still), placed: Some(placed) };
+        }
+        let flip = det < 0.0;
+        let moved = self.still.triangles.iter().map(|t| {
+            let [a, b, c] = t.map(|p| by.transform_point3a(p));
+            if flip {
+                [a, c, b]
+            } else {
+                [a, b, c]
+            }
+        });
+        MeshShape::new(moved).unwrap_or_else(|| self.clone())
     }
 
     /// The triangles of the scene instance named `name` (or, when no instance has that
@@ -93,22 +155,60 @@ impl MeshShape {
 
     /// Total area, world units².
     pub fn area(&self) -> f32 {
-        self.cdf.last().copied().unwrap_or(0.0)
+        self.still.area() * self.placed.map_or(1.0, |d| d.area_scale)
     }
 
     /// Number of triangles.
     pub fn len(&self) -> usize {
-        self.triangles.len()
+        self.still.triangles.len()
     }
 
     /// Whether there are no triangles (never, for a constructed shape).
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.still.triangles.is_empty()
     }
 
     /// A point uniformly distributed by area for `u` uniform in [0,1)², and the unit normal
     /// of its triangle's emitting side.
     pub fn point_on(&self, u: Vec2) -> (Vec3A, Vec3A) {
+        let (p, n) = self.still.point_on(u);
+        match self.placed {
+            None => (p, n),
+            Some(d) => (d.by.transform_point3a(p), (d.normals * n).normalize_or(n)),
+        }
+    }
+
+    /// The emitting-side normal of the triangle that `q` (a point on the mesh) lies on.
+    pub fn normal_at(&self, q: Vec3A) -> Vec3A {
+        match self.placed {
+            None => self.still.normal_at(q),
+            Some(d) => {
+                let n = self.still.normal_at(d.back.transform_point3a(q));
+                (d.normals * n).normalize_or(n)
+            }
+        }
+    }
+
+    /// The nearest triangle the ray `origin + t·dir` meets with t in `(tmin, tmax)`: the
+    /// distance and whether the ray arrives at the emitting side. (An affine map keeps a
+    /// line's parameter and the sign of its direction's dot product with the normal, so
+    /// a displaced mesh is met by the ray carried back.)
+    pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<(f32, bool)> {
+        match self.placed {
+            None => self.still.intersect(origin, dir, tmin, tmax),
+            Some(d) => {
+                self.still.intersect(d.back.transform_point3a(origin), d.back.transform_vector3a(dir), tmin, tmax)
+            }
+        }
+    }
+}
+
+impl Triangles {
+    fn area(&self) -> f32 {
+        self.cdf.last().copied().unwrap_or(0.0)
+    }
+
+    fn point_on(&self, u: Vec2) -> (Vec3A, Vec3A) {
         let total = self.area();
         let x = u.x.clamp(0.0, 1.0) * total;
         let i = self.cdf.partition_point(|&c| c <= x).min(self.cdf.len() - 1);
@@ -122,8 +222,7 @@ impl MeshShape {
         (a * b0 + b * b1 + c * (1.0 - b0 - b1), self.normals[i])
     }
 
-    /// The emitting-side normal of the triangle that `q` (a point on the mesh) lies on.
-    pub fn normal_at(&self, q: Vec3A) -> Vec3A {
+    fn normal_at(&self, q: Vec3A) -> Vec3A {
         let mut best = (f32::INFINITY, Vec3A::ZERO);
         for (t, &n) in self.triangles.iter().zip(&self.normals) {
             let d = (q - t[0]).dot(n).abs();
@@ -143,9 +242,7 @@ impl MeshShape {
         best.1
     }
 
-    /// The nearest triangle the ray `origin + t·dir` meets with t in `(tmin, tmax)`: the
-    /// distance and whether the ray arrives at the emitting side.
-    pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<(f32, bool)> {
+    fn intersect(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<(f32, bool)> {
         if !slab(self.lo, self.hi, origin, dir, tmin, tmax) {
             return None;
         }
@@ -253,7 +350,7 @@ mod tests {
                             (cy as f32 + (sy as f32 + 0.5) / k as f32) * 0.5,
                             0.0,
                         );
-                        let ins = m.triangles.iter().any(|t| tri_strict(t, q));
+                        let ins = m.still.triangles.iter().any(|t| tri_strict(t, q));
                         covered += usize::from(ins);
                     }
                 }
@@ -273,7 +370,8 @@ mod tests {
         assert!(chi2 < 60.0, "chi-square {chi2} over {dof} cells");
         // First moments: the mean point is the area-weighted centroid.
         let c: Vec3A =
-            m.triangles.iter().zip(areas(&m)).map(|(t, a)| (t[0] + t[1] + t[2]) / 3.0 * a).sum::<Vec3A>() / m.area();
+            m.still.triangles.iter().zip(areas(&m)).map(|(t, a)| (t[0] + t[1] + t[2]) / 3.0 * a).sum::<Vec3A>()
+                / m.area();
         // A midpoint grid whose u.x cells do not straddle the CDF's steps (0.1 and 0.2).
         let mut mean = Vec3A::ZERO;
         let k = 250;
@@ -292,7 +390,8 @@ mod tests {
     }
 
     fn areas(m: &MeshShape) -> Vec<f32> {
-        m.cdf
+        m.still
+            .cdf
             .iter()
             .scan(0.0, |prev, &c| {
                 let a = c - *prev;
@@ -319,6 +418,42 @@ mod tests {
             assert!(!front);
         }
         assert!(m.intersect(Vec3A::new(3.0, 1.9, 1.0), -Vec3A::Z, 0.0, f32::INFINITY).is_none());
+    }
+
+    /// A displaced mesh is the still mesh carried by the displacement: turned 90° about z,
+    /// doubled and moved, its sampled points are the still ones carried (so uniform by
+    /// area still), its normals turn with it, its area is 4× (the scale squared), rays
+    /// meet it where the carried triangles are; a non-uniform scale rebuilds the
+    /// triangles (area by the determinant here, 3×) and a flattening map leaves it still.
+    #[test]
+    fn displaced_meshes_move_points_normals_areas_and_hits() {
+        let m = l_mesh();
+        let by = Affine3A::from_translation(glam::Vec3::new(1.0, 2.0, 3.0))
+            * Affine3A::from_scale(glam::Vec3::splat(2.0))
+            * Affine3A::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let d = m.displaced(by);
+        assert!((d.area() - 20.0).abs() < 1e-4, "{}", d.area());
+        // Tilted about x too, so that normals turn visibly: twice over is the product.
+        let tilt = Affine3A::from_rotation_x(0.5);
+        let dd = d.displaced(tilt);
+        for k in 0..64 {
+            let u = Vec2::new((k % 8) as f32 / 8.0 + 0.03, (k / 8) as f32 / 8.0 + 0.05);
+            let (p, n) = m.point_on(u);
+            let (q, nq) = dd.point_on(u);
+            assert!((q - (tilt * by).transform_point3a(p)).length() < 1e-4);
+            let want_n = tilt.transform_vector3a(n);
+            assert!((nq - want_n).length() < 1e-5, "{nq} vs {want_n}");
+            assert!((dd.normal_at(q) - want_n).length() < 1e-5);
+            // A ray towards the carried point from the front meets it there.
+            let origin = q + want_n * 2.0 + Vec3A::new(0.01, -0.02, 0.0);
+            let dir = (q - origin).normalize();
+            let (t, front) = dd.intersect(origin, dir, 0.0, f32::INFINITY).expect("hit");
+            assert!(front && (origin + dir * t - q).length() < 1e-3, "{t}");
+        }
+        let stretched = m.displaced(Affine3A::from_scale(glam::Vec3::new(3.0, 1.0, 1.0)));
+        assert!((stretched.area() - 15.0).abs() < 1e-4, "{}", stretched.area());
+        let flat = m.displaced(Affine3A::from_scale(glam::Vec3::new(1.0, 0.0, 1.0)));
+        assert!(flat == m);
     }
 
     #[test]

@@ -52,14 +52,16 @@ impl ShadingLight {
     /// time; see [`crate::Tracer::light_motion`]): its position, its direction, its frame
     /// for light profiles and its area shape move with it. `by` is a rigid motion (as
     /// mental ray moves an instance: rotation, translation, and a scale that moves with
-    /// them): directions turn with its rotation and area shapes' edges scale with it. An
-    /// object light's triangles ([`Shape::Mesh`]) stay where they are (the renderer warns).
+    /// them): directions turn with its rotation and area shapes' edges scale with it; an
+    /// object light's triangles ([`Shape::Mesh`]) are carried by `by` itself
+    /// ([`MeshShape::displaced`]).
     pub fn moved(&self, by: glam::Affine3A) -> ShadingLight {
         let (_, rotation, _) = by.to_scale_rotation_translation();
         let turn = glam::Mat3A::from_quat(rotation);
         let edge = |v: glam::Vec3A| by.transform_vector3a(v);
         let shape = self.shape.as_ref().map(|shape| match shape {
-            Shape::Point | Shape::Sphere { .. } | Shape::Mesh(_) => shape.clone(),
+            Shape::Point | Shape::Sphere { .. } => shape.clone(),
+            Shape::Mesh(mesh) => Shape::Mesh(std::sync::Arc::new(mesh.displaced(by))),
             &Shape::Rect { u, v, normal } => Shape::Rect { u: edge(u), v: edge(v), normal: turn * normal },
             &Shape::Disc { normal, radius } => Shape::Disc { normal: turn * normal, radius },
             &Shape::Cylinder { axis, radius } => Shape::Cylinder { axis: edge(axis), radius },
