@@ -26,6 +26,17 @@ impl Frame {
         Frame { tangent, bitangent, normal: n }
     }
 
+    /// A frame around unit normal `n` whose local +X follows `tangent` (any direction not
+    /// along `n`; only its part perpendicular to `n` counts): the axes of an anisotropic
+    /// lobe. Falls back to [`Frame::from_normal`] when `tangent` is (nearly) along `n`.
+    #[inline]
+    pub fn from_normal_and_tangent(n: Vec3A, tangent: Vec3A) -> Frame {
+        match (tangent - n * n.dot(tangent)).try_normalize() {
+            Some(t) => Frame { tangent: t, bitangent: n.cross(t), normal: n },
+            None => Frame::from_normal(n),
+        }
+    }
+
     /// World direction → local.
     #[inline]
     pub fn to_local(&self, v: Vec3A) -> Vec3A {
@@ -60,5 +71,22 @@ mod tests {
             let v = Vec3A::new(0.2, 0.7, -0.4);
             assert!((f.to_world(f.to_local(v)) - v).length() < 1e-5);
         }
+    }
+
+    #[test]
+    fn a_frame_with_a_tangent_puts_the_tangent_on_local_x() {
+        let n = Vec3A::new(0.3, -0.5, 0.81).normalize();
+        // A tangent off the tangent plane: only its perpendicular part counts.
+        let t = Vec3A::new(1.0, 0.4, 0.2);
+        let f = Frame::from_normal_and_tangent(n, t);
+        let want = (t - n * n.dot(t)).normalize();
+        assert!((f.tangent - want).length() < 1e-6);
+        for (a, b) in [(f.tangent, f.bitangent), (f.tangent, f.normal), (f.bitangent, f.normal)] {
+            assert!(a.dot(b).abs() < 1e-5);
+        }
+        assert!((f.tangent.cross(f.bitangent) - n).length() < 1e-5, "right-handed");
+        assert!((f.to_local(want) - Vec3A::X).length() < 1e-6);
+        // A tangent along the normal: the plain frame.
+        assert_eq!(Frame::from_normal_and_tangent(n, n * 2.0), Frame::from_normal(n));
     }
 }

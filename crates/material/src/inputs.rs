@@ -130,6 +130,9 @@ pub struct HitMaterial<'a> {
     pub opacity: f32,
     /// The shading normal the material asks for (world space, unit), if it bends it.
     pub normal: Option<Vec3A>,
+    /// The direction (world space, unit, in the tangent plane of the state's normal) the
+    /// BSDF's local x axis follows, for anisotropic lobes; `None`: any tangent.
+    pub tangent: Option<Vec3A>,
 }
 
 /// A value as a colour: a `texture_return` struct gives its `tint`.
@@ -186,7 +189,7 @@ impl SurfaceMaterial {
     /// Whether anything of the material varies over its surface.
     #[inline]
     pub fn is_varying(&self) -> bool {
-        self.varying != Varying::Constant
+        self.varying != Varying::Constant || self.tangent_angle.is_some()
     }
 
     /// The material with its constant parameters (what it is where nothing varies).
@@ -199,6 +202,7 @@ impl SurfaceMaterial {
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
             normal: None,
+            tangent: None,
         }
     }
 
@@ -241,6 +245,10 @@ impl SurfaceMaterial {
                     hit.normal = Some(ctx.state.normal);
                 }
             }
+        }
+        if let Some(angle) = self.tangent_angle {
+            // The rule is Maya's (its anisotropic material's grooves), the only user today.
+            hit.tangent = Some(::maya::specular::groove_direction(ctx.state.normal, ctx.state.derivs[0], angle));
         }
         hit
     }

@@ -61,6 +61,7 @@ pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -
     // The stand-in's warning replaces the model's "not implemented" one for that shader.
     diags.retain(|d| !(d.message.contains("is not implemented by mira") && stand_ins.iter().any(|s| s.span == d.span)));
     diags.extend(stand_ins);
+    diags.extend(::maya::light::volume_light_warnings(&shading));
     (shading, diags)
 }
 
@@ -149,6 +150,10 @@ pub struct SurfaceMaterial {
     /// The participating medium inside the surface (MDL's `material_volume`), when light
     /// can enter it ([`SurfaceMaterial::has_inside`]) and it absorbs or scatters.
     pub medium: Option<bsdf::Medium>,
+    /// The BSDF's local x axis at a hit: the surface's dP/du of its first texture space
+    /// turned by this angle (radians, counter-clockwise about the shading normal), for
+    /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
+    pub tangent_angle: Option<f32>,
 }
 
 impl SurfaceMaterial {
@@ -169,6 +174,7 @@ impl SurfaceMaterial {
             emission_spot: None,
             varying: Varying::Constant,
             medium: None,
+            tangent_angle: None,
         }
     }
 

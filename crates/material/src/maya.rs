@@ -15,10 +15,14 @@
 //!   (0.5, Maya's default, is the unified BSDF's default 0.5 too). Maya's non-physical
 //!   highlight strengths (`specularRollOff`, `highlightSize`) and `reflectivity` have no
 //!   lobe of their own: the reflection is the specular lobe's;
-//! - anisotropic: the unified BSDF as blinn's, its GGX α the geometric mean √(α_x α_y)
-//!   of the classic highlight's widths (`roughness`/√`spreadX`, `roughness`/√`spreadY`):
-//!   the path engine's frame has no groove direction, so the lobe is isotropic (a warning
-//!   says so);
+//! - anisotropic: the unified BSDF with an anisotropic GGX lobe of the classic
+//!   highlight's widths (`roughness`/√`spreadX` along the grooves, `roughness`/√`spreadY`
+//!   across), the grooves being dP/du turned by `angle` about the normal (Maya's rule:
+//!   X is U turned counter-clockwise by the angle), handed to the path engine as the
+//!   material's tangent at each hit; its Fresnel is the dielectric one of
+//!   `fresnelRefractiveIndex`, weighted so that it reflects as much as the classic
+//!   highlight summed over a light's directions (4 s α_x α_y head-on, s the luminance of
+//!   `specularColor`);
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
@@ -125,16 +129,59 @@ impl Reader<'_> {
     }
 }
 
+/// The largest ratio of the two GGX widths the unified BSDF's `anisotropic` reaches
+/// (its aspect √(1 − 0.9 a) is at least √0.1, and α_x / α_y = 1 / aspect²).
+const MAX_WIDTH_RATIO: f32 = 10.0;
+
+/// anisotropic (see the module doc): the unified BSDF with base colour `albedo`, an
+/// anisotropic GGX lobe of the classic highlight's widths (α_x, α_y) =
+/// [`::maya::specular::anisotropic_widths`] along the grooves (dP/du turned by `angle`)
+/// and across them, and the dielectric Fresnel of `fresnelRefractiveIndex`, weighted so
+/// that the lobe reflects what the classic highlight of `specularColor`'s luminance s
+/// does summed over a light's directions: 4 s α_x α_y head-on (see the code). The
+/// unified BSDF stretches its lobe along its frame's
+/// x axis, so the frame's x is the grooves when α_x ≥ α_y, else the direction across.
+fn anisotropic(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+    let angle = r.scalar("angle", 0.0);
+    let (ax, ay) = ::maya::specular::anisotropic_widths(
+        r.scalar("roughness", 0.7),
+        r.scalar("spreadX", 13.0),
+        r.scalar("spreadY", 3.0),
+    );
+    let ior = r.scalar("fresnelRefractiveIndex", 6.0).max(1.0 + 1e-3);
+    let (wide, narrow, axis) = if ax >= ay { (ax, ay, angle) } else { (ay, ax, angle + std::f32::consts::FRAC_PI_2) };
+    let mut ratio = wide / narrow;
+    if ratio > MAX_WIDTH_RATIO {
+        r.warnings.push(format!(
+            "the highlight's widths {ax:.3} × {ay:.3} differ by more than {MAX_WIDTH_RATIO}×; the path engine's lobe is \
+             {MAX_WIDTH_RATIO}× as long as wide"
+        ));
+        ratio = MAX_WIDTH_RATIO;
+    }
+    let alpha = (ax * ay).sqrt().clamp(1e-3, 1.0);
+    // α_x = α / aspect and α_y = α · aspect with aspect = √(1 − 0.9 a): α_x / α_y = 1 / aspect².
+    let anisotropy = ((1.0 - 1.0 / ratio) / 0.9).clamp(0.0, 1.0);
+    // The classic highlight s·D·F(v·h)/F0 (D = 1 at its peak) summed over the directions
+    // of a light, ∫ D dω_l ≈ 4π α_x α_y for small slopes, equals the lobe's π · F0 ·
+    // weight: its reflectance head-on is 4 s α_x α_y, growing towards grazing angles by
+    // the same Fresnel ratio.
+    let s = bsdf::luminance(r.color("specularColor", Rgb::splat(0.5)));
+    let f0 = bsdf::dielectric::fresnel(1.0, ior).max(1e-4);
+    let params = UnifiedParams {
+        base_color: albedo,
+        roughness: alpha.sqrt(),
+        anisotropic: anisotropy,
+        ior,
+        specular: (4.0 * s * ax * ay / f0).clamp(0.0, 1.0),
+        ..UnifiedParams::default()
+    };
+    surface.model = SurfaceModel::Unified(Box::new(Unified::new(&params)));
+    surface.tangent_angle = Some(axis);
+}
+
 /// The GGX α of a Maya highlight.
 fn highlight_alpha(decl: &str, r: &mut Reader) -> f32 {
-    let alpha = if decl.ends_with("anisotropic") || decl.ends_with("Anisotropic") {
-        let (ax, ay) = ::maya::specular::anisotropic_widths(
-            r.scalar("roughness", 0.7),
-            r.scalar("spreadX", 13.0),
-            r.scalar("spreadY", 3.0),
-        );
-        (ax * ay).sqrt()
-    } else if decl.contains("blinn") || decl.contains("Blinn") {
+    let alpha = if decl.contains("blinn") || decl.contains("Blinn") {
         r.scalar("eccentricity", 0.3)
     } else if decl.ends_with("phong") || decl.ends_with("Phong") {
         let n = r.scalar("cosinePower", 20.0).max(0.0);
@@ -180,11 +227,10 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             if let Some((bump, member)) = connection(graph, node, "normalCamera") {
                 r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
             }
-            if reflective {
+            if family == "anisotropic" {
+                anisotropic(&mut r, &mut surface, albedo);
+            } else if reflective {
                 let alpha = highlight_alpha(&material, &mut r);
-                if family == "anisotropic" {
-                    r.warnings.push(format!("the anisotropic highlight is an isotropic GGX lobe of α {alpha:.3}"));
-                }
                 let s = r.color("specularColor", Rgb::splat(0.5));
                 surface.model = unified(albedo, alpha, bsdf::luminance(s));
             }

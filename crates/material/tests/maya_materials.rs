@@ -74,13 +74,22 @@ fn anisotropic_peak_and_groove_direction() {
         peaks.push(got.x - 0.6 * 0.7 * t.cos());
     }
     assert!(peaks[0] < peaks[1], "spreadX 13 > spreadY 3: the highlight is narrower along the grooves {peaks:?}");
-    // Path engine: the unified BSDF of base colour c·d, GGX α = √(α_x α_y), a warning.
+    // Path engine: the unified BSDF of base colour c·d with an anisotropic GGX lobe whose
+    // widths are the classic ones: the mean α = √(α_x α_y) and, α_x < α_y, its long axis
+    // across the grooves (the tangent turned by 90°); Fresnel of index 6 weighted to
+    // reflect 4 s α_x α_y head-on; no warning.
     let (s, warnings) = translate(&c);
     let SurfaceModel::Unified(u) = &s.model else { panic!("{:?}", s.model) };
     let p = u.params();
     assert!((p.base_color - bsdf::Rgb::new(0.42, 0.35, 0.28)).abs().max_element() < 1e-6);
     assert!((p.roughness * p.roughness - (ax * ay).sqrt()).abs() < 1e-5);
-    assert!(warnings.iter().any(|w| w.contains("isotropic")), "{warnings:?}");
+    let aspect = (1.0 - 0.9 * p.anisotropic).sqrt();
+    assert!((1.0 / (aspect * aspect) - ay / ax).abs() < 1e-4, "width ratio {} vs {}", 1.0 / (aspect * aspect), ay / ax);
+    assert!((p.ior - 6.0).abs() < 1e-6);
+    let f0 = bsdf::dielectric::fresnel(1.0, 6.0);
+    assert!((p.specular * f0 - 4.0 * 0.3 * ax * ay).abs() < 1e-5, "{} vs {}", p.specular * f0, 4.0 * 0.3 * ax * ay);
+    assert_eq!(s.tangent_angle, Some(std::f32::consts::FRAC_PI_2));
+    assert!(warnings.is_empty(), "{warnings:?}");
 }
 
 /// Maya's documented recipe: black at 0.5, the colour at 1, linear, diffuse 0,
@@ -224,4 +233,60 @@ fn a_volume_light_fills_its_shape_with_its_colour_range() {
         ));
         assert_rgb(shade(&c), [want; 3], 1e-5);
     }
+}
+
+#[test]
+fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_shape() {
+    // Volume lights of radius 2 (the instance scales the unit shape by 2) whose axis (the
+    // light's y) lies along world x, 1 above the shading point (the origin), centred at
+    // x = offset: the point is at distance 1 from the axis, halfway to a cylinder's
+    // boundary, lit at the angle of the light's centre (cos θ = 1/√(1 + offset²)); the linear
+    // colour range (black at the boundary, white on the axis) gives half of intensity 2,
+    // and a penumbra graph from 0.25 at the edge to 1 on the axis multiplies by 0.625.
+    // The sharp cone narrows from radius 2 at local y = −1 to 0 at y = 1: at the point's
+    // place along the axis (local y = −offset/2) its radius is 1 − y in local units of
+    // which the point is ½ away: at offset 0 on the boundary (no light), at offset 1
+    // (y = −½) at 2/3 of the radius. Beyond the ends (|y| > 1): none.
+    let range = r#""colorRange" [ { "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 },
+                       { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]"#;
+    let penumbra = r#""penumbra" [ { "penumbra_Position" 0, "penumbra_FloatValue" 0.25, "penumbra_Interp" 1 },
+                       { "penumbra_Position" 1, "penumbra_FloatValue" 1, "penumbra_Interp" 1 } ]"#;
+    // (shape, extra parameters, the light's centre's offset along x, expected value).
+    let cases = [
+        (2, "", 0.0, 0.5),
+        (2, penumbra, 0.0, 0.5 * 0.625),
+        (2, "", 2.5, 0.0),
+        (3, "", 0.0, 0.0),
+        (3, "", 1.0, 1.0 - 2.0 / 3.0),
+        (3, "", -2.5, 0.0),
+    ];
+    for (shape, extra, offset, want) in cases {
+        // World → light (rows): world x → light y, world y → light z, world z → light
+        // x, all halved, the centre at (offset, 1, 0): the origin is at (0, −offset/2, −½).
+        let c = scene(&format!(
+            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" {shape}, {range} {extra})
+                origin 0 0 0 end light
+            instance "vol_inst" "vol" transform 0 0.5 0 0  0 0 0.5 0  0.5 0 0 0  0 {} -0.5 1 end instance
+            shader "lam" "adskMayaLambert" ("color" 0.5 0.5 0.5, "diffuse" 1)
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+            -0.5 * offset,
+        ));
+        let cos = 1.0 / (1.0 + offset * offset).sqrt();
+        assert_rgb(shade(&c), [0.5 * 2.0 * want * cos; 3], 1e-4);
+    }
+}
+
+#[test]
+fn a_volume_light_shining_inward_is_named_in_a_warning() {
+    let text = format!(
+        "{LIBS}light \"vol\" \"maya_volumelight\" (\"volumeLightDir\" 2, \"emitAmbient\" on) origin 0 0 0 end light\n\
+         instance \"vol_inst\" \"vol\" end instance\n\
+         shader \"lam\" \"maya_lambert\" ()\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\") end material"
+    );
+    let c = compile("", &text, &["m"], "");
+    let warnings = maya::light::volume_light_warnings(&c.shading);
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings[0].message.contains("volumeLightDir 2"), "{}", warnings[0].message);
+    assert!(warnings[1].message.contains("emitAmbient"), "{}", warnings[1].message);
 }

@@ -10,7 +10,9 @@
 //!   keeps the material's alpha (coverage) whatever it says.
 //!
 //! In eye and secondary rays the engine returns the material's `outColor` (with its
-//! alpha). In shadow rays it filters the arriving light by the material's
+//! alpha). Where the camera sees the surface directly and runs a shader glow, the
+//! material's `outGlowColor` goes to the glow buffer the glow's post pass spreads
+//! ([`crate::glow::BUFFER`]). In shadow rays it filters the arriving light by the material's
 //! `outTransparency`: the engine serves as the shading group's shadow shader too.
 
 use glam::Vec3A;
@@ -19,16 +21,39 @@ use shader::{Color, Ctx, NodeId, RayType, Value};
 use crate::maya_shader;
 use crate::values::{connected_result, member_color, rgb, rgba};
 
-/// The material's colour and transparency from the shading engine's `surfaceShader`.
-fn material_output(ctx: &mut Ctx, n: NodeId) -> (Color, Vec3A) {
+/// What the shading engine takes of its material's output struct.
+struct MaterialOutput {
+    /// `outColor`.
+    color: Color,
+    /// `outTransparency` (RGB).
+    transparency: Vec3A,
+    /// `outGlowColor` (RGB; zero when the material does not glow).
+    glow: Vec3A,
+}
+
+/// The material's colour, transparency and glow from the shading engine's `surfaceShader`.
+fn material_output(ctx: &mut Ctx, n: NodeId) -> MaterialOutput {
     match connected_result(ctx, n, 0) {
-        Some(v @ Value::Struct(_)) => {
-            let color = member_color(&v, "outColor").unwrap_or_else(|| v.color());
-            let t = member_color(&v, "outTransparency").map_or(Vec3A::ZERO, rgb);
-            (color, t)
+        Some(v @ Value::Struct(_)) => MaterialOutput {
+            color: member_color(&v, "outColor").unwrap_or_else(|| v.color()),
+            transparency: member_color(&v, "outTransparency").map_or(Vec3A::ZERO, rgb),
+            glow: member_color(&v, "outGlowColor").map_or(Vec3A::ZERO, rgb),
+        },
+        Some(v) => MaterialOutput { color: v.color(), transparency: Vec3A::ZERO, glow: Vec3A::ZERO },
+        None => MaterialOutput { color: ctx.color(n, 0), transparency: Vec3A::ZERO, glow: Vec3A::ZERO },
+    }
+}
+
+/// Stores the glow of a surface the camera sees directly into the materials' glow buffer
+/// ([`crate::glow::BUFFER`], present when the camera runs a shader glow), zero included,
+/// so that the buffer's per-pixel mean weighs the glow by the surface's coverage.
+fn write_glow(ctx: &Ctx, glow: Vec3A) {
+    let seen_directly =
+        ctx.state.ray_type == RayType::Eye && ctx.state.reflection_level == 0 && ctx.state.refraction_level == 0;
+    if seen_directly {
+        if let Some(buffer) = ctx.fb_named(crate::glow::BUFFER) {
+            ctx.fb_put(buffer, rgba(glow.max(Vec3A::ZERO), 1.0));
         }
-        Some(v) => (v.color(), Vec3A::ZERO),
-        None => (ctx.color(n, 0), Vec3A::ZERO),
     }
 }
 
@@ -51,7 +76,7 @@ maya_shader!(
 );
 
 fn shading_engine(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let (color, transparency) = material_output(ctx, n);
+    let MaterialOutput { color, transparency, glow } = material_output(ctx, n);
     if ctx.state.ray_type == RayType::Shadow {
         return filter_light(out, transparency);
     }
@@ -61,6 +86,7 @@ fn shading_engine(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         *out = Value::Color(ctx.trace_transparent().unwrap_or(Color::ZERO));
         return true;
     }
+    write_glow(ctx, glow);
     *out = Value::Color(color);
     true
 }
@@ -77,7 +103,7 @@ maya_shader!(
 );
 
 fn shadow(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let (_, transparency) = material_output(ctx, n);
+    let transparency = material_output(ctx, n).transparency;
     filter_light(out, transparency)
 }
 

@@ -12,8 +12,11 @@
 //! intensity as given).
 //!
 //! The source is the glow frame buffer the output statement reads when the shaders wrote
-//! it; otherwise the rendered colour where it is brighter than white (any channel above
-//! max(1, `threshold`)), by its excess over that level. Each of glow and halo adds
+//! it; else the materials' glow ([`BUFFER`]: what the shading engine stores of each
+//! directly seen material's `outGlowColor`, `glowIntensity` × its colour, as Maya's glow
+//! comes from the materials) where some material glows; otherwise the rendered colour
+//! where it is brighter than white (any channel above max(1, `threshold`)), by its excess
+//! over that level. Each of glow and halo adds
 //! intensity × colour × (source ⊛ k), where k is its radial kernel over the pixel
 //! distance d, normalised to sum to 1 (the energy added is intensity × the source's):
 //! linear 1 − d/R, exponential exp(−d / (eccentricity·R)), ball 1 − (d/R)², all zero
@@ -85,6 +88,12 @@ pub struct Glow {
     /// Divide the source by its brightest value.
     pub auto_exposure: bool,
 }
+
+/// The name of the user frame buffer Maya materials write their glow to
+/// (`glowIntensity` × their colour, `outGlowColor`) when the camera runs a shader glow:
+/// the shading engine stores it for every eye-ray hit (zero where the material does not
+/// glow), so that the buffer holds each pixel's glow weighted by the surfaces' coverage.
+pub const BUFFER: &str = "maya_glow";
 
 /// Whether `name` is the glow output shader (either family).
 pub fn is_glow(name: &str) -> bool {

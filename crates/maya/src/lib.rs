@@ -16,7 +16,8 @@
 //!   alpha of the sample;
 //! - angles are in radians (the unit Maya stores and exports).
 //!
-//! Modules: [`engine`] (shading engine, shadow shaders), [`material`] and [`specular`]
+//! Modules: [`engine`] (shading engine, shadow shaders), [`volume`] (the shading
+//! group's volume sampler), [`material`] and [`specular`]
 //! (lambert, blinn, phong, phongE, anisotropic, surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
@@ -48,6 +49,7 @@ pub mod texture3d;
 pub mod utility;
 mod values;
 pub mod vertex_data;
+pub mod volume;
 
 use shader::{Library, ShaderImpl};
 
@@ -76,6 +78,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &engine::ADSK_SHADOW,
     &engine::TRANSPARENT,
     &engine::ADSK_TRANSPARENT,
+    &volume::VOLUMESAMPLER,
+    &volume::ADSK_VOLUMESAMPLER,
     &material::LAMBERT,
     &material::ADSK_LAMBERT,
     &material::BLINN,

@@ -328,37 +328,95 @@ fn area(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     finish(out, c)
 }
 
-const VOLUME_PARAMS: &[&str] =
-    &[COMMON[0], COMMON[1], COMMON[2], COMMON[3], COMMON[4], COMMON[5], COMMON[6], "lightShape", "colorRange"];
+const VOLUME_PARAMS: &[&str] = &[
+    COMMON[0],
+    COMMON[1],
+    COMMON[2],
+    COMMON[3],
+    COMMON[4],
+    COMMON[5],
+    COMMON[6],
+    "lightShape",
+    "colorRange",
+    "arc",
+    "coneEndRadius",
+    "penumbra",
+    "volumeLightDir",
+    "emitAmbient",
+];
 
-/// Where a point lies in a volume light's unit shape (`lightShape`: 0 box, 1 sphere, 2
-/// cylinder, 3 cone; other values read as the sphere), `local` being the point in the
-/// light's own space (the light's transform maps the unit shape onto the volume): the
-/// normalised distance from the shape's centre or axis, 0 there and 1 on the boundary,
-/// `None` outside. The box is [−1, 1]³, the sphere of radius 1, the cylinder of radius 1
-/// about the local z axis for z in [−1, 1], the cone with its apex at the origin opening
-/// along −z to radius 1 at z = −1 (the spot light's axis). mira's reading: Maya documents
-/// the four shapes and that the light fills them, not their local axes.
-pub fn volume_distance(shape: i32, local: Vec3A) -> Option<f32> {
-    let radial = (local.x * local.x + local.y * local.y).sqrt();
-    let d = match shape {
-        0 => local.abs().max_element(),
-        2 if local.z.abs() <= 1.0 => radial,
-        2 => return None,
-        3 if (-1.0..0.0).contains(&local.z) => radial / -local.z,
-        3 => return None,
-        _ => local.length(),
-    };
-    (d <= 1.0).then_some(d)
+/// A volume light's shape in its own space (the light's transform maps the unit shape
+/// onto the volume). Maya's node reference: `lightShape` 0 box, 1 sphere (the default),
+/// 2 cylinder, 3 cone; `arc` an angular slice about the light's y axis (degrees, 360 the
+/// whole shape; not for the box); `coneEndRadius` the relative radius of one end of the
+/// cone (1 a cylinder, 0 a cone); the light's central axis is its y axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeShape {
+    /// `lightShape` (other values read as the sphere).
+    pub shape: i32,
+    /// `arc` in radians.
+    pub arc: f32,
+    /// `coneEndRadius`.
+    pub cone_end_radius: f32,
+}
+
+/// Where a point lies in a volume light's shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumePoint {
+    /// The normalised distance from the shape's centre (box, sphere) or axis (cylinder,
+    /// cone): 0 there, 1 on the boundary; `colorRange` is read at 1 − this.
+    pub distance: f32,
+    /// For the cylinder and cone, the same distance from the axis, where the `penumbra`
+    /// graph is read (at 1 − this: its left end the outer edge, its right end the axis).
+    pub radial: Option<f32>,
+}
+
+impl VolumeShape {
+    /// Where `local` (a point in the light's own space) lies, `None` outside. The box is
+    /// [−1, 1]³, the sphere of radius 1, the cylinder of radius 1 about the y axis for y
+    /// in [−1, 1], the cone the same with its radius going linearly from 1 at y = −1 to
+    /// `coneEndRadius` at y = 1. The arc starts at the +x axis and turns towards −z
+    /// (counter-clockwise seen from +y). mira's reading: Maya names the axis and the
+    /// ends' relative size, not which end is which nor where the arc starts.
+    pub fn locate(&self, local: Vec3A) -> Option<VolumePoint> {
+        let radial = (local.x * local.x + local.z * local.z).sqrt();
+        let point = match self.shape {
+            0 => VolumePoint { distance: local.abs().max_element(), radial: None },
+            2 | 3 => {
+                if local.y.abs() > 1.0 {
+                    return None;
+                }
+                let end = if self.shape == 3 { self.cone_end_radius.clamp(0.0, 1.0) } else { 1.0 };
+                let r = 1.0 + (end - 1.0) * 0.5 * (local.y + 1.0);
+                let d = if radial == 0.0 { 0.0 } else { radial / r };
+                VolumePoint { distance: d, radial: Some(d) }
+            }
+            _ => VolumePoint { distance: local.length(), radial: None },
+        };
+        if !(point.distance <= 1.0) {
+            return None;
+        }
+        if self.shape != 0 && self.arc < std::f32::consts::TAU && radial > 0.0 {
+            let azimuth = (-local.z).atan2(local.x).rem_euclid(std::f32::consts::TAU);
+            if azimuth > self.arc.max(0.0) {
+                return None;
+            }
+        }
+        Some(point)
+    }
 }
 
 maya_shader!(
     /// Volume light: `color · intensity` inside the light's volume (see
-    /// [`volume_distance`]) times the `colorRange` ramp (array of {`colorRange_Position`,
-    /// `colorRange_Color`, `colorRange_Interp`}; empty: white) at 1 − d (position 0 on the
-    /// boundary, 1 at the centre or axis), nothing outside; no decay (the ramp is the
-    /// falloff), raytraced shadows. Not read: `volumeLightDir` (light flows outwards from
-    /// the light's centre), `arc`, `coneEndRadius`, `emitAmbient`, the penumbra ramp.
+    /// [`VolumeShape::locate`]) times the `colorRange` ramp (array of
+    /// {`colorRange_Position`, `colorRange_Color`, `colorRange_Interp`}; empty: white) at
+    /// 1 − d (position 0 on the boundary, 1 at the centre or axis), for cylinders and
+    /// cones also times the `penumbra` graph ({`penumbra_Position`,
+    /// `penumbra_FloatValue`, `penumbra_Interp`}; empty: 1) at the same place; nothing
+    /// outside; no decay (the ramp is the falloff), raytraced shadows. The light flows
+    /// outwards from the light's centre (`volumeLightDir` 0, Maya's default); the inward
+    /// and down-axis directions and `emitAmbient` are not represented (a light shader
+    /// cannot turn the direction the material shades with).
     VOLUME,
     ADSK_VOLUME,
     "maya_volumelight",
@@ -370,11 +428,54 @@ maya_shader!(
 fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
     let local = light.to_local * (ctx.state.point - light.origin);
-    let Some(d) = volume_distance(ctx.int(n, 7), local) else { return false };
-    let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - d);
-    let c = emitted(ctx, n) * range.extend(1.0);
+    let shape =
+        VolumeShape { shape: ctx.int(n, 7), arc: ctx.scalar(n, 9).to_radians(), cone_end_radius: ctx.scalar(n, 10) };
+    let Some(at) = shape.locate(local) else { return false };
+    let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - at.distance);
+    let penumbra = match at.radial {
+        Some(r) => crate::utility::Ramp::read(&ctx.array(n, 11), "penumbra", "FloatValue", Vec3A::ONE).at(1.0 - r).x,
+        None => 1.0,
+    };
+    let c = emitted(ctx, n) * (range * penumbra).extend(1.0);
     let c = shadows(ctx, n, c, Spread::Radius(0.0));
     finish(out, c)
+}
+
+/// A warning, at the shader's position, for each volume light of `shading` whose
+/// `volumeLightDir` (inward or down the axis) or `emitAmbient` the classic light shader
+/// does not represent (see [`VOLUME`]): the light then shines outwards from its centre.
+pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
+    let mut warnings = Vec::new();
+    for node in &shading.graph.nodes {
+        if !matches!(node.decl.name.as_str(), "maya_volumelight" | "adskMayaVolumeLight") {
+            continue;
+        }
+        let index = |name: &str| match node.imp {
+            Some(imp) => imp.params.iter().position(|p| *p == name),
+            None => node.decl.param(name),
+        };
+        let constant = |name: &str| match index(name).and_then(|i| node.slots.get(i)) {
+            Some(shader::Slot::Value(v)) => Some(v.clone()),
+            _ => None,
+        };
+        if let Some(dir) = constant("volumeLightDir").map(|v| v.int()).filter(|&d| d != 0) {
+            warnings.push(mi::Diagnostic::warning(
+                node.span,
+                format!(
+                    "'{}': volumeLightDir {dir} (inward or down the axis) is not represented; the light shines \
+                     outwards from its centre",
+                    node.decl.name
+                ),
+            ));
+        }
+        if constant("emitAmbient").is_some_and(|v| v.int() != 0) {
+            warnings.push(mi::Diagnostic::warning(
+                node.span,
+                format!("'{}': emitAmbient is not represented; the light is directional only", node.decl.name),
+            ));
+        }
+    }
+    warnings
 }
 
 #[cfg(test)]
@@ -411,17 +512,32 @@ mod tests {
 
     #[test]
     fn volume_shapes_and_distances() {
-        // Sphere: the normalised radius; outside: none.
-        assert_eq!(volume_distance(1, Vec3A::new(0.0, 0.5, 0.0)), Some(0.5));
-        assert_eq!(volume_distance(1, Vec3A::new(0.8, 0.8, 0.0)), None);
+        let full = |shape| VolumeShape { shape, arc: std::f32::consts::TAU, cone_end_radius: 0.0 };
+        let d = |shape: VolumeShape, p: Vec3A| shape.locate(p).map(|v| v.distance);
+        // Sphere: the distance from the centre; outside beyond 1.
+        assert_eq!(d(full(1), Vec3A::new(0.0, 0.5, 0.0)), Some(0.5));
+        assert_eq!(d(full(1), Vec3A::new(0.8, 0.8, 0.0)), None);
         // Box: the largest coordinate.
-        assert_eq!(volume_distance(0, Vec3A::new(0.8, -0.9, 0.2)), Some(0.9));
-        // Cylinder about z: the radial distance within |z| ≤ 1.
-        assert_eq!(volume_distance(2, Vec3A::new(0.6, 0.0, 0.9)), Some(0.6));
-        assert_eq!(volume_distance(2, Vec3A::new(0.1, 0.0, 1.5)), None);
-        // Cone along −z: the radius over the depth.
-        assert_eq!(volume_distance(3, Vec3A::new(0.25, 0.0, -0.5)), Some(0.5));
-        assert_eq!(volume_distance(3, Vec3A::new(0.0, 0.0, 0.5)), None);
-        assert_eq!(volume_distance(3, Vec3A::new(0.6, 0.0, -0.5)), None);
+        assert_eq!(d(full(0), Vec3A::new(0.8, -0.9, 0.2)), Some(0.9));
+        assert_eq!(d(full(0), Vec3A::new(0.8, -1.1, 0.2)), None);
+        // Cylinder about y: the distance from the axis, y within [−1, 1].
+        let cyl = full(2).locate(Vec3A::new(0.6, 0.9, 0.0)).expect("inside");
+        assert_eq!((cyl.distance, cyl.radial), (0.6, Some(0.6)));
+        assert_eq!(d(full(2), Vec3A::new(0.1, 1.5, 0.0)), None);
+        // Cone: radius 1 at y = −1 narrowing to coneEndRadius at y = 1; at y = 0 it is
+        // (1 + end)/2: 0.5 for a sharp cone, 0.75 with an end radius of ½.
+        assert!((d(full(3), Vec3A::new(0.25, 0.0, 0.0)).unwrap() - 0.5).abs() < 1e-6);
+        assert_eq!(d(full(3), Vec3A::new(0.6, 0.0, 0.0)), None);
+        let blunt = VolumeShape { cone_end_radius: 0.5, ..full(3) };
+        assert!((d(blunt, Vec3A::new(0.6, 0.0, 0.0)).unwrap() - 0.8).abs() < 1e-6);
+        assert_eq!(d(full(3), Vec3A::new(0.0, 1.0, 0.0)), Some(0.0));
+        // A half arc keeps the slice from +x towards −z (azimuth up to 180°).
+        let half = VolumeShape { arc: std::f32::consts::PI, ..full(1) };
+        assert!(d(half, Vec3A::new(0.3, 0.0, -0.4)).is_some());
+        assert!(d(half, Vec3A::new(0.3, 0.0, 0.4)).is_none());
+        // The box ignores the arc.
+        assert!(d(VolumeShape { arc: 0.1, ..full(0) }, Vec3A::new(0.3, 0.0, 0.4)).is_some());
+        // NaN (a hostile transform) is outside.
+        assert_eq!(d(full(1), Vec3A::splat(f32::NAN)), None);
     }
 }

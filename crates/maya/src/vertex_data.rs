@@ -7,8 +7,16 @@
 //! vertex), each an array of `{ "name" …, "index" k }` where `k` is the texture space
 //! (`tex_list[k]`) holding that set. The renderer interpolates every texture space
 //! barycentrically at the hit, so a set found by name is the per-vertex data interpolated
-//! at the hit point. (Maya's older `maya_vertexdata` block, which gave custom data's
-//! texture-space offsets, has no public layout; it is not read.)
+//! at the hit point.
+//!
+//! Older exports (Maya 8.5–2009) attach instead a `"maya_vertexdata"` data element (magic
+//! 1298749048, 'MiVx') with three arrays, `"data"` (custom per-vertex data), `"uvs"` and
+//! `"cpv"`, of `{ "name" …, "type" t, "size" n, "offset" k }`: the set's vector kind, its
+//! component count and its index among the vectors of that kind (the layout of NVIDIA's
+//! public mental ray sample shader reading the block). A UV set (`"uvs"`) is a texture
+//! space, so its `offset` is the texture space found by name. Colour sets and custom data
+//! of that form live in the object's user vectors (`u` in a vertex), which mira's renderer
+//! does not keep: those names are not found (the reading nodes' defaults apply).
 
 use glam::Vec3A;
 use shader::user_data::member;
@@ -41,12 +49,21 @@ impl VertexSet {
     }
 }
 
+/// The declaration name of the older exports' vertex data block.
+pub const VERTEX_DATA: &str = "maya_vertexdata";
+
 /// The texture space that holds the per-vertex set `name` of family `set` on the hit
-/// object, from its per-vertex nomenclature; `None` if the object has no such set.
+/// object, from its per-vertex nomenclature or, for UV sets, its older `maya_vertexdata`
+/// block; `None` if the object has no such set.
 pub fn texture_space(ctx: &Ctx, set: VertexSet, name: &str) -> Option<usize> {
-    ctx.object_data().filter(|d| d.declaration.as_deref() == Some(NOMENCLATURE)).find_map(|d| {
-        let Some(Value::Array(entries)) = d.member(set.member()) else { return None };
-        entries.iter().find_map(|e| match (member(e, "name"), member(e, "index")) {
+    ctx.object_data().find_map(|d| {
+        let (array, index) = match d.declaration.as_deref() {
+            Some(NOMENCLATURE) => (set.member(), "index"),
+            Some(VERTEX_DATA) if set == VertexSet::Uv => ("uvs", "offset"),
+            _ => return None,
+        };
+        let Some(Value::Array(entries)) = d.member(array) else { return None };
+        entries.iter().find_map(|e| match (member(e, "name"), member(e, index)) {
             (Some(Value::Str(n)), Some(Value::Int(k))) if &**n == name => usize::try_from(*k).ok(),
             _ => None,
         })

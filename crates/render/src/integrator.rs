@@ -241,6 +241,17 @@ fn material_at<'w>(
     }
 }
 
+/// The local shading frame around the unit normal `ns`: its x axis along the material's
+/// tangent (the axis an anisotropic lobe is stretched along), or any tangent when the
+/// material names none.
+#[inline]
+fn shading_frame(ns: Vec3A, tangent: Option<Vec3A>) -> Frame {
+    match tangent {
+        Some(t) => Frame::from_normal_and_tangent(ns, t),
+        None => Frame::from_normal(ns),
+    }
+}
+
 /// A number in [0, 1) for a cutout decision at `p`, decorrelated from the path's sampler.
 fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
     // Each word goes through a full 64-bit avalanche (SplitMix64's finaliser) before the
@@ -409,7 +420,7 @@ pub fn trace_path(
             // A bump or normal map (given facing the ray): on the side of `ns`.
             ns = if bent.dot(ns) < 0.0 { -bent } else { bent };
         }
-        let frame = Frame::from_normal(ns);
+        let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.model.bsdf(material.diffuse, wo);
         let departure = Departure { media: &media, surface: Some((s.material, s.ng, ray.dir)) };

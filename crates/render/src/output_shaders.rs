@@ -34,14 +34,33 @@ pub fn run(film: &mut Film, camera: &Camera, lib: &scene::Library) -> Vec<String
     warnings
 }
 
+/// Whether `camera` runs a shader glow among its output shaders (then the world holds
+/// the materials' glow buffer, [`maya::glow::BUFFER`]).
+pub fn has_glow(camera: &Camera, lib: &scene::Library) -> bool {
+    camera.outputs.iter().any(|out| match out {
+        Output::Shader { shaders, .. } => shaders.0.iter().any(|item| {
+            material::first_call(std::slice::from_ref(item), lib).is_some_and(|(n, _)| maya::glow::is_glow(n))
+        }),
+        _ => false,
+    })
+}
+
 /// Applies a shader glow: its source is the first user frame buffer among the output's
-/// `types` that shaders wrote, else the image's pixels brighter than white.
+/// `types` that shaders wrote, else the materials' glow buffer ([`maya::glow::BUFFER`])
+/// where a material glows, else the image's pixels brighter than white.
 fn glow(film: &mut Film, types: &[String], glow: &maya::glow::Glow) {
-    let buffer: Option<Vec<[f32; 3]>> = types.iter().find_map(|t| {
+    let named = types.iter().find_map(|t| {
         let name = t.trim().trim_start_matches(['+', '-']);
-        let b = film.user.iter().find(|b| b.name == name && b.writes.iter().any(|&n| n > 0))?;
-        Some(b.data.iter().map(|v| [v[0], v[1], v[2]]).collect())
+        film.user.iter().find(|b| b.name == name && b.writes.iter().any(|&n| n > 0))
     });
+    // The materials' buffer holds zeros wherever nothing glows: a source only if some glow.
+    let materials = || {
+        film.user
+            .iter()
+            .find(|b| b.name == maya::glow::BUFFER && b.data.iter().any(|v| v[..3].iter().any(|&c| c > 0.0)))
+    };
+    let buffer: Option<Vec<[f32; 3]>> =
+        named.or_else(materials).map(|b| b.data.iter().map(|v| [v[0], v[1], v[2]]).collect());
     let mut image = film.rgba();
     glow.apply(&mut image, buffer.as_deref(), film.width as usize, film.height as usize);
     film.set_rgba(&image);

@@ -333,6 +333,10 @@ impl Tracer for SceneTracer<'_> {
         }
     }
 
+    fn fb_named(&self, name: &str) -> Option<u32> {
+        self.world.user_buffers.iter().position(|(n, _)| n == name).map(|i| i as u32)
+    }
+
     fn fg_cache(&self) -> Option<&shader::fgcache::FgCache> {
         self.fg_cache
     }

@@ -368,6 +368,12 @@ impl World {
                 user_buffers.push((fb.name.clone(), fb.datatype.clone()));
             }
         }
+        if crate::output_shaders::has_glow(&scene.camera, &scene.library)
+            && !user_buffers.iter().any(|(n, _)| n == maya::glow::BUFFER)
+        {
+            // Maya materials' glow, which the shader glow's post pass spreads.
+            user_buffers.push((maya::glow::BUFFER.to_string(), "rgba_fp".to_string()));
+        }
         let mut camera = CameraModel::new(&scene.camera);
         let mut light_motion = Vec::new();
         let weights = shading.and_then(|s| s.shutter_weights.as_deref());

@@ -341,3 +341,213 @@ render "root" "cam_inst" "opt"
         }
     }
 }
+
+/// A plane 4 below the camera lit straight down by a directional light of intensity 1,
+/// seen through an aperture of 1.2 at `resolution`² pixels, with the shader lines
+/// `materials` defining "top" (the plane's material) and the camera's extra `outputs`.
+fn lit_plane(materials: &str, outputs: &str, resolution: u32) -> String {
+    format!(
+        r#"
+$include "mayabase.mi"
+options "opt" samples 0 0 filter box 1 1 end options
+camera "cam" {outputs} focal 1 aperture 1.2 aspect 1 resolution {resolution} {resolution} end camera
+instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+instance "sun_inst" "sun" end instance
+{materials}
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "top.outColor") end material
+object "plane" group -3 0 3  3 0 3  3 0 -3  -3 0 -3  0 0 0  1 0 0  1 1 0  0 1 0
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7 c "m" 0 1 2 3 end group end object
+instance "plane_inst" "plane" end instance
+instgroup "root" "cam_inst" "sun_inst" "plane_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// The second moments (Σ I·dx², Σ I·dy²) of the image's red channel about its
+/// brightness-weighted centre, in pixels²: the spread of a highlight across and down.
+fn second_moments(px: &[[f32; 4]], width: usize) -> (f32, f32) {
+    let total: f32 = px.iter().map(|p| p[0]).sum();
+    let (mut cx, mut cy) = (0.0, 0.0);
+    for (i, p) in px.iter().enumerate() {
+        cx += p[0] * (i % width) as f32 / total;
+        cy += p[0] * (i / width) as f32 / total;
+    }
+    let (mut mxx, mut myy) = (0.0, 0.0);
+    for (i, p) in px.iter().enumerate() {
+        mxx += p[0] * ((i % width) as f32 - cx).powi(2) / total;
+        myy += p[0] * ((i / width) as f32 - cy).powi(2) / total;
+    }
+    (mxx, myy)
+}
+
+#[test]
+fn the_anisotropic_highlight_is_stretched_across_the_grooves_in_both_engines() {
+    // A black anisotropic plane (only its highlight shows) with grooves along U (world x,
+    // image columns) at angle 0 and along V (image rows) at angle π/2; spreadX 13 >
+    // spreadY 3 makes the highlight narrow along the grooves and long across them. Seen
+    // from above with the light straight down, the highlight is where the half vector
+    // meets the normal: its second moments across and down the image follow the grooves
+    // in both engines (the long axis at least 1.5× the short one), and the two engines'
+    // image means agree within 10 % (the path engine's lobe is GGX, the classic one
+    // Maya's Gaussian of the same widths; both are lit by the same light).
+    let material = |angle: f32| {
+        format!(
+            r#"shader "top" "maya_anisotropic" ("color" 0 0 0, "diffuse" 0, "angle" {angle},
+    "roughness" 0.5, "spreadX" 13, "spreadY" 3, "fresnelRefractiveIndex" 6, "specularColor" 0.5 0.5 0.5)"#
+        )
+    };
+    let n = 32;
+    let mut means = Vec::new();
+    for (angle, grooves_across) in [(0.0, true), (std::f32::consts::FRAC_PI_2, false)] {
+        let l = load(&mi::parse_str("aniso.mi", &lit_plane(&material(angle), "", n)), Vec::new(), None);
+        let (_, _, classic) = render_classic(&l, 1);
+        let world = path_world(&l);
+        let accel = render::accel::build(&world, render::Backend::Rust);
+        let settings =
+            render::Settings { engine: render::EngineKind::Path, spp: Some(64), ..render::Settings::default() };
+        let (film, _) =
+            render::render(&world, accel.as_ref(), Some(&l.shading), &settings, &AtomicBool::new(false), &|_| {});
+        let path = film.rgba();
+        for (engine, px) in [("classic", &classic), ("path", &path)] {
+            let (across, down) = second_moments(px, n as usize);
+            println!("angle {angle}: {engine} moments across {across:.2}, down {down:.2}, mean {:?}", summary(px).0);
+            // Grooves along the columns (x): narrow across, long down the image.
+            let (long, short) = if grooves_across { (down, across) } else { (across, down) };
+            assert!(long > 1.5 * short, "{engine}, angle {angle}: long {long} vs short {short}");
+        }
+        means.push((summary(&classic).0[0], summary(&path).0[0]));
+    }
+    for (c, p) in means {
+        assert!(c > 1e-3, "classic mean {c}");
+        assert!((p / c - 1.0).abs() < 0.1, "path mean {p} vs classic {c}");
+    }
+}
+
+/// Renders `text` with the classic engine at 1 sample per pixel and runs the camera's
+/// output shaders: the film before and after them.
+fn classic_with_outputs(text: &str) -> (render::film::Film, render::film::Film) {
+    let l = load(&mi::parse_str("glow.mi", text), Vec::new(), None);
+    let world = render::World::from_scene_shaded(&l.scene, Some(&l.shading));
+    let accel = render::accel::build(&world, render::Backend::Rust);
+    let settings =
+        render::Settings { engine: render::EngineKind::Classic, spp: Some(1), ..render::Settings::default() };
+    let (film, _) =
+        render::render(&world, accel.as_ref(), Some(&l.shading), &settings, &AtomicBool::new(false), &|_| {});
+    let mut after = film.clone();
+    let warnings = render::output_shaders::run(&mut after, &l.scene.camera, &l.scene.library);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    (film, after)
+}
+
+#[test]
+fn a_glowing_material_brightens_its_neighbourhood_and_a_plain_one_does_not() {
+    // Two lambert squares (colour 0.6, 8 pixels wide) on a dark plane under a light
+    // straight down; the left one has glowIntensity 0.5. The camera's shader glow spreads
+    // the materials' glow buffer: it holds 0.6 × 0.5 = 0.3 on the glowing square and 0
+    // elsewhere; the glow adds exactly the buffer's sum (intensity 1, white, no auto
+    // exposure) around the left square, and nothing around the right one.
+    let materials = r#"shader "dark" "maya_lambert" ("color" 0.1 0.1 0.1, "diffuse" 1)
+shader "glowing" "maya_lambert" ("color" 0.6 0.6 0.6, "diffuse" 1, "glowIntensity" 0.5)
+shader "plain" "maya_lambert" ("color" 0.6 0.6 0.6, "diffuse" 1)
+material "mg" opaque "maya_shadingengine" ("surfaceShader" = "glowing.outColor") end material
+material "mp" opaque "maya_shadingengine" ("surfaceShader" = "plain.outColor") end material
+object "squares" group -1.4 0.01 0.4  -0.6 0.01 0.4  -0.6 0.01 -0.4  -1.4 0.01 -0.4
+    0.6 0.01 0.4  1.4 0.01 0.4  1.4 0.01 -0.4  0.6 0.01 -0.4
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 c "mg" 0 1 2 3 c "mp" 4 5 6 7 end group end object
+instance "squares_inst" "squares" end instance"#;
+    let text = lit_plane(
+        &format!("{materials}\nshader \"top\" \"maya_lambert\" (\"color\" 0.1 0.1 0.1, \"diffuse\" 1)"),
+        r#"output "+rgba" "maya_shaderglow" ("glowSpread" 0.1, "autoExposure" off)"#,
+        48,
+    )
+    .replace(r#""sun_inst" "plane_inst""#, r#""sun_inst" "plane_inst" "squares_inst""#);
+    let (before, after) = classic_with_outputs(&text);
+    let buffer = before.user.iter().find(|b| b.name == maya::glow::BUFFER).expect("the materials' glow buffer");
+    let (w, h) = (before.width as usize, before.height as usize);
+    let (b, a) = (before.rgba(), after.rgba());
+    // The buffer: 0.3 where the left square is seen, 0 elsewhere; at least 7×7 pixels.
+    let glowing: Vec<usize> = (0..w * h).filter(|&i| buffer.data[i][0] > 0.0).collect();
+    assert!(glowing.len() >= 49, "{} glowing pixels", glowing.len());
+    for &i in &glowing {
+        assert!((buffer.data[i][0] - 0.3).abs() < 1e-5, "pixel {i}: {:?}", buffer.data[i]);
+        assert!((i % w) < w / 2, "pixel {i} glows but is not on the left square");
+    }
+    let source: f32 = glowing.iter().map(|&i| buffer.data[i][0]).sum();
+    let added: f32 = a.iter().zip(&b).map(|(x, y)| x[0] - y[0]).sum();
+    assert!((added - source).abs() < 1e-3 * source, "added {added} vs the buffer's {source}");
+    // Neighbourhoods: the plane pixels within 3 pixels of each square (R = 4.8 pixels).
+    let near = |left: bool| -> Vec<usize> {
+        let square: Vec<(usize, usize)> = (0..w * h)
+            .filter(|&i| (b[i][0] - 0.6).abs() < 1e-3 && ((i % w) < w / 2) == left)
+            .map(|i| (i % w, i / w))
+            .collect();
+        (0..w * h)
+            .filter(|&i| (b[i][0] - 0.1).abs() < 1e-3)
+            .filter(|&i| {
+                square.iter().any(|&(x, y)| {
+                    (x as isize - (i % w) as isize).abs().max((y as isize - (i / w) as isize).abs()) <= 3
+                })
+            })
+            .collect()
+    };
+    let (left, right) = (near(true), near(false));
+    assert!(left.len() > 20 && right.len() > 20, "{} / {} neighbours", left.len(), right.len());
+    let brightened = left.iter().filter(|&&i| a[i][0] > b[i][0] + 1e-4).count();
+    assert_eq!(brightened, left.len(), "every pixel beside the glowing square brightens");
+    for &i in &right {
+        assert_eq!(a[i], b[i], "pixel {i} beside the plain square is unchanged");
+    }
+}
+
+/// An orthographic camera looking down −Z at a plane of constant colour (0.8 0.5 0.3,
+/// ambient only) 5 away, with the camera's volume `volume` and the shader lines `body`.
+fn fogged_plane(body: &str) -> Vec<[f32; 4]> {
+    let text = format!(
+        r#"
+$include "mayabase.mi"
+$include "AdskShaderSDK.mi"
+options "opt" filter box 1 1 samples 0 0 end options
+{body}
+camera "cam" focal infinity aperture 2 aspect 1 resolution 4 4 volume = "sampler" end camera
+instance "cam_inst" "cam" end instance
+material "plane_mtl" "mib_illum_lambert" ("ambience" 1 1 1, "ambient" 0.8 0.5 0.3 1, "diffuse" 0 0 0) end material
+object "plane" group -4 -4 -5  4 -4 -5  4 4 -5  -4 4 -5  v 0 v 1 v 2 v 3 c "plane_mtl" 0 1 2 3 end group end object
+instance "plane_inst" "plane" end instance
+instgroup "root" "cam_inst" "plane_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    );
+    let l = load(&mi::parse_str("fog.mi", &text), Vec::new(), None);
+    render_classic(&l, 1).2
+}
+
+#[test]
+fn the_volume_sampler_composites_a_maya_volume_output_and_runs_a_mental_ray_volume() {
+    // A node with Maya's output struct covers the segment: plane ⊙ T + outColor. Here a
+    // surfaceShader of colour 0.1 0.2 0.9 and transparency 0.25 0.5 0.75, whose outColor
+    // is its colour ⊙ (1 − T) (nothing lies behind the plane for its own transparency ray).
+    let px = fogged_plane(
+        r#"shader "vol" "maya_surfaceshader" ("outColor" 0.1 0.2 0.9, "outTransparency" 0.25 0.5 0.75)
+shader "sampler" "adskMayaVolumeSampler" ("volumeShader" = "vol.outColor")"#,
+    );
+    let want = [0.8 * 0.25 + 0.1 * 0.75, 0.5 * 0.5 + 0.2 * 0.5, 0.3 * 0.75 + 0.9 * 0.25];
+    for p in &px {
+        for k in 0..3 {
+            assert!((p[k] - want[k]).abs() < 1e-5, "{p:?} vs {want:?}");
+        }
+    }
+    // mib_volume connected directly: the sampler is that fog (share 5/20 of its colour).
+    let px = fogged_plane(
+        r#"shader "fog" "mib_volume" ("color" 0.2 0.4 0.6 1, "max" 20)
+shader "sampler" "maya_volumesampler" ("volumeShader" = "fog")"#,
+    );
+    let f = 0.25;
+    let want = [0.8 * (1.0 - f) + 0.2 * f, 0.5 * (1.0 - f) + 0.4 * f, 0.3 * (1.0 - f) + 0.6 * f];
+    for p in &px {
+        for k in 0..3 {
+            assert!((p[k] - want[k]).abs() < 1e-5, "{p:?} vs {want:?}");
+        }
+    }
+}

@@ -16,6 +16,26 @@ const COLORS: [[f32; 3]; 3] = [[0.9, 0.1, 0.2], [0.1, 0.8, 0.3], [0.2, 0.3, 0.7]
 /// member `member`. Texture space 0 holds a constant decoy, space 1 (UV set "uvB") the
 /// corners' ground positions, space 2 (colour set "colorSet1") their colours.
 fn scene(shader: &str, member: &str) -> String {
+    scene_with(shader, member, NOMENCLATURE)
+}
+
+/// Maya 2010+'s names of the texture spaces.
+const NOMENCLATURE: &str = r#"data "triShape:PerVertexNomenclature" "PerVertexNomenclature" (
+    "magicnumber" 5149248936,
+    "tex" [ { "name" "map1", "index" 0 } { "name" "uvB", "index" 1 } ],
+    "cpv" [ { "name" "colorSet1", "index" 2 } ]
+)"#;
+
+/// The same UV sets in the older exports' `maya_vertexdata` block (its colour sets would
+/// be user vectors, which this object has none of).
+const VERTEX_DATA: &str = r#"data "triShape:PerVertexNomenclature" "maya_vertexdata" (
+    "magic" 1298749048,
+    "uvs" [ { "name" "map1", "type" 2, "size" 3, "offset" 0 },
+            { "name" "uvB", "type" 2, "size" 3, "offset" 1 } ]
+)"#;
+
+/// [`scene`] with the data element `data` naming the texture spaces.
+fn scene_with(shader: &str, member: &str, data: &str) -> String {
     let [a, b, c] = CORNERS;
     let [ca, cb, cc] = COLORS;
     format!(
@@ -27,11 +47,7 @@ instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -3 1 end ins
 {shader}
 shader "surf" "maya_surfaceshader" ("outColor" = "look.{member}")
 material "m" opaque "maya_shadingengine" ("surfaceShader" = "surf.outColor") end material
-data "triShape:PerVertexNomenclature" "PerVertexNomenclature" (
-    "magicnumber" 5149248936,
-    "tex" [ {{ "name" "map1", "index" 0 }} {{ "name" "uvB", "index" 1 }} ],
-    "cpv" [ {{ "name" "colorSet1", "index" 2 }} ]
-)
+{data}
 object "triShape"
     group
         {ax} 0 {az}  {bx} 0 {bz}  {cx} 0 {cz}
@@ -149,4 +165,26 @@ fn a_uv_set_named_by_the_nomenclature_is_the_uv_of_the_hit() {
     let px = render(r#"shader "look" "maya_uvchooser" ("uvSets" ["nope"])"#, "outUv");
     let centre = px[3 * 8 + 4];
     assert!((centre[0] - 0.25).abs() < 1e-6 && (centre[1] - 0.75).abs() < 1e-6, "{centre:?}");
+}
+
+#[test]
+fn a_uv_set_named_by_the_older_vertex_data_block_is_the_uv_of_the_hit() {
+    // The same scene with Maya 8.5–2009's `maya_vertexdata` block instead of the
+    // nomenclature: "uvB" at offset 1 is texture space 1, so the picture is the same.
+    let old = |shader: &str| {
+        let (px, messages) =
+            support::render_text(&scene_with(shader, "outUv", VERTEX_DATA), EngineKind::Classic, Some(1));
+        assert!(messages.is_empty(), "{messages:?}");
+        px
+    };
+    let newer = render(r#"shader "look" "maya_uvchooser" ("uvSets" ["uvB"])"#, "outUv");
+    let older = old(r#"shader "look" "maya_uvchooser" ("uvSets" ["uvB"])"#);
+    assert_eq!(newer, older, "the block names the same texture space");
+    // Not the decoy of space 0: the centre pixel's UV is its ground point.
+    let centre = older[3 * 8 + 4];
+    let g = ground_point(4, 3);
+    assert!((centre[0] - g[0]).abs() <= HALF_PIXEL + 1e-4 && (centre[1] - g[1]).abs() <= HALF_PIXEL + 1e-4);
+    // A name the block lacks falls back to space 0 (the decoy 0.25 0.75).
+    let px = old(r#"shader "look" "maya_uvchooser" ("uvSets" ["uvC"])"#);
+    assert!((px[3 * 8 + 4][0] - 0.25).abs() < 1e-6 && (px[3 * 8 + 4][1] - 0.75).abs() < 1e-6);
 }

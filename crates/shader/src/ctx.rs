@@ -302,6 +302,11 @@ impl<'a> Ctx<'a> {
     pub fn fb_put(&self, buffer: u32, value: Color) -> bool {
         self.tracer.fb_put(buffer, value)
     }
+
+    /// The index of the user frame buffer named `name`, if the render has one.
+    pub fn fb_named(&self, name: &str) -> Option<u32> {
+        self.tracer.fb_named(name)
+    }
 }
 
 /// Dimensions 128 + 2k and 129 + 2k (k = `site` mod 64) of sample `index` (< 2¹⁶) of the

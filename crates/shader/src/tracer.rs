@@ -71,6 +71,12 @@ pub trait Tracer {
     /// (mental ray's `mi_fb_put`). Returns false if there is no such buffer.
     fn fb_put(&self, buffer: u32, value: Color) -> bool;
 
+    /// The index of the user frame buffer named `name` for [`Tracer::fb_put`] (mental
+    /// ray's named frame buffers); `None` if the render has none of that name.
+    fn fb_named(&self, _name: &str) -> Option<u32> {
+        None
+    }
+
     /// The final gather interpolation cache of this render, if the renderer built one
     /// ([`super::fgcache`]); `compute_irradiance` then interpolates where it can.
     fn fg_cache(&self) -> Option<&super::fgcache::FgCache> {

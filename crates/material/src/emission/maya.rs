@@ -15,7 +15,8 @@
 //!   the centre to R when `colorRange` runs linearly from black on the boundary (position
 //!   0) to a colour c at the centre (position 1) — the classic light's c·(1 − r/R) exactly
 //!   —, or constant inside R when `colorRange` is one colour or empty (white); other
-//!   shapes, scales and ramps are left out with a message;
+//!   shapes, scales, ramps, arcs below 360° and light directions other than outward are
+//!   left out with a message;
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
 //!   lights); ambient lights are left out (no counterpart): both with a message.
 
@@ -93,6 +94,16 @@ fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: R
     let shape = scalar_param(params, "lightShape").unwrap_or(1.0) as i32;
     if shape != 1 {
         return Err(format!("{decl} of lightShape {shape} (not a sphere) has no path-engine counterpart; left out"));
+    }
+    let arc = scalar_param(params, "arc").unwrap_or(360.0);
+    if arc < 360.0 {
+        return Err(format!("{decl}: a sphere cut to an arc of {arc}° has no path-engine counterpart; left out"));
+    }
+    let direction = scalar_param(params, "volumeLightDir").unwrap_or(0.0);
+    if direction != 0.0 {
+        return Err(format!(
+            "{decl}: volumeLightDir {direction} (inward or down the axis) has no path-engine counterpart; left out"
+        ));
     }
     let scales = [0, 1, 2].map(|i| light_to_world.col(i).truncate().length());
     let radius = scales[0];
