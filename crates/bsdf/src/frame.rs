@@ -31,9 +31,13 @@ impl Frame {
     /// lobe. Falls back to [`Frame::from_normal`] when `tangent` is (nearly) along `n`.
     #[inline]
     pub fn from_normal_and_tangent(n: Vec3A, tangent: Vec3A) -> Frame {
-        match (tangent - n * n.dot(tangent)).try_normalize() {
-            Some(t) => Frame { tangent: t, bitangent: n.cross(t), normal: n },
-            None => Frame::from_normal(n),
+        let perpendicular = tangent - n * n.dot(tangent);
+        // Nearly along the normal (or not finite): rounding would give an arbitrary axis.
+        if perpendicular.length_squared() > 1e-10 * tangent.length_squared() {
+            let t = perpendicular.normalize();
+            Frame { tangent: t, bitangent: n.cross(t), normal: n }
+        } else {
+            Frame::from_normal(n)
         }
     }
 
@@ -88,5 +92,6 @@ mod tests {
         assert!((f.to_local(want) - Vec3A::X).length() < 1e-6);
         // A tangent along the normal: the plain frame.
         assert_eq!(Frame::from_normal_and_tangent(n, n * 2.0), Frame::from_normal(n));
+        assert_eq!(Frame::from_normal_and_tangent(n, Vec3A::splat(f32::NAN)), Frame::from_normal(n));
     }
 }

@@ -249,11 +249,11 @@ fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_sh
     // (y = −½) at 2/3 of the radius. Beyond the ends (|y| > 1): none.
     let range = r#""colorRange" [ { "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 },
                        { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]"#;
-    let penumbra = r#""penumbra" [ { "penumbra_Position" 0, "penumbra_FloatValue" 0.25, "penumbra_Interp" 1 },
+    let penumbra = r#", "penumbra" [ { "penumbra_Position" 0, "penumbra_FloatValue" 0.25, "penumbra_Interp" 1 },
                        { "penumbra_Position" 1, "penumbra_FloatValue" 1, "penumbra_Interp" 1 } ]"#;
     // (shape, extra parameters, the light's centre's offset along x, expected value).
     let cases = [
-        (2, "", 0.0, 0.5),
+        (2, "", 0.0f32, 0.5f32),
         (2, penumbra, 0.0, 0.5 * 0.625),
         (2, "", 2.5, 0.0),
         (3, "", 0.0, 0.0),
@@ -264,7 +264,7 @@ fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_sh
         // World → light (rows): world x → light y, world y → light z, world z → light
         // x, all halved, the centre at (offset, 1, 0): the origin is at (0, −offset/2, −½).
         let c = scene(&format!(
-            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" {shape}, {range} {extra})
+            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" {shape}, {range}{extra})
                 origin 0 0 0 end light
             instance "vol_inst" "vol" transform 0 0.5 0 0  0 0 0.5 0  0.5 0 0 0  0 {} -0.5 1 end instance
             shader "lam" "adskMayaLambert" ("color" 0.5 0.5 0.5, "diffuse" 1)

@@ -393,7 +393,8 @@ impl VolumeShape {
             }
             _ => VolumePoint { distance: local.length(), radial: None },
         };
-        if !(point.distance <= 1.0) {
+        // Outside, or not a number (a hostile transform).
+        if point.distance.is_nan() || point.distance > 1.0 {
             return None;
         }
         if self.shape != 0 && self.arc < std::f32::consts::TAU && radial > 0.0 {
