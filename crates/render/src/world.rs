@@ -471,7 +471,7 @@ fn turn_facing_ribbons(
                 crate::hair::Facing::Point(cam_to_object.transform_point3a(Vec3A::ZERO))
             };
             crate::hair::ribbons(blocks, facing)
-                .map(|(m, _)| m.positions)
+                .map(|(m, _)| m.positions.into_iter().map(Vec3A::from).collect::<Vec<_>>())
                 .filter(|p| p.len() == mesh.positions.len() && p.iter().all(|v| v.is_finite()))
         })
         .collect();
