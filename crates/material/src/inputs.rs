@@ -122,8 +122,9 @@ pub struct HitMaterial<'a> {
     pub diffuse: Rgb,
     /// Emitted radiance (towards the normal for a spot: see `emission_spot`).
     pub emission: Rgb,
-    /// The directional spread of the emission, if not Lambertian.
-    pub emission_spot: Option<crate::spot_edf::SpotEdf>,
+    /// The directional spread of the emission, if not Lambertian (the material's own:
+    /// borrowed, so that the common Lambertian hit carries a word instead of the spot).
+    pub emission_spot: Option<&'a crate::spot_edf::SpotEdf>,
     /// The scattering model with the point's parameters.
     pub model: Cow<'a, SurfaceModel>,
     /// Coverage.
@@ -198,7 +199,7 @@ impl SurfaceMaterial {
         HitMaterial {
             diffuse: self.diffuse,
             emission: self.emission,
-            emission_spot: self.emission_spot,
+            emission_spot: self.emission_spot.as_ref(),
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
             normal: None,

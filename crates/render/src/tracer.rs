@@ -204,6 +204,10 @@ fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [u
 pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A, time: f32) -> Vec3A {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
+    if inst.motion_to_world.is_none() && mesh.motion.is_empty() {
+        // Nothing of it moves (`motion` would add nothing): skip building a state.
+        return Vec3A::ZERO;
+    }
     let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
     let s = State {
         point,
