@@ -298,7 +298,7 @@ fn scene_copies_of_the_modules_load() {
             loaded += 1;
         }
     }
-    assert_eq!(loaded, 9);
+    assert_eq!(loaded, 10);
     assert!(set.module("::chain::top").is_none(), "only what is asked for and imported is loaded");
     set.load("::chain::top").unwrap();
     assert!(set.material("::export_multi::matte").is_some());
