@@ -217,6 +217,52 @@ fn a_planar_projection_of_world_space_drives_the_checker() {
     assert!(close(c, Rgb::ZERO, 1e-6), "{c:?}");
 }
 
+/// A shading point at `p` with shading and geometric normal `n` (world = object space).
+fn on_surface(p: Vec3A, n: Vec3A) -> State {
+    State { normal: n, normal_geom: n, dir: -n, point: p, ..State::default() }
+}
+
+/// The colour the `*_uv` materials show for coordinate (u, v) and u tangent x.
+fn uv_colour(u: f32, v: f32, tangent_x: f32) -> Rgb {
+    Rgb::new(0.5 + 0.1 * u, 0.5 + 0.1 * v, 0.5 + 0.5 * tangent_x)
+}
+
+#[test]
+fn spherical_cylindrical_and_cubic_projections_at_known_points() {
+    use std::f32::consts::{FRAC_PI_4, FRAC_PI_6};
+    // A sphere of radius 2 at longitude π/4, latitude π/6: u = 2·π/4, v = 2·π/6 (arc
+    // lengths), the u tangent east, (−sin φ, cos φ, 0).
+    let (mdl, lib) = one("spherical_uv", "");
+    let (phi, theta) = (FRAC_PI_4, FRAC_PI_6);
+    let n = Vec3A::new(theta.cos() * phi.cos(), theta.cos() * phi.sin(), theta.sin());
+    let (c, _) = at(get(&mdl, &lib, "m"), &on_surface(2.0 * n, n));
+    assert!(close(c, uv_colour(2.0 * phi, 2.0 * theta, -phi.sin()), 1e-5), "{c:?}");
+    // A cylinder of radius 1.5 (object space) at angle 1 rad, height 0.7: u = 1.5, v = 0.7;
+    // its top cap at (0.3, −0.4, 1) projects planar, (0.3, −0.4), u tangent +x.
+    let (mdl, lib) = one("cylindrical_uv", "");
+    let m = get(&mdl, &lib, "m");
+    let n = Vec3A::new(1.0f32.cos(), 1.0f32.sin(), 0.0);
+    let (c, _) = at(m, &on_surface(1.5 * n, n));
+    assert!(close(c, uv_colour(1.5, 0.0, -(1.0f32).sin()), 1e-5), "side at z = 0: {c:?}");
+    let (c, _) = at(m, &on_surface(1.5 * n + Vec3A::new(0.0, 0.0, 0.7), n));
+    assert!(close(c, uv_colour(1.5, 0.7, -(1.0f32).sin()), 1e-5), "side at z = 0.7: {c:?}");
+    let (c, _) = at(m, &on_surface(Vec3A::new(0.3, -0.4, 1.0), Vec3A::Z));
+    assert!(close(c, uv_colour(0.3, -0.4, 1.0), 1e-5), "cap: {c:?}");
+    // A box of half size 1 projected cubic through a scale of 1/2: on the −y face the
+    // plane is xz, (0.4, −1, −0.6) → (0.2, −0.3), u tangent +x; seen from inside (the
+    // normal facing the origin) the same.
+    let (mdl, lib) = one("cubic_uv", "");
+    let m = get(&mdl, &lib, "m");
+    let p = Vec3A::new(0.4, -1.0, -0.6);
+    for n in [-Vec3A::Y, Vec3A::Y] {
+        let (c, _) = at(m, &on_surface(p, n));
+        assert!(close(c, uv_colour(0.2, -0.3, 1.0), 1e-5), "normal {n}: {c:?}");
+    }
+    // The +x face: plane yz, (1, 0.4, −0.6) → (0.2, −0.3), u tangent +y (x = 0).
+    let (c, _) = at(m, &on_surface(Vec3A::new(1.0, 0.4, -0.6), Vec3A::X));
+    assert!(close(c, uv_colour(0.2, -0.3, 0.0), 1e-5), "+x face: {c:?}");
+}
+
 #[test]
 fn texel_reads_sizes_and_crops() {
     let (mdl, lib) = one("texel", "");
@@ -339,4 +385,15 @@ fn tile_colours_and_recoloured_numbers() {
         let (c, _) = at(m, &uv(0.3, v));
         assert!(close(c, want, 1e-5), "v {v}: {c:?} vs {want:?}");
     }
+}
+
+/// `df::measured_edf` is not compiled yet (no light profiles are read inside modules): a
+/// diagnostic at the `.mi` instance naming the module line of its profile, and no emission.
+#[test]
+fn a_measured_edf_is_an_error_at_its_module_line() {
+    let (mdl, lib, diags) = mdl_support::compile_text(r#"shader "m" "mdl::base_functions::measured_emitter" ()"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let d = &diags[0];
+    assert!(d.contains("t.mi:1:") && d.contains("base_functions.mdl:122:") && d.contains("measured_edf"), "{d}");
+    assert_eq!(get(&mdl, &lib, "m").emission, Rgb::ZERO);
 }

@@ -319,6 +319,14 @@ impl<'a> Evaluator<'a> {
                     ))
                 };
             }
+            Type::LightProfile => {
+                // No IES reader inside modules yet: say so at the profile's line, naming
+                // the one function that takes it.
+                return Err(problem(
+                    span,
+                    "`light_profile(…)`: mira reads no light profiles inside modules yet, so `df::measured_edf` is not compiled",
+                ));
+            }
             Type::Matrix(_, c, r) => {
                 let n = usize::from(*c) * usize::from(*r);
                 return match floats(&values).as_deref() {

@@ -49,6 +49,8 @@ pub enum StateFn {
     ObjectAxisX,
     /// The object's y axis in world space, unit.
     ObjectAxisY,
+    /// The object's z axis in world space, unit.
+    ObjectAxisZ,
 }
 
 /// A unary operator.
@@ -182,6 +184,16 @@ pub enum MathFn {
     /// weight c (clamped to [0, 1]), by `color_layer_mode`'s enumerator name
     /// ([`mdl::texture::blend_layer`]).
     Blend(&'static str),
+    /// `base::coordinate_projection`'s coordinate (u, v, 0) by projection mode of a point
+    /// (a), shading normal (b) and geometric normal (c) in the projector's space
+    /// ([`super::projection::coordinate`]).
+    Project(u8),
+    /// The direction in the projector's space along which a projection's u (lane 0) or v
+    /// (1) grows, of the same operands ([`super::projection::axis`]).
+    ProjectAxis(u8, u8),
+    /// The surface tangent u (0) or v (1) from the directions of u (a) and v (b) growth
+    /// and the normal (c) ([`super::projection::surface_tangent`]).
+    SurfaceTangent(u8),
 }
 
 /// A texture image as the expressions hold it (compared by identity).
@@ -542,6 +554,7 @@ fn state_value(f: StateFn, s: &State) -> Vec4 {
         StateFn::ObjectPosition => s.world_to_object.transform_point3a(s.point),
         StateFn::ObjectAxisX => s.object_to_world.transform_vector3a(Vec3A::X).normalize_or(Vec3A::X),
         StateFn::ObjectAxisY => s.object_to_world.transform_vector3a(Vec3A::Y).normalize_or(Vec3A::Y),
+        StateFn::ObjectAxisZ => s.object_to_world.transform_vector3a(Vec3A::Z).normalize_or(Vec3A::Z),
     };
     v.extend(0.0)
 }
@@ -622,6 +635,11 @@ fn math(f: MathFn, a: Vec4, b: Vec4, c: Vec4) -> Vec4 {
         Blend(mode) => {
             let below = Vec3A::from(a.truncate());
             mdl::texture::blend_layer(mode, below, Vec3A::from(b.truncate()), c.x.clamp(0.0, 1.0)).extend(0.0)
+        }
+        Project(mode) => super::projection::coordinate(mode, a.truncate(), b.truncate(), c.truncate()).extend(0.0),
+        ProjectAxis(mode, i) => super::projection::axis(mode, a.truncate(), b.truncate(), c.truncate(), i).extend(0.0),
+        SurfaceTangent(i) => {
+            super::projection::surface_tangent(a.truncate(), b.truncate(), c.truncate(), i).extend(0.0)
         }
     }
 }

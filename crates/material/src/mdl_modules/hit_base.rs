@@ -3,7 +3,7 @@
 //! constants where the coordinate is): `checker_texture`, `perlin_noise_texture`,
 //! `worley_noise_texture`, `flow_noise_texture`, `flake_noise_texture`,
 //! `gradient3_texture`, their `_bump_` forms, `tile_bump_texture`, `file_bump_texture`,
-//! `blend_color_layers` and `coordinate_projection` (planar).
+//! `blend_color_layers` and `coordinate_projection` (every projection mode).
 //!
 //! The parameters MDL declares `uniform` (sizes, levels, modes…) must be constants; the
 //! colours may vary over the surface. What is not compiled is an error naming the function
@@ -19,6 +19,7 @@ use super::eval::{kind, problem, Eval, Problem};
 use super::hit::{fold, BinOp, HitExpr, MathFn, StateFn};
 use super::hit_natives::{coordinate_info, enum_arg, mono_name, state_value, wrap_name};
 use super::procedural::{NoiseShaping, Pattern};
+use super::projection;
 use super::value::{HitType, Value};
 
 /// The arguments of one `::base` call, read by parameter name.
@@ -318,40 +319,63 @@ fn blend_color_layers(a: &Args) -> Eval {
     Ok(texture_return(c, mono))
 }
 
-/// `coordinate_projection` with a planar projection: the point in the chosen space through
-/// `projection_transform`, its (x, y) as the coordinate, the transformed x and y axes as
-/// tangents.
+/// `coordinate_projection`: the point, shading and geometric normals in the chosen space
+/// (object, world, or a texture space with object-space normals) through
+/// `projection_transform`, projected by `projection_type` ([`super::projection`]); the
+/// tangents are the directions of u and v growth brought back to world space and laid
+/// into the surface. Object-space normals and directions go through the object's unit
+/// axes (exact for rotations and uniform scales).
 fn coordinate_projection(a: &Args) -> Eval {
-    let projection = a.int("projection_type", 5)?;
-    if projection != 5 {
-        return Err(problem(
-            a.span,
-            format!("`base::coordinate_projection` of projection mode {projection} is not compiled yet (planar is)"),
-        ));
-    }
-    let (position, x, y) = match a.int("coordinate_system", 2)? {
-        1 => (state_value(StateFn::Position), Value::Vector(vec![1.0, 0.0, 0.0]), Value::Vector(vec![0.0, 1.0, 0.0])),
-        2 => {
-            (state_value(StateFn::ObjectPosition), state_value(StateFn::ObjectAxisX), state_value(StateFn::ObjectAxisY))
-        }
-        _ => {
-            return Err(problem(a.span, "`base::coordinate_projection` of texture coordinates is not compiled yet"));
-        }
+    let projection = a.int("projection_type", i32::from(projection::PLANAR))?;
+    let Some(mode) = u8::try_from(projection).ok().filter(|m| projection::known(*m)) else {
+        return Err(problem(a.span, format!("`base::coordinate_projection` of unknown projection mode {projection}")));
     };
     let m = match a.get("projection_transform") {
         None => glam::Mat4::IDENTITY,
         Some(Value::Vector(m)) if m.len() == 16 => glam::Mat4::from_cols_array(&std::array::from_fn(|i| m[i] as f32)),
         Some(v) => return Err(a.not_constant("projection_transform", v)),
     };
-    let through = |v: &Value, point: bool| -> Result<Value, Problem> {
-        let of = v.to_hit().ok_or_else(|| a.not_constant("coordinate", v))?;
-        Ok(Value::from_hit(HitExpr::Transform { matrix: m, of, point }, HitType::Vector(3)))
+    let state = |f: StateFn| Arc::new(HitExpr::State(f));
+    let axes_world = [Vec4::X, Vec4::Y, Vec4::Z].map(|v| Arc::new(HitExpr::Const(v)));
+    let axes_object = [StateFn::ObjectAxisX, StateFn::ObjectAxisY, StateFn::ObjectAxisZ].map(state);
+    // A world-space direction in the space of `axes` (their dot products), and back.
+    let into = |axes: &[Arc<HitExpr>; 3], v: Arc<HitExpr>| {
+        let lanes = axes.clone().map(|ax| (fold(HitExpr::Math(MathFn::Dot(3), [v.clone(), ax].into())), 1u8));
+        fold(HitExpr::Compose(Box::new(lanes)))
     };
-    let p = through(&position, true)?;
-    let flat = p.to_hit().ok_or_else(|| a.not_constant("coordinate", &p))?;
-    // Planar: the projected point's z is dropped.
-    let uv = fold(HitExpr::Binary(BinOp::Mul, flat, Arc::new(HitExpr::Const(Vec4::new(1.0, 1.0, 0.0, 0.0)))));
-    Ok(coordinate_info(Value::from_hit((*uv).clone(), HitType::Vector(3)), through(&x, false)?, through(&y, false)?))
+    let out_of = |axes: &[Arc<HitExpr>; 3], v: Arc<HitExpr>| {
+        let part =
+            |i: usize| fold(HitExpr::Binary(BinOp::Mul, fold(HitExpr::Lane(v.clone(), i as u8)), axes[i].clone()));
+        let sum = fold(HitExpr::Binary(BinOp::Add, fold(HitExpr::Binary(BinOp::Add, part(0), part(1))), part(2)));
+        fold(HitExpr::Math(MathFn::Normalize(3), [sum].into()))
+    };
+    let (position, axes) = match a.int("coordinate_system", 2)? {
+        0 => {
+            let space = u8::try_from(a.int("texture_space", 0)?).unwrap_or(u8::MAX);
+            (state(StateFn::TextureCoordinate(space)), &axes_object)
+        }
+        1 => (state(StateFn::Position), &axes_world),
+        2 => (state(StateFn::ObjectPosition), &axes_object),
+        c => return Err(problem(a.span, format!("`base::coordinate_projection` of coordinate system {c}"))),
+    };
+    let normal = into(axes, state(StateFn::Normal));
+    let geometric = into(axes, state(StateFn::GeometryNormal));
+    let through = |of: Arc<HitExpr>, point: bool| fold(HitExpr::Transform { matrix: m, of, point });
+    let operands: Box<[Arc<HitExpr>]> =
+        [through(position, true), through(normal, false), through(geometric, false)].into();
+    let uv = fold(HitExpr::Math(MathFn::Project(mode), operands.clone()));
+    // The rows of the projection's linear part: the directions of u and v growth in the
+    // chosen space (the projector's direction through the transpose of its matrix).
+    let growth = |i: u8| {
+        let r = fold(HitExpr::Math(MathFn::ProjectAxis(mode, i), operands.clone()));
+        out_of(axes, fold(HitExpr::Transform { matrix: m.transpose(), of: r, point: false }))
+    };
+    let (du, dv) = (growth(0), growth(1));
+    let tangent = |i: u8| {
+        let t = HitExpr::Math(MathFn::SurfaceTangent(i), [du.clone(), dv.clone(), state(StateFn::Normal)].into());
+        Value::from_hit(t, HitType::Vector(3))
+    };
+    Ok(coordinate_info(Value::from_hit((*uv).clone(), HitType::Vector(3)), tangent(0), tangent(1)))
 }
 
 /// The `::base` function `def` with `args` (those [`super::hit_natives::base`] does not

@@ -26,6 +26,7 @@ pub mod hit_natives;
 pub mod lower;
 pub mod natives;
 pub mod procedural;
+pub mod projection;
 pub mod textures;
 pub mod value;
 pub mod volume;
