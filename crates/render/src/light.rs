@@ -73,7 +73,7 @@ pub enum Output {
     /// Maya volume lights: the colour a lit point receives from the light's origin
     /// depends on where the point lies in the light's volume (see
     /// [`material::emission::maya::VolumeEmission`]); nothing outside it.
-    Volume(material::emission::maya::VolumeEmission),
+    Volume(Box<material::emission::maya::VolumeEmission>),
     /// `mia_portal_light`: a window bringing the environment in. Its surface radiance
     /// along a direction is `scale` × the environment's radiance along it (the integrator
     /// multiplies the two), towards the shape's normal side (the other with `reverse`).

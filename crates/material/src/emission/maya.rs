@@ -195,7 +195,7 @@ fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: R
         range: VolumeRamp::new(&range).ok_or_else(|| too_many("colorRange", range.len()))?,
         penumbra: VolumeRamp::new(&penumbra).ok_or_else(|| too_many("penumbra graph", penumbra.len()))?,
     };
-    Ok(Emission { power: Power::Volume(volume), spot_exponent: None, cone: None, distribution: None })
+    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
 }
 
 /// The evenly scaled whole sphere whose `colorRange` (sorted keys `range`) is empty, one
@@ -297,10 +297,10 @@ mod tests {
         assert!(stop == 3.0 && (3.0 - start) < 1e-3 && start < 3.0);
         // Boxes and uneven scales become volume emission; other directions are left out.
         let e = emission_of("maya_volumelight", &params(r#""lightShape" 0"#), scale).unwrap().unwrap();
-        assert!(matches!(e.power, Power::Volume(v) if v.shape.shape == 0));
+        assert!(matches!(e.power, Power::Volume(ref v) if v.shape.shape == 0));
         let uneven = DMat4::from_scale(glam::DVec3::new(1.0, 2.0, 1.0));
         let e = emission_of("maya_volumelight", &params(""), uneven).unwrap().unwrap();
-        assert!(matches!(e.power, Power::Volume(v) if v.shape.shape == 1));
+        assert!(matches!(e.power, Power::Volume(ref v) if v.shape.shape == 1));
         assert!(emission_of("maya_volumelight", &params(r#""volumeLightDir" 1"#), scale).unwrap().is_err());
     }
 
@@ -315,7 +315,7 @@ mod tests {
             { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]"#;
         let volume = |text: String| match emission_of("maya_volumelight", &params(&text), scale).unwrap().unwrap().power
         {
-            Power::Volume(v) => v,
+            Power::Volume(v) => *v,
             other => panic!("{other:?}"),
         };
         let at = |v: &VolumeEmission, x: f32, y: f32, z: f32| v.at(glam::Vec3A::new(x, y, z)).x / PI;
