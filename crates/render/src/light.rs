@@ -70,6 +70,10 @@ pub enum Output {
         /// How it varies with direction (`None`: uniform).
         distribution: Option<Arc<LocalDistribution>>,
     },
+    /// Maya volume lights: the colour a lit point receives from the light's origin
+    /// depends on where the point lies in the light's volume (see
+    /// [`material::emission::maya::VolumeEmission`]); nothing outside it.
+    Volume(Box<material::emission::maya::VolumeEmission>),
     /// `mia_portal_light`: a window bringing the environment in. Its surface radiance
     /// along a direction is `scale` × the environment's radiance along it (the integrator
     /// multiplies the two), towards the shape's normal side (the other with `reverse`).
@@ -188,10 +192,12 @@ impl LightSource {
                 return Err(format!("light '{}': mia_portal_light needs an area light shape", light.instance))
             }
             (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
+            (Power::Volume(volume), _, _) => Output::Volume(volume),
             (p, LightKind::Directional, _) => Output::Irradiance(match p {
                 Power::Exitance(c) | Power::Radiance(c) | Power::Flux(c) | Power::Intensity(c) => c,
                 Power::Constant { color, .. } | Power::Photometric { color, .. } => color,
                 Power::Portal { scale, .. } => scale,
+                Power::Volume(volume) => volume.color,
             }),
             (Power::Photometric { color, exponent, range }, _, _) => {
                 Output::Photometric { color, exponent, range, distribution }
@@ -297,6 +303,18 @@ impl LightSource {
                 };
                 let radiance = *color * atten * self.spot(-wi);
                 (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
+            }
+            Output::Volume(volume) => {
+                let d = self.position - p;
+                let dist = d.length();
+                let radiance = volume.at(-d);
+                (dist > 0.0 && radiance.max_element() > 0.0).then_some(LightSample {
+                    wi: d / dist,
+                    dist,
+                    radiance,
+                    pdf: 1.0,
+                    delta: true,
+                })
             }
             Output::Portal { scale, reverse } => {
                 let (q, n) = self.point_on(u);

@@ -14,9 +14,12 @@
 //!   sphere uniformly to radius R: a point light at its centre with a linear falloff from
 //!   the centre to R when `colorRange` runs linearly from black on the boundary (position
 //!   0) to a colour c at the centre (position 1) — the classic light's c·(1 − r/R) exactly
-//!   —, or constant inside R when `colorRange` is one colour or empty (white); other
-//!   shapes, scales, ramps, arcs below 360° and light directions other than outward are
-//!   left out with a message;
+//!   —, or constant inside R when `colorRange` is one colour or empty (white);
+//! - every other volume light (box, cylinder, cone, arcs, uneven scales, other ramps of
+//!   up to [`MAX_RAMP_KEYS`] keys): a point light at the light's origin giving a point the
+//!   classic light's colour there ([`VolumeEmission`]: the shape, the `colorRange` ramp
+//!   and the cylinder's and cone's `penumbra` graph, read as the classic light reads them);
+//!   light directions other than outward (`volumeLightDir`) are left out with a message;
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
 //!   lights); ambient lights are left out (no counterpart): both with a message.
 
@@ -73,65 +76,161 @@ pub fn light_emission(light: &scene::Light, lib: &scene::Library) -> Option<Resu
     emission_of(decl, params, light.light_to_world)
 }
 
-/// The keys (position, colour) of a constant `colorRange` ramp.
-fn ramp_keys(params: &[Param]) -> Vec<(f32, Rgb)> {
-    let Some(Value::Array(items)) = params.iter().rev().find(|p| p.name.text == "colorRange").map(|p| &p.value) else {
+/// The keys (position, value, Maya interpolation) of the ramp array parameter `name`
+/// whose members are `<name>_Position`, `<name>_<member>` and `<name>_Interp`, sorted by
+/// position; a member a key leaves out reads 0 (the declaration's zero: position 0, value
+/// black, interpolation 0 = none), as the classic light reads the compiled struct; a value
+/// may be a colour or a scalar.
+fn ramp_keys(params: &[Param], name: &str, member: &str) -> Vec<(f32, Rgb, i32)> {
+    let Some(Value::Array(items)) = params.iter().rev().find(|p| p.name.text == name).map(|p| &p.value) else {
         return Vec::new();
     };
-    items
+    let value = format!("{name}_{member}");
+    let mut keys: Vec<(f32, Rgb, i32)> = items
         .iter()
         .filter_map(|item| {
             let Value::Struct(members) = item else { return None };
-            let position = scalar_param(members, "colorRange_Position")? as f32;
-            let color = color_param(members, "colorRange_Color")?.ok()?;
-            Some((position, color))
+            let position = scalar_param(members, &format!("{name}_Position")).unwrap_or(0.0) as f32;
+            let v = match color_param(members, &value) {
+                Some(Ok(c)) => c,
+                _ => Rgb::splat(scalar_param(members, &value).unwrap_or(0.0) as f32),
+            };
+            let interp = scalar_param(members, &format!("{name}_Interp")).unwrap_or(0.0) as i32;
+            Some((position, v, interp))
         })
-        .collect()
+        .collect();
+    keys.sort_by(|a, b| a.0.total_cmp(&b.0));
+    keys
 }
 
-/// A volume light (see the module doc): `color` is π · colour · intensity.
+/// The most keys a volume light's ramp may have in the path engine.
+pub const MAX_RAMP_KEYS: usize = 8;
+
+/// A volume light's `colorRange` ramp or `penumbra` graph, as the classic light reads it
+/// (`maya::utility::curve_at`: Maya's none, linear and smooth interpolations; white when
+/// empty), held in place so the light stays `Copy`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeRamp {
+    keys: [(f32, Rgb, i32); MAX_RAMP_KEYS],
+    len: usize,
+}
+
+impl VolumeRamp {
+    /// The ramp of sorted `keys` (position, value, interpolation), `None` past
+    /// [`MAX_RAMP_KEYS`].
+    pub fn new(keys: &[(f32, Rgb, i32)]) -> Option<VolumeRamp> {
+        let mut ramp = VolumeRamp { keys: [(0.0, Rgb::ZERO, 1); MAX_RAMP_KEYS], len: keys.len() };
+        ramp.keys.get_mut(..keys.len())?.copy_from_slice(keys);
+        Some(ramp)
+    }
+
+    /// The ramp at position `t` (0 the volume's boundary, 1 its centre or axis).
+    pub fn at(&self, t: f32) -> Rgb {
+        if self.len == 0 {
+            Rgb::ONE
+        } else {
+            ::maya::utility::curve_at(&self.keys[..self.len], t)
+        }
+    }
+}
+
+/// A Maya volume light in the path engine: a point light at the light's origin giving a
+/// lit point `color` × `range` at 1 − d, for cylinders and cones also × `penumbra` at
+/// 1 − d, where d is the point's normalised distance in the light's shape
+/// ([`::maya::light::VolumeShape::locate`]), nothing outside; no decay. The classic
+/// light's formula exactly (its `emitted` colour times π, see the module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeEmission {
+    /// π · `color` · `intensity`.
+    pub color: Rgb,
+    /// The shape, arc and cone end.
+    pub shape: ::maya::light::VolumeShape,
+    /// World → light-local map of offsets from the light's origin (the inverse of the
+    /// linear part of the light's transform, which maps the unit shape onto the volume).
+    pub to_local: glam::Mat3A,
+    /// `colorRange`.
+    pub range: VolumeRamp,
+    /// `penumbra` (cylinders and cones).
+    pub penumbra: VolumeRamp,
+}
+
+impl VolumeEmission {
+    /// The colour arriving at the point `offset` (world space) from the light's origin.
+    pub fn at(&self, offset: glam::Vec3A) -> Rgb {
+        let Some(at) = self.shape.locate(self.to_local * offset) else { return Rgb::ZERO };
+        let c = self.color * self.range.at(1.0 - at.distance);
+        match at.radial {
+            Some(r) => c * self.penumbra.at(1.0 - r).x,
+            None => c,
+        }
+    }
+}
+
+/// A volume light (see the module doc): `color` is π · colour · intensity. The evenly
+/// scaled whole sphere with a constant or black-to-colour ramp becomes a base light with
+/// a linear falloff; every other shape a [`Power::Volume`].
 fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: Rgb) -> Result<Emission, String> {
-    let shape = scalar_param(params, "lightShape").unwrap_or(1.0) as i32;
-    if shape != 1 {
-        return Err(format!("{decl} of lightShape {shape} (not a sphere) has no path-engine counterpart; left out"));
-    }
-    let arc = scalar_param(params, "arc").unwrap_or(360.0);
-    if arc < 360.0 {
-        return Err(format!("{decl}: a sphere cut to an arc of {arc}° has no path-engine counterpart; left out"));
-    }
     let direction = scalar_param(params, "volumeLightDir").unwrap_or(0.0);
     if direction != 0.0 {
         return Err(format!(
             "{decl}: volumeLightDir {direction} (inward or down the axis) has no path-engine counterpart; left out"
         ));
     }
+    let range = ramp_keys(params, "colorRange", "Color");
+    if let Some(e) = sphere_point_light(params, light_to_world, color, &range) {
+        return Ok(e);
+    }
+    let too_many = |what: &str, n: usize| {
+        format!("{decl}: a {what} of {n} keys (more than {MAX_RAMP_KEYS}) has no path-engine counterpart; left out")
+    };
+    let penumbra = ramp_keys(params, "penumbra", "FloatValue");
+    let volume = VolumeEmission {
+        color,
+        shape: ::maya::light::VolumeShape {
+            shape: scalar_param(params, "lightShape").unwrap_or(1.0) as i32,
+            arc: (scalar_param(params, "arc").unwrap_or(360.0) as f32).to_radians(),
+            cone_end_radius: scalar_param(params, "coneEndRadius").unwrap_or(0.0) as f32,
+        },
+        to_local: shader::light::profiles::to_local(light_to_world),
+        range: VolumeRamp::new(&range).ok_or_else(|| too_many("colorRange", range.len()))?,
+        penumbra: VolumeRamp::new(&penumbra).ok_or_else(|| too_many("penumbra graph", penumbra.len()))?,
+    };
+    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+}
+
+/// The evenly scaled whole sphere whose `colorRange` (sorted keys `range`) is empty, one
+/// colour, or linear from black on the boundary to a colour at the centre: a base light at
+/// its centre with a linear falloff to the radius (the classic light's c·(1 − r/R)
+/// exactly); `None` for any other volume light.
+fn sphere_point_light(
+    params: &[Param],
+    light_to_world: DMat4,
+    color: Rgb,
+    range: &[(f32, Rgb, i32)],
+) -> Option<Emission> {
+    let whole = scalar_param(params, "lightShape").unwrap_or(1.0) as i32 == 1
+        && scalar_param(params, "arc").unwrap_or(360.0) >= 360.0;
     let scales = [0, 1, 2].map(|i| light_to_world.col(i).truncate().length());
     let radius = scales[0];
-    if radius.is_nan() || radius <= 0.0 || scales.iter().any(|s| (s - radius).abs() > 1e-3 * radius) {
-        return Err(format!("{decl}: a sphere scaled unevenly ({scales:?}) has no path-engine counterpart; left out"));
+    if !whole || radius.is_nan() || radius <= 0.0 || scales.iter().any(|s| (s - radius).abs() > 1e-3 * radius) {
+        return None;
     }
     let radius = radius as f32;
-    let keys = ramp_keys(params);
-    let (tint, start) = match keys.as_slice() {
+    let (tint, start) = match range {
         [] => (Rgb::ONE, radius),
-        [(_, c)] => (*c, radius),
-        [a, b] => {
-            let (boundary, centre) = if a.0 <= b.0 { (a, b) } else { (b, a) };
-            if boundary.0 != 0.0 || centre.0 != 1.0 || boundary.1 != Rgb::ZERO {
-                return Err(format!(
-                    "{decl}: a colorRange other than black on the boundary to a colour at the centre has no \
-                     path-engine counterpart; left out"
-                ));
+        [(_, c, _)] => (*c, radius),
+        [boundary, centre] => {
+            let linear = boundary.0 == 0.0 && centre.0 == 1.0 && boundary.2 == 1 && boundary.1 == Rgb::ZERO;
+            if !linear {
+                return None;
             }
             (centre.1, 0.0)
         }
-        _ => {
-            return Err(format!("{decl}: a colorRange of {} keys has no path-engine counterpart; left out", keys.len()))
-        }
+        _ => return None,
     };
     // A constant light stops at the boundary: a falloff over the last 10⁻⁴ of the radius.
     let start = start.min(radius * (1.0 - 1e-4));
-    Ok(Emission {
+    Some(Emission {
         power: Power::Constant { color: color * tint, falloff: Some((start, radius)) },
         spot_exponent: None,
         cone: None,
@@ -196,9 +295,49 @@ mod tests {
         let Power::Constant { color, falloff: Some((start, stop)) } = e.power else { panic!("{:?}", e.power) };
         assert!((color - Rgb::splat(0.5 * PI)).abs().max_element() < 1e-6);
         assert!(stop == 3.0 && (3.0 - start) < 1e-3 && start < 3.0);
-        // Boxes, uneven scales and other ramps are left out with a message.
-        assert!(emission_of("maya_volumelight", &params(r#""lightShape" 0"#), scale).unwrap().is_err());
+        // Boxes and uneven scales become volume emission; other directions are left out.
+        let e = emission_of("maya_volumelight", &params(r#""lightShape" 0"#), scale).unwrap().unwrap();
+        assert!(matches!(e.power, Power::Volume(ref v) if v.shape.shape == 0));
         let uneven = DMat4::from_scale(glam::DVec3::new(1.0, 2.0, 1.0));
-        assert!(emission_of("maya_volumelight", &params(""), uneven).unwrap().is_err());
+        let e = emission_of("maya_volumelight", &params(""), uneven).unwrap().unwrap();
+        assert!(matches!(e.power, Power::Volume(ref v) if v.shape.shape == 1));
+        assert!(emission_of("maya_volumelight", &params(r#""volumeLightDir" 1"#), scale).unwrap().is_err());
+    }
+
+    /// Box, cylinder and cone volume lights of scale 2 give a point the classic light's
+    /// colour: the ramp (black on the boundary to white at the centre) at 1 − d, the
+    /// penumbra graph at 1 − (distance from the axis), nothing outside.
+    #[test]
+    fn box_cylinder_and_cone_volume_lights_follow_their_shape_and_ramps() {
+        let scale = DMat4::from_scale(glam::DVec3::splat(2.0));
+        let ramp = r#""colorRange" [
+            { "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 },
+            { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]"#;
+        let volume = |text: String| match emission_of("maya_volumelight", &params(&text), scale).unwrap().unwrap().power
+        {
+            Power::Volume(v) => *v,
+            other => panic!("{other:?}"),
+        };
+        let at = |v: &VolumeEmission, x: f32, y: f32, z: f32| v.at(glam::Vec3A::new(x, y, z)).x / PI;
+        // Box: d is the largest coordinate over the half-size 2.
+        let b = volume(format!(r#""lightShape" 0, {ramp}"#));
+        assert!((at(&b, 1.0, 0.5, -0.2) - 0.5).abs() < 1e-6);
+        assert!((at(&b, 0.2, -1.5, 1.0) - 0.25).abs() < 1e-6);
+        assert_eq!(at(&b, 2.1, 0.0, 0.0), 0.0);
+        // Cylinder: d is the distance from the y axis over 2; a penumbra graph from 0.5 at
+        // the edge to 1 on the axis multiplies it.
+        let penumbra = r#""penumbra" [ { "penumbra_Position" 0, "penumbra_FloatValue" 0.5, "penumbra_Interp" 1 },
+            { "penumbra_Position" 1, "penumbra_FloatValue" 1 } ]"#;
+        let c = volume(format!(r#""lightShape" 2, {ramp}, {penumbra}"#));
+        assert!((at(&c, 0.0, 1.9, 1.0) - 0.5 * 0.75).abs() < 1e-6);
+        assert_eq!(at(&c, 0.0, 2.1, 0.0), 0.0);
+        // Cone with coneEndRadius 0: the radius halves at y = 0.
+        let k = volume(format!(r#""lightShape" 3, "coneEndRadius" 0, {ramp}"#));
+        assert!((at(&k, 0.5, 0.0, 0.0) - 0.5).abs() < 1e-6);
+        assert_eq!(at(&k, 0.0, 1.0, 1.1), 0.0);
+        // An arc of 90° keeps the quarter from +x towards −z.
+        let a = volume(format!(r#""lightShape" 2, "arc" 90, {ramp}"#));
+        assert!(at(&a, 0.5, 0.0, -0.5) > 0.0);
+        assert_eq!(at(&a, 0.5, 0.0, 0.5), 0.0);
     }
 }

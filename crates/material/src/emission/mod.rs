@@ -17,7 +17,7 @@ use shader::light::ies::Profile;
 pub use shader::light::profiles::Distribution;
 
 /// How a light's colour is to be read.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Power {
     /// Radiant exitance of the light's surface (MDL `lumen_m2`): L = E / π.
     Exitance(Rgb),
@@ -47,6 +47,10 @@ pub enum Power {
         /// `(start, stop)`: the falloff applies only between them.
         range: Option<(f32, f32)>,
     },
+    /// Maya volume lights other than the evenly scaled whole sphere (box, cylinder, cone,
+    /// arcs, uneven scales): a point light at the light's origin whose colour arriving at
+    /// a point depends on where the point lies in the light's volume ([`maya::VolumeEmission`]).
+    Volume(Box<maya::VolumeEmission>),
     /// `mia_portal_light` (area lights over windows): the surface radiance along a
     /// direction is `scale` × the environment's radiance along it, emitted to the side of
     /// the shape's normal (the other side with `reverse`). `use_custom_environment`,
