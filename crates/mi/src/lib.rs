@@ -19,9 +19,12 @@ pub mod lexer;
 mod parser;
 pub mod preprocess;
 mod printer;
+#[cfg(unix)]
+mod sigbus;
 pub mod source;
 pub mod stats;
 pub mod stdlib;
+pub mod text;
 
 use std::path::Path;
 
@@ -65,13 +68,14 @@ pub fn parse_str(name: &str, text: &str) -> Parsed {
     parse_source(Origin::Memory(name.to_string()), text.as_bytes().to_vec(), &ReadOptions::default())
 }
 
-/// Parses `.mi` bytes from any origin (a `Vec<u8>`, or an `Arc<[u8]>` the parser shares
-/// without copying).
-pub fn parse_source(origin: Origin, bytes: impl Into<std::sync::Arc<[u8]>>, options: &ReadOptions) -> Parsed {
-    let bytes: std::sync::Arc<[u8]> = bytes.into();
+/// Parses `.mi` bytes from any origin (a `Vec<u8>`, an `Arc<[u8]>` or a mapped
+/// [`text::SourceText`] the parser shares without copying). A mapped file that changed on
+/// disk while it was read gives an error (its text may be a mix of old and new).
+pub fn parse_source(origin: Origin, bytes: impl Into<text::SourceText>, options: &ReadOptions) -> Parsed {
+    let bytes: text::SourceText = bytes.into();
     let mut sources = SourceMap::new();
     let too_big = bytes.len() as u64 > source::MAX_FILE_SIZE;
-    let root = sources.add(origin, if too_big { std::sync::Arc::from(Vec::new()) } else { bytes });
+    let root = sources.add(origin, if too_big { text::SourceText::from(Vec::new()) } else { bytes });
     let stream = preprocess::TokenStream::new(sources, root, options.clone());
     let mut parser = parser::Parser::new(stream, options.max_errors);
     let items = parser.items(parser::Until::Eof);
@@ -87,6 +91,12 @@ pub fn parse_source(origin: Origin, bytes: impl Into<std::sync::Arc<[u8]>>, opti
     if diagnostics.error_count() >= options.max_errors {
         let last = diagnostics.list.last().map_or(Span::default(), |d| d.span);
         diagnostics.push(Diagnostic::error(last, "too many errors; stopped reading"));
+    }
+    for name in parser.ts.sources.changed_on_disk() {
+        diagnostics.push(Diagnostic::error(
+            Span::default(),
+            format!("{name} changed on disk while it was being read; read it again once it is written"),
+        ));
     }
     Parsed { items, sources: parser.ts.sources, diagnostics, includes: parser.ts.includes }
 }

@@ -1,7 +1,9 @@
 //! Source files and positions: every syntax node points back into the text it came from.
 
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
+
+use crate::text::SourceText;
 
 /// Index of a file in a [`SourceMap`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -63,8 +65,9 @@ pub enum Origin {
 pub struct SourceFile {
     /// Where the text came from.
     pub origin: Origin,
-    /// The raw bytes (a `.mi` file may hold binary blocks, so this is not `str`).
-    pub bytes: Arc<[u8]>,
+    /// The raw bytes (a `.mi` file may hold binary blocks, so this is not `str`); a big file
+    /// read from disk is mapped (see [`crate::text`]).
+    pub bytes: SourceText,
     line_starts: OnceLock<Vec<u32>>,
     /// Whether [`SourceMap::release_text`] freed `bytes` (to be read again from disk).
     released: bool,
@@ -133,7 +136,7 @@ impl SourceMap {
     }
 
     /// Adds a file and returns its id.
-    pub fn add(&mut self, origin: Origin, bytes: impl Into<Arc<[u8]>>) -> FileId {
+    pub fn add(&mut self, origin: Origin, bytes: impl Into<SourceText>) -> FileId {
         let id = FileId(self.files.len() as u32);
         self.files.push(SourceFile { origin, bytes: bytes.into(), line_starts: OnceLock::new(), released: false });
         id
@@ -148,7 +151,7 @@ impl SourceMap {
         for f in &mut self.files {
             if matches!(f.origin, Origin::Disk(_)) && !f.released && f.bytes.len() >= min_bytes {
                 freed += f.bytes.len();
-                f.bytes = Arc::from(Vec::new());
+                f.bytes = SourceText::from(Vec::new());
                 f.line_starts = OnceLock::new();
                 f.released = true;
             }
@@ -207,10 +210,17 @@ impl SourceMap {
         let (line, col) = file.line_col(span.lo);
         format!("{}:{}:{}", file.name(), line, col)
     }
+
+    /// The names of the files read from disk that changed there while they were mapped
+    /// (see [`SourceText::changed_on_disk`]).
+    pub fn changed_on_disk(&self) -> Vec<String> {
+        self.files.iter().filter(|f| f.bytes.changed_on_disk()).map(|f| f.name()).collect()
+    }
 }
 
-/// Reads a source file, refusing files too large for 32-bit spans.
-pub fn read_source(path: &Path) -> Result<Arc<[u8]>, String> {
+/// Reads a source file, refusing files too large for 32-bit spans; files of
+/// [`crate::text::MAP_FROM_BYTES`] or more are mapped rather than read.
+pub fn read_source(path: &Path) -> Result<SourceText, String> {
     let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
     if !meta.is_file() {
         // A device such as /dev/zero never ends; a directory has no text.
@@ -219,28 +229,7 @@ pub fn read_source(path: &Path) -> Result<Arc<[u8]>, String> {
     if meta.len() > MAX_FILE_SIZE {
         return Err(format!("file is {} bytes; mira reads .mi files up to 4 GiB", meta.len()));
     }
-    read_shared(path, meta.len() as usize).map_err(|e| e.to_string())
-}
-
-/// The bytes of the file at `path`, `len` long by its metadata, read straight into the
-/// shared buffer the source map keeps (a `Vec` turned into an `Arc<[u8]>` would be copied,
-/// holding the text twice for a moment). A file whose length changed meanwhile is read
-/// whole the ordinary way.
-fn read_shared(path: &Path, len: usize) -> std::io::Result<Arc<[u8]>> {
-    use std::io::Read;
-    let mut file = std::fs::File::open(path)?;
-    // `repeat_n` knows its length: the Arc is allocated once, at its final size.
-    let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
-    let whole = match Arc::get_mut(&mut bytes) {
-        Some(buf) => file.read_exact(buf).is_ok() && file.read(&mut [0u8; 1])? == 0,
-        None => false,
-    };
-    if whole {
-        Ok(bytes)
-    } else {
-        drop(bytes);
-        Ok(std::fs::read(path)?.into())
-    }
+    SourceText::open(path, meta.len()).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -147,7 +147,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         diags.extend(textures.warnings.drain(..).map(|w| Diagnostic::warning(decl.span, w)));
         out.by_call.insert((span.file.0, span.lo), surface);
     }
-    out.module_sources = set.sources().files().map(|(_, f)| f.bytes.clone()).collect();
+    out.module_sources = set.sources().files().map(|(_, f)| f.bytes.shared_bytes()).collect();
     (out, diags)
 }
 

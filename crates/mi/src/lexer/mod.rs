@@ -7,7 +7,7 @@
 //! (`1.`, `.5`, `-2.5e-05`); backquotes enclose raw binary bytes. Lines starting with `$`
 //! are preprocessor directives, which the lexer recognises and [`crate::preprocess`] acts on.
 
-use std::sync::Arc;
+use crate::text::SourceText;
 
 use crate::diag::Diagnostic;
 use crate::source::{FileId, Span};
@@ -27,7 +27,7 @@ pub use token::{Directive, SkipEnd, Tok, Token};
 pub struct Lexer {
     /// The file being read.
     pub file: FileId,
-    src: Arc<[u8]>,
+    src: SourceText,
     /// Offset of the next unread byte.
     pub pos: usize,
 }
@@ -95,7 +95,8 @@ pub fn bytes_to_string(bytes: Vec<u8>) -> String {
 
 impl Lexer {
     /// A lexer at the start of `src` (after a UTF-8 byte-order mark, if there is one).
-    pub fn new(file: FileId, src: Arc<[u8]>) -> Lexer {
+    pub fn new(file: FileId, src: impl Into<SourceText>) -> Lexer {
+        let src = src.into();
         let pos = if src.starts_with(&[0xef, 0xbb, 0xbf]) { 3 } else { 0 };
         Lexer { file, src, pos }
     }
@@ -227,7 +228,7 @@ mod tests {
     use super::*;
 
     fn lex_all(text: &str) -> Vec<Tok> {
-        let mut lx = Lexer::new(FileId(0), Arc::from(text.as_bytes()));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(text.as_bytes()));
         let mut out = Vec::new();
         loop {
             let t = lx.next_token().expect("lexes");
@@ -239,7 +240,7 @@ mod tests {
     }
 
     fn lex_err(text: &str) -> Diagnostic {
-        let mut lx = Lexer::new(FileId(0), Arc::from(text.as_bytes()));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(text.as_bytes()));
         loop {
             match lx.next_token() {
                 Err(e) => return e,
@@ -325,7 +326,7 @@ mod tests {
 
     #[test]
     fn directives() {
-        let mut lx = Lexer::new(FileId(0), Arc::from(&b"$include <base.mi>\n$ifdef \"x\"\n"[..]));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(&b"$include <base.mi>\n$ifdef \"x\"\n"[..]));
         let t = lx.next_token().unwrap();
         assert_eq!(t.tok, Tok::Directive(Directive::Include { angle: true }));
         assert_eq!(&lx.src()[t.span.lo as usize..t.span.hi as usize], b"base.mi");
@@ -343,7 +344,7 @@ mod tests {
     #[test]
     fn conditional_skipping_handles_nesting() {
         let text = b"a\n$ifdef y\n$else\n$endif\n$else\nb\n$endif\nc";
-        let mut lx = Lexer::new(FileId(0), Arc::from(&text[..]));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(&text[..]));
         lx.pos = 2;
         assert!(matches!(lx.skip_conditional(true), Some(SkipEnd::Else(Directive::Else, _))));
         assert_eq!(lx.next_token().unwrap().span.lo, 30); // `b`
@@ -389,7 +390,7 @@ mod tests {
 
     #[test]
     fn fast_paths_read_numbers_and_binary() {
-        let mut lx = Lexer::new(FileId(0), Arc::from(&b"1. -2.5e-1 .5 # c\n 7 v 3 4"[..]));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(&b"1. -2.5e-1 .5 # c\n 7 v 3 4"[..]));
         let mut v = Vec::new();
         while let Some(x) = lx.try_f32().unwrap() {
             v.push(x);
@@ -397,10 +398,10 @@ mod tests {
         assert_eq!(v, vec![1.0, -0.25, 0.5, 7.0]);
         assert_eq!(lx.next_token().unwrap().tok, Tok::Name);
         assert_eq!(lx.try_u32().unwrap(), Some(3));
-        let mut lx = Lexer::new(FileId(0), Arc::from(&b"`a`b` x"[..]));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(&b"`a`b` x"[..]));
         let span = lx.binary_exact(3).unwrap();
         assert_eq!((span.lo, span.hi), (1, 4));
-        let mut lx = Lexer::new(FileId(0), Arc::from(&b"`ab"[..]));
+        let mut lx = Lexer::new(FileId(0), std::sync::Arc::<[u8]>::from(&b"`ab"[..]));
         assert!(lx.binary_exact(8).unwrap_err().message.contains("cut short"));
     }
 }

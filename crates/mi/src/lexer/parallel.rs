@@ -45,6 +45,7 @@ impl Lexer {
         }
         let pieces = pieces(&self.src[start..end]);
         let keep = out.len();
+        let base = self.src.as_ptr() as usize;
         for round in pieces.chunks(PIECES_PER_ROUND) {
             let read: Option<Vec<Vec<T>>> = round
                 .par_iter()
@@ -59,6 +60,11 @@ impl Lexer {
             };
             for mut v in read {
                 out.append(&mut v);
+            }
+            // The text read so far is not needed again (unless a message quotes it or the
+            // serial path re-reads the list): a mapped file's pages go back to the page cache.
+            if let Some(last) = round.last() {
+                self.src.release_pages(start..last.as_ptr() as usize - base + last.len());
             }
         }
         self.pos = end + 1;
@@ -179,7 +185,7 @@ mod tests {
     use crate::source::FileId;
 
     fn lexer(text: &str) -> Lexer {
-        Lexer::new(FileId(0), Arc::from(text.as_bytes()))
+        Lexer::new(FileId(0), Arc::<[u8]>::from(text.as_bytes()))
     }
 
     /// Vertex lines in every form exporters write, with comments and blank lines, longer
