@@ -113,7 +113,9 @@ pub struct LightSource {
     pub shadow: bool,
     /// World → world displacement of the light at shutter times spread evenly over the
     /// shutter (see [`crate::motion`]) when its instance moves while the shutter is open
-    /// (the light is taken to move rigidly); empty: it stays where it is.
+    /// (the light is taken to move rigidly); empty: it stays where it is. (An object
+    /// light's triangles that change shape over the shutter carry their own keys in
+    /// their [`Shape::Mesh`].)
     pub motion: Vec<glam::Affine3A>,
 }
 
@@ -394,6 +396,9 @@ impl LightSource {
 
     /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        if let Some(shaped) = self.shaped_at(ray.time) {
+            return shaped.intersect(ray);
+        }
         if !self.motion.is_empty() {
             // Where the light is at the ray's time: the ray carried back to where it is at
             // the shutter's opening (a rigid motion keeps distances along it).
@@ -403,6 +408,16 @@ impl LightSource {
             return self.intersect_still(&still);
         }
         self.intersect_still(ray)
+    }
+
+    /// This light with its object triangles where they are at shutter time `time`, when
+    /// they change shape while the shutter is open ([`shader::light::MeshShape::at_time`];
+    /// the copy's triangles then hold still, its own `motion` still applies); `None` when
+    /// its shape holds at every time.
+    fn shaped_at(&self, time: f32) -> Option<LightSource> {
+        let Shape::Mesh(mesh) = &self.shape else { return None };
+        let at = mesh.at_time(time)?;
+        Some(LightSource { shape: Shape::Mesh(Arc::new(at)), ..self.clone() })
     }
 
     /// [`LightSource::intersect`] with the light where it is at the shutter's opening.
@@ -419,6 +434,9 @@ impl LightSource {
 
     /// [`LightSource::sample`] with the light where it is at shutter time `time`.
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
+        if let Some(shaped) = self.shaped_at(time) {
+            return shaped.sample_at(p, u, time);
+        }
         if self.motion.is_empty() {
             return self.sample(p, u);
         }
@@ -431,6 +449,9 @@ impl LightSource {
 
     /// [`LightSource::pdf`] with the light where it is at shutter time `time`.
     pub fn pdf_at(&self, p: Vec3A, wi: Vec3A, t: f32, time: f32) -> f32 {
+        if let Some(shaped) = self.shaped_at(time) {
+            return shaped.pdf_at(p, wi, t, time);
+        }
         if self.motion.is_empty() {
             return self.pdf(p, wi, t);
         }

@@ -218,11 +218,17 @@ impl<'a> Emitter<'a> {
     }
 
     /// The light where it is at shutter time `time` (moved with its instance when that
-    /// moves while the shutter is open).
+    /// moves while the shutter is open, its object triangles where the geometry has them
+    /// then when they change shape).
     fn light_at(&self, world: &World, time: f32) -> std::borrow::Cow<'a, ShadingLight> {
-        match world.light_motion.get(self.index).filter(|keys| !keys.is_empty()) {
-            Some(keys) => std::borrow::Cow::Owned(self.light.moved(crate::motion::lerp_keys(keys, time))),
-            None => std::borrow::Cow::Borrowed(self.light),
+        let shaped = world.light_meshes.get(self.index).and_then(|m| m.as_ref()?.at(time));
+        let by = world.light_motion.get(self.index).filter(|keys| !keys.is_empty());
+        let by = by.map(|keys| crate::motion::lerp_keys(keys, time));
+        match (shaped, by) {
+            (None, None) => std::borrow::Cow::Borrowed(self.light),
+            (None, Some(by)) => std::borrow::Cow::Owned(self.light.moved(by)),
+            (Some(mesh), None) => std::borrow::Cow::Owned(self.light.reshaped(mesh)),
+            (Some(mesh), Some(by)) => std::borrow::Cow::Owned(self.light.reshaped(mesh).moved(by)),
         }
     }
 

@@ -351,6 +351,10 @@ impl Tracer for SceneTracer<'_> {
         (!keys.is_empty()).then(|| crate::motion::lerp_keys(keys, time))
     }
 
+    fn light_mesh(&self, light: u32, time: f32) -> Option<shader::light::MeshShape> {
+        self.world.light_meshes.get(light as usize)?.as_ref()?.at(time)
+    }
+
     fn surface_scatter(&self, hit: &State) -> Option<shader::SurfaceScatter> {
         // The shading state's material is the scene's; the world's list starts with the
         // default material.

@@ -1,6 +1,8 @@
 //! The render world: the scene's meshes, instances, materials, lights and camera in the
 //! compact `f32` form the integrators read.
 
+use std::sync::Arc;
+
 use glam::{Affine3A, Mat3A, Vec3A};
 use material::SurfaceMaterial;
 use scene::Scene;
@@ -120,6 +122,13 @@ pub struct World {
     /// altogether when no light moves. The classic engine's light loop reads it
     /// through [`shader::Tracer::light_motion`].
     pub light_motion: Vec<Vec<Affine3A>>,
+    /// The scene's lights in scene order: the triangles over the shutter of each object
+    /// light whose triangles change shape while it is open (vertex motion vectors,
+    /// instances moving differently; [`crate::emitter_motion`]), `None` for the others;
+    /// empty altogether when there is none. They are placed before `light_motion`'s
+    /// displacement; the classic engine reads them through
+    /// [`shader::Tracer::light_mesh`], the path engine in its lights' shapes.
+    pub light_meshes: Vec<Option<Arc<shader::light::DeformingMesh>>>,
 }
 
 /// Divides the emission of materials given for their whole surface (MDL `lumen`,
@@ -376,14 +385,20 @@ impl World {
         }
         let mut camera = CameraModel::new(&scene.camera);
         let mut light_motion = Vec::new();
+        let mut light_meshes = Vec::new();
         let weights = shading.and_then(|s| s.shutter_weights.as_deref());
         let shutter = Shutter::from_options(&scene.options, weights).filter(|shutter| {
-            light_motion = light_keys(shutter, scene, &mut warnings);
-            for (light, index) in &mut lights {
-                light.motion = light_motion[*index].clone();
-            }
+            let deforming;
+            (light_motion, deforming) = light_keys(shutter, scene, &mut warnings);
             let lights_move = light_motion.iter().any(|k| !k.is_empty());
             let moving = set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings);
+            light_meshes = crate::emitter_motion::deforming_meshes(&deforming, &meshes, &instances);
+            for (light, index) in &mut lights {
+                light.motion = light_motion[*index].clone();
+                if let (Some(keys), shader::light::Shape::Mesh(mesh)) = (&light_meshes[*index], &light.shape) {
+                    light.shape = shader::light::Shape::Mesh(Arc::new((**mesh).clone().deforming(Arc::clone(keys))));
+                }
+            }
             for hair in &facing_hair {
                 turn_facing_ribbons(hair, scene, &mut meshes[hair.mesh as usize], &instances[hair.instance], &camera);
             }
@@ -391,6 +406,9 @@ impl World {
         });
         if shutter.is_none() || light_motion.iter().all(Vec::is_empty) {
             light_motion = Vec::new();
+        }
+        if shutter.is_none() || light_meshes.iter().all(Option::is_none) {
+            light_meshes = Vec::new();
         }
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
@@ -406,6 +424,7 @@ impl World {
             has_media,
             shutter,
             light_motion,
+            light_meshes,
         }
     }
 
@@ -554,14 +573,17 @@ fn set_motion_keys(
 }
 
 /// Keys over the shutter of each of the scene's lights (scene order) that moves: its world
-/// → world displacement from where it is at motion time 0 (empty for a light that stays).
+/// → world displacement from where it is at motion time 0 (empty for a light that stays),
+/// and, for an `object` light whose triangles change shape, the scene indices of the
+/// instances they come from.
 ///
 /// A light moves with its instance. An `object` area light's triangles are the geometry
-/// instance's it names, placed by that instance: they move with that instance too, so
-/// its displacement is the light instance's composed with the geometry instance's (the
-/// triangles carried rigidly; their vertices' own motion vectors are not followed, with a
-/// warning).
-fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> Vec<Vec<Affine3A>> {
+/// instance's it names, placed by that instance: when they move rigidly (one instance,
+/// or instances moving alike, without vertex motion vectors) its displacement is the
+/// light instance's composed with the geometry instance's; otherwise the displacement is
+/// the light instance's alone and the triangles are taken at each time from the moving
+/// geometry ([`crate::emitter_motion`]).
+fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> LightKeys {
     let limit = scene::sanity::WORLD_LIMIT as f32;
     let steps = scene.options.motion_steps as usize;
     // The displacement keys of a transform that is `start` at motion time 0 and `end` at
@@ -581,64 +603,70 @@ fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> V
                 Some(end) => displacement(affine(light.light_to_world), affine(end)),
                 None => Vec::new(),
             };
-            let emitter = match &light.area {
+            let (emitter, deforming) = match &light.area {
                 Some(scene::light::AreaLight { shape: scene::AreaShape::Object { instance }, .. }) => {
-                    emitter_keys(scene, instance, &light.instance, &displacement, warnings)
+                    match emitter_motion(scene, instance, &displacement) {
+                        EmitterMotion::Rigid(keys) => (keys, None),
+                        EmitterMotion::Deforming(picked) => (Vec::new(), Some(picked)),
+                    }
                 }
-                _ => Vec::new(),
+                _ => (Vec::new(), None),
             };
             let keys = compose_keys(&own, &emitter);
             if !keys.iter().all(|k| k.is_finite() && k.translation.abs().max_element() <= limit) {
                 warnings.push(format!("light '{}' moves beyond single precision: it is kept still", light.instance));
-                return Vec::new();
+                return (Vec::new(), deforming);
             }
-            keys
+            (keys, deforming)
         })
-        .collect()
+        .unzip()
 }
 
-/// The displacement keys of the geometry instance `name` an object light named `light`
-/// takes its triangles from (picked as [`shader::light::MeshShape::of_instance`] picks
-/// them: the instance of that name, else every instance of the object of that name).
-/// Several picked instances that do not move alike are kept still, with a warning.
-fn emitter_keys(
+/// Per light (scene order): displacement keys, and the instances of a deforming object
+/// light (see [`light_keys`]).
+type LightKeys = (Vec<Vec<Affine3A>>, Vec<Option<Vec<u32>>>);
+
+/// How an object light's triangles move over the shutter.
+enum EmitterMotion {
+    /// Rigidly, by these world → world displacement keys (empty: they stay).
+    Rigid(Vec<Affine3A>),
+    /// Changing shape: they are these scene instances' triangles (scene indices).
+    Deforming(Vec<u32>),
+}
+
+/// How the triangles of the geometry instance `name` an object light takes its triangles
+/// from move (picked as [`shader::light::MeshShape::of_instance`] picks them: the
+/// instance of that name, else every instance of the object of that name): rigidly when
+/// every picked instance moves alike and no picked object has vertex motion vectors.
+fn emitter_motion(
     scene: &Scene,
     name: &str,
-    light: &str,
     displacement: &dyn Fn(Affine3A, Affine3A) -> Vec<Affine3A>,
-    warnings: &mut Vec<String>,
-) -> Vec<Affine3A> {
-    let mut picked: Vec<&scene::Instance> = scene.instances.iter().filter(|i| i.name == name).collect();
+) -> EmitterMotion {
+    let mut picked: Vec<(usize, &scene::Instance)> =
+        scene.instances.iter().enumerate().filter(|(_, i)| i.name == name).collect();
     if picked.is_empty() {
         picked = scene
             .instances
             .iter()
-            .filter(|i| scene.objects.get(i.object as usize).is_some_and(|o| o.name == name))
+            .enumerate()
+            .filter(|(_, i)| scene.objects.get(i.object as usize).is_some_and(|o| o.name == name))
             .collect();
     }
     let moves: Vec<Vec<Affine3A>> = picked
         .iter()
-        .map(|i| match i.motion_world_to_object {
+        .map(|(_, i)| match i.motion_world_to_object {
             Some(end) => displacement(affine(i.object_to_world), affine(end).inverse()),
             None => Vec::new(),
         })
         .collect();
-    if picked.iter().any(|i| scene.objects.get(i.object as usize).is_some_and(|o| !o.geometry.mesh.motion.is_empty())) {
-        warnings.push(format!(
-            "light '{light}': the object light's triangles follow their instance's motion, not their vertices' \
-             motion vectors"
-        ));
-    }
+    let vertices_move = picked
+        .iter()
+        .any(|(_, i)| scene.objects.get(i.object as usize).is_some_and(|o| !o.geometry.mesh.motion.is_empty()));
     match moves.split_first() {
-        Some((first, rest)) if rest.iter().all(|k| k == first) => first.clone(),
-        Some(_) => {
-            warnings.push(format!(
-                "light '{light}': the object light's instances of '{name}' move differently while the shutter is \
-                 open: its triangles are kept where they are at the shutter's opening"
-            ));
-            Vec::new()
-        }
-        None => Vec::new(),
+        Some((first, rest)) if !vertices_move && rest.iter().all(|k| k == first) => EmitterMotion::Rigid(first.clone()),
+        Some(_) => EmitterMotion::Deforming(picked.iter().map(|(index, _)| *index as u32).collect()),
+        None => EmitterMotion::Rigid(Vec::new()),
     }
 }
 

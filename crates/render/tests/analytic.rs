@@ -108,6 +108,7 @@ fn world(
         warnings: Vec::new(),
         shutter: None,
         light_motion: Vec::new(),
+        light_meshes: Vec::new(),
     }
 }
 

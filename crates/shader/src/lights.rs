@@ -59,13 +59,22 @@ pub struct LightLoop {
 impl<'a> Ctx<'a> {
     /// Light `light` (index into `Shading::lights`) where it is at this point's shutter
     /// time (`state.time`): the scene's light itself when it does not move, else a copy
-    /// moved there with its instance ([`ShadingLight::moved`]). The light loop and light
-    /// shaders read their light through this.
+    /// moved there with its instance ([`ShadingLight::moved`]), its object triangles
+    /// first placed where they are then when they deform ([`crate::Tracer::light_mesh`]).
+    /// The light loop and light shaders read their light through this.
     pub fn light(&self, light: u32) -> Option<Cow<'a, ShadingLight>> {
         let l = self.shading().lights.get(light as usize)?;
-        Some(match self.tracer.light_motion(light, self.state.time) {
-            None => Cow::Borrowed(l),
-            Some(by) => Cow::Owned(l.moved(by)),
+        let mesh = self.tracer.light_mesh(light, self.state.time);
+        Some(match (mesh, self.tracer.light_motion(light, self.state.time)) {
+            (None, None) => Cow::Borrowed(l),
+            (None, Some(by)) => Cow::Owned(l.moved(by)),
+            (Some(mesh), by) => {
+                let shaped = l.reshaped(mesh);
+                Cow::Owned(match by {
+                    Some(by) => shaped.moved(by),
+                    None => shaped,
+                })
+            }
         })
     }
 

@@ -93,6 +93,16 @@ pub trait Tracer {
         None
     }
 
+    /// The triangles of object light `light` (its index in `Shading::lights`) at shutter
+    /// time `time` when they change shape while the shutter is open (their vertices'
+    /// motion vectors, or instances of the emitting object moving differently; see
+    /// [`super::light::DeformingMesh`]), before the light's own displacement
+    /// ([`Tracer::light_motion`]) is applied; `None` when its shape stays as it is.
+    fn light_mesh(&self, light: u32, time: f32) -> Option<super::light::MeshShape> {
+        let _ = (light, time);
+        None
+    }
+
     /// The path engine's scattering of the surface `hit` (a state [`intersect`] filled
     /// in), for material shaders that shade a material through its compiled BSDF (mira's
     /// classic form of MDL module materials): the material's BSDF at the point, its shading

@@ -18,6 +18,9 @@ pub struct MeshShape {
     still: Arc<Triangles>,
     /// World → world displacement applied to `still` on the fly (`None`: none).
     placed: Option<Displacement>,
+    /// The triangles over the shutter when they change shape while it is open (`still`
+    /// is then their shape at the opening); see [`MeshShape::at_time`].
+    deforming: Option<Arc<super::DeformingMesh>>,
 }
 
 /// World-space triangles and their sampling data.
@@ -81,7 +84,7 @@ impl MeshShape {
                 out.hi = out.hi.max(p);
             }
         }
-        (!out.triangles.is_empty()).then_some(MeshShape { still: Arc::new(out), placed: None })
+        (!out.triangles.is_empty()).then_some(MeshShape { still: Arc::new(out), placed: None, deforming: None })
     }
 
     /// These triangles carried by `by` (world → world: a moving light's displacement at
@@ -105,7 +108,7 @@ impl MeshShape {
         let s2 = (gram.x_axis.x + gram.y_axis.y + gram.z_axis.z) / 3.0;
         if gram.abs_diff_eq(Mat3A::from_diagonal(glam::Vec3::splat(s2)), 1e-5 * s2) {
             let placed = Displacement { by, back: by.inverse(), normals: m.inverse().transpose(), area_scale: s2 };
-            return MeshShape { still: Arc::clone(&self.still), placed: Some(placed) };
+            return MeshShape { still: Arc::clone(&self.still), placed: Some(placed), deforming: None };
         }
         let flip = det < 0.0;
         let moved = self.still.triangles.iter().map(|t| {
@@ -117,6 +120,19 @@ impl MeshShape {
             }
         });
         MeshShape::new(moved).unwrap_or_else(|| self.clone())
+    }
+
+    /// These triangles (their shape at the shutter's opening) changing shape over the
+    /// shutter as `deforming` gives (see [`MeshShape::at_time`]).
+    pub fn deforming(self, deforming: Arc<super::DeformingMesh>) -> MeshShape {
+        MeshShape { deforming: Some(deforming), ..self }
+    }
+
+    /// The triangles where they are at shutter time `s` (0…1) when they change shape
+    /// while the shutter is open ([`MeshShape::deforming`]); `None` when they do not (or
+    /// have no area then): this shape holds at every time.
+    pub fn at_time(&self, s: f32) -> Option<MeshShape> {
+        self.deforming.as_ref()?.at(s)
     }
 
     /// The triangles of the scene instance named `name` (or, when no instance has that

@@ -2,11 +2,13 @@
 //! (IES files), and
 //! (in the `material` crate's `emission`) what they emit.
 
+pub mod deforming;
 pub mod ies;
 pub mod mesh;
 pub mod profiles;
 pub mod shape;
 
+pub use deforming::DeformingMesh;
 pub use mesh::MeshShape;
 pub use shape::Shape;
 
@@ -48,6 +50,12 @@ pub struct ShadingLight {
 }
 
 impl ShadingLight {
+    /// This light with `mesh` as its area shape (an object light's triangles where they
+    /// are at some shutter time; see [`DeformingMesh`]).
+    pub fn reshaped(&self, mesh: MeshShape) -> ShadingLight {
+        ShadingLight { shape: Some(Shape::Mesh(std::sync::Arc::new(mesh))), ..self.clone() }
+    }
+
     /// This light displaced by `by` (world → world, the light instance's motion at some
     /// time; see [`crate::Tracer::light_motion`]): its position, its direction, its frame
     /// for light profiles and its area shape move with it. `by` is a rigid motion (as
