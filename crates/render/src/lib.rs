@@ -28,7 +28,6 @@
 pub mod accel;
 pub mod camera;
 pub mod classic;
-pub mod emitter_motion;
 pub mod engine;
 pub mod environment;
 pub mod fgcache;

@@ -1,6 +1,8 @@
 //! The render world: the scene's meshes, instances, materials, lights and camera in the
 //! compact `f32` form the integrators read.
 
+mod deforming_emitters;
+
 use std::sync::Arc;
 
 use glam::{Affine3A, Mat3A, Vec3A};
@@ -124,7 +126,7 @@ pub struct World {
     pub light_motion: Vec<Vec<Affine3A>>,
     /// The scene's lights in scene order: the triangles over the shutter of each object
     /// light whose triangles change shape while it is open (vertex motion vectors,
-    /// instances moving differently; [`crate::emitter_motion`]), `None` for the others;
+    /// instances moving differently; `world::deforming_emitters`), `None` for the others;
     /// empty altogether when there is none. They are placed before `light_motion`'s
     /// displacement; the classic engine reads them through
     /// [`shader::Tracer::light_mesh`], the path engine in its lights' shapes.
@@ -392,7 +394,7 @@ impl World {
             (light_motion, deforming) = light_keys(shutter, scene, &mut warnings);
             let lights_move = light_motion.iter().any(|k| !k.is_empty());
             let moving = set_motion_keys(shutter, scene, &mut meshes, &mut instances, &mut camera, &mut warnings);
-            light_meshes = crate::emitter_motion::deforming_meshes(&deforming, &meshes, &instances);
+            light_meshes = deforming_emitters::deforming_meshes(&deforming, &meshes, &instances);
             for (light, index) in &mut lights {
                 light.motion = light_motion[*index].clone();
                 if let (Some(keys), shader::light::Shape::Mesh(mesh)) = (&light_meshes[*index], &light.shape) {
@@ -582,7 +584,7 @@ fn set_motion_keys(
 /// or instances moving alike, without vertex motion vectors) its displacement is the
 /// light instance's composed with the geometry instance's; otherwise the displacement is
 /// the light instance's alone and the triangles are taken at each time from the moving
-/// geometry ([`crate::emitter_motion`]).
+/// geometry (`world::deforming_emitters`).
 fn light_keys(shutter: &Shutter, scene: &Scene, warnings: &mut Vec<String>) -> LightKeys {
     let limit = scene::sanity::WORLD_LIMIT as f32;
     let steps = scene.options.motion_steps as usize;

@@ -9,8 +9,8 @@ use std::sync::Arc;
 
 use shader::light::DeformingMesh;
 
+use super::InstanceData;
 use crate::mesh::MeshData;
-use crate::world::InstanceData;
 
 /// Most shutter intervals a deforming light's triangles are kept at.
 const MAX_SEGMENTS: usize = 64;
