@@ -1,6 +1,8 @@
 //! Both acceleration backends give the same hits on the same rays (when mira is built with
 //! Embree; otherwise only the Rust backend is checked against brute force).
 
+mod support;
+
 use glam::Vec3A;
 use render::accel::{self, intersect_triangle, Backend};
 use render::ray::Ray;
@@ -10,24 +12,6 @@ fn cornell() -> World {
     let parsed = mi::parse_str("cb.mi", include_str!("../../../scenes/iray_cornell_box.mi"));
     let mut diags = Vec::new();
     World::from_scene(&scene::Scene::build(&parsed, 0, &mut diags).unwrap())
-}
-
-/// Random rays from inside the box in all directions.
-fn rays(n: usize) -> Vec<Ray> {
-    let mut state = 0x853c_49e6_748f_ea9bu64;
-    let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((state >> 40) as f32) / (1u64 << 24) as f32
-    };
-    (0..n)
-        .map(|_| {
-            let o = Vec3A::new(20.0 + 510.0 * rnd(), 10.0 + 520.0 * rnd(), 10.0 + 540.0 * rnd());
-            let z = 2.0 * rnd() - 1.0;
-            let r = (1.0 - z * z).sqrt();
-            let phi = std::f32::consts::TAU * rnd();
-            Ray::new(o, Vec3A::new(r * phi.cos(), r * phi.sin(), z))
-        })
-        .collect()
 }
 
 /// The closest hit by testing every triangle of every instance.
@@ -57,7 +41,7 @@ fn rust_backend_matches_brute_force() {
     let world = cornell();
     let bvh = accel::build(&world, Backend::Rust);
     let mut mismatches = 0;
-    let rays = rays(4000);
+    let rays = support::rays::in_cornell_box(4000, 0x853c_49e6_748f_ea9b);
     for ray in &rays {
         let a = bvh.intersect(ray).map(|h| (h.instance, h.prim, h.t));
         let b = brute_force(&world, ray);
@@ -112,7 +96,7 @@ fn embree_and_rust_backends_agree() {
     let rust = accel::build(&world, Backend::Rust);
     let embree = accel::build(&world, Backend::Embree);
     assert_eq!(embree.backend(), Backend::Embree);
-    let rays = rays(20_000);
+    let rays = support::rays::in_cornell_box(20_000, 0x853c_49e6_748f_ea9b);
     let mut different = 0;
     for ray in &rays {
         let (a, b) = (rust.intersect(ray), embree.intersect(ray));

@@ -9,83 +9,13 @@ mod support;
 use std::sync::atomic::AtomicBool;
 
 use render::{Backend, EngineKind, Settings};
-
-/// Image width and height (pixels) and the view's width (scene units): 16 columns over
-/// x ∈ [−2, 2], a quarter unit each; 4 rows.
-const W: usize = 16;
-const H: usize = 4;
-
-/// A scene: a 16×4 orthographic view of x ∈ [−2, 2] and a white quad over x ∈ [−10, 0]
-/// at z = −5; `options` go into the options block, `quad` into the quad's instance,
-/// `camera` into the camera's, and `vertex_motion` after each of the quad's vertices.
-fn scene(options: &str, quad: &str, camera: &str, vertex_motion: [&str; 4], extra_vectors: &str) -> String {
-    let [m0, m1, m2, m3] = vertex_motion;
-    format!(
-        r#"
-options "opt" filter box 1 1 {options} end options
-camera "cam" focal infinity aperture 4 aspect 4 resolution {W} {H} end camera
-instance "cam_inst" "cam" {camera} end instance
-material "m" "mib_illum_lambert" ("ambience" 1 1 1, "ambient" 1 1 1, "diffuse" 0 0 0) end material
-object "quad" group
-    -10 -10 -5  0 -10 -5  0 10 -5  -10 10 -5
-    {extra_vectors}
-    v 0 {m0} v 1 {m1} v 2 {m2} v 3 {m3}
-    c "m" 0 1 2 3
-end group end object
-instance "quad_inst" "quad" material "m" {quad} end instance
-instgroup "root" "cam_inst" "quad_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
-}
-
-/// Renders `text` with `engine` on `backend` at 64 samples per pixel: the alpha of each
-/// pixel, rows from the top.
-fn alpha(text: &str, engine: EngineKind, backend: Backend) -> Vec<f32> {
-    alpha_at(text, engine, backend, 64)
-}
-
-/// [`alpha`] at `spp` samples per pixel.
-fn alpha_at(text: &str, engine: EngineKind, backend: Backend, spp: u32) -> Vec<f32> {
-    let c = support::compile(text);
-    assert!(c.messages.is_empty(), "{:?}", c.messages);
-    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
-    let accel = render::accel::build(&world, backend);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    let (film, _) =
-        render::render(&world, accel.as_ref(), Some(&c.shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba().iter().map(|p| p[3]).collect()
-}
-
-/// The backends compiled in.
-fn backends() -> Vec<Backend> {
-    [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()).collect()
-}
-
-/// The centre of pixel column `i` (scene units).
-fn column_x(i: usize) -> f32 {
-    -2.0 + (i as f32 + 0.5) * 4.0 / W as f32
-}
+use support::moving_quad::{alpha, assert_columns, backends, box_ramp, render_alpha, scene};
 
 /// Checks that each column's alpha, averaged over the rows, is `expect(x)` at the column's
 /// centre x within 0.03 (the coverage is linear across each pixel, so its mean over the
 /// pixel is its value at the centre).
 fn assert_profile(a: &[f32], expect: impl Fn(f32) -> f32, what: &str) {
-    for i in 0..W {
-        let mean = (0..H).map(|y| a[y * W + i]).sum::<f32>() / H as f32;
-        let want = expect(column_x(i));
-        assert!((mean - want).abs() < 0.03, "{what}: column {i} (x = {}): {mean} vs {want}", column_x(i));
-    }
-}
-
-/// Coverage of a quad edge that moves from x = 0 to x = 2 at constant speed over a box
-/// shutter: 1 left of 0, then falling linearly to 0 at x = 2.
-fn box_ramp(x: f32) -> f32 {
-    if x <= 0.0 {
-        1.0
-    } else {
-        (1.0 - x / 2.0).max(0.0)
-    }
+    assert_columns(a, |x0, x1| expect(0.5 * (x0 + x1)), 0.03, what);
 }
 
 const MOVE_RIGHT_2: &str = "motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -2 0 0 1";
@@ -283,11 +213,9 @@ render "root" "cam_inst" "opt"
 #[test]
 fn motion_beyond_single_precision_is_kept_still_with_a_warning() {
     let text = scene("motion on shutter 0 1e30", MOVE_RIGHT_2, "", [""; 4], "");
-    let c = support::compile(&text);
-    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
-    assert!(world.warnings.iter().any(|w| w.contains("beyond single precision")), "{:?}", world.warnings);
     for backend in backends() {
-        let a = alpha(&text, EngineKind::Path, backend);
+        let (a, warnings) = render_alpha(&text, EngineKind::Path, backend, 64);
+        assert!(warnings.iter().any(|w| w.contains("beyond single precision")), "{warnings:?}");
         assert_profile(&a, |x| if x <= 0.0 { 1.0 } else { 0.0 }, &format!("{backend:?}"));
     }
 }
@@ -378,7 +306,7 @@ render "root" "cam_inst" "opt"
     assert!((shrunk / area_pixels - 2.0 / 3.0).abs() < 0.02, "linear matrices cover {shrunk}");
     for engine in [EngineKind::Path, EngineKind::Classic] {
         for backend in backends() {
-            let a = alpha_at(&text, engine, backend, 256);
+            let (a, _) = render_alpha(&text, engine, backend, 256);
             let what = format!("{engine:?} {backend:?}");
             let sum: f32 = a.iter().sum();
             assert!((sum / area_pixels - 1.0).abs() < 0.02, "{what}: covers {sum} pixels, not {area_pixels}");

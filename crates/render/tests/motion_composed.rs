@@ -7,77 +7,13 @@
 
 mod support;
 
-use std::sync::atomic::AtomicBool;
+use support::moving_quad::{alpha, assert_columns as assert_profile, each_renderer, mean_over};
 
-use render::{Backend, EngineKind, Settings};
-
-/// Image width and height (pixels): 16 columns over x ∈ [−2, 2], a quarter unit each.
-const W: usize = 16;
-const H: usize = 4;
-
-/// A 16×4 orthographic view of x ∈ [−2, 2] and a white quad over x ∈ [−10, 0] at
-/// z = −5 whose four vertices all carry the motion vector `vector` (or none when empty);
-/// `options` go into the options, `quad` into the quad's instance, `camera` into the
-/// camera's instance.
+/// The moving-quad scene ([`support::moving_quad::scene`]) whose four vertices all carry
+/// the motion vector `vector` (or none when empty).
 fn scene(options: &str, quad: &str, camera: &str, vector: &str) -> String {
-    let m = if vector.is_empty() { String::new() } else { " m 4".to_string() };
-    let vectors = if vector.is_empty() { String::new() } else { vector.to_string() };
-    format!(
-        r#"
-options "opt" filter box 1 1 {options} end options
-camera "cam" focal infinity aperture 4 aspect 4 resolution {W} {H} end camera
-instance "cam_inst" "cam" {camera} end instance
-material "m" "mib_illum_lambert" ("ambience" 1 1 1, "ambient" 1 1 1, "diffuse" 0 0 0) end material
-object "quad" group
-    -10 -10 -5  0 -10 -5  0 10 -5  -10 10 -5
-    {vectors}
-    v 0{m} v 1{m} v 2{m} v 3{m}
-    c "m" 0 1 2 3
-end group end object
-instance "quad_inst" "quad" material "m" {quad} end instance
-instgroup "root" "cam_inst" "quad_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
-}
-
-/// The alpha of each pixel (rows from the top) of `text` rendered with `engine` on
-/// `backend` at 64 samples per pixel.
-fn alpha(text: &str, engine: EngineKind, backend: Backend) -> Vec<f32> {
-    let c = support::compile(text);
-    assert!(c.messages.is_empty(), "{:?}", c.messages);
-    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let accel = render::accel::build(&world, backend);
-    let settings = Settings { engine, spp: Some(64), ..Settings::default() };
-    let (film, _) =
-        render::render(&world, accel.as_ref(), Some(&c.shading), &settings, &AtomicBool::new(false), &|_| {});
-    film.rgba().iter().map(|p| p[3]).collect()
-}
-
-/// Every engine on every backend compiled in.
-fn each_renderer(mut check: impl FnMut(EngineKind, Backend)) {
-    for engine in [EngineKind::Path, EngineKind::Classic] {
-        for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
-            check(engine, backend);
-        }
-    }
-}
-
-/// Checks that each column's alpha, averaged over the rows, is `expect(x0, x1)` (the
-/// coverage's mean over the column's span `[x0, x1]`) within `tolerance`.
-fn assert_profile(a: &[f32], expect: impl Fn(f32, f32) -> f32, tolerance: f32, what: &str) {
-    for i in 0..W {
-        let mean = (0..H).map(|y| a[y * W + i]).sum::<f32>() / H as f32;
-        let (x0, x1) = (-2.0 + i as f32 * 0.25, -2.0 + (i + 1) as f32 * 0.25);
-        let want = expect(x0, x1);
-        assert!((mean - want).abs() < tolerance, "{what}: column {i} ([{x0}, {x1}]): {mean} vs {want}");
-    }
-}
-
-/// The mean over `[x0, x1]` of `f` (midpoint rule, 256 points).
-fn mean_over(x0: f32, x1: f32, f: impl Fn(f32) -> f32) -> f32 {
-    (0..256).map(|k| f(x0 + (k as f32 + 0.5) / 256.0 * (x1 - x0))).sum::<f32>() / 256.0
+    let motion = if vector.is_empty() { "" } else { "m 4" };
+    support::moving_quad::scene(options, quad, camera, [motion; 4], vector)
 }
 
 /// An instance sliding one unit right (`motion transform`) while its vertices slide one

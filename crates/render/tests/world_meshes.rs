@@ -4,10 +4,10 @@
 //! vertices in place or, when the vector has no room past its end, from a copy, with the
 //! same hits either way.
 
-use glam::Vec3A;
+mod support;
+
 use render::accel::{self, Backend};
 use render::pipeline::{build_world, build_world_taking_meshes, Built};
-use render::ray::Ray;
 use shader::ShadingOptions;
 
 /// The seed Cornell box (trilists and polygons, identity placements) with an object area
@@ -96,24 +96,6 @@ fn moving_the_meshes_builds_the_world_copying_them_builds() {
     assert!(scene.objects.iter().all(|o| o.geometry.mesh.triangles.is_empty() && o.geometry.mesh.positions.is_empty()));
 }
 
-/// Random rays from inside the box in all directions.
-fn rays(n: usize) -> Vec<Ray> {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((state >> 40) as f32) / (1u64 << 24) as f32
-    };
-    (0..n)
-        .map(|_| {
-            let o = Vec3A::new(20.0 + 510.0 * rnd(), 10.0 + 520.0 * rnd(), 10.0 + 540.0 * rnd());
-            let z = 2.0 * rnd() - 1.0;
-            let r = (1.0 - z * z).sqrt();
-            let phi = std::f32::consts::TAU * rnd();
-            Ray::new(o, Vec3A::new(r * phi.cos(), r * phi.sin(), z))
-        })
-        .collect()
-}
-
 #[test]
 fn embree_hits_are_the_same_with_the_vertices_shared_or_copied() {
     if !Backend::Embree.available() {
@@ -130,7 +112,7 @@ fn embree_hits_are_the_same_with_the_vertices_shared_or_copied() {
     }
     let (a, b) = (accel::build(&shared.world, Backend::Embree), accel::build(&copied.world, Backend::Embree));
     let mut hits = 0;
-    for ray in rays(4000) {
+    for ray in support::rays::in_cornell_box(4000, 0x2545_f491_4f6c_dd1d) {
         let (h, k) = (a.intersect(&ray), b.intersect(&ray));
         assert_eq!(h, k, "ray {ray:?}");
         assert_eq!(a.occluded(&ray), b.occluded(&ray));

@@ -6,6 +6,9 @@
 
 #![allow(dead_code)]
 
+pub mod moving_quad;
+pub mod rays;
+
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
