@@ -94,12 +94,24 @@ extern "C" fn on_sigbus(signal: libc::c_int, info: *mut libc::siginfo_t, context
             }
         }
     }
-    // Not ours: hand over to the previous action.
-    let Some(Some(previous)) = PREVIOUS.get() else { return };
+    // Not ours: hand over to the previous action. While the guard is still being installed
+    // (`PREVIOUS` not yet set) that action is unknown: fall back to the default one rather
+    // than return and fault again forever.
+    let Some(Some(previous)) = PREVIOUS.get() else {
+        // SAFETY: a zeroed `sigaction` with `SIG_DFL` is the default action; returning
+        // re-runs the faulting access, which then ends the process as it would have.
+        unsafe {
+            let mut default: libc::sigaction = std::mem::zeroed();
+            default.sa_sigaction = libc::SIG_DFL;
+            libc::sigaction(libc::SIGBUS, &default, std::ptr::null_mut());
+        }
+        return;
+    };
     let handler = previous.sa_sigaction;
     if handler == libc::SIG_DFL || handler == libc::SIG_IGN {
         // SAFETY: restores the previous action; returning re-runs the faulting access,
-        // which then gets the default behaviour (the process ends as it would have).
+        // which then gets the default behaviour (the process ends as it would have; the
+        // kernel does not let an ignored fault signal go by).
         unsafe { libc::sigaction(libc::SIGBUS, previous, std::ptr::null_mut()) };
     } else if previous.sa_flags & libc::SA_SIGINFO != 0 {
         // SAFETY: the previous handler was installed for this signal with this signature.
