@@ -154,6 +154,10 @@ pub struct SurfaceMaterial {
     /// turned by this angle (radians, counter-clockwise about the shading normal), for
     /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
     pub tangent_angle: Option<f32>,
+    /// The glow a camera sees on the surface (linear RGB; Maya materials' `outGlowColor`,
+    /// `glowIntensity` × their colour): what the path engine stores in the glow frame
+    /// buffer a shader glow spreads (zero for materials that do not glow).
+    pub glow: Rgb,
 }
 
 impl SurfaceMaterial {
@@ -175,6 +179,7 @@ impl SurfaceMaterial {
             varying: Varying::Constant,
             medium: None,
             tangent_angle: None,
+            glow: Rgb::ZERO,
         }
     }
 
