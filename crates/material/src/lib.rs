@@ -62,6 +62,7 @@ pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -
     diags.retain(|d| !(d.message.contains("is not implemented by mira") && stand_ins.iter().any(|s| s.span == d.span)));
     diags.extend(stand_ins);
     diags.extend(::maya::light::volume_light_warnings(&shading));
+    diags.extend(::maya::fog::fog_warnings(&shading));
     (shading, diags)
 }
 
