@@ -61,6 +61,9 @@ pub enum Target {
     Normal,
     /// A mental ray bump shader, run for its change of the state's normal.
     Bump,
+    /// The glow a camera sees (Maya's `outGlowColor`; the binding's scale is the
+    /// material's `glowIntensity`).
+    Glow,
 }
 
 /// One connected parameter.
@@ -134,6 +137,8 @@ pub struct HitMaterial<'a> {
     /// The direction (world space, unit, in the tangent plane of the state's normal) the
     /// BSDF's local x axis follows, for anisotropic lobes; `None`: any tangent.
     pub tangent: Option<Vec3A>,
+    /// The glow a camera sees at the point (see [`SurfaceMaterial::glow`]).
+    pub glow: Rgb,
 }
 
 /// A value as a colour: a `texture_return` struct gives its `tint`.
@@ -204,6 +209,7 @@ impl SurfaceMaterial {
             opacity: self.opacity,
             normal: None,
             tangent: None,
+            glow: self.glow,
         }
     }
 
@@ -281,6 +287,7 @@ impl SurfaceMaterial {
                     }
                 }
                 Target::Emission => hit.emission = rgb(),
+                Target::Glow => hit.glow = rgb(),
                 Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
                 Target::Normal => {
                     let n = value.vector();

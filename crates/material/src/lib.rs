@@ -62,6 +62,7 @@ pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -
     diags.retain(|d| !(d.message.contains("is not implemented by mira") && stand_ins.iter().any(|s| s.span == d.span)));
     diags.extend(stand_ins);
     diags.extend(::maya::light::volume_light_warnings(&shading));
+    diags.extend(::maya::fog::fog_warnings(&shading));
     (shading, diags)
 }
 
@@ -154,6 +155,10 @@ pub struct SurfaceMaterial {
     /// turned by this angle (radians, counter-clockwise about the shading normal), for
     /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
     pub tangent_angle: Option<f32>,
+    /// The glow a camera sees on the surface (linear RGB; Maya materials' `outGlowColor`,
+    /// `glowIntensity` × their colour): what the path engine stores in the glow frame
+    /// buffer a shader glow spreads (zero for materials that do not glow).
+    pub glow: Rgb,
 }
 
 impl SurfaceMaterial {
@@ -175,6 +180,7 @@ impl SurfaceMaterial {
             varying: Varying::Constant,
             medium: None,
             tangent_angle: None,
+            glow: Rgb::ZERO,
         }
     }
 

@@ -37,7 +37,13 @@
 //!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
 //!   `incandescence`: emitted radiance;
 //! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
-//!   warning says so).
+//!   warning says so);
+//! - glow (what a camera's shader glow spreads, as the classic shaders' `outGlowColor`):
+//!   `glowIntensity` × `color` for the lambert family (a connected colour is bound per
+//!   hit), `glowIntensity` × the colour ramp at 1 for rampShader, `outGlowColor` for
+//!   surfaceShader, and for layeredShader Σ P_i ⊙ glow_i over its layers (P_i the
+//!   transparencies above layer i; a layer's glow is its constant `glowColor` or the
+//!   constant glow of the material it is connected to).
 //!
 //! Connected colours become per-hit bindings of the shader graph's nodes (a file texture
 //! driving `color`, bump2d driving `normalCamera`); what cannot be expressed is reported
@@ -219,6 +225,10 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             let albedo = r.driven("color", target, d, Rgb::splat(0.5));
             surface.diffuse = albedo;
             surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
+            let glow_intensity = r.scalar("glowIntensity", 0.0);
+            if glow_intensity != 0.0 {
+                surface.glow = r.driven("color", Target::Glow, glow_intensity, Rgb::splat(0.5));
+            }
             let t = r.color("transparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
             surface.opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
             if connection(graph, node, "transparency").is_some() {
@@ -243,6 +253,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
         }
         "surfaceshader" => {
             surface.emission = r.driven("outColor", Target::Emission, 1.0, Rgb::ZERO);
+            surface.glow = r.driven("outGlowColor", Target::Glow, 1.0, Rgb::ZERO);
             let t = r.color("outTransparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
             surface.opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
         }
@@ -304,6 +315,10 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
     };
     surface.diffuse = albedo;
     surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0);
+    let glow_intensity = r.scalar("glowIntensity", 0.0);
+    if glow_intensity != 0.0 {
+        surface.glow = c * glow_intensity;
+    }
     let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
     surface.opacity = 1.0 - (tr.x + tr.y + tr.z) / 3.0;
     if let Some((bump, member)) = connection(r.graph, r.node, "normalCamera") {
@@ -314,6 +329,20 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
         let alpha = r.scalar("eccentricity", 0.3).clamp(1e-3, 1.0);
         let s = ramp_at(r, "specularColor", "Color", Rgb::splat(0.5), 1.0);
         surface.model = unified(albedo, alpha, specularity * bsdf::luminance(s));
+    }
+}
+
+/// The glow of a layeredShader layer: its constant `glowColor`, or the constant glow of
+/// the material whose `outGlowColor` it is connected to (zero otherwise).
+fn layer_glow(graph: &Graph, glow: Option<Slot>) -> Rgb {
+    match glow {
+        Some(Slot::Value(v)) => rgb_of(&v),
+        Some(Slot::Connect { node, .. })
+            if graph.nodes[node as usize].decl.members().iter().any(|x| &**x == "outGlowColor") =>
+        {
+            translate("", graph, node).0.glow
+        }
+        _ => Rgb::ZERO,
     }
 }
 
@@ -350,6 +379,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             }
             _ => Rgb::ZERO,
         };
+        surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         let shown = through * (Rgb::ONE - t);
         let w = (shown.x + shown.y + shown.z) / 3.0;
         match member(e, "color") {

@@ -277,6 +277,53 @@ fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_sh
 }
 
 #[test]
+fn volume_light_directions_and_emit_ambient_against_their_formulas() {
+    // A sphere volume light of radius 2 (linear colour range, intensity 2) centred at c =
+    // (0.6, −0.8, 0), 1 from the shading point (the origin, normal +y): halfway to the
+    // boundary, so 1 arrives. A lambert of colour 0.5 and diffuse 0.8 shows
+    // 0.5 · 0.8 · 1 · cos θ with the direction the light is shaded from: outward (towards
+    // the centre) below the surface, 0; inward (away from the centre) cos θ = 0.8; down
+    // the light's axis, its +y axis, turned by φ about z to (−sin φ, cos φ, 0): cos θ =
+    // cos φ. With emitAmbient the light lights as Maya's ambient light does, not scaled
+    // by diffuse: 0.5 · 1 · (½ + ½ max(cos θ, 0)) with emitDiffuse on, 0.5 · 1 with it off.
+    let centre = glam::Vec3A::new(0.6, -0.8, 0.0);
+    let cases: [(&str, f32, f32); 8] = [
+        ("", 0.0, 0.0),
+        (r#", "volumeLightDir" 0"#, 0.0, 0.0),
+        (r#", "volumeLightDir" 1"#, 0.0, 0.5 * 0.8 * 0.8),
+        (r#", "volumeLightDir" 2"#, 0.0, 0.5 * 0.8),
+        (r#", "volumeLightDir" 2"#, 60.0, 0.5 * 0.8 * 0.5),
+        (r#", "emitAmbient" on"#, 0.0, 0.5 * 0.5),
+        (r#", "emitAmbient" on, "volumeLightDir" 1"#, 0.0, 0.5 * (0.5 + 0.5 * 0.8)),
+        (r#", "emitAmbient" on, "emitDiffuse" off"#, 0.0, 0.5),
+    ];
+    for (extra, degrees, want) in cases {
+        // m = ½ R, R turning about z by φ (the light's y axis to (−sin φ, cos φ, 0)).
+        let (s, co) = f32::to_radians(degrees).sin_cos();
+        let m = glam::Mat3A::from_cols(
+            glam::Vec3A::new(co, s, 0.0) * 0.5,
+            glam::Vec3A::new(-s, co, 0.0) * 0.5,
+            glam::Vec3A::new(0.0, 0.0, 0.5),
+        );
+        // Row vectors: p_light = p_world · T, T's written rows (m's rows) and translation
+        // row −(mᵀ c), so that the centre goes to the light's origin.
+        let t = -(m.transpose() * centre);
+        let (r0, r1, r2) = (m.x_axis, m.y_axis, m.z_axis);
+        let c = scene(&format!(
+            r#"light "vol" "maya_volumelight" ("intensity" 2, "lightShape" 1{extra},
+                "colorRange" [ {{ "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 }},
+                               {{ "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 }} ])
+                origin 0 0 0 end light
+            instance "vol_inst" "vol" transform {} {} {} 0  {} {} {} 0  {} {} {} 0  {} {} {} 1 end instance
+            shader "lam" "adskMayaLambert" ("color" 0.5 0.5 0.5, "diffuse" 0.8)
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+            r0.x, r1.x, r2.x, r0.y, r1.y, r2.y, r0.z, r1.z, r2.z, t.x, t.y, t.z
+        ));
+        assert_rgb(shade(&c), [want; 3], 1e-5);
+    }
+}
+
+#[test]
 fn a_volume_light_shining_inward_is_named_in_a_warning() {
     let text = format!(
         "{LIBS}light \"vol\" \"maya_volumelight\" (\"volumeLightDir\" 2, \"emitAmbient\" on) origin 0 0 0 end light\n\

@@ -12,9 +12,11 @@
 //! intensity as given).
 //!
 //! The source is the glow frame buffer the output statement reads when the shaders wrote
-//! it; else the materials' glow ([`BUFFER`]: what the shading engine stores of each
-//! directly seen material's `outGlowColor`, `glowIntensity` × its colour, as Maya's glow
-//! comes from the materials) where some material glows; otherwise the rendered colour
+//! it (the materials' glow goes to `frame buffer n` when `maya_state`'s
+//! `glowColorBuffer` names it, and exports list that buffer in the glow's output
+//! statement); else the materials' glow ([`BUFFER`]: what the shading engine stores of
+//! each directly seen material's `outGlowColor`, `glowIntensity` × its colour, as Maya's
+//! glow comes from the materials) where some material glows; otherwise the rendered colour
 //! where it is brighter than white (any channel above max(1, `threshold`)), by its excess
 //! over that level. Each of glow and halo adds
 //! intensity × colour × (source ⊛ k), where k is its radial kernel over the pixel
@@ -92,12 +94,32 @@ pub struct Glow {
 /// The name of the user frame buffer Maya materials write their glow to
 /// (`glowIntensity` × their colour, `outGlowColor`) when the camera runs a shader glow:
 /// the shading engine stores it for every eye-ray hit (zero where the material does not
-/// glow), so that the buffer holds each pixel's glow weighted by the surfaces' coverage.
+/// glow), so that the buffer holds the mean glow of each pixel's samples that stop at a
+/// surface (the path engine stores the same at its camera rays' hits). The renderer
+/// resolves the name to the frame buffer the state shader's `glowColorBuffer` names
+/// ([`color_buffer`]) when the options declare it, else to a buffer of this name.
 pub const BUFFER: &str = "maya_glow";
 
 /// Whether `name` is the glow output shader (either family).
 pub fn is_glow(name: &str) -> bool {
     matches!(name, "maya_shaderglow" | "adskMayaShaderGlow")
+}
+
+/// Whether `name` is Maya exports' state shader (`maya_state`, `adskFrameBufferState`).
+pub fn is_state(name: &str) -> bool {
+    matches!(name, "maya_state" | "adskFrameBufferState")
+}
+
+/// The number n of the user frame buffer (`frame buffer n`) the state shader's parameters
+/// `params` name for the materials' glow (`glowColorBuffer`), if they name one: the
+/// shading engine writes each directly seen material's glow there instead of [`BUFFER`],
+/// and a glow output shader whose output statement lists `fb<n>` spreads it (mental ray
+/// gives an output shader the buffers its statement lists). Negative numbers name none.
+pub fn color_buffer(params: &[Param]) -> Option<u32> {
+    match &params.iter().rev().find(|p| p.name.text == "glowColorBuffer")?.value {
+        Value::Num(n) => u32::try_from(n.as_f64() as i64).ok(),
+        _ => None,
+    }
 }
 
 impl Glow {
@@ -296,5 +318,26 @@ mod tests {
         let defaults = Glow::from_params(&[]);
         assert_eq!((defaults.glow.falloff, defaults.halo.falloff), (Falloff::Linear, Falloff::None));
         assert!(defaults.auto_exposure && is_glow("adskMayaShaderGlow"));
+    }
+
+    /// `glowColorBuffer` as the state shaders of exports write it: a buffer number, none
+    /// when absent or negative.
+    #[test]
+    fn the_state_shaders_glow_buffer() {
+        let text = r#"shader "s" "adskFrameBufferState" ("passAlphaThrough" off, "glowColorBuffer" 3)
+            shader "t" "maya_state" ("glowColorBuffer" -1)
+            shader "u" "maya_state" ("passDepthThrough" on)"#;
+        let parsed = mi::parse_str("s.mi", text);
+        let found: Vec<Option<u32>> = parsed
+            .items
+            .iter()
+            .map(|item| {
+                let mi::ast::Item::Shader(def) = item else { panic!("{item:?}") };
+                let mi::ast::ShaderItem::Call { decl, params, .. } = &def.list.0[0] else { panic!() };
+                assert!(is_state(&decl.text));
+                color_buffer(params)
+            })
+            .collect();
+        assert_eq!(found, vec![Some(3), None, None]);
     }
 }

@@ -17,8 +17,9 @@
 //! - angles are in radians (the unit Maya stores and exports).
 //!
 //! Modules: [`engine`] (shading engine, shadow shaders), [`volume`] (the shading
-//! group's volume sampler), [`material`] and [`specular`]
-//! (lambert, blinn, phong, phongE, anisotropic, surfaceShader), [`ramp_shader`]
+//! group's volume sampler), [`fog`] (envFog and lightFog as volume shaders),
+//! [`material`] and [`specular`] (lambert, blinn, phong, phongE, anisotropic,
+//! surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`projection`]
@@ -32,6 +33,7 @@
 //! [`REGISTRY`] lists every implementation.
 
 pub mod engine;
+pub mod fog;
 pub mod glow;
 pub mod layered;
 pub mod layered_shader;
@@ -80,6 +82,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &engine::ADSK_TRANSPARENT,
     &volume::VOLUMESAMPLER,
     &volume::ADSK_VOLUMESAMPLER,
+    &fog::ENVFOG,
+    &fog::ADSK_ENVFOG,
+    &fog::LIGHTFOG,
+    &fog::ADSK_LIGHTFOG,
     &material::LAMBERT,
     &material::ADSK_LAMBERT,
     &material::BLINN,

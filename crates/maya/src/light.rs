@@ -60,14 +60,53 @@ pub struct LightRole {
     /// Contributes to the specular term (`emitSpecular`).
     pub specular: bool,
     /// An ambient light with this `ambientShade` (0: light from all sides, 1: from the
-    /// light's position only).
+    /// light's position only); also a volume light with `emitAmbient` (see [`VOLUME`]).
     pub ambient_shade: Option<f32>,
+    /// Whether a light in the ambient role (`ambient_shade`) also lights the highlight: a
+    /// volume light with `emitAmbient` and `emitSpecular` (never an ambient light).
+    pub ambient_specular: bool,
+    /// How a volume light turns the direction the material shades with
+    /// (`volumeLightDir`); `None`: the direction towards the sampled point on the light.
+    pub turn: Option<Turn>,
+}
+
+/// A volume light's direction for shading other than outwards from its centre (Maya's
+/// `volumeLightDir`; see [`VOLUME`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Turn {
+    /// 1, inward: the light arrives from the side away from the light's centre (the
+    /// direction towards the centre reversed).
+    Inward,
+    /// 2, down the axis: the light arrives from this world direction (unit; the light's
+    /// +y axis), as from a directional light travelling down its central axis.
+    DownAxis(Vec3A),
+}
+
+impl LightRole {
+    /// The direction (unit, world) the material shades a light sample with and its
+    /// cosine to the unit normal `normal`, from the sample's direction towards the light
+    /// `dir` (see [`Turn`]).
+    pub fn shading_direction(&self, normal: Vec3A, dir: Vec3A) -> (Vec3A, f32) {
+        let dir = match self.turn {
+            None => dir,
+            Some(Turn::Inward) => -dir,
+            Some(Turn::DownAxis(axis)) => axis,
+        };
+        (dir, normal.dot(dir))
+    }
+
+    /// Whether the light loop must also return samples behind the surface (the material
+    /// decides with the turned direction, or lights from all sides).
+    pub fn needs_both_sides(&self) -> bool {
+        self.ambient_shade.is_some() || self.turn.is_some()
+    }
 }
 
 /// The role of light `light` (an index into the scene's lights): from its Maya light
 /// shader's flags, or diffuse and specular for any other light shader.
 pub fn light_role(ctx: &mut Ctx, light: u32) -> LightRole {
-    let mut role = LightRole { diffuse: true, specular: true, ambient_shade: None };
+    let mut role =
+        LightRole { diffuse: true, specular: true, ambient_shade: None, ambient_specular: false, turn: None };
     let Some(node) = ctx.shading().lights.get(light as usize).and_then(|l| l.shader) else { return role };
     let n = ctx.node(node);
     let param = |name: &str| -> Option<usize> {
@@ -78,6 +117,7 @@ pub fn light_role(ctx: &mut Ctx, light: u32) -> LightRole {
     };
     let (d, s, a) = (param("emitDiffuse"), param("emitSpecular"), param("ambientShade"));
     let ambient = n.decl.name.ends_with("ambientlight") || n.decl.name.ends_with("AmbientLight");
+    let volume = matches!(n.decl.name.as_str(), "maya_volumelight" | "adskMayaVolumeLight");
     if let Some(i) = d {
         role.diffuse = ctx.bool(node, i);
     }
@@ -87,7 +127,29 @@ pub fn light_role(ctx: &mut Ctx, light: u32) -> LightRole {
     if ambient {
         role.ambient_shade = Some(a.map_or(0.45, |i| ctx.scalar(node, i)).clamp(0.0, 1.0));
     }
+    if volume {
+        volume_role(ctx, node, light, &mut role);
+    }
     role
+}
+
+/// A volume light's `volumeLightDir` and `emitAmbient` in `role` (see [`VOLUME`]).
+fn volume_role(ctx: &mut Ctx, node: NodeId, light: u32, role: &mut LightRole) {
+    role.turn = match ctx.int(node, I_VOLUME_DIR) {
+        1 => Some(Turn::Inward),
+        2 => {
+            // The light's +y axis in world space: the inverse of its world → local map
+            // applied to local +y.
+            let axis = ctx.light(light).map_or(Vec3A::Y, |l| (l.to_local.inverse() * Vec3A::Y).normalize_or(Vec3A::Y));
+            Some(Turn::DownAxis(axis))
+        }
+        _ => None,
+    };
+    if ctx.bool(node, I_EMIT_AMBIENT) {
+        // Half from the light's direction with emitDiffuse, else from all sides alike.
+        role.ambient_shade = Some(if role.diffuse { 0.5 } else { 0.0 });
+        role.ambient_specular = role.specular;
+    }
 }
 
 /// Where shadow rays start their way to the light: jittered over a sphere of `radius`
@@ -345,6 +407,9 @@ const VOLUME_PARAMS: &[&str] = &[
     "emitAmbient",
 ];
 
+const I_VOLUME_DIR: usize = 12;
+const I_EMIT_AMBIENT: usize = 13;
+
 /// A volume light's shape in its own space (the light's transform maps the unit shape
 /// onto the volume). Maya's node reference: `lightShape` 0 box, 1 sphere (the default),
 /// 2 cylinder, 3 cone; `arc` an angular slice about the light's y axis (degrees, 360 the
@@ -414,10 +479,15 @@ maya_shader!(
     /// 1 − d (position 0 on the boundary, 1 at the centre or axis), for cylinders and
     /// cones also times the `penumbra` graph ({`penumbra_Position`,
     /// `penumbra_FloatValue`, `penumbra_Interp`}; empty: 1) at the same place; nothing
-    /// outside; no decay (the ramp is the falloff), raytraced shadows. The light flows
-    /// outwards from the light's centre (`volumeLightDir` 0, Maya's default); the inward
-    /// and down-axis directions and `emitAmbient` are not represented (a light shader
-    /// cannot turn the direction the material shades with).
+    /// outside; no decay (the ramp is the falloff), raytraced shadows (towards the light's
+    /// centre). `volumeLightDir` (Maya's node reference) sets the direction the Maya
+    /// materials shade with ([`LightRole::turn`]): 0 outward (the default), from the
+    /// light's centre; 1 inward, the reverse (Maya: "a simple change in direction used for
+    /// the light computation"); 2 down the axis, as a directional light along the light's
+    /// central (y) axis (mira's reading: travelling towards −y). `emitAmbient` makes the
+    /// light light the materials as Maya's ambient light does: half from its direction,
+    /// half from all sides with `emitDiffuse` on, wholly from all sides with it off
+    /// (Maya's description), with a highlight still where `emitSpecular` is on.
     VOLUME,
     ADSK_VOLUME,
     "maya_volumelight",
@@ -443,8 +513,9 @@ fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 }
 
 /// A warning, at the shader's position, for each volume light of `shading` whose
-/// `volumeLightDir` (inward or down the axis) or `emitAmbient` the classic light shader
-/// does not represent (see [`VOLUME`]): the light then shines outwards from its centre.
+/// `volumeLightDir` (inward or down the axis) or `emitAmbient` the path engine does not
+/// represent (the Maya materials of the classic engine do, see [`VOLUME`]): its
+/// translation shines outwards from the light's centre and lights by direction only.
 pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let mut warnings = Vec::new();
     for node in &shading.graph.nodes {
@@ -463,8 +534,8 @@ pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
                 format!(
-                    "'{}': volumeLightDir {dir} (inward or down the axis) is not represented; the light shines \
-                     outwards from its centre",
+                    "'{}': volumeLightDir {dir} (inward or down the axis) is not represented by the path engine; \
+                     there the light shines outwards from its centre",
                     node.decl.name
                 ),
             ));
@@ -472,7 +543,10 @@ pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
         if constant("emitAmbient").is_some_and(|v| v.int() != 0) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
-                format!("'{}': emitAmbient is not represented; the light is directional only", node.decl.name),
+                format!(
+                    "'{}': emitAmbient is not represented by the path engine; there the light is directional only",
+                    node.decl.name
+                ),
             ));
         }
     }

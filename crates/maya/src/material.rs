@@ -258,21 +258,26 @@ fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, translucent:
     for light in material_lights(ctx, node, LIGHT_LIST) {
         let role = light_role(ctx, light);
         let mut lp = ctx.light_loop(light);
-        lp.both_sides = role.ambient_shade.is_some() || translucent;
+        lp.both_sides = role.needs_both_sides() || translucent;
         let mut sum = Received::default();
         while let Some(s) = ctx.sample_light(&mut lp) {
             let c = rgb(s.color);
+            // The direction the light is shaded with (a volume light may turn it).
+            let (dir, dot_nl) = role.shading_direction(n, s.dir);
             if let Some(shade) = role.ambient_shade {
-                sum.ambient += c * ((1.0 - shade) + shade * s.dot_nl.max(0.0));
-            } else if s.dot_nl > 0.0 {
+                sum.ambient += c * ((1.0 - shade) + shade * dot_nl.max(0.0));
+                if role.ambient_specular && dot_nl > 0.0 {
+                    sum.specular += c * highlight.value(n, v, dir);
+                }
+            } else if dot_nl > 0.0 {
                 if role.diffuse {
-                    sum.diffuse += c * s.dot_nl;
+                    sum.diffuse += c * dot_nl;
                 }
                 if role.specular {
-                    sum.specular += c * highlight.value(n, v, s.dir);
+                    sum.specular += c * highlight.value(n, v, dir);
                 }
             } else if role.diffuse {
-                sum.behind += c * -s.dot_nl;
+                sum.behind += c * -dot_nl;
             }
         }
         if lp.samples > 0 {

@@ -203,15 +203,22 @@ fn ramp_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         let (mut amb, mut spec) = (Vec3A::ZERO, Vec3A::ZERO);
         while let Some(s) = ctx.sample_light(&mut lp) {
             let c = rgb(s.color);
-            if let Some(shade) = role.ambient_shade {
-                amb += c * ((1.0 - shade) + shade * s.dot_nl.max(0.0));
-                continue;
-            }
-            if role.diffuse {
-                got.push((c, s.dot_nl));
-            }
-            if role.specular && specularity > 0.0 && s.dot_nl > 0.0 && normal.dot(view) > 0.0 {
-                if let Some(h) = (view + s.dir).try_normalize() {
+            // The direction the light is shaded with (a volume light may turn it).
+            let (dir, dot_nl) = role.shading_direction(normal, s.dir);
+            let specular_too = match role.ambient_shade {
+                Some(shade) => {
+                    amb += c * ((1.0 - shade) + shade * dot_nl.max(0.0));
+                    role.ambient_specular
+                }
+                None => {
+                    if role.diffuse {
+                        got.push((c, dot_nl));
+                    }
+                    role.specular
+                }
+            };
+            if specular_too && specularity > 0.0 && dot_nl > 0.0 && normal.dot(view) > 0.0 {
+                if let Some(h) = (view + dir).try_normalize() {
                     let d = blinn_distribution(eccentricity, normal.dot(h));
                     spec += spec_ramp.at(d) * c * d;
                 }

@@ -45,6 +45,10 @@ pub struct PathResult {
     pub alpha: f32,
     /// The first hit, if any.
     pub first: Option<FirstHit>,
+    /// The glow of the surface the camera ray stopped at (its material's
+    /// [`material::SurfaceMaterial::glow`], zero when it does not glow); `None` when the
+    /// camera ray stopped at no surface.
+    pub glow: Option<Rgb>,
 }
 
 /// Surface data at a hit.
@@ -313,6 +317,7 @@ pub fn trace_path(
     let mut throughput = Rgb::ONE;
     let mut radiance = Rgb::ZERO;
     let mut first = None;
+    let mut glow = None;
     let mut alpha = 0.0;
     // The BSDF density of the last bounce (for MIS on lights hit), and whether it was a delta.
     let mut last_pdf = 0.0f32;
@@ -407,6 +412,7 @@ pub fn trace_path(
             alpha = 1.0;
             let motion = crate::tracer::hit_motion(world, &stop, s.p, ray.time);
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
+            glow = Some(material.glow);
         }
         if material.emission != Rgb::ZERO {
             let spread = material.emission_spot.map_or(1.0, |spot| spot.factor(s.ns, -ray.dir));
@@ -496,7 +502,7 @@ pub fn trace_path(
             time: ray.time,
         };
     }
-    PathResult { radiance, alpha, first }
+    PathResult { radiance, alpha, first, glow }
 }
 
 #[cfg(test)]

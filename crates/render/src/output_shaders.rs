@@ -45,6 +45,36 @@ pub fn has_glow(camera: &Camera, lib: &scene::Library) -> bool {
     })
 }
 
+/// The user frame buffer Maya materials' glow goes to when `scene`'s camera runs a shader
+/// glow (`None` without one), as an index into `user_buffers` ((name, data type) of the
+/// world's user frame buffers): `fb<n>` when the options' state shader (`maya_state`,
+/// `adskFrameBufferState`) names `frame buffer n` in its `glowColorBuffer` and the options
+/// declare it, else [`maya::glow::BUFFER`], added to `user_buffers` when not there.
+pub fn glow_buffer(scene: &scene::Scene, user_buffers: &mut Vec<(String, String)>) -> Option<u32> {
+    if !has_glow(&scene.camera, &scene.library) {
+        return None;
+    }
+    let named = scene
+        .options
+        .state
+        .iter()
+        .find_map(|item| {
+            let (name, params) = material::first_call(std::slice::from_ref(item), &scene.library)?;
+            maya::glow::is_state(name).then(|| maya::glow::color_buffer(params)).flatten()
+        })
+        .map(|n| format!("fb{n}"))
+        .filter(|name| user_buffers.iter().any(|(b, _)| b == name));
+    let name = named.unwrap_or_else(|| maya::glow::BUFFER.to_string());
+    let index = match user_buffers.iter().position(|(b, _)| *b == name) {
+        Some(i) => i,
+        None => {
+            user_buffers.push((name, "rgba_fp".to_string()));
+            user_buffers.len() - 1
+        }
+    };
+    Some(index as u32)
+}
+
 /// Applies a shader glow: its source is the first user frame buffer among the output's
 /// `types` that shaders wrote, else the materials' glow buffer ([`maya::glow::BUFFER`])
 /// where a material glows, else the image's pixels brighter than white.

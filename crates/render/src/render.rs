@@ -424,6 +424,12 @@ pub fn render_prepared_with_film(
                             if let Some(f) = r.first {
                                 motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
                             }
+                            if let (Some(buffer), Some(g)) = (world.glow_buffer, r.glow) {
+                                // The glow the camera sees, as the classic shading engine
+                                // stores it: each sample's, zero where nothing glows.
+                                let g = g.max(bsdf::Rgb::ZERO);
+                                writes.push((b * band * w as usize + k, buffer, [g.x, g.y, g.z, 1.0]));
+                            }
                             (r.radiance, r.alpha, r.first)
                         }
                     };

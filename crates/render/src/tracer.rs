@@ -338,6 +338,10 @@ impl Tracer for SceneTracer<'_> {
     }
 
     fn fb_named(&self, name: &str) -> Option<u32> {
+        if name == maya::glow::BUFFER {
+            // Maya materials' glow: the buffer the state shader names, or the world's own.
+            return self.world.glow_buffer;
+        }
         self.world.user_buffers.iter().position(|(n, _)| n == name).map(|i| i as u32)
     }
 

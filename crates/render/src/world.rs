@@ -107,6 +107,10 @@ pub struct World {
     pub options: scene::Options,
     /// User frame buffers the scene declares: (name, data type).
     pub user_buffers: Vec<(String, String)>,
+    /// The user frame buffer (an index into `user_buffers`) Maya materials' glow goes to,
+    /// when the camera runs a shader glow ([`crate::output_shaders::glow_buffer`]): both
+    /// engines store there the glow of each surface a camera ray stops at.
+    pub glow_buffer: Option<u32>,
     /// Things approximated or left out while translating, for the user.
     pub warnings: Vec<String>,
     /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
@@ -379,12 +383,7 @@ impl World {
                 user_buffers.push((fb.name.clone(), fb.datatype.clone()));
             }
         }
-        if crate::output_shaders::has_glow(&scene.camera, &scene.library)
-            && !user_buffers.iter().any(|(n, _)| n == maya::glow::BUFFER)
-        {
-            // Maya materials' glow, which the shader glow's post pass spreads.
-            user_buffers.push((maya::glow::BUFFER.to_string(), "rgba_fp".to_string()));
-        }
+        let glow_buffer = crate::output_shaders::glow_buffer(scene, &mut user_buffers);
         let mut camera = CameraModel::new(&scene.camera);
         let mut light_motion = Vec::new();
         let mut light_meshes = Vec::new();
@@ -421,6 +420,7 @@ impl World {
             camera,
             options: scene.options.clone(),
             user_buffers,
+            glow_buffer,
             warnings,
             has_cutouts,
             has_media,

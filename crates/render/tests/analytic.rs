@@ -105,6 +105,7 @@ fn world(
         camera,
         options: options(),
         user_buffers: Vec::new(),
+        glow_buffer: None,
         warnings: Vec::new(),
         shutter: None,
         light_motion: Vec::new(),

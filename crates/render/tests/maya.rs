@@ -551,3 +551,86 @@ shader "sampler" "maya_volumesampler" ("volumeShader" = "fog")"#,
         }
     }
 }
+
+/// A camera 4 above a plane showing the unlit colour 0.8 (a surfaceShader), looking
+/// straight down through the camera volume `volume` with a field of view of 0.01 (every
+/// ray crosses 4 units within 2e-5 of it), at 4×4 pixels, optionally a point light of
+/// intensity 2 (no decay, no shadows) 1 beside the middle of the rays: the pixels.
+fn through_fog(volume: &str, light: bool) -> Vec<[f32; 4]> {
+    let light = if light {
+        r#"light "lamp" "maya_pointlight" ("intensity" 2, "decayRate" 0) origin 0 0 0 end light
+instance "lamp_inst" "lamp" transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 -2 0 1 end instance"#
+    } else {
+        ""
+    };
+    let members = if light.is_empty() { "" } else { r#" "lamp_inst""# };
+    let text = format!(
+        r#"
+$include "mayabase.mi"
+options "opt" samples 0 0 filter box 1 1 end options
+camera "cam" volume {volume} focal 1 aperture 0.01 aspect 1 resolution 4 4 end camera
+instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{light}
+shader "flat" "maya_surfaceshader" ("outColor" 0.8 0.8 0.8)
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material
+object "plane" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
+instance "plane_inst" "plane" end instance
+instgroup "root" "cam_inst" "plane_inst"{members} end instgroup
+render "root" "cam_inst" "opt"
+"#
+    );
+    let l = load(&mi::parse_str("fog.mi", &text), Vec::new(), None);
+    render_classic(&l, 1).2
+}
+
+/// Maya's fogs as the camera's volume, against their formulas (1e-3; see `maya::fog`):
+/// a black light fog without colour-based transparency leaves the plane's 0.8 times the
+/// transmittance exp(−density · 4) with fast drop-off, exp(−density) without; a coloured
+/// one covers each channel by α·c; lit by a point light 1 from the rays' middle it adds
+/// α·c·I; environment fog covers α = 4 / saturationDistance, with useHeight only the 2
+/// units between heights 1 and 3.
+#[test]
+fn maya_fogs_cover_and_light_what_lies_behind_by_their_formulas() {
+    let d = 0.2f32;
+    let light_fog = |params: &str| format!(r#""maya_lightfog" ("density" {d}, {params})"#);
+    let alpha = |through: f32| 1.0 - (-through).exp();
+    let cases: Vec<(String, bool, [f32; 3])> = vec![
+        (
+            light_fog(r#""color" 0 0 0, "colorBasedTransparency" off, "fastDropOff" on"#),
+            false,
+            [0.8 * (-d * 4.0).exp(); 3],
+        ),
+        (light_fog(r#""color" 0 0 0, "colorBasedTransparency" off"#), false, [0.8 * (-d).exp(); 3]),
+        (
+            light_fog(r#""color" 1 0.5 0, "fastDropOff" on"#),
+            false,
+            [0.8 * (1.0 - alpha(d * 4.0)), 0.8 * (1.0 - 0.5 * alpha(d * 4.0)), 0.8],
+        ),
+        (
+            light_fog(r#""color" 1 0.5 0, "fastDropOff" on"#),
+            true,
+            [
+                0.8 * (1.0 - alpha(d * 4.0)) + alpha(d * 4.0) * 2.0,
+                0.8 * (1.0 - 0.5 * alpha(d * 4.0)) + alpha(d * 4.0) * 0.5 * 2.0,
+                0.8,
+            ],
+        ),
+        (
+            r#""maya_envfog" ("color" 0.2 0.4 0.6, "saturationDistance" 10)"#.to_string(),
+            false,
+            [0.8 * (1.0 - 0.4 * 0.2) + 0.4 * 0.2, 0.8 * (1.0 - 0.4 * 0.4) + 0.4 * 0.4, 0.8 * (1.0 - 0.4 * 0.6) + 0.4 * 0.6],
+        ),
+        (
+            r#""maya_envfog" ("color" 0 0 0, "colorBasedTransparency" off, "saturationDistance" 10, "useHeight" on, "minHeight" 1, "maxHeight" 3)"#.to_string(),
+            false,
+            [0.8 * (1.0 - 0.2); 3],
+        ),
+    ];
+    for (volume, lit, want) in &cases {
+        for p in through_fog(volume, *lit) {
+            for c in 0..3 {
+                assert!((p[c] - want[c]).abs() < 1e-3, "{volume} (lit {lit}): pixel {p:?}, want {want:?}");
+            }
+        }
+    }
+}

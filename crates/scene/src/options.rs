@@ -270,6 +270,10 @@ pub struct Options {
     pub shutter: (f64, f64),
     /// Pre-3.10 user frame buffers: `frame buffer n "type"`.
     pub frame_buffers: Vec<(u32, String)>,
+    /// The state shaders (`state` statements, in order; the last statement that names
+    /// none clears them): shaders mental ray runs at each sample's start and end, such as
+    /// Maya exports' `maya_state` with its frame buffer bookkeeping.
+    pub state: Vec<mi::ast::ShaderItem>,
     /// `colorclip rgb|alpha|raw`.
     pub colorclip: String,
     /// `premultiply on|off`.
@@ -322,6 +326,7 @@ impl Default for Options {
             motion_steps: 1,
             shutter: (0.0, 0.0),
             frame_buffers: Vec::new(),
+            state: Vec::new(),
             colorclip: "rgb".into(),
             premultiply: true,
             gamma: 1.0,
@@ -479,6 +484,11 @@ impl Options {
                     let ty = str_arg(k, 1).unwrap_or("").to_string();
                     o.frame_buffers.retain(|(m, _)| *m != n);
                     o.frame_buffers.push((n, ty));
+                } else if k.key == "state" {
+                    o.state = match k.args.first() {
+                        Some(Arg::Shaders(l) | Arg::ShaderArray(l)) => l.0.clone(),
+                        _ => Vec::new(),
+                    };
                 }
             }
         }
@@ -625,5 +635,18 @@ mod tests {
         let iray = options(text, Dialect::Iray);
         assert_eq!(iray.filter.kind, FilterKind::Gauss);
         assert_eq!(iray.filter.radius(), (2.0, 2.0));
+    }
+
+    /// The `state` statement's shaders are kept in order: an inline call, a named shader
+    /// (`state = "name"`), and a later statement replaces an earlier one.
+    #[test]
+    fn state_shaders() {
+        let inline =
+            options("options \"o\" state \"maya_state\" (\"glowColorBuffer\" 1) end options", Dialect::MentalRay);
+        assert!(matches!(&inline.state[..], [mi::ast::ShaderItem::Call { decl, .. }] if decl.text == "maya_state"));
+        let named =
+            options("options \"o\" state \"maya_state\" () state = \"opt:state\" end options", Dialect::MentalRay);
+        assert!(matches!(&named.state[..], [mi::ast::ShaderItem::Ref(n)] if n.text == "opt:state"));
+        assert!(options("options \"o\" end options", Dialect::MentalRay).state.is_empty());
     }
 }

@@ -1,0 +1,252 @@
+//! Maya's fog materials as mental ray volume shaders: environment fog (`maya_envfog`,
+//! Maya's envFog node in its simple-fog mode) and light fog (`maya_lightfog`, the lightFog
+//! node). Exports name Maya's shading nodes `maya_` and the node type in lower case (the
+//! open-source mrLiquid exporter lists envFog and lightFog among the Maya shaders it
+//! writes so); the `adskMaya*` names are this crate's guess in the family's pattern.
+//!
+//! Both run where a volume shader runs ([`shader::volume`]: the camera's `volume`, a
+//! material's `volume`): the result arrives holding the colour the ray brought back over
+//! the segment from `state.org` to `state.point` (length L; an infinite one for a ray that
+//! left the scene) and leaves holding what reaches the ray's origin. The fog covers a
+//! share α of what lies behind it. With `colorBasedTransparency` on (Maya's default) the
+//! fog's transparency follows its colour: result ← result ⊙ (1 − α·c) + α·c ⊙ E, where c
+//! is `color` and E the light the fog shows (below); with it off the fog hides what lies
+//! behind alike in every channel (a dark fog then leaves dark silhouettes, as Maya
+//! describes): result ← result · (1 − α) + α·c ⊙ E. Light and shadow rays pass unchanged
+//! (Maya's environment fog casts no shadows, and its light fog is not a shadow caster in
+//! mira either).
+//!
+//! - `maya_envfog` (`color` white, `colorBasedTransparency` on, `saturationDistance` 100:
+//!   Maya's "distance at which the fog becomes fully saturated"; `useHeight` off,
+//!   `minHeight` −1, `maxHeight` 1): α = min(L_f / `saturationDistance`, 1), L_f the
+//!   length of the segment inside the fog — all of it, or with `useHeight` the part
+//!   whose world height lies between `minHeight` and `maxHeight` (above `minHeight`
+//!   when `maxHeight` is below it, as Maya documents); an infinite segment in the fog is
+//!   saturated (α = 1). The fog shows its own colour (E = 1). `physicalFog` (Maya's
+//!   physically based mode) is not implemented: a warning says so and the simple fog
+//!   is used.
+//! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
+//!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
+//!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
+//!   extinction `density` per scene unit; off, everything inside or behind the fog is
+//!   obscured by the same amount (Maya's description), mira's reading the fog of one
+//!   scene unit: α = 1 − exp(−`density`). The fog shows the light it receives: E is the
+//!   sum of what the lights of `lightList` (all the scene's lights when empty) deliver
+//!   at the segment's middle (their light shaders run there; at the segment's origin
+//!   for an infinite one).
+
+use glam::Vec3A;
+use shader::volume::segment_length;
+use shader::{Ctx, NodeId, RayType, Value};
+
+use crate::maya_shader;
+use crate::values::{rgb, rgba};
+
+/// The fog's share of what it covers and the light it shows, applied to `out` (see the
+/// module doc): `alpha` the share α, `color` the fog's colour c, `shown` E,
+/// `color_based` `colorBasedTransparency`.
+fn apply(out: &mut Value, alpha: f32, color: Vec3A, shown: Vec3A, color_based: bool) {
+    let behind = out.color();
+    let cover = if color_based { alpha * color } else { Vec3A::splat(alpha) };
+    let result = rgb(behind) * (Vec3A::ONE - cover) + alpha * color * shown;
+    let coverage = (cover.x + cover.y + cover.z) / 3.0;
+    *out = Value::Color(rgba(result, behind.w + (1.0 - behind.w) * coverage.clamp(0.0, 1.0)));
+}
+
+/// Whether the ray carries light to a point rather than colour to an eye (those pass
+/// unchanged).
+fn carries_light(ctx: &Ctx) -> bool {
+    matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow)
+}
+
+maya_shader!(
+    /// Environment fog, simple mode (see the module doc).
+    ENVFOG,
+    ADSK_ENVFOG,
+    "maya_envfog",
+    "adskMayaEnvFog",
+    &["color", "colorBasedTransparency", "saturationDistance", "useHeight", "minHeight", "maxHeight", "physicalFog"],
+    env_fog
+);
+
+/// The length of the part of the segment from `org` along unit `dir` over `length`
+/// (infinite allowed) whose height (world y) lies in [`lo`, `hi`] (`hi` < `lo`: [`lo`, ∞)).
+pub fn length_in_band(org: Vec3A, dir: Vec3A, length: f32, lo: f32, hi: f32) -> f32 {
+    let hi = if hi < lo { f32::INFINITY } else { hi };
+    let (t0, t1) = if dir.y == 0.0 {
+        if (lo..=hi).contains(&org.y) {
+            (0.0, length)
+        } else {
+            return 0.0;
+        }
+    } else {
+        let (a, b) = ((lo - org.y) / dir.y, (hi - org.y) / dir.y);
+        (a.min(b).max(0.0), a.max(b).min(length))
+    };
+    (t1 - t0).max(0.0)
+}
+
+/// The environment fog's share α over a segment of which `inside` lies in the fog:
+/// min(inside / `saturation`, 1) (1 for an infinite part; 0 for a saturation distance of
+/// 0 or less, which names no fog).
+pub fn env_fog_share(inside: f32, saturation: f32) -> f32 {
+    if saturation <= 0.0 || inside <= 0.0 {
+        return 0.0;
+    }
+    (inside / saturation).min(1.0)
+}
+
+fn env_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    if carries_light(ctx) {
+        return true;
+    }
+    let length = segment_length(&ctx.state);
+    let inside = if ctx.bool(n, 3) {
+        length_in_band(ctx.state.org, ctx.state.dir, length, ctx.scalar(n, 4), ctx.scalar(n, 5))
+    } else {
+        length
+    };
+    let alpha = env_fog_share(inside, ctx.scalar(n, 2));
+    let color = rgb(ctx.color(n, 0));
+    apply(out, alpha, color, Vec3A::ONE, ctx.bool(n, 1));
+    true
+}
+
+maya_shader!(
+    /// Light fog (see the module doc).
+    LIGHTFOG,
+    ADSK_LIGHTFOG,
+    "maya_lightfog",
+    "adskMayaLightFog",
+    &["color", "density", "colorBasedTransparency", "fastDropOff", "lightList"],
+    light_fog
+);
+
+/// The light fog's share α over a segment of length `length` (infinite allowed) of
+/// density `density`: 1 − exp(−density · length) with `fast_drop_off`, else
+/// 1 − exp(−density) (see the module doc).
+pub fn light_fog_share(density: f32, length: f32, fast_drop_off: bool) -> f32 {
+    let density = density.max(0.0);
+    let through = if fast_drop_off { density * length } else { density };
+    if through.is_nan() {
+        return 0.0;
+    }
+    1.0 - (-through).exp()
+}
+
+fn light_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    if carries_light(ctx) {
+        return true;
+    }
+    let length = segment_length(&ctx.state);
+    let alpha = light_fog_share(ctx.scalar(n, 1), length, ctx.bool(n, 3));
+    let color = rgb(ctx.color(n, 0));
+    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, length) } else { Vec3A::ZERO };
+    apply(out, alpha, color, shown, ctx.bool(n, 2));
+    true
+}
+
+/// What the light fog's lights deliver at the middle of the segment of `length` (at its
+/// origin for an infinite one), from every side.
+fn received_light(ctx: &mut Ctx, n: NodeId, length: f32) -> Vec3A {
+    let saved = ctx.state.clone();
+    let at = if length.is_finite() { saved.org + saved.dir * (0.5 * length) } else { saved.org };
+    ctx.state.point = at;
+    ctx.state.shadow_point = at;
+    ctx.state.normal = -saved.dir;
+    ctx.state.normal_geom = -saved.dir;
+    let listed = ctx.array(n, 4);
+    let lights = ctx.light_list(if listed.array().is_empty() { 3 } else { 0 }, &listed);
+    let mut sum = Vec3A::ZERO;
+    for light in lights {
+        let mut lp = ctx.light_loop(light);
+        lp.both_sides = true;
+        let mut got = Vec3A::ZERO;
+        while let Some(s) = ctx.sample_light(&mut lp) {
+            got += rgb(s.color);
+        }
+        if lp.samples > 0 {
+            sum += got / lp.samples as f32;
+        }
+    }
+    ctx.state = saved;
+    sum
+}
+
+/// A warning, at the shader's position, for each environment fog of `shading` in Maya's
+/// physical mode (`physicalFog` on), which mira renders as the simple fog.
+pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
+    shading
+        .graph
+        .nodes
+        .iter()
+        .filter(|node| matches!(node.decl.name.as_str(), "maya_envfog" | "adskMayaEnvFog"))
+        .filter(|node| {
+            let i = node.imp.map_or_else(
+                || node.decl.param("physicalFog"),
+                |imp| imp.params.iter().position(|p| *p == "physicalFog"),
+            );
+            matches!(i.and_then(|i| node.slots.get(i)), Some(shader::Slot::Value(v)) if v.int() != 0)
+        })
+        .map(|node| {
+            mi::Diagnostic::warning(
+                node.span,
+                format!("'{}': physicalFog is not implemented; the fog is rendered as simple fog", node.decl.name),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The height band clips a segment to the part between the two heights, in either
+    /// direction, open above when the top is below the bottom; a level segment is all in
+    /// or all out.
+    #[test]
+    fn the_height_band_clips_the_segment() {
+        let down = Vec3A::new(0.0, -1.0, 0.0);
+        let close = |a: f32, b: f32| (a - b).abs() < 1e-6;
+        assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), down, 4.0, 1.0, 3.0), 2.0));
+        assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), down, 2.0, 1.0, 3.0), 1.0));
+        assert!(close(length_in_band(Vec3A::new(0.0, 0.0, 0.0), -down, 10.0, 1.0, 3.0), 2.0));
+        assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), down, f32::INFINITY, 1.0, -5.0), 3.0));
+        assert_eq!(length_in_band(Vec3A::new(0.0, 4.0, 0.0), -down, f32::INFINITY, 1.0, -5.0), f32::INFINITY);
+        assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), down, 4.0, 1.0, -5.0), 3.0));
+        let slanted = Vec3A::new(0.6, -0.8, 0.0);
+        assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), slanted, 5.0, 1.0, 3.0), 2.5));
+        assert_eq!(length_in_band(Vec3A::new(0.0, 2.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 7.0);
+        assert_eq!(length_in_band(Vec3A::new(0.0, 5.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 0.0);
+    }
+
+    /// The shares against their formulas: linear up to saturation, exponential in the
+    /// distance with fast drop-off, one unit's worth without.
+    #[test]
+    fn fog_shares() {
+        assert!((env_fog_share(4.0, 10.0) - 0.4).abs() < 1e-7);
+        assert_eq!(env_fog_share(40.0, 10.0), 1.0);
+        assert_eq!(env_fog_share(f32::INFINITY, 10.0), 1.0);
+        assert_eq!(env_fog_share(4.0, 0.0), 0.0);
+        assert!((light_fog_share(0.2, 4.0, true) - (1.0 - (-0.8f32).exp())).abs() < 1e-7);
+        assert!((light_fog_share(0.2, 4.0, false) - (1.0 - (-0.2f32).exp())).abs() < 1e-7);
+        assert_eq!(light_fog_share(0.2, f32::INFINITY, true), 1.0);
+        assert_eq!(light_fog_share(0.0, f32::INFINITY, true), 0.0);
+    }
+
+    /// Colour-based transparency covers by the fog's colour, the other mode alike in all
+    /// channels; the fog's own light is added in both.
+    #[test]
+    fn covering_with_and_without_colour_based_transparency() {
+        let fog = Vec3A::new(1.0, 0.5, 0.0);
+        let mut out = Value::Color(shader::Color::new(0.8, 0.8, 0.8, 1.0));
+        apply(&mut out, 0.5, fog, Vec3A::splat(2.0), true);
+        let c = out.color();
+        let want = [0.8 * 0.5 + 1.0, 0.8 * 0.75 + 0.5, 0.8];
+        assert!((c.x - want[0]).abs() < 1e-6 && (c.y - want[1]).abs() < 1e-6 && (c.z - want[2]).abs() < 1e-6, "{c:?}");
+        let mut out = Value::Color(shader::Color::new(0.8, 0.8, 0.8, 1.0));
+        apply(&mut out, 0.5, fog, Vec3A::ZERO, false);
+        let c = out.color();
+        assert!((c.x - 0.4).abs() < 1e-6 && (c.y - 0.4).abs() < 1e-6 && (c.z - 0.4).abs() < 1e-6, "{c:?}");
+    }
+}
