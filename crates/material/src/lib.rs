@@ -154,6 +154,13 @@ pub struct SurfaceMaterial {
     /// turned by this angle (radians, counter-clockwise about the shading normal), for
     /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
     pub tangent_angle: Option<f32>,
+    /// How much of Maya's ambient light the surface reflects per unit of its diffuse
+    /// colour (`diffuse` here, per hit): Maya's materials reflect ambient light by their
+    /// `color` c where direct light goes by c·d (`diffuse` d), so Maya's lambert, blinn,
+    /// phong, phongE and anisotropic carry 1/d; 0: the material takes no ambient light
+    /// (every other material, as in the classic engine, where only Maya's materials read
+    /// ambient lights as such). See `render::ambient`.
+    pub ambient: f32,
 }
 
 impl SurfaceMaterial {
@@ -175,6 +182,7 @@ impl SurfaceMaterial {
             varying: Varying::Constant,
             medium: None,
             tangent_angle: None,
+            ambient: 0.0,
         }
     }
 
