@@ -159,6 +159,13 @@ pub struct SurfaceMaterial {
     /// `glowIntensity` × their colour): what the path engine stores in the glow frame
     /// buffer a shader glow spreads (zero for materials that do not glow).
     pub glow: Rgb,
+    /// How much of Maya's ambient light the surface reflects per unit of its diffuse
+    /// colour (`diffuse` here, per hit): Maya's materials reflect ambient light by their
+    /// `color` c where direct light goes by c·d (`diffuse` d), so Maya's lambert, blinn,
+    /// phong, phongE and anisotropic carry 1/d; 0: the material takes no ambient light
+    /// (every other material, as in the classic engine, where only Maya's materials read
+    /// ambient lights as such). See `render::ambient`.
+    pub ambient: f32,
 }
 
 impl SurfaceMaterial {
@@ -181,6 +188,7 @@ impl SurfaceMaterial {
             medium: None,
             tangent_angle: None,
             glow: Rgb::ZERO,
+            ambient: 0.0,
         }
     }
 

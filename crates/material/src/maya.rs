@@ -33,6 +33,10 @@
 //!   w_i = mean(T_0 ⋯ T_(i−1) (1 − T_i)) (`compositingFlag` 0 or 1 alike): their
 //!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
+//! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
+//!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
+//!   each hit by the path engine); rampShader and layeredShader take none in the path
+//!   engine;
 //! - transparency T (without refraction): coverage 1 − mean(T), so that the surface is
 //!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
 //!   `incandescence`: emitted radiance;
@@ -224,6 +228,8 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             let target = if reflective { Target::BaseColor } else { Target::Diffuse };
             let albedo = r.driven("color", target, d, Rgb::splat(0.5));
             surface.diffuse = albedo;
+            // Ambient light goes by `color` alone: 1/d of the diffuse colour.
+            surface.ambient = if d > 0.0 { 1.0 / d } else { 0.0 };
             surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {

@@ -145,8 +145,39 @@ fn physicalsky(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         });
         return true;
     }
-    let sky = sky_of(ctx, n);
+    let mut sky = sky_of(ctx, n);
+    if ctx.state.finalgather_level > 0 && linked_physical_sun(ctx, n) {
+        // Light-gathering rays do not see the disk and glow: the linked sun light
+        // delivers the sun's light (see [`linked_physical_sun`]).
+        sky.sun_disk_intensity = 0.0;
+        sky.sun_glow_intensity = 0.0;
+    }
     let c = sky.radiance(ctx.state.dir);
     *out = Value::Color(Color::new(c.x, c.y, c.z, 1.0));
     true
+}
+
+/// Whether the sky of node `n` takes its sun from a light (its `sun` parameter) whose light
+/// shader is `mia_physicalsun`: the sun's light then reaches surfaces as that light's
+/// (`mi_sample_light`), and rays that gather light — final gather rays here, the path
+/// engine's scattered rays and environment samples (it asks with `finalgather_level` 1) —
+/// see the sky without the disk and glow, so that the sun is not counted twice.
+///
+/// The sources: Autodesk's mental ray manual, "Sun and Sky"
+/// (<http://download.autodesk.com/us/maya/2010help/mr/shaders/architectural/arch_sunsky.html>):
+/// the sun is `mia_physicalsun` on a directional light and its light is what
+/// `mi_sample_light` returns (lux with `rgb_unit_conversion` 1); the sky is the camera's
+/// environment and lights the scene through final gathering. 3ds Max's mr Physical Sky page
+/// (Autodesk's 3ds Max 2009 manual, "Sun Disk Appearance" group) calls the disk intensity,
+/// glow intensity and scale settings of the visible appearance of the sun in the sky. No
+/// stored page says in so many words which rays see the disk; hiding it from gathering rays
+/// when a sun light exists is mira's reading of that split (verify against mental ray). A
+/// sky without a sun light (`sun_direction` only) keeps its disk for every ray: it is then
+/// the only sun.
+pub fn linked_physical_sun(ctx: &mut Ctx, n: NodeId) -> bool {
+    let Some(Tag::Light(l)) = ctx.tag(n, 11) else { return false };
+    let Some(light) = ctx.light(l) else { return false };
+    let Some(head) = light.shader else { return false };
+    let graph = &ctx.shading().graph;
+    graph.nodes.get(head as usize).and_then(|node| node.imp).is_some_and(|imp| imp.name == "mia_physicalsun")
 }

@@ -18,6 +18,14 @@
 //! everywhere.
 //! Constant environments skip the grid and are sampled uniformly over the sphere.
 //!
+//! An environment may show the camera more than the light it casts: `mia_physicalsky`
+//! linked to a `mia_physicalsun` light hides its sun disk and glow from rays that gather
+//! light (the sun light delivers the sun; see `mia::sky::linked_physical_sun`). Such an
+//! environment is evaluated twice over: as seen ([`Environment::radiance`]: camera rays and
+//! rays after mirror bounces) and as light ([`Environment::light_radiance`]: rays after
+//! other bounces, environment samples, portals; run as a final gather ray would run it),
+//! and its importance grid tabulates the light.
+//!
 //! A sun much smaller than a texel (Iray's `base::sun_and_sky` at its default disk size
 //! covers a fifth of one) would still be found too rarely: when the environment is that
 //! shader, a share of the samples goes uniformly into the cone that holds the sun's disk
@@ -62,6 +70,12 @@ impl Source<'_> {
     /// The unscaled radiance arriving along unit direction `dir` (travelling towards the
     /// scene: the environment is seen looking along `dir`). Non-finite values read as 0.
     fn eval(&self, dir: Vec3A) -> Rgb {
+        self.eval_as(dir, false)
+    }
+
+    /// [`Source::eval`]; with `gather`, a shader runs as for a final gather ray (its
+    /// `finalgather_level` 1): the light the environment casts rather than what is seen.
+    fn eval_as(&self, dir: Vec3A, gather: bool) -> Rgb {
         let c = match self {
             Source::Constant(c) => *c,
             Source::Function(f) => f(dir),
@@ -73,6 +87,7 @@ impl Source<'_> {
                     point: Vec3A::ZERO,
                     dir,
                     dist: 0.0,
+                    finalgather_level: u32::from(gather),
                     ..State::default()
                 };
                 let mut ctx = Ctx::new(shading, &tracer, state);
@@ -185,6 +200,9 @@ pub struct Environment<'a> {
     map: Option<LatLongMap>,
     /// A small bright sun sampled on its own.
     sun: Option<SunLobe>,
+    /// The light it casts differs from what is seen (evaluated as a final gather ray
+    /// evaluates it; see the module comment).
+    light_differs: bool,
 }
 
 /// The cone around a sun that gets its own share of the environment's samples.
@@ -218,6 +236,18 @@ impl SunLobe {
     }
 }
 
+/// Whether the environment at `node` casts other light than it shows: `mia_physicalsky`
+/// linked to a `mia_physicalsun` light ([`mia::sky::linked_physical_sun`]).
+fn light_differs(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -> bool {
+    let Some(imp) = shading.graph.nodes.get(node as usize).and_then(|n| n.imp) else { return false };
+    if imp.name != "mia_physicalsky" {
+        return false;
+    }
+    let tracer = SceneTracer::new(world, accel);
+    let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
+    mia::sky::linked_physical_sun(&mut ctx, node)
+}
+
 /// The sun of an Iray `base::sun_and_sky` environment at `node`, as a lobe taking a share
 /// of the samples equal to its part of the light on a plane facing it (between 0.1 and
 /// 0.9); `None` for other shaders or without a sun.
@@ -247,7 +277,13 @@ impl<'a> Environment<'a> {
     pub fn of_scene(world: &'a World, accel: &'a dyn Accel, shading: &'a Shading) -> Option<Environment<'a>> {
         let node = shading.environment?;
         let attr = |name: &str| world.options.attributes.get(name).and_then(|a| a.as_f64()).map(|v| v as f32);
-        let mut env = Environment::new(Source::Shader { world, accel, shading, node });
+        let source = Source::Shader { world, accel, shading, node };
+        let mut env = if light_differs(world, accel, shading, node) {
+            let map = LatLongMap::build(&source, true);
+            Environment { light_differs: true, map, ..Environment::new_untabulated(source) }
+        } else {
+            Environment::new(source)
+        };
         env.sun = sun_lobe(world, accel, shading, node);
         env.scale = attr("environment_function_intensity").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         env.lighting_scale = attr("environment_lighting_scale").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
@@ -259,9 +295,23 @@ impl<'a> Environment<'a> {
     pub fn new(source: Source<'a>) -> Environment<'a> {
         let map = match source {
             Source::Constant(_) => None,
-            _ => LatLongMap::build(&source),
+            _ => LatLongMap::build(&source, false),
         };
-        Environment { source, scale: 1.0, lighting_scale: 1.0, camera_visible: true, sampled: true, map, sun: None }
+        Environment { map, ..Environment::new_untabulated(source) }
+    }
+
+    /// An environment of `source` without an importance grid (sampled uniformly).
+    fn new_untabulated(source: Source<'a>) -> Environment<'a> {
+        Environment {
+            source,
+            scale: 1.0,
+            lighting_scale: 1.0,
+            camera_visible: true,
+            sampled: true,
+            map: None,
+            sun: None,
+            light_differs: false,
+        }
     }
 
     /// Whether it gives no light at all.
@@ -274,9 +324,21 @@ impl<'a> Environment<'a> {
         }
     }
 
-    /// Radiance arriving along unit world direction `dir` (looking along `dir`).
+    /// Radiance arriving along unit world direction `dir` (looking along `dir`) as seen:
+    /// by camera rays and rays after mirror (delta) bounces.
     pub fn radiance(&self, dir: Vec3A) -> Rgb {
         self.source.eval(dir) * self.scale
+    }
+
+    /// Radiance arriving along unit world direction `dir` as light on surfaces: for rays
+    /// after other bounces, environment samples and portals (see the module comment; the
+    /// same as [`Environment::radiance`] for most environments). Not × the lighting scale.
+    pub fn light_radiance(&self, dir: Vec3A) -> Rgb {
+        if self.light_differs {
+            self.source.eval_as(dir, true) * self.scale
+        } else {
+            self.radiance(dir)
+        }
     }
 
     /// Draws a direction for the numbers `u` in [0, 1)².
@@ -289,7 +351,7 @@ impl<'a> Environment<'a> {
             self.sample_grid(Vec2::new((u.x - sun.share) / (1.0 - sun.share), u.y))?.dir
         };
         let pdf = self.pdf(dir);
-        (pdf > 0.0).then(|| EnvSample { dir, radiance: self.radiance(dir), pdf })
+        (pdf > 0.0).then(|| EnvSample { dir, radiance: self.light_radiance(dir), pdf })
     }
 
     /// Sets the sun lobe (for tests; scenes get theirs from [`Environment::of_scene`]).
@@ -305,7 +367,7 @@ impl<'a> Environment<'a> {
             let r = (1.0 - z * z).max(0.0).sqrt();
             let phi = 2.0 * PI * u.y;
             let dir = Vec3A::new(r * phi.cos(), r * phi.sin(), z);
-            return Some(EnvSample { dir, radiance: self.radiance(dir), pdf: 1.0 / (4.0 * PI) });
+            return Some(EnvSample { dir, radiance: self.light_radiance(dir), pdf: 1.0 / (4.0 * PI) });
         };
         let (v, pdf_v, row) = map.marginal.sample(u.y);
         let (x, pdf_u, _) = map.rows[row].sample(u.x);
@@ -314,7 +376,7 @@ impl<'a> Environment<'a> {
             return None;
         }
         let pdf = pdf_v * pdf_u / (2.0 * PI * PI * sin_theta);
-        Some(EnvSample { dir, radiance: self.radiance(dir), pdf })
+        Some(EnvSample { dir, radiance: self.light_radiance(dir), pdf })
     }
 
     /// Solid-angle density with which [`Environment::sample`] draws unit direction `dir`.
@@ -342,9 +404,9 @@ impl<'a> Environment<'a> {
 }
 
 impl LatLongMap {
-    /// Tabulates `source`; `None` when it is the same in every texel (then sampled
-    /// uniformly).
-    fn build(source: &Source) -> Option<LatLongMap> {
+    /// Tabulates `source` (as light with `gather`: [`Source::eval_as`]); `None` when it is
+    /// the same in every texel (then sampled uniformly).
+    fn build(source: &Source, gather: bool) -> Option<LatLongMap> {
         let (w, h) = (MAP_WIDTH, MAP_HEIGHT);
         // Luminance at the texel corners, then each texel's largest of its centre and
         // corners: a light smaller than a texel still gets density where it is.
@@ -353,7 +415,7 @@ impl LatLongMap {
             .flat_map_iter(|row| {
                 (0..=w).map(move |col| {
                     let uv = Vec2::new(col as f32 / w as f32, row as f32 / h as f32);
-                    luminance(source.eval(direction(uv).0))
+                    luminance(source.eval_as(direction(uv).0, gather))
                 })
             })
             .collect();
@@ -365,7 +427,7 @@ impl LatLongMap {
                     let uv = Vec2::new((col as f32 + 0.5) / w as f32, (row as f32 + 0.5) / h as f32);
                     let (dir, sin_theta) = direction(uv);
                     let at = |r: usize, c: usize| corners[r * (w + 1) + c];
-                    let l = luminance(source.eval(dir))
+                    let l = luminance(source.eval_as(dir, gather))
                         .max(at(row, col))
                         .max(at(row, col + 1))
                         .max(at(row + 1, col))

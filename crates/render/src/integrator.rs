@@ -123,7 +123,7 @@ fn light_radiance(light: &LightSource, le: Rgb, env: Option<&Environment>, dir: 
     if !light.is_portal() {
         return le;
     }
-    env.map_or(Rgb::ZERO, |env| le * env.radiance(dir) * env.lighting_scale)
+    env.map_or(Rgb::ZERO, |env| le * env.light_radiance(dir) * env.lighting_scale)
 }
 
 /// Whether a ray from `origin` along unit `dir` leaves through the emitting side of a portal
@@ -151,7 +151,9 @@ fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool),
     if weight == 0.0 {
         return Rgb::ZERO;
     }
-    env.radiance(ray.dir) * (env.lighting_scale * weight)
+    // After a mirror bounce the environment is seen; after others it is light.
+    let l = if last_delta { env.radiance(ray.dir) } else { env.light_radiance(ray.dir) };
+    l * (env.lighting_scale * weight)
 }
 
 /// A shading point as next-event estimation sees it.
@@ -329,6 +331,8 @@ pub fn trace_path(
     let seed = sampler.stream();
     // The media the path is in (none at the camera).
     let mut media = MediumStack::default();
+    // The instance the path last scattered at (light linking; none at the camera).
+    let mut from_instance: Option<u32> = None;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
@@ -365,6 +369,7 @@ pub fn trace_path(
                     let (dir, pdf) = medium.phase.sample(ray.dir, sampler.next_2d());
                     last_pdf = pdf;
                     last_delta = false;
+                    from_instance = None;
                     let u_rr = sampler.next_1d();
                     if depth + 1 >= settings.rr_depth {
                         let q = throughput.max_element().min(0.95);
@@ -397,7 +402,10 @@ pub fn trace_path(
             // Emission found by the BSDF: all of it when light sampling could not have
             // found it (camera rays, delta bounces); else the MIS share, or nothing when
             // light sampling alone accounts for it.
-            let weight = if depth == 0 || last_delta {
+            let linked = from_instance.is_none_or(|i| world.lights_instance(li, i));
+            let weight = if !linked {
+                0.0
+            } else if depth == 0 || last_delta {
                 1.0
             } else if settings.mis {
                 power_heuristic(last_pdf, pick * world.lights[li].pdf_at(ray.origin, ray.dir, t, ray.time))
@@ -426,6 +434,12 @@ pub fn trace_path(
             // A bump or normal map (given facing the ray): on the side of `ns`.
             ns = if bent.dot(ns) < 0.0 { -bent } else { bent };
         }
+        // Maya's ambient lights: the material's colour × what they give here, added as
+        // it is (no BSDF, no shadow; see `material::emission::ambient`).
+        let ambient = world.materials[s.material as usize].ambient;
+        if ambient > 0.0 && !world.ambient.is_empty() {
+            radiance += throughput * material.diffuse * ambient * world.ambient_at(s.p, ns);
+        }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.model.bsdf(material.diffuse, wo);
@@ -439,7 +453,7 @@ pub fn trace_path(
             let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
-        } else if k < light_count && !bsdf.is_delta() {
+        } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
             let light = &world.lights[k];
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
@@ -479,6 +493,7 @@ pub fn trace_path(
             break;
         }
         throughput *= bs.weight();
+        from_instance = Some(stop.instance);
         // Straight through an index-matched medium boundary is no bounce for MIS: what is
         // found next is weighed against the sampling at the vertex before.
         if !(world.has_media && media.follow(world, s.material, s.ng, ray.dir, wi)) {

@@ -74,6 +74,16 @@ pub enum Output {
     /// depends on where the point lies in the light's volume (see
     /// [`material::emission::maya::VolumeEmission`]); nothing outside it.
     Volume(Box<material::emission::maya::VolumeEmission>),
+    /// `mia_physicalsun`: a distant light of this irradiance (on a plane facing it) from
+    /// directions spread uniformly over the cone of half-angle `angular_radius` (radians)
+    /// around the direction opposite the light's; soft shadows, as the classic shader's
+    /// shadow rays over the sun's disk. Not seen by rays (the sky shows the disk).
+    Sun {
+        /// Irradiance on a plane facing the sun.
+        irradiance: Rgb,
+        /// Half-angle of the cone, radians (0: one direction).
+        angular_radius: f32,
+    },
     /// `mia_portal_light`: a window bringing the environment in. Its surface radiance
     /// along a direction is `scale` × the environment's radiance along it (the integrator
     /// multiplies the two), towards the shape's normal side (the other with `reverse`).
@@ -195,11 +205,13 @@ impl LightSource {
             }
             (Power::Constant { color, falloff }, _, _) => Output::Constant { color, falloff },
             (Power::Volume(volume), _, _) => Output::Volume(volume),
+            (Power::Sun { irradiance, angular_radius }, _, _) => Output::Sun { irradiance, angular_radius },
             (p, LightKind::Directional, _) => Output::Irradiance(match p {
                 Power::Exitance(c) | Power::Radiance(c) | Power::Flux(c) | Power::Intensity(c) => c,
                 Power::Constant { color, .. } | Power::Photometric { color, .. } => color,
                 Power::Portal { scale, .. } => scale,
                 Power::Volume(volume) => volume.color,
+                Power::Sun { irradiance, .. } => irradiance,
             }),
             (Power::Photometric { color, exponent, range }, _, _) => {
                 Output::Photometric { color, exponent, range, distribution }
@@ -242,16 +254,21 @@ impl LightSource {
             return 1.0;
         }
         let c = out.dot(self.direction);
-        if let Some(e) = self.spot_exponent {
-            return c.max(0.0).powf(e);
+        let power = self.spot_exponent.map_or(1.0, |e| c.max(0.0).powf(e));
+        if self.spot_exponent.is_some() && self.cone.is_none() {
+            // MDL's spot: the cosine power alone.
+            return power;
         }
         if c < self.spread {
             return 0.0;
         }
-        match self.cone {
-            Some(inner) if inner > self.spread && c < inner => (c - self.spread) / (inner - self.spread),
-            _ => 1.0,
-        }
+        // mental ray's and Maya's spots: the cone, its edge fading linearly in the
+        // cosine; Maya's `dropoff` is the cosine power inside it.
+        power
+            * match self.cone {
+                Some(inner) if inner > self.spread && c < inner => (c - self.spread) / (inner - self.spread),
+                _ => 1.0,
+            }
     }
 
     /// A point on the shape (uniform by area) and its normal.
@@ -271,6 +288,10 @@ impl LightSource {
                 }
                 let wi = d / dist;
                 let mut f = distribution.as_ref().map_or(1.0, |dist| dist.factor(-wi));
+                if self.cone.is_some() {
+                    // A spot with a cone (Maya's spots with a decay): its cone too.
+                    f *= self.spot(-wi);
+                }
                 let in_range = range.is_none_or(|(start, stop)| dist > start && dist < stop);
                 if *exponent > 0.0 && in_range {
                     f *= dist.powf(-exponent);
@@ -279,6 +300,18 @@ impl LightSource {
             }
             Output::Irradiance(e) => {
                 Some(LightSample { wi: -self.direction, dist: f32::INFINITY, radiance: *e, pdf: 1.0, delta: true })
+            }
+            Output::Sun { irradiance, angular_radius } => {
+                // One direction in the cone, uniform in solid angle: the cone's irradiance
+                // is the given one, shadowed by the share of the cone that is blocked (the
+                // cosine varies by less than 1e-4 across the sun's cone).
+                let to_sun = -self.direction;
+                let wi = if *angular_radius > 0.0 {
+                    mia::sun::cone_direction(to_sun, *angular_radius, u.x, u.y)
+                } else {
+                    to_sun
+                };
+                Some(LightSample { wi, dist: f32::INFINITY, radiance: *irradiance, pdf: 1.0, delta: true })
             }
             Output::Intensity(i) => {
                 let d = self.position - p;

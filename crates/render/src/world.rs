@@ -101,6 +101,13 @@ pub struct World {
     pub materials: Vec<SurfaceMaterial>,
     /// Light sources.
     pub lights: Vec<LightSource>,
+    /// Maya's ambient lights, which are not sampled: the path engine adds what they give
+    /// at each hit of a material that takes ambient light (see [`World::ambient_at`]).
+    pub ambient: Vec<material::emission::ambient::AmbientLight>,
+    /// Light linking (instances' `light [exclusive] [ … ]` lists): for each instance (as
+    /// [`World::instances`]), the indices into [`World::lights`] of the lights that do not
+    /// light it; empty altogether when no instance has a list (see [`World::lights_instance`]).
+    pub unlinked_lights: Vec<Vec<u32>>,
     /// The camera.
     pub camera: CameraModel,
     /// The scene's options.
@@ -165,11 +172,35 @@ fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], insta
 /// warnings of those that do not.
 type SceneLights = (Vec<(LightSource, usize)>, Vec<String>);
 
+/// [`World::unlinked_lights`] of `instances` (the world's, from `scene`'s) and `lights`
+/// (as [`scene_lights`] makes them): an `exclusive` list names the lights that do not
+/// light the instance, another list the only ones that do.
+fn unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[(LightSource, usize)]) -> Vec<Vec<u32>> {
+    let links: Vec<Option<&scene::instance::LightLink>> =
+        instances.iter().map(|i| scene.instances.get(i.scene_index as usize).and_then(|s| s.lights.as_ref())).collect();
+    if links.iter().all(Option::is_none) {
+        return Vec::new();
+    }
+    links
+        .iter()
+        .map(|link| {
+            let Some(link) = link else { return Vec::new() };
+            (0..lights.len() as u32)
+                .filter(|&w| link.lights.contains(&(lights[w as usize].1 as u32)) == link.exclusive)
+                .collect()
+        })
+        .collect()
+}
+
 /// The lights of `scene` (object area lights read its meshes).
 fn scene_lights(scene: &Scene, shading: Option<&Shading>) -> SceneLights {
     let mut lights = Vec::new();
     let mut warnings = Vec::new();
     for (index, l) in scene.lights.iter().enumerate() {
+        if material::emission::ambient::maya_ambient(l, &scene.library).is_some() {
+            // Not a light the path engine samples: see `World::ambient`.
+            continue;
+        }
         match LightSource::in_scene_shaded(l, scene, shading) {
             Ok(src) => lights.push((src, index)),
             Err(w) => warnings.push(w),
@@ -276,6 +307,13 @@ impl World {
         (lights, light_warnings): SceneLights,
     ) -> World {
         let mut warnings = Vec::new();
+        let mut ambient = Vec::new();
+        for l in &scene.lights {
+            if let Some((light, warning)) = material::emission::ambient::maya_ambient(l, &scene.library) {
+                ambient.push(light);
+                warnings.extend(warning);
+            }
+        }
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
         for (i, m) in scene.materials.iter().enumerate() {
             let (mat, w) = material::translate_with(m, &scene.library, shading.map(|s| (s, i)), Some(mdl));
@@ -411,12 +449,15 @@ impl World {
         if shutter.is_none() || light_meshes.iter().all(Option::is_none) {
             light_meshes = Vec::new();
         }
+        let unlinked_lights = unlinked_lights(scene, &instances, &lights);
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
             meshes,
             instances,
             materials,
             lights,
+            ambient,
+            unlinked_lights,
             camera,
             options: scene.options.clone(),
             user_buffers,
@@ -428,6 +469,19 @@ impl World {
             light_motion,
             light_meshes,
         }
+    }
+
+    /// Whether light `light` (an index into [`World::lights`]) lights instance `instance`
+    /// (an index into [`World::instances`]) by the instance's light list.
+    pub fn lights_instance(&self, light: usize, instance: u32) -> bool {
+        self.unlinked_lights.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
+    }
+
+    /// What Maya's ambient lights give a surface at `p` with unit shading normal `n`
+    /// (facing the viewer), to be multiplied by the material's diffuse colour × its
+    /// [`SurfaceMaterial::ambient`]: the sum of [`AmbientLight::at`](material::emission::ambient::AmbientLight::at).
+    pub fn ambient_at(&self, p: Vec3A, n: Vec3A) -> bsdf::Rgb {
+        self.ambient.iter().map(|a| a.at(p, n)).sum()
     }
 
     /// World-space bounds of all instances (over the whole shutter when things move).

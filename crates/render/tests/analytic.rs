@@ -102,6 +102,8 @@ fn world(
         instances,
         materials,
         lights,
+        ambient: Vec::new(),
+        unlinked_lights: Vec::new(),
         camera,
         options: options(),
         user_buffers: Vec::new(),

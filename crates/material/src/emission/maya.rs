@@ -8,8 +8,8 @@
 //!   engine too, as mental ray for Maya's classic shaders do (no 1/π in their light units);
 //! - a spot's cone: full light inside the inner half-angle (`coneAngle`/2, narrowed by a
 //!   negative `penumbraAngle`), fading to the scene light's `spread` — linear in the cosine
-//!   where the classic shader fades linearly in the angle; `dropoff` is not represented
-//!   (and the renderer's photometric output, used with a decay, ignores the cone today);
+//!   where the classic shader fades linearly in the angle —, times cos^`dropoff` of the
+//!   angle from the axis, with or without a decay;
 //! - a volume light of sphere shape (`lightShape` 1) whose transform scales the unit
 //!   sphere uniformly to radius R: a point light at its centre with a linear falloff from
 //!   the centre to R when `colorRange` runs linearly from black on the boundary (position
@@ -21,7 +21,8 @@
 //!   and the cylinder's and cone's `penumbra` graph, read as the classic light reads them);
 //!   light directions other than outward (`volumeLightDir`) are left out with a message;
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
-//!   lights); ambient lights are left out (no counterpart): both with a message.
+//!   lights), with a message; ambient lights are not lights the path engine samples:
+//!   see [`super::ambient`] (a message here when asked for as a light).
 
 use super::{Emission, Power};
 use crate::{color_param, first_call, scalar_param};
@@ -66,7 +67,10 @@ pub fn emission_of(decl: &str, params: &[Param], light_to_world: DMat4) -> Optio
         let inner = half + scalar("penumbraAngle", 0.0).min(0.0);
         inner.clamp(0.0, std::f32::consts::FRAC_PI_2).cos()
     });
-    Some(Ok(Emission { power, spot_exponent: None, cone, distribution: None }))
+    // Maya's `dropoff`: the spot's cosine power inside the cone.
+    let dropoff = scalar("dropoff", 0.0);
+    let spot_exponent = (family == "spotlight" && dropoff > 0.0).then_some(dropoff);
+    Some(Ok(Emission { power, spot_exponent, cone, distribution: None }))
 }
 
 /// The emission of a scene light whose shader is a Maya light (see [`emission_of`]).

@@ -4,6 +4,7 @@
 //! `mia_photometric_light` and `mia_portal_light`, and the physics library's
 //! `physical_light`.
 
+pub mod ambient;
 pub mod maya;
 
 use std::sync::Arc;
@@ -51,6 +52,17 @@ pub enum Power {
     /// arcs, uneven scales): a point light at the light's origin whose colour arriving at
     /// a point depends on where the point lies in the light's volume ([`maya::VolumeEmission`]).
     Volume(Box<maya::VolumeEmission>),
+    /// `mia_physicalsun` on a directional light: the sun, a distant light of this
+    /// irradiance on a plane facing it, arriving from directions spread uniformly over a
+    /// cone of half-angle `angular_radius` (radians) around the light's direction (0: one
+    /// direction, hard shadows).
+    Sun {
+        /// Irradiance on a plane facing the sun, in the path engine's units (see
+        /// [`physical_sun`]).
+        irradiance: Rgb,
+        /// Half-angle of the cone of directions, radians.
+        angular_radius: f32,
+    },
     /// `mia_portal_light` (area lights over windows): the surface radiance along a
     /// direction is `scale` × the environment's radiance along it, emitted to the side of
     /// the shape's normal (the other side with `reverse`). `use_custom_environment`,
@@ -200,6 +212,7 @@ pub fn emission_scaled(
                 distribution: None,
             })
         }
+        "mia_physicalsun" => physical_sun(light, params),
         "mib_light_point" | "mib_light_spot" | "mib_light_infinite" => {
             let atten = scalar_param(params, "atten").unwrap_or(0.0) != 0.0;
             let falloff = atten.then(|| {
@@ -240,4 +253,61 @@ pub fn emission_scaled(
         }
         other => Err(format!("light '{}': light shader '{other}' is not supported yet", light.name)),
     }
+}
+
+/// `mia_physicalsun`'s emission for the path engine: the colour the classic engine's light
+/// shader gives a lit point (`mia::sun::PhysicalSun::color`, the same model and
+/// parameters, for the direction towards the sun, the opposite of the light's) × π, over
+/// the cone its soft shadows spread over (`PhysicalSun::shadow_cone` when `samples` > 1,
+/// as the classic shader; else one direction).
+///
+/// Why × π: mental ray's shaders multiply a light's colour by their diffuse colour with no
+/// 1/π (`mia_material`, the base and Maya shaders alike), and `mia_physicalsky` returns π ×
+/// the sky's luminance (so that its hemispherical mean is the illuminance); the path
+/// engine reads the sky's value as radiance and reflects ρ/π of the irradiance, so the
+/// sun's colour × π keeps the sun's share against the sky's and gives a lambert the
+/// classic engine's ρ·colour·cos θ.
+///
+/// The sources (Autodesk's mental ray manual, "Sun and Sky",
+/// <http://download.autodesk.com/us/maya/2010help/mr/shaders/architectural/arch_sunsky.html>;
+/// 3ds Max's mr Sun page, <https://help.autodesk.com/cloudhelp/2015/ENU/3DSMax/files/GUID-EA1D17B0-1D25-4014-8D2F-1D0E7F888349.htm>):
+/// the sun is a directional light whose shader gives the sunlight (`mi_sample_light`;
+/// lux with `rgb_unit_conversion` 1, a 5900 K black body of 127 500 lux outside the
+/// atmosphere); softness 1 is the real sun's shadow edge, larger is softer, 0 hard; the
+/// soft shadows take `samples` shadow rays (0: none soft).
+fn physical_sun(light: &Light, params: &[mi::ast::Param]) -> Result<Emission, String> {
+    if light.kind != scene::LightKind::Directional {
+        return Err(format!(
+            "light '{}': mia_physicalsun works on directional lights only; the light is left out",
+            light.name
+        ));
+    }
+    let d = mia::sun::PhysicalSun::default();
+    let scalar = |name: &str, default: f32| scalar_param(params, name).map_or(default, |v| v as f32);
+    let sun = mia::sun::PhysicalSun {
+        on: scalar("on", 1.0) != 0.0,
+        multiplier: scalar("multiplier", d.multiplier),
+        rgb_unit_conversion: match color_param(params, "rgb_unit_conversion") {
+            Some(Ok(c)) => c,
+            _ => d.rgb_unit_conversion,
+        },
+        haze: scalar("haze", d.haze),
+        redblueshift: scalar("redblueshift", d.redblueshift),
+        saturation: scalar("saturation", d.saturation),
+        horizon_height: scalar("horizon_height", d.horizon_height),
+        shadow_softness: scalar("shadow_softness", d.shadow_softness),
+        samples: scalar("samples", d.samples as f32) as i32,
+        y_is_up: scalar("y_is_up", 0.0) != 0.0,
+        illuminance_mode: scalar("illuminance_mode", 0.0) as i32,
+        direct_normal_illuminance: scalar("direct_normal_illuminance", d.direct_normal_illuminance),
+    };
+    let to_sun = -light.direction.as_vec3a().normalize_or_zero();
+    let c = sun.color(to_sun).unwrap_or(Rgb::ZERO) * std::f32::consts::PI;
+    let cone = sun.shadow_cone();
+    Ok(Emission {
+        power: Power::Sun { irradiance: c, angular_radius: if sun.samples > 1 && cone > 0.0 { cone } else { 0.0 } },
+        spot_exponent: None,
+        cone: None,
+        distribution: None,
+    })
 }

@@ -1,0 +1,75 @@
+//! Maya's ambient light (`maya_ambientlight`, `adskMayaAmbientLight`) for the path engine.
+//!
+//! The classic Maya materials (`maya::material`) add, for each ambient light of colour C
+//! and intensity I, `color` ⊙ C·I · ((1 − s) + s · max(cos θ, 0)) to what they reflect,
+//! s = `ambientShade` (0.45 by default) and θ the angle between the shading normal and
+//! the direction to the light's position: a part (1 − s) that arrives from all sides
+//! alike and a part s that arrives from the light like a point light without decay.
+//! Maya's node reference describes ambientShade this way (0: light from all directions,
+//! 1: from the light's position only). Nothing in it passes through a BSDF: the
+//! path engine adds it at each hit of a material that takes ambient light
+//! ([`crate::SurfaceMaterial::ambient`]), the same formula, unshadowed.
+
+use crate::{color_param, first_call, scalar_param};
+use bsdf::Rgb;
+use glam::Vec3A;
+
+/// A Maya ambient light in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AmbientLight {
+    /// `color` · `intensity` (the classic shader's colour; no π: the materials use it
+    /// as it is, see the module doc).
+    pub color: Rgb,
+    /// `ambientShade`, clamped to [0, 1].
+    pub shade: f32,
+    /// The light's position, world space.
+    pub position: Vec3A,
+}
+
+impl AmbientLight {
+    /// The ambient light a surface at `p` with unit shading normal `n` (facing the
+    /// viewer) receives: C·I · ((1 − s) + s · max(n · l, 0)), l towards the light.
+    pub fn at(&self, p: Vec3A, n: Vec3A) -> Rgb {
+        let cos = (self.position - p).normalize_or_zero().dot(n).max(0.0);
+        self.color * ((1.0 - self.shade) + self.shade * cos)
+    }
+}
+
+/// The ambient light of scene light `light`, with a message about what the path engine
+/// leaves out of it (raytraced shadows of its directional part); `None` when its shader
+/// is not a Maya ambient light.
+pub fn maya_ambient(light: &scene::Light, lib: &scene::Library) -> Option<(AmbientLight, Option<String>)> {
+    let list = light.shader.as_ref()?;
+    let (decl, params) = first_call(&list.0, lib)?;
+    let name = crate::declaration_name(decl);
+    if name != "maya_ambientlight" && name != "adskMayaAmbientLight" {
+        return None;
+    }
+    let scalar = |n: &str, default: f64| scalar_param(params, n).unwrap_or(default) as f32;
+    let color = match color_param(params, "color") {
+        Some(Ok(c)) => c,
+        _ => Rgb::ONE,
+    } * scalar("intensity", 1.0);
+    let shade = scalar("ambientShade", 0.45).clamp(0.0, 1.0);
+    let shadows = scalar("useRayTraceShadows", 0.0) != 0.0 && shade > 0.0;
+    let warning = shadows
+        .then(|| format!("light '{}': {name}'s raytraced shadows are not rendered by the path engine", light.name));
+    Some((AmbientLight { color, shade, position: light.position.as_vec3a() }, warning))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniform_part_everywhere_and_the_directional_part_by_the_cosine() {
+        let light = AmbientLight { color: Rgb::new(1.0, 0.5, 0.25), shade: 0.4, position: Vec3A::new(0.0, 2.0, 0.0) };
+        let p = Vec3A::ZERO;
+        // Facing the light: all of it; facing away: the uniform part (1 − s).
+        assert!((light.at(p, Vec3A::Y) - light.color).abs().max_element() < 1e-6);
+        assert!((light.at(p, -Vec3A::Y) - light.color * 0.6).abs().max_element() < 1e-6);
+        // 60° off: (1 − s) + s/2.
+        let n = Vec3A::new(3f32.sqrt() / 2.0, 0.5, 0.0);
+        assert!((light.at(p, n) - light.color * 0.8).abs().max_element() < 1e-6);
+    }
+}
