@@ -321,13 +321,11 @@ impl<'a> Reader<'a> {
                     ..Default::default()
                 })
             }
-            (_, Some(g @ ("thin_glass" | "thick_glass"))) => {
+            (_, Some("thin_glass")) => {
                 self.normal(params);
-                let thin = g == "thin_glass";
-                let transmission = if thin { Rgb::ONE } else { self.color(params, "transmission_color", Rgb::ONE) };
                 let glass = self.color_to(params, "glass_color", Rgb::splat(0.95), base(Target::BaseColor));
                 if self.connection(params, "glass_color").is_some() {
-                    // The colour also tints transmission (by the constant transmission colour).
+                    // The colour also tints transmission.
                     self.bind(params, "glass_color", base(Target::TransmissionColor));
                 }
                 unified(UnifiedParams {
@@ -335,10 +333,37 @@ impl<'a> Reader<'a> {
                     roughness: self.scalar_to(params, "roughness", 0.0, base(Target::Roughness)),
                     ior: self.scalar_to(params, "ior", 1.4, base(Target::Ior)),
                     spec_trans: 1.0,
-                    thin,
-                    transmission_color: Some(glass * transmission),
+                    thin: true,
+                    transmission_color: Some(glass),
                     ..Default::default()
                 })
+            }
+            (_, Some("thick_glass")) => {
+                // As core_definitions defines it: the surface transmits tinted by
+                // `transmission_color` at every crossing, the glass body absorbs
+                // σa = −ln(glass_color) / base_thickness (`glass_color` is reached after
+                // `base_thickness` metres; none for a thickness ≤ 0).
+                self.normal(params);
+                let transmission =
+                    self.color_to(params, "transmission_color", Rgb::ONE, base(Target::TransmissionColor));
+                // A uniform parameter in MDL: only read as a constant (a connection is
+                // warned about, its default used).
+                let glass = self.color(params, "glass_color", Rgb::splat(0.95)).clamp(Rgb::splat(1e-6), Rgb::ONE);
+                let thickness = self.scalar(params, "base_thickness", 0.1);
+                let mut surface = unified(UnifiedParams {
+                    base_color: glass,
+                    roughness: self.scalar_to(params, "roughness", 0.0, base(Target::Roughness)),
+                    ior: self.scalar_to(params, "ior", 1.4, base(Target::Ior)),
+                    spec_trans: 1.0,
+                    thin: false,
+                    transmission_color: Some(transmission),
+                    ..Default::default()
+                });
+                if glass != Rgb::ONE && thickness > 0.0 {
+                    let sigma_a = -Rgb::from(glass.to_array().map(f32::ln));
+                    surface.medium = Some(bsdf::Medium::new(sigma_a / thickness, Rgb::ZERO, 0.0));
+                }
+                surface
             }
             (_, Some("add_emission")) => {
                 let mut surface = match params.iter().rev().find(|p| p.name.text == "base").map(|p| &p.value) {

@@ -100,3 +100,46 @@ render "root" "ci" "o"
     assert_eq!(medium("plain"), None);
     assert_eq!(medium("thin"), None);
 }
+
+/// `core_definitions::thick_glass` (translated natively) as NVIDIA defines it: the glass
+/// body absorbs σa = −ln(glass_color) / base_thickness, the surface transmits tinted by
+/// `transmission_color` (ior 1: an index-matched boundary of that tint); a thickness of 0
+/// and a clear glass colour give no medium; `thin_glass` has none.
+#[test]
+fn thick_glass_colour_becomes_absorption() {
+    let text = r#"
+shader "thick" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 0.5 0.25 0.8, "base_thickness" 0.2, "transmission_color" 0.9 0.8 0.7, "ior" 1)
+shader "default" "mdl::nvidia::core_definitions::thick_glass" ()
+shader "flat" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 0.5 0.5 0.5, "base_thickness" 0)
+shader "clear" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 1 1 1)
+shader "thin" "mdl::nvidia::core_definitions::thin_glass" ("glass_color" 0.5 0.5 0.5)
+options "o" end options
+camera "c" end camera
+instance "ci" "c" end instance
+object "tri" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 c "thick" 0 1 2 c "default" 0 1 2 c "flat" 0 1 2 c "clear" 0 1 2 c "thin" 0 1 2 end group end object
+instance "ti" "tri" end instance
+instgroup "root" "ci" "ti" end instgroup
+render "root" "ci" "o"
+"#;
+    let parsed = mi::parse_str("t.mi", text);
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
+    let surface = |name: &str| {
+        let m = scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no material {name}"));
+        let (surface, warnings) = material::translate(m, &scene.library, None);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        surface
+    };
+    let thick = surface("thick");
+    let medium = thick.medium.expect("a medium");
+    let want = Rgb::new(-(0.5f32.ln()), -(0.25f32.ln()), -(0.8f32.ln())) / 0.2;
+    assert!(close(medium.sigma_a, want, 1e-5) && medium.sigma_s == Rgb::ZERO, "{medium:?} vs σa {want:?}");
+    assert!(thick.has_inside(), "light enters thick glass");
+    let tint = thick.model.index_matched().expect("ior 1: index-matched");
+    assert!(close(tint, Rgb::new(0.9, 0.8, 0.7), 1e-6), "the surface's tint is the transmission colour: {tint:?}");
+    let default = surface("default").medium.expect("the default glass colour 0.95 absorbs");
+    assert!(close(default.sigma_a, Rgb::splat(-(0.95f32.ln()) / 0.1), 1e-5), "{default:?}");
+    assert_eq!(surface("flat").medium, None, "base_thickness 0: no absorption");
+    assert_eq!(surface("clear").medium, None, "a clear glass colour absorbs nothing");
+    assert_eq!(surface("thin").medium, None, "thin glass has no inside");
+}

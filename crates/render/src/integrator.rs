@@ -16,7 +16,8 @@ use crate::light::LightSource;
 use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
-use media::{Departure, MediumStack};
+use media::Departure;
+pub use media::{media_at, MediumStack};
 
 /// Integrator settings.
 #[derive(Clone, Copy, Debug)]
@@ -304,6 +305,9 @@ fn shadow_blocked(world: &World, accel: &dyn Accel, shading: Option<&Shading>, s
 /// without crossing one find the environment (MIS against sampling the environment), and
 /// environment samples whose direction crosses a portal count nothing. Camera rays pass
 /// through portals.
+///
+/// `camera_media` are the media around the camera ray's origin (see [`media_at`]; the
+/// default outside all).
 #[allow(clippy::too_many_arguments)]
 pub fn trace_path(
     world: &World,
@@ -311,6 +315,7 @@ pub fn trace_path(
     shading: Option<&Shading>,
     env: Option<&Environment>,
     camera_ray: Ray,
+    camera_media: &MediumStack,
     sampler: &mut Sampler,
     settings: &PathSettings,
     counts: &mut RayCounts,
@@ -329,8 +334,8 @@ pub fn trace_path(
     let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
     let pick = if choices > 0 { 1.0 / choices as f32 } else { 0.0 };
     let seed = sampler.stream();
-    // The media the path is in (none at the camera).
-    let mut media = MediumStack::default();
+    // The media the path is in.
+    let mut media = camera_media.clone();
     // The instance the path last scattered at (light linking; none at the camera).
     let mut from_instance: Option<u32> = None;
     for depth in 0..settings.max_depth {
@@ -466,11 +471,7 @@ pub fn trace_path(
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
-                    let tr = if light.shadow {
-                        media::shadow_transmittance(world, accel, shading, &departure, &shadow, seed)
-                    } else {
-                        Rgb::ONE
-                    };
+                    let tr = media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
                     if tr != Rgb::ZERO {
                         let weight = if ls.delta || !settings.mis {
                             1.0

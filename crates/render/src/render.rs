@@ -308,6 +308,12 @@ pub fn render_prepared_with_film(
         _ => None,
     };
     let env = prepared.env.as_ref();
+    // The media the camera is in (path engine; found once, where the camera is when the
+    // shutter opens).
+    let camera_media = match classic {
+        Some(_) => crate::integrator::MediumStack::default(),
+        None => crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0),
+    };
     let (first_pass, target) = match classic {
         Some(_) => classic_samples(&world.options, settings.spp),
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
@@ -419,8 +425,17 @@ pub fn render_prepared_with_film(
                         }
                         None => {
                             let ray = cam.ray_at(raster.x, raster.y, time);
-                            let r =
-                                trace_path(world, accel, shading, env, ray, &mut sampler, &settings.path, &mut counts);
+                            let r = trace_path(
+                                world,
+                                accel,
+                                shading,
+                                env,
+                                ray,
+                                &camera_media,
+                                &mut sampler,
+                                &settings.path,
+                                &mut counts,
+                            );
                             if let Some(f) = r.first {
                                 motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
                             }

@@ -148,7 +148,17 @@ fn plane_stats(world: &render::World, env: &Environment, res: u32, spp: u32) -> 
                 let _ = sampler.next_2d();
                 let ray = world.camera.ray(x as f32 + 0.5, y as f32 + 0.5);
                 let mut counts = RayCounts::default();
-                let r = trace_path(world, accel.as_ref(), None, Some(env), ray, &mut sampler, &settings, &mut counts);
+                let r = trace_path(
+                    world,
+                    accel.as_ref(),
+                    None,
+                    Some(env),
+                    ray,
+                    &Default::default(),
+                    &mut sampler,
+                    &settings,
+                    &mut counts,
+                );
                 sum += f64::from(r.radiance.x);
             }
             values.push(sum / f64::from(spp));

@@ -2,7 +2,9 @@
 //! absorbing slab behind an index-matched boundary transmits exp(−σa·d) per channel (seen
 //! through, and on the shadow rays of a light behind it), and a purely scattering sphere
 //! (albedo 1, chromatic coefficients, forward and backward Henyey–Greenstein) under a
-//! uniform white environment is a white furnace.
+//! uniform white environment is a white furnace. The stack of media: a camera inside
+//! nested media, five nested shells, cut-out surfaces that are no boundary, lights without
+//! shadows that media still absorb; `thick_glass`'s absorption.
 
 mod support;
 
@@ -11,10 +13,25 @@ use render::{EngineKind, Settings};
 /// Renders `text` (which includes media.mdl) with the path engine at `res`², `spp` samples
 /// per pixel, `max_depth` bounces: the pixels and every message.
 fn render(text: &str, res: u32, spp: u32, max_depth: u32) -> (Vec<[f32; 4]>, Vec<String>) {
+    render_with(text, res, spp, render::integrator::PathSettings { max_depth, ..Default::default() })
+}
+
+/// [`render`] with the path engine's settings `path`.
+fn render_with(text: &str, res: u32, spp: u32, path: render::integrator::PathSettings) -> (Vec<[f32; 4]>, Vec<String>) {
+    render_by(EngineKind::Path, text, res, spp, path)
+}
+
+/// [`render_with`] by `engine`.
+fn render_by(
+    engine: EngineKind,
+    text: &str,
+    res: u32,
+    spp: u32,
+    path: render::integrator::PathSettings,
+) -> (Vec<[f32; 4]>, Vec<String>) {
     let parsed = mi::parse_str("t.mi", text);
     let b = support::build_parsed(&parsed, res, &[support::mdl_modules()]);
-    let path = render::integrator::PathSettings { max_depth, ..Default::default() };
-    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), path, ..Settings::default() };
+    let settings = Settings { engine, spp: Some(spp), path, ..Settings::default() };
     let (film, _) = support::render_world(&b.built.world, &b.built.shading, &settings);
     (film.rgba(), b.messages)
 }
@@ -135,6 +152,27 @@ fn a_flex_material_reaches_its_volume_colour_after_its_base_thickness() {
     }
 }
 
+#[test]
+fn thick_glass_reaches_its_glass_colour_after_its_base_thickness() {
+    // core_definitions' thick_glass: σa = −ln(glass_color) / base_thickness inside, the
+    // surface tinted by transmission_color where light enters; a 1-unit slab of index 1
+    // lets 0.9 × glass_color^(1 / 0.5) through. A matte wall (0.8) lit through it by a
+    // directional light (irradiance π): the same again on the shadow rays.
+    let glass = r#"shader "slab_mtl" "mdl::nvidia::core_definitions::thick_glass" ("ior" 1, "glass_color" 0.5 0.25 0.8, "base_thickness" 0.5, "transmission_color" 0.9 0.9 0.9)"#;
+    let through = [0.5f32, 0.25, 0.8].map(|c| 0.9 * c * c);
+    let glow = r#"shader "back_mtl" "mdl::media::glow" ()"#;
+    let (px, messages) = render(&slab_scene(glass, glow, "", 4), 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, through, 1e-3, "a glow behind thick glass");
+    let matte = r#"$include "export_multi.mdl"
+shader "back_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)"#;
+    let sun = r#"light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance"#;
+    let (px, messages) = render(&slab_scene(glass, matte, sun, 4), 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, through.map(|t| 0.8 * t * t), 2e-3, "a wall lit and seen through thick glass");
+}
+
 /// A UV sphere of radius 1 at (0, 0, −5) of material "ball_mtl" (outward faces), as `.mi`
 /// text.
 fn ball() -> String {
@@ -242,4 +280,154 @@ render "root" "cam_inst" "opt"
     let ratio = forward / single(0.5);
     assert!((0.97..=1.10).contains(&ratio), "forward {forward} vs single scattering {}", single(0.5));
     assert!(backward < forward / 10.0, "backward {backward} vs forward {forward}");
+}
+
+/// A scene of a camera at the origin looking down −z (field of view 0.6°, `res`²
+/// pixels) with `body` (shaders, objects, lights) and the instances `instances`.
+fn scene_with(body: &str, instances: &[&str], res: u32) -> String {
+    let list: String = instances.iter().map(|i| format!(" \"{i}\"")).collect();
+    format!(
+        r#"$include "media.mdl"
+$include "export_multi.mdl"
+options "opt" filter box 1 1 end options
+camera "cam" focal 1 aperture 0.01 aspect 1 resolution {res} {res} end camera
+instance "cam_inst" "cam" end instance
+{body}
+instgroup "root" "cam_inst"{list} end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// A 100 × 100 quad at depth `z` facing +z (the camera) of material `material`.
+fn wall(name: &str, z: f32, material: &str) -> String {
+    format!(
+        "object \"{name}\" group\n-50 -50 {z}  50 -50 {z}  50 50 {z}  -50 50 {z}\nv 0 v 1 v 2 v 3\n\
+         p \"{material}\" 0 1 2 3\nend group end object\ninstance \"{name}_inst\" \"{name}\" end instance\n"
+    )
+}
+
+/// Asserts every pixel is `want` per channel within relative `tol`.
+fn assert_pixels(px: &[[f32; 4]], want: [f32; 3], tol: f32, what: &str) {
+    for p in px {
+        for k in 0..3 {
+            assert!((p[k] - want[k]).abs() <= tol * want[k], "{what}: channel {k}: {} vs {}", p[k], want[k]);
+        }
+    }
+}
+
+#[test]
+fn a_camera_inside_a_medium_sees_through_it() {
+    // The camera inside a closed gel box (σa = 0.5, 1, 2; z from −4 to 4) sees a glow of
+    // radiance 1 inside it at distance 1.5: exp(−1.5 σa) per channel. Inside that box and
+    // a second one around it (σa = 0.25; z from −6 to 6), a glow at z = −8 outside both:
+    // exp(−4 σa − 2 · 0.25), the camera's media found by rays from its position.
+    let inner = closed_box("inner", [-5.0, -5.0, -4.0], [5.0, 5.0, 4.0], "inner_mtl");
+    let glow = r#"shader "glow_mtl" "mdl::media::glow" ()
+shader "inner_mtl" "mdl::media::tinted_gel" ()"#;
+    let text = scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
+    let (px, messages) = render(&text, 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
+
+    let outer = closed_box("outer", [-10.0, -10.0, -6.0], [10.0, 10.0, 6.0], "outer_mtl");
+    let text = scene_with(
+        &format!(
+            "{glow}\nshader \"outer_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" 0.25 0.25 0.25)\n{inner}{outer}{}",
+            wall("w", -8.0, "glow_mtl")
+        ),
+        &["inner_inst", "outer_inst", "w_inst"],
+        4,
+    );
+    let (px, messages) = render(&text, 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, SIGMA_A.map(|s| (-4.0 * s - 0.5).exp()), 1e-3, "a wall outside two boxes");
+}
+
+#[test]
+fn five_nested_media_keep_the_outermost() {
+    // Five nested gel shells (σa 0.3, 0.2, 0.1, 0.15, 0.05 from the outside in; shell i
+    // spans z from −20 + i to −4 − i) in front of a glow at z = −25: the camera ray is in
+    // shell i for 2 units (1 in, 1 out) and in the innermost for 8:
+    // exp(−2(0.3 + 0.2 + 0.1 + 0.15) − 8 · 0.05) = exp(−1.9). A stack that forgot the
+    // outermost would miss its last unit: exp(−1.6).
+    let sigma = [0.3f32, 0.2, 0.1, 0.15, 0.05];
+    let mut body = String::from("shader \"glow_mtl\" \"mdl::media::glow\" ()\n");
+    let mut instances = Vec::new();
+    for (i, s) in sigma.iter().enumerate() {
+        let f = i as f32;
+        body += &format!("shader \"shell{i}_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" {s} {s} {s})\n");
+        body += &closed_box(
+            &format!("shell{i}"),
+            [-10.0 + f, -10.0 + f, -20.0 + f],
+            [10.0 - f, 10.0 - f, -4.0 - f],
+            &format!("shell{i}_mtl"),
+        );
+        instances.push(format!("shell{i}_inst"));
+    }
+    body += &wall("w", -25.0, "glow_mtl");
+    instances.push("w_inst".into());
+    let names: Vec<&str> = instances.iter().map(String::as_str).collect();
+    // No Russian roulette: every path crosses all ten surfaces, so the image is exact.
+    let path = render::integrator::PathSettings { max_depth: 32, rr_depth: 32, ..Default::default() };
+    let (px, messages) = render_with(&scene_with(&body, &names, 4), 4, 4, path);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let want = (-1.9f32).exp();
+    assert_pixels(&px, [want; 3], 1e-3, "five shells");
+}
+
+/// A white matte wall at z = −5 lit head-on by a directional light (irradiance π, `shadow`
+/// its shadow flag) through the gel slab (z from −3 to −2); `extra` adds objects,
+/// `instances` their instances. The pixels of a render at 4², 4 samples.
+fn lit_through_the_slab(shadow: &str, extra: &str, instances: &[&str]) -> (Vec<[f32; 4]>, Vec<String>) {
+    let body = format!(
+        r#"shader "matte_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)
+shader "slab_mtl" "mdl::media::tinted_gel" ()
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 shadow {shadow} end light
+instance "sun_inst" "sun" end instance
+{}{}{extra}"#,
+        closed_box("slab", [-3.0, -3.0, -3.0], [3.0, 3.0, -2.0], "slab_mtl"),
+        wall("w", -5.0, "matte_mtl")
+    );
+    let mut all = vec!["sun_inst", "slab_inst", "w_inst"];
+    all.extend_from_slice(instances);
+    render(&scene_with(&body, &all, 4), 4, 4, 16)
+}
+
+#[test]
+fn a_light_without_shadows_is_still_absorbed_by_media() {
+    // `shadow off`: a black wall behind the camera (z = 1, facing the light) does not block
+    // the light, but the gel slab still absorbs it: 0.8 exp(−2σa) as with shadows on and
+    // no wall (once to the camera, once on the light's way); with shadows on the wall
+    // blocks it: 0.
+    let blocker = r#"shader "black_mtl" "mdl::export_multi::matte" ("tint" 0 0 0)
+object "blocker" group
+    -50 -50 1  -50 50 1  50 50 1  50 -50 1
+    v 0 v 1 v 2 v 3
+    p "black_mtl" 0 1 2 3
+end group end object
+instance "blocker_inst" "blocker" end instance
+"#;
+    let want = SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp());
+    let (px, messages) = lit_through_the_slab("off", blocker, &["blocker_inst"]);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, want, 2e-3, "shadow off, blocker");
+    let (px, _) = lit_through_the_slab("on", "", &[]);
+    assert_pixels(&px, want, 2e-3, "shadow on, no blocker");
+    let (px, _) = lit_through_the_slab("on", blocker, &["blocker_inst"]);
+    assert!(px.iter().all(|p| p[..3].iter().all(|&c| c == 0.0)), "shadow on, blocked: {:?}", px[0]);
+}
+
+#[test]
+fn a_cut_out_surface_inside_a_medium_is_no_boundary() {
+    // A closed box of a strongly absorbing gel (σa = 4) whose surface is entirely cut out
+    // sits inside the slab (z from −2.7 to −2.3): neither the camera's rays nor the
+    // light's shadow rays enter it, so the wall keeps 0.8 exp(−2σa) of the slab alone.
+    let cut = format!(
+        "shader \"cut_mtl\" \"mdl::media::cutout_gel\" (\"opacity\" 0)\n{}",
+        closed_box("cut", [-2.0, -2.0, -2.7], [2.0, 2.0, -2.3], "cut_mtl")
+    );
+    let (px, messages) = lit_through_the_slab("on", &cut, &["cut_inst"]);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp()), 2e-3, "cut out box in the slab");
 }

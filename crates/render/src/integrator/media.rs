@@ -13,14 +13,22 @@
 //!
 //! Shadow rays through media carry their transmittance. An *index-matched* boundary of a
 //! material with a medium (smooth transmission with index of refraction 1,
-//! [`material::SurfaceModel::index_matched`]) lets shadow rays through with its tint, and a
+//! [`material::SurfaceModel::index_matched`]) lets shadow rays through, tinted where they
+//! enter, and a
 //! path crossing it keeps the sampling density of its last scattering vertex for MIS (the
 //! crossing bends nothing, so a light found behind it is weighed against the light
 //! sampling done before it). Any other boundary blocks shadow rays as surfaces do.
 //!
+//! Lights with `shadow off` are blocked and tinted by no surface, but the media along the
+//! way still attenuate their light ([`light_transmittance`]). A cutout lets rays through
+//! where it is cut out, and there it is no boundary: the media stay as they were.
+//!
+//! Camera paths start in the media around the camera's position at the shutter's opening
+//! ([`media_at`], found once per render): a camera inside a closed object with a medium sees
+//! through that medium.
+//!
 //! Scenes without media take none of these branches (`World::has_media` is false): their
-//! paths are the same, sample for sample. The camera is assumed to be outside every
-//! medium.
+//! paths are the same, sample for sample.
 
 use bsdf::medium::Flight;
 use bsdf::{Medium, Rgb};
@@ -37,45 +45,88 @@ use crate::ray::{mask, offset_origin, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 
-/// How many media a path can be inside at once; entering more keeps the innermost four.
-const MAX_NESTING: usize = 4;
+/// How many media a path keeps inline; a path nested deeper moves its stack to the heap
+/// (nothing is forgotten).
+const INLINE_NESTING: usize = 8;
 
 /// The media a path is in: the materials (indices into `World::materials`) whose
-/// surfaces it entered and has not left, innermost last.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(super) struct MediumStack {
-    materials: [u32; MAX_NESTING],
-    len: u8,
+/// surfaces it entered and has not left, innermost last. Any depth: the first
+/// [`INLINE_NESTING`] inline, deeper nesting spills to a vector.
+#[derive(Clone, Debug)]
+pub struct MediumStack(Entries);
+
+/// A [`MediumStack`]'s materials, inline or spilled.
+#[derive(Clone, Debug)]
+enum Entries {
+    /// Up to [`INLINE_NESTING`] materials, the first `len` in use.
+    Inline { materials: [u32; INLINE_NESTING], len: u8 },
+    /// A deeper stack.
+    Spilled(Vec<u32>),
 }
 
+impl Default for MediumStack {
+    /// Outside every medium.
+    fn default() -> MediumStack {
+        MediumStack(Entries::Inline { materials: [0; INLINE_NESTING], len: 0 })
+    }
+}
+
+impl PartialEq for MediumStack {
+    fn eq(&self, other: &MediumStack) -> bool {
+        self.materials() == other.materials()
+    }
+}
+
+impl Eq for MediumStack {}
+
 impl MediumStack {
+    /// The materials of the media, outermost first.
+    pub fn materials(&self) -> &[u32] {
+        match &self.0 {
+            Entries::Inline { materials, len } => &materials[..usize::from(*len)],
+            Entries::Spilled(v) => v,
+        }
+    }
+
     /// Whether the path is in no medium.
-    pub(super) fn is_empty(&self) -> bool {
-        self.len == 0
+    pub fn is_empty(&self) -> bool {
+        self.materials().is_empty()
     }
 
     /// The medium the path travels in: the innermost one entered.
     pub(super) fn current<'w>(&self, world: &'w World) -> Option<&'w Medium> {
-        let top = *self.materials[..usize::from(self.len)].last()?;
+        let top = *self.materials().last()?;
         world.materials[top as usize].medium.as_ref()
     }
 
-    /// Enters the medium of `material`; when the stack is full its outermost is forgotten.
+    /// Enters the medium of `material` (innermost now).
     fn enter(&mut self, material: u32) {
-        if usize::from(self.len) == MAX_NESTING {
-            self.materials.copy_within(1.., 0);
-            self.len -= 1;
+        match &mut self.0 {
+            Entries::Inline { materials, len } if usize::from(*len) < INLINE_NESTING => {
+                materials[usize::from(*len)] = material;
+                *len += 1;
+            }
+            Entries::Inline { materials, .. } => {
+                let mut v = Vec::with_capacity(2 * INLINE_NESTING);
+                v.extend_from_slice(materials);
+                v.push(material);
+                self.0 = Entries::Spilled(v);
+            }
+            Entries::Spilled(v) => v.push(material),
         }
-        self.materials[usize::from(self.len)] = material;
-        self.len += 1;
     }
 
     /// Leaves the innermost medium of `material` (nothing when the path is not in it).
     fn leave(&mut self, material: u32) {
-        let len = usize::from(self.len);
-        if let Some(i) = self.materials[..len].iter().rposition(|&m| m == material) {
-            self.materials.copy_within(i + 1..len, i);
-            self.len -= 1;
+        let Some(i) = self.materials().iter().rposition(|&m| m == material) else { return };
+        match &mut self.0 {
+            Entries::Inline { materials, len } => {
+                materials.copy_within(i + 1..usize::from(*len), i);
+                *len -= 1;
+            }
+            Entries::Spilled(v) => {
+                v.remove(i);
+            }
         }
     }
 
@@ -90,7 +141,7 @@ impl MediumStack {
         if !transmitted || m.medium.is_none() || !m.has_inside() {
             return None;
         }
-        let mut next = *self;
+        let mut next = self.clone();
         if front {
             next.enter(material);
         } else {
@@ -126,14 +177,16 @@ impl Departure<'_> {
     fn media_towards(&self, world: &World, dir: Vec3A) -> MediumStack {
         self.surface
             .and_then(|(material, ng, dir_in)| self.media.after(world, material, ng, dir_in, dir))
-            .unwrap_or(*self.media)
+            .unwrap_or_else(|| self.media.clone())
     }
 }
 
 /// The fraction of light (per channel) that travels the shadow ray from `from` to its end:
 /// without media in the scene 1 or 0 (blocked); with media, their Beer–Lambert
 /// transmittance along it, through index-matched boundaries of materials with media (times
-/// their tint), 0 at any other surface (cutouts by their opacity).
+/// their tint where the ray enters), 0 at any other surface. A cutout lets the ray through by its opacity,
+/// and where it does the surface is no boundary: the media stay as they are (as for the
+/// path's own rays).
 pub(super) fn shadow_transmittance(
     world: &World,
     accel: &dyn Accel,
@@ -159,26 +212,145 @@ pub(super) fn shadow_transmittance(
             return tr;
         }
         let s = surface(world, &ray, &hit);
-        let matched = world.materials[s.material as usize].model.index_matched();
-        match (media.after(world, s.material, s.ng, ray.dir, ray.dir), matched) {
-            (Some(next), Some(tint)) => {
-                media = next;
-                tr *= tint;
-            }
-            _ => {
-                if !world.has_cutouts {
-                    return Rgb::ZERO;
+        let cut_out = world.has_cutouts && {
+            let m = material_at(world, accel, shading, &ray, &hit, s.material);
+            m.opacity < 1.0 && cutout_number(seed, s.p, crossing + 100) >= m.opacity
+        };
+        if !cut_out {
+            let matched = world.materials[s.material as usize].model.index_matched();
+            match (media.after(world, s.material, s.ng, ray.dir, ray.dir), matched) {
+                (Some(next), Some(tint)) => {
+                    // The boundary tints what enters through it, once per object crossed,
+                    // as it does the path's own rays (`bsdf::Unified` tints light going in,
+                    // not out).
+                    if ray.dir.dot(s.ng) < 0.0 {
+                        tr *= tint;
+                    }
+                    media = next;
                 }
-                let m = material_at(world, accel, shading, &ray, &hit, s.material);
-                if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
-                    return Rgb::ZERO;
-                }
+                _ => return Rgb::ZERO,
             }
         }
         ray.origin = offset_origin(s.p, s.ng, ray.dir);
         ray.tmax = (ray.tmax - segment).max(0.0);
     }
     Rgb::ZERO
+}
+
+/// The fraction of a light's light that reaches the point the ray `shadow` leaves from
+/// `from`: [`shadow_transmittance`] for a light that casts shadows; for one that does not
+/// (`shadow off`), the transmittance of the media along the ray alone ([`media_transmittance`]).
+///
+/// Our reading of `shadow off`: mental ray then traces no shadow rays for the light, so no
+/// surface blocks or filters it, but its light rays still pass through the volume shaders
+/// of the media they cross (the classic engine does the same, `shader::lights`' light
+/// volume); a participating medium is such a volume, so its Beer–Lambert transmittance
+/// still applies. Without media this is 1: scenes without media are unchanged.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn light_transmittance(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    from: &Departure,
+    shadow: &Ray,
+    seed: u32,
+    casts_shadows: bool,
+) -> Rgb {
+    if casts_shadows {
+        shadow_transmittance(world, accel, shading, from, shadow, seed)
+    } else {
+        media_transmittance(world, accel, from, shadow)
+    }
+}
+
+/// The Beer–Lambert transmittance of the media along `ray` (leaving `from`), through every
+/// surface: each crossing of a medium's boundary enters or leaves it, nothing blocks or
+/// tints. 1 in scenes without media.
+fn media_transmittance(world: &World, accel: &dyn Accel, from: &Departure, ray: &Ray) -> Rgb {
+    if !world.has_media {
+        return Rgb::ONE;
+    }
+    let mut media = from.media_towards(world, ray.dir);
+    let mut ray = *ray;
+    let mut tr = Rgb::ONE;
+    for _ in 0..MAX_BOUNDARY_CROSSINGS {
+        let hit = accel.intersect(&ray);
+        let segment = hit.map_or(ray.tmax, |h| h.t);
+        if let Some(medium) = media.current(world) {
+            tr *= medium.transmittance(segment);
+        }
+        let Some(hit) = hit else { return tr };
+        if tr == Rgb::ZERO {
+            return tr;
+        }
+        let s = surface(world, &ray, &hit);
+        if let Some(next) = media.after(world, s.material, s.ng, ray.dir, ray.dir) {
+            media = next;
+        }
+        ray.origin = offset_origin(s.p, s.ng, ray.dir);
+        ray.tmax = (ray.tmax - segment).max(0.0);
+    }
+    // Past that many surfaces the rest of the way is taken as clear.
+    tr
+}
+
+/// Most surfaces a ray walking through every surface crosses ([`media_transmittance`],
+/// [`media_at`]).
+const MAX_BOUNDARY_CROSSINGS: u32 = 1024;
+
+/// Directions (world space, unit length after normalising) of the rays that find the media
+/// around a point: away from the axes and from each other, so that a ray rarely grazes an
+/// edge of a modelled box.
+const PROBE_DIRECTIONS: [[f32; 3]; 3] =
+    [[0.5377, 0.7226, 0.4344], [-0.6512, 0.2693, -0.7094], [0.3141, -0.8329, 0.4557]];
+
+/// The media enclosing the point `p` (world space) at shutter time `time`: where a path
+/// starting there is, e.g. a camera's, innermost last. Found along a ray from `p` to
+/// infinity: a medium's surface met from behind (its back face) before any front face of
+/// the same material is one `p` is inside (an object entered along the ray and left again
+/// encloses nothing). Three rays in different directions vote; when all three disagree
+/// (a ray through a crack, or an object that is not closed), the first ray's answer.
+/// Outside every medium when the scene has none.
+pub fn media_at(world: &World, accel: &dyn Accel, p: Vec3A, time: f32) -> MediumStack {
+    if !world.has_media {
+        return MediumStack::default();
+    }
+    let answers = PROBE_DIRECTIONS.map(|d| media_along(world, accel, p, Vec3A::from(d).normalize(), time));
+    if answers[1] == answers[2] && answers[0] != answers[1] {
+        return answers[1].clone();
+    }
+    let [first, ..] = answers;
+    first
+}
+
+/// The media enclosing `p` as the surfaces along one ray from it in unit direction `dir`
+/// tell ([`media_at`]).
+fn media_along(world: &World, accel: &dyn Accel, p: Vec3A, dir: Vec3A, time: f32) -> MediumStack {
+    let mut ray = Ray { mask: mask::CAMERA | mask::SECONDARY, origin: p, dir, tmin: 0.0, tmax: f32::INFINITY, time };
+    // Objects entered along the ray and not yet left; objects left without being entered
+    // (those enclosing `p`), innermost first.
+    let mut entered: Vec<u32> = Vec::new();
+    let mut enclosing: Vec<u32> = Vec::new();
+    for _ in 0..MAX_BOUNDARY_CROSSINGS {
+        let Some(hit) = accel.intersect(&ray) else { break };
+        let s = surface(world, &ray, &hit);
+        let m = &world.materials[s.material as usize];
+        if m.medium.is_some() && m.has_inside() {
+            if dir.dot(s.ng) < 0.0 {
+                entered.push(s.material);
+            } else if let Some(i) = entered.iter().rposition(|&e| e == s.material) {
+                entered.remove(i);
+            } else {
+                enclosing.push(s.material);
+            }
+        }
+        ray.origin = offset_origin(s.p, s.ng, dir);
+    }
+    let mut stack = MediumStack::default();
+    for &m in enclosing.iter().rev() {
+        stack.enter(m);
+    }
+    stack
 }
 
 /// What a path samples lights with: the scene and how lights are chosen.
@@ -262,12 +434,11 @@ pub(super) fn direct_light(
     }
     let phase = medium.phase.eval(dir, ls.wi);
     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
-    let tr = if light.shadow {
+    if light.shadow || world.has_media {
         counts.shadow_rays += 1;
-        shadow_transmittance(world, scene.accel, scene.shading, &from, &shadow_ray(ls.wi, tmax), scene.seed)
-    } else {
-        Rgb::ONE
-    };
+    }
+    let shadow = shadow_ray(ls.wi, tmax);
+    let tr = light_transmittance(world, scene.accel, scene.shading, &from, &shadow, scene.seed, light.shadow);
     if tr == Rgb::ZERO {
         return Rgb::ZERO;
     }
@@ -280,7 +451,7 @@ mod tests {
     use super::*;
 
     /// Entering pushes, leaving removes the innermost entry of that material (also out of
-    /// order, for overlapping objects), a fifth medium forgets the outermost.
+    /// order, for overlapping objects).
     #[test]
     fn the_stack_nests_and_overlaps() {
         let mut s = MediumStack::default();
@@ -289,15 +460,35 @@ mod tests {
         s.enter(5);
         s.enter(3);
         s.leave(5);
-        assert_eq!(&s.materials[..usize::from(s.len)], &[3, 3]);
+        assert_eq!(s.materials(), &[3, 3]);
         s.leave(7);
-        assert_eq!(s.len, 2);
+        assert_eq!(s.materials().len(), 2);
         s.leave(3);
         s.leave(3);
         assert!(s.is_empty());
-        for m in 1..=5 {
+    }
+
+    /// Nesting deeper than the inline stack spills to the heap and forgets nothing; leaving
+    /// out of order works there too, and a spilled stack equals an inline one of the same
+    /// media.
+    #[test]
+    fn deep_nesting_forgets_no_medium() {
+        let mut s = MediumStack::default();
+        let depth = 3 * INLINE_NESTING as u32 + 1;
+        for m in 1..=depth {
             s.enter(m);
         }
-        assert_eq!(&s.materials[..usize::from(s.len)], &[2, 3, 4, 5]);
+        assert_eq!(s.materials(), (1..=depth).collect::<Vec<_>>().as_slice());
+        s.leave(2);
+        for m in (3..=depth).rev() {
+            assert_eq!(s.materials().last(), Some(&m));
+            s.leave(m);
+        }
+        assert_eq!(s.materials(), &[1]);
+        let mut inline = MediumStack::default();
+        inline.enter(1);
+        assert_eq!(s, inline);
+        s.leave(1);
+        assert!(s.is_empty());
     }
 }
