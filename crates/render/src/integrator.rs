@@ -461,7 +461,9 @@ pub fn trace_path(
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
                     let tr = if light.shadow {
-                        media::shadow_transmittance(world, accel, shading, &departure, &shadow, seed)
+                        let f = media::shadow_transmittance(world, accel, shading, &departure, &shadow, seed);
+                        // Maya's `shadowColor`: what a shadowed point still receives.
+                        f + (Rgb::ONE - f) * light.shadow_color
                     } else {
                         Rgb::ONE
                     };
