@@ -121,6 +121,10 @@ pub struct LightSource {
     pub visible: bool,
     /// Casts shadows.
     pub shadow: bool,
+    /// The fraction of the light a fully shadowed point still receives (Maya's
+    /// `shadowColor`; black for every other light): received = light ⊙ (f + (1 − f) ⊙
+    /// this), f the fraction let through.
+    pub shadow_color: Rgb,
     /// World → world displacement of the light at shutter times spread evenly over the
     /// shutter (see [`crate::motion`]) when its instance moves while the shutter is open
     /// (the light is taken to move rigidly); empty: it stays where it is. (An object
@@ -227,6 +231,8 @@ impl LightSource {
         // Portals are always found by scattered rays (the integrator's rule that the
         // environment is not counted twice needs it); camera rays pass through them.
         let portal = matches!(output, Output::Portal { .. });
+        // Maya's lights: raytraced shadows only with `useRayTraceShadows`, tinted.
+        let (casts, shadow_color) = material::emission::maya::shadowing(light, lib).unwrap_or((true, Rgb::ZERO));
         Ok(LightSource {
             name: light.instance.clone(),
             kind: light.kind,
@@ -238,7 +244,8 @@ impl LightSource {
             cone: emission.cone,
             spot_exponent: emission.spot_exponent,
             visible: (light.visible && radiant || portal) && is_area,
-            shadow: light.shadow,
+            shadow: light.shadow && casts,
+            shadow_color,
             motion: Vec::new(),
         })
     }

@@ -223,6 +223,7 @@ fn lambertian_plane_under_a_point_light() {
         spot_exponent: None,
         visible: false,
         shadow: true,
+        shadow_color: Rgb::ZERO,
         motion: Vec::new(),
     };
     // An orthographic camera 5 units up looking down, 4 units wide, 32×32 pixels.
@@ -267,6 +268,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         spot_exponent: None,
         visible: true,
         shadow: true,
+        shadow_color: Rgb::ZERO,
         motion: Vec::new(),
     };
     // Seen from below, through its middle: radiance E/π exactly.

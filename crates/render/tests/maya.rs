@@ -165,6 +165,7 @@ fn path_world(l: &Loaded) -> render::World {
                 spot_exponent: None,
                 visible: false,
                 shadow: light.shadow,
+                shadow_color: glam::Vec3A::ZERO,
                 motion: Vec::new(),
             })
         })

@@ -242,6 +242,24 @@ fn sphere_point_light(
     })
 }
 
+/// How a Maya light's raytraced shadows work in the path engine, from its shader's
+/// parameters: whether it casts shadows at all (`useRayTraceShadows`; off, the classic
+/// light shines through everything) and `shadowColor`, the fraction of the light a fully
+/// shadowed point still receives (received = light ⊙ (f + (1 − f) ⊙ shadowColor), f the
+/// fraction let through, as the classic light); `None` when `light`'s shader is not a
+/// Maya light.
+pub fn shadowing(light: &scene::Light, lib: &scene::Library) -> Option<(bool, Rgb)> {
+    let list = light.shader.as_ref()?;
+    let (decl, params) = first_call(&list.0, lib)?;
+    family(crate::declaration_name(decl))?;
+    let casts = scalar_param(params, "useRayTraceShadows").unwrap_or(0.0) != 0.0;
+    let color = match color_param(params, "shadowColor") {
+        Some(Ok(c)) => c.clamp(Rgb::ZERO, Rgb::ONE),
+        _ => Rgb::ZERO,
+    };
+    Some((casts, color))
+}
+
 #[cfg(test)]
 mod tests {
     use std::f32::consts::PI;
