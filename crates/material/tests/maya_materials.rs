@@ -337,3 +337,20 @@ fn a_volume_light_shining_inward_is_named_in_a_warning() {
     assert!(warnings[0].message.contains("volumeLightDir 2"), "{}", warnings[0].message);
     assert!(warnings[1].message.contains("emitAmbient"), "{}", warnings[1].message);
 }
+
+#[test]
+fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_fog() {
+    let text = format!(
+        "{LIBS}shader \"env\" \"maya_envfog\" (\"physicalFog\" on)\n\
+         shader \"lit\" \"adskMayaLightFog\" (\"density\" 0.5)\n\
+         shader \"lam\" \"maya_lambert\" ()\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\")\n\
+         volume \"maya_volumesampler\" (\"volumeShader\" = \"env\") end material"
+    );
+    let c = compile("", &text, &["m"], "");
+    let warnings = maya::fog::fog_warnings(&c.shading);
+    let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
+    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("path engine")), "{messages:?}");
+    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("physicalFog")), "{messages:?}");
+    assert!(!messages.iter().any(|m| m.contains("adskMayaLightFog") && m.contains("physicalFog")), "{messages:?}");
+}

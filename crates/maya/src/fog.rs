@@ -25,6 +25,9 @@
 //!   saturated (α = 1). The fog shows its own colour (E = 1). `physicalFog` (Maya's
 //!   physically based mode) is not implemented: a warning says so and the simple fog
 //!   is used.
+//!
+//! The path engine runs no mental ray volume shaders: it renders without these fogs, and
+//! [`fog_warnings`] says so.
 //! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
 //!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
 //!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
@@ -173,28 +176,32 @@ fn received_light(ctx: &mut Ctx, n: NodeId, length: f32) -> Vec3A {
     sum
 }
 
-/// A warning, at the shader's position, for each environment fog of `shading` in Maya's
-/// physical mode (`physicalFog` on), which mira renders as the simple fog.
+/// The warnings, at the shader's position, about the fogs of `shading`: each is left out
+/// by the path engine (it runs no mental ray volume shaders), and an environment fog in
+/// Maya's physical mode (`physicalFog` on) is rendered as the simple fog.
 pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
-    shading
-        .graph
-        .nodes
-        .iter()
-        .filter(|node| matches!(node.decl.name.as_str(), "maya_envfog" | "adskMayaEnvFog"))
-        .filter(|node| {
-            let i = node.imp.map_or_else(
-                || node.decl.param("physicalFog"),
-                |imp| imp.params.iter().position(|p| *p == "physicalFog"),
-            );
-            matches!(i.and_then(|i| node.slots.get(i)), Some(shader::Slot::Value(v)) if v.int() != 0)
-        })
-        .map(|node| {
-            mi::Diagnostic::warning(
+    let mut warnings = Vec::new();
+    for node in &shading.graph.nodes {
+        let name = node.decl.name.as_str();
+        if !matches!(name, "maya_envfog" | "adskMayaEnvFog" | "maya_lightfog" | "adskMayaLightFog") {
+            continue;
+        }
+        warnings.push(mi::Diagnostic::warning(
+            node.span,
+            format!("'{name}': the path engine runs no volume shaders; it renders without this fog"),
+        ));
+        let physical = match node.imp {
+            Some(imp) => imp.params.iter().position(|p| *p == "physicalFog"),
+            None => node.decl.param("physicalFog"),
+        };
+        if matches!(physical.and_then(|i| node.slots.get(i)), Some(shader::Slot::Value(v)) if v.int() != 0) {
+            warnings.push(mi::Diagnostic::warning(
                 node.span,
-                format!("'{}': physicalFog is not implemented; the fog is rendered as simple fog", node.decl.name),
-            )
-        })
-        .collect()
+                format!("'{name}': physicalFog is not implemented; the fog is rendered as simple fog"),
+            ));
+        }
+    }
+    warnings
 }
 
 #[cfg(test)]
