@@ -512,10 +512,11 @@ mod tests {
         }
     }
 
-    /// The own frames live in the sum's padding: a `Bsdf` stays 320 bytes (x86-64).
+    /// The own frames (two normals, a frame index per part and per curve) add 32 bytes to
+    /// a `Bsdf`: 320 → 352 bytes (x86-64); this keeps it from growing unnoticed.
     #[test]
-    fn own_frames_do_not_grow_the_bsdf() {
-        assert!(std::mem::size_of::<Bsdf>() <= 320, "{}", std::mem::size_of::<Bsdf>());
+    fn own_frames_grow_the_bsdf_by_32_bytes_at_most() {
+        assert!(std::mem::size_of::<Bsdf>() <= 352, "{}", std::mem::size_of::<Bsdf>());
     }
 
     #[test]
