@@ -6,6 +6,16 @@
 //! `thin_film`, a sheen over its base) and directional factors (`directional_factor`),
 //! as its [`Role`] says. Sampled by choosing a lobe in proportion to the luminance of its
 //! constant weight; the density is the mixture's. Fixed size: no allocation.
+//!
+//! **Own frames.** A layer may have its own normal (MDL's `normal` parameter of the
+//! layerers): up to [`MAX_FRAMES`] such normals are kept, and each part and each curve
+//! says which frame it lives in (0: the shading frame). A part in frame k is evaluated
+//! and sampled with the directions expressed in that frame (its x axis the shading
+//! frame's x laid into its tangent plane), its value scaled by |cos θi| in its frame over
+//! |cos θi| in the shading frame (the integrator multiplies by the latter), and it
+//! scatters only where the two frames agree on the side of each direction (nothing leaks
+//! through the surface); a curve measures its angles from its frame's normal. Normals are
+//! given in world space and brought into the local shading frame with [`Lobes::place`].
 
 use glam::{Vec2, Vec3A};
 
@@ -13,13 +23,16 @@ use crate::beckmann::BeckmannReflection;
 use crate::layer_curve::{CurveKind, LayerCurve};
 use crate::microfacet::Ggx;
 use crate::sheen::Sheen;
-use crate::{cosine_on_side, luminance, BsdfSample, OrenNayar, Rgb};
+use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
 
 /// Most lobes a sum holds.
 pub const MAX_LOBES: usize = 4;
 
 /// Most layer curves a sum holds.
 pub const MAX_CURVES: usize = 2;
+
+/// Most own frames (layer normals) a sum holds besides the shading frame.
+pub const MAX_FRAMES: usize = 2;
 
 /// How the layer curves of a sum weigh one part: bit k of `over` scales it by curve k's
 /// layer factor ([`LayerCurve::over`]: the part is in the layer), of `under` by its base
@@ -86,6 +99,15 @@ pub struct Lobes {
     pub curves: [LayerCurve; MAX_CURVES],
     /// How many curves are used.
     pub curve_count: usize,
+    /// The own frames' normals (unit; world space until [`Lobes::place`]d, then in the
+    /// local shading frame): frame k ≥ 1 is `normals[k − 1]`.
+    pub normals: [[f32; 3]; MAX_FRAMES],
+    /// How many normals are used.
+    pub normal_count: u8,
+    /// The frame of each part (0: the shading frame).
+    pub part_frames: [u8; MAX_LOBES],
+    /// The frame each curve measures its angles in (0: the shading frame).
+    pub curve_frames: [u8; MAX_CURVES],
 }
 
 impl Default for Lobes {
@@ -96,8 +118,21 @@ impl Default for Lobes {
             count: 0,
             curves: [NO_CURVE; MAX_CURVES],
             curve_count: 0,
+            normals: [[0.0, 0.0, 1.0]; MAX_FRAMES],
+            normal_count: 0,
+            part_frames: [0; MAX_LOBES],
+            curve_frames: [0; MAX_CURVES],
         }
     }
+}
+
+/// Two directions in a part's own frame, and |cos θi| there over |cos θi| in the shading
+/// frame; `None` where the frames disagree on a side (the part scatters nothing there).
+#[inline]
+fn in_own_frame(frame: &Frame, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
+    let (o, i) = (frame.to_local(wo), frame.to_local(wi));
+    let agree = (o.z * wo.z > 0.0) && (i.z * wi.z > 0.0) && wi.z.abs() > 1e-6;
+    agree.then(|| (o, i, i.z.abs() / wi.z.abs()))
 }
 
 /// ωi turned by π about the normal (the backscattering lobe's change of variable).
@@ -192,7 +227,8 @@ impl Lobe {
             Lobe::Beckmann(b) | Lobe::Ward(b) => {
                 BeckmannReflection { tint: Rgb::ONE, dist: *b }.sample(wo, u).map(|s| s.wi)
             }
-            Lobe::Mirror => (wo.z != 0.0).then(|| turned(-wo)),
+            // The mirror direction about the normal: ωo turned by π about it.
+            Lobe::Mirror => (wo.z != 0.0).then(|| turned(wo)),
         }
     }
 }
@@ -217,8 +253,17 @@ impl Lobes {
     /// Adds `lobe` of weight `weight` weighed by the curves as `role` says; false when the
     /// sum is full.
     pub fn push_with_role(&mut self, weight: Rgb, lobe: Lobe, role: Role) -> bool {
+        self.push_in_frame(weight, lobe, role, 0)
+    }
+
+    /// Adds `lobe` of weight `weight` weighed by the curves as `role` says, in frame
+    /// `frame` (0: the shading frame; else from [`Lobes::add_normal`]); false when the sum
+    /// is full.
+    pub fn push_in_frame(&mut self, weight: Rgb, lobe: Lobe, role: Role, frame: u8) -> bool {
         let used = self.count;
-        if let Some(k) = (0..used).find(|&k| self.parts[k].1 == lobe && self.roles[k] == role) {
+        if let Some(k) =
+            (0..used).find(|&k| self.parts[k].1 == lobe && self.roles[k] == role && self.part_frames[k] == frame)
+        {
             self.parts[k].0 += weight;
             return true;
         }
@@ -227,6 +272,7 @@ impl Lobes {
         }
         self.parts[self.count] = (weight, lobe);
         self.roles[self.count] = role;
+        self.part_frames[self.count] = frame;
         self.count += 1;
         true
     }
@@ -234,12 +280,65 @@ impl Lobes {
     /// Adds a layer curve; its index (the bit `1 << index` of a [`Role`]), or `None` when
     /// the sum has [`MAX_CURVES`] already.
     pub fn add_curve(&mut self, curve: LayerCurve) -> Option<u8> {
+        self.add_curve_in_frame(curve, 0)
+    }
+
+    /// Adds a layer curve measuring its angles in frame `frame`; its index, or `None`
+    /// when the sum has [`MAX_CURVES`] already.
+    pub fn add_curve_in_frame(&mut self, curve: LayerCurve, frame: u8) -> Option<u8> {
         if self.curve_count == MAX_CURVES {
             return None;
         }
         self.curves[self.curve_count] = curve;
+        self.curve_frames[self.curve_count] = frame;
         self.curve_count += 1;
         Some(self.curve_count as u8 - 1)
+    }
+
+    /// Adds an own frame around `normal` (world space; normalised here); its frame number
+    /// (1 or more), or `None` when the sum has [`MAX_FRAMES`] already or `normal` has no
+    /// direction. An equal normal already added is shared.
+    pub fn add_normal(&mut self, normal: Vec3A) -> Option<u8> {
+        let n = normal.try_normalize()?;
+        let used = usize::from(self.normal_count);
+        if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == n) {
+            return Some(k as u8 + 1);
+        }
+        if used == MAX_FRAMES {
+            return None;
+        }
+        self.normals[used] = n.to_array();
+        self.normal_count += 1;
+        Some(self.normal_count)
+    }
+
+    /// Brings the own frames' normals from world space into the local shading frame
+    /// `frame` (world space), each turned to the side of the shading normal.
+    pub fn place(&mut self, frame: &Frame) {
+        for n in &mut self.normals[..usize::from(self.normal_count)] {
+            let local = frame.to_local(Vec3A::from_array(*n));
+            let local = if local.z < 0.0 { -local } else { local };
+            *n = local.normalize_or(Vec3A::Z).to_array();
+        }
+    }
+
+    /// Own frame `k` (≥ 1) in the local shading frame: x the shading frame's x laid into
+    /// its tangent plane.
+    #[inline]
+    fn own_frame(&self, k: u8) -> Frame {
+        let n = Vec3A::from_array(self.normals[usize::from(k) - 1]);
+        Frame::from_normal_and_tangent(n, Vec3A::X)
+    }
+
+    /// Directions in frame `k` and the cosine ratio (see [`in_own_frame`]); the shading
+    /// frame's are the directions themselves.
+    #[inline]
+    fn directions_in(&self, k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
+        if k == 0 {
+            Some((wo, wi, 1.0))
+        } else {
+            in_own_frame(&self.own_frame(k), wo, wi)
+        }
     }
 
     /// Whether every lobe is a smooth mirror.
@@ -253,10 +352,17 @@ impl Lobes {
         if role.is_plain() {
             return Rgb::ONE;
         }
-        let (co, ci) = (wo.z.abs(), wi.z.abs());
         let mut f = Rgb::ONE;
         for (j, c) in self.curves[..self.curve_count].iter().enumerate() {
             let bit = 1u8 << j;
+            let (wo, wi) = match self.curve_frames[j] {
+                0 => (wo, wi),
+                own => {
+                    let frame = self.own_frame(own);
+                    (frame.to_local(wo), frame.to_local(wi))
+                }
+            };
+            let (co, ci) = (wo.z.abs(), wi.z.abs());
             if role.over & bit != 0 {
                 f *= c.over(co, ci);
             }
@@ -290,8 +396,11 @@ impl Lobes {
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         let mut sum = Rgb::ZERO;
         for (k, (w, l)) in self.used().iter().enumerate() {
-            if *l != Lobe::Mirror {
-                sum += *w * l.eval(wo, wi) * self.factor(k, wo, wi);
+            if *l == Lobe::Mirror {
+                continue;
+            }
+            if let Some((o, i, ratio)) = self.directions_in(self.part_frames[k], wo, wi) {
+                sum += *w * l.eval(o, i) * (self.factor(k, wo, wi) * ratio);
             }
         }
         sum
@@ -299,7 +408,12 @@ impl Lobes {
 
     /// The mixture's sampling density.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        (0..self.count).map(|k| self.choice(k) * self.parts[k].1.pdf(wo, wi)).sum()
+        (0..self.count)
+            .map(|k| {
+                self.directions_in(self.part_frames[k], wo, wi)
+                    .map_or(0.0, |(o, i, _)| self.choice(k) * self.parts[k].1.pdf(o, i))
+            })
+            .sum()
     }
 
     /// Chooses a lobe with `u_lobe`, samples it with `u`.
@@ -315,7 +429,16 @@ impl Lobes {
             left -= p;
         }
         let k = chosen?;
-        let wi = self.parts[k].1.sample_dir(wo, u)?;
+        let wi = match self.part_frames[k] {
+            0 => self.parts[k].1.sample_dir(wo, u)?,
+            own => {
+                let frame = self.own_frame(own);
+                let wi = frame.to_world(self.parts[k].1.sample_dir(frame.to_local(wo), u)?);
+                // A direction the own frame sends through the surface is lost.
+                in_own_frame(&frame, wo, wi)?;
+                wi
+            }
+        };
         if self.parts[k].1 == Lobe::Mirror {
             // A discrete choice of probability p: f |cos θi| / p is the part's weight / p.
             let (p, cos) = (self.choice(k), wi.z.abs());
@@ -387,6 +510,13 @@ mod tests {
             let bsdf = sum(&[(Rgb::ONE, Lobe::Sheen(r))]);
             standard_checks(&bsdf, 1.0, &format!("sheen {r}"));
         }
+    }
+
+    /// The own frames (two normals, a frame index per part and per curve) add 32 bytes to
+    /// a `Bsdf`: 320 → 352 bytes (x86-64); this keeps it from growing unnoticed.
+    #[test]
+    fn own_frames_grow_the_bsdf_by_32_bytes_at_most() {
+        assert!(std::mem::size_of::<Bsdf>() <= 352, "{}", std::mem::size_of::<Bsdf>());
     }
 
     #[test]

@@ -123,11 +123,11 @@ impl PartialEq for Evaluated {
 pub struct HitMaterial<'a> {
     /// Diffuse colour.
     pub diffuse: Rgb,
-    /// Emitted radiance (towards the normal for a spot: see `emission_spot`).
+    /// Emitted radiance (towards the normal for a spot: see `emission_shape`).
     pub emission: Rgb,
     /// The directional spread of the emission, if not Lambertian (the material's own:
-    /// borrowed, so that the common Lambertian hit carries a word instead of the spot).
-    pub emission_spot: Option<&'a crate::spot_edf::SpotEdf>,
+    /// borrowed, so that the common Lambertian hit carries a word instead of the shape).
+    pub emission_shape: Option<&'a crate::edf::EmissionShape>,
     /// The scattering model with the point's parameters.
     pub model: Cow<'a, SurfaceModel>,
     /// Coverage.
@@ -204,7 +204,7 @@ impl SurfaceMaterial {
         HitMaterial {
             diffuse: self.diffuse,
             emission: self.emission,
-            emission_spot: self.emission_spot.as_ref(),
+            emission_shape: self.emission_shape.as_ref(),
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
             normal: None,

@@ -17,10 +17,12 @@
 //! else is rendered as a grey diffuse surface or with the parameter's default, with a
 //! warning naming what was not understood.
 
+pub mod edf;
 pub mod emission;
 pub mod inputs;
 pub mod maya;
 pub mod mdl_modules;
+pub mod measured_edf;
 mod reader;
 pub mod spot_edf;
 
@@ -144,8 +146,9 @@ pub struct SurfaceMaterial {
     /// and `candela` units): the renderer divides it by the material's total area.
     pub emission_over_area: bool,
     /// How the emission is spread over directions when it is not Lambertian (MDL's
-    /// `spot_edf`): the radiance towards a direction is `emission` times its factor.
-    pub emission_spot: Option<spot_edf::SpotEdf>,
+    /// `spot_edf`, `measured_edf`): the radiance towards a direction is `emission` times
+    /// its factor.
+    pub emission_shape: Option<edf::EmissionShape>,
     /// Parameters driven by shaders, evaluated at each hit.
     pub varying: Varying,
     /// The participating medium inside the surface (MDL's `material_volume`), when light
@@ -183,7 +186,7 @@ impl SurfaceMaterial {
             model: SurfaceModel::Lambert,
             opacity: 1.0,
             emission_over_area: false,
-            emission_spot: None,
+            emission_shape: None,
             varying: Varying::Constant,
             medium: None,
             tangent_angle: None,
@@ -206,7 +209,23 @@ impl SurfaceMaterial {
 }
 
 impl SurfaceModel {
-    /// The BSDF seen from `wo` (local shading frame), with diffuse colour `diffuse`.
+    /// The BSDF seen from `wo` (local shading frame `frame`, world space), with diffuse
+    /// colour `diffuse`: [`SurfaceModel::bsdf`] with the world-space layer normals of an
+    /// MDL lobe sum brought into the frame.
+    #[inline]
+    pub fn bsdf_in(&self, diffuse: Rgb, wo: glam::Vec3A, frame: &bsdf::Frame) -> Bsdf {
+        match self {
+            SurfaceModel::MdlLobes(l) if l.normal_count > 0 => {
+                let mut l = **l;
+                l.place(frame);
+                Bsdf::Lobes(l)
+            }
+            _ => self.bsdf(diffuse, wo),
+        }
+    }
+
+    /// The BSDF seen from `wo` (local shading frame), with diffuse colour `diffuse` (an MDL
+    /// lobe sum's layer normals taken as local: see [`SurfaceModel::bsdf_in`]).
     #[inline]
     pub fn bsdf(&self, diffuse: Rgb, wo: glam::Vec3A) -> Bsdf {
         match self {

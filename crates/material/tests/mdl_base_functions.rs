@@ -387,13 +387,13 @@ fn tile_colours_and_recoloured_numbers() {
     }
 }
 
-/// `df::measured_edf` is not compiled yet (no light profiles are read inside modules): a
-/// diagnostic at the `.mi` instance naming the module line of its profile, and no emission.
+/// A `df::measured_edf` whose light profile file does not exist: a diagnostic at the `.mi`
+/// instance naming the module line of the profile and the file, and no emission.
 #[test]
-fn a_measured_edf_is_an_error_at_its_module_line() {
+fn a_missing_light_profile_is_an_error_at_its_module_line() {
     let (mdl, lib, diags) = mdl_support::compile_text(r#"shader "m" "mdl::base_functions::measured_emitter" ()"#);
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let d = &diags[0];
-    assert!(d.contains("t.mi:1:") && d.contains("base_functions.mdl:122:") && d.contains("measured_edf"), "{d}");
+    assert!(d.contains("t.mi:1:") && d.contains("base_functions.mdl:122:") && d.contains("no_such.ies"), "{d}");
     assert_eq!(get(&mdl, &lib, "m").emission, Rgb::ZERO);
 }

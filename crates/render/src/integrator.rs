@@ -428,7 +428,7 @@ pub fn trace_path(
             glow = Some(material.glow);
         }
         if material.emission != Rgb::ZERO {
-            let spread = material.emission_spot.map_or(1.0, |spot| spot.factor(s.ns, -ray.dir));
+            let spread = material.emission_shape.map_or(1.0, |e| e.factor(s.ns, material.tangent, -ray.dir));
             radiance += throughput * material.emission * spread;
         }
         // Two-sided shading: face the normals towards the ray, unless light can enter the
@@ -447,7 +447,7 @@ pub fn trace_path(
         }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = material.model.bsdf(material.diffuse, wo);
+        let bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
         let departure = Departure { media: &media, surface: Some((s.material, s.ng, ray.dir)) };
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).

@@ -373,12 +373,13 @@ impl Tracer for SceneTracer<'_> {
         let normal = if m.has_inside() && hit.inv_normal { -facing } else { facing };
         let frame = bsdf::Frame::from_normal(normal);
         let wo = frame.to_local(-hit.dir);
-        // A spot EDF's radiance follows its shape about the surface's own normal (as the
-        // path engine's hits see it: nothing behind the surface); Lambertian otherwise.
+        // A spot or measured EDF's radiance follows its shape about the surface's own
+        // normal (as the path engine's hits see it: nothing behind the surface);
+        // Lambertian otherwise.
         let surface_normal = if hit.inv_normal { -hit.normal } else { hit.normal };
-        let spread = h.emission_spot.map_or(1.0, |spot| spot.factor(surface_normal, -hit.dir));
+        let spread = h.emission_shape.map_or(1.0, |e| e.factor(surface_normal, h.tangent, -hit.dir));
         Some(shader::SurfaceScatter {
-            bsdf: h.model.bsdf(h.diffuse, wo),
+            bsdf: h.model.bsdf_in(h.diffuse, wo, &frame),
             frame,
             diffuse: h.diffuse,
             emission: h.emission * spread,

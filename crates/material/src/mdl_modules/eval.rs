@@ -320,12 +320,15 @@ impl<'a> Evaluator<'a> {
                 };
             }
             Type::LightProfile => {
-                // No IES reader inside modules yet: say so at the profile's line, naming
-                // the one function that takes it.
-                return Err(problem(
-                    span,
-                    "`light_profile(…)`: mira reads no light profiles inside modules yet, so `df::measured_edf` is not compiled",
-                ));
+                // `light_profile()`: the invalid profile; a file: an IES profile, read once.
+                let Some(Value::Str(name)) = values.first() else {
+                    return if values.is_empty() { Ok(Value::LightProfile(None)) } else { Err(bad()) };
+                };
+                let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
+                return match self.textures.light_profile(name, dir.as_deref()) {
+                    Ok(profile) => Ok(Value::LightProfile(Some(profile))),
+                    Err(why) => Err(problem(span, why)),
+                };
             }
             Type::Matrix(_, c, r) => {
                 let n = usize::from(*c) * usize::from(*r);
@@ -437,6 +440,7 @@ pub fn kind(v: &Value) -> &'static str {
         Value::HairBsdf => "a hair_bsdf",
         Value::Hit(..) => "a value of the shading point",
         Value::Texture(_) => "a texture",
+        Value::LightProfile(_) => "a light profile",
     }
 }
 

@@ -34,6 +34,7 @@ use glam::{Vec3A, Vec4};
 use super::hit::HitExpr;
 use super::natives::{is_state_normal, leaf, mix_weights, MAX_LEAVES};
 use super::value::{Df, Edf, Leaf, ScatterMode, Value};
+use crate::edf::EmissionShape;
 use crate::inputs::{Evaluated, HitEvaluator, HitMaterial, Varying};
 use crate::{SurfaceMaterial, SurfaceModel};
 
@@ -84,7 +85,7 @@ fn add_diffuse(df: &Df, scale: Rgb, hit: &[Vec4], acc: &mut DiffuseSum) -> bool 
             mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_diffuse(d, scale * w, hit, acc));
             ok
         }
-        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+        Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal: None } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             add_diffuse(layer, scale * w, hit, acc) && add_diffuse(base, scale * (Rgb::ONE - w), hit, acc)
         }
@@ -132,7 +133,7 @@ fn add_lobes(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut LobeSum) -> bool {
             mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_lobes(d, scale * w, hit, sum));
             ok
         }
-        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+        Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal: None } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             add_lobes(layer, scale * w, hit, sum) && add_lobes(base, scale * (Rgb::ONE - w), hit, sum)
         }
@@ -188,9 +189,21 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
 /// whose normal reflectivity it has, index (1 + √R₀)/(1 − √R₀), R₀ the mean of
 /// `normal_reflectivity`); elemental BSDFs in reflection have no Fresnel term for it to
 /// change and are unchanged.
-fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, film: Option<(f32, Rgb)>) -> bool {
+///
+/// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
+/// own `normal` puts its lobes and its curve in the frame of that normal (at most
+/// [`bsdf::lobes::MAX_FRAMES`] normals a sum).
+fn add_general(
+    df: &Df,
+    scale: Rgb,
+    hit: &[Vec4],
+    sum: &mut Lobes,
+    role: Role,
+    film: Option<(f32, Rgb)>,
+    frame: u8,
+) -> bool {
     let alpha = |(u, v): &(Leaf, Leaf)| (u.get(hit).x.max(0.0), v.get(hit).x.max(0.0));
-    let mut push = |w: Rgb, lobe: Lobe| sum.push_with_role(w, lobe, role);
+    let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
     match df {
         Df::Black => true,
         Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
@@ -224,8 +237,9 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
             let r = roughness.get(hit).x;
             let tint = tint.get(hit);
             let curve = CurveKind::SheenAlbedo { roughness: r };
-            let Some((_, under)) = layer_roles(curve, tint, multiscatter, role, hit, sum) else { return false };
-            sum.push_with_role(scale * tint, Lobe::Sheen(r), role)
+            let frames = (frame, frame);
+            let Some((_, under)) = layer_roles(curve, tint, multiscatter, role, hit, sum, frames) else { return false };
+            sum.push_in_frame(scale * tint, Lobe::Sheen(r), role, frame)
                 && add_general(
                     multiscatter,
                     scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
@@ -233,26 +247,29 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
                     sum,
                     under,
                     film,
+                    frame,
                 )
         }
         Df::Mix { parts, clamped } => {
             let mut ok = true;
-            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film));
+            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
             ok
         }
-        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+        Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
-            add_general(layer, scale * w, hit, sum, role, film)
-                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film)
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            add_general(layer, scale * w, hit, sum, role, film, own)
+                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame)
         }
-        Df::Layer { weight, fresnel_ior: Some(ior), layer, base } => {
+        Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
             let curve = match film {
                 Some((thickness_nm, film_ior)) => CurveKind::ThinFilm { ior: *ior, film_ior, thickness_nm },
                 None => CurveKind::Fresnel { ior: *ior },
             };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role)
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
         }
-        Df::CurveLayer { weight, normal, grazing, exponent, layer, base } => {
+        Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => {
             let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             let curve = match film {
                 Some((thickness_nm, film_ior)) => {
@@ -264,7 +281,8 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
                     exponent: exponent.get(hit).x.max(0.0),
                 },
             };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role)
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
         }
         Df::DirectionalFactor { normal, grazing, exponent, base } => {
             let curve = CurveKind::Schlick {
@@ -272,11 +290,12 @@ fn add_general(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut Lobes, role: Role, f
                 grazing: grazing.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
                 exponent: exponent.get(hit).x.max(0.0),
             };
-            let Some(k) = sum.add_curve(LayerCurve::new(curve, Rgb::ONE, false)) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film)
+            let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
         }
         Df::ThinFilm { thickness, ior, base } => {
-            add_general(base, scale, hit, sum, role, Some((thickness.get(hit).x.max(0.0), ior.get(hit))))
+            let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
+            add_general(base, scale, hit, sum, role, film, frame)
         }
         _ => false,
     }
@@ -289,10 +308,28 @@ fn ior_of_reflectivity(r0: Rgb) -> f32 {
     ((1.0 + s) / (1.0 - s).max(1e-6)).min(100.0)
 }
 
+/// The frame a layer's lobes live in: its own normal's (added to `sum`), or `frame` (the
+/// frame around it) without one; `None` when the sum holds no more frames.
+fn own_frame(layer_normal: Option<Leaf>, hit: &[Vec4], sum: &mut Lobes, frame: u8) -> Option<u8> {
+    match layer_normal {
+        None => Some(frame),
+        Some(n) => {
+            let n = n.get(hit);
+            // A normal of no direction leaves the layer in the frame around it.
+            if n.length_squared() > 0.0 && n.is_finite() {
+                sum.add_normal(n)
+            } else {
+                Some(frame)
+            }
+        }
+    }
+}
+
 /// Adds the curve of a layer of weight `weight` over `base` to `sum`: the roles of the
-/// layer's and the base's lobes (`role` plus the curve's bit in `over`, `under`). The
-/// base's share is normalised when it is Lambertian and under no other curve (then a white
-/// base stays lossless).
+/// layer's and the base's lobes (`role` plus the curve's bit in `over`, `under`). `frames`
+/// are the base's frame and the layer's (whose normal the curve measures its angles
+/// from). The base's share is normalised when it is Lambertian, under no other curve and
+/// in the layer's frame (then a white base stays lossless).
 fn layer_roles(
     curve: CurveKind,
     weight: Rgb,
@@ -300,13 +337,15 @@ fn layer_roles(
     role: Role,
     hit: &[Vec4],
     sum: &mut Lobes,
+    (frame, own): (u8, u8),
 ) -> Option<(Role, Role)> {
-    let lambertian = role.under == 0 && diffuse_only(base, hit).is_some_and(|(_, sigma)| sigma == 0.0);
-    let k = sum.add_curve(LayerCurve::new(curve, weight, lambertian))?;
+    let lambertian = role.under == 0 && frame == own && diffuse_only(base, hit).is_some_and(|(_, sigma)| sigma == 0.0);
+    let k = sum.add_curve_in_frame(LayerCurve::new(curve, weight, lambertian), own)?;
     Some((Role { over: role.over | 1 << k, ..role }, Role { under: role.under | 1 << k, ..role }))
 }
 
-/// Adds a layer weighed by `curve` (`custom_curve_layer`, `fresnel_layer`, a film on one).
+/// Adds a layer weighed by `curve` (`custom_curve_layer`, `fresnel_layer`, a film on one):
+/// the base in `frames.0`, the layer and its curve in `frames.1`.
 #[allow(clippy::too_many_arguments)]
 fn curve_layer(
     curve: CurveKind,
@@ -317,15 +356,17 @@ fn curve_layer(
     hit: &[Vec4],
     sum: &mut Lobes,
     role: Role,
+    frames: (u8, u8),
 ) -> bool {
-    let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum) else { return false };
-    add_general(layer, scale, hit, sum, over, None) && add_general(base, scale, hit, sum, under, None)
+    let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum, frames) else { return false };
+    add_general(layer, scale, hit, sum, over, None, frames.1)
+        && add_general(base, scale, hit, sum, under, None, frames.0)
 }
 
 /// The tree as a [`SurfaceModel::MdlLobes`] sum and its diffuse colour, if it is one.
 fn general(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
     let mut sum = Lobes::default();
-    if !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None) {
+    if !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
         return None;
     }
     let diffuse = sum.parts[..sum.count]
@@ -345,7 +386,7 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
             mix_weights(parts, *clamped, hit, |w, d| sum += w * diffuse_part(d, hit));
             sum
         }
-        Df::Layer { weight, fresnel_ior: None, layer, base } => {
+        Df::Layer { weight, fresnel_ior: None, layer, base, .. } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             w * diffuse_part(layer, hit) + (Rgb::ONE - w) * diffuse_part(base, hit)
         }
@@ -395,6 +436,17 @@ pub struct MdlHit {
     pub opacity: Option<Leaf>,
     /// The shading normal (world space), when the geometry's `normal` bends it.
     pub normal: Option<u16>,
+    /// The tangent a `measured_edf` in the surface's frame turns its profile by.
+    pub tangent: Option<TangentU>,
+}
+
+/// A `measured_edf`'s `tangent_u` (world space): constant, or the expression of that index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TangentU {
+    /// The same everywhere.
+    Const(Vec3A),
+    /// Expression `i` of the material's list.
+    Hit(u16),
 }
 
 impl HitEvaluator for MdlHit {
@@ -424,6 +476,15 @@ impl HitEvaluator for MdlHit {
             if n.length_squared() > 0.0 {
                 hit.normal = Some(n.normalize());
             }
+        }
+        if let Some(t) = self.tangent {
+            // Laid into the tangent plane of the normal the surface is shaded with.
+            let t = match t {
+                TangentU::Const(t) => t,
+                TangentU::Hit(i) => Vec3A::from(values[i as usize].truncate()),
+            };
+            let n = hit.normal.unwrap_or(state.normal);
+            hit.tangent = (t - n * n.dot(t)).try_normalize().or(hit.tangent);
         }
     }
 }
@@ -461,18 +522,39 @@ pub fn surface(
     let mut emission = None;
     let mut radiance = Rgb::ZERO;
     let mut over_area = false;
-    let mut emission_spot = None;
+    let mut emission_shape = None;
+    let mut tangent = None;
     if let Some(e) = surf.as_ref().and_then(|s| s.field("emission")) {
         let power = matches!(e.field("mode"), Some(Value::Enum(_, 1)));
         match e.field("emission") {
-            Some(Value::Edf(edf @ (Edf::Diffuse | Edf::Spot(_)))) => {
+            Some(Value::Edf(edf @ (Edf::Diffuse | Edf::Spot(_) | Edf::Measured { .. }))) => {
                 // Lambertian: radiant exitance E gives radiance E/π; a power Φ over the
                 // whole surface gives Φ/π per area, divided by the area once it is known.
-                // A spot: N E on its axis, times its shape elsewhere.
+                // A spot: N E on its axis, times its shape elsewhere. A profile: E times
+                // its candela; a power, divided by what the profile emits over the
+                // hemisphere of its axis (and the area).
                 let scale = match edf {
                     Edf::Spot(spot) => {
-                        emission_spot = Some(*spot);
+                        emission_shape = Some(EmissionShape::Spot(*spot));
                         spot.normalization
+                    }
+                    Edf::Measured { edf, tangent: along } => {
+                        emission_shape = Some(EmissionShape::Measured(edf.clone()));
+                        if let Some(t) = along {
+                            match leaf(&Value::Hit(t.clone(), super::value::HitType::Vector(3)), &mut leaves) {
+                                Some(Leaf::Hit(i)) => tangent = Some(TangentU::Hit(i)),
+                                Some(Leaf::Const(c)) => tangent = Some(TangentU::Const(Vec3A::new(c.x, c.y, c.z))),
+                                None => warnings.push(format!(
+                                    "material '{name}': its measured_edf's tangent_u is not compiled; any tangent is used"
+                                )),
+                            }
+                        }
+                        let p = edf.hemisphere_power();
+                        match power {
+                            true if p > 0.0 => 1.0 / p,
+                            true => 0.0,
+                            false => 1.0,
+                        }
                     }
                     _ => 1.0 / std::f32::consts::PI,
                 };
@@ -538,13 +620,15 @@ pub fn surface(
     let mut out = SurfaceMaterial { model, ..SurfaceMaterial::lambert(name, diffuse) };
     out.emission = radiance;
     out.emission_over_area = over_area;
-    out.emission_spot = emission_spot;
+    out.emission_shape = emission_shape;
     out.opacity = constant_opacity;
-    if !leaves.is_empty() {
+    // A profile in the surface's frame needs its tangent at each hit, even when nothing
+    // else varies.
+    if !leaves.is_empty() || tangent.is_some() {
         if let Some((scale, l)) = emission {
             out.emission = l.get(&values) * scale;
         }
-        let varying = MdlHit { leaves, df: scattering, ior, ior_hit, thin, emission, opacity, normal };
+        let varying = MdlHit { leaves, df: scattering, ior, ior_hit, thin, emission, opacity, normal, tangent };
         out.varying = Varying::Evaluated(Evaluated(Arc::new(varying)));
     }
     out
@@ -604,7 +688,7 @@ fn lower_bsdf(
             }
         };
     }
-    if let Df::Layer { weight, fresnel_ior: Some(coat_ior), layer, base } = df {
+    if let Df::Layer { weight, fresnel_ior: Some(coat_ior), layer, base, layer_normal: None } = df {
         if let (Some((tint, alpha, ScatterMode::Reflect)), Some((albedo, _))) =
             (glossy(layer, hit), diffuse_only(base, hit))
         {
@@ -630,9 +714,10 @@ fn lower_bsdf(
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, Rgb::ONE);
     let why = if filled_up(df, hit) {
         format!(
-            "needs more than the {} lobes and {} layer curves mira's lobe sums hold",
+            "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
             bsdf::lobes::MAX_LOBES,
-            bsdf::lobes::MAX_CURVES
+            bsdf::lobes::MAX_CURVES,
+            bsdf::lobes::MAX_FRAMES
         )
     } else {
         "has no path-engine form yet".to_string()
@@ -654,8 +739,10 @@ fn lower_bsdf(
 /// only then).
 fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
     let mut sum = Lobes::default();
-    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None)
-        && (sum.count == bsdf::lobes::MAX_LOBES || sum.curve_count == bsdf::lobes::MAX_CURVES)
+    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0)
+        && (sum.count == bsdf::lobes::MAX_LOBES
+            || sum.curve_count == bsdf::lobes::MAX_CURVES
+            || usize::from(sum.normal_count) == bsdf::lobes::MAX_FRAMES)
 }
 
 /// The constructs of a tree, for messages (`fresnel_layer(diffuse_transmission_bsdf, …)`).

@@ -86,13 +86,8 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         Some(Value::Enum(_, v)) => ScatterMode::from_enum(*v),
         _ => ScatterMode::Reflect,
     };
-    let unchanged_normal = |what: &str| -> Result<(), super::eval::Problem> {
-        match arg("normal") {
-            None => Ok(()),
-            Some(v) if is_state_normal(v) => Ok(()),
-            Some(_) => Err(problem(span, format!("`df::{what}` with its own `normal` is not compiled yet"))),
-        }
-    };
+    // A layerer's `normal` other than `state::normal()` gives the layer its own frame.
+    let own_normal = arg("normal").is_some_and(|v| !is_state_normal(v));
     match name {
         "diffuse_reflection_bsdf" => Ok(Value::Bsdf(Df::Diffuse { tint: tint?, roughness: number("roughness")? })),
         "diffuse_transmission_bsdf" => Ok(Value::Bsdf(Df::DiffuseTransmission(tint?))),
@@ -111,17 +106,15 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             tint: tint?,
             roughness: (number("roughness_u")?, number("roughness_v")?),
         })),
-        "custom_curve_layer" | "color_custom_curve_layer" => {
-            unchanged_normal(name)?;
-            Ok(Value::Bsdf(Df::CurveLayer {
-                weight: number("weight")?,
-                normal: number("normal_reflectivity")?,
-                grazing: number("grazing_reflectivity")?,
-                exponent: number("exponent")?,
-                layer: Box::new(bsdf("layer")?),
-                base: Box::new(bsdf("base")?),
-            }))
-        }
+        "custom_curve_layer" | "color_custom_curve_layer" => Ok(Value::Bsdf(Df::CurveLayer {
+            weight: number("weight")?,
+            normal: number("normal_reflectivity")?,
+            grazing: number("grazing_reflectivity")?,
+            exponent: number("exponent")?,
+            layer: Box::new(bsdf("layer")?),
+            base: Box::new(bsdf("base")?),
+            layer_normal: if own_normal { Some(number("normal")?) } else { None },
+        })),
         "directional_factor" => match arg("base") {
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::DirectionalFactor {
                 normal: number("normal_tint")?,
@@ -173,17 +166,14 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], clamped: false })),
             _ => Err(problem(span, "`df::tint` of an edf, vdf or hair bsdf is not compiled yet")),
         },
-        "weighted_layer" | "color_weighted_layer" => {
-            unchanged_normal(name)?;
-            Ok(Value::Bsdf(Df::Layer {
-                weight: number("weight")?,
-                fresnel_ior: None,
-                layer: Box::new(bsdf("layer")?),
-                base: Box::new(bsdf("base")?),
-            }))
-        }
+        "weighted_layer" | "color_weighted_layer" => Ok(Value::Bsdf(Df::Layer {
+            weight: number("weight")?,
+            fresnel_ior: None,
+            layer: Box::new(bsdf("layer")?),
+            base: Box::new(bsdf("base")?),
+            layer_normal: if own_normal { Some(number("normal")?) } else { None },
+        })),
         "fresnel_layer" | "color_fresnel_layer" => {
-            unchanged_normal(name)?;
             let ior = match number("ior")? {
                 Leaf::Const(c) => c,
                 Leaf::Hit(_) => {
@@ -199,6 +189,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 fresnel_ior: Some(((ior.x + ior.y + ior.z) / 3.0).max(1e-3)),
                 layer: Box::new(bsdf("layer")?),
                 base: Box::new(bsdf("base")?),
+                layer_normal: if own_normal { Some(number("normal")?) } else { None },
             }))
         }
         "anisotropic_vdf" => match arg("directional_bias").map(|v| (v, v.float())) {
@@ -231,8 +222,56 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             );
             Ok(Value::Edf(Edf::Spot(spot)))
         }
+        "measured_edf" => measured_edf(&arg, span),
+        "light_profile_power" | "light_profile_maximum" | "light_profile_isvalid" => {
+            let profile = match arg("profile") {
+                Some(Value::LightProfile(p)) => p.as_deref(),
+                Some(v) => return Err(not_constant(name, "profile", v, span)),
+                None => None,
+            };
+            Ok(match (name, profile) {
+                ("light_profile_isvalid", p) => Value::Bool(p.is_some()),
+                (_, None) => Value::Float(0.0),
+                ("light_profile_power", Some(p)) => Value::Float(f64::from(p.flux())),
+                (_, Some(p)) => Value::Float(f64::from(p.peak())),
+            })
+        }
         f => Err(problem(span, format!("`df::{f}` is not compiled yet"))),
     }
+}
+
+/// `df::measured_edf` of the arguments `arg` gives by parameter name: an invalid profile
+/// emits nothing; a global frame must be constant, its third column not zero.
+fn measured_edf<'a>(arg: &dyn Fn(&str) -> Option<&'a Value>, span: Span) -> Eval {
+    let profile = match arg("profile") {
+        Some(Value::LightProfile(Some(p))) => p.clone(),
+        Some(Value::LightProfile(None)) => return Ok(Value::Edf(Edf::Black)),
+        Some(v) => return Err(not_constant("measured_edf", "profile", v, span)),
+        None => return Err(problem(span, "`df::measured_edf` needs a profile")),
+    };
+    let multiplier = match arg("multiplier") {
+        None => 1.0,
+        Some(v) => v.float().ok_or_else(|| not_constant("measured_edf", "multiplier", v, span))? as f32,
+    };
+    let global = matches!(arg("global_distribution"), Some(Value::Bool(true)) | None);
+    let frame = match arg("global_frame") {
+        Some(Value::Vector(m)) if m.len() == 9 => {
+            let c = |k: usize| glam::Vec3A::new(m[3 * k] as f32, m[3 * k + 1] as f32, m[3 * k + 2] as f32);
+            glam::Mat3A::from_cols(c(0), c(1), c(2))
+        }
+        Some(v) => return Err(not_constant("measured_edf", "global_frame", v, span)),
+        None => glam::Mat3A::IDENTITY,
+    };
+    if global && frame.z_axis.length_squared() == 0.0 {
+        return Err(problem(span, "`df::measured_edf`'s global_frame has no z axis"));
+    }
+    let tangent = match (global, arg("tangent_u")) {
+        (true, _) => None,
+        (false, Some(v)) => Some(v.to_hit().ok_or_else(|| not_constant("measured_edf", "tangent_u", v, span))?),
+        (false, None) => Some(Arc::new(HitExpr::State(StateFn::TangentU))),
+    };
+    let edf = crate::measured_edf::MeasuredEdf::new(profile, multiplier, global.then_some(frame));
+    Ok(Value::Edf(Edf::Measured { edf: Arc::new(edf), tangent }))
 }
 
 /// The `::math` functions of constants evaluated in double precision as before the per-hit

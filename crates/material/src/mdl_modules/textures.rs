@@ -1,4 +1,4 @@
-//! The `texture_2d` resources of module materials: image files named by MDL
+//! The `texture_2d` and `light_profile` resources of module materials: image files named by MDL
 //! (`texture_2d("./wood.png")`, relative to the module's file or on the MDL search path) or
 //! by a `.mi` parameter (the name of a `color texture` element of the scene, or a file),
 //! read once per file through the renderer's texture code (`shader::texture`) and shared by
@@ -8,14 +8,17 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use shader::light::ies::Profile;
 use shader::texture::{self, Texture};
 
 use super::hit::Image;
 
-/// The images read so far, by file.
+/// The images and light profiles read so far, by file.
 #[derive(Default)]
 pub struct Textures {
     by_path: HashMap<PathBuf, Result<Image, String>>,
+    /// The light profiles read so far, by file.
+    profiles: HashMap<PathBuf, Result<Arc<Profile>, String>>,
     /// Directories searched after the one of the module: the scene files' and the MDL
     /// search path's.
     pub dirs: Vec<PathBuf>,
@@ -27,7 +30,7 @@ pub struct Textures {
 impl Textures {
     /// A resource set searching `dirs` (after the naming module's directory).
     pub fn new(dirs: Vec<PathBuf>) -> Textures {
-        Textures { by_path: HashMap::new(), dirs, warnings: Vec::new() }
+        Textures { by_path: HashMap::new(), profiles: HashMap::new(), dirs, warnings: Vec::new() }
     }
 
     /// The image of file `name` as written in a module whose file is in `module_dir` (an
@@ -42,6 +45,29 @@ impl Textures {
             return Err(format!("texture file '{name}' not found (searched {})", describe(&search.dirs)));
         };
         self.load(path)
+    }
+
+    /// The light profile (an IES LM-63 file) of file `name` as written in a module whose
+    /// file is in `module_dir`, read once; what reading it approximated is said once, as
+    /// a warning. `Err` says why it could not be read.
+    pub fn light_profile(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<Profile>, String> {
+        let relative = name.trim_start_matches('/').trim_start_matches("./");
+        let mut dirs: Vec<PathBuf> = module_dir.map(Path::to_path_buf).into_iter().collect();
+        dirs.extend(self.dirs.iter().cloned());
+        let search = texture::SearchPath { dirs };
+        let Some(path) = search.resolve(relative) else {
+            return Err(format!("light profile '{name}' not found (searched {})", describe(&search.dirs)));
+        };
+        let warnings = &mut self.warnings;
+        self.profiles
+            .entry(path.clone())
+            .or_insert_with(|| {
+                let (profile, notes) =
+                    Profile::load(&path, false).map_err(|e| format!("light profile '{}': {e}", path.display()))?;
+                warnings.extend(notes.into_iter().map(|n| format!("light profile '{}': {n}", path.display())));
+                Ok(Arc::new(profile))
+            })
+            .clone()
     }
 
     /// The image of the file at `path`, read once.

@@ -155,6 +155,8 @@ pub enum Df {
         layer: Box<Df>,
         /// The base.
         base: Box<Df>,
+        /// The layer's own normal (world space), when it is not `state::normal()`.
+        layer_normal: Option<Leaf>,
     },
     /// `df::directional_factor`: the base scaled by normal + (grazing − normal)(1 − cos θ)^exponent.
     DirectionalFactor {
@@ -198,6 +200,9 @@ pub enum Df {
         layer: Box<Df>,
         /// The base.
         base: Box<Df>,
+        /// The layer's own normal (world space), when it is not `state::normal()`: the
+        /// layer's lobes and its Fresnel term are evaluated about it.
+        layer_normal: Option<Leaf>,
     },
 }
 
@@ -232,6 +237,14 @@ pub enum Edf {
     Diffuse,
     /// `df::spot_edf`.
     Spot(crate::spot_edf::SpotEdf),
+    /// `df::measured_edf`: the distribution and, when it lies in the surface's frame, the
+    /// expression of its `tangent_u` (world space; a constant or a value of the hit).
+    Measured {
+        /// The profile, multiplier and frame.
+        edf: Arc<crate::measured_edf::MeasuredEdf>,
+        /// `tangent_u`, without `global_distribution`.
+        tangent: Option<Arc<HitExpr>>,
+    },
 }
 
 /// A volume distribution function.
@@ -278,6 +291,8 @@ pub enum Value {
     Hit(Arc<HitExpr>, HitType),
     /// A `texture_2d` (`None`: an invalid texture, black where looked up).
     Texture(Option<Image>),
+    /// A `light_profile` (`None`: the invalid profile, which emits nothing).
+    LightProfile(Option<Arc<shader::light::ies::Profile>>),
 }
 
 impl Value {

@@ -1,0 +1,33 @@
+//! How a surface's emission is spread over directions when it is not Lambertian: MDL's
+//! `df::spot_edf` ([`SpotEdf`]) and `df::measured_edf` ([`MeasuredEdf`]). The radiance
+//! towards a direction is the material's `emission` times [`EmissionShape::factor`].
+
+use std::sync::Arc;
+
+use glam::Vec3A;
+
+use crate::measured_edf::MeasuredEdf;
+use crate::spot_edf::SpotEdf;
+
+/// A non-Lambertian emission distribution.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EmissionShape {
+    /// A cosine lobe in a cone (`spot_edf`), normalised to the intensity.
+    Spot(SpotEdf),
+    /// A light profile (`measured_edf`), in candela times its multiplier.
+    Measured(Arc<MeasuredEdf>),
+}
+
+impl EmissionShape {
+    /// The radiance towards `dir_out` (world space, unit) relative to `emission`, from a
+    /// surface of shading normal `normal` (world space, unit) whose texture tangent is
+    /// `tangent` (world space; orients a measured profile in the surface's frame); 0
+    /// behind the surface.
+    #[inline]
+    pub fn factor(&self, normal: Vec3A, tangent: Option<Vec3A>, dir_out: Vec3A) -> f32 {
+        match self {
+            EmissionShape::Spot(spot) => spot.factor(normal, dir_out),
+            EmissionShape::Measured(m) => m.factor(normal, tangent, dir_out),
+        }
+    }
+}
