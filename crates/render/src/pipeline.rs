@@ -186,8 +186,9 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 /// translates the scene into the world the engines trace (copying the scene's meshes;
 /// [`build_world_taking_meshes`] moves them).
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
-    let (shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let (mut shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
     let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
+    share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }
 
@@ -195,9 +196,20 @@ pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf
 /// instead of copying them ([`World::from_scene_taking_meshes`]): for callers that need
 /// the scene's geometry no more (the scene's object meshes are left empty).
 pub fn build_world_taking_meshes(scene: &mut Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
-    let (shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let (mut shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
     let world = World::from_scene_taking_meshes(scene, Some(&shading), &mdl);
+    share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
+}
+
+/// Hands the classic engine the world's participating media: each scene material's medium
+/// (MDL's `material_volume`) where light can enter it, for the classic engine's volumes
+/// ([`shader::volume`]). Scenes without media are unchanged.
+fn share_media(shading: &mut Shading, world: &World) {
+    for (i, m) in shading.materials.iter_mut().enumerate() {
+        // World material 0 is the default; scene material i is world material i + 1.
+        m.medium = world.materials.get(i + 1).filter(|w| w.has_inside()).and_then(|w| w.medium);
+    }
 }
 
 /// The shading half of [`build_world`]: the compiled shading, the MDL module materials and

@@ -431,3 +431,25 @@ fn a_cut_out_surface_inside_a_medium_is_no_boundary() {
     assert!(messages.is_empty(), "{messages:#?}");
     assert_pixels(&px, SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp()), 2e-3, "cut out box in the slab");
 }
+
+#[test]
+fn both_engines_absorb_alike_in_a_slab() {
+    // The classic engine attenuates rays inside an MDL medium by Beer–Lambert (a volume
+    // shader of extinction): through the gel slab (σa = 0.5, 1, 2; 1 unit) it sees the glow
+    // as the path engine does, exp(−σa) per channel, the two within 1 %.
+    let glow = r#"shader "back_mtl" "mdl::media::glow" ()"#;
+    let gel = r#"shader "slab_mtl" "mdl::media::tinted_gel" ()"#;
+    let text = slab_scene(gel, glow, "", 4);
+    let (path, messages) = render(&text, 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let (classic, messages) = render_by(EngineKind::Classic, &text, 4, 4, Default::default());
+    assert!(messages.is_empty(), "{messages:#?}");
+    eprintln!("absorbing slab: classic {:?}, path {:?}", classic[0], path[0]);
+    for (c, p) in classic.iter().zip(&path) {
+        for k in 0..3 {
+            let want = (-SIGMA_A[k]).exp();
+            assert!((p[k] - want).abs() <= 1e-3 * want, "path, channel {k}: {} vs {want}", p[k]);
+            assert!((c[k] - p[k]).abs() <= 0.01 * p[k], "channel {k}: classic {} vs path {}", c[k], p[k]);
+        }
+    }
+}

@@ -26,6 +26,11 @@ pub struct MaterialShaders {
     pub shadow: Option<NodeId>,
     /// Volume shader list.
     pub volume: Option<NodeId>,
+    /// The homogeneous participating medium inside the material's objects (MDL's
+    /// `material_volume`, the path engine's medium, handed over by the renderer): where the
+    /// material has no volume shader, rays travelling inside lose all but exp(−σt·d) of
+    /// their colour ([`super::volume`]).
+    pub medium: Option<bsdf::Medium>,
     /// Environment shader list.
     pub environment: Option<NodeId>,
     /// Photon shader list.

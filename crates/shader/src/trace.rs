@@ -143,7 +143,7 @@ impl Ctx<'_> {
             let shader = ray.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.surface);
             let Some(shader) = shader else { return (Color::new(0.0, 0.0, 0.0, 1.0), dist) };
             // The segment for the volume shader, if one applies.
-            let segment = self.volume_of(&ray).map(|_| ray.clone());
+            let segment = self.has_volume(&ray).then(|| ray.clone());
             let mut ctx = Ctx::new(shading, self.tracer, ray);
             let mut result = Value::Color(Color::ZERO);
             ctx.run_list(shader, &mut result);
@@ -153,7 +153,7 @@ impl Ctx<'_> {
         } else if max_dist.is_finite() {
             (Color::ZERO, f32::INFINITY)
         } else {
-            let segment = self.volume_of(&ray).map(|_| ray.clone());
+            let segment = self.has_volume(&ray).then(|| ray.clone());
             let c = self.environment(ray);
             (segment.map_or(c, |s| self.ray_volume(&s, false, c)), f32::INFINITY)
         }

@@ -17,6 +17,13 @@
 //! light, `dist` between them, `ray_type` [`RayType::Light`]) pass through the volume of
 //! the medium the illuminated point is seen in, over their whole length (mental ray's
 //! `shadow segments` mode, which splits them at every surface, is not followed).
+//!
+//! A material without a volume shader but with a participating medium
+//! ([`super::shading::MaterialShaders::medium`], MDL's `material_volume`) acts as a volume
+//! shader of Beer–Lambert extinction: a ray segment of length d inside it keeps exp(−σt·d)
+//! of its colour per channel (σt = σa + σs: light scattered out of the ray is lost, none
+//! is scattered in — the classic engine's reading of a scattering medium; absorbing media
+//! are exact). Light rays are not attenuated by such media.
 
 use super::ctx::Ctx;
 use super::graph::NodeId;
@@ -32,6 +39,18 @@ impl Ctx<'_> {
             Some(m) => shading.materials.get(m.material as usize).and_then(|m| m.volume),
             None => shading.volume,
         }
+    }
+
+    /// The participating medium a ray with state `s` travels in: the innermost entered
+    /// material's, where that material has no volume shader.
+    pub fn medium_of(&self, s: &State) -> Option<bsdf::Medium> {
+        let m = self.shading().materials.get(s.medium()?.material as usize)?;
+        m.medium.filter(|_| m.volume.is_none())
+    }
+
+    /// Whether a volume (a shader or a medium) changes the colour of a ray with state `s`.
+    pub fn has_volume(&self, s: &State) -> bool {
+        self.volume_of(s).is_some() || self.medium_of(s).is_some()
     }
 
     /// Runs volume shader list `volume` on `color` for the segment `state` describes
@@ -53,7 +72,15 @@ impl Ctx<'_> {
             ray.ray_type,
             RayType::Eye | RayType::Reflect | RayType::Refract | RayType::Transparent | RayType::Finalgather
         );
-        let Some(volume) = self.volume_of(ray).filter(|_| kinds) else { return color };
+        if !kinds {
+            return color;
+        }
+        if let Some(medium) = self.medium_of(ray) {
+            // Beer–Lambert over the segment; a ray that escaped crossed an infinite one.
+            let t = medium.transmittance(if hit { ray.dist } else { f32::INFINITY });
+            return Color::new(color.x * t.x, color.y * t.y, color.z * t.z, color.w);
+        }
+        let Some(volume) = self.volume_of(ray) else { return color };
         let mut s = ray.clone();
         if !hit {
             s.point = s.org;
