@@ -218,6 +218,7 @@ const MAX_CUTOUT_CROSSINGS: u32 = 64;
 /// The material at a hit: its constant parameters, or — for materials with connected
 /// parameters, when the scene's shader graph is given — the connected shaders run at the
 /// point.
+#[inline]
 fn material_at<'w>(
     world: &'w World,
     accel: &dyn Accel,
@@ -228,24 +229,36 @@ fn material_at<'w>(
 ) -> HitMaterial<'w> {
     let m = &world.materials[material as usize];
     match shading {
-        Some(shading) if m.is_varying() => {
-            let tracer = crate::tracer::SceneTracer::new(world, accel);
-            let mut state = State {
-                ray_type: RayType::Eye,
-                org: ray.origin,
-                dir: ray.dir,
-                ior_in: 1.0,
-                ior: 1.0,
-                child_dist: f32::INFINITY,
-                time: ray.time,
-                ..State::default()
-            };
-            crate::tracer::fill_state(world, hit, &mut state);
-            let mut ctx = Ctx::new(shading, &tracer, state);
-            m.at(&mut ctx)
-        }
+        Some(shading) if m.is_varying() => varying_material_at(world, accel, shading, ray, hit, m),
         _ => m.constant(),
     }
+}
+
+/// [`material_at`] for a material with connected parameters (out of line: the constant
+/// case is the common one).
+#[inline(never)]
+fn varying_material_at<'w>(
+    world: &'w World,
+    accel: &dyn Accel,
+    shading: &Shading,
+    ray: &Ray,
+    hit: &Hit,
+    m: &'w material::SurfaceMaterial,
+) -> HitMaterial<'w> {
+    let tracer = crate::tracer::SceneTracer::new(world, accel);
+    let mut state = State {
+        ray_type: RayType::Eye,
+        org: ray.origin,
+        dir: ray.dir,
+        ior_in: 1.0,
+        ior: 1.0,
+        child_dist: f32::INFINITY,
+        time: ray.time,
+        ..State::default()
+    };
+    crate::tracer::fill_state(world, hit, &mut state);
+    let mut ctx = Ctx::new(shading, &tracer, state);
+    m.at(&mut ctx)
 }
 
 /// The local shading frame around the unit normal `ns`: its x axis along the material's

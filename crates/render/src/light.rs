@@ -454,8 +454,16 @@ impl LightSource {
     /// they change shape while the shutter is open ([`shader::light::MeshShape::at_time`];
     /// the copy's triangles then hold still, its own `motion` still applies); `None` when
     /// its shape holds at every time.
+    #[inline]
     fn shaped_at(&self, time: f32) -> Option<LightSource> {
+        // The test inlined into every ray's light query; the rare copy out of line.
         let Shape::Mesh(mesh) = &self.shape else { return None };
+        self.mesh_shaped_at(mesh, time)
+    }
+
+    /// [`LightSource::shaped_at`] for a light made of triangles `mesh`.
+    #[inline(never)]
+    fn mesh_shaped_at(&self, mesh: &shader::light::MeshShape, time: f32) -> Option<LightSource> {
         let at = mesh.at_time(time)?;
         Some(LightSource { shape: Shape::Mesh(Arc::new(at)), ..self.clone() })
     }

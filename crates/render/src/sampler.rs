@@ -8,6 +8,8 @@
 //! dimensions: a [`Sampler`] is made once per pixel and [`Sampler::restart`]ed for each of
 //! its samples.
 
+mod scramble;
+
 use std::sync::OnceLock;
 
 use sobol_burley::parts::{self, Int4};
@@ -108,9 +110,9 @@ impl Sampler {
     }
 
     /// Dimensions `4·set … 4·set + 3` of this sample.
-    #[inline]
+    #[inline(always)]
     fn set(&mut self, set: u32) -> [f32; 4] {
-        let (sobol, scramble) = if (set as usize) < KEPT_SETS {
+        let (sobol, hashes): ([u32; 4], [u32; 4]) = if (set as usize) < KEPT_SETS {
             while self.kept <= set {
                 self.scrambles[self.kept as usize] = set_scramble(self.seed, self.kept).into();
                 self.kept += 1;
@@ -118,11 +120,11 @@ impl Sampler {
             let table = &self.nibbles[set as usize];
             let n = self.shuffled >> 16;
             let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
-            (point(0) ^ point(1) ^ point(2) ^ point(3), self.scrambles[set as usize].into())
+            ((point(0) ^ point(1) ^ point(2) ^ point(3)).into(), self.scrambles[set as usize])
         } else {
-            (parts::sobol_int4_rev(self.shuffled, set), set_scramble(self.seed, set))
+            (parts::sobol_int4_rev(self.shuffled, set).into(), set_scramble(self.seed, set).into())
         };
-        parts::owen_scramble_int4_rev(sobol, scramble).reverse_bits().to_f32_norm()
+        scramble::finish(sobol, hashes)
     }
 
     /// The next number in [0, 1).
@@ -144,7 +146,11 @@ impl Sampler {
     #[inline(never)]
     fn refill(&mut self, d: u32) -> f32 {
         if d < sobol_burley::NUM_DIMENSIONS {
-            self.buffer = self.set(d / 4);
+            // The set's arithmetic built for the best instructions the CPU has.
+            self.buffer = scramble::dispatch(
+                #[inline(always)]
+                || self.set(d / 4),
+            );
             self.buffer[0]
         } else {
             // Past the Sobol table: a hashed random number (still deterministic).
