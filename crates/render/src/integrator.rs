@@ -484,9 +484,14 @@ pub fn trace_path(
                     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
-                    let unshadowed = media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
+                    let unshadowed =
+                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
                     // Maya's `shadowColor`: what a shadowed point still receives.
-                    let tr = if light.shadow { unshadowed + (Rgb::ONE - unshadowed) * light.shadow_color } else { unshadowed };
+                    let tr = if light.shadow {
+                        unshadowed + (Rgb::ONE - unshadowed) * light.shadow_color
+                    } else {
+                        unshadowed
+                    };
                     if tr != Rgb::ZERO {
                         let weight = if ls.delta || !settings.mis {
                             1.0
