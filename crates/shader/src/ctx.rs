@@ -12,6 +12,7 @@ use glam::{Vec2, Vec3A};
 
 use super::graph::{Node, NodeId, Slot};
 use super::shading::Shading;
+pub use super::site::hash;
 use super::site::SitePairs;
 use super::state::State;
 use super::tracer::Tracer;
@@ -49,7 +50,7 @@ pub struct Ctx<'a> {
     pub call_log: Option<Vec<NodeId>>,
     /// A light state's shadow query answered ahead by the light loop (see
     /// [`Ctx::trace_shadow`]).
-    pub(crate) shadow_hint: Option<crate::lights::ShadowHint>,
+    pub(crate) shadow_hint: Option<super::tracer::ShadowHint>,
     /// A shadow ray was asked for here without shadow shaders to run (any-hit query).
     pub(crate) shadow_queried: bool,
 }
@@ -322,16 +323,4 @@ impl<'a> Ctx<'a> {
     pub fn fb_named(&self, name: &str) -> Option<u32> {
         self.tracer.fb_named(name)
     }
-}
-
-/// Mixes numbers into a 32-bit hash.
-pub fn hash(words: &[u32]) -> u32 {
-    let mut h: u64 = 0x243f_6a88_85a3_08d3;
-    for &w in words {
-        h ^= u64::from(w);
-        h = h.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        h ^= h >> 29;
-    }
-    h ^= h >> 32;
-    h as u32
 }

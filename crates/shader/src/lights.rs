@@ -30,7 +30,7 @@ use super::ctx::Ctx;
 use super::light::ShadingLight;
 use super::site::SitePairs;
 use super::state::{RayType, State};
-use super::tracer::ShadowQuery;
+use super::tracer::{ShadowHint, ShadowQuery};
 use super::value::{Color, Tag, Value};
 
 /// One sample of a light (what mental ray's `mi_sample_light` hands back).
@@ -48,15 +48,6 @@ pub struct LightSample {
 
 /// How many samples' shadow rays the light loop traces together (one packet).
 const AHEAD: usize = 8;
-
-/// A shadow query of a light sample, traced ahead by the light loop, with its answer: the
-/// light shader's [`Ctx::trace_shadow`] takes the answer when it asks exactly this query.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ShadowHint {
-    query: ShadowQuery,
-    time: f32,
-    blocked: bool,
-}
 
 /// Where one light sample lies, seen from the illuminated point.
 #[derive(Clone, Copy, Debug, Default)]

@@ -86,7 +86,19 @@ impl SitePairs {
 
 /// The seed of the Sobol sequence of a site's samples whose indices share `high`.
 fn sequence_seed(words: [u32; 4], high: u32, site: u32) -> u32 {
-    crate::ctx::hash(&[words[0], words[1], words[2], words[3], high, site])
+    hash(&[words[0], words[1], words[2], words[3], high, site])
+}
+
+/// Mixes numbers into a 32-bit hash.
+pub fn hash(words: &[u32]) -> u32 {
+    let mut h: u64 = 0x243f_6a88_85a3_08d3;
+    for &w in words {
+        h ^= u64::from(w);
+        h = h.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        h ^= h >> 29;
+    }
+    h ^= h >> 32;
+    h as u32
 }
 
 #[cfg(test)]
@@ -104,7 +116,7 @@ mod tests {
                 let pairs = SitePairs::new([words[0], words[1]], words[2], words[3], sample_index, site, n);
                 for i in 0..n {
                     let index = sample_index.wrapping_mul(n).wrapping_add(i);
-                    let seed = crate::ctx::hash(&[words[0], words[1], words[2], words[3], index >> 16, site]);
+                    let seed = hash(&[words[0], words[1], words[2], words[3], index >> 16, site]);
                     let dim = (site % 64) * 2 + 128;
                     let expect = [
                         sobol_burley::sample(index & 0xffff, dim, seed),

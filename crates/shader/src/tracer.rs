@@ -39,6 +39,16 @@ pub struct ShadowQuery {
     pub max_dist: f32,
 }
 
+/// A shadow query of a light sample, traced ahead by the light loop, with its answer: the
+/// light shader's [`crate::Ctx::trace_shadow`] takes the answer when it asks exactly this
+/// query at this shutter time.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShadowHint {
+    pub(crate) query: ShadowQuery,
+    pub(crate) time: f32,
+    pub(crate) blocked: bool,
+}
+
 /// Ray casting for shaders (implemented by the renderer, one per rendering thread).
 pub trait Tracer {
     /// Casts the ray of `ray` (its `ray_type`, `org`, unit `dir`, levels and media set up
