@@ -6,7 +6,7 @@
 use std::cell::{Cell, RefCell};
 
 use glam::{Vec2, Vec3A};
-use shader::{Color, RayType, State, Tracer, VertexData};
+use shader::{Color, RayType, ShadowQuery, State, Tracer, VertexData};
 
 use crate::accel::{Accel, Hit};
 use crate::ray::{mask, FirstHit, Ray, RayCounts};
@@ -302,6 +302,21 @@ impl Tracer for SceneTracer<'_> {
         // first surface it finds.
         self.count(true);
         self.accel.occluded(&Ray { mask: mask::SHADOW, origin: org, dir, tmin: 0.0, tmax: max_dist, time })
+    }
+
+    fn shadow_blocked_batch(&self, queries: &[ShadowQuery], time: f32, blocked: &mut [bool]) {
+        // In packets of at most eight (a light's samples from one point), on the stack.
+        for (queries, blocked) in queries.chunks(8).zip(blocked.chunks_mut(8)) {
+            let mut rays =
+                [Ray { mask: mask::SHADOW, origin: Vec3A::ZERO, dir: Vec3A::Z, tmin: 0.0, tmax: 0.0, time }; 8];
+            for (ray, q) in rays.iter_mut().zip(queries) {
+                (ray.origin, ray.dir, ray.tmax) = (q.org, q.dir, q.max_dist);
+            }
+            let mut c = self.counts.get();
+            c.shadow_rays += queries.len() as u64;
+            self.counts.set(c);
+            self.accel.occluded_batch(&rays[..queries.len()], blocked);
+        }
     }
 
     fn triangle(&self, hit: &State, data: VertexData) -> Option<[Vec3A; 3]> {

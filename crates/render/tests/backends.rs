@@ -120,3 +120,40 @@ fn embree_and_rust_backends_agree() {
     }
     assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
 }
+
+/// Occlusion asked for a batch of rays (as the light loop asks for a light's samples: from
+/// one point, up to a distance, in groups of every size up to 19, which Embree traces as
+/// packets of eight) answers each ray as the one-ray query does, on both backends; the
+/// rays include blocked and free ones.
+#[test]
+fn batched_occlusion_matches_single_rays() {
+    let world = cornell();
+    // Points other than the rays' origins (the same generator, further on).
+    let targets = rays(660).split_off(60);
+    for backend in [Backend::Rust, Backend::default_available()] {
+        let accel = accel::build(&world, backend);
+        let (mut blocked_count, mut free_count, mut at) = (0, 0, 0);
+        for (k, from) in rays(60).iter().enumerate() {
+            let n = 1 + k % 19;
+            let batch: Vec<Ray> = targets[at..at + n]
+                .iter()
+                .map(|t| {
+                    let d = t.origin - from.origin;
+                    Ray { tmax: d.length() * 0.999, ..Ray::new(from.origin, d.normalize()) }
+                })
+                .collect();
+            at = (at + n) % (targets.len() - 20);
+            let mut blocked = vec![false; n];
+            accel.occluded_batch(&batch, &mut blocked);
+            for (ray, b) in batch.iter().zip(&blocked) {
+                assert_eq!(*b, accel.occluded(ray), "{backend:?} {ray:?}");
+                if *b {
+                    blocked_count += 1;
+                } else {
+                    free_count += 1;
+                }
+            }
+        }
+        assert!(blocked_count > 50 && free_count > 50, "{backend:?}: {blocked_count} blocked, {free_count} free");
+    }
+}

@@ -12,6 +12,8 @@ use glam::{Vec2, Vec3A};
 
 use super::graph::{Node, NodeId, Slot};
 use super::shading::Shading;
+pub use super::site::hash;
+use super::site::SitePairs;
 use super::state::State;
 use super::tracer::Tracer;
 use super::value::{Color, Tag, Value};
@@ -46,6 +48,11 @@ pub struct Ctx<'a> {
     /// When set, every shader run at this point (not in contexts of rays it traces) is
     /// appended: for tests and debugging.
     pub call_log: Option<Vec<NodeId>>,
+    /// A light state's shadow query answered ahead by the light loop (see
+    /// [`Ctx::trace_shadow`]).
+    pub(crate) shadow_hint: Option<super::tracer::ShadowHint>,
+    /// A shadow ray was asked for here without shadow shaders to run (any-hit query).
+    pub(crate) shadow_queried: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -60,6 +67,8 @@ impl<'a> Ctx<'a> {
             site: 0,
             counts: ShadeCounts::default(),
             call_log: None,
+            shadow_hint: None,
+            shadow_queried: false,
         }
     }
 
@@ -284,12 +293,19 @@ impl<'a> Ctx<'a> {
 
     /// Two sample numbers in [0,1)² for the `i`-th of `n` samples a shader takes at this
     /// point through `site` (its place among this point's sampling loops). Successive
-    /// pixel samples continue the same low-discrepancy sequence.
+    /// pixel samples continue the same low-discrepancy sequence. A loop taking many samples
+    /// at one site gets the same numbers cheaper from [`Ctx::site_pairs`].
     pub fn sample2(&mut self, site: u32, i: u32, n: u32) -> Vec2 {
-        let depth = self.state.reflection_level + self.state.refraction_level * 7 + self.state.finalgather_level * 31;
-        let index = self.state.sample_index.wrapping_mul(n.max(1)).wrapping_add(i);
-        let seed = hash(&[self.state.pixel[0], self.state.pixel[1], self.shading.seed, depth, index >> 16, site]);
-        site_pair(index & 0xffff, site, seed)
+        self.site_pairs(site, n).pair(i)
+    }
+
+    /// The numbers of a loop of `n` samples at `site` from this point: its
+    /// [`SitePairs::pair`]`(i)` is `sample2(site, i, n)`, bit for bit, with the hashes the
+    /// loop shares computed once.
+    pub fn site_pairs(&self, site: u32, n: u32) -> SitePairs {
+        let s = &self.state;
+        let depth = s.reflection_level + s.refraction_level * 7 + s.finalgather_level * 31;
+        SitePairs::new(s.pixel, self.shading.seed, depth, s.sample_index, site, n)
     }
 
     /// A new sampling site for a shader's sampling loop at this point.
@@ -306,53 +322,5 @@ impl<'a> Ctx<'a> {
     /// The index of the user frame buffer named `name`, if the render has one.
     pub fn fb_named(&self, name: &str) -> Option<u32> {
         self.tracer.fb_named(name)
-    }
-}
-
-/// Dimensions 128 + 2k and 129 + 2k (k = `site` mod 64) of sample `index` (< 2¹⁶) of the
-/// Owen-scrambled Sobol sequence `seed`: both lie in one set of four dimensions, which
-/// [`crate::sobol::sample_4d`] computes together — the numbers of two one-dimension
-/// `sobol_burley::sample` calls at a fraction of the cost.
-fn site_pair(index: u32, site: u32, seed: u32) -> Vec2 {
-    let dim = (site % 64) * 2 + 128;
-    let set = crate::sobol::sample_4d(index, dim / 4, seed);
-    let lane = (dim % 4) as usize;
-    Vec2::new(set[lane], set[lane + 1])
-}
-
-/// Mixes numbers into a 32-bit hash.
-pub fn hash(words: &[u32]) -> u32 {
-    let mut h: u64 = 0x243f_6a88_85a3_08d3;
-    for &w in words {
-        h ^= u64::from(w);
-        h = h.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        h ^= h >> 29;
-    }
-    h ^= h >> 32;
-    h as u32
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The pair of a sampling site is, bit for bit, the two one-dimension samples of its
-    /// dimensions (every site, indices at both ends of the range, several seeds).
-    #[test]
-    fn site_pairs_are_the_one_dimension_samples() {
-        for seed in [0u32, 7, 0x9e37_79b9, u32::MAX] {
-            for index in [0u32, 1, 2, 255, 4097, 0xffff] {
-                for site in 0..130 {
-                    let dim = (site % 64) * 2 + 128;
-                    let pair = site_pair(index, site, seed);
-                    let expect = [sobol_burley::sample(index, dim, seed), sobol_burley::sample(index, dim + 1, seed)];
-                    assert_eq!(
-                        [pair.x.to_bits(), pair.y.to_bits()],
-                        expect.map(f32::to_bits),
-                        "site {site} index {index}"
-                    );
-                }
-            }
-        }
     }
 }

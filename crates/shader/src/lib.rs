@@ -13,7 +13,8 @@
 //! - [`fgcache`]: the final gather interpolation cache.
 //! - [`photonmap`]: caustic and global illumination photon maps and their estimates.
 //! - [`shading`]: a scene's shading compiled (graph, textures, materials, lights, options).
-//! - [`sobol`]: the Owen-scrambled Sobol numbers shaders sample with.
+//! - [`sobol`]: the Owen-scrambled Sobol numbers shaders sample with; [`site`]: a sampling
+//!   loop's numbers.
 //! - [`tracer`]: the contract with the renderer's ray casting.
 //! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes).
 //! - [`photon`]: how surfaces scatter photons.
@@ -36,6 +37,7 @@ pub mod precomputed;
 pub mod registry;
 pub mod shading;
 pub mod shutter;
+pub mod site;
 pub mod sobol;
 pub mod state;
 pub mod texture;
@@ -50,7 +52,7 @@ pub use graph::{Graph, NodeId, Slot};
 pub use registry::{Library, Registry};
 pub use shading::{MaterialShaders, Shading, ShadingOptions};
 pub use state::{RayType, State};
-pub use tracer::{Hit, SurfaceScatter, Tracer, VertexData};
+pub use tracer::{Hit, ShadowQuery, SurfaceScatter, Tracer, VertexData};
 pub use value::{Color, Tag, Value};
 
 /// What a shader does: reads parameters of node `node` through the context, writes its

@@ -16,6 +16,8 @@
 //! `point` the illuminated point, `dir` from the light to that point, `dist` between them.
 //! They call [`Ctx::trace_shadow`], which walks the surfaces in between and runs their
 //! shadow shaders on the light's colour; a surface without a shadow shader blocks it.
+//! Where no material has a shadow shader, an area light's samples have their shadow rays
+//! traced ahead in batches of eight (one packet), answered when the shader asks.
 //! The light's result then passes through the volume of the medium the point is seen in
 //! ([`super::volume`]).
 
@@ -26,7 +28,9 @@ use scene::LightKind;
 
 use super::ctx::Ctx;
 use super::light::ShadingLight;
+use super::site::SitePairs;
 use super::state::{RayType, State};
+use super::tracer::{ShadowHint, ShadowQuery};
 use super::value::{Color, Tag, Value};
 
 /// One sample of a light (what mental ray's `mi_sample_light` hands back).
@@ -42,6 +46,22 @@ pub struct LightSample {
     pub dist: f32,
 }
 
+/// How many samples' shadow rays the light loop traces together (one packet).
+const AHEAD: usize = 8;
+
+/// Where one light sample lies, seen from the illuminated point.
+#[derive(Clone, Copy, Debug, Default)]
+struct SampleGeometry {
+    /// Unit direction from the point to the sample.
+    to_light: Vec3A,
+    /// Distance to it (infinite for directional lights).
+    dist: f32,
+    /// The sample's point on the light.
+    on_light: Vec3A,
+    /// `dot(normal, to_light)`.
+    dot_nl: f32,
+}
+
 /// The progress of sampling one light.
 #[derive(Clone, Copy, Debug)]
 pub struct LightLoop {
@@ -52,6 +72,28 @@ pub struct LightLoop {
     next: u32,
     grid: (u32, u32),
     site: u32,
+    /// The numbers of the area samples (stratified in `grid`), made when the loop starts
+    /// for lights with a shape.
+    pairs: Option<SitePairs>,
+    /// The light neither moves nor deforms at this point's time: its samples read the
+    /// scene's light itself (no moved copy per sample).
+    still: bool,
+    /// The light's shader asked for an any-hit shadow ray: the shadow rays of the next
+    /// samples are traced together ahead of their shader calls.
+    batch: bool,
+    /// The samples from `ahead_from` on whose points and shadow rays were found ahead:
+    /// bit k of `ahead` is set when sample `ahead_from + k` was, of `ahead_reach` when it
+    /// reaches the point (its geometry and query are in `ahead_samples`), of
+    /// `ahead_blocked` when its shadow ray is blocked.
+    ahead_from: u32,
+    ahead: u8,
+    ahead_reach: u8,
+    ahead_blocked: u8,
+    ahead_samples: [(SampleGeometry, ShadowQuery); AHEAD],
+    /// What they were found for: the point, normal, shadow point, geometric normal and
+    /// time of the shading state, and `both_sides` (a shader changing one between samples
+    /// has them found again).
+    ahead_for: ([Vec3A; 4], f32, bool),
     /// Accept points behind the surface (for translucency: the shader flips the normal).
     pub both_sides: bool,
 }
@@ -123,7 +165,29 @@ impl<'a> Ctx<'a> {
             _ => (l.samples.0.max(1), l.samples.1.max(1)),
         };
         let site = self.next_site();
-        LightLoop { light, samples: 0, next: 0, grid, site, both_sides: false }
+        let pairs = l.shape.is_some().then(|| self.site_pairs(site, grid.0 * grid.1));
+        let time = self.state.time;
+        let still = self.tracer.light_motion(light, time).is_none() && self.tracer.light_mesh(light, time).is_none();
+        LightLoop {
+            light,
+            samples: 0,
+            next: 0,
+            grid,
+            site,
+            pairs,
+            still,
+            batch: false,
+            ahead_from: 0,
+            ahead: 0,
+            ahead_reach: 0,
+            ahead_blocked: 0,
+            ahead_samples: [(
+                SampleGeometry::default(),
+                ShadowQuery { org: Vec3A::ZERO, dir: Vec3A::ZERO, max_dist: 0.0 },
+            ); AHEAD],
+            ahead_for: ([Vec3A::ZERO; 4], 0.0, false),
+            both_sides: false,
+        }
     }
 
     /// The next sample of the light that reaches the point, or `None` when the light's
@@ -157,7 +221,7 @@ impl<'a> Ctx<'a> {
                 continue;
             }
             lp.samples += 1;
-            if let Some(s) = self.light_sample(lp, i, count) {
+            if let Some(s) = self.light_sample(lp, i) {
                 return Some(s);
             }
         }
@@ -208,9 +272,56 @@ impl<'a> Ctx<'a> {
         Some(reaches.then_some(LightSample { color, dir, dot_nl, dist }))
     }
 
-    fn light_sample(&mut self, lp: &LightLoop, i: u32, count: u32) -> Option<LightSample> {
+    fn light_sample(&mut self, lp: &mut LightLoop, i: u32) -> Option<LightSample> {
         let shading = self.shading();
-        let light = self.light(lp.light)?;
+        let moved;
+        let light = if lp.still {
+            shading.lights.get(lp.light as usize)?
+        } else {
+            moved = self.light(lp.light)?;
+            &*moved
+        };
+        let p = self.state.point;
+        let (geometry, hint) = if lp.batch && light.shape.is_some() {
+            self.sample_ahead(lp, light, i)
+        } else {
+            (self.sample_geometry(lp, light, i), None)
+        };
+        let SampleGeometry { to_light, dist, on_light, dot_nl } = geometry?;
+        let shader = light.shader?;
+        let mut ls = self.state.child(RayType::Light, on_light, -to_light);
+        ls.point = p;
+        ls.shadow_point = self.state.shadow_point;
+        ls.dist = dist;
+        ls.normal = self.state.normal;
+        ls.normal_geom = self.state.normal_geom;
+        ls.instance = self.state.instance;
+        ls.light = Some(lp.light);
+        ls.dot_nd = dot_nl;
+        let mut ctx = Ctx::new(shading, self.tracer, ls);
+        ctx.shadow_hint = hint;
+        let mut result = Value::Color(Color::ZERO);
+        let ok = ctx.run_list(shader, &mut result);
+        self.counts.calls += ctx.counts.calls;
+        // A shader that asked for an any-hit shadow ray will ask for the next samples'.
+        lp.batch |= ctx.shadow_queried;
+        if !ok {
+            return None;
+        }
+        let color = result.color();
+        let color = if crate::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
+        (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
+            color,
+            dir: to_light,
+            dot_nl,
+            dist,
+        })
+    }
+
+    /// Where sample `i` of the light loop `lp` of `light` lies: the unit direction from
+    /// this point to it, the distance, the point on the light and `dot(normal, dir)`;
+    /// `None` when it does not reach the point (degenerate, or behind the surface).
+    fn sample_geometry(&mut self, lp: &LightLoop, light: &ShadingLight, i: u32) -> Option<SampleGeometry> {
         let p = self.state.point;
         let (to_light, dist, on_light) = match (light.kind, &light.shape) {
             (LightKind::Directional, _) => (-light.direction, f32::INFINITY, p - light.direction * 1e30),
@@ -221,7 +332,10 @@ impl<'a> Ctx<'a> {
             }
             (_, Some(shape)) => {
                 // Stratified over the u×v grid, jittered.
-                let j = self.sample2(lp.site, i, count);
+                let j = match lp.pairs {
+                    Some(pairs) => pairs.pair(i),
+                    None => self.sample2(lp.site, i, lp.grid.0 * lp.grid.1),
+                };
                 let (gu, gv) = lp.grid;
                 let u = Vec2::new(((i % gu) as f32 + j.x) / gu as f32, ((i / gu) as f32 + j.y) / gv as f32);
                 let (q, _) = shape.point_on(light.origin, u);
@@ -237,36 +351,67 @@ impl<'a> Ctx<'a> {
         if dot_nl <= 0.0 && !lp.both_sides {
             return None;
         }
-        let shader = light.shader?;
-        let mut ls = self.state.child(RayType::Light, on_light, -to_light);
-        ls.point = p;
-        ls.shadow_point = self.state.shadow_point;
-        ls.dist = dist;
-        ls.normal = self.state.normal;
-        ls.normal_geom = self.state.normal_geom;
-        ls.instance = self.state.instance;
-        ls.light = Some(lp.light);
-        ls.dot_nd = dot_nl;
-        let mut ctx = Ctx::new(shading, self.tracer, ls);
-        let mut result = Value::Color(Color::ZERO);
-        let ok = ctx.run_list(shader, &mut result);
-        self.counts.calls += ctx.counts.calls;
-        if !ok {
-            return None;
+        Some(SampleGeometry { to_light, dist, on_light, dot_nl })
+    }
+
+    /// Sample `i`'s geometry and the answer to its shadow query, found ahead together
+    /// with the next samples' (up to [`AHEAD`] from `i`, their shadow rays traced as one
+    /// batch) when sample `i` was not.
+    fn sample_ahead(
+        &mut self,
+        lp: &mut LightLoop,
+        light: &ShadingLight,
+        i: u32,
+    ) -> (Option<SampleGeometry>, Option<ShadowHint>) {
+        let s = &self.state;
+        let at = ([s.point, s.normal, s.shadow_point, s.normal_geom], s.time, lp.both_sides);
+        let mut k = i.wrapping_sub(lp.ahead_from);
+        if k >= AHEAD as u32 || lp.ahead & (1 << k) == 0 || lp.ahead_for != at {
+            lp.ahead_for = at;
+            let count = lp.grid.0 * lp.grid.1;
+            let mut queries = [ShadowQuery { org: Vec3A::ZERO, dir: Vec3A::ZERO, max_dist: 0.0 }; AHEAD];
+            let mut lanes = [0usize; AHEAD];
+            let mut n = 0;
+            (lp.ahead_from, lp.ahead, lp.ahead_reach, lp.ahead_blocked) = (i, 0, 0, 0);
+            for j in i..count.min(i + AHEAD as u32) {
+                let lane = (j - i) as usize;
+                lp.ahead |= 1 << lane;
+                let Some(g) = self.sample_geometry(lp, light, j) else { continue };
+                // The ray `trace_shadow` casts from this sample's light state.
+                let org = crate::trace::offset_point(self.state.shadow_point, self.state.normal_geom, g.to_light);
+                let max_dist = if g.dist.is_finite() { g.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+                let query = ShadowQuery { org, dir: g.to_light, max_dist };
+                lp.ahead_reach |= 1 << lane;
+                lp.ahead_samples[lane] = (g, query);
+                (queries[n], lanes[n]) = (query, lane);
+                n += 1;
+            }
+            let mut blocked = [false; AHEAD];
+            self.tracer.shadow_blocked_batch(&queries[..n], self.state.time, &mut blocked[..n]);
+            for (&lane, &b) in lanes[..n].iter().zip(&blocked[..n]) {
+                lp.ahead_blocked |= u8::from(b) << lane;
+            }
+            k = 0;
         }
-        let color = result.color();
-        let color = if crate::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
-        (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
-            color,
-            dir: to_light,
-            dot_nl,
-            dist,
-        })
+        if lp.ahead_reach & (1 << k) == 0 {
+            return (None, None);
+        }
+        let (geometry, query) = lp.ahead_samples[k as usize];
+        let blocked = lp.ahead_blocked & (1 << k) != 0;
+        (Some(geometry), Some(ShadowHint { query, time: self.state.time, blocked }))
     }
 
     /// For a light shader: sends a shadow ray from the illuminated point to the light and
     /// lets the surfaces in between filter `color` with their shadow shaders (mental ray's
     /// `mi_trace_shadow`). Returns false when nothing gets through.
+    ///
+    /// Without shadow shaders in the scene the ray is an any-hit query. Once a light's
+    /// shader has asked for one, the light loop traces the next samples' rays together
+    /// ahead of their shader calls ([`Tracer::shadow_blocked_batch`], packets of eight) and
+    /// this takes the answer of the ray that is exactly the one traced ahead; any other ray
+    /// is traced here.
+    ///
+    /// [`Tracer::shadow_blocked_batch`]: crate::Tracer::shadow_blocked_batch
     pub fn trace_shadow(&mut self, color: &mut Color) -> bool {
         let shading = self.shading();
         if !shading.shadows {
@@ -280,7 +425,14 @@ impl<'a> Ctx<'a> {
         if !shading.has_shadow_shaders() {
             // Every surface stops the light (no material filters it): the first surface
             // found on the way decides, with no need for the nearest one or its state.
-            if tracer.shadow_blocked(org, to_light, max_dist, s.time) {
+            self.shadow_queried = true;
+            let query = ShadowQuery { org, dir: to_light, max_dist };
+            let blocked = match self.shadow_hint.take() {
+                // Traced ahead by the light loop (the same ray, bit for bit).
+                Some(hint) if hint.query == query && hint.time == s.time => hint.blocked,
+                _ => tracer.shadow_blocked(org, to_light, max_dist, s.time),
+            };
+            if blocked {
                 *color = Color::ZERO;
                 return false;
             }

@@ -27,6 +27,28 @@ pub enum VertexData {
 /// What a ray hit, for shading.
 pub type Hit = State;
 
+/// One shadow-ray query of [`Tracer::shadow_blocked`]: from `org` along unit `dir`
+/// (world space) up to `max_dist`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowQuery {
+    /// Where the ray starts (already offset from the surface).
+    pub org: Vec3A,
+    /// Unit direction towards the light.
+    pub dir: Vec3A,
+    /// How far the ray looks (scene units; infinite for directional lights).
+    pub max_dist: f32,
+}
+
+/// A shadow query of a light sample, traced ahead by the light loop, with its answer: the
+/// light shader's [`crate::Ctx::trace_shadow`] takes the answer when it asks exactly this
+/// query at this shutter time.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShadowHint {
+    pub(crate) query: ShadowQuery,
+    pub(crate) time: f32,
+    pub(crate) blocked: bool,
+}
+
 /// Ray casting for shaders (implemented by the renderer, one per rendering thread).
 pub trait Tracer {
     /// Casts the ray of `ray` (its `ray_type`, `org`, unit `dir`, levels and media set up
@@ -59,6 +81,15 @@ pub trait Tracer {
             false
         });
         any
+    }
+
+    /// [`Tracer::shadow_blocked`] for each of `queries` at shutter time `time`, into
+    /// `blocked` (as long as `queries`). The light loop asks for a light's samples from one
+    /// point together, which a renderer may trace as a packet.
+    fn shadow_blocked_batch(&self, queries: &[ShadowQuery], time: f32, blocked: &mut [bool]) {
+        for (q, b) in queries.iter().zip(blocked) {
+            *b = self.shadow_blocked(q.org, q.dir, q.max_dist, time);
+        }
     }
 
     /// The three vertices' `data` of the triangle `hit` (a state [`intersect`] filled in)

@@ -67,6 +67,30 @@ struct RtcHit {
     inst_id: [c_uint; 1],
 }
 
+/// `struct RTCRay8`: eight rays, one array per field.
+#[repr(C, align(32))]
+struct RtcRay8 {
+    org_x: [f32; 8],
+    org_y: [f32; 8],
+    org_z: [f32; 8],
+    tnear: [f32; 8],
+    dir_x: [f32; 8],
+    dir_y: [f32; 8],
+    dir_z: [f32; 8],
+    time: [f32; 8],
+    tfar: [f32; 8],
+    mask: [c_uint; 8],
+    id: [c_uint; 8],
+    flags: [c_uint; 8],
+}
+
+/// The valid-lane mask of a packet of eight (−1: trace the lane, 0: skip it).
+#[repr(C, align(32))]
+struct Valid8([i32; 8]);
+
+/// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT`: the packet's rays are coherent.
+const CONTEXT_FLAG_COHERENT: c_uint = 1;
+
 /// `struct RTCRayHit`.
 #[repr(C, align(16))]
 struct RtcRayHit {
@@ -112,6 +136,7 @@ extern "C" {
     fn rtcReleaseGeometry(geometry: RtcGeometry);
     fn rtcIntersect1(scene: RtcScene, context: *mut IntersectContext, rayhit: *mut RtcRayHit);
     fn rtcOccluded1(scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay);
+    fn rtcOccluded8(valid: *const Valid8, scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay8);
 }
 
 /// Triangles stored (shared meshes once, flattened instances each) from which the scene's
@@ -294,6 +319,45 @@ impl Accel for EmbreeAccel<'_> {
         unsafe { rtcOccluded1(self.top, &mut ctx, &mut r) };
         // Embree sets tfar to −∞ when the ray is blocked.
         r.tfar < 0.0 && r.tfar.is_infinite()
+    }
+
+    fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool]) {
+        for (rays, blocked) in rays.chunks(8).zip(blocked.chunks_mut(8)) {
+            if rays.len() == 1 {
+                blocked[0] = self.occluded(&rays[0]);
+                continue;
+            }
+            let mut valid = Valid8([0; 8]);
+            let mut r = RtcRay8 {
+                org_x: [0.0; 8],
+                org_y: [0.0; 8],
+                org_z: [0.0; 8],
+                tnear: [0.0; 8],
+                dir_x: [0.0; 8],
+                dir_y: [0.0; 8],
+                dir_z: [1.0; 8],
+                time: [0.0; 8],
+                tfar: [0.0; 8],
+                mask: [0; 8],
+                id: [0; 8],
+                flags: [0; 8],
+            };
+            for (k, ray) in rays.iter().enumerate() {
+                valid.0[k] = -1;
+                (r.org_x[k], r.org_y[k], r.org_z[k]) = (ray.origin.x, ray.origin.y, ray.origin.z);
+                (r.dir_x[k], r.dir_y[k], r.dir_z[k]) = (ray.dir.x, ray.dir.y, ray.dir.z);
+                (r.tnear[k], r.tfar[k], r.time[k], r.mask[k]) = (ray.tmin, ray.tmax, ray.time, ray.mask);
+            }
+            let mut ctx = IntersectContext { flags: CONTEXT_FLAG_COHERENT, ..Self::context() };
+            // SAFETY: `top` is a committed scene; `valid` and `r` are 32-byte aligned and
+            // laid out as Embree 3.13's `int[8]` mask and `RTCRay8`; lanes past the batch
+            // are marked invalid and left alone.
+            unsafe { rtcOccluded8(&valid, self.top, &mut ctx, &mut r) };
+            for (k, b) in blocked.iter_mut().enumerate() {
+                // Embree sets tfar to −∞ in the lanes that are blocked.
+                *b = r.tfar[k] < 0.0 && r.tfar[k].is_infinite();
+            }
+        }
     }
 
     fn backend(&self) -> Backend {

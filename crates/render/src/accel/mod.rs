@@ -60,6 +60,13 @@ pub trait Accel: Send + Sync {
     fn intersect(&self, ray: &Ray) -> Option<Hit>;
     /// Whether anything blocks `ray` within its `[tmin, tmax]`.
     fn occluded(&self, ray: &Ray) -> bool;
+    /// [`Accel::occluded`] for each of `rays` into `blocked` (as long as `rays`): for rays
+    /// that start at one point, as a light's samples do, a backend may trace them together.
+    fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool]) {
+        for (ray, b) in rays.iter().zip(blocked) {
+            *b = self.occluded(ray);
+        }
+    }
     /// Which backend this is.
     fn backend(&self) -> Backend;
 }
