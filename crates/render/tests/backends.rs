@@ -129,11 +129,11 @@ fn embree_and_rust_backends_agree() {
 fn batched_occlusion_matches_single_rays() {
     let world = cornell();
     // Points other than the rays' origins (the same generator, further on).
-    let targets = rays(660).split_off(60);
+    let targets = support::rays::in_cornell_box(660, 0x853c_49e6_748f_ea9b).split_off(60);
     for backend in [Backend::Rust, Backend::default_available()] {
         let accel = accel::build(&world, backend);
         let (mut blocked_count, mut free_count, mut at) = (0, 0, 0);
-        for (k, from) in rays(60).iter().enumerate() {
+        for (k, from) in support::rays::in_cornell_box(60, 0x853c_49e6_748f_ea9b).iter().enumerate() {
             let n = 1 + k % 19;
             let batch: Vec<Ray> = targets[at..at + n]
                 .iter()
