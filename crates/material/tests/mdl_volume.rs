@@ -143,3 +143,38 @@ render "root" "ci" "o"
     assert_eq!(surface("clear").medium, None, "a clear glass colour absorbs nothing");
     assert_eq!(surface("thin").medium, None, "thin glass has no inside");
 }
+
+/// Mixes of vdfs lowered to one medium: the mix's weight W per channel scales the
+/// scattering (σs·W; σs·(1 − W) is absorbed, the extinction unchanged) and g is the mean of
+/// the lobes' g weighted by their scattering. media.mdl's `smoke_mix` mixes g 0.8 and
+/// g −0.4: weights 0.5 + 0.5 scatter all (g 0.2), 0.75 + 0.75 are normalized to the same,
+/// 0.3 + 0.2 scatter half (g (0.3·0.8 − 0.2·0.4)/0.5 = 0.32); `tinted_smoke_mix` clamps
+/// colour weights (0.6, 0.8, 1) + (0.6, 0.4, 0.2) to (0.6, 0.8, 1) + (0.4, 0.2, 0): all
+/// scattered, g = 0.8·0.5 / 1 = 0.4.
+#[test]
+fn vdf_mixes_become_one_medium() {
+    let (mdl, lib, messages) = compile_text(
+        r#"$include "media.mdl"
+shader "even" "mdl::media::smoke_mix" ()
+shader "over" "mdl::media::smoke_mix" ("forward" 0.75, "backward" 0.75)
+shader "half" "mdl::media::smoke_mix" ("scattering" 2 2 2, "forward" 0.3, "backward" 0.2)
+shader "tinted" "mdl::media::tinted_smoke_mix" ("scattering" 1 2 3)
+"#,
+    );
+    assert!(messages.is_empty(), "{messages:#?}");
+    let medium = |name: &str| get(&mdl, &lib, name).medium.unwrap_or_else(|| panic!("{name} has a medium"));
+    for name in ["even", "over"] {
+        let m = medium(name);
+        assert!(close(m.sigma_s, Rgb::splat(2.0), 1e-6) && close(m.sigma_a, Rgb::ZERO, 1e-6), "{name}: {m:?}");
+        assert!((m.phase.g - 0.2).abs() < 1e-6, "{name}: {m:?}");
+    }
+    let half = medium("half");
+    assert!(close(half.sigma_s, Rgb::ONE, 1e-6) && close(half.sigma_a, Rgb::ONE, 1e-6), "{half:?}");
+    assert!((half.phase.g - 0.32).abs() < 1e-6, "{half:?}");
+    let tinted = medium("tinted");
+    assert!(
+        close(tinted.sigma_s, Rgb::new(1.0, 2.0, 3.0), 1e-6) && close(tinted.sigma_a, Rgb::ZERO, 1e-6),
+        "{tinted:?}"
+    );
+    assert!((tinted.phase.g - 0.4).abs() < 1e-6, "{tinted:?}");
+}

@@ -204,11 +204,14 @@ pub fn build_world_taking_meshes(scene: &mut Scene, options: &ShadingOptions, md
 
 /// Hands the classic engine the world's participating media: each scene material's medium
 /// (MDL's `material_volume`) where light can enter it, for the classic engine's volumes
-/// ([`shader::volume`]). Scenes without media are unchanged.
+/// ([`shader::volume`]), and the tint of its boundary where that is index-matched (shadow
+/// rays cross it). Scenes without media are unchanged.
 fn share_media(shading: &mut Shading, world: &World) {
     for (i, m) in shading.materials.iter_mut().enumerate() {
         // World material 0 is the default; scene material i is world material i + 1.
-        m.medium = world.materials.get(i + 1).filter(|w| w.has_inside()).and_then(|w| w.medium);
+        let inside = world.materials.get(i + 1).filter(|w| w.has_inside() && w.medium.is_some());
+        m.medium = inside.and_then(|w| w.medium);
+        m.boundary_tint = inside.and_then(|w| w.model.index_matched());
     }
 }
 

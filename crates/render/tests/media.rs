@@ -453,3 +453,88 @@ fn both_engines_absorb_alike_in_a_slab() {
         }
     }
 }
+
+/// The mean over the pixels well inside the sphere's disc of the white furnace of
+/// [`a_purely_scattering_sphere_is_a_white_furnace`] with the sphere's material `shader`
+/// (a `.mi` shader line for `ball_mtl`), `spp` samples, bounces up to 256.
+fn furnace_mean(shader: &str, spp: u32) -> [f64; 3] {
+    let text = format!(
+        r#"$include "media.mdl"
+options "opt" filter box 1 1 end options
+camera "cam" focal infinity aperture 2 aspect 1 resolution 24 24
+    environment "mib_color_mix" ("num" 0, "color_base" 1 1 1 1)
+end camera
+instance "cam_inst" "cam" end instance
+{shader}
+{}
+instgroup "root" "cam_inst" "ball_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#,
+        ball()
+    );
+    let (px, messages) = render(&text, 24, spp, 256);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let (mut sum, mut n) = ([0.0f64; 3], 0);
+    for (i, p) in px.iter().enumerate() {
+        let (x, y) = ((i % 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0, (i / 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0);
+        if (x * x + y * y).sqrt() < 0.85 {
+            for k in 0..3 {
+                sum[k] += f64::from(p[k]);
+            }
+            n += 1;
+        }
+    }
+    sum.map(|s| s / f64::from(n))
+}
+
+#[test]
+fn a_mix_of_vdfs_that_scatters_all_is_a_white_furnace() {
+    // media.mdl's `smoke_mix` (σs 2, lobes g 0.8 and g −0.4 weighted 0.5 each: one lobe of
+    // g 0.2, albedo 1) and `tinted_smoke_mix` (σs 0.5, 1, 2; clamped colour weights summing
+    // to 1 per channel) only redistribute the uniform environment's light: the mean within
+    // 1 % per channel (256 samples, for the chromatic free flights). Weights summing to 0.5 absorb half of each scattering: the
+    // sphere (optical radius 2) is darker by far — under 0.8.
+    for shader in [
+        r#"shader "ball_mtl" "mdl::media::smoke_mix" ()"#,
+        r#"shader "ball_mtl" "mdl::media::tinted_smoke_mix" ("scattering" 0.5 1 2)"#,
+    ] {
+        let mean = furnace_mean(shader, 256);
+        eprintln!("white furnace, {shader}: {mean:?}");
+        assert!(mean.iter().all(|m| (m - 1.0).abs() < 0.01), "{shader}: mean {mean:?}");
+    }
+    let lossy = furnace_mean(r#"shader "ball_mtl" "mdl::media::smoke_mix" ("forward" 0.3, "backward" 0.2)"#, 16);
+    eprintln!("half-weighted vdf mix: {lossy:?}");
+    assert!(lossy.iter().all(|m| *m < 0.8), "a mix of weight 0.5 absorbs: {lossy:?}");
+}
+
+#[test]
+fn both_engines_light_a_wall_through_an_absorbing_slab_alike() {
+    // The classic engine's shadow rays cross the gel's index-matched boundary and keep
+    // exp(−σa·d) inside, as the path engine's: the matte wall lit head-on through the slab
+    // and seen through it is 0.8 exp(−2σa) per channel in both, the classic engine's pixels
+    // π times the path engine's (mental ray's lights carry no 1/π), within 1 %. Without
+    // the slab's absorption on the shadow rays the classic wall would be exp(σa) brighter.
+    let (path, messages) = lit_through_the_slab("on", "", &[]);
+    assert!(messages.is_empty(), "{messages:#?}");
+    let body = format!(
+        r#"shader "matte_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)
+shader "slab_mtl" "mdl::media::tinted_gel" ()
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265, "shadow" on) direction 0 0 -1 shadow on end light
+instance "sun_inst" "sun" end instance
+{}{}"#,
+        closed_box("slab", [-3.0, -3.0, -3.0], [3.0, 3.0, -2.0], "slab_mtl"),
+        wall("w", -5.0, "matte_mtl")
+    );
+    let text = scene_with(&body, &["sun_inst", "slab_inst", "w_inst"], 4);
+    let (classic, messages) = render_by(EngineKind::Classic, &text, 4, 4, Default::default());
+    assert!(messages.is_empty(), "{messages:#?}");
+    eprintln!("wall lit through the slab: classic {:?} / π, path {:?}", classic[0], path[0]);
+    let want = SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp());
+    assert_pixels(&path, want, 2e-3, "path engine");
+    for (c, p) in classic.iter().zip(&path) {
+        for k in 0..3 {
+            let c = c[k] / std::f32::consts::PI;
+            assert!((c - p[k]).abs() <= 0.01 * p[k], "channel {k}: classic {c} (/π) vs path {}", p[k]);
+        }
+    }
+}

@@ -443,9 +443,14 @@ impl<'a> Ctx<'a> {
         let mut filter = *color;
         let mut blocked = false;
         let mut calls = 0;
+        let mut media = crate::volume::ShadowMedia::new(&ray);
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
+            media.advance(shading, hit.dist, &mut filter);
             let shader = hit.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.shadow);
             let Some(shader) = shader else {
+                if media.cross(shading, hit, &mut filter) {
+                    return true;
+                }
                 blocked = true;
                 return false;
             };
@@ -465,6 +470,8 @@ impl<'a> Ctx<'a> {
             *color = Color::ZERO;
             return false;
         }
+        // The last stretch, to the light.
+        media.advance(shading, max_dist - media.walked(), &mut filter);
         *color = filter;
         true
     }

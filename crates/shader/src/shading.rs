@@ -31,6 +31,10 @@ pub struct MaterialShaders {
     /// material has no volume shader, rays travelling inside lose all but exp(−σt·d) of
     /// their colour ([`super::volume`]).
     pub medium: Option<bsdf::Medium>,
+    /// Where the material has a `medium` behind an index-matched boundary (MDL's specular
+    /// transmission with ior 1): the colour that boundary tints light by as it enters.
+    /// Shadow rays cross such a surface without a shadow shader ([`super::volume`]).
+    pub boundary_tint: Option<bsdf::Rgb>,
     /// Environment shader list.
     pub environment: Option<NodeId>,
     /// Photon shader list.
@@ -118,7 +122,7 @@ pub struct Shading {
     /// times `(i + ½) / n`); `None` when there is no such shader or it could not be used
     /// (a warning says why).
     pub shutter_weights: Option<Vec<f32>>,
-    /// Whether some material has a shadow shader list, found on first use
+    /// Whether some material has a shadow shader list or a medium, found on first use
     /// ([`Shading::has_shadow_shaders`]).
     shadow_shaders: std::sync::OnceLock<bool>,
 }
@@ -321,10 +325,10 @@ impl Shading {
         (shading, diags)
     }
 
-    /// Whether some material has a shadow shader list (without one, every surface stops
-    /// shadow rays). Found once, on the first question: the materials are set by then.
+    /// Whether some material has a shadow shader list or a participating medium (without
+    /// either, every surface stops shadow rays). Found once, on the first question: the materials are set by then.
     pub fn has_shadow_shaders(&self) -> bool {
-        *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some()))
+        *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some() || m.medium.is_some()))
     }
 
     /// Whether a final gather ray from `org` along unit `dir` (world space) meets a portal

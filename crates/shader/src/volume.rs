@@ -23,10 +23,14 @@
 //! shader of Beer–Lambert extinction: a ray segment of length d inside it keeps exp(−σt·d)
 //! of its colour per channel (σt = σa + σs: light scattered out of the ray is lost, none
 //! is scattered in — the classic engine's reading of a scattering medium; absorbing media
-//! are exact). Light rays are not attenuated by such media.
+//! are exact). Shadow rays through such media are attenuated alike ([`ShadowMedia`]): they
+//! cross the medium's index-matched boundary (tinted by its colour where they enter) and
+//! keep exp(−σt·d) over each stretch d inside, the innermost medium counting, as for eye
+//! rays; a boundary that refracts (glass) still stops them.
 
 use super::ctx::Ctx;
 use super::graph::NodeId;
+use super::shading::Shading;
 use super::state::{RayType, State};
 use super::value::{Color, Value};
 
@@ -110,5 +114,56 @@ pub fn segment_length(state: &State) -> f32 {
         state.dist
     } else {
         f32::INFINITY
+    }
+}
+
+/// The media a shadow ray is inside as it walks from the illuminated point towards the
+/// light (the classic engine's Beer–Lambert media, see the module documentation): the
+/// materials it entered, innermost last, starting with those the illuminated point's ray
+/// was inside.
+pub struct ShadowMedia {
+    /// The scene materials entered, innermost last.
+    inside: Vec<u32>,
+    /// Distance walked from the illuminated point (scene units).
+    walked: f32,
+}
+
+impl ShadowMedia {
+    /// The media at the start of shadow ray `ray` (a state whose media chain is the
+    /// illuminated point's).
+    pub fn new(ray: &State) -> Self {
+        Self { inside: ray.media[..ray.media_count].iter().map(|m| m.material).collect(), walked: 0.0 }
+    }
+
+    /// Walks `dist` further (to the next surface, or to the light): `filter` keeps the
+    /// innermost medium's transmittance over that stretch.
+    pub fn advance(&mut self, shading: &Shading, dist: f32, filter: &mut Color) {
+        self.walked += dist;
+        let Some(&innermost) = self.inside.last() else { return };
+        let Some(m) = shading.materials.get(innermost as usize) else { return };
+        if let Some(medium) = m.medium.filter(|_| m.volume.is_none()) {
+            let t = medium.transmittance(dist.max(0.0));
+            *filter = Color::new(filter.x * t.x, filter.y * t.y, filter.z * t.z, filter.w);
+        }
+    }
+
+    /// Crosses `hit`'s surface, one without a shadow shader: an index-matched boundary of a
+    /// medium is entered (tinting `filter` by its colour) or left; returns false for any
+    /// other surface, which stops the shadow ray.
+    pub fn cross(&mut self, shading: &Shading, hit: &State, filter: &mut Color) -> bool {
+        let Some(m) = hit.material else { return false };
+        let Some(tint) = shading.materials.get(m as usize).and_then(|x| x.boundary_tint) else { return false };
+        if let Some(i) = self.inside.iter().rposition(|&x| x == m) {
+            self.inside.remove(i);
+        } else {
+            self.inside.push(m);
+            *filter = Color::new(filter.x * tint.x, filter.y * tint.y, filter.z * tint.z, filter.w);
+        }
+        true
+    }
+
+    /// The distance walked so far.
+    pub fn walked(&self) -> f32 {
+        self.walked
     }
 }

@@ -146,6 +146,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 Some(Value::Struct(_, _)) | None => {}
                 Some(v) => return Err(not_constant(name, "components", v, span)),
             }
+            if matches!(components.first().and_then(|c| c.field("component")), Some(Value::Vdf(_))) {
+                return super::volume::mix(name, components, name.contains("clamped"), span);
+            }
             let mut parts = Vec::with_capacity(components.len());
             for c in components {
                 let w = match c.field("weight") {

@@ -7,10 +7,74 @@
 //! `df::anisotropic_vdf(directional_bias)` is Henyey–Greenstein with g = directional_bias,
 //! the default `vdf()` isotropic. A thin-walled material has no inside: its volume is not
 //! used (MDL ignores it too).
+//!
+//! A mix of vdfs (`df::normalized_mix`, `clamped_mix` and their colour forms) is lowered to
+//! one medium ([`mix`]): its total weight W per channel (≤ 1) is the fraction of the
+//! scattering coefficient that scatters (σs·W; the rest, σs·(1 − W), is absorbed, so the
+//! extinction is unchanged), and its phase function one Henyey–Greenstein lobe whose g is
+//! the mean of the lobes' g weighted by their scattering (the mean of the weight's
+//! channels). That lobe has the mixture's mean cosine, which is what light transport
+//! through many events depends on most, but it is an approximation: a mixture of a forward
+//! and a backward lobe is not one Henyey–Greenstein lobe.
 
 use bsdf::{Medium, Rgb};
+use mi::Span;
 
+use super::eval::{problem, Eval};
 use super::value::{Value, Vdf};
+
+/// `df::{name}` (a normalized or, when `clamped`, clamped mix) of the vdf components
+/// `components` (structs of `weight` and `component`), called at `span`: a
+/// [`Vdf::Mixture`]. Normalized: weights summing past 1 (per channel) are scaled to sum to 1;
+/// clamped: the weights are taken in order until they reach 1, the one crossing it cut
+/// short. A component mira does not compile makes the mix that vdf (warned where it is
+/// used); weights that vary over the surface make it unsupported.
+pub fn mix(name: &str, components: &[Value], clamped: bool, span: Span) -> Eval {
+    let mut parts = Vec::with_capacity(components.len());
+    for c in components {
+        let weight = match c.field("weight") {
+            None => Rgb::ZERO,
+            Some(Value::Hit(..)) => {
+                return Ok(Value::Vdf(Vdf::Unsupported(
+                    format!("`df::{name}` of vdfs with weights that vary over the surface"),
+                    span,
+                )))
+            }
+            Some(w) => w
+                .color()
+                .filter(|w| w.is_finite())
+                .ok_or_else(|| problem(span, format!("a weight of `df::{name}` is not a number or colour")))?
+                .max(Rgb::ZERO),
+        };
+        let (albedo, g) = match c.field("component") {
+            Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => (Rgb::ONE, *g),
+            Some(Value::Vdf(Vdf::Mixture { albedo, g })) => (*albedo, *g),
+            Some(Value::Vdf(unsupported @ Vdf::Unsupported(..))) => return Ok(Value::Vdf(unsupported.clone())),
+            _ => return Err(problem(span, format!("a component of `df::{name}` is not a vdf"))),
+        };
+        parts.push((weight, albedo, g));
+    }
+    let mut used = Rgb::ZERO;
+    let sum = parts.iter().fold(Rgb::ZERO, |s, (w, _, _)| s + *w);
+    let scale = Rgb::ONE / sum.max(Rgb::ONE);
+    let (mut albedo, mut weighted_g, mut scattering) = (Rgb::ZERO, 0.0f32, 0.0f32);
+    for (w, a, g) in parts {
+        let w = if clamped {
+            let w = w.min((Rgb::ONE - used).max(Rgb::ZERO));
+            used += w;
+            w
+        } else {
+            w * scale
+        };
+        let scattered = w * a;
+        let amount = (scattered.x + scattered.y + scattered.z) / 3.0;
+        albedo += scattered;
+        weighted_g += amount * g;
+        scattering += amount;
+    }
+    let g = if scattering > 0.0 { (weighted_g / scattering).clamp(-1.0, 1.0) } else { 0.0 };
+    Ok(Value::Vdf(Vdf::Mixture { albedo: albedo.min(Rgb::ONE), g }))
+}
 
 /// The medium of the evaluated `material` value of material `name`, or `None` when it has
 /// no volume that absorbs or scatters. What is not compiled is appended to `warnings`,
@@ -59,9 +123,15 @@ pub fn medium(
     if emission.is_some_and(|e| e != Rgb::ZERO) {
         warnings.push(format!("material '{name}': volume emission (emission_intensity) is not rendered yet; ignored"));
     }
-    let (sigma_a, sigma_s) = (sigma_a?, sigma_s?);
+    let (mut sigma_a, mut sigma_s) = (sigma_a?, sigma_s?);
     let g = match volume.field("scattering") {
         Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => *g,
+        Some(Value::Vdf(Vdf::Mixture { albedo, g })) => {
+            // What the mix does not scatter is absorbed: the extinction stays σa + σs.
+            sigma_a += sigma_s * (Rgb::ONE - *albedo);
+            sigma_s *= *albedo;
+            *g
+        }
         Some(Value::Vdf(Vdf::Unsupported(what, span))) => {
             if sigma_s != Rgb::ZERO {
                 warnings.push(format!(
