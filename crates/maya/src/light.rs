@@ -513,9 +513,8 @@ fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 }
 
 /// A warning, at the shader's position, for each volume light of `shading` whose
-/// `volumeLightDir` (inward or down the axis) or `emitAmbient` the path engine does not
-/// represent (the Maya materials of the classic engine do, see [`VOLUME`]): its
-/// translation shines outwards from the light's centre and lights by direction only.
+/// `emitAmbient` the path engine does not represent (the Maya materials of the classic
+/// engine do, see [`VOLUME`]): its translation lights by direction only.
 pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let mut warnings = Vec::new();
     for node in &shading.graph.nodes {
@@ -530,16 +529,6 @@ pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
             Some(shader::Slot::Value(v)) => Some(v.clone()),
             _ => None,
         };
-        if let Some(dir) = constant("volumeLightDir").map(|v| v.int()).filter(|&d| d != 0) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!(
-                    "'{}': volumeLightDir {dir} (inward or down the axis) is not represented by the path engine; \
-                     there the light shines outwards from its centre",
-                    node.decl.name
-                ),
-            ));
-        }
         if constant("emitAmbient").is_some_and(|v| v.int() != 0) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,

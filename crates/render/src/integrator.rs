@@ -456,7 +456,7 @@ pub fn trace_path(
         // it is (no BSDF, no shadow; see `material::emission::ambient`).
         let ambient = world.materials[s.material as usize].ambient;
         if ambient > 0.0 && !world.ambient.is_empty() {
-            radiance += throughput * material.diffuse * ambient * world.ambient_at(s.p, ns);
+            radiance += throughput * material.diffuse * ambient * world.ambient_at(s.p, ns, stop.instance);
         }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
@@ -480,10 +480,12 @@ pub fn trace_path(
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
-                    let origin = offset_origin(s.p, ng, ls.wi);
-                    let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+                    // Maya's soft shadows spread the shadow ray (`lightRadius`, `lightAngle`).
+                    let (dir, dist) = light.shadow_ray_at(s.p, &ls, u_light, ray.time);
+                    let origin = offset_origin(s.p, ng, dir);
+                    let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
-                    let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
+                    let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
                     let unshadowed =
                         media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
                     // Maya's `shadowColor`: what a shadowed point still receives.
