@@ -315,10 +315,9 @@ impl World {
         let mut ambient = Vec::new();
         let mut ambient_indices = Vec::new();
         for (index, l) in scene.lights.iter().enumerate() {
-            if let Some((light, warning)) = material::emission::ambient::maya_ambient(l, &scene.library) {
+            if let Some(light) = material::emission::ambient::maya_ambient(l, &scene.library) {
                 ambient.push(light);
                 ambient_indices.push(index);
-                warnings.extend(warning);
             }
         }
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
@@ -493,13 +492,18 @@ impl World {
     /// sum of [`AmbientLight::at`](material::emission::ambient::AmbientLight::at) over the
     /// ambient lights the instance's light list lets light it.
     pub fn ambient_at(&self, p: Vec3A, n: Vec3A, instance: u32) -> bsdf::Rgb {
+        self.ambient_lighting(instance).map(|a| a.at(p, n)).sum()
+    }
+
+    /// The Maya ambient lights (of [`World::ambient`]) that instance `instance` (an index
+    /// into [`World::instances`]) lets light it by its light list.
+    pub fn ambient_lighting(&self, instance: u32) -> impl Iterator<Item = &material::emission::ambient::AmbientLight> {
         let out = self.unlinked_ambient.get(instance as usize);
         self.ambient
             .iter()
             .enumerate()
-            .filter(|(a, _)| out.is_none_or(|out| !out.contains(&(*a as u32))))
-            .map(|(_, a)| a.at(p, n))
-            .sum()
+            .filter(move |(a, _)| out.is_none_or(|out| !out.contains(&(*a as u32))))
+            .map(|(_, a)| a)
     }
 
     /// World-space bounds of all instances (over the whole shutter when things move).

@@ -1,5 +1,6 @@
-//! Maya's ambient light and light linking in the path engine against the classic engine:
-//! an instance whose light list leaves an ambient light out receives none of it.
+//! Maya's ambient light in the path engine against the classic engine: an instance whose
+//! light list leaves an ambient light out receives none of it; with `useRayTraceShadows`
+//! its directional share is shadowed (softly over `lightRadius`, tinted by `shadowColor`).
 
 mod support;
 
@@ -76,5 +77,62 @@ fn an_instance_unlinked_from_an_ambient_light_receives_none_of_it_in_both_engine
             let (_, both, _) = halves(&linked_halves("", ""), EngineKind::Path);
             assert!(pr < both - 0.5 * want, "right half {pr} vs both lights {both}");
         }
+    }
+}
+
+/// A lambert ground half covered by a board 1 above it (x < 0), seen from 4 above at
+/// `SIDE`², lit by an ambient light at (−1, 2, 0) with raytraced shadows (the shadow's
+/// edge on the ground at x = 1)
+/// (`ambientShade` `shade`, `lightRadius` `radius`, `shadowColor` 0.2 0.3 0.4, 16
+/// `shadowRays`); the column means (red) by `engine`.
+fn shadowed_columns(shade: f32, radius: f32, engine: EngineKind) -> Vec<f32> {
+    let text = format!(
+        r#"
+$include "mayabase.mi"
+options "opt" samples 0 2 filter box 1 1 end options
+camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
+instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+light "amb" "maya_ambientlight" ("color" 1 0.9 0.8, "intensity" 0.5, "ambientShade" {shade},
+    "useRayTraceShadows" on, "shadowColor" 0.2 0.3 0.4, "shadowRays" 16, "lightRadius" {radius})
+    origin 0 0 0 end light
+instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  1 -2 0 1 end instance
+shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
+object "ground" group -6 0 6  6 0 6  6 0 -6  -6 0 -6  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
+instance "ground_inst" "ground" end instance
+object "board" group -6 1 6  0 1 6  0 1 -6  -6 1 -6  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
+instance "board_inst" "board" end instance
+instgroup "root" "cam_inst" "amb_inst" "ground_inst" "board_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    );
+    let (scene, shading) = support::build_clean(&text);
+    let world = render::World::from_scene_shaded(&scene, Some(&shading));
+    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
+    let spp = if engine == EngineKind::Path { 64 } else { 4 };
+    let path = render::integrator::PathSettings { max_depth: 1, ..Default::default() };
+    let settings = Settings { engine, spp: Some(spp), path, ..Settings::default() };
+    let px = support::render_world(&world, &shading, &settings).0.rgba();
+    (0..SIDE).map(|col| (0..SIDE).map(|row| px[row * SIDE + col][0]).sum::<f32>() / SIDE as f32).collect()
+}
+
+/// Hard (`lightRadius` 0) and soft (0.5) shadows at `ambientShade` 1 and 0.45: every
+/// column mean of the path engine within 3 % of the brightest column of the classic
+/// engine's; the shadowed ground keeps the uniform share and `shadowColor`'s share of the
+/// directional one (not black); the shadows are there (the ground under the board is
+/// darker than the lit ground by over 20 %).
+#[test]
+fn an_ambient_lights_raytraced_shadows_darken_alike_in_both_engines() {
+    for (shade, radius) in [(1.0f32, 0.0f32), (1.0, 0.5), (0.45, 0.5)] {
+        let classic = shadowed_columns(shade, radius, EngineKind::Classic);
+        let path = shadowed_columns(shade, radius, EngineKind::Path);
+        println!("shade {shade} radius {radius}:\n  classic {classic:.3?}\n  path {path:.3?}");
+        let brightest = classic.iter().fold(0.0f32, |a, &b| a.max(b));
+        for (col, (c, p)) in classic.iter().zip(&path).enumerate() {
+            assert!((c - p).abs() < 0.03 * brightest, "{shade} {radius}: column {col}: path {p} vs classic {c}");
+        }
+        let lit = classic[SIDE - 1];
+        let under = path[SIDE / 2 + 1];
+        assert!(under > 0.0 && under < 0.8 * lit, "{shade} {radius}: under the board {under} vs lit {lit}");
     }
 }
