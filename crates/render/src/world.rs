@@ -102,7 +102,7 @@ pub struct World {
     /// Light sources.
     pub lights: Vec<LightSource>,
     /// Maya's ambient lights, which are not sampled: the path engine adds what they give
-    /// at each hit of a material that takes ambient light (see [`World::ambient_at`]).
+    /// at each hit of a material that takes ambient light (see [`World::ambient_lighting`]).
     pub ambient: Vec<material::emission::ambient::AmbientLight>,
     /// Light linking (instances' `light [exclusive] [ … ]` lists): for each instance (as
     /// [`World::instances`]), the indices into [`World::lights`] of the lights that do not
@@ -110,7 +110,7 @@ pub struct World {
     pub unlinked_lights: Vec<Vec<u32>>,
     /// The same for Maya's ambient lights: for each instance, the indices into
     /// [`World::ambient`] of those that do not light it (empty altogether when no
-    /// instance has a list; see [`World::ambient_at`]).
+    /// instance has a list; see [`World::ambient_lighting`]).
     pub unlinked_ambient: Vec<Vec<u32>>,
     /// The camera.
     pub camera: CameraModel,
@@ -486,17 +486,10 @@ impl World {
         self.unlinked_lights.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
     }
 
-    /// What Maya's ambient lights give a surface of instance `instance` (an index into
-    /// [`World::instances`]) at `p` with unit shading normal `n` (facing the viewer), to be
-    /// multiplied by the material's diffuse colour × its [`SurfaceMaterial::ambient`]: the
-    /// sum of [`AmbientLight::at`](material::emission::ambient::AmbientLight::at) over the
-    /// ambient lights the instance's light list lets light it.
-    pub fn ambient_at(&self, p: Vec3A, n: Vec3A, instance: u32) -> bsdf::Rgb {
-        self.ambient_lighting(instance).map(|a| a.at(p, n)).sum()
-    }
-
     /// The Maya ambient lights (of [`World::ambient`]) that instance `instance` (an index
-    /// into [`World::instances`]) lets light it by its light list.
+    /// into [`World::instances`]) lets light it by its light list; each gives a surface
+    /// there [`AmbientLight::shadowed_at`](material::emission::ambient::AmbientLight::shadowed_at)
+    /// (× the material's diffuse colour × its [`SurfaceMaterial::ambient`]).
     pub fn ambient_lighting(&self, instance: u32) -> impl Iterator<Item = &material::emission::ambient::AmbientLight> {
         let out = self.unlinked_ambient.get(instance as usize);
         self.ambient

@@ -21,7 +21,8 @@
 //!   and the cylinder's and cone's `penumbra` graph, read as the classic light reads them);
 //!   `volumeLightDir` inward or down the axis turns the direction the light arrives
 //!   from for shading, its shadow rays still going to the light's origin (as the classic
-//!   Maya materials shade it);
+//!   Maya materials shade it); with `emitAmbient` it is not sampled but lights as Maya's
+//!   ambient light does ([`super::ambient`]);
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
 //!   lights), with a message; ambient lights are not lights the path engine samples:
 //!   see [`super::ambient`] (a message here when asked for as a light).
@@ -180,6 +181,20 @@ impl VolumeEmission {
 /// scaled whole sphere with a constant or black-to-colour ramp becomes a base light with
 /// a linear falloff; every other shape a [`Power::Volume`].
 fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: Rgb) -> Result<Emission, String> {
+    let range = ramp_keys(params, "colorRange", "Color");
+    if scalar_param(params, "volumeLightDir").unwrap_or(0.0) as i32 == 0 {
+        if let Some(e) = sphere_point_light(params, light_to_world, color, &range) {
+            return Ok(e);
+        }
+    }
+    let volume = volume_light(params, light_to_world, color).map_err(|e| format!("{decl}: {e}"))?;
+    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+}
+
+/// The [`VolumeEmission`] of a volume light call's `params` on a light placed by
+/// `light_to_world` (any shape, the sphere too), `color` π · colour · intensity, or why
+/// the path engine cannot represent it.
+pub fn volume_light(params: &[Param], light_to_world: DMat4, color: Rgb) -> Result<VolumeEmission, String> {
     let to_local = shader::light::profiles::to_local(light_to_world);
     // As the classic light reads it (`maya::light`): 1 inward, 2 down the axis, any other
     // value outward.
@@ -189,16 +204,11 @@ fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: R
         _ => None,
     };
     let range = ramp_keys(params, "colorRange", "Color");
-    if turn.is_none() {
-        if let Some(e) = sphere_point_light(params, light_to_world, color, &range) {
-            return Ok(e);
-        }
-    }
     let too_many = |what: &str, n: usize| {
-        format!("{decl}: a {what} of {n} keys (more than {MAX_RAMP_KEYS}) has no path-engine counterpart; left out")
+        format!("a {what} of {n} keys (more than {MAX_RAMP_KEYS}) has no path-engine counterpart; left out")
     };
     let penumbra = ramp_keys(params, "penumbra", "FloatValue");
-    let volume = VolumeEmission {
+    Ok(VolumeEmission {
         color,
         shape: ::maya::light::VolumeShape {
             shape: scalar_param(params, "lightShape").unwrap_or(1.0) as i32,
@@ -209,8 +219,7 @@ fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: R
         range: VolumeRamp::new(&range).ok_or_else(|| too_many("colorRange", range.len()))?,
         penumbra: VolumeRamp::new(&penumbra).ok_or_else(|| too_many("penumbra graph", penumbra.len()))?,
         turn,
-    };
-    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+    })
 }
 
 /// The evenly scaled whole sphere whose `colorRange` (sorted keys `range`) is empty, one
