@@ -86,16 +86,25 @@ fn an_instance_unlinked_from_an_ambient_light_receives_none_of_it_in_both_engine
 /// (`ambientShade` `shade`, `lightRadius` `radius`, `shadowColor` 0.2 0.3 0.4, 16
 /// `shadowRays`); the column means (red) by `engine`.
 fn shadowed_columns(shade: f32, radius: f32, engine: EngineKind) -> Vec<f32> {
+    let light = format!(
+        r#"light "amb" "maya_ambientlight" ("color" 1 0.9 0.8, "intensity" 0.5, "ambientShade" {shade},
+    "useRayTraceShadows" on, "shadowColor" 0.2 0.3 0.4, "shadowRays" 16, "lightRadius" {radius})
+    origin 0 0 0 end light
+instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  1 -2 0 1 end instance"#
+    );
+    under_board(&light, engine)
+}
+
+/// The column means (red) of the ground half under the board by `engine`, lit by `light`
+/// (statements defining a light instance "amb_inst").
+fn under_board(light: &str, engine: EngineKind) -> Vec<f32> {
     let text = format!(
         r#"
 $include "mayabase.mi"
 options "opt" samples 0 2 filter box 1 1 end options
 camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
 instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-light "amb" "maya_ambientlight" ("color" 1 0.9 0.8, "intensity" 0.5, "ambientShade" {shade},
-    "useRayTraceShadows" on, "shadowColor" 0.2 0.3 0.4, "shadowRays" 16, "lightRadius" {radius})
-    origin 0 0 0 end light
-instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  1 -2 0 1 end instance
+{light}
 shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)
 material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
 object "ground" group -6 0 6  6 0 6  6 0 -6  -6 0 -6  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
@@ -135,4 +144,25 @@ fn an_ambient_lights_raytraced_shadows_darken_alike_in_both_engines() {
         let under = path[SIDE / 2 + 1];
         assert!(under > 0.0 && under < 0.8 * lit, "{shade} {radius}: under the board {under} vs lit {lit}");
     }
+}
+
+/// A volume light with `emitAmbient` and raytraced shadows (a sphere of radius 8 centred at
+/// (−1, 2, 0), the whole view inside, `shadowColor` 0.2 0.3 0.4, `emitSpecular` off): shadowed as the classic
+/// light shadows it (all of its colour), every column mean of the path engine within 3 %
+/// of the brightest classic column; the ground under the board darker by over 20 %.
+#[test]
+fn a_volume_light_with_emit_ambient_is_shadowed_alike_in_both_engines() {
+    let light = r#"light "amb" "maya_volumelight" ("color" 1 0.9 0.8, "intensity" 0.5, "lightShape" 1,
+    "emitAmbient" on, "emitSpecular" off, "useRayTraceShadows" on, "shadowColor" 0.2 0.3 0.4)
+    origin 0 0 0 end light
+instance "amb_inst" "amb" transform 0.125 0 0 0  0 0.125 0 0  0 0 0.125 0  0.125 -0.25 0 1 end instance"#;
+    let classic = under_board(light, EngineKind::Classic);
+    let path = under_board(light, EngineKind::Path);
+    println!("volume emitAmbient:\n  classic {classic:.3?}\n  path {path:.3?}");
+    let brightest = classic.iter().fold(0.0f32, |a, &b| a.max(b));
+    for (col, (c, p)) in classic.iter().zip(&path).enumerate() {
+        assert!((c - p).abs() < 0.03 * brightest, "column {col}: path {p} vs classic {c}");
+    }
+    let (lit, under) = (classic[SIDE - 1], path[SIDE / 2 + 1]);
+    assert!(under > 0.0 && under < 0.8 * lit, "under the board {under} vs lit {lit}");
 }
