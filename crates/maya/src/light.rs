@@ -512,10 +512,10 @@ fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     finish(out, c)
 }
 
-/// A warning, at the shader's position, for each volume light of `shading` whose
-/// `volumeLightDir` (inward or down the axis) or `emitAmbient` the path engine does not
-/// represent (the Maya materials of the classic engine do, see [`VOLUME`]): its
-/// translation shines outwards from the light's centre and lights by direction only.
+/// A warning, at the shader's position, for each volume light of `shading` with
+/// `emitAmbient` and `emitSpecular`: the path engine lights with its ambient share (as
+/// Maya's ambient light) but leaves out the highlight the classic materials add (see
+/// [`VOLUME`]).
 pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let mut warnings = Vec::new();
     for node in &shading.graph.nodes {
@@ -530,21 +530,13 @@ pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
             Some(shader::Slot::Value(v)) => Some(v.clone()),
             _ => None,
         };
-        if let Some(dir) = constant("volumeLightDir").map(|v| v.int()).filter(|&d| d != 0) {
+        // emitSpecular is on unless set off.
+        let specular = constant("emitSpecular").is_none_or(|v| v.int() != 0);
+        if specular && constant("emitAmbient").is_some_and(|v| v.int() != 0) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
                 format!(
-                    "'{}': volumeLightDir {dir} (inward or down the axis) is not represented by the path engine; \
-                     there the light shines outwards from its centre",
-                    node.decl.name
-                ),
-            ));
-        }
-        if constant("emitAmbient").is_some_and(|v| v.int() != 0) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!(
-                    "'{}': emitAmbient is not represented by the path engine; there the light is directional only",
+                    "'{}': with emitAmbient, the path engine leaves out the light's highlight (emitSpecular)",
                     node.decl.name
                 ),
             ));

@@ -452,12 +452,6 @@ pub fn trace_path(
             // A bump or normal map (given facing the ray): on the side of `ns`.
             ns = if bent.dot(ns) < 0.0 { -bent } else { bent };
         }
-        // Maya's ambient lights: the material's colour × what they give here, added as
-        // it is (no BSDF, no shadow; see `material::emission::ambient`).
-        let ambient = world.materials[s.material as usize].ambient;
-        if ambient > 0.0 && !world.ambient.is_empty() {
-            radiance += throughput * material.diffuse * ambient * world.ambient_at(s.p, ns);
-        }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
@@ -466,6 +460,34 @@ pub fn trace_path(
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
         let u_light = sampler.next_2d();
+        // Maya's ambient lights: the material's colour × what they give here, added as
+        // it is (no BSDF; a shadow ray for those with raytraced shadows, over the sphere
+        // of their `lightRadius` by `u_light`; see `material::emission::ambient`).
+        let ambient = world.materials[s.material as usize].ambient;
+        if ambient > 0.0 && !world.ambient.is_empty() {
+            let mut sum = Rgb::ZERO;
+            for a in world.ambient_lighting(stop.instance) {
+                let through = match a.shadow {
+                    Some(shadow) => {
+                        let (dir, dist) = towards_sphere(s.p, a.position, shadow.radius, u_light);
+                        let origin = offset_origin(s.p, ng, dir);
+                        counts.shadow_rays += 1;
+                        let shadow = Ray {
+                            mask: mask::SHADOW,
+                            origin,
+                            dir,
+                            tmin: 0.0,
+                            tmax: dist * (1.0 - 1e-4),
+                            time: ray.time,
+                        };
+                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, true)
+                    }
+                    None => Rgb::ONE,
+                };
+                sum += a.shadowed_at(s.p, ns, through);
+            }
+            radiance += throughput * material.diffuse * ambient * sum;
+        }
         let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
@@ -480,10 +502,12 @@ pub fn trace_path(
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
-                    let origin = offset_origin(s.p, ng, ls.wi);
-                    let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+                    // Maya's soft shadows spread the shadow ray (`lightRadius`, `lightAngle`).
+                    let (dir, dist) = light.shadow_ray_at(s.p, &ls, u_light, ray.time);
+                    let origin = offset_origin(s.p, ng, dir);
+                    let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
-                    let shadow = Ray { mask: mask::SHADOW, origin, dir: ls.wi, tmin: 0.0, tmax, time: ray.time };
+                    let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
                     let unshadowed =
                         media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
                     // Maya's `shadowColor`: what a shadowed point still receives.
@@ -539,6 +563,23 @@ pub fn trace_path(
         };
     }
     PathResult { radiance, alpha, first, glow }
+}
+
+/// The direction (unit) and distance from `p` to a point uniform over the surface of the
+/// sphere of `radius` around `centre`, picked by `u` (uniform in [0, 1)²); to the centre
+/// itself when that point is `p`.
+fn towards_sphere(p: Vec3A, centre: Vec3A, radius: f32, u: glam::Vec2) -> (Vec3A, f32) {
+    let z = 1.0 - 2.0 * u.x;
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * u.y;
+    let d = centre + radius * Vec3A::new(s * phi.cos(), s * phi.sin(), z) - p;
+    let dist = d.length();
+    if dist > 0.0 && dist.is_finite() {
+        (d / dist, dist)
+    } else {
+        let d = centre - p;
+        (d.normalize_or(Vec3A::Y), d.length())
+    }
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use bsdf::{Frame, Rgb};
 use glam::{Mat3A, Vec2, Vec3A};
+use material::emission::maya::SoftShadow;
 use material::emission::{Distribution, Emission, Power};
 use scene::{Library, Light, LightKind};
 pub use shader::light::Shape;
@@ -125,6 +126,11 @@ pub struct LightSource {
     /// `shadowColor`; black for every other light): received = light ⊙ (f + (1 − f) ⊙
     /// this), f the fraction let through.
     pub shadow_color: Rgb,
+    /// Maya's point, spot and directional lights with `lightRadius` or `lightAngle`:
+    /// where their shadow rays spread ([`LightSource::shadow_ray_at`]; what arrives is
+    /// still the light's from its point or direction, as in the classic engine); `None`:
+    /// hard shadows.
+    pub soft_shadow: Option<SoftShadow>,
     /// World → world displacement of the light at shutter times spread evenly over the
     /// shutter (see [`crate::motion`]) when its instance moves while the shutter is open
     /// (the light is taken to move rigidly); empty: it stays where it is. (An object
@@ -246,6 +252,7 @@ impl LightSource {
             visible: (light.visible && radiant || portal) && is_area,
             shadow: light.shadow && casts,
             shadow_color,
+            soft_shadow: material::emission::maya::soft_shadow(light, lib).filter(|_| !is_area),
             motion: Vec::new(),
         })
     }
@@ -350,8 +357,15 @@ impl LightSource {
                 let d = self.position - p;
                 let dist = d.length();
                 let radiance = volume.at(-d);
+                // `volumeLightDir`: shaded from the turned direction (the shadow ray goes
+                // to the origin: `shadow_ray_at`).
+                let wi = match volume.turn {
+                    None => d / dist,
+                    Some(::maya::light::Turn::Inward) => -d / dist,
+                    Some(::maya::light::Turn::DownAxis(axis)) => axis,
+                };
                 (dist > 0.0 && radiance.max_element() > 0.0).then_some(LightSample {
-                    wi: d / dist,
+                    wi,
                     dist,
                     radiance,
                     pdf: 1.0,
@@ -493,6 +507,49 @@ impl LightSource {
         let mut ls = self.sample(back.transform_point3a(p), u)?;
         ls.wi = moved.transform_vector3a(ls.wi).normalize_or(ls.wi);
         Some(ls)
+    }
+
+    /// The direction (unit) and length of the shadow ray that tests sample `ls` of this
+    /// light from `p` at shutter time `time`: the sample's own, or for a light with
+    /// [`LightSource::soft_shadow`] one of its soft shadow rays, picked by `u` (uniform in
+    /// [0, 1)²) — towards a point uniform over the surface of the sphere of `lightRadius`
+    /// around the light, or along a direction uniform in solid angle over the cone of half
+    /// `lightAngle` around the sample's direction. The classic Maya light's shadow rays:
+    /// the unshadowed light is unchanged, the share of such rays let through shadows it.
+    /// A Maya volume light whose `volumeLightDir` turns the sample's direction: towards
+    /// the light's origin.
+    pub fn shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
+        let centre = || {
+            if self.motion.is_empty() {
+                self.position
+            } else {
+                crate::motion::lerp_keys(&self.motion, time).transform_point3a(self.position)
+            }
+        };
+        if let Output::Volume(volume) = &self.output {
+            if volume.turn.is_some() {
+                let d = centre() - p;
+                let dist = d.length();
+                return if dist > 0.0 && dist.is_finite() { (d / dist, dist) } else { (ls.wi, ls.dist) };
+            }
+        }
+        match self.soft_shadow {
+            Some(SoftShadow::Radius(r)) if ls.delta => {
+                let z = 1.0 - 2.0 * u.x;
+                let s = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * PI * u.y;
+                let d = centre() + r * Vec3A::new(s * phi.cos(), s * phi.sin(), z) - p;
+                let dist = d.length();
+                // A point of the sphere at `p` itself keeps the sample's ray.
+                if dist > 0.0 && dist.is_finite() {
+                    (d / dist, dist)
+                } else {
+                    (ls.wi, ls.dist)
+                }
+            }
+            Some(SoftShadow::Angle(half)) if ls.delta => (mia::sun::cone_direction(ls.wi, half, u.x, u.y), ls.dist),
+            _ => (ls.wi, ls.dist),
+        }
     }
 
     /// [`LightSource::pdf`] with the light where it is at shutter time `time`.

@@ -102,12 +102,16 @@ pub struct World {
     /// Light sources.
     pub lights: Vec<LightSource>,
     /// Maya's ambient lights, which are not sampled: the path engine adds what they give
-    /// at each hit of a material that takes ambient light (see [`World::ambient_at`]).
+    /// at each hit of a material that takes ambient light (see [`World::ambient_lighting`]).
     pub ambient: Vec<material::emission::ambient::AmbientLight>,
     /// Light linking (instances' `light [exclusive] [ … ]` lists): for each instance (as
     /// [`World::instances`]), the indices into [`World::lights`] of the lights that do not
     /// light it; empty altogether when no instance has a list (see [`World::lights_instance`]).
     pub unlinked_lights: Vec<Vec<u32>>,
+    /// The same for Maya's ambient lights: for each instance, the indices into
+    /// [`World::ambient`] of those that do not light it (empty altogether when no
+    /// instance has a list; see [`World::ambient_lighting`]).
+    pub unlinked_ambient: Vec<Vec<u32>>,
     /// The camera.
     pub camera: CameraModel,
     /// The scene's options.
@@ -172,10 +176,11 @@ fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], insta
 /// warnings of those that do not.
 type SceneLights = (Vec<(LightSource, usize)>, Vec<String>);
 
-/// [`World::unlinked_lights`] of `instances` (the world's, from `scene`'s) and `lights`
-/// (as [`scene_lights`] makes them): an `exclusive` list names the lights that do not
-/// light the instance, another list the only ones that do.
-fn unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[(LightSource, usize)]) -> Vec<Vec<u32>> {
+/// [`World::unlinked_lights`] of `instances` (the world's, from `scene`'s) and of lights
+/// whose indices in the scene's list are `lights` (or the same for [`World::ambient`]): an
+/// `exclusive` list names the lights that do not light the instance, another list the only
+/// ones that do.
+fn unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[usize]) -> Vec<Vec<u32>> {
     let links: Vec<Option<&scene::instance::LightLink>> =
         instances.iter().map(|i| scene.instances.get(i.scene_index as usize).and_then(|s| s.lights.as_ref())).collect();
     if links.iter().all(Option::is_none) {
@@ -186,7 +191,7 @@ fn unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[(LightSo
         .map(|link| {
             let Some(link) = link else { return Vec::new() };
             (0..lights.len() as u32)
-                .filter(|&w| link.lights.contains(&(lights[w as usize].1 as u32)) == link.exclusive)
+                .filter(|&w| link.lights.contains(&(lights[w as usize] as u32)) == link.exclusive)
                 .collect()
         })
         .collect()
@@ -308,10 +313,11 @@ impl World {
     ) -> World {
         let mut warnings = Vec::new();
         let mut ambient = Vec::new();
-        for l in &scene.lights {
-            if let Some((light, warning)) = material::emission::ambient::maya_ambient(l, &scene.library) {
+        let mut ambient_indices = Vec::new();
+        for (index, l) in scene.lights.iter().enumerate() {
+            if let Some(light) = material::emission::ambient::maya_ambient(l, &scene.library) {
                 ambient.push(light);
-                warnings.extend(warning);
+                ambient_indices.push(index);
             }
         }
         let mut materials = vec![SurfaceMaterial::grey("(no material)")];
@@ -449,7 +455,9 @@ impl World {
         if shutter.is_none() || light_meshes.iter().all(Option::is_none) {
             light_meshes = Vec::new();
         }
-        let unlinked_lights = unlinked_lights(scene, &instances, &lights);
+        let light_indices: Vec<usize> = lights.iter().map(|(_, index)| *index).collect();
+        let unlinked_ambient = unlinked_lights(scene, &instances, &ambient_indices);
+        let unlinked_lights = unlinked_lights(scene, &instances, &light_indices);
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
             meshes,
@@ -458,6 +466,7 @@ impl World {
             lights,
             ambient,
             unlinked_lights,
+            unlinked_ambient,
             camera,
             options: scene.options.clone(),
             user_buffers,
@@ -477,11 +486,17 @@ impl World {
         self.unlinked_lights.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
     }
 
-    /// What Maya's ambient lights give a surface at `p` with unit shading normal `n`
-    /// (facing the viewer), to be multiplied by the material's diffuse colour × its
-    /// [`SurfaceMaterial::ambient`]: the sum of [`AmbientLight::at`](material::emission::ambient::AmbientLight::at).
-    pub fn ambient_at(&self, p: Vec3A, n: Vec3A) -> bsdf::Rgb {
-        self.ambient.iter().map(|a| a.at(p, n)).sum()
+    /// The Maya ambient lights (of [`World::ambient`]) that instance `instance` (an index
+    /// into [`World::instances`]) lets light it by its light list; each gives a surface
+    /// there [`AmbientLight::shadowed_at`](material::emission::ambient::AmbientLight::shadowed_at)
+    /// (× the material's diffuse colour × its [`SurfaceMaterial::ambient`]).
+    pub fn ambient_lighting(&self, instance: u32) -> impl Iterator<Item = &material::emission::ambient::AmbientLight> {
+        let out = self.unlinked_ambient.get(instance as usize);
+        self.ambient
+            .iter()
+            .enumerate()
+            .filter(move |(a, _)| out.is_none_or(|out| !out.contains(&(*a as u32))))
+            .map(|(_, a)| a)
     }
 
     /// World-space bounds of all instances (over the whole shutter when things move).

@@ -104,6 +104,7 @@ fn world(
         lights,
         ambient: Vec::new(),
         unlinked_lights: Vec::new(),
+        unlinked_ambient: Vec::new(),
         camera,
         options: options(),
         user_buffers: Vec::new(),
@@ -224,6 +225,7 @@ fn lambertian_plane_under_a_point_light() {
         visible: false,
         shadow: true,
         shadow_color: Rgb::ZERO,
+        soft_shadow: None,
         motion: Vec::new(),
     };
     // An orthographic camera 5 units up looking down, 4 units wide, 32×32 pixels.
@@ -269,6 +271,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         visible: true,
         shadow: true,
         shadow_color: Rgb::ZERO,
+        soft_shadow: None,
         motion: Vec::new(),
     };
     // Seen from below, through its middle: radiance E/π exactly.

@@ -166,6 +166,7 @@ fn path_world(l: &Loaded) -> render::World {
                 visible: false,
                 shadow: light.shadow,
                 shadow_color: glam::Vec3A::ZERO,
+                soft_shadow: None,
                 motion: Vec::new(),
             })
         })

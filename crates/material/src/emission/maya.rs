@@ -19,7 +19,10 @@
 //!   up to [`MAX_RAMP_KEYS`] keys): a point light at the light's origin giving a point the
 //!   classic light's colour there ([`VolumeEmission`]: the shape, the `colorRange` ramp
 //!   and the cylinder's and cone's `penumbra` graph, read as the classic light reads them);
-//!   light directions other than outward (`volumeLightDir`) are left out with a message;
+//!   `volumeLightDir` inward or down the axis turns the direction the light arrives
+//!   from for shading, its shadow rays still going to the light's origin (as the classic
+//!   Maya materials shade it); with `emitAmbient` it is not sampled but lights as Maya's
+//!   ambient light does ([`super::ambient`]);
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
 //!   lights), with a message; ambient lights are not lights the path engine samples:
 //!   see [`super::ambient`] (a message here when asked for as a light).
@@ -156,6 +159,10 @@ pub struct VolumeEmission {
     pub range: VolumeRamp,
     /// `penumbra` (cylinders and cones).
     pub penumbra: VolumeRamp,
+    /// `volumeLightDir` 1 (inward) or 2 (down the axis, the light's +y axis in world
+    /// space): the direction the light arrives from for shading (the shadow ray still
+    /// goes to the light's origin); `None`: from the origin (0, outward).
+    pub turn: Option<::maya::light::Turn>,
 }
 
 impl VolumeEmission {
@@ -174,32 +181,45 @@ impl VolumeEmission {
 /// scaled whole sphere with a constant or black-to-colour ramp becomes a base light with
 /// a linear falloff; every other shape a [`Power::Volume`].
 fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: Rgb) -> Result<Emission, String> {
-    let direction = scalar_param(params, "volumeLightDir").unwrap_or(0.0);
-    if direction != 0.0 {
-        return Err(format!(
-            "{decl}: volumeLightDir {direction} (inward or down the axis) has no path-engine counterpart; left out"
-        ));
-    }
     let range = ramp_keys(params, "colorRange", "Color");
-    if let Some(e) = sphere_point_light(params, light_to_world, color, &range) {
-        return Ok(e);
+    if scalar_param(params, "volumeLightDir").unwrap_or(0.0) as i32 == 0 {
+        if let Some(e) = sphere_point_light(params, light_to_world, color, &range) {
+            return Ok(e);
+        }
     }
+    let volume = volume_light(params, light_to_world, color).map_err(|e| format!("{decl}: {e}"))?;
+    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+}
+
+/// The [`VolumeEmission`] of a volume light call's `params` on a light placed by
+/// `light_to_world` (any shape, the sphere too), `color` π · colour · intensity, or why
+/// the path engine cannot represent it.
+pub fn volume_light(params: &[Param], light_to_world: DMat4, color: Rgb) -> Result<VolumeEmission, String> {
+    let to_local = shader::light::profiles::to_local(light_to_world);
+    // As the classic light reads it (`maya::light`): 1 inward, 2 down the axis, any other
+    // value outward.
+    let turn = match scalar_param(params, "volumeLightDir").unwrap_or(0.0) as i32 {
+        1 => Some(::maya::light::Turn::Inward),
+        2 => Some(::maya::light::Turn::DownAxis((to_local.inverse() * glam::Vec3A::Y).normalize_or(glam::Vec3A::Y))),
+        _ => None,
+    };
+    let range = ramp_keys(params, "colorRange", "Color");
     let too_many = |what: &str, n: usize| {
-        format!("{decl}: a {what} of {n} keys (more than {MAX_RAMP_KEYS}) has no path-engine counterpart; left out")
+        format!("a {what} of {n} keys (more than {MAX_RAMP_KEYS}) has no path-engine counterpart; left out")
     };
     let penumbra = ramp_keys(params, "penumbra", "FloatValue");
-    let volume = VolumeEmission {
+    Ok(VolumeEmission {
         color,
         shape: ::maya::light::VolumeShape {
             shape: scalar_param(params, "lightShape").unwrap_or(1.0) as i32,
             arc: (scalar_param(params, "arc").unwrap_or(360.0) as f32).to_radians(),
             cone_end_radius: scalar_param(params, "coneEndRadius").unwrap_or(0.0) as f32,
         },
-        to_local: shader::light::profiles::to_local(light_to_world),
+        to_local,
         range: VolumeRamp::new(&range).ok_or_else(|| too_many("colorRange", range.len()))?,
         penumbra: VolumeRamp::new(&penumbra).ok_or_else(|| too_many("penumbra graph", penumbra.len()))?,
-    };
-    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+        turn,
+    })
 }
 
 /// The evenly scaled whole sphere whose `colorRange` (sorted keys `range`) is empty, one
@@ -258,6 +278,34 @@ pub fn shadowing(light: &scene::Light, lib: &scene::Library) -> Option<(bool, Rg
         _ => Rgb::ZERO,
     };
     Some((casts, color))
+}
+
+/// How a Maya light's raytraced shadows soften (the classic light's shadow rays, see
+/// `maya::light`): the light itself still shines from its point or direction; only the
+/// shadow rays spread.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SoftShadow {
+    /// Point and spot lights' `lightRadius` (world units): shadow rays end at points
+    /// uniform over the surface of the sphere of this radius around the light.
+    Radius(f32),
+    /// Directional lights' `lightAngle` halved (radians): shadow rays leave in
+    /// directions uniform in solid angle over the cone of this half-angle around the
+    /// direction towards the light.
+    Angle(f32),
+}
+
+/// The soft shadows of a Maya point, spot or directional light whose `lightRadius` or
+/// `lightAngle` is positive; `None` for hard shadows or any other light.
+pub fn soft_shadow(light: &scene::Light, lib: &scene::Library) -> Option<SoftShadow> {
+    let list = light.shader.as_ref()?;
+    let (decl, params) = first_call(&list.0, lib)?;
+    let size = |name: &str| scalar_param(params, name).map(|v| v as f32).filter(|v| v.is_finite() && *v > 0.0);
+    match family(crate::declaration_name(decl))? {
+        "pointlight" | "spotlight" => size("lightRadius").map(SoftShadow::Radius),
+        // A cone wider than a hemisphere has no meaning; clamp the half-angle to π/2.
+        "directionallight" => size("lightAngle").map(|a| SoftShadow::Angle((0.5 * a).min(std::f32::consts::FRAC_PI_2))),
+        _ => None,
+    }
 }
 
 #[cfg(test)]
@@ -323,7 +371,15 @@ mod tests {
         let uneven = DMat4::from_scale(glam::DVec3::new(1.0, 2.0, 1.0));
         let e = emission_of("maya_volumelight", &params(""), uneven).unwrap().unwrap();
         assert!(matches!(e.power, Power::Volume(ref v) if v.shape.shape == 1));
-        assert!(emission_of("maya_volumelight", &params(r#""volumeLightDir" 1"#), scale).unwrap().is_err());
+        // Inward and down the axis (the light's +y, here turned to world +z): a volume
+        // emission that turns the direction, even for the sphere.
+        let e = emission_of("maya_volumelight", &params(r#""volumeLightDir" 1"#), scale).unwrap().unwrap();
+        assert!(matches!(e.power, Power::Volume(ref v) if v.turn == Some(::maya::light::Turn::Inward)));
+        let turned = DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2) * scale;
+        let e = emission_of("maya_volumelight", &params(r#""volumeLightDir" 2"#), turned).unwrap().unwrap();
+        let Power::Volume(v) = e.power else { panic!("{:?}", e.power) };
+        let Some(::maya::light::Turn::DownAxis(axis)) = v.turn else { panic!("{:?}", v.turn) };
+        assert!((axis - glam::Vec3A::Z).length() < 1e-6, "{axis}");
     }
 
     /// Box, cylinder and cone volume lights of scale 2 give a point the classic light's
