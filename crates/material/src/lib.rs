@@ -163,12 +163,14 @@ pub struct SurfaceMaterial {
     /// buffer a shader glow spreads (zero for materials that do not glow).
     pub glow: Rgb,
     /// How much of Maya's ambient light the surface reflects per unit of its diffuse
-    /// colour (`diffuse` here, per hit): Maya's materials reflect ambient light by their
-    /// `color` c where direct light goes by c·d (`diffuse` d), so Maya's lambert, blinn,
-    /// phong, phongE and anisotropic carry 1/d; 0: the material takes no ambient light
-    /// (every other material, as in the classic engine, where only Maya's materials read
-    /// ambient lights as such). See `render::ambient`.
-    pub ambient: f32,
+    /// colour (`diffuse` here, per hit), per channel: Maya's materials reflect ambient
+    /// light by their `color` c where direct light goes by c·d (`diffuse` d), so Maya's
+    /// lambert, blinn, phong, phongE and anisotropic carry 1/d, rampShader
+    /// 1/(d + translucence) (light angle) or 1/d, layeredShader its layers' mix (see
+    /// `crate::maya`); 0: the material takes no ambient light (every other material, as
+    /// in the classic engine, where only Maya's materials read ambient lights as such).
+    /// See `render::ambient`.
+    pub ambient: Rgb,
 }
 
 impl SurfaceMaterial {
@@ -191,7 +193,7 @@ impl SurfaceMaterial {
             medium: None,
             tangent_angle: None,
             glow: Rgb::ZERO,
-            ambient: 0.0,
+            ambient: Rgb::ZERO,
         }
     }
 

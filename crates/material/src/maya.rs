@@ -35,8 +35,11 @@
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
-//!   each hit by the path engine); rampShader and layeredShader take none in the path
-//!   engine;
+//!   each hit by the path engine); rampShader by its colour at 1 (the diffuse colour /
+//!   (`diffuse` + `translucence`) for the light-angle input, / `diffuse` for the others),
+//!   as the classic shader's C(1) ⊙ ambient; layeredShader by Σ w_i ⊙ its material
+//!   layers' ambient colours (a ratio of its diffuse colour per channel; plain-colour
+//!   layers take none, as in the classic shader, where they are not lit);
 //! - transparency T (without refraction): coverage 1 − mean(T), so that the surface is
 //!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
 //!   `incandescence`: emitted radiance;
@@ -229,7 +232,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             let albedo = r.driven("color", target, d, Rgb::splat(0.5));
             surface.diffuse = albedo;
             // Ambient light goes by `color` alone: 1/d of the diffuse colour.
-            surface.ambient = if d > 0.0 { 1.0 / d } else { 0.0 };
+            surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
             surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {
@@ -320,6 +323,11 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
         c * d
     };
     surface.diffuse = albedo;
+    // Ambient light goes by the colour at the ramp's reference index (C(1) for the light
+    // angle; the other inputs' reference is taken at 1 as their albedo is): 1/(d + t) or
+    // 1/d of the diffuse colour.
+    let share = if input == ColorInput::LightAngle { d + t } else { d };
+    surface.ambient = Rgb::splat(if share > 0.0 { 1.0 / share } else { 0.0 });
     surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0);
     let glow_intensity = r.scalar("glowIntensity", 0.0);
     if glow_intensity != 0.0 {
@@ -373,14 +381,22 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     };
     let mut through = Rgb::ONE;
     let mut lobe: Option<SurfaceModel> = None;
+    // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
+    // (plain colours take none).
+    let mut ambient_color = Rgb::ZERO;
     for e in elements {
         let t = match member(e, "transparency") {
             Some(Slot::Value(v)) => rgb_of(&v).clamp(Rgb::ZERO, Rgb::ONE),
             Some(Slot::Connect { node: m, .. }) => {
-                // A material's outTransparency: its own constant transparency.
-                let c = constant(graph, m, "transparency")
-                    .or_else(|| constant(graph, m, "outTransparency"))
-                    .map_or(Rgb::ZERO, rgb_of);
+                // A material's outTransparency: its own constant transparency (a
+                // rampShader's ramp: the grey transparency its translation takes).
+                let c = match constant(graph, m, "transparency").or_else(|| constant(graph, m, "outTransparency")) {
+                    Some(v) if !matches!(v, Value::Array(_)) => rgb_of(v),
+                    _ if slot(graph, m, "transparency").is_some() => {
+                        Rgb::splat(1.0 - translate(name, graph, m).0.opacity)
+                    }
+                    _ => Rgb::ZERO,
+                };
                 c.clamp(Rgb::ZERO, Rgb::ONE)
             }
             _ => Rgb::ZERO,
@@ -402,6 +418,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 }
                 surface.diffuse += layer.diffuse * w;
                 surface.emission += layer.emission * w;
+                ambient_color += layer.diffuse * layer.ambient * w;
                 if lobe.is_none() && matches!(layer.model, SurfaceModel::Unified(_)) {
                     lobe = Some(layer.model);
                 }
@@ -419,6 +436,14 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         through *= t;
     }
     surface.opacity = 1.0 - (through.x + through.y + through.z) / 3.0;
+    // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
+    // are constant).
+    let ratio = |a: f32, d: f32| if d > 0.0 { a / d } else { 0.0 };
+    surface.ambient = Rgb::new(
+        ratio(ambient_color.x, surface.diffuse.x),
+        ratio(ambient_color.y, surface.diffuse.y),
+        ratio(ambient_color.z, surface.diffuse.z),
+    );
     if let Some(SurfaceModel::Unified(u)) = lobe {
         let p = u.params();
         surface.model = unified(surface.diffuse, p.roughness * p.roughness, p.specular);

@@ -464,7 +464,7 @@ pub fn trace_path(
         // it is (no BSDF; a shadow ray for those with raytraced shadows, over the sphere
         // of their `lightRadius` by `u_light`; see `material::emission::ambient`).
         let ambient = world.materials[s.material as usize].ambient;
-        if ambient > 0.0 && !world.ambient.is_empty() {
+        if ambient != Rgb::ZERO && !world.ambient.is_empty() {
             let mut sum = Rgb::ZERO;
             for a in world.ambient_lighting(stop.instance) {
                 let through = match a.shadow {

@@ -76,3 +76,65 @@ fn an_ambient_light_lights_a_lambert_alike_in_both_engines() {
         }
     }
 }
+
+/// The plane of [`ambient_lit_plane`] (ambient light `ambientShade` 0.45, Maya 8.5–2015
+/// names) with the material `top` that `materials` defines.
+fn ambient_lit_material(materials: &str) -> String {
+    ambient_lit_plane(0.45, "maya_ambientlight", "maya_lambert", "maya_shadingengine")
+        .replace(r#"shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)"#, materials)
+        .replace("lam.outColor", "top.outColor")
+}
+
+/// rampShader and layeredShader under an ambient light alone: the classic rampShader adds
+/// C(1) ⊙ ambient light (light-angle input; the facing-angle input C(f), here a one-key
+/// ramp), whatever `diffuse` and `translucence`; the classic layeredShader composites its
+/// layers' results, each adding its own ambient light as above. The path engine's image mean is the classic engine's within 1 % per channel
+/// (without the translation's ambient factor: 0, a factor 1/(d + t) or a mix off).
+#[test]
+fn an_ambient_light_lights_ramp_and_layered_shaders_alike_in_both_engines() {
+    let cases = [
+        (
+            "rampShader, light angle",
+            r#"shader "top" "maya_rampshader" ("colorInput" 0, "diffuse" 0.6, "translucence" 0.2,
+    "color" [ { "color_Position" 0, "color_Color" 0.1 0.1 0.1, "color_Interp" 1 },
+              { "color_Position" 1, "color_Color" 0.8 0.6 0.4, "color_Interp" 1 } ])"#,
+        ),
+        (
+            "rampShader, facing angle",
+            r#"shader "top" "maya_rampshader" ("colorInput" 1, "diffuse" 0.5,
+    "color" [ { "color_Position" 0.5, "color_Color" 0.3 0.6 0.9, "color_Interp" 1 } ])"#,
+        ),
+        (
+            "layeredShader of two lamberts of different diffuse",
+            r#"shader "a" "maya_lambert" ("color" 0.9 0.2 0.1, "diffuse" 0.8, "transparency" 0.6 0.6 0.6)
+shader "b" "maya_lambert" ("color" 0.1 0.5 0.9, "diffuse" 0.5)
+shader "top" "maya_layeredshader" ("inputs" [
+    { "color" = "a.outColor", "transparency" = "a.outTransparency" },
+    { "color" = "b.outColor", "transparency" = "b.outTransparency" } ])"#,
+        ),
+        (
+            "layeredShader of a rampShader over a lambert",
+            r#"shader "a" "maya_rampshader" ("colorInput" 0, "diffuse" 0.7, "transparency" [
+    { "transparency_Position" 0, "transparency_Color" 0.5 0.5 0.5, "transparency_Interp" 1 } ],
+    "color" [ { "color_Position" 1, "color_Color" 0.2 0.7 0.4, "color_Interp" 1 } ])
+shader "b" "maya_lambert" ("color" 0.3 0.3 0.1, "diffuse" 0.9)
+shader "top" "maya_layeredshader" ("inputs" [
+    { "color" = "a.outColor", "transparency" = "a.outTransparency" },
+    { "color" = "b.outColor", "transparency" = "b.outTransparency" } ])"#,
+        ),
+    ];
+    for (what, materials) in cases {
+        let (scene, shading) = support::build_clean(&ambient_lit_material(materials));
+        let world = render::World::from_scene_shaded(&scene, Some(&shading));
+        let run = |engine, spp| {
+            let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
+            mean(&support::render_world(&world, &shading, &settings).0.rgba())
+        };
+        let (classic, path) = (run(EngineKind::Classic, 4), run(EngineKind::Path, 4));
+        println!("{what}: classic {classic}, path {path}, warnings {:?}", world.warnings);
+        for k in 0..3 {
+            assert!(classic[k] > 0.02, "{what}: classic {classic}");
+            assert!((path[k] / classic[k] - 1.0).abs() < 0.01, "{what}: path {path} vs classic {classic}");
+        }
+    }
+}
