@@ -511,7 +511,8 @@ pub fn trace_path(
                     let unshadowed =
                         media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
                     // Maya's `shadowColor`: what a shadowed point still receives.
-                    let tr = if light.shadow {
+                    // (Skipped for black, the default: it would add exactly nothing.)
+                    let tr = if light.shadow && light.shadow_color != Rgb::ZERO {
                         unshadowed + (Rgb::ONE - unshadowed) * light.shadow_color
                     } else {
                         unshadowed

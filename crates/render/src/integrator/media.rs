@@ -187,7 +187,27 @@ impl Departure<'_> {
 /// their tint where the ray enters), 0 at any other surface. A cutout lets the ray through by its opacity,
 /// and where it does the surface is no boundary: the media stay as they are (as for the
 /// path's own rays).
+///
+/// Scenes without media or cutouts (the common case) take one occlusion query, inlined
+/// where it is asked; the rest is out of line ([`shadow_transmittance_through`]).
+#[inline]
 pub(super) fn shadow_transmittance(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    from: &Departure,
+    shadow: &Ray,
+    seed: u32,
+) -> Rgb {
+    if !world.has_media && !world.has_cutouts {
+        return if accel.occluded(shadow) { Rgb::ZERO } else { Rgb::ONE };
+    }
+    shadow_transmittance_through(world, accel, shading, from, shadow, seed)
+}
+
+/// [`shadow_transmittance`] in scenes with media or cutouts.
+#[inline(never)]
+fn shadow_transmittance_through(
     world: &World,
     accel: &dyn Accel,
     shading: Option<&Shading>,
@@ -247,6 +267,7 @@ pub(super) fn shadow_transmittance(
 /// volume); a participating medium is such a volume, so its Beer–Lambert transmittance
 /// still applies. Without media this is 1: scenes without media are unchanged.
 #[allow(clippy::too_many_arguments)]
+#[inline]
 pub(super) fn light_transmittance(
     world: &World,
     accel: &dyn Accel,
@@ -258,14 +279,17 @@ pub(super) fn light_transmittance(
 ) -> Rgb {
     if casts_shadows {
         shadow_transmittance(world, accel, shading, from, shadow, seed)
-    } else {
+    } else if world.has_media {
         media_transmittance(world, accel, from, shadow)
+    } else {
+        Rgb::ONE
     }
 }
 
 /// The Beer–Lambert transmittance of the media along `ray` (leaving `from`), through every
 /// surface: each crossing of a medium's boundary enters or leaves it, nothing blocks or
 /// tints. 1 in scenes without media.
+#[inline(never)]
 fn media_transmittance(world: &World, accel: &dyn Accel, from: &Departure, ray: &Ray) -> Rgb {
     if !world.has_media {
         return Rgb::ONE;
