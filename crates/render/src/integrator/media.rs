@@ -36,10 +36,10 @@ use glam::Vec3A;
 use shader::Shading;
 
 use super::{
-    cutout_number, light_radiance, material_at, power_heuristic, shadow_blocked, surface, through_portal,
+    cutout_number, light_radiance, material_at, power_heuristic, shadow_blocked, surface, through_portal, Surface,
     MAX_CUTOUT_CROSSINGS,
 };
-use crate::accel::Accel;
+use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::ray::{mask, offset_origin, Ray, RayCounts};
 use crate::sampler::Sampler;
@@ -218,43 +218,26 @@ fn shadow_transmittance_through(
     if !world.has_media {
         return if shadow_blocked(world, accel, shading, shadow, seed) { Rgb::ZERO } else { Rgb::ONE };
     }
-    let mut media = from.media_towards(world, shadow.dir);
-    let mut ray = *shadow;
-    let mut tr = Rgb::ONE;
-    for crossing in 0..MAX_CUTOUT_CROSSINGS {
-        let hit = accel.intersect(&ray);
-        let segment = hit.map_or(ray.tmax, |h| h.t);
-        if let Some(medium) = media.current(world) {
-            tr *= medium.transmittance(segment);
-        }
-        let Some(hit) = hit else { return tr };
-        if tr == Rgb::ZERO {
-            return tr;
-        }
-        let s = surface(world, &ray, &hit);
+    let walk = walk_media(world, accel, from, shadow, MAX_CUTOUT_CROSSINGS, |media, ray, s, crossing| {
         let cut_out = world.has_cutouts && {
-            let m = material_at(world, accel, shading, &ray, &hit, s.material);
-            m.opacity < 1.0 && cutout_number(seed, s.p, crossing + 100) >= m.opacity
+            let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
+            m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity
         };
-        if !cut_out {
-            let matched = world.materials[s.material as usize].model.index_matched();
-            match (media.after(world, s.material, s.ng, ray.dir, ray.dir), matched) {
-                (Some(next), Some(tint)) => {
-                    // The boundary tints what enters through it, once per object crossed,
-                    // as it does the path's own rays (`bsdf::Unified` tints light going in,
-                    // not out).
-                    if ray.dir.dot(s.ng) < 0.0 {
-                        tr *= tint;
-                    }
-                    media = next;
-                }
-                _ => return Rgb::ZERO,
-            }
+        if cut_out {
+            return Crossing::Through;
         }
-        ray.origin = offset_origin(s.p, s.ng, ray.dir);
-        ray.tmax = (ray.tmax - segment).max(0.0);
-    }
-    Rgb::ZERO
+        let matched = world.materials[s.surface.material as usize].model.index_matched();
+        match (media.after(world, s.surface.material, s.surface.ng, ray.dir, ray.dir), matched) {
+            // The boundary tints what enters through it, once per object crossed, as it
+            // does the path's own rays (`bsdf::Unified` tints light going in, not out).
+            (Some(next), Some(tint)) => {
+                Crossing::Into(next, if ray.dir.dot(s.surface.ng) < 0.0 { tint } else { Rgb::ONE })
+            }
+            _ => Crossing::Blocked,
+        }
+    });
+    // Past that many surfaces the ray counts as blocked.
+    walk.unwrap_or(Rgb::ZERO)
 }
 
 /// The fraction of a light's light that reaches the point the ray `shadow` leaves from
@@ -294,28 +277,71 @@ fn media_transmittance(world: &World, accel: &dyn Accel, from: &Departure, ray: 
     if !world.has_media {
         return Rgb::ONE;
     }
+    let walk = walk_media(world, accel, from, ray, MAX_BOUNDARY_CROSSINGS, |media, ray, s, _| {
+        match media.after(world, s.surface.material, s.surface.ng, ray.dir, ray.dir) {
+            Some(next) => Crossing::Into(next, Rgb::ONE),
+            None => Crossing::Through,
+        }
+    });
+    // Past that many surfaces the rest of the way is taken as clear.
+    walk.unwrap_or_else(|tr| tr)
+}
+
+/// What a ray walking through the media ([`walk_media`]) does at a surface it meets.
+enum Crossing {
+    /// Passes with the media unchanged (a cut-out, or no medium boundary).
+    Through,
+    /// Crosses into the media given, its light multiplied by the tint.
+    Into(MediumStack, Rgb),
+    /// Stops: no light gets through.
+    Blocked,
+}
+
+/// A surface met by a walk: the hit and its surface.
+struct Met {
+    hit: Hit,
+    surface: Surface,
+}
+
+/// Walks `ray` (leaving `from`) surface by surface, keeping the Beer–Lambert transmittance
+/// of the media it is in along each segment and asking `at_surface` (the media so far, the
+/// ray, the surface, the crossing's number) what happens at each surface: `Ok` with the
+/// transmittance where the ray ends or is blocked (zero), `Err` with the transmittance so
+/// far after `max_crossings` surfaces.
+fn walk_media(
+    world: &World,
+    accel: &dyn Accel,
+    from: &Departure,
+    ray: &Ray,
+    max_crossings: u32,
+    mut at_surface: impl FnMut(&MediumStack, &Ray, &Met, u32) -> Crossing,
+) -> Result<Rgb, Rgb> {
     let mut media = from.media_towards(world, ray.dir);
     let mut ray = *ray;
     let mut tr = Rgb::ONE;
-    for _ in 0..MAX_BOUNDARY_CROSSINGS {
+    for crossing in 0..max_crossings {
         let hit = accel.intersect(&ray);
         let segment = hit.map_or(ray.tmax, |h| h.t);
         if let Some(medium) = media.current(world) {
             tr *= medium.transmittance(segment);
         }
-        let Some(hit) = hit else { return tr };
+        let Some(hit) = hit else { return Ok(tr) };
         if tr == Rgb::ZERO {
-            return tr;
+            return Ok(tr);
         }
-        let s = surface(world, &ray, &hit);
-        if let Some(next) = media.after(world, s.material, s.ng, ray.dir, ray.dir) {
-            media = next;
+        let met = Met { surface: surface(world, &ray, &hit), hit };
+        match at_surface(&media, &ray, &met, crossing) {
+            Crossing::Through => {}
+            Crossing::Into(next, tint) => {
+                tr *= tint;
+                media = next;
+            }
+            Crossing::Blocked => return Ok(Rgb::ZERO),
         }
-        ray.origin = offset_origin(s.p, s.ng, ray.dir);
+        ray.origin = offset_origin(met.surface.p, met.surface.ng, ray.dir);
         ray.tmax = (ray.tmax - segment).max(0.0);
     }
-    // Past that many surfaces the rest of the way is taken as clear.
-    tr
+    Err(tr)
 }
 
 /// Most surfaces a ray walking through every surface crosses ([`media_transmittance`],
