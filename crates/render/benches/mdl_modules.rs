@@ -10,7 +10,7 @@
 //!
 //! Run with `cargo bench -p render --bench mdl_modules`.
 
-#[path = "../tests/support/mod.rs"]
+#[path = "../tests/it/support/mod.rs"]
 mod support;
 
 use std::sync::atomic::AtomicBool;

@@ -1,0 +1,29 @@
+//! The `material` crate's integration tests, one module per file, built as one test binary
+//! (one link instead of 22: CI's disk and time). Run one file's tests with
+//! `cargo test -p material --test it <module>::`.
+
+mod mdl_support;
+mod support;
+
+mod area_lights;
+mod base;
+mod bsdf_builtin;
+mod glossy;
+mod maya_analytic;
+mod maya_exports;
+mod maya_materials;
+mod maya_path;
+mod maya_textures3d;
+mod mdl_base_functions;
+mod mdl_compile;
+mod mdl_hit;
+mod mdl_layer_normals;
+mod mdl_layers;
+mod mdl_measured_edf;
+mod mdl_volume;
+mod mia;
+mod model;
+mod photometric;
+mod stand_in;
+mod sun_and_sky;
+mod texture_filter;

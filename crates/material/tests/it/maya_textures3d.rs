@@ -1,0 +1,137 @@
+//! Maya's 3D textures, place3dTexture, projection, envSphere and bump3d in compiled
+//! scenes, read through a surfaceShader (unlit: the texture's colour is the pixel's) or a
+//! lambert. The shading point is the world origin, normal +y (see `support::maya::point`).
+
+use crate::support;
+
+use support::maya::{assert_rgb, compile, point, run, Compiled};
+use support::Empty;
+
+const LIBS: &str = "$include \"mayabase.mi\"\n$include \"AdskShaderSDK.mi\"\n";
+/// A 2×2 texture: red, green (bottom row), blue, white (top row).
+const QUAD: &str = r#"color texture "quad" [ 2 2 ] 'ff0000' '00ff00' '0000ff' 'ffffff'"#;
+
+fn scene(body: &str) -> Compiled {
+    let c = compile("", &format!("{LIBS}{QUAD}\n{body}"), &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    c
+}
+
+/// A surfaceShader material showing `source` (a shader's colour output).
+fn show(source: &str) -> String {
+    format!(
+        r#"shader "flat" "maya_surfaceshader" ("outColor" = "{source}")
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#
+    )
+}
+
+fn shade(c: &Compiled, state: shader::State) -> glam::Vec4 {
+    run(c, &Empty::default(), c.material("m"), state).color()
+}
+
+#[test]
+fn planar_projection_through_a_place3d_texture() {
+    // The placement object moved by t: the origin is at −t in placement space, so the
+    // planar projection reads the quad at ((1 − t_x)/2, (1 − t_y)/2) whatever the
+    // surface's own coordinate (0.75, 0.25: green) is.
+    for (t, want) in [([0.5, 0.5], [1.0, 0.0, 0.0]), ([-0.5, -0.5], [1.0, 1.0, 1.0]), ([-0.5, 0.5], [0.0, 1.0, 0.0])] {
+        let c = scene(&format!(
+            r#"shader "p3d" "maya_place3dtexture" ("matrix" 1 0 0 0  0 1 0 0  0 0 1 0  {} {} 0 1)
+            shader "file1" "maya_file" ("fileTextureName" "quad")
+            shader "proj" "maya_projection" ("projType" 1, "image" = "file1.outColor",
+                "placementMatrix" = "p3d.worldInverseMatrix")
+            {}"#,
+            t[0],
+            t[1],
+            show("proj.outColor")
+        ));
+        assert_rgb(shade(&c, point([0.75, 0.25])), want, 1e-4);
+    }
+}
+
+#[test]
+fn env_sphere_reads_the_image_along_the_ray() {
+    // Looking along (1, −1, 0)/√2: u = ½ + ¼, v = ½ − ¼ → the quad's green texel.
+    let c = scene(&format!(
+        r#"shader "file1" "adskMayaFile" ("fileTextureName" "quad")
+        shader "env" "adskMayaEnvSphere" ("image" = "file1.outColor")
+        {}"#,
+        show("env.outColor")
+    ));
+    let mut s = point([0.25, 0.75]);
+    s.dir = glam::Vec3A::new(1.0, -1.0, 0.0).normalize();
+    assert_rgb(shade(&c, s), [0.0, 1.0, 0.0], 1e-4);
+    // Flipped: u = ¼ → red.
+    let c = scene(&format!(
+        r#"shader "file1" "maya_file" ("fileTextureName" "quad")
+        shader "env" "maya_envsphere" ("image" = "file1.outColor", "flip" on)
+        {}"#,
+        show("env.outColor")
+    ));
+    let mut s = point([0.25, 0.75]);
+    s.dir = glam::Vec3A::new(1.0, -1.0, 0.0).normalize();
+    assert_rgb(shade(&c, s), [1.0, 0.0, 0.0], 1e-4);
+}
+
+#[test]
+fn solid_fractal_threshold_colour_balance_and_wrap() {
+    // Amplitude 0: the value is threshold + 0.5 everywhere; colour gain tints it.
+    let body = |extra: &str| {
+        format!(
+            r#"shader "sf" "maya_solidfractal" ("amplitude" 0, "threshold" 0.2, "colorGain" 1 0.5 0.25,
+                "defaultColor" 0 0 1 {extra})
+            {}"#,
+            show("sf.outColor")
+        )
+    };
+    let c = scene(&body(""));
+    assert_rgb(shade(&c, point([0.0, 0.0])), [0.7, 0.35, 0.175], 1e-6);
+    // The placement scaled by 4 puts the origin moved by (1, 0, 0) outside the cube
+    // [−1, 1]³: with wrap off, the default colour; with wrap on, the texture.
+    let m = r#", "placementMatrix" 4 0 0 0  0 4 0 0  0 0 4 0  0 0 0 1"#;
+    let mut s = point([0.0, 0.0]);
+    s.point = glam::Vec3A::new(1.0, 0.0, 0.0);
+    let c = scene(&body(&format!(r#"{m}, "wrap" off"#)));
+    assert_rgb(shade(&c, s.clone()), [0.0, 0.0, 1.0], 1e-6);
+    let c = scene(&body(m));
+    assert_rgb(shade(&c, s), [0.7, 0.35, 0.175], 1e-6);
+}
+
+#[test]
+fn marble_and_wood_stay_between_their_colours() {
+    for (shader, params) in [
+        ("maya_marble", r#""fillerColor" 1 1 1, "veinColor" 0 0 0"#),
+        ("adskMayaWood", r#""fillerColor" 1 1 1, "veinColor" 0 0 0, "grainContrast" 0"#),
+    ] {
+        let c = scene(&format!(r#"shader "t" "{shader}" ({params}) {}"#, show("t.outColor")));
+        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+        for i in 0..64 {
+            let mut s = point([0.0, 0.0]);
+            s.point = glam::Vec3A::new(i as f32 * 0.031 - 1.0, 0.3, (i % 7) as f32 * 0.05);
+            let got = shade(&c, s);
+            assert!(got.x == got.y && got.y == got.z, "{shader}: grey between white and black, got {got}");
+            lo = lo.min(got.x);
+            hi = hi.max(got.x);
+        }
+        assert!(lo >= 0.0 && hi <= 1.0, "{shader}: {lo}..{hi}");
+        assert!(hi - lo > 0.5, "{shader}: both veins and filler appear ({lo}..{hi})");
+    }
+}
+
+#[test]
+fn bump3d_tilts_the_normal_against_the_gradient() {
+    // bumpValue = u of a planar projection of a U ramp: b = (x + 1)/2, ∇b = (½, 0, 0);
+    // depth 2 tilts the +y normal to (−1, 1, 0)/√2, so a lambert lit straight from above
+    // shows c·d·cos 45°.
+    let c = scene(
+        r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+        instance "sun_inst" "sun" end instance
+        shader "ramp1" "maya_ramp" ("type" 1, "interpolation" 1,
+            "colorEntryList" [ { "position" 0, "color" 0 0 0 }, { "position" 1, "color" 1 1 1 } ])
+        shader "proj" "maya_projection" ("projType" 1, "image" = "ramp1.outColor", "alphaIsLuminance" on)
+        shader "b3" "maya_bump3d" ("bumpValue" = "proj.outAlpha", "bumpDepth" 2)
+        shader "lam" "maya_lambert" ("color" 1 1 1, "diffuse" 1, "normalCamera" = "b3.outNormal")
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+    );
+    assert_rgb(shade(&c, point([0.0, 0.0])), [std::f32::consts::FRAC_1_SQRT_2; 3], 2e-3);
+}

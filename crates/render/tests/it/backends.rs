@@ -1,0 +1,159 @@
+//! Both acceleration backends give the same hits on the same rays (when mira is built with
+//! Embree; otherwise only the Rust backend is checked against brute force).
+
+use crate::support;
+
+use glam::Vec3A;
+use render::accel::{self, intersect_triangle, Backend};
+use render::ray::Ray;
+use render::World;
+
+fn cornell() -> World {
+    let parsed = mi::parse_str("cb.mi", include_str!("../../../../scenes/iray_cornell_box.mi"));
+    let mut diags = Vec::new();
+    World::from_scene(&scene::Scene::build(&parsed, 0, &mut diags).unwrap())
+}
+
+/// The closest hit by testing every triangle of every instance.
+fn brute_force(world: &World, ray: &Ray) -> Option<(u32, u32, f32)> {
+    let mut best: Option<(u32, u32, f32)> = None;
+    for (i, inst) in world.instances.iter().enumerate() {
+        let mesh = &world.meshes[inst.mesh as usize];
+        let local = Ray {
+            origin: inst.world_to_object.transform_point3a(ray.origin),
+            dir: inst.world_to_object.transform_vector3a(ray.dir),
+            ..*ray
+        };
+        for (p, t) in mesh.triangles.iter().enumerate() {
+            let [a, b, c] = t.map(|k| mesh.position(k));
+            if let Some((d, _, _)) = intersect_triangle(&local, a, b, c) {
+                if best.is_none_or(|x| d < x.2) {
+                    best = Some((i as u32, p as u32, d));
+                }
+            }
+        }
+    }
+    best
+}
+
+#[test]
+fn rust_backend_matches_brute_force() {
+    let world = cornell();
+    let bvh = accel::build(&world, Backend::Rust);
+    let mut mismatches = 0;
+    let rays = support::rays::in_cornell_box(4000, 0x853c_49e6_748f_ea9b);
+    for ray in &rays {
+        let a = bvh.intersect(ray).map(|h| (h.instance, h.prim, h.t));
+        let b = brute_force(&world, ray);
+        match (a, b) {
+            (Some(a), Some(b)) if a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() <= 1e-3 * b.2 => {}
+            (None, None) => {}
+            _ => mismatches += 1,
+        }
+        assert_eq!(bvh.occluded(ray), b.is_some());
+    }
+    assert_eq!(mismatches, 0);
+}
+
+/// Rays straight along an axis with negative zeros in the other components, as a negated
+/// vector gives them (−(0, 0, −1) = (−0, −0, 1)): both backends and brute force agree.
+#[test]
+fn axis_rays_with_negative_zeros_hit() {
+    let world = cornell();
+    let backends: Vec<_> = [Backend::Rust, Backend::default_available()].map(|b| accel::build(&world, b)).into();
+    let axes = [Vec3A::X, Vec3A::Y, Vec3A::Z];
+    let mut hits = 0;
+    for k in 0..200 {
+        let o = Vec3A::new(30.0 + 2.5 * k as f32, 15.0 + 2.6 * k as f32, 20.0 + 2.7 * k as f32);
+        for axis in axes {
+            for sign in [1.0, -1.0] {
+                let dir = Vec3A::select(axis.cmpne(Vec3A::ZERO), sign * axis, Vec3A::splat(-0.0));
+                let ray = Ray::new(o, dir);
+                assert!(ray.dir.to_array().iter().any(|c| *c == 0.0 && c.is_sign_negative()));
+                // (A ray may cross the diagonal shared by a quad's two triangles: compare the
+                // instance and the distance, not the triangle.)
+                let want = brute_force(&world, &ray);
+                hits += want.is_some() as u32;
+                for b in &backends {
+                    let got = b.intersect(&ray);
+                    let same = match (got, want) {
+                        (Some(g), Some(w)) => g.instance == w.0 && (g.t - w.2).abs() <= 1e-3 * w.2,
+                        (g, w) => g.is_none() && w.is_none(),
+                    };
+                    assert!(same, "{:?} {ray:?}: {got:?} vs {want:?}", b.backend());
+                    assert_eq!(b.occluded(&ray), want.is_some());
+                }
+            }
+        }
+    }
+    assert!(hits > 800, "{hits} of 1200 rays hit");
+}
+
+#[cfg(embree)]
+#[test]
+fn embree_and_rust_backends_agree() {
+    let world = cornell();
+    let rust = accel::build(&world, Backend::Rust);
+    let embree = accel::build(&world, Backend::Embree);
+    assert_eq!(embree.backend(), Backend::Embree);
+    let rays = support::rays::in_cornell_box(20_000, 0x853c_49e6_748f_ea9b);
+    let mut different = 0;
+    for ray in &rays {
+        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
+        match (a, b) {
+            (Some(a), Some(b)) => {
+                // Same triangle at the same distance; rays that graze a shared edge may pick
+                // either neighbour, and the distances then agree too.
+                if (a.instance, a.prim) != (b.instance, b.prim) {
+                    different += 1;
+                }
+                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                assert!(
+                    (a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3
+                        || (a.instance, a.prim) != (b.instance, b.prim)
+                );
+            }
+            (None, None) => {}
+            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
+        }
+        assert_eq!(rust.occluded(ray), embree.occluded(ray));
+    }
+    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+}
+
+/// Occlusion asked for a batch of rays (as the light loop asks for a light's samples: from
+/// one point, up to a distance, in groups of every size up to 19, which Embree traces as
+/// packets of eight) answers each ray as the one-ray query does, on both backends; the
+/// rays include blocked and free ones.
+#[test]
+fn batched_occlusion_matches_single_rays() {
+    let world = cornell();
+    // Points other than the rays' origins (the same generator, further on).
+    let targets = support::rays::in_cornell_box(660, 0x853c_49e6_748f_ea9b).split_off(60);
+    for backend in [Backend::Rust, Backend::default_available()] {
+        let accel = accel::build(&world, backend);
+        let (mut blocked_count, mut free_count, mut at) = (0, 0, 0);
+        for (k, from) in support::rays::in_cornell_box(60, 0x853c_49e6_748f_ea9b).iter().enumerate() {
+            let n = 1 + k % 19;
+            let batch: Vec<Ray> = targets[at..at + n]
+                .iter()
+                .map(|t| {
+                    let d = t.origin - from.origin;
+                    Ray { tmax: d.length() * 0.999, ..Ray::new(from.origin, d.normalize()) }
+                })
+                .collect();
+            at = (at + n) % (targets.len() - 20);
+            let mut blocked = vec![false; n];
+            accel.occluded_batch(&batch, &mut blocked);
+            for (ray, b) in batch.iter().zip(&blocked) {
+                assert_eq!(*b, accel.occluded(ray), "{backend:?} {ray:?}");
+                if *b {
+                    blocked_count += 1;
+                } else {
+                    free_count += 1;
+                }
+            }
+        }
+        assert!(blocked_count > 50 && free_count > 50, "{backend:?}: {blocked_count} blocked, {free_count} free");
+    }
+}

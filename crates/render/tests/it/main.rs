@@ -1,0 +1,44 @@
+//! The `render` crate's integration tests, one module per file, built as one test binary
+//! (one link instead of 38: CI's disk and time). Run one file's tests with
+//! `cargo test -p render --test it <module>::`.
+
+mod support;
+
+mod aerial_perspective;
+mod analytic;
+mod area_lights;
+mod backends;
+mod classic;
+mod classic_shadows;
+mod environment;
+mod fgcache;
+mod glossy_interpolation;
+mod iray_sun_and_sky;
+mod maya;
+mod maya_ambient_links_path;
+mod maya_ambient_path;
+mod maya_exports_agree;
+mod maya_path;
+mod maya_soft_shadows_path;
+mod maya_vertex_data;
+mod maya_volume_dir_path;
+mod mdl_classic;
+mod mdl_cornell;
+mod mdl_measured;
+mod mdl_spot;
+mod media;
+mod mia_helpers;
+mod motion;
+mod motion_blur;
+mod motion_composed;
+mod motion_lights;
+mod motion_prepasses;
+mod motion_shading;
+mod path_materials;
+mod photometric;
+mod photons;
+mod shutter_shape;
+mod sky;
+mod sun_sky_path;
+mod volume;
+mod world_meshes;
