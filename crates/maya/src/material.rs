@@ -5,7 +5,7 @@
 //!   (black), `translucence` t (0), `transparency` T (black), `normalCamera` (the
 //!   shading normal when connected, e.g. to bump2d's `outNormal`: mira passes normals in
 //!   world space), `refractions`, `refractiveIndex`, `refractionLimit`,
-//!   `matteOpacityMode`, `matteOpacity`, `glowIntensity`;
+//!   `matteOpacityMode`, `matteOpacity`, `glowIntensity`, `irradianceColor` g (white);
 //! - the reflective ones add `specularColor` s (0.5 grey), `reflectivity` r (0.5),
 //!   `reflectedColor` (black), `reflectionLimit` (1), `reflectionSpecularity`; then blinn
 //!   `eccentricity`, `specularRollOff`, `reflectionRolloff`; phong `cosinePower`; phongE
@@ -19,13 +19,18 @@
 //! D   = Σ_lights light · cos θ            (emitDiffuse lights, in front)
 //! A   = Σ_ambient lights light · ((1 − ambientShade) + ambientShade · cos θ)
 //! B   = Σ_lights behind light · |cos θ|   (translucence)
-//! out = (c ⊙ (a + A + d·(D + E_fg) + t·B) + incandescence) ⊙ (1 − T)
+//! out = (c ⊙ (a + A + d·(D + g ⊙ E_fg/π) + t·B) + incandescence) ⊙ (1 − T)
 //!       + s ⊙ Σ_lights light · highlight   (emitSpecular lights)
 //!       + r · s ⊙ (reflectedColor + traced reflection) [· Fresnel for blinn's rolloff]
 //!       + T ⊙ behind                     (a transparency or refraction ray)
 //! ```
 //!
-//! E_fg is final gathering's irradiance (mental ray's convention, no 1/π). As in Maya,
+//! E_fg is final gathering's irradiance (`mi_compute_irradiance`, the energy over the
+//! hemisphere). Unlike the base library's materials, which add diffuse ⊙ E_fg as the
+//! manual's example shader does, mental ray for Maya's materials divide it by π since Maya 6
+//! (Maya 5 left the 1/π to the user through `irradianceColor`; the Los Angeles mental ray
+//! user group's "Maya 5 Final Gathering Tips", lamrug.org/resources/mayafgtips.html), so a
+//! lambert under a uniform sky of radiance L shows c·d·L, as the path engine gives. As in Maya,
 //! transparency fades the diffuse part, not the highlights and reflections. Raytraced
 //! reflections stop at `reflectionLimit` (and at the scene's trace depth). The lights are
 //! the material's `lightList` or the instance's light list (see below). In a shadow ray
@@ -33,8 +38,9 @@
 //! shadow shader too; see [`crate::engine`]).
 //!
 //! Where mental ray for Maya and Maya's own renderer differ, mira follows mental ray for
-//! Maya: final gathering (not Maya's irradiance attributes) supplies indirect light, and
-//! reflections are raytraced up to `reflectionLimit` (no reflection maps).
+//! Maya: final gathering (scaled by `irradianceColor`; an illumination map in `irradiance` is
+//! not read) supplies indirect light, and reflections are raytraced up to `reflectionLimit`
+//! (no reflection maps).
 //!
 //! Lights: the material's `lightList` (exports fill it in with `lightMode` 0) when it is
 //! not empty, else the instance's light list. `lightMode` itself is not read (its other
@@ -67,10 +73,11 @@ const REFRACTION_LIMIT: usize = 9;
 const MATTE_OPACITY: usize = 10;
 const GLOW_INTENSITY: usize = 11;
 const LIGHT_LIST: usize = 12;
-const SPECULAR_COLOR: usize = 13;
-const REFLECTIVITY: usize = 14;
-const REFLECTED_COLOR: usize = 15;
-const REFLECTION_LIMIT: usize = 16;
+const IRRADIANCE_COLOR: usize = 13;
+const SPECULAR_COLOR: usize = 14;
+const REFLECTIVITY: usize = 15;
+const REFLECTED_COLOR: usize = 16;
+const REFLECTION_LIMIT: usize = 17;
 /// The first parameter a reflective material adds to the shared ones.
 const EXTRA: usize = REFLECTION_LIMIT + 1;
 
@@ -89,6 +96,7 @@ const LAMBERT_PARAMS: &[&str] = &[
     "matteOpacity",
     "glowIntensity",
     "lightList",
+    "irradianceColor",
 ];
 
 macro_rules! reflective_params {
@@ -96,7 +104,7 @@ macro_rules! reflective_params {
         &[
             "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
             "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
-            "glowIntensity", "lightList", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            "glowIntensity", "lightList", "irradianceColor", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
             $($extra),*
         ]
     };
@@ -336,7 +344,11 @@ fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, No
     let highlight = highlight(ctx, n);
     let reflective = !matches!(highlight, Highlight::None);
     let received = gather_lights(ctx, n, highlight, translucence > 0.0);
-    let fg = if diffuse > 0.0 && color != Vec3A::ZERO { rgb(ctx.compute_irradiance()) } else { Vec3A::ZERO };
+    let fg = if diffuse > 0.0 && color != Vec3A::ZERO {
+        rgb(ctx.color(n, IRRADIANCE_COLOR)) * rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI
+    } else {
+        Vec3A::ZERO
+    };
     let ambient = rgb(ctx.color(n, AMBIENT_COLOR)) + received.ambient;
     let lit = color * (ambient + diffuse * (received.diffuse + fg) + translucence * received.behind)
         + rgb(ctx.color(n, INCANDESCENCE));

@@ -20,7 +20,7 @@
 //! facing angle (1):     lit = C(f) ⊙ Σ L · (d · max(cos θ, 0) + t · max(−cos θ, 0))
 //! brightness (2):       E = Σ L · (d · max(cos θ, 0) + t · max(−cos θ, 0)),  lit = C(luma E)
 //! normalized (3):       lit = C(luma E / luma Σ L)   (independent of the lights' strength)
-//! ambient:              + C_ref ⊙ (ambientColor + ambient lights + d · E_fg)
+//! ambient:              + C_ref ⊙ (ambientColor + ambient lights + d · E_fg/π)
 //! specular:             + specularity · rolloff(f) · Σ S(h) ⊙ L · h,  h = Blinn's D (peak 1)
 //! reflection:           + reflectivity(f) · (environment(R) + traced reflection)
 //! out = (lit + incandescence(f)) ⊙ (1 − T(f)) + specular + reflection + T(f) ⊙ behind
@@ -237,7 +237,8 @@ fn ramp_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         ColorInput::FacingAngle => color.at(facing),
         _ => lit,
     };
-    let fg = if diffuse > 0.0 { rgb(ctx.compute_irradiance()) } else { Vec3A::ZERO };
+    // Final gathering's irradiance over π, as the lambert family takes it (crate::material).
+    let fg = if diffuse > 0.0 { rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI } else { Vec3A::ZERO };
     let ambient_light = rgb(ctx.color(n, AMBIENT_COLOR)) + ambient + diffuse * fg;
     let incandescence = Ramp::read(&ctx.array(n, INCANDESCENCE), "incandescence", "Color", Vec3A::ZERO).at(facing);
     let mut result = (lit + reference * ambient_light + incandescence) * (Vec3A::ONE - transparency);

@@ -101,7 +101,8 @@ pub fn warning(decl: &str, missing: Missing, parameter: Option<&str>) -> String 
 }
 
 /// The stand-in shader: a Lambertian surface (albedo the chosen colour, mental ray's
-/// light units: c·I·cos θ) lit by the instance's lights, opaque. Its one slot holds the
+/// light units: c·I·cos θ) lit by the instance's lights and by final gathering's
+/// irradiance over π (as Maya's materials take it), opaque. Its one slot holds the
 /// chosen parameter.
 pub static STANDIN: ShaderImpl =
     ShaderImpl { name: "(stand-in)", params: &["color"], run: stand_in, ..ShaderImpl::PLAIN };
@@ -125,7 +126,7 @@ fn stand_in(ctx: &mut Ctx, n: NodeId, out: &mut shader::Value) -> bool {
             lit += sum / lp.samples as f32;
         }
     }
-    lit += rgb(ctx.compute_irradiance());
+    lit += rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI;
     let c = shader::Value::Color(rgba(color * lit, 1.0));
     match out {
         shader::Value::Struct(m) => {

@@ -11,6 +11,7 @@ mod bsdf_builtin;
 mod glossy;
 mod maya_analytic;
 mod maya_exports;
+mod maya_final_gather;
 mod maya_materials;
 mod maya_path;
 mod maya_textures3d;
