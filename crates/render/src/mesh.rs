@@ -17,6 +17,11 @@ pub struct MeshData {
     pub normals: Vec<Vec3>,
     /// Vertex coordinates of each texture space (mental ray's `tex_list`).
     pub textures: Vec<Vec<Vec3A>>,
+    /// Vertex user vectors (`u`), one array per user space, each one vector per vertex as
+    /// written (packed `Vec3`, moved from the scene); empty for the meshes that have none,
+    /// which then pay nothing per vertex or triangle. Shaders read them through
+    /// [`shader::VertexData::User`].
+    pub user: Vec<Vec<Vec3>>,
     /// Vertex bump basis vectors (u, v) of the first texture space, object space (empty if
     /// the geometry gives none).
     pub bump_basis: Vec<[Vec3A; 2]>,
@@ -52,6 +57,22 @@ impl MeshData {
     #[inline(always)]
     pub fn normal(&self, i: u32) -> Vec3A {
         Vec3A::from(self.normals[i as usize])
+    }
+
+    /// Bytes held by the mesh's arrays (their lengths; what a triangle and its vertices
+    /// cost, hair data aside).
+    pub fn memory_bytes(&self) -> usize {
+        let vecs = |v: &[Vec<Vec3A>]| v.iter().map(|a| a.len() * 16).sum::<usize>();
+        self.positions.len() * 12
+            + self.normals.len() * 12
+            + vecs(&self.textures)
+            + self.user.iter().map(|u| u.len() * 12).sum::<usize>()
+            + self.bump_basis.len() * 32
+            + self.triangles.len() * 12
+            + self.slots.len() * 4
+            + self.motion.len() * 16
+            + vecs(&self.motion_more)
+            + vecs(&self.position_keys)
     }
 
     /// Whether the vertices move while the shutter is open.

@@ -340,6 +340,11 @@ impl Tracer for SceneTracer<'_> {
                 }))
             }
             VertexData::Texture(k) => mesh.textures.get(k).map(|t| tri.map(|i| t[i])),
+            VertexData::User(k) => {
+                let u = mesh.user.get(k)?;
+                let [a, b, c] = tri.map(|i| u.get(i).copied());
+                Some([Vec3A::from(a?), Vec3A::from(b?), Vec3A::from(c?)])
+            }
         }
     }
 

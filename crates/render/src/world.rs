@@ -220,6 +220,7 @@ fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
         positions: m.positions.clone(),
         normals: m.normals.clone(),
         textures: m.textures.clone(),
+        user: m.user.clone(),
         bump_basis: m.bump_basis.clone(),
         triangles: m.triangles.clone(),
         triangle_slots: m.triangle_slots.clone(),
@@ -241,6 +242,8 @@ fn mesh_data(m: &mut scene::Mesh) -> MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
         textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
+        // Moved, not copied: the vectors keep the scene's packed form.
+        user: m.user.iter_mut().map(|u| std::mem::take(&mut u.coords)).collect(),
         bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
         triangles: std::mem::take(&mut m.triangles),
         // One slot for every triangle (the common case) is stored as none.

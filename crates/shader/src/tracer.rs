@@ -22,6 +22,9 @@ pub enum VertexData {
     Motion,
     /// Vertex coordinates of texture space `k`.
     Texture(usize),
+    /// Vertex user vector `k` (the `k`-th `u` of each vertex, as written: mental ray
+    /// gives shaders user vectors untransformed).
+    User(usize),
 }
 
 /// What a ray hit, for shading.

@@ -68,6 +68,7 @@ fn moving_the_meshes_builds_the_world_copying_them_builds() {
         assert_eq!(m.triangles, n.triangles);
         assert_eq!(m.slots, n.slots);
         assert_eq!(m.textures, n.textures);
+        assert_eq!(m.user, n.user);
         // Room for one vertex past the end, for Embree's 16-byte loads.
         assert!(n.positions.capacity() > n.positions.len());
     }
