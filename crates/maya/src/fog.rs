@@ -262,7 +262,7 @@ fn light_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
 /// What the fog's lights (light array parameter `list`; every light when it is empty)
 /// deliver at the middle of the segment of `length` (at its origin for an infinite one),
 /// from every side.
-fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
+pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
     let saved = ctx.state.clone();
     let at = if length.is_finite() { saved.org + saved.dir * (0.5 * length) } else { saved.org };
     ctx.state.point = at;
@@ -289,8 +289,8 @@ fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
 
 /// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
 /// engine leaves out (it applies the camera's volume when every shader in it is a fog,
-/// not a material's volume), and a physical fog of a water type (the water is not
-/// rendered).
+/// not a material's volume), a physical fog of a water type (the water is not
+/// rendered), and a volumeFog with a cone dropoff shape (not implemented).
 pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let mut camera = Vec::new();
     if let Some(head) = shading.volume.filter(|&v| shader::volume::is_affine(shading, v)) {
@@ -303,7 +303,15 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let mut warnings = Vec::new();
     for (i, node) in shading.graph.nodes.iter().enumerate() {
         let name = node.decl.name.as_str();
-        if !matches!(name, "maya_envfog" | "adskMayaEnvFog" | "maya_lightfog" | "adskMayaLightFog") {
+        if !matches!(
+            name,
+            "maya_envfog"
+                | "adskMayaEnvFog"
+                | "maya_lightfog"
+                | "adskMayaLightFog"
+                | "maya_volumefog"
+                | "adskMayaVolumeFog"
+        ) {
             continue;
         }
         if !camera.contains(&(i as shader::NodeId)) {
@@ -324,6 +332,12 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
                 _ => None,
             }
         };
+        if slot_of("dropoffShape").is_some_and(|v| v == 3 || v == 4) {
+            warnings.push(mi::Diagnostic::warning(
+                node.span,
+                format!("'{name}': the cone dropoff shapes are not implemented; the fog has no dropoff"),
+            ));
+        }
         let physical = slot_of("physicalFog").is_some_and(|v| v != 0);
         if physical && slot_of("fogType").is_some_and(|t| t >= 3) {
             warnings.push(mi::Diagnostic::warning(
