@@ -1,5 +1,5 @@
 //! Maya's fog materials as mental ray volume shaders: environment fog (`maya_envfog`,
-//! Maya's envFog node in its simple-fog mode) and light fog (`maya_lightfog`, the lightFog
+//! Maya's envFog node, simple and physical fog) and light fog (`maya_lightfog`, the lightFog
 //! node). Exports name Maya's shading nodes `maya_` and the node type in lower case (the
 //! open-source mrLiquid exporter lists envFog and lightFog among the Maya shaders it
 //! writes so); the `adskMaya*` names are this crate's guess in the family's pattern.
@@ -22,12 +22,10 @@
 //!   length of the segment inside the fog — all of it, or with `useHeight` the part
 //!   whose world height lies between `minHeight` and `maxHeight` (above `minHeight`
 //!   when `maxHeight` is below it, as Maya documents); an infinite segment in the fog is
-//!   saturated (α = 1). The fog shows its own colour (E = 1). `physicalFog` (Maya's
-//!   physically based mode) is not implemented: a warning says so and the simple fog
-//!   is used.
-//!
-//! The path engine runs no mental ray volume shaders: it renders without these fogs, and
-//! [`fog_warnings`] says so.
+//!   saturated (α = 1). The fog shows its own colour (E = 1). With `physicalFog` on,
+//!   Maya's physically based fog replaces all this (the parameters after `physicalFog`:
+//!   fog type, fog and air media, planet, axis, sun, and the `lightList` of the uniform
+//!   type; see [`crate::physical_fog`]); `colorBasedTransparency` does not apply to it.
 //! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
 //!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
 //!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
@@ -37,23 +35,35 @@
 //!   sum of what the lights of `lightList` (all the scene's lights when empty) deliver
 //!   at the segment's middle (their light shaders run there; at the segment's origin
 //!   for an infinite one).
+//!
+//! Each fog's effect is affine in the colour it receives (result ← keep ⊙ result + add),
+//! and it tells the two terms to the path engine ([`shader::ShaderImpl::volume_terms`]),
+//! which applies a camera volume made of fogs to each segment of its paths (see
+//! `render`'s integrator); a fog in a material's volume is left out there, and
+//! [`fog_warnings`] says so.
 
 use glam::Vec3A;
-use shader::volume::segment_length;
+use shader::volume::{segment_length, VolumeTerms};
 use shader::{Ctx, NodeId, RayType, Value};
 
-use crate::maya_shader;
+use crate::physical_fog::{self, Medium, PhysicalFog, Profile};
 use crate::values::{rgb, rgba};
 
-/// The fog's share of what it covers and the light it shows, applied to `out` (see the
-/// module doc): `alpha` the share α, `color` the fog's colour c, `shown` E,
-/// `color_based` `colorBasedTransparency`.
-fn apply(out: &mut Value, alpha: f32, color: Vec3A, shown: Vec3A, color_based: bool) {
-    let behind = out.color();
+/// The fog's effect as affine terms (see the module doc): `alpha` the share α, `color` the
+/// fog's colour c, `shown` E, `color_based` `colorBasedTransparency`: keep 1 − α·c (1 − α
+/// alike in every channel without colour-based transparency), add α·c ⊙ E.
+fn terms(alpha: f32, color: Vec3A, shown: Vec3A, color_based: bool) -> VolumeTerms {
     let cover = if color_based { alpha * color } else { Vec3A::splat(alpha) };
-    let result = rgb(behind) * (Vec3A::ONE - cover) + alpha * color * shown;
+    VolumeTerms { keep: Vec3A::ONE - cover, add: alpha * color * shown }
+}
+
+/// Applies the fog's `terms` to `out`, the colour arriving from behind; its alpha grows
+/// by the mean share covered.
+fn apply(out: &mut Value, terms: VolumeTerms) {
+    let behind = out.color();
+    let cover = Vec3A::ONE - terms.keep;
     let coverage = (cover.x + cover.y + cover.z) / 3.0;
-    *out = Value::Color(rgba(result, behind.w + (1.0 - behind.w) * coverage.clamp(0.0, 1.0)));
+    *out = Value::Color(rgba(terms.apply(rgb(behind)), behind.w + (1.0 - behind.w) * coverage.clamp(0.0, 1.0)));
 }
 
 /// Whether the ray carries light to a point rather than colour to an eye (those pass
@@ -62,14 +72,76 @@ fn carries_light(ctx: &Ctx) -> bool {
     matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow)
 }
 
-maya_shader!(
+/// A fog's two statics (Maya and `adskMaya` names): a volume shader that applies its
+/// affine terms `$terms` to the colour it receives and tells them to the path engine
+/// ([`shader::ShaderImpl::volume_terms`]).
+macro_rules! maya_volume {
+    ($(#[$doc:meta])* $maya:ident, $adsk:ident, $maya_name:literal, $adsk_name:literal, $params:expr, $terms:expr) => {
+        $(#[$doc])*
+        pub static $maya: shader::ShaderImpl = shader::ShaderImpl {
+            name: $maya_name,
+            params: $params,
+            run: |ctx, n, out| {
+                let t = $terms(ctx, n);
+                apply(out, t);
+                true
+            },
+            volume_terms: Some($terms),
+            ..shader::ShaderImpl::PLAIN
+        };
+        $(#[$doc])*
+        pub static $adsk: shader::ShaderImpl = shader::ShaderImpl {
+            name: $adsk_name,
+            params: $params,
+            run: |ctx, n, out| {
+                let t = $terms(ctx, n);
+                apply(out, t);
+                true
+            },
+            volume_terms: Some($terms),
+            ..shader::ShaderImpl::PLAIN
+        };
+    };
+}
+
+maya_volume!(
     /// Environment fog, simple mode (see the module doc).
     ENVFOG,
     ADSK_ENVFOG,
     "maya_envfog",
     "adskMayaEnvFog",
-    &["color", "colorBasedTransparency", "saturationDistance", "useHeight", "minHeight", "maxHeight", "physicalFog"],
-    env_fog
+    &[
+        "color",
+        "colorBasedTransparency",
+        "saturationDistance",
+        "useHeight",
+        "minHeight",
+        "maxHeight",
+        "physicalFog",
+        "fogType",
+        "fogDensity",
+        "fogColor",
+        "fogOpacity",
+        "fogMinHeight",
+        "fogMaxHeight",
+        "fogDecay",
+        "fogLightScatter",
+        "airDensity",
+        "airColor",
+        "airOpacity",
+        "airMinHeight",
+        "airMaxHeight",
+        "airDecay",
+        "airLightScatter",
+        "planetRadius",
+        "fogAxis",
+        "sunIntensity",
+        "sunAzimuth",
+        "sunElevation",
+        "sunColor",
+        "lightList"
+    ],
+    env_fog_terms
 );
 
 /// The length of the part of the segment from `org` along unit `dir` over `length`
@@ -99,9 +171,12 @@ pub fn env_fog_share(inside: f32, saturation: f32) -> f32 {
     (inside / saturation).min(1.0)
 }
 
-fn env_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     if carries_light(ctx) {
-        return true;
+        return VolumeTerms::NONE;
+    }
+    if ctx.bool(n, 6) {
+        return physical_fog_terms(ctx, n);
     }
     let length = segment_length(&ctx.state);
     let inside = if ctx.bool(n, 3) {
@@ -111,18 +186,54 @@ fn env_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     };
     let alpha = env_fog_share(inside, ctx.scalar(n, 2));
     let color = rgb(ctx.color(n, 0));
-    apply(out, alpha, color, Vec3A::ONE, ctx.bool(n, 1));
-    true
+    terms(alpha, color, Vec3A::ONE, ctx.bool(n, 1))
 }
 
-maya_shader!(
+/// envFog's physical fog (the parameters from index 7 on; see [`crate::physical_fog`])
+/// over the state's segment.
+fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
+    let fog_type = ctx.int(n, 7);
+    let profile = match fog_type {
+        0 | 4 => Profile::Uniform,
+        1 | 5 => Profile::Atmospheric,
+        2 | 6 => Profile::Sky,
+        // Water alone: the water is not rendered (warned at compile time).
+        _ => return VolumeTerms::NONE,
+    };
+    let mut medium = |first: usize| {
+        Medium::new(
+            ctx.scalar(n, first),
+            rgb(ctx.color(n, first + 1)),
+            rgb(ctx.color(n, first + 2)),
+            ctx.scalar(n, first + 3),
+            ctx.scalar(n, first + 4),
+            ctx.scalar(n, first + 5),
+            ctx.scalar(n, first + 6),
+        )
+    };
+    let media = [medium(8), medium(15)];
+    let up = physical_fog::axis(ctx.int(n, 23));
+    let fog = PhysicalFog {
+        profile,
+        media,
+        up,
+        planet_radius: ctx.scalar(n, 22),
+        sun_dir: physical_fog::sun_direction(up, ctx.scalar(n, 26), ctx.scalar(n, 25)),
+        sun: ctx.scalar(n, 24) * rgb(ctx.color(n, 27)),
+    };
+    let length = segment_length(&ctx.state);
+    let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length) } else { Vec3A::ZERO };
+    fog.terms(ctx.state.org, ctx.state.dir, length, lit)
+}
+
+maya_volume!(
     /// Light fog (see the module doc).
     LIGHTFOG,
     ADSK_LIGHTFOG,
     "maya_lightfog",
     "adskMayaLightFog",
     &["color", "density", "colorBasedTransparency", "fastDropOff", "lightList"],
-    light_fog
+    light_fog_terms
 );
 
 /// The light fog's share α over a segment of length `length` (infinite allowed) of
@@ -137,28 +248,28 @@ pub fn light_fog_share(density: f32, length: f32, fast_drop_off: bool) -> f32 {
     1.0 - (-through).exp()
 }
 
-fn light_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+fn light_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     if carries_light(ctx) {
-        return true;
+        return VolumeTerms::NONE;
     }
     let length = segment_length(&ctx.state);
     let alpha = light_fog_share(ctx.scalar(n, 1), length, ctx.bool(n, 3));
     let color = rgb(ctx.color(n, 0));
-    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, length) } else { Vec3A::ZERO };
-    apply(out, alpha, color, shown, ctx.bool(n, 2));
-    true
+    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, 4, length) } else { Vec3A::ZERO };
+    terms(alpha, color, shown, ctx.bool(n, 2))
 }
 
-/// What the light fog's lights deliver at the middle of the segment of `length` (at its
-/// origin for an infinite one), from every side.
-fn received_light(ctx: &mut Ctx, n: NodeId, length: f32) -> Vec3A {
+/// What the fog's lights (light array parameter `list`; every light when it is empty)
+/// deliver at the middle of the segment of `length` (at its origin for an infinite one),
+/// from every side.
+pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
     let saved = ctx.state.clone();
     let at = if length.is_finite() { saved.org + saved.dir * (0.5 * length) } else { saved.org };
     ctx.state.point = at;
     ctx.state.shadow_point = at;
     ctx.state.normal = -saved.dir;
     ctx.state.normal_geom = -saved.dir;
-    let listed = ctx.array(n, 4);
+    let listed = ctx.array(n, list);
     let lights = ctx.light_list(if listed.array().is_empty() { 3 } else { 0 }, &listed);
     let mut sum = Vec3A::ZERO;
     for light in lights {
@@ -176,28 +287,62 @@ fn received_light(ctx: &mut Ctx, n: NodeId, length: f32) -> Vec3A {
     sum
 }
 
-/// The warnings, at the shader's position, about the fogs of `shading`: each is left out
-/// by the path engine (it runs no mental ray volume shaders), and an environment fog in
-/// Maya's physical mode (`physicalFog` on) is rendered as the simple fog.
+/// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
+/// engine leaves out (it applies the camera's volume when every shader in it is a fog,
+/// not a material's volume), a physical fog of a water type (the water is not
+/// rendered), and a volumeFog with a cone dropoff shape (not implemented).
 pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
+    let mut camera = Vec::new();
+    if let Some(head) = shading.volume.filter(|&v| shader::volume::is_affine(shading, v)) {
+        let mut node = Some(head);
+        while let Some(n) = node.filter(|_| camera.len() < 1024) {
+            camera.push(n);
+            node = shading.graph.nodes.get(n as usize).and_then(|x| x.next);
+        }
+    }
     let mut warnings = Vec::new();
-    for node in &shading.graph.nodes {
+    for (i, node) in shading.graph.nodes.iter().enumerate() {
         let name = node.decl.name.as_str();
-        if !matches!(name, "maya_envfog" | "adskMayaEnvFog" | "maya_lightfog" | "adskMayaLightFog") {
+        if !matches!(
+            name,
+            "maya_envfog"
+                | "adskMayaEnvFog"
+                | "maya_lightfog"
+                | "adskMayaLightFog"
+                | "maya_volumefog"
+                | "adskMayaVolumeFog"
+        ) {
             continue;
         }
-        warnings.push(mi::Diagnostic::warning(
-            node.span,
-            format!("'{name}': the path engine runs no volume shaders; it renders without this fog"),
-        ));
-        let physical = match node.imp {
-            Some(imp) => imp.params.iter().position(|p| *p == "physicalFog"),
-            None => node.decl.param("physicalFog"),
-        };
-        if matches!(physical.and_then(|i| node.slots.get(i)), Some(shader::Slot::Value(v)) if v.int() != 0) {
+        if !camera.contains(&(i as shader::NodeId)) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
-                format!("'{name}': physicalFog is not implemented; the fog is rendered as simple fog"),
+                format!(
+                    "'{name}': the path engine applies fogs only as the camera's volume; it renders without this one"
+                ),
+            ));
+        }
+        let slot_of = |param: &str| {
+            let i = match node.imp {
+                Some(imp) => imp.params.iter().position(|p| *p == param),
+                None => node.decl.param(param),
+            };
+            match i.and_then(|i| node.slots.get(i)) {
+                Some(shader::Slot::Value(v)) => Some(v.int()),
+                _ => None,
+            }
+        };
+        if slot_of("dropoffShape").is_some_and(|v| v == 3 || v == 4) {
+            warnings.push(mi::Diagnostic::warning(
+                node.span,
+                format!("'{name}': the cone dropoff shapes are not implemented; the fog has no dropoff"),
+            ));
+        }
+        let physical = slot_of("physicalFog").is_some_and(|v| v != 0);
+        if physical && slot_of("fogType").is_some_and(|t| t >= 3) {
+            warnings.push(mi::Diagnostic::warning(
+                node.span,
+                format!("'{name}': the water of physical fog's water types is not rendered; only the fog above it is"),
             ));
         }
     }
@@ -247,12 +392,12 @@ mod tests {
     fn covering_with_and_without_colour_based_transparency() {
         let fog = Vec3A::new(1.0, 0.5, 0.0);
         let mut out = Value::Color(shader::Color::new(0.8, 0.8, 0.8, 1.0));
-        apply(&mut out, 0.5, fog, Vec3A::splat(2.0), true);
+        apply(&mut out, terms(0.5, fog, Vec3A::splat(2.0), true));
         let c = out.color();
         let want = [0.8 * 0.5 + 1.0, 0.8 * 0.75 + 0.5, 0.8];
         assert!((c.x - want[0]).abs() < 1e-6 && (c.y - want[1]).abs() < 1e-6 && (c.z - want[2]).abs() < 1e-6, "{c:?}");
         let mut out = Value::Color(shader::Color::new(0.8, 0.8, 0.8, 1.0));
-        apply(&mut out, 0.5, fog, Vec3A::ZERO, false);
+        apply(&mut out, terms(0.5, fog, Vec3A::ZERO, false));
         let c = out.color();
         assert!((c.x - 0.4).abs() < 1e-6 && (c.y - 0.4).abs() < 1e-6 && (c.z - 0.4).abs() < 1e-6, "{c:?}");
     }

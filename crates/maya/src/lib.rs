@@ -17,7 +17,8 @@
 //! - angles are in radians (the unit Maya stores and exports).
 //!
 //! Modules: [`engine`] (shading engine, shadow shaders), [`volume`] (the shading
-//! group's volume sampler), [`fog`] (envFog and lightFog as volume shaders),
+//! group's volume sampler), [`fog`] (envFog and lightFog as volume shaders; [`physical_fog`] envFog's physical
+//! fog), [`volume_fog`] (volumeFog),
 //! [`material`] and [`specular`] (lambert, blinn, phong, phongE, anisotropic,
 //! surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
@@ -42,6 +43,7 @@ pub mod material;
 pub mod matte;
 pub mod noise;
 pub mod output;
+pub mod physical_fog;
 pub mod projection;
 pub mod ramp_shader;
 pub mod specular;
@@ -52,6 +54,7 @@ pub mod utility;
 mod values;
 pub mod vertex_data;
 pub mod volume;
+pub mod volume_fog;
 
 use shader::{Library, ShaderImpl};
 
@@ -86,6 +89,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &fog::ADSK_ENVFOG,
     &fog::LIGHTFOG,
     &fog::ADSK_LIGHTFOG,
+    &volume_fog::VOLUMEFOG,
+    &volume_fog::ADSK_VOLUMEFOG,
     &material::LAMBERT,
     &material::ADSK_LAMBERT,
     &material::BLINN,

@@ -1,7 +1,8 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling
 //! (power heuristic), Russian roulette after a few bounces; participating media inside
-//! surfaces in [`media`].
+//! surfaces in [`media`], the camera's volume (Maya's fogs) in [`fog`].
 
+mod fog;
 mod media;
 
 use bsdf::Bsdf;
@@ -351,6 +352,12 @@ pub fn trace_path(
     let mut media = camera_media.clone();
     // The instance the path last scattered at (light linking; none at the camera).
     let mut from_instance: Option<u32> = None;
+    // The camera's volume, when the path engine applies it (see `fog`), the mental ray
+    // type of the path's current segment, and the share of the camera ray's colour it
+    // covers (for alpha, as the classic fogs give it).
+    let camera_fog = fog::camera_fog(shading);
+    let mut segment_type = RayType::Eye;
+    let mut fog_cover = 0.0f32;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
@@ -401,6 +408,20 @@ pub fn trace_path(
                 }
                 Some(bsdf::medium::Flight::Through { weight }) => throughput *= weight,
                 None => {}
+            }
+        }
+        if let Some((fog_shading, head)) = camera_fog.filter(|_| media.is_empty()) {
+            // The camera's volume over the segment, in front of all that lies behind it.
+            let t_end = match (&light_hit, &hit) {
+                (Some((_, t, _)), _) => *t,
+                (None, Some(h)) => h.t,
+                (None, None) => f32::INFINITY,
+            };
+            let terms = fog::segment_terms(world, accel, fog_shading, head, &ray, t_end, segment_type, depth);
+            radiance += throughput * terms.add;
+            throughput *= terms.keep;
+            if depth == 0 {
+                fog_cover = (3.0 - terms.keep.element_sum()) / 3.0;
             }
         }
         if let (None, None, Some(env)) = (&light_hit, &found, env) {
@@ -540,6 +561,9 @@ pub fn trace_path(
         }
         throughput *= bs.weight();
         from_instance = Some(stop.instance);
+        if camera_fog.is_some() {
+            segment_type = fog::segment_type(depth + 1, bs.delta, ng, wi);
+        }
         // Straight through an index-matched medium boundary is no bounce for MIS: what is
         // found next is weighed against the sampling at the vertex before.
         if !(world.has_media && media.follow(world, s.material, s.ng, ray.dir, wi)) {
@@ -563,6 +587,8 @@ pub fn trace_path(
             time: ray.time,
         };
     }
+    // The camera ray's fog covers what it did not find, as the classic fogs' alpha.
+    let alpha = alpha + (1.0 - alpha) * fog_cover.clamp(0.0, 1.0);
     PathResult { radiance, alpha, first, glow }
 }
 

@@ -64,6 +64,11 @@ pub type Run = fn(ctx: &mut Ctx, node: NodeId, result: &mut Value) -> bool;
 /// shader without one (see [`photon`]).
 pub type PhotonRun = fn(ctx: &mut Ctx, node: NodeId) -> photon::Scatter;
 
+/// What a volume shader whose effect is affine in the colour it receives (a fog) does to
+/// the segment the context's state describes, as [`volume::VolumeTerms`]: what the path
+/// engine applies to its segments (see [`Ctx::volume_terms`]).
+pub type VolumeTermsRun = fn(ctx: &mut Ctx, node: NodeId) -> volume::VolumeTerms;
+
 /// A shader mira implements.
 #[derive(Debug)]
 pub struct ShaderImpl {
@@ -78,13 +83,17 @@ pub struct ShaderImpl {
     /// A light shader of a portal: final gather rays that cross the light's shape find
     /// nothing, the light brings what lies beyond in directly (`mia_portal_light`).
     pub portal: bool,
+    /// For a volume shader that turns the colour c it receives into keep ⊙ c + add (per
+    /// channel, the same for every c): those terms over the state's segment. `None`: the
+    /// shader is no such volume.
+    pub volume_terms: Option<VolumeTermsRun>,
 }
 
 impl ShaderImpl {
-    /// The defaults of the optional behaviours (no photon scattering, not a portal), for
-    /// `ShaderImpl { name, params, run, ..ShaderImpl::PLAIN }`.
+    /// The defaults of the optional behaviours (no photon scattering, not a portal, no
+    /// affine volume terms), for `ShaderImpl { name, params, run, ..ShaderImpl::PLAIN }`.
     pub const PLAIN: ShaderImpl =
-        ShaderImpl { name: "", params: &[], run: |_, _, _| false, photon: None, portal: false };
+        ShaderImpl { name: "", params: &[], run: |_, _, _| false, photon: None, portal: false, volume_terms: None };
 }
 
 /// A registered implementation.

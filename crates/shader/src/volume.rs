@@ -27,6 +27,15 @@
 //! cross the medium's index-matched boundary (tinted by its colour where they enter) and
 //! keep exp(−σt·d) over each stretch d inside, the innermost medium counting, as for eye
 //! rays; a boundary that refracts (glass) still stops them.
+//!
+//! A volume shader whose effect on a segment is affine in the colour it receives — c ↦
+//! keep ⊙ c + add per channel, the same keep and add whatever c is (Maya's fogs) — also
+//! tells those terms ([`crate::ShaderImpl::volume_terms`], [`VolumeTerms`]). The path
+//! engine, which runs no shader on the colour a path brings back (it adds light forward,
+//! weighted by the path's throughput), applies such a volume exactly: it adds
+//! throughput ⊙ add and multiplies the throughput by keep ([`Ctx::volume_terms`]).
+
+use glam::Vec3A;
 
 use super::ctx::Ctx;
 use super::graph::NodeId;
@@ -34,7 +43,74 @@ use super::shading::Shading;
 use super::state::{RayType, State};
 use super::value::{Color, Value};
 
+/// A volume's effect on a segment as an affine map of the colour c arriving from behind
+/// it: keep ⊙ c + add (per channel, RGB).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeTerms {
+    /// The share of what lies behind that reaches the segment's origin.
+    pub keep: Vec3A,
+    /// What the volume itself adds along the segment.
+    pub add: Vec3A,
+}
+
+impl VolumeTerms {
+    /// No effect: keep everything, add nothing.
+    pub const NONE: VolumeTerms = VolumeTerms { keep: Vec3A::ONE, add: Vec3A::ZERO };
+
+    /// `self` applied to what `behind` (the next volume along the list, which receives the
+    /// colour first) leaves: c ↦ keep ⊙ (behind.keep ⊙ c + behind.add) + add.
+    pub fn after(self, behind: VolumeTerms) -> VolumeTerms {
+        VolumeTerms { keep: self.keep * behind.keep, add: self.keep * behind.add + self.add }
+    }
+
+    /// The terms applied to colour `c` (RGB).
+    pub fn apply(self, c: Vec3A) -> Vec3A {
+        self.keep * c + self.add
+    }
+}
+
+/// Whether every shader of the volume shader list at `head` tells its affine terms
+/// ([`crate::ShaderImpl::volume_terms`]), so that [`Ctx::volume_terms`] describes the list.
+pub fn is_affine(shading: &Shading, head: NodeId) -> bool {
+    let mut node = Some(head);
+    let mut guard = 0;
+    while let Some(n) = node {
+        let Some(x) = shading.graph.nodes.get(n as usize) else { return false };
+        if x.imp.and_then(|i| i.volume_terms).is_none() {
+            return false;
+        }
+        node = x.next;
+        guard += 1;
+        if guard > 1024 {
+            return false;
+        }
+    }
+    true
+}
+
 impl Ctx<'_> {
+    /// The affine terms of the volume shader list at `head` over the segment of the
+    /// context's state (mental ray's volume state, see the module documentation): each
+    /// shader's terms in list order (a list's shaders run in turn on one result, so the
+    /// first receives the colour first); `None` when one of them tells none (see
+    /// [`is_affine`]).
+    pub fn volume_terms(&mut self, head: NodeId) -> Option<VolumeTerms> {
+        let mut terms = VolumeTerms::NONE;
+        let mut node = Some(head);
+        let mut guard = 0;
+        while let Some(n) = node {
+            let run = self.node(n).imp.and_then(|i| i.volume_terms)?;
+            self.counts.calls += 1;
+            terms = run(self, n).after(terms);
+            node = self.node(n).next;
+            guard += 1;
+            if guard > 1024 {
+                return None;
+            }
+        }
+        Some(terms)
+    }
+
     /// The volume shader list of the medium a ray with state `s` travels in: the innermost
     /// entered material's volume (`None` if it has none), else the camera's.
     pub fn volume_of(&self, s: &State) -> Option<NodeId> {

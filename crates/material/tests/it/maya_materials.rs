@@ -342,10 +342,13 @@ fn a_volume_lights_ambient_highlight_is_named_in_a_warning_and_its_direction_is_
     assert!(maya::light::volume_light_warnings(&c.shading).is_empty());
 }
 
+/// A fog in a material's volume is named for the path engine, which leaves it out; a
+/// camera volume of fogs is not (the path engine applies it); a physical fog of a water
+/// type is named for its water, a volumeFog with a cone dropoff for the cone.
 #[test]
-fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_fog() {
+fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_water() {
     let text = format!(
-        "{LIBS}shader \"env\" \"maya_envfog\" (\"physicalFog\" on)\n\
+        "{LIBS}shader \"env\" \"maya_envfog\" (\"physicalFog\" on, \"fogType\" 4)\n\
          shader \"lit\" \"adskMayaLightFog\" (\"density\" 0.5)\n\
          shader \"lam\" \"maya_lambert\" ()\n\
          material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\")\n\
@@ -355,6 +358,30 @@ fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_fog() {
     let warnings = maya::fog::fog_warnings(&c.shading);
     let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
     assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("path engine")), "{messages:?}");
-    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("physicalFog")), "{messages:?}");
-    assert!(!messages.iter().any(|m| m.contains("adskMayaLightFog") && m.contains("physicalFog")), "{messages:?}");
+    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("water")), "{messages:?}");
+    assert!(!messages.iter().any(|m| m.contains("adskMayaLightFog") && m.contains("water")), "{messages:?}");
+    // A volumeFog in a shading group's volume: left out by the path engine; a cone
+    // dropoff is named as not implemented.
+    let text = format!(
+        "{LIBS}shader \"vf\" \"maya_volumefog\" (\"dropoffShape\" 3)\n\
+         shader \"lam\" \"maya_lambert\" ()\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\")\n\
+         volume \"maya_volumesampler\" (\"volumeShader\" = \"vf.outColor\") end material"
+    );
+    let c = compile("", &text, &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let warnings = maya::fog::fog_warnings(&c.shading);
+    let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
+    assert!(messages.iter().any(|m| m.contains("maya_volumefog") && m.contains("path engine")), "{messages:?}");
+    assert!(messages.iter().any(|m| m.contains("maya_volumefog") && m.contains("cone")), "{messages:?}");
+    // The same fog as the camera's volume: the path engine applies it.
+    let body = format!(
+        "{LIBS}shader \"envcam\" \"maya_envfog\" (\"saturationDistance\" 10)\n\
+         shader \"lam\" \"maya_lambert\" ()\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\") end material"
+    );
+    let c = support::maya::compile_with_camera("volume = \"envcam\"", "", &body, &["m"], "");
+    assert!(c.shading.volume.is_some(), "the camera has a volume");
+    let warnings = maya::fog::fog_warnings(&c.shading);
+    assert!(warnings.is_empty(), "{:?}", warnings.iter().map(|w| &w.message).collect::<Vec<_>>());
 }
