@@ -24,7 +24,7 @@ use shader::{Ctx, NodeId, Value};
 use crate::maya_shader;
 
 /// A 32-bit hash of a lattice point.
-fn lattice(i: i32, j: i32, k: i32) -> u32 {
+pub fn lattice(i: i32, j: i32, k: i32) -> u32 {
     let mut h = (i as u32).wrapping_mul(0x8da6_b343)
         ^ (j as u32).wrapping_mul(0xd816_3841)
         ^ (k as u32).wrapping_mul(0xcb1a_b31f);

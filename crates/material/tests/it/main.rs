@@ -13,6 +13,7 @@ mod maya_analytic;
 mod maya_exports;
 mod maya_materials;
 mod maya_path;
+mod maya_solid_textures;
 mod maya_textures3d;
 mod mdl_base_functions;
 mod mdl_compile;
