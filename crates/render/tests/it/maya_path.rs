@@ -73,12 +73,11 @@ fn the_maya_exports_render_in_the_path_engine() {
 /// parameters) whose instance `placement` (a world → light transform) maps the world onto
 /// the unit shape.
 fn volume_lit_plane(light: &str, placement: &str) -> String {
+    let view = support::maya_view::top_down(24);
     format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution 24 24 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 light "vol" "maya_volumelight" ("color" 1 0.9 0.8, "intensity" 2, {light}) origin 0 0 0 end light
 instance "vol_inst" "vol" transform {placement} end instance
 shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)

@@ -15,12 +15,11 @@ const SIDE: usize = 24;
 /// sphere volume light of radius 4 centred 1 above its middle (intensity 0.7,
 /// `emitAmbient` on) with the more parameters `more` (", name value" pairs).
 fn ground(eccentricity: f32, more: &str) -> String {
+    let view = support::maya_view::top_down(SIDE);
     format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 light "vol" "maya_volumelight" ("intensity" 0.7, "lightShape" 1, "emitAmbient" on{more}) origin 0 0 0 end light
 instance "vol_inst" "vol" transform 0.25 0 0 0  0 0.25 0 0  0 0 0.25 0  0 -0.25 0 1 end instance
 shader "bl" "maya_blinn" ("color" 0.6 0.5 0.4, "diffuse" 0.8, "eccentricity" {eccentricity},
