@@ -23,7 +23,7 @@
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
-//! (snow, rock), [`cell_textures`] (leather, granite), [`projection`]
+//! (snow, rock, volumeNoise), [`cell_textures`] (leather, granite), [`projection`]
 //! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
 //! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
@@ -137,6 +137,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &solid_textures::ADSK_SNOW,
     &solid_textures::ROCK,
     &solid_textures::ADSK_ROCK,
+    &solid_textures::VOLUME_NOISE,
+    &solid_textures::ADSK_VOLUME_NOISE,
     &cell_textures::LEATHER,
     &cell_textures::ADSK_LEATHER,
     &cell_textures::GRANITE,

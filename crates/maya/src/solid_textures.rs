@@ -1,4 +1,4 @@
-//! Maya's snow and rock 3D textures.
+//! Maya's snow, rock and volumeNoise 3D textures.
 //!
 //! Both share the 3D textures' placement, `wrap` and colour balance
 //! ([`crate::texture3d`]). Maya's node reference documents their attributes' meanings,
@@ -22,13 +22,20 @@
 //!   diffusion/2, so that mixRatio 0 leaves color1 alone and 1 color2 alone (Maya: "0
 //!   Color1 totally dominant, 1 Color2 totally dominant"), and `diffusion` is the width
 //!   over which one blends into the other (0: a hard edge at g = mixRatio). `outColor` =
-//!   color1 + w · (color2 − color1), `outAlpha` = w.
+//!   color1 + w · (color2 − color1), `outAlpha` = w;
+//! - volumeNoise: the noise texture's attributes and formula ([`crate::noise::Noise`]:
+//!   `threshold` (0), `amplitude` (1), `ratio` (0.707), `frequencyRatio` (2), `depthMax`
+//!   (3), `inflection` (off), `time` (0), `frequency` (8), `noiseType` (1, billow; 0
+//!   Perlin, the others read as Perlin)) over 3D space ([`crate::noise::Noise::value3`]),
+//!   at q = (p − `origin`) ⊘ `scale` (`scale` 1 1 1, `origin` 0 0 0: Maya says scale has
+//!   the inverse effect of frequency; the origin's sign is mira's reading); `outColor` is
+//!   the value as grey, `outAlpha` the value.
 
 use glam::{Mat4, Vec3A};
 use shader::{Ctx, NodeId, Value};
 
 use crate::maya_shader;
-use crate::noise::gradient_noise;
+use crate::noise::{gradient_noise, Noise};
 use crate::texture::{balance, outside};
 use crate::texture3d::{placement_matrix, placement_point, texture3d_params, EXTRA};
 use crate::values::rgb;
@@ -112,6 +119,46 @@ fn rock(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     balance(ctx, n, c1 + (c2 - c1) * w, w, out)
 }
 
+maya_shader!(
+    /// Maya's volumeNoise (see the module doc).
+    VOLUME_NOISE,
+    ADSK_VOLUME_NOISE,
+    "maya_volumenoise",
+    "adskMayaVolumeNoise",
+    texture3d_params!(
+        "threshold",
+        "amplitude",
+        "ratio",
+        "frequencyRatio",
+        "depthMax",
+        "inflection",
+        "time",
+        "frequency",
+        "scale",
+        "origin",
+        "noiseType"
+    ),
+    volume_noise
+);
+
+fn volume_noise(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let Some(p) = placement_point(ctx, n) else { return outside(ctx, n, out) };
+    let e = EXTRA;
+    let settings = Noise {
+        threshold: ctx.scalar(n, e),
+        amplitude: ctx.scalar(n, e + 1),
+        ratio: ctx.scalar(n, e + 2),
+        frequency_ratio: ctx.scalar(n, e + 3),
+        depth: ctx.int(n, e + 4).max(1) as u32,
+        billow: ctx.bool(n, e + 5) || ctx.int(n, e + 10) == 1,
+        time: ctx.scalar(n, e + 6),
+        frequency: ctx.scalar(n, e + 7),
+    };
+    let (scale, origin) = (ctx.vector(n, e + 8), ctx.vector(n, e + 9));
+    let v = settings.value3((p - origin) / scale);
+    balance(ctx, n, Vec3A::splat(v), v, out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -181,5 +228,44 @@ mod tests {
         assert!(hi - lo > 0.5, "the grains vary: {lo}..{hi}");
         // No grains at size 0.
         assert_eq!(rock_grain(Vec3A::new(0.3, 0.1, 0.2), 0.0), 0.5);
+    }
+
+    fn volume_noise_default() -> Noise {
+        Noise {
+            threshold: 0.0,
+            amplitude: 1.0,
+            ratio: 0.707,
+            frequency_ratio: 2.0,
+            depth: 3,
+            billow: false,
+            time: 0.0,
+            frequency: 8.0,
+        }
+    }
+
+    #[test]
+    fn volume_noise_is_the_noise_fractal_over_space() {
+        let n = volume_noise_default();
+        // q · 8 · 2^i on the lattice: every octave 0, the mean 0.5 (+ threshold).
+        for q in [Vec3A::ZERO, Vec3A::new(0.25, -0.5, 0.125)] {
+            assert_eq!(n.value3(q), 0.5);
+            assert!((Noise { threshold: 0.2, ..n }.value3(q) - 0.7).abs() < 1e-6);
+            assert_eq!(Noise { billow: true, ..n }.value3(q), 0.0);
+        }
+        // In range, varying, continuous and deterministic; amplitude 0 is flat.
+        let (mut lo, mut hi) = (1.0f32, 0.0f32);
+        for i in 0..3000 {
+            let q = Vec3A::new(i as f32 * 0.0131, (i % 17) as f32 * 0.029, (i % 23) as f32 * 0.041);
+            let v = n.value3(q);
+            assert!((0.0..=1.0).contains(&v));
+            assert_eq!(v, n.value3(q));
+            assert!((n.value3(q + Vec3A::splat(1e-4)) - v).abs() < 0.01);
+            assert_eq!(Noise { amplitude: 0.0, ..n }.value3(q), 0.5);
+            // Scale is the inverse of frequency: half the frequency at the point, or the
+            // point halved (powers of two: exact).
+            assert_eq!(Noise { frequency: 4.0, ..n }.value3(q), n.value3(q * 0.5));
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+        assert!(hi - lo > 0.3, "{lo}..{hi}");
     }
 }

@@ -1,4 +1,4 @@
-//! Maya's snow, rock, leather and granite 3D textures in compiled scenes, read through a surfaceShader (the
+//! Maya's snow, rock, leather, granite and volumeNoise 3D textures in compiled scenes, read through a surfaceShader (the
 //! texture's colour is the pixel's), under both name families. The shading point is the
 //! world origin, normal +y (see `support::maya::point`).
 
@@ -143,5 +143,23 @@ fn granite_cells_take_one_of_three_colours_in_the_filler() {
             }
         }
         assert_rgb(at([1.0, 0.5, 0.5], 0.5), [0.588, 0.294, 0.196], 1e-5);
+    }
+}
+
+/// volumeNoise at a point on the noise's lattice (the origin, or (0.25, 0.5, 0.25)
+/// through `origin`): every octave is 0 there, so Perlin noise (noiseType 0) shows its
+/// mean 0.5 + threshold and billow (the default type) its threshold; with scale 2 the
+/// point (0.25, 0.5, 0.25) is read at half of it, still on the lattice.
+#[test]
+fn volume_noise_on_its_lattice_shows_its_threshold() {
+    for name in ["maya_volumenoise", "adskMayaVolumeNoise"] {
+        let at = |extra: &str| shade(&scene(&format!(r#"shader "tex" "{name}" ("threshold" 0.2{extra})"#)));
+        assert_rgb(at(r#", "noiseType" 0"#), [0.7; 3], 1e-6);
+        assert_rgb(at(""), [0.2; 3], 1e-6);
+        assert_rgb(at(r#", "noiseType" 0, "origin" -0.25 -0.5 -0.25"#), [0.7; 3], 1e-6);
+        assert_rgb(at(r#", "noiseType" 0, "origin" -0.25 -0.5 -0.25, "scale" 2 2 2"#), [0.7; 3], 1e-6);
+        // Off the lattice the value moves, within [0, 1].
+        let v = at(r#", "noiseType" 0, "origin" -0.0173 -0.0311 -0.0057"#).x;
+        assert!((0.0..=1.0).contains(&v) && (v - 0.7).abs() > 1e-4, "{v}");
     }
 }
