@@ -325,6 +325,28 @@ impl Unified {
         f
     }
 
+    /// f(ωo, ωi) of the reflection lobes alone — the dielectric's and the metal's
+    /// highlights and the clear coat, without the diffuse lobe — for ωi on ωo's side
+    /// outside (zero elsewhere): what a light that lights only the highlight gives (Maya's
+    /// volume lights with `emitAmbient` and `emitSpecular`).
+    pub fn eval_glossy(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        if wo.z == 0.0 || wi.z == 0.0 || self.inside(wo) || (wo.z > 0.0) != (wi.z > 0.0) {
+            return Rgb::ZERO;
+        }
+        let (wo, wi) = Self::outward(wo, wi);
+        let (w, _) = self.lobes(wo);
+        let mut f = self.dielectric_eval(wo, wi) * w[SPECULAR];
+        if w[METAL] > 0.0 && !self.ggx.is_smooth() {
+            let (m, h) = Self::microfacet_reflection(&self.ggx, wo, wi);
+            f += self.metal.at(wo.dot(h)) * (m * w[METAL]);
+        }
+        if w[COAT] > 0.0 && !self.coat_ggx.is_smooth() {
+            let (m, h) = Self::microfacet_reflection(&self.coat_ggx, wo, wi);
+            f += Rgb::splat(m * fresnel(wo.dot(h), 1.5) * w[COAT]);
+        }
+        f
+    }
+
     /// The dielectric lobe outside (thin sheets: refraction straight through).
     fn dielectric_eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         if !self.params.thin || wi.z > 0.0 {
@@ -516,6 +538,27 @@ mod tests {
             let a = sum / (n * n) as f32;
             let want = 1.0 - fresnel(wo.z, 1.5);
             assert!((a - want).abs() < 2e-3, "θo {}: {a} vs {want}", wo.z.acos());
+        }
+    }
+
+    /// The reflection lobes alone: the whole BSDF less its diffuse lobe, the same for any
+    /// base colour of a dielectric, nothing towards the other side.
+    #[test]
+    fn glossy_lobes_alone_leave_out_the_diffuse_lobe() {
+        let params =
+            |base_color| UnifiedParams { base_color, roughness: 0.4, specular: 0.7, ..UnifiedParams::default() };
+        let coloured = Unified::new(&params(Rgb::new(0.8, 0.5, 0.2)));
+        let black = Unified::new(&params(Rgb::ZERO));
+        for wo in directions() {
+            for wi in directions() {
+                let wi = Vec3A::new(-wi.y, wi.x, wi.z);
+                let (g, whole) = (coloured.eval_glossy(wo, wi), black.eval(wo, wi));
+                assert!((g - whole).abs().max_element() <= 1e-6 * whole.max_element().max(1.0), "{g} vs {whole}");
+                // What is left is the diffuse lobe: positive, and coloured.
+                let rest = coloured.eval(wo, wi) - g;
+                assert!(g.max_element() > 0.0 && rest.min_element() > 0.0 && rest.x > rest.z, "{rest}");
+                assert_eq!(coloured.eval_glossy(wo, -wi), Rgb::ZERO);
+            }
         }
     }
 

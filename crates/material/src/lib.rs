@@ -63,7 +63,6 @@ pub fn compile_shading(scene: &scene::Scene, options: &shader::ShadingOptions) -
     // The stand-in's warning replaces the model's "not implemented" one for that shader.
     diags.retain(|d| !(d.message.contains("is not implemented by mira") && stand_ins.iter().any(|s| s.span == d.span)));
     diags.extend(stand_ins);
-    diags.extend(::maya::light::volume_light_warnings(&shading));
     diags.extend(::maya::fog::fog_warnings(&shading));
     (shading, diags)
 }
@@ -171,6 +170,10 @@ pub struct SurfaceMaterial {
     /// in the classic engine, where only Maya's materials read ambient lights as such).
     /// See `render::ambient`.
     pub ambient: Rgb,
+    /// A Maya material's own highlight, for the light the path engine gives by the
+    /// classic formula (Maya volume lights with `emitAmbient` and `emitSpecular`; see
+    /// [`maya::MayaHighlight`]); `None` for every other material.
+    pub maya_highlight: Option<maya::MayaHighlight>,
 }
 
 impl SurfaceMaterial {
@@ -194,6 +197,7 @@ impl SurfaceMaterial {
             tangent_angle: None,
             glow: Rgb::ZERO,
             ambient: Rgb::ZERO,
+            maya_highlight: None,
         }
     }
 

@@ -14,7 +14,9 @@
 //!   `roughness`; the dielectric specular weight is the luminance of `specularColor`
 //!   (0.5, Maya's default, is the unified BSDF's default 0.5 too). Maya's non-physical
 //!   highlight strengths (`specularRollOff`, `highlightSize`) and `reflectivity` have no
-//!   lobe of their own: the reflection is the specular lobe's;
+//!   lobe of their own: the reflection is the specular lobe's (the classic highlight
+//!   formula is kept beside it, [`MayaHighlight`], for the one light the path engine
+//!   shades by the classic formulas: volume lights with `emitAmbient` and `emitSpecular`);
 //! - anisotropic: the unified BSDF with an anisotropic GGX lobe of the classic
 //!   highlight's widths (`roughness`/√`spreadX` along the grooves, `roughness`/√`spreadY`
 //!   across), the grooves being dP/du turned by `angle` about the normal (Maya's rule:
@@ -62,6 +64,20 @@ use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
 use bsdf::Rgb;
 use bsdf::{Unified, UnifiedParams};
 use shader::{Graph, NodeId, Slot, Value};
+
+/// A Maya material's highlight as the classic shader computes it: `color` ⊙ light ⊙
+/// `model.value(n, v, l)` (Maya's units: no π, no BSDF). The path engine adds it for the
+/// lights it does not sample through the BSDF — volume lights with `emitAmbient` and
+/// `emitSpecular`, which light the classic materials' highlight as a light from their
+/// direction does — so that they match the classic engine; every other light's
+/// highlight is the BSDF's reflection lobe.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MayaHighlight {
+    /// The highlight model and its parameters (blinn, phong or phongE).
+    pub model: ::maya::specular::Highlight,
+    /// `specularColor` (its constant value; 0.5 grey when connected).
+    pub color: Rgb,
+}
 
 /// A parameter of a node, by name, whatever order its slots are in.
 fn slot<'a>(graph: &'a Graph, node: NodeId, name: &str) -> Option<&'a Slot> {
@@ -192,6 +208,28 @@ fn anisotropic(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
     surface.tangent_angle = Some(axis);
 }
 
+/// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
+/// with the classic shaders' defaults.
+fn classic_highlight(family: &str, r: &mut Reader) -> ::maya::specular::Highlight {
+    use ::maya::specular::Highlight;
+    match family {
+        "blinn" => Highlight::Blinn {
+            eccentricity: r.scalar("eccentricity", 0.3),
+            rolloff: r.scalar("specularRollOff", 0.7),
+            reflection_rolloff: false,
+        },
+        "phong" => Highlight::Phong { power: r.scalar("cosinePower", 20.0) },
+        _ => {
+            let w = r.color("whiteness", Rgb::splat(0.5));
+            Highlight::PhongE {
+                roughness: r.scalar("roughness", 0.5),
+                size: r.scalar("highlightSize", 0.5),
+                whiteness: glam::Vec3A::new(w.x, w.y, w.z),
+            }
+        }
+    }
+}
+
 /// The GGX α of a Maya highlight.
 fn highlight_alpha(decl: &str, r: &mut Reader) -> f32 {
     let alpha = if decl.contains("blinn") || decl.contains("Blinn") {
@@ -252,6 +290,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
                 let alpha = highlight_alpha(&material, &mut r);
                 let s = r.color("specularColor", Rgb::splat(0.5));
                 surface.model = unified(albedo, alpha, bsdf::luminance(s));
+                surface.maya_highlight = Some(MayaHighlight { model: classic_highlight(&family, &mut r), color: s });
             }
         }
         "rampshader" => ramp_shader(&mut r, &mut surface),

@@ -23,7 +23,8 @@
 //! surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
-//! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`projection`]
+//! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
+//! (snow, rock, volumeNoise), [`cell_textures`] (leather, granite), [`projection`]
 //! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
 //! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
@@ -33,6 +34,7 @@
 //!
 //! [`REGISTRY`] lists every implementation.
 
+pub mod cell_textures;
 pub mod engine;
 pub mod fog;
 pub mod glow;
@@ -46,6 +48,7 @@ pub mod output;
 pub mod physical_fog;
 pub mod projection;
 pub mod ramp_shader;
+pub mod solid_textures;
 pub mod specular;
 pub mod standin;
 pub mod texture;
@@ -135,6 +138,16 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &texture3d::ADSK_WOOD,
     &texture3d::BUMP3D,
     &texture3d::ADSK_BUMP3D,
+    &solid_textures::SNOW,
+    &solid_textures::ADSK_SNOW,
+    &solid_textures::ROCK,
+    &solid_textures::ADSK_ROCK,
+    &solid_textures::VOLUME_NOISE,
+    &solid_textures::ADSK_VOLUME_NOISE,
+    &cell_textures::LEATHER,
+    &cell_textures::ADSK_LEATHER,
+    &cell_textures::GRANITE,
+    &cell_textures::ADSK_GRANITE,
     &projection::PROJECTION,
     &projection::ADSK_PROJECTION,
     &projection::ENVSPHERE,

@@ -68,7 +68,31 @@ pub struct LightRole {
     /// How a volume light turns the direction the material shades with
     /// (`volumeLightDir`); `None`: the direction towards the sampled point on the light.
     pub turn: Option<Turn>,
+    /// A cylinder or cone volume light: its light comes from the nearest point of its
+    /// central axis, not from its centre, where the light loop's samples point (see
+    /// [`VolumeShape::source`]).
+    pub axis: Option<VolumeAxis>,
 }
+
+/// A cylinder or cone volume light's placement, from which the point of its central axis
+/// a lit point receives its light from follows ([`VolumeShape::source`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeAxis {
+    /// The light's centre, world space.
+    pub origin: Vec3A,
+    /// World → light-local map of offsets from `origin`.
+    pub to_local: glam::Mat3A,
+}
+
+impl VolumeAxis {
+    /// The point of the axis the light arriving at world point `p` comes from (world).
+    pub fn source(&self, p: Vec3A) -> Vec3A {
+        CYLINDER.world_source(self.origin, self.to_local, p)
+    }
+}
+
+/// A whole cylinder, standing for every shape that shines from its axis.
+const CYLINDER: VolumeShape = VolumeShape { shape: 2, arc: std::f32::consts::TAU, cone_end_radius: 1.0 };
 
 /// A volume light's direction for shading other than outwards from its centre (Maya's
 /// `volumeLightDir`; see [`VOLUME`]).
@@ -85,8 +109,13 @@ pub enum Turn {
 impl LightRole {
     /// The direction (unit, world) the material shades a light sample with and its
     /// cosine to the unit normal `normal`, from the sample's direction towards the light
-    /// `dir` (see [`Turn`]).
-    pub fn shading_direction(&self, normal: Vec3A, dir: Vec3A) -> (Vec3A, f32) {
+    /// `dir` at the shaded point `point` (world): towards the light's axis for a cylinder
+    /// or cone volume light ([`LightRole::axis`]), then turned (see [`Turn`]).
+    pub fn shading_direction(&self, point: Vec3A, normal: Vec3A, dir: Vec3A) -> (Vec3A, f32) {
+        let dir = match self.axis {
+            Some(axis) => (axis.source(point) - point).normalize_or(dir),
+            None => dir,
+        };
         let dir = match self.turn {
             None => dir,
             Some(Turn::Inward) => -dir,
@@ -98,15 +127,21 @@ impl LightRole {
     /// Whether the light loop must also return samples behind the surface (the material
     /// decides with the turned direction, or lights from all sides).
     pub fn needs_both_sides(&self) -> bool {
-        self.ambient_shade.is_some() || self.turn.is_some()
+        self.ambient_shade.is_some() || self.turn.is_some() || self.axis.is_some()
     }
 }
 
 /// The role of light `light` (an index into the scene's lights): from its Maya light
 /// shader's flags, or diffuse and specular for any other light shader.
 pub fn light_role(ctx: &mut Ctx, light: u32) -> LightRole {
-    let mut role =
-        LightRole { diffuse: true, specular: true, ambient_shade: None, ambient_specular: false, turn: None };
+    let mut role = LightRole {
+        diffuse: true,
+        specular: true,
+        ambient_shade: None,
+        ambient_specular: false,
+        turn: None,
+        axis: None,
+    };
     let Some(node) = ctx.shading().lights.get(light as usize).and_then(|l| l.shader) else { return role };
     let n = ctx.node(node);
     let param = |name: &str| -> Option<usize> {
@@ -145,6 +180,9 @@ fn volume_role(ctx: &mut Ctx, node: NodeId, light: u32, role: &mut LightRole) {
         }
         _ => None,
     };
+    if matches!(ctx.int(node, I_SHAPE), 2 | 3) {
+        role.axis = ctx.light(light).map(|l| VolumeAxis { origin: l.origin, to_local: l.to_local });
+    }
     if ctx.bool(node, I_EMIT_AMBIENT) {
         // Half from the light's direction with emitDiffuse, else from all sides alike.
         role.ambient_shade = Some(if role.diffuse { 0.5 } else { 0.0 });
@@ -407,6 +445,7 @@ const VOLUME_PARAMS: &[&str] = &[
     "emitAmbient",
 ];
 
+const I_SHAPE: usize = 7;
 const I_VOLUME_DIR: usize = 12;
 const I_EMIT_AMBIENT: usize = 13;
 
@@ -470,6 +509,39 @@ impl VolumeShape {
         }
         Some(point)
     }
+
+    /// Where the light a point receives comes from, in the light's own space, for the
+    /// point `local` (light-local): the centre for the box and the sphere, the nearest
+    /// point (0, y, 0) of the central axis for the cylinder and the cone. Maya's node
+    /// reference: with `volumeLightDir` outward the light "moves away from the center of
+    /// a box or sphere and away from the central axis of a cylinder or cone".
+    pub fn source(&self, local: Vec3A) -> Vec3A {
+        match self.shape {
+            2 | 3 => Vec3A::new(0.0, local.y, 0.0),
+            _ => Vec3A::ZERO,
+        }
+    }
+
+    /// [`VolumeShape::source`] in world space, for the world point `p` of a light
+    /// centred at `origin` whose world → local map of offsets is `to_local`: `origin`
+    /// itself for the box and the sphere. A map that cannot be inverted (a hostile
+    /// transform) gives `origin`.
+    pub fn world_source(&self, origin: Vec3A, to_local: glam::Mat3A, p: Vec3A) -> Vec3A {
+        let local = self.source(to_local * (p - origin));
+        if local == Vec3A::ZERO {
+            return origin;
+        }
+        let det = to_local.determinant();
+        if det == 0.0 || !det.is_finite() {
+            return origin;
+        }
+        let q = origin + to_local.inverse() * local;
+        if q.is_finite() {
+            q
+        } else {
+            origin
+        }
+    }
 }
 
 maya_shader!(
@@ -479,10 +551,13 @@ maya_shader!(
     /// 1 − d (position 0 on the boundary, 1 at the centre or axis), for cylinders and
     /// cones also times the `penumbra` graph ({`penumbra_Position`,
     /// `penumbra_FloatValue`, `penumbra_Interp`}; empty: 1) at the same place; nothing
-    /// outside; no decay (the ramp is the falloff), raytraced shadows (towards the light's
-    /// centre). `volumeLightDir` (Maya's node reference) sets the direction the Maya
-    /// materials shade with ([`LightRole::turn`]): 0 outward (the default), from the
-    /// light's centre; 1 inward, the reverse (Maya: "a simple change in direction used for
+    /// outside; no decay (the ramp is the falloff). The light shines from the centre of a
+    /// box or sphere and from the nearest point of the central axis of a cylinder or cone
+    /// ([`VolumeShape::source`]; the shader moves the light state's `org`, `dir` and
+    /// `dist` there), and its raytraced shadows go to that point. `volumeLightDir` (Maya's
+    /// node reference) sets the direction the Maya materials shade with
+    /// ([`LightRole::turn`]): 0 outward (the default), from that point; 1 inward, the
+    /// reverse (Maya: "a simple change in direction used for
     /// the light computation"); 2 down the axis, as a directional light along the light's
     /// central (y) axis (mira's reading: travelling towards −y). `emitAmbient` makes the
     /// light light the materials as Maya's ambient light does: half from its direction,
@@ -498,51 +573,32 @@ maya_shader!(
 
 fn volume(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(light) = ctx.state.light.and_then(|l| ctx.light(l)) else { return false };
-    let local = light.to_local * (ctx.state.point - light.origin);
-    let shape =
-        VolumeShape { shape: ctx.int(n, 7), arc: ctx.scalar(n, 9).to_radians(), cone_end_radius: ctx.scalar(n, 10) };
+    let (origin, to_local) = (light.origin, light.to_local);
+    let local = to_local * (ctx.state.point - origin);
+    let shape = VolumeShape {
+        shape: ctx.int(n, I_SHAPE),
+        arc: ctx.scalar(n, 9).to_radians(),
+        cone_end_radius: ctx.scalar(n, 10),
+    };
     let Some(at) = shape.locate(local) else { return false };
     let range = crate::utility::Ramp::read(&ctx.array(n, 8), "colorRange", "Color", Vec3A::ONE).at(1.0 - at.distance);
     let penumbra = match at.radial {
         Some(r) => crate::utility::Ramp::read(&ctx.array(n, 11), "penumbra", "FloatValue", Vec3A::ONE).at(1.0 - r).x,
         None => 1.0,
     };
+    // A cylinder or cone shines from the nearest point of its axis: the light state (and
+    // the shadow ray, and the light ray through media after the shader) starts there.
+    let source = shape.world_source(origin, to_local, ctx.state.point);
+    if source != origin {
+        let d = ctx.state.point - source;
+        let dist = d.length();
+        if dist > 0.0 && dist.is_finite() {
+            (ctx.state.org, ctx.state.dir, ctx.state.dist) = (source, d / dist, dist);
+        }
+    }
     let c = emitted(ctx, n) * (range * penumbra).extend(1.0);
     let c = shadows(ctx, n, c, Spread::Radius(0.0));
     finish(out, c)
-}
-
-/// A warning, at the shader's position, for each volume light of `shading` with
-/// `emitAmbient` and `emitSpecular`: the path engine lights with its ambient share (as
-/// Maya's ambient light) but leaves out the highlight the classic materials add (see
-/// [`VOLUME`]).
-pub fn volume_light_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
-    let mut warnings = Vec::new();
-    for node in &shading.graph.nodes {
-        if !matches!(node.decl.name.as_str(), "maya_volumelight" | "adskMayaVolumeLight") {
-            continue;
-        }
-        let index = |name: &str| match node.imp {
-            Some(imp) => imp.params.iter().position(|p| *p == name),
-            None => node.decl.param(name),
-        };
-        let constant = |name: &str| match index(name).and_then(|i| node.slots.get(i)) {
-            Some(shader::Slot::Value(v)) => Some(v.clone()),
-            _ => None,
-        };
-        // emitSpecular is on unless set off.
-        let specular = constant("emitSpecular").is_none_or(|v| v.int() != 0);
-        if specular && constant("emitAmbient").is_some_and(|v| v.int() != 0) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!(
-                    "'{}': with emitAmbient, the path engine leaves out the light's highlight (emitSpecular)",
-                    node.decl.name
-                ),
-            ));
-        }
-    }
-    warnings
 }
 
 #[cfg(test)]
@@ -606,5 +662,45 @@ mod tests {
         assert!(d(VolumeShape { arc: 0.1, ..full(0) }, Vec3A::new(0.3, 0.0, 0.4)).is_some());
         // NaN (a hostile transform) is outside.
         assert_eq!(d(full(1), Vec3A::splat(f32::NAN)), None);
+    }
+
+    #[test]
+    fn cylinders_and_cones_shine_from_their_axis_boxes_and_spheres_from_their_centre() {
+        let full = |shape| VolumeShape { shape, arc: std::f32::consts::TAU, cone_end_radius: 0.0 };
+        // A light centred at (1, 1, 0) whose axis (local y) lies along world x, halved:
+        // local = (½ y, ½ x, ½ z) of the offset from the centre.
+        let origin = Vec3A::new(1.0, 1.0, 0.0);
+        let to_local = glam::Mat3A::from_cols(Vec3A::new(0.0, 0.5, 0.0), Vec3A::new(0.5, 0.0, 0.0), Vec3A::Z * 0.5);
+        let p = Vec3A::new(3.0, 0.0, 0.5);
+        // The nearest point of the axis (the world line y = 1, z = 0) is (3, 1, 0).
+        for shape in [2, 3] {
+            let q = full(shape).world_source(origin, to_local, p);
+            assert!((q - Vec3A::new(3.0, 1.0, 0.0)).length() < 1e-6, "shape {shape}: {q}");
+        }
+        for shape in [0, 1] {
+            assert_eq!(full(shape).world_source(origin, to_local, p), origin);
+        }
+        // In the light's own space: (0, y, 0).
+        assert_eq!(full(2).source(Vec3A::new(0.3, -0.7, 0.2)), Vec3A::new(0.0, -0.7, 0.0));
+        // A map that cannot be inverted gives the centre.
+        assert_eq!(full(2).world_source(origin, glam::Mat3A::ZERO, p), origin);
+        // The role's direction: from the point towards the axis point, then turned.
+        let axis = VolumeAxis { origin, to_local };
+        let mut role = LightRole {
+            diffuse: true,
+            specular: true,
+            ambient_shade: None,
+            ambient_specular: false,
+            turn: None,
+            axis: Some(axis),
+        };
+        let towards_centre = (origin - p).normalize();
+        let (dir, cos) = role.shading_direction(p, Vec3A::Y, towards_centre);
+        assert!((dir - Vec3A::new(0.0, 1.0, -0.5).normalize()).length() < 1e-6, "{dir}");
+        assert!((cos - 1.0 / 1.25f32.sqrt()).abs() < 1e-6);
+        assert!(role.needs_both_sides());
+        role.turn = Some(Turn::Inward);
+        let (inward, _) = role.shading_direction(p, Vec3A::Y, towards_centre);
+        assert!((inward + dir).length() < 1e-6);
     }
 }

@@ -58,6 +58,7 @@ use shader::{Color, Ctx, NodeId, RayType, Value};
 use crate::light::light_role;
 use crate::maya_shader;
 use crate::specular;
+use crate::specular::Highlight;
 use crate::values::{rgb, rgba, write_struct};
 
 const COLOR: usize = 0;
@@ -108,32 +109,6 @@ macro_rules! reflective_params {
             $($extra),*
         ]
     };
-}
-
-/// Which highlight a material adds.
-#[derive(Clone, Copy, Debug)]
-enum Highlight {
-    None,
-    Blinn { eccentricity: f32, rolloff: f32, reflection_rolloff: bool },
-    Phong { power: f32 },
-    PhongE { roughness: f32, size: f32, whiteness: Vec3A },
-    Anisotropic { grooves: Vec3A, alpha_x: f32, alpha_y: f32, ior: f32 },
-}
-
-impl Highlight {
-    fn value(self, n: Vec3A, v: Vec3A, l: Vec3A) -> Vec3A {
-        match self {
-            Highlight::None => Vec3A::ZERO,
-            Highlight::Blinn { eccentricity, rolloff, .. } => {
-                Vec3A::splat(specular::blinn(n, v, l, eccentricity, rolloff))
-            }
-            Highlight::Phong { power } => Vec3A::splat(specular::phong(n, v, l, power)),
-            Highlight::PhongE { roughness, size, whiteness } => whiteness * specular::phong_e(n, v, l, roughness, size),
-            Highlight::Anisotropic { grooves, alpha_x, alpha_y, ior } => {
-                Vec3A::splat(specular::anisotropic(n, v, l, grooves, alpha_x, alpha_y, ior))
-            }
-        }
-    }
 }
 
 maya_shader!(
@@ -271,7 +246,7 @@ fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, translucent:
         while let Some(s) = ctx.sample_light(&mut lp) {
             let c = rgb(s.color);
             // The direction the light is shaded with (a volume light may turn it).
-            let (dir, dot_nl) = role.shading_direction(n, s.dir);
+            let (dir, dot_nl) = role.shading_direction(ctx.state.point, n, s.dir);
             if let Some(shade) = role.ambient_shade {
                 sum.ambient += c * ((1.0 - shade) + shade * dot_nl.max(0.0));
                 if role.ambient_specular && dot_nl > 0.0 {

@@ -24,7 +24,7 @@ use shader::{Ctx, NodeId, Value};
 use crate::maya_shader;
 
 /// A 32-bit hash of a lattice point.
-fn lattice(i: i32, j: i32, k: i32) -> u32 {
+pub fn lattice(i: i32, j: i32, k: i32) -> u32 {
     let mut h = (i as u32).wrapping_mul(0x8da6_b343)
         ^ (j as u32).wrapping_mul(0xd816_3841)
         ^ (k as u32).wrapping_mul(0xcb1a_b31f);
@@ -104,9 +104,21 @@ pub struct Noise {
 impl Noise {
     /// The texture's value at `uv`, in [0, 1].
     pub fn value(&self, uv: Vec2) -> f32 {
+        self.value_with(|f| Vec3A::new(uv.x * f, uv.y * f, self.time))
+    }
+
+    /// The same fractal over 3D space (Maya's volumeNoise): the value at the point `q`,
+    /// in [0, 1], each octave's noise read at q · f shifted by `time` along the diagonal
+    /// (1, 1, 1) (mira's reading: Maya says only that `time` animates the texture).
+    pub fn value3(&self, q: Vec3A) -> f32 {
+        self.value_with(|f| q * f + Vec3A::splat(self.time))
+    }
+
+    /// The value with octave noise read at `at(f)`, f the octave's frequency.
+    fn value_with(&self, at: impl Fn(f32) -> Vec3A) -> f32 {
         let (mut sum, mut weights, mut w, mut f) = (0.0, 0.0, 1.0, self.frequency);
         for _ in 0..self.depth.clamp(1, 16) {
-            let n = gradient_noise(Vec3A::new(uv.x * f, uv.y * f, self.time));
+            let n = gradient_noise(at(f));
             sum += w * if self.billow { n.abs() } else { n };
             weights += w;
             w *= self.ratio;

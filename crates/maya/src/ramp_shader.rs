@@ -204,7 +204,7 @@ fn ramp_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         while let Some(s) = ctx.sample_light(&mut lp) {
             let c = rgb(s.color);
             // The direction the light is shaded with (a volume light may turn it).
-            let (dir, dot_nl) = role.shading_direction(normal, s.dir);
+            let (dir, dot_nl) = role.shading_direction(ctx.state.point, normal, s.dir);
             let specular_too = match role.ambient_shade {
                 Some(shade) => {
                     amb += c * ((1.0 - shade) + shade * dot_nl.max(0.0));

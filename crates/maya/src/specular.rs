@@ -93,6 +93,64 @@ pub fn groove_direction(n: Vec3A, dpdu: Vec3A, angle: f32) -> Vec3A {
     u * angle.cos() + w * angle.sin()
 }
 
+/// Which highlight a Maya material adds, with its parameters (see `crate::material`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Highlight {
+    /// lambert: none.
+    None,
+    /// blinn: [`blinn`] of `eccentricity` and `specularRollOff`; `reflectionRolloff`
+    /// weights its reflections by Schlick's Fresnel of the roll-off.
+    Blinn {
+        /// `eccentricity`.
+        eccentricity: f32,
+        /// `specularRollOff`.
+        rolloff: f32,
+        /// `reflectionRolloff`.
+        reflection_rolloff: bool,
+    },
+    /// phong: [`phong`] of `cosinePower`.
+    Phong {
+        /// `cosinePower`.
+        power: f32,
+    },
+    /// phongE: [`phong_e`] of `roughness` and `highlightSize`, tinted by `whiteness`.
+    PhongE {
+        /// `roughness`.
+        roughness: f32,
+        /// `highlightSize`.
+        size: f32,
+        /// `whiteness` (linear RGB).
+        whiteness: Vec3A,
+    },
+    /// anisotropic: [`anisotropic`] with grooves along the unit world direction `grooves`.
+    Anisotropic {
+        /// The grooves' direction (unit, world, in the surface).
+        grooves: Vec3A,
+        /// The highlight's width along the grooves.
+        alpha_x: f32,
+        /// The highlight's width across them.
+        alpha_y: f32,
+        /// `fresnelRefractiveIndex`.
+        ior: f32,
+    },
+}
+
+impl Highlight {
+    /// The highlight (per unit of light and of `specularColor`) for the unit normal `n`,
+    /// the unit direction towards the viewer `v` and towards the light `l` (world).
+    pub fn value(self, n: Vec3A, v: Vec3A, l: Vec3A) -> Vec3A {
+        match self {
+            Highlight::None => Vec3A::ZERO,
+            Highlight::Blinn { eccentricity, rolloff, .. } => Vec3A::splat(blinn(n, v, l, eccentricity, rolloff)),
+            Highlight::Phong { power } => Vec3A::splat(phong(n, v, l, power)),
+            Highlight::PhongE { roughness, size, whiteness } => whiteness * phong_e(n, v, l, roughness, size),
+            Highlight::Anisotropic { grooves, alpha_x, alpha_y, ior } => {
+                Vec3A::splat(anisotropic(n, v, l, grooves, alpha_x, alpha_y, ior))
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

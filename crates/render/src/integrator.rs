@@ -2,6 +2,7 @@
 //! (power heuristic), Russian roulette after a few bounces; participating media inside
 //! surfaces in [`media`], the camera's volume (Maya's fogs) in [`fog`].
 
+mod ambient_highlight;
 mod fog;
 mod media;
 
@@ -483,14 +484,15 @@ pub fn trace_path(
         let u_light = sampler.next_2d();
         // Maya's ambient lights: the material's colour × what they give here, added as
         // it is (no BSDF; a shadow ray for those with raytraced shadows, over the sphere
-        // of their `lightRadius` by `u_light`; see `material::emission::ambient`).
+        // of their `lightRadius` by `u_light`; see `material::emission::ambient`), and
+        // the highlight of volume lights among them with `emitSpecular`.
         let ambient = world.materials[s.material as usize].ambient;
         if ambient != Rgb::ZERO && !world.ambient.is_empty() {
-            let mut sum = Rgb::ZERO;
+            let (mut sum, mut highlight) = (Rgb::ZERO, Rgb::ZERO);
             for a in world.ambient_lighting(stop.instance) {
                 let through = match a.shadow {
                     Some(shadow) => {
-                        let (dir, dist) = towards_sphere(s.p, a.position, shadow.radius, u_light);
+                        let (dir, dist) = towards_sphere(s.p, a.source(s.p), shadow.radius, u_light);
                         let origin = offset_origin(s.p, ng, dir);
                         counts.shadow_rays += 1;
                         let shadow = Ray {
@@ -506,8 +508,11 @@ pub fn trace_path(
                     None => Rgb::ONE,
                 };
                 sum += a.shadowed_at(s.p, ns, through);
+                let at = ambient_highlight::Viewpoint { p: s.p, ns, ng, frame: &frame, wo };
+                let classic = world.materials[s.material as usize].maya_highlight.as_ref();
+                highlight += ambient_highlight::radiance(a, &at, through, classic, &bsdf);
             }
-            radiance += throughput * material.diffuse * ambient * sum;
+            radiance += throughput * (material.diffuse * ambient * sum + highlight);
         }
         let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {

@@ -354,9 +354,10 @@ impl LightSource {
                 (dist > 0.0).then_some(LightSample { wi, dist, radiance, pdf: 1.0, delta: true })
             }
             Output::Volume(volume) => {
-                let d = self.position - p;
+                // From the centre, or a cylinder's or cone's axis.
+                let d = volume.source(self.position, p) - p;
                 let dist = d.length();
-                let radiance = volume.at(-d);
+                let radiance = volume.at(p - self.position);
                 // `volumeLightDir`: shaded from the turned direction (the shadow ray goes
                 // to the origin: `shadow_ray_at`).
                 let wi = match volume.turn {
@@ -517,7 +518,8 @@ impl LightSource {
     /// `lightAngle` around the sample's direction. The classic Maya light's shadow rays:
     /// the unshadowed light is unchanged, the share of such rays let through shadows it.
     /// A Maya volume light whose `volumeLightDir` turns the sample's direction: towards
-    /// the light's origin.
+    /// the point it shines from (its origin, or the nearest point of a cylinder's or
+    /// cone's axis).
     pub fn shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
         let centre = || {
             if self.motion.is_empty() {
@@ -528,7 +530,14 @@ impl LightSource {
         };
         if let Output::Volume(volume) = &self.output {
             if volume.turn.is_some() {
-                let d = centre() - p;
+                // The point the light shines from: found where the light is at `time`.
+                let source = if self.motion.is_empty() {
+                    volume.source(self.position, p)
+                } else {
+                    let moved = crate::motion::lerp_keys(&self.motion, time);
+                    moved.transform_point3a(volume.source(self.position, moved.inverse().transform_point3a(p)))
+                };
+                let d = source - p;
                 let dist = d.length();
                 return if dist > 0.0 && dist.is_finite() { (d / dist, dist) } else { (ls.wi, ls.dist) };
             }

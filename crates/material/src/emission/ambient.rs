@@ -13,7 +13,10 @@
 //! s · t), t = f + (1 − f) ⊙ `shadowColor` and f the fraction of shadow rays (towards
 //! points over the sphere of `lightRadius` around the light) let through; the material's
 //! factor ((1 − s) + s · cos θ) then applies to that. The path engine traces one such
-//! shadow ray per hit ([`AmbientLight::shadow`]).
+//! shadow ray per hit ([`AmbientLight::shadow`]). A Maya volume light with `emitAmbient`
+//! lights the materials the same way, and with `emitSpecular` it lights their highlight
+//! too, as a light from its direction ([`AmbientLight::highlight_at`]; the path engine
+//! adds it with the material's classic highlight formula, `crate::maya::MayaHighlight`).
 
 use crate::{color_param, first_call, scalar_param};
 use bsdf::Rgb;
@@ -38,6 +41,9 @@ pub struct AmbientLight {
     /// from the direction its `volumeLightDir` turns to, and its shadows darken all of it
     /// (the classic volume light shadows its whole colour before the material splits it).
     pub volume: Option<super::maya::VolumeEmission>,
+    /// A volume light with `emitSpecular` too: it also lights the material's highlight,
+    /// as a light from its (turned) direction does ([`AmbientLight::highlight_at`]).
+    pub highlight: bool,
 }
 
 /// The raytraced shadows of a Maya ambient light (see the module doc).
@@ -53,8 +59,15 @@ impl AmbientLight {
     /// The ambient light a surface at `p` with unit shading normal `n` (facing the
     /// viewer) receives: C·I · ((1 − s) + s · max(n · l, 0)), l towards the light.
     pub fn at(&self, p: Vec3A, n: Vec3A) -> Rgb {
-        let towards = (self.position - p).normalize_or_zero();
-        let (color, towards) = match &self.volume {
+        let (color, towards) = self.colour_and_direction(p);
+        color * ((1.0 - self.shade) + self.shade * towards.dot(n).max(0.0))
+    }
+
+    /// The light's colour at `p` (a volume light's at that point, without the π) and the
+    /// unit direction it arrives from (a volume light's as its `volumeLightDir` turns it).
+    fn colour_and_direction(&self, p: Vec3A) -> (Rgb, Vec3A) {
+        let towards = (self.source(p) - p).normalize_or_zero();
+        match &self.volume {
             Some(v) => (
                 v.at(p - self.position) / std::f32::consts::PI,
                 match v.turn {
@@ -64,8 +77,36 @@ impl AmbientLight {
                 },
             ),
             None => (self.color, towards),
+        }
+    }
+
+    /// The light of a volume light with `emitSpecular` ([`AmbientLight::highlight`]) on
+    /// the highlight at `p`, with the fraction `through` of its shadow ray(s) let through:
+    /// the unit direction it arrives from and its irradiance there, π · colour ⊙ (f + (1 −
+    /// f) ⊙ `shadowColor`) — the units of a path-engine light, whose reflected radiance is
+    /// f_glossy · irradiance · cos θ, as the classic materials add the highlight of the
+    /// volume light's shadowed colour; `None` for any other light.
+    pub fn highlight_at(&self, p: Vec3A, through: Rgb) -> Option<(Vec3A, Rgb)> {
+        if !self.highlight || self.volume.is_none() {
+            return None;
+        }
+        let (color, towards) = self.colour_and_direction(p);
+        let filter = match self.shadow {
+            Some(shadow) => through + (Rgb::ONE - through) * shadow.color,
+            None => Rgb::ONE,
         };
-        color * ((1.0 - self.shade) + self.shade * towards.dot(n).max(0.0))
+        let irradiance = color * filter * std::f32::consts::PI;
+        (towards != Vec3A::ZERO && irradiance.max_element() > 0.0).then_some((towards, irradiance))
+    }
+
+    /// Where the light arriving at `p` (world) comes from, and where its shadow rays go:
+    /// the light's position, or for a cylinder or cone volume light the nearest point of
+    /// its axis ([`VolumeEmission::source`](super::maya::VolumeEmission::source)).
+    pub fn source(&self, p: Vec3A) -> Vec3A {
+        match &self.volume {
+            Some(v) => v.source(self.position, p),
+            None => self.position,
+        }
     }
 
     /// [`AmbientLight::at`] with the fraction `through` of the shadow ray(s) let through:
@@ -88,8 +129,8 @@ impl AmbientLight {
 
 /// The ambient light of scene light `light`: a Maya ambient light, or a Maya volume light
 /// with `emitAmbient` (`ambientShade` ½ with `emitDiffuse` on, else 0, as the classic
-/// materials read it; its highlight with `emitSpecular` is left out, named in
-/// `maya::light::volume_light_warnings`); `None` for any other light.
+/// materials read it; with `emitSpecular` it lights the highlight too,
+/// [`AmbientLight::highlight_at`]); `None` for any other light.
 pub fn maya_ambient(light: &scene::Light, lib: &scene::Library) -> Option<AmbientLight> {
     let list = light.shader.as_ref()?;
     let (decl, params) = first_call(&list.0, lib)?;
@@ -110,6 +151,7 @@ pub fn maya_ambient(light: &scene::Light, lib: &scene::Library) -> Option<Ambien
             position: light.position.as_vec3a(),
             shadow,
             volume: Some(volume),
+            highlight: scalar("emitSpecular", 1.0) != 0.0,
         });
     }
     if name != "maya_ambientlight" && name != "adskMayaAmbientLight" {
@@ -123,7 +165,7 @@ pub fn maya_ambient(light: &scene::Light, lib: &scene::Library) -> Option<Ambien
     let shadows = scalar("useRayTraceShadows", 0.0) != 0.0 && shade > 0.0;
     let shadow =
         shadows.then(|| AmbientShadow { color: shadow_color(params), radius: scalar("lightRadius", 0.0).max(0.0) });
-    Some(AmbientLight { color, shade, position: light.position.as_vec3a(), shadow, volume: None })
+    Some(AmbientLight { color, shade, position: light.position.as_vec3a(), shadow, volume: None, highlight: false })
 }
 
 /// A Maya light's `shadowColor`, clamped to [0, 1] (black when absent).
@@ -146,6 +188,7 @@ mod tests {
             position: Vec3A::new(0.0, 2.0, 0.0),
             shadow: None,
             volume: None,
+            highlight: false,
         };
         let p = Vec3A::ZERO;
         // Facing the light: all of it; facing away: the uniform part (1 − s).

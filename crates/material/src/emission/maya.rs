@@ -16,13 +16,14 @@
 //!   0) to a colour c at the centre (position 1) — the classic light's c·(1 − r/R) exactly
 //!   —, or constant inside R when `colorRange` is one colour or empty (white);
 //! - every other volume light (box, cylinder, cone, arcs, uneven scales, other ramps of
-//!   up to [`MAX_RAMP_KEYS`] keys): a point light at the light's origin giving a point the
-//!   classic light's colour there ([`VolumeEmission`]: the shape, the `colorRange` ramp
-//!   and the cylinder's and cone's `penumbra` graph, read as the classic light reads them);
-//!   `volumeLightDir` inward or down the axis turns the direction the light arrives
-//!   from for shading, its shadow rays still going to the light's origin (as the classic
-//!   Maya materials shade it); with `emitAmbient` it is not sampled but lights as Maya's
-//!   ambient light does ([`super::ambient`]);
+//!   up to [`MAX_RAMP_KEYS`] keys): a point light at the light's origin — for cylinders
+//!   and cones at the nearest point of the central axis, as Maya's outward light — giving
+//!   a point the classic light's colour there ([`VolumeEmission`]: the shape, the
+//!   `colorRange` ramp and the cylinder's and cone's `penumbra` graph, read as the classic
+//!   light reads them); `volumeLightDir` inward or down the axis turns the direction the
+//!   light arrives from for shading, its shadow rays still going to that point (as the
+//!   classic Maya materials shade it); with `emitAmbient` it is not sampled but lights as
+//!   Maya's ambient light does ([`super::ambient`]);
 //! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
 //!   lights), with a message; ambient lights are not lights the path engine samples:
 //!   see [`super::ambient`] (a message here when asked for as a light).
@@ -141,7 +142,8 @@ impl VolumeRamp {
     }
 }
 
-/// A Maya volume light in the path engine: a point light at the light's origin giving a
+/// A Maya volume light in the path engine: a point light at the light's origin (a
+/// cylinder's or cone's: the nearest point of its axis, [`VolumeEmission::source`]) giving a
 /// lit point `color` × `range` at 1 − d, for cylinders and cones also × `penumbra` at
 /// 1 − d, where d is the point's normalised distance in the light's shape
 /// ([`::maya::light::VolumeShape::locate`]), nothing outside; no decay. The classic
@@ -166,6 +168,13 @@ pub struct VolumeEmission {
 }
 
 impl VolumeEmission {
+    /// Where the light arriving at world point `p` comes from, for a light centred at
+    /// `origin` (world): `origin` for the box and the sphere, the nearest point of the
+    /// central axis for the cylinder and the cone ([`::maya::light::VolumeShape::source`]).
+    pub fn source(&self, origin: glam::Vec3A, p: glam::Vec3A) -> glam::Vec3A {
+        self.shape.world_source(origin, self.to_local, p)
+    }
+
     /// The colour arriving at the point `offset` (world space) from the light's origin.
     pub fn at(&self, offset: glam::Vec3A) -> Rgb {
         let Some(at) = self.shape.locate(self.to_local * offset) else { return Rgb::ZERO };

@@ -14,6 +14,7 @@ mod maya_exports;
 mod maya_final_gather;
 mod maya_materials;
 mod maya_path;
+mod maya_solid_textures;
 mod maya_textures3d;
 mod mdl_base_functions;
 mod mdl_compile;

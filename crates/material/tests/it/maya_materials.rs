@@ -240,7 +240,9 @@ fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_sh
     // Volume lights of radius 2 (the instance scales the unit shape by 2) whose axis (the
     // light's y) lies along world x, 1 above the shading point (the origin), centred at
     // x = offset: the point is at distance 1 from the axis, halfway to a cylinder's
-    // boundary, lit at the angle of the light's centre (cos θ = 1/√(1 + offset²)); the linear
+    // boundary, lit from the axis point straight above it (Maya: the light moves away from
+    // the central axis), cos θ = 1 whatever the offset (from the light's centre it would
+    // be 1/√(1 + offset²): 0.707 for the cone at offset 1); the linear
     // colour range (black at the boundary, white on the axis) gives half of intensity 2,
     // and a penumbra graph from 0.25 at the edge to 1 on the axis multiplies by 0.625.
     // The sharp cone narrows from radius 2 at local y = −1 to 0 at y = 1: at the point's
@@ -271,8 +273,7 @@ fn cylinder_and_cone_volume_lights_fall_off_from_their_axis_and_stop_at_their_sh
             material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
             -0.5 * offset,
         ));
-        let cos = 1.0 / (1.0 + offset * offset).sqrt();
-        assert_rgb(shade(&c), [0.5 * 2.0 * want * cos; 3], 1e-4);
+        assert_rgb(shade(&c), [0.5 * 2.0 * want; 3], 1e-4);
     }
 }
 
@@ -321,25 +322,6 @@ fn volume_light_directions_and_emit_ambient_against_their_formulas() {
         ));
         assert_rgb(shade(&c), [want; 3], 1e-5);
     }
-}
-
-#[test]
-fn a_volume_lights_ambient_highlight_is_named_in_a_warning_and_its_direction_is_not() {
-    let text = format!(
-        "{LIBS}light \"vol\" \"maya_volumelight\" (\"volumeLightDir\" 2, \"emitAmbient\" on) origin 0 0 0 end light\n\
-         instance \"vol_inst\" \"vol\" end instance\n\
-         shader \"lam\" \"maya_lambert\" ()\n\
-         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\") end material"
-    );
-    let c = compile("", &text, &["m"], "");
-    let warnings = maya::light::volume_light_warnings(&c.shading);
-    // The path engine turns the direction (`volumeLightDir`) as the classic engine does.
-    assert_eq!(warnings.len(), 1, "{warnings:?}");
-    assert!(warnings[0].message.contains("emitAmbient"), "{}", warnings[0].message);
-    // Without emitSpecular the path engine represents it all.
-    let quiet = text.replace("\"emitAmbient\" on", "\"emitAmbient\" on, \"emitSpecular\" off");
-    let c = compile("", &quiet, &["m"], "");
-    assert!(maya::light::volume_light_warnings(&c.shading).is_empty());
 }
 
 /// A fog in a material's volume is named for the path engine, which leaves it out; a

@@ -13,12 +13,11 @@ const SIDE: usize = 16;
 /// (`ambientShade` 0.45) and a directional light straight down; the left half's light list
 /// is `left`, the right half's `right` (instance statements' `light …` parts).
 fn linked_halves(left: &str, right: &str) -> String {
+    let view = support::maya_view::top_down(SIDE);
     format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 light "amb" "maya_ambientlight" ("color" 1 0.9 0.8, "intensity" 0.5) origin 0 0 0 end light
 instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 -2 0 1 end instance
 light "sun" "maya_directionallight" ("intensity" 0.3) direction 0 -1 0 end light
@@ -98,12 +97,11 @@ instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  1 -2 0 1 end inst
 /// The column means (red) of the ground half under the board by `engine`, lit by `light`
 /// (statements defining a light instance "amb_inst").
 fn under_board(light: &str, engine: EngineKind) -> Vec<f32> {
+    let view = support::maya_view::top_down(SIDE);
     let text = format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 {light}
 shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)
 material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material

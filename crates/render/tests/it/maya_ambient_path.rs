@@ -13,13 +13,12 @@ use render::{EngineKind, Settings};
 /// 0.5, `ambientShade` `shade`) 2 above the plane's centre, through `shader` (the Maya
 /// 8.5–2015 or the 2016–2018 names).
 fn ambient_lit_plane(shade: f32, light: &str, lambert: &str, engine: &str) -> String {
+    let view = support::maya_view::top_down(16);
     format!(
         r#"
 $include "mayabase.mi"
 $include "AdskShaderSDK.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution 16 16 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 light "amb" "{light}" ("color" 1 0.9 0.8, "intensity" 0.5, "ambientShade" {shade}) origin 0 0 0 end light
 instance "amb_inst" "amb" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 -2 0 1 end instance
 shader "lam" "{lambert}" ("color" 0.6 0.5 0.4, "diffuse" 0.8)

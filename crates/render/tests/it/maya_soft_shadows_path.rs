@@ -16,12 +16,11 @@ const SIDE: usize = 24;
 /// lit by `light` (a light statement named "l", placed by `placement`, an instance
 /// transform's 16 numbers).
 fn shadowed_ground(light: &str, placement: &str) -> String {
+    let view = support::maya_view::top_down(SIDE);
     format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 {light}
 instance "l_inst" "l" transform {placement} end instance
 shader "lam" "maya_lambert" ("color" 0.7 0.7 0.7, "diffuse" 0.8)

@@ -18,12 +18,11 @@ fn ground(shape: i32, dir: i32, placement: &str) -> String {
 
 /// [`ground`] with more volume light parameters `more` (", name value" pairs).
 fn ground_with(shape: i32, dir: i32, placement: &str, more: &str) -> String {
+    let view = support::maya_view::top_down(SIDE);
     format!(
         r#"
 $include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution {SIDE} {SIDE} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
+{view}
 light "vol" "maya_volumelight" ("intensity" 0.7, "lightShape" {shape}, "volumeLightDir" {dir}{more}) origin 0 0 0 end light
 instance "vol_inst" "vol" transform {placement} end instance
 shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)

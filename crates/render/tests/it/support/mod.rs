@@ -2,10 +2,12 @@
 //! its shading ([`compile`]), translate the world and render it ([`render_world`]), or all of
 //! it at once ([`render_text`]); scenes with MDL module materials through the render
 //! pipeline's world stage ([`build_parsed`]); and the textured square the material tests and
-//! benchmarks look at ([`lit_square`]). The benchmarks include this file too.
+//! benchmarks look at ([`lit_square`]); the top-down view of the Maya path-engine tests
+//! ([`maya_view`]). The benchmarks include this file too.
 
 #![allow(dead_code)]
 
+pub mod maya_view;
 pub mod moving_quad;
 pub mod rays;
 
