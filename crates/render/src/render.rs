@@ -308,12 +308,9 @@ pub fn render_prepared_with_film(
         _ => None,
     };
     let env = prepared.env.as_ref();
-    // The media the camera is in (path engine; found once, where the camera is when the
+    // The media the camera is in (both engines; found once, where the camera is when the
     // shutter opens).
-    let camera_media = match classic {
-        Some(_) => crate::integrator::MediumStack::default(),
-        None => crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0),
-    };
+    let camera_media = crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0);
     let (first_pass, target) = match classic {
         Some(_) => classic_samples(&world.options, settings.spp),
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
@@ -408,6 +405,7 @@ pub fn render_prepared_with_film(
                                 accel,
                                 shading,
                                 fg_cache,
+                                &camera_media,
                                 raster,
                                 [x, y],
                                 (index, time),
