@@ -153,7 +153,9 @@ fn point_at(
         time,
         ..State::default()
     };
-    crate::classic::enter_media(&mut root, camera_media);
+    // A camera that moves while the shutter is open: the media where it is at `time`.
+    let moved = crate::integrator::camera_media_at(world, accel, camera_media, time);
+    crate::classic::enter_media(&mut root, moved.as_ref().unwrap_or(camera_media));
     let mut hit = root.child(RayType::Eye, ray.origin, ray.dir);
     let shaded = tracer.intersect(&mut hit, f32::INFINITY)
         && hit.material.and_then(|m| shading.materials.get(m as usize)).is_some_and(|m| m.surface.is_some());
