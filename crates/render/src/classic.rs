@@ -8,6 +8,7 @@ use glam::Vec2;
 use shader::{Color, Ctx, RayType, Shading, State};
 
 use crate::accel::Accel;
+use crate::integrator::MediumStack;
 use crate::ray::{FirstHit, RayCounts};
 use crate::tracer::{raster_motion, SceneTracer};
 use crate::world::World;
@@ -29,12 +30,15 @@ pub struct ClassicSample {
 
 /// Renders one eye sample through raster position `raster` (pixels, top-left origin) of
 /// pixel `pixel`, sample `index` at shutter time `time` (`sample = (index, time)`, see
-/// [`crate::motion`]); final gathering interpolates from `fg_cache` if given.
+/// [`crate::motion`]); final gathering interpolates from `fg_cache` if given. The eye ray
+/// starts inside `camera_media` (the media around the camera, [`crate::integrator::media_at`]).
+#[allow(clippy::too_many_arguments)]
 pub fn eye_sample(
     world: &World,
     accel: &dyn Accel,
     shading: &Shading,
     fg_cache: Option<&shader::fgcache::FgCache>,
+    camera_media: &MediumStack,
     raster: Vec2,
     pixel: [u32; 2],
     sample: (u32, f32),
@@ -62,9 +66,25 @@ pub fn eye_sample(
         ..State::default()
     };
     state.normal = -ray.dir;
+    enter_media(&mut state, camera_media);
     let mut ctx = Ctx::new(shading, &tracer, state);
     let color = ctx.trace_eye(ray.origin, ray.dir);
     let first = tracer.first.get();
     let motion = first.map_or(Vec2::ZERO, |f| raster_motion(cam, f.point, tracer.first_motion.get()));
     ClassicSample { color, first, fb: tracer.fb.into_inner(), counts: tracer.counts.get(), motion }
+}
+
+/// Puts a classic state inside `media` (the path engine's stack of world materials,
+/// outermost first): the state's media chain then holds their scene materials, so that its
+/// rays are attenuated and scattered by them and leave them through their surfaces as rays
+/// that entered them do. The chain's index of refraction is 1 for each: the materials with
+/// media are MDL materials, which refract by their BSDF, not by the chain. Nothing changes
+/// outside all media (scenes without media).
+pub fn enter_media(state: &mut State, media: &MediumStack) {
+    for &m in media.materials() {
+        // World material 0 is the default; world material m is scene material m − 1.
+        if let Some(material) = m.checked_sub(1) {
+            state.enter(shader::state::Medium { material, ior: 1.0 });
+        }
+    }
 }

@@ -61,6 +61,8 @@ pub fn prepass(world: &World, accel: &dyn Accel, shading: &Shading, cancel: &Ato
     let mut cache = FgCache::new(Vec::new(), nearest);
     let mut counts = RayCounts::default();
     let mut eye_rays = 0u64;
+    // The media around the camera, which its eye rays start in (as the render's).
+    let camera_media = crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0);
     for level in 0..=levels {
         if cancel.load(Ordering::Relaxed) || x1 <= x0 || y1 <= y0 {
             break;
@@ -88,7 +90,16 @@ pub fn prepass(world: &World, accel: &dyn Accel, shading: &Shading, cancel: &Ato
                     if cancel.load(Ordering::Relaxed) {
                         return Some((None, RayCounts::default()));
                     }
-                    Some(point_at(world, accel, shading, &cache, raster, radii, settings.point_rays, level as u32))
+                    Some(point_at(
+                        world,
+                        accel,
+                        (shading, &camera_media),
+                        &cache,
+                        raster,
+                        radii,
+                        settings.point_rays,
+                        level as u32,
+                    ))
                 })
                 .collect();
             for (p, c) in found.into_iter().flatten() {
@@ -104,12 +115,13 @@ pub fn prepass(world: &World, accel: &dyn Accel, shading: &Shading, cancel: &Ato
 }
 
 /// The final gather point for the eye ray through `raster` (pixels, top-left origin), if
-/// it hits a shaded surface that `cache` does not cover yet; and the rays cast.
+/// it hits a shaded surface that `cache` does not cover yet; and the rays cast. `shading`:
+/// the scene's shading and the media around the camera (where the eye ray starts).
 #[allow(clippy::too_many_arguments)]
 fn point_at(
     world: &World,
     accel: &dyn Accel,
-    shading: &Shading,
+    (shading, camera_media): (&Shading, &crate::integrator::MediumStack),
     cache: &FgCache,
     raster: Vec2,
     radii: Radii,
@@ -125,7 +137,7 @@ fn point_at(
         shutter.shape.sample(crate::sampler::Sampler::new(seed, 0x4647).next_1d())
     });
     let ray = if world.shutter.is_some() { cam.ray_at(raster.x, raster.y, time) } else { cam.ray(raster.x, raster.y) };
-    let root = State {
+    let mut root = State {
         ray_type: RayType::Eye,
         org: ray.origin,
         dir: ray.dir,
@@ -141,6 +153,9 @@ fn point_at(
         time,
         ..State::default()
     };
+    // A camera that moves while the shutter is open: the media where it is at `time`.
+    let moved = crate::integrator::camera_media_at(world, accel, camera_media, time);
+    crate::classic::enter_media(&mut root, moved.as_ref().unwrap_or(camera_media));
     let mut hit = root.child(RayType::Eye, ray.origin, ray.dir);
     let shaded = tracer.intersect(&mut hit, f32::INFINITY)
         && hit.material.and_then(|m| shading.materials.get(m as usize)).is_some_and(|m| m.surface.is_some());

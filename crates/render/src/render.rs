@@ -308,12 +308,9 @@ pub fn render_prepared_with_film(
         _ => None,
     };
     let env = prepared.env.as_ref();
-    // The media the camera is in (path engine; found once, where the camera is when the
-    // shutter opens).
-    let camera_media = match classic {
-        Some(_) => crate::integrator::MediumStack::default(),
-        None => crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0),
-    };
+    // The media the camera is in (both engines; found once, where the camera is when the
+    // shutter opens; a moving camera follows its way from there, per sample).
+    let camera_media = crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0);
     let (first_pass, target) = match classic {
         Some(_) => classic_samples(&world.options, settings.spp),
         None => (1, settings.spp.unwrap_or(prog.max_samples).max(1)),
@@ -401,6 +398,10 @@ pub fn render_prepared_with_film(
                         (Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y), weight)
                     };
                     let mut motion = [0.0; 2];
+                    // A camera that moves across a medium's surface while the shutter is
+                    // open: the media where it is at this sample's time.
+                    let moved_media = crate::integrator::camera_media_at(world, accel, &camera_media, time);
+                    let sample_media = moved_media.as_ref().unwrap_or(&camera_media);
                     let (color, alpha, first) = match classic {
                         Some(shading) => {
                             let s = crate::classic::eye_sample(
@@ -408,6 +409,7 @@ pub fn render_prepared_with_film(
                                 accel,
                                 shading,
                                 fg_cache,
+                                sample_media,
                                 raster,
                                 [x, y],
                                 (index, time),
@@ -431,7 +433,7 @@ pub fn render_prepared_with_film(
                                 shading,
                                 env,
                                 ray,
-                                &camera_media,
+                                sample_media,
                                 &mut sampler,
                                 &settings.path,
                                 &mut counts,

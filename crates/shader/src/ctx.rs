@@ -53,6 +53,9 @@ pub struct Ctx<'a> {
     pub(crate) shadow_hint: Option<super::tracer::ShadowHint>,
     /// A shadow ray was asked for here without shadow shaders to run (any-hit query).
     pub(crate) shadow_queried: bool,
+    /// A shadow ray walked the surfaces and media between the point and the light here
+    /// (its light is attenuated by the media on the way; see [`super::volume`]).
+    pub(crate) media_walked: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -69,6 +72,7 @@ impl<'a> Ctx<'a> {
             call_log: None,
             shadow_hint: None,
             shadow_queried: false,
+            media_walked: false,
         }
     }
 

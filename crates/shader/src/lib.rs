@@ -16,7 +16,8 @@
 //! - [`sobol`]: the Owen-scrambled Sobol numbers shaders sample with; [`site`]: a sampling
 //!   loop's numbers.
 //! - [`tracer`]: the contract with the renderer's ray casting.
-//! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes).
+//! - [`volume`]: volume shaders on the segments rays travel (camera and material volumes);
+//!   [`inscatter`]: the light a material's participating medium scatters into them.
 //! - [`photon`]: how surfaces scatter photons.
 //! - [`registry`]: the libraries that implement shaders ([`Library`], [`Registry`]).
 //! - [`texture`]: image textures and their pyramids; [`light`]: light shapes and profiles.
@@ -29,6 +30,7 @@ pub mod ctx;
 pub mod decl;
 pub mod fgcache;
 pub mod graph;
+pub mod inscatter;
 pub mod light;
 pub mod lights;
 pub mod photon;

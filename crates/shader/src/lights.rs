@@ -263,9 +263,14 @@ impl<'a> Ctx<'a> {
         let dir = to / dist;
         let dot_nl = self.state.normal.dot(dir);
         let mut color = result.color();
-        if self.volume_of(&ctx.state).is_some() {
+        let unwalked = !ctx.media_walked && !crate::is_zero(color) && shading.has_media();
+        if self.volume_of(&ctx.state).is_some() || unwalked {
             let mut light_ray = ctx.state.clone();
             (light_ray.dir, light_ray.point, light_ray.dist) = (-dir, p, dist);
+            if unwalked {
+                // No shadow ray: the media on the way still attenuate the light.
+                color = self.light_media(&light_ray, color);
+            }
             color = self.light_volume(&light_ray, color);
         }
         let reaches = (dot_nl > 0.0 || lp.both_sides) && (color.x != 0.0 || color.y != 0.0 || color.z != 0.0);
@@ -308,7 +313,11 @@ impl<'a> Ctx<'a> {
         if !ok {
             return None;
         }
-        let color = result.color();
+        let mut color = result.color();
+        if !ctx.media_walked {
+            // No shadow ray: the media on the way still attenuate the light.
+            color = self.light_media(&ctx.state, color);
+        }
         let color = if crate::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
         (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
             color,
@@ -438,6 +447,7 @@ impl<'a> Ctx<'a> {
             }
             return true;
         }
+        self.media_walked = true;
         let mut ray = s.child(RayType::Shadow, org, to_light);
         ray.light = s.light;
         let mut filter = *color;
@@ -463,6 +473,8 @@ impl<'a> Ctx<'a> {
                 blocked = true;
                 return false;
             }
+            // Through: the ray enters or leaves the surface's medium, if it has one.
+            media.pass(shading, hit);
             true
         });
         self.counts.calls += calls;

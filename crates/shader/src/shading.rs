@@ -125,6 +125,9 @@ pub struct Shading {
     /// Whether some material has a shadow shader list or a medium, found on first use
     /// ([`Shading::has_shadow_shaders`]).
     shadow_shaders: std::sync::OnceLock<bool>,
+    /// Whether some material has a participating medium, found on first use
+    /// ([`Shading::has_media`]).
+    media: std::sync::OnceLock<bool>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -321,6 +324,7 @@ impl Shading {
             shutter_shape,
             shutter_weights: None,
             shadow_shaders: Default::default(),
+            media: Default::default(),
         };
         (shading, diags)
     }
@@ -329,6 +333,12 @@ impl Shading {
     /// either, every surface stops shadow rays). Found once, on the first question: the materials are set by then.
     pub fn has_shadow_shaders(&self) -> bool {
         *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some() || m.medium.is_some()))
+    }
+
+    /// Whether some material has a participating medium (MDL's `material_volume`, handed
+    /// over by the renderer before rendering). Found once, on the first question.
+    pub fn has_media(&self) -> bool {
+        *self.media.get_or_init(|| self.materials.iter().any(|m| m.medium.is_some()))
     }
 
     /// Whether a final gather ray from `org` along unit `dir` (world space) meets a portal

@@ -20,13 +20,17 @@
 //!
 //! A material without a volume shader but with a participating medium
 //! ([`super::shading::MaterialShaders::medium`], MDL's `material_volume`) acts as a volume
-//! shader of Beer–Lambert extinction: a ray segment of length d inside it keeps exp(−σt·d)
-//! of its colour per channel (σt = σa + σs: light scattered out of the ray is lost, none
-//! is scattered in — the classic engine's reading of a scattering medium; absorbing media
-//! are exact). Shadow rays through such media are attenuated alike ([`ShadowMedia`]): they
-//! cross the medium's index-matched boundary (tinted by its colour where they enter) and
-//! keep exp(−σt·d) over each stretch d inside, the innermost medium counting, as for eye
-//! rays; a boundary that refracts (glass) still stops them.
+//! shader of a homogeneous medium: a ray segment of length d inside it keeps exp(−σt·d)
+//! of its colour per channel (σt = σa + σs) and gains the light the medium scatters into
+//! it from the scene's lights, single scattering ([`super::inscatter`]). Shadow rays
+//! through such media are attenuated alike ([`ShadowMedia`]): they cross the medium's
+//! index-matched boundary (tinted by its colour where they enter) and keep exp(−σt·d) over
+//! each stretch d inside, the innermost medium counting, as for eye rays; a boundary that
+//! refracts (glass) still stops them, and a surface with a shadow shader filters them by
+//! that shader and is entered or left like any boundary. The light of a light that traces
+//! no shadow ray (its shader's shadows off, or `shadow off` in the options) is still
+//! attenuated by the media between it and the point: the walk then crosses every surface
+//! ([`Ctx::light_media`]).
 //!
 //! A volume shader whose effect on a segment is affine in the colour it receives — c ↦
 //! keep ⊙ c + add per channel, the same keep and add whatever c is (Maya's fogs) — also
@@ -157,8 +161,10 @@ impl Ctx<'_> {
         }
         if let Some(medium) = self.medium_of(ray) {
             // Beer–Lambert over the segment; a ray that escaped crossed an infinite one.
-            let t = medium.transmittance(if hit { ray.dist } else { f32::INFINITY });
-            return Color::new(color.x * t.x, color.y * t.y, color.z * t.z, color.w);
+            let length = if hit { ray.dist } else { f32::INFINITY };
+            let t = medium.transmittance(length);
+            let s = self.in_scattered(&medium, ray, length);
+            return Color::new(color.x * t.x + s.x, color.y * t.y + s.y, color.z * t.z + s.z, color.w);
         }
         let Some(volume) = self.volume_of(ray) else { return color };
         let mut s = ray.clone();
@@ -167,6 +173,33 @@ impl Ctx<'_> {
             s.dist = 0.0;
         }
         self.run_volume(volume, s, color)
+    }
+
+    /// Attenuates a light shader's result `color` on light ray `light` (a light state, see
+    /// [`Ctx::light_volume`]) by the participating media between the illuminated point and
+    /// the light, for a light whose shader traced no shadow ray: the walk towards the light
+    /// crosses every surface, entering and leaving the media of those that have one, and
+    /// keeps the innermost medium's transmittance over each stretch (no surface blocks or
+    /// tints). Unchanged in scenes without media.
+    pub fn light_media(&mut self, light: &State, color: Color) -> Color {
+        let shading = self.shading();
+        if !shading.has_media() || crate::is_zero(color) {
+            return color;
+        }
+        let to_light = -light.dir;
+        let org = crate::trace::offset_point(light.shadow_point, light.normal_geom, to_light);
+        let max_dist = if light.dist.is_finite() { light.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+        let mut ray = light.child(RayType::Shadow, org, to_light);
+        ray.light = light.light;
+        let mut filter = color;
+        let mut media = ShadowMedia::new(&ray);
+        self.tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
+            media.advance(shading, hit.dist, &mut filter);
+            media.pass(shading, hit);
+            !crate::is_zero(filter)
+        });
+        media.advance(shading, max_dist - media.walked(), &mut filter);
+        filter
     }
 
     /// Applies the volume to a light shader's result on light ray `light` (a light state:
@@ -236,6 +269,21 @@ impl ShadowMedia {
             *filter = Color::new(filter.x * tint.x, filter.y * tint.y, filter.z * tint.z, filter.w);
         }
         true
+    }
+
+    /// Passes `hit`'s surface, whatever it is (a light without shadows, or a surface whose
+    /// shadow shader filtered the ray): a surface whose material has a medium is entered or
+    /// left, untinted.
+    pub fn pass(&mut self, shading: &Shading, hit: &State) {
+        let Some(m) = hit.material else { return };
+        if shading.materials.get(m as usize).is_none_or(|x| x.medium.is_none()) {
+            return;
+        }
+        if let Some(i) = self.inside.iter().rposition(|&x| x == m) {
+            self.inside.remove(i);
+        } else {
+            self.inside.push(m);
+        }
     }
 
     /// The distance walked so far.

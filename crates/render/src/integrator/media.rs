@@ -25,7 +25,8 @@
 //!
 //! Camera paths start in the media around the camera's position at the shutter's opening
 //! ([`media_at`], found once per render): a camera inside a closed object with a medium sees
-//! through that medium.
+//! through that medium. A camera that moves while the shutter is open follows its way from
+//! there to where it is at each sample's time ([`camera_media_at`]).
 //!
 //! Scenes without media take none of these branches (`World::has_media` is false): their
 //! paths are the same, sample for sample.
@@ -371,6 +372,60 @@ pub fn media_at(world: &World, accel: &dyn Accel, p: Vec3A, time: f32) -> Medium
     }
     let [first, ..] = answers;
     first
+}
+
+/// The media around the camera at shutter time `time` for a camera that moves while the
+/// shutter is open: `start` (the media where it is when the shutter opens, [`media_at`])
+/// followed along the camera's way from there to where it is at `time`, straight between
+/// its motion keys: a medium whose surface the camera crosses from the front is entered,
+/// one it crosses from behind is left (the surfaces taken where they are at `time`).
+/// `None` when the camera does not move, at the shutter's opening, or in scenes without
+/// media: the camera is in `start`.
+pub fn camera_media_at(world: &World, accel: &dyn Accel, start: &MediumStack, time: f32) -> Option<MediumStack> {
+    let cam = &world.camera;
+    if !world.has_media || cam.keys.len() < 2 || time <= 0.0 {
+        return None;
+    }
+    let steps = cam.keys.len() - 1;
+    let mut media = start.clone();
+    let mut from = cam.camera_to_world_at(0.0).translation;
+    for j in 1..=steps {
+        let key_time = j as f32 / steps as f32;
+        let to = cam.camera_to_world_at(key_time.min(time)).translation;
+        cross_between(world, accel, &mut media, (from, to), time);
+        if key_time >= time {
+            break;
+        }
+        from = to;
+    }
+    Some(media)
+}
+
+/// Follows `media` along the straight way from `ends.0` to `ends.1` (world space) at
+/// shutter time `time`: enters the media of surfaces crossed from the front, leaves those
+/// crossed from behind.
+fn cross_between(world: &World, accel: &dyn Accel, media: &mut MediumStack, ends: (Vec3A, Vec3A), time: f32) {
+    let (from, to) = ends;
+    let length = (to - from).length();
+    if !(length > 0.0 && length.is_finite()) {
+        return;
+    }
+    let dir = (to - from) / length;
+    let mut ray = Ray { mask: mask::CAMERA | mask::SECONDARY, origin: from, dir, tmin: 0.0, tmax: length, time };
+    for _ in 0..MAX_BOUNDARY_CROSSINGS {
+        let Some(hit) = accel.intersect(&ray) else { break };
+        let s = surface(world, &ray, &hit);
+        let m = &world.materials[s.material as usize];
+        if m.medium.is_some() && m.has_inside() {
+            if dir.dot(s.ng) < 0.0 {
+                media.enter(s.material);
+            } else {
+                media.leave(s.material);
+            }
+        }
+        ray.origin = offset_origin(s.p, s.ng, dir);
+        ray.tmax = (ray.tmax - hit.t).max(0.0);
+    }
 }
 
 /// The media enclosing `p` as the surfaces along one ray from it in unit direction `dir`

@@ -30,6 +30,7 @@ mod mdl_cornell;
 mod mdl_measured;
 mod mdl_spot;
 mod media;
+mod media_classic;
 mod mia_helpers;
 mod motion;
 mod motion_blur;

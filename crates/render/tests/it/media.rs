@@ -12,7 +12,7 @@ use render::{EngineKind, Settings};
 
 /// Renders `text` (which includes media.mdl) with the path engine at `res`², `spp` samples
 /// per pixel, `max_depth` bounces: the pixels and every message.
-fn render(text: &str, res: u32, spp: u32, max_depth: u32) -> (Vec<[f32; 4]>, Vec<String>) {
+pub(crate) fn render(text: &str, res: u32, spp: u32, max_depth: u32) -> (Vec<[f32; 4]>, Vec<String>) {
     render_with(text, res, spp, render::integrator::PathSettings { max_depth, ..Default::default() })
 }
 
@@ -22,7 +22,7 @@ fn render_with(text: &str, res: u32, spp: u32, path: render::integrator::PathSet
 }
 
 /// [`render_with`] by `engine`.
-fn render_by(
+pub(crate) fn render_by(
     engine: EngineKind,
     text: &str,
     res: u32,
@@ -38,7 +38,7 @@ fn render_by(
 
 /// A closed box from `lo` to `hi` of material `material` as `.mi` text (object `name`),
 /// each face counter-clockwise seen from outside.
-fn closed_box(name: &str, lo: [f32; 3], hi: [f32; 3], material: &str) -> String {
+pub(crate) fn closed_box(name: &str, lo: [f32; 3], hi: [f32; 3], material: &str) -> String {
     let corner = |i: usize| {
         [
             if i & 1 == 0 { lo[0] } else { hi[0] },
@@ -94,7 +94,7 @@ render "root" "cam_inst" "opt"
 }
 
 /// σa of the test's gel per channel (per metre = scene unit).
-const SIGMA_A: [f32; 3] = [0.5, 1.0, 2.0];
+pub(crate) const SIGMA_A: [f32; 3] = [0.5, 1.0, 2.0];
 
 #[test]
 fn an_absorbing_slab_transmits_beer_lambert_per_channel() {
@@ -284,7 +284,7 @@ render "root" "cam_inst" "opt"
 
 /// A scene of a camera at the origin looking down −z (field of view 0.6°, `res`²
 /// pixels) with `body` (shaders, objects, lights) and the instances `instances`.
-fn scene_with(body: &str, instances: &[&str], res: u32) -> String {
+pub(crate) fn scene_with(body: &str, instances: &[&str], res: u32) -> String {
     let list: String = instances.iter().map(|i| format!(" \"{i}\"")).collect();
     format!(
         r#"$include "media.mdl"
@@ -300,7 +300,7 @@ render "root" "cam_inst" "opt"
 }
 
 /// A 100 × 100 quad at depth `z` facing +z (the camera) of material `material`.
-fn wall(name: &str, z: f32, material: &str) -> String {
+pub(crate) fn wall(name: &str, z: f32, material: &str) -> String {
     format!(
         "object \"{name}\" group\n-50 -50 {z}  50 -50 {z}  50 50 {z}  -50 50 {z}\nv 0 v 1 v 2 v 3\n\
          p \"{material}\" 0 1 2 3\nend group end object\ninstance \"{name}_inst\" \"{name}\" end instance\n"
@@ -308,7 +308,7 @@ fn wall(name: &str, z: f32, material: &str) -> String {
 }
 
 /// Asserts every pixel is `want` per channel within relative `tol`.
-fn assert_pixels(px: &[[f32; 4]], want: [f32; 3], tol: f32, what: &str) {
+pub(crate) fn assert_pixels(px: &[[f32; 4]], want: [f32; 3], tol: f32, what: &str) {
     for p in px {
         for k in 0..3 {
             assert!((p[k] - want[k]).abs() <= tol * want[k], "{what}: channel {k}: {} vs {}", p[k], want[k]);
