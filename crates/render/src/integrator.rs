@@ -335,6 +335,38 @@ pub fn trace_path(
     settings: &PathSettings,
     counts: &mut RayCounts,
 ) -> PathResult {
+    let camera = CameraRay { ray: camera_ray, hit: None };
+    trace_camera_path(world, accel, shading, env, camera, camera_media, sampler, settings, counts)
+}
+
+/// A camera ray, and what [`Accel::intersect`] finds along it when that is known already
+/// (a tile's camera rays traced together, [`Accel::intersect_batch`]).
+#[derive(Clone, Copy, Debug)]
+pub struct CameraRay {
+    /// The ray (world space).
+    pub ray: Ray,
+    /// `Some(found)`: the closest hit along `ray`, as `accel.intersect(&ray)` gives it;
+    /// `None`: not traced yet.
+    pub hit: Option<Option<Hit>>,
+}
+
+/// [`trace_path`] from a [`CameraRay`] whose closest hit may be known already (then the
+/// path is the same, bit for bit, as the one traced from the bare ray).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn trace_camera_path(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    env: Option<&Environment>,
+    camera: CameraRay,
+    camera_media: &MediumStack,
+    sampler: &mut Sampler,
+    settings: &PathSettings,
+    counts: &mut RayCounts,
+) -> PathResult {
+    let camera_ray = camera.ray;
+    let mut camera_hit = camera.hit;
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
     let mut radiance = Rgb::ZERO;
@@ -365,7 +397,12 @@ pub fn trace_path(
         let mut found: Option<(Hit, Surface, HitMaterial)> = None;
         let mut through = ray;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
-            let Some(h) = accel.intersect(&through) else { break };
+            // The camera ray's hit may be known (only for the ray itself, not past a cutout).
+            let h = match camera_hit.take() {
+                Some(known) => known,
+                None => accel.intersect(&through),
+            };
+            let Some(h) = h else { break };
             let s = surface(world, &through, &h);
             let m = material_at(world, accel, shading, &through, &h, s.material);
             if m.opacity >= 1.0 || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity {
@@ -485,9 +522,10 @@ pub fn trace_path(
         // Maya's ambient lights: the material's colour × what they give here, added as
         // it is (no BSDF; a shadow ray for those with raytraced shadows, over the sphere
         // of their `lightRadius` by `u_light`; see `material::emission::ambient`), and
-        // the highlight of volume lights among them with `emitSpecular`.
-        let ambient = world.materials[s.material as usize].ambient;
-        if ambient != Rgb::ZERO && !world.ambient.is_empty() {
+        // the highlight of volume lights among them with `emitSpecular`. (The scene's list
+        // first: most scenes have none, and then the material's colour is not read.)
+        if !world.ambient.is_empty() && world.materials[s.material as usize].ambient != Rgb::ZERO {
+            let ambient = world.materials[s.material as usize].ambient;
             let (mut sum, mut highlight) = (Rgb::ZERO, Rgb::ZERO);
             for a in world.ambient_lighting(stop.instance) {
                 let through = match a.shadow {

@@ -40,6 +40,7 @@ pub mod mesh;
 pub mod motion;
 pub mod output_shaders;
 pub mod part;
+mod path_band;
 pub mod photons;
 pub mod pipeline;
 pub mod prepare;

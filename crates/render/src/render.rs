@@ -18,8 +18,9 @@ use shader::Shading;
 use crate::accel::Accel;
 use crate::film::{Film, Pixel};
 use crate::filter::PixelFilter;
-use crate::integrator::{trace_path, PathSettings};
+use crate::integrator::PathSettings;
 use crate::part::{Part, Split};
+use crate::path_band::{BandOutput, PathBand};
 use crate::prepare::{prepare, Prepared};
 use crate::ray::RayCounts;
 use crate::sampler::{pixel_seed, Sampler};
@@ -370,96 +371,86 @@ pub fn render_prepared_with_film(
             let mut counts = RayCounts::default();
             let mut bad = 0u64;
             let mut writes = Vec::new();
-            for (k, px) in chunk.iter_mut().enumerate() {
-                if cancel.load(Ordering::Relaxed) {
-                    break;
-                }
-                let x = (k % w as usize) as u32;
-                let y = fy0 + (b * band + k / w as usize) as u32;
-                if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged || !rows_on[(y - fy0) as usize] {
-                    continue;
-                }
-                // One sampler per pixel, restarted for each sample: the scrambles that depend
-                // on the pixel alone are hashed once.
-                let mut sampler = Sampler::new(pixel_seed(x, y, settings.seed), done);
-                for index in done..done + pass {
-                    sampler.restart(index);
-                    let u = sampler.next_2d();
-                    // Motion blur: the sample's shutter time is the next dimension, so that a
-                    // pixel's samples are stratified in (x, y, time) together; scenes where
-                    // nothing moves draw none and keep their numbers.
-                    let time = world.shutter.as_ref().map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
-                    // The path engine samples the filter; the classic engine samples the
-                    // pixel and splats.
-                    let (raster, weight) = if classic.is_some() {
-                        (Vec2::new(x as f32 + u.x, y as f32 + u.y), 1.0)
-                    } else {
-                        let (offset, weight) = filter.sample(u);
-                        (Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y), weight)
-                    };
-                    let mut motion = [0.0; 2];
-                    // A camera that moves across a medium's surface while the shutter is
-                    // open: the media where it is at this sample's time.
-                    let moved_media = crate::integrator::camera_media_at(world, accel, &camera_media, time);
-                    let sample_media = moved_media.as_ref().unwrap_or(&camera_media);
-                    let (color, alpha, first) = match classic {
-                        Some(shading) => {
-                            let s = crate::classic::eye_sample(
-                                world,
-                                accel,
-                                shading,
-                                fg_cache,
-                                sample_media,
-                                raster,
-                                [x, y],
-                                (index, time),
-                            );
-                            counts.rays += s.counts.rays;
-                            counts.shadow_rays += s.counts.shadow_rays;
-                            let i = b * band * w as usize + k;
-                            writes.extend(s.fb.iter().map(|(buf, v)| (i, *buf, v.to_array())));
-                            if let Some(splat) = splat.as_deref_mut() {
-                                // Splats are kept in the film's rows.
-                                splat.add(&filter, raster - Vec2::new(0.0, fy0 as f32), s.color.to_array());
-                            }
-                            motion = s.motion.to_array();
-                            (bsdf::Rgb::new(s.color.x, s.color.y, s.color.z), s.color.w, s.first)
-                        }
-                        None => {
-                            let ray = cam.ray_at(raster.x, raster.y, time);
-                            let r = trace_path(
-                                world,
-                                accel,
-                                shading,
-                                env,
-                                ray,
-                                sample_media,
-                                &mut sampler,
-                                &settings.path,
-                                &mut counts,
-                            );
-                            if let Some(f) = r.first {
-                                motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
-                            }
-                            if let (Some(buffer), Some(g)) = (world.glow_buffer, r.glow) {
-                                // The glow the camera sees, as the classic shading engine
-                                // stores it: each sample's, zero where nothing glows.
-                                let g = g.max(bsdf::Rgb::ZERO);
-                                writes.push((b * band * w as usize + k, buffer, [g.x, g.y, g.z, 1.0]));
-                            }
-                            (r.radiance, r.alpha, r.first)
-                        }
-                    };
-                    if index == 0 {
-                        if let Some(f) = first {
-                            px.depth = cam.depth(f.point);
-                            px.normal = f.normal.to_array();
-                            px.tag = f.tag;
-                            px.motion = motion;
-                        }
+            if let Some(shading) = classic {
+                for (k, px) in chunk.iter_mut().enumerate() {
+                    if cancel.load(Ordering::Relaxed) {
+                        break;
                     }
-                    bad += u64::from(px.add(color, alpha, weight, index));
+                    let x = (k % w as usize) as u32;
+                    let y = fy0 + (b * band + k / w as usize) as u32;
+                    if x < x0 || x >= x1 || y < y0 || y >= y1 || px.converged || !rows_on[(y - fy0) as usize] {
+                        continue;
+                    }
+                    // One sampler per pixel, restarted for each sample: the scrambles that
+                    // depend on the pixel alone are hashed once.
+                    let mut sampler = Sampler::new(pixel_seed(x, y, settings.seed), done);
+                    for index in done..done + pass {
+                        sampler.restart(index);
+                        let u = sampler.next_2d();
+                        // Motion blur: the sample's shutter time is the next dimension, so that
+                        // a pixel's samples are stratified in (x, y, time) together; scenes
+                        // where nothing moves draw none and keep their numbers.
+                        let time =
+                            world.shutter.as_ref().map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
+                        // The classic engine samples the pixel and splats.
+                        let raster = Vec2::new(x as f32 + u.x, y as f32 + u.y);
+                        // A camera that moves across a medium's surface while the shutter is
+                        // open: the media where it is at this sample's time.
+                        let moved_media = crate::integrator::camera_media_at(world, accel, &camera_media, time);
+                        let sample_media = moved_media.as_ref().unwrap_or(&camera_media);
+                        let s = crate::classic::eye_sample(
+                            world,
+                            accel,
+                            shading,
+                            fg_cache,
+                            sample_media,
+                            raster,
+                            [x, y],
+                            (index, time),
+                        );
+                        counts.rays += s.counts.rays;
+                        counts.shadow_rays += s.counts.shadow_rays;
+                        let i = b * band * w as usize + k;
+                        writes.extend(s.fb.iter().map(|(buf, v)| (i, *buf, v.to_array())));
+                        if let Some(splat) = splat.as_deref_mut() {
+                            // Splats are kept in the film's rows.
+                            splat.add(&filter, raster - Vec2::new(0.0, fy0 as f32), s.color.to_array());
+                        }
+                        if index == 0 {
+                            if let Some(f) = s.first {
+                                px.depth = cam.depth(f.point);
+                                px.normal = f.normal.to_array();
+                                px.tag = f.tag;
+                                px.motion = s.motion.to_array();
+                            }
+                        }
+                        let color = bsdf::Rgb::new(s.color.x, s.color.y, s.color.z);
+                        bad += u64::from(px.add(color, s.color.w, 1.0, index));
+                    }
                 }
+            } else {
+                // The path engine: camera rays traced in packets (see `crate::path_band`).
+                let place = |k: usize| {
+                    let x = (k % w as usize) as u32;
+                    let y = fy0 + (b * band + k / w as usize) as u32;
+                    let inside = x >= x0 && x < x1 && y >= y0 && y < y1 && rows_on[(y - fy0) as usize];
+                    inside.then_some((x, y))
+                };
+                let mut out = BandOutput::default();
+                let job = PathBand {
+                    world,
+                    accel,
+                    shading,
+                    env,
+                    filter: &filter,
+                    camera_media: &camera_media,
+                    path: &settings.path,
+                    seed: settings.seed,
+                    first: done,
+                    count: pass,
+                };
+                job.render(chunk, b * band * w as usize, place, cancel, &mut out);
+                (counts, bad, writes) = (out.counts, out.nonfinite, out.writes);
             }
             if !writes.is_empty() {
                 fb_writes.lock().unwrap_or_else(|e| e.into_inner()).extend(writes);

@@ -67,6 +67,14 @@ pub trait Accel: Send + Sync {
             *b = self.occluded(ray);
         }
     }
+    /// [`Accel::intersect`] for each of `rays` into `hits` (as long as `rays`), each hit the
+    /// one the one-ray query finds: for coherent rays (a tile's camera rays) a backend may
+    /// trace them together.
+    fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        for (ray, h) in rays.iter().zip(hits) {
+            *h = self.intersect(ray);
+        }
+    }
     /// Which backend this is.
     fn backend(&self) -> Backend;
 }

@@ -1,0 +1,205 @@
+//! The path engine's samples over one band of pixels: each pixel's samples in index order,
+//! as one pass of [`crate::render`] asks for them, with the camera rays of eight
+//! consecutive samples (the same pixel's, or neighbours' along the row) traced together
+//! ([`Accel::intersect_batch`]: one Embree packet) before their paths go on one by one.
+//!
+//! Every sample's numbers depend on its pixel, index and dimension only, and its path goes
+//! on from the hit the batch gave its camera ray. Packets are made per row and pass, so the
+//! image is the same bit for bit for any thread count, band order or split into parts and
+//! strips. With the Rust backend (which traces a batch ray by ray) it is also the one-ray
+//! image bit for bit. Embree's packet kernel can break an exact tie — a ray through the
+//! edge two triangles share, at the same distance on both — otherwise than its one-ray
+//! kernel, as its kernels for different vector units already may: in the 256², 64-spp
+//! render of the bench's Cornell box, one camera ray of 4,194,304 (through the diagonal of
+//! a wall's quad) found the other triangle, and one pixel of 65,536 changed by 0.0025.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use glam::Vec2;
+use shader::Shading;
+
+use crate::accel::{Accel, Hit};
+use crate::environment::Environment;
+use crate::film::Pixel;
+use crate::filter::PixelFilter;
+use crate::integrator::{trace_camera_path, CameraRay, MediumStack, PathSettings};
+use crate::ray::{Ray, RayCounts};
+use crate::sampler::{pixel_seed, Sampler, SamplerPosition};
+use crate::world::World;
+
+/// Camera rays traced together: Embree's widest packet that every x86-64 CPU with AVX runs
+/// natively.
+const PACKET: usize = 8;
+
+/// What the path engine needs to sample a band of pixels in one pass.
+pub(crate) struct PathBand<'a> {
+    /// The scene.
+    pub world: &'a World,
+    /// Its acceleration structure.
+    pub accel: &'a dyn Accel,
+    /// The compiled shader graph (materials with connected parameters).
+    pub shading: Option<&'a Shading>,
+    /// The environment, if the scene has one.
+    pub env: Option<&'a Environment<'a>>,
+    /// The pixel filter the camera samples are drawn from.
+    pub filter: &'a PixelFilter,
+    /// The media around the camera.
+    pub camera_media: &'a MediumStack,
+    /// The path tracer's settings.
+    pub path: &'a PathSettings,
+    /// The render's seed.
+    pub seed: u32,
+    /// The pass's first sample index.
+    pub first: u32,
+    /// Samples per pixel in this pass.
+    pub count: u32,
+}
+
+/// What sampling a band gave besides its pixels.
+#[derive(Default)]
+pub(crate) struct BandOutput {
+    /// Rays traced.
+    pub counts: RayCounts,
+    /// Non-finite colour channels stored as 1.0.
+    pub nonfinite: u64,
+    /// Writes to user frame buffers: (film pixel index, buffer, value).
+    pub writes: Vec<(usize, u32, [f32; 4])>,
+}
+
+/// A camera sample waiting for its ray's hit.
+struct Lane {
+    /// The pixel's index in the band.
+    k: usize,
+    /// The sample's index.
+    index: u32,
+    /// The filter's weight of the sample.
+    weight: f32,
+    /// Its camera ray.
+    ray: Ray,
+    /// Where its sample numbers go on from.
+    position: SamplerPosition,
+    /// Which of the open samplers is its pixel's.
+    sampler: usize,
+    /// Its shutter time.
+    time: f32,
+}
+
+impl PathBand<'_> {
+    /// Samples `pixels` (a band of the film, its first pixel at film index `base`; pixel `k`
+    /// is at image position `place(k)`, `None` for pixels this render leaves alone): each
+    /// pixel not converged gets samples `first .. first + count`. Stops at the next pixel
+    /// when `cancel` is set (the pixels begun keep their samples).
+    pub fn render(
+        &self,
+        pixels: &mut [Pixel],
+        base: usize,
+        place: impl Fn(usize) -> Option<(u32, u32)>,
+        cancel: &AtomicBool,
+        out: &mut BandOutput,
+    ) {
+        let cam = &self.world.camera;
+        let mut lanes: Vec<Lane> = Vec::with_capacity(PACKET);
+        // The samplers of the pixels with lanes waiting (the last one the current pixel's).
+        let mut samplers: Vec<Sampler> = Vec::with_capacity(PACKET + 1);
+        let mut row = None;
+        for k in 0..pixels.len() {
+            if cancel.load(Ordering::Relaxed) {
+                break;
+            }
+            let Some((x, y)) = place(k) else { continue };
+            if pixels[k].converged {
+                continue;
+            }
+            if row != Some(y) {
+                // Packets never span two rows: a row's packets are then the same whichever
+                // rows are rendered with it (a part of interleaved rows, a strip).
+                self.finish(&mut lanes, &mut samplers, pixels, base, out);
+                samplers.clear();
+                row = Some(y);
+            }
+            // One sampler per pixel, restarted for each sample: the scrambles that depend
+            // on the pixel alone are hashed once.
+            samplers.push(Sampler::new(pixel_seed(x, y, self.seed), self.first));
+            for index in self.first..self.first + self.count {
+                let s = samplers.len() - 1;
+                let sampler = &mut samplers[s];
+                sampler.restart(index);
+                let u = sampler.next_2d();
+                // Motion blur: the sample's shutter time is the next dimension, so that a
+                // pixel's samples are stratified in (x, y, time) together; scenes where
+                // nothing moves draw none and keep their numbers.
+                let time = self.world.shutter.as_ref().map_or(0.0, |shutter| shutter.shape.sample(sampler.next_1d()));
+                let (offset, weight) = self.filter.sample(u);
+                let raster = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
+                let ray = cam.ray_at(raster.x, raster.y, time);
+                lanes.push(Lane { k, index, weight, ray, position: sampler.position(), sampler: s, time });
+                if lanes.len() == PACKET {
+                    self.finish(&mut lanes, &mut samplers, pixels, base, out);
+                    // Only the current pixel's sampler is still needed.
+                    let current = samplers.pop();
+                    samplers.clear();
+                    samplers.extend(current);
+                }
+            }
+        }
+        self.finish(&mut lanes, &mut samplers, pixels, base, out);
+    }
+
+    /// Traces the waiting lanes' camera rays together, then each lane's path in order, and
+    /// adds the samples to their pixels.
+    fn finish(
+        &self,
+        lanes: &mut Vec<Lane>,
+        samplers: &mut [Sampler],
+        pixels: &mut [Pixel],
+        base: usize,
+        out: &mut BandOutput,
+    ) {
+        let n = lanes.len();
+        if n == 0 {
+            return;
+        }
+        let mut rays = [Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z); PACKET];
+        for (r, lane) in rays.iter_mut().zip(lanes.iter()) {
+            *r = lane.ray;
+        }
+        let mut hits: [Option<Hit>; PACKET] = [None; PACKET];
+        self.accel.intersect_batch(&rays[..n], &mut hits[..n]);
+        let cam = &self.world.camera;
+        for (lane, hit) in lanes.drain(..).zip(hits) {
+            let sampler = &mut samplers[lane.sampler];
+            sampler.resume(&lane.position);
+            let camera = CameraRay { ray: lane.ray, hit: Some(hit) };
+            // A camera that moves across a medium's surface while the shutter is open: the
+            // media where it is at this sample's time.
+            let moved_media = crate::integrator::camera_media_at(self.world, self.accel, self.camera_media, lane.time);
+            let r = trace_camera_path(
+                self.world,
+                self.accel,
+                self.shading,
+                self.env,
+                camera,
+                moved_media.as_ref().unwrap_or(self.camera_media),
+                sampler,
+                self.path,
+                &mut out.counts,
+            );
+            let px = &mut pixels[lane.k];
+            if lane.index == 0 {
+                if let Some(f) = r.first {
+                    px.depth = cam.depth(f.point);
+                    px.normal = f.normal.to_array();
+                    px.tag = f.tag;
+                    px.motion = crate::tracer::raster_motion(cam, f.point, f.motion).to_array();
+                }
+            }
+            if let (Some(buffer), Some(g)) = (self.world.glow_buffer, r.glow) {
+                // The glow the camera sees, as the classic shading engine stores it: each
+                // sample's, zero where nothing glows.
+                let g = g.max(bsdf::Rgb::ZERO);
+                out.writes.push((base + lane.k, buffer, [g.x, g.y, g.z, 1.0]));
+            }
+            out.nonfinite += u64::from(px.add(r.radiance, r.alpha, lane.weight, lane.index));
+        }
+    }
+}
