@@ -21,6 +21,7 @@ mod mdl_layer_normals;
 mod mdl_layers;
 mod mdl_measured_edf;
 mod mdl_volume;
+mod mdl_wide;
 mod mia;
 mod model;
 mod photometric;
