@@ -16,12 +16,16 @@
 //! channels). That lobe has the mixture's mean cosine, which is what light transport
 //! through many events depends on most, but it is an approximation: a mixture of a forward
 //! and a backward lobe is not one Henyey–Greenstein lobe.
+//!
+//! A tint of a vdf (`df::tint(color, vdf)`) scales what it scatters by the tint (clamped to
+//! [0, 1] per channel, as a mix's weights): the same lowering as a mix of that one
+//! component, σs·tint scattering with the vdf's phase function, σs·(1 − tint) absorbed.
 
 use bsdf::{Medium, Rgb};
 use mi::Span;
 
 use super::eval::{problem, Eval};
-use super::value::{Value, Vdf};
+use super::value::{Leaf, Value, Vdf};
 
 /// `df::{name}` (a normalized or, when `clamped`, clamped mix) of the vdf components
 /// `components` (structs of `weight` and `component`), called at `span`: a
@@ -74,6 +78,21 @@ pub fn mix(name: &str, components: &[Value], clamped: bool, span: Span) -> Eval 
     }
     let g = if scattering > 0.0 { (weighted_g / scattering).clamp(-1.0, 1.0) } else { 0.0 };
     Ok(Value::Vdf(Vdf::Mixture { albedo: albedo.min(Rgb::ONE), g }))
+}
+
+/// `df::tint(tint, vdf)` called at `span`: the vdf scattering `tint` of what it scattered
+/// (per channel, clamped to [0, 1]), the rest absorbed ([`Vdf::Mixture`]); a tint that
+/// varies over the surface makes it unsupported (a homogeneous medium has one albedo).
+pub fn tint(vdf: &Vdf, tint: Leaf, span: Span) -> Vdf {
+    let Leaf::Const(t) = tint else {
+        return Vdf::Unsupported("`df::tint` of a vdf with a tint that varies over the surface".into(), span);
+    };
+    let t = if t.is_finite() { t.clamp(Rgb::ZERO, Rgb::ONE) } else { Rgb::ZERO };
+    match vdf {
+        Vdf::HenyeyGreenstein(g) => Vdf::Mixture { albedo: t, g: *g },
+        Vdf::Mixture { albedo, g } => Vdf::Mixture { albedo: *albedo * t, g: *g },
+        unsupported @ Vdf::Unsupported(..) => unsupported.clone(),
+    }
 }
 
 /// The medium of the evaluated `material` value of material `name`, or `None` when it has
