@@ -26,6 +26,7 @@ mod mdl_classic;
 mod mdl_cornell;
 mod mdl_measured;
 mod mdl_spot;
+mod mdl_vdf_tints;
 mod mdl_wide;
 mod media;
 mod mia_helpers;
