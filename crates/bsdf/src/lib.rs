@@ -30,7 +30,7 @@ pub use frame::Frame;
 pub use lambert::Lambert;
 pub use layer_curve::{CurveKind, LayerCurve};
 pub use lobes::{Lobe, LobeSum, Lobes, Role, SharedLobes, WideBsdf, WideLobes};
-pub use medium::{HenyeyGreenstein, Medium};
+pub use medium::{HenyeyGreenstein, Medium, Phase};
 pub use mia::MiaBsdf;
 pub use oren_nayar::OrenNayar;
 pub use unified::{Unified, UnifiedParams};

@@ -1,7 +1,8 @@
 //! Tints of vdfs in module materials (tests/mdl/vdf_tints.mdl): `df::tint(t, vdf)` scatters
 //! σs·t with the vdf's phase function and absorbs σs·(1 − t), so the extinction σa + σs
 //! is unchanged (t clamped to [0, 1] per channel); tints of mixes and nested tints
-//! multiply; a tint that varies over the surface is a warning at its module line.
+//! multiply, and a tinted mix keeps its lobes' mixture as its phase function; a tint that
+//! varies over the surface is a warning at its module line.
 
 use crate::mdl_support;
 
@@ -33,6 +34,13 @@ shader "mix" "mdl::vdf_tints::tinted_mix" ()"#,
     assert!(close(m.sigma_s, Rgb::new(0.4, 0.5, 0.5), 1e-6), "{m:?}");
     assert!(close(m.sigma_a, Rgb::new(1.6, 1.5, 1.5), 1e-6), "{m:?}");
     assert!((m.phase.g - 0.32).abs() < 1e-6, "{m:?}");
+    // Its phase function is the two lobes' mixture, weighted 0.6 and 0.4 (what each
+    // scatters), not one lobe of their mean cosine.
+    let lobes: Vec<(f32, f32)> = m.phase.lobes().iter().map(|(w, l)| (*w, l.g)).collect();
+    assert_eq!(lobes.len(), 2, "{lobes:?}");
+    for ((w, g), (want_w, want_g)) in lobes.iter().zip([(0.6, 0.8), (0.4, -0.4)]) {
+        assert!((w - want_w).abs() < 1e-6 && (g - want_g).abs() < 1e-6, "{lobes:?}");
+    }
 }
 
 #[test]
