@@ -29,8 +29,8 @@ pub use dielectric::Dielectric;
 pub use frame::Frame;
 pub use lambert::Lambert;
 pub use layer_curve::{CurveKind, LayerCurve};
-pub use lobes::{Lobe, Lobes, Role};
-pub use medium::{HenyeyGreenstein, Medium};
+pub use lobes::{Lobe, LobeSum, Lobes, Role, SharedLobes, WideBsdf, WideLobes};
+pub use medium::{HenyeyGreenstein, Medium, Phase};
 pub use mia::MiaBsdf;
 pub use oren_nayar::OrenNayar;
 pub use unified::{Unified, UnifiedParams};
@@ -62,8 +62,10 @@ impl BsdfSample {
     }
 }
 
-/// A BSDF at one shading point.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A BSDF at one shading point. Every variant but [`Bsdf::Wide`] is plain data on the
+/// stack (at most 320 bytes); `Wide` shares its sum ([`SharedLobes`], an `Arc`: cloning it
+/// counts a reference, allocates nothing).
+#[derive(Clone, Debug, PartialEq)]
 pub enum Bsdf {
     /// Lambertian diffuse reflection.
     Lambert(Lambert),
@@ -81,6 +83,9 @@ pub enum Bsdf {
     Builtin(BuiltinBsdf),
     /// A weighted sum of elemental lobes (MDL's mixes and layers of them).
     Lobes(Lobes),
+    /// A sum of lobes too large for [`Bsdf::Lobes`] (more lobes, layer curves or own
+    /// normals than a compact sum holds).
+    Wide(WideBsdf),
 }
 
 impl Bsdf {
@@ -96,6 +101,7 @@ impl Bsdf {
             Bsdf::Unified(l) => l.eval(wo, wi),
             Bsdf::Builtin(l) => l.eval(wo, wi),
             Bsdf::Lobes(l) => l.eval(wo, wi),
+            Bsdf::Wide(l) => l.eval(wo, wi),
         }
     }
 
@@ -112,6 +118,7 @@ impl Bsdf {
             Bsdf::Unified(l) => l.sample(wo, u, u_lobe),
             Bsdf::Builtin(l) => l.sample(wo, u, u_lobe),
             Bsdf::Lobes(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Wide(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -127,6 +134,7 @@ impl Bsdf {
             Bsdf::Unified(l) => l.pdf(wo, wi),
             Bsdf::Builtin(l) => l.pdf(wo, wi),
             Bsdf::Lobes(l) => l.pdf(wo, wi),
+            Bsdf::Wide(l) => l.pdf(wo, wi),
         }
     }
 
@@ -136,6 +144,7 @@ impl Bsdf {
         match self {
             Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
             Bsdf::Lobes(l) => l.is_delta(),
+            Bsdf::Wide(l) => l.sum.is_delta(),
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,
             Bsdf::Conductor(c) => c.ggx.is_smooth(),
             Bsdf::Mia(m) => m.is_delta(),

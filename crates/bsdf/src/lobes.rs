@@ -1,21 +1,23 @@
-//! A weighted sum of up to [`MAX_LOBES`] reflection and translucency lobes: what MDL's
+//! A weighted sum of reflection and translucency lobes: what MDL's
 //! mixes, tints and layers of elemental BSDFs (Oren–Nayar diffuse, diffuse transmission,
 //! GGX and Beckmann micro-mirrors without Fresnel, backscattering GGX, a smooth mirror,
-//! sheen) make. A part's weight may also depend on direction through up to
-//! [`MAX_CURVES`] layer curves ([`LayerCurve`]: `custom_curve_layer`, `fresnel_layer`,
+//! sheen) make. A part's weight may also depend on direction through layer curves ([`LayerCurve`]: `custom_curve_layer`, `fresnel_layer`,
 //! `thin_film`, a sheen over its base) and directional factors (`directional_factor`),
 //! as its [`Role`] says. Sampled by choosing a lobe in proportion to the luminance of its
-//! constant weight; the density is the mixture's. Fixed size: no allocation.
+//! constant weight; the density is the mixture's. Fixed size: no allocation. Two sizes of
+//! one generic [`LobeSum`]: the compact [`Lobes`] of the common case ([`MAX_LOBES`] lobes,
+//! [`MAX_CURVES`] curves, [`MAX_FRAMES`] own normals; `Copy`, inline in a `Bsdf`) and
+//! [`WideLobes`] for larger trees (built once and shared: [`SharedLobes`], [`WideBsdf`]).
 //!
 //! **Own frames.** A layer may have its own normal (MDL's `normal` parameter of the
-//! layerers): up to [`MAX_FRAMES`] such normals are kept, and each part and each curve
+//! layerers): such normals are kept, and each part and each curve
 //! says which frame it lives in (0: the shading frame). A part in frame k is evaluated
 //! and sampled with the directions expressed in that frame (its x axis the shading
 //! frame's x laid into its tangent plane), its value scaled by |cos θi| in its frame over
 //! |cos θi| in the shading frame (the integrator multiplies by the latter), and it
 //! scatters only where the two frames agree on the side of each direction (nothing leaks
 //! through the surface); a curve measures its angles from its frame's normal. Normals are
-//! given in world space and brought into the local shading frame with [`Lobes::place`].
+//! given in world space and brought into the local shading frame with [`LobeSum::place`].
 
 use glam::{Vec2, Vec3A};
 
@@ -25,14 +27,33 @@ use crate::microfacet::Ggx;
 use crate::sheen::Sheen;
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
 
-/// Most lobes a sum holds.
+/// Most lobes a compact sum ([`Lobes`], the common case, kept inline in a
+/// [`crate::Bsdf`]) holds.
 pub const MAX_LOBES: usize = 4;
 
-/// Most layer curves a sum holds.
+/// Most layer curves a compact sum holds.
 pub const MAX_CURVES: usize = 2;
 
-/// Most own frames (layer normals) a sum holds besides the shading frame.
+/// Most own frames (layer normals) a compact sum holds besides the shading frame.
 pub const MAX_FRAMES: usize = 2;
+
+/// Most lobes a wide sum ([`WideLobes`], for what a compact one cannot hold) holds.
+pub const WIDE_LOBES: usize = 16;
+
+/// Most layer curves a wide sum holds (a [`Role`]'s bit masks are 8 bits wide).
+pub const WIDE_CURVES: usize = 8;
+
+/// Most own frames a wide sum holds besides the shading frame.
+pub const WIDE_FRAMES: usize = 8;
+
+/// The common sum: up to [`MAX_LOBES`] lobes, [`MAX_CURVES`] curves and [`MAX_FRAMES`]
+/// own normals, `Copy`, inline in [`crate::Bsdf::Lobes`] (at most 320 bytes).
+pub type Lobes = LobeSum<MAX_LOBES, MAX_CURVES, MAX_FRAMES>;
+
+/// A sum too large for [`Lobes`]: up to [`WIDE_LOBES`] lobes, [`WIDE_CURVES`] curves and
+/// [`WIDE_FRAMES`] own normals; shared behind an `Arc` by [`crate::Bsdf::Wide`] (built
+/// once per material, or once per hit where the material varies).
+pub type WideLobes = LobeSum<WIDE_LOBES, WIDE_CURVES, WIDE_FRAMES>;
 
 /// How the layer curves of a sum weigh one part: bit k of `over` scales it by curve k's
 /// layer factor ([`LayerCurve::over`]: the part is in the layer), of `under` by its base
@@ -86,42 +107,46 @@ pub enum Lobe {
     Mirror,
 }
 
-/// A weighted sum of lobes.
+/// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
+/// (`C` ≤ 8: a [`Role`]'s masks are 8 bits).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lobes {
-    /// Weights (tints) and lobes; the first `count` are used.
-    pub parts: [(Rgb, Lobe); MAX_LOBES],
+pub struct LobeSum<const N: usize, const C: usize, const F: usize> {
+    /// The parts' weights (tints); the first `count` are used.
+    pub weights: [Rgb; N],
+    /// The parts' lobes, beside their weights.
+    pub lobes: [Lobe; N],
     /// How the curves weigh each part.
-    pub roles: [Role; MAX_LOBES],
-    /// How many are used.
-    pub count: usize,
+    pub roles: [Role; N],
+    /// How many parts are used.
+    pub count: u8,
     /// The layer curves; the first `curve_count` are used.
-    pub curves: [LayerCurve; MAX_CURVES],
+    pub curves: [LayerCurve; C],
     /// How many curves are used.
-    pub curve_count: usize,
-    /// The own frames' normals (unit; world space until [`Lobes::place`]d, then in the
+    pub curve_count: u8,
+    /// The own frames' normals (unit; world space until [`LobeSum::place`]d, then in the
     /// local shading frame): frame k ≥ 1 is `normals[k − 1]`.
-    pub normals: [[f32; 3]; MAX_FRAMES],
+    pub normals: [[f32; 3]; F],
     /// How many normals are used.
     pub normal_count: u8,
     /// The frame of each part (0: the shading frame).
-    pub part_frames: [u8; MAX_LOBES],
+    pub part_frames: [u8; N],
     /// The frame each curve measures its angles in (0: the shading frame).
-    pub curve_frames: [u8; MAX_CURVES],
+    pub curve_frames: [u8; C],
 }
 
-impl Default for Lobes {
-    fn default() -> Lobes {
-        Lobes {
-            parts: [(Rgb::ZERO, Lobe::Translucent); MAX_LOBES],
-            roles: [Role::default(); MAX_LOBES],
+impl<const N: usize, const C: usize, const F: usize> Default for LobeSum<N, C, F> {
+    fn default() -> Self {
+        LobeSum {
+            weights: [Rgb::ZERO; N],
+            lobes: [Lobe::Translucent; N],
+            roles: [Role::default(); N],
             count: 0,
-            curves: [NO_CURVE; MAX_CURVES],
+            curves: [NO_CURVE; C],
             curve_count: 0,
-            normals: [[0.0, 0.0, 1.0]; MAX_FRAMES],
+            normals: [[0.0, 0.0, 1.0]; F],
             normal_count: 0,
-            part_frames: [0; MAX_LOBES],
-            curve_frames: [0; MAX_CURVES],
+            part_frames: [0; N],
+            curve_frames: [0; C],
         }
     }
 }
@@ -244,7 +269,36 @@ fn ggx_sample(g: &Ggx, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
     (i.z > 0.0).then(|| Vec3A::new(i.x, i.y, i.z * wo.z.signum()))
 }
 
-impl Lobes {
+/// Own frame `k` (≥ 1) of `normals` (local shading frame): x the shading frame's x laid
+/// into its tangent plane.
+#[inline]
+fn own_frame(normals: &[[f32; 3]], k: u8) -> Frame {
+    let n = Vec3A::from_array(normals[usize::from(k) - 1]);
+    Frame::from_normal_and_tangent(n, Vec3A::X)
+}
+
+/// Directions in frame `k` of `normals` and the cosine ratio (see [`in_own_frame`]); the
+/// shading frame's are the directions themselves.
+#[inline]
+fn directions_in(normals: &[[f32; 3]], k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
+    if k == 0 {
+        Some((wo, wi, 1.0))
+    } else {
+        in_own_frame(&own_frame(normals, k), wo, wi)
+    }
+}
+
+/// Brings normals from world space into the local shading frame `frame` (world space),
+/// each turned to the side of the shading normal.
+pub fn place_normals(normals: &mut [[f32; 3]], frame: &Frame) {
+    for n in normals {
+        let local = frame.to_local(Vec3A::from_array(*n));
+        let local = if local.z < 0.0 { -local } else { local };
+        *n = local.normalize_or(Vec3A::Z).to_array();
+    }
+}
+
+impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
     /// Adds `lobe` of weight `weight`; false when the sum is full.
     pub fn push(&mut self, weight: Rgb, lobe: Lobe) -> bool {
         self.push_with_role(weight, lobe, Role::default())
@@ -257,54 +311,56 @@ impl Lobes {
     }
 
     /// Adds `lobe` of weight `weight` weighed by the curves as `role` says, in frame
-    /// `frame` (0: the shading frame; else from [`Lobes::add_normal`]); false when the sum
-    /// is full.
+    /// `frame` (0: the shading frame; else from [`LobeSum::add_normal`]); false when the
+    /// sum is full.
     pub fn push_in_frame(&mut self, weight: Rgb, lobe: Lobe, role: Role, frame: u8) -> bool {
-        let used = self.count;
+        let used = self.len();
         if let Some(k) =
-            (0..used).find(|&k| self.parts[k].1 == lobe && self.roles[k] == role && self.part_frames[k] == frame)
+            (0..used).find(|&k| self.lobes[k] == lobe && self.roles[k] == role && self.part_frames[k] == frame)
         {
-            self.parts[k].0 += weight;
+            self.weights[k] += weight;
             return true;
         }
-        if self.count == MAX_LOBES {
+        if used == N {
             return false;
         }
-        self.parts[self.count] = (weight, lobe);
-        self.roles[self.count] = role;
-        self.part_frames[self.count] = frame;
+        self.weights[used] = weight;
+        self.lobes[used] = lobe;
+        self.roles[used] = role;
+        self.part_frames[used] = frame;
         self.count += 1;
         true
     }
 
     /// Adds a layer curve; its index (the bit `1 << index` of a [`Role`]), or `None` when
-    /// the sum has [`MAX_CURVES`] already.
+    /// the sum has `C` already.
     pub fn add_curve(&mut self, curve: LayerCurve) -> Option<u8> {
         self.add_curve_in_frame(curve, 0)
     }
 
     /// Adds a layer curve measuring its angles in frame `frame`; its index, or `None`
-    /// when the sum has [`MAX_CURVES`] already.
+    /// when the sum has `C` curves already.
     pub fn add_curve_in_frame(&mut self, curve: LayerCurve, frame: u8) -> Option<u8> {
-        if self.curve_count == MAX_CURVES {
+        let used = usize::from(self.curve_count);
+        if used == C || used == 8 {
             return None;
         }
-        self.curves[self.curve_count] = curve;
-        self.curve_frames[self.curve_count] = frame;
+        self.curves[used] = curve;
+        self.curve_frames[used] = frame;
         self.curve_count += 1;
-        Some(self.curve_count as u8 - 1)
+        Some(self.curve_count - 1)
     }
 
     /// Adds an own frame around `normal` (world space; normalised here); its frame number
-    /// (1 or more), or `None` when the sum has [`MAX_FRAMES`] already or `normal` has no
-    /// direction. An equal normal already added is shared.
+    /// (1 or more), or `None` when the sum has `F` already or `normal` has no direction.
+    /// An equal normal already added is shared.
     pub fn add_normal(&mut self, normal: Vec3A) -> Option<u8> {
         let n = normal.try_normalize()?;
         let used = usize::from(self.normal_count);
         if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == n) {
             return Some(k as u8 + 1);
         }
-        if used == MAX_FRAMES {
+        if used == F {
             return None;
         }
         self.normals[used] = n.to_array();
@@ -315,50 +371,49 @@ impl Lobes {
     /// Brings the own frames' normals from world space into the local shading frame
     /// `frame` (world space), each turned to the side of the shading normal.
     pub fn place(&mut self, frame: &Frame) {
-        for n in &mut self.normals[..usize::from(self.normal_count)] {
-            let local = frame.to_local(Vec3A::from_array(*n));
-            let local = if local.z < 0.0 { -local } else { local };
-            *n = local.normalize_or(Vec3A::Z).to_array();
-        }
+        place_normals(&mut self.normals[..usize::from(self.normal_count)], frame);
     }
 
-    /// Own frame `k` (≥ 1) in the local shading frame: x the shading frame's x laid into
-    /// its tangent plane.
+    /// How many parts are used.
     #[inline]
-    fn own_frame(&self, k: u8) -> Frame {
-        let n = Vec3A::from_array(self.normals[usize::from(k) - 1]);
-        Frame::from_normal_and_tangent(n, Vec3A::X)
+    pub fn len(&self) -> usize {
+        usize::from(self.count)
     }
 
-    /// Directions in frame `k` and the cosine ratio (see [`in_own_frame`]); the shading
-    /// frame's are the directions themselves.
-    #[inline]
-    fn directions_in(&self, k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
-        if k == 0 {
-            Some((wo, wi, 1.0))
-        } else {
-            in_own_frame(&self.own_frame(k), wo, wi)
-        }
+    /// Whether no part is used.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// Part `k`: its weight and lobe.
+    pub fn part(&self, k: usize) -> (Rgb, Lobe) {
+        (self.weights[k], self.lobes[k])
+    }
+
+    /// The used parts, in order: weight and lobe.
+    pub fn parts(&self) -> impl Iterator<Item = (Rgb, Lobe)> + '_ {
+        (0..self.len()).map(|k| self.part(k))
     }
 
     /// Whether every lobe is a smooth mirror.
     pub fn is_delta(&self) -> bool {
-        self.count > 0 && self.used().iter().all(|(_, l)| *l == Lobe::Mirror)
+        self.count > 0 && self.lobes[..self.len()].iter().all(|l| *l == Lobe::Mirror)
     }
 
-    /// The curves' factor of part `k` for the pair of directions.
-    fn factor(&self, k: usize, wo: Vec3A, wi: Vec3A) -> Rgb {
+    /// The curves' factor of part `k` for the pair of directions, with the own frames
+    /// around `normals`.
+    fn factor(&self, normals: &[[f32; 3]], k: usize, wo: Vec3A, wi: Vec3A) -> Rgb {
         let role = self.roles[k];
         if role.is_plain() {
             return Rgb::ONE;
         }
         let mut f = Rgb::ONE;
-        for (j, c) in self.curves[..self.curve_count].iter().enumerate() {
+        for (j, c) in self.curves[..usize::from(self.curve_count)].iter().enumerate() {
             let bit = 1u8 << j;
             let (wo, wi) = match self.curve_frames[j] {
                 0 => (wo, wi),
                 own => {
-                    let frame = self.own_frame(own);
+                    let frame = own_frame(normals, own);
                     (frame.to_local(wo), frame.to_local(wi))
                 }
             };
@@ -378,15 +433,18 @@ impl Lobes {
         f
     }
 
-    fn used(&self) -> &[(Rgb, Lobe)] {
-        &self.parts[..self.count]
+    /// The sum of the luminances of the parts' weights (what lobes are chosen by).
+    #[inline]
+    fn total_choice(&self) -> f32 {
+        self.weights[..self.len()].iter().map(|w| luminance(*w).max(0.0)).sum()
     }
 
-    /// The probability of sampling each lobe (by the luminance of its weight).
-    fn choice(&self, k: usize) -> f32 {
-        let total: f32 = self.used().iter().map(|(w, _)| luminance(*w).max(0.0)).sum();
+    /// The probability of sampling lobe `k` (by the luminance of its weight), `total` the
+    /// [`LobeSum::total_choice`].
+    #[inline]
+    fn choice(&self, k: usize, total: f32) -> f32 {
         if total > 0.0 {
-            luminance(self.parts[k].0).max(0.0) / total
+            luminance(self.weights[k]).max(0.0) / total
         } else {
             0.0
         }
@@ -394,59 +452,175 @@ impl Lobes {
 
     /// f(ωo, ωi) of the non-delta lobes.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        self.eval_around(&self.normals, wo, wi)
+    }
+
+    /// The mixture's sampling density.
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        self.pdf_around(&self.normals, wo, wi)
+    }
+
+    /// Chooses a lobe with `u_lobe`, samples it with `u`.
+    pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+        self.sample_around(&self.normals, wo, u, u_lobe)
+    }
+
+    /// [`LobeSum::eval`] with the own frames around `normals` (local shading frame)
+    /// instead of the sum's own. Never inlined (nor its density and sampling): a call, as
+    /// when the sum was not generic, so that callers such as the path tracer's loop keep
+    /// their shape.
+    #[inline(never)]
+    pub fn eval_around(&self, normals: &[[f32; 3]], wo: Vec3A, wi: Vec3A) -> Rgb {
         let mut sum = Rgb::ZERO;
-        for (k, (w, l)) in self.used().iter().enumerate() {
-            if *l == Lobe::Mirror {
+        for k in 0..self.len() {
+            let (w, l) = (self.weights[k], self.lobes[k]);
+            if l == Lobe::Mirror {
                 continue;
             }
-            if let Some((o, i, ratio)) = self.directions_in(self.part_frames[k], wo, wi) {
-                sum += *w * l.eval(o, i) * (self.factor(k, wo, wi) * ratio);
+            if let Some((o, i, ratio)) = directions_in(normals, self.part_frames[k], wo, wi) {
+                sum += w * l.eval(o, i) * (self.factor(normals, k, wo, wi) * ratio);
             }
         }
         sum
     }
 
-    /// The mixture's sampling density.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        (0..self.count)
+    /// [`LobeSum::pdf`] with the own frames around `normals`.
+    #[inline(never)]
+    pub fn pdf_around(&self, normals: &[[f32; 3]], wo: Vec3A, wi: Vec3A) -> f32 {
+        let total = self.total_choice();
+        (0..self.len())
             .map(|k| {
-                self.directions_in(self.part_frames[k], wo, wi)
-                    .map_or(0.0, |(o, i, _)| self.choice(k) * self.parts[k].1.pdf(o, i))
+                directions_in(normals, self.part_frames[k], wo, wi)
+                    .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i))
             })
             .sum()
     }
 
-    /// Chooses a lobe with `u_lobe`, samples it with `u`.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+    /// [`LobeSum::sample`] with the own frames around `normals`.
+    #[inline(never)]
+    pub fn sample_around(&self, normals: &[[f32; 3]], wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+        let total = self.total_choice();
+        let used = self.len();
         let mut left = u_lobe;
         let mut chosen = None;
-        for k in 0..self.count {
-            let p = self.choice(k);
-            if p > 0.0 && (left < p || k + 1 == self.count) {
+        for k in 0..used {
+            let p = self.choice(k, total);
+            if p > 0.0 && (left < p || k + 1 == used) {
                 chosen = Some(k);
                 break;
             }
             left -= p;
         }
         let k = chosen?;
+        let lobe = self.lobes[k];
         let wi = match self.part_frames[k] {
-            0 => self.parts[k].1.sample_dir(wo, u)?,
+            0 => lobe.sample_dir(wo, u)?,
             own => {
-                let frame = self.own_frame(own);
-                let wi = frame.to_world(self.parts[k].1.sample_dir(frame.to_local(wo), u)?);
+                let frame = own_frame(normals, own);
+                let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u)?);
                 // A direction the own frame sends through the surface is lost.
                 in_own_frame(&frame, wo, wi)?;
                 wi
             }
         };
-        if self.parts[k].1 == Lobe::Mirror {
+        if lobe == Lobe::Mirror {
             // A discrete choice of probability p: f |cos θi| / p is the part's weight / p.
-            let (p, cos) = (self.choice(k), wi.z.abs());
-            let f = self.parts[k].0 * self.factor(k, wo, wi) / cos.max(1e-8);
+            let (p, cos) = (self.choice(k, total), wi.z.abs());
+            let f = self.weights[k] * self.factor(normals, k, wo, wi) / cos.max(1e-8);
             return (p > 0.0).then_some(BsdfSample { wi, f, pdf: p, delta: true });
         }
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval(wo, wi), pdf, delta: false })
+        let pdf = self.pdf_around(normals, wo, wi);
+        (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval_around(normals, wo, wi), pdf, delta: false })
+    }
+}
+
+/// A [`WideLobes`] sum shared by the materials and BSDFs that use it (an `Arc`). Cloning
+/// and dropping it are calls, never inlined, and its field has no drop glue of its own
+/// (the `Arc` is in a `ManuallyDrop`, released by `Drop`): the reference count's atomic
+/// operations stay out of the callers' inner loops (the path tracer moves and drops
+/// `Bsdf`s and material models at every hit; their common variants are plain data).
+#[derive(Debug, PartialEq)]
+pub struct SharedLobes(Option<std::mem::ManuallyDrop<std::sync::Arc<WideLobes>>>);
+
+impl SharedLobes {
+    /// Shares `sum`.
+    pub fn new(sum: WideLobes) -> SharedLobes {
+        SharedLobes(Some(std::mem::ManuallyDrop::new(std::sync::Arc::new(sum))))
+    }
+}
+
+impl Clone for SharedLobes {
+    #[inline(never)]
+    fn clone(&self) -> SharedLobes {
+        SharedLobes(self.0.as_ref().map(|arc| std::mem::ManuallyDrop::new(std::sync::Arc::clone(arc))))
+    }
+}
+
+impl Drop for SharedLobes {
+    #[inline(never)]
+    fn drop(&mut self) {
+        drop(self.0.take().map(std::mem::ManuallyDrop::into_inner));
+    }
+}
+
+impl std::ops::Deref for SharedLobes {
+    type Target = WideLobes;
+    fn deref(&self) -> &WideLobes {
+        // `None` only inside `drop`, where nothing reads it.
+        self.0.as_deref().map(|arc| &**arc).unwrap_or(&EMPTY_WIDE)
+    }
+}
+
+/// What a [`SharedLobes`] reads as once released (never, outside its `drop`).
+static EMPTY_WIDE: WideLobes = WideLobes {
+    weights: [Rgb::ZERO; WIDE_LOBES],
+    lobes: [Lobe::Translucent; WIDE_LOBES],
+    roles: [Role { over: 0, under: 0, factor: 0 }; WIDE_LOBES],
+    count: 0,
+    curves: [NO_CURVE; WIDE_CURVES],
+    curve_count: 0,
+    normals: [[0.0, 0.0, 1.0]; WIDE_FRAMES],
+    normal_count: 0,
+    part_frames: [0; WIDE_LOBES],
+    curve_frames: [0; WIDE_CURVES],
+};
+
+/// A [`WideLobes`] sum at one shading point: shared (built once per material, or once
+/// per hit where the material varies), with its own normals placed in the hit's local
+/// shading frame beside it (so that placing them allocates nothing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WideBsdf {
+    /// The sum (its normals in world space).
+    pub sum: SharedLobes,
+    /// The sum's normals in the local shading frame.
+    pub normals: [[f32; 3]; WIDE_FRAMES],
+}
+
+impl WideBsdf {
+    /// The sum with its normals placed in the local shading frame `frame` (world space);
+    /// `None` takes them as local already.
+    #[inline(never)]
+    pub fn new(sum: SharedLobes, frame: Option<&Frame>) -> WideBsdf {
+        let mut normals = sum.normals;
+        if let Some(frame) = frame {
+            place_normals(&mut normals[..usize::from(sum.normal_count)], frame);
+        }
+        WideBsdf { sum, normals }
+    }
+
+    /// f(ωo, ωi) of the non-delta lobes.
+    pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        self.sum.eval_around(&self.normals, wo, wi)
+    }
+
+    /// The mixture's sampling density.
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        self.sum.pdf_around(&self.normals, wo, wi)
+    }
+
+    /// Chooses a lobe with `u_lobe`, samples it with `u`.
+    pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+        self.sum.sample_around(&self.normals, wo, u, u_lobe)
     }
 }
 
@@ -512,11 +686,12 @@ mod tests {
         }
     }
 
-    /// The own frames (two normals, a frame index per part and per curve) add 32 bytes to
-    /// a `Bsdf`: 320 → 352 bytes (x86-64); this keeps it from growing unnoticed.
+    /// A `Bsdf` (its largest variant the compact lobe sum, with its two own normals) is
+    /// at most 320 bytes (x86-64; 352 before the counts became bytes and the weights moved
+    /// out of the lobes' tuples); this keeps it from growing unnoticed.
     #[test]
-    fn own_frames_grow_the_bsdf_by_32_bytes_at_most() {
-        assert!(std::mem::size_of::<Bsdf>() <= 352, "{}", std::mem::size_of::<Bsdf>());
+    fn a_bsdf_is_320_bytes_at_most() {
+        assert!(std::mem::size_of::<Bsdf>() <= 320, "{}", std::mem::size_of::<Bsdf>());
     }
 
     #[test]

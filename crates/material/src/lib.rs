@@ -125,6 +125,14 @@ pub enum SurfaceModel {
     /// A sum of up to four elemental lobes (MDL mixes and weighted layers of diffuse,
     /// diffuse transmission, GGX and Beckmann reflection of any roughness, sheen).
     MdlLobes(Box<bsdf::Lobes>),
+    /// A sum of more lobes, layer curves or layer normals than [`SurfaceModel::MdlLobes`]
+    /// holds (up to [`bsdf::lobes::WIDE_LOBES`], [`bsdf::lobes::WIDE_CURVES`] and
+    /// [`bsdf::lobes::WIDE_FRAMES`]), shared with the BSDFs made of it. Boxed like the
+    /// other large models: dropping a model then never takes the address of the value
+    /// itself, which let the compiler keep hit materials in registers in the path tracer's
+    /// loop (a `SharedLobes` in place made it copy them through memory: +3.4 % instructions
+    /// on the Cornell box).
+    MdlWide(Box<bsdf::SharedLobes>),
 }
 
 /// A surface's scattering and emission.
@@ -220,27 +228,36 @@ impl SurfaceModel {
     /// MDL lobe sum brought into the frame.
     #[inline]
     pub fn bsdf_in(&self, diffuse: Rgb, wo: glam::Vec3A, frame: &bsdf::Frame) -> Bsdf {
-        match self {
-            SurfaceModel::MdlLobes(l) if l.normal_count > 0 => {
-                let mut l = **l;
-                l.place(frame);
-                Bsdf::Lobes(l)
-            }
-            _ => self.bsdf(diffuse, wo),
-        }
+        self.bsdf_placed(diffuse, wo, Some(frame))
     }
 
     /// The BSDF seen from `wo` (local shading frame), with diffuse colour `diffuse` (an MDL
     /// lobe sum's layer normals taken as local: see [`SurfaceModel::bsdf_in`]).
     #[inline]
     pub fn bsdf(&self, diffuse: Rgb, wo: glam::Vec3A) -> Bsdf {
+        self.bsdf_placed(diffuse, wo, None)
+    }
+
+    /// The BSDF seen from `wo`, an MDL lobe sum's layer normals placed in `frame` when
+    /// given. One `match` building each variant in place (a `Bsdf` is up to 320 bytes: a
+    /// second function's result would be copied).
+    #[inline]
+    fn bsdf_placed(&self, diffuse: Rgb, wo: glam::Vec3A, frame: Option<&bsdf::Frame>) -> Bsdf {
         match self {
             SurfaceModel::Lambert => Bsdf::Lambert(Lambert { albedo: diffuse }),
             SurfaceModel::OrenNayar(sigma) => Bsdf::OrenNayar(OrenNayar::new(diffuse, *sigma)),
             SurfaceModel::Unified(u) => Bsdf::Unified(**u),
             SurfaceModel::Builtin(b) => Bsdf::Builtin(**b),
             SurfaceModel::Lobes(l) => Bsdf::Mia(**l),
-            SurfaceModel::MdlLobes(l) => Bsdf::Lobes(**l),
+            SurfaceModel::MdlLobes(l) => match frame {
+                Some(frame) if l.normal_count > 0 => {
+                    let mut l = **l;
+                    l.place(frame);
+                    Bsdf::Lobes(l)
+                }
+                _ => Bsdf::Lobes(**l),
+            },
+            SurfaceModel::MdlWide(l) => Bsdf::Wide(bsdf::WideBsdf::new((**l).clone(), frame)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

@@ -28,7 +28,10 @@ use std::sync::Arc;
 
 use bsdf::beckmann::Beckmann;
 use bsdf::microfacet::Ggx;
-use bsdf::{CurveKind, LayerCurve, Lobe, Lobes, MiaBsdf, OrenNayar, Rgb, Role, Unified, UnifiedParams};
+use bsdf::{
+    CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, MiaBsdf, OrenNayar, Rgb, Role, Unified, UnifiedParams,
+    WideLobes,
+};
 use glam::{Vec3A, Vec4};
 
 use super::hit::HitExpr;
@@ -179,8 +182,7 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
 /// Adds `df` scaled by `scale` to a general sum of lobes (two glossy roughnesses,
 /// Beckmann, sheen, layer curves…), each lobe weighed by the curves as `role` says;
 /// `film` is a `thin_film` (thickness in nm, film index) over `df`. False if the tree has
-/// anything else, or more than [`bsdf::lobes::MAX_LOBES`] lobes or
-/// [`bsdf::lobes::MAX_CURVES`] curves.
+/// anything else, or more lobes, curves or normals than `sum` holds.
 ///
 /// A film changes the Fresnel terms of what it covers (MDL's `thin_film`): it reaches
 /// through mixes, tints, weighted layers, directional factors and a sheen's base to each
@@ -191,13 +193,13 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
 /// change and are unchanged.
 ///
 /// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
-/// own `normal` puts its lobes and its curve in the frame of that normal (at most
-/// [`bsdf::lobes::MAX_FRAMES`] normals a sum).
-fn add_general(
+/// own `normal` puts its lobes and its curve in the frame of that normal (at most `F`
+/// normals a sum).
+fn add_general<const N: usize, const C: usize, const F: usize>(
     df: &Df,
     scale: Rgb,
     hit: &[Vec4],
-    sum: &mut Lobes,
+    sum: &mut GeneralSum<N, C, F>,
     role: Role,
     film: Option<(f32, Rgb)>,
     frame: u8,
@@ -310,7 +312,12 @@ fn ior_of_reflectivity(r0: Rgb) -> f32 {
 
 /// The frame a layer's lobes live in: its own normal's (added to `sum`), or `frame` (the
 /// frame around it) without one; `None` when the sum holds no more frames.
-fn own_frame(layer_normal: Option<Leaf>, hit: &[Vec4], sum: &mut Lobes, frame: u8) -> Option<u8> {
+fn own_frame<const N: usize, const C: usize, const F: usize>(
+    layer_normal: Option<Leaf>,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    frame: u8,
+) -> Option<u8> {
     match layer_normal {
         None => Some(frame),
         Some(n) => {
@@ -330,13 +337,13 @@ fn own_frame(layer_normal: Option<Leaf>, hit: &[Vec4], sum: &mut Lobes, frame: u
 /// are the base's frame and the layer's (whose normal the curve measures its angles
 /// from). The base's share is normalised when it is Lambertian, under no other curve and
 /// in the layer's frame (then a white base stays lossless).
-fn layer_roles(
+fn layer_roles<const N: usize, const C: usize, const F: usize>(
     curve: CurveKind,
     weight: Rgb,
     base: &Df,
     role: Role,
     hit: &[Vec4],
-    sum: &mut Lobes,
+    sum: &mut GeneralSum<N, C, F>,
     (frame, own): (u8, u8),
 ) -> Option<(Role, Role)> {
     let lambertian = role.under == 0 && frame == own && diffuse_only(base, hit).is_some_and(|(_, sigma)| sigma == 0.0);
@@ -347,14 +354,14 @@ fn layer_roles(
 /// Adds a layer weighed by `curve` (`custom_curve_layer`, `fresnel_layer`, a film on one):
 /// the base in `frames.0`, the layer and its curve in `frames.1`.
 #[allow(clippy::too_many_arguments)]
-fn curve_layer(
+fn curve_layer<const N: usize, const C: usize, const F: usize>(
     curve: CurveKind,
     weight: Rgb,
     layer: &Df,
     base: &Df,
     scale: Rgb,
     hit: &[Vec4],
-    sum: &mut Lobes,
+    sum: &mut GeneralSum<N, C, F>,
     role: Role,
     frames: (u8, u8),
 ) -> bool {
@@ -363,17 +370,35 @@ fn curve_layer(
         && add_general(base, scale, hit, sum, under, None, frames.0)
 }
 
-/// The tree as a [`SurfaceModel::MdlLobes`] sum and its diffuse colour, if it is one.
+/// The tree as a lobe sum and its diffuse colour, if it is one: a compact
+/// [`SurfaceModel::MdlLobes`] where it fits (the common case, copied into each hit's BSDF),
+/// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs).
 fn general(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
     let mut sum = Lobes::default();
-    if !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
+    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
+        return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
+    }
+    if !filled(&sum) {
         return None;
     }
-    let diffuse = sum.parts[..sum.count]
-        .iter()
-        .filter(|(_, l)| matches!(l, Lobe::Diffuse(_)))
-        .fold(Rgb::ZERO, |s, (w, _)| s + *w);
-    Some((diffuse.clamp(Rgb::ZERO, Rgb::ONE), SurfaceModel::MdlLobes(Box::new(sum))))
+    let mut wide = WideLobes::default();
+    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0) {
+        return None;
+    }
+    Some((diffuse_of(&wide), SurfaceModel::MdlWide(Box::new(bsdf::SharedLobes::new(wide)))))
+}
+
+/// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
+fn diffuse_of<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> Rgb {
+    let diffuse = sum.parts().filter(|(_, l)| matches!(l, Lobe::Diffuse(_))).fold(Rgb::ZERO, |s, (w, _)| s + w);
+    diffuse.clamp(Rgb::ZERO, Rgb::ONE)
+}
+
+/// Whether a sum whose lowering stopped is full (a lobe, curve or normal more than it
+/// holds: [`GeneralSum::push_in_frame`], [`GeneralSum::add_curve_in_frame`] and
+/// [`GeneralSum::add_normal`] refuse only then).
+fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> bool {
+    sum.len() == N || usize::from(sum.curve_count) == C || usize::from(sum.normal_count) == F
 }
 
 /// The albedo of a tree's diffuse reflection lobes, ignoring the rest (the approximation of
@@ -715,9 +740,9 @@ fn lower_bsdf(
     let why = if filled_up(df, hit) {
         format!(
             "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
-            bsdf::lobes::MAX_LOBES,
-            bsdf::lobes::MAX_CURVES,
-            bsdf::lobes::MAX_FRAMES
+            bsdf::lobes::WIDE_LOBES,
+            bsdf::lobes::WIDE_CURVES,
+            bsdf::lobes::WIDE_FRAMES
         )
     } else {
         "has no path-engine form yet".to_string()
@@ -734,15 +759,10 @@ fn lower_bsdf(
     (albedo, SurfaceModel::Lambert)
 }
 
-/// Whether lowering `df` as a general lobe sum stopped with the sum full (a lobe or a
-/// curve more than it holds: [`Lobes::push_with_role`] and [`Lobes::add_curve`] refuse
-/// only then).
+/// Whether lowering `df` as a wide lobe sum stopped with the sum full.
 fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
-    let mut sum = Lobes::default();
-    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0)
-        && (sum.count == bsdf::lobes::MAX_LOBES
-            || sum.curve_count == bsdf::lobes::MAX_CURVES
-            || usize::from(sum.normal_count) == bsdf::lobes::MAX_FRAMES)
+    let mut sum = WideLobes::default();
+    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) && filled(&sum)
 }
 
 /// The constructs of a tree, for messages (`fresnel_layer(diffuse_transmission_bsdf, …)`).

@@ -209,6 +209,22 @@ impl Instance<'_> {
                 }
                 continue;
             }
+            if let (Type::LightProfile, mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
+                match ev.textures.profile_from_mi(&name.text, self.lib) {
+                    Ok(profile) => given[i] = Some(Value::LightProfile(Some(profile))),
+                    Err(why) => {
+                        diags.push(Diagnostic::warning(
+                            p.span,
+                            format!(
+                                "parameter '{}' of `{qualified}`: {why}; the invalid light profile (no emission) is used",
+                                p.name.text
+                            ),
+                        ));
+                        given[i] = Some(Value::LightProfile(None));
+                    }
+                }
+                continue;
+            }
             match value::from_mi(&p.value, &decl.ty.ty, &enum_value) {
                 Ok(v) => given[i] = Some(coerce(v, &decl.ty.ty)),
                 Err(why) => {

@@ -167,7 +167,8 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         }
         "tint" if def.params.len() == 2 => match arg("base") {
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], clamped: false })),
-            _ => Err(problem(span, "`df::tint` of an edf, vdf or hair bsdf is not compiled yet")),
+            Some(Value::Vdf(v)) => Ok(Value::Vdf(super::volume::tint(v, tint?, span))),
+            _ => Err(problem(span, "`df::tint` of an edf or hair bsdf is not compiled yet")),
         },
         "weighted_layer" | "color_weighted_layer" => Ok(Value::Bsdf(Df::Layer {
             weight: number("weight")?,

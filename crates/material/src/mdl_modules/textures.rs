@@ -2,7 +2,8 @@
 //! (`texture_2d("./wood.png")`, relative to the module's file or on the MDL search path) or
 //! by a `.mi` parameter (the name of a `color texture` element of the scene, or a file),
 //! read once per file through the renderer's texture code (`shader::texture`) and shared by
-//! every instance. Texel values are used as stored, as for `.mi` textures (no gamma).
+//! every instance; light profiles likewise (a `.mi` parameter names a `lightprofile`
+//! element or an IES file). Texel values are used as stored, as for `.mi` textures (no gamma).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -68,6 +69,27 @@ impl Textures {
                 Ok(Arc::new(profile))
             })
             .clone()
+    }
+
+    /// The light profile a `.mi` parameter names: a `lightprofile` element of `lib` (its
+    /// `format ies` file, on the search path, `flags 1` read clockwise, as lights read it),
+    /// else an IES file. `Err` says why it could not be read.
+    pub fn profile_from_mi(&mut self, name: &str, lib: &scene::Library) -> Result<Arc<Profile>, String> {
+        let search = texture::SearchPath { dirs: self.dirs.clone() };
+        if let Some(block) = lib.lightprofiles.get(name).and_then(|b| b.last()) {
+            let (profile, notes) = shader::light::profiles::load_block(block, &search)
+                .map_err(|e| format!("lightprofile '{name}': {e}"))?;
+            self.warnings.extend(notes.into_iter().map(|n| format!("lightprofile '{name}': {n}")));
+            return Ok(Arc::new(profile));
+        }
+        let path = Path::new(name);
+        if path.is_absolute() && path.is_file() {
+            let (profile, notes) =
+                Profile::load(path, false).map_err(|e| format!("light profile '{}': {e}", path.display()))?;
+            self.warnings.extend(notes.into_iter().map(|n| format!("light profile '{}': {n}", path.display())));
+            return Ok(Arc::new(profile));
+        }
+        self.light_profile(name, None).map_err(|e| format!("'{name}' is no lightprofile element of the scene, and {e}"))
     }
 
     /// The image of the file at `path`, read once.

@@ -253,16 +253,16 @@ pub enum Vdf {
     /// Henyey–Greenstein scattering of asymmetry g: `df::anisotropic_vdf`'s
     /// `directional_bias`, 0 (isotropic) for the default `vdf()`.
     HenyeyGreenstein(f32),
-    /// A mix of Henyey–Greenstein vdfs (`df::normalized_mix`, `clamped_mix` and their
-    /// colour forms) lowered to one lobe: `albedo` is the mix's total weight per channel
-    /// (the fraction of the medium's scattering that the mix scatters, ≤ 1; the rest is
-    /// absorbed) and `g` the weighted mean of its lobes' asymmetries (see
-    /// [`super::volume::mix`]).
+    /// A mix or tint of Henyey–Greenstein vdfs (`df::normalized_mix`, `clamped_mix`, their
+    /// colour forms, `df::tint`): `albedo` is the mix's total weight per channel (the
+    /// fraction of the medium's scattering that the mix scatters, ≤ 1; the rest is
+    /// absorbed) and `lobes` its lobes, each (how much it scatters: the channels' mean of
+    /// its weight, asymmetry g) (see [`super::volume::mix`]).
     Mixture {
         /// The mix's total weight per channel.
         albedo: Rgb,
-        /// The asymmetry of the one Henyey–Greenstein lobe that stands for the mix.
-        g: f32,
+        /// The lobes: scattering weight and asymmetry.
+        lobes: Vec<(f32, f32)>,
     },
     /// A vdf mira does not compile: its name and where it was called (the volume then
     /// scatters isotropically, with a warning at that place).

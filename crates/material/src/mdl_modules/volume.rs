@@ -11,17 +11,20 @@
 //! A mix of vdfs (`df::normalized_mix`, `clamped_mix` and their colour forms) is lowered to
 //! one medium ([`mix`]): its total weight W per channel (≤ 1) is the fraction of the
 //! scattering coefficient that scatters (σs·W; the rest, σs·(1 − W), is absorbed, so the
-//! extinction is unchanged), and its phase function one Henyey–Greenstein lobe whose g is
-//! the mean of the lobes' g weighted by their scattering (the mean of the weight's
-//! channels). That lobe has the mixture's mean cosine, which is what light transport
-//! through many events depends on most, but it is an approximation: a mixture of a forward
-//! and a backward lobe is not one Henyey–Greenstein lobe.
+//! extinction is unchanged), and its phase function the mixture of its Henyey–Greenstein
+//! lobes ([`bsdf::Phase`], up to four; more are merged, keeping the mean cosine), each
+//! weighted by how much it scatters (the mean of its weight's channels: one phase function
+//! serves all three channels, exact for grey weights).
+//!
+//! A tint of a vdf (`df::tint(color, vdf)`) scales what it scatters by the tint (clamped to
+//! [0, 1] per channel, as a mix's weights): the same lowering as a mix of that one
+//! component, σs·tint scattering with the vdf's phase function, σs·(1 − tint) absorbed.
 
-use bsdf::{Medium, Rgb};
+use bsdf::{Medium, Phase, Rgb};
 use mi::Span;
 
 use super::eval::{problem, Eval};
-use super::value::{Value, Vdf};
+use super::value::{Leaf, Value, Vdf};
 
 /// `df::{name}` (a normalized or, when `clamped`, clamped mix) of the vdf components
 /// `components` (structs of `weight` and `component`), called at `span`: a
@@ -46,19 +49,19 @@ pub fn mix(name: &str, components: &[Value], clamped: bool, span: Span) -> Eval 
                 .ok_or_else(|| problem(span, format!("a weight of `df::{name}` is not a number or colour")))?
                 .max(Rgb::ZERO),
         };
-        let (albedo, g) = match c.field("component") {
-            Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => (Rgb::ONE, *g),
-            Some(Value::Vdf(Vdf::Mixture { albedo, g })) => (*albedo, *g),
+        let (albedo, lobes) = match c.field("component") {
+            Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => (Rgb::ONE, vec![(1.0, *g)]),
+            Some(Value::Vdf(Vdf::Mixture { albedo, lobes })) => (*albedo, lobes.clone()),
             Some(Value::Vdf(unsupported @ Vdf::Unsupported(..))) => return Ok(Value::Vdf(unsupported.clone())),
             _ => return Err(problem(span, format!("a component of `df::{name}` is not a vdf"))),
         };
-        parts.push((weight, albedo, g));
+        parts.push((weight, albedo, lobes));
     }
     let mut used = Rgb::ZERO;
     let sum = parts.iter().fold(Rgb::ZERO, |s, (w, _, _)| s + *w);
     let scale = Rgb::ONE / sum.max(Rgb::ONE);
-    let (mut albedo, mut weighted_g, mut scattering) = (Rgb::ZERO, 0.0f32, 0.0f32);
-    for (w, a, g) in parts {
+    let (mut albedo, mut lobes) = (Rgb::ZERO, Vec::new());
+    for (w, a, inner) in parts {
         let w = if clamped {
             let w = w.min((Rgb::ONE - used).max(Rgb::ZERO));
             used += w;
@@ -69,11 +72,29 @@ pub fn mix(name: &str, components: &[Value], clamped: bool, span: Span) -> Eval 
         let scattered = w * a;
         let amount = (scattered.x + scattered.y + scattered.z) / 3.0;
         albedo += scattered;
-        weighted_g += amount * g;
-        scattering += amount;
+        // The component's lobes share what it scatters in their own proportions.
+        let inner_total: f32 = inner.iter().map(|(x, _)| x).sum();
+        if inner_total > 0.0 {
+            lobes.extend(inner.iter().map(|(x, g)| (amount * x / inner_total, *g)));
+        }
     }
-    let g = if scattering > 0.0 { (weighted_g / scattering).clamp(-1.0, 1.0) } else { 0.0 };
-    Ok(Value::Vdf(Vdf::Mixture { albedo: albedo.min(Rgb::ONE), g }))
+    Ok(Value::Vdf(Vdf::Mixture { albedo: albedo.min(Rgb::ONE), lobes }))
+}
+
+/// `df::tint(tint, vdf)` called at `span`: the vdf scattering `tint` of what it scattered
+/// (per channel, clamped to [0, 1]), the rest absorbed ([`Vdf::Mixture`]); a tint that
+/// varies over the surface makes it unsupported (a homogeneous medium has one albedo).
+pub fn tint(vdf: &Vdf, tint: Leaf, span: Span) -> Vdf {
+    let Leaf::Const(t) = tint else {
+        return Vdf::Unsupported("`df::tint` of a vdf with a tint that varies over the surface".into(), span);
+    };
+    let t = if t.is_finite() { t.clamp(Rgb::ZERO, Rgb::ONE) } else { Rgb::ZERO };
+    match vdf {
+        Vdf::HenyeyGreenstein(g) => Vdf::Mixture { albedo: t, lobes: vec![(1.0, *g)] },
+        // The tint scales every lobe alike: their proportions stay.
+        Vdf::Mixture { albedo, lobes } => Vdf::Mixture { albedo: *albedo * t, lobes: lobes.clone() },
+        unsupported @ Vdf::Unsupported(..) => unsupported.clone(),
+    }
 }
 
 /// The medium of the evaluated `material` value of material `name`, or `None` when it has
@@ -124,13 +145,13 @@ pub fn medium(
         warnings.push(format!("material '{name}': volume emission (emission_intensity) is not rendered yet; ignored"));
     }
     let (mut sigma_a, mut sigma_s) = (sigma_a?, sigma_s?);
-    let g = match volume.field("scattering") {
-        Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => *g,
-        Some(Value::Vdf(Vdf::Mixture { albedo, g })) => {
+    let phase = match volume.field("scattering") {
+        Some(Value::Vdf(Vdf::HenyeyGreenstein(g))) => Phase::henyey_greenstein(*g),
+        Some(Value::Vdf(Vdf::Mixture { albedo, lobes })) => {
             // What the mix does not scatter is absorbed: the extinction stays σa + σs.
             sigma_a += sigma_s * (Rgb::ONE - *albedo);
             sigma_s *= *albedo;
-            *g
+            Phase::mixture(lobes)
         }
         Some(Value::Vdf(Vdf::Unsupported(what, span))) => {
             if sigma_s != Rgb::ZERO {
@@ -139,10 +160,10 @@ pub fn medium(
                     location(*span)
                 ));
             }
-            0.0
+            Phase::henyey_greenstein(0.0)
         }
-        _ => 0.0,
+        _ => Phase::henyey_greenstein(0.0),
     };
-    let medium = Medium::new(sigma_a, sigma_s, g);
+    let medium = Medium::with_phase(sigma_a, sigma_s, phase);
     (!medium.is_vacuum()).then_some(medium)
 }

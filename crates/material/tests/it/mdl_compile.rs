@@ -299,7 +299,7 @@ shader "w" "mdl::lobes::ward_over_diffuse" ()"#,
     let lobes = |name: &str| {
         let m = get(&mdl, &lib, name);
         let SurfaceModel::MdlLobes(l) = &m.model else { panic!("{name}: {:?}", m.model) };
-        (m, l.parts[..l.count].to_vec())
+        (m, l.parts().collect::<Vec<_>>())
     };
     // Layer weight 0.4 on the Beckmann lobe; the base keeps 0.6 of its 0.5.
     let (b, parts) = lobes("b");
@@ -330,16 +330,24 @@ shader "w" "mdl::lobes::ward_over_diffuse" ()"#,
     }
 }
 
-/// A mix of five distinct lobes, one more than `bsdf::Lobes` holds: its diffuse part
-/// (0.2 · 0.5) with a warning that says the sum is full, not that the BSDFs are unknown.
+/// A mix of five distinct lobes, one more than the compact `bsdf::Lobes` holds: a wide sum
+/// of the five, no warning; seventeen, one more than a wide sum holds: its diffuse part
+/// (0.5/17) with a warning that says the sum is full, not that the BSDFs are unknown.
 #[test]
-fn a_sum_past_the_lobe_limit_says_so() {
-    let (mdl, lib, diags) = compile_text(r#"shader "five" "mdl::lobes::five_lobes" ()"#);
+fn a_sum_past_the_lobe_limit_is_wide_then_says_so() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "five" "mdl::lobes::five_lobes" ()
+shader "seventeen" "mdl::lobes::seventeen_lobes" ()"#,
+    );
+    let m = get(&mdl, &lib, "five");
+    let SurfaceModel::MdlWide(l) = &m.model else { panic!("five: {:?}", m.model) };
+    assert_eq!(l.len(), 5);
+    assert!(close(m.diffuse, Rgb::splat(0.1), 1e-6), "{:?}", m.diffuse);
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let want =
-        format!("needs more than the {} lobes and {} layer curves", bsdf::lobes::MAX_LOBES, bsdf::lobes::MAX_CURVES);
-    assert!(diags[0].contains(&want) && diags[0].contains("t.mi:1:"), "{}", diags[0]);
-    let m = get(&mdl, &lib, "five");
+        format!("needs more than the {} lobes and {} layer curves", bsdf::lobes::WIDE_LOBES, bsdf::lobes::WIDE_CURVES);
+    assert!(diags[0].contains(&want) && diags[0].contains("t.mi:2:"), "{}", diags[0]);
+    let m = get(&mdl, &lib, "seventeen");
     assert_eq!(m.model, SurfaceModel::Lambert);
-    assert!(close(m.diffuse, Rgb::splat(0.1), 1e-6), "{:?}", m.diffuse);
+    assert!(close(m.diffuse, Rgb::splat(0.5 / 17.0), 1e-6), "{:?}", m.diffuse);
 }

@@ -49,14 +49,11 @@ fn direction_dependent_layers_compile_to_lobe_sums_that_pass_the_standard_checks
     }
     // A tinted Fresnel coat keeps its tint (no warning; the blue channel reflects most).
     let tc = lobes(get(&mdl, &lib, "tinted_coat"));
-    assert_eq!(tc.parts[0].0, Rgb::new(0.2, 0.4, 0.8));
+    assert_eq!(tc.part(0).0, Rgb::new(0.2, 0.4, 0.8));
     assert_eq!(tc.curves[0].kind, CurveKind::Fresnel { ior: 1.5 });
     // The clear coat is a mirror under Schlick's curve over a Lambertian base.
     let coat = lobes(get(&mdl, &lib, "coat"));
-    assert_eq!(
-        coat.parts[..coat.count].iter().map(|p| p.1).collect::<Vec<_>>(),
-        vec![Lobe::Mirror, Lobe::Diffuse(0.0)]
-    );
+    assert_eq!(coat.parts().map(|p| p.1).collect::<Vec<_>>(), vec![Lobe::Mirror, Lobe::Diffuse(0.0)]);
     assert_eq!(coat.curves[0].kind, CurveKind::Schlick { normal: Rgb::splat(0.04), grazing: Rgb::ONE, exponent: 5.0 });
     // Over a black base only the coat reflects: exactly R(cos θo) = 0.04 + 0.96 (1 − cos θo)^5.
     let black = get(&mdl, &lib, "black_coat");
@@ -67,8 +64,8 @@ fn direction_dependent_layers_compile_to_lobe_sums_that_pass_the_standard_checks
     }
     // The backscattering lobe: half of 0.8, the base half of 0.5.
     let retro = lobes(get(&mdl, &lib, "retro"));
-    assert_eq!(retro.parts[0].0, Rgb::splat(0.4));
-    assert!(matches!(retro.parts[0].1, Lobe::Backscatter(_)));
+    assert_eq!(retro.part(0).0, Rgb::splat(0.4));
+    assert!(matches!(retro.part(0).1, Lobe::Backscatter(_)));
     // The directional factor is orange head-on, white at grazing: its curve at the half vector.
     let tinted = get(&mdl, &lib, "tinted");
     let b = tinted.bsdf(Vec3A::Z);

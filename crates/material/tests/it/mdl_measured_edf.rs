@@ -133,3 +133,34 @@ shader "none" "mdl::profiles::no_profile" ()"#,
     let none = get(&mdl, &lib, "none");
     assert_eq!(none.emission, Rgb::ZERO);
 }
+
+/// A `light_profile` parameter set from the `.mi` file: by a `lightprofile` element's name
+/// (its `format ies` file on the search path) or by an IES file's name, the profile read
+/// (its maximum, power and validity within 1e-5); a name that is neither is a warning at
+/// its `.mi` line and the invalid profile; no parameter, the default (none).
+#[test]
+fn a_light_profile_parameter_is_set_from_the_mi_file() {
+    let (mdl, lib, diags) = compile_text(
+        r#"lightprofile "lamp" format ies file "lamp.ies" end lightprofile
+shader "element" "mdl::profiles::given_profile" ("profile" "lamp")
+shader "file" "mdl::profiles::given_profile" ("profile" "lamp.ies")
+shader "missing" "mdl::profiles::given_profile" ("profile" "no_such_lamp")
+shader "default" "mdl::profiles::given_profile" ()"#,
+    );
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(
+        diags[0].contains("t.mi:4:") && diags[0].contains("no_such_lamp") && diags[0].contains("invalid light profile"),
+        "{}",
+        diags[0]
+    );
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mdl/lamp.ies");
+    let (profile, _) = shader::light::ies::Profile::load(&file, false).expect("lamp.ies");
+    let want = Rgb::new(1.0, profile.flux() / 10000.0, 1.0);
+    for name in ["element", "file"] {
+        let d = get(&mdl, &lib, name).diffuse;
+        assert!((d - want).abs().max_element() < 1e-5, "{name}: {d:?} vs {want:?}");
+    }
+    for name in ["missing", "default"] {
+        assert_eq!(get(&mdl, &lib, name).diffuse, Rgb::ZERO, "{name}");
+    }
+}

@@ -29,6 +29,8 @@ mod mdl_classic;
 mod mdl_cornell;
 mod mdl_measured;
 mod mdl_spot;
+mod mdl_vdf_tints;
+mod mdl_wide;
 mod media;
 mod media_classic;
 mod mia_helpers;

@@ -24,7 +24,7 @@ pub fn load_all(lib: &scene::Library, search: &SearchPath) -> (Vec<Option<Arc<Pr
         .iter()
         .map(|(name, blocks)| {
             let block = blocks.last()?;
-            match load(block, search) {
+            match load_block(block, search) {
                 Ok((p, warnings)) => {
                     for w in warnings {
                         diags.push(Diagnostic::warning(block.span, format!("lightprofile '{name}': {w}")));
@@ -61,8 +61,9 @@ pub fn file_name(block: &Block) -> Option<String> {
     })
 }
 
-/// Reads one `lightprofile` block's file.
-fn load(block: &Block, search: &SearchPath) -> Result<(Profile, Vec<String>), String> {
+/// Reads one `lightprofile` block's file (found on `search`): the profile and what reading
+/// it approximated; `Err` says why it could not be read.
+pub fn load_block(block: &Block, search: &SearchPath) -> Result<(Profile, Vec<String>), String> {
     let word = |a: &Arg| match a {
         Arg::Word(w) => Some(w.to_string()),
         Arg::Name(n) => Some(n.text.clone()),
