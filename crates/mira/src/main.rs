@@ -8,6 +8,7 @@ mod output;
 mod part_file;
 mod prepass_cmd;
 mod render_cmd;
+mod render_stats;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
