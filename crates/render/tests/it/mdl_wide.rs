@@ -5,11 +5,10 @@
 //! images with each part alone. The image is linear in the plane's BSDF here (every path
 //! scatters once, at the plane), so the two differ by Monte Carlo noise only.
 
-use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
+use std::path::Path;
 
+use crate::support;
 use render::{EngineKind, Settings};
-use shader::{Shading, ShadingOptions};
 
 const RES: usize = 8;
 
@@ -17,22 +16,11 @@ const RES: usize = 8;
 /// the messages.
 fn render_text(text: &str, spp: u32) -> (Vec<[f32; 3]>, Vec<String>) {
     let parsed = mi::parse_str("wide.mi", text);
-    let mut messages: Vec<String> = parsed.diagnostics.list.iter().map(|d| d.render(&parsed.sources)).collect();
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (shading, shade_diags) = Shading::build(&scene, &ShadingOptions::default(), &material::registry());
-    diags.extend(shade_diags);
-    let modules: Vec<PathBuf> = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("../material/tests/mdl")];
-    let search = material::mdl_modules::search_path(&scene.library, &modules);
-    let (mdl, mdl_diags) = material::mdl_modules::compile(&scene.library, search);
-    diags.extend(mdl_diags);
-    messages.extend(diags.iter().map(|d| d.render(&parsed.sources)));
-    let world = render::World::from_scene_with_mdl(&scene, Some(&shading), &mdl);
-    messages.extend(world.warnings.iter().cloned());
-    let accel = render::accel::build(&world, render::Backend::default_available());
+    let modules = [Path::new(env!("CARGO_MANIFEST_DIR")).join("../material/tests/mdl")];
+    let built = support::build_parsed(&parsed, RES as u32, &modules);
     let settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
-    let (film, _) = render::render(&world, accel.as_ref(), Some(&shading), &settings, &AtomicBool::new(false), &|_| {});
-    (film.rgba().iter().map(|p| [p[0], p[1], p[2]]).collect(), messages)
+    let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
+    (film.rgba().iter().map(|p| [p[0], p[1], p[2]]).collect(), built.messages)
 }
 
 /// The plane z = −5 of shader `plane` seen by an orthographic camera looking down −Z at

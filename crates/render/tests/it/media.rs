@@ -394,13 +394,9 @@ instance "sun_inst" "sun" end instance
     render(&scene_with(&body, &all, 4), 4, 4, 16)
 }
 
-#[test]
-fn a_light_without_shadows_is_still_absorbed_by_media() {
-    // `shadow off`: a black wall behind the camera (z = 1, facing the light) does not block
-    // the light, but the gel slab still absorbs it: 0.8 exp(−2σa) as with shadows on and
-    // no wall (once to the camera, once on the light's way); with shadows on the wall
-    // blocks it: 0.
-    let blocker = r#"shader "black_mtl" "mdl::export_multi::matte" ("tint" 0 0 0)
+/// A black wall at z = 1 (behind a camera looking down −z from z = 0 or so), facing the
+/// scene's lights: it blocks any light that casts shadows through it.
+pub(crate) const BLACK_WALL_BEHIND_CAMERA: &str = r#"shader "black_mtl" "mdl::export_multi::matte" ("tint" 0 0 0)
 object "blocker" group
     -50 -50 1  -50 50 1  50 50 1  50 -50 1
     v 0 v 1 v 2 v 3
@@ -408,6 +404,14 @@ object "blocker" group
 end group end object
 instance "blocker_inst" "blocker" end instance
 "#;
+
+#[test]
+fn a_light_without_shadows_is_still_absorbed_by_media() {
+    // `shadow off`: a black wall behind the camera (z = 1, facing the light) does not block
+    // the light, but the gel slab still absorbs it: 0.8 exp(−2σa) as with shadows on and
+    // no wall (once to the camera, once on the light's way); with shadows on the wall
+    // blocks it: 0.
+    let blocker = BLACK_WALL_BEHIND_CAMERA;
     let want = SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp());
     let (px, messages) = lit_through_the_slab("off", blocker, &["blocker_inst"]);
     assert!(messages.is_empty(), "{messages:#?}");

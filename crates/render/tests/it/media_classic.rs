@@ -180,14 +180,7 @@ fn a_classic_light_without_shadows_is_still_absorbed_by_media() {
     // path engine (`media::a_light_without_shadows_is_still_absorbed_by_media`); before it
     // was 0.8 exp(−σa) (the light's way skipped the slab). Also with `shadow off` in the
     // options (the light's shader asks for shadows, none are traced).
-    let blocker = r#"shader "black_mtl" "mdl::export_multi::matte" ("tint" 0 0 0)
-object "blocker" group
-    -50 -50 1  -50 50 1  50 50 1  50 -50 1
-    v 0 v 1 v 2 v 3
-    p "black_mtl" 0 1 2 3
-end group end object
-instance "blocker_inst" "blocker" end instance
-"#;
+    let blocker = crate::media::BLACK_WALL_BEHIND_CAMERA;
     let gel = r#"shader "slab_mtl" "mdl::media::tinted_gel" ()"#;
     let want = SIGMA_A.map(|s| 0.8 * (-2.0 * s).exp());
     let px =
