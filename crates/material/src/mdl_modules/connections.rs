@@ -45,7 +45,9 @@ pub fn value(ev: &mut Evaluator, lib: &Library, target: &str, ty: &Type, depth: 
         let Some((i, decl)) = def.param(&p.name.text) else { continue };
         given[i] = Some(match (&decl.ty.ty, &p.value) {
             (_, MiValue::Connect(next)) => value(ev, lib, &next.text, &decl.ty.ty, depth + 1)?,
-            (Type::Texture(_), MiValue::Str(name)) => Value::Texture(ev.textures.from_mi(&name.text, lib).ok()),
+            (Type::Texture(shape), MiValue::Str(name)) => {
+                ev.textures.value_from_mi(*shape, &name.text, lib).unwrap_or_else(|_| super::textures::invalid(*shape))
+            }
             (ty, v) => {
                 value::from_mi(v, ty, &enum_value).map_err(|why| format!("'{}' of '{shader}': {why}", p.name.text))?
             }

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use bsdf::Rgb;
-use mdl_lang::ast::{Arg, BinaryOp, Body, Decl, Scalar, UnaryOp};
+use mdl_lang::ast::{Arg, BinaryOp, Body, Decl, Scalar, TextureShape, UnaryOp};
 use mdl_lang::{Expr, ExprKind, Function, ModuleSet, Resolution, Type};
 use mi::Span;
 
@@ -295,7 +295,7 @@ impl<'a> Evaluator<'a> {
             return construct_hit(ty, &values).ok_or_else(bad);
         }
         match ty {
-            Type::Texture(mdl_lang::ast::TextureShape::Tex2d) => {
+            Type::Texture(TextureShape::Tex2d) => {
                 // `texture_2d()`: the invalid texture (lookups give black).
                 let Some(Value::Str(name)) = values.first() else {
                     return if values.is_empty() { Ok(Value::Texture(None)) } else { Err(bad()) };
@@ -306,16 +306,34 @@ impl<'a> Evaluator<'a> {
                     Err(why) => Err(problem(span, why)),
                 };
             }
+            Type::Texture(shape @ (TextureShape::Tex3d | TextureShape::Cube)) => {
+                // `texture_3d()`, `texture_cube()`: the invalid texture; a file: read once.
+                let cube = *shape == TextureShape::Cube;
+                let Some(Value::Str(name)) = values.first() else {
+                    return match (values.is_empty(), cube) {
+                        (true, false) => Ok(Value::Texture3d(None)),
+                        (true, true) => Ok(Value::TextureCube(None)),
+                        _ => Err(bad()),
+                    };
+                };
+                let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
+                let read = if cube {
+                    self.textures.cube(name, dir.as_deref()).map(|c| Value::TextureCube(Some(c)))
+                } else {
+                    self.textures.volume(name, dir.as_deref()).map(|v| Value::Texture3d(Some(v)))
+                };
+                return read.map_err(|why| problem(span, why));
+            }
             Type::Texture(_) => {
-                // Only 2D images are read: a 3D, cube or ptex file is an error here, at its
-                // line, rather than an invalid texture that would look black. `texture_3d()`
-                // is the invalid texture.
+                // Ptex needs the C++ Ptex library and per-face ids mira's meshes do not carry:
+                // an error here, at its line, rather than an invalid texture that would look
+                // black. `texture_ptex()` is the invalid texture.
                 return if values.is_empty() {
                     Ok(Value::Texture(None))
                 } else {
                     Err(problem(
                         span,
-                        format!("`{ty}(…)`: mira reads only 2D textures in modules (no loader for this shape yet)"),
+                        format!("`{ty}(…)`: mira reads no Ptex textures (no Rust Ptex reader; meshes carry no Ptex face ids)"),
                     ))
                 };
             }
@@ -440,6 +458,8 @@ pub fn kind(v: &Value) -> &'static str {
         Value::HairBsdf => "a hair_bsdf",
         Value::Hit(..) => "a value of the shading point",
         Value::Texture(_) => "a texture",
+        Value::Texture3d(_) => "a 3D texture",
+        Value::TextureCube(_) => "a cube texture",
         Value::LightProfile(_) => "a light profile",
     }
 }

@@ -23,6 +23,8 @@ use shader::texture::Texture;
 use shader::State;
 
 use super::procedural::Pattern;
+use super::texture_3d::Volume;
+use super::texture_cube::CubeMap;
 
 /// A value of the shading state (MDL's `::state` functions; world space, scene units).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -285,6 +287,33 @@ pub enum HitExpr {
         /// The texel position (lanes x and y, rounded down).
         coord: Arc<HitExpr>,
     },
+    /// The RGBA value of a `texture_3d` at a coordinate's x, y, z with MDL's wrap modes (by
+    /// enumerator name) and crops per axis ([`Volume::lookup`]).
+    Lookup3d {
+        /// The volume.
+        volume: Arc<Volume>,
+        /// The coordinate.
+        coord: Arc<HitExpr>,
+        /// `wrap_u`, `wrap_v`, `wrap_w`.
+        wrap: [&'static str; 3],
+        /// `crop_u`, `crop_v`, `crop_w`.
+        crop: [[f32; 2]; 3],
+    },
+    /// The voxel of a `texture_3d` at the integer position of a coordinate's x, y, z (black
+    /// outside the volume).
+    Texel3d {
+        /// The volume.
+        volume: Arc<Volume>,
+        /// The voxel position (rounded down).
+        coord: Arc<HitExpr>,
+    },
+    /// The RGBA value of a `texture_cube` towards a direction's x, y, z ([`CubeMap::lookup`]).
+    LookupCube {
+        /// The cube map.
+        cube: Arc<CubeMap>,
+        /// The direction.
+        dir: Arc<HitExpr>,
+    },
     /// A procedural pattern of `::base` at a texture-space position.
     Pattern(Arc<Pattern>, Arc<HitExpr>),
     /// A normal bent by the slope of a pattern's height (`::base` bump textures): the
@@ -314,7 +343,8 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
     let constant = |x: &Arc<HitExpr>| matches!(**x, HitExpr::Const(_));
     let foldable = match &e {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
-        HitExpr::Texel { coord, .. } => constant(coord),
+        HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } => false,
+        HitExpr::Texel { coord, .. } | HitExpr::Texel3d { coord, .. } => constant(coord),
         HitExpr::Pattern(_, p) => constant(p),
         HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
             constant(position) && constant(tangent_u) && constant(tangent_v) && constant(normal)
@@ -435,6 +465,8 @@ impl HitExpr {
             HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],
             HitExpr::Transform { of, .. } => vec![of],
             HitExpr::Lookup { coord, .. } | HitExpr::Texel { coord, .. } => vec![coord],
+            HitExpr::Lookup3d { coord, .. } | HitExpr::Texel3d { coord, .. } => vec![coord],
+            HitExpr::LookupCube { dir, .. } => vec![dir],
             HitExpr::Pattern(_, at) => vec![at],
             HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
                 vec![position, tangent_u, tangent_v, normal]
@@ -526,6 +558,14 @@ impl HitExpr {
                 let c = coord.eval(s);
                 image.texel(c.x.floor(), c.y.floor())
             }
+            HitExpr::Lookup3d { volume, coord, wrap, crop } => {
+                volume.lookup(coord.eval(s).truncate().into(), *wrap, *crop)
+            }
+            HitExpr::Texel3d { volume, coord } => {
+                let c = coord.eval(s).floor();
+                volume.texel(c.x as i64, c.y as i64, c.z as i64)
+            }
+            HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval(s).truncate().into()),
             HitExpr::Pattern(p, at) => p.eval(at.eval(s).truncate().into()),
             HitExpr::Bump { height, position, tangent_u, tangent_v, normal, factor, delta } => {
                 let p = Vec3A::from(position.eval(s).truncate());

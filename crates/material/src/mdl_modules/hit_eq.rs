@@ -9,6 +9,8 @@
 use std::collections::HashSet;
 use std::ptr;
 
+use std::sync::Arc;
+
 use super::hit::HitExpr;
 
 impl PartialEq for HitExpr {
@@ -63,6 +65,11 @@ fn same_node(x: &HitExpr, y: &HitExpr) -> bool {
             H::Lookup { image: j, wrap: v, clip: d, crop: s, .. },
         ) => i == j && w == v && c == d && r == s,
         (H::Texel { image: i, .. }, H::Texel { image: j, .. }) => i == j,
+        (H::Lookup3d { volume: a, wrap: w, crop: r, .. }, H::Lookup3d { volume: b, wrap: v, crop: s, .. }) => {
+            Arc::ptr_eq(a, b) && w == v && r == s
+        }
+        (H::Texel3d { volume: a, .. }, H::Texel3d { volume: b, .. }) => Arc::ptr_eq(a, b),
+        (H::LookupCube { cube: a, .. }, H::LookupCube { cube: b, .. }) => Arc::ptr_eq(a, b),
         (H::Pattern(p, _), H::Pattern(q, _)) => p == q,
         (H::Bump { height: h, factor: f, delta: d, .. }, H::Bump { height: k, factor: g, delta: e, .. }) => {
             h == k && f == g && d == e

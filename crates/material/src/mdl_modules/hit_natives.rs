@@ -7,6 +7,7 @@
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3, Vec4};
+use mdl_lang::ast::TextureShape;
 use mdl_lang::Function;
 use mi::Span;
 
@@ -197,14 +198,21 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
         Value::Texture(Some(image)) => image.size(),
         _ => (0, 0),
     };
-    let is_2d = matches!(
-        def.params.first().map(|p| &p.ty.ty),
-        Some(mdl_lang::Type::Texture(mdl_lang::ast::TextureShape::Tex2d))
-    );
+    let shape = match def.params.first().map(|p| &p.ty.ty) {
+        Some(mdl_lang::Type::Texture(shape)) => Some(*shape),
+        _ => None,
+    };
+    let is_2d = shape == Some(TextureShape::Tex2d);
+    if matches!(shape, Some(TextureShape::Tex3d | TextureShape::Cube)) && name != "texture_isvalid" {
+        return tex_3d_or_cube(name, &arg, texture, span);
+    }
     match name {
         "width" if is_2d => Ok(Value::Int(size().0 as i64)),
         "height" if is_2d => Ok(Value::Int(size().1 as i64)),
-        "texture_isvalid" => Ok(Value::Bool(matches!(texture, Value::Texture(Some(_))))),
+        "texture_isvalid" => Ok(Value::Bool(matches!(
+            texture,
+            Value::Texture(Some(_)) | Value::Texture3d(Some(_)) | Value::TextureCube(Some(_))
+        ))),
         "lookup_color" | "lookup_float" | "lookup_float2" | "lookup_float3" | "lookup_float4" if is_2d => {
             let crop = crops(arg("crop_u"), arg("crop_v"), span)?;
             let coord = arg("coord").ok_or_else(|| problem(span, "a lookup without a coordinate"))?;
@@ -214,10 +222,16 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
         }
         "texel_color" | "texel_float" | "texel_float2" | "texel_float3" | "texel_float4" if is_2d => {
             if !is_zero(arg("uv_tile")) {
-                return Err(problem(span, format!("`tex::{name}` of a uv tile other than (0, 0) is not compiled (mira reads no tiled textures)")));
+                return Err(problem(
+                    span,
+                    format!(
+                        "`tex::{name}` of a uv tile other than (0, 0) is not compiled (mira reads no tiled textures)"
+                    ),
+                ));
             }
             let coord = arg("coord").ok_or_else(|| problem(span, "a texel read without a coordinate"))?;
-            let coord = coord.to_hit().ok_or_else(|| problem(span, format!("a texel position that is {}", kind(coord))))?;
+            let coord =
+                coord.to_hit().ok_or_else(|| problem(span, format!("a texel position that is {}", kind(coord))))?;
             let texel = match texture {
                 Value::Texture(Some(image)) => super::hit::fold(HitExpr::Texel { image: image.clone(), coord }),
                 _ => Arc::new(HitExpr::Const(Vec4::ZERO)),
@@ -227,12 +241,59 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
         _ if !is_2d => Err(problem(
             span,
             format!(
-                "`tex::{name}` of a `{}` is not compiled: mira reads only 2D textures in modules (no 3D, cube or ptex texture loader)",
+                "`tex::{name}` of a `{}` is not compiled: mira reads no Ptex textures",
                 def.params.first().map_or_else(String::new, |p| p.ty.ty.to_string())
             ),
         )),
         _ => Err(problem(span, format!("`tex::{name}` is not compiled yet"))),
     }
+}
+
+/// The `::tex` function `name` of a `texture_3d` or `texture_cube` (`arg`: an argument by
+/// its parameter's name): sizes, filtered lookups, voxel reads.
+fn tex_3d_or_cube<'a>(name: &str, arg: &dyn Fn(&str) -> Option<&'a Value>, texture: &Value, span: Span) -> Eval {
+    let size = match texture {
+        Value::Texture3d(Some(v)) => v.size,
+        Value::TextureCube(Some(c)) => [c.size, c.size, 0],
+        _ => [0; 3],
+    };
+    let texel = match name {
+        "width" => return Ok(Value::Int(size[0] as i64)),
+        "height" => return Ok(Value::Int(size[1] as i64)),
+        "depth" => return Ok(Value::Int(size[2] as i64)),
+        "lookup_color" | "lookup_float" | "lookup_float2" | "lookup_float3" | "lookup_float4" => {
+            let coord = arg("coord").ok_or_else(|| problem(span, "a lookup without a coordinate"))?;
+            let coord =
+                coord.to_hit().ok_or_else(|| problem(span, format!("a texture coordinate that is {}", kind(coord))))?;
+            match texture {
+                Value::Texture3d(Some(volume)) => {
+                    let wrap = ["wrap_u", "wrap_v", "wrap_w"].map(|p| wrap_name(enum_arg(arg(p), 1)));
+                    let crop = [
+                        crop(arg("crop_u"), "crop_u", span)?,
+                        crop(arg("crop_v"), "crop_v", span)?,
+                        crop(arg("crop_w"), "crop_w", span)?,
+                    ];
+                    HitExpr::Lookup3d { volume: volume.clone(), coord, wrap, crop }
+                }
+                Value::TextureCube(Some(cube)) => HitExpr::LookupCube { cube: cube.clone(), dir: coord },
+                Value::Texture3d(None) | Value::TextureCube(None) | Value::Texture(None) => HitExpr::Const(Vec4::ZERO),
+                v => return Err(problem(span, format!("a texture lookup of {}", kind(v)))),
+            }
+        }
+        "texel_color" | "texel_float" | "texel_float2" | "texel_float3" | "texel_float4" => {
+            let coord = arg("coord").ok_or_else(|| problem(span, "a texel read without a coordinate"))?;
+            let coord =
+                coord.to_hit().ok_or_else(|| problem(span, format!("a texel position that is {}", kind(coord))))?;
+            match texture {
+                Value::Texture3d(Some(volume)) => {
+                    return Ok(texel_value(name, super::hit::fold(HitExpr::Texel3d { volume: volume.clone(), coord })))
+                }
+                _ => HitExpr::Const(Vec4::ZERO),
+            }
+        }
+        _ => return Err(problem(span, format!("`tex::{name}` is not compiled yet"))),
+    };
+    Ok(texel_value(name, Arc::new(texel)))
 }
 
 /// Whether an optional `int2` argument is absent or (0, 0).

@@ -18,6 +18,7 @@
 //! `core_definitions.mdl` on the search path replaces them.
 
 pub mod connections;
+pub mod dds;
 pub mod eval;
 pub mod hit;
 pub mod hit_base;
@@ -27,6 +28,8 @@ pub mod lower;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod texture_3d;
+pub mod texture_cube;
 pub mod textures;
 pub mod value;
 pub mod volume;
@@ -196,15 +199,15 @@ impl Instance<'_> {
                 }
                 continue;
             }
-            if let (Type::Texture(_), mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
-                match ev.textures.from_mi(&name.text, self.lib) {
-                    Ok(image) => given[i] = Some(Value::Texture(Some(image))),
+            if let (Type::Texture(shape), mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
+                match ev.textures.value_from_mi(*shape, &name.text, self.lib) {
+                    Ok(texture) => given[i] = Some(texture),
                     Err(why) => {
                         diags.push(Diagnostic::warning(
                             p.span,
                             format!("parameter '{}' of `{qualified}`: {why}; an invalid texture is used", p.name.text),
                         ));
-                        given[i] = Some(Value::Texture(None));
+                        given[i] = Some(textures::invalid(*shape));
                     }
                 }
                 continue;

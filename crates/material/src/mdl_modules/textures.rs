@@ -4,6 +4,8 @@
 //! read once per file through the renderer's texture code (`shader::texture`) and shared by
 //! every instance; light profiles likewise (a `.mi` parameter names a `lightprofile`
 //! element or an IES file). Texel values are used as stored, as for `.mi` textures (no gamma).
+//! `texture_3d` and `texture_cube` resources are read from DDS files ([`super::dds`]): a
+//! volume texture (or a 2D one, a volume one slice deep) and a cube map.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -12,7 +14,13 @@ use std::sync::Arc;
 use shader::light::ies::Profile;
 use shader::texture::{self, Texture};
 
+use mdl_lang::ast::TextureShape;
+
+use super::dds;
 use super::hit::Image;
+use super::texture_3d::Volume;
+use super::texture_cube::CubeMap;
+use super::value::Value;
 
 /// The images and light profiles read so far, by file.
 #[derive(Default)]
@@ -20,6 +28,10 @@ pub struct Textures {
     by_path: HashMap<PathBuf, Result<Image, String>>,
     /// The light profiles read so far, by file.
     profiles: HashMap<PathBuf, Result<Arc<Profile>, String>>,
+    /// The 3D textures read so far, by file.
+    volumes: HashMap<PathBuf, Result<Arc<Volume>, String>>,
+    /// The cube maps read so far, by file.
+    cubes: HashMap<PathBuf, Result<Arc<CubeMap>, String>>,
     /// Directories searched after the one of the module: the scene files' and the MDL
     /// search path's.
     pub dirs: Vec<PathBuf>,
@@ -31,7 +43,79 @@ pub struct Textures {
 impl Textures {
     /// A resource set searching `dirs` (after the naming module's directory).
     pub fn new(dirs: Vec<PathBuf>) -> Textures {
-        Textures { by_path: HashMap::new(), profiles: HashMap::new(), dirs, warnings: Vec::new() }
+        Textures {
+            by_path: HashMap::new(),
+            profiles: HashMap::new(),
+            volumes: HashMap::new(),
+            cubes: HashMap::new(),
+            dirs,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// Where file `name` of a module in `module_dir` is (as [`Textures::file`] finds it).
+    fn resolve(&self, name: &str, module_dir: Option<&Path>, what: &str) -> Result<PathBuf, String> {
+        let path = Path::new(name);
+        if path.is_absolute() && path.is_file() {
+            return Ok(path.to_path_buf());
+        }
+        let relative = name.trim_start_matches('/').trim_start_matches("./");
+        let mut dirs: Vec<PathBuf> = module_dir.map(Path::to_path_buf).into_iter().collect();
+        dirs.extend(self.dirs.iter().cloned());
+        let search = texture::SearchPath { dirs };
+        search
+            .resolve(relative)
+            .ok_or_else(|| format!("{what} '{name}' not found (searched {})", describe(&search.dirs)))
+    }
+
+    /// The `texture_3d` of file `name` (a DDS volume texture; a 2D DDS texture is a volume
+    /// one slice deep) as written in a module in `module_dir`, read once. `Err` says why
+    /// it could not be read.
+    pub fn volume(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<Volume>, String> {
+        let path = self.resolve(name, module_dir, "3D texture file")?;
+        self.volumes
+            .entry(path.clone())
+            .or_insert_with(|| {
+                let fail = |e: String| format!("3D texture file '{}': {e}", path.display());
+                if !is_dds(&path) {
+                    return Err(fail("mira reads 3D textures from DDS volume files (.dds)".into()));
+                }
+                let image = dds::read(&path).map_err(fail)?;
+                if image.cube || image.layers.len() != 1 {
+                    return Err(fail(format!(
+                        "a cube map or texture array ({} layers), not a volume",
+                        image.layers.len()
+                    )));
+                }
+                let size = [image.width, image.height, image.depth];
+                Volume::from_file_order(size, &image.layers[0]).map(Arc::new).ok_or_else(|| fail("no texels".into()))
+            })
+            .clone()
+    }
+
+    /// The `texture_cube` of file `name` (a DDS cube map) as written in a module in
+    /// `module_dir`, read once. `Err` says why it could not be read.
+    pub fn cube(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<CubeMap>, String> {
+        let path = self.resolve(name, module_dir, "cube map file")?;
+        self.cubes
+            .entry(path.clone())
+            .or_insert_with(|| {
+                let fail = |e: String| format!("cube map file '{}': {e}", path.display());
+                if !is_dds(&path) {
+                    return Err(fail("mira reads cube maps from DDS cube-map files (.dds)".into()));
+                }
+                let image = dds::read(&path).map_err(fail)?;
+                if !image.cube || image.layers.len() != 6 || image.width != image.height || image.depth != 1 {
+                    return Err(fail(format!(
+                        "not a cube map of six square faces ({}×{}, {} layers)",
+                        image.width,
+                        image.height,
+                        image.layers.len()
+                    )));
+                }
+                CubeMap::new(image.width, image.layers).map(Arc::new).ok_or_else(|| fail("no texels".into()))
+            })
+            .clone()
     }
 
     /// The image of file `name` as written in a module whose file is in `module_dir` (an
@@ -92,6 +176,17 @@ impl Textures {
         self.light_profile(name, None).map_err(|e| format!("'{name}' is no lightprofile element of the scene, and {e}"))
     }
 
+    /// The texture of shape `shape` a `.mi` parameter names: a 2D texture as
+    /// [`Textures::from_mi`] finds it, a 3D texture or cube map from a DDS file.
+    pub fn value_from_mi(&mut self, shape: TextureShape, name: &str, lib: &scene::Library) -> Result<Value, String> {
+        match shape {
+            TextureShape::Tex3d => self.volume(name, None).map(|v| Value::Texture3d(Some(v))),
+            TextureShape::Cube => self.cube(name, None).map(|c| Value::TextureCube(Some(c))),
+            TextureShape::Ptex => Err(format!("'{name}': mira reads no Ptex textures")),
+            TextureShape::Tex2d => self.from_mi(name, lib).map(|i| Value::Texture(Some(i))),
+        }
+    }
+
     /// The image of the file at `path`, read once.
     fn load(&mut self, path: PathBuf) -> Result<Image, String> {
         let warnings = &mut self.warnings;
@@ -137,6 +232,22 @@ impl Textures {
                 .map_err(|e| format!("texture '{name}': {e}")),
             _ => Err(format!("texture '{name}' is a shader texture (not read by module materials)")),
         }
+    }
+}
+
+/// Whether `path` names a DDS file (by its first four bytes, `DDS `).
+fn is_dds(path: &Path) -> bool {
+    use std::io::Read;
+    let mut magic = [0u8; 4];
+    std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut magic)).is_ok() && &magic == b"DDS "
+}
+
+/// The invalid texture of shape `shape` (black where looked up).
+pub fn invalid(shape: TextureShape) -> Value {
+    match shape {
+        TextureShape::Tex3d => Value::Texture3d(None),
+        TextureShape::Cube => Value::TextureCube(None),
+        _ => Value::Texture(None),
     }
 }
 

@@ -302,6 +302,10 @@ pub enum Value {
     Hit(Arc<HitExpr>, HitType),
     /// A `texture_2d` (`None`: an invalid texture, black where looked up).
     Texture(Option<Image>),
+    /// A `texture_3d` (`None`: an invalid texture, black where looked up).
+    Texture3d(Option<Arc<super::texture_3d::Volume>>),
+    /// A `texture_cube` (`None`: an invalid texture, black where looked up).
+    TextureCube(Option<Arc<super::texture_cube::CubeMap>>),
     /// A `light_profile` (`None`: the invalid profile, which emits nothing).
     LightProfile(Option<Arc<shader::light::ies::Profile>>),
 }

@@ -19,6 +19,11 @@ pub fn dirs() -> Vec<PathBuf> {
 /// Compiles the shaders of `text` (a `.mi` fragment): the compiled set, the library and
 /// the rendered diagnostics.
 pub fn compile_text(text: &str) -> (MdlMaterials, scene::Library, Vec<String>) {
+    compile_text_with(text, &[])
+}
+
+/// [`compile_text`] with `more` directories searched after the test modules'.
+pub fn compile_text_with(text: &str, more: &[PathBuf]) -> (MdlMaterials, scene::Library, Vec<String>) {
     let full = format!(
         "{text}\noptions \"o\" end options\ncamera \"test_cam\" end camera\ninstance \"ci\" \"test_cam\" end instance\n\
          instgroup \"root\" \"ci\" end instgroup\nrender \"root\" \"ci\" \"o\"\n"
@@ -26,8 +31,10 @@ pub fn compile_text(text: &str) -> (MdlMaterials, scene::Library, Vec<String>) {
     let parsed = mi::parse_str("t.mi", &full);
     let mut diags = Vec::new();
     let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let (mdl, more) = compile(&scene.library, MdlSearchPath::for_scene(None, &dirs(), None));
-    diags.extend(more);
+    let mut search = dirs();
+    search.extend(more.iter().cloned());
+    let (mdl, found) = compile(&scene.library, MdlSearchPath::for_scene(None, &search, None));
+    diags.extend(found);
     let rendered = diags.iter().map(|d| d.render(&parsed.sources)).collect();
     (mdl, scene.library, rendered)
 }

@@ -1,0 +1,98 @@
+//! MDL's `texture_cube` resources: six square faces read from a DDS cube map, looked up by
+//! direction (`tex::lookup_*(texture_cube, float3)`).
+//!
+//! Faces and orientation follow the cube-map convention of DirectX and OpenGL, which DDS
+//! files store and the MDL SDK's texture runtime looks up: the direction's component of
+//! largest magnitude picks the face (+x, −x, +y, −y, +z, −z, the file's order), and the
+//! other two components divided by its magnitude m give the face coordinates
+//! s = (sc/m + 1)/2 (0 at the face's left column) and t = (tc/m + 1)/2 (0 at its first,
+//! top row) with (sc, tc) = (−z, −y) on +x, (z, −y) on −x, (x, z) on +y, (x, −z) on −y,
+//! (x, −y) on +z, (−x, −y) on −z. Within a face values are interpolated bilinearly between
+//! texel centres, clamped at the face's edges (no filtering across faces). The direction
+//! need not be unit; the zero vector gives black.
+
+use glam::{Vec3A, Vec4};
+
+/// The six faces of a `texture_cube`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CubeMap {
+    /// Texels on a face's side.
+    pub size: usize,
+    /// RGBA texels per face (+x, −x, +y, −y, +z, −z), rows top to bottom.
+    faces: Vec<Vec<Vec4>>,
+}
+
+impl CubeMap {
+    /// A cube map of six `size` × `size` faces, each's texels rows top to bottom; `None`
+    /// when the counts do not match.
+    pub fn new(size: usize, faces: Vec<Vec<Vec4>>) -> Option<CubeMap> {
+        (size > 0 && faces.len() == 6 && faces.iter().all(|f| f.len() == size * size))
+            .then_some(CubeMap { size, faces })
+    }
+
+    /// The face a direction points at (0 to 5: +x, −x, +y, −y, +z, −z) and its face
+    /// coordinates (s, t) in [0, 1]; `None` for the zero vector (or not a number).
+    pub fn face_coordinates(dir: Vec3A) -> Option<(usize, f32, f32)> {
+        let a = dir.abs();
+        let (face, m, sc, tc) = if a.x >= a.y && a.x >= a.z {
+            if dir.x >= 0.0 {
+                (0, a.x, -dir.z, -dir.y)
+            } else {
+                (1, a.x, dir.z, -dir.y)
+            }
+        } else if a.y >= a.z {
+            if dir.y >= 0.0 {
+                (2, a.y, dir.x, dir.z)
+            } else {
+                (3, a.y, dir.x, -dir.z)
+            }
+        } else if dir.z >= 0.0 {
+            (4, a.z, dir.x, -dir.y)
+        } else {
+            (5, a.z, -dir.x, -dir.y)
+        };
+        (m > 0.0 && m.is_finite()).then(|| (face, 0.5 * (sc / m + 1.0), 0.5 * (tc / m + 1.0)))
+    }
+
+    /// The value towards `dir` (any length; black for the zero vector).
+    pub fn lookup(&self, dir: Vec3A) -> Vec4 {
+        let Some((face, s, t)) = CubeMap::face_coordinates(dir) else { return Vec4::ZERO };
+        let texels = &self.faces[face];
+        let n = self.size;
+        let last = n as i64 - 1;
+        let (x, y) = (s * n as f32 - 0.5, t * n as f32 - 0.5);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let texel =
+            |i: f32, j: f32| texels[(j as i64).clamp(0, last) as usize * n + (i as i64).clamp(0, last) as usize];
+        let top = texel(x0, y0) * (1.0 - fx) + texel(x0 + 1.0, y0) * fx;
+        let bottom = texel(x0, y0 + 1.0) * (1.0 - fx) + texel(x0 + 1.0, y0 + 1.0) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The face coordinates invert the convention's face directions: the centre of each
+    /// face's top-left texel region maps back to its face and corner.
+    #[test]
+    fn face_coordinates_follow_the_cube_map_convention() {
+        // (face, direction towards the face's top-left corner, slightly inside).
+        let corners = [
+            (0, Vec3A::new(1.0, 0.9, 0.9)),
+            (1, Vec3A::new(-1.0, 0.9, -0.9)),
+            (2, Vec3A::new(-0.9, 1.0, -0.9)),
+            (3, Vec3A::new(-0.9, -1.0, 0.9)),
+            (4, Vec3A::new(-0.9, 0.9, 1.0)),
+            (5, Vec3A::new(0.9, 0.9, -1.0)),
+        ];
+        for (face, dir) in corners {
+            let (f, s, t) = CubeMap::face_coordinates(dir).unwrap();
+            assert_eq!(f, face);
+            assert!((s - 0.05).abs() < 1e-6 && (t - 0.05).abs() < 1e-6, "face {face}: {s} {t}");
+        }
+        assert_eq!(CubeMap::face_coordinates(Vec3A::ZERO), None);
+    }
+}
