@@ -549,6 +549,14 @@ impl SharedLobes {
     }
 }
 
+impl SharedLobes {
+    /// The sum to overwrite, when nothing else shares it (no clone of this handle is
+    /// alive): lets a per-thread slot reuse its allocation for the next hit's sum.
+    pub fn get_mut(&mut self) -> Option<&mut WideLobes> {
+        self.0.as_deref_mut().and_then(std::sync::Arc::get_mut)
+    }
+}
+
 impl Clone for SharedLobes {
     #[inline(never)]
     fn clone(&self) -> SharedLobes {

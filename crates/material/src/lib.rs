@@ -25,6 +25,7 @@ pub mod mdl_modules;
 pub mod measured_edf;
 mod reader;
 pub mod spot_edf;
+pub mod wide_slots;
 
 use mi::ast::{Num, Param, ShaderItem, Value};
 use scene::{Library, Material, MaterialKind};
@@ -133,6 +134,9 @@ pub enum SurfaceModel {
     /// loop (a `SharedLobes` in place made it copy them through memory: +3.4 % instructions
     /// on the Cornell box).
     MdlWide(Box<bsdf::SharedLobes>),
+    /// A wide sum lowered at one hit of a material that varies over the surface, kept in
+    /// the thread's ring ([`wide_slots`]: no allocation per hit).
+    MdlWideAt(wide_slots::WideSlot),
 }
 
 /// A surface's scattering and emission.
@@ -258,6 +262,12 @@ impl SurfaceModel {
                 _ => Bsdf::Lobes(**l),
             },
             SurfaceModel::MdlWide(l) => Bsdf::Wide(bsdf::WideBsdf::new((**l).clone(), frame)),
+            SurfaceModel::MdlWideAt(slot) => match slot.lobes() {
+                Some(l) => Bsdf::Wide(bsdf::WideBsdf::new(l, frame)),
+                // The slot was reused before this hit's BSDF was built (both engines build
+                // it first): the diffuse colour rather than another hit's sum.
+                None => Bsdf::Lambert(Lambert { albedo: diffuse }),
+            },
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

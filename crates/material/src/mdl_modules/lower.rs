@@ -372,8 +372,9 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
 
 /// The tree as a lobe sum and its diffuse colour, if it is one: a compact
 /// [`SurfaceModel::MdlLobes`] where it fits (the common case, copied into each hit's BSDF),
-/// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs).
-fn general(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
+/// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs) or, lowered at a hit
+/// (`per_hit`), a [`SurfaceModel::MdlWideAt`] in the thread's ring of wide sums.
+fn general(df: &Df, hit: &[Vec4], per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
     let mut sum = Lobes::default();
     if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
         return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
@@ -385,7 +386,12 @@ fn general(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
     if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0) {
         return None;
     }
-    Some((diffuse_of(&wide), SurfaceModel::MdlWide(Box::new(bsdf::SharedLobes::new(wide)))))
+    let model = if per_hit {
+        SurfaceModel::MdlWideAt(crate::wide_slots::WideSlot::store(&wide))
+    } else {
+        SurfaceModel::MdlWide(Box::new(bsdf::SharedLobes::new(wide)))
+    };
+    Some((diffuse_of(&wide), model))
 }
 
 /// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
@@ -487,7 +493,7 @@ impl HitEvaluator for MdlHit {
         }
         let values = &values[..self.leaves.len()];
         let ior = self.ior_hit.map_or(self.ior, |i| mean_ior(values[i as usize]));
-        let (diffuse, model) = lower_bsdf(&self.df, values, ior, self.thin, None);
+        let (diffuse, model) = lower_bsdf(&self.df, values, (ior, self.thin), None, true);
         hit.diffuse = diffuse;
         hit.model = std::borrow::Cow::Owned(model);
         if let Some((scale, intensity)) = self.emission {
@@ -630,7 +636,7 @@ pub fn surface(
         shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
     let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
     let ior_at = |values: &[Vec4]| ior_hit.map_or(ior, |i| mean_ior(values[i as usize]));
-    let (mut diffuse, model) = lower_bsdf(&scattering, &values, ior_at(&values), thin, Some((name, warnings)));
+    let (mut diffuse, model) = lower_bsdf(&scattering, &values, (ior_at(&values), thin), Some((name, warnings)), false);
     if !leaves.is_empty() {
         // The diffuse colour (what the classic engine's stand-in shows) is the mean over
         // the first texture space's unit square, 8 × 8 points.
@@ -638,7 +644,7 @@ pub fn surface(
         for k in 0..64 {
             state.tex_list[0] = Vec3A::new((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5, 0.0) / 8.0;
             let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
-            sum += lower_bsdf(&scattering, &values, ior_at(&values), thin, None).0;
+            sum += lower_bsdf(&scattering, &values, (ior_at(&values), thin), None, false).0;
         }
         diffuse = sum / 64.0;
     }
@@ -665,14 +671,16 @@ fn mean_ior(v: Vec4) -> f32 {
     (v.x + v.y + v.z) / 3.0
 }
 
-/// The diffuse colour and model of a tree at the point whose expressions have `hit`;
-/// `warn` (the material's name and list) receives what was approximated.
+/// The diffuse colour and model of a tree at the point whose expressions have `hit`, with
+/// the material's index of refraction and thin-walledness; `warn` (the material's name and
+/// list) receives what was approximated; `per_hit`: lowered at a hit (a wide sum goes to
+/// the thread's ring, [`crate::wide_slots`]).
 fn lower_bsdf(
     df: &Df,
     hit: &[Vec4],
-    ior: f32,
-    thin: bool,
+    (ior, thin): (f32, bool),
     mut warn: Option<(&str, &mut Vec<String>)>,
+    per_hit: bool,
 ) -> (Rgb, SurfaceModel) {
     let mut say = |text: &dyn Fn(&str) -> String| {
         if let Some((name, list)) = warn.as_mut() {
@@ -719,7 +727,7 @@ fn lower_bsdf(
         {
             if tint != Rgb::ONE {
                 // A tinted coat: the general lobe sum has the tint (a Fresnel curve).
-                if let Some(lowered) = general(df, hit) {
+                if let Some(lowered) = general(df, hit, per_hit) {
                     return lowered;
                 }
                 say(&|name| format!("material '{name}': the coat's tint is not compiled yet; a white coat is used"));
@@ -733,7 +741,7 @@ fn lower_bsdf(
             });
         }
     }
-    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit)) {
+    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, per_hit)) {
         return lowered;
     }
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, Rgb::ONE);

@@ -8,7 +8,7 @@ use crate::mdl_support;
 use bsdf::testing::{albedo, chi_square, incidences, r2};
 use bsdf::{Frame, Rgb};
 use glam::Vec3A;
-use material::{SurfaceMaterial, SurfaceModel};
+use material::{SurfaceMaterial, SurfaceModel, Varying};
 use mdl_support::{compile_text, get};
 
 /// The BSDF of `m` at a hit of shading normal `n` (world space), in the frame around it.
@@ -80,4 +80,74 @@ fn a_wide_sum_passes_the_white_furnace_and_samples_its_density() {
         assert!(a.max_element() <= 1.005 && a.min_element() > 0.5, "albedo {a:?} at {wo}");
         chi_square(&b, wo);
     }
+}
+
+/// A hit at texture coordinate (u, ½) of shading normal `n`.
+fn hit_at(u: f32, n: Vec3A) -> shader::State {
+    let mut s = shader::State { tex_count: 1, normal: n, normal_geom: n, dir: -n, ..shader::State::default() };
+    s.tex_list[0] = Vec3A::new(u, 0.5, 0.0);
+    s
+}
+
+/// The BSDF of `m` lowered at hit `s` (its per-hit parts evaluated there).
+fn bsdf_at_hit(m: &SurfaceMaterial, s: &shader::State) -> bsdf::Bsdf {
+    let Varying::Evaluated(hit) = &m.varying else { panic!("{} does not vary: {:?}", m.name, m.varying) };
+    let mut h = m.constant();
+    hit.0.apply(s, &mut h);
+    h.model.bsdf_in(h.diffuse, -s.dir, &Frame::from_normal(s.normal))
+}
+
+/// A wide mix whose first weight is the texture's u is lowered at each hit into the
+/// thread's ring of wide sums (`material::wide_slots`, no allocation per hit): at u = 0.5
+/// and 0.2 its BSDF is the constant mix with that weight, value for value (bit for bit),
+/// also after the ring came round (18 hits in between).
+#[test]
+fn a_wide_mix_that_varies_per_hit_is_the_constant_mix_at_each_point() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "varying" "mdl::wide::wide_varying" ()
+shader "w05" "mdl::wide::wide" ("a" 0.5)
+shader "w02" "mdl::wide::wide" ("a" 0.2)"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let varying = get(&mdl, &lib, "varying");
+    let Varying::Evaluated(hit) = &varying.varying else { panic!("{:?}", varying.varying) };
+    let mut h = varying.constant();
+    hit.0.apply(&hit_at(0.5, Vec3A::Z), &mut h);
+    assert!(matches!(*h.model, SurfaceModel::MdlWideAt(_)), "{:?}", h.model);
+    let n = Vec3A::new(0.3, -0.2, 1.0).normalize();
+    for round in 0..3 {
+        for (u, name) in [(0.5, "w05"), (0.2, "w02")] {
+            let b = bsdf_at_hit(varying, &hit_at(u, n));
+            let c = bsdf_at(get(&mdl, &lib, name), n);
+            for i in 0..500u32 {
+                let (wo, wi) = (sphere(r2(2 * i)), sphere(r2(2 * i + 1)));
+                assert_eq!(b.eval(wo, wi), c.eval(wo, wi), "round {round}, u = {u}");
+                assert_eq!(b.pdf(wo, wi), c.pdf(wo, wi), "round {round}, u = {u}");
+            }
+        }
+        // Other hits in between: the ring comes round to the same slots.
+        for k in 0..18 {
+            drop(bsdf_at_hit(varying, &hit_at(k as f32 / 18.0, n)));
+        }
+    }
+}
+
+/// Heap allocations per hit of the varying wide mix, for valgrind: `MIRA_WIDE_HITS` hits
+/// (default 1000), each lowered and its BSDF evaluated once. Run the test binary as
+/// `MIRA_WIDE_HITS=1000 valgrind --tool=memcheck target/debug/deps/it-<hash> --ignored
+/// --exact mdl_wide::hits_of_a_varying_wide_mix --test-threads=1` and again with 11000:
+/// the difference in "total heap usage" over 10,000 is the allocations per hit.
+#[test]
+#[ignore]
+fn hits_of_a_varying_wide_mix() {
+    let hits: u32 = std::env::var("MIRA_WIDE_HITS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+    let (mdl, lib, diags) = compile_text(r#"shader "varying" "mdl::wide::wide_varying" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let varying = get(&mdl, &lib, "varying");
+    let mut sum = Rgb::ZERO;
+    for k in 0..hits {
+        let b = bsdf_at_hit(varying, &hit_at(k as f32 / hits as f32, Vec3A::Z));
+        sum += b.eval(Vec3A::new(0.0, 0.6, 0.8), Vec3A::new(0.6, 0.0, 0.8));
+    }
+    assert!(sum.max_element() > 0.0);
 }
