@@ -31,7 +31,9 @@ pub struct ClassicSample {
 /// Renders one eye sample through raster position `raster` (pixels, top-left origin) of
 /// pixel `pixel`, sample `index` at shutter time `time` (`sample = (index, time)`, see
 /// [`crate::motion`]); final gathering interpolates from `fg_cache` if given. The eye ray
-/// starts inside `camera_media` (the media around the camera, [`crate::integrator::media_at`]).
+/// starts inside `camera_media` (the media around the camera's centre at the sample's time,
+/// [`crate::integrator::media_at`]; an orthographic camera's ray in those around its own
+/// origin, [`crate::integrator::camera_ray_media`]).
 #[allow(clippy::too_many_arguments)]
 pub fn eye_sample(
     world: &World,
@@ -66,7 +68,9 @@ pub fn eye_sample(
         ..State::default()
     };
     state.normal = -ray.dir;
-    enter_media(&mut state, camera_media);
+    // An orthographic camera's ray starts in the media around its own origin.
+    let ray_media = crate::integrator::camera_ray_media(world, accel, camera_media, &ray);
+    enter_media(&mut state, ray_media.as_ref().unwrap_or(camera_media));
     let mut ctx = Ctx::new(shading, &tracer, state);
     let color = ctx.trace_eye(ray.origin, ray.dir);
     let first = tracer.first.get();

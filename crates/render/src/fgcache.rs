@@ -155,7 +155,10 @@ fn point_at(
     };
     // A camera that moves while the shutter is open: the media where it is at `time`.
     let moved = crate::integrator::camera_media_at(world, accel, camera_media, time);
-    crate::classic::enter_media(&mut root, moved.as_ref().unwrap_or(camera_media));
+    let at_centre = moved.as_ref().unwrap_or(camera_media);
+    // An orthographic camera's ray starts in the media around its own origin.
+    let own = crate::integrator::camera_ray_media(world, accel, at_centre, &ray);
+    crate::classic::enter_media(&mut root, own.as_ref().unwrap_or(at_centre));
     let mut hit = root.child(RayType::Eye, ray.origin, ray.dir);
     let shaded = tracer.intersect(&mut hit, f32::INFINITY)
         && hit.material.and_then(|m| shading.materials.get(m as usize)).is_some_and(|m| m.surface.is_some());

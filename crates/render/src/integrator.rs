@@ -19,7 +19,7 @@ use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use media::Departure;
-pub use media::{camera_media_at, media_at, MediumStack};
+pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
 
 /// Integrator settings.
 #[derive(Clone, Copy, Debug)]

@@ -173,13 +173,16 @@ impl PathBand<'_> {
             // A camera that moves across a medium's surface while the shutter is open: the
             // media where it is at this sample's time.
             let moved_media = crate::integrator::camera_media_at(self.world, self.accel, self.camera_media, lane.time);
+            let at_centre = moved_media.as_ref().unwrap_or(self.camera_media);
+            // An orthographic camera's ray starts in the media around its own origin.
+            let ray_media = crate::integrator::camera_ray_media(self.world, self.accel, at_centre, &lane.ray);
             let r = trace_camera_path(
                 self.world,
                 self.accel,
                 self.shading,
                 self.env,
                 camera,
-                moved_media.as_ref().unwrap_or(self.camera_media),
+                ray_media.as_ref().unwrap_or(at_centre),
                 sampler,
                 self.path,
                 &mut out.counts,

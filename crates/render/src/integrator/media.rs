@@ -26,7 +26,9 @@
 //! Camera paths start in the media around the camera's position at the shutter's opening
 //! ([`media_at`], found once per render): a camera inside a closed object with a medium sees
 //! through that medium. A camera that moves while the shutter is open follows its way from
-//! there to where it is at each sample's time ([`camera_media_at`]).
+//! there to where it is at each sample's time ([`camera_media_at`]). An orthographic
+//! camera's rays start across its image plane: each in the media around its own origin
+//! ([`camera_ray_media`]).
 //!
 //! Scenes without media take none of these branches (`World::has_media` is false): their
 //! paths are the same, sample for sample.
@@ -398,6 +400,23 @@ pub fn camera_media_at(world: &World, accel: &dyn Accel, start: &MediumStack, ti
         }
         from = to;
     }
+    Some(media)
+}
+
+/// The media at the origin of camera ray `ray` when it is not the camera's centre: an
+/// orthographic camera's rays start across its image plane, each in the media around its
+/// own origin — `at_centre` (the media around the camera's centre at the ray's shutter
+/// time, [`media_at`] and [`camera_media_at`]) followed from the centre to the origin, in
+/// the plane of the image, entering the media whose surfaces it crosses from the front and
+/// leaving those it crosses from behind. `None` for perspective cameras (their rays start
+/// at the centre) and in scenes without media: the ray starts in `at_centre`.
+pub fn camera_ray_media(world: &World, accel: &dyn Accel, at_centre: &MediumStack, ray: &Ray) -> Option<MediumStack> {
+    if !world.has_media || !world.camera.orthographic {
+        return None;
+    }
+    let centre = world.camera.camera_to_world_at(ray.time).translation;
+    let mut media = at_centre.clone();
+    cross_between(world, accel, &mut media, (centre, ray.origin), ray.time);
     Some(media)
 }
 
