@@ -290,3 +290,55 @@ fn decode_block(block: Block, compressed: &[u8]) -> [Vec4; 16] {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A DX10 file of `w` × `h` × `d` texels of `format` with `data` after the headers.
+    fn dx10(w: u32, h: u32, d: u32, format: u32, data: &[u8]) -> Vec<u8> {
+        let flags = 0x1 | 0x2 | 0x4 | 0x1000 | if d > 1 { 0x80_0000 } else { 0 };
+        let mut words = vec![124, flags, h, w, 0, d, 1];
+        words.extend([0; 11]);
+        words.extend([32, 0x4, u32::from_le_bytes(*b"DX10"), 0, 0, 0, 0, 0]);
+        words.extend([0x1000, if d > 1 { 0x20_0000 } else { 0 }, 0, 0, 0]);
+        words.extend([format, if d > 1 { 4 } else { 3 }, 0, 1, 0]);
+        let mut out = b"DDS ".to_vec();
+        out.extend(words.iter().flat_map(|w| w.to_le_bytes()));
+        out.extend_from_slice(data);
+        out
+    }
+
+    /// BC1 with both end points pure red (R5G6B5 0xf800) is red in all 16 texels (the
+    /// format's end points are 5:6:5 colours, 31 → 1.0); a 6 × 5 image of such blocks
+    /// crops the edge blocks.
+    #[test]
+    fn block_compressed_texels_decode() {
+        let block = [0x00, 0xf8, 0x00, 0xf8, 0, 0, 0, 0];
+        let image = parse(&dx10(6, 5, 1, 71, &block.repeat(4))).unwrap();
+        assert_eq!((image.width, image.height, image.layers[0].len()), (6, 5, 30));
+        assert!(image.layers[0].iter().all(|t| *t == Vec4::new(1.0, 0.0, 0.0, 1.0)));
+    }
+
+    /// Truncated, corrupt and oversized files are errors, never a panic: every prefix of
+    /// a valid file, every byte of its headers flipped, sizes past the limits.
+    #[test]
+    fn hostile_files_are_errors() {
+        let texels: Vec<u8> = (0..8 * 16).map(|i| i as u8).collect();
+        let good = dx10(2, 2, 2, 2, &texels);
+        assert!(parse(&good).is_ok());
+        for n in 0..good.len() {
+            assert!(parse(&good[..n]).is_err(), "a file cut at {n} bytes");
+        }
+        for i in 0..148 {
+            for bits in [0x01u8, 0x80, 0xff] {
+                let mut bad = good.clone();
+                bad[i] ^= bits;
+                let _ = parse(&bad);
+            }
+        }
+        assert!(parse(&dx10(1 << 20, 1 << 20, 1, 2, &texels)).is_err());
+        assert!(parse(&dx10(16384, 16384, 16384, 71, &texels)).is_err());
+        assert!(parse(b"not a dds file at all").is_err());
+    }
+}
