@@ -1,5 +1,5 @@
-//! MDL's `texture_cube` resources: six square faces read from a DDS cube map, looked up by
-//! direction (`tex::lookup_*(texture_cube, float3)`).
+//! MDL's `texture_cube` resources: six square faces read from a DDS cube map (or an image
+//! of a horizontal cross), looked up by direction (`tex::lookup_*(texture_cube, float3)`).
 //!
 //! Faces and orientation follow the cube-map convention of DirectX and OpenGL, which DDS
 //! files store and the MDL SDK's texture runtime looks up: the direction's component of
@@ -28,6 +28,40 @@ impl CubeMap {
     pub fn new(size: usize, faces: Vec<Vec<Vec4>>) -> Option<CubeMap> {
         (size > 0 && faces.len() == 6 && faces.iter().all(|f| f.len() == size * size))
             .then_some(CubeMap { size, faces })
+    }
+
+    /// A cube map from an image of a horizontal cross, 4 × 3 faces: the middle row −x, +z,
+    /// +x, −z from the left, +y above +z and −y below it, each face as the convention
+    /// orients it (the cross folds into the cube without turning a face); `None` unless
+    /// the image is 4n × 3n texels.
+    pub fn from_cross(image: &shader::texture::MipMap) -> Option<CubeMap> {
+        let (w, h) = image.size();
+        let n = w / 4;
+        if n == 0 || w != 4 * n || h != 3 * n {
+            return None;
+        }
+        // (column, row from the top) of each face, +x, −x, +y, −y, +z, −z.
+        let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+        let faces = cells
+            .iter()
+            .map(|&(cx, cy)| {
+                let mut texels = Vec::with_capacity(n * n);
+                for row in 0..n {
+                    // The pyramid's rows count from the bottom of the picture.
+                    let y = h - 1 - (cy * n + row);
+                    texels.extend((0..n).map(|col| {
+                        let c = image.texel(cx * n + col, y);
+                        if image.channels < 3 {
+                            Vec4::new(c.x, c.x, c.x, if image.channels == 2 { c.y } else { 1.0 })
+                        } else {
+                            c
+                        }
+                    }));
+                }
+                texels
+            })
+            .collect();
+        CubeMap::new(n, faces)
     }
 
     /// The face a direction points at (0 to 5: +x, −x, +y, −y, +z, −z) and its face

@@ -5,7 +5,8 @@
 //! every instance; light profiles likewise (a `.mi` parameter names a `lightprofile`
 //! element or an IES file). Texel values are used as stored, as for `.mi` textures (no gamma).
 //! `texture_3d` and `texture_cube` resources are read from DDS files ([`super::dds`]): a
-//! volume texture (or a 2D one, a volume one slice deep) and a cube map.
+//! volume texture (or a 2D one, a volume one slice deep) and a cube map; a cube map may
+//! also be an image file of a horizontal cross ([`CubeMap::from_cross`]).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -93,7 +94,8 @@ impl Textures {
             .clone()
     }
 
-    /// The `texture_cube` of file `name` (a DDS cube map) as written in a module in
+    /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal cross)
+    /// as written in a module in
     /// `module_dir`, read once. `Err` says why it could not be read.
     pub fn cube(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<CubeMap>, String> {
         let path = self.resolve(name, module_dir, "cube map file")?;
@@ -102,7 +104,14 @@ impl Textures {
             .or_insert_with(|| {
                 let fail = |e: String| format!("cube map file '{}': {e}", path.display());
                 if !is_dds(&path) {
-                    return Err(fail("mira reads cube maps from DDS cube-map files (.dds)".into()));
+                    // An image file: a horizontal cross of six faces.
+                    let loaded = texture::load_image(&path).map_err(fail)?;
+                    return CubeMap::from_cross(&loaded.image).map(Arc::new).ok_or_else(|| {
+                        let (w, h) = loaded.image.size();
+                        fail(format!(
+                            "a cube map is a DDS cube map or an image of a horizontal cross (4:3), not {w}×{h} texels"
+                        ))
+                    });
                 }
                 let image = dds::read(&path).map_err(fail)?;
                 if !image.cube || image.layers.len() != 6 || image.width != image.height || image.depth != 1 {
@@ -179,9 +188,14 @@ impl Textures {
     /// The texture of shape `shape` a `.mi` parameter names: a 2D texture as
     /// [`Textures::from_mi`] finds it, a 3D texture or cube map from a DDS file.
     pub fn value_from_mi(&mut self, shape: TextureShape, name: &str, lib: &scene::Library) -> Result<Value, String> {
+        // A `color texture` element of the scene names the file of a 3D texture or cube map.
+        let file = match lib.textures.get(name).map(|t| &t.source) {
+            Some(mi::ast::TextureSource::File { file, .. }) if shape != TextureShape::Tex2d => file.text.as_str(),
+            _ => name,
+        };
         match shape {
-            TextureShape::Tex3d => self.volume(name, None).map(|v| Value::Texture3d(Some(v))),
-            TextureShape::Cube => self.cube(name, None).map(|c| Value::TextureCube(Some(c))),
+            TextureShape::Tex3d => self.volume(file, None).map(|v| Value::Texture3d(Some(v))),
+            TextureShape::Cube => self.cube(file, None).map(|c| Value::TextureCube(Some(c))),
             TextureShape::Ptex => Err(format!("'{name}': mira reads no Ptex textures")),
             TextureShape::Tex2d => self.from_mi(name, lib).map(|i| Value::Texture(Some(i))),
         }

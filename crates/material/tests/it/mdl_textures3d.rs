@@ -272,3 +272,41 @@ shader "c" "mdl::not_dds::m" ()"#,
     let cube = diags.iter().find(|d| d.contains("cube map")).expect("a cube map message");
     assert!(cube.contains("not_dds.mdl:5:29") && cube.contains("not a cube map") && cube.contains("'c'"), "{cube}");
 }
+
+/// A cube map from an image of a horizontal cross (8 × 6 texels, faces of 2 × 2: −x, +z,
+/// +x, −z in the middle row, +y above +z, −y below it), named by a `.mi` `color texture`
+/// element: each face along its axis, and the +y face's top-left texel (the cross's
+/// texel (2, 0)) towards (−x, +y, −z) as the cube-map convention puts it.
+#[test]
+fn a_cube_map_from_a_horizontal_cross() {
+    let dir = fixtures("cross");
+    let mut cross = image::RgbImage::new(8, 6);
+    let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+    for (face, (cx, cy)) in cells.iter().enumerate() {
+        for (x, y) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            cross.put_pixel(cx * 2 + x, cy * 2 + y, image::Rgb(FACE_COLOURS[face]));
+        }
+    }
+    cross.put_pixel(2, 0, image::Rgb([128, 128, 128]));
+    let file = dir.join("cross.png");
+    cross.save(&file).unwrap();
+    let (mdl, lib, _) = compiled(
+        "cross_mi",
+        &format!(
+            "color texture \"crossed\" \"{}\"\nshader \"cube\" \"mdl::textures3d::cube\" (\"tex\" \"crossed\")",
+            file.display()
+        ),
+    );
+    let m = get(&mdl, &lib, "cube");
+    let axes = [Vec3A::X, -Vec3A::X, Vec3A::Y, -Vec3A::Y, Vec3A::Z, -Vec3A::Z];
+    for (face, axis) in axes.into_iter().enumerate() {
+        let [r, g, b] = FACE_COLOURS[face].map(|c| f32::from(c) / 255.0);
+        // Off the +y face's centre, away from its grey texel.
+        let off = if face == 2 { Vec3A::new(0.5, 0.0, 0.5) } else { Vec3A::ZERO };
+        let got = at(m, Vec3A::ZERO, axis + off);
+        assert!(close(got, Rgb::new(r, g, b), 1e-6), "face {face}: {got:?}");
+    }
+    let grey = at(m, Vec3A::ZERO, Vec3A::new(-0.5, 1.0, -0.5));
+    assert!(close(grey, Rgb::splat(128.0 / 255.0), 1e-6), "{grey:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
