@@ -123,13 +123,18 @@ fn fixtures(test: &str) -> PathBuf {
     dir
 }
 
-/// Compiles `text`'s shaders with test `test`'s fixtures on the search path, expecting no
-/// message.
-fn compiled(test: &str, text: &str) -> (material::mdl_modules::MdlMaterials, scene::Library, PathBuf) {
+/// Compiles the shaders of `text(dir)` with test `test`'s fixtures (in `dir`) on the search
+/// path, expecting no message; the fixtures are removed (the compiled materials hold what
+/// they read).
+fn compiled(
+    test: &str,
+    text: impl Fn(&std::path::Path) -> String,
+) -> (material::mdl_modules::MdlMaterials, scene::Library) {
     let dir = fixtures(test);
-    let (mdl, lib, diags) = compile_text_with(text, std::slice::from_ref(&dir));
+    let (mdl, lib, diags) = compile_text_with(&text(&dir), std::slice::from_ref(&dir));
+    std::fs::remove_dir_all(&dir).ok();
     assert!(diags.is_empty(), "{diags:#?}");
-    (mdl, lib, dir)
+    (mdl, lib)
 }
 
 /// The diffuse colour of `m` at position `p` with normal `n`.
@@ -159,7 +164,7 @@ fn trilinear(c: [f32; 3]) -> Rgb {
 
 #[test]
 fn a_volume_is_looked_up_trilinearly_at_centres_and_between_them() {
-    let (mdl, lib, _) = compiled("centres", r#"shader "v" "mdl::textures3d::vol" ()"#);
+    let (mdl, lib) = compiled("centres", |_| r#"shader "v" "mdl::textures3d::vol" ()"#.into());
     let m = get(&mdl, &lib, "v");
     assert!(matches!(m.varying, Varying::Evaluated(_)), "a lookup at the hit varies");
     let mut points = Vec::new();
@@ -182,13 +187,13 @@ fn a_volume_is_looked_up_trilinearly_at_centres_and_between_them() {
 
 #[test]
 fn a_volume_wraps_by_its_modes_at_its_sides() {
-    let (mdl, lib, _) = compiled(
-        "wraps",
+    let (mdl, lib) = compiled("wraps", |_| {
         r#"shader "repeat" "mdl::textures3d::vol" ()
 shader "clamp" "mdl::textures3d::vol" ("wrap" "wrap_clamp")
 shader "mirror" "mdl::textures3d::vol" ("wrap" "wrap_mirrored_repeat")
-shader "clip" "mdl::textures3d::vol" ("wrap" "wrap_clip")"#,
-    );
+shader "clip" "mdl::textures3d::vol" ("wrap" "wrap_clip")"#
+            .into()
+    });
     let c = |name: &str, p: [f32; 3]| at(get(&mdl, &lib, name), Vec3A::from(p), Vec3A::Z);
     // u = 0 at the centres' v and w: half way between voxel 0 and its neighbour beyond the
     // side (voxel 1 repeated; voxel 0 itself clamped and mirrored).
@@ -208,14 +213,14 @@ shader "clip" "mdl::textures3d::vol" ("wrap" "wrap_clip")"#,
 
 #[test]
 fn volume_sizes_validity_and_voxel_reads() {
-    let (mdl, lib, dir) = compiled(
-        "sizes",
+    let (mdl, lib) = compiled("sizes", |_| {
         r#"shader "sizes" "mdl::textures3d::vol_sizes" ()
 shader "invalid" "mdl::textures3d::vol_valid" ()
 shader "valid" "mdl::textures3d::vol_valid" ("tex" "vol.dds")
 shader "texel" "mdl::textures3d::vol_texel" ()
-shader "float" "mdl::textures3d::vol_float" ()"#,
-    );
+shader "float" "mdl::textures3d::vol_float" ()"#
+            .into()
+    });
     let c = |name: &str| get(&mdl, &lib, name).diffuse;
     assert!(close(c("sizes"), Rgb::new(0.3, 0.2, 0.4), 1e-6), "3 × 2 × 4: {:?}", c("sizes"));
     assert!(close(c("invalid"), Rgb::splat(0.25), 0.0));
@@ -226,22 +231,20 @@ shader "float" "mdl::textures3d::vol_float" ()"#,
     let f = at(get(&mdl, &lib, "float"), Vec3A::new(0.75, 0.75, 0.25), Vec3A::Z);
     assert!(close(f, Rgb::splat(voxel(1, 1, 0)[0]), 1e-6), "{f:?}");
     // A `.mi` parameter naming the file by its absolute path reads the same volume.
-    let text = format!(r#"shader "abs" "mdl::textures3d::vol" ("tex" "{}")"#, dir.join("vol.dds").display());
-    let (mdl, lib) = {
-        let (m, l, _) = compiled("absolute", &text);
-        (m, l)
-    };
+    let (mdl, lib) = compiled("absolute", |dir| {
+        format!(r#"shader "abs" "mdl::textures3d::vol" ("tex" "{}")"#, dir.join("vol.dds").display())
+    });
     let got = at(get(&mdl, &lib, "abs"), Vec3A::new(0.5, 0.5, 0.5), Vec3A::Z);
     assert!(close(got, trilinear([0.5; 3]), 1e-5), "{got:?}");
 }
 
 #[test]
 fn a_cube_map_gives_each_face_along_its_axis() {
-    let (mdl, lib, _) = compiled(
-        "cube",
+    let (mdl, lib) = compiled("cube", |_| {
         r#"shader "cube" "mdl::textures3d::cube" ()
-shader "size" "mdl::textures3d::cube_size" ()"#,
-    );
+shader "size" "mdl::textures3d::cube_size" ()"#
+            .into()
+    });
     let m = get(&mdl, &lib, "cube");
     let axes = [Vec3A::X, -Vec3A::X, Vec3A::Y, -Vec3A::Y, Vec3A::Z, -Vec3A::Z];
     for (face, axis) in axes.into_iter().enumerate() {
@@ -271,6 +274,7 @@ shader "c" "mdl::not_dds::m" ()"#,
     assert!(ptex.contains("textures3d.mdl:29:") && ptex.contains("'p'"), "{ptex}");
     let cube = diags.iter().find(|d| d.contains("cube map")).expect("a cube map message");
     assert!(cube.contains("not_dds.mdl:5:29") && cube.contains("not a cube map") && cube.contains("'c'"), "{cube}");
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A cube map from an image of a horizontal cross (8 × 6 texels, faces of 2 × 2: −x, +z,
@@ -279,7 +283,6 @@ shader "c" "mdl::not_dds::m" ()"#,
 /// texel (2, 0)) towards (−x, +y, −z) as the cube-map convention puts it.
 #[test]
 fn a_cube_map_from_a_horizontal_cross() {
-    let dir = fixtures("cross");
     let mut cross = image::RgbImage::new(8, 6);
     let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
     for (face, (cx, cy)) in cells.iter().enumerate() {
@@ -288,15 +291,14 @@ fn a_cube_map_from_a_horizontal_cross() {
         }
     }
     cross.put_pixel(2, 0, image::Rgb([128, 128, 128]));
-    let file = dir.join("cross.png");
-    cross.save(&file).unwrap();
-    let (mdl, lib, _) = compiled(
-        "cross_mi",
-        &format!(
+    let (mdl, lib) = compiled("cross", |dir| {
+        let file = dir.join("cross.png");
+        cross.save(&file).unwrap();
+        format!(
             "color texture \"crossed\" \"{}\"\nshader \"cube\" \"mdl::textures3d::cube\" (\"tex\" \"crossed\")",
             file.display()
-        ),
-    );
+        )
+    });
     let m = get(&mdl, &lib, "cube");
     let axes = [Vec3A::X, -Vec3A::X, Vec3A::Y, -Vec3A::Y, Vec3A::Z, -Vec3A::Z];
     for (face, axis) in axes.into_iter().enumerate() {
@@ -308,5 +310,4 @@ fn a_cube_map_from_a_horizontal_cross() {
     }
     let grey = at(m, Vec3A::ZERO, Vec3A::new(-0.5, 1.0, -0.5));
     assert!(close(grey, Rgb::splat(128.0 / 255.0), 1e-6), "{grey:?}");
-    std::fs::remove_dir_all(&dir).ok();
 }
