@@ -24,3 +24,35 @@ pub fn fix_mmap_threshold() {
         libc::mallopt(libc::M_MMAP_THRESHOLD, MMAP_THRESHOLD_BYTES);
     }
 }
+
+#[cfg(all(test, target_os = "linux", target_env = "gnu"))]
+mod tests {
+    use super::*;
+
+    /// Bytes glibc holds in mappings of their own (mmapped chunks), all threads.
+    fn mapped_bytes() -> usize {
+        // SAFETY: `mallinfo2` only reads the allocator's counters.
+        unsafe { libc::mallinfo2() }.hblkhd
+    }
+
+    /// With the threshold fixed, an 8 MiB block is a mapping of its own even right after a
+    /// 30 MiB block was freed (which, with glibc's moving threshold, raises the threshold to
+    /// 30 MiB and puts the next 8 MiB block in an arena, where its pages stay resident
+    /// after it is freed). Other test threads may free mappings meanwhile, so the
+    /// allocation is tried a few times: one try that sees the 8 MiB mapped is the property.
+    #[test]
+    fn big_blocks_stay_mappings_after_a_bigger_one_is_freed() {
+        fix_mmap_threshold();
+        const BLOCK: usize = 8 << 20;
+        let seen = (0..5).any(|_| {
+            let big = std::hint::black_box(vec![1u8; 30 << 20]);
+            drop(big);
+            let before = mapped_bytes();
+            let block = std::hint::black_box(vec![1u8; BLOCK]);
+            let grew = mapped_bytes().saturating_sub(before);
+            drop(block);
+            grew >= BLOCK
+        });
+        assert!(seen, "an 8 MiB block after a freed 30 MiB one was not given a mapping of its own");
+    }
+}
