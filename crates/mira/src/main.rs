@@ -2,6 +2,7 @@
 
 mod check;
 mod farm_cmd;
+mod heap;
 mod limits;
 mod merge_cmd;
 mod output;
@@ -71,6 +72,7 @@ impl IncludeArgs {
 }
 
 fn main() -> ExitCode {
+    heap::fix_mmap_threshold();
     let cli = Cli::parse();
     match cli.command {
         Command::Check(args) => check::run(&args),

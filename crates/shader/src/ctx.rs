@@ -59,7 +59,8 @@ pub struct Ctx<'a> {
 }
 
 impl<'a> Ctx<'a> {
-    /// A context for shading `state`.
+    /// A context for shading `state` (always inlined: see [`crate::State::child`]).
+    #[inline(always)]
     pub fn new(shading: &'a Shading, tracer: &'a dyn Tracer, state: State) -> Ctx<'a> {
         Ctx {
             shading,

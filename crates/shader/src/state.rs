@@ -181,6 +181,11 @@ pub struct State {
 impl State {
     /// A state for a ray leaving this one: the new ray's type, origin and direction;
     /// depths and media are carried along.
+    ///
+    /// Always inlined (as is [`crate::Ctx::new`]): the compiler then builds the new state
+    /// in place of the context that takes it, where a call left a copy of the whole state
+    /// per light sample (`memcpy`) and a `memset` of its defaults.
+    #[inline(always)]
     pub fn child(&self, ray_type: RayType, org: Vec3A, dir: Vec3A) -> State {
         let mut s = State {
             ray_type,
