@@ -27,6 +27,8 @@ pub mod lower;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod state_space;
+pub mod statements;
 pub mod textures;
 pub mod value;
 pub mod volume;

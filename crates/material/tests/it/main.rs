@@ -22,6 +22,8 @@ mod mdl_hit;
 mod mdl_layer_normals;
 mod mdl_layers;
 mod mdl_measured_edf;
+mod mdl_state_space;
+mod mdl_statements;
 mod mdl_vdf_tints;
 mod mdl_volume;
 mod mdl_wide;
