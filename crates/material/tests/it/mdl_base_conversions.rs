@@ -1,0 +1,149 @@
+//! The `::base` functions mira compiles from its own MDL bodies (statement bodies in
+//! crates/mdl_lang/std/base.mdl; tests/mdl/base_conversions.mdl): glossiness and
+//! anisotropy conversions, Abbe and Sellmeier indices, volume coefficients, normal
+//! blending and the spherical environment, each at points worked out by hand.
+
+use crate::mdl_support;
+
+use bsdf::Rgb;
+use glam::Vec3A;
+use material::{SurfaceMaterial, Varying};
+use mdl_support::{close, compile_text, get};
+use shader::State;
+
+/// The radiance `m` emits at `state` (its constant where nothing varies).
+fn emitted(m: &SurfaceMaterial, state: &State) -> Rgb {
+    let mut h = m.constant();
+    if let Varying::Evaluated(e) = &m.varying {
+        e.0.apply(state, &mut h);
+    }
+    h.emission
+}
+
+/// A shading point with normal +z, tangents +x and +y, looking along `dir`.
+fn point(dir: Vec3A) -> State {
+    State { normal: Vec3A::Z, normal_geom: Vec3A::Z, derivs: [Vec3A::X, Vec3A::Y], dir, ..State::default() }
+}
+
+/// `base_conversions::<material>` with `params` at `state`, with no message.
+fn value(material: &str, params: &str, state: &State) -> Rgb {
+    let (mdl, lib, diags) = compile_text(&format!(r#"shader "m" "mdl::base_conversions::{material}" ({params})"#));
+    assert!(diags.is_empty(), "{material} {params}: {diags:#?}");
+    emitted(get(&mdl, &lib, "m"), state)
+}
+
+fn constant(material: &str, params: &str) -> Rgb {
+    value(material, params, &point(-Vec3A::Z))
+}
+
+#[test]
+fn glossiness_converts_to_roughness() {
+    // sqrt(2 · 2^(−4 − 14 g)): g = 0.5 gives sqrt(2^−10) = 1/32; a mirror at g = 1.
+    for (g, r) in [(0.5f32, 1.0 / 32.0), (0.0, (2.0f32 * 2f32.powi(-4)).sqrt()), (1.0, 0.0)] {
+        let got = constant("arch_rough", &format!(r#""g" {g}"#));
+        assert!(close(got, Rgb::splat(r), 1e-7), "g {g}: {got:?}");
+    }
+    assert!(close(constant("gloss_rough", r#""g" 0.25"#), Rgb::splat(0.75), 1e-7));
+}
+
+#[test]
+fn anisotropy_converts_to_two_roughnesses_and_a_turned_tangent() {
+    let cases = [
+        // v = u / (1 − anisotropy).
+        (r#""anisotropy" 0.5"#, Rgb::new(0.5, 1.0, 0.0)),
+        (r#""anisotropy" 1"#, Rgb::new(0.5, 5000.0, 0.0)),
+        // mia: a ratio 4 splits by its square root 2, a ratio 1/16 by its fourth root.
+        (r#""mia" on, "anisotropy" 4"#, Rgb::new(1.0, 0.25, 0.0)),
+        (r#""mia" on, "anisotropy" 0.0625"#, Rgb::new(0.25, 1.0, 0.0)),
+        // A quarter turn about +z takes +x to −(z × x) = −y; an eighth halfway.
+        (r#""tangent" on, "rotation" 0.25"#, Rgb::new(0.0, -1.0, 0.0)),
+        (r#""tangent" on, "rotation" 0.125"#, Rgb::new(0.5f32.sqrt(), -(0.5f32.sqrt()), 0.0)),
+        (r#""tangent" on"#, Rgb::new(1.0, 0.0, 0.0)),
+    ];
+    for (params, want) in cases {
+        let got = constant("aniso", params);
+        assert!(close(got, want, 1e-4 * want.max_element().max(1.0)), "{params}: {got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn spectral_indices_follow_abbe_and_sellmeier() {
+    // Abbe number 50, n_D 1.5: slope 0.5 / (50 · (486.1 − 656.3)) per nm from 589.2 nm.
+    let slope = 0.5f32 / (50.0 * (486.1 - 656.3));
+    let want = Rgb::new(1.5 + slope * 110.8, 1.5 + slope * (546.0 - 589.2), 1.5 + slope * (435.8 - 589.2));
+    let got = constant("abbe", r#""v" 50"#);
+    assert!(close(got, want, 1e-6), "{got:?} vs {want:?}");
+    assert!(got.x < 1.5 && got.z > 1.5, "blue bends more");
+    assert!(close(constant("abbe", r#""v" 0"#), Rgb::splat(1.5), 0.0));
+    // Sellmeier at 0.7, 0.5461, 0.4358 µm with the defaults (their C₁ = 0.2 µm² puts a
+    // resonance at 0.447 µm: blue's n² is negative and reads as 1).
+    let (b, c) = ([1.04f64, 0.23, 1.01], [0.006f64, 0.2, 103.56]);
+    let n = |l: f64| {
+        let l2 = l * l;
+        let n2 = 1.0 + (0..3).map(|i| b[i] * l2 / (l2 - c[i])).sum::<f64>();
+        if n2 >= 0.0 {
+            n2.sqrt() as f32
+        } else {
+            1.0
+        }
+    };
+    let want = Rgb::new(n(0.7), n(0.5461), n(0.4358));
+    let got = constant("sellmeier", "");
+    assert!(close(got, want, 1e-5), "{got:?} vs {want:?}");
+    assert!(got.z == 1.0 && (1.5..1.7).contains(&got.x), "{got:?}");
+    // BK7's own C (0.0060, 0.0200, 103.56 µm²): 1.5131 red, 1.5187 green, 1.5266 blue
+    // (Schott's catalogue values for BK7 at 706.5, 546.1 and 435.8 nm, near these).
+    let got =
+        constant("sellmeier", r#""b" 1.03961212 0.231792344 1.01046945, "c" 0.00600069867 0.0200179144 103.560653"#);
+    assert!(close(got, Rgb::new(1.5131, 1.5187, 1.5267), 2e-4), "{got:?}");
+    // n² < 0 at all three wavelengths (1 − 5 l²/(l² − 0.1) < −5) reads as 1.
+    let got = constant("sellmeier", r#""b" 0 0 -5, "c" 0 0 0.1"#);
+    assert!(close(got, Rgb::splat(1.0), 0.0), "{got:?}");
+}
+
+#[test]
+fn a_volume_coefficient_leaves_its_tint_after_its_distance() {
+    // exp(−σ d) = tint.
+    let got = constant("coefficient", r#""tint" 0.5 0.25 1, "d" 2"#);
+    let want = Rgb::new(0.5f32.ln() / -2.0, 0.25f32.ln() / -2.0, 0.0);
+    assert!(close(got, want, 1e-6), "{got:?}");
+    assert!(close(constant("coefficient", r#""d" 0"#), Rgb::ZERO, 0.0));
+}
+
+#[test]
+fn blended_normals_compose_their_tilts() {
+    let tilt = |deg: f32| {
+        let r = deg.to_radians();
+        format!("{} 0 {}", r.sin(), r.cos())
+    };
+    let s = point(-Vec3A::Z);
+    // Two 30° tilts about y make one of 60°; either alone passes through unchanged.
+    let cases = [
+        (format!(r#""b" {}, "d" {}"#, tilt(30.0), tilt(30.0)), 60f32),
+        (format!(r#""d" {}"#, tilt(30.0)), 30.0),
+        (format!(r#""b" {}"#, tilt(-20.0)), -20.0),
+        // The detail's weight 0: the base alone.
+        (format!(r#""b" {}, "d" {}, "wd" 0"#, tilt(30.0), tilt(45.0)), 30.0),
+    ];
+    for (params, deg) in cases {
+        let got = value("blended", &params, &s);
+        let r = deg.to_radians();
+        assert!(close(got, Rgb::new(r.sin(), 0.0, r.cos()), 1e-5), "{params}: {got:?}");
+    }
+}
+
+#[test]
+fn the_spherical_environment_is_seen_along_the_ray() {
+    // quad.ppm: red, green on the top row (v > 0.5), blue, white below. Directions to
+    // the texel centres: longitude π(2u − 1), latitude π/2 (2v − 1).
+    let h = 0.5f32.sqrt();
+    for (dir, want) in [
+        (Vec3A::new(0.0, h, -h), Rgb::new(1.0, 0.0, 0.0)),
+        (Vec3A::new(0.0, h, h), Rgb::new(0.0, 1.0, 0.0)),
+        (Vec3A::new(0.0, -h, -h), Rgb::new(0.0, 0.0, 1.0)),
+        (Vec3A::new(0.0, -h, h), Rgb::ONE),
+    ] {
+        let got = value("sky", "", &point(dir));
+        assert!(close(got, want, 1e-4), "{dir:?}: {got:?}");
+    }
+}
