@@ -30,6 +30,7 @@ pub mod projection;
 pub mod state_space;
 pub mod statements;
 pub mod textures;
+pub mod tiles;
 pub mod value;
 pub mod volume;
 

@@ -147,3 +147,65 @@ fn the_spherical_environment_is_seen_along_the_ray() {
         assert!(close(got, want, 1e-4), "{dir:?}: {got:?}");
     }
 }
+
+/// Tile-by-tile variation of `tile_texture`: at each of the 16 tile centres the tint is
+/// the tile colour times 1 + the tile's variation (mira's pattern,
+/// `material::mdl_modules::tiles`), clamped to [0, 1], or the grout's where the tile is
+/// missing; mono 1 on a tile, 0 on a missing one; the variation differs between tiles.
+#[test]
+fn tiles_vary_tile_by_tile() {
+    use material::mdl_modules::tiles::Tiling;
+    let tiling = |missing: f32, variation: f32| Tiling {
+        rows: 4.0,
+        columns: 4.0,
+        grout_width: 0.02,
+        grout_height: 0.02,
+        grout_roughness: 0.0,
+        missing_tile_amount: missing,
+        brightness_variation: variation,
+        seed: 2.284,
+        special_row_index: 1,
+        special_row_width_factor: 1.0,
+        special_column_index: 1,
+        special_column_height_factor: 1.0,
+        odd_row_offset: 0.5,
+        random_row_offset: 0.0,
+    };
+    let tile = Rgb::new(0.6, 0.4, 0.2);
+    let at = |u: f32, v: f32| {
+        let mut s = point(-Vec3A::Z);
+        s.tex_count = 1;
+        s.tex_list[0] = Vec3A::new(u, v, 0.0);
+        s
+    };
+    let centres: Vec<(f32, f32)> = (0..16)
+        .map(|k| {
+            let (r, c) = (k / 4, k % 4);
+            let shift = if r % 2 == 1 { 0.5 } else { 0.0 };
+            ((c as f32 + 0.5 - shift).rem_euclid(4.0) / 4.0, (r as f32 + 0.5) / 4.0)
+        })
+        .collect();
+    let mut seen = Vec::new();
+    for &(u, v) in &centres {
+        let got = value("tiled", "", &at(u, v));
+        let var = tiling(0.0, 0.5).sample(u, v).variation;
+        let want = (tile * (1.0 + var)).clamp(Rgb::ZERO, Rgb::ONE);
+        assert!(close(got, want, 1e-6), "({u}, {v}): {got:?} vs {want:?}");
+        assert!(var.abs() <= 0.5);
+        seen.push(var);
+    }
+    assert!(seen.iter().any(|v| (v - seen[0]).abs() > 0.01), "{seen:?}");
+    // Half the tiles missing: the grout's blue and mono 0 there, the tile colour and 1 else.
+    let mut missing = 0;
+    for &(u, v) in &centres {
+        let gone = !tiling(0.5, 0.0).sample(u, v).in_tile;
+        missing += usize::from(gone);
+        let want = if gone { Rgb::new(0.0, 0.0, 1.0) } else { tile };
+        assert!(close(value("tiled", r#""missing" 0.5, "variation" 0"#, &at(u, v)), want, 1e-6));
+        let mono = value("tiled_mono", r#""missing" 0.5"#, &at(u, v));
+        assert!(close(mono, Rgb::splat(if gone { 0.0 } else { 1.0 }), 0.0), "{mono:?}");
+    }
+    assert!((1..16).contains(&missing), "{missing} of 16 missing");
+    // All missing: grout everywhere.
+    assert!(close(value("tiled", r#""missing" 1"#, &at(0.125, 0.125)), Rgb::new(0.0, 0.0, 1.0), 0.0));
+}
