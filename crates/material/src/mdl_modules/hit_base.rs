@@ -447,6 +447,14 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
             Ok(texture_return(tint, constant(0.0)))
         }
         "gradient3_recolor" => gradient_recolor(&a),
+        "gradient3_bump_texture" => {
+            // The mean of the gradient's colour differenced over 0.0025 in u and v, the
+            // normal leaning towards the rise by `scale` / 0.0025 (the MDL SDK's step and
+            // direction).
+            const DELTA: f32 = 0.0025;
+            let scale = a.num("scale", 1.0)?;
+            bump(Pattern::Mean(Box::new(gradient(&a)?)), -scale / DELTA, [DELTA; 2], &a)
+        }
         "tile_texture" => tile_texture(&a),
         "tile_bump_texture" => {
             // The height (1 on a tile times its brightness) differenced over half the two

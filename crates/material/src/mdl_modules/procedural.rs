@@ -170,6 +170,9 @@ pub enum Pattern {
     /// The tile pattern of `tile_texture` and `tile_bump_texture` ([`Tiling::eval`]: its
     /// height, whether on a tile, the tile's brightness variation).
     Tiles(Tiling),
+    /// The mean of another pattern's first three lanes in all four (the height of a colour
+    /// pattern: `gradient3_bump_texture`'s).
+    Mean(Box<Pattern>),
     /// An image's height (`file_bump_texture`): its texel by a `mono_mode` (by name).
     ImageHeight {
         /// The image.
@@ -218,6 +221,10 @@ impl Pattern {
                 recolor(p.x, 0.0, positions, colors, interpolation).extend(0.0)
             }
             Pattern::Tiles(t) => t.eval(p),
+            Pattern::Mean(inner) => {
+                let c = inner.eval(p);
+                Vec4::splat((c.x + c.y + c.z) / 3.0)
+            }
             Pattern::ImageHeight { image, wrap, clip, mono } => {
                 let texel = image_texel(image, p, *wrap, *clip).unwrap_or(Vec4::ZERO);
                 Vec4::splat(mdl::texture::mono(texel, mono))

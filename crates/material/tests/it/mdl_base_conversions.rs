@@ -209,3 +209,23 @@ fn tiles_vary_tile_by_tile() {
     // All missing: grout everywhere.
     assert!(close(value("tiled", r#""missing" 1"#, &at(0.125, 0.125)), Rgb::new(0.0, 0.0, 1.0), 0.0));
 }
+
+/// `gradient3_bump_texture` of the default linear gradient (grey = u): the normal leans
+/// towards +u as n + scale · tangent_u (the height's slope is 1), flat across v.
+#[test]
+fn a_gradient_bump_leans_along_its_slope() {
+    let (mdl, lib, diags) = compile_text(r#"shader "m" "mdl::base_conversions::gradient_bumped" ("scale" 0.5)"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let m = get(&mdl, &lib, "m");
+    let Varying::Evaluated(e) = &m.varying else { panic!("not per hit") };
+    for (u, v) in [(0.3f32, 0.4f32), (0.7, 0.1)] {
+        let mut s = point(-Vec3A::Z);
+        s.tex_count = 1;
+        s.tex_list[0] = Vec3A::new(u, v, 0.0);
+        let mut h = m.constant();
+        e.0.apply(&s, &mut h);
+        let n = h.normal.expect("a bent normal");
+        let want = Vec3A::new(0.5, 0.0, 1.0).normalize();
+        assert!((n - want).length() < 1e-3, "({u}, {v}): {n:?}");
+    }
+}
