@@ -27,6 +27,7 @@ pub mod lower;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod spectral;
 pub mod state_space;
 pub mod statements;
 pub mod textures;

@@ -229,3 +229,29 @@ fn a_gradient_bump_leans_along_its_slope() {
         assert!((n - want).length() < 1e-3, "({u}, {v}): {n:?}");
     }
 }
+
+/// `blackbody_emission` (`math::blackbody`): luminance 1; at 2856 K the chromaticity of
+/// CIE illuminant A (x 0.44757, y 0.40745, a Planckian radiator by definition); the blend
+/// picks between the two temperatures; temperatures below 500 K read as 500 K.
+#[test]
+fn a_black_body_has_unit_luminance_and_the_planckian_chromaticity() {
+    // Linear Rec. 709 → XYZ (D65), the standard matrix.
+    let xyz = |c: Rgb| {
+        Vec3A::new(
+            0.4124 * c.x + 0.3576 * c.y + 0.1805 * c.z,
+            0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z,
+            0.0193 * c.x + 0.1192 * c.y + 0.9505 * c.z,
+        )
+    };
+    let a = constant("black_body", "");
+    let v = xyz(a);
+    assert!((v.y - 1.0).abs() < 1e-3, "Y {}", v.y);
+    let sum = v.x + v.y + v.z;
+    assert!((v.x / sum - 0.44757).abs() < 2e-3 && (v.y / sum - 0.40745).abs() < 2e-3, "{a:?}: xy {v:?}");
+    assert!(a.x > a.y && a.y > a.z, "warm: {a:?}");
+    // Blended all the way: the second temperature, bluer.
+    let b = constant("black_body", r#""blend" 1"#);
+    assert!(close(b, constant("black_body", r#""t1" 6500"#), 1e-6), "{b:?}");
+    assert!(b.z / b.x > a.z / a.x);
+    assert!(close(constant("black_body", r#""t1" 100"#), constant("black_body", r#""t1" 500"#), 0.0));
+}
