@@ -8,8 +8,9 @@
 //! whose condition depends on the hit runs both branches, each under its condition, and
 //! joins what they assign with a per-hit choice (`c ? a : b`); a `return` in such a branch
 //! is kept with its condition, and the function's value is the first of its returns whose
-//! condition holds. Loops and `switch`es whose control depends on the hit, and `break` or
-//! `continue` under such a condition, are errors at their line.
+//! condition holds; a `switch` on an integer of the hit runs each case under the condition
+//! that control reaches it. Loops whose control depends on the hit, and `break` or
+//! `continue` under an `if` of the hit, are errors at their line.
 //!
 //! Every statement run counts one step, and a material instance runs at most
 //! [`MAX_STEPS`] (the bound a per-hit expression may take, [`super::hit::MAX_HIT_NODES`]):
@@ -18,12 +19,13 @@
 
 use std::sync::Arc;
 
-use mdl_lang::ast::{AssignOp, BinaryOp, Scalar, Stmt, StmtKind, UnaryOp, VarDecl};
+use glam::Vec4;
+use mdl_lang::ast::{AssignOp, BinaryOp, Scalar, Stmt, StmtKind, SwitchCase, UnaryOp, VarDecl};
 use mdl_lang::{Expr, ExprKind, Function, Resolution, Type};
 use mi::Span;
 
 use super::eval::{binary, hit_binary, kind, problem, Env, Eval, Evaluator, Problem};
-use super::hit::{fold, HitExpr, UnOp};
+use super::hit::{fold, BinOp, HitExpr, UnOp};
 use super::value::{HitType, Value};
 
 /// Most statements one material instance's statement bodies may run.
@@ -164,12 +166,8 @@ impl Evaluator<'_> {
             StmtKind::Switch { value, cases } => {
                 let v = match self.eval(value, env)? {
                     Value::Int(i) | Value::Enum(_, i) => i,
-                    v => {
-                        return Err(problem(
-                            value.span,
-                            format!("`switch` on {} is not compiled (only on constants)", kind(&v)),
-                        ))
-                    }
+                    Value::Hit(v, HitType::Int) => return self.guarded_switch(run, &v, cases, env, span),
+                    v => return Err(problem(value.span, format!("`switch` on {} is not compiled", kind(&v)))),
                 };
                 let mut start = None;
                 for (k, case) in cases.iter().enumerate() {
@@ -284,6 +282,84 @@ impl Evaluator<'_> {
                 Ok(Flow::Normal)
             }
         }
+    }
+
+    /// A `switch` on an integer `v` of the hit: each case's statements run under the
+    /// condition that control reaches them (its label matches, or the case before falls
+    /// through, and no `break` left before), and what they assign is joined by it.
+    fn guarded_switch(
+        &mut self,
+        run: &mut Run,
+        v: &Arc<HitExpr>,
+        cases: &[SwitchCase],
+        env: &mut Env,
+        span: Span,
+    ) -> Step {
+        let mut labels = Vec::with_capacity(cases.len());
+        for case in cases {
+            labels.push(match &case.label {
+                None => None,
+                Some(label) => match self.eval(label, env)? {
+                    Value::Int(i) | Value::Enum(_, i) => Some(i),
+                    other => return Err(problem(label.span, format!("a `case` label that is {}", kind(&other)))),
+                },
+            });
+        }
+        let equals =
+            |l: i64| fold(HitExpr::Binary(BinOp::Eq, v.clone(), Arc::new(HitExpr::Const(Vec4::splat(l as f32)))));
+        let any_label = labels.iter().flatten().map(|l| equals(*l)).reduce(|a, b| either(Some(&a), &b));
+        let no_label = match any_label {
+            Some(a) => fold(HitExpr::Unary(UnOp::Not, a)),
+            None => Arc::new(HitExpr::Const(Vec4::ONE)),
+        };
+        let outer = run.guard.clone();
+        // Control that left by `break` (None: none), and control falling into the next case.
+        let (mut left, mut through): (Option<Arc<HitExpr>>, Option<Arc<HitExpr>>) = (None, None);
+        for (case, label) in cases.iter().zip(labels) {
+            let matched = label.map_or_else(|| no_label.clone(), equals);
+            let mut reached = either(through.as_ref(), &matched);
+            if let Some(l) = &left {
+                reached = both(Some(&reached), &fold(HitExpr::Unary(UnOp::Not, l.clone())));
+            }
+            let before = (env.params.clone(), env.locals.clone());
+            run.guard = Some(both(outer.as_ref(), &reached));
+            let flow = self.stmts(run, &case.body, env);
+            run.guard = outer.clone();
+            match flow? {
+                Flow::Continue => {
+                    return Err(problem(
+                        span,
+                        format!(
+                            "`continue` in a `switch` on a value of the hit is not compiled (in `{}`)",
+                            run.def.name
+                        ),
+                    ))
+                }
+                // Every path that came here returned: the others keep what they had.
+                Flow::Return => {
+                    (env.params, env.locals) = before;
+                    through = None;
+                }
+                flow => {
+                    let (params, locals) = before;
+                    for (slot, old) in env.params.iter_mut().zip(params) {
+                        *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                    }
+                    for (id, old) in locals {
+                        if let Some(slot) = env.locals.get_mut(&id) {
+                            *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                        }
+                    }
+                    if flow == Flow::Break {
+                        left = Some(either(left.as_ref(), &reached));
+                        through = None;
+                    } else {
+                        through = Some(reached);
+                    }
+                }
+            }
+        }
+        Ok(Flow::Normal)
     }
 
     /// Declares local `d` with its value (the type's default when none is written).
@@ -432,7 +508,15 @@ fn with_lane(whole: Value, i: usize, v: Value, span: Span) -> Eval {
 fn both(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
     match g {
         None => c.clone(),
-        Some(g) => fold(HitExpr::Binary(super::hit::BinOp::And, g.clone(), c.clone())),
+        Some(g) => fold(HitExpr::Binary(BinOp::And, g.clone(), c.clone())),
+    }
+}
+
+/// `g || c` (`c` alone when there is no `g`).
+fn either(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
+    match g {
+        None => c.clone(),
+        Some(g) => fold(HitExpr::Binary(BinOp::Or, g.clone(), c.clone())),
     }
 }
 

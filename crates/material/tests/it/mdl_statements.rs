@@ -1,7 +1,7 @@
 //! Functions with statement bodies in module materials (tests/mdl/statements.mdl): each
 //! construct against a value worked out by hand — a `for` loop summing a series, a
 //! `while` loop (Collatz steps), `do`–`while`, a `switch` on an enum with fall-through,
-//! `break`/`continue`, lanes assigned with compound operators, an `if` of the hit with a
+//! `break`/`continue`, lanes assigned with compound operators, an `if` and a `switch` of the hit with a
 //! `return` in one branch — and an endless loop refused at its line.
 
 use crate::mdl_support;
@@ -112,4 +112,20 @@ fn an_endless_loop_is_refused_at_its_line() {
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let at = format!("statements.mdl:{}:", line_of("while (s < x)"));
     assert!(diags[0].contains(&at) && diags[0].contains("depends on the hit"), "{}", diags[0]);
+}
+
+/// A `switch` on an integer of the hit: each case taken where its label matches, falling
+/// through without `break`, returning from one case, the default elsewhere.
+#[test]
+fn a_switch_of_the_hit_takes_each_case_where_it_matches() {
+    let (mdl, lib, diags) = compile_text(r#"shader "m" "mdl::statements::case_of_the_hit" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let m = get(&mdl, &lib, "m");
+    assert!(matches!(m.varying, Varying::Evaluated(_)));
+    for (x, want) in [(0.5, 10.0), (1.5, 25.0), (2.5, 5.0), (3.5, 99.0), (7.5, 1.0), (-0.5, 1.0)] {
+        let s = State { point: Vec3A::new(x, 0.0, 0.0), ..State::default() };
+        let got = emitted(m, &s);
+        // Within float rounding of π · value / π.
+        assert!(close(got, Rgb::splat(want), 1e-6 * want), "x {x}: {got:?} vs {want}");
+    }
 }
