@@ -72,3 +72,35 @@ fn object_space_cells_repeat_across_instances_and_world_cells_do_not() {
         }
     }
 }
+
+/// The left instance moving 1 unit towards the camera while the shutter is open (seen
+/// orthographically, so the same pixels see it): its object space is read at each ray's
+/// time, so the object-space image is the still one exactly (object z stays 0 — the
+/// matrices of the shutter's opening would give z up to 1 and cells up to 2 higher),
+/// while world z's cell grows over the shutter.
+#[test]
+fn a_moving_instance_is_read_in_its_object_space_at_the_rays_time() {
+    let moving = |text: String| {
+        text.replace("filter box 1 1 end", "filter box 1 1 motion on shutter 0 1 end").replace(
+            "0 0 1 0  1 0 5 1 end instance",
+            "0 0 1 0  1 0 5 1 motion transform 1 0 0 0  0 1 0 0  0 0 1 0  1 0 4 1 end instance",
+        )
+    };
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let object = scene(r#""mdl::object_space::cell" ("offset" 12)"#);
+        let (still, messages) = render_text(&object, engine);
+        assert!(messages.is_empty(), "{messages:#?}");
+        let (moved, messages) = render_text(&moving(object), engine);
+        assert!(messages.is_empty(), "{messages:#?}");
+        for (k, (a, b)) in still.iter().zip(&moved).enumerate() {
+            assert!((0..3).all(|c| (a[c] - b[c]).abs() <= 1e-5), "{engine:?} pixel {k}: {a:?} vs {b:?}");
+        }
+        let world = scene(r#""mdl::object_space::cell" ("object" off, "offset" 12)"#);
+        let (moved, _) = render_text(&moving(world), engine);
+        // Left half: world z from −5 to −4 over the shutter, cells −10 then −9 (+ 12).
+        let left: f32 =
+            (0..RES).flat_map(|j| (0..4).map(move |i| j * RES + i)).map(|k| moved[k][2]).sum::<f32>() / 32.0;
+        assert!(left > 2.2 && left < 2.8, "{engine:?}: mean world z cell {left}");
+        assert!((0..RES).all(|j| (moved[j * RES + 6][2] - 2.0).abs() <= 1e-5), "the right one stays");
+    }
+}
