@@ -15,8 +15,12 @@
 //! Every statement run counts one step, and a material instance runs at most
 //! [`MAX_STEPS`] (the bound a per-hit expression may take, [`super::hit::MAX_HIT_NODES`]):
 //! a loop that would run longer — an endless one — is an error naming the function at
-//! the loop's line, never a hang.
+//! the loop's line, never a hang. A value of the hit a body stores may nest at most
+//! [`MAX_HIT_DEPTH`] operations deep (what the hit evaluator takes; a loop squaring a value
+//! of the hit would otherwise build a tree deep enough to overflow the stack when
+//! dropped): deeper is an error at the statement.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::Vec4;
@@ -25,7 +29,7 @@ use mdl_lang::{Expr, ExprKind, Function, Resolution, Type};
 use mi::Span;
 
 use super::eval::{binary, hit_binary, kind, problem, Env, Eval, Evaluator, Problem};
-use super::hit::{fold, BinOp, HitExpr, UnOp};
+use super::hit::{fold, BinOp, HitExpr, UnOp, MAX_HIT_DEPTH};
 use super::value::{HitType, Value};
 
 /// Most statements one material instance's statement bodies may run.
@@ -52,6 +56,76 @@ struct Run<'f> {
     guard: Option<Arc<HitExpr>>,
     /// The values returned so far, each with the condition it was returned under, in order.
     returns: Vec<(Option<Arc<HitExpr>>, Value)>,
+    /// How deep the values of the hit stored so far nest, by node (each kept alive here, so
+    /// that its address names it): a new value's depth is measured down to them only.
+    depths: HashMap<*const HitExpr, (Arc<HitExpr>, usize)>,
+}
+
+impl Run<'_> {
+    /// Checks that the values of the hit in `v` nest at most [`MAX_HIT_DEPTH`] deep — deeper
+    /// trees are refused when compiled, and dropping or comparing one recurses once per
+    /// level — and remembers their depth. Measuring stops at values stored before, so
+    /// the statements of a body cost about the nodes they build.
+    fn check_depth(&mut self, v: &Value, span: Span) -> Result<(), Problem> {
+        let mut roots = Vec::new();
+        hit_roots(v, &mut roots);
+        for root in roots {
+            let key = Arc::as_ptr(&root);
+            if self.depths.contains_key(&key) {
+                continue;
+            }
+            let depth = depth_of(&root, &self.depths).ok_or_else(|| {
+                problem(
+                    span,
+                    format!(
+                        "`{}` builds a value of the hit nested more than {MAX_HIT_DEPTH} operations deep",
+                        self.def.name
+                    ),
+                )
+            })?;
+            self.depths.insert(key, (root, depth));
+        }
+        Ok(())
+    }
+}
+
+/// The expressions of the hit in `v` (in structs and arrays too).
+fn hit_roots(v: &Value, out: &mut Vec<Arc<HitExpr>>) {
+    match v {
+        Value::Hit(e, _) => out.push(e.clone()),
+        Value::Struct(_, fields) => fields.iter().for_each(|(_, f)| hit_roots(f, out)),
+        Value::Array(items) => items.iter().for_each(|x| hit_roots(x, out)),
+        _ => {}
+    }
+}
+
+/// The depth of `root` (leaves 1), counting the nodes in `known` at their depth; `None`
+/// past [`MAX_HIT_DEPTH`]. Walks each new node once, without recursion.
+fn depth_of(root: &Arc<HitExpr>, known: &HashMap<*const HitExpr, (Arc<HitExpr>, usize)>) -> Option<usize> {
+    let mut done: HashMap<*const HitExpr, usize> = HashMap::new();
+    let depth = |p: *const HitExpr, done: &HashMap<*const HitExpr, usize>| {
+        known.get(&p).map(|(_, d)| *d).or_else(|| done.get(&p).copied())
+    };
+    let mut stack: Vec<(&HitExpr, bool)> = vec![(&**root, false)];
+    while let Some((node, ready)) = stack.pop() {
+        let key = std::ptr::from_ref(node);
+        if depth(key, &done).is_some() {
+            continue;
+        }
+        let operands = node.operands();
+        if ready {
+            let d = 1 + operands.iter().filter_map(|o| depth(Arc::as_ptr(o), &done)).max().unwrap_or(0);
+            if d > MAX_HIT_DEPTH {
+                return None;
+            }
+            done.insert(key, d);
+        } else {
+            stack.push((node, true));
+            stack
+                .extend(operands.into_iter().filter(|o| depth(Arc::as_ptr(o), &done).is_none()).map(|o| (&**o, false)));
+        }
+    }
+    depth(Arc::as_ptr(root), &done)
 }
 
 type Step = Result<Flow, Problem>;
@@ -60,7 +134,7 @@ impl Evaluator<'_> {
     /// The value of a call of `def`, whose body is the statements `body`, with bound `args`.
     pub(super) fn call_block(&mut self, def: &Function, body: &[Stmt], args: Vec<Value>, span: Span) -> Eval {
         let mut env = Env::with_params(args);
-        let mut run = Run { def, guard: None, returns: Vec::new() };
+        let mut run = Run { def, guard: None, returns: Vec::new(), depths: HashMap::new() };
         self.stmts(&mut run, body, &mut env)?;
         // The first return whose condition holds: the last one is what remains.
         let mut returns = run.returns.into_iter().rev();
@@ -96,12 +170,12 @@ impl Evaluator<'_> {
             StmtKind::Block(items) => self.stmts(run, items, env),
             StmtKind::Var(decls) => {
                 for d in decls {
-                    self.declare(d, env)?;
+                    self.declare(run, d, env)?;
                 }
                 Ok(Flow::Normal)
             }
             StmtKind::Expr(e) => {
-                self.effect(e, env)?;
+                self.effect(run, e, env)?;
                 Ok(Flow::Normal)
             }
             StmtKind::Return(value) => {
@@ -109,6 +183,7 @@ impl Evaluator<'_> {
                     Some(v) => convert(self.eval(v, env)?, &run.def.ret.ty),
                     None => return Err(problem(span, format!("`{}` returns no value", run.def.name))),
                 };
+                run.check_depth(&v, span)?;
                 run.returns.push((run.guard.clone(), v));
                 Ok(Flow::Return)
             }
@@ -159,7 +234,7 @@ impl Evaluator<'_> {
                         Flow::Normal | Flow::Continue => {}
                     }
                     if let Some(step) = step {
-                        self.effect(step, env)?;
+                        self.effect(run, step, env)?;
                     }
                 }
             }
@@ -273,10 +348,12 @@ impl Evaluator<'_> {
                 let (then_params, mut then_locals) = then_env;
                 for (slot, t) in env.params.iter_mut().zip(then_params) {
                     *slot = join(c, t, std::mem::replace(slot, Value::Bool(false)), span)?;
+                    run.check_depth(slot, span)?;
                 }
                 for (id, e) in env.locals.iter_mut() {
                     if let Some(t) = then_locals.remove(id) {
                         *e = join(c, t, std::mem::replace(e, Value::Bool(false)), span)?;
+                        run.check_depth(e, span)?;
                     }
                 }
                 Ok(Flow::Normal)
@@ -344,10 +421,12 @@ impl Evaluator<'_> {
                     let (params, locals) = before;
                     for (slot, old) in env.params.iter_mut().zip(params) {
                         *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                        run.check_depth(slot, span)?;
                     }
                     for (id, old) in locals {
                         if let Some(slot) = env.locals.get_mut(&id) {
                             *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                            run.check_depth(slot, span)?;
                         }
                     }
                     if flow == Flow::Break {
@@ -363,21 +442,22 @@ impl Evaluator<'_> {
     }
 
     /// Declares local `d` with its value (the type's default when none is written).
-    fn declare(&mut self, d: &VarDecl, env: &mut Env) -> Result<(), Problem> {
+    fn declare(&mut self, run: &mut Run, d: &VarDecl, env: &mut Env) -> Result<(), Problem> {
         let v = match &d.init {
             Some(init) => convert(self.eval(init, env)?, &d.ty.ty),
             None => self.construct(&d.ty.ty, &[], env, d.span)?,
         };
+        run.check_depth(&v, d.span)?;
         env.locals.insert(d.id, v);
         Ok(())
     }
 
     /// Runs `e` for its effect: an assignment, an increment, a sequence, or any expression.
-    fn effect(&mut self, e: &Expr, env: &mut Env) -> Result<(), Problem> {
+    fn effect(&mut self, run: &mut Run, e: &Expr, env: &mut Env) -> Result<(), Problem> {
         match &e.kind {
             ExprKind::Sequence(list) => {
                 for x in list {
-                    self.effect(x, env)?;
+                    self.effect(run, x, env)?;
                 }
             }
             ExprKind::Assign { op, target, value } => {
@@ -386,7 +466,7 @@ impl Evaluator<'_> {
                     AssignOp::Set => v,
                     AssignOp::Compound(op) => combine(*op, &self.eval(target, env)?, &v, e.span)?,
                 };
-                self.assign(target, v, env)?;
+                self.assign(run, target, v, env)?;
             }
             ExprKind::Unary {
                 op: op @ (UnaryOp::PreInc | UnaryOp::PostInc | UnaryOp::PreDec | UnaryOp::PostDec),
@@ -394,7 +474,7 @@ impl Evaluator<'_> {
             } => {
                 let by = if matches!(op, UnaryOp::PreInc | UnaryOp::PostInc) { BinaryOp::Add } else { BinaryOp::Sub };
                 let v = combine(by, &self.eval(operand, env)?, &Value::Int(1), e.span)?;
-                self.assign(operand, v, env)?;
+                self.assign(run, operand, v, env)?;
             }
             _ => {
                 self.eval(e, env)?;
@@ -404,7 +484,7 @@ impl Evaluator<'_> {
     }
 
     /// Stores `v` in what `target` names: a parameter, a local, a member or element of one.
-    fn assign(&mut self, target: &Expr, v: Value, env: &mut Env) -> Result<(), Problem> {
+    fn assign(&mut self, run: &mut Run, target: &Expr, v: Value, env: &mut Env) -> Result<(), Problem> {
         let span = target.span;
         match &target.kind {
             ExprKind::Name(n) => {
@@ -414,6 +494,7 @@ impl Evaluator<'_> {
                     _ => None,
                 };
                 let slot = slot.ok_or_else(|| problem(span, format!("`{}` cannot be assigned to", n.name)))?;
+                run.check_depth(&v, span)?;
                 // An int stored in a float stays a float (MDL's implicit conversion).
                 *slot = match (&*slot, v) {
                     (Value::Float(_), Value::Int(i)) => Value::Float(i as f64),
@@ -441,7 +522,7 @@ impl Evaluator<'_> {
                         return Err(problem(span, format!("`.{field}` of {} is not assigned", kind(&whole))))
                     }
                 };
-                self.assign(base, updated, env)
+                self.assign(run, base, updated, env)
             }
             ExprKind::Index { base, index } => {
                 let i = match self.eval(index, env)? {
@@ -460,7 +541,7 @@ impl Evaluator<'_> {
                     }
                     whole => with_lane(whole, i, v, span)?,
                 };
-                self.assign(base, updated, env)
+                self.assign(run, base, updated, env)
             }
             _ => Err(problem(span, "this expression cannot be assigned to")),
         }

@@ -129,3 +129,13 @@ fn a_switch_of_the_hit_takes_each_case_where_it_matches() {
         assert!(close(got, Rgb::splat(want), 1e-6 * want), "x {x}: {got:?} vs {want}");
     }
 }
+
+/// A loop that builds a value of the hit deeper than the hit evaluator takes is refused at
+/// the assignment, naming the function, before the tree grows past it.
+#[test]
+fn a_loop_building_too_deep_a_value_of_the_hit_is_refused() {
+    let (_, _, diags) = compile_text(r#"shader "m" "mdl::statements::too_deep" ()"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let at = format!("statements.mdl:{}:", line_of("x = -(x * 1.0001);"));
+    assert!(diags[0].contains(&at) && diags[0].contains("`deep`") && diags[0].contains("1024"), "{}", diags[0]);
+}
