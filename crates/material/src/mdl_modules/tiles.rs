@@ -74,7 +74,7 @@ impl Tiling {
         let mut row = y.floor() as i64;
         let column = x.floor() as i64;
         // Special rows and columns (an index of 0 or less reads as 1: every one).
-        let every = |k: i64, n: i32| (k + 1).rem_euclid(i64::from(n.max(1))) == 0;
+        let every = |k: i64, n: i32| k.wrapping_add(1).rem_euclid(i64::from(n.max(1))) == 0;
         if every(row, self.special_row_index) && every(column, self.special_column_index) {
             columns *= self.special_column_height_factor;
             x *= self.special_column_height_factor;
@@ -224,6 +224,16 @@ mod tests {
         });
         assert!(changed.count() > 20);
         assert!(r.sample(0.125, 0.125).in_tile, "tile centres stay tiles");
+    }
+
+    /// Hostile numbers (huge or non-finite counts and coordinates) give an answer, never a
+    /// panic (indices saturate).
+    #[test]
+    fn extreme_parameters_do_not_panic() {
+        for (rows, u) in [(1e30f32, 0.5f32), (f32::INFINITY, 0.3), (f32::NAN, f32::NAN), (4.0, f32::INFINITY)] {
+            let t = Tiling { rows, columns: rows, special_row_index: 2, special_column_index: 2, ..plain() };
+            let _ = t.sample(u, 0.999_999);
+        }
     }
 
     #[test]
