@@ -499,6 +499,16 @@ fn construct_hit(ty: &Type, values: &[Value]) -> Option<Value> {
             if t.width() == 1 || t.width() >= target.width() || matches!(target, HitType::Color) {
                 let e = v.to_hit()?;
                 let e = if target.width() == 1 && t.width() > 1 { HitExpr::Lane(e, 0) } else { (*e).clone() };
+                // A number to `int` truncates towards zero, to `bool` is whether it is not 0.
+                let e = match (target, t) {
+                    (HitType::Int, HitType::Float) => {
+                        HitExpr::Math(super::hit::MathFn::Trunc, [super::hit::fold(e)].into())
+                    }
+                    (HitType::Bool, HitType::Float | HitType::Int) => {
+                        HitExpr::Binary(HitBinOp::Ne, super::hit::fold(e), Arc::new(HitExpr::Const(glam::Vec4::ZERO)))
+                    }
+                    _ => e,
+                };
                 return Some(Value::from_hit(e, target));
             }
             None

@@ -122,7 +122,8 @@ fn a_switch_of_the_hit_takes_each_case_where_it_matches() {
     assert!(diags.is_empty(), "{diags:#?}");
     let m = get(&mdl, &lib, "m");
     assert!(matches!(m.varying, Varying::Evaluated(_)));
-    for (x, want) in [(0.5, 10.0), (1.5, 25.0), (2.5, 5.0), (3.5, 99.0), (7.5, 1.0), (-0.5, 1.0)] {
+    // int(x) truncates towards zero: −0.5 is case 0, −1.5 the default.
+    for (x, want) in [(0.5, 10.0), (-0.5, 10.0), (1.7, 25.0), (2.5, 5.0), (3.99, 99.0), (7.5, 1.0), (-1.5, 1.0)] {
         let s = State { point: Vec3A::new(x, 0.0, 0.0), ..State::default() };
         let got = emitted(m, &s);
         // Within float rounding of π · value / π.
