@@ -201,7 +201,7 @@ fn spread(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 }
 
 /// XYZ (D65 white) → linear Rec.709 RGB.
-const XYZ_TO_RGB: Mat3A = Mat3A::from_cols(
+pub const XYZ_TO_RGB: Mat3A = Mat3A::from_cols(
     Vec3A::new(3.240_97, -0.969_243_6, 0.055_630_08),
     Vec3A::new(-1.537_383_2, 1.875_967_5, -0.203_977),
     Vec3A::new(-0.498_610_76, 0.041_555_06, 1.056_971_5),

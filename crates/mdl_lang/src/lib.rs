@@ -20,7 +20,7 @@
 //!   with [`Function::bind_args`] / [`Function::instantiate`], and tells which
 //!   sub-expressions depend on the shading point ([`HitDependence`]).
 //!
-//! What mira does not read yet (`switch`, `cast<>`, quoted module names, …) is an error that
+//! What mira does not read yet (`cast<>`, quoted module names, …) is an error that
 //! names the construct and its line, never a silent default.
 //!
 //! ```

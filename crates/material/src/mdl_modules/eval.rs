@@ -20,7 +20,7 @@ use super::textures::Textures;
 use super::value::{HitType, Value};
 
 /// Deepest nesting of calls followed (recursion in a module is an error, not a hang).
-const MAX_DEPTH: u32 = 64;
+pub(super) const MAX_DEPTH: u32 = 64;
 
 /// Why an expression has no constant value: the place (in the module's sources) and what.
 #[derive(Clone, Debug)]
@@ -39,7 +39,7 @@ pub type Eval = Result<Value, Problem>;
 pub struct Env {
     /// Parameter values by index.
     pub params: Vec<Value>,
-    locals: HashMap<u32, Value>,
+    pub(super) locals: HashMap<u32, Value>,
 }
 
 impl Env {
@@ -53,7 +53,10 @@ impl Env {
 pub struct Evaluator<'a> {
     /// The modules the expressions come from.
     pub set: &'a ModuleSet,
-    depth: u32,
+    pub(super) depth: u32,
+    /// Statements run so far in the statement bodies this evaluator followed (bounded by
+    /// [`super::statements::MAX_STEPS`]).
+    pub(super) steps: u64,
     /// The hit-dependent numbers the distribution functions read ([`super::value::Leaf`]).
     pub leaves: Vec<Arc<HitExpr>>,
     /// The texture files read.
@@ -68,7 +71,7 @@ pub fn problem(span: Span, message: impl Into<String>) -> Problem {
 impl<'a> Evaluator<'a> {
     /// An evaluator of `set`'s definitions.
     pub fn new(set: &'a ModuleSet, textures: &'a mut Textures) -> Evaluator<'a> {
-        Evaluator { set, depth: 0, leaves: Vec::new(), textures }
+        Evaluator { set, depth: 0, steps: 0, leaves: Vec::new(), textures }
     }
 
     /// The value of `e` in `env`.
@@ -124,6 +127,11 @@ impl<'a> Evaluator<'a> {
                     }
                 }
                 let b = self.eval(rhs, env)?;
+                if let (BinaryOp::Mul, Value::Array(columns)) = (op, &a) {
+                    // A matrix of the hit (`state::transform`) times a vector.
+                    return super::state_space::matrix_times(columns, &b)
+                        .ok_or_else(|| problem(span, describe_binary(*op, &a, &b)));
+                }
                 if matches!(a, Value::Hit(..)) || matches!(b, Value::Hit(..)) {
                     return hit_binary(*op, &a, &b).ok_or_else(|| problem(span, describe_binary(*op, &a, &b)));
                 }
@@ -245,10 +253,12 @@ impl<'a> Evaluator<'a> {
                 };
                 natives::call(module, def, &args, span, &mut self.leaves)
             }
-            Body::Block(_) => Err(problem(
-                span,
-                format!("`{}` has a statement body; mira evaluates only expression-bodied functions yet", def.name),
-            )),
+            Body::Block(stmts) => {
+                self.depth += 1;
+                let v = self.call_block(def, stmts, args, span);
+                self.depth -= 1;
+                v
+            }
         }
     }
 
@@ -272,7 +282,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// A value of type `ty` built from `args`.
-    fn construct(&mut self, ty: &Type, args: &[Arg], env: &mut Env, span: Span) -> Eval {
+    pub(super) fn construct(&mut self, ty: &Type, args: &[Arg], env: &mut Env, span: Span) -> Eval {
         let mut values = Vec::with_capacity(args.len());
         if !matches!(ty, Type::Struct(_) | Type::Material) {
             for a in args {
@@ -469,7 +479,7 @@ fn describe_binary(op: BinaryOp, a: &Value, b: &Value) -> String {
 }
 
 /// A binary operator on values one of which depends on the hit.
-fn hit_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
+pub(super) fn hit_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
     use BinaryOp::*;
     let (x, y) = (a.to_hit()?, b.to_hit()?);
     let (ta, tb) = (a.hit_type()?, b.hit_type()?);
@@ -509,6 +519,16 @@ fn construct_hit(ty: &Type, values: &[Value]) -> Option<Value> {
             if t.width() == 1 || t.width() >= target.width() || matches!(target, HitType::Color) {
                 let e = v.to_hit()?;
                 let e = if target.width() == 1 && t.width() > 1 { HitExpr::Lane(e, 0) } else { (*e).clone() };
+                // A number to `int` truncates towards zero, to `bool` is whether it is not 0.
+                let e = match (target, t) {
+                    (HitType::Int, HitType::Float) => {
+                        HitExpr::Math(super::hit::MathFn::Trunc, [super::hit::fold(e)].into())
+                    }
+                    (HitType::Bool, HitType::Float | HitType::Int) => {
+                        HitExpr::Binary(HitBinOp::Ne, super::hit::fold(e), Arc::new(HitExpr::Const(glam::Vec4::ZERO)))
+                    }
+                    _ => e,
+                };
                 return Some(Value::from_hit(e, target));
             }
             None

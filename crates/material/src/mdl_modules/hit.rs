@@ -53,6 +53,15 @@ pub enum StateFn {
     ObjectAxisY,
     /// The object's z axis in world space, unit.
     ObjectAxisZ,
+    /// Column `i` of the hit instance's object-to-world matrix at the ray's time (0–2 the
+    /// images of the object's axes, not normalized; 3 the translation; world units).
+    ObjectToWorld(u8),
+    /// Column `i` of its world-to-object matrix (object units).
+    WorldToObject(u8),
+    /// `state::animation_time()`: the ray's shutter time.
+    Time,
+    /// `state::object_id()`: the hit instance's label (mental ray's `tag`).
+    ObjectId,
 }
 
 /// A unary operator.
@@ -595,8 +604,22 @@ fn state_value(f: StateFn, s: &State) -> Vec4 {
         StateFn::ObjectAxisX => s.object_to_world.transform_vector3a(Vec3A::X).normalize_or(Vec3A::X),
         StateFn::ObjectAxisY => s.object_to_world.transform_vector3a(Vec3A::Y).normalize_or(Vec3A::Y),
         StateFn::ObjectAxisZ => s.object_to_world.transform_vector3a(Vec3A::Z).normalize_or(Vec3A::Z),
+        StateFn::ObjectToWorld(i) => affine_column(&s.object_to_world, i),
+        StateFn::WorldToObject(i) => affine_column(&s.world_to_object, i),
+        StateFn::Time => return splat(s.time),
+        StateFn::ObjectId => return splat(s.label as f32),
     };
     v.extend(0.0)
+}
+
+/// Column `i` of an affine map (3: the translation).
+fn affine_column(m: &glam::Affine3A, i: u8) -> Vec3A {
+    match i {
+        0 => m.matrix3.x_axis,
+        1 => m.matrix3.y_axis,
+        2 => m.matrix3.z_axis,
+        _ => m.translation,
+    }
 }
 
 fn binary(op: BinOp, a: Vec4, b: Vec4) -> Vec4 {

@@ -20,6 +20,7 @@ use super::hit::{fold, BinOp, HitExpr, MathFn, StateFn};
 use super::hit_natives::{coordinate_info, enum_arg, mono_name, state_value, wrap_name};
 use super::procedural::{NoiseShaping, Pattern};
 use super::projection;
+use super::tiles::Tiling;
 use super::value::{HitType, Value};
 
 /// The arguments of one `::base` call, read by parameter name.
@@ -198,30 +199,36 @@ fn checker(a: &Args) -> Result<Pattern, Problem> {
     Ok(Pattern::Checker { blur: a.num("blur", 0.0)?, position: a.num("checker_position", 0.5)? })
 }
 
-fn tiles(a: &Args) -> Result<Pattern, Problem> {
-    // What varies tile by tile is not compiled: an error rather than a different pattern.
-    for (p, default) in [
-        ("missing_tile_amount", 0.0),
-        ("tile_brightness_variation", 0.0),
-        ("grout_roughness", 0.0),
-        ("random_row_offset", 0.0),
-        ("special_row_width_factor", 1.0),
-        ("special_column_height_factor", 1.0),
-    ] {
-        if a.num(p, default)? != default {
-            return Err(problem(
-                a.span,
-                format!("`base::{}` with `{p}` other than {default} is not compiled yet", a.def.name),
-            ));
-        }
-    }
-    Ok(Pattern::Tiles {
+fn tiles(a: &Args) -> Result<Tiling, Problem> {
+    Ok(Tiling {
         rows: a.size("number_of_rows")?,
         columns: a.size("number_of_columns")?,
         grout_width: a.num("grout_width", 0.02)?,
         grout_height: a.num("grout_height", 0.02)?,
+        grout_roughness: a.num("grout_roughness", 0.0)?,
+        missing_tile_amount: a.num("missing_tile_amount", 0.0)?,
+        brightness_variation: a.num("tile_brightness_variation", 0.0)?,
+        seed: a.num("seed", 2.284)?,
+        special_row_index: a.int("special_row_index", 1)?,
+        special_row_width_factor: a.num("special_row_width_factor", 1.0)?,
+        special_column_index: a.int("special_column_index", 1)?,
+        special_column_height_factor: a.num("special_column_height_factor", 1.0)?,
         odd_row_offset: a.num("odd_row_offset", 0.5)?,
+        random_row_offset: a.num("random_row_offset", 0.0)?,
     })
+}
+
+/// `tile_texture`: the tile colour (brightened or darkened tile by tile, clamped to
+/// [0, 1]) on a tile, the grout colour elsewhere; mono 1 on a tile, 0 elsewhere.
+fn tile_texture(a: &Args) -> Eval {
+    let p = at(Pattern::Tiles(tiles(a)?), a)?;
+    let on = fold(HitExpr::Lane(p.clone(), 1));
+    let variation = fold(HitExpr::Lane(p, 2));
+    let tile = a.hit("tile_color", 0.0)?;
+    let varied = fold(HitExpr::Binary(BinOp::Add, tile.clone(), fold(HitExpr::Binary(BinOp::Mul, tile, variation))));
+    let varied = fold(HitExpr::Math(MathFn::Saturate, [varied].into()));
+    let tint = fold(HitExpr::Math(MathFn::Lerp, [a.hit("grout_color", 1.0)?, varied, on.clone()].into()));
+    Ok(texture_return(tint, on))
 }
 
 /// Three constant numbers of an array argument.
@@ -440,16 +447,21 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
             Ok(texture_return(tint, constant(0.0)))
         }
         "gradient3_recolor" => gradient_recolor(&a),
-        // 1 on a tile, 0 in the grout; mono 0 as for the checker.
-        "tile_texture" => {
-            Ok(blended(at(tiles(&a)?, &a)?, a.hit("grout_color", 1.0)?, a.hit("tile_color", 0.0)?, false))
+        "gradient3_bump_texture" => {
+            // The mean of the gradient's colour differenced over 0.0025 in u and v, the
+            // normal leaning towards the rise by `scale` / 0.0025 (the MDL SDK's step and
+            // direction).
+            const DELTA: f32 = 0.0025;
+            let scale = a.num("scale", 1.0)?;
+            bump(Pattern::Mean(Box::new(gradient(&a)?)), -scale / DELTA, [DELTA; 2], &a)
         }
+        "tile_texture" => tile_texture(&a),
         "tile_bump_texture" => {
+            // The height (1 on a tile times its brightness) differenced over half the two
+            // grout sizes, as the MDL SDK steps it.
             let t = tiles(&a)?;
-            let Pattern::Tiles { grout_width, grout_height, .. } = t else { unreachable!("tiles() builds tiles") };
-            // Half the grout: the bevel shows as a line along each side of the grout.
-            let d = [(0.5 * grout_width).max(1e-4), (0.5 * grout_height).max(1e-4)];
-            bump(t, factor()?, d, &a)
+            let d = (0.5 * (t.grout_width + t.grout_height)).max(1e-4);
+            bump(Pattern::Tiles(t), factor()?, [d; 2], &a)
         }
         "file_bump_texture" => file_bump(&a),
         "blend_color_layers" => blend_color_layers(&a),

@@ -39,23 +39,12 @@ pub fn state(name: &str, args: &[Value], span: Span) -> Eval {
             v3(StateFn::TangentV)
         }
         "texture_space_max" => Ok(Value::Int(shader::state::MAX_TEXTURES as i64)),
-        "animation_time" => Ok(Value::Float(0.0)),
+        "animation_time" => Ok(Value::Hit(Arc::new(HitExpr::State(StateFn::Time)), HitType::Float)),
+        "object_id" => Ok(Value::Hit(Arc::new(HitExpr::State(StateFn::ObjectId)), HitType::Int)),
         // Scene units are metres unless the scene says otherwise (Iray's default).
         "meters_per_scene_unit" | "scene_units_per_meter" => Ok(Value::Float(1.0)),
-        // mira's internal space is world space: internal ↔ world is the identity.
-        "transform_point" | "transform_vector" | "transform_normal" | "transform_scale" => {
-            let (Some(Value::Enum(_, from)), Some(Value::Enum(_, to)), Some(v)) =
-                (args.first(), args.get(1), args.get(2))
-            else {
-                return Err(problem(span, format!("`state::{name}` with these arguments is not compiled")));
-            };
-            // coordinate_internal = 0, coordinate_object = 1, coordinate_world = 2.
-            let world = |s: i64| s != 1;
-            if world(*from) == world(*to) {
-                Ok(v.clone())
-            } else {
-                Err(problem(span, format!("`state::{name}` between object and world space is not compiled yet")))
-            }
+        "transform" | "transform_point" | "transform_vector" | "transform_normal" | "transform_scale" => {
+            super::state_space::transform(name, args, span)
         }
         _ => Err(problem(span, format!("`state::{name}` is not compiled yet"))),
     }

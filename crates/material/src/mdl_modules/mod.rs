@@ -28,9 +28,13 @@ pub mod lower;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod spectral;
+pub mod state_space;
+pub mod statements;
 pub mod texture_3d;
 pub mod texture_cube;
 pub mod textures;
+pub mod tiles;
 pub mod value;
 pub mod volume;
 

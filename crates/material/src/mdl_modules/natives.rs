@@ -62,6 +62,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         "::base" => return hit_natives::base(def, args, span),
         "::df" => {}
         "::math" => {
+            if name == "blackbody" {
+                return super::spectral::blackbody(args, span);
+            }
             if let Some(v) = math_constant(name, args, span) {
                 return v;
             }

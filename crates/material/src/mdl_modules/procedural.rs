@@ -1,7 +1,7 @@
 //! The procedural patterns of MDL's `::base` module as pure functions of a texture-space
 //! position: the checker, gradient noise (`perlin_noise_texture`), cellular noise
 //! (`worley_noise_texture`), flow noise, flakes, the three-colour gradient and the tile
-//! pattern's height, plus the height of an image (`file_bump_texture`).
+//! pattern ([`super::tiles`]), plus the height of an image (`file_bump_texture`).
 //!
 //! The structure of each pattern (what the parameters do: octaves, marble, dents, bands,
 //! thresholds, Worley's modes and metrics, the gradient's modes and interpolations) follows
@@ -13,6 +13,7 @@
 use glam::{Vec3A, Vec4};
 
 use super::hit::Image;
+use super::tiles::Tiling;
 
 /// The modifications shared by the noise textures (`apply_marble`, `apply_dent`,
 /// `noise_bands`, `noise_threshold_low/high`).
@@ -166,19 +167,12 @@ pub enum Pattern {
         /// `metric` of the cells.
         metric: i32,
     },
-    /// The height of `tile_bump_texture`: 0 in the grout, 1 on a tile.
-    Tiles {
-        /// `number_of_rows`.
-        rows: f32,
-        /// `number_of_columns`.
-        columns: f32,
-        /// `grout_width` (texture units).
-        grout_width: f32,
-        /// `grout_height` (texture units).
-        grout_height: f32,
-        /// `odd_row_offset` (a fraction of a tile).
-        odd_row_offset: f32,
-    },
+    /// The tile pattern of `tile_texture` and `tile_bump_texture` ([`Tiling::eval`]: its
+    /// height, whether on a tile, the tile's brightness variation).
+    Tiles(Tiling),
+    /// The mean of another pattern's first three lanes in all four (the height of a colour
+    /// pattern: `gradient3_bump_texture`'s).
+    Mean(Box<Pattern>),
     /// An image's height (`file_bump_texture`): its texel by a `mono_mode` (by name).
     ImageHeight {
         /// The image.
@@ -226,8 +220,10 @@ impl Pattern {
             Pattern::Recolor { positions, colors, interpolation } => {
                 recolor(p.x, 0.0, positions, colors, interpolation).extend(0.0)
             }
-            Pattern::Tiles { rows, columns, grout_width, grout_height, odd_row_offset } => {
-                Vec4::splat(tile_height(p, *rows, *columns, *grout_width, *grout_height, *odd_row_offset))
+            Pattern::Tiles(t) => t.eval(p),
+            Pattern::Mean(inner) => {
+                let c = inner.eval(p);
+                Vec4::splat((c.x + c.y + c.z) / 3.0)
             }
             Pattern::ImageHeight { image, wrap, clip, mono } => {
                 let texel = image_texel(image, p, *wrap, *clip).unwrap_or(Vec4::ZERO);
@@ -586,23 +582,6 @@ pub fn recolor(position: f32, distortion: f32, at: &[f32; 3], colors: &[Vec3A; 3
     let span = at[i + 1] - at[i];
     let t = if span > 0.0 { ease(modes[i], (p - at[i]) / span) } else { 1.0 };
     colors[i].lerp(colors[i + 1], t)
-}
-
-/// The tile pattern's height at (u, v): 0 in the grout (the first `grout_width` of each
-/// column and `grout_height` of each row, in texture units), 1 on a tile; odd rows shift
-/// by `odd_row_offset` tiles.
-pub fn tile_height(p: Vec3A, rows: f32, columns: f32, grout_width: f32, grout_height: f32, odd_row_offset: f32) -> f32 {
-    let (rows, columns) = (rows.max(1e-6), columns.max(1e-6));
-    let row_f = p.y * rows;
-    let row = row_f.floor();
-    let odd = (row as i64).rem_euclid(2) == 1;
-    let col_f = p.x * columns + if odd { odd_row_offset } else { 0.0 };
-    let (fu, fv) = ((col_f - col_f.floor()) / columns, (row_f - row) / rows);
-    if fu < grout_width || fv < grout_height {
-        0.0
-    } else {
-        1.0
-    }
 }
 
 /// `checker_texture`'s blend weight of `color1` at `p`: a 3D checker of cells split at

@@ -28,6 +28,7 @@ mod maya_volume_highlight_path;
 mod mdl_classic;
 mod mdl_cornell;
 mod mdl_measured;
+mod mdl_object_space;
 mod mdl_spot;
 mod mdl_textures3d;
 mod mdl_vdf_tints;

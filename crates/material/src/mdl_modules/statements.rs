@@ -1,0 +1,636 @@
+//! Functions with statement bodies: local declarations, assignments (`=`, `+=`, …, `++`),
+//! blocks, `if`/`else`, `switch`, `for`, `while`, `do`–`while`, `break`, `continue` and
+//! `return`, run once per material instance by the [`Evaluator`] — the values they compute
+//! are constants or, where they depend on the shading point, [`HitExpr`] trees evaluated at
+//! each hit, exactly as for expression bodies.
+//!
+//! Control flow must be known when the material is compiled, with one exception: an `if`
+//! whose condition depends on the hit runs both branches, each under its condition, and
+//! joins what they assign with a per-hit choice (`c ? a : b`); a `return` in such a branch
+//! is kept with its condition, and the function's value is the first of its returns whose
+//! condition holds; a `switch` on an integer of the hit runs each case under the condition
+//! that control reaches it. Loops whose control depends on the hit, and `break` or
+//! `continue` under an `if` of the hit, are errors at their line.
+//!
+//! Every statement run counts one step, and a material instance runs at most
+//! [`MAX_STEPS`] (the bound a per-hit expression may take, [`super::hit::MAX_HIT_NODES`]):
+//! a loop that would run longer — an endless one — is an error naming the function at
+//! the loop's line, never a hang. A value of the hit a body stores may nest at most
+//! [`MAX_HIT_DEPTH`] operations deep (what the hit evaluator takes; a loop squaring a value
+//! of the hit would otherwise build a tree deep enough to overflow the stack when
+//! dropped): deeper is an error at the statement.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use glam::Vec4;
+use mdl_lang::ast::{AssignOp, BinaryOp, Scalar, Stmt, StmtKind, SwitchCase, UnaryOp, VarDecl};
+use mdl_lang::{Expr, ExprKind, Function, Resolution, Type};
+use mi::Span;
+
+use super::eval::{binary, hit_binary, kind, problem, Env, Eval, Evaluator, Problem};
+use super::hit::{fold, BinOp, HitExpr, UnOp, MAX_HIT_DEPTH};
+use super::value::{HitType, Value};
+
+/// Most statements one material instance's statement bodies may run.
+pub const MAX_STEPS: u64 = super::hit::MAX_HIT_NODES;
+
+/// How a statement ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Flow {
+    /// On to the next statement.
+    Normal,
+    /// `break`.
+    Break,
+    /// `continue`.
+    Continue,
+    /// Every path through it returned.
+    Return,
+}
+
+/// One run of a function body.
+struct Run<'f> {
+    /// The function (for messages and its return type).
+    def: &'f Function,
+    /// The condition of the hit under which the statements now run (`None`: always).
+    guard: Option<Arc<HitExpr>>,
+    /// The values returned so far, each with the condition it was returned under, in order.
+    returns: Vec<(Option<Arc<HitExpr>>, Value)>,
+    /// How deep the values of the hit stored so far nest, by node (each kept alive here, so
+    /// that its address names it): a new value's depth is measured down to them only.
+    depths: HashMap<*const HitExpr, (Arc<HitExpr>, usize)>,
+}
+
+impl Run<'_> {
+    /// Checks that the values of the hit in `v` nest at most [`MAX_HIT_DEPTH`] deep — deeper
+    /// trees are refused when compiled, and dropping or comparing one recurses once per
+    /// level — and remembers their depth. Measuring stops at values stored before, so
+    /// the statements of a body cost about the nodes they build.
+    fn check_depth(&mut self, v: &Value, span: Span) -> Result<(), Problem> {
+        let mut roots = Vec::new();
+        hit_roots(v, &mut roots);
+        for root in roots {
+            let key = Arc::as_ptr(&root);
+            if self.depths.contains_key(&key) {
+                continue;
+            }
+            let depth = depth_of(&root, &self.depths).ok_or_else(|| {
+                problem(
+                    span,
+                    format!(
+                        "`{}` builds a value of the hit nested more than {MAX_HIT_DEPTH} operations deep",
+                        self.def.name
+                    ),
+                )
+            })?;
+            self.depths.insert(key, (root, depth));
+        }
+        Ok(())
+    }
+}
+
+/// The expressions of the hit in `v` (in structs and arrays too).
+fn hit_roots(v: &Value, out: &mut Vec<Arc<HitExpr>>) {
+    match v {
+        Value::Hit(e, _) => out.push(e.clone()),
+        Value::Struct(_, fields) => fields.iter().for_each(|(_, f)| hit_roots(f, out)),
+        Value::Array(items) => items.iter().for_each(|x| hit_roots(x, out)),
+        _ => {}
+    }
+}
+
+/// The depth of `root` (leaves 1), counting the nodes in `known` at their depth; `None`
+/// past [`MAX_HIT_DEPTH`]. Walks each new node once, without recursion.
+fn depth_of(root: &Arc<HitExpr>, known: &HashMap<*const HitExpr, (Arc<HitExpr>, usize)>) -> Option<usize> {
+    let mut done: HashMap<*const HitExpr, usize> = HashMap::new();
+    let depth = |p: *const HitExpr, done: &HashMap<*const HitExpr, usize>| {
+        known.get(&p).map(|(_, d)| *d).or_else(|| done.get(&p).copied())
+    };
+    let mut stack: Vec<(&HitExpr, bool)> = vec![(&**root, false)];
+    while let Some((node, ready)) = stack.pop() {
+        let key = std::ptr::from_ref(node);
+        if depth(key, &done).is_some() {
+            continue;
+        }
+        let operands = node.operands();
+        if ready {
+            let d = 1 + operands.iter().filter_map(|o| depth(Arc::as_ptr(o), &done)).max().unwrap_or(0);
+            if d > MAX_HIT_DEPTH {
+                return None;
+            }
+            done.insert(key, d);
+        } else {
+            stack.push((node, true));
+            stack
+                .extend(operands.into_iter().filter(|o| depth(Arc::as_ptr(o), &done).is_none()).map(|o| (&**o, false)));
+        }
+    }
+    depth(Arc::as_ptr(root), &done)
+}
+
+type Step = Result<Flow, Problem>;
+
+impl Evaluator<'_> {
+    /// The value of a call of `def`, whose body is the statements `body`, with bound `args`.
+    pub(super) fn call_block(&mut self, def: &Function, body: &[Stmt], args: Vec<Value>, span: Span) -> Eval {
+        let mut env = Env::with_params(args);
+        let mut run = Run { def, guard: None, returns: Vec::new(), depths: HashMap::new() };
+        self.stmts(&mut run, body, &mut env)?;
+        // The first return whose condition holds: the last one is what remains.
+        let mut returns = run.returns.into_iter().rev();
+        let Some((_, mut value)) = returns.next() else {
+            return Err(problem(span, format!("`{}` ended without `return`", def.name)));
+        };
+        for (guard, v) in returns {
+            value = match guard {
+                None => v,
+                Some(g) => select(&g, v, value).ok_or_else(|| {
+                    problem(span, format!("`{}` returns values of different kinds by a condition of the hit", def.name))
+                })?,
+            };
+        }
+        Ok(value)
+    }
+
+    fn stmts(&mut self, run: &mut Run, stmts: &[Stmt], env: &mut Env) -> Step {
+        for s in stmts {
+            let flow = self.stmt(run, s, env)?;
+            if flow != Flow::Normal {
+                return Ok(flow);
+            }
+        }
+        Ok(Flow::Normal)
+    }
+
+    fn stmt(&mut self, run: &mut Run, s: &Stmt, env: &mut Env) -> Step {
+        self.steps += 1;
+        let span = s.span;
+        match &s.kind {
+            StmtKind::Empty => Ok(Flow::Normal),
+            StmtKind::Block(items) => self.stmts(run, items, env),
+            StmtKind::Var(decls) => {
+                for d in decls {
+                    self.declare(run, d, env)?;
+                }
+                Ok(Flow::Normal)
+            }
+            StmtKind::Expr(e) => {
+                self.effect(run, e, env)?;
+                Ok(Flow::Normal)
+            }
+            StmtKind::Return(value) => {
+                let v = match value {
+                    Some(v) => convert(self.eval(v, env)?, &run.def.ret.ty),
+                    None => return Err(problem(span, format!("`{}` returns no value", run.def.name))),
+                };
+                run.check_depth(&v, span)?;
+                run.returns.push((run.guard.clone(), v));
+                Ok(Flow::Return)
+            }
+            StmtKind::Break => Ok(Flow::Break),
+            StmtKind::Continue => Ok(Flow::Continue),
+            StmtKind::If { cond, then, otherwise } => match self.eval(cond, env)? {
+                Value::Bool(true) => self.stmt(run, then, env),
+                Value::Bool(false) => otherwise.as_ref().map_or(Ok(Flow::Normal), |o| self.stmt(run, o, env)),
+                Value::Hit(c, _) => self.guarded_if(run, &c, then, otherwise.as_deref(), env, span),
+                v => Err(problem(cond.span, format!("the condition of `if` is {}, not a bool", kind(&v)))),
+            },
+            StmtKind::While { cond, body } => loop {
+                self.count_loop(run, span)?;
+                if !self.loop_condition(run, cond, env)? {
+                    return Ok(Flow::Normal);
+                }
+                match self.stmt(run, body, env)? {
+                    Flow::Break => return Ok(Flow::Normal),
+                    Flow::Return => return Ok(Flow::Return),
+                    Flow::Normal | Flow::Continue => {}
+                }
+            },
+            StmtKind::DoWhile { body, cond } => loop {
+                self.count_loop(run, span)?;
+                match self.stmt(run, body, env)? {
+                    Flow::Break => return Ok(Flow::Normal),
+                    Flow::Return => return Ok(Flow::Return),
+                    Flow::Normal | Flow::Continue => {}
+                }
+                if !self.loop_condition(run, cond, env)? {
+                    return Ok(Flow::Normal);
+                }
+            },
+            StmtKind::For { init, cond, step, body } => {
+                if let Some(init) = init {
+                    self.stmt(run, init, env)?;
+                }
+                loop {
+                    self.count_loop(run, span)?;
+                    if let Some(cond) = cond {
+                        if !self.loop_condition(run, cond, env)? {
+                            return Ok(Flow::Normal);
+                        }
+                    }
+                    match self.stmt(run, body, env)? {
+                        Flow::Break => return Ok(Flow::Normal),
+                        Flow::Return => return Ok(Flow::Return),
+                        Flow::Normal | Flow::Continue => {}
+                    }
+                    if let Some(step) = step {
+                        self.effect(run, step, env)?;
+                    }
+                }
+            }
+            StmtKind::Switch { value, cases } => {
+                let v = match self.eval(value, env)? {
+                    Value::Int(i) | Value::Enum(_, i) => i,
+                    Value::Hit(v, HitType::Int) => return self.guarded_switch(run, &v, cases, env, span),
+                    v => return Err(problem(value.span, format!("`switch` on {} is not compiled", kind(&v)))),
+                };
+                let mut start = None;
+                for (k, case) in cases.iter().enumerate() {
+                    let Some(label) = &case.label else { continue };
+                    match self.eval(label, env)? {
+                        Value::Int(i) | Value::Enum(_, i) if i == v => {
+                            start = Some(k);
+                            break;
+                        }
+                        Value::Int(_) | Value::Enum(..) => {}
+                        other => return Err(problem(label.span, format!("a `case` label that is {}", kind(&other)))),
+                    }
+                }
+                let Some(start) = start.or_else(|| cases.iter().position(|c| c.label.is_none())) else {
+                    return Ok(Flow::Normal);
+                };
+                // From the chosen label on, falling through the labels after it.
+                for case in &cases[start..] {
+                    match self.stmts(run, &case.body, env)? {
+                        Flow::Normal => {}
+                        Flow::Break => return Ok(Flow::Normal),
+                        flow => return Ok(flow),
+                    }
+                }
+                Ok(Flow::Normal)
+            }
+        }
+    }
+
+    /// One more turn of the loop at `span`: an error once the instance has run
+    /// [`MAX_STEPS`] statements.
+    fn count_loop(&mut self, run: &Run, span: Span) -> Result<(), Problem> {
+        self.steps += 1;
+        if self.steps > MAX_STEPS {
+            return Err(problem(
+                span,
+                format!(
+                    "the loop in `{}` runs past {MAX_STEPS} steps, the most mira runs for a material \
+                     (an endless loop?)",
+                    run.def.name
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A loop's condition, which must be known when the material is compiled.
+    fn loop_condition(&mut self, run: &Run, cond: &Expr, env: &mut Env) -> Result<bool, Problem> {
+        match self.eval(cond, env)? {
+            Value::Bool(b) => Ok(b),
+            v @ Value::Hit(..) => Err(problem(
+                cond.span,
+                format!(
+                    "a loop condition that depends on the hit ({}) is not compiled (in `{}`)",
+                    kind(&v),
+                    run.def.name
+                ),
+            )),
+            v => Err(problem(cond.span, format!("a loop condition that is {}, not a bool", kind(&v)))),
+        }
+    }
+
+    /// An `if` whose condition `c` depends on the hit: both branches run, each under its
+    /// condition; what they assign is joined by `c`.
+    fn guarded_if(
+        &mut self,
+        run: &mut Run,
+        c: &Arc<HitExpr>,
+        then: &Stmt,
+        otherwise: Option<&Stmt>,
+        env: &mut Env,
+        span: Span,
+    ) -> Step {
+        let outer = run.guard.clone();
+        let not_c = fold(HitExpr::Unary(UnOp::Not, c.clone()));
+        let before = (env.params.clone(), env.locals.clone());
+        run.guard = Some(both(outer.as_ref(), c));
+        let taken = self.stmt(run, then, env);
+        let then_env = (std::mem::take(&mut env.params), std::mem::take(&mut env.locals));
+        (env.params, env.locals) = before;
+        run.guard = Some(both(outer.as_ref(), &not_c));
+        let other = match otherwise {
+            Some(o) => self.stmt(run, o, env),
+            None => Ok(Flow::Normal),
+        };
+        run.guard = outer;
+        let (taken, other) = (taken?, other?);
+        if [taken, other].iter().any(|f| matches!(f, Flow::Break | Flow::Continue)) {
+            return Err(problem(
+                span,
+                format!("`break` or `continue` under a condition of the hit is not compiled (in `{}`)", run.def.name),
+            ));
+        }
+        match (taken, other) {
+            (Flow::Return, Flow::Return) => Ok(Flow::Return),
+            // Only the paths that go on matter after the `if`.
+            (Flow::Return, _) => Ok(Flow::Normal),
+            (_, Flow::Return) => {
+                (env.params, env.locals) = then_env;
+                Ok(Flow::Normal)
+            }
+            _ => {
+                let (then_params, mut then_locals) = then_env;
+                for (slot, t) in env.params.iter_mut().zip(then_params) {
+                    *slot = join(c, t, std::mem::replace(slot, Value::Bool(false)), span)?;
+                    run.check_depth(slot, span)?;
+                }
+                for (id, e) in env.locals.iter_mut() {
+                    if let Some(t) = then_locals.remove(id) {
+                        *e = join(c, t, std::mem::replace(e, Value::Bool(false)), span)?;
+                        run.check_depth(e, span)?;
+                    }
+                }
+                Ok(Flow::Normal)
+            }
+        }
+    }
+
+    /// A `switch` on an integer `v` of the hit: each case's statements run under the
+    /// condition that control reaches them (its label matches, or the case before falls
+    /// through, and no `break` left before), and what they assign is joined by it.
+    fn guarded_switch(
+        &mut self,
+        run: &mut Run,
+        v: &Arc<HitExpr>,
+        cases: &[SwitchCase],
+        env: &mut Env,
+        span: Span,
+    ) -> Step {
+        let mut labels = Vec::with_capacity(cases.len());
+        for case in cases {
+            labels.push(match &case.label {
+                None => None,
+                Some(label) => match self.eval(label, env)? {
+                    Value::Int(i) | Value::Enum(_, i) => Some(i),
+                    other => return Err(problem(label.span, format!("a `case` label that is {}", kind(&other)))),
+                },
+            });
+        }
+        let equals =
+            |l: i64| fold(HitExpr::Binary(BinOp::Eq, v.clone(), Arc::new(HitExpr::Const(Vec4::splat(l as f32)))));
+        let any_label = labels.iter().flatten().map(|l| equals(*l)).reduce(|a, b| either(Some(&a), &b));
+        let no_label = match any_label {
+            Some(a) => fold(HitExpr::Unary(UnOp::Not, a)),
+            None => Arc::new(HitExpr::Const(Vec4::ONE)),
+        };
+        let outer = run.guard.clone();
+        // Control that left by `break` (None: none), and control falling into the next case.
+        let (mut left, mut through): (Option<Arc<HitExpr>>, Option<Arc<HitExpr>>) = (None, None);
+        for (case, label) in cases.iter().zip(labels) {
+            let matched = label.map_or_else(|| no_label.clone(), equals);
+            let mut reached = either(through.as_ref(), &matched);
+            if let Some(l) = &left {
+                reached = both(Some(&reached), &fold(HitExpr::Unary(UnOp::Not, l.clone())));
+            }
+            let before = (env.params.clone(), env.locals.clone());
+            run.guard = Some(both(outer.as_ref(), &reached));
+            let flow = self.stmts(run, &case.body, env);
+            run.guard = outer.clone();
+            match flow? {
+                Flow::Continue => {
+                    return Err(problem(
+                        span,
+                        format!(
+                            "`continue` in a `switch` on a value of the hit is not compiled (in `{}`)",
+                            run.def.name
+                        ),
+                    ))
+                }
+                // Every path that came here returned: the others keep what they had.
+                Flow::Return => {
+                    (env.params, env.locals) = before;
+                    through = None;
+                }
+                flow => {
+                    let (params, locals) = before;
+                    for (slot, old) in env.params.iter_mut().zip(params) {
+                        *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                        run.check_depth(slot, span)?;
+                    }
+                    for (id, old) in locals {
+                        if let Some(slot) = env.locals.get_mut(&id) {
+                            *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
+                            run.check_depth(slot, span)?;
+                        }
+                    }
+                    if flow == Flow::Break {
+                        left = Some(either(left.as_ref(), &reached));
+                        through = None;
+                    } else {
+                        through = Some(reached);
+                    }
+                }
+            }
+        }
+        Ok(Flow::Normal)
+    }
+
+    /// Declares local `d` with its value (the type's default when none is written).
+    fn declare(&mut self, run: &mut Run, d: &VarDecl, env: &mut Env) -> Result<(), Problem> {
+        let v = match &d.init {
+            Some(init) => convert(self.eval(init, env)?, &d.ty.ty),
+            None => self.construct(&d.ty.ty, &[], env, d.span)?,
+        };
+        run.check_depth(&v, d.span)?;
+        env.locals.insert(d.id, v);
+        Ok(())
+    }
+
+    /// Runs `e` for its effect: an assignment, an increment, a sequence, or any expression.
+    fn effect(&mut self, run: &mut Run, e: &Expr, env: &mut Env) -> Result<(), Problem> {
+        match &e.kind {
+            ExprKind::Sequence(list) => {
+                for x in list {
+                    self.effect(run, x, env)?;
+                }
+            }
+            ExprKind::Assign { op, target, value } => {
+                let v = self.eval(value, env)?;
+                let v = match op {
+                    AssignOp::Set => v,
+                    AssignOp::Compound(op) => combine(*op, &self.eval(target, env)?, &v, e.span)?,
+                };
+                self.assign(run, target, v, env)?;
+            }
+            ExprKind::Unary {
+                op: op @ (UnaryOp::PreInc | UnaryOp::PostInc | UnaryOp::PreDec | UnaryOp::PostDec),
+                operand,
+            } => {
+                let by = if matches!(op, UnaryOp::PreInc | UnaryOp::PostInc) { BinaryOp::Add } else { BinaryOp::Sub };
+                let v = combine(by, &self.eval(operand, env)?, &Value::Int(1), e.span)?;
+                self.assign(run, operand, v, env)?;
+            }
+            _ => {
+                self.eval(e, env)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Stores `v` in what `target` names: a parameter, a local, a member or element of one.
+    fn assign(&mut self, run: &mut Run, target: &Expr, v: Value, env: &mut Env) -> Result<(), Problem> {
+        let span = target.span;
+        match &target.kind {
+            ExprKind::Name(n) => {
+                let slot = match n.res {
+                    Resolution::Param(i) => env.params.get_mut(i),
+                    Resolution::Local(id) => env.locals.get_mut(&id),
+                    _ => None,
+                };
+                let slot = slot.ok_or_else(|| problem(span, format!("`{}` cannot be assigned to", n.name)))?;
+                run.check_depth(&v, span)?;
+                // An int stored in a float stays a float (MDL's implicit conversion).
+                *slot = match (&*slot, v) {
+                    (Value::Float(_), Value::Int(i)) => Value::Float(i as f64),
+                    (_, v) => v,
+                };
+                Ok(())
+            }
+            ExprKind::Member { base, field } => {
+                let whole = self.eval(base, env)?;
+                let lane = "xyzw".find(field.as_str()).filter(|_| field.len() == 1);
+                let updated = match (whole, lane) {
+                    (Value::Struct(name, mut fields), _) => {
+                        let f = fields
+                            .iter_mut()
+                            .find(|(f, _)| f == field)
+                            .ok_or_else(|| problem(span, format!("struct `{name}` has no field `{field}`")))?;
+                        f.1 = match (&f.1, v) {
+                            (Value::Float(_), Value::Int(i)) => Value::Float(i as f64),
+                            (_, v) => v,
+                        };
+                        Value::Struct(name, fields)
+                    }
+                    (whole, Some(i)) => with_lane(whole, i, v, span)?,
+                    (whole, None) => {
+                        return Err(problem(span, format!("`.{field}` of {} is not assigned", kind(&whole))))
+                    }
+                };
+                self.assign(run, base, updated, env)
+            }
+            ExprKind::Index { base, index } => {
+                let i = match self.eval(index, env)? {
+                    Value::Int(i) if i >= 0 => i as usize,
+                    other => {
+                        return Err(problem(
+                            index.span,
+                            format!("an index that is {} is not assigned to", kind(&other)),
+                        ))
+                    }
+                };
+                let updated = match self.eval(base, env)? {
+                    Value::Array(mut items) if i < items.len() => {
+                        items[i] = v;
+                        Value::Array(items)
+                    }
+                    whole => with_lane(whole, i, v, span)?,
+                };
+                self.assign(run, base, updated, env)
+            }
+            _ => Err(problem(span, "this expression cannot be assigned to")),
+        }
+    }
+}
+
+/// `a op b`, on constants or values of the hit.
+fn combine(op: BinaryOp, a: &Value, b: &Value, span: Span) -> Eval {
+    let r = if matches!(a, Value::Hit(..)) || matches!(b, Value::Hit(..)) {
+        hit_binary(op, a, b)
+    } else {
+        binary(op, a, b)
+    };
+    r.ok_or_else(|| problem(span, format!("operator {op:?} on {} and {} is not evaluated", kind(a), kind(b))))
+}
+
+/// `v` as a value of type `ty` where MDL converts implicitly (an int where a float is
+/// expected).
+fn convert(v: Value, ty: &Type) -> Value {
+    match (v, ty) {
+        (Value::Int(i), Type::Scalar(Scalar::Float | Scalar::Double)) => Value::Float(i as f64),
+        (v, _) => v,
+    }
+}
+
+/// A vector (constant or of the hit) with lane `i` replaced by the scalar `v`.
+fn with_lane(whole: Value, i: usize, v: Value, span: Span) -> Eval {
+    if let (Value::Vector(mut lanes), Some(x)) = (whole.clone(), v.float()) {
+        if i < lanes.len() {
+            lanes[i] = x;
+            return Ok(Value::Vector(lanes));
+        }
+    }
+    let bad = || problem(span, format!("lane {i} of {} is not assigned", kind(&whole)));
+    let ty =
+        whole.hit_type().filter(|t| i < usize::from(t.width()) && matches!(t, HitType::Vector(_))).ok_or_else(bad)?;
+    let (old, new) = (whole.to_hit().ok_or_else(bad)?, v.to_hit().ok_or_else(bad)?);
+    let parts: Box<[(Arc<HitExpr>, u8)]> = (0..ty.width())
+        .map(|k| if usize::from(k) == i { (new.clone(), 1) } else { (fold(HitExpr::Lane(old.clone(), k)), 1) })
+        .collect();
+    Ok(Value::from_hit(HitExpr::Compose(parts), ty))
+}
+
+/// `g && c` (`c` alone when there is no outer condition).
+fn both(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
+    match g {
+        None => c.clone(),
+        Some(g) => fold(HitExpr::Binary(BinOp::And, g.clone(), c.clone())),
+    }
+}
+
+/// `g || c` (`c` alone when there is no `g`).
+fn either(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
+    match g {
+        None => c.clone(),
+        Some(g) => fold(HitExpr::Binary(BinOp::Or, g.clone(), c.clone())),
+    }
+}
+
+/// `c ? a : b` per hit, for the value a name holds after the two branches of an `if`.
+fn join(c: &Arc<HitExpr>, a: Value, b: Value, span: Span) -> Eval {
+    let (ka, kb) = (kind(&a), kind(&b));
+    select(c, a, b).ok_or_else(|| {
+        problem(span, format!("an `if` of the hit that leaves {ka} or {kb} in one variable is not compiled"))
+    })
+}
+
+/// `c ? a : b` per hit: equal values stay as they are, structs are chosen field by field,
+/// numbers, vectors and colours by a [`HitExpr::Select`].
+fn select(c: &Arc<HitExpr>, a: Value, b: Value) -> Option<Value> {
+    if a == b {
+        return Some(a);
+    }
+    match (a, b) {
+        (Value::Struct(n, fa), Value::Struct(m, fb)) if n == m && fa.len() == fb.len() => {
+            let mut fields = Vec::with_capacity(fa.len());
+            for ((name, x), (_, y)) in fa.into_iter().zip(fb) {
+                fields.push((name, select(c, x, y)?));
+            }
+            Some(Value::Struct(n, fields))
+        }
+        (Value::Array(xa), Value::Array(xb)) if xa.len() == xb.len() => {
+            let items: Option<Vec<Value>> = xa.into_iter().zip(xb).map(|(x, y)| select(c, x, y)).collect();
+            Some(Value::Array(items?))
+        }
+        (a, b) => {
+            let (ta, tb) = (a.hit_type()?, b.hit_type()?);
+            let ty = if ta.width() >= tb.width() { ta } else { tb };
+            Some(Value::from_hit(HitExpr::Select(c.clone(), a.to_hit()?, b.to_hit()?), ty))
+        }
+    }
+}
