@@ -133,6 +133,10 @@ pub enum SurfaceModel {
     /// loop (a `SharedLobes` in place made it copy them through memory: +3.4 % instructions
     /// on the Cornell box).
     MdlWide(Box<bsdf::SharedLobes>),
+    /// A Maya material with a highlight (blinn, phong, phongE, anisotropic): Lambertian
+    /// reflection of the `diffuse` colour plus Maya's own highlight, bounded per view
+    /// ([`bsdf::MayaGlossy`]).
+    Maya(Box<bsdf::MayaGlossy>),
 }
 
 /// A surface's scattering and emission.
@@ -258,6 +262,7 @@ impl SurfaceModel {
                 _ => Bsdf::Lobes(**l),
             },
             SurfaceModel::MdlWide(l) => Bsdf::Wide(bsdf::WideBsdf::new((**l).clone(), frame)),
+            SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf(diffuse, wo)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
