@@ -190,6 +190,38 @@ fn glossy_shape(highlight: ::maya::specular::Highlight, specular: Rgb) -> Option
     })
 }
 
+/// The `irradiance` illumination map M of the lambert family (the reading is
+/// `maya::material`'s): light that reaches the surface whatever the lights, c·d ⊙
+/// `irradianceColor` ⊙ M added to the emission — constant, or per hit through a binding
+/// when M is connected (a baked map), then scaled by the mean of `irradianceColor` (a
+/// warning when that is not grey). A constant M on a surface whose colour or
+/// incandescence is connected is warned about (it takes the default colour, or is lost).
+fn irradiance_map(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+    let g = r.color("irradianceColor", Rgb::ONE);
+    match connection(r.graph, r.node, "irradiance") {
+        Some((node, member)) => {
+            let mean = (g.x + g.y + g.z) / 3.0;
+            if (g - Rgb::splat(mean)).abs().max_element() > 1e-6 {
+                r.warnings.push(
+                    "'irradiance' is connected; the path engine scales it by the mean of 'irradianceColor'".into(),
+                );
+            }
+            r.bindings.push(Binding { node, member, target: Target::IrradianceMap, scale: mean });
+        }
+        None => {
+            let m = r.color("irradiance", Rgb::ZERO);
+            if m != Rgb::ZERO && ["color", "incandescence"].iter().any(|p| connection(r.graph, r.node, p).is_some()) {
+                r.warnings.push(
+                    "a constant 'irradiance' on a connected colour or incandescence: the path engine lights it with \
+                     the default colour, or not at all"
+                        .into(),
+                );
+            }
+            surface.emission += albedo * g * m;
+        }
+    }
+}
+
 /// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
 /// with the classic shaders' defaults.
 fn classic_highlight(family: &str, r: &mut Reader) -> ::maya::specular::Highlight {
@@ -240,6 +272,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             // Ambient light goes by `color` alone: 1/d of the diffuse colour.
             surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
             surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
+            irradiance_map(&mut r, &mut surface, albedo);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {
                 surface.glow = r.driven("color", Target::Glow, glow_intensity, Rgb::splat(0.5));
