@@ -29,6 +29,12 @@
 //! is Maya's exactly wherever it reflects no more than it receives (every default and
 //! common setting: blinn's default reflects 0.11–0.14, phong's 0.05–0.10). The diffuse
 //! part is the material's own Lambertian c·d beside it, as the classic shader adds them.
+//!
+//! **Reflections.** The classic materials also trace a mirror reflection weighted by
+//! `reflectivity` · `specularColor` (times blinn's Schlick factor of `specularRollOff` at
+//! N·V with `reflectionRolloff`); [`MayaBsdf`] carries it as a smooth mirror lobe of that
+//! weight (each channel at most 1), so reflected objects, lights and the environment
+//! reach the path engine as they reach the classic one.
 
 use std::f32::consts::{FRAC_1_PI, TAU};
 
@@ -258,14 +264,19 @@ const ALBEDO_MIN_COS: f32 = 0.02;
 const ALBEDO_STEPS: usize = 9;
 
 /// A Maya highlight of a material: its shape, its tint (`specularColor`, ⊙ `whiteness`
-/// for phongE) and its unit lobe's directional albedo over the view cosine, which bounds
-/// it (see the module doc). Built once per material.
+/// for phongE), its mirror reflection and its unit lobe's directional albedo over the
+/// view cosine, which bounds it (see the module doc). Built once per material.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MayaGlossy {
     /// The highlight.
     pub shape: Shape,
     /// Its tint (linear RGB; Maya's highlight multiplies the light by it).
     pub tint: Rgb,
+    /// The mirror reflection's weight, `reflectivity` · `specularColor` (linear RGB).
+    pub mirror: Rgb,
+    /// Blinn's `reflectionRolloff`: the mirror weight is scaled by Schlick's factor of
+    /// this normal reflectance (`specularRollOff`) at N·V.
+    pub mirror_rolloff: Option<f32>,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -276,12 +287,22 @@ impl MayaGlossy {
     pub fn new(shape: Shape, tint: Rgb) -> MayaGlossy {
         let step = 1.0 / (ALBEDO_STEPS - 1) as f32;
         let albedo = std::array::from_fn(|k| shape.albedo(k as f32 * step));
-        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), albedo }
+        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), mirror: Rgb::ZERO, mirror_rolloff: None, albedo }
     }
 
-    /// The same highlight with its tint scaled by `k` (a layer's share).
+    /// The same highlight with a mirror reflection of weight `mirror` (each channel
+    /// clamped to 0..1), scaled by Schlick's factor of `rolloff` at N·V when given.
+    pub fn with_mirror(mut self, mirror: Rgb, rolloff: Option<f32>) -> MayaGlossy {
+        self.mirror = mirror.clamp(Rgb::ZERO, Rgb::ONE);
+        self.mirror_rolloff = rolloff;
+        self
+    }
+
+    /// The same highlight and reflection with their weights scaled by `k` (a layer's
+    /// share).
     pub fn scaled(mut self, k: f32) -> MayaGlossy {
         self.tint *= k.max(0.0);
+        self.mirror *= k.clamp(0.0, 1.0);
         self
     }
 
@@ -300,25 +321,35 @@ impl MayaGlossy {
         let a = self.unit_albedo(wo.z);
         let most = self.tint.max_element() * a;
         let tint = if most > 1.0 { self.tint / most } else { self.tint };
-        let (d, g) = (luminance(diffuse).max(0.0), luminance(tint) * a);
-        let diffuse_share = if d + g > 0.0 { d / (d + g) } else { 1.0 };
-        MayaBsdf { diffuse, tint, shape: self.shape, diffuse_share }
+        let mirror = match self.mirror_rolloff {
+            Some(r0) => self.mirror * schlick(r0, wo.z.abs()),
+            None => self.mirror,
+        };
+        let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint) * a, luminance(mirror).max(0.0));
+        let total = d + g + m;
+        let (diffuse_share, mirror_share) = if total > 0.0 { (d / total, m / total) } else { (1.0, 0.0) };
+        MayaBsdf { diffuse, tint, mirror, shape: self.shape, diffuse_share, mirror_share }
     }
 }
 
 /// A Maya material at one shading point: Lambertian reflection of `diffuse` plus the
-/// highlight f = tint · H(v, l)/(π·N·L) (see the module doc). Both sides of the surface
-/// scatter alike (the classic shaders turn the normal towards the viewer).
+/// highlight f = tint · H(v, l)/(π·N·L) plus a smooth mirror of reflectance `mirror`
+/// (see the module doc). Both sides of the surface scatter alike (the classic shaders
+/// turn the normal towards the viewer).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MayaBsdf {
     /// The diffuse albedo (Maya's `color` · `diffuse`).
     pub diffuse: Rgb,
     /// The highlight's tint (already bounded).
     pub tint: Rgb,
+    /// The mirror reflection's reflectance (a delta lobe: not in `eval` or `pdf`).
+    pub mirror: Rgb,
     /// The highlight.
     pub shape: Shape,
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
+    /// The probability of sampling the mirror.
+    mirror_share: f32,
 }
 
 /// `wo` and `wi` mirrored to the +Z side when `wo` is below; `None` when they lie on
@@ -338,18 +369,25 @@ impl MayaBsdf {
         (self.diffuse + self.tint * (self.shape.value(v, l) / l.z)) * FRAC_1_PI
     }
 
-    /// The mixture density: the diffuse lobe's cosine density and the highlight's.
+    /// The density of the non-delta part of the mixture: the diffuse lobe's cosine
+    /// density and the highlight's, by their shares.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         let Some((v, l)) = upper(wo, wi) else { return 0.0 };
         let p = self.diffuse_share;
-        p * l.z * FRAC_1_PI + (1.0 - p) * self.shape.pdf(v, l)
+        p * l.z * FRAC_1_PI + (1.0 - p - self.mirror_share).max(0.0) * self.shape.pdf(v, l)
     }
 
-    /// Chooses the diffuse lobe with probability `diffuse_share` by `u_lobe`, else the
-    /// highlight's density; the sample carries the whole mixture's f and pdf.
+    /// Chooses the mirror with probability `mirror_share`, the diffuse lobe with
+    /// `diffuse_share`, else the highlight's density, by `u_lobe`; a continuous sample
+    /// carries the continuous mixture's f and pdf, the mirror's its reflectance over
+    /// |cos θ| and its share (a delta).
     pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
+        }
+        if u_lobe >= 1.0 - self.mirror_share {
+            let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
+            return Some(BsdfSample { wi, f: self.mirror / wo.z.abs(), pdf: self.mirror_share, delta: true });
         }
         let wi = if u_lobe < self.diffuse_share {
             cosine_on_side(wo, u)?
@@ -451,6 +489,28 @@ mod tests {
         for mu in [1.0f32, 0.5, 0.1, 0.0] {
             let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu.max(1e-3));
             assert_eq!(default.bsdf(Rgb::splat(0.4), wo).tint, Rgb::splat(0.5));
+        }
+    }
+
+    #[test]
+    fn the_mirror_reflects_its_weight_beside_the_other_lobes() {
+        // Blinn's default with reflectivity 0.5 · specularColor (0.5, 0.4, 0.2) and
+        // reflectionRolloff: the mirror reflects its weight × schlick(0.7, N·V); the
+        // furnace albedo is diffuse + highlight + mirror.
+        let shape = Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 };
+        let tint = Rgb::new(0.5, 0.4, 0.2);
+        let g = MayaGlossy::new(shape, tint).with_mirror(tint * 0.5, Some(0.7));
+        for mu in [1.0f32, 0.5] {
+            let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+            let b = g.bsdf(Rgb::splat(0.3), wo);
+            let mirror = tint * 0.5 * schlick(0.7, mu);
+            assert!((b.mirror - mirror).abs().max_element() < 1e-6);
+            let s = b.sample(wo, Vec2::new(0.3, 0.6), 0.9999).expect("the mirror");
+            assert!(s.delta && (s.wi - Vec3A::new(-wo.x, 0.0, wo.z)).length() < 1e-6);
+            assert!((s.weight() - mirror / b.mirror_share).abs().max_element() < 1e-5);
+            let want = Rgb::splat(0.3) + tint * g.unit_albedo(mu) + mirror;
+            let a = testing::albedo(&Bsdf::Maya(b), wo, 200_000);
+            assert!((a - want).abs().max_element() < 0.01, "μ = {mu}: {a} vs {want}");
         }
     }
 

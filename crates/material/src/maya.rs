@@ -18,7 +18,10 @@
 //!   path engine as the material's tangent at each hit, the lobe's local x. The classic
 //!   highlight is also kept beside it ([`MayaHighlight`]) for the one light the path
 //!   engine shades by the classic formulas: volume lights with `emitAmbient` and
-//!   `emitSpecular`. `reflectivity` (raytraced mirror reflections) has no lobe;
+//!   `emitSpecular`. The classic shaders' raytraced reflection, `reflectivity` ·
+//!   `specularColor` ⊙ what a mirror ray finds (× blinn's Schlick factor with
+//!   `reflectionRolloff`), is the BSDF's mirror lobe of that weight, `reflectedColor`'s
+//!   share of it emitted;
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
@@ -168,12 +171,6 @@ fn anisotropic(r: &mut Reader, surface: &mut SurfaceMaterial) -> bsdf::maya_high
     bsdf::maya_highlight::Shape::Anisotropic { alpha_x, alpha_y, ior }
 }
 
-/// The path engine's model of a Maya highlight: Lambertian reflection of the diffuse
-/// colour plus Maya's own highlight `shape` of tint `tint`.
-fn maya_glossy(shape: bsdf::maya_highlight::Shape, tint: Rgb) -> SurfaceModel {
-    SurfaceModel::Maya(Box::new(bsdf::MayaGlossy::new(shape, tint)))
-}
-
 /// The BSDF highlight (shape and tint) of a classic Maya highlight of `specularColor`
 /// `specular` (phongE's `whiteness` joins the tint); `None` for anisotropic, whose
 /// classic grooves are a world direction (see [`anisotropic`]).
@@ -290,15 +287,29 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
                 if connection(graph, node, "specularColor").is_some() {
                     r.warnings.push("'specularColor' is connected; the path engine's highlight uses 0.5 grey".into());
                 }
-                if family == "anisotropic" {
-                    let shape = anisotropic(&mut r, &mut surface);
-                    surface.model = maya_glossy(shape, s);
+                let (glossy, rolloff) = if family == "anisotropic" {
+                    (Some((anisotropic(&mut r, &mut surface), s)), None)
                 } else {
                     let highlight = classic_highlight(&family, &mut r);
-                    if let Some((shape, tint)) = glossy_shape(highlight, s) {
-                        surface.model = maya_glossy(shape, tint);
-                    }
                     surface.maya_highlight = Some(MayaHighlight { model: highlight, color: s });
+                    let rolloff = match highlight {
+                        ::maya::specular::Highlight::Blinn { rolloff, .. }
+                            if constant(graph, node, "reflectionRolloff").is_some_and(Value::bool) =>
+                        {
+                            Some(rolloff)
+                        }
+                        _ => None,
+                    };
+                    (glossy_shape(highlight, s), rolloff)
+                };
+                // The classic shader's traced mirror reflection, r·s ⊙ (reflectedColor +
+                // what the ray finds): a mirror lobe of weight r·s, reflectedColor emitted.
+                let reflectivity = r.scalar("reflectivity", 0.5).max(0.0);
+                surface.emission += s * reflectivity * r.color("reflectedColor", Rgb::ZERO);
+                if let Some((shape, tint)) = glossy {
+                    surface.model = SurfaceModel::Maya(Box::new(
+                        bsdf::MayaGlossy::new(shape, tint).with_mirror(s * reflectivity, rolloff),
+                    ));
                 }
             }
         }
