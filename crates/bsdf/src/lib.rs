@@ -13,6 +13,7 @@ pub mod frame;
 mod lambert;
 pub mod layer_curve;
 pub mod lobes;
+pub mod maya_highlight;
 pub mod medium;
 pub mod mia;
 pub mod microfacet;
@@ -30,6 +31,7 @@ pub use frame::Frame;
 pub use lambert::Lambert;
 pub use layer_curve::{CurveKind, LayerCurve};
 pub use lobes::{Lobe, LobeSum, Lobes, Role, SharedLobes, WideBsdf, WideLobes};
+pub use maya_highlight::{MayaBsdf, MayaGlossy};
 pub use medium::{HenyeyGreenstein, Medium, Phase};
 pub use mia::MiaBsdf;
 pub use oren_nayar::OrenNayar;
@@ -86,6 +88,9 @@ pub enum Bsdf {
     /// A sum of lobes too large for [`Bsdf::Lobes`] (more lobes, layer curves or own
     /// normals than a compact sum holds).
     Wide(WideBsdf),
+    /// A Maya material: Lambert plus Maya's own highlight (blinn, phong, phongE,
+    /// anisotropic), unnormalised as Maya computes it.
+    Maya(MayaBsdf),
 }
 
 impl Bsdf {
@@ -102,6 +107,7 @@ impl Bsdf {
             Bsdf::Builtin(l) => l.eval(wo, wi),
             Bsdf::Lobes(l) => l.eval(wo, wi),
             Bsdf::Wide(l) => l.eval(wo, wi),
+            Bsdf::Maya(l) => l.eval(wo, wi),
         }
     }
 
@@ -119,6 +125,7 @@ impl Bsdf {
             Bsdf::Builtin(l) => l.sample(wo, u, u_lobe),
             Bsdf::Lobes(l) => l.sample(wo, u, u_lobe),
             Bsdf::Wide(l) => l.sample(wo, u, u_lobe),
+            Bsdf::Maya(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -135,6 +142,7 @@ impl Bsdf {
             Bsdf::Builtin(l) => l.pdf(wo, wi),
             Bsdf::Lobes(l) => l.pdf(wo, wi),
             Bsdf::Wide(l) => l.pdf(wo, wi),
+            Bsdf::Maya(l) => l.pdf(wo, wi),
         }
     }
 
@@ -142,7 +150,7 @@ impl Bsdf {
     #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
-            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => false,
+            Bsdf::Lambert(_) | Bsdf::OrenNayar(_) | Bsdf::Maya(_) => false,
             Bsdf::Lobes(l) => l.is_delta(),
             Bsdf::Wide(l) => l.sum.is_delta(),
             Bsdf::Dielectric(d) => d.ggx.is_smooth() || d.eta == 1.0,

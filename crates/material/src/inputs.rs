@@ -64,6 +64,10 @@ pub enum Target {
     /// The glow a camera sees (Maya's `outGlowColor`; the binding's scale is the
     /// material's `glowIntensity`).
     Glow,
+    /// Light from an illumination map (Maya's `irradiance`, in Maya's light units): the
+    /// hit's diffuse colour ⊙ the value × the scale (`irradianceColor`) is added to its
+    /// emission. Bind it after the diffuse colour and the emission.
+    IrradianceMap,
 }
 
 /// One connected parameter.
@@ -288,6 +292,7 @@ impl SurfaceMaterial {
                 }
                 Target::Emission => hit.emission = rgb(),
                 Target::Glow => hit.glow = rgb(),
+                Target::IrradianceMap => hit.emission += hit.diffuse * rgb(),
                 Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
                 Target::Normal => {
                     let n = value.vector();

@@ -137,6 +137,10 @@ pub enum SurfaceModel {
     /// A wide sum lowered at one hit of a material that varies over the surface, kept in
     /// the thread's ring ([`wide_slots`]: no allocation per hit).
     MdlWideAt(wide_slots::WideSlot),
+    /// A Maya material with a highlight (blinn, phong, phongE, anisotropic): Lambertian
+    /// reflection of the `diffuse` colour plus Maya's own highlight, bounded per view
+    /// ([`bsdf::MayaGlossy`]).
+    Maya(Box<bsdf::MayaGlossy>),
 }
 
 /// A surface's scattering and emission.
@@ -268,6 +272,7 @@ impl SurfaceModel {
                 // it first): the diffuse colour rather than another hit's sum.
                 None => Bsdf::Lambert(Lambert { albedo: diffuse }),
             },
+            SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf(diffuse, wo)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

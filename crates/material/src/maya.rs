@@ -8,23 +8,20 @@
 //! - lambert: a Lambertian lobe of albedo `color · diffuse` — the classic lambert's
 //!   c·d·I·cos θ (no 1/π in mental ray's light units) is this lobe's reflected radiance
 //!   under the same light in radiometric units;
-//! - blinn, phong, phongE: the unified BSDF with base colour `color · diffuse`, a GGX
-//!   highlight whose α is blinn's `eccentricity` (Blinn's distribution is GGX's), or the
-//!   α of the Blinn–Phong lobe of exponent n = `cosinePower`, √(2/(n + 2)), or phongE's
-//!   `roughness`; the dielectric specular weight is the luminance of `specularColor`
-//!   (0.5, Maya's default, is the unified BSDF's default 0.5 too). Maya's non-physical
-//!   highlight strengths (`specularRollOff`, `highlightSize`) and `reflectivity` have no
-//!   lobe of their own: the reflection is the specular lobe's (the classic highlight
-//!   formula is kept beside it, [`MayaHighlight`], for the one light the path engine
-//!   shades by the classic formulas: volume lights with `emitAmbient` and `emitSpecular`);
-//! - anisotropic: the unified BSDF with an anisotropic GGX lobe of the classic
-//!   highlight's widths (`roughness`/√`spreadX` along the grooves, `roughness`/√`spreadY`
-//!   across), the grooves being dP/du turned by `angle` about the normal (Maya's rule:
-//!   X is U turned counter-clockwise by the angle), handed to the path engine as the
-//!   material's tangent at each hit; its Fresnel is the dielectric one of
-//!   `fresnelRefractiveIndex`, weighted so that it reflects as much as the classic
-//!   highlight summed over a light's directions (4 s α_x α_y head-on, s the luminance of
-//!   `specularColor`);
+//! - blinn, phong, phongE, anisotropic: a Lambertian lobe of albedo `color · diffuse`
+//!   beside Maya's own highlight of tint `specularColor` (⊙ `whiteness` for phongE) —
+//!   the classic formula itself, f = s · H(v, l)/(π·N·L), which under a light of π·C
+//!   gives exactly the classic s ⊙ C · H (`bsdf::maya_highlight`: why a lobe of Maya's
+//!   shape rather than a GGX lobe scaled to its albedo, and the bound that keeps its
+//!   albedo ≤ 1 at every view). Anisotropic's grooves (dP/du turned by `angle` about the
+//!   normal: Maya's rule, X is U turned counter-clockwise by the angle) are handed to the
+//!   path engine as the material's tangent at each hit, the lobe's local x. The classic
+//!   highlight is also kept beside it ([`MayaHighlight`]) for the one light the path
+//!   engine shades by the classic formulas: volume lights with `emitAmbient` and
+//!   `emitSpecular`. The classic shaders' raytraced reflection, `reflectivity` ·
+//!   `specularColor` ⊙ what a mirror ray finds (× blinn's Schlick factor with
+//!   `reflectionRolloff`), is the BSDF's mirror lobe of that weight, `reflectedColor`'s
+//!   share of it emitted;
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
@@ -158,54 +155,68 @@ impl Reader<'_> {
     }
 }
 
-/// The largest ratio of the two GGX widths the unified BSDF's `anisotropic` reaches
-/// (its aspect √(1 − 0.9 a) is at least √0.1, and α_x / α_y = 1 / aspect²).
-const MAX_WIDTH_RATIO: f32 = 10.0;
-
-/// anisotropic (see the module doc): the unified BSDF with base colour `albedo`, an
-/// anisotropic GGX lobe of the classic highlight's widths (α_x, α_y) =
-/// [`::maya::specular::anisotropic_widths`] along the grooves (dP/du turned by `angle`)
-/// and across them, and the dielectric Fresnel of `fresnelRefractiveIndex`, weighted so
-/// that the lobe reflects what the classic highlight of `specularColor`'s luminance s
-/// does summed over a light's directions: 4 s α_x α_y head-on (see the code). The
-/// unified BSDF stretches its lobe along its frame's
-/// x axis, so the frame's x is the grooves when α_x ≥ α_y, else the direction across.
-fn anisotropic(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+/// anisotropic (see the module doc): Maya's anisotropic highlight of widths (α_x, α_y) =
+/// [`::maya::specular::anisotropic_widths`] along the grooves (dP/du turned by `angle`,
+/// handed to the path engine as the material's tangent, the local frame's x) and across
+/// them, with the Fresnel ratio of `fresnelRefractiveIndex`: the classic highlight itself.
+fn anisotropic(r: &mut Reader, surface: &mut SurfaceMaterial) -> bsdf::maya_highlight::Shape {
     let angle = r.scalar("angle", 0.0);
-    let (ax, ay) = ::maya::specular::anisotropic_widths(
+    let (alpha_x, alpha_y) = ::maya::specular::anisotropic_widths(
         r.scalar("roughness", 0.7),
         r.scalar("spreadX", 13.0),
         r.scalar("spreadY", 3.0),
     );
     let ior = r.scalar("fresnelRefractiveIndex", 6.0).max(1.0 + 1e-3);
-    let (wide, narrow, axis) = if ax >= ay { (ax, ay, angle) } else { (ay, ax, angle + std::f32::consts::FRAC_PI_2) };
-    let mut ratio = wide / narrow;
-    if ratio > MAX_WIDTH_RATIO {
-        r.warnings.push(format!(
-            "the highlight's widths {ax:.3} × {ay:.3} differ by more than {MAX_WIDTH_RATIO}×; the path engine's lobe is \
-             {MAX_WIDTH_RATIO}× as long as wide"
-        ));
-        ratio = MAX_WIDTH_RATIO;
+    surface.tangent_angle = Some(angle);
+    bsdf::maya_highlight::Shape::Anisotropic { alpha_x, alpha_y, ior }
+}
+
+/// The BSDF highlight (shape and tint) of a classic Maya highlight of `specularColor`
+/// `specular` (phongE's `whiteness` joins the tint); `None` for anisotropic, whose
+/// classic grooves are a world direction (see [`anisotropic`]).
+fn glossy_shape(highlight: ::maya::specular::Highlight, specular: Rgb) -> Option<(bsdf::maya_highlight::Shape, Rgb)> {
+    use ::maya::specular::Highlight;
+    use bsdf::maya_highlight::Shape;
+    Some(match highlight {
+        Highlight::None | Highlight::Anisotropic { .. } => return None,
+        Highlight::Blinn { eccentricity, rolloff, .. } => (Shape::Blinn { eccentricity, rolloff }, specular),
+        Highlight::Phong { power } => (Shape::Phong { power }, specular),
+        Highlight::PhongE { roughness, size, whiteness } => {
+            (Shape::PhongE { roughness, size }, specular * Rgb::new(whiteness.x, whiteness.y, whiteness.z))
+        }
+    })
+}
+
+/// The `irradiance` illumination map M of the lambert family (the reading is
+/// `maya::material`'s): light that reaches the surface whatever the lights, c·d ⊙
+/// `irradianceColor` ⊙ M added to the emission — constant, or per hit through a binding
+/// when M is connected (a baked map), then scaled by the mean of `irradianceColor` (a
+/// warning when that is not grey). A constant M on a surface whose colour or
+/// incandescence is connected is warned about (it takes the default colour, or is lost).
+fn irradiance_map(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+    let g = r.color("irradianceColor", Rgb::ONE);
+    match connection(r.graph, r.node, "irradiance") {
+        Some((node, member)) => {
+            let mean = (g.x + g.y + g.z) / 3.0;
+            if (g - Rgb::splat(mean)).abs().max_element() > 1e-6 {
+                r.warnings.push(
+                    "'irradiance' is connected; the path engine scales it by the mean of 'irradianceColor'".into(),
+                );
+            }
+            r.bindings.push(Binding { node, member, target: Target::IrradianceMap, scale: mean });
+        }
+        None => {
+            let m = r.color("irradiance", Rgb::ZERO);
+            if m != Rgb::ZERO && ["color", "incandescence"].iter().any(|p| connection(r.graph, r.node, p).is_some()) {
+                r.warnings.push(
+                    "a constant 'irradiance' on a connected colour or incandescence: the path engine lights it with \
+                     the default colour, or not at all"
+                        .into(),
+                );
+            }
+            surface.emission += albedo * g * m;
+        }
     }
-    let alpha = (ax * ay).sqrt().clamp(1e-3, 1.0);
-    // α_x = α / aspect and α_y = α · aspect with aspect = √(1 − 0.9 a): α_x / α_y = 1 / aspect².
-    let anisotropy = ((1.0 - 1.0 / ratio) / 0.9).clamp(0.0, 1.0);
-    // The classic highlight s·D·F(v·h)/F0 (D = 1 at its peak) summed over the directions
-    // of a light, ∫ D dω_l ≈ 4π α_x α_y for small slopes, equals the lobe's π · F0 ·
-    // weight: its reflectance head-on is 4 s α_x α_y, growing towards grazing angles by
-    // the same Fresnel ratio.
-    let s = bsdf::luminance(r.color("specularColor", Rgb::splat(0.5)));
-    let f0 = bsdf::dielectric::fresnel(1.0, ior).max(1e-4);
-    let params = UnifiedParams {
-        base_color: albedo,
-        roughness: alpha.sqrt(),
-        anisotropic: anisotropy,
-        ior,
-        specular: (4.0 * s * ax * ay / f0).clamp(0.0, 1.0),
-        ..UnifiedParams::default()
-    };
-    surface.model = SurfaceModel::Unified(Box::new(Unified::new(&params)));
-    surface.tangent_angle = Some(axis);
 }
 
 /// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
@@ -228,19 +239,6 @@ fn classic_highlight(family: &str, r: &mut Reader) -> ::maya::specular::Highligh
             }
         }
     }
-}
-
-/// The GGX α of a Maya highlight.
-fn highlight_alpha(decl: &str, r: &mut Reader) -> f32 {
-    let alpha = if decl.contains("blinn") || decl.contains("Blinn") {
-        r.scalar("eccentricity", 0.3)
-    } else if decl.ends_with("phong") || decl.ends_with("Phong") {
-        let n = r.scalar("cosinePower", 20.0).max(0.0);
-        (2.0 / (n + 2.0)).sqrt()
-    } else {
-        r.scalar("roughness", 0.5)
-    };
-    alpha.clamp(1e-3, 1.0)
 }
 
 /// The path engine's material for the Maya shading engine `engine` (a node of `graph`)
@@ -266,12 +264,12 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
         "lambert" | "blinn" | "phong" | "phonge" | "anisotropic" => {
             let d = r.scalar("diffuse", 0.8);
             let reflective = family != "lambert";
-            let target = if reflective { Target::BaseColor } else { Target::Diffuse };
-            let albedo = r.driven("color", target, d, Rgb::splat(0.5));
+            let albedo = r.driven("color", Target::Diffuse, d, Rgb::splat(0.5));
             surface.diffuse = albedo;
             // Ambient light goes by `color` alone: 1/d of the diffuse colour.
             surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
             surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
+            irradiance_map(&mut r, &mut surface, albedo);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {
                 surface.glow = r.driven("color", Target::Glow, glow_intensity, Rgb::splat(0.5));
@@ -284,13 +282,35 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
             if let Some((bump, member)) = connection(graph, node, "normalCamera") {
                 r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
             }
-            if family == "anisotropic" {
-                anisotropic(&mut r, &mut surface, albedo);
-            } else if reflective {
-                let alpha = highlight_alpha(&material, &mut r);
+            if reflective {
                 let s = r.color("specularColor", Rgb::splat(0.5));
-                surface.model = unified(albedo, alpha, bsdf::luminance(s));
-                surface.maya_highlight = Some(MayaHighlight { model: classic_highlight(&family, &mut r), color: s });
+                if connection(graph, node, "specularColor").is_some() {
+                    r.warnings.push("'specularColor' is connected; the path engine's highlight uses 0.5 grey".into());
+                }
+                let (glossy, rolloff) = if family == "anisotropic" {
+                    (Some((anisotropic(&mut r, &mut surface), s)), None)
+                } else {
+                    let highlight = classic_highlight(&family, &mut r);
+                    surface.maya_highlight = Some(MayaHighlight { model: highlight, color: s });
+                    let rolloff = match highlight {
+                        ::maya::specular::Highlight::Blinn { rolloff, .. }
+                            if constant(graph, node, "reflectionRolloff").is_some_and(Value::bool) =>
+                        {
+                            Some(rolloff)
+                        }
+                        _ => None,
+                    };
+                    (glossy_shape(highlight, s), rolloff)
+                };
+                // The classic shader's traced mirror reflection, r·s ⊙ (reflectedColor +
+                // what the ray finds): a mirror lobe of weight r·s, reflectedColor emitted.
+                let reflectivity = r.scalar("reflectivity", 0.5).max(0.0);
+                surface.emission += s * reflectivity * r.color("reflectedColor", Rgb::ZERO);
+                if let Some((shape, tint)) = glossy {
+                    surface.model = SurfaceModel::Maya(Box::new(
+                        bsdf::MayaGlossy::new(shape, tint).with_mirror(s * reflectivity, rolloff),
+                    ));
+                }
             }
         }
         "rampshader" => ramp_shader(&mut r, &mut surface),
@@ -458,8 +478,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 surface.diffuse += layer.diffuse * w;
                 surface.emission += layer.emission * w;
                 ambient_color += layer.diffuse * layer.ambient * w;
-                if lobe.is_none() && matches!(layer.model, SurfaceModel::Unified(_)) {
-                    lobe = Some(layer.model);
+                match layer.model {
+                    SurfaceModel::Unified(_) if lobe.is_none() => lobe = Some(layer.model),
+                    // Maya's highlight shows by the layer's share, as its diffuse colour.
+                    SurfaceModel::Maya(g) if lobe.is_none() => lobe = Some(SurfaceModel::Maya(Box::new(g.scaled(w)))),
+                    _ => {}
                 }
             }
             Some(Slot::Value(v)) => {
@@ -483,7 +506,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         ratio(ambient_color.y, surface.diffuse.y),
         ratio(ambient_color.z, surface.diffuse.z),
     );
-    if let Some(SurfaceModel::Unified(u)) = lobe {
+    if let Some(SurfaceModel::Maya(g)) = lobe {
+        surface.model = SurfaceModel::Maya(g);
+    } else if let Some(SurfaceModel::Unified(u)) = lobe {
         let p = u.params();
         surface.model = unified(surface.diffuse, p.roughness * p.roughness, p.specular);
     }

@@ -24,7 +24,8 @@
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
-//! (snow, rock, volumeNoise), [`cell_textures`] (leather, granite), [`projection`]
+//! (snow, rock, volumeNoise), [`fractal_textures`] (brownian, cloud), [`cell_textures`] (leather,
+//! granite), [`projection`]
 //! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
 //! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
@@ -37,6 +38,7 @@
 pub mod cell_textures;
 pub mod engine;
 pub mod fog;
+pub mod fractal_textures;
 pub mod glow;
 pub mod layered;
 pub mod layered_shader;
@@ -144,6 +146,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &solid_textures::ADSK_ROCK,
     &solid_textures::VOLUME_NOISE,
     &solid_textures::ADSK_VOLUME_NOISE,
+    &fractal_textures::BROWNIAN,
+    &fractal_textures::ADSK_BROWNIAN,
+    &fractal_textures::CLOUD,
+    &fractal_textures::ADSK_CLOUD,
     &cell_textures::LEATHER,
     &cell_textures::ADSK_LEATHER,
     &cell_textures::GRANITE,

@@ -5,7 +5,8 @@
 //!   (black), `translucence` t (0), `transparency` T (black), `normalCamera` (the
 //!   shading normal when connected, e.g. to bump2d's `outNormal`: mira passes normals in
 //!   world space), `refractions`, `refractiveIndex`, `refractionLimit`,
-//!   `matteOpacityMode`, `matteOpacity`, `glowIntensity`, `irradianceColor` g (white);
+//!   `matteOpacityMode`, `matteOpacity`, `glowIntensity`, `irradianceColor` g (white),
+//!   `irradiance` M (black);
 //! - the reflective ones add `specularColor` s (0.5 grey), `reflectivity` r (0.5),
 //!   `reflectedColor` (black), `reflectionLimit` (1), `reflectionSpecularity`; then blinn
 //!   `eccentricity`, `specularRollOff`, `reflectionRolloff`; phong `cosinePower`; phongE
@@ -19,7 +20,7 @@
 //! D   = Σ_lights light · cos θ            (emitDiffuse lights, in front)
 //! A   = Σ_ambient lights light · ((1 − ambientShade) + ambientShade · cos θ)
 //! B   = Σ_lights behind light · |cos θ|   (translucence)
-//! out = (c ⊙ (a + A + d·(D + g ⊙ E_fg/π) + t·B) + incandescence) ⊙ (1 − T)
+//! out = (c ⊙ (a + A + d·(D + g ⊙ (E_fg/π + M)) + t·B) + incandescence) ⊙ (1 − T)
 //!       + s ⊙ Σ_lights light · highlight   (emitSpecular lights)
 //!       + r · s ⊙ (reflectedColor + traced reflection) [· Fresnel for blinn's rolloff]
 //!       + T ⊙ behind                     (a transparency or refraction ray)
@@ -30,7 +31,16 @@
 //! manual's example shader does, mental ray for Maya's materials divide it by π since Maya 6
 //! (Maya 5 left the 1/π to the user through `irradianceColor`; the Los Angeles mental ray
 //! user group's "Maya 5 Final Gathering Tips", lamrug.org/resources/mayafgtips.html), so a
-//! lambert under a uniform sky of radiance L shows c·d·L, as the path engine gives. As in Maya,
+//! lambert under a uniform sky of radiance L shows c·d·L, as the path engine gives.
+//!
+//! M, the `irradiance` input, is an illumination map: Maya's reference (the materials'
+//! mental ray attributes, Maya 2013) has it take an incoming illumination map such as
+//! mental ray's Batch Bake writes, scaled by `irradianceColor`, the colour of the bounced
+//! light. mira's reading: M is light arriving at the point in Maya's
+//! light units — what a lambert of colour 1 and diffuse 1 shows, as an illumination-only
+//! bake records it — added to final gathering's E_fg/π (a baked map usually replaces
+//! final gathering, which is then off), lit whether or not any light reaches the point.
+//! As in Maya,
 //! transparency fades the diffuse part, not the highlights and reflections. Raytraced
 //! reflections stop at `reflectionLimit` (and at the scene's trace depth). The lights are
 //! the material's `lightList` or the instance's light list (see below). In a shadow ray
@@ -38,8 +48,8 @@
 //! shadow shader too; see [`crate::engine`]).
 //!
 //! Where mental ray for Maya and Maya's own renderer differ, mira follows mental ray for
-//! Maya: final gathering (scaled by `irradianceColor`; an illumination map in `irradiance` is
-//! not read) supplies indirect light, and reflections are raytraced up to `reflectionLimit`
+//! Maya: final gathering and the `irradiance` map (both scaled by `irradianceColor`) supply
+//! indirect light, and reflections are raytraced up to `reflectionLimit`
 //! (no reflection maps).
 //!
 //! Lights: the material's `lightList` (exports fill it in with `lightMode` 0) when it is
@@ -75,10 +85,11 @@ const MATTE_OPACITY: usize = 10;
 const GLOW_INTENSITY: usize = 11;
 const LIGHT_LIST: usize = 12;
 const IRRADIANCE_COLOR: usize = 13;
-const SPECULAR_COLOR: usize = 14;
-const REFLECTIVITY: usize = 15;
-const REFLECTED_COLOR: usize = 16;
-const REFLECTION_LIMIT: usize = 17;
+const IRRADIANCE: usize = 14;
+const SPECULAR_COLOR: usize = 15;
+const REFLECTIVITY: usize = 16;
+const REFLECTED_COLOR: usize = 17;
+const REFLECTION_LIMIT: usize = 18;
 /// The first parameter a reflective material adds to the shared ones.
 const EXTRA: usize = REFLECTION_LIMIT + 1;
 
@@ -98,6 +109,7 @@ const LAMBERT_PARAMS: &[&str] = &[
     "glowIntensity",
     "lightList",
     "irradianceColor",
+    "irradiance",
 ];
 
 macro_rules! reflective_params {
@@ -105,7 +117,7 @@ macro_rules! reflective_params {
         &[
             "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
             "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
-            "glowIntensity", "lightList", "irradianceColor", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            "glowIntensity", "lightList", "irradianceColor", "irradiance", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
             $($extra),*
         ]
     };
@@ -320,7 +332,8 @@ fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, No
     let reflective = !matches!(highlight, Highlight::None);
     let received = gather_lights(ctx, n, highlight, translucence > 0.0);
     let fg = if diffuse > 0.0 && color != Vec3A::ZERO {
-        rgb(ctx.color(n, IRRADIANCE_COLOR)) * rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI
+        let map = rgb(ctx.color(n, IRRADIANCE));
+        rgb(ctx.color(n, IRRADIANCE_COLOR)) * (rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI + map)
     } else {
         Vec3A::ZERO
     };

@@ -16,10 +16,31 @@
 //! | 5 cubic | planar along the axis on which p is largest: (z, y), (x, z) or (x, y) |
 //! | 6 triplanar | the cubic layout, the plane chosen by the largest component of the surface normal n (placement space) instead of p |
 //! | 7 concentric | (fract ‖p‖, fract ‖p‖): the image's diagonal repeated over shells one placement unit apart about the origin |
-//! | 8 perspective (camera) | the point's position in the render camera's image: (½ + ½ (x_c/−z_c)/h_x, ½ + ½ (y_c/−z_c)/h_y), p_c in camera space, h the image plane's half size at distance 1 (orthographic cameras: x_c/h_x, y_c/h_y); behind the camera: `defaultColor` |
+//! | 8 perspective (camera) | the point's place in the linked camera's image, fitted by `fitType`/`fitFill` (below); behind the camera: `defaultColor` |
 //!
-//! The perspective projection uses the render camera, not a linked camera (exports'
-//! `linkedCamera`, `fitType` and `fitFill` are not read), and ignores the placement.
+//! **The perspective projection's camera.** Maya links the projection to a camera node
+//! (`linkedCamera`, a message connection) and fits the image to that camera's frame by
+//! `fitType` (0 None, 1 Match Camera Film Gate, 2 Match Camera Resolution) and `fitFill`
+//! (0 Fill, 1 Horizontal, 2 Vertical). No page documents how mental ray for Maya passes
+//! the camera (a `.mi` shader parameter cannot name a camera) nor the fit's formulas, so
+//! mira's declaration carries the linked camera as Maya's own attributes, after the
+//! others: `linkedCamera` (a transform: world → the camera's space, as a camera
+//! instance's `transform`; the camera looks down its −Z), `cameraFocalLength` (mm),
+//! `cameraHorizontalFilmAperture` and `cameraVerticalFilmAperture` (inches; Maya's 35 mm
+//! defaults 1.417 × 0.945), `fitType` (1), `fitFill` (0) and `imageAspect` (the projected
+//! image's width / height, 1; mira cannot see the resolution of the texture behind
+//! `image`). With `cameraFocalLength` 0 (the default) the render camera is the linked
+//! one, its film gate the image's own aspect. The fit is read as 3Delight for Maya's
+//! projection shader reads it: the point's screen position s = (x_c, y_c)/(−z_c)/h, h
+//! the image plane's half width at distance 1 (horizontal aperture·25.4/(2·focal)), is
+//! scaled for the frame of aspect a (the film gate's H/V for fitType 1, the render
+//! resolution's for 2) and the image's aspect i: None leaves it (the image square, as
+//! wide as the frame), Fill scales s_y by a (the image stretched over the frame),
+//! Horizontal s_y by i (the image's width across the frame, its proportions kept),
+//! Vertical s_x by a/i and s_y by a (its height over the frame); (u, v) = ½ + ½ s. An
+//! orthographic render camera gives s = (x_c, y_c)/h with h half the view's width. The
+//! placement is ignored.
+//!
 //! `projType` 0 (off) returns `defaultColor`. envSphere: `image` wrapped over the sphere of
 //! directions, the ray direction d (world) giving u = ½ + atan2(d_x, −d_z)/2π (the −Z
 //! axis at the centre of the image), v = ½ + asin(d_y)/π, sheared by `shearU`,
@@ -88,19 +109,86 @@ fn cube_face(p: Vec3A, axis: Vec3A) -> Vec2 {
     }
 }
 
-/// The position of camera-space point `p_camera` in the camera's image as (u, v) in
-/// [0, 1]² across the image (v up), for an image plane of half size `half` at distance 1
-/// (orthographic: the view's half size); `None` behind a perspective camera.
-pub fn camera_uv(p_camera: Vec3A, half: Vec2, orthographic: bool) -> Option<Vec2> {
-    let s = if orthographic {
+/// How a perspective projection fits its image to the linked camera's frame (Maya's
+/// `fitType` and `fitFill`, see the module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fit {
+    /// `fitType` 0: the image square, as wide as the frame.
+    None,
+    /// `fitFill` 0: stretched over the frame.
+    Fill,
+    /// `fitFill` 1: its width across the frame, its proportions kept.
+    Horizontal,
+    /// `fitFill` 2: its height over the frame, its proportions kept.
+    Vertical,
+}
+
+impl Fit {
+    /// Maya's `fitType` and `fitFill` values (an unknown `fitFill` is Fill).
+    pub fn from_maya(fit_type: i32, fit_fill: i32) -> Fit {
+        match (fit_type, fit_fill) {
+            (0, _) => Fit::None,
+            (_, 1) => Fit::Horizontal,
+            (_, 2) => Fit::Vertical,
+            _ => Fit::Fill,
+        }
+    }
+}
+
+/// The position of camera-space point `p_camera` in a camera's image as (u, v) (v up):
+/// `half_width` is the image plane's half width at distance 1 (orthographic: half the
+/// view's width), `frame_aspect` the frame's width / height, `image_aspect` the image's,
+/// `fit` how the image is laid over the frame (see the module doc); `None` behind a
+/// perspective camera.
+pub fn camera_uv(
+    p_camera: Vec3A,
+    half_width: f32,
+    orthographic: bool,
+    fit: Fit,
+    frame_aspect: f32,
+    image_aspect: f32,
+) -> Option<Vec2> {
+    let mut s = if orthographic {
         Vec2::new(p_camera.x, p_camera.y)
     } else {
         if p_camera.z >= 0.0 {
             return None;
         }
         Vec2::new(p_camera.x, p_camera.y) / -p_camera.z
-    };
-    Some(Vec2::splat(0.5) + 0.5 * s / half.max(Vec2::splat(1e-6)))
+    } / half_width.max(1e-6);
+    let (frame, image) = (frame_aspect.max(1e-6), image_aspect.max(1e-6));
+    match fit {
+        Fit::None => {}
+        Fit::Fill => s.y *= frame,
+        Fit::Horizontal => s.y *= image,
+        Fit::Vertical => s *= Vec2::new(frame / image, frame),
+    }
+    Some(Vec2::splat(0.5) + 0.5 * s)
+}
+
+/// The perspective projection's coordinate of the shading point (world `point`) through
+/// the linked camera of node `n`, or the render camera's (see the module doc).
+fn perspective(ctx: &mut Ctx, n: NodeId, point: Vec3A) -> Option<Vec2> {
+    let fit = Fit::from_maya(ctx.int(n, FIT_TYPE), ctx.int(n, FIT_TYPE + 1));
+    let image_aspect = ctx.scalar(n, FIT_TYPE + 6);
+    let focal_mm = ctx.scalar(n, FIT_TYPE + 3);
+    let shading = ctx.shading();
+    let (w, h) = shading.resolution;
+    let resolution_aspect = if h > 0 { w as f32 / h as f32 } else { 1.0 };
+    let render_aspect = shading.image_plane.x / shading.image_plane.y.max(1e-12);
+    if focal_mm > 0.0 {
+        let world_to_camera = ctx.eval(n, FIT_TYPE + 2).transform();
+        let (h_aperture, v_aperture) = (ctx.scalar(n, FIT_TYPE + 4), ctx.scalar(n, FIT_TYPE + 5));
+        let half_width = h_aperture * 25.4 / (2.0 * focal_mm);
+        let film_aspect = h_aperture / v_aperture.max(1e-6);
+        let frame = if ctx.int(n, FIT_TYPE) == 2 { resolution_aspect } else { film_aspect };
+        let p_camera = Vec3A::from(world_to_camera.transform_point3(point.into()));
+        camera_uv(p_camera, half_width, false, fit, frame, image_aspect)
+    } else {
+        let frame = if ctx.int(n, FIT_TYPE) == 2 { resolution_aspect } else { render_aspect };
+        let p_camera = shading.world_to_camera.transform_point3a(point);
+        camera_uv(p_camera, shading.image_plane.x, shading.orthographic, fit, frame, image_aspect)
+    }
 }
 
 /// Evaluates colour parameter `i` of `n` (a connected 2D texture) at surface coordinate
@@ -115,9 +203,24 @@ maya_shader!(
     ADSK_PROJECTION,
     "maya_projection",
     "adskMayaProjection",
-    texture3d_params!("projType", "image", "uAngle", "vAngle"),
+    texture3d_params!(
+        "projType",
+        "image",
+        "uAngle",
+        "vAngle",
+        "fitType",
+        "fitFill",
+        "linkedCamera",
+        "cameraFocalLength",
+        "cameraHorizontalFilmAperture",
+        "cameraVerticalFilmAperture",
+        "imageAspect"
+    ),
     projection
 );
+
+/// The index of `fitType`; the linked camera's parameters follow it.
+const FIT_TYPE: usize = EXTRA + 4;
 
 fn projection(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(p) = placement_point(ctx, n) else { return outside(ctx, n, out) };
@@ -131,9 +234,8 @@ fn projection(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
             Some(triplanar(p, normal))
         }
         8 => {
-            let shading = ctx.shading();
-            let p_camera = shading.world_to_camera.transform_point3a(ctx.state.point);
-            camera_uv(p_camera, shading.image_plane, shading.orthographic)
+            let point = ctx.state.point;
+            perspective(ctx, n, point)
         }
         _ => project(kind, p, ua, va),
     };
@@ -217,15 +319,41 @@ mod tests {
         close(project(7, Vec3A::new(0.3, 0.4, 0.0), 0.0, 0.0).unwrap(), Vec2::splat(0.5));
         close(project(7, Vec3A::new(0.0, 1.5, 2.0), 0.0, 0.0).unwrap(), Vec2::splat(0.5));
         close(project(7, Vec3A::new(0.0, 0.0, -1.25), 0.0, 0.0).unwrap(), Vec2::splat(0.25));
-        // Perspective: a 90° × 60° view (half size 1 × tan 30°). On the axis: the centre;
-        // at 45° right: the right edge; x_c = 0.5, y_c = −tan 30° / 2 at z_c = −1: (¾, ¼).
-        let half = Vec2::new(1.0, 30f32.to_radians().tan());
-        close(camera_uv(Vec3A::new(0.0, 0.0, -5.0), half, false).unwrap(), Vec2::splat(0.5));
-        close(camera_uv(Vec3A::new(3.0, 0.0, -3.0), half, false).unwrap(), Vec2::new(1.0, 0.5));
-        close(camera_uv(Vec3A::new(1.0, -half.y, -2.0), half, false).unwrap(), Vec2::new(0.75, 0.25));
-        assert_eq!(camera_uv(Vec3A::new(0.0, 0.0, 1.0), half, false), None, "behind the camera");
+        // Perspective, filled: a 90° × 60° view (half size 1 × tan 30°, aspect 1/tan 30°).
+        // On the axis: the centre; at 45° right: the right edge; x_c = 0.5, y_c = −tan 30°
+        // / 2 at z_c = −1: (¾, ¼).
+        let (half, aspect) = (1.0, 1.0 / 30f32.to_radians().tan());
+        let fill = |p: Vec3A| camera_uv(p, half, false, Fit::Fill, aspect, 1.0).unwrap();
+        close(fill(Vec3A::new(0.0, 0.0, -5.0)), Vec2::splat(0.5));
+        close(fill(Vec3A::new(3.0, 0.0, -3.0)), Vec2::new(1.0, 0.5));
+        close(fill(Vec3A::new(1.0, -1.0 / aspect, -2.0)), Vec2::new(0.75, 0.25));
+        assert_eq!(camera_uv(Vec3A::new(0.0, 0.0, 1.0), half, false, Fit::Fill, aspect, 1.0), None, "behind");
         // Orthographic: the view's half size 2 × 1; depth does not matter.
-        close(camera_uv(Vec3A::new(1.0, 0.5, 7.0), Vec2::new(2.0, 1.0), true).unwrap(), Vec2::new(0.75, 0.75));
+        close(camera_uv(Vec3A::new(1.0, 0.5, 7.0), 2.0, true, Fit::Fill, 2.0, 1.0).unwrap(), Vec2::new(0.75, 0.75));
+    }
+
+    /// The four fits of a frame of aspect 2 (half width 0.5 at distance 1: the frame's
+    /// top-right corner at (0.5, 0.25, −1)) and an image of aspect 4/3, by hand.
+    #[test]
+    fn fit_types_lay_the_image_over_the_frame() {
+        let uv = |fit, p: Vec3A| camera_uv(p, 0.5, false, fit, 2.0, 4.0 / 3.0).unwrap();
+        let corner = Vec3A::new(0.5, 0.25, -1.0);
+        // None: s = (1, 0.5): the square image as wide as the frame, reaching v = ¾.
+        close(uv(Fit::None, corner), Vec2::new(1.0, 0.75));
+        // Fill: s_y × 2: the corner is the image's corner.
+        close(uv(Fit::Fill, corner), Vec2::new(1.0, 1.0));
+        // Horizontal: s_y × 4/3: v = ½ + ½ · ⅔ (the image's top lies above the frame's).
+        close(uv(Fit::Horizontal, corner), Vec2::new(1.0, 0.5 + 1.0 / 3.0));
+        // Vertical: s_x × 2 / (4/3) = 1.5, s_y × 2 = 1: the frame's top edge is the image's,
+        // its right edge beyond the image's (u = 1.25).
+        close(uv(Fit::Vertical, corner), Vec2::new(1.25, 1.0));
+        // The same direction twice as far: the same place; twice as deep: half as far out.
+        close(uv(Fit::Fill, corner * 2.0), Vec2::new(1.0, 1.0));
+        close(uv(Fit::Fill, Vec3A::new(0.5, 0.25, -2.0)), Vec2::new(0.75, 0.75));
+        assert_eq!(Fit::from_maya(0, 2), Fit::None);
+        assert_eq!(Fit::from_maya(1, 0), Fit::Fill);
+        assert_eq!(Fit::from_maya(2, 1), Fit::Horizontal);
+        assert_eq!(Fit::from_maya(1, 2), Fit::Vertical);
     }
 
     #[test]

@@ -1,57 +1,12 @@
 //! Maya's highlight models as functions of the unit shading normal `n`, the unit
 //! direction `v` towards the viewer and the unit direction `l` towards the light (all in
 //! one space). Each returns the factor that multiplies `specularColor ⊙ light`; there is
-//! no 1/π and no N·L factor beyond the formula's own (Maya's convention).
+//! no 1/π and no N·L factor beyond the formula's own (Maya's convention). The formulas
+//! live in `bsdf::maya_highlight`, where the path engine's BSDF evaluates the same code.
 
 use glam::Vec3A;
 
-/// Schlick's approximation with reflectance `r0` at normal incidence, for the cosine `c`
-/// between the view direction and the half vector (or the normal).
-pub fn schlick(r0: f32, c: f32) -> f32 {
-    r0 + (1.0 - r0) * (1.0 - c.clamp(0.0, 1.0)).powi(5)
-}
-
-/// Blinn's highlight (Blinn 1977, "Models of light reflection for computer synthesized
-/// pictures", the model Maya's Blinn material names its parameters after): the
-/// Trowbridge–Reitz distribution of eccentricity `ecc`, D = (e² / ((e² − 1)(N·H)² +
-/// 1))², which is 1 at the peak; the Torrance–Sparrow masking G = min(1, 2(N·H)(N·V)/(V·H),
-/// 2(N·H)(N·L)/(V·H)); a Fresnel factor whose value at normal incidence is
-/// `specularRollOff`, F = schlick(rolloff, V·H); all over N·V:
-/// D·G·F / (N·V). At the mirror peak seen head-on (V = L = N) it equals `rolloff`.
-/// mira's reading: Maya's documentation names the parameters but not the Fresnel form.
-pub fn blinn(n: Vec3A, v: Vec3A, l: Vec3A, ecc: f32, rolloff: f32) -> f32 {
-    let (nv, nl) = (n.dot(v), n.dot(l));
-    if nv <= 0.0 || nl <= 0.0 {
-        return 0.0;
-    }
-    let Some(h) = (v + l).try_normalize() else { return 0.0 };
-    let (nh, vh) = (n.dot(h).max(0.0), v.dot(h).max(1e-6));
-    let e2 = (ecc * ecc).clamp(1e-6, 0.9999);
-    let d = e2 / ((e2 - 1.0) * nh * nh + 1.0);
-    let g = 1f32.min(2.0 * nh * nv / vh).min(2.0 * nh * nl / vh);
-    d * d * g * schlick(rolloff, vh) / nv
-}
-
-/// Phong's highlight: (R·L)^cosinePower, R the mirror image of the view direction.
-pub fn phong(n: Vec3A, v: Vec3A, l: Vec3A, power: f32) -> f32 {
-    if n.dot(l) <= 0.0 {
-        return 0.0;
-    }
-    let r = 2.0 * n.dot(v) * n - v;
-    r.dot(l).max(0.0).powf(power.max(0.0))
-}
-
-/// PhongE's highlight: (N·H)^p with p = 1/roughness² (a rough surface spreads it),
-/// scaled by `highlightSize`; the caller tints it with `whiteness`. mira's reading:
-/// Maya documents PhongE only qualitatively (a softer, cheaper Phong).
-pub fn phong_e(n: Vec3A, v: Vec3A, l: Vec3A, roughness: f32, size: f32) -> f32 {
-    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
-        return 0.0;
-    }
-    let Some(h) = (v + l).try_normalize() else { return 0.0 };
-    let r = roughness.clamp(0.01, 1.0);
-    size * n.dot(h).max(0.0).powf(1.0 / (r * r))
-}
+pub use bsdf::maya_highlight::{anisotropic, blinn, phong, phong_e, schlick};
 
 /// The Ward-style slope widths (α_x, α_y) of Maya's anisotropic highlight: α = `roughness`
 /// / √spread in each groove direction, so that a larger `spreadX`/`spreadY` (Maya: the
@@ -60,28 +15,6 @@ pub fn phong_e(n: Vec3A, v: Vec3A, l: Vec3A, roughness: f32, size: f32) -> f32 {
 pub fn anisotropic_widths(roughness: f32, spread_x: f32, spread_y: f32) -> (f32, f32) {
     let r = roughness.clamp(0.01, 1.0);
     (r / spread_x.max(0.1).sqrt(), r / spread_y.max(0.1).sqrt())
-}
-
-/// Maya's anisotropic highlight for the unit groove direction `x` (in the tangent plane of
-/// `n`, the U direction turned by `angle`): a Ward distribution of half-vector slopes of
-/// widths (`alpha_x`, `alpha_y`) along x and n × x, exp(−((H·x/α_x)² + (H·y/α_y)²)/(N·H)²),
-/// 1 at the peak, times the dielectric Fresnel reflectance of index `ior`
-/// (`fresnelRefractiveIndex`) at V·H relative to its value head-on, so that the peak seen
-/// head-on is 1 and the highlight brightens towards grazing angles as Fresnel does.
-pub fn anisotropic(n: Vec3A, v: Vec3A, l: Vec3A, x: Vec3A, alpha_x: f32, alpha_y: f32, ior: f32) -> f32 {
-    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
-        return 0.0;
-    }
-    let Some(h) = (v + l).try_normalize() else { return 0.0 };
-    let nh = n.dot(h);
-    if nh <= 0.0 {
-        return 0.0;
-    }
-    let y = n.cross(x);
-    let (sx, sy) = (h.dot(x) / alpha_x.max(1e-4), h.dot(y) / alpha_y.max(1e-4));
-    let d = (-(sx * sx + sy * sy) / (nh * nh)).exp();
-    let eta = ior.max(1.0 + 1e-4);
-    d * bsdf::dielectric::fresnel(v.dot(h).max(0.0), eta) / bsdf::dielectric::fresnel(1.0, eta)
 }
 
 /// The groove direction of the anisotropic material: the surface's dP/du made

@@ -12,6 +12,7 @@ mod glossy;
 mod maya_analytic;
 mod maya_exports;
 mod maya_final_gather;
+mod maya_irradiance;
 mod maya_materials;
 mod maya_path;
 mod maya_solid_textures;

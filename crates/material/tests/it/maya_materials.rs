@@ -74,22 +74,26 @@ fn anisotropic_peak_and_groove_direction() {
         peaks.push(got.x - 0.6 * 0.7 * t.cos());
     }
     assert!(peaks[0] < peaks[1], "spreadX 13 > spreadY 3: the highlight is narrower along the grooves {peaks:?}");
-    // Path engine: the unified BSDF of base colour c·d with an anisotropic GGX lobe whose
-    // widths are the classic ones: the mean α = √(α_x α_y) and, α_x < α_y, its long axis
-    // across the grooves (the tangent turned by 90°); Fresnel of index 6 weighted to
-    // reflect 4 s α_x α_y head-on; no warning.
+    // Path engine: Lambert of c·d beside the classic highlight itself, its grooves the
+    // hit's tangent (dP/du turned by `angle`, 0 here): under the path engine's light of
+    // π·I, f·π·cos θ is the classic colour for both light directions; no warning.
     let (s, warnings) = translate(&c);
-    let SurfaceModel::Unified(u) = &s.model else { panic!("{:?}", s.model) };
-    let p = u.params();
-    assert!((p.base_color - bsdf::Rgb::new(0.42, 0.35, 0.28)).abs().max_element() < 1e-6);
-    assert!((p.roughness * p.roughness - (ax * ay).sqrt()).abs() < 1e-5);
-    let aspect = (1.0 - 0.9 * p.anisotropic).sqrt();
-    assert!((1.0 / (aspect * aspect) - ay / ax).abs() < 1e-4, "width ratio {} vs {}", 1.0 / (aspect * aspect), ay / ax);
-    assert!((p.ior - 6.0).abs() < 1e-6);
-    let f0 = bsdf::dielectric::fresnel(1.0, 6.0);
-    assert!((p.specular * f0 - 4.0 * 0.3 * ax * ay).abs() < 1e-5, "{} vs {}", p.specular * f0, 4.0 * 0.3 * ax * ay);
-    assert_eq!(s.tangent_angle, Some(std::f32::consts::FRAC_PI_2));
+    let SurfaceModel::Maya(g) = &s.model else { panic!("{:?}", s.model) };
+    assert!((s.diffuse - bsdf::Rgb::new(0.42, 0.35, 0.28)).abs().max_element() < 1e-6);
+    assert_eq!(s.tangent_angle, Some(0.0));
     assert!(warnings.is_empty(), "{warnings:?}");
+    let n = glam::Vec3A::Y;
+    let frame = bsdf::Frame::from_normal_and_tangent(n, maya::specular::groove_direction(n, glam::Vec3A::X, 0.0));
+    for to_light in [glam::Vec3A::new(t.sin(), t.cos(), 0.0), glam::Vec3A::new(0.0, t.cos(), t.sin())] {
+        let classic = shade(&scene(&format!(
+            "{}{}",
+            sun(1.0, (-to_light).to_array()),
+            anisotropic_material("adskMayaAnisotropic", "adskMayaShadingEngine")
+        )));
+        let wo = frame.to_local(n);
+        let path = g.bsdf(s.diffuse, wo).eval(wo, frame.to_local(to_light)) * (std::f32::consts::PI * t.cos());
+        assert_rgb(glam::Vec4::new(path.x, path.y, path.z, 1.0), classic.truncate().to_array(), 1e-5);
+    }
 }
 
 /// Maya's documented recipe: black at 0.5, the colour at 1, linear, diffuse 0,

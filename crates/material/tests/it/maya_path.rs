@@ -66,19 +66,57 @@ fn a_file_texture_drives_the_diffuse_colour_per_hit() {
 }
 
 #[test]
-fn blinn_becomes_a_unified_bsdf_with_the_eccentricity_as_ggx_alpha() {
-    let c = scene(
+fn blinn_phong_and_phong_e_become_maya_highlights_that_give_the_classic_colour() {
+    // Under the unit light straight above and seen from 30° off the normal (light
+    // 20° the other way, so the highlight is off its peak), the path engine's BSDF times
+    // the light it delivers (π·I·cos θ) is the classic shader's colour.
+    let t = 20f32.to_radians();
+    let to_light = glam::Vec3A::new(0.0, t.cos(), t.sin());
+    for body in [
         r#"shader "b" "adskMayaBlinn" ("color" 0.5 0.4 0.3, "diffuse" 0.8, "eccentricity" 0.25,
-            "specularColor" 0.5 0.5 0.5, "transparency" 0.3 0.3 0.3)
-        material "m" opaque "adskMayaShadingEngine" ("surfaceShader" = "b.outColor") end material"#,
-    );
-    let (s, _) = translate(&c);
-    let SurfaceModel::Unified(u) = &s.model else { panic!("{:?}", s.model) };
-    let p = u.params();
-    assert!((p.base_color - bsdf::Rgb::new(0.4, 0.32, 0.24)).abs().max_element() < 1e-6);
-    assert!((p.roughness * p.roughness - 0.25).abs() < 1e-6, "GGX alpha = roughness²");
-    assert!((p.specular - 0.5).abs() < 1e-6);
-    assert!((s.opacity - 0.7).abs() < 1e-6);
+            "specularColor" 0.5 0.5 0.5, "reflectivity" 0, "transparency" 0.3 0.3 0.3)"#,
+        r#"shader "b" "maya_phong" ("color" 0.5 0.4 0.3, "diffuse" 0.8, "cosinePower" 12,
+            "specularColor" 0.6 0.5 0.4, "reflectivity" 0)"#,
+        r#"shader "b" "maya_phongE" ("color" 0.5 0.4 0.3, "diffuse" 0.8, "roughness" 0.4,
+            "highlightSize" 0.7, "whiteness" 0.9 0.8 0.7, "specularColor" 0.6 0.5 0.4, "reflectivity" 0)"#,
+    ] {
+        let engine = if body.contains("adskMaya") { "adskMayaShadingEngine" } else { "maya_shadingengine" };
+        let text = format!(
+            "light \"sun\" \"maya_directionallight\" (\"intensity\" 1) direction {} {} {} end light\n\
+             instance \"sun_inst\" \"sun\" end instance\n{body}\n\
+             material \"m\" opaque \"{engine}\" (\"surfaceShader\" = \"b.outColor\") end material",
+            -to_light.x, -to_light.y, -to_light.z
+        );
+        let c = compile("", &format!("{LIBS}{text}"), &["m"], "");
+        assert!(c.messages.is_empty(), "{:#?}", c.messages);
+        let (s, warnings) = translate(&c);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let SurfaceModel::Maya(g) = &s.model else { panic!("{:?}", s.model) };
+        assert!((s.diffuse - bsdf::Rgb::new(0.4, 0.32, 0.24)).abs().max_element() < 1e-6);
+        // The viewer 30° off the normal towards −z (the shading point is seen from the
+        // camera `support::maya::point` places straight above: only the BSDF is compared
+        // off-axis here, against the classic formula of the same directions).
+        let frame = bsdf::Frame::from_normal(glam::Vec3A::Y);
+        let v = glam::Vec3A::new(0.0, 30f32.to_radians().cos(), -30f32.to_radians().sin());
+        let path = g.bsdf(s.diffuse, frame.to_local(v)).eval(frame.to_local(v), frame.to_local(to_light))
+            * (std::f32::consts::PI * t.cos());
+        let classic = s.diffuse * t.cos()
+            + s.maya_highlight.expect("the classic highlight").model.value(glam::Vec3A::Y, v, to_light)
+                * s.maya_highlight.expect("the classic highlight").color;
+        assert!((path - classic).abs().max_element() < 1e-5, "{body}: {path} vs {classic}");
+        // Seen from straight above, as `run` shades it: the classic shader's colour.
+        let shaded = run(&c, &Empty::default(), c.material("m"), point([0.0, 0.0])).color();
+        let up = frame.to_local(glam::Vec3A::Y);
+        let path = g.bsdf(s.diffuse, up).eval(up, frame.to_local(to_light)) * (std::f32::consts::PI * t.cos());
+        let transparency = if body.contains("transparency") { 0.7 } else { 1.0 };
+        // The classic shader fades its diffuse part by 1 − T (the path engine covers the
+        // whole surface by the opacity instead); the highlight is not faded.
+        let highlight = path - s.diffuse * t.cos();
+        for i in 0..3 {
+            let want = s.diffuse[i] * t.cos() * transparency + highlight[i];
+            assert!((shaded[i] - want).abs() < 1e-5, "{body}: channel {i}: classic {shaded} vs {want}");
+        }
+    }
 }
 
 #[test]

@@ -163,3 +163,23 @@ fn volume_noise_on_its_lattice_shows_its_threshold() {
         assert!((0.0..=1.0).contains(&v) && (v - 0.7).abs() > 1e-4, "{v}");
     }
 }
+
+/// Brownian and cloud under both name families, where their colour does not depend on
+/// the noise: brownian of no octaves is ½ grey (× `colorGain`), a cloud of contrast 0 the
+/// two colours' average; with the defaults both stay within their colours and repeat.
+#[test]
+fn brownian_and_cloud_in_compiled_scenes() {
+    for (brownian, cloud) in [("maya_brownian", "maya_cloud"), ("adskMayaBrownian", "adskMayaCloud")] {
+        let c = scene(&format!(r#"shader "tex" "{brownian}" ("octaves" 0, "colorGain" 0.8 0.6 0.4)"#));
+        assert_rgb(shade(&c), [0.4, 0.3, 0.2], 1e-6);
+        let c = scene(&format!(r#"shader "tex" "{cloud}" ("color1" 0.9 0.1 0.3, "color2" 0.1 0.5 0.7, "contrast" 0)"#));
+        assert_rgb(shade(&c), [0.5, 0.3, 0.5], 1e-6);
+        // Defaults: grey brownian and a white-to-black cloud, in range and repeatable.
+        for tex in [brownian, cloud] {
+            let c = scene(&format!(r#"shader "tex" "{tex}" ()"#));
+            let v = shade(&c);
+            assert!((0.0..=1.0).contains(&v.x) && v.x == v.y && v.y == v.z, "{tex}: {v}");
+            assert_eq!(v, shade(&c));
+        }
+    }
+}

@@ -135,3 +135,53 @@ fn bump3d_tilts_the_normal_against_the_gradient() {
     );
     assert_rgb(shade(&c, point([0.0, 0.0])), [std::f32::consts::FRAC_1_SQRT_2; 3], 2e-3);
 }
+
+/// The perspective projection through a linked camera 4 above (−1, 0, 0.5) looking down
+/// (focal 35 mm, Maya's 35 mm film gate 1.417 × 0.945 in: the image plane's half width
+/// h = 1.417 · 25.4 / 70 at distance 1), of U and V ramps (their colour is the
+/// coordinate they are read at), for an image of aspect 1.25: the origin lies at
+/// camera-space (1, 0.5, −4), screen position s = (1, 0.5)/(4h), and each fit scales it
+/// as the projection's module doc says, worked out here by hand. With no focal length
+/// the render camera is used, its frame filled as before.
+#[test]
+fn the_perspective_projection_looks_through_the_linked_camera_with_its_fit() {
+    let coordinate = |ramp_type: i32, camera: &str| {
+        let c = scene(&format!(
+            r#"shader "ramp1" "maya_ramp" ("type" {ramp_type}, "interpolation" 1,
+                "colorEntryList" [ {{ "position" 0, "color" 0 0 0 }}, {{ "position" 1, "color" 1 1 1 }} ])
+            shader "proj" "maya_projection" ("projType" 8, "image" = "ramp1.outColor", "imageAspect" 1.25{camera})
+            {}"#,
+            show("proj.outColor")
+        ));
+        let resolution = c.shading.resolution;
+        (shade(&c, point([0.0, 0.0])).x, resolution.0 as f32 / resolution.1 as f32, c)
+    };
+    let linked = r#", "linkedCamera" 1 0 0 0  0 0 1 0  0 -1 0 0  1 0.5 -4 1, "cameraFocalLength" 35,
+        "cameraHorizontalFilmAperture" 1.417, "cameraVerticalFilmAperture" 0.945"#;
+    let h = 1.417 * 25.4 / 70.0;
+    let s = glam::Vec2::new(1.0, 0.5) / (4.0 * h);
+    let film = 1.417 / 0.945;
+    let (_, resolution_aspect, _) = coordinate(1, "");
+    for (fit_type, fit_fill, scale) in [
+        (0, 0, glam::Vec2::ONE),
+        (1, 0, glam::Vec2::new(1.0, film)),
+        (1, 1, glam::Vec2::new(1.0, 1.25)),
+        (1, 2, glam::Vec2::new(film / 1.25, film)),
+        (2, 0, glam::Vec2::new(1.0, resolution_aspect)),
+    ] {
+        let camera = format!(r#"{linked}, "fitType" {fit_type}, "fitFill" {fit_fill}"#);
+        let want = glam::Vec2::splat(0.5) + 0.5 * s * scale;
+        let (u, v) = (coordinate(1, &camera).0, coordinate(0, &camera).0);
+        assert!(
+            (u - want.x).abs() < 1e-4 && (v - want.y).abs() < 1e-4,
+            "fit {fit_type}/{fit_fill}: {u}, {v} vs {want}"
+        );
+    }
+    // No linked camera: the render camera's frame, filled (its aspect from its image plane).
+    let (u, _, c) = coordinate(1, "");
+    let (v, _, _) = coordinate(0, "");
+    let shading = &c.shading;
+    let p = shading.world_to_camera.transform_point3a(glam::Vec3A::ZERO);
+    let want = glam::Vec2::splat(0.5) + 0.5 * glam::Vec2::new(p.x, p.y) / -p.z / shading.image_plane;
+    assert!((u - want.x).abs() < 1e-4 && (v - want.y).abs() < 1e-4, "render camera: {u}, {v} vs {want}");
+}

@@ -19,6 +19,7 @@ mod maya_ambient_links_path;
 mod maya_ambient_path;
 mod maya_exports_agree;
 mod maya_fog_path;
+mod maya_highlight_path;
 mod maya_path;
 mod maya_soft_shadows_path;
 mod maya_vertex_data;

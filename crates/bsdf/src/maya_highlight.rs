@@ -1,0 +1,534 @@
+//! Maya's highlights (blinn, phong, phongE, anisotropic) as mental ray for Maya computes
+//! them, and the BSDF that gives the path engine exactly the same highlight.
+//!
+//! The formulas are functions of the unit shading normal `n`, the unit direction `v`
+//! towards the viewer and the unit direction `l` towards the light (one space). Each
+//! returns the factor that multiplies `specularColor ⊙ light`: no 1/π and no N·L beyond
+//! the formula's own (Maya's convention). The classic Maya materials (`maya::specular`)
+//! call them; [`MayaBsdf`] turns them into a scattering function.
+//!
+//! **Why a lobe of Maya's own shape.** Maya's highlights are not energy-normalised lobes:
+//! blinn's is D·G·F/(N·V) with D = 1 at the peak, phong's (R·L)^n, phongE's (N·H)^p.
+//! A classic light of colour C adds s ⊙ C · H(v, l); the path engine's lights deliver
+//! π·C of irradiance per unit cos θ, so the BRDF that gives the same radiance is
+//! f(v, l) = s · H(v, l) / (π · N·L). A GGX lobe scaled to the same albedo would match
+//! the total but not the shape (Maya's blinn is GGX's distribution times 4α²·Fresnel,
+//! but with Torrance–Sparrow's masking, Schlick's Fresnel on V·H with `specularRollOff`
+//! as its normal value and the 1/(N·V) of the formula; phong's lobe is about the mirror
+//! direction, not the half vector); evaluating Maya's formula itself makes every pixel
+//! of a directly lit highlight equal the classic engine's, by construction. Sampling
+//! uses a density shaped like each lobe (GGX visible normals for blinn, a cosine power
+//! about the mirror direction for phong, about the normal for phongE's half vector,
+//! Gaussian slopes for anisotropic), so indirect and area light converge.
+//!
+//! **Energy.** These lobes are not reciprocal and not bounded by construction: a wide
+//! blinn (eccentricity 0.8, `specularColor` 1) reflects up to 1.9× the light it receives
+//! at grazing views. The path engine needs albedo ≤ 1 per lobe to keep paths bounded, so
+//! [`MayaGlossy`] tabulates the unit lobe's directional albedo a(μ) over the view cosine
+//! μ and scales the highlight at each view by min(1, 1/(a(μ)·max s)) — the highlight
+//! is Maya's exactly wherever it reflects no more than it receives (every default and
+//! common setting: blinn's default reflects 0.11–0.14, phong's 0.05–0.10). The diffuse
+//! part is the material's own Lambertian c·d beside it, as the classic shader adds them.
+//!
+//! **Reflections.** The classic materials also trace a mirror reflection weighted by
+//! `reflectivity` · `specularColor` (times blinn's Schlick factor of `specularRollOff` at
+//! N·V with `reflectionRolloff`); [`MayaBsdf`] carries it as a smooth mirror lobe of that
+//! weight (each channel at most 1), so reflected objects, lights and the environment
+//! reach the path engine as they reach the classic one.
+
+use std::f32::consts::{FRAC_1_PI, TAU};
+
+use glam::{Vec2, Vec3A};
+
+use crate::microfacet::Ggx;
+use crate::{cosine_on_side, luminance, BsdfSample, Frame, Rgb};
+
+/// Schlick's approximation with reflectance `r0` at normal incidence, for the cosine `c`
+/// between the view direction and the half vector (or the normal).
+pub fn schlick(r0: f32, c: f32) -> f32 {
+    r0 + (1.0 - r0) * (1.0 - c.clamp(0.0, 1.0)).powi(5)
+}
+
+/// Blinn's highlight (Blinn 1977, "Models of light reflection for computer synthesized
+/// pictures", the model Maya's Blinn material names its parameters after): the
+/// Trowbridge–Reitz distribution of eccentricity `ecc`, D = (e² / ((e² − 1)(N·H)² +
+/// 1))², which is 1 at the peak; the Torrance–Sparrow masking G = min(1, 2(N·H)(N·V)/(V·H),
+/// 2(N·H)(N·L)/(V·H)); a Fresnel factor whose value at normal incidence is
+/// `specularRollOff`, F = schlick(rolloff, V·H); all over N·V:
+/// D·G·F / (N·V). At the mirror peak seen head-on (V = L = N) it equals `rolloff`.
+/// mira's reading: Maya's documentation names the parameters but not the Fresnel form.
+pub fn blinn(n: Vec3A, v: Vec3A, l: Vec3A, ecc: f32, rolloff: f32) -> f32 {
+    let (nv, nl) = (n.dot(v), n.dot(l));
+    if nv <= 0.0 || nl <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let (nh, vh) = (n.dot(h).max(0.0), v.dot(h).max(1e-6));
+    let e2 = blinn_e2(ecc);
+    let d = e2 / ((e2 - 1.0) * nh * nh + 1.0);
+    let g = 1f32.min(2.0 * nh * nv / vh).min(2.0 * nh * nl / vh);
+    d * d * g * schlick(rolloff, vh) / nv
+}
+
+/// The squared eccentricity blinn uses (kept inside (0, 1): 1 would be a constant D).
+fn blinn_e2(ecc: f32) -> f32 {
+    (ecc * ecc).clamp(1e-6, 0.9999)
+}
+
+/// Phong's highlight: (R·L)^cosinePower, R the mirror image of the view direction.
+pub fn phong(n: Vec3A, v: Vec3A, l: Vec3A, power: f32) -> f32 {
+    if n.dot(l) <= 0.0 {
+        return 0.0;
+    }
+    let r = 2.0 * n.dot(v) * n - v;
+    r.dot(l).max(0.0).powf(power.max(0.0))
+}
+
+/// PhongE's highlight: (N·H)^p with p = 1/roughness² (a rough surface spreads it),
+/// scaled by `highlightSize`; the caller tints it with `whiteness`. mira's reading:
+/// Maya documents PhongE only qualitatively (a softer, cheaper Phong).
+pub fn phong_e(n: Vec3A, v: Vec3A, l: Vec3A, roughness: f32, size: f32) -> f32 {
+    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    size * n.dot(h).max(0.0).powf(phong_e_exponent(roughness))
+}
+
+/// PhongE's exponent 1/roughness² (roughness clamped to 0.01..1).
+fn phong_e_exponent(roughness: f32) -> f32 {
+    let r = roughness.clamp(0.01, 1.0);
+    1.0 / (r * r)
+}
+
+/// Maya's anisotropic highlight for the unit groove direction `x` (in the tangent plane of
+/// `n`, the U direction turned by `angle`): a Ward distribution of half-vector slopes of
+/// widths (`alpha_x`, `alpha_y`) along x and n × x, exp(−((H·x/α_x)² + (H·y/α_y)²)/(N·H)²),
+/// 1 at the peak, times the dielectric Fresnel reflectance of index `ior`
+/// (`fresnelRefractiveIndex`) at V·H relative to its value head-on, so that the peak seen
+/// head-on is 1 and the highlight brightens towards grazing angles as Fresnel does.
+pub fn anisotropic(n: Vec3A, v: Vec3A, l: Vec3A, x: Vec3A, alpha_x: f32, alpha_y: f32, ior: f32) -> f32 {
+    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let nh = n.dot(h);
+    if nh <= 0.0 {
+        return 0.0;
+    }
+    let y = n.cross(x);
+    let (sx, sy) = (h.dot(x) / alpha_x.max(1e-4), h.dot(y) / alpha_y.max(1e-4));
+    let d = (-(sx * sx + sy * sy) / (nh * nh)).exp();
+    let eta = ior.max(1.0 + 1e-4);
+    d * crate::dielectric::fresnel(v.dot(h).max(0.0), eta) / crate::dielectric::fresnel(1.0, eta)
+}
+
+/// One of Maya's highlights with its parameters, in a local frame (+Z the normal; for
+/// anisotropic, +X the grooves).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// [`blinn`] of `eccentricity` and `specularRollOff`.
+    Blinn {
+        /// `eccentricity`.
+        eccentricity: f32,
+        /// `specularRollOff`.
+        rolloff: f32,
+    },
+    /// [`phong`] of `cosinePower`.
+    Phong {
+        /// `cosinePower`.
+        power: f32,
+    },
+    /// [`phong_e`] of `roughness` and `highlightSize` (its `whiteness` is in the tint).
+    PhongE {
+        /// `roughness`.
+        roughness: f32,
+        /// `highlightSize`.
+        size: f32,
+    },
+    /// [`anisotropic`] with the grooves along the local +X.
+    Anisotropic {
+        /// The highlight's width along the grooves.
+        alpha_x: f32,
+        /// The highlight's width across them.
+        alpha_y: f32,
+        /// `fresnelRefractiveIndex`.
+        ior: f32,
+    },
+}
+
+/// Reflects `w` about the unit vector `h`.
+fn reflect(w: Vec3A, h: Vec3A) -> Vec3A {
+    2.0 * w.dot(h) * h - w
+}
+
+impl Shape {
+    /// The highlight H(v, l) for the local directions `v` (viewer) and `l` (light), both
+    /// on the +Z side (0 otherwise).
+    pub fn value(&self, v: Vec3A, l: Vec3A) -> f32 {
+        let n = Vec3A::Z;
+        match *self {
+            Shape::Blinn { eccentricity, rolloff } => blinn(n, v, l, eccentricity, rolloff),
+            Shape::Phong { power } => phong(n, v, l, power),
+            Shape::PhongE { roughness, size } => phong_e(n, v, l, roughness, size),
+            Shape::Anisotropic { alpha_x, alpha_y, ior } => anisotropic(n, v, l, Vec3A::X, alpha_x, alpha_y, ior),
+        }
+    }
+
+    /// The GGX distribution blinn's highlight is drawn from: Maya's D is π e² times GGX's
+    /// of α = e.
+    fn ggx(eccentricity: f32) -> Ggx {
+        Ggx::isotropic(blinn_e2(eccentricity).sqrt())
+    }
+
+    /// A direction `l` drawn from this lobe's sampling density given `v` (v.z > 0); `None`
+    /// when the draw falls below the surface.
+    fn sample(&self, v: Vec3A, u: Vec2) -> Option<Vec3A> {
+        let l = match *self {
+            Shape::Blinn { eccentricity, .. } => reflect(v, Shape::ggx(eccentricity).sample_visible(v, u)),
+            Shape::Phong { power } => {
+                let r = Vec3A::new(-v.x, -v.y, v.z);
+                Frame::from_normal(r).to_world(cosine_power_direction(power.max(0.0), u))
+            }
+            Shape::PhongE { roughness, .. } => reflect(v, cosine_power_direction(phong_e_exponent(roughness), u)),
+            Shape::Anisotropic { alpha_x, alpha_y, .. } => {
+                reflect(v, crate::beckmann::Beckmann::new(alpha_x, alpha_y).sample(u))
+            }
+        };
+        (l.z > 0.0).then_some(l)
+    }
+
+    /// The density of [`Shape::sample`] at `l` given `v` (both z > 0), per solid angle.
+    fn pdf(&self, v: Vec3A, l: Vec3A) -> f32 {
+        let Some(h) = (v + l).try_normalize() else { return 0.0 };
+        let vh = v.dot(h);
+        if vh <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            Shape::Blinn { eccentricity, .. } => Shape::ggx(eccentricity).d_visible(v, h) / (4.0 * vh),
+            Shape::Phong { power } => {
+                let r = Vec3A::new(-v.x, -v.y, v.z);
+                cosine_power_pdf(power.max(0.0), r.dot(l))
+            }
+            Shape::PhongE { roughness, .. } => cosine_power_pdf(phong_e_exponent(roughness), h.z) / (4.0 * vh),
+            Shape::Anisotropic { alpha_x, alpha_y, .. } => {
+                crate::beckmann::Beckmann::new(alpha_x, alpha_y).d(h) * h.z / (4.0 * vh)
+            }
+        }
+    }
+
+    /// The unit lobe's directional albedo ∫ H(v, l)/π dω_l for the view cosine `mu`
+    /// (v in the xz plane), by importance sampling on a 32 × 32 stratified grid
+    /// (a few per cent; used to bound the lobe and to choose between lobes).
+    pub fn albedo(&self, mu: f32) -> f32 {
+        let mu = mu.clamp(ALBEDO_MIN_COS, 1.0);
+        let v = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+        const N: u32 = 32;
+        let mut sum = 0.0f64;
+        for i in 0..N {
+            for j in 0..N {
+                let u = Vec2::new((i as f32 + 0.5) / N as f32, (j as f32 + 0.5) / N as f32);
+                if let Some(l) = self.sample(v, u) {
+                    let pdf = self.pdf(v, l);
+                    if pdf > 0.0 {
+                        sum += f64::from(self.value(v, l) * FRAC_1_PI / pdf);
+                    }
+                }
+            }
+        }
+        (sum / f64::from(N * N)) as f32
+    }
+}
+
+/// A direction about +Z with density (p + 1)/(2π) cos^p θ.
+fn cosine_power_direction(p: f32, u: Vec2) -> Vec3A {
+    let c = u.x.powf(1.0 / (p + 1.0));
+    let s = (1.0 - c * c).max(0.0).sqrt();
+    let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+    Vec3A::new(s * cos_phi, s * sin_phi, c)
+}
+
+/// The density of [`cosine_power_direction`] at the cosine `c`.
+fn cosine_power_pdf(p: f32, c: f32) -> f32 {
+    if c <= 0.0 {
+        return 0.0;
+    }
+    (p + 1.0) / TAU * c.powf(p)
+}
+
+/// The smallest view cosine the albedo table holds (grazing views take its value).
+const ALBEDO_MIN_COS: f32 = 0.02;
+
+/// How many view cosines the albedo table holds, evenly spaced over [0, 1].
+const ALBEDO_STEPS: usize = 9;
+
+/// A Maya highlight of a material: its shape, its tint (`specularColor`, ⊙ `whiteness`
+/// for phongE), its mirror reflection and its unit lobe's directional albedo over the
+/// view cosine, which bounds it (see the module doc). Built once per material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MayaGlossy {
+    /// The highlight.
+    pub shape: Shape,
+    /// Its tint (linear RGB; Maya's highlight multiplies the light by it).
+    pub tint: Rgb,
+    /// The mirror reflection's weight, `reflectivity` · `specularColor` (linear RGB).
+    pub mirror: Rgb,
+    /// Blinn's `reflectionRolloff`: the mirror weight is scaled by Schlick's factor of
+    /// this normal reflectance (`specularRollOff`) at N·V.
+    pub mirror_rolloff: Option<f32>,
+    /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
+    /// [`ALBEDO_MIN_COS`]).
+    albedo: [f32; ALBEDO_STEPS],
+}
+
+impl MayaGlossy {
+    /// The highlight `shape` tinted by `tint`, its albedo tabulated.
+    pub fn new(shape: Shape, tint: Rgb) -> MayaGlossy {
+        let step = 1.0 / (ALBEDO_STEPS - 1) as f32;
+        let albedo = std::array::from_fn(|k| shape.albedo(k as f32 * step));
+        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), mirror: Rgb::ZERO, mirror_rolloff: None, albedo }
+    }
+
+    /// The same highlight with a mirror reflection of weight `mirror` (each channel
+    /// clamped to 0..1), scaled by Schlick's factor of `rolloff` at N·V when given.
+    pub fn with_mirror(mut self, mirror: Rgb, rolloff: Option<f32>) -> MayaGlossy {
+        self.mirror = mirror.clamp(Rgb::ZERO, Rgb::ONE);
+        self.mirror_rolloff = rolloff;
+        self
+    }
+
+    /// The same highlight and reflection with their weights scaled by `k` (a layer's
+    /// share).
+    pub fn scaled(mut self, k: f32) -> MayaGlossy {
+        self.tint *= k.max(0.0);
+        self.mirror *= k.clamp(0.0, 1.0);
+        self
+    }
+
+    /// The unit lobe's directional albedo at the view cosine `mu` (the table, linearly
+    /// interpolated).
+    pub fn unit_albedo(&self, mu: f32) -> f32 {
+        let x = mu.abs().clamp(0.0, 1.0) * (ALBEDO_STEPS - 1) as f32;
+        let k = (x as usize).min(ALBEDO_STEPS - 2);
+        let t = x - k as f32;
+        self.albedo[k] * (1.0 - t) + self.albedo[k + 1] * t
+    }
+
+    /// The BSDF seen from `wo` (local frame) with the Lambertian `diffuse` albedo beside
+    /// the highlight, which is scaled down where it would reflect more than 1.
+    pub fn bsdf(&self, diffuse: Rgb, wo: Vec3A) -> MayaBsdf {
+        let a = self.unit_albedo(wo.z);
+        let most = self.tint.max_element() * a;
+        let tint = if most > 1.0 { self.tint / most } else { self.tint };
+        let mirror = match self.mirror_rolloff {
+            Some(r0) => self.mirror * schlick(r0, wo.z.abs()),
+            None => self.mirror,
+        };
+        let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint) * a, luminance(mirror).max(0.0));
+        let total = d + g + m;
+        let (diffuse_share, mirror_share) = if total > 0.0 { (d / total, m / total) } else { (1.0, 0.0) };
+        MayaBsdf { diffuse, tint, mirror, shape: self.shape, diffuse_share, mirror_share }
+    }
+}
+
+/// A Maya material at one shading point: Lambertian reflection of `diffuse` plus the
+/// highlight f = tint · H(v, l)/(π·N·L) plus a smooth mirror of reflectance `mirror`
+/// (see the module doc). Both sides of the surface scatter alike (the classic shaders
+/// turn the normal towards the viewer).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MayaBsdf {
+    /// The diffuse albedo (Maya's `color` · `diffuse`).
+    pub diffuse: Rgb,
+    /// The highlight's tint (already bounded).
+    pub tint: Rgb,
+    /// The mirror reflection's reflectance (a delta lobe: not in `eval` or `pdf`).
+    pub mirror: Rgb,
+    /// The highlight.
+    pub shape: Shape,
+    /// The probability of sampling the diffuse lobe.
+    diffuse_share: f32,
+    /// The probability of sampling the mirror.
+    mirror_share: f32,
+}
+
+/// `wo` and `wi` mirrored to the +Z side when `wo` is below; `None` when they lie on
+/// different sides.
+fn upper(wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A)> {
+    if wo.z * wi.z <= 0.0 {
+        return None;
+    }
+    let flip = |w: Vec3A| if wo.z < 0.0 { Vec3A::new(w.x, w.y, -w.z) } else { w };
+    Some((flip(wo), flip(wi)))
+}
+
+impl MayaBsdf {
+    /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side.
+    pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        let Some((v, l)) = upper(wo, wi) else { return Rgb::ZERO };
+        (self.diffuse + self.tint * (self.shape.value(v, l) / l.z)) * FRAC_1_PI
+    }
+
+    /// The density of the non-delta part of the mixture: the diffuse lobe's cosine
+    /// density and the highlight's, by their shares.
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        let Some((v, l)) = upper(wo, wi) else { return 0.0 };
+        let p = self.diffuse_share;
+        p * l.z * FRAC_1_PI + (1.0 - p - self.mirror_share).max(0.0) * self.shape.pdf(v, l)
+    }
+
+    /// Chooses the mirror with probability `mirror_share`, the diffuse lobe with
+    /// `diffuse_share`, else the highlight's density, by `u_lobe`; a continuous sample
+    /// carries the continuous mixture's f and pdf, the mirror's its reflectance over
+    /// |cos θ| and its share (a delta).
+    pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+        if wo.z == 0.0 {
+            return None;
+        }
+        if u_lobe >= 1.0 - self.mirror_share {
+            let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
+            return Some(BsdfSample { wi, f: self.mirror / wo.z.abs(), pdf: self.mirror_share, delta: true });
+        }
+        let wi = if u_lobe < self.diffuse_share {
+            cosine_on_side(wo, u)?
+        } else {
+            let v = Vec3A::new(wo.x, wo.y, wo.z.abs());
+            let l = self.shape.sample(v, u)?;
+            if wo.z < 0.0 {
+                Vec3A::new(l.x, l.y, -l.z)
+            } else {
+                l
+            }
+        };
+        let pdf = self.pdf(wo, wi);
+        (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval(wo, wi), pdf, delta: false })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{testing, Bsdf};
+    use std::f32::consts::PI;
+
+    fn shapes() -> [Shape; 5] {
+        [
+            Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 },
+            Shape::Blinn { eccentricity: 0.8, rolloff: 0.7 },
+            Shape::Phong { power: 20.0 },
+            Shape::PhongE { roughness: 0.5, size: 0.5 },
+            Shape::Anisotropic { alpha_x: 0.2, alpha_y: 0.4, ior: 6.0 },
+        ]
+    }
+
+    /// ∫ H/π dω over the hemisphere by a midpoint rule in (cos θ, φ), 1000 × 1000.
+    fn albedo_by_quadrature(shape: Shape, mu: f32) -> f32 {
+        let v = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+        let n = 1000;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            let c = (i as f32 + 0.5) / n as f32;
+            let s = (1.0 - c * c).sqrt();
+            for j in 0..n {
+                let phi = (j as f32 + 0.5) / n as f32 * TAU;
+                let l = Vec3A::new(s * phi.cos(), s * phi.sin(), c);
+                sum += f64::from(shape.value(v, l));
+            }
+        }
+        (sum * f64::from(TAU) / f64::from(n * n) / f64::from(PI)) as f32
+    }
+
+    #[test]
+    fn the_evaluation_gives_the_classic_highlight_under_a_light_of_pi_times_its_colour() {
+        // A light of colour C from l: the classic material adds s·C·H(v, l); the path
+        // engine's light brings π·C·cos θ of irradiance, reflected by f.
+        let v = Vec3A::new(0.3, -0.1, 0.9).normalize();
+        let l = Vec3A::new(-0.35, 0.05, 0.8).normalize();
+        for shape in shapes() {
+            let g = MayaGlossy::new(shape, Rgb::new(0.5, 0.4, 0.3));
+            let b = g.bsdf(Rgb::new(0.4, 0.2, 0.1), v);
+            let path = b.eval(v, l) * (PI * l.z);
+            let classic = Rgb::new(0.4, 0.2, 0.1) * l.z + Rgb::new(0.5, 0.4, 0.3) * shape.value(v, l);
+            assert!((path - classic).abs().max_element() < 1e-5, "{shape:?}: {path} vs {classic}");
+            // Both sides alike.
+            let flip = |w: Vec3A| Vec3A::new(w.x, w.y, -w.z);
+            assert!((b.eval(flip(v), flip(l)) - b.eval(v, l)).abs().max_element() < 1e-6);
+            assert_eq!(b.eval(v, flip(l)), Rgb::ZERO);
+        }
+    }
+
+    #[test]
+    fn the_tabulated_albedo_matches_quadrature_and_sampling_matches_the_density() {
+        for shape in shapes() {
+            for mu in [1.0, 0.6, 0.25] {
+                let (table, exact) = (shape.albedo(mu), albedo_by_quadrature(shape, mu));
+                assert!((table - exact).abs() < 0.03 * exact + 1e-3, "{shape:?} at {mu}: {table} vs {exact}");
+            }
+            let b = Bsdf::Maya(MayaGlossy::new(shape, Rgb::splat(0.5)).bsdf(Rgb::splat(0.3), testing::incidences()[1]));
+            for wo in testing::incidences() {
+                testing::chi_square(&b, wo);
+            }
+        }
+    }
+
+    #[test]
+    fn a_highlight_that_would_reflect_more_than_it_receives_is_bounded_to_one() {
+        // Blinn of eccentricity 0.8 and specularColor 1: its unit albedo exceeds 1 at
+        // grazing views (1.9 at μ = 0.05 by quadrature).
+        let wide = Shape::Blinn { eccentricity: 0.8, rolloff: 0.7 };
+        assert!(albedo_by_quadrature(wide, 0.1) > 1.3);
+        let g = MayaGlossy::new(wide, Rgb::ONE);
+        for mu in [1.0f32, 0.5, 0.2, 0.1, 0.03] {
+            let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+            // The highlight alone (no diffuse): its white-furnace albedo.
+            let a = testing::albedo(&Bsdf::Maya(g.bsdf(Rgb::ZERO, wo)), wo, 100_000);
+            assert!(a.max_element() <= 1.03, "albedo {a} at μ = {mu}");
+        }
+        // A default blinn is not touched: its tint stays specularColor at every view.
+        let default = MayaGlossy::new(Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 }, Rgb::splat(0.5));
+        for mu in [1.0f32, 0.5, 0.1, 0.0] {
+            let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu.max(1e-3));
+            assert_eq!(default.bsdf(Rgb::splat(0.4), wo).tint, Rgb::splat(0.5));
+        }
+    }
+
+    #[test]
+    fn the_mirror_reflects_its_weight_beside_the_other_lobes() {
+        // Blinn's default with reflectivity 0.5 · specularColor (0.5, 0.4, 0.2) and
+        // reflectionRolloff: the mirror reflects its weight × schlick(0.7, N·V); the
+        // furnace albedo is diffuse + highlight + mirror.
+        let shape = Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 };
+        let tint = Rgb::new(0.5, 0.4, 0.2);
+        let g = MayaGlossy::new(shape, tint).with_mirror(tint * 0.5, Some(0.7));
+        for mu in [1.0f32, 0.5] {
+            let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+            let b = g.bsdf(Rgb::splat(0.3), wo);
+            let mirror = tint * 0.5 * schlick(0.7, mu);
+            assert!((b.mirror - mirror).abs().max_element() < 1e-6);
+            let s = b.sample(wo, Vec2::new(0.3, 0.6), 0.9999).expect("the mirror");
+            assert!(s.delta && (s.wi - Vec3A::new(-wo.x, 0.0, wo.z)).length() < 1e-6);
+            assert!((s.weight() - mirror / b.mirror_share).abs().max_element() < 1e-5);
+            let want = Rgb::splat(0.3) + tint * g.unit_albedo(mu) + mirror;
+            let a = testing::albedo(&Bsdf::Maya(b), wo, 200_000);
+            assert!((a - want).abs().max_element() < 0.01, "μ = {mu}: {a} vs {want}");
+        }
+    }
+
+    #[test]
+    fn the_peak_is_the_formula_over_pi() {
+        // Seen and lit head-on, blinn's highlight is the roll-off, phong's and
+        // anisotropic's 1, phongE's its size: f = diffuse/π + tint·H/π.
+        let n = Vec3A::Z;
+        let cases = [
+            (Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 }, 0.7),
+            (Shape::Phong { power: 20.0 }, 1.0),
+            (Shape::PhongE { roughness: 0.5, size: 0.6 }, 0.6),
+            (Shape::Anisotropic { alpha_x: 0.2, alpha_y: 0.4, ior: 6.0 }, 1.0),
+        ];
+        for (shape, peak) in cases {
+            let b = MayaGlossy::new(shape, Rgb::splat(0.5)).bsdf(Rgb::splat(0.2), n);
+            let want = (0.2 + 0.5 * peak) / PI;
+            assert!((b.eval(n, n).x - want).abs() < 1e-6, "{shape:?}");
+        }
+    }
+}
