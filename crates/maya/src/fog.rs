@@ -38,9 +38,9 @@
 //!
 //! Each fog's effect is affine in the colour it receives (result ← keep ⊙ result + add),
 //! and it tells the two terms to the path engine ([`shader::ShaderImpl::volume_terms`]),
-//! which applies a camera volume made of fogs to each segment of its paths (see
-//! `render`'s integrator); a fog in a material's volume is left out there, and
-//! [`fog_warnings`] says so.
+//! which applies a volume made of fogs — the camera's, or a material's inside that
+//! material's objects — to each segment of its paths (see `render`'s integrator); a fog
+//! in a volume list with other shaders is left out there, and [`fog_warnings`] says so.
 
 use glam::Vec3A;
 use shader::volume::{segment_length, VolumeTerms};
@@ -287,19 +287,37 @@ pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32)
     sum
 }
 
-/// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
-/// engine leaves out (it applies the camera's volume when every shader in it is a fog,
-/// not a material's volume), a physical fog of a water type (the water is not
-/// rendered), and a volumeFog with a cone dropoff shape (not implemented).
-pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
-    let mut camera = Vec::new();
-    if let Some(head) = shading.volume.filter(|&v| shader::volume::is_affine(shading, v)) {
+/// The nodes the path engine applies as volumes: those of the camera's and the
+/// materials' volume shader lists that are affine ([`shader::volume::is_affine`]), and
+/// the nodes Maya's volume samplers among them are connected to.
+fn applied_volume_nodes(shading: &shader::Shading) -> Vec<shader::NodeId> {
+    let heads = std::iter::once(shading.volume).chain(shading.materials.iter().map(|m| m.volume)).flatten();
+    let mut applied = Vec::new();
+    for head in heads.filter(|&v| shader::volume::is_affine(shading, v)) {
         let mut node = Some(head);
-        while let Some(n) = node.filter(|_| camera.len() < 1024) {
-            camera.push(n);
-            node = shading.graph.nodes.get(n as usize).and_then(|x| x.next);
+        let mut guard = 0;
+        while let Some(n) = node.filter(|_| guard < 1024) {
+            applied.push(n);
+            let x = &shading.graph.nodes[n as usize];
+            if let Some(shader::Slot::Connect { node: source, .. }) =
+                x.slots.first().filter(|_| x.imp.is_some_and(|i| i.volume_affine.is_some()))
+            {
+                applied.push(*source);
+            }
+            node = x.next;
+            guard += 1;
         }
     }
+    applied
+}
+
+/// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
+/// engine leaves out (it applies the camera's and the materials' volumes when every
+/// shader in them is a fog, see [`applied_volume_nodes`]), a physical fog of a water
+/// type (the water is not rendered), and a volumeFog with a cone dropoff shape (not
+/// implemented).
+pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
+    let applied = applied_volume_nodes(shading);
     let mut warnings = Vec::new();
     for (i, node) in shading.graph.nodes.iter().enumerate() {
         let name = node.decl.name.as_str();
@@ -314,11 +332,11 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
         ) {
             continue;
         }
-        if !camera.contains(&(i as shader::NodeId)) {
+        if !applied.contains(&(i as shader::NodeId)) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
                 format!(
-                    "'{name}': the path engine applies fogs only as the camera's volume; it renders without this one"
+                    "'{name}': the path engine applies fogs only in volumes made of fogs (the camera's or a material's); it renders without this one"
                 ),
             ));
         }

@@ -80,7 +80,8 @@ pub fn is_affine(shading: &Shading, head: NodeId) -> bool {
     let mut guard = 0;
     while let Some(n) = node {
         let Some(x) = shading.graph.nodes.get(n as usize) else { return false };
-        if x.imp.and_then(|i| i.volume_terms).is_none() {
+        let Some(imp) = x.imp.filter(|i| i.volume_terms.is_some()) else { return false };
+        if imp.volume_affine.is_some_and(|affine| !affine(shading, n)) {
             return false;
         }
         node = x.next;
