@@ -222,7 +222,7 @@ fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
         sun: ctx.scalar(n, 24) * rgb(ctx.color(n, 27)),
     };
     let length = segment_length(&ctx.state);
-    let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length) } else { Vec3A::ZERO };
+    let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length, None) } else { Vec3A::ZERO };
     fog.terms(ctx.state.org, ctx.state.dir, length, lit)
 }
 
@@ -255,14 +255,17 @@ fn light_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     let length = segment_length(&ctx.state);
     let alpha = light_fog_share(ctx.scalar(n, 1), length, ctx.bool(n, 3));
     let color = rgb(ctx.color(n, 0));
-    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, 4, length) } else { Vec3A::ZERO };
+    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, 4, length, None) } else { Vec3A::ZERO };
     terms(alpha, color, shown, ctx.bool(n, 2))
 }
 
 /// What the fog's lights (light array parameter `list`; every light when it is empty)
 /// deliver at the middle of the segment of `length` (at its origin for an infinite one),
-/// from every side.
-pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
+/// from every side; with `light_scatter` each light's light is weighted by the
+/// Henyey–Greenstein phase of g = 1 − `light_scatter` at the angle between the ray and
+/// the direction towards the light ([`physical_fog::phase`], 1 for uniform scattering),
+/// so that a fog that scatters directionally glows around the lights it is seen against.
+pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32, light_scatter: Option<f32>) -> Vec3A {
     let saved = ctx.state.clone();
     let at = if length.is_finite() { saved.org + saved.dir * (0.5 * length) } else { saved.org };
     ctx.state.point = at;
@@ -277,7 +280,8 @@ pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32)
         lp.both_sides = true;
         let mut got = Vec3A::ZERO;
         while let Some(s) = ctx.sample_light(&mut lp) {
-            got += rgb(s.color);
+            let weight = light_scatter.map_or(1.0, |ls| physical_fog::phase(ls, saved.dir.dot(s.dir)));
+            got += rgb(s.color) * weight;
         }
         if lp.samples > 0 {
             sum += got / lp.samples as f32;
@@ -313,9 +317,8 @@ fn applied_volume_nodes(shading: &shader::Shading) -> Vec<shader::NodeId> {
 
 /// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
 /// engine leaves out (it applies the camera's and the materials' volumes when every
-/// shader in them is a fog, see [`applied_volume_nodes`]), a physical fog of a water
-/// type (the water is not rendered), and a volumeFog with a cone dropoff shape (not
-/// implemented).
+/// shader in them is a fog, see [`applied_volume_nodes`]) and a physical fog of a water
+/// type (the water is not rendered).
 pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let applied = applied_volume_nodes(shading);
     let mut warnings = Vec::new();
@@ -350,12 +353,6 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
                 _ => None,
             }
         };
-        if slot_of("dropoffShape").is_some_and(|v| v == 3 || v == 4) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!("'{name}': the cone dropoff shapes are not implemented; the fog has no dropoff"),
-            ));
-        }
         let physical = slot_of("physicalFog").is_some_and(|v| v != 0);
         if physical && slot_of("fogType").is_some_and(|t| t >= 3) {
             warnings.push(mi::Diagnostic::warning(
