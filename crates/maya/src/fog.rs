@@ -22,7 +22,14 @@
 //!   length of the segment inside the fog — all of it, or with `useHeight` the part
 //!   whose world height lies between `minHeight` and `maxHeight` (above `minHeight`
 //!   when `maxHeight` is below it, as Maya documents); an infinite segment in the fog is
-//!   saturated (α = 1). The fog shows its own colour (E = 1). With `physicalFog` on,
+//!   saturated (α = 1). The fog shows its own colour (E = 1). The fog fills the ray
+//!   between the camera's clip planes (`distanceClipPlanes` 1, mira's reading of the
+//!   default: all of the segment, as before) or between its own clip distances
+//!   (`distanceClipPlanes` 0, Maya's "Fog Near/Far": `fogNearDistance` 0 and
+//!   `fogFarDistance` 200 from the ray's origin — the camera for eye rays, as Maya's
+//!   "distances from the camera"; the enumeration's numbers and the far default are
+//!   mira's reading, the reference names the attributes without them); simple and
+//!   physical fog alike. With `physicalFog` on,
 //!   Maya's physically based fog replaces all this (the parameters after `physicalFog`:
 //!   fog type, fog and air media, planet, axis, sun, and the `lightList` of the uniform
 //!   type; see [`crate::physical_fog`]); `colorBasedTransparency` does not apply to it.
@@ -139,7 +146,10 @@ maya_volume!(
         "sunAzimuth",
         "sunElevation",
         "sunColor",
-        "lightList"
+        "lightList",
+        "distanceClipPlanes",
+        "fogNearDistance",
+        "fogFarDistance"
     ],
     env_fog_terms
 );
@@ -171,16 +181,36 @@ pub fn env_fog_share(inside: f32, saturation: f32) -> f32 {
     (inside / saturation).min(1.0)
 }
 
+/// The part [t0, t1] of a segment of `length` (infinite allowed) that lies between the
+/// fog's clip distances `near` and `far` from the segment's origin; `None` when none does.
+pub fn clip_span(length: f32, near: f32, far: f32) -> Option<(f32, f32)> {
+    let (t0, t1) = (near.max(0.0), far.min(length));
+    (t1 > t0).then_some((t0, t1))
+}
+
+/// The part of the state's segment the environment fog fills: all of it with the camera's
+/// clip planes (`distanceClipPlanes` 1, the default), the part between `fogNearDistance`
+/// and `fogFarDistance` along the ray with the fog's own (0); `None` when empty.
+fn env_fog_span(ctx: &mut Ctx, n: NodeId) -> Option<(f32, f32)> {
+    let length = segment_length(&ctx.state);
+    if ctx.int(n, 29) != 0 {
+        return Some((0.0, length));
+    }
+    clip_span(length, ctx.scalar(n, 30), ctx.scalar(n, 31))
+}
+
 fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     if carries_light(ctx) {
         return VolumeTerms::NONE;
     }
+    let Some((t0, t1)) = env_fog_span(ctx, n) else { return VolumeTerms::NONE };
     if ctx.bool(n, 6) {
-        return physical_fog_terms(ctx, n);
+        return physical_fog_terms(ctx, n, (t0, t1));
     }
-    let length = segment_length(&ctx.state);
+    let org = ctx.state.org + ctx.state.dir * t0;
+    let length = t1 - t0;
     let inside = if ctx.bool(n, 3) {
-        length_in_band(ctx.state.org, ctx.state.dir, length, ctx.scalar(n, 4), ctx.scalar(n, 5))
+        length_in_band(org, ctx.state.dir, length, ctx.scalar(n, 4), ctx.scalar(n, 5))
     } else {
         length
     };
@@ -190,8 +220,8 @@ fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
 }
 
 /// envFog's physical fog (the parameters from index 7 on; see [`crate::physical_fog`])
-/// over the state's segment.
-fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
+/// over the part `span` of the state's segment (distances from its origin).
+fn physical_fog_terms(ctx: &mut Ctx, n: NodeId, span: (f32, f32)) -> VolumeTerms {
     let fog_type = ctx.int(n, 7);
     let profile = match fog_type {
         0 | 4 => Profile::Uniform,
@@ -223,7 +253,7 @@ fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     };
     let length = segment_length(&ctx.state);
     let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length, None) } else { Vec3A::ZERO };
-    fog.terms(ctx.state.org, ctx.state.dir, length, lit)
+    fog.terms(ctx.state.org + ctx.state.dir * span.0, ctx.state.dir, span.1 - span.0, lit)
 }
 
 maya_volume!(
@@ -385,6 +415,18 @@ mod tests {
         assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), slanted, 5.0, 1.0, 3.0), 2.5));
         assert_eq!(length_in_band(Vec3A::new(0.0, 2.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 7.0);
         assert_eq!(length_in_band(Vec3A::new(0.0, 5.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 0.0);
+    }
+
+    /// The clip distances cut a segment to the part between them; an infinite one ends at
+    /// the far distance; a segment ending before the near distance has none.
+    #[test]
+    fn clip_distances_cut_the_segment() {
+        assert_eq!(clip_span(4.0, 1.0, 2.5), Some((1.0, 2.5)));
+        assert_eq!(clip_span(2.0, 1.0, 2.5), Some((1.0, 2.0)));
+        assert_eq!(clip_span(f32::INFINITY, 1.0, 2.5), Some((1.0, 2.5)));
+        assert_eq!(clip_span(0.5, 1.0, 2.5), None);
+        assert_eq!(clip_span(4.0, -3.0, 2.5), Some((0.0, 2.5)));
+        assert_eq!(clip_span(4.0, 2.0, 1.0), None);
     }
 
     /// The shares against their formulas: linear up to saturation, exponential in the

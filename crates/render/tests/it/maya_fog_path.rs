@@ -253,3 +253,36 @@ shader "vf" "maya_volumefog" ("color" 1 0.5 0.25, "transparency" 0.5 0.5 0.5, "d
         }
     }
 }
+
+/// envFog's own clip distances (`distanceClipPlanes` 0): the fog fills the rays only
+/// between `fogNearDistance` and `fogFarDistance` from the camera, in both engines
+/// (1e-3). Simple fog, black, saturation 10, between 1 and 2.5 over the plane 4 away:
+/// 1.5 units, 0.8 · (1 − 0.15); rays that leave the scene (no plane) are no longer
+/// saturated: colour 0.2 0.4 0.6 covers 0.15 of black, 0.15 · c. Physical uniform fog
+/// between 1 and 3: 2 units of it, 0.8 · exp(−2σt) + (1 − exp(−2σt)) · 0 (unlit).
+/// The default (`distanceClipPlanes` 1, the camera's clip planes) fills all of the ray.
+#[test]
+fn env_fog_fills_the_ray_between_its_clip_distances() {
+    let clip = r#""distanceClipPlanes" 0, "fogNearDistance" 1, "fogFarDistance" 2.5"#;
+    let black =
+        format!(r#""maya_envfog" ("color" 0 0 0, "colorBasedTransparency" off, "saturationDistance" 10, {clip})"#);
+    let coloured = format!(r#""maya_envfog" ("color" 0.2 0.4 0.6, "saturationDistance" 10, {clip})"#);
+    let physical = r#""maya_envfog" ("physicalFog" on, "fogType" 0, "fogDensity" 0.2, "fogColor" 1 0.5 0.25, "fogOpacity" 0.5 0.5 0.5, "distanceClipPlanes" 0, "fogNearDistance" 1, "fogFarDistance" 3)"#;
+    let unclipped = r#""maya_envfog" ("color" 0 0 0, "colorBasedTransparency" off, "saturationDistance" 10, "fogNearDistance" 1, "fogFarDistance" 2.5)"#;
+    let physical_want = [1.0f32, 0.5, 0.25].map(|c| 0.8 * (-0.2 * (c + 0.5) * 2.0f32).exp());
+    let cases: [(&str, bool, [f32; 3]); 4] = [
+        (&black, true, [0.8 * 0.85; 3]),
+        (&coloured, false, [0.15 * 0.2, 0.15 * 0.4, 0.15 * 0.6]),
+        (physical, true, physical_want),
+        (unclipped, true, [0.8 * 0.6; 3]),
+    ];
+    for (volume, plane, want) in cases {
+        for (engine, px) in ["classic", "path"].iter().zip(both_engines(&scene(volume, false, plane))) {
+            for p in px {
+                for c in 0..3 {
+                    assert!((p[c] - want[c]).abs() < 1e-3, "{engine}: {volume}: pixel {p:?}, want {want:?}");
+                }
+            }
+        }
+    }
+}
