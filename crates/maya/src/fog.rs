@@ -31,8 +31,9 @@
 //!   mira's reading, the reference names the attributes without them); simple and
 //!   physical fog alike. With `physicalFog` on,
 //!   Maya's physically based fog replaces all this (the parameters after `physicalFog`:
-//!   fog type, fog and air media, planet, axis, sun, and the `lightList` of the uniform
-//!   type; see [`crate::physical_fog`]); `colorBasedTransparency` does not apply to it.
+//!   fog type, fog and air media, planet, axis, sun, the `lightList` of the uniform
+//!   type and the water of the Water types; see [`crate::physical_fog`]);
+//!   `colorBasedTransparency` does not apply to it.
 //! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
 //!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
 //!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
@@ -53,7 +54,7 @@ use glam::Vec3A;
 use shader::volume::{segment_length, VolumeTerms};
 use shader::{Ctx, NodeId, RayType, Value};
 
-use crate::physical_fog::{self, Medium, PhysicalFog, Profile};
+use crate::physical_fog::{self, Medium, PhysicalFog, Profile, Water};
 use crate::values::{rgb, rgba};
 
 /// The fog's effect as affine terms (see the module doc): `alpha` the share α, `color` the
@@ -149,7 +150,14 @@ maya_volume!(
         "lightList",
         "distanceClipPlanes",
         "fogNearDistance",
-        "fogFarDistance"
+        "fogFarDistance",
+        "waterDensity",
+        "waterColor",
+        "waterOpacity",
+        "waterLevel",
+        "waterDepth",
+        "waterLightDecay",
+        "waterLightScatter"
     ],
     env_fog_terms
 );
@@ -224,12 +232,21 @@ fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
 fn physical_fog_terms(ctx: &mut Ctx, n: NodeId, span: (f32, f32)) -> VolumeTerms {
     let fog_type = ctx.int(n, 7);
     let profile = match fog_type {
-        0 | 4 => Profile::Uniform,
         1 | 5 => Profile::Atmospheric,
         2 | 6 => Profile::Sky,
-        // Water alone: the water is not rendered (warned at compile time).
-        _ => return VolumeTerms::NONE,
+        _ => Profile::Uniform,
     };
+    let water = (3..=6).contains(&fog_type).then(|| {
+        Water::new(
+            ctx.scalar(n, 32),
+            rgb(ctx.color(n, 33)),
+            rgb(ctx.color(n, 34)),
+            ctx.scalar(n, 35),
+            ctx.scalar(n, 36),
+            ctx.scalar(n, 37),
+            ctx.scalar(n, 38),
+        )
+    });
     let mut medium = |first: usize| {
         Medium::new(
             ctx.scalar(n, first),
@@ -250,9 +267,15 @@ fn physical_fog_terms(ctx: &mut Ctx, n: NodeId, span: (f32, f32)) -> VolumeTerms
         planet_radius: ctx.scalar(n, 22),
         sun_dir: physical_fog::sun_direction(up, ctx.scalar(n, 26), ctx.scalar(n, 25)),
         sun: ctx.scalar(n, 24) * rgb(ctx.color(n, 27)),
+        water,
+        air: fog_type != 3,
     };
     let length = segment_length(&ctx.state);
-    let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length, None) } else { Vec3A::ZERO };
+    let lit = if profile == Profile::Uniform && fog_type != 3 {
+        received_light(ctx, n, 28, length, None)
+    } else {
+        Vec3A::ZERO
+    };
     fog.terms(ctx.state.org + ctx.state.dir * span.0, ctx.state.dir, span.1 - span.0, lit)
 }
 
@@ -345,10 +368,9 @@ fn applied_volume_nodes(shading: &shader::Shading) -> Vec<shader::NodeId> {
     applied
 }
 
-/// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
+/// The warnings, at the shader's position, about the fogs of `shading`: each fog the path
 /// engine leaves out (it applies the camera's and the materials' volumes when every
-/// shader in them is a fog, see [`applied_volume_nodes`]) and a physical fog of a water
-/// type (the water is not rendered).
+/// shader in them is a fog, see [`applied_volume_nodes`]).
 pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
     let applied = applied_volume_nodes(shading);
     let mut warnings = Vec::new();
@@ -371,23 +393,6 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
                 format!(
                     "'{name}': the path engine applies fogs only in volumes made of fogs (the camera's or a material's); it renders without this one"
                 ),
-            ));
-        }
-        let slot_of = |param: &str| {
-            let i = match node.imp {
-                Some(imp) => imp.params.iter().position(|p| *p == param),
-                None => node.decl.param(param),
-            };
-            match i.and_then(|i| node.slots.get(i)) {
-                Some(shader::Slot::Value(v)) => Some(v.int()),
-                _ => None,
-            }
-        };
-        let physical = slot_of("physicalFog").is_some_and(|v| v != 0);
-        if physical && slot_of("fogType").is_some_and(|t| t >= 3) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!("'{name}': the water of physical fog's water types is not rendered; only the fog above it is"),
             ));
         }
     }

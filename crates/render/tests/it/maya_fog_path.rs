@@ -286,3 +286,45 @@ fn env_fog_fills_the_ray_between_its_clip_distances() {
         }
     }
 }
+
+/// Physical fog's water (`fogType` 3, Water alone) over the plane 4 below the camera, in
+/// both engines, against the model (1e-3; see `maya::physical_fog`): water below height
+/// 2 of σs = 0.2·colour, σa = 0.2·0.5 keeps exp(−2σt) of the plane and adds the sun's
+/// light (1.5, overhead, uniform scattering) dimmed with depth z as exp(−2z/4):
+/// 1.5·σs·(1 − e^(−2(σt + ½)))/(σt + ½). With Water/Fog (`fogType` 4) a uniform fog of
+/// density 0.1 (colour and opacity white) fills the 2 units above the water, and fog and
+/// water are lit by the fog's lights (none here): both only keep.
+#[test]
+fn both_engines_render_physical_fog_water_by_its_formulas() {
+    let water = r#""physicalFog" on, "waterDensity" 0.2, "waterColor" 1 0.5 0.25, "waterOpacity" 0.5 0.5 0.5, "waterLevel" 2, "waterDepth" 4, "waterLightDecay" 2, "sunIntensity" 1.5, "sunElevation" 90"#;
+    let in_water = |c: f32| {
+        let (ss, st) = (0.2 * c, 0.2 * (c + 0.5));
+        (0.8 * (-2.0 * st).exp(), 1.5 * ss * (1.0 - (-2.0 * (st + 0.5)).exp()) / (st + 0.5))
+    };
+    let alone = [1.0f32, 0.5, 0.25].map(|c| {
+        let (keep, add) = in_water(c);
+        keep + add
+    });
+    // Above the water: σt = 0.1·(1 + 1) over 2 units, nothing scattered in (no light).
+    let above = (-0.2f32 * 2.0).exp();
+    let with_fog = [1.0f32, 0.5, 0.25].map(|c| above * in_water(c).0);
+    let cases = [
+        (
+            format!(r#""maya_envfog" ({water}, "fogType" 3, "fogDensity" 0.1, "fogColor" 1 1 1, "fogOpacity" 1 1 1)"#),
+            alone,
+        ),
+        (
+            format!(r#""maya_envfog" ({water}, "fogType" 4, "fogDensity" 0.1, "fogColor" 1 1 1, "fogOpacity" 1 1 1)"#),
+            with_fog,
+        ),
+    ];
+    for (volume, want) in &cases {
+        for (engine, px) in ["classic", "path"].iter().zip(both_engines(&scene(volume, false, true))) {
+            for p in px {
+                for c in 0..3 {
+                    assert!((p[c] - want[c]).abs() < 1e-3, "{engine}: {volume}: pixel {p:?}, want {want:?}");
+                }
+            }
+        }
+    }
+}
