@@ -22,10 +22,18 @@
 //!   length of the segment inside the fog — all of it, or with `useHeight` the part
 //!   whose world height lies between `minHeight` and `maxHeight` (above `minHeight`
 //!   when `maxHeight` is below it, as Maya documents); an infinite segment in the fog is
-//!   saturated (α = 1). The fog shows its own colour (E = 1). With `physicalFog` on,
+//!   saturated (α = 1). The fog shows its own colour (E = 1). The fog fills the ray
+//!   between the camera's clip planes (`distanceClipPlanes` 1, mira's reading of the
+//!   default: all of the segment, as before) or between its own clip distances
+//!   (`distanceClipPlanes` 0, Maya's "Fog Near/Far": `fogNearDistance` 0 and
+//!   `fogFarDistance` 200 from the ray's origin — the camera for eye rays, as Maya's
+//!   "distances from the camera"; the enumeration's numbers and the far default are
+//!   mira's reading, the reference names the attributes without them); simple and
+//!   physical fog alike. With `physicalFog` on,
 //!   Maya's physically based fog replaces all this (the parameters after `physicalFog`:
-//!   fog type, fog and air media, planet, axis, sun, and the `lightList` of the uniform
-//!   type; see [`crate::physical_fog`]); `colorBasedTransparency` does not apply to it.
+//!   fog type, fog and air media, planet, axis, sun, the `lightList` of the uniform
+//!   type and the water of the Water types; see [`crate::physical_fog`]);
+//!   `colorBasedTransparency` does not apply to it.
 //! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
 //!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
 //!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
@@ -38,15 +46,15 @@
 //!
 //! Each fog's effect is affine in the colour it receives (result ← keep ⊙ result + add),
 //! and it tells the two terms to the path engine ([`shader::ShaderImpl::volume_terms`]),
-//! which applies a camera volume made of fogs to each segment of its paths (see
-//! `render`'s integrator); a fog in a material's volume is left out there, and
-//! [`fog_warnings`] says so.
+//! which applies a volume made of fogs — the camera's, or a material's inside that
+//! material's objects — to each segment of its paths (see `render`'s integrator); a fog
+//! in a volume list with other shaders is left out there, and [`fog_warnings`] says so.
 
 use glam::Vec3A;
 use shader::volume::{segment_length, VolumeTerms};
 use shader::{Ctx, NodeId, RayType, Value};
 
-use crate::physical_fog::{self, Medium, PhysicalFog, Profile};
+use crate::physical_fog::{self, Medium, PhysicalFog, Profile, Water};
 use crate::values::{rgb, rgba};
 
 /// The fog's effect as affine terms (see the module doc): `alpha` the share α, `color` the
@@ -139,7 +147,17 @@ maya_volume!(
         "sunAzimuth",
         "sunElevation",
         "sunColor",
-        "lightList"
+        "lightList",
+        "distanceClipPlanes",
+        "fogNearDistance",
+        "fogFarDistance",
+        "waterDensity",
+        "waterColor",
+        "waterOpacity",
+        "waterLevel",
+        "waterDepth",
+        "waterLightDecay",
+        "waterLightScatter"
     ],
     env_fog_terms
 );
@@ -171,16 +189,36 @@ pub fn env_fog_share(inside: f32, saturation: f32) -> f32 {
     (inside / saturation).min(1.0)
 }
 
+/// The part [t0, t1] of a segment of `length` (infinite allowed) that lies between the
+/// fog's clip distances `near` and `far` from the segment's origin; `None` when none does.
+pub fn clip_span(length: f32, near: f32, far: f32) -> Option<(f32, f32)> {
+    let (t0, t1) = (near.max(0.0), far.min(length));
+    (t1 > t0).then_some((t0, t1))
+}
+
+/// The part of the state's segment the environment fog fills: all of it with the camera's
+/// clip planes (`distanceClipPlanes` 1, the default), the part between `fogNearDistance`
+/// and `fogFarDistance` along the ray with the fog's own (0); `None` when empty.
+fn env_fog_span(ctx: &mut Ctx, n: NodeId) -> Option<(f32, f32)> {
+    let length = segment_length(&ctx.state);
+    if ctx.int(n, 29) != 0 {
+        return Some((0.0, length));
+    }
+    clip_span(length, ctx.scalar(n, 30), ctx.scalar(n, 31))
+}
+
 fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     if carries_light(ctx) {
         return VolumeTerms::NONE;
     }
+    let Some((t0, t1)) = env_fog_span(ctx, n) else { return VolumeTerms::NONE };
     if ctx.bool(n, 6) {
-        return physical_fog_terms(ctx, n);
+        return physical_fog_terms(ctx, n, (t0, t1));
     }
-    let length = segment_length(&ctx.state);
+    let org = ctx.state.org + ctx.state.dir * t0;
+    let length = t1 - t0;
     let inside = if ctx.bool(n, 3) {
-        length_in_band(ctx.state.org, ctx.state.dir, length, ctx.scalar(n, 4), ctx.scalar(n, 5))
+        length_in_band(org, ctx.state.dir, length, ctx.scalar(n, 4), ctx.scalar(n, 5))
     } else {
         length
     };
@@ -190,16 +228,25 @@ fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
 }
 
 /// envFog's physical fog (the parameters from index 7 on; see [`crate::physical_fog`])
-/// over the state's segment.
-fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
+/// over the part `span` of the state's segment (distances from its origin).
+fn physical_fog_terms(ctx: &mut Ctx, n: NodeId, span: (f32, f32)) -> VolumeTerms {
     let fog_type = ctx.int(n, 7);
     let profile = match fog_type {
-        0 | 4 => Profile::Uniform,
         1 | 5 => Profile::Atmospheric,
         2 | 6 => Profile::Sky,
-        // Water alone: the water is not rendered (warned at compile time).
-        _ => return VolumeTerms::NONE,
+        _ => Profile::Uniform,
     };
+    let water = (3..=6).contains(&fog_type).then(|| {
+        Water::new(
+            ctx.scalar(n, 32),
+            rgb(ctx.color(n, 33)),
+            rgb(ctx.color(n, 34)),
+            ctx.scalar(n, 35),
+            ctx.scalar(n, 36),
+            ctx.scalar(n, 37),
+            ctx.scalar(n, 38),
+        )
+    });
     let mut medium = |first: usize| {
         Medium::new(
             ctx.scalar(n, first),
@@ -220,10 +267,16 @@ fn physical_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
         planet_radius: ctx.scalar(n, 22),
         sun_dir: physical_fog::sun_direction(up, ctx.scalar(n, 26), ctx.scalar(n, 25)),
         sun: ctx.scalar(n, 24) * rgb(ctx.color(n, 27)),
+        water,
+        air: fog_type != 3,
     };
     let length = segment_length(&ctx.state);
-    let lit = if profile == Profile::Uniform { received_light(ctx, n, 28, length) } else { Vec3A::ZERO };
-    fog.terms(ctx.state.org, ctx.state.dir, length, lit)
+    let lit = if profile == Profile::Uniform && fog_type != 3 {
+        received_light(ctx, n, 28, length, None)
+    } else {
+        Vec3A::ZERO
+    };
+    fog.terms(ctx.state.org + ctx.state.dir * span.0, ctx.state.dir, span.1 - span.0, lit)
 }
 
 maya_volume!(
@@ -255,14 +308,17 @@ fn light_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     let length = segment_length(&ctx.state);
     let alpha = light_fog_share(ctx.scalar(n, 1), length, ctx.bool(n, 3));
     let color = rgb(ctx.color(n, 0));
-    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, 4, length) } else { Vec3A::ZERO };
+    let shown = if alpha > 0.0 && color != Vec3A::ZERO { received_light(ctx, n, 4, length, None) } else { Vec3A::ZERO };
     terms(alpha, color, shown, ctx.bool(n, 2))
 }
 
 /// What the fog's lights (light array parameter `list`; every light when it is empty)
 /// deliver at the middle of the segment of `length` (at its origin for an infinite one),
-/// from every side.
-pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32) -> Vec3A {
+/// from every side; with `light_scatter` each light's light is weighted by the
+/// Henyey–Greenstein phase of g = 1 − `light_scatter` at the angle between the ray and
+/// the direction towards the light ([`physical_fog::phase`], 1 for uniform scattering),
+/// so that a fog that scatters directionally glows around the lights it is seen against.
+pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32, light_scatter: Option<f32>) -> Vec3A {
     let saved = ctx.state.clone();
     let at = if length.is_finite() { saved.org + saved.dir * (0.5 * length) } else { saved.org };
     ctx.state.point = at;
@@ -277,7 +333,8 @@ pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32)
         lp.both_sides = true;
         let mut got = Vec3A::ZERO;
         while let Some(s) = ctx.sample_light(&mut lp) {
-            got += rgb(s.color);
+            let weight = light_scatter.map_or(1.0, |ls| physical_fog::phase(ls, saved.dir.dot(s.dir)));
+            got += rgb(s.color) * weight;
         }
         if lp.samples > 0 {
             sum += got / lp.samples as f32;
@@ -287,19 +344,35 @@ pub(crate) fn received_light(ctx: &mut Ctx, n: NodeId, list: usize, length: f32)
     sum
 }
 
-/// The warnings, at the shader's position, about the fogs of `shading`: a fog the path
-/// engine leaves out (it applies the camera's volume when every shader in it is a fog,
-/// not a material's volume), a physical fog of a water type (the water is not
-/// rendered), and a volumeFog with a cone dropoff shape (not implemented).
-pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
-    let mut camera = Vec::new();
-    if let Some(head) = shading.volume.filter(|&v| shader::volume::is_affine(shading, v)) {
+/// The nodes the path engine applies as volumes: those of the camera's and the
+/// materials' volume shader lists that are affine ([`shader::volume::is_affine`]), and
+/// the nodes Maya's volume samplers among them are connected to.
+fn applied_volume_nodes(shading: &shader::Shading) -> Vec<shader::NodeId> {
+    let heads = std::iter::once(shading.volume).chain(shading.materials.iter().map(|m| m.volume)).flatten();
+    let mut applied = Vec::new();
+    for head in heads.filter(|&v| shader::volume::is_affine(shading, v)) {
         let mut node = Some(head);
-        while let Some(n) = node.filter(|_| camera.len() < 1024) {
-            camera.push(n);
-            node = shading.graph.nodes.get(n as usize).and_then(|x| x.next);
+        let mut guard = 0;
+        while let Some(n) = node.filter(|_| guard < 1024) {
+            applied.push(n);
+            let x = &shading.graph.nodes[n as usize];
+            if let Some(shader::Slot::Connect { node: source, .. }) =
+                x.slots.first().filter(|_| x.imp.is_some_and(|i| i.volume_affine.is_some()))
+            {
+                applied.push(*source);
+            }
+            node = x.next;
+            guard += 1;
         }
     }
+    applied
+}
+
+/// The warnings, at the shader's position, about the fogs of `shading`: each fog the path
+/// engine leaves out (it applies the camera's and the materials' volumes when every
+/// shader in them is a fog, see [`applied_volume_nodes`]).
+pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
+    let applied = applied_volume_nodes(shading);
     let mut warnings = Vec::new();
     for (i, node) in shading.graph.nodes.iter().enumerate() {
         let name = node.decl.name.as_str();
@@ -314,35 +387,12 @@ pub fn fog_warnings(shading: &shader::Shading) -> Vec<mi::Diagnostic> {
         ) {
             continue;
         }
-        if !camera.contains(&(i as shader::NodeId)) {
+        if !applied.contains(&(i as shader::NodeId)) {
             warnings.push(mi::Diagnostic::warning(
                 node.span,
                 format!(
-                    "'{name}': the path engine applies fogs only as the camera's volume; it renders without this one"
+                    "'{name}': the path engine applies fogs only in volumes made of fogs (the camera's or a material's); it renders without this one"
                 ),
-            ));
-        }
-        let slot_of = |param: &str| {
-            let i = match node.imp {
-                Some(imp) => imp.params.iter().position(|p| *p == param),
-                None => node.decl.param(param),
-            };
-            match i.and_then(|i| node.slots.get(i)) {
-                Some(shader::Slot::Value(v)) => Some(v.int()),
-                _ => None,
-            }
-        };
-        if slot_of("dropoffShape").is_some_and(|v| v == 3 || v == 4) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!("'{name}': the cone dropoff shapes are not implemented; the fog has no dropoff"),
-            ));
-        }
-        let physical = slot_of("physicalFog").is_some_and(|v| v != 0);
-        if physical && slot_of("fogType").is_some_and(|t| t >= 3) {
-            warnings.push(mi::Diagnostic::warning(
-                node.span,
-                format!("'{name}': the water of physical fog's water types is not rendered; only the fog above it is"),
             ));
         }
     }
@@ -370,6 +420,18 @@ mod tests {
         assert!(close(length_in_band(Vec3A::new(0.0, 4.0, 0.0), slanted, 5.0, 1.0, 3.0), 2.5));
         assert_eq!(length_in_band(Vec3A::new(0.0, 2.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 7.0);
         assert_eq!(length_in_band(Vec3A::new(0.0, 5.0, 0.0), Vec3A::X, 7.0, 1.0, 3.0), 0.0);
+    }
+
+    /// The clip distances cut a segment to the part between them; an infinite one ends at
+    /// the far distance; a segment ending before the near distance has none.
+    #[test]
+    fn clip_distances_cut_the_segment() {
+        assert_eq!(clip_span(4.0, 1.0, 2.5), Some((1.0, 2.5)));
+        assert_eq!(clip_span(2.0, 1.0, 2.5), Some((1.0, 2.0)));
+        assert_eq!(clip_span(f32::INFINITY, 1.0, 2.5), Some((1.0, 2.5)));
+        assert_eq!(clip_span(0.5, 1.0, 2.5), None);
+        assert_eq!(clip_span(4.0, -3.0, 2.5), Some((0.0, 2.5)));
+        assert_eq!(clip_span(4.0, 2.0, 1.0), None);
     }
 
     /// The shares against their formulas: linear up to saturation, exponential in the

@@ -6,9 +6,9 @@
 //! defaults are the reference's):
 //! - `fogType`: 0 Uniform (the same density everywhere), 1 Atmospheric (thickest at the
 //!   bottom, thinning exponentially upwards), 2 Sky (a layer with a top, its edge meeting
-//!   the horizon over a curved planet), 3–6 the Water types. The water itself is not
-//!   rendered (a warning says so): Water renders no fog, Water/Fog, Water/Atmos and
-//!   Water/Sky the fog type above the water everywhere.
+//!   the horizon over a curved planet), 3–6 the Water types: 3 Water alone, 4 Water/Fog,
+//!   5 Water/Atmos, 6 Water/Sky the uniform, atmospheric and sky types above a body of
+//!   water (below).
 //! - Two media, fog (`fogDensity` 0.4, `fogColor` white, `fogOpacity` 0.5, `fogMinHeight`
 //!   0, `fogMaxHeight` 1, `fogDecay` 0.2, `fogLightScatter` 1) and air (`airDensity` 0,
 //!   `airColor` 0.6 0.8 1, `airOpacity` 0.37 0.47 0.9, `airMinHeight` 0, `airMaxHeight`
@@ -42,6 +42,17 @@
 //!   Uniform type has no sun (the reference makes the sun attributes unavailable there):
 //!   it scatters, isotropically, the light E its lights deliver at the segment's middle
 //!   (`lightList`, every light when empty, as lightFog and Maya's envFogLight do).
+//!
+//! - Water (mira's reading of the attributes `waterDensity` 0, `waterColor` 0.6 0.8 1,
+//!   `waterOpacity` 0.37 0.47 0.9, `waterLevel` 0, `waterDepth` 50, `waterLightDecay` 2,
+//!   `waterLightScatter` 1; the reference names them without formulas): a medium like the
+//!   others (σs = density · colour, σa = density · opacity, Henyey–Greenstein of g = 1 −
+//!   `waterLightScatter`) filling everything below the height `waterLevel` (the ball of
+//!   radius R + level around the planet's centre); the air and the fog lie above it only.
+//!   The light the water scatters is the sun's (the lights' for Water/Fog, as its fog's)
+//!   dimmed with the
+//!   depth z below the surface as exp(−`waterLightDecay` · z / `waterDepth`) (e^−2 at the
+//!   water depth by default). Water alone has no air or fog.
 //!
 //! Over a segment of length L the fog keeps T = exp(−∫σt) of what lies behind and adds
 //! ∫ T(t)·Σ σs(t)·S·P dt; for one medium that is (1 − T) ⊙ colour / (colour + opacity) ⊙
@@ -180,6 +191,48 @@ pub fn sun_direction(up: Vec3A, elevation_deg: f32, azimuth_deg: f32) -> Vec3A {
     (e.cos() * (z.cos() * first + z.sin() * second) + e.sin() * up).normalize_or(up)
 }
 
+/// The body of water of physical fog's Water types (see the module doc).
+#[derive(Clone, Copy, Debug)]
+pub struct Water {
+    /// The water as a medium (its profile is uniform below the level).
+    pub medium: Medium,
+    /// The height of the water's surface (`waterLevel`).
+    pub level: f32,
+    /// The depth scale of the light's decay (`waterDepth`).
+    pub depth: f32,
+    /// `waterLightDecay`.
+    pub light_decay: f32,
+}
+
+impl Water {
+    /// The water of `density`, `color`, `opacity`, `level`, `depth`, `light_decay` and
+    /// `light_scatter`.
+    pub fn new(
+        density: f32,
+        color: Vec3A,
+        opacity: Vec3A,
+        level: f32,
+        depth: f32,
+        light_decay: f32,
+        light_scatter: f32,
+    ) -> Self {
+        Water {
+            medium: Medium::new(density, color, opacity, level, level, 0.5, light_scatter),
+            level,
+            depth,
+            light_decay,
+        }
+    }
+
+    /// The share of the light from above that reaches depth `z` below the surface.
+    pub fn light_at_depth(&self, z: f32) -> f32 {
+        if self.depth <= 0.0 {
+            return if z <= 0.0 { 1.0 } else { 0.0 };
+        }
+        (-self.light_decay.max(0.0) * z.max(0.0) / self.depth).exp()
+    }
+}
+
 /// envFog's physical fog, its attributes read (see the module doc).
 #[derive(Clone, Copy, Debug)]
 pub struct PhysicalFog {
@@ -195,6 +248,10 @@ pub struct PhysicalFog {
     pub sun_dir: Vec3A,
     /// The sun's light (intensity × colour; unused by the uniform type).
     pub sun: Vec3A,
+    /// The body of water of the Water types (its air and fog lie above it).
+    pub water: Option<Water>,
+    /// Whether there is air and fog at all (not for the Water type alone).
+    pub air: bool,
 }
 
 impl PhysicalFog {
@@ -234,9 +291,39 @@ impl PhysicalFog {
     }
 
     /// The fog's terms over the segment from `org` along unit `dir` of `length` (infinite:
-    /// a ray that left the scene); `lit` is the light the uniform type scatters (see the
-    /// module doc).
+    /// a ray that left the scene), the water's included: the stretches above the water
+    /// take the air and fog ([`PhysicalFog::air_terms`]), the one inside it the water's;
+    /// `lit` is the light the uniform type scatters (see the module doc).
     pub fn terms(&self, org: Vec3A, dir: Vec3A, length: f32, lit: Vec3A) -> VolumeTerms {
+        let Some(water) = self.water else { return self.air_terms(org, dir, length, lit) };
+        let r = self.planet_radius.max(1e-3);
+        let inside = ball_interval(org + r * self.up, dir, r + water.level, length);
+        let above = |t0: f32, t1: f32| {
+            if t1 > t0 && self.air {
+                self.air_terms(org + dir * t0, dir, t1 - t0, lit)
+            } else {
+                VolumeTerms::NONE
+            }
+        };
+        let Some((w0, w1)) = inside else { return above(0.0, length) };
+        let lit_water = if self.profile == Profile::Uniform && self.air {
+            lit
+        } else {
+            self.sun * phase(water.medium.light_scatter, dir.dot(self.sun_dir))
+        };
+        let mut acc = above(0.0, w0);
+        let dt = (w1 - w0) / STEPS as f32;
+        for i in 0..STEPS {
+            let h = self.height(org + dir * (w0 + (i as f32 + 0.5) * dt));
+            let shown = lit_water * water.light_at_depth(water.level - h);
+            acc = step(&[water.medium], [1.0], [shown], dt, acc);
+        }
+        acc.after(above(w1, length))
+    }
+
+    /// The air and fog's terms over the segment from `org` along unit `dir` of `length`
+    /// (see [`PhysicalFog::terms`]).
+    fn air_terms(&self, org: Vec3A, dir: Vec3A, length: f32, lit: Vec3A) -> VolumeTerms {
         let Some((t0, t1)) = self.interval(org, dir, length) else { return VolumeTerms::NONE };
         // The light each medium scatters towards the ray's origin, per unit σs.
         let shown = self.media.map(|m| match self.profile {
@@ -274,14 +361,37 @@ fn log_mean(a: f32, b: f32) -> f32 {
     (a - b) / (a / b).ln()
 }
 
+/// The part [t0, t1] of the ray from `oc` (relative to a ball's centre) along unit `dir`
+/// over `length` (infinite allowed) inside the ball of `radius`; `None` when none is.
+fn ball_interval(oc: Vec3A, dir: Vec3A, radius: f32, length: f32) -> Option<(f32, f32)> {
+    if radius <= 0.0 {
+        return None;
+    }
+    let b = oc.dot(dir);
+    let c = oc.length_squared() - radius * radius;
+    let disc = b * b - c;
+    if disc <= 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    let (t0, t1) = ((-b - s).max(0.0), (-b + s).min(length));
+    (t1 > t0).then_some((t0, t1))
+}
+
 /// `acc` (the terms from the origin to this step) followed by a step of length `dt` of
 /// constant relative densities `rho` of `media`, each showing `shown` per unit of σs:
 /// keep ← keep·exp(−σt·dt), add ← add + keep·σs/σt·(1 − exp(−σt·dt))·shown (σs·dt·shown
 /// where nothing absorbs).
-fn step(media: &[Medium; 2], rho: [f32; 2], shown: [Vec3A; 2], dt: f32, acc: VolumeTerms) -> VolumeTerms {
+fn step<const N: usize>(
+    media: &[Medium; N],
+    rho: [f32; N],
+    shown: [Vec3A; N],
+    dt: f32,
+    acc: VolumeTerms,
+) -> VolumeTerms {
     let mut sigma_t = Vec3A::ZERO;
     let mut emitted = Vec3A::ZERO;
-    for k in 0..2 {
+    for k in 0..N {
         sigma_t += rho[k] * (media[k].scatter + media[k].absorb);
         emitted += rho[k] * media[k].scatter * shown[k];
     }
@@ -313,7 +423,42 @@ mod tests {
             planet_radius: 1000.0,
             sun_dir: Vec3A::Y,
             sun: Vec3A::splat(2.0),
+            water: None,
+            air: true,
         }
+    }
+
+    /// A vertical ray from height 1 down 3 units (to −2) into water below level 0, with no
+    /// air or fog: it crosses 2 units of water, keeping exp(−2σt), and adds the sun's light
+    /// (2, straight overhead, the ray going down; uniform scattering) dimmed with depth as
+    /// exp(−k z / D): ∫₀² e^(−σt z) σs 2 e^(−k z/D) dz = 2σs (1 − e^(−2(σt + k/D))) / (σt +
+    /// k/D) (1e-4 relative). Above the water the segment is untouched.
+    #[test]
+    fn water_keeps_and_adds_the_light_dimmed_with_depth() {
+        let none = Medium::new(0.0, Vec3A::ONE, Vec3A::ONE, 0.0, 1.0, 0.5, 1.0);
+        let water = Water::new(0.2, Vec3A::new(1.0, 0.5, 0.25), Vec3A::splat(0.5), 0.0, 4.0, 2.0, 1.0);
+        let f = PhysicalFog {
+            profile: Profile::Atmospheric,
+            media: [none, none],
+            up: Vec3A::Y,
+            planet_radius: 1000.0,
+            sun_dir: Vec3A::Y,
+            sun: Vec3A::splat(2.0),
+            water: Some(water),
+            air: false,
+        };
+        let t = f.terms(Vec3A::new(0.0, 1.0, 0.0), Vec3A::NEG_Y, 3.0, Vec3A::ZERO);
+        let k = 2.0 / 4.0;
+        for (c, colour) in [1.0f32, 0.5, 0.25].into_iter().enumerate() {
+            let (ss, st) = (0.2 * colour, 0.2 * (colour + 0.5));
+            let keep = (-2.0 * st).exp();
+            let add = 2.0 * ss * (1.0 - (-2.0 * (st + k)).exp()) / (st + k);
+            assert!((t.keep[c] / keep - 1.0).abs() < 1e-4, "{c}: {t:?} vs {keep}");
+            assert!((t.add[c] / add - 1.0).abs() < 1e-4, "{c}: {t:?} vs {add}");
+        }
+        let above = f.terms(Vec3A::new(0.0, 5.0, 0.0), Vec3A::NEG_Y, 3.0, Vec3A::ZERO);
+        assert_eq!(above, VolumeTerms::NONE);
+        assert!((water.light_at_depth(4.0) - (-2.0f32).exp()).abs() < 1e-7);
     }
 
     /// Uniform fog over L: T = exp(−σt·L), add = (1 − T)·σs/σt·E; infinite: saturated.

@@ -16,46 +16,114 @@
 //!   connected directly): called as the volume shader itself, on the same result;
 //! - nothing connected (a volume node no library declares was dropped, with the shader
 //!   model's warning naming its line): the ray passes unchanged.
+//!
+//! Over a volume material or a fog the sampler's effect is affine in the colour behind
+//! (keep T, add `outColor`; the fog's own terms), and it tells those terms to the path
+//! engine ([`shader::ShaderImpl::volume_terms`]); over a mental ray volume shader it is
+//! not ([`shader::ShaderImpl::volume_affine`]).
 
 use glam::Vec3A;
-use shader::{Ctx, NodeId, RayType, Slot, Value};
+use shader::volume::VolumeTerms;
+use shader::{Ctx, NodeId, RayType, Shading, Slot, Value};
 
-use crate::maya_shader;
 use crate::values::{member_color, rgb, rgba};
 
-maya_shader!(
-    /// The shading group's volume shader (see the module doc).
-    VOLUMESAMPLER,
-    ADSK_VOLUMESAMPLER,
-    "maya_volumesampler",
-    "adskMayaVolumeSampler",
-    &["volumeShader"],
-    volume_sampler
-);
+/// The shading group's volume shader (see the module doc).
+pub static VOLUMESAMPLER: shader::ShaderImpl = shader::ShaderImpl {
+    name: "maya_volumesampler",
+    params: &["volumeShader"],
+    run: volume_sampler,
+    volume_terms: Some(sampler_terms),
+    volume_affine: Some(sampler_is_affine),
+    ..shader::ShaderImpl::PLAIN
+};
+
+/// The shading group's volume shader (see the module doc).
+pub static ADSK_VOLUMESAMPLER: shader::ShaderImpl = shader::ShaderImpl {
+    name: "adskMayaVolumeSampler",
+    params: &["volumeShader"],
+    run: volume_sampler,
+    volume_terms: Some(sampler_terms),
+    volume_affine: Some(sampler_is_affine),
+    ..shader::ShaderImpl::PLAIN
+};
+
+/// What the sampler's `volumeShader` is connected to.
+enum Source {
+    /// Nothing: the ray passes unchanged.
+    None,
+    /// A node with Maya's volume output struct.
+    Material(NodeId),
+    /// A mental ray volume shader, run on the result.
+    Volume(NodeId),
+}
+
+fn source(graph: &shader::Graph, n: NodeId) -> Source {
+    let Some(Slot::Connect { node: source, .. }) = graph.nodes[n as usize].slots.first() else { return Source::None };
+    let source = *source;
+    if graph.nodes[source as usize].decl.members().iter().any(|m| &**m == "outTransparency") {
+        Source::Material(source)
+    } else {
+        Source::Volume(source)
+    }
+}
+
+/// The sampler is affine over nothing, a volume material, or a fog whose terms are its
+/// own (a shader with [`shader::ShaderImpl::volume_terms`] that is always affine).
+fn sampler_is_affine(shading: &Shading, n: NodeId) -> bool {
+    match source(&shading.graph, n) {
+        Source::None | Source::Material(_) => true,
+        Source::Volume(v) => shading.graph.nodes[v as usize]
+            .imp
+            .is_some_and(|imp| imp.volume_terms.is_some() && imp.volume_affine.is_none()),
+    }
+}
+
+/// The volume material `source`'s effect over the state's segment: keep its
+/// `outTransparency` T (clamped to [0, 1]); add its `outColor` except on light and shadow
+/// rays.
+fn material_terms(ctx: &mut Ctx, source: NodeId) -> VolumeTerms {
+    let material = ctx.result(source);
+    let t = member_color(&material, "outTransparency").map_or(Vec3A::ZERO, rgb).clamp(Vec3A::ZERO, Vec3A::ONE);
+    let add = if matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow) {
+        Vec3A::ZERO
+    } else {
+        member_color(&material, "outColor").map_or(Vec3A::ZERO, rgb)
+    };
+    VolumeTerms { keep: t, add }
+}
+
+fn sampler_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
+    match source(&ctx.shading().graph, n) {
+        Source::None => VolumeTerms::NONE,
+        Source::Material(m) => material_terms(ctx, m),
+        Source::Volume(v) => match ctx.node(v).imp.and_then(|imp| imp.volume_terms) {
+            Some(run) => run(ctx, v),
+            None => VolumeTerms::NONE,
+        },
+    }
+}
 
 fn volume_sampler(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(Slot::Connect { node: source, .. }) = ctx.node(n).slots.first() else { return true };
-    let source = *source;
-    let declares_struct = ctx.node(source).decl.members().iter().any(|m| &**m == "outTransparency");
-    if !declares_struct {
-        // A volume shader of mental ray's own contract: it works on the result itself.
-        let mut result = out.clone();
-        if ctx.call(source, &mut result) {
-            *out = result;
+    let source = match source(&ctx.shading().graph, n) {
+        Source::None => return true,
+        Source::Volume(v) => {
+            // A volume shader of mental ray's own contract: it works on the result itself.
+            let mut result = out.clone();
+            if ctx.call(v, &mut result) {
+                *out = result;
+            }
+            return true;
         }
-        return true;
-    }
-    let material = ctx.result(source);
-    let transparency = member_color(&material, "outTransparency").map_or(Vec3A::ZERO, rgb);
-    let t = transparency.clamp(Vec3A::ZERO, Vec3A::ONE);
+        Source::Material(m) => m,
+    };
+    let terms = material_terms(ctx, source);
     let behind = out.color();
-    let passed = rgb(behind) * t;
-    *out = Value::Color(if matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow) {
-        rgba(passed, behind.w)
+    let coverage = if matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow) {
+        0.0
     } else {
-        let color = member_color(&material, "outColor").map_or(Vec3A::ZERO, rgb);
-        let coverage = 1.0 - (t.x + t.y + t.z) / 3.0;
-        rgba(passed + color, behind.w + (1.0 - behind.w) * coverage)
-    });
+        1.0 - (terms.keep.x + terms.keep.y + terms.keep.z) / 3.0
+    };
+    *out = Value::Color(rgba(terms.apply(rgb(behind)), behind.w + (1.0 - behind.w) * coverage));
     true
 }

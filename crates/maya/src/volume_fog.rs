@@ -11,7 +11,8 @@
 //! calls it the volume's colour transparency), `incandescence` (black), `glowIntensity`
 //! (0), `density` (1), `densityMode` (1), `dropoffShape` (0), `edgeDropoff` (0.5),
 //! `dropoffMethod` (0), `dropoffSubtract` (1), `illuminated` (off), `lightScatter` (1),
-//! `lightList` (every light when empty).
+//! `lightList` (every light when empty), `axialDropoff` (0.3, the reference's default:
+//! "how quickly the density drops off down the axis of a cone").
 //!
 //! mira's reading (the reference describes the attributes, not the formulas):
 //! - the fog lets `transparency`^τ through per channel, τ = ∫ ρ dl the density crossed:
@@ -25,12 +26,25 @@
 //! - `dropoffShape`: the reference lists Cone, Sphere, Cube and Light Cone but not their
 //!   numbers; mira reads 0 off (no dropoff: the node's default, and the case of fog in
 //!   arbitrary geometry), 1 Sphere (r = |p|, radius 1 as Maya's volume primitives), 2 Cube
-//!   (r = max |pᵢ|, side 2), 3 Cone and 4 Light Cone (not implemented: no dropoff, with a
-//!   warning). d = 1 inside r ≤ 1 − `edgeDropoff`, 0 outside r ≥ 1, a smoothstep between
-//!   (`edgeDropoff` 0: a hard edge, as the reference says);
+//!   (r = max |pᵢ|, side 2), 3 Cone and 4 Light Cone. The edge fade of a measure r (1 on
+//!   the shape's boundary) is 1 inside r ≤ 1 − `edgeDropoff`, 0 outside r ≥ 1, a
+//!   smoothstep between (`edgeDropoff` 0: a hard edge, 1: a fade from the edge to the
+//!   centre, as the reference says);
+//! - the cones (mira's reading; the reference says only that the cone's density drops
+//!   off down its axis by `axialDropoff` and that Light Cone's fade occurs near the
+//!   cone's point): the unit cone of Maya's cone primitive's proportions, apex (0, 1, 0),
+//!   base of radius 1 at y = −1; with a = (1 − y)/2 the share of the way from the apex
+//!   down the axis and ρ the distance from the axis, the side measure is r = ρ / a (the
+//!   cone's outside: a ∉ (0, 1] or ρ ≥ a). Cone: d = fade(r) · (1 − `axialDropoff`·a)
+//!   (linear down the axis, full at the apex); Light Cone (the fog of a light at the apex):
+//!   the same times the fade over the part of the axis nearest the apex,
+//!   smoothstep(a / `edgeDropoff`);
 //! - it shows `color` (× the light its lights deliver at the segment's middle when
-//!   `illuminated`, from every side: `lightScatter` is not used) plus `incandescence`,
-//!   over the share it covers: `outColor` = (1 − T) ⊙ shown, `outTransparency` = T,
+//!   `illuminated`, each light's weighted by the Henyey–Greenstein phase of g = 1 −
+//!   `lightScatter` at the angle between the ray and the light, normalised to 1 for
+//!   uniform scattering: `lightScatter` 1 scatters in all directions, towards 0 forwards,
+//!   the halos around lights the reference describes) plus `incandescence`, over the
+//!   share it covers: `outColor` = (1 − T) ⊙ shown, `outTransparency` = T,
 //!   `outGlowColor` = `glowIntensity` · (1 − T) ⊙ `color`, `outMatteOpacity` = 1 − mean T.
 //!
 //! The integral runs in [`STEPS`] steps, exact where the density is constant.
@@ -47,41 +61,77 @@ use crate::values::{rgb, rgba, write_struct};
 pub const STEPS: usize = 32;
 
 /// The shape the density fades towards the edge of (`dropoffShape`; see the module doc).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Dropoff {
-    /// No dropoff (0; also the cones, 3 and 4, which mira does not implement).
+    /// No dropoff (0).
     Off,
     /// The unit sphere (1).
     Sphere,
     /// The cube [−1, 1]³ (2).
     Cube,
+    /// The unit cone, apex (0, 1, 0), base radius 1 at y = −1 (3), with its axial dropoff.
+    Cone {
+        /// `axialDropoff`.
+        axial: f32,
+    },
+    /// The unit cone faded near its apex too (4), with its axial dropoff.
+    LightCone {
+        /// `axialDropoff`.
+        axial: f32,
+    },
+}
+
+/// The fade of a measure `r` that is 1 on a shape's boundary over an edge band of width
+/// `edge` inside it: 0 for r ≥ 1, 1 for r ≤ 1 − `edge`, a smoothstep between.
+fn edge_fade(r: f32, edge: f32) -> f32 {
+    if r >= 1.0 {
+        return 0.0;
+    }
+    if edge <= 0.0 {
+        return 1.0;
+    }
+    smoothstep((1.0 - r) / edge)
+}
+
+/// 3x² − 2x³ on x clamped to [0, 1].
+fn smoothstep(x: f32) -> f32 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
 }
 
 impl Dropoff {
-    /// The shape of `dropoffShape`.
-    pub fn from_param(v: i32) -> Dropoff {
+    /// The shape of `dropoffShape` `v` with axial dropoff `axial` (the cones').
+    pub fn from_param(v: i32, axial: f32) -> Dropoff {
         match v {
             1 => Dropoff::Sphere,
             2 => Dropoff::Cube,
+            3 => Dropoff::Cone { axial },
+            4 => Dropoff::LightCone { axial },
             _ => Dropoff::Off,
         }
     }
 
     /// The dropoff d at object-space point `p` with edge width `edge` (see the module doc).
     pub fn at(self, p: Vec3A, edge: f32) -> f32 {
-        let r = match self {
-            Dropoff::Off => return 1.0,
-            Dropoff::Sphere => p.length(),
-            Dropoff::Cube => p.abs().max_element(),
-        };
-        if r >= 1.0 {
-            return 0.0;
+        match self {
+            Dropoff::Off => 1.0,
+            Dropoff::Sphere => edge_fade(p.length(), edge),
+            Dropoff::Cube => edge_fade(p.abs().max_element(), edge),
+            Dropoff::Cone { axial } | Dropoff::LightCone { axial } => {
+                // The share of the way down the axis from the apex, and the side measure.
+                let a = (1.0 - p.y) * 0.5;
+                if a <= 0.0 || a > 1.0 {
+                    return 0.0;
+                }
+                let rho = (p.x * p.x + p.z * p.z).sqrt();
+                let along = (1.0 - axial * a).max(0.0);
+                let d = edge_fade(rho / a, edge) * along;
+                match self {
+                    Dropoff::LightCone { .. } if edge > 0.0 => d * smoothstep(a / edge),
+                    _ => d,
+                }
+            }
         }
-        if edge <= 0.0 {
-            return 1.0;
-        }
-        let x = ((1.0 - r) / edge).clamp(0.0, 1.0);
-        x * x * (3.0 - 2.0 * x)
     }
 }
 
@@ -104,7 +154,8 @@ maya_shader!(
         "dropoffSubtract",
         "illuminated",
         "lightScatter",
-        "lightList"
+        "lightList",
+        "axialDropoff"
     ],
     volume_fog
 );
@@ -157,7 +208,7 @@ pub fn transmittance(transparency: Vec3A, tau: f32) -> Vec3A {
 
 fn volume_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let length = segment_length(&ctx.state);
-    let dropoff = Dropoff::from_param(ctx.int(n, 6));
+    let dropoff = Dropoff::from_param(ctx.int(n, 6), ctx.scalar(n, 13));
     let subtract = (ctx.int(n, 8) == 1).then(|| ctx.scalar(n, 9));
     let (object_space, density, edge) = (ctx.int(n, 5) != 0, ctx.scalar(n, 4), ctx.scalar(n, 7));
     let (org, dir, world_to_object) = (ctx.state.org, ctx.state.dir, ctx.state.world_to_object);
@@ -169,7 +220,12 @@ fn volume_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let shown = if light_ray || cover == Vec3A::ZERO {
         Vec3A::ZERO
     } else {
-        let lit = if ctx.bool(n, 10) { received_light(ctx, n, 12, length) } else { Vec3A::ONE };
+        let lit = if ctx.bool(n, 10) {
+            let scatter = ctx.scalar(n, 11);
+            received_light(ctx, n, 12, length, Some(scatter))
+        } else {
+            Vec3A::ONE
+        };
         color * lit + rgb(ctx.color(n, 2))
     };
     let t_mean = (t.x + t.y + t.z) / 3.0;
@@ -202,7 +258,38 @@ mod tests {
         let c = Dropoff::Cube;
         assert_eq!(c.at(Vec3A::new(0.9, 0.9, 0.9), 0.0), 1.0);
         assert_eq!(s.at(Vec3A::new(0.9, 0.9, 0.9), 0.0), 0.0);
-        assert_eq!(Dropoff::from_param(0).at(Vec3A::splat(5.0), 0.5), 1.0);
+        assert_eq!(Dropoff::from_param(0, 0.3).at(Vec3A::splat(5.0), 0.5), 1.0);
+    }
+
+    /// The cone (apex (0, 1, 0), base radius 1 at y = −1) at known points: on the axis
+    /// a = (1 − y)/2 of the way down, the axial dropoff 1 − axial·a; across the side band
+    /// the smoothstep of (1 − ρ/a)/edge; outside (above the apex, below the base, beyond
+    /// the side) 0. The light cone fades over the edge band nearest the apex too.
+    #[test]
+    fn cone_dropoffs_at_known_points() {
+        let cone = Dropoff::from_param(3, 0.3);
+        let close = |a: f32, b: f32| (a - b).abs() < 1e-6;
+        // On the axis at y = 0 (a = ½): 1 − 0.3·½.
+        assert!(close(cone.at(Vec3A::ZERO, 0.5), 0.85));
+        // Half way across the side band at a = ½ (edge 0.5: band r ∈ [0.5, 1]): r = 0.75.
+        assert!(close(cone.at(Vec3A::new(0.375, 0.0, 0.0), 0.5), 0.5 * 0.85));
+        // Inside the band's inner edge: full side fade.
+        assert!(close(cone.at(Vec3A::new(0.0, 0.0, 0.2), 0.5), 0.85));
+        for outside in [Vec3A::new(0.0, 1.5, 0.0), Vec3A::new(0.0, -1.2, 0.0), Vec3A::new(0.6, 0.0, 0.0)] {
+            assert_eq!(cone.at(outside, 0.5), 0.0, "{outside:?}");
+        }
+        // Without axial dropoff and edge, the whole inside is 1 (a hard cone).
+        assert_eq!(Dropoff::from_param(3, 0.0).at(Vec3A::new(0.0, 0.9, 0.0), 0.0), 1.0);
+        // The light cone near its apex: on the axis at a = 0.1, edge 0.5 — smoothstep(0.2).
+        let light = Dropoff::from_param(4, 0.0);
+        let a = 0.1f32;
+        let x = a / 0.5;
+        assert!(close(light.at(Vec3A::new(0.0, 1.0 - 2.0 * a, 0.0), 0.5), x * x * (3.0 - 2.0 * x)));
+        // Far from the apex it is the cone's.
+        assert!(close(
+            light.at(Vec3A::new(0.0, -0.5, 0.0), 0.5),
+            Dropoff::from_param(3, 0.0).at(Vec3A::new(0.0, -0.5, 0.0), 0.5)
+        ));
     }
 
     /// Through the middle of the unit sphere with a hard edge the fog crossed is density ×

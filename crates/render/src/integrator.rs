@@ -385,10 +385,10 @@ pub fn trace_camera_path(
     let mut media = camera_media.clone();
     // The instance the path last scattered at (light linking; none at the camera).
     let mut from_instance: Option<u32> = None;
-    // The camera's volume, when the path engine applies it (see `fog`), the mental ray
-    // type of the path's current segment, and the share of the camera ray's colour it
-    // covers (for alpha, as the classic fogs give it).
-    let camera_fog = fog::camera_fog(shading);
+    // The camera's and materials' fogs, when the path engine applies them (see `fog`),
+    // the mental ray type of the path's current segment, and the share of the camera
+    // ray's colour they cover (for alpha, as the classic fogs give it).
+    let mut fogs = fog::PathFog::new(shading);
     let mut segment_type = RayType::Eye;
     let mut fog_cover = 0.0f32;
     for depth in 0..settings.max_depth {
@@ -412,6 +412,7 @@ pub fn trace_camera_path(
                 break;
             }
             counts.rays += 1;
+            fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = offset_origin(s.p, s.ng, ray.dir);
         }
         let hit = found.as_ref().map(|(h, _, _)| *h);
@@ -448,18 +449,21 @@ pub fn trace_camera_path(
                 None => {}
             }
         }
-        if let Some((fog_shading, head)) = camera_fog.filter(|_| media.is_empty()) {
-            // The camera's volume over the segment, in front of all that lies behind it.
-            let t_end = match (&light_hit, &hit) {
-                (Some((_, t, _)), _) => *t,
-                (None, Some(h)) => h.t,
-                (None, None) => f32::INFINITY,
+        if fogs.is_active() {
+            // The fogs over the segment, in front of all that lies behind it.
+            let (t_end, end) = match (&light_hit, &hit) {
+                (Some((_, t, _)), _) => (*t, None),
+                (None, Some(h)) => (h.t, Some(h.instance)),
+                (None, None) => (f32::INFINITY, None),
             };
-            let terms = fog::segment_terms(world, accel, fog_shading, head, &ray, t_end, segment_type, depth);
-            radiance += throughput * terms.add;
-            throughput *= terms.keep;
-            if depth == 0 {
-                fog_cover = (3.0 - terms.keep.element_sum()) / 3.0;
+            let apply = media.is_empty();
+            let terms = fogs.along(world, accel, &ray, t_end, end, segment_type, depth, apply);
+            if apply {
+                radiance += throughput * terms.add;
+                throughput *= terms.keep;
+                if depth == 0 {
+                    fog_cover = (3.0 - terms.keep.element_sum()) / 3.0;
+                }
             }
         }
         if let (None, None, Some(env)) = (&light_hit, &found, env) {
@@ -572,8 +576,11 @@ pub fn trace_camera_path(
                     let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
-                    let unshadowed =
+                    let mut unshadowed =
                         media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
+                    if fogs.is_active() && unshadowed != Rgb::ZERO {
+                        unshadowed *= fogs.light_keep(world, accel, s.p, ls.wi, ls.dist, ray.time);
+                    }
                     // Maya's `shadowColor`: what a shadowed point still receives.
                     // (Skipped for black, the default: it would add exactly nothing.)
                     let tr = if light.shadow && light.shadow_color != Rgb::ZERO {
@@ -604,7 +611,8 @@ pub fn trace_camera_path(
         }
         throughput *= bs.weight();
         from_instance = Some(stop.instance);
-        if camera_fog.is_some() {
+        fogs.scattered(s.material, s.ng, ray.dir, wi);
+        if fogs.is_active() {
             segment_type = fog::segment_type(depth + 1, bs.delta, ng, wi);
         }
         // Straight through an index-matched medium boundary is no bounce for MIS: what is

@@ -71,6 +71,10 @@ pub type PhotonRun = fn(ctx: &mut Ctx, node: NodeId) -> photon::Scatter;
 /// engine applies to its segments (see [`Ctx::volume_terms`]).
 pub type VolumeTermsRun = fn(ctx: &mut Ctx, node: NodeId) -> volume::VolumeTerms;
 
+/// Whether node `node` of a shader with [`ShaderImpl::volume_terms`] is affine in
+/// `shading` (see [`ShaderImpl::volume_affine`]).
+pub type VolumeAffine = fn(shading: &Shading, node: NodeId) -> bool;
+
 /// A shader mira implements.
 #[derive(Debug)]
 pub struct ShaderImpl {
@@ -89,13 +93,25 @@ pub struct ShaderImpl {
     /// channel, the same for every c): those terms over the state's segment. `None`: the
     /// shader is no such volume.
     pub volume_terms: Option<VolumeTermsRun>,
+    /// For a shader with `volume_terms` whose effect is affine only for some of its
+    /// connections (Maya's volume sampler: affine over a fog or a volume material, not
+    /// over a mental ray volume shader it runs): whether the node is affine in the compiled
+    /// shading. `None`: always.
+    pub volume_affine: Option<VolumeAffine>,
 }
 
 impl ShaderImpl {
     /// The defaults of the optional behaviours (no photon scattering, not a portal, no
     /// affine volume terms), for `ShaderImpl { name, params, run, ..ShaderImpl::PLAIN }`.
-    pub const PLAIN: ShaderImpl =
-        ShaderImpl { name: "", params: &[], run: |_, _, _| false, photon: None, portal: false, volume_terms: None };
+    pub const PLAIN: ShaderImpl = ShaderImpl {
+        name: "",
+        params: &[],
+        run: |_, _, _| false,
+        photon: None,
+        portal: false,
+        volume_terms: None,
+        volume_affine: None,
+    };
 }
 
 /// A registered implementation.

@@ -37,7 +37,10 @@
 //! tells those terms ([`crate::ShaderImpl::volume_terms`], [`VolumeTerms`]). The path
 //! engine, which runs no shader on the colour a path brings back (it adds light forward,
 //! weighted by the path's throughput), applies such a volume exactly: it adds
-//! throughput ⊙ add and multiplies the throughput by keep ([`Ctx::volume_terms`]).
+//! throughput ⊙ add and multiplies the throughput by keep ([`Ctx::volume_terms`]), on
+//! the camera's volume and, inside the objects of a material, on that material's. A
+//! shader whose effect is affine only for some of its connections (Maya's volume sampler)
+//! says for which ([`crate::ShaderImpl::volume_affine`], asked by [`is_affine`]).
 
 use glam::Vec3A;
 
@@ -80,7 +83,8 @@ pub fn is_affine(shading: &Shading, head: NodeId) -> bool {
     let mut guard = 0;
     while let Some(n) = node {
         let Some(x) = shading.graph.nodes.get(n as usize) else { return false };
-        if x.imp.and_then(|i| i.volume_terms).is_none() {
+        let Some(imp) = x.imp.filter(|i| i.volume_terms.is_some()) else { return false };
+        if imp.volume_affine.is_some_and(|affine| !affine(shading, n)) {
             return false;
         }
         node = x.next;

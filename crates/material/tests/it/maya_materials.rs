@@ -328,9 +328,10 @@ fn volume_light_directions_and_emit_ambient_against_their_formulas() {
     }
 }
 
-/// A fog in a material's volume is named for the path engine, which leaves it out; a
-/// camera volume of fogs is not (the path engine applies it); a physical fog of a water
-/// type is named for its water, a volumeFog with a cone dropoff for the cone.
+/// A fog in a material's volume is applied by the path engine (no warning), as is a
+/// volumeFog through the volume sampler; a fog in a volume list with a shader that is not
+/// affine (`mib_volume`) is named for the path engine, which leaves it out; a physical fog
+/// of a water type and a volumeFog with a cone dropoff are not named (both rendered).
 #[test]
 fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_water() {
     let text = format!(
@@ -338,16 +339,20 @@ fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_water() {
          shader \"lit\" \"adskMayaLightFog\" (\"density\" 0.5)\n\
          shader \"lam\" \"maya_lambert\" ()\n\
          material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\")\n\
-         volume \"maya_volumesampler\" (\"volumeShader\" = \"env\") end material"
+         volume \"maya_volumesampler\" (\"volumeShader\" = \"env\") end material\n\
+         shader \"mibv\" \"mib_volume\" (\"max\" 20)\n\
+         material \"m2\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\")\n\
+         volume = \"lit\" = \"mibv\" end material"
     );
-    let c = compile("", &text, &["m"], "");
+    let c = compile("", &text, &["m", "m2"], "");
     let warnings = maya::fog::fog_warnings(&c.shading);
     let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
-    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("path engine")), "{messages:?}");
-    assert!(messages.iter().any(|m| m.contains("maya_envfog") && m.contains("water")), "{messages:?}");
+    assert!(!messages.iter().any(|m| m.contains("maya_envfog") && m.contains("path engine")), "{messages:?}");
+    assert!(!messages.iter().any(|m| m.contains("water")), "the water is rendered: {messages:?}");
+    assert!(messages.iter().any(|m| m.contains("adskMayaLightFog") && m.contains("path engine")), "{messages:?}");
     assert!(!messages.iter().any(|m| m.contains("adskMayaLightFog") && m.contains("water")), "{messages:?}");
-    // A volumeFog in a shading group's volume: left out by the path engine; a cone
-    // dropoff is named as not implemented.
+    // A volumeFog in a shading group's volume, with a cone dropoff: applied by the path
+    // engine, no warning.
     let text = format!(
         "{LIBS}shader \"vf\" \"maya_volumefog\" (\"dropoffShape\" 3)\n\
          shader \"lam\" \"maya_lambert\" ()\n\
@@ -358,8 +363,8 @@ fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_water() {
     assert!(c.messages.is_empty(), "{:#?}", c.messages);
     let warnings = maya::fog::fog_warnings(&c.shading);
     let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
-    assert!(messages.iter().any(|m| m.contains("maya_volumefog") && m.contains("path engine")), "{messages:?}");
-    assert!(messages.iter().any(|m| m.contains("maya_volumefog") && m.contains("cone")), "{messages:?}");
+    assert!(!messages.iter().any(|m| m.contains("maya_volumefog") && m.contains("path engine")), "{messages:?}");
+    assert!(messages.is_empty(), "a cone dropoff is rendered: {messages:?}");
     // The same fog as the camera's volume: the path engine applies it.
     let body = format!(
         "{LIBS}shader \"envcam\" \"maya_envfog\" (\"saturationDistance\" 10)\n\

@@ -18,6 +18,7 @@ mod maya;
 mod maya_ambient_links_path;
 mod maya_ambient_path;
 mod maya_exports_agree;
+mod maya_fog_material_path;
 mod maya_fog_path;
 mod maya_highlight_path;
 mod maya_path;
