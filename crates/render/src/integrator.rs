@@ -104,7 +104,8 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 /// The closest visible light hit by `ray` before distance `tmax`; camera rays pass through
-/// portal windows.
+/// portal windows. (Inlined into the path loop: every ray asks it.)
+#[inline]
 fn hit_light(lights: &[LightSource], ray: &Ray, camera: bool) -> Option<(usize, f32, Rgb)> {
     let mut best: Option<(usize, f32, Rgb)> = None;
     for (i, l) in lights.iter().enumerate() {

@@ -43,6 +43,7 @@ mod motion_shading;
 mod path_materials;
 mod photometric;
 mod photons;
+mod rect_light_paths;
 mod shutter_shape;
 mod sky;
 mod sun_sky_path;
