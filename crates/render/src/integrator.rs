@@ -553,7 +553,8 @@ pub fn trace_camera_path(
             }
             radiance += throughput * (material.diffuse * ambient * sum + highlight);
         }
-        let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
+        // (One choice — one light, the common case — needs no float-to-index conversion.)
+        let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
