@@ -456,7 +456,7 @@ impl LightSource {
     ///
     /// Every ray of the path engine asks every visible light this, so the common case — a
     /// rectangle that emits radiance and does not move — is inlined at the caller; the
-    /// rest is [`LightSource::intersect_any`], out of line.
+    /// rest is `intersect_any`, out of line.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
         if let (Output::Radiance { l, two_sided }, Shape::Rect { .. }, true) =
@@ -519,7 +519,7 @@ impl LightSource {
     ///
     /// The common case — a rectangle that emits radiance and does not move — is inlined
     /// at the caller (the same arithmetic as [`LightSource::sample`]'s); the rest is
-    /// [`LightSource::sample_any_at`], out of line.
+    /// `sample_any_at`, out of line.
     #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
         if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal }, true) =
