@@ -12,6 +12,7 @@ mod classic;
 mod classic_shadows;
 mod environment;
 mod fgcache;
+mod first_shadow_packets;
 mod glossy_interpolation;
 mod iray_sun_and_sky;
 mod maya;
