@@ -195,7 +195,7 @@ impl PathBand<'_> {
         let mut owner = [0usize; PACKET];
         let mut m = 0;
         for (i, r) in results[..n].iter().enumerate() {
-            if let Some(p) = r.and_then(|r| r.pending) {
+            if let Some(p) = r.as_ref().and_then(|r| r.pending.as_ref()) {
                 shadows[m] = p.ray;
                 owner[m] = i;
                 m += 1;
@@ -208,7 +208,7 @@ impl PathBand<'_> {
             lane_blocked[i] = b;
         }
         let cam = &self.world.camera;
-        for ((lane, r), blocked) in lanes.drain(..).zip(results).zip(lane_blocked) {
+        for ((lane, r), blocked) in lanes.drain(..).zip(&results).zip(lane_blocked) {
             let Some(r) = r else { continue };
             let radiance = r.radiance_given(blocked);
             let px = &mut pixels[lane.k];
