@@ -52,6 +52,49 @@ pub struct PathResult {
     /// [`material::SurfaceMaterial::glow`], zero when it does not glow); `None` when the
     /// camera ray stopped at no surface.
     pub glow: Option<Rgb>,
+    /// The first bounce's shadow ray when the caller asked to trace it itself
+    /// ([`CameraRay::defer_shadow`]): then `radiance` is the path's radiance if the ray is
+    /// not blocked, and this holds the radiance if it is.
+    pub pending: Option<PendingShadow>,
+}
+
+/// A camera path's first shadow ray, left to the caller (which traces it with its
+/// neighbours' in one packet, [`Accel::occluded_batch`]).
+#[derive(Clone, Copy, Debug)]
+pub struct PendingShadow {
+    /// The shadow ray (world space), as the path would have traced it.
+    pub ray: Ray,
+    /// The path's radiance if `ray` is blocked.
+    pub blocked: Rgb,
+}
+
+impl PathResult {
+    /// The radiance of the path given whether its pending shadow ray is `blocked` (the
+    /// radiance itself when none is pending).
+    pub fn radiance_given(&self, blocked: bool) -> Rgb {
+        match self.pending {
+            Some(p) if blocked => p.blocked,
+            _ => self.radiance,
+        }
+    }
+}
+
+/// A path's radiance, summed term by term twice while the first bounce's shadow ray is
+/// left to the caller: `lit` with that ray's light, `shadowed` without it. Every other
+/// term goes into both in the same order, so each is, bit for bit, the sum the path makes
+/// when the ray is (or is not) blocked.
+#[derive(Clone, Copy)]
+struct RadianceSum {
+    lit: Rgb,
+    shadowed: Rgb,
+}
+
+impl std::ops::AddAssign<Rgb> for RadianceSum {
+    #[inline(always)]
+    fn add_assign(&mut self, term: Rgb) {
+        self.lit += term;
+        self.shadowed += term;
+    }
 }
 
 /// Surface data at a hit.
@@ -104,7 +147,8 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 /// The closest visible light hit by `ray` before distance `tmax`; camera rays pass through
-/// portal windows.
+/// portal windows. (Inlined into the path loop: every ray asks it.)
+#[inline]
 fn hit_light(lights: &[LightSource], ray: &Ray, camera: bool) -> Option<(usize, f32, Rgb)> {
     let mut best: Option<(usize, f32, Rgb)> = None;
     for (i, l) in lights.iter().enumerate() {
@@ -335,7 +379,7 @@ pub fn trace_path(
     settings: &PathSettings,
     counts: &mut RayCounts,
 ) -> PathResult {
-    let camera = CameraRay { ray: camera_ray, hit: None };
+    let camera = CameraRay { ray: camera_ray, hit: None, defer_shadow: false };
     trace_camera_path(world, accel, shading, env, camera, camera_media, sampler, settings, counts)
 }
 
@@ -348,6 +392,10 @@ pub struct CameraRay {
     /// `Some(found)`: the closest hit along `ray`, as `accel.intersect(&ray)` gives it;
     /// `None`: not traced yet.
     pub hit: Option<Option<Hit>>,
+    /// Leave the first bounce's shadow ray to the caller ([`PathResult::pending`]) where
+    /// its answer is all or nothing (a light that casts shadows, no `shadowColor`, a scene
+    /// without media or cutouts); `false`: trace it in the path.
+    pub defer_shadow: bool,
 }
 
 /// [`trace_path`] from a [`CameraRay`] whose closest hit may be known already (then the
@@ -369,7 +417,9 @@ pub fn trace_camera_path(
     let mut camera_hit = camera.hit;
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
-    let mut radiance = Rgb::ZERO;
+    let mut radiance = RadianceSum { lit: Rgb::ZERO, shadowed: Rgb::ZERO };
+    // The first bounce's shadow ray, when it is left to the caller.
+    let mut pending: Option<Ray> = None;
     let mut first = None;
     let mut glow = None;
     let mut alpha = 0.0;
@@ -556,7 +606,8 @@ pub fn trace_camera_path(
             }
             radiance += throughput * (material.diffuse * ambient * sum + highlight);
         }
-        let k = ((choice * choices as f32) as usize).min(choices.saturating_sub(1));
+        // (One choice — one light, the common case — needs no float-to-index conversion.)
+        let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
@@ -576,8 +627,22 @@ pub fn trace_camera_path(
                     let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
-                    let mut unshadowed =
-                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow);
+                    // The caller may trace the first bounce's shadow ray (with others in a
+                    // packet) where its answer is all or nothing: the light is then taken
+                    // as unblocked here, and the sum without it kept beside.
+                    let defer = depth == 0
+                        && camera.defer_shadow
+                        && light.shadow
+                        && light.shadow_color == Rgb::ZERO
+                        && !world.has_media
+                        && !world.has_cutouts
+                        && !fogs.is_active();
+                    let mut unshadowed = if defer {
+                        pending = Some(shadow);
+                        Rgb::ONE
+                    } else {
+                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow)
+                    };
                     if fogs.is_active() && unshadowed != Rgb::ZERO {
                         unshadowed *= fogs.light_keep(world, accel, s.p, ls.wi, ls.dist, ray.time);
                     }
@@ -594,7 +659,12 @@ pub fn trace_camera_path(
                         } else {
                             power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi))
                         };
-                        radiance += throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
+                        let term = throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
+                        if defer {
+                            radiance.lit += term;
+                        } else {
+                            radiance += term;
+                        }
                     }
                 }
             }
@@ -640,7 +710,8 @@ pub fn trace_camera_path(
     }
     // The camera ray's fog covers what it did not find, as the classic fogs' alpha.
     let alpha = alpha + (1.0 - alpha) * fog_cover.clamp(0.0, 1.0);
-    PathResult { radiance, alpha, first, glow }
+    let pending = pending.map(|ray| PendingShadow { ray, blocked: radiance.shadowed });
+    PathResult { radiance: radiance.lit, alpha, first, glow, pending }
 }
 
 /// The direction (unit) and distance from `p` to a point uniform over the surface of the

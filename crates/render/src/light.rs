@@ -391,6 +391,9 @@ impl LightSource {
                 if let Shape::Sphere { radius } = self.shape {
                     return self.sample_sphere_cone(p, radius, *l, u);
                 }
+                if let Shape::Rect { u: eu, v: ev, normal } = self.shape {
+                    return rect_sample(self.position, eu, ev, normal, *l, *two_sided, p, u);
+                }
                 let (q, n) = self.point_on(u);
                 let d = q - p;
                 let dist2 = d.length_squared();
@@ -450,7 +453,24 @@ impl LightSource {
     }
 
     /// Where `ray` hits the light's surface: (t, radiance towards the ray's origin).
+    ///
+    /// Every ray of the path engine asks every visible light this, so the common case — a
+    /// rectangle that emits radiance and does not move — is inlined at the caller; the
+    /// rest is `intersect_any`, out of line.
+    #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        if let (Output::Radiance { l, two_sided }, Shape::Rect { .. }, true) =
+            (&self.output, &self.shape, self.motion.is_empty())
+        {
+            let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
+            return (facing || *two_sided).then_some((t, *l));
+        }
+        self.intersect_any(ray)
+    }
+
+    /// [`LightSource::intersect`] for any light.
+    #[inline(never)]
+    fn intersect_any(&self, ray: &Ray) -> Option<(f32, Rgb)> {
         if let Some(shaped) = self.shaped_at(ray.time) {
             return shaped.intersect(ray);
         }
@@ -496,7 +516,23 @@ impl LightSource {
     }
 
     /// [`LightSource::sample`] with the light where it is at shutter time `time`.
+    ///
+    /// The common case — a rectangle that emits radiance and does not move — is inlined
+    /// at the caller (the same arithmetic as [`LightSource::sample`]'s); the rest is
+    /// `sample_any_at`, out of line.
+    #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
+        if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal }, true) =
+            (&self.output, &self.shape, self.motion.is_empty())
+        {
+            return rect_sample(self.position, eu, ev, normal, *l, *two_sided, p, u);
+        }
+        self.sample_any_at(p, u, time)
+    }
+
+    /// [`LightSource::sample_at`] for any light.
+    #[inline(never)]
+    fn sample_any_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
         if let Some(shaped) = self.shaped_at(time) {
             return shaped.sample_at(p, u, time);
         }
@@ -520,7 +556,18 @@ impl LightSource {
     /// A Maya volume light whose `volumeLightDir` turns the sample's direction: towards
     /// the point it shines from (its origin, or the nearest point of a cylinder's or
     /// cone's axis).
+    #[inline]
     pub fn shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
+        // Most lights: the sample's own ray (tested inline; the others out of line).
+        if self.soft_shadow.is_none() && !matches!(self.output, Output::Volume(_)) {
+            return (ls.wi, ls.dist);
+        }
+        self.spread_shadow_ray_at(p, ls, u, time)
+    }
+
+    /// [`LightSource::shadow_ray_at`] for lights with soft shadows or a turned volume light.
+    #[inline(never)]
+    fn spread_shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
         let centre = || {
             if self.motion.is_empty() {
                 self.position
@@ -572,4 +619,38 @@ impl LightSource {
         let back = crate::motion::lerp_keys(&self.motion, time).inverse();
         self.pdf(back.transform_point3a(p), back.transform_vector3a(wi).normalize_or(wi), t)
     }
+}
+
+/// A sample of a rectangle of radiance `l` centred at `centre` (full edges `eu`, `ev`, unit
+/// normal `normal` on its emitting side; both sides when `two_sided`) seen from `p`: the
+/// point picked uniformly by area by `u`, its density per solid angle. `None` when that
+/// point is `p` itself or faces away.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rect_sample(
+    centre: Vec3A,
+    eu: Vec3A,
+    ev: Vec3A,
+    normal: Vec3A,
+    l: Rgb,
+    two_sided: bool,
+    p: Vec3A,
+    u: Vec2,
+) -> Option<LightSample> {
+    // The arithmetic of `Shape::point_on` and `Shape::area` for rectangles, step by step:
+    // the same numbers bit for bit as the general path.
+    let q = centre + eu * (u.x - 0.5) + ev * (u.y - 0.5);
+    let d = q - p;
+    let dist2 = d.length_squared();
+    let dist = dist2.sqrt();
+    if dist == 0.0 {
+        return None;
+    }
+    let wi = d / dist;
+    let cos_l = -wi.dot(normal);
+    if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
+        return None;
+    }
+    let pdf = dist2 / (cos_l.abs() * eu.cross(ev).length());
+    Some(LightSample { wi, dist, radiance: l, pdf, delta: false })
 }

@@ -1,7 +1,11 @@
 //! The path engine's samples over one band of pixels: each pixel's samples in index order,
 //! as one pass of [`crate::render`] asks for them, with the camera rays of eight
 //! consecutive samples (the same pixel's, or neighbours' along the row) traced together
-//! ([`Accel::intersect_batch`]: one Embree packet) before their paths go on one by one.
+//! ([`Accel::intersect_batch`]: one Embree packet) before their paths go on one by one;
+//! their first bounces' shadow rays are traced together too, after the paths
+//! ([`Accel::occluded_batch`]: each path keeps its radiance with and without that ray's
+//! light, [`crate::integrator::PendingShadow`], so the answer picks one, bit for bit the
+//! sum the path makes tracing the ray itself).
 //!
 //! Every sample's numbers depend on its pixel, index and dimension only, and its path goes
 //! on from the hit the batch gave its camera ray. Packets are made per row and pass, so the
@@ -22,7 +26,7 @@ use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::film::Pixel;
 use crate::filter::PixelFilter;
-use crate::integrator::{trace_camera_path, CameraRay, MediumStack, PathSettings};
+use crate::integrator::{trace_camera_path, CameraRay, MediumStack, PathResult, PathSettings};
 use crate::ray::{Ray, RayCounts};
 use crate::sampler::{pixel_seed, Sampler, SamplerPosition};
 use crate::world::World;
@@ -165,11 +169,11 @@ impl PathBand<'_> {
         }
         let mut hits: [Option<Hit>; PACKET] = [None; PACKET];
         self.accel.intersect_batch(&rays[..n], &mut hits[..n]);
-        let cam = &self.world.camera;
-        for (lane, hit) in lanes.drain(..).zip(hits) {
+        let mut results: [Option<PathResult>; PACKET] = [None; PACKET];
+        for ((lane, hit), result) in lanes.iter().zip(hits).zip(&mut results) {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
-            let camera = CameraRay { ray: lane.ray, hit: Some(hit) };
+            let camera = CameraRay { ray: lane.ray, hit: Some(hit), defer_shadow: true };
             // A camera that moves across a medium's surface while the shutter is open: the
             // media where it is at this sample's time.
             let moved_media = crate::integrator::camera_media_at(self.world, self.accel, self.camera_media, lane.time);
@@ -187,6 +191,29 @@ impl PathBand<'_> {
                 self.path,
                 &mut out.counts,
             );
+            *result = Some(r);
+        }
+        // The first bounces' shadow rays, traced together.
+        let mut shadows = [Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z); PACKET];
+        let mut owner = [0usize; PACKET];
+        let mut m = 0;
+        for (i, r) in results[..n].iter().enumerate() {
+            if let Some(p) = r.as_ref().and_then(|r| r.pending.as_ref()) {
+                shadows[m] = p.ray;
+                owner[m] = i;
+                m += 1;
+            }
+        }
+        let mut blocked = [false; PACKET];
+        self.accel.occluded_batch(&shadows[..m], &mut blocked[..m]);
+        let mut lane_blocked = [false; PACKET];
+        for (&i, &b) in owner[..m].iter().zip(&blocked[..m]) {
+            lane_blocked[i] = b;
+        }
+        let cam = &self.world.camera;
+        for ((lane, r), blocked) in lanes.drain(..).zip(&results).zip(lane_blocked) {
+            let Some(r) = r else { continue };
+            let radiance = r.radiance_given(blocked);
             let px = &mut pixels[lane.k];
             if lane.index == 0 {
                 if let Some(f) = r.first {
@@ -202,7 +229,7 @@ impl PathBand<'_> {
                 let g = g.max(bsdf::Rgb::ZERO);
                 out.writes.push((base + lane.k, buffer, [g.x, g.y, g.z, 1.0]));
             }
-            out.nonfinite += u64::from(px.add(r.radiance, r.alpha, lane.weight, lane.index));
+            out.nonfinite += u64::from(px.add(radiance, r.alpha, lane.weight, lane.index));
         }
     }
 }

@@ -37,6 +37,7 @@ impl Ray {
 /// Moves a surface point off the surface along its geometric normal `n`, towards the
 /// side `dir` leaves to, by a few ulps (the shading model's `offset_point`, shared by both
 /// engines).
+#[inline]
 pub fn offset_origin(p: Vec3A, n: Vec3A, dir: Vec3A) -> Vec3A {
     shader::trace::offset_point(p, n, dir)
 }
