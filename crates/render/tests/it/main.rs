@@ -33,6 +33,7 @@ mod mdl_vdf_tints;
 mod mdl_wide;
 mod media;
 mod media_classic;
+mod media_entry;
 mod mia_helpers;
 mod motion;
 mod motion_blur;
