@@ -14,7 +14,7 @@
 
 use glam::Vec2;
 
-pub use crate::phase::{HenyeyGreenstein, Phase, PhaseSample, MAX_PHASE_LOBES};
+pub use crate::phase::{channel_probabilities, HenyeyGreenstein, Phase, PhaseSample, MAX_PHASE_LOBES};
 use crate::Rgb;
 
 /// A homogeneous medium: absorption and scattering coefficients per channel (1 / scene
@@ -119,20 +119,6 @@ impl Medium {
             let p = tr.dot(picks);
             Flight::Through { weight: if p > 0.0 { tr / p } else { Rgb::ZERO } }
         }
-    }
-}
-
-/// The probabilities of picking each colour channel to sample a free flight or a
-/// chromatic phase function for a path of throughput `by`: proportional to it (negative
-/// and non-finite channels count as 0), uniform when nothing is left. A white throughput
-/// picks each channel with probability exactly 1/3.
-pub fn channel_probabilities(by: Rgb) -> Rgb {
-    let by = Rgb::select(by.cmpgt(Rgb::ZERO) & by.is_finite_mask(), by, Rgb::ZERO);
-    let sum = by.element_sum();
-    if sum > 0.0 && sum.is_finite() {
-        by / sum
-    } else {
-        Rgb::splat(1.0 / 3.0)
     }
 }
 

@@ -20,7 +20,6 @@
 
 use glam::{Vec2, Vec3A};
 
-use crate::medium::channel_probabilities;
 use crate::{Frame, Rgb};
 
 /// The Henyey–Greenstein phase function with asymmetry `g` in (−1, 1): the mean cosine
@@ -307,6 +306,20 @@ impl Phase {
         let w = self.weights[k][channel];
         let ux = if w > 0.0 { (left / w).clamp(0.0, 1.0 - f32::EPSILON) } else { 0.0 };
         self.lobes[k].sample(dir_in, Vec2::new(ux, u.y)).0
+    }
+}
+
+/// The probabilities of picking each colour channel to sample a free flight or a
+/// chromatic phase function for a path of throughput `by`: proportional to it (negative
+/// and non-finite channels count as 0), uniform when nothing is left. A white throughput
+/// picks each channel with probability exactly 1/3.
+pub fn channel_probabilities(by: Rgb) -> Rgb {
+    let by = Rgb::select(by.cmpgt(Rgb::ZERO) & by.is_finite_mask(), by, Rgb::ZERO);
+    let sum = by.element_sum();
+    if sum > 0.0 && sum.is_finite() {
+        by / sum
+    } else {
+        Rgb::splat(1.0 / 3.0)
     }
 }
 

@@ -158,7 +158,7 @@ fn a_chromatic_mixture_samples_each_channel_and_their_mixture() {
         assert!(chi2 < limit, "channel {c}: chi-square {chi2} (limit {limit})");
     }
     for by in [Rgb::ONE, Rgb::new(1.0, 0.2, 0.05)] {
-        let picks = crate::medium::channel_probabilities(by);
+        let picks = channel_probabilities(by);
         assert!((picks - by / by.element_sum()).abs().max_element() < 1e-6, "{picks:?}");
         let (chi2, limit) = chi_square(
             dir_in,
@@ -175,7 +175,7 @@ fn a_chromatic_mixture_samples_each_channel_and_their_mixture() {
         assert!(chi2 < limit, "throughput {by:?}: chi-square {chi2} (limit {limit})");
     }
     // Nothing left to weigh by: uniform.
-    assert_eq!(crate::medium::channel_probabilities(Rgb::new(0.0, -1.0, f32::NAN)), Rgb::splat(1.0 / 3.0));
+    assert_eq!(channel_probabilities(Rgb::new(0.0, -1.0, f32::NAN)), Rgb::splat(1.0 / 3.0));
 }
 
 /// A white furnace for the phase function alone: scattering loses nothing in any channel,
