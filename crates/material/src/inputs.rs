@@ -122,6 +122,24 @@ impl PartialEq for Evaluated {
     }
 }
 
+/// A participating medium that depends on the shading point (an MDL volume whose
+/// coefficients, weights or biases vary over the surface): a medium is homogeneous inside
+/// its object, so it is evaluated where a path enters the object.
+pub trait MediumEvaluator: std::fmt::Debug + Send + Sync {
+    /// The medium at the shading point `state` (the surface point a path enters through).
+    fn medium(&self, state: &shader::State) -> bsdf::Medium;
+}
+
+/// A shared [`MediumEvaluator`] (equal only to itself).
+#[derive(Clone, Debug)]
+pub struct VaryingMedium(pub Arc<dyn MediumEvaluator>);
+
+impl PartialEq for VaryingMedium {
+    fn eq(&self, other: &VaryingMedium) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 /// A material at one shading point (borrowing the material's model where nothing varies).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HitMaterial<'a> {

@@ -34,7 +34,7 @@ use bsdf::mia::{anisotropic_roughness, gloss_to_roughness, MiaBsdf};
 use bsdf::microfacet::Ggx;
 use bsdf::Rgb;
 use bsdf::{Bsdf, Lambert, OrenNayar, Unified};
-pub use inputs::{Binding, Evaluated, HitEvaluator, HitMaterial, Target, Varying};
+pub use inputs::{Binding, Evaluated, HitEvaluator, HitMaterial, MediumEvaluator, Target, Varying, VaryingMedium};
 use mia::params::Mia;
 use reader::Reader;
 use shader::Shading;
@@ -169,6 +169,10 @@ pub struct SurfaceMaterial {
     /// The participating medium inside the surface (MDL's `material_volume`), when light
     /// can enter it ([`SurfaceMaterial::has_inside`]) and it absorbs or scatters.
     pub medium: Option<bsdf::Medium>,
+    /// The medium where it depends on the shading point: evaluated where a path enters
+    /// the object ([`SurfaceMaterial::medium_at`]; `medium` is then its value at a default
+    /// point). `None` for a medium that is the same everywhere.
+    pub varying_medium: Option<inputs::VaryingMedium>,
     /// The BSDF's local x axis at a hit: the surface's dP/du of its first texture space
     /// turned by this angle (radians, counter-clockwise about the shading normal), for
     /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
@@ -210,6 +214,7 @@ impl SurfaceMaterial {
             emission_shape: None,
             varying: Varying::Constant,
             medium: None,
+            varying_medium: None,
             tangent_angle: None,
             glow: Rgb::ZERO,
             ambient: Rgb::ZERO,
@@ -221,6 +226,15 @@ impl SurfaceMaterial {
     /// weights depend on the viewing angle), for the material's constant parameters.
     pub fn bsdf(&self, wo: glam::Vec3A) -> Bsdf {
         self.model.bsdf(self.diffuse, wo)
+    }
+
+    /// The medium a path entering the object at the shading point `state` travels in:
+    /// the varying medium evaluated there, else the constant one.
+    pub fn medium_at(&self, state: &shader::State) -> Option<bsdf::Medium> {
+        match &self.varying_medium {
+            Some(v) => Some(v.0.medium(state)),
+            None => self.medium,
+        }
     }
 
     /// Whether light can enter the surface (then its two sides differ: the path tracer

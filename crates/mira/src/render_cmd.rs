@@ -395,8 +395,9 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let t_world = t_world.elapsed();
     let sc = &loaded_scene;
     let (world, shading) = (&built.world, &built.shading);
-    if args.warnings && !classic {
-        for w in &world.warnings {
+    if args.warnings {
+        let classic_only = if classic { render::pipeline::classic_warnings(world) } else { Vec::new() };
+        for w in if classic { &classic_only } else { &world.warnings } {
             eprintln!("mira: warning: {w}");
         }
     }

@@ -85,7 +85,7 @@ pub fn eye_sample(
 /// media are MDL materials, which refract by their BSDF, not by the chain. Nothing changes
 /// outside all media (scenes without media).
 pub fn enter_media(state: &mut State, media: &MediumStack) {
-    for &m in media.materials() {
+    for m in media.materials() {
         // World material 0 is the default; world material m is scene material m − 1.
         if let Some(material) = m.checked_sub(1) {
             state.enter(shader::state::Medium { material, ior: 1.0 });

@@ -471,7 +471,7 @@ pub fn trace_camera_path(
         if !media.is_empty() {
             // In a medium the ray may scatter before what it found.
             let t_end = light_hit.map_or(tmax, |(_, t, _)| t);
-            match media::fly(world, &media, t_end, sampler) {
+            match media::fly(world, &media, t_end, throughput, sampler) {
                 Some(bsdf::medium::Flight::Scattered { t, weight }) => {
                     throughput *= weight;
                     let Some(medium) = media.current(world) else { break };
@@ -479,8 +479,21 @@ pub fn trace_camera_path(
                     let lighting =
                         media::Lighting { world, accel, shading, env, pick, choices, seed, mis: settings.mis };
                     radiance += throughput
-                        * media::direct_light(&lighting, medium, &media, p, ray.dir, ray.time, sampler, counts);
-                    let (dir, pdf) = medium.phase.sample(ray.dir, sampler.next_2d());
+                        * media::direct_light(
+                            &lighting,
+                            medium,
+                            &media,
+                            (p, throughput),
+                            ray.dir,
+                            ray.time,
+                            sampler,
+                            counts,
+                        );
+                    // (A grey phase function's sample weighs exactly 1; a chromatic one picks
+                    // its channel by the throughput.)
+                    let bsdf::PhaseSample { dir, pdf, weight } =
+                        medium.phase.sample(ray.dir, sampler.next_2d(), throughput);
+                    throughput *= weight;
                     last_pdf = pdf;
                     last_delta = false;
                     from_instance = None;
@@ -568,7 +581,7 @@ pub fn trace_camera_path(
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
         let bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
-        let departure = Departure { media: &media, surface: Some((s.material, s.ng, ray.dir)) };
+        let departure = Departure { media: &media, surface: Some((s.material, s.ng, &ray, &stop)) };
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
@@ -687,7 +700,7 @@ pub fn trace_camera_path(
         }
         // Straight through an index-matched medium boundary is no bounce for MIS: what is
         // found next is weighed against the sampling at the vertex before.
-        if !(world.has_media && media.follow(world, s.material, s.ng, ray.dir, wi)) {
+        if !(world.has_media && media.follow(world, s.material, s.ng, wi, (&ray, &stop))) {
             last_pdf = bs.pdf;
             last_delta = bs.delta;
         }

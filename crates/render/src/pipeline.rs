@@ -215,6 +215,23 @@ fn share_media(shading: &mut Shading, world: &World) {
     }
 }
 
+/// What the classic engine renders differently from the path engine in `world`, as
+/// warnings (empty for most scenes): a medium that varies over its object's surface is
+/// evaluated where each path enters the object in the path engine, but the classic
+/// engine's volume uses its value at the material's default point (texture coordinates 0,
+/// the origin) everywhere.
+pub fn classic_warnings(world: &World) -> Vec<String> {
+    let varying = world.materials.iter().filter(|m| m.varying_medium.is_some() && m.has_inside());
+    varying
+        .map(|m| {
+            format!(
+                "material '{}': its volume varies over the surface; the classic engine uses its value at the origin (texture coordinates 0) everywhere, the path engine the value where a path enters",
+                m.name
+            )
+        })
+        .collect()
+}
+
 /// The shading half of [`build_world`]: the compiled shading, the MDL module materials and
 /// the messages of both.
 fn compile_scene_shading(

@@ -297,6 +297,42 @@ impl Tracer for SceneTracer<'_> {
         visit(&h);
     }
 
+    fn boundary_hits(&self, s: &State, max_dist: f32, visit: &mut dyn FnMut(f32, Option<u32>) -> bool) {
+        let mut origin = s.org;
+        let mut remaining = max_dist;
+        // As `shadow_hits`, each hit described by its distance and material only (and its
+        // geometric normal, to leave it), as `fill_state` finds them.
+        for _ in 0..64 {
+            self.count(true);
+            let ray = Ray { mask: mask::SHADOW, origin, dir: s.dir, tmin: 0.0, tmax: remaining, time: s.time };
+            let Some(hit) = self.accel.intersect(&ray) else { return };
+            let inst = &self.world.instances[hit.instance as usize];
+            let mesh = &self.world.meshes[inst.mesh as usize];
+            let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
+            let material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
+            let (point, ng) = if mesh.hair.is_some() {
+                let mut h = s.child(RayType::Shadow, origin, s.dir);
+                fill_state(self.world, &hit, &mut h);
+                (h.point, h.normal_geom)
+            } else {
+                let tri = mesh.triangles[hit.prim as usize];
+                let [p0, p1, p2] = mesh.triangle_at(tri, s.time);
+                let placed = inst.placement(s.time);
+                (origin + s.dir * hit.t, (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z))
+            };
+            if !visit(hit.t, material) {
+                return;
+            }
+            origin = shader::trace::offset_point(point, ng, s.dir);
+            remaining -= hit.t;
+            if remaining <= 0.0 {
+                return;
+            }
+        }
+        // Too many layers: treat the light as blocked.
+        visit(0.0, None);
+    }
+
     fn shadow_blocked(&self, org: Vec3A, dir: Vec3A, max_dist: f32, time: f32) -> bool {
         // The ray of `shadow_hits`' first query, as an any-hit query that stops at the
         // first surface it finds.

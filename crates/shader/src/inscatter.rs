@@ -111,7 +111,7 @@ impl Ctx<'_> {
         lp.both_sides = true;
         let mut sum = Rgb::ZERO;
         while let Some(s) = self.sample_light(&mut lp) {
-            sum += Rgb::new(s.color.x, s.color.y, s.color.z) * medium.phase.eval(dir, s.dir);
+            sum += Rgb::new(s.color.x, s.color.y, s.color.z) * medium.phase.value(dir, s.dir);
         }
         if lp.samples > 0 {
             sum / lp.samples as f32

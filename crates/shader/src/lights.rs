@@ -454,6 +454,22 @@ impl<'a> Ctx<'a> {
         let mut blocked = false;
         let mut calls = 0;
         let mut media = crate::volume::ShadowMedia::new(&ray);
+        if !shading.has_surface_shadow_shaders() {
+            // Only media boundaries let the light through (tinted where it enters): the
+            // walk needs each surface's distance and material, not its shading state.
+            tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
+                media.advance(shading, dist, &mut filter);
+                blocked = !media.cross_material(shading, material, &mut filter);
+                !blocked
+            });
+            if blocked {
+                *color = Color::ZERO;
+                return false;
+            }
+            media.advance(shading, max_dist - media.walked(), &mut filter);
+            *color = filter;
+            return true;
+        }
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
             media.advance(shading, hit.dist, &mut filter);
             let shader = hit.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.shadow);

@@ -125,6 +125,9 @@ pub struct Shading {
     /// Whether some material has a shadow shader list or a medium, found on first use
     /// ([`Shading::has_shadow_shaders`]).
     shadow_shaders: std::sync::OnceLock<bool>,
+    /// Whether some material has a shadow shader list, found on first use
+    /// ([`Shading::has_surface_shadow_shaders`]).
+    surface_shadow_shaders: std::sync::OnceLock<bool>,
     /// Whether some material has a participating medium, found on first use
     /// ([`Shading::has_media`]).
     media: std::sync::OnceLock<bool>,
@@ -324,6 +327,7 @@ impl Shading {
             shutter_shape,
             shutter_weights: None,
             shadow_shaders: Default::default(),
+            surface_shadow_shaders: Default::default(),
             media: Default::default(),
         };
         (shading, diags)
@@ -333,6 +337,13 @@ impl Shading {
     /// either, every surface stops shadow rays). Found once, on the first question: the materials are set by then.
     pub fn has_shadow_shaders(&self) -> bool {
         *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some() || m.medium.is_some()))
+    }
+
+    /// Whether some material has a shadow shader list of its own (without one, shadow rays
+    /// only cross media boundaries or stop: their walk needs no shading state). Found once,
+    /// on the first question.
+    pub fn has_surface_shadow_shaders(&self) -> bool {
+        *self.surface_shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some()))
     }
 
     /// Whether some material has a participating medium (MDL's `material_volume`, handed

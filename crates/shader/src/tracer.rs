@@ -70,6 +70,17 @@ pub trait Tracer {
     /// [`intersect`]: Tracer::intersect
     fn shadow_hits(&self, ray: &State, max_dist: f32, visit: &mut dyn FnMut(&State) -> bool);
 
+    /// The surfaces [`shadow_hits`] visits, each as its distance from the one before (from
+    /// `ray.org` for the first) and its material (scene index; `None` for none, and for a
+    /// walk cut short, which counts as blocked), without the rest of a hit's state: what a
+    /// shadow ray's walk through participating media needs. `visit` returns false to stop.
+    /// A renderer answers it without describing each hit in full.
+    ///
+    /// [`shadow_hits`]: Tracer::shadow_hits
+    fn boundary_hits(&self, ray: &State, max_dist: f32, visit: &mut dyn FnMut(f32, Option<u32>) -> bool) {
+        self.shadow_hits(ray, max_dist, &mut |hit| visit(hit.dist, hit.material));
+    }
+
     /// Whether a shadow ray from `org` along unit `dir` (world space) at shutter time
     /// `time` meets any surface that casts shadows before `max_dist`: whether
     /// [`shadow_hits`] would visit one. A renderer answers it with an any-hit query that

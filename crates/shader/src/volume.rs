@@ -197,9 +197,9 @@ impl Ctx<'_> {
         ray.light = light.light;
         let mut filter = color;
         let mut media = ShadowMedia::new(&ray);
-        self.tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
-            media.advance(shading, hit.dist, &mut filter);
-            media.pass(shading, hit);
+        self.tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
+            media.advance(shading, dist, &mut filter);
+            media.pass_material(shading, material);
             !crate::is_zero(filter)
         });
         media.advance(shading, max_dist - media.walked(), &mut filter);
@@ -264,7 +264,12 @@ impl ShadowMedia {
     /// medium is entered (tinting `filter` by its colour) or left; returns false for any
     /// other surface, which stops the shadow ray.
     pub fn cross(&mut self, shading: &Shading, hit: &State, filter: &mut Color) -> bool {
-        let Some(m) = hit.material else { return false };
+        self.cross_material(shading, hit.material, filter)
+    }
+
+    /// [`ShadowMedia::cross`] of a surface of scene material `material` (`None`: none).
+    pub fn cross_material(&mut self, shading: &Shading, material: Option<u32>, filter: &mut Color) -> bool {
+        let Some(m) = material else { return false };
         let Some(tint) = shading.materials.get(m as usize).and_then(|x| x.boundary_tint) else { return false };
         if let Some(i) = self.inside.iter().rposition(|&x| x == m) {
             self.inside.remove(i);
@@ -279,7 +284,12 @@ impl ShadowMedia {
     /// shadow shader filtered the ray): a surface whose material has a medium is entered or
     /// left, untinted.
     pub fn pass(&mut self, shading: &Shading, hit: &State) {
-        let Some(m) = hit.material else { return };
+        self.pass_material(shading, hit.material);
+    }
+
+    /// [`ShadowMedia::pass`] of a surface of scene material `material` (`None`: none).
+    pub fn pass_material(&mut self, shading: &Shading, material: Option<u32>) {
+        let Some(m) = material else { return };
         if shading.materials.get(m as usize).is_none_or(|x| x.medium.is_none()) {
             return;
         }

@@ -407,7 +407,9 @@ impl<'a> Evaluator<'a> {
             },
             Type::Bsdf if values.is_empty() => Ok(Value::Bsdf(super::value::Df::Black)),
             Type::Edf if values.is_empty() => Ok(Value::Edf(super::value::Edf::Black)),
-            Type::Vdf if values.is_empty() => Ok(Value::Vdf(super::value::Vdf::HenyeyGreenstein(0.0))),
+            Type::Vdf if values.is_empty() => {
+                Ok(Value::Vdf(super::value::Vdf::HenyeyGreenstein(super::value::VdfNumber::Const(Rgb::ZERO))))
+            }
             Type::HairBsdf if values.is_empty() => Ok(Value::HairBsdf),
             Type::Array(..) => Ok(Value::Array(values)),
             Type::Material => self.construct_struct("material", args, env, span),

@@ -257,7 +257,7 @@ impl Instance<'_> {
             Ok(v @ Value::Struct(..)) => {
                 let mut surface = lower::surface(shader, &v, std::mem::take(&mut ev.leaves), warnings);
                 let location = |span| set.sources().location(span);
-                surface.medium = volume::medium(shader, &v, &location, warnings);
+                (surface.medium, surface.varying_medium) = volume::medium(shader, &v, &location, warnings);
                 surface
             }
             Ok(other) => {

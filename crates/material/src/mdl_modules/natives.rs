@@ -12,7 +12,7 @@ use mi::Span;
 use super::eval::{kind, problem, Eval};
 use super::hit::{HitExpr, StateFn};
 use super::hit_natives;
-use super::value::{Df, Edf, Leaf, ScatterMode, Value, Vdf};
+use super::value::{Df, Edf, Leaf, ScatterMode, Value, Vdf, VdfNumber};
 
 /// The value of a module constant mira implements (`::math::PI`…).
 pub fn constant(module: &str, name: &str) -> Option<Value> {
@@ -77,7 +77,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         let v = arg(p).ok_or_else(|| problem(span, format!("`{name}` has no parameter `{p}`")))?;
         leaf(v, leaves).ok_or_else(|| not_constant(name, p, v, span))
     };
-    let tint = number("tint");
+    // A vdf's tint is the volume's (read where a path enters), not one of the surface's.
+    let vdf_tint = name == "tint" && matches!(arg("base"), Some(Value::Vdf(_)));
+    let tint = if vdf_tint { Ok(Leaf::Const(Rgb::ZERO)) } else { number("tint") };
     let bsdf = |p: &str| -> Result<Df, super::eval::Problem> {
         match arg(p) {
             Some(Value::Bsdf(d)) => Ok(d.clone()),
@@ -170,7 +172,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         }
         "tint" if def.params.len() == 2 => match arg("base") {
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], clamped: false })),
-            Some(Value::Vdf(v)) => Ok(Value::Vdf(super::volume::tint(v, tint?, span))),
+            Some(Value::Vdf(v)) => super::volume::tint(v, arg("tint"), span),
             _ => Err(problem(span, "`df::tint` of an edf or hair bsdf is not compiled yet")),
         },
         "weighted_layer" | "color_weighted_layer" => Ok(Value::Bsdf(Df::Layer {
@@ -200,12 +202,10 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             }))
         }
         "anisotropic_vdf" => match arg("directional_bias").map(|v| (v, v.float())) {
-            None => Ok(Value::Vdf(Vdf::HenyeyGreenstein(0.0))),
-            Some((_, Some(g))) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(g as f32))),
-            Some((Value::Hit(..), None)) => Ok(Value::Vdf(Vdf::Unsupported(
-                "`df::anisotropic_vdf` with a directional_bias that varies over the surface".into(),
-                span,
-            ))),
+            None => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Const(Rgb::ZERO)))),
+            Some((_, Some(g))) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Const(Rgb::splat(g as f32))))),
+            // Read where a path enters the volume's object.
+            Some((Value::Hit(e, _), None)) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Hit(e.clone())))),
             Some((v, None)) => Err(not_constant(name, "directional_bias", v, span)),
         },
         "fog_vdf" => Ok(Value::Vdf(Vdf::Unsupported("`df::fog_vdf`".into(), span))),

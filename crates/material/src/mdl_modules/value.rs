@@ -251,22 +251,32 @@ pub enum Edf {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Vdf {
     /// Henyey–Greenstein scattering of asymmetry g: `df::anisotropic_vdf`'s
-    /// `directional_bias`, 0 (isotropic) for the default `vdf()`.
-    HenyeyGreenstein(f32),
-    /// A mix or tint of Henyey–Greenstein vdfs (`df::normalized_mix`, `clamped_mix`, their
-    /// colour forms, `df::tint`): `albedo` is the mix's total weight per channel (the
-    /// fraction of the medium's scattering that the mix scatters, ≤ 1; the rest is
-    /// absorbed) and `lobes` its lobes, each (how much it scatters: the channels' mean of
-    /// its weight, asymmetry g) (see [`super::volume::mix`]).
-    Mixture {
-        /// The mix's total weight per channel.
-        albedo: Rgb,
-        /// The lobes: scattering weight and asymmetry.
-        lobes: Vec<(f32, f32)>,
+    /// `directional_bias` (a constant or a value of the shading point; the first lane),
+    /// 0 (isotropic) for the default `vdf()`.
+    HenyeyGreenstein(VdfNumber),
+    /// A mix or tint of vdfs (`df::normalized_mix`, `clamped_mix`, their colour forms,
+    /// `df::tint` as a clamped mix of one component): its components with their weights
+    /// (clamped: taken in order until they reach 1; else scaled to sum to at most 1), see
+    /// [`super::volume`].
+    Mix {
+        /// Weight (a number is a grey) and component.
+        parts: Vec<(VdfNumber, Vdf)>,
+        /// Whether the weights are clamped (else normalized).
+        clamped: bool,
     },
     /// A vdf mira does not compile: its name and where it was called (the volume then
     /// scatters isotropically, with a warning at that place).
     Unsupported(String, mi::Span),
+}
+
+/// A number or colour of a vdf: a constant, or an expression of the shading point (read
+/// where a path enters the volume's object).
+#[derive(Clone, Debug, PartialEq)]
+pub enum VdfNumber {
+    /// Known once (a number is a grey).
+    Const(Rgb),
+    /// Evaluated at the shading point.
+    Hit(Arc<HitExpr>),
 }
 
 /// A constant MDL value.

@@ -150,7 +150,8 @@ render "root" "ci" "o"
 /// g −0.4: weights 0.5 + 0.5 scatter all (g 0.2), 0.75 + 0.75 are normalized to the same,
 /// 0.3 + 0.2 scatter half (g (0.3·0.8 − 0.2·0.4)/0.5 = 0.32); `tinted_smoke_mix` clamps
 /// colour weights (0.6, 0.8, 1) + (0.6, 0.4, 0.2) to (0.6, 0.8, 1) + (0.4, 0.2, 0): all
-/// scattered, g = 0.8·0.5 / 1 = 0.4.
+/// scattered, each channel by its own mixture of the two lobes (those weights; mean
+/// cosines 0.3, 0.4, 0.5, their mean g 0.4).
 #[test]
 fn vdf_mixes_become_one_medium() {
     let (mdl, lib, messages) = compile_text(
@@ -177,4 +178,11 @@ shader "tinted" "mdl::media::tinted_smoke_mix" ("scattering" 1 2 3)
         "{tinted:?}"
     );
     assert!((tinted.phase.g - 0.4).abs() < 1e-6, "{tinted:?}");
+    assert!(tinted.phase.is_chromatic(), "{tinted:?}");
+    let lobes: Vec<(Rgb, f32)> = tinted.phase.lobes().map(|(w, l)| (w, l.g)).collect();
+    assert_eq!(lobes.len(), 2, "{lobes:?}");
+    for ((w, g), (want_w, want_g)) in lobes.iter().zip([(Rgb::new(0.6, 0.8, 1.0), 0.5), (Rgb::new(0.4, 0.2, 0.0), 0.0)])
+    {
+        assert!(close(*w, want_w, 1e-6) && (g - want_g).abs() < 1e-6, "{lobes:?}");
+    }
 }

@@ -36,7 +36,8 @@
 use bsdf::medium::Flight;
 use bsdf::{Medium, Rgb};
 use glam::Vec3A;
-use shader::Shading;
+use shader::state::RayType;
+use shader::{Shading, State};
 
 use super::{
     cutout_number, light_radiance, material_at, power_heuristic, shadow_blocked, surface, through_portal, Surface,
@@ -53,18 +54,29 @@ use crate::world::World;
 const INLINE_NESTING: usize = 8;
 
 /// The media a path is in: the materials (indices into `World::materials`) whose
-/// surfaces it entered and has not left, innermost last. Any depth: the first
-/// [`INLINE_NESTING`] inline, deeper nesting spills to a vector.
+/// surfaces it entered and has not left, innermost last, each with the medium evaluated
+/// where the path entered when the material's medium varies over its surface
+/// ([`material::SurfaceMaterial::medium_at`]). Any depth: the first [`INLINE_NESTING`]
+/// materials of constant media inline; deeper nesting, or a medium of its own, moves the
+/// stack to the heap.
 #[derive(Clone, Debug)]
 pub struct MediumStack(Entries);
 
 /// A [`MediumStack`]'s materials, inline or spilled.
 #[derive(Clone, Debug)]
 enum Entries {
-    /// Up to [`INLINE_NESTING`] materials, the first `len` in use.
+    /// Up to [`INLINE_NESTING`] materials of constant media, the first `len` in use.
     Inline { materials: [u32; INLINE_NESTING], len: u8 },
-    /// A deeper stack.
-    Spilled(Vec<u32>),
+    /// A deeper stack, or one holding a medium evaluated where the path entered.
+    Spilled(Vec<Entered>),
+}
+
+/// A medium a path entered: its material, and the medium at the entry point where that
+/// varies over the surface (`None`: the material's constant medium).
+#[derive(Clone, Debug)]
+struct Entered {
+    material: u32,
+    own: Option<Medium>,
 }
 
 impl Default for MediumStack {
@@ -75,8 +87,9 @@ impl Default for MediumStack {
 }
 
 impl PartialEq for MediumStack {
+    /// The same materials in the same order (media evaluated at entry points not compared).
     fn eq(&self, other: &MediumStack) -> bool {
-        self.materials() == other.materials()
+        self.materials().eq(other.materials())
     }
 }
 
@@ -84,51 +97,71 @@ impl Eq for MediumStack {}
 
 impl MediumStack {
     /// The materials of the media, outermost first.
-    pub fn materials(&self) -> &[u32] {
-        match &self.0 {
-            Entries::Inline { materials, len } => &materials[..usize::from(*len)],
-            Entries::Spilled(v) => v,
-        }
+    pub fn materials(&self) -> impl Iterator<Item = u32> + '_ {
+        let (inline, spilled): (&[u32], &[Entered]) = match &self.0 {
+            Entries::Inline { materials, len } => (&materials[..usize::from(*len)], &[]),
+            Entries::Spilled(v) => (&[], v),
+        };
+        inline.iter().copied().chain(spilled.iter().map(|e| e.material))
     }
 
     /// Whether the path is in no medium.
     pub fn is_empty(&self) -> bool {
-        self.materials().is_empty()
+        match &self.0 {
+            Entries::Inline { len, .. } => *len == 0,
+            Entries::Spilled(v) => v.is_empty(),
+        }
     }
 
-    /// The medium the path travels in: the innermost one entered.
-    pub(super) fn current<'w>(&self, world: &'w World) -> Option<&'w Medium> {
-        let top = *self.materials().last()?;
-        world.materials[top as usize].medium.as_ref()
+    /// The medium the path travels in: the innermost one entered (as evaluated where the
+    /// path entered it, when it varies).
+    pub(super) fn current<'s>(&'s self, world: &'s World) -> Option<&'s Medium> {
+        match self.top()? {
+            (_, Some(own)) => Some(own),
+            (material, None) => world.materials[material as usize].medium.as_ref(),
+        }
     }
 
-    /// Enters the medium of `material` (innermost now).
-    fn enter(&mut self, material: u32) {
+    /// The innermost entry: its material and, when it was evaluated where the path
+    /// entered, its medium.
+    fn top(&self) -> Option<(u32, Option<&Medium>)> {
+        match &self.0 {
+            Entries::Inline { materials, len } => materials[..usize::from(*len)].last().map(|&m| (m, None)),
+            Entries::Spilled(v) => v.last().map(|e| (e.material, e.own.as_ref())),
+        }
+    }
+
+    /// Enters the medium of `material` (innermost now), `own` its medium at the entry
+    /// point when that varies.
+    fn enter(&mut self, material: u32, own: Option<Medium>) {
         match &mut self.0 {
-            Entries::Inline { materials, len } if usize::from(*len) < INLINE_NESTING => {
+            Entries::Inline { materials, len } if usize::from(*len) < INLINE_NESTING && own.is_none() => {
                 materials[usize::from(*len)] = material;
                 *len += 1;
             }
-            Entries::Inline { materials, .. } => {
+            Entries::Inline { materials, len } => {
                 let mut v = Vec::with_capacity(2 * INLINE_NESTING);
-                v.extend_from_slice(materials);
-                v.push(material);
+                v.extend(materials[..usize::from(*len)].iter().map(|&material| Entered { material, own: None }));
+                v.push(Entered { material, own });
                 self.0 = Entries::Spilled(v);
             }
-            Entries::Spilled(v) => v.push(material),
+            Entries::Spilled(v) => v.push(Entered { material, own }),
         }
     }
 
     /// Leaves the innermost medium of `material` (nothing when the path is not in it).
     fn leave(&mut self, material: u32) {
-        let Some(i) = self.materials().iter().rposition(|&m| m == material) else { return };
         match &mut self.0 {
             Entries::Inline { materials, len } => {
-                materials.copy_within(i + 1..usize::from(*len), i);
+                let n = usize::from(*len);
+                let Some(i) = materials[..n].iter().rposition(|&m| m == material) else { return };
+                materials.copy_within(i + 1..n, i);
                 *len -= 1;
             }
             Entries::Spilled(v) => {
-                v.remove(i);
+                if let Some(i) = v.iter().rposition(|e| e.material == material) {
+                    v.remove(i);
+                }
             }
         }
     }
@@ -136,8 +169,17 @@ impl MediumStack {
     /// The stack after a ray travelling along `dir_in` goes on along `dir_out` at a
     /// surface of `material` with geometric normal `ng` (world space, the surface's front):
     /// a transmission through a surface with a medium enters (front face) or leaves (back
-    /// face) it. `None` when nothing changes.
-    fn after(&self, world: &World, material: u32, ng: Vec3A, dir_in: Vec3A, dir_out: Vec3A) -> Option<MediumStack> {
+    /// face) it; `at`, the ray and hit there, is where a medium that varies over the
+    /// surface is evaluated (without it, its value at the material's default point).
+    /// `None` when nothing changes.
+    fn after(
+        &self,
+        world: &World,
+        material: u32,
+        ng: Vec3A,
+        (dir_in, dir_out): (Vec3A, Vec3A),
+        at: Option<(&Ray, &Hit)>,
+    ) -> Option<MediumStack> {
         let m = &world.materials[material as usize];
         let front = dir_in.dot(ng) < 0.0;
         let transmitted = front == (dir_out.dot(ng) < 0.0);
@@ -146,40 +188,58 @@ impl MediumStack {
         }
         let mut next = self.clone();
         if front {
-            next.enter(material);
+            next.enter(material, at.and_then(|(ray, hit)| medium_entered(world, material, ray, hit)));
         } else {
             next.leave(material);
         }
         Some(next)
     }
 
-    /// Follows a path scattered at a surface (see [`MediumStack::after`]); true when the
-    /// surface is an index-matched boundary it went straight through (then no bounce for
-    /// MIS).
-    pub(super) fn follow(&mut self, world: &World, material: u32, ng: Vec3A, dir_in: Vec3A, dir_out: Vec3A) -> bool {
-        let Some(next) = self.after(world, material, ng, dir_in, dir_out) else { return false };
+    /// Follows a path scattered at a surface (see [`MediumStack::after`]; `at` the ray and
+    /// its hit there); true when the surface is an index-matched boundary it went straight
+    /// through (then no bounce for MIS).
+    pub(super) fn follow(&mut self, world: &World, material: u32, ng: Vec3A, dir_out: Vec3A, at: (&Ray, &Hit)) -> bool {
+        let Some(next) = self.after(world, material, ng, (at.0.dir, dir_out), Some(at)) else { return false };
         *self = next;
         world.materials[material as usize].model.index_matched().is_some()
     }
 }
 
+/// The medium of `material` where a path along `ray` enters its object at `hit`, when
+/// that medium varies over the surface (`None`: the material's constant medium is it).
+/// Evaluated once per entry: the path keeps it until it leaves.
+fn medium_entered(world: &World, material: u32, ray: &Ray, hit: &Hit) -> Option<Medium> {
+    let varying = world.materials[material as usize].varying_medium.as_ref()?;
+    let mut state = State {
+        ray_type: RayType::Eye,
+        org: ray.origin,
+        dir: ray.dir,
+        time: ray.time,
+        child_dist: f32::INFINITY,
+        ..State::default()
+    };
+    crate::tracer::fill_state(world, hit, &mut state);
+    Some(varying.0.medium(&state))
+}
+
 /// Where a shadow ray leaves from: the media the path is in and, for a surface vertex, the
-/// surface (its material, geometric front normal and the direction the path arrived along),
-/// which the shadow ray crosses when it goes to the other side.
+/// surface, which the shadow ray crosses when it goes to the other side.
 #[derive(Clone, Copy)]
 pub(super) struct Departure<'a> {
     /// The media of the path arriving.
     pub media: &'a MediumStack,
-    /// The surface's material, geometric normal (front) and the arriving direction; `None`
-    /// in a medium.
-    pub surface: Option<(u32, Vec3A, Vec3A)>,
+    /// The surface's material, geometric normal (front), and the ray that arrived with its
+    /// hit; `None` in a medium.
+    pub surface: Option<(u32, Vec3A, &'a Ray, &'a Hit)>,
 }
 
 impl Departure<'_> {
     /// The media a shadow ray along `dir` starts in.
     fn media_towards(&self, world: &World, dir: Vec3A) -> MediumStack {
         self.surface
-            .and_then(|(material, ng, dir_in)| self.media.after(world, material, ng, dir_in, dir))
+            .and_then(|(material, ng, ray, hit)| {
+                self.media.after(world, material, ng, (ray.dir, dir), Some((ray, hit)))
+            })
             .unwrap_or_else(|| self.media.clone())
     }
 }
@@ -230,7 +290,7 @@ fn shadow_transmittance_through(
             return Crossing::Through;
         }
         let matched = world.materials[s.surface.material as usize].model.index_matched();
-        match (media.after(world, s.surface.material, s.surface.ng, ray.dir, ray.dir), matched) {
+        match (media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))), matched) {
             // The boundary tints what enters through it, once per object crossed, as it
             // does the path's own rays (`bsdf::Unified` tints light going in, not out).
             (Some(next), Some(tint)) => {
@@ -281,7 +341,7 @@ fn media_transmittance(world: &World, accel: &dyn Accel, from: &Departure, ray: 
         return Rgb::ONE;
     }
     let walk = walk_media(world, accel, from, ray, MAX_BOUNDARY_CROSSINGS, |media, ray, s, _| {
-        match media.after(world, s.surface.material, s.surface.ng, ray.dir, ray.dir) {
+        match media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))) {
             Some(next) => Crossing::Into(next, Rgb::ONE),
             None => Crossing::Through,
         }
@@ -437,7 +497,7 @@ fn cross_between(world: &World, accel: &dyn Accel, media: &mut MediumStack, ends
         let m = &world.materials[s.material as usize];
         if m.medium.is_some() && m.has_inside() {
             if dir.dot(s.ng) < 0.0 {
-                media.enter(s.material);
+                media.enter(s.material, medium_entered(world, s.material, &ray, &hit));
             } else {
                 media.leave(s.material);
             }
@@ -452,9 +512,10 @@ fn cross_between(world: &World, accel: &dyn Accel, media: &mut MediumStack, ends
 fn media_along(world: &World, accel: &dyn Accel, p: Vec3A, dir: Vec3A, time: f32) -> MediumStack {
     let mut ray = Ray { mask: mask::CAMERA | mask::SECONDARY, origin: p, dir, tmin: 0.0, tmax: f32::INFINITY, time };
     // Objects entered along the ray and not yet left; objects left without being entered
-    // (those enclosing `p`), innermost first.
+    // (those enclosing `p`, each with its medium where the ray leaves it when that varies),
+    // innermost first.
     let mut entered: Vec<u32> = Vec::new();
-    let mut enclosing: Vec<u32> = Vec::new();
+    let mut enclosing: Vec<(u32, Option<Medium>)> = Vec::new();
     for _ in 0..MAX_BOUNDARY_CROSSINGS {
         let Some(hit) = accel.intersect(&ray) else { break };
         let s = surface(world, &ray, &hit);
@@ -465,14 +526,14 @@ fn media_along(world: &World, accel: &dyn Accel, p: Vec3A, dir: Vec3A, time: f32
             } else if let Some(i) = entered.iter().rposition(|&e| e == s.material) {
                 entered.remove(i);
             } else {
-                enclosing.push(s.material);
+                enclosing.push((s.material, medium_entered(world, s.material, &ray, &hit)));
             }
         }
         ray.origin = offset_origin(s.p, s.ng, dir);
     }
     let mut stack = MediumStack::default();
-    for &m in enclosing.iter().rev() {
-        stack.enter(m);
+    for (m, own) in enclosing.into_iter().rev() {
+        stack.enter(m, own);
     }
     stack
 }
@@ -497,22 +558,23 @@ pub(super) struct Lighting<'a> {
     pub mis: bool,
 }
 
-/// The free flight of a ray in the medium the path is in, up to distance `t_end` (two
-/// sample numbers); `None` outside media.
-pub(super) fn fly(world: &World, media: &MediumStack, t_end: f32, sampler: &mut Sampler) -> Option<Flight> {
+/// The free flight of a ray in the medium the path (of throughput `by`) is in, up to
+/// distance `t_end` (two sample numbers); `None` outside media.
+pub(super) fn fly(world: &World, media: &MediumStack, t_end: f32, by: Rgb, sampler: &mut Sampler) -> Option<Flight> {
     let medium = media.current(world)?;
-    Some(medium.sample_flight(t_end, sampler.next_2d()))
+    Some(medium.sample_flight(t_end, sampler.next_2d(), by))
 }
 
 /// The light scattered towards the path at point `p` of `medium` that arrived along unit
-/// `dir`: next-event estimation to one light or the environment (transmittance along the
-/// shadow ray), MIS against the phase function. Uses three sample numbers.
+/// `dir`, for a path of throughput `by` there: next-event estimation to one light or the
+/// environment (transmittance along the shadow ray), MIS against the phase function
+/// (sampled as that path samples it: see [`bsdf::phase`]). Uses three sample numbers.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn direct_light(
     scene: &Lighting,
     medium: &Medium,
     media: &MediumStack,
-    p: Vec3A,
+    (p, by): (Vec3A, Rgb),
     dir: Vec3A,
     time: f32,
     sampler: &mut Sampler,
@@ -531,7 +593,7 @@ pub(super) fn direct_light(
         if es.pdf <= 0.0 || es.radiance == Rgb::ZERO || through_portal(&world.lights, p, es.dir) {
             return Rgb::ZERO;
         }
-        let phase = medium.phase.eval(dir, es.dir);
+        let (phase, colour) = phase_towards(medium, dir, es.dir, by);
         counts.shadow_rays += 1;
         let tr = shadow_transmittance(
             world,
@@ -545,7 +607,7 @@ pub(super) fn direct_light(
             return Rgb::ZERO;
         }
         let weight = if scene.mis { power_heuristic(scene.pick * es.pdf, phase) } else { 1.0 };
-        return tr * es.radiance * (env.lighting_scale * phase * weight / (scene.pick * es.pdf));
+        return tr * es.radiance * colour * (env.lighting_scale * phase * weight / (scene.pick * es.pdf));
     }
     if k >= light_count {
         return Rgb::ZERO;
@@ -556,7 +618,7 @@ pub(super) fn direct_light(
     if ls.radiance == Rgb::ZERO || ls.pdf <= 0.0 {
         return Rgb::ZERO;
     }
-    let phase = medium.phase.eval(dir, ls.wi);
+    let (phase, colour) = phase_towards(medium, dir, ls.wi, by);
     let tmax = if ls.dist.is_finite() { ls.dist * (1.0 - 1e-4) } else { f32::INFINITY };
     if light.shadow || world.has_media {
         counts.shadow_rays += 1;
@@ -567,7 +629,22 @@ pub(super) fn direct_light(
         return Rgb::ZERO;
     }
     let weight = if ls.delta || !scene.mis { 1.0 } else { power_heuristic(scene.pick * ls.pdf, phase) };
-    tr * ls.radiance * (phase * weight / (scene.pick * ls.pdf))
+    tr * ls.radiance * colour * (phase * weight / (scene.pick * ls.pdf))
+}
+
+/// The phase function of `medium` for light arriving along unit `dir` and leaving along
+/// unit `towards` (world space, directions of travel) as light sampling uses it on a path
+/// of throughput `by`: its sampling density (what MIS weighs against) and the colour that
+/// turns the density into the phase function's value per channel — 1 for a grey phase
+/// function (its density is its value), value / density for a chromatic one.
+#[inline]
+fn phase_towards(medium: &Medium, dir: Vec3A, towards: Vec3A, by: Rgb) -> (f32, Rgb) {
+    let pdf = medium.phase.pdf(dir, towards, by);
+    if !medium.phase.is_chromatic() {
+        return (pdf, Rgb::ONE);
+    }
+    let value = medium.phase.value(dir, towards);
+    (pdf, if pdf > 0.0 { value / pdf } else { Rgb::ZERO })
 }
 
 #[cfg(test)]
@@ -580,13 +657,13 @@ mod tests {
     fn the_stack_nests_and_overlaps() {
         let mut s = MediumStack::default();
         assert!(s.is_empty());
-        s.enter(3);
-        s.enter(5);
-        s.enter(3);
+        s.enter(3, None);
+        s.enter(5, None);
+        s.enter(3, None);
         s.leave(5);
-        assert_eq!(s.materials(), &[3, 3]);
+        assert_eq!(s.materials().collect::<Vec<_>>(), [3, 3]);
         s.leave(7);
-        assert_eq!(s.materials().len(), 2);
+        assert_eq!(s.materials().count(), 2);
         s.leave(3);
         s.leave(3);
         assert!(s.is_empty());
@@ -600,19 +677,40 @@ mod tests {
         let mut s = MediumStack::default();
         let depth = 3 * INLINE_NESTING as u32 + 1;
         for m in 1..=depth {
-            s.enter(m);
+            s.enter(m, None);
         }
-        assert_eq!(s.materials(), (1..=depth).collect::<Vec<_>>().as_slice());
+        assert_eq!(s.materials().collect::<Vec<_>>(), (1..=depth).collect::<Vec<_>>());
         s.leave(2);
         for m in (3..=depth).rev() {
-            assert_eq!(s.materials().last(), Some(&m));
+            assert_eq!(s.materials().last(), Some(m));
             s.leave(m);
         }
-        assert_eq!(s.materials(), &[1]);
+        assert_eq!(s.materials().collect::<Vec<_>>(), [1]);
         let mut inline = MediumStack::default();
-        inline.enter(1);
+        inline.enter(1, None);
         assert_eq!(s, inline);
         s.leave(1);
         assert!(s.is_empty());
+    }
+
+    /// A medium evaluated where the path entered is the one the path travels in until it
+    /// leaves that object, also under and over constant media; leaving it uncovers the
+    /// medium entered before.
+    #[test]
+    fn a_medium_entered_with_its_own_value_is_the_current_one() {
+        let own = Medium::new(Rgb::splat(0.25), Rgb::splat(0.5), 0.3);
+        let mut s = MediumStack::default();
+        s.enter(1, None);
+        assert_eq!(s.top(), Some((1, None)));
+        s.enter(1, Some(own));
+        assert_eq!(s.top(), Some((1, Some(&own))));
+        s.enter(2, None);
+        assert_eq!(s.top(), Some((2, None)));
+        s.leave(2);
+        assert_eq!(s.top(), Some((1, Some(&own))));
+        s.leave(1);
+        assert_eq!(s.top(), Some((1, None)));
+        s.leave(1);
+        assert!(s.is_empty() && s.top().is_none());
     }
 }

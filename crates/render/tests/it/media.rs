@@ -495,12 +495,15 @@ render "root" "cam_inst" "opt"
 fn a_mix_of_vdfs_that_scatters_all_is_a_white_furnace() {
     // media.mdl's `smoke_mix` (σs 2, lobes g 0.8 and g −0.4 weighted 0.5 each: their
     // mixture as the phase function, albedo 1) and `tinted_smoke_mix` (σs 0.5, 1, 2; clamped colour weights summing
-    // to 1 per channel) only redistribute the uniform environment's light: the mean within
-    // 1 % per channel (256 samples, for the chromatic free flights). Weights summing to 0.5 absorb half of each scattering: the
+    // to 1 per channel) and `chromatic_smoke_mix` (σs 0.5, 1, 2; each channel its own
+    // mixture of a forward and a backward lobe: a chromatic phase function) only
+    // redistribute the uniform environment's light: the mean within 1 % per channel (256
+    // samples, for the chromatic free flights and phase sampling). Weights summing to 0.5 absorb half of each scattering: the
     // sphere (optical radius 2) is darker by far — under 0.8.
     for shader in [
         r#"shader "ball_mtl" "mdl::media::smoke_mix" ()"#,
         r#"shader "ball_mtl" "mdl::media::tinted_smoke_mix" ("scattering" 0.5 1 2)"#,
+        r#"shader "ball_mtl" "mdl::media::chromatic_smoke_mix" ()"#,
     ] {
         let mean = furnace_mean(shader, 256);
         eprintln!("white furnace, {shader}: {mean:?}");

@@ -243,3 +243,48 @@ fn a_camera_moving_into_a_medium_while_the_shutter_is_open_enters_it() {
         }
     }
 }
+
+/// The classic engine's shadow rays in scenes with media and no shadow shaders walk
+/// through `Tracer::boundary_hits` (each surface's distance and material only): along rays
+/// through two nested boxes and the wall behind them it visits the same surfaces, at the
+/// same distances (bit for bit) and of the same materials, as `shadow_hits` with its full
+/// hit states, in both backends' answer of the world; and a walk stopped early stops.
+#[test]
+fn boundary_hits_visit_what_shadow_hits_visits() {
+    use shader::Tracer;
+    let text = format!(
+        "$include \"media.mdl\"\noptions \"opt\" end options\ncamera \"cam\" end camera\ninstance \"cam_inst\" \"cam\" end instance\n\
+         shader \"gel\" \"mdl::media::tinted_gel\" ()\nshader \"back_mtl\" \"mdl::media::glow\" ()\n{}{}{}\
+         instgroup \"root\" \"cam_inst\" \"outer_inst\" \"inner_inst\" \"w_inst\" end instgroup\nrender \"root\" \"cam_inst\" \"opt\"\n",
+        crate::media::closed_box("outer", [-3.0, -3.0, -4.0], [3.0, 3.0, -1.0], "gel"),
+        crate::media::closed_box("inner", [-1.0, -1.0, -3.0], [1.0, 1.0, -2.0], "gel"),
+        crate::media::closed_box("w", [-9.0, -9.0, -9.0], [9.0, 9.0, -8.0], "back_mtl"),
+    );
+    let parsed = mi::parse_str("t.mi", &text);
+    let b = crate::support::build_parsed(&parsed, 4, &[crate::support::mdl_modules()]);
+    let world = &b.built.world;
+    for backend in [render::accel::Backend::Rust, render::accel::Backend::default_available()] {
+        let accel = render::accel::build(world, backend);
+        let tracer = render::tracer::SceneTracer::new(world, accel.as_ref());
+        for dir in [glam::Vec3A::new(0.1, -0.05, -1.0), glam::Vec3A::new(-0.3, 0.2, -1.0)] {
+            let ray = shader::State { org: glam::Vec3A::ZERO, dir: dir.normalize(), ..Default::default() };
+            let (mut full, mut light) = (Vec::new(), Vec::new());
+            tracer.shadow_hits(&ray, f32::INFINITY, &mut |h| {
+                full.push((h.dist, h.material));
+                true
+            });
+            tracer.boundary_hits(&ray, f32::INFINITY, &mut |d, m| {
+                light.push((d, m));
+                true
+            });
+            assert!(full.len() >= 5, "the rays cross the boxes and reach the wall: {full:?}");
+            assert_eq!(light, full, "{backend:?} along {dir:?}");
+            let mut visits = 0;
+            tracer.boundary_hits(&ray, f32::INFINITY, &mut |_, _| {
+                visits += 1;
+                visits < 2
+            });
+            assert_eq!(visits, 2, "stops when asked");
+        }
+    }
+}
