@@ -182,6 +182,9 @@ pub enum MathFn {
     Cross,
     /// `luminance` of a colour (Rec. 709 weights).
     Luminance,
+    /// `blackbody` of a temperature in kelvin (lane x): the colour of luminance 1
+    /// ([`super::spectral::blackbody_rgb`]).
+    Blackbody,
     /// `average` of n lanes.
     Average(u8),
     /// `max_value` of n lanes.
@@ -325,6 +328,9 @@ pub enum HitExpr {
     },
     /// A procedural pattern of `::base` at a texture-space position.
     Pattern(Arc<Pattern>, Arc<HitExpr>),
+    /// `base::sun_and_sky`'s radiance towards a world direction (output units, lanes x, y,
+    /// z; [`mdl::sky::SunAndSky::radiance`]).
+    Sky(Arc<mdl::sky::SunAndSky>, Arc<HitExpr>),
     /// A normal bent by the slope of a pattern's height (`::base` bump textures): the
     /// height (lane x) is differenced over `delta` along the coordinate's u and v, and
     /// the normal leans against the rise along the tangents by `factor` times those
@@ -354,7 +360,7 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
         HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } => false,
         HitExpr::Texel { coord, .. } | HitExpr::Texel3d { coord, .. } => constant(coord),
-        HitExpr::Pattern(_, p) => constant(p),
+        HitExpr::Pattern(_, p) | HitExpr::Sky(_, p) => constant(p),
         HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
             constant(position) && constant(tangent_u) && constant(tangent_v) && constant(normal)
         }
@@ -476,7 +482,7 @@ impl HitExpr {
             HitExpr::Lookup { coord, .. } | HitExpr::Texel { coord, .. } => vec![coord],
             HitExpr::Lookup3d { coord, .. } | HitExpr::Texel3d { coord, .. } => vec![coord],
             HitExpr::LookupCube { dir, .. } => vec![dir],
-            HitExpr::Pattern(_, at) => vec![at],
+            HitExpr::Pattern(_, at) | HitExpr::Sky(_, at) => vec![at],
             HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
                 vec![position, tangent_u, tangent_v, normal]
             }
@@ -576,6 +582,9 @@ impl HitExpr {
             }
             HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval(s).truncate().into()),
             HitExpr::Pattern(p, at) => p.eval(at.eval(s).truncate().into()),
+            HitExpr::Sky(sky, dir) => {
+                sky.radiance(Vec3A::from(dir.eval(s).truncate()).normalize_or(Vec3A::Z)).extend(0.0)
+            }
             HitExpr::Bump { height, position, tangent_u, tangent_v, normal, factor, delta } => {
                 let p = Vec3A::from(position.eval(s).truncate());
                 let n = Vec3A::from(normal.eval(s).truncate());
@@ -691,6 +700,7 @@ fn math(f: MathFn, a: Vec4, b: Vec4, c: Vec4) -> Vec4 {
         Normalize(n) => lanes(a, n).normalize_or_zero(),
         Cross => a.truncate().cross(b.truncate()).extend(0.0),
         Luminance => splat(bsdf::color::luminance(bsdf::Rgb::new(a.x, a.y, a.z))),
+        Blackbody => super::spectral::blackbody_rgb(a.x).extend(0.0),
         Average(n) => splat(lanes(a, n).element_sum() / f32::from(n.max(1))),
         MaxValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MIN, f32::max)),
         MinValue(n) => splat(a.to_array()[..n.clamp(1, 4) as usize].iter().copied().fold(f32::MAX, f32::min)),

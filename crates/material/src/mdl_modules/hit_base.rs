@@ -3,7 +3,8 @@
 //! constants where the coordinate is): `checker_texture`, `perlin_noise_texture`,
 //! `worley_noise_texture`, `flow_noise_texture`, `flake_noise_texture`,
 //! `gradient3_texture`, their `_bump_` forms, `tile_bump_texture`, `file_bump_texture`,
-//! `blend_color_layers` and `coordinate_projection` (every projection mode).
+//! `blend_color_layers` and `coordinate_projection` (every projection mode); it hands
+//! `sun_and_sky` and `perez_sun_and_sky` to [`super::sky`].
 //!
 //! The parameters MDL declares `uniform` (sizes, levels, modes…) must be constants; the
 //! colours may vary over the surface. What is not compiled is an error naming the function
@@ -466,6 +467,8 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
         "file_bump_texture" => file_bump(&a),
         "blend_color_layers" => blend_color_layers(&a),
         "coordinate_projection" => coordinate_projection(&a),
+        "sun_and_sky" => super::sky::sun_and_sky(def, args, span),
+        "perez_sun_and_sky" => super::sky::perez_sun_and_sky(span),
         _ => Err(problem(span, format!("`base::{name}` is not compiled in module materials yet"))),
     }
 }

@@ -28,6 +28,7 @@ pub mod lower;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod sky;
 pub mod spectral;
 pub mod state_space;
 pub mod statements;

@@ -78,3 +78,82 @@ fn unset_parameters_take_the_mdl_defaults() {
     let off = environment("\"mdl::base::sun_and_sky\" (\"on\" false)");
     assert_eq!(look(&off, Vec3A::Y).truncate(), glam::Vec3::ZERO);
 }
+
+/// The emission of a module material at a shading point seen along `dir` (facing it):
+/// radiance, output units.
+fn module_emission(m: &material::SurfaceMaterial, dir: Vec3A, u: f32) -> glam::Vec3 {
+    let material::Varying::Evaluated(hit) = &m.varying else { panic!("{} is not evaluated per hit", m.name) };
+    let mut s = State { tex_count: 1, normal: -dir, normal_geom: -dir, dir, ..State::default() };
+    s.tex_list[0] = Vec3A::new(u, 0.5, 0.0);
+    let mut h = m.constant();
+    hit.0.apply(&s, &mut h);
+    glam::Vec3::from(h.emission)
+}
+
+/// `base::sun_and_sky` called inside a module (a function of tests/mdl/sky_heat.mdl that an
+/// emitter's intensity calls) is the `.mi` shader's sky: a Lambertian emitter of that
+/// exitance shows radiance exitance/π, so π × its radiance seen along a direction is the
+/// environment's value looking along it, within 1e-5 relative, for the zenith, the sun, the
+/// horizon and below it; the defaults match `SunAndSky::default()`.
+#[test]
+fn sun_and_sky_in_a_module_is_the_mi_shaders_sky() {
+    use crate::mdl_support::{compile_text, get};
+    let mi = environment(&format!("\"{SIGNATURE}\" ({PARAMS})"));
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "glow" "mdl::sky_heat::sky_glow" ()
+shader "plain" "mdl::sky_heat::default_sky" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let glow = get(&mdl, &lib, "glow");
+    let sun = Vec3A::new(0.5, 0.5735764, 0.6).normalize();
+    let dirs = [Vec3A::Y, sun, Vec3A::new(1.0, 0.05, 0.3), Vec3A::new(-0.3, 0.4, -1.0), Vec3A::new(0.2, -0.5, 1.0)];
+    for d in dirs.map(Vec3A::normalize) {
+        let want = look(&mi, d).truncate();
+        let got = module_emission(glow, d, 0.0) * std::f32::consts::PI;
+        assert!(want.max_element() > 0.0, "{d}: {want}");
+        assert!((got - want).abs().max_element() <= 1e-5 * want.max_element(), "{d}: {got} vs {want}");
+    }
+    let plain = get(&mdl, &lib, "plain");
+    for d in [Vec3A::Y, Vec3A::new(0.0, 0.229271, 0.418882).normalize(), Vec3A::new(1.0, 0.2, 0.0).normalize()] {
+        let want = glam::Vec3::from(SunAndSky::default().radiance(d));
+        let got = module_emission(plain, d, 0.0) * std::f32::consts::PI;
+        assert!((got - want).abs().max_element() <= 1e-5 * want.max_element(), "{d}: {got} vs {want}");
+    }
+}
+
+/// A sky parameter that varies over the surface is a warning naming it at its module line;
+/// `base::perez_sun_and_sky` (no model in mira) likewise.
+#[test]
+fn a_varying_sky_parameter_and_the_perez_sky_are_named() {
+    let (_, _, diags) = crate::mdl_support::compile_text(r#"shader "h" "mdl::sky_heat::hazy" ()"#);
+    assert!(diags.iter().any(|d| d.contains("sky_heat.mdl:27:") && d.contains("`haze`")), "{diags:#?}");
+    let (_, _, diags) = crate::mdl_support::compile_text(r#"shader "n" "mdl::textured::noisy" ()"#);
+    assert!(diags.iter().any(|d| d.contains("perez_sun_and_sky") && d.contains("no Perez")), "{diags:#?}");
+}
+
+/// `math::blackbody` of a temperature that varies over the surface (lerp of 1000 K to
+/// 10 000 K by u) gives, at three points, the colour the constant form gives for that
+/// temperature (the temperatures exact in f32), within 1e-6.
+#[test]
+fn blackbody_of_a_varying_temperature_is_the_constant_forms_colour() {
+    use crate::mdl_support::{compile_text, get};
+    let points = [(0.0f32, 1000.0f32), (0.25, 3250.0), (0.5, 5500.0), (1.0, 10000.0)];
+    let mut text = String::from("shader \"heat\" \"mdl::sky_heat::heat\" ()\n");
+    for (i, (_, t)) in points.iter().enumerate() {
+        text += &format!("shader \"at{i}\" \"mdl::sky_heat::heat_at\" (\"t\" {t})\n");
+    }
+    let (mdl, lib, diags) = compile_text(&text);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let heat = get(&mdl, &lib, "heat");
+    let mut seen = Vec::new();
+    for (i, (u, _)) in points.iter().enumerate() {
+        let got = module_emission(heat, -Vec3A::Z, *u);
+        let constant = get(&mdl, &lib, &format!("at{i}"));
+        assert!(matches!(constant.varying, material::Varying::Constant), "a constant temperature is one colour");
+        let want = glam::Vec3::from(constant.emission);
+        assert!((got - want).abs().max_element() <= 1e-6 * want.max_element(), "u {u}: {got} vs {want}");
+        seen.push(got);
+    }
+    // Cooler is redder: the red/blue ratio falls as the temperature rises.
+    assert!(seen.windows(2).all(|w| w[0].x / w[0].z.max(1e-9) > w[1].x / w[1].z.max(1e-9)), "{seen:?}");
+}
