@@ -4,7 +4,8 @@
 //! `worley_noise_texture`, `flow_noise_texture`, `flake_noise_texture`,
 //! `gradient3_texture`, their `_bump_` forms, `tile_bump_texture`, `file_bump_texture`,
 //! `blend_color_layers` and `coordinate_projection` (every projection mode); it hands
-//! `sun_and_sky` and `perez_sun_and_sky` to [`super::sky`].
+//! `sun_and_sky` and `perez_sun_and_sky` to [`super::sky`], `lookup_volume_coefficients`
+//! and `volume_blackbody_emission` to [`super::base_volume`].
 //!
 //! The parameters MDL declares `uniform` (sizes, levels, modes…) must be constants; the
 //! colours may vary over the surface. What is not compiled is an error naming the function
@@ -469,6 +470,8 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
         "coordinate_projection" => coordinate_projection(&a),
         "sun_and_sky" => super::sky::sun_and_sky(def, args, span),
         "perez_sun_and_sky" => super::sky::perez_sun_and_sky(span),
+        "lookup_volume_coefficients" => super::base_volume::lookup_volume_coefficients(def, args, span),
+        "volume_blackbody_emission" => super::base_volume::volume_blackbody_emission(def, args, span),
         _ => Err(problem(span, format!("`base::{name}` is not compiled in module materials yet"))),
     }
 }

@@ -246,7 +246,10 @@ pub fn medium(
     let sigma_s = coefficient("scattering_coefficient");
     let emission = volume.field("emission_intensity");
     if emission.is_some_and(|e| !matches!(e.color(), Some(c) if c == Rgb::ZERO)) {
-        warnings.push(format!("material '{name}': volume emission (emission_intensity) is not rendered yet; ignored"));
+        warnings.push(format!(
+            "material '{name}': volume emission (emission_intensity) is not rendered yet (mira's media absorb and \
+             scatter but do not emit); ignored"
+        ));
     }
     let (Some(sigma_a), Some(sigma_s)) = (sigma_a, sigma_s) else { return (None, None) };
     let scattering = match volume.field("scattering") {

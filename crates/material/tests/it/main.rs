@@ -29,6 +29,7 @@ mod mdl_statements;
 mod mdl_textures3d;
 mod mdl_vdf_tints;
 mod mdl_volume;
+mod mdl_volume_textures;
 mod mdl_wide;
 mod mia;
 mod model;

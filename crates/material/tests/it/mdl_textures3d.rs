@@ -35,7 +35,7 @@ fn header(w: u32, h: u32, d: u32, pixel_format: [u32; 8], caps2: u32) -> Vec<u8>
 }
 
 /// A volume of RGBA `f32` voxels (DX10 header, `R32G32B32A32_FLOAT`) in file order.
-fn volume_file(w: u32, h: u32, d: u32, voxels: &[[f32; 4]]) -> Vec<u8> {
+pub(crate) fn volume_file(w: u32, h: u32, d: u32, voxels: &[[f32; 4]]) -> Vec<u8> {
     // FOURCC "DX10".
     let dx10 = [32, 0x4, u32::from_le_bytes(*b"DX10"), 0, 0, 0, 0, 0];
     let mut out = header(w, h, d, dx10, if d > 1 { 0x20_0000 } else { 0 });

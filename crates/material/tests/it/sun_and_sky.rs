@@ -1,5 +1,7 @@
 //! Iray's `base::sun_and_sky` through the shader graph: its declaration (with and without
-//! the MDL signature), its defaults, and its agreement with `mia_physicalsky`.
+//! the MDL signature), its defaults, and its agreement with `mia_physicalsky`; called
+//! inside a module (and through a `.mi` connection) it is the same sky. `math::blackbody`
+//! of a temperature that varies over the surface (the sky's module, tests/mdl/sky_heat.mdl).
 
 use crate::support;
 
@@ -112,6 +114,18 @@ shader "plain" "mdl::sky_heat::default_sky" ()"#,
         let got = module_emission(glow, d, 0.0) * std::f32::consts::PI;
         assert!(want.max_element() > 0.0, "{d}: {want}");
         assert!((got - want).abs().max_element() <= 1e-5 * want.max_element(), "{d}: {got} vs {want}");
+    }
+    // A material parameter connected to the `.mi` function shader, as Iray exporters write
+    // it, is the same sky.
+    let (mdl2, lib2, diags) = compile_text(&format!(
+        "shader \"sky\" \"mdl::base::sun_and_sky\" ({PARAMS})\nshader \"lit\" \"mdl::sky_heat::glow_of\" (\"c\" = \"sky\")"
+    ));
+    assert!(diags.is_empty(), "{diags:#?}");
+    let lit = get(&mdl2, &lib2, "lit");
+    for d in dirs.map(Vec3A::normalize) {
+        let want = look(&mi, d).truncate();
+        let got = module_emission(lit, d, 0.0) * std::f32::consts::PI;
+        assert!((got - want).abs().max_element() <= 1e-5 * want.max_element(), "connected {d}: {got} vs {want}");
     }
     let plain = get(&mdl, &lib, "plain");
     for d in [Vec3A::Y, Vec3A::new(0.0, 0.229271, 0.418882).normalize(), Vec3A::new(1.0, 0.2, 0.0).normalize()] {
