@@ -1,0 +1,47 @@
+//! The renderer's meshes made from the scene's: the arrays the world keeps, moved out
+//! of the scene or copied.
+
+use glam::Vec3A;
+
+use crate::mesh::MeshData;
+
+/// A copy of the arrays of `m` that the renderer keeps (see [`mesh_data`]).
+pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
+    scene::Mesh {
+        positions: m.positions.clone(),
+        normals: m.normals.clone(),
+        textures: m.textures.clone(),
+        user: m.user.clone(),
+        bump_basis: m.bump_basis.clone(),
+        triangles: m.triangles.clone(),
+        triangle_slots: m.triangle_slots.clone(),
+        motion: m.motion.clone(),
+        motion_more: m.motion_more.clone(),
+        ..scene::Mesh::default()
+    }
+}
+
+/// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
+/// moved out of `m`, not copied.
+pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
+    let mut positions = std::mem::take(&mut m.positions);
+    // Room for one more vertex past the end: Embree reads the last vertex of a shared
+    // 12-byte-stride buffer with a 16-byte load (a large vector grows in place).
+    positions.reserve_exact(1);
+    let slots = std::mem::take(&mut m.triangle_slots);
+    MeshData {
+        positions,
+        normals: std::mem::take(&mut m.normals),
+        textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
+        // Moved, not copied: the vectors keep the scene's packed form.
+        user: m.user.iter_mut().map(|u| std::mem::take(&mut u.coords)).collect(),
+        bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
+        triangles: std::mem::take(&mut m.triangles),
+        // One slot for every triangle (the common case) is stored as none.
+        slots: if slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
+        hair: None,
+        motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
+        motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
+        position_keys: Vec::new(),
+    }
+}
