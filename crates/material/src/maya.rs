@@ -62,8 +62,8 @@
 //!   constant glow of the material it is connected to).
 //!
 //! Connected colours become per-hit bindings of the shader graph's nodes (a file texture
-//! driving `color`, bump2d driving `normalCamera`); what cannot be expressed is reported
-//! in the warnings and takes its declared default.
+//! driving `color` or `specularColor`, bump2d driving `normalCamera`); what cannot be
+//! expressed is reported in the warnings and takes its declared default.
 
 use std::sync::Arc;
 
@@ -81,7 +81,8 @@ use shader::{Graph, NodeId, Slot, Value};
 pub struct MayaHighlight {
     /// The highlight model and its parameters (blinn, phong or phongE).
     pub model: ::maya::specular::Highlight,
-    /// `specularColor` (its constant value; 0.5 grey when connected).
+    /// `specularColor` (its constant value; 0.5 grey when connected), divided by the
+    /// material's coverage (see [`surface_material`]).
     pub color: Rgb,
 }
 
@@ -316,8 +317,16 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             }
             if reflective {
                 let s = r.color("specularColor", Rgb::splat(0.5));
-                if connection(graph, node, "specularColor").is_some() {
-                    r.warnings.push("'specularColor' is connected; the path engine's highlight uses 0.5 grey".into());
+                // A connected specularColor: the lobe is built with 0.5 grey and tinted
+                // per hit by twice the value (the classic highlight of volume lights with
+                // emitSpecular keeps 0.5 grey).
+                if let Some((spec, member)) = connection(graph, node, "specularColor") {
+                    r.bindings.push(Binding { node: spec, member, target: Target::SpecularColor, scale: 2.0 });
+                    if r.color("reflectedColor", Rgb::ZERO) != Rgb::ZERO {
+                        r.warnings.push(
+                            "'specularColor' is connected; the path engine weights 'reflectedColor' by 0.5 grey".into(),
+                        );
+                    }
                 }
                 let (glossy, rolloff) = if family == "anisotropic" {
                     (Some((anisotropic(&mut r, &mut surface), s)), None)
