@@ -25,6 +25,7 @@ mod maya_highlight_path;
 mod maya_path;
 mod maya_ramp_highlight_path;
 mod maya_soft_shadows_path;
+mod maya_specular_texture_path;
 mod maya_transparent_path;
 mod maya_vertex_data;
 mod maya_volume_axis_path;
