@@ -1,4 +1,4 @@
-//! Maya's highlights (blinn, phong, phongE, anisotropic) as mental ray for Maya computes
+//! Maya's highlights (blinn, phong, phongE, anisotropic, rampShader's) as mental ray for Maya computes
 //! them, and the BSDF that gives the path engine exactly the same highlight.
 //!
 //! The formulas are functions of the unit shading normal `n`, the unit direction `v`
@@ -35,6 +35,11 @@
 //! N·V with `reflectionRolloff`); [`MayaBsdf`] carries it as a smooth mirror lobe of that
 //! weight (each channel at most 1), so reflected objects, lights and the environment
 //! reach the path engine as they reach the classic one.
+//!
+//! **Transparency.** The classic materials fade only their diffuse part by
+//! `transparency`; the highlight and the reflection stay whole. The path engine lets a
+//! share 1 − c of the rays through a surface of coverage c, so [`MayaGlossy`] divides
+//! both by c ([`MayaGlossy::with_coverage`]): over all rays they are Maya's exactly.
 
 use std::f32::consts::{FRAC_1_PI, TAU};
 
@@ -64,10 +69,30 @@ pub fn blinn(n: Vec3A, v: Vec3A, l: Vec3A, ecc: f32, rolloff: f32) -> f32 {
     }
     let Some(h) = (v + l).try_normalize() else { return 0.0 };
     let (nh, vh) = (n.dot(h).max(0.0), v.dot(h).max(1e-6));
+    let g = 1f32.min(2.0 * nh * nv / vh).min(2.0 * nh * nl / vh);
+    blinn_distribution(ecc, nh) * g * schlick(rolloff, vh) / nv
+}
+
+/// Blinn's distribution of eccentricity `ecc` at the cosine `nh` between the normal and
+/// the half vector, D = (e² / ((e² − 1)(N·H)² + 1))²: 1 at the peak, 0 for `nh` ≤ 0.
+pub fn blinn_distribution(ecc: f32, nh: f32) -> f32 {
+    if nh <= 0.0 {
+        return 0.0;
+    }
     let e2 = blinn_e2(ecc);
     let d = e2 / ((e2 - 1.0) * nh * nh + 1.0);
-    let g = 1f32.min(2.0 * nh * nv / vh).min(2.0 * nh * nl / vh);
-    d * d * g * schlick(rolloff, vh) / nv
+    d * d
+}
+
+/// rampShader's highlight: Blinn's distribution D alone (no masking, Fresnel or 1/(N·V);
+/// its peak 1), where the light and the viewer are both in front; the caller tints it
+/// with `specularity` × the roll-off and `specularColor` ramps.
+pub fn ramp_blinn(n: Vec3A, v: Vec3A, l: Vec3A, ecc: f32) -> f32 {
+    if n.dot(l) <= 0.0 || n.dot(v) <= 0.0 {
+        return 0.0;
+    }
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    blinn_distribution(ecc, n.dot(h))
 }
 
 /// The squared eccentricity blinn uses (kept inside (0, 1): 1 would be a constant D).
@@ -146,6 +171,11 @@ pub enum Shape {
         /// `highlightSize`.
         size: f32,
     },
+    /// [`ramp_blinn`] of `eccentricity` (rampShader's highlight).
+    RampBlinn {
+        /// `eccentricity`.
+        eccentricity: f32,
+    },
     /// [`anisotropic`] with the grooves along the local +X.
     Anisotropic {
         /// The highlight's width along the grooves.
@@ -171,6 +201,7 @@ impl Shape {
             Shape::Blinn { eccentricity, rolloff } => blinn(n, v, l, eccentricity, rolloff),
             Shape::Phong { power } => phong(n, v, l, power),
             Shape::PhongE { roughness, size } => phong_e(n, v, l, roughness, size),
+            Shape::RampBlinn { eccentricity } => ramp_blinn(n, v, l, eccentricity),
             Shape::Anisotropic { alpha_x, alpha_y, ior } => anisotropic(n, v, l, Vec3A::X, alpha_x, alpha_y, ior),
         }
     }
@@ -185,7 +216,9 @@ impl Shape {
     /// when the draw falls below the surface.
     fn sample(&self, v: Vec3A, u: Vec2) -> Option<Vec3A> {
         let l = match *self {
-            Shape::Blinn { eccentricity, .. } => reflect(v, Shape::ggx(eccentricity).sample_visible(v, u)),
+            Shape::Blinn { eccentricity, .. } | Shape::RampBlinn { eccentricity } => {
+                reflect(v, Shape::ggx(eccentricity).sample_visible(v, u))
+            }
             Shape::Phong { power } => {
                 let r = Vec3A::new(-v.x, -v.y, v.z);
                 Frame::from_normal(r).to_world(cosine_power_direction(power.max(0.0), u))
@@ -206,7 +239,9 @@ impl Shape {
             return 0.0;
         }
         match *self {
-            Shape::Blinn { eccentricity, .. } => Shape::ggx(eccentricity).d_visible(v, h) / (4.0 * vh),
+            Shape::Blinn { eccentricity, .. } | Shape::RampBlinn { eccentricity } => {
+                Shape::ggx(eccentricity).d_visible(v, h) / (4.0 * vh)
+            }
             Shape::Phong { power } => {
                 let r = Vec3A::new(-v.x, -v.y, v.z);
                 cosine_power_pdf(power.max(0.0), r.dot(l))
@@ -277,6 +312,11 @@ pub struct MayaGlossy {
     /// Blinn's `reflectionRolloff`: the mirror weight is scaled by Schlick's factor of
     /// this normal reflectance (`specularRollOff`) at N·V.
     pub mirror_rolloff: Option<f32>,
+    /// The share of rays that hit the surface (its coverage, 1 − mean `transparency`;
+    /// 1 for an opaque one): the highlight and the mirror are divided by it, so that a
+    /// transparent Maya material, which the path engine covers stochastically, shows
+    /// them at full strength on average, as the classic shader adds them unfaded.
+    pub coverage: f32,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -287,14 +327,32 @@ impl MayaGlossy {
     pub fn new(shape: Shape, tint: Rgb) -> MayaGlossy {
         let step = 1.0 / (ALBEDO_STEPS - 1) as f32;
         let albedo = std::array::from_fn(|k| shape.albedo(k as f32 * step));
-        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), mirror: Rgb::ZERO, mirror_rolloff: None, albedo }
+        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), mirror: Rgb::ZERO, mirror_rolloff: None, coverage: 1.0, albedo }
     }
 
     /// The same highlight with a mirror reflection of weight `mirror` (each channel
-    /// clamped to 0..1), scaled by Schlick's factor of `rolloff` at N·V when given.
+    /// clamped to 0..1 where the BSDF is made), scaled by Schlick's factor of `rolloff`
+    /// at N·V when given.
     pub fn with_mirror(mut self, mirror: Rgb, rolloff: Option<f32>) -> MayaGlossy {
-        self.mirror = mirror.clamp(Rgb::ZERO, Rgb::ONE);
+        self.mirror = mirror.max(Rgb::ZERO);
         self.mirror_rolloff = rolloff;
+        self
+    }
+
+    /// The same highlight and mirror on a surface hit by the share `coverage` (0..1] of
+    /// the rays that reach it (see [`MayaGlossy::coverage`]).
+    pub fn with_coverage(mut self, coverage: f32) -> MayaGlossy {
+        self.coverage = coverage.clamp(1e-3, 1.0);
+        self
+    }
+
+    /// The same highlight and mirror with their tint multiplied by `k` per channel (a
+    /// connected `specularColor` at one hit, relative to the colour the material was
+    /// built with).
+    pub fn tinted(mut self, k: Rgb) -> MayaGlossy {
+        let k = k.max(Rgb::ZERO);
+        self.tint *= k;
+        self.mirror *= k;
         self
     }
 
@@ -302,7 +360,7 @@ impl MayaGlossy {
     /// share).
     pub fn scaled(mut self, k: f32) -> MayaGlossy {
         self.tint *= k.max(0.0);
-        self.mirror *= k.clamp(0.0, 1.0);
+        self.mirror *= k.max(0.0);
         self
     }
 
@@ -321,10 +379,12 @@ impl MayaGlossy {
         let a = self.unit_albedo(wo.z);
         let most = self.tint.max_element() * a;
         let tint = if most > 1.0 { self.tint / most } else { self.tint };
+        let mirror = self.mirror.min(Rgb::ONE);
         let mirror = match self.mirror_rolloff {
-            Some(r0) => self.mirror * schlick(r0, wo.z.abs()),
-            None => self.mirror,
+            Some(r0) => mirror * schlick(r0, wo.z.abs()),
+            None => mirror,
         };
+        let (tint, mirror) = (tint / self.coverage, mirror / self.coverage);
         let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint) * a, luminance(mirror).max(0.0));
         let total = d + g + m;
         let (diffuse_share, mirror_share) = if total > 0.0 { (d / total, m / total) } else { (1.0, 0.0) };
@@ -411,9 +471,10 @@ mod tests {
     use crate::{testing, Bsdf};
     use std::f32::consts::PI;
 
-    fn shapes() -> [Shape; 5] {
+    fn shapes() -> [Shape; 6] {
         [
             Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 },
+            Shape::RampBlinn { eccentricity: 0.3 },
             Shape::Blinn { eccentricity: 0.8, rolloff: 0.7 },
             Shape::Phong { power: 20.0 },
             Shape::PhongE { roughness: 0.5, size: 0.5 },
@@ -523,6 +584,7 @@ mod tests {
             (Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 }, 0.7),
             (Shape::Phong { power: 20.0 }, 1.0),
             (Shape::PhongE { roughness: 0.5, size: 0.6 }, 0.6),
+            (Shape::RampBlinn { eccentricity: 0.4 }, 1.0),
             (Shape::Anisotropic { alpha_x: 0.2, alpha_y: 0.4, ior: 6.0 }, 1.0),
         ];
         for (shape, peak) in cases {

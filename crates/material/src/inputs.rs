@@ -68,6 +68,10 @@ pub enum Target {
     /// hit's diffuse colour ⊙ the value × the scale (`irradianceColor`) is added to its
     /// emission. Bind it after the diffuse colour and the emission.
     IrradianceMap,
+    /// A Maya material's `specularColor`: its highlight's tint and its mirror's weight
+    /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
+    /// value × the scale per channel.
+    SpecularColor,
 }
 
 /// One connected parameter.
@@ -312,6 +316,15 @@ impl SurfaceMaterial {
                 Target::Glow => hit.glow = rgb(),
                 Target::IrradianceMap => hit.emission += hit.diffuse * rgb(),
                 Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
+                Target::SpecularColor => {
+                    let tinted = match &*hit.model {
+                        SurfaceModel::Maya(g) => Some(g.tinted(rgb())),
+                        _ => None,
+                    };
+                    if let Some(g) = tinted {
+                        hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+                    }
+                }
                 Target::Normal => {
                     let n = value.vector();
                     if n.length_squared() > 0.0 {

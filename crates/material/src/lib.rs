@@ -137,9 +137,9 @@ pub enum SurfaceModel {
     /// A wide sum lowered at one hit of a material that varies over the surface, kept in
     /// the thread's ring ([`wide_slots`]: no allocation per hit).
     MdlWideAt(wide_slots::WideSlot),
-    /// A Maya material with a highlight (blinn, phong, phongE, anisotropic): Lambertian
-    /// reflection of the `diffuse` colour plus Maya's own highlight, bounded per view
-    /// ([`bsdf::MayaGlossy`]).
+    /// A Maya material with a highlight (blinn, phong, phongE, anisotropic, rampShader):
+    /// Lambertian reflection of the `diffuse` colour plus Maya's own highlight, bounded per
+    /// view, and its mirror ([`bsdf::MayaGlossy`]).
     Maya(Box<bsdf::MayaGlossy>),
 }
 

@@ -25,9 +25,15 @@
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
-//!   and incandescence ramps at facing ratio 1; with `specularity` > 0 the unified BSDF
-//!   with blinn's α = `eccentricity`. Ramps indexed by the view angle or the brightness
-//!   vary in ways a BSDF's albedo cannot (a warning says so);
+//!   and incandescence ramps at facing ratio 1 (transparency fading the lit colour and
+//!   incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
+//!   `specularColor` ⊙ light · D with D Blinn's distribution of `eccentricity` (peak 1),
+//!   is Maya's lobe of that shape and tint (`bsdf::maya_highlight::ramp_blinn`, the
+//!   classic shader's own function), its reflection a mirror of weight `reflectivity`
+//!   with a constant `environment` ramp emitted; the roll-off, reflectivity and
+//!   specular-colour ramps are taken at 1 (a warning when they vary). Colour ramps
+//!   indexed by the view angle or the brightness vary in ways a BSDF's albedo cannot (a
+//!   warning says so);
 //! - layeredShader: the layers' translations mixed by the share of each that shows,
 //!   w_i = mean(T_0 ⋯ T_(i−1) (1 − T_i)) (`compositingFlag` 0 or 1 alike): their
 //!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i);
@@ -41,6 +47,10 @@
 //!   layers take none, as in the classic shader, where they are not lit);
 //! - transparency T (without refraction): coverage 1 − mean(T), so that the surface is
 //!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
+//!   as in the classic shaders it fades only the lambert family's diffuse part and
+//!   incandescence: their hits carry (1 − T)/coverage of those per channel and the
+//!   highlight, the mirror and `reflectedColor` divided by the coverage, so that over all
+//!   rays the highlight and the reflection are whole (what lies behind is the mean T's);
 //!   `incandescence`: emitted radiance;
 //! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
 //!   warning says so);
@@ -52,14 +62,13 @@
 //!   constant glow of the material it is connected to).
 //!
 //! Connected colours become per-hit bindings of the shader graph's nodes (a file texture
-//! driving `color`, bump2d driving `normalCamera`); what cannot be expressed is reported
-//! in the warnings and takes its declared default.
+//! driving `color` or `specularColor`, bump2d driving `normalCamera`); what cannot be
+//! expressed is reported in the warnings and takes its declared default.
 
 use std::sync::Arc;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
 use bsdf::Rgb;
-use bsdf::{Unified, UnifiedParams};
 use shader::{Graph, NodeId, Slot, Value};
 
 /// A Maya material's highlight as the classic shader computes it: `color` ⊙ light ⊙
@@ -72,7 +81,8 @@ use shader::{Graph, NodeId, Slot, Value};
 pub struct MayaHighlight {
     /// The highlight model and its parameters (blinn, phong or phongE).
     pub model: ::maya::specular::Highlight,
-    /// `specularColor` (its constant value; 0.5 grey when connected).
+    /// `specularColor` (its constant value; 0.5 grey when connected), divided by the
+    /// material's coverage (see [`surface_material`]).
     pub color: Rgb,
 }
 
@@ -250,12 +260,15 @@ pub fn surface_material(name: &str, graph: &Graph, engine: NodeId) -> Option<(Su
         return None;
     }
     let (node, _) = connection(graph, engine, "surfaceShader")?;
-    Some(translate(name, graph, node))
+    Some(translate(name, graph, node, true))
 }
 
 /// The Maya material `node` (a lambert, blinn, … node of `graph`) translated, with its
-/// warnings prefixed by the material's `name`.
-fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<String>) {
+/// warnings prefixed by the material's `name`. `alone`: the material is a shading
+/// engine's (the path engine lets rays through by its transparency, so its hits carry
+/// what transparency does not fade divided by its coverage); not a layeredShader's
+/// layer, whose transparency the layered shader mixes.
+fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMaterial, Vec<String>) {
     let material = graph.nodes[node as usize].decl.name.clone();
     let family = material.trim_start_matches("maya_").trim_start_matches("adskMaya").to_ascii_lowercase();
     let mut r = Reader { graph, node, bindings: Vec::new(), warnings: Vec::new() };
@@ -264,34 +277,62 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
         "lambert" | "blinn" | "phong" | "phonge" | "anisotropic" => {
             let d = r.scalar("diffuse", 0.8);
             let reflective = family != "lambert";
-            let albedo = r.driven("color", Target::Diffuse, d, Rgb::splat(0.5));
-            surface.diffuse = albedo;
-            // Ambient light goes by `color` alone: 1/d of the diffuse colour.
-            surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
-            surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO);
-            irradiance_map(&mut r, &mut surface, albedo);
-            let glow_intensity = r.scalar("glowIntensity", 0.0);
-            if glow_intensity != 0.0 {
-                surface.glow = r.driven("color", Target::Glow, glow_intensity, Rgb::splat(0.5));
-            }
             let t = r.color("transparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
             surface.opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
             if connection(graph, node, "transparency").is_some() {
                 r.warnings.push("'transparency' is connected; the path engine keeps the surface opaque".into());
             }
+            // Transparency fades the diffuse part (and incandescence) by 1 − T per
+            // channel where the path engine's hits, a share `opacity` of the rays, carry
+            // (1 − T)/opacity of it; their mean is 1 (exact for a connected colour when T
+            // is grey).
+            let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - t) / surface.opacity } else { Rgb::ONE };
+            if fade != Rgb::ONE && ["color", "incandescence"].iter().any(|p| connection(graph, node, p).is_some()) {
+                r.warnings.push(
+                    "a coloured 'transparency' on a connected colour or incandescence: the path engine fades them \
+                     by its mean"
+                        .into(),
+                );
+            }
+            let albedo = r.driven("color", Target::Diffuse, d, Rgb::splat(0.5)) * fade;
+            surface.diffuse = albedo;
+            // Ambient light goes by `color` alone: 1/d of the diffuse colour.
+            surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
+            surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO) * fade;
+            irradiance_map(&mut r, &mut surface, albedo);
+            let glow_intensity = r.scalar("glowIntensity", 0.0);
+            if glow_intensity != 0.0 {
+                surface.glow = r.driven("color", Target::Glow, glow_intensity, Rgb::splat(0.5));
+            }
+            // The highlight and the reflection are not faded: the hits carry them
+            // whole over the share of rays that hit.
+            let coverage = if alone { surface.opacity } else { 1.0 };
+            if reflective && coverage <= 0.0 {
+                r.warnings
+                    .push("fully transparent: the path engine shows neither its highlight nor its reflection".into());
+            }
+            let coverage = coverage.max(1e-3);
             if let Some((bump, member)) = connection(graph, node, "normalCamera") {
                 r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
             }
             if reflective {
                 let s = r.color("specularColor", Rgb::splat(0.5));
-                if connection(graph, node, "specularColor").is_some() {
-                    r.warnings.push("'specularColor' is connected; the path engine's highlight uses 0.5 grey".into());
+                // A connected specularColor: the lobe is built with 0.5 grey and tinted
+                // per hit by twice the value (the classic highlight of volume lights with
+                // emitSpecular keeps 0.5 grey).
+                if let Some((spec, member)) = connection(graph, node, "specularColor") {
+                    r.bindings.push(Binding { node: spec, member, target: Target::SpecularColor, scale: 2.0 });
+                    if r.color("reflectedColor", Rgb::ZERO) != Rgb::ZERO {
+                        r.warnings.push(
+                            "'specularColor' is connected; the path engine weights 'reflectedColor' by 0.5 grey".into(),
+                        );
+                    }
                 }
                 let (glossy, rolloff) = if family == "anisotropic" {
                     (Some((anisotropic(&mut r, &mut surface), s)), None)
                 } else {
                     let highlight = classic_highlight(&family, &mut r);
-                    surface.maya_highlight = Some(MayaHighlight { model: highlight, color: s });
+                    surface.maya_highlight = Some(MayaHighlight { model: highlight, color: s / coverage });
                     let rolloff = match highlight {
                         ::maya::specular::Highlight::Blinn { rolloff, .. }
                             if constant(graph, node, "reflectionRolloff").is_some_and(Value::bool) =>
@@ -303,17 +344,22 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
                     (glossy_shape(highlight, s), rolloff)
                 };
                 // The classic shader's traced mirror reflection, r·s ⊙ (reflectedColor +
-                // what the ray finds): a mirror lobe of weight r·s, reflectedColor emitted.
+                // what the ray finds): a mirror lobe of weight r·s, reflectedColor emitted
+                // (with blinn's `reflectionRolloff`, × Schlick's factor seen head-on, its
+                // normal reflectance: the emission cannot follow the view).
                 let reflectivity = r.scalar("reflectivity", 0.5).max(0.0);
-                surface.emission += s * reflectivity * r.color("reflectedColor", Rgb::ZERO);
+                let head_on = rolloff.unwrap_or(1.0);
+                surface.emission += s * reflectivity * head_on * r.color("reflectedColor", Rgb::ZERO) / coverage;
                 if let Some((shape, tint)) = glossy {
                     surface.model = SurfaceModel::Maya(Box::new(
-                        bsdf::MayaGlossy::new(shape, tint).with_mirror(s * reflectivity, rolloff),
+                        bsdf::MayaGlossy::new(shape, tint)
+                            .with_mirror(s * reflectivity, rolloff)
+                            .with_coverage(coverage),
                     ));
                 }
             }
         }
-        "rampshader" => ramp_shader(&mut r, &mut surface),
+        "rampshader" => ramp_shader(&mut r, &mut surface, alone),
         "layeredshader" => {
             let (layered, warnings) = layered_shader(name, graph, node);
             surface = layered;
@@ -341,36 +387,42 @@ fn translate(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, Vec<S
     (surface, warnings)
 }
 
-/// The unified BSDF of a Maya highlight: base colour `albedo`, GGX α `alpha`, dielectric
-/// specular weight `specular` (clamped to 0..1).
-fn unified(albedo: Rgb, alpha: f32, specular: f32) -> SurfaceModel {
-    let params = UnifiedParams {
-        base_color: albedo,
-        roughness: alpha.sqrt(),
-        specular: specular.clamp(0.0, 1.0),
-        ..UnifiedParams::default()
+/// A constant ramp parameter of the reader's node (`None` when the ramp is connected or
+/// has connected points, with a warning).
+fn ramp_of(r: &mut Reader, name: &str, member: &str, empty: Rgb) -> Option<::maya::utility::Ramp> {
+    if connection(r.graph, r.node, name).is_some() {
+        r.warnings.push(format!("the ramp '{name}' is connected; the path engine uses its default"));
+        return None;
+    }
+    let Some(v) = slot(r.graph, r.node, name).and_then(constant_value) else {
+        r.warnings.push(format!("the ramp '{name}' has connected points; the path engine uses its default"));
+        return None;
     };
-    SurfaceModel::Unified(Box::new(Unified::new(&params)))
+    Some(::maya::utility::Ramp::read(&v, name, member, glam::Vec3A::new(empty.x, empty.y, empty.z)))
 }
 
 /// A constant ramp parameter of the reader's node at `x` (`empty` when the ramp has no
 /// points or is connected, with a warning for the latter).
 fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb {
-    if connection(r.graph, r.node, name).is_some() {
-        r.warnings.push(format!("the ramp '{name}' is connected; the path engine uses its default"));
-        return empty;
+    ramp_of(r, name, member, empty).map_or(empty, |ramp| {
+        let c = ramp.at(x);
+        Rgb::new(c.x, c.y, c.z)
+    })
+}
+
+/// A ramp indexed by the facing ratio (or the highlight's strength) that the path engine
+/// takes at 1, with a warning when it is not the same all along.
+fn ramp_at_one(r: &mut Reader, name: &str, member: &str, empty: Rgb) -> Rgb {
+    let Some(ramp) = ramp_of(r, name, member, empty) else { return empty };
+    let one = ramp.at(1.0);
+    if (0..10).any(|k| (ramp.at(k as f32 / 10.0) - one).abs().max_element() > 1e-6) {
+        r.warnings.push(format!("the ramp '{name}' varies; the path engine takes it at 1"));
     }
-    let Some(v) = slot(r.graph, r.node, name).and_then(constant_value) else {
-        r.warnings.push(format!("the ramp '{name}' has connected points; the path engine uses its default"));
-        return empty;
-    };
-    let e = glam::Vec3A::new(empty.x, empty.y, empty.z);
-    let c = ::maya::utility::Ramp::read(&v, name, member, e).at(x);
-    Rgb::new(c.x, c.y, c.z)
+    Rgb::new(one.x, one.y, one.z)
 }
 
 /// rampShader (see the module doc).
-fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
+fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     use ::maya::ramp_shader::ColorInput;
     let input = ColorInput::from_maya(r.scalar("colorInput", 0.0) as i32);
     let (d, t) = (r.scalar("diffuse", 0.8), r.scalar("translucence", 0.0));
@@ -381,27 +433,47 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial) {
         r.warnings.push(format!("the colour ramp indexed by {input:?} is taken at 1 (albedo = colour at 1 · diffuse)"));
         c * d
     };
-    surface.diffuse = albedo;
+    let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
+    surface.opacity = 1.0 - (tr.x + tr.y + tr.z) / 3.0;
+    // Transparency fades the lit colour and incandescence, not the highlight and the
+    // reflection (as for the lambert family, see `translate`).
+    let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - tr) / surface.opacity } else { Rgb::ONE };
+    let coverage = if alone { surface.opacity.max(1e-3) } else { 1.0 };
+    surface.diffuse = albedo * fade;
     // Ambient light goes by the colour at the ramp's reference index (C(1) for the light
     // angle; the other inputs' reference is taken at 1 as their albedo is): 1/(d + t) or
     // 1/d of the diffuse colour.
     let share = if input == ColorInput::LightAngle { d + t } else { d };
     surface.ambient = Rgb::splat(if share > 0.0 { 1.0 / share } else { 0.0 });
-    surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0);
+    surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0) * fade;
     let glow_intensity = r.scalar("glowIntensity", 0.0);
     if glow_intensity != 0.0 {
         surface.glow = c * glow_intensity;
     }
-    let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
-    surface.opacity = 1.0 - (tr.x + tr.y + tr.z) / 3.0;
     if let Some((bump, member)) = connection(r.graph, r.node, "normalCamera") {
         r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
     }
-    let specularity = r.scalar("specularity", 0.0);
-    if specularity > 0.0 {
-        let alpha = r.scalar("eccentricity", 0.3).clamp(1e-3, 1.0);
-        let s = ramp_at(r, "specularColor", "Color", Rgb::splat(0.5), 1.0);
-        surface.model = unified(albedo, alpha, specularity * bsdf::luminance(s));
+    // The classic highlight, specularity · rolloff(f) · S(h) ⊙ light · h with h Blinn's
+    // D, is Maya's lobe `RampBlinn` of that tint; the reflection, reflectivity(f) ·
+    // (environment + traced), a mirror of that weight, a constant environment emitted.
+    let specularity = r.scalar("specularity", 0.0).max(0.0);
+    let tint = if specularity > 0.0 {
+        let s = ramp_at_one(r, "specularColor", "Color", Rgb::splat(0.5));
+        let rolloff = ramp_at_one(r, "specularRollOff", "FloatValue", Rgb::ONE).x;
+        s * specularity * rolloff.max(0.0)
+    } else {
+        Rgb::ZERO
+    };
+    let reflectivity = ramp_at_one(r, "reflectivity", "FloatValue", Rgb::ZERO).x.max(0.0);
+    if reflectivity > 0.0 {
+        let env = ramp_at_one(r, "environment", "Color", Rgb::ZERO);
+        surface.emission += env * reflectivity / coverage;
+    }
+    if tint != Rgb::ZERO || reflectivity > 0.0 {
+        let shape = bsdf::maya_highlight::Shape::RampBlinn { eccentricity: r.scalar("eccentricity", 0.3) };
+        surface.model = SurfaceModel::Maya(Box::new(
+            bsdf::MayaGlossy::new(shape, tint).with_mirror(Rgb::splat(reflectivity), None).with_coverage(coverage),
+        ));
     }
 }
 
@@ -413,7 +485,7 @@ fn layer_glow(graph: &Graph, glow: Option<Slot>) -> Rgb {
         Some(Slot::Connect { node, .. })
             if graph.nodes[node as usize].decl.members().iter().any(|x| &**x == "outGlowColor") =>
         {
-            translate("", graph, node).0.glow
+            translate("", graph, node, false).0.glow
         }
         _ => Rgb::ZERO,
     }
@@ -439,7 +511,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         }
     };
     let mut through = Rgb::ONE;
-    let mut lobe: Option<SurfaceModel> = None;
+    let mut lobe: Option<bsdf::MayaGlossy> = None;
     // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
     // (plain colours take none).
     let mut ambient_color = Rgb::ZERO;
@@ -452,7 +524,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 let c = match constant(graph, m, "transparency").or_else(|| constant(graph, m, "outTransparency")) {
                     Some(v) if !matches!(v, Value::Array(_)) => rgb_of(v),
                     _ if slot(graph, m, "transparency").is_some() => {
-                        Rgb::splat(1.0 - translate(name, graph, m).0.opacity)
+                        Rgb::splat(1.0 - translate(name, graph, m, false).0.opacity)
                     }
                     _ => Rgb::ZERO,
                 };
@@ -467,7 +539,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             Some(Slot::Connect { node: m, .. })
                 if graph.nodes[m as usize].decl.members().iter().any(|x| &**x == "outTransparency") =>
             {
-                let (layer, w_layer) = translate(name, graph, m);
+                let (layer, w_layer) = translate(name, graph, m, false);
                 warnings.extend(w_layer);
                 if !matches!(layer.varying, Varying::Constant) {
                     warnings.push(format!(
@@ -478,11 +550,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 surface.diffuse += layer.diffuse * w;
                 surface.emission += layer.emission * w;
                 ambient_color += layer.diffuse * layer.ambient * w;
-                match layer.model {
-                    SurfaceModel::Unified(_) if lobe.is_none() => lobe = Some(layer.model),
-                    // Maya's highlight shows by the layer's share, as its diffuse colour.
-                    SurfaceModel::Maya(g) if lobe.is_none() => lobe = Some(SurfaceModel::Maya(Box::new(g.scaled(w)))),
-                    _ => {}
+                // Maya's highlight shows by the layer's share, as its diffuse colour.
+                if let (SurfaceModel::Maya(g), None) = (layer.model, &lobe) {
+                    lobe = Some(g.scaled(w));
                 }
             }
             Some(Slot::Value(v)) => {
@@ -506,11 +576,8 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         ratio(ambient_color.y, surface.diffuse.y),
         ratio(ambient_color.z, surface.diffuse.z),
     );
-    if let Some(SurfaceModel::Maya(g)) = lobe {
-        surface.model = SurfaceModel::Maya(g);
-    } else if let Some(SurfaceModel::Unified(u)) = lobe {
-        let p = u.params();
-        surface.model = unified(surface.diffuse, p.roughness * p.roughness, p.specular);
+    if let Some(g) = lobe {
+        surface.model = SurfaceModel::Maya(Box::new(g));
     }
     (surface, warnings)
 }

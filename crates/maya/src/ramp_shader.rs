@@ -100,12 +100,7 @@ impl ColorInput {
 /// Blinn's distribution of eccentricity `ecc` at N·H (1 at the peak): the strength of the
 /// ramp shader's highlight.
 pub fn blinn_distribution(ecc: f32, nh: f32) -> f32 {
-    if nh <= 0.0 {
-        return 0.0;
-    }
-    let e2 = (ecc * ecc).clamp(1e-6, 0.9999);
-    let d = e2 / ((e2 - 1.0) * nh * nh + 1.0);
-    d * d
+    bsdf::maya_highlight::blinn_distribution(ecc, nh)
 }
 
 /// The diffuse part of the ramp shader's colour for the lights received, as the module
