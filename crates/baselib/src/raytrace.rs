@@ -184,8 +184,8 @@ fn refraction_index(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let material = s.material.unwrap_or(u32::MAX);
     let (enter, ior_in, ior_out) = if s.inside(material) {
         // Leaving: the medium outside is the one entered before this material.
-        let i = s.media[..s.media_count].iter().rposition(|m| m.material == material).unwrap_or(0);
-        let outside = if i > 0 { s.media[i - 1].ior } else { 1.0 };
+        let mut outward = s.media.iter().rev().skip_while(|m| m.material != material);
+        let outside = outward.nth(1).map_or(1.0, |m| m.ior);
         (false, mtl, outside)
     } else {
         (true, s.medium().map_or(1.0, |m| m.ior), mtl)

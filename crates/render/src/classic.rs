@@ -85,10 +85,16 @@ pub fn eye_sample(
 /// media are MDL materials, which refract by their BSDF, not by the chain. Nothing changes
 /// outside all media (scenes without media).
 pub fn enter_media(state: &mut State, media: &MediumStack) {
-    for m in media.materials() {
+    for (m, own) in media.entries() {
         // World material 0 is the default; world material m is scene material m − 1.
         if let Some(material) = m.checked_sub(1) {
-            state.enter(shader::state::Medium { material, ior: 1.0 });
+            let medium = shader::state::Medium { material, ior: 1.0 };
+            // A medium that varies over its surface: as evaluated where the camera's
+            // ray left the object (the path engine's value).
+            match own {
+                Some(own) => state.enter_evaluated(medium, *own),
+                None => state.enter(medium),
+            }
         }
     }
 }

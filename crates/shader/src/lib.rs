@@ -33,6 +33,7 @@ pub mod graph;
 pub mod inscatter;
 pub mod light;
 pub mod lights;
+pub mod media_chain;
 pub mod photon;
 pub mod photonmap;
 pub mod precomputed;

@@ -454,9 +454,10 @@ impl<'a> Ctx<'a> {
         let mut blocked = false;
         let mut calls = 0;
         let mut media = crate::volume::ShadowMedia::new(&ray);
-        if !shading.has_surface_shadow_shaders() {
+        if !shading.has_surface_shadow_shaders() && !shading.has_varying_media() {
             // Only media boundaries let the light through (tinted where it enters): the
-            // walk needs each surface's distance and material, not its shading state.
+            // walk needs each surface's distance and material, not its shading state
+            // (unless a medium entered varies over its surface).
             tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
                 media.advance(shading, dist, &mut filter);
                 blocked = !media.cross_material(shading, material, &mut filter);

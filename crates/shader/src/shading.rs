@@ -31,6 +31,10 @@ pub struct MaterialShaders {
     /// material has no volume shader, rays travelling inside lose all but exp(−σt·d) of
     /// their colour ([`super::volume`]).
     pub medium: Option<bsdf::Medium>,
+    /// Where that medium varies over the surface (an MDL volume whose coefficients depend
+    /// on the shading point): how to evaluate it at the point a ray enters the object
+    /// through; `medium` is then its value at the material's default point.
+    pub varying_medium: Option<MediumAt>,
     /// Where the material has a `medium` behind an index-matched boundary (MDL's specular
     /// transmission with ior 1): the colour that boundary tints light by as it enters.
     /// Shadow rays cross such a surface without a shadow shader ([`super::volume`]).
@@ -48,6 +52,24 @@ pub struct MaterialShaders {
     pub opaque: bool,
     /// Its surface shader is a mental ray shader (not mira's stand-in for MDL).
     pub classic: bool,
+}
+
+/// A participating medium that depends on the shading point, evaluated at a surface
+/// state (world space, as [`crate::State`]); shared, equal only to itself.
+#[derive(Clone)]
+pub struct MediumAt(pub Arc<dyn Fn(&crate::State) -> bsdf::Medium + Send + Sync>);
+
+impl MediumAt {
+    /// The medium at surface point `state`.
+    pub fn at(&self, state: &crate::State) -> bsdf::Medium {
+        (self.0)(state)
+    }
+}
+
+impl std::fmt::Debug for MediumAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("MediumAt(..)")
+    }
 }
 
 /// How to compile.
@@ -131,6 +153,9 @@ pub struct Shading {
     /// Whether some material has a participating medium, found on first use
     /// ([`Shading::has_media`]).
     media: std::sync::OnceLock<bool>,
+    /// Whether some material has a medium that varies over its surface, found on first
+    /// use ([`Shading::has_varying_media`]).
+    varying_media: std::sync::OnceLock<bool>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -329,6 +354,7 @@ impl Shading {
             shadow_shaders: Default::default(),
             surface_shadow_shaders: Default::default(),
             media: Default::default(),
+            varying_media: Default::default(),
         };
         (shading, diags)
     }
@@ -350,6 +376,13 @@ impl Shading {
     /// over by the renderer before rendering). Found once, on the first question.
     pub fn has_media(&self) -> bool {
         *self.media.get_or_init(|| self.materials.iter().any(|m| m.medium.is_some()))
+    }
+
+    /// Whether some material has a participating medium that varies over its surface
+    /// (evaluated where a ray enters: shadow walks then need each surface's shading state).
+    /// Found once, on the first question.
+    pub fn has_varying_media(&self) -> bool {
+        *self.varying_media.get_or_init(|| self.materials.iter().any(|m| m.varying_medium.is_some()))
     }
 
     /// Whether a final gather ray from `org` along unit `dir` (world space) meets a portal

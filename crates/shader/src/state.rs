@@ -6,6 +6,8 @@
 
 use glam::{Affine3A, Vec2, Vec3A};
 
+pub use crate::media_chain::{MediaChain, Medium};
+
 /// Why a ray was cast (mental ray's `miRay_type`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RayType {
@@ -40,19 +42,6 @@ impl RayType {
 
 /// Most texture spaces a state carries.
 pub const MAX_TEXTURES: usize = 8;
-
-/// Most media a refraction chain remembers.
-pub const MAX_MEDIA: usize = 8;
-
-/// A medium a ray is inside: the material it entered through and that material's
-/// index of refraction.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Medium {
-    /// The material (scene index).
-    pub material: u32,
-    /// Its index of refraction.
-    pub ior: f32,
-}
 
 /// The hair-specific part of a state (see `mental-ray-material-shaders.md`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -149,10 +138,8 @@ pub struct State {
     /// Index of refraction of the medium on the other side (`ior`), set by
     /// `mib_refraction_index` and read by refraction.
     pub ior: f32,
-    /// The media the ray is inside, innermost last.
-    pub media: [Medium; MAX_MEDIA],
-    /// How many entries of `media` are meaningful.
-    pub media_count: usize,
+    /// The media the ray is inside, outermost first, at any depth.
+    pub media: MediaChain,
     /// Shutter time of the sample.
     pub time: f32,
     /// Width of the ray's footprint at the hit (scene units), for texture filtering.
@@ -197,8 +184,7 @@ impl State {
             raster: self.raster,
             ior_in: self.ior_in,
             ior: self.ior_in,
-            media: self.media,
-            media_count: self.media_count,
+            media: self.media.clone(),
             time: self.time,
             footprint: self.footprint,
             spread: self.spread,
@@ -228,30 +214,28 @@ impl State {
 
     /// The medium the ray is in, if it entered one.
     pub fn medium(&self) -> Option<Medium> {
-        self.media_count.checked_sub(1).map(|i| self.media[i])
+        self.media.innermost()
     }
 
     /// Whether the ray is inside material `m` (entered it and has not left).
     pub fn inside(&self, m: u32) -> bool {
-        self.media[..self.media_count].iter().any(|x| x.material == m)
+        self.media.iter().any(|x| x.material == m)
     }
 
-    /// Records entering a medium (the oldest is forgotten when the chain is full).
+    /// Records entering a medium (at any depth: nothing is forgotten).
     pub fn enter(&mut self, medium: Medium) {
-        if self.media_count == MAX_MEDIA {
-            self.media.copy_within(1.., 0);
-            self.media_count -= 1;
-        }
-        self.media[self.media_count] = medium;
-        self.media_count += 1;
+        self.media.enter(medium, None);
+    }
+
+    /// Records entering a medium whose participating medium varies over its surface:
+    /// `own` is that medium evaluated where the ray entered.
+    pub fn enter_evaluated(&mut self, medium: Medium, own: bsdf::Medium) {
+        self.media.enter(medium, Some(own));
     }
 
     /// Records leaving material `m` (its innermost entry is removed).
     pub fn leave(&mut self, m: u32) {
-        if let Some(i) = self.media[..self.media_count].iter().rposition(|x| x.material == m) {
-            self.media.copy_within(i + 1..self.media_count, i);
-            self.media_count -= 1;
-        }
+        self.media.leave(m);
     }
 
     /// Sets [`State::point_derivs`] from the ray footprint: steps of `footprint` (one
@@ -366,9 +350,11 @@ mod tests {
         assert_eq!(s.medium(), Some(Medium { material: 2, ior: 1.33 }));
         assert!(!s.inside(1));
         for m in 0..20 {
-            s.enter(Medium { material: m, ior: 1.0 });
+            s.enter(Medium { material: m + 10, ior: 1.0 });
         }
-        assert_eq!(s.media_count, MAX_MEDIA);
-        assert_eq!(s.medium().unwrap().material, 19);
+        // Nothing is forgotten: twenty-one deep, the outermost still there.
+        assert_eq!(s.media.len(), 21);
+        assert_eq!(s.medium().unwrap().material, 29);
+        assert_eq!(s.media.iter().next(), Some(Medium { material: 2, ior: 1.33 }));
     }
 }

@@ -121,7 +121,12 @@ impl Ctx<'_> {
                 if s.inside(m) {
                     child.leave(m);
                 } else {
-                    child.enter(super::state::Medium { material: m, ior: s.ior });
+                    let medium = super::state::Medium { material: m, ior: s.ior };
+                    // A volume that varies over the surface: the one where the ray enters.
+                    match self.shading().materials.get(m as usize).and_then(|x| x.varying_medium.as_ref()) {
+                        Some(varying) => child.enter_evaluated(medium, varying.at(s)),
+                        None => child.enter(medium),
+                    }
                 }
                 child.ior_in = child.medium().map_or(1.0, |x| x.ior);
             }

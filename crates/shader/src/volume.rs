@@ -130,10 +130,12 @@ impl Ctx<'_> {
     }
 
     /// The participating medium a ray with state `s` travels in: the innermost entered
-    /// material's, where that material has no volume shader.
+    /// material's, where that material has no volume shader (as evaluated where the ray
+    /// entered it, when it varies over the surface).
     pub fn medium_of(&self, s: &State) -> Option<bsdf::Medium> {
         let m = self.shading().materials.get(s.medium()?.material as usize)?;
-        m.medium.filter(|_| m.volume.is_none())
+        let own = s.media.innermost_evaluated().copied();
+        own.or(m.medium).filter(|_| m.volume.is_none())
     }
 
     /// Whether a volume (a shader or a medium) changes the colour of a ray with state `s`.
@@ -197,11 +199,21 @@ impl Ctx<'_> {
         ray.light = light.light;
         let mut filter = color;
         let mut media = ShadowMedia::new(&ray);
-        self.tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
-            media.advance(shading, dist, &mut filter);
-            media.pass_material(shading, material);
-            !crate::is_zero(filter)
-        });
+        if shading.has_varying_media() {
+            // Where a medium entered varies over its surface, the walk needs each surface's
+            // shading state to evaluate it.
+            self.tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
+                media.advance(shading, hit.dist, &mut filter);
+                media.pass(shading, hit);
+                !crate::is_zero(filter)
+            });
+        } else {
+            self.tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
+                media.advance(shading, dist, &mut filter);
+                media.pass_material(shading, material);
+                !crate::is_zero(filter)
+            });
+        }
         media.advance(shading, max_dist - media.walked(), &mut filter);
         filter
     }
@@ -233,10 +245,15 @@ pub fn segment_length(state: &State) -> f32 {
 /// The media a shadow ray is inside as it walks from the illuminated point towards the
 /// light (the classic engine's Beer–Lambert media, see the module documentation): the
 /// materials it entered, innermost last, starting with those the illuminated point's ray
-/// was inside.
+/// was inside. A medium that varies over its object's surface is the one evaluated where
+/// the illuminated point's ray entered it, or where the shadow ray enters it
+/// ([`ShadowMedia::cross`], [`ShadowMedia::pass`]; walks that know only the material,
+/// [`ShadowMedia::cross_material`] and [`ShadowMedia::pass_material`], take its value at
+/// the material's default point).
 pub struct ShadowMedia {
-    /// The scene materials entered, innermost last.
-    inside: Vec<u32>,
+    /// The scene materials entered, innermost last, each with its medium where that was
+    /// evaluated at the entry point.
+    inside: Vec<(u32, Option<bsdf::Medium>)>,
     /// Distance walked from the illuminated point (scene units).
     walked: f32,
 }
@@ -245,16 +262,16 @@ impl ShadowMedia {
     /// The media at the start of shadow ray `ray` (a state whose media chain is the
     /// illuminated point's).
     pub fn new(ray: &State) -> Self {
-        Self { inside: ray.media[..ray.media_count].iter().map(|m| m.material).collect(), walked: 0.0 }
+        Self { inside: ray.media.evaluated().map(|(m, own)| (m.material, own)).collect(), walked: 0.0 }
     }
 
     /// Walks `dist` further (to the next surface, or to the light): `filter` keeps the
     /// innermost medium's transmittance over that stretch.
     pub fn advance(&mut self, shading: &Shading, dist: f32, filter: &mut Color) {
         self.walked += dist;
-        let Some(&innermost) = self.inside.last() else { return };
+        let Some(&(innermost, own)) = self.inside.last() else { return };
         let Some(m) = shading.materials.get(innermost as usize) else { return };
-        if let Some(medium) = m.medium.filter(|_| m.volume.is_none()) {
+        if let Some(medium) = own.or(m.medium).filter(|_| m.volume.is_none()) {
             let t = medium.transmittance(dist.max(0.0));
             *filter = Color::new(filter.x * t.x, filter.y * t.y, filter.z * t.z, filter.w);
         }
@@ -264,19 +281,30 @@ impl ShadowMedia {
     /// medium is entered (tinting `filter` by its colour) or left; returns false for any
     /// other surface, which stops the shadow ray.
     pub fn cross(&mut self, shading: &Shading, hit: &State, filter: &mut Color) -> bool {
-        self.cross_material(shading, hit.material, filter)
+        self.cross_at(shading, hit.material, Some(hit), filter)
     }
 
     /// [`ShadowMedia::cross`] of a surface of scene material `material` (`None`: none).
     pub fn cross_material(&mut self, shading: &Shading, material: Option<u32>, filter: &mut Color) -> bool {
+        self.cross_at(shading, material, None, filter)
+    }
+
+    /// Crosses a surface of `material`, `hit` its state when known (where a varying
+    /// medium entered is evaluated).
+    fn cross_at(&mut self, shading: &Shading, material: Option<u32>, hit: Option<&State>, filter: &mut Color) -> bool {
         let Some(m) = material else { return false };
         let Some(tint) = shading.materials.get(m as usize).and_then(|x| x.boundary_tint) else { return false };
-        if let Some(i) = self.inside.iter().rposition(|&x| x == m) {
-            self.inside.remove(i);
-        } else {
-            self.inside.push(m);
+        if !self.leave(m) {
+            self.inside.push((m, evaluated(shading, m, hit)));
             *filter = Color::new(filter.x * tint.x, filter.y * tint.y, filter.z * tint.z, filter.w);
         }
+        true
+    }
+
+    /// Leaves the innermost medium of material `m`; false when the walk is not inside it.
+    fn leave(&mut self, m: u32) -> bool {
+        let Some(i) = self.inside.iter().rposition(|&(x, _)| x == m) else { return false };
+        self.inside.remove(i);
         true
     }
 
@@ -284,19 +312,22 @@ impl ShadowMedia {
     /// shadow shader filtered the ray): a surface whose material has a medium is entered or
     /// left, untinted.
     pub fn pass(&mut self, shading: &Shading, hit: &State) {
-        self.pass_material(shading, hit.material);
+        self.pass_at(shading, hit.material, Some(hit));
     }
 
     /// [`ShadowMedia::pass`] of a surface of scene material `material` (`None`: none).
     pub fn pass_material(&mut self, shading: &Shading, material: Option<u32>) {
+        self.pass_at(shading, material, None);
+    }
+
+    /// Passes a surface of `material`, `hit` its state when known.
+    fn pass_at(&mut self, shading: &Shading, material: Option<u32>, hit: Option<&State>) {
         let Some(m) = material else { return };
         if shading.materials.get(m as usize).is_none_or(|x| x.medium.is_none()) {
             return;
         }
-        if let Some(i) = self.inside.iter().rposition(|&x| x == m) {
-            self.inside.remove(i);
-        } else {
-            self.inside.push(m);
+        if !self.leave(m) {
+            self.inside.push((m, evaluated(shading, m, hit)));
         }
     }
 
@@ -304,4 +335,11 @@ impl ShadowMedia {
     pub fn walked(&self) -> f32 {
         self.walked
     }
+}
+
+/// The medium of material `m` evaluated at surface state `hit`, where it varies over the
+/// surface and the state is known (`None`: the material's constant medium applies).
+fn evaluated(shading: &Shading, m: u32, hit: Option<&State>) -> Option<bsdf::Medium> {
+    let varying = shading.materials.get(m as usize)?.varying_medium.as_ref()?;
+    Some(varying.at(hit?))
 }

@@ -105,6 +105,16 @@ impl MediumStack {
         inline.iter().copied().chain(spilled.iter().map(|e| e.material))
     }
 
+    /// The materials of the media, outermost first, each with its medium where that was
+    /// evaluated at the entry point (it varies over the surface).
+    pub fn entries(&self) -> impl Iterator<Item = (u32, Option<&Medium>)> + '_ {
+        let (inline, spilled): (&[u32], &[Entered]) = match &self.0 {
+            Entries::Inline { materials, len } => (&materials[..usize::from(*len)], &[]),
+            Entries::Spilled(v) => (&[], v),
+        };
+        inline.iter().map(|&m| (m, None)).chain(spilled.iter().map(|e| (e.material, e.own.as_ref())))
+    }
+
     /// Whether the path is in no medium.
     pub fn is_empty(&self) -> bool {
         match &self.0 {

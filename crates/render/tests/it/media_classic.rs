@@ -9,7 +9,8 @@
 //! - a light whose shader casts no shadows is still absorbed by the media on its way, and a
 //!   surface with a shadow shader of its own is a medium boundary for shadow rays;
 //! - a camera moving into a medium while the shutter is open is in it from where it
-//!   crosses its surface (both engines).
+//!   crosses its surface (both engines);
+//! - ten nested media, deeper than the refraction chain once held, are all remembered.
 
 use std::f32::consts::PI;
 
@@ -287,4 +288,39 @@ fn boundary_hits_visit_what_shadow_hits_visits() {
             assert_eq!(visits, 2, "stops when asked");
         }
     }
+}
+
+/// Ten nested gel shells in the classic engine, more than its refraction chain once held
+/// (eight: entering a ninth forgot the outermost, without a word). Shell i (σa below, from
+/// the outside in) spans z from −30 + i to −4 − i in front of a glow at z = −35, so the
+/// camera ray is in shell i for 2 units (1 on the way in, 1 on the way out) and in the
+/// innermost for 8: exp(−2 · 0.5 − 8 · 0.01) = exp(−1.08) within 1e-3. A chain that forgot
+/// the two outermost shells would miss their last units: exp(−0.93).
+#[test]
+fn ten_nested_media_keep_the_outermost_in_the_classic_engine() {
+    let sigma = [0.1f32, 0.05, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.01];
+    let mut body = String::from("shader \"glow_mtl\" \"mdl::media::glow\" ()\n");
+    let mut instances = Vec::new();
+    for (i, s) in sigma.iter().enumerate() {
+        let f = i as f32;
+        body += &format!("shader \"shell{i}_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" {s} {s} {s})\n");
+        body += &closed_box(
+            &format!("shell{i}"),
+            [-20.0 + f, -20.0 + f, -30.0 + f],
+            [20.0 - f, 20.0 - f, -4.0 - f],
+            &format!("shell{i}_mtl"),
+        );
+        instances.push(format!("shell{i}_inst"));
+    }
+    body += &wall("w", -35.0, "glow_mtl");
+    instances.push("w_inst".into());
+    let names: Vec<&str> = instances.iter().map(String::as_str).collect();
+    // Twenty surfaces to cross: a refraction depth past that.
+    let text = scene_with(&body, &names, 4).replace("filter box 1 1", "filter box 1 1 trace depth 64 64 128");
+    let (px, messages) = classic(&text, 4);
+    assert!(messages.is_empty(), "{messages:#?}");
+    eprintln!("classic camera through ten shells: {:?}", px[0]);
+    let inner = 2.0 * sigma[..9].iter().sum::<f32>() + 8.0 * sigma[9];
+    assert!((inner - 1.08).abs() < 1e-5);
+    assert_pixels(&px, [(-inner).exp(); 3], 1e-3, "ten shells");
 }
