@@ -196,8 +196,8 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
     let sc = &loaded_scene;
     let (world, shading) = (&built.world, &built.shading);
     if args.warnings {
-        let classic_only = if classic { render::pipeline::classic_warnings(world) } else { Vec::new() };
-        for w in if classic { &classic_only } else { &world.warnings } {
+        // The world's warnings are the path engine's: what it renders differently.
+        for w in if classic { &[][..] } else { &world.warnings[..] } {
             eprintln!("mira: warning: {w}");
         }
     }

@@ -219,14 +219,6 @@ fn share_media(shading: &mut Shading, world: &World) {
     }
 }
 
-/// What the classic engine renders differently from the path engine in `world`, as
-/// warnings. None today: the last difference, a medium that varies over its object's
-/// surface (the classic engine took its value at the material's default point), is
-/// evaluated where a ray enters in both engines now. Kept for the command line's report.
-pub fn classic_warnings(_world: &World) -> Vec<String> {
-    Vec::new()
-}
-
 /// The shading half of [`build_world`]: the compiled shading, the MDL module materials and
 /// the messages of both.
 fn compile_scene_shading(
