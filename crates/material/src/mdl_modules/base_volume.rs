@@ -22,37 +22,13 @@ use glam::{Mat4, Vec4};
 use mdl_lang::Function;
 use mi::Span;
 
-use super::eval::{kind, problem, Eval, Problem};
+use super::eval::{problem, Eval, Problem};
 use super::hit::{fold, BinOp, HitExpr, MathFn, StateFn};
+use super::hit_base::Args;
 use super::value::{HitType, Value};
 
-/// The arguments of one call, read by parameter name.
-struct Args<'a> {
-    def: &'a Function,
-    args: &'a [Value],
-    span: Span,
-}
-
+/// The volume functions' own readers of a `::base` call's arguments.
 impl Args<'_> {
-    fn get(&self, p: &str) -> Option<&Value> {
-        self.def.param(p).and_then(|(i, _)| self.args.get(i))
-    }
-
-    fn not_constant(&self, p: &str, v: &Value) -> Problem {
-        problem(
-            self.span,
-            format!("`base::{}`'s `{p}` is {}; mira compiles it only as a constant", self.def.name, kind(v)),
-        )
-    }
-
-    /// A constant number (`default` when absent).
-    fn num(&self, p: &str, default: f32) -> Result<f32, Problem> {
-        match self.get(p) {
-            None => Ok(default),
-            Some(v) => v.float().map(|f| f as f32).ok_or_else(|| self.not_constant(p, v)),
-        }
-    }
-
     /// A constant colour (`default` grey when absent).
     fn color(&self, p: &str, default: f32) -> Result<Arc<HitExpr>, Problem> {
         match self.get(p) {
@@ -99,7 +75,7 @@ impl Args<'_> {
     }
 
     /// Where the textures are read: the object-space position through `transform`.
-    fn uvw(&self) -> Result<Arc<HitExpr>, Problem> {
+    fn object_uvw(&self) -> Result<Arc<HitExpr>, Problem> {
         let position = Arc::new(HitExpr::State(StateFn::ObjectPosition));
         Ok(fold(HitExpr::Transform { matrix: self.transform()?, of: position, point: true }))
     }
@@ -129,7 +105,7 @@ fn rgb(e: Arc<HitExpr>) -> Arc<HitExpr> {
 pub fn lookup_volume_coefficients(def: &Function, args: &[Value], span: Span) -> Eval {
     let a = Args { def, args, span };
     let density_multiplier = a.num("density_multiplier", 1.0)?;
-    let uvw = a.uvw()?;
+    let uvw = a.object_uvw()?;
     let texel = a.lookup("density", &uvw)?.unwrap_or_else(|| num(0.0));
     let mut density = bin(BinOp::Mul, rgb(texel), num(density_multiplier));
     match a.get("density_relative_to_size") {
@@ -182,7 +158,7 @@ fn polynomial(c: &[f32; 5], t: &Arc<HitExpr>) -> Arc<HitExpr> {
 /// when it is valid; at least 0) × `tint`.
 pub fn volume_blackbody_emission(def: &Function, args: &[Value], span: Span) -> Eval {
     let a = Args { def, args, span };
-    let uvw = a.uvw()?;
+    let uvw = a.object_uvw()?;
     let Some(temperature) = a.lookup("temperature", &uvw)? else {
         // The invalid texture reads 0: 500 K.
         let t = constant(Vec4::ZERO);

@@ -25,19 +25,22 @@ use super::projection;
 use super::tiles::Tiling;
 use super::value::{HitType, Value};
 
-/// The arguments of one `::base` call, read by parameter name.
-struct Args<'a> {
-    def: &'a Function,
-    args: &'a [Value],
-    span: Span,
+/// The arguments of one `::base` call, read by parameter name (shared with the volume
+/// functions of [`super::base_volume`], which add their own readers).
+pub(super) struct Args<'a> {
+    pub(super) def: &'a Function,
+    pub(super) args: &'a [Value],
+    pub(super) span: Span,
 }
 
 impl Args<'_> {
-    fn get(&self, p: &str) -> Option<&Value> {
+    /// The argument of parameter `p`, if the call has it.
+    pub(super) fn get(&self, p: &str) -> Option<&Value> {
         self.def.param(p).and_then(|(i, _)| self.args.get(i))
     }
 
-    fn not_constant(&self, p: &str, v: &Value) -> Problem {
+    /// The error for parameter `p` given a value `v` that is not a constant.
+    pub(super) fn not_constant(&self, p: &str, v: &Value) -> Problem {
         problem(
             self.span,
             format!("`base::{}`'s `{p}` is {}; mira compiles it only as a constant", self.def.name, kind(v)),
@@ -45,7 +48,7 @@ impl Args<'_> {
     }
 
     /// A constant number (`default` when absent).
-    fn num(&self, p: &str, default: f32) -> Result<f32, Problem> {
+    pub(super) fn num(&self, p: &str, default: f32) -> Result<f32, Problem> {
         match self.get(p) {
             None => Ok(default),
             Some(v) => v.float().map(|f| f as f32).ok_or_else(|| self.not_constant(p, v)),
