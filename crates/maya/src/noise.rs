@@ -102,6 +102,24 @@ pub struct Noise {
 }
 
 impl Noise {
+    /// The settings of node `n`, whose parameters from index `first` are `threshold`,
+    /// `amplitude`, `ratio`, `frequencyRatio`, `depthMax`, `inflection`, `time` and
+    /// `frequency` in that order, and whose `noiseType` (1: billow) is at index
+    /// `noise_type` (the 2D and 3D textures declare it at different places).
+    pub fn read(ctx: &mut Ctx, n: NodeId, first: usize, noise_type: usize) -> Noise {
+        let e = first;
+        Noise {
+            threshold: ctx.scalar(n, e),
+            amplitude: ctx.scalar(n, e + 1),
+            ratio: ctx.scalar(n, e + 2),
+            frequency_ratio: ctx.scalar(n, e + 3),
+            depth: ctx.int(n, e + 4).max(1) as u32,
+            billow: ctx.bool(n, e + 5) || ctx.int(n, noise_type) == 1,
+            time: ctx.scalar(n, e + 6),
+            frequency: ctx.scalar(n, e + 7),
+        }
+    }
+
     /// The texture's value at `uv`, in [0, 1].
     pub fn value(&self, uv: Vec2) -> f32 {
         self.value_with(|f| Vec3A::new(uv.x * f, uv.y * f, self.time))
@@ -164,17 +182,7 @@ maya_shader!(
 
 fn noise(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(uv) = crate::texture::texture_uv(ctx, n) else { return crate::texture::outside(ctx, n, out) };
-    let e = 8;
-    let settings = Noise {
-        threshold: ctx.scalar(n, e),
-        amplitude: ctx.scalar(n, e + 1),
-        ratio: ctx.scalar(n, e + 2),
-        frequency_ratio: ctx.scalar(n, e + 3),
-        depth: ctx.int(n, e + 4).max(1) as u32,
-        billow: ctx.bool(n, e + 5) || ctx.int(n, e + 8) == 1,
-        time: ctx.scalar(n, e + 6),
-        frequency: ctx.scalar(n, e + 7),
-    };
+    let settings = Noise::read(ctx, n, 8, 16);
     let v = settings.value(uv);
     crate::texture::balance(ctx, n, Vec3A::splat(v), v, out)
 }

@@ -144,16 +144,7 @@ maya_shader!(
 fn volume_noise(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(p) = placement_point(ctx, n) else { return outside(ctx, n, out) };
     let e = EXTRA;
-    let settings = Noise {
-        threshold: ctx.scalar(n, e),
-        amplitude: ctx.scalar(n, e + 1),
-        ratio: ctx.scalar(n, e + 2),
-        frequency_ratio: ctx.scalar(n, e + 3),
-        depth: ctx.int(n, e + 4).max(1) as u32,
-        billow: ctx.bool(n, e + 5) || ctx.int(n, e + 10) == 1,
-        time: ctx.scalar(n, e + 6),
-        frequency: ctx.scalar(n, e + 7),
-    };
+    let settings = Noise::read(ctx, n, e, e + 10);
     let (scale, origin) = (ctx.vector(n, e + 8), ctx.vector(n, e + 9));
     let v = settings.value3((p - origin) / scale);
     balance(ctx, n, Vec3A::splat(v), v, out)
