@@ -34,7 +34,12 @@
 //! `reflectivity` · `specularColor` (times blinn's Schlick factor of `specularRollOff` at
 //! N·V with `reflectionRolloff`); [`MayaBsdf`] carries it as a smooth mirror lobe of that
 //! weight (each channel at most 1), so reflected objects, lights and the environment
-//! reach the path engine as they reach the classic one.
+//! reach the path engine as they reach the classic one; what that weight also multiplies
+//! in the classic shader (`reflectedColor`, rampShader's environment ramp) the BSDF
+//! emits by the weight seen from each view ([`MayaBsdf::emitted`]), and past
+//! `reflectionLimit` mirror reflections the path engine drops the mirror
+//! ([`MayaBsdf::without_mirror`]). rampShader's ramps that follow the view are tabulated
+//! ([`ViewRamps`], [`MayaGlossy::specular_ramp`]).
 //!
 //! **Transparency.** The classic materials fade only their diffuse part by
 //! `transparency`; the highlight and the reflection stay whole. The path engine lets a
@@ -298,6 +303,58 @@ const ALBEDO_MIN_COS: f32 = 0.02;
 /// How many view cosines the albedo table holds, evenly spaced over [0, 1].
 const ALBEDO_STEPS: usize = 9;
 
+/// How many facing ratios (or reflection heights) [`ViewRamps`] holds, evenly spaced
+/// over [0, 1].
+pub const VIEW_RAMP_STEPS: usize = 33;
+
+/// How many highlight strengths a tabulated `specularColor` ramp holds
+/// ([`MayaGlossy::specular_ramp`]), evenly spaced over [0, 1].
+pub const SPECULAR_RAMP_STEPS: usize = 9;
+
+/// rampShader's ramps that follow the view, tabulated (linear between the points: a
+/// ramp whose points lie on the table's and interpolate linearly is exact):
+/// `specularRollOff` and `reflectivity` by the facing ratio N·V, `environment` by the
+/// world reflection direction's height (1 + R_y)/2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewRamps {
+    /// `specularRollOff` at N·V = k/32: multiplies the highlight's tint.
+    pub rolloff: [f32; VIEW_RAMP_STEPS],
+    /// `reflectivity` at N·V = k/32: the mirror's weight (its tint ⊙ this).
+    pub reflectivity: [f32; VIEW_RAMP_STEPS],
+    /// `environment` at (1 + R_y)/2 = k/32: emitted by the mirror's weight.
+    pub environment: [Rgb; VIEW_RAMP_STEPS],
+}
+
+/// A table of values at evenly spaced points over [0, 1], linearly interpolated at `x`
+/// (clamped).
+fn table_at<T>(table: &[T], x: f32) -> T
+where
+    T: Copy + std::ops::Mul<f32, Output = T> + std::ops::Add<Output = T>,
+{
+    let last = table.len() - 1;
+    let x = x.clamp(0.0, 1.0) * last as f32;
+    let k = (x as usize).min(last - 1);
+    let t = x - k as f32;
+    table[k] * (1.0 - t) + table[k + 1] * t
+}
+
+impl ViewRamps {
+    /// The ramps tabulated from functions of the facing ratio (`rolloff`,
+    /// `reflectivity`) and of the reflection's height (`environment`).
+    pub fn tabulate(
+        rolloff: impl Fn(f32) -> f32,
+        reflectivity: impl Fn(f32) -> f32,
+        environment: impl Fn(f32) -> Rgb,
+    ) -> ViewRamps {
+        let at = |k: usize| k as f32 / (VIEW_RAMP_STEPS - 1) as f32;
+        ViewRamps {
+            rolloff: std::array::from_fn(|k| rolloff(at(k)).max(0.0)),
+            reflectivity: std::array::from_fn(|k| reflectivity(at(k)).max(0.0)),
+            environment: std::array::from_fn(|k| environment(at(k)).max(Rgb::ZERO)),
+        }
+    }
+}
+
 /// A Maya highlight of a material: its shape, its tint (`specularColor`, ⊙ `whiteness`
 /// for phongE), its mirror reflection and its unit lobe's directional albedo over the
 /// view cosine, which bounds it (see the module doc). Built once per material.
@@ -317,6 +374,25 @@ pub struct MayaGlossy {
     /// transparent Maya material, which the path engine covers stochastically, shows
     /// them at full strength on average, as the classic shader adds them unfaded.
     pub coverage: f32,
+    /// What the mirror's weight multiplies besides what the mirror ray finds, emitted
+    /// towards the viewer (linear RGB): blinn's, phong's … `reflectedColor` (the classic
+    /// r · s ⊙ (reflectedColor + traced)), so that it follows the view as the mirror's
+    /// weight does (blinn's roll-off) and a per-hit `specularColor`.
+    pub reflected: Rgb,
+    /// The most mirror reflections a path may have made before this surface for its
+    /// mirror to reflect (Maya's `reflectionLimit`: the classic shader traces its
+    /// reflection while the ray's reflection level is below it); `u32::MAX`: no limit.
+    pub reflection_limit: u32,
+    /// The factor a per-hit `specularColor` multiplied the tint by ([`MayaGlossy::tinted`];
+    /// 1 for a constant one), per channel.
+    pub tinted_by: Rgb,
+    /// rampShader's view-dependent ramps, when they vary: the highlight's tint is then
+    /// multiplied by the roll-off at N·V, the mirror's weight by the reflectivity, and the
+    /// mirror emits the environment ramp instead of `reflected`.
+    pub view_ramps: Option<ViewRamps>,
+    /// rampShader's `specularColor` ramp by the highlight's strength H ∈ [0, 1] at
+    /// H = k/8, when it varies: the highlight is then tint ⊙ S(H) · H.
+    pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -327,7 +403,48 @@ impl MayaGlossy {
     pub fn new(shape: Shape, tint: Rgb) -> MayaGlossy {
         let step = 1.0 / (ALBEDO_STEPS - 1) as f32;
         let albedo = std::array::from_fn(|k| shape.albedo(k as f32 * step));
-        MayaGlossy { shape, tint: tint.max(Rgb::ZERO), mirror: Rgb::ZERO, mirror_rolloff: None, coverage: 1.0, albedo }
+        MayaGlossy {
+            shape,
+            tint: tint.max(Rgb::ZERO),
+            mirror: Rgb::ZERO,
+            mirror_rolloff: None,
+            coverage: 1.0,
+            reflected: Rgb::ZERO,
+            reflection_limit: u32::MAX,
+            tinted_by: Rgb::ONE,
+            view_ramps: None,
+            specular_ramp: None,
+            albedo,
+        }
+    }
+
+    /// The same highlight and mirror with rampShader's view-dependent ramps (see
+    /// [`MayaGlossy::view_ramps`]).
+    pub fn with_view_ramps(mut self, ramps: ViewRamps) -> MayaGlossy {
+        self.view_ramps = Some(ramps);
+        self
+    }
+
+    /// The same highlight coloured by a `specularColor` ramp over its strength (see
+    /// [`MayaGlossy::specular_ramp`]; `ramp` gives the colour at a strength in [0, 1]).
+    pub fn with_specular_ramp(mut self, ramp: impl Fn(f32) -> Rgb) -> MayaGlossy {
+        self.specular_ramp =
+            Some(std::array::from_fn(|k| ramp(k as f32 / (SPECULAR_RAMP_STEPS - 1) as f32).max(Rgb::ZERO)));
+        self
+    }
+
+    /// The same highlight and mirror with `reflected` emitted by the mirror's weight (see
+    /// [`MayaGlossy::reflected`]).
+    pub fn with_reflected(mut self, reflected: Rgb) -> MayaGlossy {
+        self.reflected = reflected.max(Rgb::ZERO);
+        self
+    }
+
+    /// The same highlight with its mirror limited to paths of fewer than `limit` mirror
+    /// reflections (see [`MayaGlossy::reflection_limit`]).
+    pub fn with_reflection_limit(mut self, limit: u32) -> MayaGlossy {
+        self.reflection_limit = limit;
+        self
     }
 
     /// The same highlight with a mirror reflection of weight `mirror` (each channel
@@ -353,6 +470,7 @@ impl MayaGlossy {
         let k = k.max(Rgb::ZERO);
         self.tint *= k;
         self.mirror *= k;
+        self.tinted_by *= k;
         self
     }
 
@@ -374,21 +492,55 @@ impl MayaGlossy {
     }
 
     /// The BSDF seen from `wo` (local frame) with the Lambertian `diffuse` albedo beside
-    /// the highlight, which is scaled down where it would reflect more than 1.
+    /// the highlight, which is scaled down where it would reflect more than 1; the
+    /// environment ramp (if any) taken with the local frame as the world's.
     pub fn bsdf(&self, diffuse: Rgb, wo: Vec3A) -> MayaBsdf {
+        self.bsdf_seen(diffuse, wo, None)
+    }
+
+    /// [`MayaGlossy::bsdf`] with the world's local frame `frame` (world space), where
+    /// the environment ramp is indexed by the world reflection direction's height.
+    pub fn bsdf_seen(&self, diffuse: Rgb, wo: Vec3A, frame: Option<&Frame>) -> MayaBsdf {
         let a = self.unit_albedo(wo.z);
-        let most = self.tint.max_element() * a;
-        let tint = if most > 1.0 { self.tint / most } else { self.tint };
-        let mirror = self.mirror.min(Rgb::ONE);
-        let mirror = match self.mirror_rolloff {
-            Some(r0) => mirror * schlick(r0, wo.z.abs()),
-            None => mirror,
+        let facing = wo.z.abs();
+        // The highlight's tint at this view, and the largest colour of its ramp.
+        let (tint, mirror_weight, reflected) = match &self.view_ramps {
+            Some(r) => {
+                let local = Vec3A::new(-wo.x, -wo.y, wo.z.abs());
+                let height = frame.map_or(local.z, |f| f.to_world(local).y);
+                (
+                    self.tint * table_at(&r.rolloff, facing),
+                    self.mirror * table_at(&r.reflectivity, facing),
+                    table_at(&r.environment, 0.5 * (1.0 + height)),
+                )
+            }
+            None => (self.tint, self.mirror, self.reflected),
         };
+        let colour = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m.max(*c)));
+        let most = (tint * colour).max_element() * a;
+        let tint = if most > 1.0 { tint / most } else { tint };
+        let rolloff = self.mirror_rolloff.map_or(1.0, |r0| schlick(r0, facing));
+        let mirror = mirror_weight.min(Rgb::ONE) * rolloff;
         let (tint, mirror) = (tint / self.coverage, mirror / self.coverage);
-        let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint) * a, luminance(mirror).max(0.0));
+        let emitted =
+            if reflected == Rgb::ZERO { Rgb::ZERO } else { reflected * mirror_weight * (rolloff / self.coverage) };
+        // The highlight's share by its colour's mean.
+        let mean = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + *c) / s.len() as f32);
+        let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint * mean) * a, luminance(mirror).max(0.0));
         let total = d + g + m;
         let (diffuse_share, mirror_share) = if total > 0.0 { (d / total, m / total) } else { (1.0, 0.0) };
-        MayaBsdf { diffuse, tint, mirror, shape: self.shape, diffuse_share, mirror_share }
+        MayaBsdf {
+            diffuse,
+            tint,
+            mirror,
+            shape: self.shape,
+            emitted,
+            reflection_limit: self.reflection_limit,
+            tinted_by: self.tinted_by,
+            specular_ramp: self.specular_ramp,
+            diffuse_share,
+            mirror_share,
+        }
     }
 }
 
@@ -406,6 +558,15 @@ pub struct MayaBsdf {
     pub mirror: Rgb,
     /// The highlight.
     pub shape: Shape,
+    /// Radiance the surface sends towards the viewer besides what it scatters: the
+    /// mirror's weight (unbounded, seen from this view) ⊙ [`MayaGlossy::reflected`].
+    pub emitted: Rgb,
+    /// [`MayaGlossy::reflection_limit`].
+    pub reflection_limit: u32,
+    /// [`MayaGlossy::tinted_by`].
+    pub tinted_by: Rgb,
+    /// [`MayaGlossy::specular_ramp`].
+    pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
     /// The probability of sampling the mirror.
@@ -423,10 +584,24 @@ fn upper(wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A)> {
 }
 
 impl MayaBsdf {
+    /// The same surface without its mirror (past its [`MayaBsdf::reflection_limit`]):
+    /// the other lobes keep their shares relative to each other.
+    pub fn without_mirror(&mut self) {
+        let rest = 1.0 - self.mirror_share;
+        self.diffuse_share = if rest > 0.0 { (self.diffuse_share / rest).min(1.0) } else { 0.0 };
+        self.mirror = Rgb::ZERO;
+        self.mirror_share = 0.0;
+    }
+
     /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         let Some((v, l)) = upper(wo, wi) else { return Rgb::ZERO };
-        (self.diffuse + self.tint * (self.shape.value(v, l) / l.z)) * FRAC_1_PI
+        let h = self.shape.value(v, l);
+        let tint = match &self.specular_ramp {
+            Some(s) => self.tint * table_at(s, h),
+            None => self.tint,
+        };
+        (self.diffuse + tint * (h / l.z)) * FRAC_1_PI
     }
 
     /// The density of the non-delta part of the mixture: the diffuse lobe's cosine
@@ -442,7 +617,7 @@ impl MayaBsdf {
     /// carries the continuous mixture's f and pdf, the mirror's its reflectance over
     /// |cos θ| and its share (a delta).
     pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
-        if wo.z == 0.0 {
+        if wo.z == 0.0 || (self.mirror_share <= 0.0 && self.diffuse == Rgb::ZERO && self.tint == Rgb::ZERO) {
             return None;
         }
         if u_lobe >= 1.0 - self.mirror_share {
@@ -573,6 +748,70 @@ mod tests {
             let a = testing::albedo(&Bsdf::Maya(b), wo, 200_000);
             assert!((a - want).abs().max_element() < 0.01, "μ = {mu}: {a} vs {want}");
         }
+    }
+
+    #[test]
+    fn reflected_colour_is_emitted_by_the_mirror_weight_and_the_limit_drops_the_mirror() {
+        // Blinn with reflectivity 0.5 · specularColor, Schlick's roll-off of 0.3,
+        // reflectedColor R, on a surface of coverage ½: emitted r·s·F(N·V) ⊙ R / ½; past
+        // the reflection limit the mirror is gone and the rest keeps its albedo.
+        let tint = Rgb::new(0.5, 0.4, 0.2);
+        let reflected = Rgb::new(0.3, 0.2, 0.1);
+        let g = MayaGlossy::new(Shape::Blinn { eccentricity: 0.3, rolloff: 0.7 }, tint)
+            .with_mirror(tint * 0.5, Some(0.3))
+            .with_reflected(reflected)
+            .with_coverage(0.5);
+        for mu in [1.0f32, 0.4, 0.1] {
+            let wo = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+            let b = g.bsdf(Rgb::splat(0.3), wo);
+            let want = reflected * tint * 0.5 * schlick(0.3, mu) / 0.5;
+            assert!((b.emitted - want).abs().max_element() < 1e-6, "μ = {mu}: {} vs {want}", b.emitted);
+            let mut c = b;
+            c.without_mirror();
+            assert_eq!((c.mirror, c.emitted), (Rgb::ZERO, b.emitted));
+            for u in [0.0, 0.5, 0.9999] {
+                assert!(c.sample(wo, Vec2::new(0.3, 0.6), u).is_none_or(|s| !s.delta));
+            }
+            let a = testing::albedo(&Bsdf::Maya(c), wo, 100_000);
+            let want = Rgb::splat(0.3) + tint * g.unit_albedo(mu) / 0.5;
+            assert!((a - want).abs().max_element() < 0.01, "μ = {mu}: {a} vs {want}");
+        }
+        // A mirror alone, dropped: nothing to sample.
+        let mut m = MayaGlossy::new(Shape::Phong { power: 20.0 }, Rgb::ZERO)
+            .with_mirror(Rgb::ONE, None)
+            .bsdf(Rgb::ZERO, Vec3A::Z);
+        m.without_mirror();
+        assert!(m.sample(Vec3A::Z, Vec2::new(0.3, 0.6), 0.5).is_none());
+    }
+
+    #[test]
+    fn view_ramps_scale_the_highlight_and_the_mirror_and_colour_them() {
+        // rampShader's roll-off 1 − ¾f and reflectivity 0.8 − 0.6f over the facing ratio
+        // f, environment (y, 0, 1 − y) over the reflection's height y = (1 + R_z)/2
+        // (no frame: local z is up), specular colour (h, h, 1 − h) over the highlight H.
+        let ramps = ViewRamps::tabulate(|f| 1.0 - 0.75 * f, |f| 0.8 - 0.6 * f, |y| Rgb::new(y, 0.0, 1.0 - y));
+        let g = MayaGlossy::new(Shape::RampBlinn { eccentricity: 0.3 }, Rgb::splat(0.8))
+            .with_mirror(Rgb::ONE, None)
+            .with_view_ramps(ramps)
+            .with_specular_ramp(|h| Rgb::new(h, h, 1.0 - h));
+        let wo = Vec3A::new(0.6, 0.0, 0.8);
+        let b = g.bsdf(Rgb::ZERO, wo);
+        let r = 0.8 - 0.6 * 0.8;
+        assert!((b.mirror - Rgb::splat(r)).abs().max_element() < 1e-5, "{}", b.mirror);
+        let env = Rgb::new(0.9, 0.0, 0.1);
+        assert!((b.emitted - env * r).abs().max_element() < 1e-5, "{}", b.emitted);
+        for l in [Vec3A::new(-0.6, 0.0, 0.8), Vec3A::new(-0.3, 0.2, 0.9).normalize()] {
+            let h = ramp_blinn(Vec3A::Z, wo, l, 0.3);
+            let want = 0.8 * (1.0 - 0.75 * 0.8) * Rgb::new(h, h, 1.0 - h) * h;
+            let got = b.eval(wo, l) * (PI * l.z);
+            assert!((got - want).abs().max_element() < 1e-5, "{l}: {got} vs {want}");
+        }
+        // In a frame the height is the world's y.
+        let frame = Frame::from_normal(Vec3A::X);
+        let world_y = frame.to_world(Vec3A::new(-0.6, 0.0, 0.8)).y;
+        let b = g.bsdf_seen(Rgb::ZERO, wo, Some(&frame));
+        let y = 0.5 * (1.0 + world_y);
+        assert!((b.emitted - Rgb::new(y, 0.0, 1.0 - y) * r).abs().max_element() < 1e-5, "{}", b.emitted);
     }
 
     #[test]

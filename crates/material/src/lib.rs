@@ -157,6 +157,12 @@ pub struct SurfaceMaterial {
     pub model: SurfaceModel,
     /// Coverage: 1 is solid, 0 lets rays through untouched (cutouts).
     pub opacity: f32,
+    /// What a ray that passes through the surface (a share 1 − `opacity` of them) is
+    /// multiplied by, per channel: a Maya material's coloured transparency T / (1 −
+    /// `opacity`), so that over all rays T of what lies behind shows, per channel, as the
+    /// classic shaders filter it; 1 for every other material (and where a shader drives
+    /// the opacity).
+    pub cutout_tint: Rgb,
     /// `emission` is for the whole emitting surface (radiance × area, from MDL's `lumen`
     /// and `candela` units): the renderer divides it by the material's total area.
     pub emission_over_area: bool,
@@ -210,6 +216,7 @@ impl SurfaceMaterial {
             emission: Rgb::ZERO,
             model: SurfaceModel::Lambert,
             opacity: 1.0,
+            cutout_tint: Rgb::ONE,
             emission_over_area: false,
             emission_shape: None,
             varying: Varying::Constant,
@@ -286,7 +293,7 @@ impl SurfaceModel {
                 // it first): the diffuse colour rather than another hit's sum.
                 None => Bsdf::Lambert(Lambert { albedo: diffuse }),
             },
-            SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf(diffuse, wo)),
+            SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf_seen(diffuse, wo, frame)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

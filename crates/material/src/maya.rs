@@ -30,8 +30,11 @@
 //!   `specularColor` ⊙ light · D with D Blinn's distribution of `eccentricity` (peak 1),
 //!   is Maya's lobe of that shape and tint (`bsdf::maya_highlight::ramp_blinn`, the
 //!   classic shader's own function), its reflection a mirror of weight `reflectivity`
-//!   with a constant `environment` ramp emitted; the roll-off, reflectivity and
-//!   specular-colour ramps are taken at 1 (a warning when they vary). Colour ramps
+//!   that emits the `environment` ramp by its weight; the roll-off and reflectivity
+//!   ramps are evaluated at each view's facing ratio, the specular-colour ramp at the
+//!   highlight's strength and the environment ramp at the world reflection direction's
+//!   height (1 + R_y)/2, as the classic shader indexes them (tabulated:
+//!   `bsdf::maya_highlight::ViewRamps`). Colour ramps
 //!   indexed by the view angle or the brightness vary in ways a BSDF's albedo cannot (a
 //!   warning says so);
 //! - layeredShader: the layers' translations mixed by the share of each that shows,
@@ -45,12 +48,18 @@
 //!   as the classic shader's C(1) ⊙ ambient; layeredShader by Σ w_i ⊙ its material
 //!   layers' ambient colours (a ratio of its diffuse colour per channel; plain-colour
 //!   layers take none, as in the classic shader, where they are not lit);
-//! - transparency T (without refraction): coverage 1 − mean(T), so that the surface is
-//!   seen in proportion 1 − T and what lies behind in proportion T, as Maya blends them;
-//!   as in the classic shaders it fades only the lambert family's diffuse part and
-//!   incandescence: their hits carry (1 − T)/coverage of those per channel and the
-//!   highlight, the mirror and `reflectedColor` divided by the coverage, so that over all
-//!   rays the highlight and the reflection are whole (what lies behind is the mean T's);
+//! - transparency T (without refraction): coverage p = 1 − mean(T) (at least
+//!   [`MIN_HIGHLIGHT_COVERAGE`] for a material with a highlight or a reflection), and
+//!   the rays that pass carry T/(1 − p) per channel ([`SurfaceMaterial::cutout_tint`]),
+//!   so that what lies behind shows by T per channel, as Maya blends them; as in the
+//!   classic shaders it fades only the lambert family's diffuse part and incandescence:
+//!   their hits carry (1 − T)/p of those per channel and the highlight, the mirror and
+//!   `reflectedColor` divided by p, so that over all rays the highlight and the
+//!   reflection are whole, even on a fully transparent material;
+//! - `reflectedColor`: emitted by the mirror's weight at each hit and view
+//!   (`bsdf::MayaGlossy::reflected`: blinn's roll-off at N·V, a connected
+//!   `specularColor`); `reflectionLimit`: the mirror reflects on paths of fewer mirror
+//!   reflections (`bsdf::MayaGlossy::reflection_limit`);
 //!   `incandescence`: emitted radiance;
 //! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
 //!   warning says so);
@@ -81,7 +90,8 @@ use shader::{Graph, NodeId, Slot, Value};
 pub struct MayaHighlight {
     /// The highlight model and its parameters (blinn, phong or phongE).
     pub model: ::maya::specular::Highlight,
-    /// `specularColor` (its constant value; 0.5 grey when connected), divided by the
+    /// `specularColor` (its constant value; 0.5 grey when connected, which the path
+    /// engine multiplies by the hit's [`bsdf::MayaBsdf::tinted_by`]), divided by the
     /// material's coverage (see [`surface_material`]).
     pub color: Rgb,
 }
@@ -229,6 +239,27 @@ fn irradiance_map(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
     }
 }
 
+/// The least coverage of a shading engine's Maya material that shows a highlight or a
+/// reflection: a more transparent one is hit by this share of the rays all the same
+/// (its hits carrying the highlight, the reflection and the faded diffuse part divided
+/// by it, the rays that pass T / (1 − coverage)), so that a fully transparent blinn
+/// still shows its highlight, which Maya adds on top of the transparency.
+pub const MIN_HIGHLIGHT_COVERAGE: f32 = 0.25;
+
+/// Sets the coverage and cut-out tint of a material of transparency `t` (per channel):
+/// coverage 1 − mean(T) — at least [`MIN_HIGHLIGHT_COVERAGE`] when `highlight` (the
+/// shading engine's material shows a highlight or a reflection over its transparency)
+/// — and rays that pass carry T / (1 − coverage), so that what lies behind shows by T
+/// per channel over all rays, as the classic shaders filter it.
+fn cut_out(surface: &mut SurfaceMaterial, t: Rgb, highlight: bool) {
+    let mut opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
+    if highlight {
+        opacity = opacity.max(MIN_HIGHLIGHT_COVERAGE);
+    }
+    surface.opacity = opacity;
+    surface.cutout_tint = if opacity < 1.0 { t / (1.0 - opacity) } else { Rgb::ONE };
+}
+
 /// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
 /// with the classic shaders' defaults.
 fn classic_highlight(family: &str, r: &mut Reader) -> ::maya::specular::Highlight {
@@ -278,14 +309,13 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             let d = r.scalar("diffuse", 0.8);
             let reflective = family != "lambert";
             let t = r.color("transparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
-            surface.opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
+            cut_out(&mut surface, t, alone && reflective);
             if connection(graph, node, "transparency").is_some() {
                 r.warnings.push("'transparency' is connected; the path engine keeps the surface opaque".into());
             }
             // Transparency fades the diffuse part (and incandescence) by 1 − T per
             // channel where the path engine's hits, a share `opacity` of the rays, carry
-            // (1 − T)/opacity of it; their mean is 1 (exact for a connected colour when T
-            // is grey).
+            // (1 − T)/opacity of it (exact for a connected colour when T is grey).
             let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - t) / surface.opacity } else { Rgb::ONE };
             if fade != Rgb::ONE && ["color", "incandescence"].iter().any(|p| connection(graph, node, p).is_some()) {
                 r.warnings.push(
@@ -294,11 +324,14 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                         .into(),
                 );
             }
-            let albedo = r.driven("color", Target::Diffuse, d, Rgb::splat(0.5)) * fade;
+            // A connected colour or incandescence takes the fade's mean in its binding.
+            let mean = (fade.x + fade.y + fade.z) / 3.0;
+            let shape = if mean > 0.0 { fade / mean } else { Rgb::ZERO };
+            let albedo = r.driven("color", Target::Diffuse, d * mean, Rgb::splat(0.5)) * shape;
             surface.diffuse = albedo;
             // Ambient light goes by `color` alone: 1/d of the diffuse colour.
             surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
-            surface.emission = r.driven("incandescence", Target::Emission, 1.0, Rgb::ZERO) * fade;
+            surface.emission = r.driven("incandescence", Target::Emission, mean, Rgb::ZERO) * shape;
             irradiance_map(&mut r, &mut surface, albedo);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {
@@ -306,12 +339,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             }
             // The highlight and the reflection are not faded: the hits carry them
             // whole over the share of rays that hit.
-            let coverage = if alone { surface.opacity } else { 1.0 };
-            if reflective && coverage <= 0.0 {
-                r.warnings
-                    .push("fully transparent: the path engine shows neither its highlight nor its reflection".into());
-            }
-            let coverage = coverage.max(1e-3);
+            let coverage = if alone { surface.opacity.max(1e-3) } else { 1.0 };
             if let Some((bump, member)) = connection(graph, node, "normalCamera") {
                 r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
             }
@@ -319,14 +347,9 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                 let s = r.color("specularColor", Rgb::splat(0.5));
                 // A connected specularColor: the lobe is built with 0.5 grey and tinted
                 // per hit by twice the value (the classic highlight of volume lights with
-                // emitSpecular keeps 0.5 grey).
+                // emitSpecular too, through the hit BSDF's `tinted_by`).
                 if let Some((spec, member)) = connection(graph, node, "specularColor") {
                     r.bindings.push(Binding { node: spec, member, target: Target::SpecularColor, scale: 2.0 });
-                    if r.color("reflectedColor", Rgb::ZERO) != Rgb::ZERO {
-                        r.warnings.push(
-                            "'specularColor' is connected; the path engine weights 'reflectedColor' by 0.5 grey".into(),
-                        );
-                    }
                 }
                 let (glossy, rolloff) = if family == "anisotropic" {
                     (Some((anisotropic(&mut r, &mut surface), s)), None)
@@ -344,16 +367,25 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                     (glossy_shape(highlight, s), rolloff)
                 };
                 // The classic shader's traced mirror reflection, r·s ⊙ (reflectedColor +
-                // what the ray finds): a mirror lobe of weight r·s, reflectedColor emitted
-                // (with blinn's `reflectionRolloff`, × Schlick's factor seen head-on, its
-                // normal reflectance: the emission cannot follow the view).
+                // what the ray finds) (with blinn's `reflectionRolloff`, × Schlick's
+                // factor at N·V): a mirror lobe of weight r·s that emits reflectedColor by
+                // its weight at each view and hit. It reflects while the path has made
+                // fewer than `reflectionLimit` mirror reflections, as the classic shader
+                // traces its ray below that reflection level. (A layer's reflectedColor
+                // is emitted as seen head-on: the layered shader mixes the layers'
+                // emissions and keeps one lobe.)
                 let reflectivity = r.scalar("reflectivity", 0.5).max(0.0);
-                let head_on = rolloff.unwrap_or(1.0);
-                surface.emission += s * reflectivity * head_on * r.color("reflectedColor", Rgb::ZERO) / coverage;
+                let reflected = r.color("reflectedColor", Rgb::ZERO);
+                let limit = r.scalar("reflectionLimit", 1.0).max(0.0) as u32;
+                if !alone {
+                    surface.emission += s * reflectivity * rolloff.unwrap_or(1.0) * reflected;
+                }
                 if let Some((shape, tint)) = glossy {
                     surface.model = SurfaceModel::Maya(Box::new(
                         bsdf::MayaGlossy::new(shape, tint)
                             .with_mirror(s * reflectivity, rolloff)
+                            .with_reflected(if alone { reflected } else { Rgb::ZERO })
+                            .with_reflection_limit(limit)
                             .with_coverage(coverage),
                     ));
                 }
@@ -369,7 +401,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             surface.emission = r.driven("outColor", Target::Emission, 1.0, Rgb::ZERO);
             surface.glow = r.driven("outGlowColor", Target::Glow, 1.0, Rgb::ZERO);
             let t = r.color("outTransparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
-            surface.opacity = 1.0 - (t.x + t.y + t.z) / 3.0;
+            cut_out(&mut surface, t, false);
         }
         "usebackground" => {
             surface.opacity = 0.0;
@@ -410,17 +442,6 @@ fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb 
     })
 }
 
-/// A ramp indexed by the facing ratio (or the highlight's strength) that the path engine
-/// takes at 1, with a warning when it is not the same all along.
-fn ramp_at_one(r: &mut Reader, name: &str, member: &str, empty: Rgb) -> Rgb {
-    let Some(ramp) = ramp_of(r, name, member, empty) else { return empty };
-    let one = ramp.at(1.0);
-    if (0..10).any(|k| (ramp.at(k as f32 / 10.0) - one).abs().max_element() > 1e-6) {
-        r.warnings.push(format!("the ramp '{name}' varies; the path engine takes it at 1"));
-    }
-    Rgb::new(one.x, one.y, one.z)
-}
-
 /// rampShader (see the module doc).
 fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     use ::maya::ramp_shader::ColorInput;
@@ -433,8 +454,41 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
         r.warnings.push(format!("the colour ramp indexed by {input:?} is taken at 1 (albedo = colour at 1 · diffuse)"));
         c * d
     };
+    // The classic highlight, specularity · rolloff(f) · S(h) ⊙ light · h with h Blinn's
+    // D, is Maya's lobe `RampBlinn` of tint specularity, coloured by the `specularColor`
+    // ramp at the highlight's strength and scaled by the roll-off ramp at the facing
+    // ratio f; the reflection, reflectivity(f) · (environment(R) + traced), a mirror of
+    // weight reflectivity(f) that emits the environment ramp at the world reflection
+    // direction's height — `bsdf::MayaGlossy`'s ramps, tabulated. A ramp the same all
+    // along is taken as its constant.
+    use bsdf::maya_highlight::{ViewRamps, VIEW_RAMP_STEPS};
+    let specularity = r.scalar("specularity", 0.0).max(0.0);
+    let read = |r: &mut Reader, name: &str, member: &str, empty: Rgb| {
+        ramp_of(r, name, member, empty)
+            .unwrap_or_else(|| ::maya::utility::Ramp::new(Vec::new(), glam::Vec3A::new(empty.x, empty.y, empty.z)))
+    };
+    let at = |ramp: &::maya::utility::Ramp, x: f32| {
+        let c = ramp.at(x);
+        Rgb::new(c.x, c.y, c.z)
+    };
+    let varies = |ramp: &::maya::utility::Ramp| {
+        (0..VIEW_RAMP_STEPS)
+            .any(|k| (at(ramp, k as f32 / (VIEW_RAMP_STEPS - 1) as f32) - at(ramp, 1.0)).abs().max_element() > 1e-6)
+    };
+    let specular = (specularity > 0.0).then(|| read(r, "specularColor", "Color", Rgb::splat(0.5)));
+    let rolloff = read(r, "specularRollOff", "FloatValue", Rgb::ONE);
+    let reflectivity = read(r, "reflectivity", "FloatValue", Rgb::ZERO);
+    let environment = read(r, "environment", "Color", Rgb::ZERO);
+    let reflects = (0..VIEW_RAMP_STEPS).any(|k| at(&reflectivity, k as f32 / (VIEW_RAMP_STEPS - 1) as f32).x > 0.0);
+    let by_view = varies(&rolloff) || reflects && (varies(&reflectivity) || varies(&environment));
+    let tint = match &specular {
+        Some(s) if varies(s) => Rgb::splat(specularity),
+        Some(s) => at(s, 1.0) * specularity,
+        None => Rgb::ZERO,
+    };
+    let tint = if by_view { tint } else { tint * at(&rolloff, 1.0).x.max(0.0) };
     let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
-    surface.opacity = 1.0 - (tr.x + tr.y + tr.z) / 3.0;
+    cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects));
     // Transparency fades the lit colour and incandescence, not the highlight and the
     // reflection (as for the lambert family, see `translate`).
     let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - tr) / surface.opacity } else { Rgb::ONE };
@@ -453,27 +507,32 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     if let Some((bump, member)) = connection(r.graph, r.node, "normalCamera") {
         r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
     }
-    // The classic highlight, specularity · rolloff(f) · S(h) ⊙ light · h with h Blinn's
-    // D, is Maya's lobe `RampBlinn` of that tint; the reflection, reflectivity(f) ·
-    // (environment + traced), a mirror of that weight, a constant environment emitted.
-    let specularity = r.scalar("specularity", 0.0).max(0.0);
-    let tint = if specularity > 0.0 {
-        let s = ramp_at_one(r, "specularColor", "Color", Rgb::splat(0.5));
-        let rolloff = ramp_at_one(r, "specularRollOff", "FloatValue", Rgb::ONE).x;
-        s * specularity * rolloff.max(0.0)
-    } else {
-        Rgb::ZERO
-    };
-    let reflectivity = ramp_at_one(r, "reflectivity", "FloatValue", Rgb::ZERO).x.max(0.0);
-    if reflectivity > 0.0 {
-        let env = ramp_at_one(r, "environment", "Color", Rgb::ZERO);
-        surface.emission += env * reflectivity / coverage;
-    }
-    if tint != Rgb::ZERO || reflectivity > 0.0 {
+    if tint != Rgb::ZERO || reflects {
         let shape = bsdf::maya_highlight::Shape::RampBlinn { eccentricity: r.scalar("eccentricity", 0.3) };
-        surface.model = SurfaceModel::Maya(Box::new(
-            bsdf::MayaGlossy::new(shape, tint).with_mirror(Rgb::splat(reflectivity), None).with_coverage(coverage),
-        ));
+        let mut g = bsdf::MayaGlossy::new(shape, tint)
+            .with_reflection_limit(r.scalar("reflectionLimit", 1.0).max(0.0) as u32)
+            .with_coverage(coverage);
+        if let Some(s) = specular.as_ref().filter(|s| varies(s)) {
+            g = g.with_specular_ramp(|h| at(s, h));
+        }
+        if by_view {
+            g = g.with_mirror(Rgb::ONE, None).with_view_ramps(ViewRamps::tabulate(
+                |f| at(&rolloff, f).x,
+                |f| if reflects { at(&reflectivity, f).x } else { 0.0 },
+                |y| at(&environment, y),
+            ));
+        } else if reflects {
+            // A constant environment: emitted by the mirror's weight (a layer's emission
+            // is mixed by the layered shader).
+            let (weight, env) = (at(&reflectivity, 1.0).x.max(0.0), at(&environment, 1.0));
+            g = g.with_mirror(Rgb::splat(weight), None);
+            if alone {
+                g = g.with_reflected(env);
+            } else {
+                surface.emission += env * weight;
+            }
+        }
+        surface.model = SurfaceModel::Maya(Box::new(g));
     }
 }
 
@@ -567,7 +626,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         }
         through *= t;
     }
-    surface.opacity = 1.0 - (through.x + through.y + through.z) / 3.0;
+    cut_out(&mut surface, through, false);
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
     let ratio = |a: f32, d: f32| if d > 0.0 { a / d } else { 0.0 };

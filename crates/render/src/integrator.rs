@@ -333,25 +333,29 @@ fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
     (h >> 40) as f32 / (1u64 << 24) as f32
 }
 
-/// Whether the shadow ray is blocked: by any surface, or with cutout materials by a
-/// surface that does not let it pass (a stochastic choice by its opacity).
-fn shadow_blocked(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> bool {
+/// The fraction of light (per channel) the shadow ray lets through: 0 when blocked by any
+/// surface, or with cutout materials by a surface that does not let it pass (a
+/// stochastic choice by its opacity); the product of the cut-out tints of the surfaces it
+/// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise.
+fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> Rgb {
     if !world.has_cutouts {
-        return accel.occluded(shadow);
+        return if accel.occluded(shadow) { Rgb::ZERO } else { Rgb::ONE };
     }
     let mut ray = *shadow;
+    let mut tint = Rgb::ONE;
     for crossing in 0..MAX_CUTOUT_CROSSINGS {
-        let Some(hit) = accel.intersect(&ray) else { return false };
+        let Some(hit) = accel.intersect(&ray) else { return tint };
         let s = surface(world, &ray, &hit);
         let m = material_at(world, accel, shading, &ray, &hit, s.material);
         if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
-            return true;
+            return Rgb::ZERO;
         }
+        tint *= world.materials[s.material as usize].cutout_tint;
         let travelled = hit.t;
         ray.origin = offset_origin(s.p, s.ng, ray.dir);
         ray.tmax = (ray.tmax - travelled).max(0.0);
     }
-    true
+    Rgb::ZERO
 }
 
 /// Traces one camera path; `shading` (the scene's compiled shader graph) evaluates
@@ -441,6 +445,9 @@ pub fn trace_camera_path(
     let mut fogs = fog::PathFog::new(shading);
     let mut segment_type = RayType::Eye;
     let mut fog_cover = 0.0f32;
+    // The mirror reflections the path has made (Maya's `reflectionLimit` counts them as
+    // mental ray's reflection level does).
+    let mut reflections = 0u32;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
@@ -462,6 +469,8 @@ pub fn trace_camera_path(
                 break;
             }
             counts.rays += 1;
+            // A coloured transparency filters what passes, per channel.
+            throughput *= world.materials[s.material as usize].cutout_tint;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = offset_origin(s.p, s.ng, ray.dir);
         }
@@ -580,7 +589,15 @@ pub fn trace_camera_path(
         }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
+        let mut bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
+        if let Bsdf::Maya(b) = &mut bsdf {
+            // Maya's `reflectionLimit`: no mirror past that many mirror reflections; and
+            // what the mirror's weight adds besides them (`reflectedColor`).
+            if reflections >= b.reflection_limit {
+                b.without_mirror();
+            }
+            radiance += throughput * b.emitted;
+        }
         let departure = Departure { media: &media, surface: Some((s.material, s.ng, &ray, &stop)) };
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
@@ -691,6 +708,9 @@ pub fn trace_camera_path(
         // shading normals can say otherwise, and then the path ends.
         if (bs.wi.z > 0.0) != (wi.dot(ng) > 0.0) {
             break;
+        }
+        if bs.delta && (bs.wi.z > 0.0) == (wo.z > 0.0) {
+            reflections += 1;
         }
         throughput *= bs.weight();
         from_instance = Some(stop.instance);

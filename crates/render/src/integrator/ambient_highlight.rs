@@ -46,10 +46,15 @@ pub fn radiance(
         return Rgb::ZERO;
     }
     if let Some(h) = classic {
-        // The classic light's colour is the irradiance without π.
+        // The classic light's colour is the irradiance without π; a connected
+        // `specularColor` is the hit's (the factor the BSDF's tint was multiplied by).
         let v = at.frame.to_world(at.wo);
         let value = h.model.value(at.ns, v, towards);
-        return h.color * irradiance * value / std::f32::consts::PI;
+        let per_hit = match bsdf {
+            Bsdf::Maya(b) => b.tinted_by,
+            _ => Rgb::ONE,
+        };
+        return h.color * per_hit * irradiance * value / std::f32::consts::PI;
     }
     let wi = at.frame.to_local(towards);
     let f = match bsdf {

@@ -40,7 +40,7 @@ use shader::state::RayType;
 use shader::{Shading, State};
 
 use super::{
-    cutout_number, light_radiance, material_at, power_heuristic, shadow_blocked, surface, through_portal, Surface,
+    cutout_number, light_radiance, material_at, power_heuristic, shadow_passed, surface, through_portal, Surface,
     MAX_CUTOUT_CROSSINGS,
 };
 use crate::accel::{Accel, Hit};
@@ -289,7 +289,7 @@ fn shadow_transmittance_through(
     seed: u32,
 ) -> Rgb {
     if !world.has_media {
-        return if shadow_blocked(world, accel, shading, shadow, seed) { Rgb::ZERO } else { Rgb::ONE };
+        return shadow_passed(world, accel, shading, shadow, seed);
     }
     let walk = walk_media(world, accel, from, shadow, MAX_CUTOUT_CROSSINGS, |media, ray, s, crossing| {
         let cut_out = world.has_cutouts && {
@@ -297,7 +297,7 @@ fn shadow_transmittance_through(
             m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity
         };
         if cut_out {
-            return Crossing::Through;
+            return Crossing::Filtered(world.materials[s.surface.material as usize].cutout_tint);
         }
         let matched = world.materials[s.surface.material as usize].model.index_matched();
         match (media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))), matched) {
@@ -362,8 +362,11 @@ fn media_transmittance(world: &World, accel: &dyn Accel, from: &Departure, ray: 
 
 /// What a ray walking through the media ([`walk_media`]) does at a surface it meets.
 enum Crossing {
-    /// Passes with the media unchanged (a cut-out, or no medium boundary).
+    /// Passes with the media unchanged (no medium boundary).
     Through,
+    /// Passes a cut-out with the media unchanged, its light multiplied by the cut-out's
+    /// tint.
+    Filtered(Rgb),
     /// Crosses into the media given, its light multiplied by the tint.
     Into(MediumStack, Rgb),
     /// Stops: no light gets through.
@@ -405,6 +408,7 @@ fn walk_media(
         let met = Met { surface: surface(world, &ray, &hit), hit };
         match at_surface(&media, &ray, &met, crossing) {
             Crossing::Through => {}
+            Crossing::Filtered(tint) => tr *= tint,
             Crossing::Into(next, tint) => {
                 tr *= tint;
                 media = next;
