@@ -1,5 +1,5 @@
 //! MDL functions of Iray `.mi` files (the `::base` module's texturing functions and its
-//! `sun_and_sky` environment) as shader graph nodes, so that material parameters connected
+//! `sun_and_sky` and `perez_sun_and_sky` environments) as shader graph nodes, so that material parameters connected
 //! to them are evaluated at each hit like mental ray shaders are.
 //!
 //! Their declarations ([`DECLARATIONS`]) are built in: a scene names them with or without
@@ -7,6 +7,7 @@
 //! themselves (`::nvidia::core_definitions`) are translated to BSDFs by the `material`
 //! crate, not run as nodes. The library plugs into the shader model as [`LIBRARY`].
 
+pub mod perez;
 pub mod sky;
 pub mod texture;
 
@@ -29,6 +30,7 @@ pub static SHADERS: &[&ShaderImpl] = &[
     &texture::BLEND_COLOR_LAYERS,
     &texture::GLOSS_TO_ROUGH,
     &sky::SUN_AND_SKY,
+    &perez::PEREZ_SUN_AND_SKY,
 ];
 
 #[cfg(test)]

@@ -77,7 +77,11 @@ pub fn run(args: &CheckArgs) -> ExitCode {
                         seed: 0,
                         finalgather_rays: None,
                     };
-                    list.extend(material::compile_shading(w, &shading_options).1);
+                    let (mut shading, mut shading_diags) = material::compile_shading(w, &shading_options);
+                    // A module function named as the environment: compiled, or why not.
+                    let search = material::mdl_modules::search_path(&w.library, &args.include.mdl_paths);
+                    material::mdl_modules::environment::attach(&mut shading, w, search, &mut shading_diags);
+                    list.extend(shading_diags);
                 }
             }
             // MDL module materials: modules found, instances bound and type-checked.

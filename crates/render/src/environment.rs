@@ -26,10 +26,15 @@
 //! other bounces, environment samples, portals; run as a final gather ray would run it),
 //! and its importance grid tabulates the light.
 //!
+//! A module's own MDL function as the environment (`material::mdl_modules::environment`)
+//! is evaluated directly for each direction, exactly; only the sampling density comes
+//! from the grid, so the estimate stays unbiased.
+//!
 //! A sun much smaller than a texel (Iray's `base::sun_and_sky` at its default disk size
 //! covers a fifth of one) would still be found too rarely: when the environment is that
-//! shader, a share of the samples goes uniformly into the cone that holds the sun's disk
-//! and glow ([`SunLobe`]), combined with the grid as one mixture density.
+//! shader (or `base::perez_sun_and_sky`), a share of the samples goes uniformly into the
+//! cone that holds the sun's disk and glow ([`SunLobe`]), combined with the grid as one
+//! mixture density.
 
 use std::f32::consts::PI;
 
@@ -248,16 +253,33 @@ fn light_differs(world: &World, accel: &dyn Accel, shading: &Shading, node: Node
     mia::sky::linked_physical_sun(&mut ctx, node)
 }
 
-/// The sun of an Iray `base::sun_and_sky` environment at `node`, as a lobe taking a share
-/// of the samples equal to its part of the light on a plane facing it (between 0.1 and
-/// 0.9); `None` for other shaders or without a sun.
+/// The sun's angular radius, radians (the MDL `::base` skies').
+const MDL_SUN_RADIUS: f32 = 0.00465;
+
+/// The sun of an Iray `base::sun_and_sky` or `base::perez_sun_and_sky` environment at
+/// `node`, as a lobe taking a share of the samples equal to its part of the light on a
+/// plane facing it (between 0.1 and 0.9); `None` for other shaders or without a sun.
 fn sun_lobe(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -> Option<SunLobe> {
     let imp = shading.graph.nodes.get(node as usize)?.imp?;
+    let tracer = SceneTracer::new(world, accel);
+    let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
+    if imp.name == "mdl::base::perez_sun_and_sky" {
+        // Perez's sky: its disk is drawn within 0.15 × 10 sun radii of the sun and
+        // delivers about π × the direct illuminance (see `sky::perez`).
+        let sky = mdl::perez::sky_of(&mut ctx, node);
+        let sun_light = luminance(sky.sun_color) * PI;
+        if sun_light <= 0.0 {
+            return None;
+        }
+        let share = sun_light / (sun_light + sky.sky_illuminance.max(0.0));
+        let up = if sky.params.y_is_up { Vec3A::Y } else { Vec3A::Z };
+        let direction = sky.params.sun_direction.normalize_or(up);
+        let cos_max = (0.15 * 10.0 * MDL_SUN_RADIUS).cos();
+        return Some(SunLobe { direction, cos_max, share: share.clamp(0.1, 0.9) });
+    }
     if imp.name != "mdl::base::sun_and_sky" {
         return None;
     }
-    let tracer = SceneTracer::new(world, accel);
-    let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
     let sky = mdl::sky::sun_and_sky_of(&mut ctx, node);
     let sun = sky.sun()?;
     let cos_max = sun.cone_radius.cos();
@@ -277,7 +299,13 @@ impl<'a> Environment<'a> {
     pub fn of_scene(world: &'a World, accel: &'a dyn Accel, shading: &'a Shading) -> Option<Environment<'a>> {
         let node = shading.environment?;
         let attr = |name: &str| world.options.attributes.get(name).and_then(|a| a.as_f64()).map(|v| v as f32);
-        let source = Source::Shader { world, accel, shading, node };
+        let source = match material::mdl_modules::environment::of_node(shading, node) {
+            // A module's own function (alone in the list): evaluated directly.
+            Some(f) if shading.graph.nodes[node as usize].next.is_none() => {
+                Source::Function(Box::new(move |dir| f.radiance(dir)))
+            }
+            _ => Source::Shader { world, accel, shading, node },
+        };
         let mut env = if light_differs(world, accel, shading, node) {
             let map = LatLongMap::build(&source, true);
             Environment { light_differs: true, map, ..Environment::new_untabulated(source) }

@@ -228,9 +228,10 @@ fn compile_scene_shading(
 ) -> (Shading, material::mdl_modules::MdlMaterials, Vec<mi::Diagnostic>) {
     let (mut shading, mut diagnostics) = material::compile_shading(scene, options);
     let search = material::mdl_modules::search_path(&scene.library, mdl_paths);
-    let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search);
+    let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search.clone());
     diagnostics.extend(mdl_diagnostics);
     material::module_stand_ins(&mut shading, scene, &mdl);
+    material::mdl_modules::environment::attach(&mut shading, scene, search, &mut diagnostics);
     shader::shutter::tabulate_into(&mut shading, &scene.options, &mut diagnostics);
     (shading, mdl, diagnostics)
 }

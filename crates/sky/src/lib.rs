@@ -4,6 +4,8 @@
 //! linear Rec.709 RGB in the units the shaders document.
 //!
 //! - [`sky`]: the Perez/Preetham daylight sky, ground and sun disk ([`sky::PhysicalSky`]).
+//! - [`perez`]: Perez's all-weather sky from measured irradiances (MDL's
+//!   `base::perez_sun_and_sky`, [`perez::PerezSky`]).
 //! - [`settings`]: what both share (turbidity, frame, units, colour tweaks).
 //! - [`sun`]: the sun's spectrum through the atmosphere, its colour and illuminance
 //!   ([`sun::PhysicalSun`]).
@@ -11,6 +13,7 @@
 //! The shaders that read these from their parameters live in the libraries (`mia`, `mdl`);
 //! this crate knows nothing of shaders.
 
+pub mod perez;
 pub mod settings;
 pub mod sky;
 pub mod sun;

@@ -23,6 +23,7 @@ use shader::texture::Texture;
 use shader::State;
 
 use super::procedural::Pattern;
+use super::sky_model::{SkyCall, SkyParam};
 use super::texture_3d::Volume;
 use super::texture_cube::CubeMap;
 
@@ -328,9 +329,10 @@ pub enum HitExpr {
     },
     /// A procedural pattern of `::base` at a texture-space position.
     Pattern(Arc<Pattern>, Arc<HitExpr>),
-    /// `base::sun_and_sky`'s radiance towards a world direction (output units, lanes x, y,
-    /// z; [`mdl::sky::SunAndSky::radiance`]).
-    Sky(Arc<mdl::sky::SunAndSky>, Arc<HitExpr>),
+    /// A `::base` daylight environment's radiance towards a world direction (output units,
+    /// lanes x, y, z; [`SkyCall::radiance`]): the operands are the direction, then the
+    /// values of the call's varying parameters.
+    Sky(Arc<SkyCall>, Box<[Arc<HitExpr>]>),
     /// A normal bent by the slope of a pattern's height (`::base` bump textures): the
     /// height (lane x) is differenced over `delta` along the coordinate's u and v, and
     /// the normal leans against the rise along the tangents by `factor` times those
@@ -360,7 +362,8 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
         HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } => false,
         HitExpr::Texel { coord, .. } | HitExpr::Texel3d { coord, .. } => constant(coord),
-        HitExpr::Pattern(_, p) | HitExpr::Sky(_, p) => constant(p),
+        HitExpr::Pattern(_, p) => constant(p),
+        HitExpr::Sky(_, args) => args.iter().all(constant),
         HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
             constant(position) && constant(tangent_u) && constant(tangent_v) && constant(normal)
         }
@@ -482,7 +485,8 @@ impl HitExpr {
             HitExpr::Lookup { coord, .. } | HitExpr::Texel { coord, .. } => vec![coord],
             HitExpr::Lookup3d { coord, .. } | HitExpr::Texel3d { coord, .. } => vec![coord],
             HitExpr::LookupCube { dir, .. } => vec![dir],
-            HitExpr::Pattern(_, at) | HitExpr::Sky(_, at) => vec![at],
+            HitExpr::Pattern(_, at) => vec![at],
+            HitExpr::Sky(_, args) => args.iter().collect(),
             HitExpr::Bump { position, tangent_u, tangent_v, normal, .. } => {
                 vec![position, tangent_u, tangent_v, normal]
             }
@@ -582,8 +586,13 @@ impl HitExpr {
             }
             HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval(s).truncate().into()),
             HitExpr::Pattern(p, at) => p.eval(at.eval(s).truncate().into()),
-            HitExpr::Sky(sky, dir) => {
-                sky.radiance(Vec3A::from(dir.eval(s).truncate()).normalize_or(Vec3A::Z)).extend(0.0)
+            HitExpr::Sky(sky, args) => {
+                let dir = args.first().map_or(Vec3A::Z, |d| Vec3A::from(d.eval(s).truncate()).normalize_or(Vec3A::Z));
+                let mut values = [Vec4::ZERO; SkyParam::ALL.len()];
+                for (v, a) in values.iter_mut().zip(args.iter().skip(1)) {
+                    *v = a.eval(s);
+                }
+                sky.radiance(dir, &values).extend(0.0)
             }
             HitExpr::Bump { height, position, tangent_u, tangent_v, normal, factor, delta } => {
                 let p = Vec3A::from(position.eval(s).truncate());

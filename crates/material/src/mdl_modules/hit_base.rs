@@ -472,7 +472,7 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
         "blend_color_layers" => blend_color_layers(&a),
         "coordinate_projection" => coordinate_projection(&a),
         "sun_and_sky" => super::sky::sun_and_sky(def, args, span),
-        "perez_sun_and_sky" => super::sky::perez_sun_and_sky(span),
+        "perez_sun_and_sky" => super::sky::perez_sun_and_sky(def, args, span),
         "lookup_volume_coefficients" => super::base_volume::lookup_volume_coefficients(def, args, span),
         "volume_blackbody_emission" => super::base_volume::volume_blackbody_emission(def, args, span),
         _ => Err(problem(span, format!("`base::{name}` is not compiled in module materials yet"))),

@@ -20,6 +20,7 @@
 pub mod base_volume;
 pub mod connections;
 pub mod dds;
+pub mod environment;
 pub mod eval;
 pub mod hit;
 pub mod hit_base;
@@ -30,6 +31,7 @@ pub mod natives;
 pub mod procedural;
 pub mod projection;
 pub mod sky;
+pub mod sky_model;
 pub mod spectral;
 pub mod state_space;
 pub mod statements;
@@ -92,7 +94,7 @@ pub fn search_path(lib: &Library, extra: &[PathBuf]) -> MdlSearchPath {
 
 /// The absolute module name of a `$include` of an MDL module: `"x.mdl"` is `::x`,
 /// `"::a::b.mdl"` is `::a::b`, `"a/b.mdl"` is `::b` (the file's own name).
-fn included_module(written: &str) -> String {
+pub(super) fn included_module(written: &str) -> String {
     let stem = written.strip_suffix(".mdl").unwrap_or(written);
     if stem.starts_with("::") {
         return stem.to_string();

@@ -54,7 +54,7 @@ fn mean(px: &[[f32; 4]]) -> f32 {
 }
 
 /// A UV sphere of radius `r` at (0, 0, −5) with material "ball_mtl", as `.mi` text.
-fn ball(r: f32) -> String {
+pub(crate) fn ball(r: f32) -> String {
     let (rings, segments) = (48, 96);
     let mut v = String::new();
     for i in 0..=rings {
@@ -136,7 +136,7 @@ fn bright_spot(centre: Vec3A) -> Environment<'static> {
 
 /// Renders the plane with `env` through [`trace_path`] (`res`² pixels, `spp` each); the
 /// pixel values' mean and variance.
-fn plane_stats(world: &render::World, env: &Environment, res: u32, spp: u32) -> (f64, f64) {
+pub(crate) fn plane_stats(world: &render::World, env: &Environment, res: u32, spp: u32) -> (f64, f64) {
     let accel = render::accel::build(world, render::Backend::default_available());
     let settings = PathSettings::default();
     let mut values = Vec::new();

@@ -35,6 +35,7 @@ mod maya_volume_dir_path;
 mod maya_volume_highlight_path;
 mod mdl_classic;
 mod mdl_cornell;
+mod mdl_environment;
 mod mdl_measured;
 mod mdl_object_space;
 mod mdl_spot;
