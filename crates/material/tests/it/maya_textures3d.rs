@@ -185,3 +185,42 @@ fn the_perspective_projection_looks_through_the_linked_camera_with_its_fit() {
     let want = glam::Vec2::splat(0.5) + 0.5 * glam::Vec2::new(p.x, p.y) / -p.z / shading.image_plane;
     assert!((u - want.x).abs() < 1e-4 && (v - want.y).abs() < 1e-4, "render camera: {u}, {v} vs {want}");
 }
+
+/// The perspective projection through an orthographic linked camera (`cameraOrthographic`
+/// on, `cameraOrthographicWidth` 8: the view's half width 4) placed as in the test above:
+/// the origin at camera-space (1, 0.5, −4) lies at s = (1, 0.5)/4 = (0.25, 0.125) whatever
+/// its depth, and the four fits (film gate 1.417 × 0.945 in, aspect 1.49947; image aspect
+/// 1.25) give by hand: none (0.625, 0.5625); fill (0.625, 0.5 + 0.0625 · 1.49947 =
+/// 0.593717); horizontal (0.625, 0.5 + 0.0625 · 1.25 = 0.578125); vertical (0.5 + 0.125 ·
+/// 1.49947/1.25 = 0.649947, 0.593717). Within 1e-4; the focal length is not read.
+#[test]
+fn the_perspective_projection_through_an_orthographic_linked_camera() {
+    let coordinate = |ramp_type: i32, camera: &str| {
+        let c = scene(&format!(
+            r#"shader "ramp1" "maya_ramp" ("type" {ramp_type}, "interpolation" 1,
+                "colorEntryList" [ {{ "position" 0, "color" 0 0 0 }}, {{ "position" 1, "color" 1 1 1 }} ])
+            shader "proj" "maya_projection" ("projType" 8, "image" = "ramp1.outColor", "imageAspect" 1.25{camera})
+            {}"#,
+            show("proj.outColor")
+        ));
+        shade(&c, point([0.0, 0.0])).x
+    };
+    let linked = r#", "linkedCamera" 1 0 0 0  0 0 1 0  0 -1 0 0  1 0.5 -4 1, "cameraOrthographic" on,
+        "cameraOrthographicWidth" 8, "cameraFocalLength" 35,
+        "cameraHorizontalFilmAperture" 1.417, "cameraVerticalFilmAperture" 0.945"#;
+    for (fit_type, fit_fill, want) in
+        [(0, 0, [0.625, 0.5625]), (1, 0, [0.625, 0.593717]), (1, 1, [0.625, 0.578125]), (1, 2, [0.649947, 0.593717])]
+    {
+        let camera = format!(r#"{linked}, "fitType" {fit_type}, "fitFill" {fit_fill}"#);
+        let (u, v) = (coordinate(1, &camera), coordinate(0, &camera));
+        assert!(
+            (u - want[0]).abs() < 1e-4 && (v - want[1]).abs() < 1e-4,
+            "fit {fit_type}/{fit_fill}: {u}, {v} vs {want:?}"
+        );
+    }
+    // Half the width: twice the offset from the centre (fit none).
+    let camera = linked.replace("\"cameraOrthographicWidth\" 8", "\"cameraOrthographicWidth\" 4");
+    let (u, v) =
+        (coordinate(1, &format!("{camera}, \"fitType\" 0")), coordinate(0, &format!("{camera}, \"fitType\" 0")));
+    assert!((u - 0.75).abs() < 1e-4 && (v - 0.625).abs() < 1e-4, "{u}, {v}");
+}
