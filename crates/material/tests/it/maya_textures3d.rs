@@ -224,3 +224,37 @@ fn the_perspective_projection_through_an_orthographic_linked_camera() {
         (coordinate(1, &format!("{camera}, \"fitType\" 0")), coordinate(0, &format!("{camera}, \"fitType\" 0")));
     assert!((u - 0.75).abs() < 1e-4 && (v - 0.625).abs() < 1e-4, "{u}, {v}");
 }
+
+/// Crater's and stucco's `outNormal` drive a lambert's `normalCamera` (both families):
+/// lit straight from above, depth 0 leaves the normal (c·d·cos 0 = 1, 1e-5); with deep
+/// craters the lambert never brightens (the tilted normal's cosine ≤ 1) and darkens on the
+/// walls at some of 60 placements of the texture.
+#[test]
+fn crater_and_stucco_out_normals_bump_a_lambert() {
+    for (tex, depth) in [
+        ("maya_crater", "normDepth"),
+        ("adskMayaCrater", "normDepth"),
+        ("maya_stucco", "normalDepth"),
+        ("adskMayaStucco", "normalDepth"),
+    ] {
+        let lit = |params: &str, tx: f32| {
+            let c = scene(&format!(
+                r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+                instance "sun_inst" "sun" end instance
+                shader "tex" "{tex}" ("placementMatrix" 1 0 0 0  0 1 0 0  0 0 1 0  {tx} 0 {tz} 1{params})
+                shader "lam" "maya_lambert" ("color" 1 1 1, "diffuse" 1, "normalCamera" = "tex.outNormal")
+                material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+                tz = 0.37 * tx
+            ));
+            shade(&c, point([0.0, 0.0])).x
+        };
+        assert!((lit(&format!(r#", "{depth}" 0"#), 0.3) - 1.0).abs() < 1e-5, "{tex}");
+        let mut darkest = 1.0f32;
+        for i in 0..60 {
+            let v = lit(&format!(r#", "{depth}" 40"#), i as f32 * 0.0371);
+            assert!(v <= 1.0 + 1e-5, "{tex}: {v}");
+            darkest = darkest.min(v);
+        }
+        assert!(darkest < 0.95, "{tex}: the walls tilt the normal ({darkest})");
+    }
+}
