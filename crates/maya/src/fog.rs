@@ -33,7 +33,14 @@
 //!   Maya's physically based fog replaces all this (the parameters after `physicalFog`:
 //!   fog type, fog and air media, planet, axis, sun, the `lightList` of the uniform
 //!   type and the water of the Water types; see [`crate::physical_fog`]);
-//!   `colorBasedTransparency` does not apply to it.
+//!   `colorBasedTransparency` does not apply to it. `useLayer` (off) and `layer` (1): the
+//!   reference says that with `useLayer` a texture on `layer` varies the fog's density
+//!   across the camera's view, in two dimensions (patchy fog); mira scales the length in
+//!   the fog by the layer's value, α = min(`layer`·L_f / `saturationDistance`, 1) (simple
+//!   fog; no fog where the layer is 0 or less). Nothing says how the view maps onto the
+//!   layer's texture; mira evaluates it at the screen position of the ray (u, v ∈ [0, 1]
+//!   across the render camera's image from its lower left, as a texture's uv; for an eye
+//!   ray its pixel's place, for other rays the place of the point one unit along them).
 //! - `maya_lightfog` (`color` white, `density` 1, `colorBasedTransparency` on,
 //!   `fastDropOff` off, `lightList`): with `fastDropOff` on, what lies behind is obscured
 //!   by the fog between — α = 1 − exp(−`density` · L), the transmittance of a medium of
@@ -50,7 +57,7 @@
 //! material's objects — to each segment of its paths (see `render`'s integrator); a fog
 //! in a volume list with other shaders is left out there, and [`fog_warnings`] says so.
 
-use glam::Vec3A;
+use glam::{Affine3A, Vec2, Vec3A};
 use shader::volume::{segment_length, VolumeTerms};
 use shader::{Ctx, NodeId, RayType, Value};
 
@@ -157,7 +164,9 @@ maya_volume!(
         "waterLevel",
         "waterDepth",
         "waterLightDecay",
-        "waterLightScatter"
+        "waterLightScatter",
+        "useLayer",
+        "layer"
     ],
     env_fog_terms
 );
@@ -222,9 +231,51 @@ fn env_fog_terms(ctx: &mut Ctx, n: NodeId) -> VolumeTerms {
     } else {
         length
     };
-    let alpha = env_fog_share(inside, ctx.scalar(n, 2));
+    let alpha = if ctx.bool(n, USE_LAYER) {
+        let layer = env_fog_layer(ctx, n);
+        if layer > 0.0 {
+            env_fog_share(inside * layer, ctx.scalar(n, 2))
+        } else {
+            0.0
+        }
+    } else {
+        env_fog_share(inside, ctx.scalar(n, 2))
+    };
     let color = rgb(ctx.color(n, 0));
     terms(alpha, color, Vec3A::ONE, ctx.bool(n, 1))
+}
+
+/// The index of envFog's `useLayer`; `layer` follows it.
+const USE_LAYER: usize = 39;
+
+/// The position of world point `q` across the render camera's image: (u, v) ∈ [0, 1]²
+/// over the image, (0, 0) at its lower left (v up, as a texture's v). `world_to_camera`
+/// and `image_plane` (the half extents at distance 1; orthographic: of the view) are the
+/// shading's camera. A point behind a perspective camera takes the place of its mirror
+/// image in front (x, y over |z|), so that a ray leaving backwards still finds a place.
+pub fn screen_uv(world_to_camera: &Affine3A, image_plane: Vec2, orthographic: bool, q: Vec3A) -> Vec2 {
+    let p = world_to_camera.transform_point3a(q);
+    let s = if orthographic { Vec2::new(p.x, p.y) } else { Vec2::new(p.x, p.y) / p.z.abs().max(1e-12) };
+    let uv = Vec2::splat(0.5) + 0.5 * s / image_plane.max(Vec2::splat(1e-12));
+    if uv.is_finite() {
+        uv
+    } else {
+        Vec2::splat(0.5)
+    }
+}
+
+/// envFog's `layer` for the state's ray: the constant, or the connected texture evaluated
+/// at the screen position of the point one unit along the ray ([`screen_uv`]: for an eye
+/// ray, its pixel's place in the image).
+fn env_fog_layer(ctx: &mut Ctx, n: NodeId) -> f32 {
+    let layer = USE_LAYER + 1;
+    if !ctx.is_connected(n, layer) {
+        return ctx.scalar(n, layer);
+    }
+    let shading = ctx.shading();
+    let uv =
+        screen_uv(&shading.world_to_camera, shading.image_plane, shading.orthographic, ctx.state.org + ctx.state.dir);
+    crate::texture::at_uv(ctx, Vec3A::new(uv.x, uv.y, 0.0), |c| c.scalar(n, layer))
 }
 
 /// envFog's physical fog (the parameters from index 7 on; see [`crate::physical_fog`])
@@ -462,5 +513,26 @@ mod tests {
         apply(&mut out, terms(0.5, fog, Vec3A::ZERO, false));
         let c = out.color();
         assert!((c.x - 0.4).abs() < 1e-6 && (c.y - 0.4).abs() < 1e-6 && (c.z - 0.4).abs() < 1e-6, "{c:?}");
+    }
+
+    /// The screen position by hand: a camera at the origin looking down −Z with an image
+    /// plane of half extents (1, ½) at distance 1 puts (0, 0, −1) at the centre, (1, ½, −1)
+    /// at the top right, (−½, −¼, −2) at (0.375, 0.375); orthographic with half extents
+    /// (4, 2) puts (2, 1, −5) at (0.75, 0.75); a point behind takes its mirror's place.
+    #[test]
+    fn screen_positions_by_hand() {
+        let id = Affine3A::IDENTITY;
+        let plane = Vec2::new(1.0, 0.5);
+        let close = |a: Vec2, b: Vec2| assert!((a - b).length() < 1e-6, "{a} vs {b}");
+        close(screen_uv(&id, plane, false, Vec3A::new(0.0, 0.0, -1.0)), Vec2::splat(0.5));
+        close(screen_uv(&id, plane, false, Vec3A::new(1.0, 0.5, -1.0)), Vec2::ONE);
+        close(screen_uv(&id, plane, false, Vec3A::new(-0.5, -0.25, -2.0)), Vec2::splat(0.375));
+        close(screen_uv(&id, Vec2::new(4.0, 2.0), true, Vec3A::new(2.0, 1.0, -5.0)), Vec2::splat(0.75));
+        close(screen_uv(&id, plane, false, Vec3A::new(0.5, 0.0, 1.0)), Vec2::new(0.75, 0.5));
+        // A camera moved to (0, 0, 5): the world origin is straight ahead.
+        let moved = Affine3A::from_translation(glam::Vec3::new(0.0, 0.0, -5.0));
+        close(screen_uv(&moved, plane, false, Vec3A::ZERO), Vec2::splat(0.5));
+        // At the camera itself: the centre, not a NaN.
+        close(screen_uv(&id, plane, false, Vec3A::ZERO), Vec2::splat(0.5));
     }
 }

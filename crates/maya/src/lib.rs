@@ -24,8 +24,8 @@
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
-//! (snow, rock, volumeNoise), [`fractal_textures`] (brownian, cloud), [`cell_textures`] (leather,
-//! granite), [`projection`]
+//! (snow, rock, volumeNoise), [`fractal_textures`] (brownian, cloud), [`crater_textures`]
+//! (crater, stucco), [`cell_textures`] (leather, granite), [`projection`]
 //! (projection, envSphere), [`utility`], [`vertex_data`] (UV and colour sets by name:
 //! uvChooser, mentalrayVertexColors), [`light`] (point, spot, directional, ambient,
 //! area, volume); outside the shader model: [`output`] (`maya_colormgt`'s view transform
@@ -36,6 +36,7 @@
 //! [`REGISTRY`] lists every implementation.
 
 pub mod cell_textures;
+pub mod crater_textures;
 pub mod engine;
 pub mod fog;
 pub mod fractal_textures;
@@ -150,6 +151,10 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &fractal_textures::ADSK_BROWNIAN,
     &fractal_textures::CLOUD,
     &fractal_textures::ADSK_CLOUD,
+    &crater_textures::CRATER,
+    &crater_textures::ADSK_CRATER,
+    &crater_textures::STUCCO,
+    &crater_textures::ADSK_STUCCO,
     &cell_textures::LEATHER,
     &cell_textures::ADSK_LEATHER,
     &cell_textures::GRANITE,

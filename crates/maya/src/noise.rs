@@ -3,20 +3,35 @@
 //!
 //! Parameters (see `mayabase.mi`): `threshold` (0), `amplitude` (1), `ratio` (0.707),
 //! `frequencyRatio` (2), `depthMax` (3), `inflection` (off), `time` (0), `frequency` (8),
-//! `implode` (not read), `noiseType` (0 Perlin, 1 billow; the wave, wispy and space-time
-//! types read as Perlin).
+//! `implode` (not read), `noiseType` (1, Billow: Maya's default) and `numWaves` (5).
 //!
 //! ```text
-//! F = Σ_{i<depthMax} ratio^i · n(p · frequency · frequencyRatio^i) / Σ ratio^i
+//! F = Σ_{i<depthMax} ratio^i · n_i(p · frequency · frequencyRatio^i) / Σ ratio^i
 //! Perlin:  value = threshold + 0.5 + 0.5 · amplitude · F
 //! billow (or inflection): n → |n|, value = threshold + amplitude · F
 //! ```
 //!
-//! clipped to [0, 1], with n gradient noise in [−1, 1] that is 0 on the integer lattice
-//! (Perlin's improved noise, with mira's own lattice hash: the pattern is not Maya's, its
-//! statistics are). Maya documents the attributes' effects — threshold added and
-//! clipped, amplitude scaling about the mean, ratio and frequency ratio between the
-//! octaves — not its noise function.
+//! clipped to [0, 1], with p = (u, v, `time`) and n the octave's noise ([`Shape`]), in
+//! [−1, 1]. Maya's reference describes the noise types: Perlin (0) "the standard 2D
+//! noise", Billow (1) "a puffy, cloudlike effect", Wave (2) "a sum of 2D waves in
+//! space", Wispy (3) "a perlin noise that uses a second noise as a smear map … when time
+//! is animated the smear noise is moved, causing an undulating effect", SpaceTime (4)
+//! "a 3 dimensional version of the 2D perlin noise, where time is the third dimension".
+//! mira's readings:
+//! - Perlin and SpaceTime: gradient noise g (Perlin's improved noise, with mira's own
+//!   lattice hash: the pattern is not Maya's, its statistics are), 0 on the integer
+//!   lattice, at (u f, v f, `time`) — mira's Perlin already animates through time as a
+//!   third dimension, so the two coincide;
+//! - Billow: |g| (mira's turbulence, not Maya's cells: its `density`, `spottyness`,
+//!   `sizeRand`, `randomness` and `falloff` are not read);
+//! - Wave: (1/N) Σ_{k<N} cos(2π (d_k · (x, y) + `time`) + φ_k), N = `numWaves` (at least
+//!   1), d_k a unit direction in the plane and φ_k a phase, both from a hash of k and the
+//!   octave: waves of one period per unit of the octave's coordinate, moving a period per
+//!   unit of `time` (periodic in it); over 3D space (volumeNoise) d_k is a unit 3D
+//!   direction and `time` shifts the point (as for the other types);
+//! - Wispy: g at the point moved by [`WISPY_SMEAR`] × a smear vector of two (3D: three)
+//!   gradient noises of half the octave's frequency; in 2D the main noise is read at
+//!   depth 0 and the smear noise at depth `time`, so animating time moves the smear alone.
 
 use glam::{Vec2, Vec3A};
 use shader::{Ctx, NodeId, Value};
@@ -80,6 +95,92 @@ pub fn gradient_noise(p: Vec3A) -> f32 {
     lerp(w, lerp(v, x00, x10), lerp(v, x01, x11)).clamp(-1.0, 1.0)
 }
 
+/// How far Wispy's smear noise moves the point (octave coordinate units).
+pub const WISPY_SMEAR: f32 = 0.5;
+
+/// The noise each octave reads (`noiseType`; see the module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// Perlin (0), Billow (1, with [`Noise::billow`]) and SpaceTime (4): gradient noise.
+    Perlin,
+    /// Wave (2): a sum of `waves` plane waves.
+    Wave {
+        /// `numWaves`.
+        waves: u32,
+    },
+    /// Wispy (3): gradient noise smeared by a second noise.
+    Wispy,
+}
+
+impl Shape {
+    /// Maya's `noiseType` with `numWaves` (unknown types read as Perlin).
+    pub fn from_maya(noise_type: i32, waves: i32) -> Shape {
+        match noise_type {
+            2 => Shape::Wave { waves: waves.clamp(1, 256) as u32 },
+            3 => Shape::Wispy,
+            _ => Shape::Perlin,
+        }
+    }
+
+    /// The octave's noise at `q` for octave `octave`; `planar`: the 2D texture's (q =
+    /// (x, y, time)), else a point in space.
+    pub fn at(self, q: Vec3A, octave: u32, planar: bool) -> f32 {
+        match self {
+            Shape::Perlin => gradient_noise(q),
+            Shape::Wave { waves } => wave(q, waves, octave, planar),
+            Shape::Wispy => {
+                let half = q * 0.5;
+                if planar {
+                    let smear = Vec3A::new(
+                        gradient_noise(Vec3A::new(half.x + 17.3, half.y + 5.1, q.z)),
+                        gradient_noise(Vec3A::new(half.x + 3.7, half.y + 29.9, q.z)),
+                        0.0,
+                    );
+                    gradient_noise(Vec3A::new(q.x, q.y, 0.0) + WISPY_SMEAR * smear)
+                } else {
+                    let smear = Vec3A::new(
+                        gradient_noise(half + Vec3A::new(17.3, 5.1, 11.7)),
+                        gradient_noise(half + Vec3A::new(3.7, 29.9, 7.3)),
+                        gradient_noise(half + Vec3A::new(23.1, 13.3, 31.9)),
+                    );
+                    gradient_noise(q + WISPY_SMEAR * smear)
+                }
+            }
+        }
+    }
+}
+
+/// A hash of wave `k` of octave `octave`, `salt` choosing one of its numbers, in [0, 1).
+fn wave_hash(k: u32, octave: u32, salt: i32) -> f32 {
+    (lattice(k as i32, octave as i32, salt) >> 8) as f32 / (1u32 << 24) as f32
+}
+
+/// The Wave noise: the mean of `waves` plane waves (see the module doc), in [−1, 1].
+pub fn wave(q: Vec3A, waves: u32, octave: u32, planar: bool) -> f32 {
+    if !q.is_finite() {
+        return 0.0;
+    }
+    let n = waves.max(1);
+    let tau = std::f32::consts::TAU;
+    let mut sum = 0.0;
+    for k in 0..n {
+        let phase = tau * wave_hash(k, octave, 1);
+        let azimuth = tau * wave_hash(k, octave, 2);
+        let (s, c) = azimuth.sin_cos();
+        let along = if planar {
+            // time (q.z) moves the wave a period per unit.
+            c * q.x + s * q.y + q.z
+        } else {
+            let z = 2.0 * wave_hash(k, octave, 3) - 1.0;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            r * c * q.x + r * s * q.y + z * q.z
+        };
+        // The fraction of a period only: large coordinates keep their precision.
+        sum += (tau * along.rem_euclid(1.0) + phase).cos();
+    }
+    (sum / n as f32).clamp(-1.0, 1.0)
+}
+
 /// The settings of a noise texture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Noise {
@@ -99,15 +200,19 @@ pub struct Noise {
     pub frequency: f32,
     /// `time`, the third coordinate.
     pub time: f32,
+    /// The octaves' noise (`noiseType`, `numWaves`).
+    pub shape: Shape,
 }
 
 impl Noise {
     /// The settings of node `n`, whose parameters from index `first` are `threshold`,
     /// `amplitude`, `ratio`, `frequencyRatio`, `depthMax`, `inflection`, `time` and
     /// `frequency` in that order, and whose `noiseType` (1: billow) is at index
-    /// `noise_type` (the 2D and 3D textures declare it at different places).
+    /// `noise_type` (the 2D and 3D textures declare it at different places), followed
+    /// by `numWaves`.
     pub fn read(ctx: &mut Ctx, n: NodeId, first: usize, noise_type: usize) -> Noise {
         let e = first;
+        let shape = Shape::from_maya(ctx.int(n, noise_type), ctx.int(n, noise_type + 1));
         Noise {
             threshold: ctx.scalar(n, e),
             amplitude: ctx.scalar(n, e + 1),
@@ -117,26 +222,28 @@ impl Noise {
             billow: ctx.bool(n, e + 5) || ctx.int(n, noise_type) == 1,
             time: ctx.scalar(n, e + 6),
             frequency: ctx.scalar(n, e + 7),
+            shape,
         }
     }
 
     /// The texture's value at `uv`, in [0, 1].
     pub fn value(&self, uv: Vec2) -> f32 {
-        self.value_with(|f| Vec3A::new(uv.x * f, uv.y * f, self.time))
+        self.value_with(true, |f| Vec3A::new(uv.x * f, uv.y * f, self.time))
     }
 
     /// The same fractal over 3D space (Maya's volumeNoise): the value at the point `q`,
     /// in [0, 1], each octave's noise read at q · f shifted by `time` along the diagonal
     /// (1, 1, 1) (mira's reading: Maya says only that `time` animates the texture).
     pub fn value3(&self, q: Vec3A) -> f32 {
-        self.value_with(|f| q * f + Vec3A::splat(self.time))
+        self.value_with(false, |f| q * f + Vec3A::splat(self.time))
     }
 
-    /// The value with octave noise read at `at(f)`, f the octave's frequency.
-    fn value_with(&self, at: impl Fn(f32) -> Vec3A) -> f32 {
+    /// The value with octave noise read at `at(f)`, f the octave's frequency (`planar`:
+    /// the 2D texture's coordinate).
+    fn value_with(&self, planar: bool, at: impl Fn(f32) -> Vec3A) -> f32 {
         let (mut sum, mut weights, mut w, mut f) = (0.0, 0.0, 1.0, self.frequency);
-        for _ in 0..self.depth.clamp(1, 16) {
-            let n = gradient_noise(at(f));
+        for octave in 0..self.depth.clamp(1, 16) {
+            let n = self.shape.at(at(f), octave, planar);
             sum += w * if self.billow { n.abs() } else { n };
             weights += w;
             w *= self.ratio;
@@ -175,7 +282,8 @@ maya_shader!(
         "inflection",
         "time",
         "frequency",
-        "noiseType"
+        "noiseType",
+        "numWaves"
     ],
     noise
 );
@@ -201,6 +309,7 @@ mod tests {
             billow: false,
             frequency: 8.0,
             time: 0.0,
+            shape: Shape::Perlin,
         }
     }
 
@@ -235,5 +344,61 @@ mod tests {
         }
         // Amplitude 0: the constant threshold + 0.5.
         assert!((Noise { amplitude: 0.0, ..n }.value(Vec2::new(0.3, 0.6)) - 0.5).abs() < 1e-6);
+    }
+
+    /// Wave: the mean of N plane waves, within [−1, 1], periodic in time with period 1
+    /// (1e-4), varying and continuous; one wave of a 2D octave is constant across its
+    /// crests: moving along the crest (perpendicular to its direction) keeps the value.
+    #[test]
+    fn wave_noise_is_a_mean_of_plane_waves() {
+        let n = Noise { shape: Shape::Wave { waves: 5 }, ..maya_default() };
+        let (mut lo, mut hi) = (1f32, 0f32);
+        for i in 0..2000 {
+            let uv = Vec2::new((i % 50) as f32 / 50.0 + 0.003, (i / 50) as f32 / 40.0 + 0.007);
+            let v = n.value(uv);
+            assert!((0.0..=1.0).contains(&v));
+            assert!((n.value(uv + Vec2::splat(1e-4)) - v).abs() < 0.01, "continuous");
+            for t in [0.25f32, 1.5] {
+                let a = Noise { time: t, ..n }.value(uv);
+                let b = Noise { time: t + 1.0, ..n }.value(uv);
+                assert!((a - b).abs() < 1e-4, "periodic in time: {a} {b}");
+            }
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+        assert!(hi - lo > 0.3, "{lo}..{hi}");
+        // One wave: its crest direction is perpendicular to d = (cos a, sin a).
+        let a = std::f32::consts::TAU * wave_hash(0, 0, 2);
+        let crest = Vec3A::new(-a.sin(), a.cos(), 0.0);
+        for i in 0..50 {
+            let q = Vec3A::new(i as f32 * 0.173, i as f32 * 0.071, 0.3);
+            let (v, w) = (wave(q, 1, 0, true), wave(q + crest * 2.5, 1, 0, true));
+            assert!((v - w).abs() < 1e-3, "{v} {w}");
+            assert!(wave(q, 7, 3, false).abs() <= 1.0);
+        }
+        // numWaves below 1 reads as 1; a NaN point gives 0.
+        assert_eq!(Shape::from_maya(2, 0), Shape::Wave { waves: 1 });
+        assert_eq!(wave(Vec3A::splat(f32::NAN), 5, 0, true), 0.0);
+    }
+
+    /// Wispy: in range, deterministic, not the plain noise; in 2D `time` moves only the
+    /// smear noise — at time 0 and time 0.37 the smear differs, so the value does, while
+    /// Perlin and SpaceTime (mira: the same noise) share one value.
+    #[test]
+    fn wispy_smears_the_noise_and_spacetime_is_perlin() {
+        let wispy = Noise { shape: Shape::Wispy, ..maya_default() };
+        let perlin = maya_default();
+        let (mut differ, mut moved) = (0, 0);
+        for i in 0..1000 {
+            let uv = Vec2::new((i % 40) as f32 / 40.0 + 0.011, (i / 40) as f32 / 25.0 + 0.013);
+            let v = wispy.value(uv);
+            assert!((0.0..=1.0).contains(&v) && v == wispy.value(uv));
+            differ += usize::from((v - perlin.value(uv)).abs() > 1e-3);
+            moved += usize::from((v - Noise { time: 0.37, ..wispy }.value(uv)).abs() > 1e-3);
+            assert!(wispy.value3(Vec3A::new(uv.x, uv.y, 0.2)) <= 1.0);
+        }
+        assert!(differ > 500 && moved > 500, "{differ} {moved}");
+        assert_eq!(Shape::from_maya(4, 5), Shape::Perlin);
+        assert_eq!(Shape::from_maya(0, 5), Shape::Perlin);
+        assert_eq!(Shape::from_maya(3, 5), Shape::Wispy);
     }
 }

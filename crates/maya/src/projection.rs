@@ -29,8 +29,10 @@
 //! `cameraHorizontalFilmAperture` and `cameraVerticalFilmAperture` (inches; Maya's 35 mm
 //! defaults 1.417 × 0.945), `fitType` (1), `fitFill` (0) and `imageAspect` (the projected
 //! image's width / height, 1; mira cannot see the resolution of the texture behind
-//! `image`). With `cameraFocalLength` 0 (the default) the render camera is the linked
-//! one, its film gate the image's own aspect. The fit is read as 3Delight for Maya's
+//! `image`), `cameraOrthographic` (off) and `cameraOrthographicWidth` (1, Maya's
+//! camera's `orthographic` and `orthographicWidth`: the width of the orthographic view in
+//! scene units). With `cameraFocalLength` 0 (the default) and `cameraOrthographic` off the
+//! render camera is the linked one, its film gate the image's own aspect. The fit is read as 3Delight for Maya's
 //! projection shader reads it: the point's screen position s = (x_c, y_c)/(−z_c)/h, h
 //! the image plane's half width at distance 1 (horizontal aperture·25.4/(2·focal)), is
 //! scaled for the frame of aspect a (the film gate's H/V for fitType 1, the render
@@ -38,8 +40,10 @@
 //! wide as the frame), Fill scales s_y by a (the image stretched over the frame),
 //! Horizontal s_y by i (the image's width across the frame, its proportions kept),
 //! Vertical s_x by a/i and s_y by a (its height over the frame); (u, v) = ½ + ½ s. An
-//! orthographic render camera gives s = (x_c, y_c)/h with h half the view's width. The
-//! placement is ignored.
+//! orthographic camera — the render camera or a linked one with `cameraOrthographic` on,
+//! whose h is half its `cameraOrthographicWidth` and whose film gate still gives the
+//! frame's aspect for fitType 1 — gives s = (x_c, y_c)/h with h half the view's width.
+//! The placement is ignored.
 //!
 //! `projType` 0 (off) returns `defaultColor`. envSphere: `image` wrapped over the sphere of
 //! directions, the ray direction d (world) giving u = ½ + atan2(d_x, −d_z)/2π (the −Z
@@ -176,14 +180,16 @@ fn perspective(ctx: &mut Ctx, n: NodeId, point: Vec3A) -> Option<Vec2> {
     let (w, h) = shading.resolution;
     let resolution_aspect = if h > 0 { w as f32 / h as f32 } else { 1.0 };
     let render_aspect = shading.image_plane.x / shading.image_plane.y.max(1e-12);
-    if focal_mm > 0.0 {
+    let orthographic = ctx.bool(n, FIT_TYPE + 7);
+    if orthographic || focal_mm > 0.0 {
         let world_to_camera = ctx.eval(n, FIT_TYPE + 2).transform();
         let (h_aperture, v_aperture) = (ctx.scalar(n, FIT_TYPE + 4), ctx.scalar(n, FIT_TYPE + 5));
-        let half_width = h_aperture * 25.4 / (2.0 * focal_mm);
+        let half_width =
+            if orthographic { 0.5 * ctx.scalar(n, FIT_TYPE + 8) } else { h_aperture * 25.4 / (2.0 * focal_mm) };
         let film_aspect = h_aperture / v_aperture.max(1e-6);
         let frame = if ctx.int(n, FIT_TYPE) == 2 { resolution_aspect } else { film_aspect };
         let p_camera = Vec3A::from(world_to_camera.transform_point3(point.into()));
-        camera_uv(p_camera, half_width, false, fit, frame, image_aspect)
+        camera_uv(p_camera, half_width, orthographic, fit, frame, image_aspect)
     } else {
         let frame = if ctx.int(n, FIT_TYPE) == 2 { resolution_aspect } else { render_aspect };
         let p_camera = shading.world_to_camera.transform_point3a(point);
@@ -214,7 +220,9 @@ maya_shader!(
         "cameraFocalLength",
         "cameraHorizontalFilmAperture",
         "cameraVerticalFilmAperture",
-        "imageAspect"
+        "imageAspect",
+        "cameraOrthographic",
+        "cameraOrthographicWidth"
     ),
     projection
 );

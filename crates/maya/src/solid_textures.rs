@@ -26,7 +26,8 @@
 //! - volumeNoise: the noise texture's attributes and formula ([`crate::noise::Noise`]:
 //!   `threshold` (0), `amplitude` (1), `ratio` (0.707), `frequencyRatio` (2), `depthMax`
 //!   (3), `inflection` (off), `time` (0), `frequency` (8), `noiseType` (1, billow; 0
-//!   Perlin, the others read as Perlin)) over 3D space ([`crate::noise::Noise::value3`]),
+//!   Perlin, 2 Wave, 3 Wispy, 4 SpaceTime, as the noise texture reads them in space),
+//!   `numWaves` (5)) over 3D space ([`crate::noise::Noise::value3`]),
 //!   at q = (p − `origin`) ⊘ `scale` (`scale` 1 1 1, `origin` 0 0 0: Maya says scale has
 //!   the inverse effect of frequency; the origin's sign is mira's reading); `outColor` is
 //!   the value as grey, `outAlpha` the value.
@@ -136,7 +137,8 @@ maya_shader!(
         "frequency",
         "scale",
         "origin",
-        "noiseType"
+        "noiseType",
+        "numWaves"
     ),
     volume_noise
 );
@@ -231,6 +233,7 @@ mod tests {
             billow: false,
             time: 0.0,
             frequency: 8.0,
+            shape: crate::noise::Shape::Perlin,
         }
     }
 

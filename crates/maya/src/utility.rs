@@ -270,6 +270,11 @@ impl Ramp {
         Ramp { points: ramp_points(value, prefix, member), empty }
     }
 
+    /// Whether the ramp has no points (it is its `empty` value everywhere).
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
     /// The ramp at `x` (the first point's value before it, the last one's after it).
     pub fn at(&self, x: f32) -> Vec3A {
         if self.points.is_empty() {

@@ -12,7 +12,27 @@
 //! (0), `density` (1), `densityMode` (1), `dropoffShape` (0), `edgeDropoff` (0.5),
 //! `dropoffMethod` (0), `dropoffSubtract` (1), `illuminated` (off), `lightScatter` (1),
 //! `lightList` (every light when empty), `axialDropoff` (0.3, the reference's default:
-//! "how quickly the density drops off down the axis of a cone").
+//! "how quickly the density drops off down the axis of a cone"), `colorRampInput` (0) and
+//! `colorRamp` (an array of {`colorRamp_Position`, `colorRamp_Color`,
+//! `colorRamp_Interp`}, interpolation 0 none, 1 linear, 2 smooth, 3 spline; empty: the
+//! fog keeps `color`).
+//!
+//! **The colour ramp.** The reference: `colorRampInput` chooses the input to the ramp —
+//! Transparency (0, the default): the colour follows the transparency within the volume,
+//! more transparent regions taking the ramp's left end, wholly opaque ones its right end;
+//! Concentric (1): the distance to the volume's centre; Y Gradient (2): the position
+//! along the y axis; Ignore (3): `color` instead of the ramp (the reference gives the
+//! modes in this order, not their numbers; mira numbers them so). mira's reading, at each
+//! point p of the segment (object space, where the dropoff is measured): Transparency's
+//! x = 1 − mean(`transparency`^ρ(p)), the transparency of one unit of the fog's local
+//! density ρ (so a fading edge runs from the ramp's left end inwards); Concentric's
+//! x = |p| (0 at the centre, 1 on the unit sphere of Maya's volume primitives); Y
+//! Gradient's x = (p_y + 1)/2 (the bottom of the unit cube or sphere at 0, its top at 1).
+//! The colour the fog shows is then the ramp's colour where it is, each step weighted by
+//! the share of the ray it covers there: Σ T_i ⊙ (1 − t_i) ⊙ C(x_i), T_i what passes
+//! the fog before step i and t_i step i's transmittance (for a constant colour exactly
+//! (1 − T) ⊙ `color`, the case without a ramp); `outColor` is that × the light received
+//! when `illuminated` plus (1 − T) ⊙ `incandescence`, and the glow follows that colour.
 //!
 //! mira's reading (the reference describes the attributes, not the formulas):
 //! - the fog lets `transparency`^τ through per channel, τ = ∫ ρ dl the density crossed:
@@ -55,6 +75,7 @@ use shader::{Ctx, NodeId, RayType, Value};
 
 use crate::fog::received_light;
 use crate::maya_shader;
+use crate::utility::Ramp;
 use crate::values::{rgb, rgba, write_struct};
 
 /// Steps of the integration along the segment.
@@ -155,10 +176,58 @@ maya_shader!(
         "illuminated",
         "lightScatter",
         "lightList",
-        "axialDropoff"
+        "axialDropoff",
+        "colorRampInput",
+        "colorRamp"
     ],
     volume_fog
 );
+
+/// The fog along a segment: where it is and how dense (see [`density_crossed`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Segment<'a> {
+    /// The segment's origin (world).
+    pub org: Vec3A,
+    /// Its unit direction (world).
+    pub dir: Vec3A,
+    /// Its length (world units).
+    pub length: f32,
+    /// World → the volume object's space.
+    pub world_to_object: &'a Affine3A,
+    /// Lengths in object space (`densityMode` 1) rather than world space.
+    pub object_space: bool,
+    /// `density`.
+    pub density: f32,
+    /// The shape the density fades towards the edge of.
+    pub dropoff: Dropoff,
+    /// `edgeDropoff`.
+    pub edge: f32,
+    /// `Some(dropoffSubtract)` for Subtract Density.
+    pub subtract: Option<f32>,
+}
+
+impl Segment<'_> {
+    /// The integration steps of a finite segment: each step's middle in object space, the
+    /// local density ρ there and the density crossed over the step (ρ × its length).
+    fn steps(&self) -> impl Iterator<Item = (Vec3A, f32, f32)> + '_ {
+        let scale = if self.object_space { self.world_to_object.transform_vector3a(self.dir).length() } else { 1.0 };
+        let dt = self.length / STEPS as f32;
+        (0..STEPS).map(move |i| {
+            let p = self.world_to_object.transform_point3a(self.org + self.dir * ((i as f32 + 0.5) * dt));
+            let d = self.dropoff.at(p, self.edge);
+            let rho = match self.subtract {
+                None => self.density * d,
+                Some(s) => (self.density - (1.0 - d) * s).max(0.0),
+            };
+            (p, rho, rho * dt * scale)
+        })
+    }
+
+    /// Whether the segment holds no fog (no length or no density).
+    fn is_empty(&self) -> bool {
+        self.length.is_nan() || self.length <= 0.0 || self.density <= 0.0
+    }
+}
 
 /// The density crossed (τ) along the segment from `org` along unit `dir` over `length`
 /// (world units), with the points and lengths taken through `world_to_object` when
@@ -176,26 +245,91 @@ pub fn density_crossed(
     edge: f32,
     subtract: Option<f32>,
 ) -> f32 {
-    if length.is_nan() || length <= 0.0 || density <= 0.0 {
+    let seg = Segment { org, dir, length, world_to_object, object_space, density, dropoff, edge, subtract };
+    seg_density_crossed(&seg)
+}
+
+fn seg_density_crossed(seg: &Segment) -> f32 {
+    if seg.is_empty() {
         return 0.0;
     }
-    if !length.is_finite() {
+    if !seg.length.is_finite() {
         // A ray inside a volume that never leaves it: saturated where there is fog.
-        return if dropoff == Dropoff::Off { f32::INFINITY } else { 0.0 };
+        return if seg.dropoff == Dropoff::Off { f32::INFINITY } else { 0.0 };
     }
-    let scale = if object_space { world_to_object.transform_vector3a(dir).length() } else { 1.0 };
-    let dt = length / STEPS as f32;
-    let mut tau = 0.0;
-    for i in 0..STEPS {
-        let p = org + dir * ((i as f32 + 0.5) * dt);
-        let d = dropoff.at(world_to_object.transform_point3a(p), edge);
-        let rho = match subtract {
-            None => density * d,
-            Some(s) => (density - (1.0 - d) * s).max(0.0),
+    seg.steps().map(|(_, _, dtau)| dtau).sum()
+}
+
+/// What indexes volumeFog's colour ramp (`colorRampInput`; see the module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RampInput {
+    /// 0: the local transparency (transparent: the left end, opaque: the right end).
+    Transparency,
+    /// 1: the distance from the volume's centre.
+    Concentric,
+    /// 2: the height along the volume's y axis, bottom to top.
+    YGradient,
+    /// 3 (and unknown values): `color`, no ramp.
+    Ignore,
+}
+
+impl RampInput {
+    /// Maya's enumeration (see the module doc).
+    pub fn from_maya(v: i32) -> RampInput {
+        match v {
+            0 => RampInput::Transparency,
+            1 => RampInput::Concentric,
+            2 => RampInput::YGradient,
+            _ => RampInput::Ignore,
+        }
+    }
+
+    /// The ramp position at object-space point `p` of local density `rho` in a fog of
+    /// `transparency` (`None` for Ignore).
+    pub fn position(self, p: Vec3A, rho: f32, transparency: Vec3A) -> Option<f32> {
+        let x = match self {
+            RampInput::Transparency => {
+                let t = transmittance(transparency, rho);
+                1.0 - (t.x + t.y + t.z) / 3.0
+            }
+            RampInput::Concentric => p.length(),
+            RampInput::YGradient => 0.5 * (p.y + 1.0),
+            RampInput::Ignore => return None,
         };
-        tau += rho * dt * scale;
+        Some(x)
     }
-    tau
+}
+
+/// The colour a fog of `transparency` shows along `seg` with its colour from `ramp` at
+/// the positions `input` gives: Σ T_i ⊙ (1 − t_i) ⊙ C(x_i) (see the module doc), and the
+/// segment's transmittance T. `None` for Ignore.
+pub fn ramp_colour_crossed(
+    seg: &Segment,
+    transparency: Vec3A,
+    input: RampInput,
+    ramp: impl Fn(f32) -> Vec3A,
+) -> Option<(Vec3A, Vec3A)> {
+    input.position(Vec3A::ZERO, 0.0, transparency)?;
+    if seg.is_empty() {
+        return Some((Vec3A::ZERO, Vec3A::ONE));
+    }
+    if !seg.length.is_finite() {
+        // A segment that never ends: all it shows is the fog where it starts.
+        let tau = seg_density_crossed(seg);
+        let t = transmittance(transparency, tau);
+        let p = seg.world_to_object.transform_point3a(seg.org);
+        let d = seg.dropoff.at(p, seg.edge);
+        let x = input.position(p, seg.density * d, transparency).unwrap_or(0.0);
+        return Some(((Vec3A::ONE - t) * ramp(x), t));
+    }
+    let (mut shown, mut passed) = (Vec3A::ZERO, Vec3A::ONE);
+    for (p, rho, dtau) in seg.steps() {
+        let t = transmittance(transparency, dtau);
+        let x = input.position(p, rho, transparency).unwrap_or(0.0);
+        shown += passed * (Vec3A::ONE - t) * ramp(x);
+        passed *= t;
+    }
+    Some((shown, passed))
 }
 
 /// `transparency`^τ per channel (a transparency of 0 passes nothing through any fog).
@@ -212,10 +346,20 @@ fn volume_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let subtract = (ctx.int(n, 8) == 1).then(|| ctx.scalar(n, 9));
     let (object_space, density, edge) = (ctx.int(n, 5) != 0, ctx.scalar(n, 4), ctx.scalar(n, 7));
     let (org, dir, world_to_object) = (ctx.state.org, ctx.state.dir, ctx.state.world_to_object);
-    let tau = density_crossed(org, dir, length, &world_to_object, object_space, density, dropoff, edge, subtract);
-    let t = transmittance(rgb(ctx.color(n, 1)), tau);
-    let cover = Vec3A::ONE - t;
+    let seg =
+        Segment { org, dir, length, world_to_object: &world_to_object, object_space, density, dropoff, edge, subtract };
+    let transparency = rgb(ctx.color(n, 1));
     let color = rgb(ctx.color(n, 0));
+    let input = RampInput::from_maya(ctx.int(n, 14));
+    let ramp = Ramp::read(&ctx.array(n, 15), "colorRamp", "Color", color);
+    // With a ramp: the colour shown before lighting (its share of the ray included) and
+    // the transmittance.
+    let ramped = if ramp.is_empty() { None } else { ramp_colour_crossed(&seg, transparency, input, |x| ramp.at(x)) };
+    let t = match ramped {
+        Some((_, t)) => t,
+        None => transmittance(transparency, seg_density_crossed(&seg)),
+    };
+    let cover = Vec3A::ONE - t;
     let light_ray = matches!(ctx.state.ray_type, RayType::Light | RayType::Shadow);
     let shown = if light_ray || cover == Vec3A::ZERO {
         Vec3A::ZERO
@@ -226,14 +370,21 @@ fn volume_fog(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         } else {
             Vec3A::ONE
         };
-        color * lit + rgb(ctx.color(n, 2))
+        let incandescence = rgb(ctx.color(n, 2));
+        match ramped {
+            Some((fog_colour, _)) => fog_colour * lit + cover * incandescence,
+            None => cover * (color * lit + incandescence),
+        }
     };
     let t_mean = (t.x + t.y + t.z) / 3.0;
-    let glow = ctx.scalar(n, 3) * cover * color;
+    let glow = match ramped {
+        Some((fog_colour, _)) => ctx.scalar(n, 3) * fog_colour,
+        None => ctx.scalar(n, 3) * cover * color,
+    };
     write_struct(
         out,
         &[
-            ("outColor", Value::Color(rgba(cover * shown, 1.0 - t_mean))),
+            ("outColor", Value::Color(rgba(shown, 1.0 - t_mean))),
             ("outTransparency", Value::Color(rgba(t, t_mean))),
             ("outGlowColor", Value::Color(rgba(glow, 1.0))),
             ("outMatteOpacity", Value::Color(rgba(Vec3A::splat(1.0 - t_mean), 1.0 - t_mean))),
@@ -321,5 +472,79 @@ mod tests {
         let t = transmittance(Vec3A::new(0.5, 0.25, 0.0), 2.0);
         assert!((t - Vec3A::new(0.25, 0.0625, 0.0)).length() < 1e-6, "{t:?}");
         assert_eq!(transmittance(Vec3A::splat(0.3), 0.0), Vec3A::ONE);
+    }
+
+    /// A plain fog (no dropoff, density 1, world space) of transparency ½ along `length`
+    /// from `org` along `dir`.
+    fn plain<'a>(org: Vec3A, dir: Vec3A, length: f32, id: &'a Affine3A) -> Segment<'a> {
+        Segment {
+            org,
+            dir,
+            length,
+            world_to_object: id,
+            object_space: false,
+            density: 1.0,
+            dropoff: Dropoff::Off,
+            edge: 0.0,
+            subtract: None,
+        }
+    }
+
+    /// A two-colour ramp without interpolation: red below ½, green from ½.
+    fn red_green(x: f32) -> Vec3A {
+        let points = vec![(0.0, Vec3A::X, 0), (0.5, Vec3A::Y, 0)];
+        Ramp::new(points, Vec3A::ZERO).at(x)
+    }
+
+    /// Each ramp input against its hand-computed colour (the step boundaries fall on the
+    /// ramp's: exact up to rounding, 1e-5). Transparency ½, density 1: a unit of fog
+    /// passes ½, so what passes after a length l is 0.5^l.
+    #[test]
+    fn each_ramp_input_colours_the_fog_as_computed_by_hand() {
+        let id = Affine3A::IDENTITY;
+        let half = Vec3A::splat(0.5);
+        let close = |a: Vec3A, b: Vec3A| assert!((a - b).length() < 1e-5, "{a} vs {b}");
+        // Transparency: the local transparency of density 1 is ½ everywhere → x = ½, on a
+        // black-to-white linear ramp grey ½; over 2 units the fog covers 1 − ¼.
+        let grey = |x: f32| Ramp::new(vec![(0.0, Vec3A::ZERO, 1), (1.0, Vec3A::ONE, 1)], Vec3A::ZERO).at(x);
+        let seg = plain(Vec3A::new(0.3, 0.2, -1.0), Vec3A::Z, 2.0, &id);
+        let (c, t) = ramp_colour_crossed(&seg, half, RampInput::Transparency, grey).unwrap();
+        close(t, Vec3A::splat(0.25));
+        close(c, Vec3A::splat(0.75 * 0.5));
+        // Density 2: x = 1 − ¼ = ¾; over 1 unit the fog covers 1 − ¼.
+        let seg = Segment { density: 2.0, length: 1.0, ..seg };
+        let (c, _) = ramp_colour_crossed(&seg, half, RampInput::Transparency, grey).unwrap();
+        close(c, Vec3A::splat(0.75 * 0.75));
+        // Concentric: from the centre out along z for 2 units; red while |p| < ½ (the
+        // first ½ unit: covers 1 − 0.5^0.5), green after (0.5^0.5 − 0.5^2).
+        let seg = plain(Vec3A::ZERO, Vec3A::Z, 2.0, &id);
+        let (c, t) = ramp_colour_crossed(&seg, half, RampInput::Concentric, red_green).unwrap();
+        close(c, Vec3A::new(1.0 - 0.5f32.sqrt(), 0.5f32.sqrt() - 0.25, 0.0));
+        close(t, Vec3A::splat(0.25));
+        // Y gradient: up the y axis from −1 to 1; red below y = 0 (x < ½): 1 − ½, green
+        // above: ½ − ¼.
+        let seg = plain(Vec3A::new(0.2, -1.0, 0.1), Vec3A::Y, 2.0, &id);
+        let (c, _) = ramp_colour_crossed(&seg, half, RampInput::YGradient, red_green).unwrap();
+        close(c, Vec3A::new(0.5, 0.25, 0.0));
+        // Downwards the order turns: green first (½), red after (¼).
+        let seg = plain(Vec3A::new(0.2, 1.0, 0.1), -Vec3A::Y, 2.0, &id);
+        let (c, _) = ramp_colour_crossed(&seg, half, RampInput::YGradient, red_green).unwrap();
+        close(c, Vec3A::new(0.25, 0.5, 0.0));
+        // Ignore: no ramp.
+        assert!(ramp_colour_crossed(&seg, half, RampInput::Ignore, red_green).is_none());
+        assert_eq!(RampInput::from_maya(3), RampInput::Ignore);
+        assert_eq!(RampInput::from_maya(7), RampInput::Ignore);
+        // A constant ramp is the plain fog: (1 − T) ⊙ colour, T as density_crossed gives.
+        let seg =
+            Segment { dropoff: Dropoff::Sphere, edge: 0.5, ..plain(Vec3A::new(0.1, 0.0, -1.5), Vec3A::Z, 3.0, &id) };
+        let colour = Vec3A::new(0.9, 0.4, 0.2);
+        let (c, t) = ramp_colour_crossed(&seg, half, RampInput::Concentric, |_| colour).unwrap();
+        let tau = density_crossed(seg.org, seg.dir, seg.length, &id, false, 1.0, Dropoff::Sphere, 0.5, None);
+        close(t, transmittance(half, tau));
+        close(c, (Vec3A::ONE - t) * colour);
+        // No fog: nothing shown, everything passes.
+        let (c, t) =
+            ramp_colour_crossed(&Segment { density: 0.0, ..seg }, half, RampInput::Concentric, red_green).unwrap();
+        assert_eq!((c, t), (Vec3A::ZERO, Vec3A::ONE));
     }
 }

@@ -376,3 +376,55 @@ fn fogs_are_named_in_warnings_for_the_path_engine_and_physical_water() {
     let warnings = maya::fog::fog_warnings(&c.shading);
     assert!(warnings.is_empty(), "{:?}", warnings.iter().map(|w| &w.message).collect::<Vec<_>>());
 }
+
+/// envFog's `useLayer`/`layer` (both name families): a constant layer of ½ halves the
+/// fog's density (20 units of a 100-unit saturation: α = 0.1 instead of 0.2); a U ramp
+/// (black at u = 0, white at 1, alpha its luminance) on `layer` scales it by the eye ray's
+/// screen u — the centre of the image ½ (α = 0.1), its right edge 1 (α = 0.2), a quarter
+/// in from the left ¼ (α = 0.05); `useLayer` off ignores the layer. The camera's volume
+/// runs on an eye ray from the camera over 20 units with nothing behind (black), so the
+/// result is α × the white fog (1e-5).
+#[test]
+fn env_fog_layer_scales_the_fog_across_the_view() {
+    let ramp = r#"shader "ramp1" "maya_ramp" ("type" 1, "interpolation" 1, "alphaIsLuminance" on,
+        "colorEntryList" [ { "position" 0, "color" 0 0 0 }, { "position" 1, "color" 1 1 1 } ])"#;
+    for name in ["maya_envfog", "adskMayaEnvFog"] {
+        let run_fog = |params: &str, screen_x: f32| -> glam::Vec4 {
+            let body = format!(
+                "{LIBS}{ramp}\nshader \"env\" \"{name}\" (\"saturationDistance\" 100{params})\n\
+                 shader \"lam\" \"maya_lambert\" ()\n\
+                 material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"lam.outColor\") end material"
+            );
+            let c = support::maya::compile_with_camera("volume = \"env\"", "", &body, &["m"], "");
+            assert!(c.messages.is_empty(), "{:#?}", c.messages);
+            // The eye ray through screen x (−1 left edge, 0 centre, 1 right edge) at
+            // the image's middle height: camera space (x·half width, 0, −1).
+            let to_world = c.shading.world_to_camera.inverse();
+            let dir = to_world
+                .transform_vector3a(glam::Vec3A::new(screen_x * c.shading.image_plane.x, 0.0, -1.0))
+                .normalize();
+            let org = to_world.transform_point3a(glam::Vec3A::ZERO);
+            let state = shader::State {
+                ray_type: shader::RayType::Eye,
+                org,
+                dir,
+                dist: 20.0,
+                point: org + dir * 20.0,
+                ior_in: 1.0,
+                ior: 1.0,
+                child_dist: f32::INFINITY,
+                ..shader::State::default()
+            };
+            support::maya::run_in(&c.shading, &Empty::default(), c.shading.volume.expect("camera volume"), state)
+                .color()
+        };
+        assert_rgb(run_fog("", 0.3), [0.2; 3], 1e-5);
+        assert_rgb(run_fog(", \"useLayer\" on, \"layer\" 0.5", 0.3), [0.1; 3], 1e-5);
+        assert_rgb(run_fog(", \"useLayer\" off, \"layer\" 0.5", 0.3), [0.2; 3], 1e-5);
+        assert_rgb(run_fog(", \"useLayer\" on, \"layer\" 0", 0.3), [0.0; 3], 1e-5);
+        let layered = ", \"useLayer\" on, \"layer\" = \"ramp1.outAlpha\"";
+        assert_rgb(run_fog(layered, 0.0), [0.1; 3], 1e-5);
+        assert_rgb(run_fog(layered, 1.0), [0.2; 3], 1e-5);
+        assert_rgb(run_fog(layered, -0.5), [0.05; 3], 1e-5);
+    }
+}

@@ -183,3 +183,35 @@ fn brownian_and_cloud_in_compiled_scenes() {
         }
     }
 }
+
+/// Crater and stucco under both name families at their documented extremes (1e-5): a
+/// balance beyond the noise's range shows crater's channel1 alone (or, negative,
+/// channel3), an unbounded melt their average (1e-3); stucco with shaker 0 is channel2
+/// everywhere, with a huge shaker channel1. With the defaults each shows a mix of its own
+/// channels' colours (red, green, blue for crater; red and blue for stucco), repeatably.
+#[test]
+fn crater_and_stucco_in_compiled_scenes() {
+    let channels = r#""channel1" 0.9 0.1 0.2, "channel2" 0.1 0.8 0.3, "channel3" 0.2 0.3 0.7"#;
+    for (crater, stucco) in [("maya_crater", "maya_stucco"), ("adskMayaCrater", "adskMayaStucco")] {
+        let at = |params: &str| shade(&scene(&format!(r#"shader "tex" "{crater}" ({channels}{params})"#)));
+        assert_rgb(at(r#", "balance" 3"#), [0.9, 0.1, 0.2], 1e-5);
+        assert_rgb(at(r#", "balance" -3"#), [0.2, 0.3, 0.7], 1e-5);
+        assert_rgb(at(r#", "melt" 1e6"#), [0.4, 0.4, 0.4], 1e-3);
+        let c = scene(&format!(r#"shader "tex" "{crater}" ()"#));
+        let v = shade(&c);
+        assert!((v.x + v.y + v.z - 1.0).abs() < 1e-5 && v.min_element() >= 0.0, "{crater}: {v}");
+        assert_eq!(v, shade(&c));
+
+        let at = |params: &str| {
+            shade(&scene(&format!(
+                r#"shader "tex" "{stucco}" ("channel1" 0.9 0.1 0.2, "channel2" 0.1 0.8 0.3{params})"#
+            )))
+        };
+        assert_rgb(at(r#", "shaker" 0"#), [0.1, 0.8, 0.3], 1e-5);
+        assert_rgb(at(r#", "shaker" 1e12"#), [0.9, 0.1, 0.2], 1e-5);
+        let c = scene(&format!(r#"shader "tex" "{stucco}" ()"#));
+        let v = shade(&c);
+        assert!(v.y == 0.0 && (v.x + v.z - 1.0).abs() < 1e-5, "{stucco}: {v}");
+        assert_eq!(v, shade(&c));
+    }
+}

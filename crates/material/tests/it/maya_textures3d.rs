@@ -185,3 +185,76 @@ fn the_perspective_projection_looks_through_the_linked_camera_with_its_fit() {
     let want = glam::Vec2::splat(0.5) + 0.5 * glam::Vec2::new(p.x, p.y) / -p.z / shading.image_plane;
     assert!((u - want.x).abs() < 1e-4 && (v - want.y).abs() < 1e-4, "render camera: {u}, {v} vs {want}");
 }
+
+/// The perspective projection through an orthographic linked camera (`cameraOrthographic`
+/// on, `cameraOrthographicWidth` 8: the view's half width 4) placed as in the test above:
+/// the origin at camera-space (1, 0.5, −4) lies at s = (1, 0.5)/4 = (0.25, 0.125) whatever
+/// its depth, and the four fits (film gate 1.417 × 0.945 in, aspect 1.49947; image aspect
+/// 1.25) give by hand: none (0.625, 0.5625); fill (0.625, 0.5 + 0.0625 · 1.49947 =
+/// 0.593717); horizontal (0.625, 0.5 + 0.0625 · 1.25 = 0.578125); vertical (0.5 + 0.125 ·
+/// 1.49947/1.25 = 0.649947, 0.593717). Within 1e-4; the focal length is not read.
+#[test]
+fn the_perspective_projection_through_an_orthographic_linked_camera() {
+    let coordinate = |ramp_type: i32, camera: &str| {
+        let c = scene(&format!(
+            r#"shader "ramp1" "maya_ramp" ("type" {ramp_type}, "interpolation" 1,
+                "colorEntryList" [ {{ "position" 0, "color" 0 0 0 }}, {{ "position" 1, "color" 1 1 1 }} ])
+            shader "proj" "maya_projection" ("projType" 8, "image" = "ramp1.outColor", "imageAspect" 1.25{camera})
+            {}"#,
+            show("proj.outColor")
+        ));
+        shade(&c, point([0.0, 0.0])).x
+    };
+    let linked = r#", "linkedCamera" 1 0 0 0  0 0 1 0  0 -1 0 0  1 0.5 -4 1, "cameraOrthographic" on,
+        "cameraOrthographicWidth" 8, "cameraFocalLength" 35,
+        "cameraHorizontalFilmAperture" 1.417, "cameraVerticalFilmAperture" 0.945"#;
+    for (fit_type, fit_fill, want) in
+        [(0, 0, [0.625, 0.5625]), (1, 0, [0.625, 0.593717]), (1, 1, [0.625, 0.578125]), (1, 2, [0.649947, 0.593717])]
+    {
+        let camera = format!(r#"{linked}, "fitType" {fit_type}, "fitFill" {fit_fill}"#);
+        let (u, v) = (coordinate(1, &camera), coordinate(0, &camera));
+        assert!(
+            (u - want[0]).abs() < 1e-4 && (v - want[1]).abs() < 1e-4,
+            "fit {fit_type}/{fit_fill}: {u}, {v} vs {want:?}"
+        );
+    }
+    // Half the width: twice the offset from the centre (fit none).
+    let camera = linked.replace("\"cameraOrthographicWidth\" 8", "\"cameraOrthographicWidth\" 4");
+    let (u, v) =
+        (coordinate(1, &format!("{camera}, \"fitType\" 0")), coordinate(0, &format!("{camera}, \"fitType\" 0")));
+    assert!((u - 0.75).abs() < 1e-4 && (v - 0.625).abs() < 1e-4, "{u}, {v}");
+}
+
+/// Crater's and stucco's `outNormal` drive a lambert's `normalCamera` (both families):
+/// lit straight from above, depth 0 leaves the normal (c·d·cos 0 = 1, 1e-5); with deep
+/// craters the lambert never brightens (the tilted normal's cosine ≤ 1) and darkens on the
+/// walls at some of 60 placements of the texture.
+#[test]
+fn crater_and_stucco_out_normals_bump_a_lambert() {
+    for (tex, depth) in [
+        ("maya_crater", "normDepth"),
+        ("adskMayaCrater", "normDepth"),
+        ("maya_stucco", "normalDepth"),
+        ("adskMayaStucco", "normalDepth"),
+    ] {
+        let lit = |params: &str, tx: f32| {
+            let c = scene(&format!(
+                r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+                instance "sun_inst" "sun" end instance
+                shader "tex" "{tex}" ("placementMatrix" 1 0 0 0  0 1 0 0  0 0 1 0  {tx} 0 {tz} 1{params})
+                shader "lam" "maya_lambert" ("color" 1 1 1, "diffuse" 1, "normalCamera" = "tex.outNormal")
+                material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+                tz = 0.37 * tx
+            ));
+            shade(&c, point([0.0, 0.0])).x
+        };
+        assert!((lit(&format!(r#", "{depth}" 0"#), 0.3) - 1.0).abs() < 1e-5, "{tex}");
+        let mut darkest = 1.0f32;
+        for i in 0..60 {
+            let v = lit(&format!(r#", "{depth}" 40"#), i as f32 * 0.0371);
+            assert!(v <= 1.0 + 1e-5, "{tex}: {v}");
+            darkest = darkest.min(v);
+        }
+        assert!(darkest < 0.95, "{tex}: the walls tilt the normal ({darkest})");
+    }
+}
