@@ -7,10 +7,11 @@
 //! `pmulld`, which a baseline x86-64 build may not use (sobol_burley then emulates them
 //! with SSE2 shuffles), and the bit reversal is two nibble lookups with SSSE3's `pshufb`
 //! instead of five mask-and-shift rounds. So on x86-64 the sampler's set computation is
-//! also compiled for SSE4.1 (which implies SSSE3) and [`dispatch`] picks that build at
-//! run time when the CPU has it (every x86-64 CPU since about 2008): the binary still runs
-//! on any x86-64, and the numbers are the same bit for bit either way (integer arithmetic
-//! only).
+//! also compiled for SSE4.1 (which implies SSSE3) and for AVX2 (eight lanes a vector: the
+//! sampler makes two sets at once), and [`dispatch`] picks the best build the CPU has at
+//! run time (SSE4.1: every x86-64 CPU since about 2008; AVX2: since about 2013): the binary
+//! still runs on any x86-64, and the numbers are the same bit for bit either way (integer
+//! arithmetic only).
 #![allow(unsafe_code)]
 
 use sobol_burley::parts;
@@ -20,24 +21,42 @@ use sobol_burley::parts;
 /// lane by lane in plain integer code, which the compiler turns into the vector
 /// instructions of whatever target features its caller is built for.
 #[inline(always)]
-pub(super) fn finish(sobol_rev: [u32; 4], scramble: [u32; 4]) -> [f32; 4] {
-    let mut out = [0.0; 4];
+pub(super) fn finish<const N: usize>(sobol_rev: [u32; N], scramble: [u32; N]) -> [f32; N] {
+    let mut out = [0.0; N];
     for ((o, &n), &s) in out.iter_mut().zip(&sobol_rev).zip(&scramble) {
         *o = parts::u32_to_f32_norm(parts::owen_scramble_rev(n, s).reverse_bits());
     }
     out
 }
 
-/// Runs `work` (which should inline [`finish`]) built for SSE4.1 when the CPU has it, else
-/// built for the binary's baseline target.
+/// Runs `work` (which should inline [`finish`]) built for AVX2 (eight 32-bit lanes a
+/// vector) or SSE4.1 when the CPU has it, else built for the binary's baseline target.
 #[inline(always)]
 pub(super) fn dispatch<R>(work: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above), the only precondition of
+        // `with_avx2`.
+        return unsafe { with_avx2(work) };
+    }
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("sse4.1") {
         // SAFETY: the CPU has SSE4.1 (checked just above), the only precondition of
         // `with_sse41`.
         return unsafe { with_sse41(work) };
     }
+    work()
+}
+
+/// Calls `work`, inlined into a function built with AVX2 (and the SSE4.1 it implies).
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn with_avx2<R>(work: impl FnOnce() -> R) -> R {
     work()
 }
 
@@ -93,6 +112,19 @@ mod tests {
                 let got = unsafe { with_sse41(|| finish(sobol, scramble)) };
                 assert_eq!(got.map(f32::to_bits), want, "{sobol:x?} {scramble:x?}");
             }
+            #[cfg(target_arch = "x86_64")]
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: checked just above.
+                let got = unsafe { with_avx2(|| finish(sobol, scramble)) };
+                assert_eq!(got.map(f32::to_bits), want, "{sobol:x?} {scramble:x?}");
+            }
+            // Eight lanes at once (two sets): each half as four lanes give it.
+            let (s8, h8) = ([sobol, scramble].concat(), [scramble, sobol].concat());
+            let (s8, h8): ([u32; 8], [u32; 8]) = (s8.try_into().unwrap(), h8.try_into().unwrap());
+            let mut want8 = finish(sobol, scramble).to_vec();
+            want8.extend(finish(scramble, sobol));
+            let got8 = dispatch(|| finish(s8, h8));
+            assert_eq!(got8.map(f32::to_bits).to_vec(), want8.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
         }
     }
 }
