@@ -1,6 +1,6 @@
 //! Lowering an evaluated `material` struct to a path-engine [`SurfaceMaterial`]: the BSDF
 //! tree onto mira's BSDF families, the emission to radiance, `thin_walled`, `ior` and the
-//! cutout opacity read (the volume: [`super::volume`]; the general lobe sum: [`general_sum`]).
+//! cutout opacity read (the volume: [`super::volume`]; the general lobe sum: `general_sum`).
 //!
 //! The families used are exact for what they cover:
 //! - any tree of diffuse reflection lobes under mixes, tints and weighted layers is one
