@@ -298,30 +298,39 @@ pub(crate) fn assert_pixels(px: &[[f32; 4]], want: [f32; 3], tol: f32, what: &st
     }
 }
 
-#[test]
-fn a_camera_inside_a_medium_sees_through_it() {
-    // The camera inside a closed gel box (σa = 0.5, 1, 2; z from −4 to 4) sees a glow of
-    // radiance 1 inside it at distance 1.5: exp(−1.5 σa) per channel. Inside that box and
-    // a second one around it (σa = 0.25; z from −6 to 6), a glow at z = −8 outside both:
-    // exp(−4 σa − 2 · 0.25), the camera's media found by rays from its position.
+/// The scene (4² pixels) of a camera at the origin inside a closed gel box of [`SIGMA_A`]
+/// (x, y in ±5, z from −4 to 4): with `outer` false, a glow of radiance 1 inside it at
+/// z = −1.5; with `outer` true, inside it and a second box around it (σa = 0.25; x, y in
+/// ±10, z from −6 to 6), a glow at z = −8 outside both.
+pub(crate) fn camera_in_gel_boxes(outer: bool) -> String {
     let inner = closed_box("inner", [-5.0, -5.0, -4.0], [5.0, 5.0, 4.0], "inner_mtl");
     let glow = r#"shader "glow_mtl" "mdl::media::glow" ()
 shader "inner_mtl" "mdl::media::tinted_gel" ()"#;
-    let text = scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
-    let (px, messages) = render(&text, 4, 4, 16);
-    assert!(messages.is_empty(), "{messages:#?}");
-    assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
-
+    if !outer {
+        return scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
+    }
     let outer = closed_box("outer", [-10.0, -10.0, -6.0], [10.0, 10.0, 6.0], "outer_mtl");
-    let text = scene_with(
+    scene_with(
         &format!(
             "{glow}\nshader \"outer_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" 0.25 0.25 0.25)\n{inner}{outer}{}",
             wall("w", -8.0, "glow_mtl")
         ),
         &["inner_inst", "outer_inst", "w_inst"],
         4,
-    );
-    let (px, messages) = render(&text, 4, 4, 16);
+    )
+}
+
+#[test]
+fn a_camera_inside_a_medium_sees_through_it() {
+    // The camera inside a closed gel box (σa = 0.5, 1, 2; z from −4 to 4) sees a glow of
+    // radiance 1 inside it at distance 1.5: exp(−1.5 σa) per channel. Inside that box and
+    // a second one around it (σa = 0.25; z from −6 to 6), a glow at z = −8 outside both:
+    // exp(−4 σa − 2 · 0.25), the camera's media found by rays from its position.
+    let (px, messages) = render(&camera_in_gel_boxes(false), 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
+
+    let (px, messages) = render(&camera_in_gel_boxes(true), 4, 4, 16);
     assert!(messages.is_empty(), "{messages:#?}");
     assert_pixels(&px, SIGMA_A.map(|s| (-4.0 * s - 0.5).exp()), 1e-3, "a wall outside two boxes");
 }
