@@ -3,7 +3,7 @@
 //!
 //! [`BuiltinBsdf`] is the scattering function itself, in the local shading frame (+Z the
 //! shading normal, directions pointing away from the surface, `eval` without the cosine),
-//! like the BSDFs of [`crate::bsdf`]: the path engine uses it through
+//! like the BSDFs of the [`bsdf`] crate: the path engine uses it through
 //! [`builtin_bsdf_surface`]. The classic engine runs each as the material shader of a
 //! material that has a `bsdf` but no material shader, as mental ray's default BSDF
 //! illumination does: a light loop over the non-delta lobes, final gathering for the

@@ -3,7 +3,7 @@
 //! `hdr`, `exr`) and mental images' own frame buffer files (`ct` colour, `st` scalar, `zt`
 //! depth, `nt` normals, `mt` motion, `tt` tags, `bit`).
 //!
-//! The crate knows nothing of the renderer: [`write`] takes an [`ImageData`] (linear and
+//! The crate knows nothing of the renderer: [`write()`] takes an [`ImageData`] (linear and
 //! display-referred colour, or a depth, normal, motion, tag or scalar buffer) and a
 //! [`Format`] parsed from an `output` statement's format name or a file extension.
 //!

@@ -93,20 +93,13 @@ fn carries_light(ctx: &Ctx) -> bool {
 macro_rules! maya_volume {
     ($(#[$doc:meta])* $maya:ident, $adsk:ident, $maya_name:literal, $adsk_name:literal, $params:expr, $terms:expr) => {
         $(#[$doc])*
-        pub static $maya: shader::ShaderImpl = shader::ShaderImpl {
-            name: $maya_name,
-            params: $params,
-            run: |ctx, n, out| {
-                let t = $terms(ctx, n);
-                apply(out, t);
-                true
-            },
-            volume_terms: Some($terms),
-            ..shader::ShaderImpl::PLAIN
-        };
+        pub static $maya: shader::ShaderImpl = maya_volume!(@shader $maya_name, $params, $terms);
         $(#[$doc])*
-        pub static $adsk: shader::ShaderImpl = shader::ShaderImpl {
-            name: $adsk_name,
+        pub static $adsk: shader::ShaderImpl = maya_volume!(@shader $adsk_name, $params, $terms);
+    };
+    (@shader $name:literal, $params:expr, $terms:expr) => {
+        shader::ShaderImpl {
+            name: $name,
             params: $params,
             run: |ctx, n, out| {
                 let t = $terms(ctx, n);
@@ -115,7 +108,7 @@ macro_rules! maya_volume {
             },
             volume_terms: Some($terms),
             ..shader::ShaderImpl::PLAIN
-        };
+        }
     };
 }
 

@@ -3,7 +3,7 @@
 //! Reads `.mi` text into a syntax tree ([`ast`]) that keeps every node's source position,
 //! following `$include`s (with mira's built-in standard declaration files standing in for
 //! missing `base.mi`, `architectural.mi`, …) and conditionals; prints trees back as `.mi`
-//! text ([`print`]); and reports problems as [`Diagnostic`]s that point at file, line and
+//! text ([`print()`]); and reports problems as [`Diagnostic`]s that point at file, line and
 //! column. Nothing here gives the scene a meaning: that is the `scene` crate's job.
 //!
 //! ```

@@ -8,7 +8,7 @@
 //! it is touched again (a message quoting a line, a list re-read by the serial path).
 //!
 //! A mapped file that is truncated while mapped would raise `SIGBUS` on the lost pages; the
-//! [`crate::sigbus`] guard puts zero pages there instead and marks the map, and
+//! `sigbus` guard (a private module) puts zero pages there instead and marks the map, and
 //! [`SourceText::changed_on_disk`] then reports it (as it reports a file whose length or
 //! modification time changed), so that the parse is refused with a message rather than
 //! aborting the process.

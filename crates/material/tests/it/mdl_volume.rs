@@ -68,32 +68,48 @@ fn an_unsupported_vdf_is_a_warning_at_its_line() {
     assert_eq!(fog.phase.g, 0.0, "isotropically");
 }
 
+/// A scene (no MDL modules compiled) of the shader statements `shaders`, each of the
+/// `materials` they define on a triangle of its own.
+fn triangle_scene(shaders: &str, materials: &[&str]) -> scene::Scene {
+    let faces: String = materials.iter().map(|m| format!(" c \"{m}\" 0 1 2")).collect();
+    let text = format!(
+        r#"{shaders}options "o" end options
+camera "c" end camera
+instance "ci" "c" end instance
+object "tri" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2{faces} end group end object
+instance "ti" "tri" end instance
+instgroup "root" "ci" "ti" end instgroup
+render "root" "ci" "o"
+"#
+    );
+    let parsed = mi::parse_str("t.mi", &text);
+    let mut diags = Vec::new();
+    scene::Scene::build(&parsed, 0, &mut diags).expect("a scene")
+}
+
+/// The material `name` of `scene` translated natively (no compiled MDL), asserting no
+/// warning.
+fn translated(scene: &scene::Scene, name: &str) -> material::SurfaceMaterial {
+    let m = scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no material {name}"));
+    let (surface, warnings) = material::translate(m, &scene.library, None);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    surface
+}
+
 /// `core_definitions::flex_material` (translated natively): a transparent, thick material
 /// absorbs σa = −ln(volume_color) / base_thickness inside; the default volume colour 1
 /// and a thin-walled one give no medium.
 #[test]
 fn flex_material_volume_colour_becomes_absorption() {
-    let text = r#"
+    let scene = triangle_scene(
+        r#"
 shader "flex" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1, "volume_color" 0.5 0.25 1, "base_thickness" 0.2)
 shader "plain" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1)
 shader "thin" "mdl::nvidia::core_definitions::flex_material" ("transparency" 1, "volume_color" 0.5 0.5 0.5, "thin_walled" on)
-options "o" end options
-camera "c" end camera
-instance "ci" "c" end instance
-object "tri" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 c "flex" 0 1 2 c "plain" 0 1 2 c "thin" 0 1 2 end group end object
-instance "ti" "tri" end instance
-instgroup "root" "ci" "ti" end instgroup
-render "root" "ci" "o"
-"#;
-    let parsed = mi::parse_str("t.mi", text);
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let medium = |name: &str| {
-        let m = scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no material {name}"));
-        let (surface, warnings) = material::translate(m, &scene.library, None);
-        assert!(warnings.is_empty(), "{warnings:?}");
-        surface.medium
-    };
+"#,
+        &["flex", "plain", "thin"],
+    );
+    let medium = |name: &str| translated(&scene, name).medium;
     let flex = medium("flex").expect("a medium");
     let want = Rgb::new(-(0.5f32.ln()), -(0.25f32.ln()), 0.0) / 0.2;
     assert!(close(flex.sigma_a, want, 1e-5) && flex.sigma_s == Rgb::ZERO, "{flex:?} vs σa {want:?}");
@@ -107,29 +123,17 @@ render "root" "ci" "o"
 /// and a clear glass colour give no medium; `thin_glass` has none.
 #[test]
 fn thick_glass_colour_becomes_absorption() {
-    let text = r#"
+    let scene = triangle_scene(
+        r#"
 shader "thick" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 0.5 0.25 0.8, "base_thickness" 0.2, "transmission_color" 0.9 0.8 0.7, "ior" 1)
 shader "default" "mdl::nvidia::core_definitions::thick_glass" ()
 shader "flat" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 0.5 0.5 0.5, "base_thickness" 0)
 shader "clear" "mdl::nvidia::core_definitions::thick_glass" ("glass_color" 1 1 1)
 shader "thin" "mdl::nvidia::core_definitions::thin_glass" ("glass_color" 0.5 0.5 0.5)
-options "o" end options
-camera "c" end camera
-instance "ci" "c" end instance
-object "tri" group 0 0 0 1 0 0 0 1 0 v 0 v 1 v 2 c "thick" 0 1 2 c "default" 0 1 2 c "flat" 0 1 2 c "clear" 0 1 2 c "thin" 0 1 2 end group end object
-instance "ti" "tri" end instance
-instgroup "root" "ci" "ti" end instgroup
-render "root" "ci" "o"
-"#;
-    let parsed = mi::parse_str("t.mi", text);
-    let mut diags = Vec::new();
-    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("a scene");
-    let surface = |name: &str| {
-        let m = scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no material {name}"));
-        let (surface, warnings) = material::translate(m, &scene.library, None);
-        assert!(warnings.is_empty(), "{warnings:?}");
-        surface
-    };
+"#,
+        &["thick", "default", "flat", "clear", "thin"],
+    );
+    let surface = |name: &str| translated(&scene, name);
     let thick = surface("thick");
     let medium = thick.medium.expect("a medium");
     let want = Rgb::new(-(0.5f32.ln()), -(0.25f32.ln()), -(0.8f32.ln())) / 0.2;

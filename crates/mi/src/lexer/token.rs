@@ -18,7 +18,7 @@ pub enum Tok {
     Float(f64),
     /// A backquoted binary block; the span covers the backquotes. Its length is set by the
     /// grammar (12 bytes for a vector, 4 per word in trilist and hair blocks), so the parser
-    /// may re-read it with [`Lexer::binary_exact`] when the payload holds a backquote.
+    /// may re-read it with [`Lexer::binary_exact`](super::Lexer::binary_exact) when the payload holds a backquote.
     Binary,
     /// A single-quoted hexadecimal byte string (`'0a1bff'`) of `data` elements and inline
     /// texture pixels; the span covers the quotes.

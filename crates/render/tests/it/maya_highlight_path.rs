@@ -4,18 +4,13 @@
 //! the classic c·d·I·cos θ + s·I·H(n, v, l) at every pixel.
 
 use crate::support;
+use crate::support::maya_view::{ground_points, mean, pixels, EYE};
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 32;
-
-/// Half the side of the ground the image shows (x and z in ±2.4, see `top_down`).
-const HALF: f32 = 2.4;
-
-/// The camera's position (`support::maya_view::top_down`).
-const EYE: Vec3A = Vec3A::new(0.0, 4.0, 0.0);
 
 /// A Maya light: the `.mi` light and what the formula needs.
 #[derive(Clone, Copy)]
@@ -97,36 +92,16 @@ render "root" "cam_inst" "opt"
     )
 }
 
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting the
-/// world was built without a warning.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<[f32; 4]> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba()
-}
-
-fn mean(px: &[[f32; 4]]) -> Vec3A {
-    px.iter().fold(Vec3A::ZERO, |m, p| m + Vec3A::new(p[0], p[1], p[2])) / px.len() as f32
-}
-
 /// The classic formula c·d·I·cos θ + s ⊙ I·H(n, v, l) averaged over the ground under
 /// pixel column `col` and row `row` (16 × 16 points). The lights lie in the plane z = 0,
 /// so the image is the same flipped top to bottom and the rows' direction does not matter.
 fn formula(col: usize, row: usize, light: Light, highlight: Highlight) -> Vec3A {
     const SUB: usize = 16;
-    let pixel = 2.0 * HALF / SIDE as f32;
     let mut sum = Vec3A::ZERO;
-    for a in 0..SUB {
-        for b in 0..SUB {
-            let x = -HALF + (col as f32 + (a as f32 + 0.5) / SUB as f32) * pixel;
-            let z = -HALF + (row as f32 + (b as f32 + 0.5) / SUB as f32) * pixel;
-            let p = Vec3A::new(x, 0.0, z);
-            let v = (EYE - p).normalize();
-            let (l, i) = light.towards(p);
-            sum += (ALBEDO * l.y.max(0.0) + highlight(v, l)) * i;
-        }
+    for p in ground_points(SIDE, col, row, SUB) {
+        let v = (EYE - p).normalize();
+        let (l, i) = light.towards(p);
+        sum += (ALBEDO * l.y.max(0.0) + highlight(v, l)) * i;
     }
     sum / (SUB * SUB) as f32
 }
@@ -166,10 +141,10 @@ fn maya_highlights_agree_in_both_engines_and_with_the_formula() {
                 assert!(mp[k] > 1.03 * diffuse[k], "{name}: the highlight shows: {mp} vs {diffuse}");
             }
             // The brightest pixel of the path engine's image against the formula there.
-            let peak = (0..path.len()).max_by(|&a, &b| path[a][0].total_cmp(&path[b][0])).expect("pixels");
+            let peak = (0..path.len()).max_by(|&a, &b| path[a].x.total_cmp(&path[b].x)).expect("pixels");
             let (row, col) = (peak / SIDE, peak % SIDE);
             let want = formula(col, row, light, highlight);
-            let got = Vec3A::new(path[peak][0], path[peak][1], path[peak][2]);
+            let got = path[peak];
             let lit = formula(col, row, light, |_, _| Vec3A::ZERO);
             println!("{name}: peak at column {col} row {row}: path {got}, formula {want} (diffuse {lit})");
             assert!(want.x > 1.25 * lit.x, "{name}: the peak pixel is a highlight: {want} vs {lit}");
@@ -213,8 +188,7 @@ render "root" "cam_inst" "opt"
     );
     let want = Vec3A::new(0.6, 0.5, 0.4) * 0.5 * env;
     for engine in [EngineKind::Classic, EngineKind::Path] {
-        for p in pixels(&phong_e, engine, 4) {
-            let got = Vec3A::new(p[0], p[1], p[2]);
+        for got in pixels(&phong_e, engine, 4) {
             assert!((got - want).abs().max_element() < 1e-4, "{engine:?}: {got} vs {want}");
         }
     }

@@ -5,18 +5,13 @@
 //! engine and the formula.
 
 use crate::support;
+use crate::support::maya_view::{around_peak, ground_points, mean, pixels, EYE};
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 32;
-
-/// Half the side of the ground the image shows (x and z in ±2.4 at y = 0).
-const HALF: f32 = 2.4;
-
-/// The camera's position (`support::maya_view::top_down`).
-const EYE: Vec3A = Vec3A::new(0.0, 4.0, 0.0);
 
 /// The directional light's direction (normalised in the scene) and intensity.
 const LIGHT: (f32, f32, f32) = (0.25, -0.968, 1.2);
@@ -78,38 +73,19 @@ render "root" "cam_inst" "opt"
     )
 }
 
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting the
-/// world was built without a warning.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
-
-fn mean(px: &[Vec3A]) -> Vec3A {
-    px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / px.len() as f32
-}
-
 /// The classic formula averaged over the ground under pixel (`col`, `row`) (16 × 16
 /// points) for transparency `t`: (1 − t)·C·d·I·cos θ + specularity·S·I·D(N·H) +
 /// reflectivity·environment + t·behind; and the highlight part alone (red channel).
 fn formula(t: f32, col: usize, row: usize) -> (Vec3A, f32) {
     const SUB: usize = 16;
-    let pixel = 2.0 * HALF / SIDE as f32;
     let l = -Vec3A::new(LIGHT.0, LIGHT.1, 0.0).normalize();
     let (mut sum, mut highlights) = (Vec3A::ZERO, 0.0);
-    for a in 0..SUB {
-        for b in 0..SUB {
-            let x = -HALF + (col as f32 + (a as f32 + 0.5) / SUB as f32) * pixel;
-            let z = -HALF + (row as f32 + (b as f32 + 0.5) / SUB as f32) * pixel;
-            let v = (EYE - Vec3A::new(x, 0.0, z)).normalize();
-            let h = (v + l).normalize();
-            let highlight = SPECULARITY * SPECULAR * maya::ramp_shader::blinn_distribution(ECCENTRICITY, h.y);
-            sum += ((1.0 - t) * COLOR * DIFFUSE * l.y + highlight) * LIGHT.2;
-            highlights += highlight.x * LIGHT.2;
-        }
+    for p in ground_points(SIDE, col, row, SUB) {
+        let v = (EYE - p).normalize();
+        let h = (v + l).normalize();
+        let highlight = SPECULARITY * SPECULAR * maya::ramp_shader::blinn_distribution(ECCENTRICITY, h.y);
+        sum += ((1.0 - t) * COLOR * DIFFUSE * l.y + highlight) * LIGHT.2;
+        highlights += highlight.x * LIGHT.2;
     }
     let n = (SUB * SUB) as f32;
     (sum / n + REFLECTIVITY * ENVIRONMENT + t * BEHIND, highlights / n)
@@ -140,18 +116,7 @@ fn the_ramp_shaders_highlight_and_reflection_agree_in_both_engines() {
         for k in 0..3 {
             assert!((mp[k] / mc[k] - 1.0).abs() < 0.02, "t = {t}: path {mp} vs classic {mc}");
         }
-        let peak = (0..want.len()).max_by(|&a, &b| want[a].x.total_cmp(&want[b].x)).expect("pixels");
-        let (row, col) = ((peak / SIDE).clamp(2, SIDE - 3), (peak % SIDE).clamp(2, SIDE - 3));
-        let block = |img: &[Vec3A]| {
-            let mut sum = Vec3A::ZERO;
-            for r in row - 2..=row + 2 {
-                for k in col - 2..=col + 2 {
-                    sum += img[r * SIDE + k];
-                }
-            }
-            sum / 25.0
-        };
-        let (got, expect) = (block(&path), block(&want));
+        let ((col, row), got, expect) = around_peak(SIDE, &path, &want);
         let highlight = formula(t, col, row).1;
         println!("t = {t}: around the peak ({col}, {row}): path {got}, formula {expect}");
         assert!(highlight > expect.x / 3.0, "t = {t}: the peak is a highlight: {highlight} of {expect}");

@@ -4,18 +4,13 @@
 //! unfaded parts divided by the coverage (`material::maya`, `bsdf::maya_highlight`).
 
 use crate::support;
+use crate::support::maya_view::{around_peak, ground_points, mean, pixels, EYE};
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 32;
-
-/// Half the side of the ground the image shows (x and z in ±2.4 at y = 0).
-const HALF: f32 = 2.4;
-
-/// The camera's position (`support::maya_view::top_down`).
-const EYE: Vec3A = Vec3A::new(0.0, 4.0, 0.0);
 
 /// The directional light's direction (normalised in the scene).
 const LIGHT: (f32, f32) = (0.25, -0.968);
@@ -76,41 +71,22 @@ render "root" "cam_inst" "opt"
     )
 }
 
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting the
-/// world was built without a warning.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
-
-fn mean(px: &[Vec3A]) -> Vec3A {
-    px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / px.len() as f32
-}
-
 /// The classic formula averaged over the ground under pixel (`col`, `row`) (16 × 16
 /// points): (1 − T)·c·d·I·cos θ + s·I·H(n, v, l) + r·s·F(N·V) ⊙ (reflectedColor + E) +
 /// T ⊙ behind (F Schlick's factor of `specularRollOff`, blinn's default `reflectionRolloff`) (the plane's colour, else the environment E), and its highlight part
 /// s·I·H alone. The light lies in the plane z = 0, so the rows' direction does not matter.
 fn formula(c: &Case, col: usize, row: usize) -> (Vec3A, f32) {
     const SUB: usize = 16;
-    let pixel = 2.0 * HALF / SIDE as f32;
     let l = -Vec3A::new(LIGHT.0, LIGHT.1, 0.0).normalize();
     let (mut sum, mut highlights) = (Vec3A::ZERO, 0.0);
-    for a in 0..SUB {
-        for b in 0..SUB {
-            let x = -HALF + (col as f32 + (a as f32 + 0.5) / SUB as f32) * pixel;
-            let z = -HALF + (row as f32 + (b as f32 + 0.5) / SUB as f32) * pixel;
-            let v = (EYE - Vec3A::new(x, 0.0, z)).normalize();
-            let highlight = SPECULAR * maya::specular::blinn(Vec3A::Y, v, l, c.eccentricity, 0.7);
-            // blinn's `reflectionRolloff` (on by default): Schlick's factor at N·V.
-            let reflection = REFLECTIVITY * SPECULAR * maya::specular::schlick(0.7, v.y);
-            sum += ((1.0 - T) * c.color * l.y + Vec3A::splat(highlight)) * c.intensity
-                + reflection * (c.reflected + c.environment);
-            highlights += highlight * c.intensity;
-        }
+    for p in ground_points(SIDE, col, row, SUB) {
+        let v = (EYE - p).normalize();
+        let highlight = SPECULAR * maya::specular::blinn(Vec3A::Y, v, l, c.eccentricity, 0.7);
+        // blinn's `reflectionRolloff` (on by default): Schlick's factor at N·V.
+        let reflection = REFLECTIVITY * SPECULAR * maya::specular::schlick(0.7, v.y);
+        sum += ((1.0 - T) * c.color * l.y + Vec3A::splat(highlight)) * c.intensity
+            + reflection * (c.reflected + c.environment);
+        highlights += highlight * c.intensity;
     }
     let behind = c.behind.unwrap_or(c.environment);
     let n = (SUB * SUB) as f32;
@@ -167,18 +143,7 @@ fn a_transparent_blinn_keeps_its_highlight_and_reflection_in_both_engines() {
         if c.intensity == 0.0 {
             continue;
         }
-        let peak = (0..want.len()).max_by(|&a, &b| want[a].x.total_cmp(&want[b].x)).expect("pixels");
-        let (row, col) = ((peak / SIDE).clamp(2, SIDE - 3), (peak % SIDE).clamp(2, SIDE - 3));
-        let block = |img: &[Vec3A]| {
-            let mut sum = Vec3A::ZERO;
-            for r in row - 2..=row + 2 {
-                for k in col - 2..=col + 2 {
-                    sum += img[r * SIDE + k];
-                }
-            }
-            sum / 25.0
-        };
-        let (got, expect) = (block(&path), block(&want));
+        let ((col, row), got, expect) = around_peak(SIDE, &path, &want);
         let highlight = formula(c, col, row).1;
         println!("{}: around the peak ({col}, {row}): path {got}, formula {expect}", c.name);
         assert!(highlight > expect.x / 3.0, "{}: the peak is a highlight: {highlight} of {expect}", c.name);

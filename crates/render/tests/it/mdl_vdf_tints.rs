@@ -13,35 +13,9 @@ use render::{EngineKind, Settings};
 /// of `slab` one unit thick (z from −3 to −2, an index-matched box) at a glow of radiance
 /// 1 (z = −5): the pixels and every message, 16 samples, 16 bounces.
 fn render_slab(slab: &str) -> (Vec<[f32; 4]>, Vec<String>) {
-    let text = format!(
-        r#"$include "media.mdl"
-$include "vdf_tints.mdl"
-options "opt" filter box 1 1 end options
-camera "cam" focal 1 aperture 0.01 aspect 1 resolution 4 4 end camera
-instance "cam_inst" "cam" end instance
-shader "slab_mtl" {slab}
-shader "back_mtl" "mdl::media::glow" ()
-object "slab" group
-    -3 -3 -3  3 -3 -3  -3 3 -3  3 3 -3  -3 -3 -2  3 -3 -2  -3 3 -2  3 3 -2
-    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
-    p "slab_mtl" 0 4 6 2
-    p "slab_mtl" 1 3 7 5
-    p "slab_mtl" 0 1 5 4
-    p "slab_mtl" 2 6 7 3
-    p "slab_mtl" 0 2 3 1
-    p "slab_mtl" 4 5 7 6
-end group end object
-instance "slab_inst" "slab" end instance
-object "back" group
-    -50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5
-    v 0 v 1 v 2 v 3
-    p "back_mtl" 0 1 2 3
-end group end object
-instance "back_inst" "back" end instance
-instgroup "root" "cam_inst" "slab_inst" "back_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    );
+    let glow = r#"shader "back_mtl" "mdl::media::glow" ()"#;
+    let slab = format!("shader \"slab_mtl\" {slab}");
+    let text = format!("$include \"vdf_tints.mdl\"\n{}", crate::media::slab_scene(&slab, glow, "", 4));
     let parsed = mi::parse_str("t.mi", &text);
     let modules = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../material/tests/mdl"));
     let b = support::build_parsed(&parsed, 4, &[support::mdl_modules(), modules]);

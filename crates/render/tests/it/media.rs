@@ -69,7 +69,7 @@ pub(crate) fn closed_box(name: &str, lo: [f32; 3], hi: [f32; 3], material: &str)
 /// A camera at the origin looking down −z (field of view 0.6°, `res`² pixels) at a slab of
 /// `slab` material one unit thick (z from −3 to −2) in front of `behind` (a 100 × 100 quad
 /// at z = −5 facing the camera); `extra` (lights) is added to the scene.
-fn slab_scene(slab: &str, behind: &str, extra: &str, res: u32) -> String {
+pub(crate) fn slab_scene(slab: &str, behind: &str, extra: &str, res: u32) -> String {
     format!(
         r#"$include "media.mdl"
 options "opt" filter box 1 1 end options
@@ -208,35 +208,17 @@ fn a_purely_scattering_sphere_is_a_white_furnace() {
     // 256; the mean over the pixels well inside the disc within 1 % per channel, each grey
     // pixel within 0.4.
     for (scattering, bias, spp) in [("2 2 2", 0.7f32, 64u32), ("2 2 2", -0.4, 64), ("0.5 1 2", 0.3, 256)] {
-        let text = format!(
-            r#"$include "media.mdl"
-options "opt" filter box 1 1 end options
-camera "cam" focal infinity aperture 2 aspect 1 resolution 24 24
-    environment "mib_color_mix" ("num" 0, "color_base" 1 1 1 1)
-end camera
-instance "cam_inst" "cam" end instance
-shader "ball_mtl" "mdl::media::smoke" ("scattering" {scattering}, "bias" {bias})
-{}
-instgroup "root" "cam_inst" "ball_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#,
-            ball()
-        );
-        let (px, messages) = render(&text, 24, spp, 256);
-        assert!(messages.is_empty(), "{messages:#?}");
+        let shader = format!(r#"shader "ball_mtl" "mdl::media::smoke" ("scattering" {scattering}, "bias" {bias})"#);
+        let disc = furnace_disc(&shader, spp);
         let grey = scattering == "2 2 2";
-        let (mut sum, mut n) = ([0.0f64; 3], 0);
-        for (i, p) in px.iter().enumerate() {
-            let (x, y) = ((i % 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0, (i / 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0);
-            if (x * x + y * y).sqrt() < 0.85 {
-                for k in 0..3 {
-                    assert!(!grey || (p[k] - 1.0).abs() < 0.4, "σs {scattering}, g {bias}: pixel {i} {p:?}");
-                    sum[k] += f64::from(p[k]);
-                }
-                n += 1;
+        let (mut sum, n) = ([0.0f64; 3], disc.len());
+        for (i, p) in &disc {
+            for k in 0..3 {
+                assert!(!grey || (p[k] - 1.0).abs() < 0.4, "σs {scattering}, g {bias}: pixel {i} {p:?}");
+                sum[k] += f64::from(p[k]);
             }
         }
-        let mean = sum.map(|s| s / f64::from(n));
+        let mean = sum.map(|s| s / n as f64);
         eprintln!("white furnace, σs {scattering}, g {bias}, {spp} spp: {mean:?} over {n} pixels");
         assert!(mean.iter().all(|m| (m - 1.0).abs() < 0.01), "σs {scattering}, g {bias}: mean {mean:?}");
     }
@@ -316,32 +298,65 @@ pub(crate) fn assert_pixels(px: &[[f32; 4]], want: [f32; 3], tol: f32, what: &st
     }
 }
 
-#[test]
-fn a_camera_inside_a_medium_sees_through_it() {
-    // The camera inside a closed gel box (σa = 0.5, 1, 2; z from −4 to 4) sees a glow of
-    // radiance 1 inside it at distance 1.5: exp(−1.5 σa) per channel. Inside that box and
-    // a second one around it (σa = 0.25; z from −6 to 6), a glow at z = −8 outside both:
-    // exp(−4 σa − 2 · 0.25), the camera's media found by rays from its position.
+/// The scene (4² pixels) of a camera at the origin inside a closed gel box of [`SIGMA_A`]
+/// (x, y in ±5, z from −4 to 4): with `outer` false, a glow of radiance 1 inside it at
+/// z = −1.5; with `outer` true, inside it and a second box around it (σa = 0.25; x, y in
+/// ±10, z from −6 to 6), a glow at z = −8 outside both.
+pub(crate) fn camera_in_gel_boxes(outer: bool) -> String {
     let inner = closed_box("inner", [-5.0, -5.0, -4.0], [5.0, 5.0, 4.0], "inner_mtl");
     let glow = r#"shader "glow_mtl" "mdl::media::glow" ()
 shader "inner_mtl" "mdl::media::tinted_gel" ()"#;
-    let text = scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
-    let (px, messages) = render(&text, 4, 4, 16);
-    assert!(messages.is_empty(), "{messages:#?}");
-    assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
-
+    if !outer {
+        return scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
+    }
     let outer = closed_box("outer", [-10.0, -10.0, -6.0], [10.0, 10.0, 6.0], "outer_mtl");
-    let text = scene_with(
+    scene_with(
         &format!(
             "{glow}\nshader \"outer_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" 0.25 0.25 0.25)\n{inner}{outer}{}",
             wall("w", -8.0, "glow_mtl")
         ),
         &["inner_inst", "outer_inst", "w_inst"],
         4,
-    );
-    let (px, messages) = render(&text, 4, 4, 16);
+    )
+}
+
+#[test]
+fn a_camera_inside_a_medium_sees_through_it() {
+    // The camera inside a closed gel box (σa = 0.5, 1, 2; z from −4 to 4) sees a glow of
+    // radiance 1 inside it at distance 1.5: exp(−1.5 σa) per channel. Inside that box and
+    // a second one around it (σa = 0.25; z from −6 to 6), a glow at z = −8 outside both:
+    // exp(−4 σa − 2 · 0.25), the camera's media found by rays from its position.
+    let (px, messages) = render(&camera_in_gel_boxes(false), 4, 4, 16);
+    assert!(messages.is_empty(), "{messages:#?}");
+    assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
+
+    let (px, messages) = render(&camera_in_gel_boxes(true), 4, 4, 16);
     assert!(messages.is_empty(), "{messages:#?}");
     assert_pixels(&px, SIGMA_A.map(|s| (-4.0 * s - 0.5).exp()), 1e-3, "a wall outside two boxes");
+}
+
+/// Nested shells of grey gel in front of a glow, as a scene body (see [`scene_with`]) and
+/// its instances' names: shell i has absorption `sigma[i]` (per scene unit), spans x and
+/// y in ±(`half` − i) and z from `far` + i to −4 − i, and the glow is a wall at `glow_z`.
+/// A camera ray down −z is in shell i for 2 units and in the innermost for
+/// −4 − `far` − 2·(n − 1).
+pub(crate) fn nested_gel_shells(sigma: &[f32], half: f32, far: f32, glow_z: f32) -> (String, Vec<String>) {
+    let mut body = String::from("shader \"glow_mtl\" \"mdl::media::glow\" ()\n");
+    let mut instances = Vec::new();
+    for (i, s) in sigma.iter().enumerate() {
+        let f = i as f32;
+        body += &format!("shader \"shell{i}_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" {s} {s} {s})\n");
+        body += &closed_box(
+            &format!("shell{i}"),
+            [-half + f, -half + f, far + f],
+            [half - f, half - f, -4.0 - f],
+            &format!("shell{i}_mtl"),
+        );
+        instances.push(format!("shell{i}_inst"));
+    }
+    body += &wall("w", glow_z, "glow_mtl");
+    instances.push("w_inst".into());
+    (body, instances)
 }
 
 #[test]
@@ -352,21 +367,7 @@ fn five_nested_media_keep_the_outermost() {
     // exp(−2(0.3 + 0.2 + 0.1 + 0.15) − 8 · 0.05) = exp(−1.9). A stack that forgot the
     // outermost would miss its last unit: exp(−1.6).
     let sigma = [0.3f32, 0.2, 0.1, 0.15, 0.05];
-    let mut body = String::from("shader \"glow_mtl\" \"mdl::media::glow\" ()\n");
-    let mut instances = Vec::new();
-    for (i, s) in sigma.iter().enumerate() {
-        let f = i as f32;
-        body += &format!("shader \"shell{i}_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" {s} {s} {s})\n");
-        body += &closed_box(
-            &format!("shell{i}"),
-            [-10.0 + f, -10.0 + f, -20.0 + f],
-            [10.0 - f, 10.0 - f, -4.0 - f],
-            &format!("shell{i}_mtl"),
-        );
-        instances.push(format!("shell{i}_inst"));
-    }
-    body += &wall("w", -25.0, "glow_mtl");
-    instances.push("w_inst".into());
+    let (body, instances) = nested_gel_shells(&sigma, 10.0, -20.0, -25.0);
     let names: Vec<&str> = instances.iter().map(String::as_str).collect();
     // No Russian roulette: every path crosses all ten surfaces, so the image is exact.
     let path = render::integrator::PathSettings { max_depth: 32, rr_depth: 32, ..Default::default() };
@@ -380,10 +381,24 @@ fn five_nested_media_keep_the_outermost() {
 /// its shadow flag) through the gel slab (z from −3 to −2); `extra` adds objects,
 /// `instances` their instances. The pixels of a render at 4², 4 samples.
 fn lit_through_the_slab(shadow: &str, extra: &str, instances: &[&str]) -> (Vec<[f32; 4]>, Vec<String>) {
+    let light = format!(") direction 0 0 -1 shadow {shadow}");
+    render(&wall_through_the_slab(&light, GEL_SLAB, extra, instances), 4, 4, 16)
+}
+
+/// The slab's material statement for [`wall_through_the_slab`]: the gel of [`SIGMA_A`].
+pub(crate) const GEL_SLAB: &str = r#"shader "slab_mtl" "mdl::media::tinted_gel" ()"#;
+
+/// The scene (4² pixels) of a white-ish matte wall (0.8) at z = −5 lit head-on by a
+/// directional light `sun` of colour π through the slab (z from −3 to −2) and seen
+/// through it: `light` continues the light's statement after its colour parameter (more
+/// parameters, the closing parenthesis, direction and flags), `slab` is the slab's
+/// material statement(s) (`slab_mtl`), `extra` more objects and `instances` their
+/// instances.
+pub(crate) fn wall_through_the_slab(light: &str, slab: &str, extra: &str, instances: &[&str]) -> String {
     let body = format!(
         r#"shader "matte_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)
-shader "slab_mtl" "mdl::media::tinted_gel" ()
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 shadow {shadow} end light
+{slab}
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265{light} end light
 instance "sun_inst" "sun" end instance
 {}{}{extra}"#,
         closed_box("slab", [-3.0, -3.0, -3.0], [3.0, 3.0, -2.0], "slab_mtl"),
@@ -391,7 +406,7 @@ instance "sun_inst" "sun" end instance
     );
     let mut all = vec!["sun_inst", "slab_inst", "w_inst"];
     all.extend_from_slice(instances);
-    render(&scene_with(&body, &all, 4), 4, 4, 16)
+    scene_with(&body, &all, 4)
 }
 
 /// A black wall at z = 1 (behind a camera looking down −z from z = 0 or so), facing the
@@ -458,10 +473,12 @@ fn both_engines_absorb_alike_in_a_slab() {
     }
 }
 
-/// The mean over the pixels well inside the sphere's disc of the white furnace of
-/// [`a_purely_scattering_sphere_is_a_white_furnace`] with the sphere's material `shader`
-/// (a `.mi` shader line for `ball_mtl`), `spp` samples, bounces up to 256.
-fn furnace_mean(shader: &str, spp: u32) -> [f64; 3] {
+/// The white furnace of [`a_purely_scattering_sphere_is_a_white_furnace`] with the
+/// sphere's material `shader` (a `.mi` shader line for `ball_mtl`), `spp` samples, bounces
+/// up to 256 (orthographic, 24², the square x, y ∈ [−1, 1] under a uniform environment of
+/// radiance 1): the pixels well inside the sphere's disc (centres within 0.85 of its
+/// axis) with their indices, asserting no message.
+fn furnace_disc(shader: &str, spp: u32) -> Vec<(usize, [f32; 4])> {
     let text = format!(
         r#"$include "media.mdl"
 options "opt" filter box 1 1 end options
@@ -478,17 +495,23 @@ render "root" "cam_inst" "opt"
     );
     let (px, messages) = render(&text, 24, spp, 256);
     assert!(messages.is_empty(), "{messages:#?}");
-    let (mut sum, mut n) = ([0.0f64; 3], 0);
-    for (i, p) in px.iter().enumerate() {
+    let inside = |i: usize| {
         let (x, y) = ((i % 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0, (i / 24) as f32 / 12.0 - 1.0 + 1.0 / 24.0);
-        if (x * x + y * y).sqrt() < 0.85 {
-            for k in 0..3 {
-                sum[k] += f64::from(p[k]);
-            }
-            n += 1;
+        (x * x + y * y).sqrt() < 0.85
+    };
+    px.into_iter().enumerate().filter(|(i, _)| inside(*i)).collect()
+}
+
+/// The mean over the pixels of [`furnace_disc`].
+fn furnace_mean(shader: &str, spp: u32) -> [f64; 3] {
+    let disc = furnace_disc(shader, spp);
+    let mut sum = [0.0f64; 3];
+    for (_, p) in &disc {
+        for k in 0..3 {
+            sum[k] += f64::from(p[k]);
         }
     }
-    sum.map(|s| s / f64::from(n))
+    sum.map(|s| s / disc.len() as f64)
 }
 
 #[test]
@@ -523,16 +546,7 @@ fn both_engines_light_a_wall_through_an_absorbing_slab_alike() {
     // the slab's absorption on the shadow rays the classic wall would be exp(σa) brighter.
     let (path, messages) = lit_through_the_slab("on", "", &[]);
     assert!(messages.is_empty(), "{messages:#?}");
-    let body = format!(
-        r#"shader "matte_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)
-shader "slab_mtl" "mdl::media::tinted_gel" ()
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265, "shadow" on) direction 0 0 -1 shadow on end light
-instance "sun_inst" "sun" end instance
-{}{}"#,
-        closed_box("slab", [-3.0, -3.0, -3.0], [3.0, 3.0, -2.0], "slab_mtl"),
-        wall("w", -5.0, "matte_mtl")
-    );
-    let text = scene_with(&body, &["sun_inst", "slab_inst", "w_inst"], 4);
+    let text = wall_through_the_slab(r#", "shadow" on) direction 0 0 -1 shadow on"#, GEL_SLAB, "", &[]);
     let (classic, messages) = render_by(EngineKind::Classic, &text, 4, 4, Default::default());
     assert!(messages.is_empty(), "{messages:#?}");
     eprintln!("wall lit through the slab: classic {:?} / π, path {:?}", classic[0], path[0]);

@@ -17,7 +17,10 @@ use std::f32::consts::PI;
 use render::integrator::PathSettings;
 use render::EngineKind;
 
-use super::media::{assert_pixels, closed_box, render_by, scene_with, wall, SIGMA_A};
+use super::media::{
+    assert_pixels, camera_in_gel_boxes, closed_box, nested_gel_shells, render_by, scene_with, wall,
+    wall_through_the_slab, SIGMA_A,
+};
 
 /// Renders `text` with the classic engine at 4², `spp` samples: the pixels and every message.
 fn classic(text: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
@@ -41,25 +44,12 @@ fn a_classic_camera_inside_a_medium_sees_through_it() {
     // radiance 1 at distance 1.5 inside a gel box around the camera: exp(−1.5 σa); inside
     // that box and a second (σa 0.25) a glow outside both: exp(−4 σa − 0.5). Treated as
     // outside, the camera would see 1 and exp(−σa·4 + …) of the far side only.
-    let inner = closed_box("inner", [-5.0, -5.0, -4.0], [5.0, 5.0, 4.0], "inner_mtl");
-    let glow = r#"shader "glow_mtl" "mdl::media::glow" ()
-shader "inner_mtl" "mdl::media::tinted_gel" ()"#;
-    let text = scene_with(&format!("{glow}\n{inner}{}", wall("w", -1.5, "glow_mtl")), &["inner_inst", "w_inst"], 4);
-    let (px, messages) = classic(&text, 4);
+    let (px, messages) = classic(&camera_in_gel_boxes(false), 4);
     assert!(messages.is_empty(), "{messages:#?}");
     eprintln!("classic camera in one box: {:?}", px[0]);
     assert_pixels(&px, SIGMA_A.map(|s| (-1.5 * s).exp()), 1e-3, "a wall inside the box");
 
-    let outer = closed_box("outer", [-10.0, -10.0, -6.0], [10.0, 10.0, 6.0], "outer_mtl");
-    let text = scene_with(
-        &format!(
-            "{glow}\nshader \"outer_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" 0.25 0.25 0.25)\n{inner}{outer}{}",
-            wall("w", -8.0, "glow_mtl")
-        ),
-        &["inner_inst", "outer_inst", "w_inst"],
-        4,
-    );
-    let (px, messages) = classic(&text, 4);
+    let (px, messages) = classic(&camera_in_gel_boxes(true), 4);
     assert!(messages.is_empty(), "{messages:#?}");
     eprintln!("classic camera in two boxes: {:?}", px[0]);
     assert_pixels(&px, SIGMA_A.map(|s| (-4.0 * s - 0.5).exp()), 1e-3, "a wall outside two boxes");
@@ -156,18 +146,7 @@ fn classic_wall_through_the_slab(light: &str, slab: &str, extra: &str, instances
 
 /// [`classic_wall_through_the_slab`] with `options` added to the options block.
 fn classic_wall_with_options(light: &str, slab: &str, extra: &str, instances: &[&str], options: &str) -> Vec<[f32; 4]> {
-    let body = format!(
-        r#"shader "matte_mtl" "mdl::export_multi::matte" ("tint" 0.8 0.8 0.8)
-{slab}
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265, {light} end light
-instance "sun_inst" "sun" end instance
-{}{}{extra}"#,
-        closed_box("slab", [-3.0, -3.0, -3.0], [3.0, 3.0, -2.0], "slab_mtl"),
-        wall("w", -5.0, "matte_mtl")
-    );
-    let mut all = vec!["sun_inst", "slab_inst", "w_inst"];
-    all.extend_from_slice(instances);
-    let text = scene_with(&body, &all, 4)
+    let text = wall_through_the_slab(&format!(", {light}"), slab, extra, instances)
         .replace("filter box 1 1 end options", &format!("filter box 1 1 {options} end options"));
     let (px, messages) = classic(&text, 4);
     assert!(messages.is_empty(), "{messages:#?}");
@@ -299,21 +278,7 @@ fn boundary_hits_visit_what_shadow_hits_visits() {
 #[test]
 fn ten_nested_media_keep_the_outermost_in_the_classic_engine() {
     let sigma = [0.1f32, 0.05, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.01];
-    let mut body = String::from("shader \"glow_mtl\" \"mdl::media::glow\" ()\n");
-    let mut instances = Vec::new();
-    for (i, s) in sigma.iter().enumerate() {
-        let f = i as f32;
-        body += &format!("shader \"shell{i}_mtl\" \"mdl::media::tinted_gel\" (\"absorption\" {s} {s} {s})\n");
-        body += &closed_box(
-            &format!("shell{i}"),
-            [-20.0 + f, -20.0 + f, -30.0 + f],
-            [20.0 - f, 20.0 - f, -4.0 - f],
-            &format!("shell{i}_mtl"),
-        );
-        instances.push(format!("shell{i}_inst"));
-    }
-    body += &wall("w", -35.0, "glow_mtl");
-    instances.push("w_inst".into());
+    let (body, instances) = nested_gel_shells(&sigma, 20.0, -30.0, -35.0);
     let names: Vec<&str> = instances.iter().map(String::as_str).collect();
     // Twenty surfaces to cross: a refraction depth past that.
     let text = scene_with(&body, &names, 4).replace("filter box 1 1", "filter box 1 1 trace depth 64 64 128");

@@ -15,25 +15,6 @@ fn render(text: &str, spp: u32) -> (Vec<[f32; 4]>, Vec<String>) {
     (support::render_world(&world, &shading, &settings).0.rgba(), messages)
 }
 
-/// An axis-aligned box as an object with six outward-facing quads.
-fn box_object(name: &str, material: &str, lo: [f32; 3], hi: [f32; 3]) -> String {
-    let v = |i: usize| {
-        let p = [
-            if i & 1 == 0 { lo[0] } else { hi[0] },
-            if i & 2 == 0 { lo[1] } else { hi[1] },
-            if i & 4 == 0 { lo[2] } else { hi[2] },
-        ];
-        format!("{} {} {}", p[0], p[1], p[2])
-    };
-    let points: Vec<String> = (0..8).map(v).collect();
-    let verts: String = (0..8).map(|i| format!(" v {i}")).collect();
-    // Counter-clockwise seen from outside.
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    let polys: String =
-        quads.iter().map(|q| format!(" c \"{material}\" {} {} {} {}\n", q[0], q[1], q[2], q[3])).collect();
-    format!("object \"{name}\" group\n {}\n{verts}\n{polys} end group end object\ninstance \"{name}_inst\" \"{name}\" end instance\n", points.join("  "))
-}
-
 /// A camera at the origin looking down −Z (`focal` "infinity" for orthographic), `res`²
 /// pixels, a one-pixel box filter, black background; `lens` and `env` go into the camera.
 fn scene(camera: &str, res: u32, body: &str, instances: &[&str]) -> String {
@@ -65,7 +46,7 @@ fn roundcorners_turns_the_normal_at_a_box_edge_and_leaves_it_elsewhere() {
     let body = format!(
         "shader \"rc\" \"mia_roundcorners\" (\"radius\" {radius}, \"bump_mode\" 6)\n\
          material \"normal_mtl\" \"mib_color_mix\" (\"num\" 0, \"color_base\" = \"rc\") end material\n{}",
-        box_object("cube", "normal_mtl", [-3.0, -3.0, -7.0], [0.5, 3.0, -5.0])
+        support::box_object("cube", "normal_mtl", [-3.0, -3.0, -7.0], [0.5, 3.0, -5.0], "")
     );
     let res = 32;
     let (pixels, messages) = render(&scene("focal infinity aperture 2", res, &body, &["cube_inst"]), 16);
@@ -113,7 +94,7 @@ fn dot_scene(lens: &str, res: u32, x: f32, y: f32, z: f32, side: f32) -> String 
     let body = format!(
         "{}{}",
         constant("white", 1.0),
-        box_object("dot", "white", [x - h, y - h, -z - 1e-3], [x + h, y + h, -z])
+        support::box_object("dot", "white", [x - h, y - h, -z - 1e-3], [x + h, y + h, -z], "")
     );
     scene(&format!("focal 1 aperture 2 {lens}"), res, &body, &["dot_inst"])
 }
@@ -173,8 +154,11 @@ fn bokeh_circle_of_confusion_has_the_thin_lens_diameter() {
 #[test]
 fn envblur_at_blur_zero_is_its_input_and_blurred_keeps_a_constant() {
     // Only the environment is in view (a box behind the camera gives the scene geometry).
-    let behind =
-        format!("{}{}", constant("white", 1.0), box_object("behind", "white", [-1.0, -1.0, 10.0], [1.0, 1.0, 11.0]));
+    let behind = format!(
+        "{}{}",
+        constant("white", 1.0),
+        support::box_object("behind", "white", [-1.0, -1.0, 10.0], [1.0, 1.0, 11.0], "")
+    );
     let cases = [
         ("mia_physicalsky", "\"y_is_up\" on, \"sun_direction\" 0.3 0.4 -0.8", 0.0),
         ("mib_color_mix", "\"num\" 0, \"color_base\" 0.2 0.4 0.8 1", 0.3),

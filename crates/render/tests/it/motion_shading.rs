@@ -100,28 +100,6 @@ fn camera_facing_hair_keeps_facing_a_turning_instance() {
     }
 }
 
-/// An axis-aligned box as an object with six outward-facing quads, and its instance
-/// (`placement` in it).
-fn box_object(material: &str, lo: [f32; 3], hi: [f32; 3], placement: &str) -> String {
-    let v = |i: usize| {
-        let p = [
-            if i & 1 == 0 { lo[0] } else { hi[0] },
-            if i & 2 == 0 { lo[1] } else { hi[1] },
-            if i & 4 == 0 { lo[2] } else { hi[2] },
-        ];
-        format!("{} {} {}", p[0], p[1], p[2])
-    };
-    let points: Vec<String> = (0..8).map(v).collect();
-    let verts: String = (0..8).map(|i| format!(" v {i}")).collect();
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    let polys: String =
-        quads.iter().map(|q| format!(" c \"{material}\" {} {} {} {}\n", q[0], q[1], q[2], q[3])).collect();
-    format!(
-        "object \"cube\" group\n {}\n{verts}\n{polys} end group end object\ninstance \"cube_inst\" \"cube\" {placement} end instance\n",
-        points.join("  ")
-    )
-}
-
 /// A box whose top face (z = −5, facing the camera) ends at x = 0.5 in its object space,
 /// moved by `placement`, its material showing `mia_roundcorners`' rounded normal (radius
 /// 0.25, world space) as its colour; a 32×32 orthographic view 2 units wide, `options` in
@@ -138,7 +116,7 @@ material "normal_mtl" "mib_color_mix" ("num" 0, "color_base" = "rc") end materia
 instgroup "root" "cam_inst" "cube_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#,
-        box_object("normal_mtl", [-3.0, -3.0, -7.0], [0.5, 3.0, -5.0], placement)
+        support::box_object("cube", "normal_mtl", [-3.0, -3.0, -7.0], [0.5, 3.0, -5.0], placement)
     )
 }
 

@@ -1,5 +1,8 @@
 //! The view the Maya path-engine tests share: a square image looking straight down at the
-//! ground from 4 above.
+//! ground from 4 above, and what their checks against a formula share.
+
+use glam::Vec3A;
+use render::{EngineKind, Settings};
 
 /// The `.mi` options, camera and camera instance of a `side` × `side` pixel image looking
 /// down −y at the plane y = 0 from (0, 4, 0) (focal 1, aperture 1.2: x and z in ±2.4 on
@@ -11,4 +14,57 @@ pub fn top_down(side: usize) -> String {
          camera \"cam\" focal 1 aperture 1.2 aspect 1 resolution {side} {side} end camera\n\
          instance \"cam_inst\" \"cam\" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance"
     )
+}
+
+/// Half the side of the ground [`top_down`] shows: x and z in ±`HALF` at y = 0 (scene units).
+pub const HALF: f32 = 2.4;
+
+/// The camera's position in [`top_down`] (world space).
+pub const EYE: Vec3A = Vec3A::new(0.0, 4.0, 0.0);
+
+/// The `sub` × `sub` points of the ground (y = 0, world space) spread evenly over pixel
+/// column `col` and row `row` of a `side` × `side` [`top_down`] image, at the centres of
+/// their cells: where a formula is averaged to compare with a pixel.
+pub fn ground_points(side: usize, col: usize, row: usize, sub: usize) -> impl Iterator<Item = Vec3A> {
+    let pixel = 2.0 * HALF / side as f32;
+    (0..sub).flat_map(move |a| {
+        (0..sub).map(move |b| {
+            let x = -HALF + (col as f32 + (a as f32 + 0.5) / sub as f32) * pixel;
+            let z = -HALF + (row as f32 + (b as f32 + 0.5) / sub as f32) * pixel;
+            Vec3A::new(x, 0.0, z)
+        })
+    })
+}
+
+/// The RGB pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting
+/// the world was built without a warning.
+pub fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
+    let (scene, shading) = super::build_clean(text);
+    let world = render::World::from_scene_shaded(&scene, Some(&shading));
+    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
+    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
+    super::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
+}
+
+/// The mean of `px`.
+pub fn mean(px: &[Vec3A]) -> Vec3A {
+    px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / px.len() as f32
+}
+
+/// The 5 × 5 pixels about the peak of a `side` × `side` image `want` (its brightest red
+/// pixel, moved two pixels in from the border): the peak's (column, row), and the means
+/// of those pixels in `got` and in `want`.
+pub fn around_peak(side: usize, got: &[Vec3A], want: &[Vec3A]) -> ((usize, usize), Vec3A, Vec3A) {
+    let peak = (0..want.len()).max_by(|&a, &b| want[a].x.total_cmp(&want[b].x)).expect("pixels");
+    let (row, col) = ((peak / side).clamp(2, side - 3), (peak % side).clamp(2, side - 3));
+    let block = |img: &[Vec3A]| {
+        let mut sum = Vec3A::ZERO;
+        for r in row - 2..=row + 2 {
+            for k in col - 2..=col + 2 {
+                sum += img[r * side + k];
+            }
+        }
+        sum / 25.0
+    };
+    ((col, row), block(got), block(want))
 }

@@ -3,7 +3,8 @@
 //! it at once ([`render_text`]); scenes with MDL module materials through the render
 //! pipeline's world stage ([`build_parsed`]); and the textured square the material tests and
 //! benchmarks look at ([`lit_square`]); the top-down view of the Maya path-engine tests
-//! ([`maya_view`]). The benchmarks include this file too.
+//! ([`maya_view`]); a box object of quads ([`box_object`]). The benchmarks include this file
+//! too.
 
 #![allow(dead_code)]
 
@@ -166,4 +167,27 @@ pub fn mean(px: &[[f32; 4]], width: usize, (x0, x1): (usize, usize), (y0, y1): (
         }
     }
     sum.map(|s| s / n)
+}
+
+/// An axis-aligned box from `lo` to `hi` (world space) as `.mi` text: object `name` of six
+/// quads of `material`, counter-clockwise seen from outside, and its instance
+/// `{name}_inst` with `placement` (transform or motion statements; may be empty).
+pub fn box_object(name: &str, material: &str, lo: [f32; 3], hi: [f32; 3], placement: &str) -> String {
+    let v = |i: usize| {
+        let p = [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ];
+        format!("{} {} {}", p[0], p[1], p[2])
+    };
+    let points: Vec<String> = (0..8).map(v).collect();
+    let verts: String = (0..8).map(|i| format!(" v {i}")).collect();
+    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let polys: String =
+        quads.iter().map(|q| format!(" c \"{material}\" {} {} {} {}\n", q[0], q[1], q[2], q[3])).collect();
+    format!(
+        "object \"{name}\" group\n {}\n{verts}\n{polys} end group end object\ninstance \"{name}_inst\" \"{name}\" {placement} end instance\n",
+        points.join("  ")
+    )
 }

@@ -1,0 +1,249 @@
+//! Lowering a BSDF tree to bsdf's general lobe sum ([`GeneralSum`]): any constant-weight
+//! sum of elemental lobes under mixes, tints and layers, each lobe weighed by the layer
+//! curves (Fresnel, Schlick, thin film, sheen albedo) above and below it, in the frame of
+//! its layer's own normal — a compact [`SurfaceModel::MdlLobes`] where it fits, else a wide
+//! sum.
+
+use bsdf::beckmann::Beckmann;
+use bsdf::microfacet::Ggx;
+use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
+use glam::Vec4;
+
+use super::diffuse_only;
+use crate::mdl_modules::natives::mix_weights;
+use crate::mdl_modules::value::{Df, Leaf, ScatterMode};
+use crate::SurfaceModel;
+
+/// Adds `df` scaled by `scale` to a general sum of lobes (two glossy roughnesses,
+/// Beckmann, sheen, layer curves…), each lobe weighed by the curves as `role` says;
+/// `film` is a `thin_film` (thickness in nm, film index) over `df`. False if the tree has
+/// anything else, or more lobes, curves or normals than `sum` holds.
+///
+/// A film changes the Fresnel terms of what it covers (MDL's `thin_film`): it reaches
+/// through mixes, tints, weighted layers, directional factors and a sheen's base to each
+/// `fresnel_layer` / `color_fresnel_layer` (whose curve becomes the film's Airy
+/// reflectance over the layer's index) and `custom_curve_layer` (read as the Fresnel layer
+/// whose normal reflectivity it has, index (1 + √R₀)/(1 − √R₀), R₀ the mean of
+/// `normal_reflectivity`); elemental BSDFs in reflection have no Fresnel term for it to
+/// change and are unchanged.
+///
+/// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
+/// own `normal` puts its lobes and its curve in the frame of that normal (at most `F`
+/// normals a sum).
+fn add_general<const N: usize, const C: usize, const F: usize>(
+    df: &Df,
+    scale: Rgb,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    role: Role,
+    film: Option<(f32, Rgb)>,
+    frame: u8,
+) -> bool {
+    let alpha = |(u, v): &(Leaf, Leaf)| (u.get(hit).x.max(0.0), v.get(hit).x.max(0.0));
+    let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
+    match df {
+        Df::Black => true,
+        Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
+        Df::DiffuseTransmission(tint) => push(scale * tint.get(hit), Lobe::Translucent),
+        Df::Specular { tint, mode: ScatterMode::Reflect } => push(scale * tint.get(hit), Lobe::Mirror),
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann } => {
+            let (au, av) = alpha(roughness);
+            let lobe = if *beckmann {
+                Lobe::Beckmann(Beckmann::new(au, av))
+            } else {
+                let g = Ggx { alpha_x: au, alpha_y: av };
+                if g.is_smooth() {
+                    Lobe::Mirror
+                } else {
+                    Lobe::Ggx(g)
+                }
+            };
+            push(scale * tint.get(hit), lobe)
+        }
+        Df::Backscatter { tint, roughness } => {
+            let (au, av) = alpha(roughness);
+            let g = Ggx { alpha_x: au, alpha_y: av };
+            !g.is_smooth() && push(scale * tint.get(hit), Lobe::Backscatter(g))
+        }
+        Df::Ward { tint, roughness } => {
+            let (au, av) = alpha(roughness);
+            push(scale * tint.get(hit), Lobe::Ward(Beckmann::new(au, av)))
+        }
+        Df::Sheen { tint, roughness, multiscatter_tint, multiscatter } => {
+            // The base receives what the sheen leaves: it lies under the sheen's albedo.
+            let r = roughness.get(hit).x;
+            let tint = tint.get(hit);
+            let curve = CurveKind::SheenAlbedo { roughness: r };
+            let frames = (frame, frame);
+            let Some((_, under)) = layer_roles(curve, tint, multiscatter, role, hit, sum, frames) else { return false };
+            sum.push_in_frame(scale * tint, Lobe::Sheen(r), role, frame)
+                && add_general(
+                    multiscatter,
+                    scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
+                    hit,
+                    sum,
+                    under,
+                    film,
+                    frame,
+                )
+        }
+        Df::Mix { parts, clamped } => {
+            let mut ok = true;
+            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
+            ok
+        }
+        Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
+            let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            add_general(layer, scale * w, hit, sum, role, film, own)
+                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame)
+        }
+        Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
+            let curve = match film {
+                Some((thickness_nm, film_ior)) => CurveKind::ThinFilm { ior: *ior, film_ior, thickness_nm },
+                None => CurveKind::Fresnel { ior: *ior },
+            };
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+        }
+        Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => {
+            let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            let curve = match film {
+                Some((thickness_nm, film_ior)) => {
+                    CurveKind::ThinFilm { ior: ior_of_reflectivity(normal), film_ior, thickness_nm }
+                }
+                None => CurveKind::Schlick {
+                    normal,
+                    grazing: grazing.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
+                    exponent: exponent.get(hit).x.max(0.0),
+                },
+            };
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+        }
+        Df::DirectionalFactor { normal, grazing, exponent, base } => {
+            let curve = CurveKind::Schlick {
+                normal: normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
+                grazing: grazing.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
+                exponent: exponent.get(hit).x.max(0.0),
+            };
+            let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
+        }
+        Df::ThinFilm { thickness, ior, base } => {
+            let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
+            add_general(base, scale, hit, sum, role, film, frame)
+        }
+        _ => false,
+    }
+}
+
+/// The index of refraction of the dielectric whose Fresnel reflectance at normal incidence
+/// is the mean of `r0` (channels in [0, 1]): (1 + √R₀)/(1 − √R₀), at most 100.
+fn ior_of_reflectivity(r0: Rgb) -> f32 {
+    let s = ((r0.x + r0.y + r0.z) / 3.0).clamp(0.0, 1.0).sqrt();
+    ((1.0 + s) / (1.0 - s).max(1e-6)).min(100.0)
+}
+
+/// The frame a layer's lobes live in: its own normal's (added to `sum`), or `frame` (the
+/// frame around it) without one; `None` when the sum holds no more frames.
+fn own_frame<const N: usize, const C: usize, const F: usize>(
+    layer_normal: Option<Leaf>,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    frame: u8,
+) -> Option<u8> {
+    match layer_normal {
+        None => Some(frame),
+        Some(n) => {
+            let n = n.get(hit);
+            // A normal of no direction leaves the layer in the frame around it.
+            if n.length_squared() > 0.0 && n.is_finite() {
+                sum.add_normal(n)
+            } else {
+                Some(frame)
+            }
+        }
+    }
+}
+
+/// Adds the curve of a layer of weight `weight` over `base` to `sum`: the roles of the
+/// layer's and the base's lobes (`role` plus the curve's bit in `over`, `under`). `frames`
+/// are the base's frame and the layer's (whose normal the curve measures its angles
+/// from). The base's share is normalised when it is Lambertian, under no other curve and
+/// in the layer's frame (then a white base stays lossless).
+fn layer_roles<const N: usize, const C: usize, const F: usize>(
+    curve: CurveKind,
+    weight: Rgb,
+    base: &Df,
+    role: Role,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    (frame, own): (u8, u8),
+) -> Option<(Role, Role)> {
+    let lambertian = role.under == 0 && frame == own && diffuse_only(base, hit).is_some_and(|(_, sigma)| sigma == 0.0);
+    let k = sum.add_curve_in_frame(LayerCurve::new(curve, weight, lambertian), own)?;
+    Some((Role { over: role.over | 1 << k, ..role }, Role { under: role.under | 1 << k, ..role }))
+}
+
+/// Adds a layer weighed by `curve` (`custom_curve_layer`, `fresnel_layer`, a film on one):
+/// the base in `frames.0`, the layer and its curve in `frames.1`.
+#[allow(clippy::too_many_arguments)]
+fn curve_layer<const N: usize, const C: usize, const F: usize>(
+    curve: CurveKind,
+    weight: Rgb,
+    layer: &Df,
+    base: &Df,
+    scale: Rgb,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    role: Role,
+    frames: (u8, u8),
+) -> bool {
+    let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum, frames) else { return false };
+    add_general(layer, scale, hit, sum, over, None, frames.1)
+        && add_general(base, scale, hit, sum, under, None, frames.0)
+}
+
+/// The tree as a lobe sum and its diffuse colour, if it is one: a compact
+/// [`SurfaceModel::MdlLobes`] where it fits (the common case, copied into each hit's BSDF),
+/// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs) or, lowered at a hit
+/// (`per_hit`), a [`SurfaceModel::MdlWideAt`] in the thread's ring of wide sums.
+pub(super) fn general(df: &Df, hit: &[Vec4], per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
+    let mut sum = Lobes::default();
+    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
+        return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
+    }
+    if !filled(&sum) {
+        return None;
+    }
+    let mut wide = WideLobes::default();
+    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0) {
+        return None;
+    }
+    let model = if per_hit {
+        SurfaceModel::MdlWideAt(crate::wide_slots::WideSlot::store(&wide))
+    } else {
+        SurfaceModel::MdlWide(Box::new(bsdf::SharedLobes::new(wide)))
+    };
+    Some((diffuse_of(&wide), model))
+}
+
+/// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
+fn diffuse_of<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> Rgb {
+    let diffuse = sum.parts().filter(|(_, l)| matches!(l, Lobe::Diffuse(_))).fold(Rgb::ZERO, |s, (w, _)| s + w);
+    diffuse.clamp(Rgb::ZERO, Rgb::ONE)
+}
+
+/// Whether a sum whose lowering stopped is full (a lobe, curve or normal more than it
+/// holds: [`GeneralSum::push_in_frame`], [`GeneralSum::add_curve_in_frame`] and
+/// [`GeneralSum::add_normal`] refuse only then).
+fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> bool {
+    sum.len() == N || usize::from(sum.curve_count) == C || usize::from(sum.normal_count) == F
+}
+
+/// Whether lowering `df` as a wide lobe sum stopped with the sum full.
+pub(super) fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
+    let mut sum = WideLobes::default();
+    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) && filled(&sum)
+}
