@@ -533,11 +533,11 @@ impl HitExpr {
     /// The value at the shading point `s`.
     #[inline]
     pub fn eval(&self, s: &State) -> Vec4 {
-        self.eval_in(s, &mut NoFrame)
+        self.eval_in(s, NoFrame)
     }
 
     /// The value at the shading point `s` inside the per-hit loops whose slots `f` holds.
-    pub fn eval_in<F: Slots>(&self, s: &State, f: &mut F) -> Vec4 {
+    pub fn eval_in<F: Slots>(&self, s: &State, f: F) -> Vec4 {
         match self {
             HitExpr::Slot(k) => f.slot(*k),
             HitExpr::LoopOut(l, k) => l.run(s, f).slot(*k),
@@ -559,7 +559,7 @@ impl HitExpr {
                 }
             }
             HitExpr::Math(func, args) => {
-                let mut arg = |i: usize| args.get(i).map_or(Vec4::ZERO, |a| a.eval_in(s, f));
+                let arg = |i: usize| args.get(i).map_or(Vec4::ZERO, |a| a.eval_in(s, f));
                 let (a, b, c) = (arg(0), arg(1), arg(2));
                 math(*func, a, b, c)
             }

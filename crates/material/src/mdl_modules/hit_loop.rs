@@ -13,6 +13,7 @@
 //! together — each turn counts the nodes its condition and body visit — and a loop that
 //! reaches that stops where it is, its variables keeping the values of its last turn.
 
+use std::cell::Cell;
 use std::sync::Arc;
 
 use glam::Vec4;
@@ -71,29 +72,31 @@ impl HitLoop {
     }
 
     /// Runs the loop at the shading point `s` around `outer`'s slots: the slots after it.
-    pub fn run<F: Slots>(&self, s: &State, outer: &mut F) -> Frame {
+    /// Never inlined: its arrays would enlarge the stack frame of every evaluation.
+    #[inline(never)]
+    pub fn run<F: Slots>(&self, s: &State, outer: F) -> Frame {
         let mut f = outer.enter();
         let base = usize::from(self.base);
         let mut fresh = [Vec4::ZERO; MAX_LOOP_SLOTS];
         let n = self.init.len().min(MAX_LOOP_SLOTS.saturating_sub(base));
         for (k, e) in self.init.iter().take(n).enumerate() {
-            fresh[k] = e.eval_in(s, &mut f);
+            fresh[k] = e.eval_in(s, &f);
         }
         f.slots[base..base + n].copy_from_slice(&fresh[..n]);
         let mut first = true;
         loop {
-            if (self.test_first || !first) && self.cond.eval_in(s, &mut f).x == 0.0 {
+            if (self.test_first || !first) && self.cond.eval_in(s, &f).x == 0.0 {
                 break;
             }
             first = false;
-            f.steps += self.turn_cost;
-            if f.steps > MAX_LOOP_STEPS {
+            f.steps.set(f.steps.get() + self.turn_cost);
+            if f.steps.get() > MAX_LOOP_STEPS {
                 break;
             }
             for (k, e) in self.next.iter().take(n).enumerate() {
-                fresh[k] = e.eval_in(s, &mut f);
+                fresh[k] = e.eval_in(s, &f);
             }
-            let exit = self.exit.eval_in(s, &mut f).x != 0.0;
+            let exit = self.exit.eval_in(s, &f).x != 0.0;
             f.slots[base..base + n].copy_from_slice(&fresh[..n]);
             if exit {
                 break;
@@ -105,52 +108,53 @@ impl HitLoop {
 }
 
 /// The slots of the per-hit loops an evaluation is inside, and the steps they took.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Frame {
     /// Slot values.
     pub slots: [Vec4; MAX_LOOP_SLOTS],
     /// Loop steps taken so far in this evaluation.
-    pub steps: u64,
+    pub steps: Cell<u64>,
 }
 
-/// Where an evaluation reads loop slots: nowhere outside loops ([`NoFrame`], no cost), a
-/// [`Frame`] inside one.
-pub trait Slots {
+/// Where an evaluation reads loop slots: nowhere outside loops ([`NoFrame`], a value of no
+/// size, so that evaluations outside loops pass nothing more), a [`Frame`] inside one.
+pub trait Slots: Copy {
     /// Slot `k`'s value (0 where there is none).
-    fn slot(&self, k: u8) -> Vec4;
+    fn slot(self, k: u8) -> Vec4;
     /// The frame a loop starting here runs in.
-    fn enter(&self) -> Frame;
+    fn enter(self) -> Frame;
     /// Takes back the steps the loop run in `inner` took.
-    fn leave(&mut self, inner: &Frame);
+    fn leave(self, inner: &Frame);
 }
 
 /// No loop around: no slots, and each loop started here has its own steps.
+#[derive(Clone, Copy, Debug)]
 pub struct NoFrame;
 
 impl Slots for NoFrame {
     #[inline]
-    fn slot(&self, _: u8) -> Vec4 {
+    fn slot(self, _: u8) -> Vec4 {
         Vec4::ZERO
     }
 
-    fn enter(&self) -> Frame {
-        Frame { slots: [Vec4::ZERO; MAX_LOOP_SLOTS], steps: 0 }
+    fn enter(self) -> Frame {
+        Frame { slots: [Vec4::ZERO; MAX_LOOP_SLOTS], steps: Cell::new(0) }
     }
 
-    fn leave(&mut self, _: &Frame) {}
+    fn leave(self, _: &Frame) {}
 }
 
-impl Slots for Frame {
+impl Slots for &Frame {
     #[inline]
-    fn slot(&self, k: u8) -> Vec4 {
+    fn slot(self, k: u8) -> Vec4 {
         self.slots.get(usize::from(k)).copied().unwrap_or(Vec4::ZERO)
     }
 
-    fn enter(&self) -> Frame {
-        *self
+    fn enter(self) -> Frame {
+        self.clone()
     }
 
-    fn leave(&mut self, inner: &Frame) {
-        self.steps = inner.steps;
+    fn leave(self, inner: &Frame) {
+        self.steps.set(inner.steps.get());
     }
 }
