@@ -480,6 +480,10 @@ pub fn trace_camera_path(
         if !media.is_empty() {
             // In a medium the ray may scatter before what it found.
             let t_end = light_hit.map_or(tmax, |(_, t, _)| t);
+            // What the medium emits along the whole segment, attenuated on the way.
+            if let Some(m) = media.current(world).filter(|m| m.emission != Rgb::ZERO) {
+                radiance += throughput * m.emitted(t_end);
+            }
             match media::fly(world, &media, t_end, throughput, sampler) {
                 Some(bsdf::medium::Flight::Scattered { t, weight }) => {
                     throughput *= weight;

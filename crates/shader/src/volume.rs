@@ -169,7 +169,8 @@ impl Ctx<'_> {
             // Beer–Lambert over the segment; a ray that escaped crossed an infinite one.
             let length = if hit { ray.dist } else { f32::INFINITY };
             let t = medium.transmittance(length);
-            let s = self.in_scattered(&medium, ray, length);
+            // In-scattered light, and what the medium emits along the segment.
+            let s = self.in_scattered(&medium, ray, length) + medium.emitted(length);
             return Color::new(color.x * t.x + s.x, color.y * t.y + s.y, color.z * t.z + s.z, color.w);
         }
         let Some(volume) = self.volume_of(ray) else { return color };

@@ -12,9 +12,9 @@
 //! In the path engine a medium is homogeneous inside its object: coefficients from
 //! `lookup_volume_coefficients` are evaluated where a path enters the object
 //! ([`super::volume`]), so the density seen is the texture on the surface at the entry
-//! point, not along the path. The media mira renders do not emit: `volume_blackbody_emission`
-//! used as a volume's `emission_intensity` is compiled but ignored with a warning; used as a
-//! surface's emission intensity it is rendered.
+//! point, not along the path. `volume_blackbody_emission` is rendered as a volume's
+//! `emission_intensity` (the medium's emission, taken where the path enters) and as a
+//! surface's emission intensity.
 
 use std::sync::Arc;
 

@@ -57,6 +57,8 @@ pub struct Evaluator<'a> {
     /// Statements run so far in the statement bodies this evaluator followed (bounded by
     /// [`super::statements::MAX_STEPS`]).
     pub(super) steps: u64,
+    /// The first loop slot free for a loop of the hit compiled now ([`super::hit_loop`]).
+    pub(super) slot_top: u8,
     /// The hit-dependent numbers the distribution functions read ([`super::value::Leaf`]).
     pub leaves: Vec<Arc<HitExpr>>,
     /// The texture files read.
@@ -71,7 +73,7 @@ pub fn problem(span: Span, message: impl Into<String>) -> Problem {
 impl<'a> Evaluator<'a> {
     /// An evaluator of `set`'s definitions.
     pub fn new(set: &'a ModuleSet, textures: &'a mut Textures) -> Evaluator<'a> {
-        Evaluator { set, depth: 0, steps: 0, leaves: Vec::new(), textures }
+        Evaluator { set, depth: 0, steps: 0, slot_top: 0, leaves: Vec::new(), textures }
     }
 
     /// The value of `e` in `env`.
@@ -127,10 +129,12 @@ impl<'a> Evaluator<'a> {
                     }
                 }
                 let b = self.eval(rhs, env)?;
-                if let (BinaryOp::Mul, Value::Array(columns)) = (op, &a) {
-                    // A matrix of the hit (`state::transform`) times a vector.
-                    return super::state_space::matrix_times(columns, &b)
-                        .ok_or_else(|| problem(span, describe_binary(*op, &a, &b)));
+                // A matrix of the hit (`state::transform`) with a vector, a matrix, a scalar.
+                if let Some(v) = super::state_space::matrix_binary(*op, &a, &b) {
+                    return Ok(v);
+                }
+                if *op == BinaryOp::Mul && matches!(a, Value::Array(_)) {
+                    return Err(problem(span, describe_binary(*op, &a, &b)));
                 }
                 if matches!(a, Value::Hit(..)) || matches!(b, Value::Hit(..)) {
                     return hit_binary(*op, &a, &b).ok_or_else(|| problem(span, describe_binary(*op, &a, &b)));

@@ -22,6 +22,7 @@ use glam::{Mat4, Vec3A, Vec4};
 use shader::texture::Texture;
 use shader::State;
 
+use super::hit_loop::{HitLoop, NoFrame, Slots, MAX_LOOP_STEPS};
 use super::procedural::Pattern;
 use super::sky_model::{SkyCall, SkyParam};
 use super::texture_3d::Volume;
@@ -353,6 +354,11 @@ pub enum HitExpr {
         /// The steps in u and v.
         delta: [f32; 2],
     },
+    /// Slot `k` of the per-hit loops the expression is inside: a value a loop carries
+    /// ([`super::hit_loop`]).
+    Slot(u8),
+    /// Slot `k` after the loop has run (a variable the loop assigned).
+    LoopOut(Arc<HitLoop>, u8),
 }
 
 /// Builds `e`, folded to a constant when it does not depend on the hit.
@@ -360,6 +366,7 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
     let constant = |x: &Arc<HitExpr>| matches!(**x, HitExpr::Const(_));
     let foldable = match &e {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
+        HitExpr::Slot(_) | HitExpr::LoopOut(..) => false,
         HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } => false,
         HitExpr::Texel { coord, .. } | HitExpr::Texel3d { coord, .. } => constant(coord),
         HitExpr::Pattern(_, p) => constant(p),
@@ -415,8 +422,15 @@ pub fn too_costly(e: &Arc<HitExpr>) -> Option<String> {
 }
 
 /// The nodes one evaluation of `e` visits (a shared subexpression counted each time it is
-/// reached; saturating) and its depth, computed without recursion, once per shared node.
+/// reached; saturating; a per-hit loop as its start plus [`MAX_LOOP_STEPS`], all it may
+/// take) and its depth, computed without recursion, once per shared node.
 pub fn cost(e: &Arc<HitExpr>) -> (u64, usize) {
+    cost_with(e, true)
+}
+
+/// [`cost`], with loops counted as their start and one turn when not `budgeted` (the cost
+/// of one turn of a loop around them, whose steps count theirs as they run).
+pub(super) fn cost_with(e: &Arc<HitExpr>, budgeted: bool) -> (u64, usize) {
     let mut done: HashMap<*const HitExpr, (u64, usize)> = HashMap::new();
     let mut stack: Vec<(&HitExpr, bool)> = vec![(&**e, false)];
     while let Some((node, ready)) = stack.pop() {
@@ -427,9 +441,18 @@ pub fn cost(e: &Arc<HitExpr>) -> (u64, usize) {
         let operands = node.operands();
         if ready {
             let (mut visits, mut depth) = (1u64, 0usize);
-            for o in operands {
+            let counted = match node {
+                HitExpr::LoopOut(l, _) if budgeted => {
+                    visits = visits.saturating_add(MAX_LOOP_STEPS);
+                    l.init.len()
+                }
+                _ => operands.len(),
+            };
+            for (i, o) in operands.into_iter().enumerate() {
                 let (v, d) = done.get(&Arc::as_ptr(o)).copied().unwrap_or((1, 1));
-                visits = visits.saturating_add(v);
+                if i < counted {
+                    visits = visits.saturating_add(v);
+                }
                 depth = depth.max(d);
             }
             done.insert(key, (visits, depth + 1));
@@ -479,7 +502,8 @@ impl HitExpr {
     /// The subexpressions this node evaluates (both branches of a `?:`).
     pub(super) fn operands(&self) -> Vec<&Arc<HitExpr>> {
         match self {
-            HitExpr::Const(_) | HitExpr::State(_) => Vec::new(),
+            HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Slot(_) => Vec::new(),
+            HitExpr::LoopOut(l, _) => l.operands().collect(),
             HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],
             HitExpr::Transform { of, .. } => vec![of],
             HitExpr::Lookup { coord, .. } | HitExpr::Texel { coord, .. } => vec![coord],
@@ -511,35 +535,44 @@ impl HitExpr {
     }
 
     /// The value at the shading point `s`.
+    #[inline]
     pub fn eval(&self, s: &State) -> Vec4 {
+        self.eval_in(s, NoFrame)
+    }
+
+    /// The value at the shading point `s` inside the per-hit loops whose slots `f` holds.
+    pub fn eval_in<F: Slots>(&self, s: &State, f: F) -> Vec4 {
         match self {
+            HitExpr::Slot(k) => f.slot(*k),
+            HitExpr::LoopOut(l, k) => l.run(s, f).slot(*k),
             HitExpr::Const(v) => *v,
-            HitExpr::State(f) => state_value(*f, s),
+            HitExpr::State(what) => state_value(*what, s),
             HitExpr::Unary(op, a) => {
-                let a = a.eval(s);
+                let a = a.eval_in(s, f);
                 match op {
                     UnOp::Neg => -a,
                     UnOp::Not => truth(a.x == 0.0),
                 }
             }
-            HitExpr::Binary(op, a, b) => binary(*op, a.eval(s), b.eval(s)),
+            HitExpr::Binary(op, a, b) => binary(*op, a.eval_in(s, f), b.eval_in(s, f)),
             HitExpr::Select(c, a, b) => {
-                if c.eval(s).x != 0.0 {
-                    a.eval(s)
+                if c.eval_in(s, f).x != 0.0 {
+                    a.eval_in(s, f)
                 } else {
-                    b.eval(s)
+                    b.eval_in(s, f)
                 }
             }
-            HitExpr::Math(f, args) => {
-                let arg = |i: usize| args.get(i).map_or(Vec4::ZERO, |a| a.eval(s));
-                math(*f, arg(0), arg(1), arg(2))
+            HitExpr::Math(func, args) => {
+                let arg = |i: usize| args.get(i).map_or(Vec4::ZERO, |a| a.eval_in(s, f));
+                let (a, b, c) = (arg(0), arg(1), arg(2));
+                math(*func, a, b, c)
             }
-            HitExpr::Lane(a, i) => splat(a.eval(s)[(*i as usize).min(3)]),
+            HitExpr::Lane(a, i) => splat(a.eval_in(s, f)[(*i as usize).min(3)]),
             HitExpr::Compose(parts) => {
                 let mut out = [0.0f32; 4];
                 let mut at = 0;
                 for (p, width) in parts.iter() {
-                    let v = p.eval(s);
+                    let v = p.eval_in(s, f);
                     for k in 0..*width as usize {
                         if at < 4 {
                             out[at] = v[k.min(3)];
@@ -550,7 +583,7 @@ impl HitExpr {
                 Vec4::from_array(out)
             }
             HitExpr::Transform { matrix, of, point } => {
-                let v = of.eval(s).truncate();
+                let v = of.eval_in(s, f).truncate();
                 if *point {
                     let p = *matrix * v.extend(1.0);
                     let p3 = if p.w != 0.0 && p.w != 1.0 { p.truncate() / p.w } else { p.truncate() };
@@ -561,7 +594,7 @@ impl HitExpr {
                 }
             }
             HitExpr::Lookup { image, coord, wrap, clip, crop } => {
-                let c = coord.eval(s);
+                let c = coord.eval_in(s, f);
                 if *clip && !((0.0..1.0).contains(&c.x) && (0.0..1.0).contains(&c.y)) {
                     return Vec4::ZERO;
                 }
@@ -574,33 +607,35 @@ impl HitExpr {
                 image.0.lookup(Vec3A::new(u, v, 0.0), 0.0).unwrap_or(Vec4::ZERO)
             }
             HitExpr::Texel { image, coord } => {
-                let c = coord.eval(s);
+                let c = coord.eval_in(s, f);
                 image.texel(c.x.floor(), c.y.floor())
             }
             HitExpr::Lookup3d { volume, coord, wrap, crop } => {
-                volume.lookup(coord.eval(s).truncate().into(), *wrap, *crop)
+                volume.lookup(coord.eval_in(s, f).truncate().into(), *wrap, *crop)
             }
             HitExpr::Texel3d { volume, coord } => {
-                let c = coord.eval(s).floor();
+                let c = coord.eval_in(s, f).floor();
                 volume.texel(c.x as i64, c.y as i64, c.z as i64)
             }
-            HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval(s).truncate().into()),
-            HitExpr::Pattern(p, at) => p.eval(at.eval(s).truncate().into()),
+            HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval_in(s, f).truncate().into()),
+            HitExpr::Pattern(p, at) => p.eval(at.eval_in(s, f).truncate().into()),
             HitExpr::Sky(sky, args) => {
-                let dir = args.first().map_or(Vec3A::Z, |d| Vec3A::from(d.eval(s).truncate()).normalize_or(Vec3A::Z));
+                let dir =
+                    args.first().map_or(Vec3A::Z, |d| Vec3A::from(d.eval_in(s, f).truncate()).normalize_or(Vec3A::Z));
                 let mut values = [Vec4::ZERO; SkyParam::ALL.len()];
                 for (v, a) in values.iter_mut().zip(args.iter().skip(1)) {
-                    *v = a.eval(s);
+                    *v = a.eval_in(s, f);
                 }
                 sky.radiance(dir, &values).extend(0.0)
             }
             HitExpr::Bump { height, position, tangent_u, tangent_v, normal, factor, delta } => {
-                let p = Vec3A::from(position.eval(s).truncate());
-                let n = Vec3A::from(normal.eval(s).truncate());
+                let p = Vec3A::from(position.eval_in(s, f).truncate());
+                let n = Vec3A::from(normal.eval_in(s, f).truncate());
                 let h0 = height.eval(p).x;
                 let hu = height.eval(p + Vec3A::X * delta[0]).x;
                 let hv = height.eval(p + Vec3A::Y * delta[1]).x;
-                let (tu, tv) = (Vec3A::from(tangent_u.eval(s).truncate()), Vec3A::from(tangent_v.eval(s).truncate()));
+                let (tu, tv) =
+                    (Vec3A::from(tangent_u.eval_in(s, f).truncate()), Vec3A::from(tangent_v.eval_in(s, f).truncate()));
                 let bent = n - (tu * (hu - h0) + tv * (hv - h0)) * *factor;
                 bent.normalize_or(n).extend(0.0)
             }

@@ -75,6 +75,8 @@ fn same_node(x: &HitExpr, y: &HitExpr) -> bool {
         (H::Bump { height: h, factor: f, delta: d, .. }, H::Bump { height: k, factor: g, delta: e, .. }) => {
             h == k && f == g && d == e
         }
+        (H::Slot(a), H::Slot(b)) => a == b,
+        (H::LoopOut(l, a), H::LoopOut(m, b)) => a == b && **l == **m,
         _ => false,
     }
 }

@@ -65,6 +65,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             if name == "blackbody" {
                 return super::spectral::blackbody(args, span);
             }
+            if let ("transpose", Some(m)) = (name, args.first().and_then(super::state_space::transpose)) {
+                return Ok(m);
+            }
             if let Some(v) = math_constant(name, args, span) {
                 return v;
             }

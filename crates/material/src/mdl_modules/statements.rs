@@ -9,8 +9,9 @@
 //! joins what they assign with a per-hit choice (`c ? a : b`); a `return` in such a branch
 //! is kept with its condition, and the function's value is the first of its returns whose
 //! condition holds; a `switch` on an integer of the hit runs each case under the condition
-//! that control reaches it. Loops whose control depends on the hit, and `break` or
-//! `continue` under an `if` of the hit, are errors at their line.
+//! that control reaches it. A loop whose control depends on the hit — its condition, or a
+//! `break` or `continue` under a condition of the hit — is compiled into a loop that runs at
+//! each hit ([`super::statement_loops`], [`super::hit_loop`]).
 //!
 //! Every statement run counts one step, and a material instance runs at most
 //! [`MAX_STEPS`] (the bound a per-hit expression may take, [`super::hit::MAX_HIT_NODES`]):
@@ -37,7 +38,7 @@ pub const MAX_STEPS: u64 = super::hit::MAX_HIT_NODES;
 
 /// How a statement ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Flow {
+pub(super) enum Flow {
     /// On to the next statement.
     Normal,
     /// `break`.
@@ -48,12 +49,40 @@ enum Flow {
     Return,
 }
 
+/// A loop or `switch` the statements now run in.
+pub(super) enum Nest {
+    /// A loop whose turns run when the material is compiled, with the condition its turns
+    /// run under.
+    Loop(Option<Arc<HitExpr>>),
+    /// A `switch`, with the condition its case runs under.
+    Switch(Option<Arc<HitExpr>>),
+    /// The turn of a loop of the hit being compiled: where control left it so far.
+    HitTurn(Vec<Exit>),
+}
+
+/// Control leaving a turn of a loop of the hit by `break` or `continue`.
+pub(super) struct Exit {
+    /// The condition under which it leaves (within the turn; `None`: always).
+    pub guard: Option<Arc<HitExpr>>,
+    /// `break`, else `continue`.
+    pub brk: bool,
+    /// The parameters' values there.
+    pub params: Vec<Value>,
+    /// The locals' values there.
+    pub locals: HashMap<u32, Value>,
+}
+
 /// One run of a function body.
-struct Run<'f> {
+pub(super) struct Run<'f> {
     /// The function (for messages and its return type).
-    def: &'f Function,
+    pub def: &'f Function,
     /// The condition of the hit under which the statements now run (`None`: always).
-    guard: Option<Arc<HitExpr>>,
+    pub guard: Option<Arc<HitExpr>>,
+    /// The loops and switches around the statement running, innermost last.
+    pub nest: Vec<Nest>,
+    /// Set by a `break` or `continue` under a condition of the hit in a loop that runs when
+    /// compiled: that loop's index in `nest`, which then compiles itself per hit.
+    pub per_hit: Option<usize>,
     /// The values returned so far, each with the condition it was returned under, in order.
     returns: Vec<(Option<Arc<HitExpr>>, Value)>,
     /// How deep the values of the hit stored so far nest, by node (each kept alive here, so
@@ -62,11 +91,21 @@ struct Run<'f> {
 }
 
 impl Run<'_> {
+    /// Whether the statements now run under condition `g` (the same condition, not an equal
+    /// one).
+    fn under(&self, g: Option<&Arc<HitExpr>>) -> bool {
+        match (g, &self.guard) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+
     /// Checks that the values of the hit in `v` nest at most [`MAX_HIT_DEPTH`] deep — deeper
     /// trees are refused when compiled, and dropping or comparing one recurses once per
     /// level — and remembers their depth. Measuring stops at values stored before, so
     /// the statements of a body cost about the nodes they build.
-    fn check_depth(&mut self, v: &Value, span: Span) -> Result<(), Problem> {
+    pub(super) fn check_depth(&mut self, v: &Value, span: Span) -> Result<(), Problem> {
         let mut roots = Vec::new();
         hit_roots(v, &mut roots);
         for root in roots {
@@ -128,13 +167,27 @@ fn depth_of(root: &Arc<HitExpr>, known: &HashMap<*const HitExpr, (Arc<HitExpr>, 
     depth(Arc::as_ptr(root), &done)
 }
 
-type Step = Result<Flow, Problem>;
+pub(super) type Step = Result<Flow, Problem>;
+
+/// A loop's parts: `for (…; cond; step) body`, `while (cond) body` (`test_first`), or
+/// `do body while (cond)`.
+pub(super) struct Loop<'s> {
+    /// The condition (`None`: always).
+    pub cond: Option<&'s Expr>,
+    /// The body.
+    pub body: &'s Stmt,
+    /// What runs after each turn (`for`).
+    pub step: Option<&'s Expr>,
+    /// Whether the condition is tested before the first turn.
+    pub test_first: bool,
+}
 
 impl Evaluator<'_> {
     /// The value of a call of `def`, whose body is the statements `body`, with bound `args`.
     pub(super) fn call_block(&mut self, def: &Function, body: &[Stmt], args: Vec<Value>, span: Span) -> Eval {
         let mut env = Env::with_params(args);
-        let mut run = Run { def, guard: None, returns: Vec::new(), depths: HashMap::new() };
+        let mut run =
+            Run { def, guard: None, nest: Vec::new(), per_hit: None, returns: Vec::new(), depths: HashMap::new() };
         self.stmts(&mut run, body, &mut env)?;
         // The first return whose condition holds: the last one is what remains.
         let mut returns = run.returns.into_iter().rev();
@@ -152,7 +205,7 @@ impl Evaluator<'_> {
         Ok(value)
     }
 
-    fn stmts(&mut self, run: &mut Run, stmts: &[Stmt], env: &mut Env) -> Step {
+    pub(super) fn stmts(&mut self, run: &mut Run, stmts: &[Stmt], env: &mut Env) -> Step {
         for s in stmts {
             let flow = self.stmt(run, s, env)?;
             if flow != Flow::Normal {
@@ -162,7 +215,7 @@ impl Evaluator<'_> {
         Ok(Flow::Normal)
     }
 
-    fn stmt(&mut self, run: &mut Run, s: &Stmt, env: &mut Env) -> Step {
+    pub(super) fn stmt(&mut self, run: &mut Run, s: &Stmt, env: &mut Env) -> Step {
         self.steps += 1;
         let span = s.span;
         match &s.kind {
@@ -179,6 +232,12 @@ impl Evaluator<'_> {
                 Ok(Flow::Normal)
             }
             StmtKind::Return(value) => {
+                if run.nest.iter().any(|n| matches!(n, Nest::HitTurn(_))) {
+                    return Err(problem(
+                        span,
+                        format!("`return` inside a loop of the hit is not compiled (in `{}`)", run.def.name),
+                    ));
+                }
                 let v = match value {
                     Some(v) => convert(self.eval(v, env)?, &run.def.ret.ty),
                     None => return Err(problem(span, format!("`{}` returns no value", run.def.name))),
@@ -187,56 +246,26 @@ impl Evaluator<'_> {
                 run.returns.push((run.guard.clone(), v));
                 Ok(Flow::Return)
             }
-            StmtKind::Break => Ok(Flow::Break),
-            StmtKind::Continue => Ok(Flow::Continue),
+            StmtKind::Break => self.leave(run, true, env, span),
+            StmtKind::Continue => self.leave(run, false, env, span),
             StmtKind::If { cond, then, otherwise } => match self.eval(cond, env)? {
                 Value::Bool(true) => self.stmt(run, then, env),
                 Value::Bool(false) => otherwise.as_ref().map_or(Ok(Flow::Normal), |o| self.stmt(run, o, env)),
                 Value::Hit(c, _) => self.guarded_if(run, &c, then, otherwise.as_deref(), env, span),
                 v => Err(problem(cond.span, format!("the condition of `if` is {}, not a bool", kind(&v)))),
             },
-            StmtKind::While { cond, body } => loop {
-                self.count_loop(run, span)?;
-                if !self.loop_condition(run, cond, env)? {
-                    return Ok(Flow::Normal);
-                }
-                match self.stmt(run, body, env)? {
-                    Flow::Break => return Ok(Flow::Normal),
-                    Flow::Return => return Ok(Flow::Return),
-                    Flow::Normal | Flow::Continue => {}
-                }
-            },
-            StmtKind::DoWhile { body, cond } => loop {
-                self.count_loop(run, span)?;
-                match self.stmt(run, body, env)? {
-                    Flow::Break => return Ok(Flow::Normal),
-                    Flow::Return => return Ok(Flow::Return),
-                    Flow::Normal | Flow::Continue => {}
-                }
-                if !self.loop_condition(run, cond, env)? {
-                    return Ok(Flow::Normal);
-                }
-            },
+            StmtKind::While { cond, body } => {
+                self.run_loop(run, &Loop { cond: Some(cond), body, step: None, test_first: true }, env, span)
+            }
+            StmtKind::DoWhile { body, cond } => {
+                self.run_loop(run, &Loop { cond: Some(cond), body, step: None, test_first: false }, env, span)
+            }
             StmtKind::For { init, cond, step, body } => {
                 if let Some(init) = init {
                     self.stmt(run, init, env)?;
                 }
-                loop {
-                    self.count_loop(run, span)?;
-                    if let Some(cond) = cond {
-                        if !self.loop_condition(run, cond, env)? {
-                            return Ok(Flow::Normal);
-                        }
-                    }
-                    match self.stmt(run, body, env)? {
-                        Flow::Break => return Ok(Flow::Normal),
-                        Flow::Return => return Ok(Flow::Return),
-                        Flow::Normal | Flow::Continue => {}
-                    }
-                    if let Some(step) = step {
-                        self.effect(run, step, env)?;
-                    }
-                }
+                let lp = Loop { cond: cond.as_deref(), body, step: step.as_deref(), test_first: true };
+                self.run_loop(run, &lp, env, span)
             }
             StmtKind::Switch { value, cases } => {
                 let v = match self.eval(value, env)? {
@@ -260,14 +289,20 @@ impl Evaluator<'_> {
                     return Ok(Flow::Normal);
                 };
                 // From the chosen label on, falling through the labels after it.
+                let at = run.nest.len();
+                run.nest.push(Nest::Switch(run.guard.clone()));
+                let mut flow = Ok(Flow::Normal);
                 for case in &cases[start..] {
-                    match self.stmts(run, &case.body, env)? {
-                        Flow::Normal => {}
-                        Flow::Break => return Ok(Flow::Normal),
-                        flow => return Ok(flow),
+                    flow = self.stmts(run, &case.body, env);
+                    if !matches!(flow, Ok(Flow::Normal)) {
+                        break;
                     }
                 }
-                Ok(Flow::Normal)
+                run.nest.truncate(at);
+                match flow? {
+                    Flow::Break => Ok(Flow::Normal),
+                    flow => Ok(flow),
+                }
             }
         }
     }
@@ -289,19 +324,85 @@ impl Evaluator<'_> {
         Ok(())
     }
 
-    /// A loop's condition, which must be known when the material is compiled.
-    fn loop_condition(&mut self, run: &Run, cond: &Expr, env: &mut Env) -> Result<bool, Problem> {
+    /// A loop's condition: `None` where it depends on the hit.
+    fn loop_condition(&mut self, cond: &Expr, env: &mut Env) -> Result<Option<bool>, Problem> {
         match self.eval(cond, env)? {
-            Value::Bool(b) => Ok(b),
-            v @ Value::Hit(..) => Err(problem(
-                cond.span,
-                format!(
-                    "a loop condition that depends on the hit ({}) is not compiled (in `{}`)",
-                    kind(&v),
-                    run.def.name
-                ),
-            )),
+            Value::Bool(b) => Ok(Some(b)),
+            Value::Hit(..) => Ok(None),
             v => Err(problem(cond.span, format!("a loop condition that is {}, not a bool", kind(&v)))),
+        }
+    }
+
+    /// A loop: its turns run now while its control is known when the material is compiled;
+    /// where it turns out to depend on the hit (its condition, or a `break` or `continue`
+    /// under a condition of the hit), the loop starts again as a loop of the hit.
+    fn run_loop(&mut self, run: &mut Run, lp: &Loop, env: &mut Env, span: Span) -> Step {
+        let saved = (env.params.clone(), env.locals.clone(), run.returns.len());
+        let at = run.nest.len();
+        run.nest.push(Nest::Loop(run.guard.clone()));
+        let turns = self.known_turns(run, lp, env, span);
+        run.nest.truncate(at);
+        match turns {
+            Ok(Some(flow)) => return Ok(flow),
+            Ok(None) => {}
+            Err(_) if run.per_hit == Some(at) => run.per_hit = None,
+            Err(e) => return Err(e),
+        }
+        (env.params, env.locals) = (saved.0, saved.1);
+        run.returns.truncate(saved.2);
+        self.hit_loop(run, lp, env, span)
+    }
+
+    /// The turns of a loop whose control is known now; `None` when its condition depends
+    /// on the hit.
+    fn known_turns(&mut self, run: &mut Run, lp: &Loop, env: &mut Env, span: Span) -> Result<Option<Flow>, Problem> {
+        let mut first = true;
+        loop {
+            self.count_loop(run, span)?;
+            if let (Some(cond), true) = (lp.cond, lp.test_first || !first) {
+                match self.loop_condition(cond, env)? {
+                    Some(true) => {}
+                    Some(false) => return Ok(Some(Flow::Normal)),
+                    None => return Ok(None),
+                }
+            }
+            first = false;
+            match self.stmt(run, lp.body, env)? {
+                Flow::Break => return Ok(Some(Flow::Normal)),
+                Flow::Return => return Ok(Some(Flow::Return)),
+                Flow::Normal | Flow::Continue => {}
+            }
+            if let Some(step) = lp.step {
+                self.effect(run, step, env)?;
+            }
+        }
+    }
+
+    /// `break` (`brk`) or `continue`: ends the loop's turn or the `switch` it belongs to.
+    /// Under a condition of the hit, a turn of a loop of the hit records where control
+    /// leaves; a loop compiled turn by turn is asked to compile itself per hit.
+    fn leave(&mut self, run: &mut Run, brk: bool, env: &Env, span: Span) -> Step {
+        let flow = if brk { Flow::Break } else { Flow::Continue };
+        let word = if brk { "break" } else { "continue" };
+        // `continue` belongs to the innermost loop, `break` to the innermost loop or switch.
+        let Some(at) = run.nest.iter().rposition(|n| brk || !matches!(n, Nest::Switch(_))) else {
+            return Ok(flow);
+        };
+        let guard = run.guard.clone();
+        if let Nest::HitTurn(exits) = &mut run.nest[at] {
+            exits.push(Exit { guard, brk, params: env.params.clone(), locals: env.locals.clone() });
+            return Ok(flow);
+        }
+        match &run.nest[at] {
+            Nest::Loop(g) | Nest::Switch(g) if run.under(g.as_ref()) => Ok(flow),
+            Nest::Loop(_) => {
+                run.per_hit = Some(at);
+                Err(problem(span, format!("`{word}` under a condition of the hit (in `{}`)", run.def.name)))
+            }
+            _ => Err(problem(
+                span,
+                format!("`break` under a condition of the hit in a `switch` is not compiled (in `{}`)", run.def.name),
+            )),
         }
     }
 
@@ -330,17 +431,14 @@ impl Evaluator<'_> {
         };
         run.guard = outer;
         let (taken, other) = (taken?, other?);
-        if [taken, other].iter().any(|f| matches!(f, Flow::Break | Flow::Continue)) {
-            return Err(problem(
-                span,
-                format!("`break` or `continue` under a condition of the hit is not compiled (in `{}`)", run.def.name),
-            ));
-        }
+        // A branch that ended (returned, or left a turn of a loop of the hit, which
+        // recorded what it leaves with) leaves the other's values to the statements after.
+        let ended = |f: Flow| f != Flow::Normal;
         match (taken, other) {
             (Flow::Return, Flow::Return) => Ok(Flow::Return),
-            // Only the paths that go on matter after the `if`.
-            (Flow::Return, _) => Ok(Flow::Normal),
-            (_, Flow::Return) => {
+            (a, b) if ended(a) && ended(b) => Ok(if a == Flow::Return { b } else { a }),
+            (a, _) if ended(a) => Ok(Flow::Normal),
+            (_, b) if ended(b) => {
                 (env.params, env.locals) = then_env;
                 Ok(Flow::Normal)
             }
@@ -400,20 +498,15 @@ impl Evaluator<'_> {
             }
             let before = (env.params.clone(), env.locals.clone());
             run.guard = Some(both(outer.as_ref(), &reached));
+            let at = run.nest.len();
+            run.nest.push(Nest::Switch(run.guard.clone()));
             let flow = self.stmts(run, &case.body, env);
+            run.nest.truncate(at);
             run.guard = outer.clone();
             match flow? {
-                Flow::Continue => {
-                    return Err(problem(
-                        span,
-                        format!(
-                            "`continue` in a `switch` on a value of the hit is not compiled (in `{}`)",
-                            run.def.name
-                        ),
-                    ))
-                }
-                // Every path that came here returned: the others keep what they had.
-                Flow::Return => {
+                // Every path that came here returned, or left the turn of a loop of the hit
+                // (`continue`, recorded there): the others keep what they had.
+                Flow::Return | Flow::Continue => {
                     (env.params, env.locals) = before;
                     through = None;
                 }
@@ -453,7 +546,7 @@ impl Evaluator<'_> {
     }
 
     /// Runs `e` for its effect: an assignment, an increment, a sequence, or any expression.
-    fn effect(&mut self, run: &mut Run, e: &Expr, env: &mut Env) -> Result<(), Problem> {
+    pub(super) fn effect(&mut self, run: &mut Run, e: &Expr, env: &mut Env) -> Result<(), Problem> {
         match &e.kind {
             ExprKind::Sequence(list) => {
                 for x in list {
@@ -586,7 +679,7 @@ fn with_lane(whole: Value, i: usize, v: Value, span: Span) -> Eval {
 }
 
 /// `g && c` (`c` alone when there is no outer condition).
-fn both(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
+pub(super) fn both(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
     match g {
         None => c.clone(),
         Some(g) => fold(HitExpr::Binary(BinOp::And, g.clone(), c.clone())),
@@ -594,7 +687,7 @@ fn both(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
 }
 
 /// `g || c` (`c` alone when there is no `g`).
-fn either(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
+pub(super) fn either(g: Option<&Arc<HitExpr>>, c: &Arc<HitExpr>) -> Arc<HitExpr> {
     match g {
         None => c.clone(),
         Some(g) => fold(HitExpr::Binary(BinOp::Or, g.clone(), c.clone())),

@@ -23,6 +23,11 @@
 //! of its entry point until it leaves. This is how Iray treats volume coefficients that
 //! vary over the surface (its volumes are uniform inside; a spatially varying volume needs
 //! a volume texture). What is constant is lowered once.
+//!
+//! `emission_intensity` is the radiance the medium emits per unit length (per metre, per
+//! channel; the emission coefficient of the radiative transfer equation, dL/ds = ε −
+//! σt·L): a ray crossing a length d of the medium gains ε·(1 − exp(−σt·d))/σt
+//! ([`Medium::emitted`]). It may vary over the surface like the coefficients.
 
 use std::sync::Arc;
 
@@ -92,6 +97,7 @@ enum VdfTree {
 struct Volume {
     sigma_a: Leaf,
     sigma_s: Leaf,
+    emission: Leaf,
     scattering: VdfTree,
 }
 
@@ -201,7 +207,7 @@ fn lower(volume: &Volume, values: &[Vec4]) -> Medium {
     let albedo = scattered(&volume.scattering, values, &mut lobes);
     sigma_a += sigma_s * (Rgb::ONE - albedo);
     sigma_s *= albedo;
-    Medium::with_phase(sigma_a, sigma_s, Phase::chromatic_mixture(&lobes))
+    Medium::with_phase(sigma_a, sigma_s, Phase::chromatic_mixture(&lobes)).with_emission(coefficient(&volume.emission))
 }
 
 /// The medium of the evaluated `material` value of material `name`: `None` when it has no
@@ -209,7 +215,7 @@ fn lower(volume: &Volume, values: &[Vec4]) -> Medium {
 /// shading point (then the medium given is the volume at a default point: texture
 /// coordinates 0, normal +z, the origin). What is not compiled is appended to `warnings`,
 /// places formatted by `location`: an unsupported vdf (isotropic scattering is used), a
-/// coefficient that is not a colour (no medium), volume emission (ignored).
+/// coefficient that is not a colour (no medium).
 pub fn medium(
     name: &str,
     material: &Value,
@@ -244,14 +250,8 @@ pub fn medium(
     };
     let sigma_a = coefficient("absorption_coefficient");
     let sigma_s = coefficient("scattering_coefficient");
-    let emission = volume.field("emission_intensity");
-    if emission.is_some_and(|e| !matches!(e.color(), Some(c) if c == Rgb::ZERO)) {
-        warnings.push(format!(
-            "material '{name}': volume emission (emission_intensity) is not rendered yet (mira's media absorb and \
-             scatter but do not emit); ignored"
-        ));
-    }
-    let (Some(sigma_a), Some(sigma_s)) = (sigma_a, sigma_s) else { return (None, None) };
+    let emission = coefficient("emission_intensity");
+    let (Some(sigma_a), Some(sigma_s), Some(emission)) = (sigma_a, sigma_s, emission) else { return (None, None) };
     let scattering = match volume.field("scattering") {
         Some(Value::Vdf(vdf)) => match tree(vdf, &mut leaves) {
             Ok(t) => t,
@@ -267,7 +267,7 @@ pub fn medium(
         },
         _ => VdfTree::HenyeyGreenstein(Leaf::Const(Rgb::ZERO)),
     };
-    let volume = Volume { sigma_a, sigma_s, scattering };
+    let volume = Volume { sigma_a, sigma_s, emission, scattering };
     if leaves.is_empty() {
         let medium = lower(&volume, &[]);
         return ((!medium.is_vacuum()).then_some(medium), None);

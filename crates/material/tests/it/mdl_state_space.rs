@@ -123,3 +123,39 @@ fn object_id_is_the_instance_label_and_animation_time_the_ray_time() {
     // Black where nothing is set: these values are read at the hit, not folded.
     assert!(close(emitted(get(&mdl, &lib, "m"), &State::default()), Rgb::ZERO, 0.0));
 }
+
+/// `state::transform`'s matrix of an instance used other than times a vector — indexed,
+/// squared, transposed, times a row vector, times its inverse, times a constant matrix and
+/// a scalar and added — against the same products computed with glam from the instance's
+/// placement (within 1e-4; the values reach about 30).
+#[test]
+fn a_matrix_of_the_hit_is_indexed_multiplied_and_transposed() {
+    let placed = placement();
+    let m = Mat4::from(placed);
+    let v = Vec3::new(1.0, 2.0, 3.0);
+    let p = v.extend(1.0);
+    let c = Mat4::from_cols(
+        glam::Vec4::new(2.0, 0.0, 0.0, 0.0),
+        glam::Vec4::new(0.0, 3.0, 0.0, 0.0),
+        glam::Vec4::new(0.0, 0.0, 4.0, 0.0),
+        glam::Vec4::new(1.0, 1.0, 1.0, 1.0),
+    );
+    let row = |j: usize| m.row(j);
+    let cases = [
+        (0, m.w_axis.truncate()),
+        (1, (m * m * p).truncate()),
+        (2, row(0).truncate()),
+        (3, Vec3::new(p.dot(m.x_axis), p.dot(m.y_axis), p.dot(m.z_axis))),
+        (4, v),
+        (5, ((c * m + m * 0.5) * p).truncate()),
+        (6, Vec3::new(m.x_axis.y, m.y_axis.z, m.z_axis.x)),
+    ];
+    let state = hit(Vec3A::new(0.3, -0.2, 0.7), placed);
+    for (which, want) in cases {
+        let text = format!(r#"shader "m" "mdl::object_space::matrices" ("which" {which})"#);
+        let (mdl, lib, diags) = compile_text(&text);
+        assert!(diags.is_empty(), "which {which}: {diags:#?}");
+        let got = emitted(get(&mdl, &lib, "m"), &state);
+        assert!(close(got, rgb(want), 1e-4), "which {which}: {got:?} vs {want:?}");
+    }
+}

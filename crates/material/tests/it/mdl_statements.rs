@@ -2,7 +2,8 @@
 //! construct against a value worked out by hand — a `for` loop summing a series, a
 //! `while` loop (Collatz steps), `do`–`while`, a `switch` on an enum with fall-through,
 //! `break`/`continue`, lanes assigned with compound operators, an `if` and a `switch` of the hit with a
-//! `return` in one branch — and an endless loop refused at its line.
+//! `return` in one branch — and an endless loop refused at its line (loops of the hit:
+//! `mdl_hit_loops.rs`).
 
 use crate::mdl_support;
 
@@ -107,11 +108,13 @@ fn an_endless_loop_is_refused_at_its_line() {
     assert!(diags[0].contains(&at) && diags[0].contains("`forever`") && diags[0].contains("65536"), "{}", diags[0]);
     // Rendered grey.
     assert!(get(&mdl, &lib, "m").constant().emission == Rgb::ZERO);
-    // A loop whose condition depends on the hit: an error at the condition.
-    let (_, _, diags) = compile_text(r#"shader "m" "mdl::statements::loop_of_the_hit" ()"#);
-    assert_eq!(diags.len(), 1, "{diags:#?}");
-    let at = format!("statements.mdl:{}:", line_of("while (s < x)"));
-    assert!(diags[0].contains(&at) && diags[0].contains("depends on the hit"), "{}", diags[0]);
+    // A loop whose condition depends on the hit runs at each hit (tests/it/mdl_hit_loops.rs).
+    let (mdl, lib, diags) = compile_text(r#"shader "m" "mdl::statements::loop_of_the_hit" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    for (x, want) in [(0.5, 1.0), (3.0, 3.0), (3.2, 4.0)] {
+        let got = emitted(get(&mdl, &lib, "m"), &State { point: Vec3A::new(x, 0.0, 0.0), ..State::default() });
+        assert!(close(got, Rgb::splat(want), 1e-6 * want), "x {x}: {got:?}");
+    }
 }
 
 /// A `switch` on an integer of the hit: each case taken where its label matches, falling

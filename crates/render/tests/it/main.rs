@@ -44,6 +44,7 @@ mod mdl_vdf_tints;
 mod mdl_wide;
 mod media;
 mod media_classic;
+mod media_emission;
 mod media_entry;
 mod media_orthographic;
 mod mia_helpers;

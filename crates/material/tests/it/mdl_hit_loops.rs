@@ -1,0 +1,103 @@
+//! Loops whose control depends on the hit (tests/mdl/hit_loops.mdl), compiled once and run
+//! at each hit: each against its closed form at several hits (within 1e-6 relative) — a
+//! trip count read from a texture coordinate, `while`, `do`–`while`, nested loops, a
+//! `break` and a `continue` under conditions of the hit, `continue` in a `switch` of the
+//! hit, a struct carried through the turns — and an endless one stopped after its steps.
+
+use crate::mdl_support;
+
+use bsdf::Rgb;
+use glam::Vec3A;
+use material::{SurfaceMaterial, Varying};
+use mdl_support::{close, compile_text, get};
+use shader::State;
+
+/// The radiance material `m` emits at texture coordinate u.
+fn emitted(m: &SurfaceMaterial, u: f32) -> Rgb {
+    let mut s = State { tex_count: 1, ..State::default() };
+    s.tex_list[0] = Vec3A::new(u, 0.0, 0.0);
+    let Varying::Evaluated(e) = &m.varying else { panic!("{} is not evaluated per hit", m.name) };
+    let mut h = m.constant();
+    e.0.apply(&s, &mut h);
+    h.emission
+}
+
+/// `hit_loops::<material>`, compiled without a message.
+fn material(name: &str) -> (material::mdl_modules::MdlMaterials, scene::Library) {
+    let (mdl, lib, diags) = compile_text(&format!(r#"shader "m" "mdl::hit_loops::{name}" ()"#));
+    assert!(diags.is_empty(), "{name}: {diags:#?}");
+    (mdl, lib)
+}
+
+/// Checks `name`'s value at each (u, value) within 1e-6 relative.
+fn check(name: &str, cases: &[(f32, f32)]) {
+    let (mdl, lib) = material(name);
+    let m = get(&mdl, &lib, "m");
+    for &(u, want) in cases {
+        let got = emitted(m, u);
+        assert!(close(got, Rgb::splat(want), 1e-6 * want.abs().max(1.0)), "{name} at u {u}: {got:?} vs {want}");
+    }
+}
+
+#[test]
+fn a_trip_count_of_the_hit_gives_the_closed_form() {
+    // n = floor(10 u) halvings: 2 (1 − 2^−n).
+    let halving = |u: f32| {
+        let n = (u * 10.0) as i32;
+        2.0 * (1.0 - 0.5f32.powi(n))
+    };
+    check("halving", &[0.05, 0.35, 0.72, 0.99, 0.1].map(|u| (u, halving(u))));
+    // Counting up to x: ⌈x⌉, 0 where x ≤ 0.
+    check("counting", &[(-0.5, 0.0), (0.0, 0.0), (0.3, 1.0), (2.0, 2.0), (2.5, 3.0), (7.01, 8.0)]);
+    // do–while doubles once even where the condition fails at once.
+    check("doubles", &[(-3.0, 2.0), (0.5, 2.0), (2.0, 4.0), (5.0, 8.0), (100.0, 128.0)]);
+    // Nested: n (n − 1) / 2 pairs.
+    check("nested", &[(0.05, 0.0), (0.15, 0.0), (0.35, 3.0), (0.99, 36.0)]);
+}
+
+#[test]
+fn break_and_continue_under_conditions_of_the_hit() {
+    // The odd k ≤ min(x, 20): `continue` on even k, `break` past x.
+    let odd = |x: f32| (1..=20).filter(|k| k % 2 == 1 && (*k as f32) <= x).sum::<i32>() as f32;
+    check("odd", &[0.5, 1.0, 7.5, 9.0, 30.0].map(|x| (x, odd(x))));
+    // `continue` in a switch of the hit: over k = 0..3, (k + m) % 3 = 0 skips, 1 adds 110,
+    // 2 adds 101.
+    let skip = |x: f32| (0..4).map(|k| [0.0, 110.0, 101.0][((k + x as i32) % 3) as usize]).sum::<f32>();
+    check("skip", &[0.5, 1.5, 2.5, 3.5, 7.0].map(|x| (x, skip(x))));
+}
+
+#[test]
+fn a_struct_is_carried_through_the_turns() {
+    let (mdl, lib) = material("structs");
+    let m = get(&mdl, &lib, "m");
+    // a counts up to ⌈x⌉, b doubles as often.
+    for (x, want) in [(0.0, Rgb::new(1.0, 1.0, 1.0)), (2.5, Rgb::new(8.0, 11.0, 8.0))] {
+        let got = emitted(m, x);
+        assert!(close(got, want, 1e-5), "x {x}: {got:?}");
+    }
+}
+
+/// `while (x > 0) s += 1;` compiles (nothing tells when it is compiled that it never ends)
+/// and, where it does not end, stops after the steps a loop may take, with the count its
+/// turns reached: the documented fallback, never a hang.
+#[test]
+fn an_endless_loop_of_the_hit_stops_after_its_steps() {
+    let (mdl, lib) = material("endless");
+    let m = get(&mdl, &lib, "m");
+    assert!(close(emitted(m, -1.0), Rgb::ZERO, 0.0));
+    let got = emitted(m, 0.5).x;
+    let limit = material::mdl_modules::hit_loop::MAX_LOOP_STEPS as f32;
+    assert!(got >= 100.0 && got <= limit, "{got}");
+}
+
+/// What is not compiled in a loop of the hit — a `return` inside it — is an error at its
+/// `file:line:col`, naming the function; the material renders grey.
+#[test]
+fn a_return_inside_a_loop_of_the_hit_is_an_error_at_its_line() {
+    let (_, _, diags) = compile_text(r#"shader "m" "mdl::hit_loops::early_return" ()"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mdl/hit_loops.mdl")).unwrap();
+    let line = src.lines().position(|l| l.contains("if (s > 3.0)")).unwrap() + 2;
+    let at = format!("hit_loops.mdl:{line}:13");
+    assert!(diags[0].contains(&at) && diags[0].contains("`return`") && diags[0].contains("`early`"), "{}", diags[0]);
+}
