@@ -35,12 +35,14 @@
 //!
 //! [`REGISTRY`] lists every implementation.
 
+pub mod billow;
 pub mod cell_textures;
 pub mod crater_textures;
 pub mod engine;
 pub mod fog;
 pub mod fractal_textures;
 pub mod glow;
+pub mod lattice_hash;
 pub mod layered;
 pub mod layered_shader;
 pub mod light;

@@ -3,12 +3,14 @@
 //!
 //! Parameters (see `mayabase.mi`): `threshold` (0), `amplitude` (1), `ratio` (0.707),
 //! `frequencyRatio` (2), `depthMax` (3), `inflection` (off), `time` (0), `frequency` (8),
-//! `implode` (not read), `noiseType` (1, Billow: Maya's default) and `numWaves` (5).
+//! `implode` (not read), `noiseType` (1, Billow: Maya's default), `numWaves` (5) and the
+//! Billow cells' `density` (1), `spottyness` (0.1), `sizeRand` (0), `randomness` (1) and
+//! `falloff` (2, Fast) ([`crate::billow`]).
 //!
 //! ```text
 //! F = Σ_{i<depthMax} ratio^i · n_i(p · frequency · frequencyRatio^i) / Σ ratio^i
 //! Perlin:  value = threshold + 0.5 + 0.5 · amplitude · F
-//! billow (or inflection): n → |n|, value = threshold + amplitude · F
+//! Billow (or inflection): n → |n|, value = threshold + amplitude · F
 //! ```
 //!
 //! clipped to [0, 1], with p = (u, v, `time`) and n the octave's noise ([`Shape`]), in
@@ -22,8 +24,8 @@
 //!   lattice hash: the pattern is not Maya's, its statistics are), 0 on the integer
 //!   lattice, at (u f, v f, `time`) — mira's Perlin already animates through time as a
 //!   third dimension, so the two coincide;
-//! - Billow: |g| (mira's turbulence, not Maya's cells: its `density`, `spottyness`,
-//!   `sizeRand`, `randomness` and `falloff` are not read);
+//! - Billow: puffy cells in [0, 1] ([`crate::billow::Cells`]: blobs jittered over the
+//!   octave's grid, their presence, size and intensity random, shaped by `falloff`);
 //! - Wave: (1/N) Σ_{k<N} cos(2π (d_k · (x, y) + `time`) + φ_k), N = `numWaves` (at least
 //!   1), d_k a unit direction in the plane and φ_k a phase, both from a hash of k and the
 //!   octave: waves of one period per unit of the octave's coordinate, moving a period per
@@ -36,19 +38,10 @@
 use glam::{Vec2, Vec3A};
 use shader::{Ctx, NodeId, Value};
 
+use crate::billow::{Cells, Falloff};
 use crate::maya_shader;
 
-/// A 32-bit hash of a lattice point.
-pub fn lattice(i: i32, j: i32, k: i32) -> u32 {
-    let mut h = (i as u32).wrapping_mul(0x8da6_b343)
-        ^ (j as u32).wrapping_mul(0xd816_3841)
-        ^ (k as u32).wrapping_mul(0xcb1a_b31f);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x2c1b_3c6d);
-    h ^= h >> 12;
-    h = h.wrapping_mul(0x297a_2d39);
-    h ^ (h >> 15)
-}
+pub use crate::lattice_hash::lattice;
 
 /// The dot product of one of the 12 cube-edge gradients (chosen by `h`) with (x, y, z).
 fn gradient(h: u32, x: f32, y: f32, z: f32) -> f32 {
@@ -101,8 +94,13 @@ pub const WISPY_SMEAR: f32 = 0.5;
 /// The noise each octave reads (`noiseType`; see the module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
-    /// Perlin (0), Billow (1, with [`Noise::billow`]) and SpaceTime (4): gradient noise.
+    /// Perlin (0) and SpaceTime (4): gradient noise.
     Perlin,
+    /// Billow (1): puffy cells.
+    Billow {
+        /// `density`, `spottyness`, `sizeRand`, `randomness` and `falloff`.
+        cells: Cells,
+    },
     /// Wave (2): a sum of `waves` plane waves.
     Wave {
         /// `numWaves`.
@@ -113,9 +111,11 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// Maya's `noiseType` with `numWaves` (unknown types read as Perlin).
-    pub fn from_maya(noise_type: i32, waves: i32) -> Shape {
+    /// Maya's `noiseType` with `numWaves` and the Billow `cells` (unknown types read as
+    /// Perlin).
+    pub fn from_maya(noise_type: i32, waves: i32, cells: Cells) -> Shape {
         match noise_type {
+            1 => Shape::Billow { cells },
             2 => Shape::Wave { waves: waves.clamp(1, 256) as u32 },
             3 => Shape::Wispy,
             _ => Shape::Perlin,
@@ -127,6 +127,9 @@ impl Shape {
     pub fn at(self, q: Vec3A, octave: u32, planar: bool) -> f32 {
         match self {
             Shape::Perlin => gradient_noise(q),
+            // 2D: time moves the point along (1, 1).
+            Shape::Billow { cells } if planar => cells.at(Vec3A::new(q.x + q.z, q.y + q.z, 0.0), octave, true),
+            Shape::Billow { cells } => cells.at(q, octave, false),
             Shape::Wave { waves } => wave(q, waves, octave, planar),
             Shape::Wispy => {
                 let half = q * 0.5;
@@ -209,10 +212,18 @@ impl Noise {
     /// `amplitude`, `ratio`, `frequencyRatio`, `depthMax`, `inflection`, `time` and
     /// `frequency` in that order, and whose `noiseType` (1: billow) is at index
     /// `noise_type` (the 2D and 3D textures declare it at different places), followed
-    /// by `numWaves`.
+    /// by `numWaves`, `density`, `spottyness`, `sizeRand`, `randomness` and `falloff`.
     pub fn read(ctx: &mut Ctx, n: NodeId, first: usize, noise_type: usize) -> Noise {
         let e = first;
-        let shape = Shape::from_maya(ctx.int(n, noise_type), ctx.int(n, noise_type + 1));
+        let t = noise_type;
+        let cells = Cells {
+            density: ctx.scalar(n, t + 2),
+            spottyness: ctx.scalar(n, t + 3),
+            size_rand: ctx.scalar(n, t + 4),
+            randomness: ctx.scalar(n, t + 5),
+            falloff: Falloff::from_maya(ctx.int(n, t + 6)),
+        };
+        let shape = Shape::from_maya(ctx.int(n, t), ctx.int(n, t + 1), cells);
         Noise {
             threshold: ctx.scalar(n, e),
             amplitude: ctx.scalar(n, e + 1),
@@ -283,7 +294,12 @@ maya_shader!(
         "time",
         "frequency",
         "noiseType",
-        "numWaves"
+        "numWaves",
+        "density",
+        "spottyness",
+        "sizeRand",
+        "randomness",
+        "falloff"
     ],
     noise
 );
@@ -346,6 +362,47 @@ mod tests {
         assert!((Noise { amplitude: 0.0, ..n }.value(Vec2::new(0.3, 0.6)) - 0.5).abs() < 1e-6);
     }
 
+    /// Billow's cells in the fractal: values in [0, 1] and deterministic over many
+    /// points (not constant); density 0 gives the threshold exactly; blobs on the
+    /// lattice (randomness 0) of equal peaks (spottyness 0) give every octave its peak
+    /// at a point that is a cell centre in all three octaves (uv · 8 · 3^i half-integer:
+    /// frequencyRatio 3), so the value is threshold + amplitude · curve(0) (1e-5), also
+    /// after `time` 1 moves the point by a whole cell along (1, 1).
+    #[test]
+    fn billow_is_a_fractal_of_cells() {
+        let billow = Noise { billow: true, shape: Shape::Billow { cells: Cells::MAYA_DEFAULT }, ..maya_default() };
+        let (mut lo, mut hi) = (1f32, 0f32);
+        for i in 0..2000 {
+            let uv = Vec2::new((i % 50) as f32 / 50.0 + 0.003, (i / 50) as f32 / 40.0 + 0.007);
+            let v = billow.value(uv);
+            assert!((0.0..=1.0).contains(&v) && v == billow.value(uv));
+            assert!((0.0..=1.0).contains(&billow.value3(Vec3A::new(uv.x, uv.y, 0.3))));
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+        assert!(hi - lo > 0.3, "{lo}..{hi}");
+        let none = Shape::Billow { cells: Cells { density: 0.0, ..Cells::MAYA_DEFAULT } };
+        for uv in [Vec2::new(0.31, 0.77), Vec2::new(-4.2, 0.05)] {
+            assert_eq!(Noise { threshold: 0.3, shape: none, ..billow }.value(uv), 0.3);
+            assert_eq!(Noise { threshold: 0.3, shape: none, ..billow }.value3(uv.extend(0.5).into()), 0.3);
+        }
+        for falloff in [Falloff::Linear, Falloff::Smooth, Falloff::Fast, Falloff::Bubble] {
+            let cells = Cells { randomness: 0.0, spottyness: 0.0, falloff, ..Cells::MAYA_DEFAULT };
+            let n = Noise {
+                threshold: 0.1,
+                amplitude: 0.8,
+                frequency_ratio: 3.0,
+                shape: Shape::Billow { cells },
+                ..billow
+            };
+            let peak = 0.1 + 0.8 * falloff.curve(0.0);
+            for uv in [Vec2::new(0.0625, 0.1875), Vec2::new(0.3125, -0.4375)] {
+                assert!((n.value(uv) - peak).abs() < 1e-5, "{falloff:?} at {uv}: {}", n.value(uv));
+                assert!((Noise { time: 1.0, ..n }.value(uv) - peak).abs() < 1e-5);
+                assert!((n.value3(uv.extend(0.0625).into()) - peak).abs() < 1e-5);
+            }
+        }
+    }
+
     /// Wave: the mean of N plane waves, within [−1, 1], periodic in time with period 1
     /// (1e-4), varying and continuous; one wave of a 2D octave is constant across its
     /// crests: moving along the crest (perpendicular to its direction) keeps the value.
@@ -376,7 +433,7 @@ mod tests {
             assert!(wave(q, 7, 3, false).abs() <= 1.0);
         }
         // numWaves below 1 reads as 1; a NaN point gives 0.
-        assert_eq!(Shape::from_maya(2, 0), Shape::Wave { waves: 1 });
+        assert_eq!(Shape::from_maya(2, 0, Cells::MAYA_DEFAULT), Shape::Wave { waves: 1 });
         assert_eq!(wave(Vec3A::splat(f32::NAN), 5, 0, true), 0.0);
     }
 
@@ -397,8 +454,10 @@ mod tests {
             assert!(wispy.value3(Vec3A::new(uv.x, uv.y, 0.2)) <= 1.0);
         }
         assert!(differ > 500 && moved > 500, "{differ} {moved}");
-        assert_eq!(Shape::from_maya(4, 5), Shape::Perlin);
-        assert_eq!(Shape::from_maya(0, 5), Shape::Perlin);
-        assert_eq!(Shape::from_maya(3, 5), Shape::Wispy);
+        let c = Cells::MAYA_DEFAULT;
+        assert_eq!(Shape::from_maya(4, 5, c), Shape::Perlin);
+        assert_eq!(Shape::from_maya(0, 5, c), Shape::Perlin);
+        assert_eq!(Shape::from_maya(3, 5, c), Shape::Wispy);
+        assert_eq!(Shape::from_maya(1, 5, c), Shape::Billow { cells: c });
     }
 }

@@ -27,7 +27,8 @@
 //!   `threshold` (0), `amplitude` (1), `ratio` (0.707), `frequencyRatio` (2), `depthMax`
 //!   (3), `inflection` (off), `time` (0), `frequency` (8), `noiseType` (1, billow; 0
 //!   Perlin, 2 Wave, 3 Wispy, 4 SpaceTime, as the noise texture reads them in space),
-//!   `numWaves` (5)) over 3D space ([`crate::noise::Noise::value3`]),
+//!   `numWaves` (5), the Billow cells' `density`, `spottyness`, `sizeRand`, `randomness`
+//!   and `falloff`: [`crate::billow`]) over 3D space ([`crate::noise::Noise::value3`]),
 //!   at q = (p − `origin`) ⊘ `scale` (`scale` 1 1 1, `origin` 0 0 0: Maya says scale has
 //!   the inverse effect of frequency; the origin's sign is mira's reading); `outColor` is
 //!   the value as grey, `outAlpha` the value.
@@ -138,7 +139,12 @@ maya_shader!(
         "scale",
         "origin",
         "noiseType",
-        "numWaves"
+        "numWaves",
+        "density",
+        "spottyness",
+        "sizeRand",
+        "randomness",
+        "falloff"
     ),
     volume_noise
 );

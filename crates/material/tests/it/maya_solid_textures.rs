@@ -1,4 +1,4 @@
-//! Maya's snow, rock, leather, granite and volumeNoise 3D textures in compiled scenes, read through a surfaceShader (the
+//! Maya's snow, rock, leather, granite and volumeNoise 3D textures (and the 2D noise's Billow cells) in compiled scenes, read through a surfaceShader (the
 //! texture's colour is the pixel's), under both name families. The shading point is the
 //! world origin, normal +y (see `support::maya::point`).
 
@@ -148,19 +148,49 @@ fn granite_cells_take_one_of_three_colours_in_the_filler() {
 
 /// volumeNoise at a point on the noise's lattice (the origin, or (0.25, 0.5, 0.25)
 /// through `origin`): every octave is 0 there, so Perlin noise (noiseType 0) shows its
-/// mean 0.5 + threshold and billow (the default type) its threshold; with scale 2 the
-/// point (0.25, 0.5, 0.25) is read at half of it, still on the lattice.
+/// mean 0.5 + threshold, and Billow (the default type) of density 0 (no blobs) its
+/// threshold; with scale 2 the point (0.25, 0.5, 0.25) is read at half of it, still on
+/// the lattice.
 #[test]
 fn volume_noise_on_its_lattice_shows_its_threshold() {
     for name in ["maya_volumenoise", "adskMayaVolumeNoise"] {
         let at = |extra: &str| shade(&scene(&format!(r#"shader "tex" "{name}" ("threshold" 0.2{extra})"#)));
         assert_rgb(at(r#", "noiseType" 0"#), [0.7; 3], 1e-6);
-        assert_rgb(at(""), [0.2; 3], 1e-6);
+        assert_rgb(at(r#", "density" 0"#), [0.2; 3], 1e-6);
         assert_rgb(at(r#", "noiseType" 0, "origin" -0.25 -0.5 -0.25"#), [0.7; 3], 1e-6);
         assert_rgb(at(r#", "noiseType" 0, "origin" -0.25 -0.5 -0.25, "scale" 2 2 2"#), [0.7; 3], 1e-6);
         // Off the lattice the value moves, within [0, 1].
         let v = at(r#", "noiseType" 0, "origin" -0.0173 -0.0311 -0.0057"#).x;
         assert!((0.0..=1.0).contains(&v) && (v - 0.7).abs() > 1e-4, "{v}");
+    }
+}
+
+/// Billow's cells through the declarations' new parameters, one octave, blobs on the
+/// cell centres (`randomness` 0) of equal peaks (`spottyness` 0): volumeNoise read at
+/// q · 8 = (0.6, 0.5, 0.5), 0.1 from a centre (t = 0.1 / 0.75), gives the default Fast
+/// curve (1 − t)² = 0.751111 and Linear 1 − t = 0.866667; the 2D noise at uv (0.3, 0.6),
+/// frequency 10 and time 0.5 (the point moved to the cell centre (3.5, 6.5)) gives
+/// Linear's peak 1 and Bubble's 0 (+ threshold 0.2); density 0 the threshold alone
+/// (1e-5).
+#[test]
+fn billow_cells_show_their_falloff() {
+    let one = r#""depthMax" 1, "randomness" 0, "spottyness" 0"#;
+    for name in ["maya_volumenoise", "adskMayaVolumeNoise"] {
+        let at = |extra: &str| {
+            let origin = r#""origin" -0.075 -0.0625 -0.0625"#;
+            shade(&scene(&format!(r#"shader "tex" "{name}" ({one}, {origin}{extra})"#)))
+        };
+        assert_rgb(at(""), [0.751111; 3], 1e-5);
+        assert_rgb(at(r#", "falloff" 0"#), [0.866667; 3], 1e-5);
+        assert_rgb(at(r#", "density" 0, "threshold" 0.3"#), [0.3; 3], 1e-6);
+    }
+    for name in ["maya_noise", "adskMayaNoise"] {
+        let at = |extra: &str| {
+            shade(&scene(&format!(r#"shader "tex" "{name}" ({one}, "frequency" 10, "time" 0.5{extra})"#)))
+        };
+        assert_rgb(at(r#", "falloff" 0"#), [1.0; 3], 1e-5);
+        assert_rgb(at(r#", "falloff" 3, "threshold" 0.2"#), [0.2; 3], 1e-5);
+        assert_rgb(at(r#", "density" 0, "threshold" 0.4"#), [0.4; 3], 1e-6);
     }
 }
 
