@@ -43,10 +43,36 @@ fn strip_at(x: f32) -> Option<usize> {
     (u >= 0.0 && u < STRIPS as f32).then_some(u as usize)
 }
 
-/// A slab of black lambert with transparency `t`, `refractions` on, index [`IOR`] and
-/// `refractionLimit` `limit` (its top at y = 0 facing up, its bottom at y = −`THICK`
-/// facing down) over the strips at y = −`BACK`, seen from above; no lights.
-fn scene(t: Vec3A, limit: u32) -> String {
+/// The slab's material "mat": a black lambert, or (`ramp`) a black rampShader without
+/// highlight or reflection, of transparency `t`, `refractions` on, index [`IOR`] and
+/// `refractionLimit` `limit`.
+fn slab_shader(ramp: bool, t: Vec3A, limit: u32) -> String {
+    let refraction = format!(r#""refractions" on, "refractiveIndex" {IOR}, "refractionLimit" {limit}"#);
+    if !ramp {
+        return format!(
+            r#"shader "mat" "maya_lambert" ("color" 0 0 0, "diffuse" 0, "transparency" {} {} {}, {refraction})"#,
+            t.x, t.y, t.z
+        );
+    }
+    let ramp = |name: &str, member: &str, value: &str| {
+        format!(
+            r#"[ {{ "{name}_Position" 0, "{name}_{member}" {value}, "{name}_Interp" 1 }},
+    {{ "{name}_Position" 1, "{name}_{member}" {value}, "{name}_Interp" 1 }} ]"#
+        )
+    };
+    format!(
+        r#"shader "mat" "maya_rampshader" ("colorInput" 0, "diffuse" 0, "color" {}, "specularity" 0,
+    "reflectivity" {}, "transparency" {}, {refraction})"#,
+        ramp("color", "Color", "0 0 0"),
+        ramp("reflectivity", "FloatValue", "0"),
+        ramp("transparency", "Color", &format!("{} {} {}", t.x, t.y, t.z)),
+    )
+}
+
+/// A slab of the material `shader` ([`slab_shader`]; its top at y = 0 facing up, its
+/// bottom at y = −`THICK` facing down) over the strips at y = −`BACK`, seen from above;
+/// no lights.
+fn scene(shader: &str) -> String {
     let view = support::maya_view::top_down(SIDE);
     let mut strips = String::new();
     let mut names = String::new();
@@ -70,8 +96,7 @@ instance "strip{k}_inst" "strip{k}" end instance
         r#"
 $include "mayabase.mi"
 {view}
-shader "mat" "maya_lambert" ("color" 0 0 0, "diffuse" 0, "transparency" {} {} {},
-    "refractions" on, "refractiveIndex" {IOR}, "refractionLimit" {limit})
+{shader}
 material "m" "maya_shadingengine" ("surfaceShader" = "mat.outColor")
     shadow "maya_shadingengine" ("surfaceShader" = "mat.outColor") end material
 object "top" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
@@ -81,8 +106,7 @@ instance "bottom_inst" "bottom" end instance
 {strips}
 instgroup "root" "cam_inst" "top_inst" "bottom_inst"{names} end instgroup
 render "root" "cam_inst" "opt"
-"#,
-        t.x, t.y, t.z
+"#
     )
 }
 
@@ -138,7 +162,8 @@ fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
     support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
-/// A slab of index 1.5 and transparency T = (0.9, 0.7, 0.5) over strips of sixteen
+/// A slab (lambert and rampShader alike) of index 1.5 and transparency T = (0.9, 0.7,
+/// 0.5) over strips of sixteen
 /// colours, `refractionLimit` 0, 1 and 2: the camera sees T² ⊙ the strip the ray finds
 /// straight through (0), bent at the top only (1: the bottom passes it straight, past
 /// the limit) or bent in and back out, displaced sideways (2). At every pixel that lies
@@ -150,8 +175,8 @@ fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
 #[test]
 fn a_refracting_slab_bends_the_rays_within_the_refraction_limit_in_both_engines() {
     let t = Vec3A::new(0.9, 0.7, 0.5);
-    for limit in [0u32, 1, 2] {
-        let text = scene(t, limit);
+    for (ramp, limit) in [false, true].into_iter().flat_map(|r| [(r, 0u32), (r, 1), (r, 2)]) {
+        let text = scene(&slab_shader(ramp, t, limit));
         let classic = pixels(&text, EngineKind::Classic, 4);
         let path = pixels(&text, EngineKind::Path, 16);
         let (mut pure, mut differ) = (0, 0);
@@ -171,12 +196,15 @@ fn a_refracting_slab_bends_the_rays_within_the_refraction_limit_in_both_engines(
             for (name, got) in [("classic", classic[i]), ("path", path[i])] {
                 assert!(
                     (got - want).abs().max_element() < 1e-3,
-                    "limit {limit}, {name} pixel ({col}, {row}): {got} vs formula {want}"
+                    "ramp {ramp}, limit {limit}, {name} pixel ({col}, {row}): {got} vs formula {want}"
                 );
             }
         }
-        println!("limit {limit}: {pure} pixels within one strip, {differ} differ from the other limits'");
-        assert!(pure * 3 >= SIDE * SIDE, "limit {limit}: only {pure} pixels within one strip");
-        assert!(differ * 100 >= pure * 15, "limit {limit}: only {differ} of {pure} pixels tell the limits apart");
+        println!("ramp {ramp}, limit {limit}: {pure} pixels within one strip, {differ} differ from the other limits'");
+        assert!(pure * 3 >= SIDE * SIDE, "ramp {ramp}, limit {limit}: only {pure} pixels within one strip");
+        assert!(
+            differ * 100 >= pure * 15,
+            "ramp {ramp}, limit {limit}: only {differ} of {pure} pixels tell the limits apart"
+        );
     }
 }
