@@ -162,15 +162,15 @@ fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
     support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
-/// A slab (lambert and rampShader alike) of index 1.5 and transparency T = (0.9, 0.7,
-/// 0.5) over strips of sixteen
-/// colours, `refractionLimit` 0, 1 and 2: the camera sees T² ⊙ the strip the ray finds
-/// straight through (0), bent at the top only (1: the bottom passes it straight, past
-/// the limit) or bent in and back out, displaced sideways (2). At every pixel that lies
-/// within one strip by the formula (16 × 16 sub-points, a 0.1-pixel margin), both engines give the formula
-/// within 1e-3 per channel (no noise: the slab's only lobe is the delta refraction);
-/// at ≥ 15 % of those pixels another limit's ray through the pixel's centre finds
-/// another strip, so the engines follow the limit. Before, the path engine let the rays through straight at
+/// A slab (lambert and rampShader alike) of index 1.5 and transparency
+/// T = (0.9, 0.7, 0.5) over strips of sixteen colours, `refractionLimit` 0, 1 and 2: the
+/// camera sees T² ⊙ the strip the ray finds straight through (0), bent at the top only
+/// (1: the bottom passes it straight, past the limit) or bent in and back out, displaced
+/// sideways (2). At every pixel that lies within one strip by the formula (16 × 16
+/// sub-points, a 0.1-pixel margin), both engines give the formula within 1e-3 per
+/// channel (no noise: the slab's only lobe is the delta refraction); at ≥ 15 % of those
+/// pixels another limit's ray through the pixel's centre finds another strip, so the
+/// engines follow the limit. Before, the path engine let the rays through straight at
 /// every limit, by the transparency's mean.
 #[test]
 fn a_refracting_slab_bends_the_rays_within_the_refraction_limit_in_both_engines() {
