@@ -38,7 +38,9 @@
 //! in the classic shader (`reflectedColor`, rampShader's environment ramp) the BSDF
 //! emits by the weight seen from each view ([`MayaBsdf::emitted`]), and past
 //! `reflectionLimit` mirror reflections the path engine drops the mirror
-//! ([`MayaBsdf::without_mirror`]). rampShader's ramps that follow the view are tabulated
+//! ([`MayaBsdf::without_mirror`]). With `refractions` on, T ⊙ the ray bent by Snell's
+//! law (no Fresnel) is a delta refraction of weight T ([`MayaGlossy::refraction`],
+//! [`MayaBsdf::refract_at`]). rampShader's ramps that follow the view are tabulated
 //! ([`ViewRamps`], [`MayaGlossy::specular_ramp`]).
 //!
 //! **Transparency.** The classic materials fade only their diffuse part by
@@ -383,6 +385,18 @@ pub struct MayaGlossy {
     /// mirror to reflect (Maya's `reflectionLimit`: the classic shader traces its
     /// reflection while the ray's reflection level is below it); `u32::MAX`: no limit.
     pub reflection_limit: u32,
+    /// The raytraced refraction's weight, `transparency` T per channel (Maya's
+    /// `refractions` on; zero otherwise): what lies behind, seen along the ray bent by
+    /// Snell's law with [`MayaGlossy::ior`], adds T ⊙ it, without Fresnel, as the classic
+    /// shader adds T ⊙ its refraction ray (a mirror ray of the same weight under total
+    /// internal reflection).
+    pub refraction: Rgb,
+    /// `refractiveIndex`: the index inside the surface (1 outside).
+    pub ior: f32,
+    /// `refractionLimit`: the most refractions (and transparency passes) a path may have
+    /// made before this surface for it to bend the ray; past it the ray passes straight,
+    /// as the classic shader then traces a transparency ray.
+    pub refraction_limit: u32,
     /// The factor a per-hit `specularColor` multiplied the tint by ([`MayaGlossy::tinted`];
     /// 1 for a constant one), per channel.
     pub tinted_by: Rgb,
@@ -411,6 +425,9 @@ impl MayaGlossy {
             coverage: 1.0,
             reflected: Rgb::ZERO,
             reflection_limit: u32::MAX,
+            refraction: Rgb::ZERO,
+            ior: 1.0,
+            refraction_limit: u32::MAX,
             tinted_by: Rgb::ONE,
             view_ramps: None,
             specular_ramp: None,
@@ -444,6 +461,15 @@ impl MayaGlossy {
     /// reflections (see [`MayaGlossy::reflection_limit`]).
     pub fn with_reflection_limit(mut self, limit: u32) -> MayaGlossy {
         self.reflection_limit = limit;
+        self
+    }
+
+    /// The same highlight with Maya's raytraced refraction of weight `t` (per channel,
+    /// 0..1), index `ior` and `refractionLimit` `limit` (see [`MayaGlossy::refraction`]).
+    pub fn with_refraction(mut self, t: Rgb, ior: f32, limit: u32) -> MayaGlossy {
+        self.refraction = t.clamp(Rgb::ZERO, Rgb::ONE);
+        self.ior = ior;
+        self.refraction_limit = limit;
         self
     }
 
@@ -527,8 +553,10 @@ impl MayaGlossy {
         // The highlight's share by its colour's mean.
         let mean = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + *c) / s.len() as f32);
         let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint * mean) * a, luminance(mirror).max(0.0));
-        let total = d + g + m;
-        let (diffuse_share, mirror_share) = if total > 0.0 { (d / total, m / total) } else { (1.0, 0.0) };
+        let t = luminance(self.refraction).max(0.0);
+        let total = d + g + m + t;
+        let (diffuse_share, mirror_share, refraction_share) =
+            if total > 0.0 { (d / total, m / total, t / total) } else { (1.0, 0.0, 0.0) };
         MayaBsdf {
             diffuse,
             tint,
@@ -536,10 +564,14 @@ impl MayaGlossy {
             shape: self.shape,
             emitted,
             reflection_limit: self.reflection_limit,
+            refraction: self.refraction,
+            eta: self.ior,
+            refraction_limit: self.refraction_limit,
             tinted_by: self.tinted_by,
             specular_ramp: self.specular_ramp,
             diffuse_share,
             mirror_share,
+            refraction_share,
         }
     }
 }
@@ -563,6 +595,13 @@ pub struct MayaBsdf {
     pub emitted: Rgb,
     /// [`MayaGlossy::reflection_limit`].
     pub reflection_limit: u32,
+    /// The refraction's weight ([`MayaGlossy::refraction`]; a delta lobe).
+    pub refraction: Rgb,
+    /// The relative index n_behind / n_front the refracted ray crosses: `refractiveIndex`
+    /// as built (entering), set per hit by [`MayaBsdf::refract_at`]; 1 passes straight.
+    pub eta: f32,
+    /// [`MayaGlossy::refraction_limit`].
+    pub refraction_limit: u32,
     /// [`MayaGlossy::tinted_by`].
     pub tinted_by: Rgb,
     /// [`MayaGlossy::specular_ramp`].
@@ -571,6 +610,8 @@ pub struct MayaBsdf {
     diffuse_share: f32,
     /// The probability of sampling the mirror.
     mirror_share: f32,
+    /// The probability of sampling the refraction.
+    refraction_share: f32,
 }
 
 /// `wo` and `wi` mirrored to the +Z side when `wo` is below; `None` when they lie on
@@ -589,8 +630,34 @@ impl MayaBsdf {
     pub fn without_mirror(&mut self) {
         let rest = 1.0 - self.mirror_share;
         self.diffuse_share = if rest > 0.0 { (self.diffuse_share / rest).min(1.0) } else { 0.0 };
+        self.refraction_share = if rest > 0.0 { (self.refraction_share / rest).min(1.0) } else { 0.0 };
         self.mirror = Rgb::ZERO;
         self.mirror_share = 0.0;
+    }
+
+    /// Sets the refraction for a hit from the back of the surface (`inside`: the ray
+    /// leaves the material, relative index 1/`refractiveIndex`) or the front, on a path
+    /// that has made `refractions` refractions and transparency passes: at or past
+    /// [`MayaBsdf::refraction_limit`] the ray passes straight (relative index 1), as the
+    /// classic shader traces a transparency ray there. Called once per hit.
+    pub fn refract_at(&mut self, inside: bool, refractions: u32) {
+        self.eta = if refractions >= self.refraction_limit || self.eta <= 0.0 {
+            1.0
+        } else if inside {
+            1.0 / self.eta
+        } else {
+            self.eta
+        };
+    }
+
+    /// The refracted direction for `wo` (Snell's law with [`MayaBsdf::eta`]; straight
+    /// through for 1), the mirror direction under total internal reflection.
+    pub fn refracted(&self, wo: Vec3A) -> Vec3A {
+        if (self.eta - 1.0).abs() <= 1e-6 {
+            return -wo;
+        }
+        let n = Vec3A::new(0.0, 0.0, wo.z.signum());
+        crate::dielectric::refract(wo, n, self.eta).unwrap_or(Vec3A::new(-wo.x, -wo.y, wo.z))
     }
 
     /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side.
@@ -609,20 +676,34 @@ impl MayaBsdf {
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         let Some((v, l)) = upper(wo, wi) else { return 0.0 };
         let p = self.diffuse_share;
-        p * l.z * FRAC_1_PI + (1.0 - p - self.mirror_share).max(0.0) * self.shape.pdf(v, l)
+        let glossy = (1.0 - p - self.mirror_share - self.refraction_share).max(0.0);
+        p * l.z * FRAC_1_PI + glossy * self.shape.pdf(v, l)
     }
 
-    /// Chooses the mirror with probability `mirror_share`, the diffuse lobe with
-    /// `diffuse_share`, else the highlight's density, by `u_lobe`; a continuous sample
-    /// carries the continuous mixture's f and pdf, the mirror's its reflectance over
-    /// |cos θ| and its share (a delta).
+    /// Chooses the mirror with probability `mirror_share`, the refraction with
+    /// `refraction_share`, the diffuse lobe with `diffuse_share`, else the highlight's
+    /// density, by `u_lobe`; a continuous sample carries the continuous mixture's f and
+    /// pdf, a delta its weight over |cos θ| and its share.
     pub fn sample(&self, wo: Vec3A, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
-        if wo.z == 0.0 || (self.mirror_share <= 0.0 && self.diffuse == Rgb::ZERO && self.tint == Rgb::ZERO) {
+        if wo.z == 0.0
+            || (self.mirror_share <= 0.0
+                && self.refraction_share <= 0.0
+                && self.diffuse == Rgb::ZERO
+                && self.tint == Rgb::ZERO)
+        {
             return None;
         }
         if u_lobe >= 1.0 - self.mirror_share {
             let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
             return Some(BsdfSample { wi, f: self.mirror / wo.z.abs(), pdf: self.mirror_share, delta: true });
+        }
+        if u_lobe >= 1.0 - self.mirror_share - self.refraction_share {
+            let wi = self.refracted(wo);
+            if wi.z == 0.0 {
+                return None;
+            }
+            let f = self.refraction / wi.z.abs();
+            return Some(BsdfSample { wi, f, pdf: self.refraction_share, delta: true });
         }
         let wi = if u_lobe < self.diffuse_share {
             cosine_on_side(wo, u)?
@@ -672,6 +753,36 @@ mod tests {
             }
         }
         (sum * f64::from(TAU) / f64::from(n * n) / f64::from(PI)) as f32
+    }
+
+    /// The refraction bends by Snell's law (sin θt = sin θo / η, η = `refractiveIndex`
+    /// entering, its inverse leaving, 1 past `refractionLimit`), reflects under total
+    /// internal reflection, and weighs T per channel (no Fresnel).
+    #[test]
+    fn the_refraction_bends_by_snell_and_weighs_the_transparency() {
+        let t = Rgb::new(0.9, 0.5, 0.2);
+        let g = MayaGlossy::new(Shape::Phong { power: 20.0 }, Rgb::ZERO).with_refraction(t, 1.5, 1);
+        let wo = Vec3A::new(0.6, 0.0, 0.8);
+        for (inside, made, eta) in [(false, 0, 1.5), (true, 0, 1.0 / 1.5), (false, 1, 1.0), (true, 3, 1.0)] {
+            let mut b = g.bsdf(Rgb::ZERO, wo);
+            b.refract_at(inside, made);
+            let s = b.sample(wo, Vec2::splat(0.5), 0.5).expect("a refraction");
+            assert!(s.delta && s.wi.z < 0.0, "{s:?}");
+            let sin_t = (s.wi.x * s.wi.x + s.wi.y * s.wi.y).sqrt();
+            assert!((sin_t - 0.6 / eta).abs() < 1e-5 && s.wi.x < 0.0, "{inside} {made}: {s:?}");
+            assert!((s.weight() - t).abs().max_element() < 1e-5, "{}", s.weight());
+        }
+        // Leaving at sin θ = 0.8 > 1/1.5: the mirror direction, same weight.
+        let wo = Vec3A::new(0.8, 0.0, 0.6);
+        let mut b = g.bsdf(Rgb::ZERO, wo);
+        b.refract_at(true, 0);
+        let s = b.sample(wo, Vec2::splat(0.5), 0.5).expect("a reflection");
+        assert!((s.wi - Vec3A::new(-0.8, 0.0, 0.6)).length() < 1e-6, "{s:?}");
+        assert!((s.weight() - t).abs().max_element() < 1e-5);
+        // Beside a diffuse lobe the delta is chosen by its share: its weight × share is T.
+        let b = g.bsdf(Rgb::splat(0.3), wo);
+        let s = b.sample(wo, Vec2::splat(0.5), 0.999).expect("a refraction");
+        assert!(s.delta && s.pdf < 1.0 && (s.weight() * s.pdf - t).abs().max_element() < 1e-5, "{s:?}");
     }
 
     #[test]

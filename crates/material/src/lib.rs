@@ -327,6 +327,14 @@ impl SurfaceModel {
         matched.then(|| p.transmission_color.unwrap_or(p.base_color).clamp(Rgb::ZERO, Rgb::ONE))
     }
 
+    /// Whether rays that see the surface refract through its BSDF rather than pass it as
+    /// a cut-out (a Maya material with `refractions` on: [`bsdf::MayaGlossy::refraction`]);
+    /// shadow rays still pass by its opacity and [`SurfaceMaterial::cutout_tint`], as the
+    /// classic shader filters them by its transparency.
+    pub fn refracts(&self) -> bool {
+        matches!(self, SurfaceModel::Maya(g) if g.refraction != Rgb::ZERO)
+    }
+
     /// Whether light can enter the surface.
     pub fn has_inside(&self) -> bool {
         match self {

@@ -48,6 +48,15 @@
 //!   as the classic shader's C(1) ⊙ ambient; layeredShader by Σ w_i ⊙ its material
 //!   layers' ambient colours (a ratio of its diffuse colour per channel; plain-colour
 //!   layers take none, as in the classic shader, where they are not lit);
+//! - `refractions` on (lambert family and rampShader, by its transparency at facing
+//!   ratio 1; an index other than 1, a constant T ≠ 0): the
+//!   classic shader's T ⊙ its refraction ray, bent by Snell's law with
+//!   `refractiveIndex` (no Fresnel; a mirror ray under total internal reflection) while
+//!   the ray has made fewer than `refractionLimit` refraction and transparency rays, a
+//!   straight transparency ray past it, is the BSDF's delta refraction of weight T
+//!   (`bsdf::MayaGlossy::refraction`): every non-shadow ray hits the surface (no
+//!   cut-out, the diffuse part faded by 1 − T, nothing divided by a coverage); shadow
+//!   rays pass it as a cut-out tinted by T, as the classic shader filters them;
 //! - transparency T (without refraction): coverage p = 1 − mean(T) (at least
 //!   [`MIN_HIGHLIGHT_COVERAGE`] for a material with a highlight or a reflection), and
 //!   the rays that pass carry T/(1 − p) per channel ([`SurfaceMaterial::cutout_tint`]),
@@ -260,6 +269,27 @@ fn cut_out(surface: &mut SurfaceMaterial, t: Rgb, highlight: bool) {
     surface.cutout_tint = if opacity < 1.0 { t / (1.0 - opacity) } else { Rgb::ONE };
 }
 
+/// The index of refraction of a shading engine's (`alone`) Maya material of constant
+/// transparency `t` that refracts — `refractions` on, `refractiveIndex` positive and not
+/// 1, `t` not black, as the classic shader then traces a refraction ray — else `None`.
+fn refraction_index(r: &mut Reader, t: Rgb, alone: bool) -> Option<f32> {
+    let ior = r.scalar("refractiveIndex", 1.0);
+    let on = constant(r.graph, r.node, "refractions").is_some_and(Value::bool);
+    (alone && on && t != Rgb::ZERO && ior > 0.0 && (ior - 1.0).abs() > 1e-6).then_some(ior)
+}
+
+/// Gives `surface` the refraction of weight `t` and index `ior`: T ⊙ what the ray bent
+/// by Snell's law finds, within `refractionLimit` (Maya's default 6) refractions (beside
+/// its highlight and mirror, or a highlight of zero tint when it has none).
+fn refract(r: &mut Reader, surface: &mut SurfaceMaterial, t: Rgb, ior: f32) {
+    let limit = r.scalar("refractionLimit", 6.0).max(0.0) as u32;
+    let glossy = match &surface.model {
+        SurfaceModel::Maya(g) => **g,
+        _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
+    };
+    surface.model = SurfaceModel::Maya(Box::new(glossy.with_refraction(t, ior, limit)));
+}
+
 /// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
 /// with the classic shaders' defaults.
 fn classic_highlight(family: &str, r: &mut Reader) -> ::maya::specular::Highlight {
@@ -309,14 +339,26 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             let d = r.scalar("diffuse", 0.8);
             let reflective = family != "lambert";
             let t = r.color("transparency", Rgb::ZERO).clamp(Rgb::ZERO, Rgb::ONE);
-            cut_out(&mut surface, t, alone && reflective);
+            // Maya's raytraced refraction (`refractions` on, an index other than 1): the
+            // rays that see the surface all hit it and refract through its BSDF by T
+            // (no cut-out, nothing divided by a coverage); shadow rays still pass it as
+            // a cut-out, filtered by T, as the classic shader filters them.
+            let ior = refraction_index(&mut r, t, alone);
+            let refracts = ior.is_some();
+            cut_out(&mut surface, t, alone && reflective && !refracts);
             if connection(graph, node, "transparency").is_some() {
                 r.warnings.push("'transparency' is connected; the path engine keeps the surface opaque".into());
             }
             // Transparency fades the diffuse part (and incandescence) by 1 − T per
             // channel where the path engine's hits, a share `opacity` of the rays, carry
             // (1 − T)/opacity of it (exact for a connected colour when T is grey).
-            let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - t) / surface.opacity } else { Rgb::ONE };
+            let fade = if refracts {
+                Rgb::ONE - t
+            } else if alone && surface.opacity > 0.0 {
+                (Rgb::ONE - t) / surface.opacity
+            } else {
+                Rgb::ONE
+            };
             if fade != Rgb::ONE && ["color", "incandescence"].iter().any(|p| connection(graph, node, p).is_some()) {
                 r.warnings.push(
                     "a coloured 'transparency' on a connected colour or incandescence: the path engine fades them \
@@ -339,7 +381,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             }
             // The highlight and the reflection are not faded: the hits carry them
             // whole over the share of rays that hit.
-            let coverage = if alone { surface.opacity.max(1e-3) } else { 1.0 };
+            let coverage = if alone && !refracts { surface.opacity.max(1e-3) } else { 1.0 };
             if let Some((bump, member)) = connection(graph, node, "normalCamera") {
                 r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
             }
@@ -389,6 +431,9 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                             .with_coverage(coverage),
                     ));
                 }
+            }
+            if let Some(ior) = ior {
+                refract(&mut r, &mut surface, t, ior);
             }
         }
         "rampshader" => ramp_shader(&mut r, &mut surface, alone),
@@ -488,11 +533,19 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     };
     let tint = if by_view { tint } else { tint * at(&rolloff, 1.0).x.max(0.0) };
     let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
-    cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects));
+    // Refraction as for the lambert family (see `translate`), by the transparency at 1.
+    let ior = refraction_index(r, tr, alone);
+    cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects) && ior.is_none());
     // Transparency fades the lit colour and incandescence, not the highlight and the
     // reflection (as for the lambert family, see `translate`).
-    let fade = if alone && surface.opacity > 0.0 { (Rgb::ONE - tr) / surface.opacity } else { Rgb::ONE };
-    let coverage = if alone { surface.opacity.max(1e-3) } else { 1.0 };
+    let fade = if ior.is_some() {
+        Rgb::ONE - tr
+    } else if alone && surface.opacity > 0.0 {
+        (Rgb::ONE - tr) / surface.opacity
+    } else {
+        Rgb::ONE
+    };
+    let coverage = if alone && ior.is_none() { surface.opacity.max(1e-3) } else { 1.0 };
     surface.diffuse = albedo * fade;
     // Ambient light goes by the colour at the ramp's reference index (C(1) for the light
     // angle; the other inputs' reference is taken at 1 as their albedo is): 1/(d + t) or
@@ -533,6 +586,9 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
             }
         }
         surface.model = SurfaceModel::Maya(Box::new(g));
+    }
+    if let Some(ior) = ior {
+        refract(r, surface, tr, ior);
     }
 }
 

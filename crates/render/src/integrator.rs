@@ -448,6 +448,9 @@ pub fn trace_camera_path(
     // The mirror reflections the path has made (Maya's `reflectionLimit` counts them as
     // mental ray's reflection level does).
     let mut reflections = 0u32;
+    // The delta transmissions the path has made (Maya's `refractionLimit` counts them as
+    // mental ray's refraction level counts refraction and transparency rays).
+    let mut refractions = 0u32;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
@@ -462,7 +465,12 @@ pub fn trace_camera_path(
             let Some(h) = h else { break };
             let s = surface(world, &through, &h);
             let m = material_at(world, accel, shading, &through, &h, s.material);
-            if m.opacity >= 1.0 || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity {
+            // (A Maya material that refracts stops every ray but shadow rays: its BSDF
+            // refracts them.)
+            if m.opacity >= 1.0
+                || m.model.refracts()
+                || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity
+            {
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
                 found = Some((Hit { t, ..h }, s, m));
@@ -600,6 +608,9 @@ pub fn trace_camera_path(
             if reflections >= b.reflection_limit {
                 b.without_mirror();
             }
+            // Maya's refraction: leaving through the back (mental ray's `inv_normal`), and
+            // straight past `refractionLimit`.
+            b.refract_at(s.ng.dot(ray.dir) > 0.0, refractions);
             radiance += throughput * b.emitted;
         }
         let departure = Departure { media: &media, surface: Some((s.material, s.ng, &ray, &stop)) };
@@ -715,6 +726,8 @@ pub fn trace_camera_path(
         }
         if bs.delta && (bs.wi.z > 0.0) == (wo.z > 0.0) {
             reflections += 1;
+        } else if bs.delta {
+            refractions += 1;
         }
         throughput *= bs.weight();
         from_instance = Some(stop.instance);
