@@ -104,7 +104,51 @@ struct Surface {
     ns: Vec3A,
     material: u32,
     tag: u32,
+    /// How far `p` may lie off the surface as the intersector sees it (world units; see
+    /// [`hit_error`]): rays leave from that far off it ([`Surface::leave`]).
+    err: f32,
 }
+
+impl Surface {
+    /// The origin of a ray that leaves the hit along `dir`, moved off the surface to the
+    /// side of the normal `n` (`ng` or its opposite) that `dir` leaves to.
+    #[inline]
+    fn leave(&self, n: Vec3A, dir: Vec3A) -> Vec3A {
+        leave_surface(self.p, self.err, n, dir)
+    }
+}
+
+/// [`offset_origin`] of `p` after a step of `err` along `n`, towards the side `dir` leaves
+/// to: past the hit point's rounding error (which the ulps of `p` alone do not bound), so
+/// the ray cannot find the surface it leaves again — in particular not the neighbour
+/// across a shared edge, whose plane the rounded point may lie behind.
+#[inline]
+fn leave_surface(p: Vec3A, err: f32, n: Vec3A, dir: Vec3A) -> Vec3A {
+    let n = if n.dot(dir) < 0.0 { -n } else { n };
+    offset_origin(p + n * err, n, dir)
+}
+
+/// A bound on how far a hit point on the triangle `p0 p1 p2` (object space), placed by
+/// `to_world`, lies off the triangle and its neighbours as the ray–triangle test sees
+/// them (world units): the test and the barycentric sum round in units of the vertices'
+/// coordinates (and the placement's), not of the point's own, so on a large triangle the
+/// point's ulps are far too small — a point near the origin on a 100-unit mirror split in
+/// two lay behind its neighbour's plane, and the mirror ray found the neighbour at
+/// t ≈ 1e-5 (the reflection counted twice along the shared edge). [`HIT_ERROR_ULPS`] of
+/// the largest coordinate involved.
+#[inline]
+fn hit_error(p0: Vec3A, p1: Vec3A, p2: Vec3A, to_world: &glam::Affine3A) -> f32 {
+    let reach = p0.abs().max(p1.abs()).max(p2.abs());
+    let m = &to_world.matrix3;
+    let world =
+        m.x_axis.abs() * reach.x + m.y_axis.abs() * reach.y + m.z_axis.abs() * reach.z + to_world.translation.abs();
+    HIT_ERROR_ULPS * f32::EPSILON * world.max_element()
+}
+
+/// The multiple of the largest coordinate's relative rounding (`f32::EPSILON`) a hit point
+/// is taken to be off its surface by ([`hit_error`]): Möller–Trumbore's t rounds by a few
+/// of them (measured: self-hits up to 2.5 ε × the coordinates along the ray).
+const HIT_ERROR_ULPS: f32 = 16.0;
 
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let inst = &world.instances[hit.instance as usize];
@@ -133,7 +177,8 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    Surface { p, ng, ns, material, tag: inst.tag }
+    let err = hit_error(p0, p1, p2, &placed.object_to_world);
+    Surface { p, ng, ns, material, tag: inst.tag, err }
 }
 
 /// Power heuristic weight of a strategy with density `a` against one with `b`.
@@ -206,6 +251,8 @@ fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool),
 /// A shading point as next-event estimation sees it.
 struct Vertex<'v> {
     p: Vec3A,
+    /// How far `p` may lie off the surface ([`Surface::err`]).
+    err: f32,
     /// The path's shutter time.
     time: f32,
     ng: Vec3A,
@@ -244,7 +291,7 @@ fn environment_light(
     if f == Rgb::ZERO {
         return Rgb::ZERO;
     }
-    let origin = offset_origin(v.p, v.ng, es.dir);
+    let origin = leave_surface(v.p, v.err, v.ng, es.dir);
     if through_portal(&world.lights, origin, es.dir) {
         return Rgb::ZERO;
     }
@@ -352,7 +399,7 @@ fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, sh
         }
         tint *= world.materials[s.material as usize].cutout_tint;
         let travelled = hit.t;
-        ray.origin = offset_origin(s.p, s.ng, ray.dir);
+        ray.origin = s.leave(s.ng, ray.dir);
         ray.tmax = (ray.tmax - travelled).max(0.0);
     }
     Rgb::ZERO
@@ -472,7 +519,7 @@ pub fn trace_camera_path(
             // A coloured transparency filters what passes, per channel.
             throughput *= world.materials[s.material as usize].cutout_tint;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
-            through.origin = offset_origin(s.p, s.ng, ray.dir);
+            through.origin = s.leave(s.ng, ray.dir);
         }
         let hit = found.as_ref().map(|(h, _, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
@@ -615,7 +662,7 @@ pub fn trace_camera_path(
                 let through = match a.shadow {
                     Some(shadow) => {
                         let (dir, dist) = towards_sphere(s.p, a.source(s.p), shadow.radius, u_light);
-                        let origin = offset_origin(s.p, ng, dir);
+                        let origin = s.leave(ng, dir);
                         counts.shadow_rays += 1;
                         let shadow = Ray {
                             mask: mask::SHADOW,
@@ -639,7 +686,7 @@ pub fn trace_camera_path(
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
-            let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
+            let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
         } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
@@ -653,7 +700,7 @@ pub fn trace_camera_path(
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
                     // Maya's soft shadows spread the shadow ray (`lightRadius`, `lightAngle`).
                     let (dir, dist) = light.shadow_ray_at(s.p, &ls, u_light, ray.time);
-                    let origin = offset_origin(s.p, ng, dir);
+                    let origin = s.leave(ng, dir);
                     let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
@@ -734,7 +781,7 @@ pub fn trace_camera_path(
         }
         ray = Ray {
             mask: mask::SECONDARY,
-            origin: offset_origin(s.p, ng, wi),
+            origin: s.leave(ng, wi),
             dir: wi,
             tmin: 0.0,
             tmax: f32::INFINITY,

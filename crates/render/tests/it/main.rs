@@ -46,6 +46,7 @@ mod media_classic;
 mod media_entry;
 mod media_orthographic;
 mod mia_helpers;
+mod mirror_seam_path;
 mod motion;
 mod motion_blur;
 mod motion_composed;
