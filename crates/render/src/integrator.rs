@@ -381,8 +381,9 @@ fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
 }
 
 /// The fraction of light (per channel) the shadow ray lets through: 0 when blocked by any
-/// surface, or with cutout materials by a surface that does not let it pass (a
-/// stochastic choice by its opacity); the product of the cut-out tints of the surfaces it
+/// surface, or with cutout materials by a surface that does not let it pass (one marked
+/// `opaque`, [`World::blocks_shadows`]; else a stochastic choice by its opacity); the
+/// product of the cut-out tints of the surfaces it
 /// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise.
 fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> Rgb {
     if !world.has_cutouts {
@@ -393,6 +394,9 @@ fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, sh
     for crossing in 0..MAX_CUTOUT_CROSSINGS {
         let Some(hit) = accel.intersect(&ray) else { return tint };
         let s = surface(world, &ray, &hit);
+        if world.blocks_shadows(s.material) {
+            return Rgb::ZERO;
+        }
         let m = material_at(world, accel, shading, &ray, &hit, s.material);
         if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
             return Rgb::ZERO;

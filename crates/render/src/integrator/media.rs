@@ -292,6 +292,10 @@ fn shadow_transmittance_through(
         return shadow_passed(world, accel, shading, shadow, seed);
     }
     let walk = walk_media(world, accel, from, shadow, MAX_CUTOUT_CROSSINGS, |media, ray, s, crossing| {
+        if world.blocks_shadows(s.surface.material) {
+            // Marked `opaque`: no cutout, no boundary.
+            return Crossing::Blocked;
+        }
         let cut_out = world.has_cutouts && {
             let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
             m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity
