@@ -4,6 +4,7 @@
 
 mod ambient_highlight;
 mod fog;
+mod leave;
 mod media;
 
 use bsdf::Bsdf;
@@ -15,7 +16,7 @@ use shader::{Ctx, RayType, Shading, State};
 use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::light::LightSource;
-use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
+use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use media::Departure;
@@ -105,50 +106,9 @@ struct Surface {
     material: u32,
     tag: u32,
     /// How far `p` may lie off the surface as the intersector sees it (world units; see
-    /// [`hit_error`]): rays leave from that far off it ([`Surface::leave`]).
+    /// [`leave::hit_error`]): rays leave from that far off it ([`Surface::leave`]).
     err: f32,
 }
-
-impl Surface {
-    /// The origin of a ray that leaves the hit along `dir`, moved off the surface to the
-    /// side of the normal `n` (`ng` or its opposite) that `dir` leaves to.
-    #[inline]
-    fn leave(&self, n: Vec3A, dir: Vec3A) -> Vec3A {
-        leave_surface(self.p, self.err, n, dir)
-    }
-}
-
-/// [`offset_origin`] of `p` after a step of `err` along `n`, towards the side `dir` leaves
-/// to: past the hit point's rounding error (which the ulps of `p` alone do not bound), so
-/// the ray cannot find the surface it leaves again — in particular not the neighbour
-/// across a shared edge, whose plane the rounded point may lie behind.
-#[inline]
-fn leave_surface(p: Vec3A, err: f32, n: Vec3A, dir: Vec3A) -> Vec3A {
-    let n = if n.dot(dir) < 0.0 { -n } else { n };
-    offset_origin(p + n * err, n, dir)
-}
-
-/// A bound on how far a hit point on the triangle `p0 p1 p2` (object space), placed by
-/// `to_world`, lies off the triangle and its neighbours as the ray–triangle test sees
-/// them (world units): the test and the barycentric sum round in units of the vertices'
-/// coordinates (and the placement's), not of the point's own, so on a large triangle the
-/// point's ulps are far too small — a point near the origin on a 100-unit mirror split in
-/// two lay behind its neighbour's plane, and the mirror ray found the neighbour at
-/// t ≈ 1e-5 (the reflection counted twice along the shared edge). [`HIT_ERROR_ULPS`] of
-/// the largest coordinate involved.
-#[inline]
-fn hit_error(p0: Vec3A, p1: Vec3A, p2: Vec3A, to_world: &glam::Affine3A) -> f32 {
-    let reach = p0.abs().max(p1.abs()).max(p2.abs());
-    let m = &to_world.matrix3;
-    let world =
-        m.x_axis.abs() * reach.x + m.y_axis.abs() * reach.y + m.z_axis.abs() * reach.z + to_world.translation.abs();
-    HIT_ERROR_ULPS * f32::EPSILON * world.max_element()
-}
-
-/// The multiple of the largest coordinate's relative rounding (`f32::EPSILON`) a hit point
-/// is taken to be off its surface by ([`hit_error`]): Möller–Trumbore's t rounds by a few
-/// of them (measured: self-hits up to 2.5 ε × the coordinates along the ray).
-const HIT_ERROR_ULPS: f32 = 16.0;
 
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let inst = &world.instances[hit.instance as usize];
@@ -177,7 +137,7 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    let err = hit_error(p0, p1, p2, &placed.object_to_world);
+    let err = leave::hit_error(p0, p1, p2, &placed.object_to_world);
     Surface { p, ng, ns, material, tag: inst.tag, err }
 }
 
@@ -291,7 +251,7 @@ fn environment_light(
     if f == Rgb::ZERO {
         return Rgb::ZERO;
     }
-    let origin = leave_surface(v.p, v.err, v.ng, es.dir);
+    let origin = leave::leave_surface(v.p, v.err, v.ng, es.dir);
     if through_portal(&world.lights, origin, es.dir) {
         return Rgb::ZERO;
     }

@@ -2,7 +2,7 @@
 //! reflection must not be counted twice. Rays leaving a hit near the edge used to find
 //! the neighbouring triangle again (the hit point's rounding, in units of the large
 //! triangles' coordinates, put it behind the neighbour's plane); they now leave from past
-//! that error (`integrator::hit_error`).
+//! that error (`integrator::leave::hit_error`).
 
 use crate::support;
 
