@@ -4,6 +4,7 @@
 
 mod ambient_highlight;
 mod fog;
+mod leave;
 mod media;
 
 use bsdf::Bsdf;
@@ -15,7 +16,7 @@ use shader::{Ctx, RayType, Shading, State};
 use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::light::LightSource;
-use crate::ray::{mask, offset_origin, FirstHit, Ray, RayCounts};
+use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use media::Departure;
@@ -104,6 +105,9 @@ struct Surface {
     ns: Vec3A,
     material: u32,
     tag: u32,
+    /// How far `p` may lie off the surface as the intersector sees it (world units; see
+    /// [`leave::hit_error`]): rays leave from that far off it ([`Surface::leave`]).
+    err: f32,
 }
 
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
@@ -133,7 +137,8 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    Surface { p, ng, ns, material, tag: inst.tag }
+    let err = leave::hit_error(p0, p1, p2, &placed.object_to_world);
+    Surface { p, ng, ns, material, tag: inst.tag, err }
 }
 
 /// Power heuristic weight of a strategy with density `a` against one with `b`.
@@ -206,6 +211,8 @@ fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool),
 /// A shading point as next-event estimation sees it.
 struct Vertex<'v> {
     p: Vec3A,
+    /// How far `p` may lie off the surface ([`Surface::err`]).
+    err: f32,
     /// The path's shutter time.
     time: f32,
     ng: Vec3A,
@@ -244,7 +251,7 @@ fn environment_light(
     if f == Rgb::ZERO {
         return Rgb::ZERO;
     }
-    let origin = offset_origin(v.p, v.ng, es.dir);
+    let origin = leave::leave_surface(v.p, v.err, v.ng, es.dir);
     if through_portal(&world.lights, origin, es.dir) {
         return Rgb::ZERO;
     }
@@ -334,8 +341,9 @@ fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
 }
 
 /// The fraction of light (per channel) the shadow ray lets through: 0 when blocked by any
-/// surface, or with cutout materials by a surface that does not let it pass (a
-/// stochastic choice by its opacity); the product of the cut-out tints of the surfaces it
+/// surface, or with cutout materials by a surface that does not let it pass (one marked
+/// `opaque`, [`World::blocks_shadows`]; else a stochastic choice by its opacity); the
+/// product of the cut-out tints of the surfaces it
 /// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise.
 fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> Rgb {
     if !world.has_cutouts {
@@ -346,13 +354,16 @@ fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, sh
     for crossing in 0..MAX_CUTOUT_CROSSINGS {
         let Some(hit) = accel.intersect(&ray) else { return tint };
         let s = surface(world, &ray, &hit);
+        if world.blocks_shadows(s.material) {
+            return Rgb::ZERO;
+        }
         let m = material_at(world, accel, shading, &ray, &hit, s.material);
         if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
             return Rgb::ZERO;
         }
         tint *= world.materials[s.material as usize].cutout_tint;
         let travelled = hit.t;
-        ray.origin = offset_origin(s.p, s.ng, ray.dir);
+        ray.origin = s.leave(s.ng, ray.dir);
         ray.tmax = (ray.tmax - travelled).max(0.0);
     }
     Rgb::ZERO
@@ -480,7 +491,7 @@ pub fn trace_camera_path(
             // A coloured transparency filters what passes, per channel.
             throughput *= world.materials[s.material as usize].cutout_tint;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
-            through.origin = offset_origin(s.p, s.ng, ray.dir);
+            through.origin = s.leave(s.ng, ray.dir);
         }
         let hit = found.as_ref().map(|(h, _, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
@@ -630,7 +641,7 @@ pub fn trace_camera_path(
                 let through = match a.shadow {
                     Some(shadow) => {
                         let (dir, dist) = towards_sphere(s.p, a.source(s.p), shadow.radius, u_light);
-                        let origin = offset_origin(s.p, ng, dir);
+                        let origin = s.leave(ng, dir);
                         counts.shadow_rays += 1;
                         let shadow = Ray {
                             mask: mask::SHADOW,
@@ -654,7 +665,7 @@ pub fn trace_camera_path(
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
         if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
-            let v = Vertex { p: s.p, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
+            let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
         } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
@@ -668,7 +679,7 @@ pub fn trace_camera_path(
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
                     // Maya's soft shadows spread the shadow ray (`lightRadius`, `lightAngle`).
                     let (dir, dist) = light.shadow_ray_at(s.p, &ls, u_light, ray.time);
-                    let origin = offset_origin(s.p, ng, dir);
+                    let origin = s.leave(ng, dir);
                     let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
                     counts.shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
@@ -751,7 +762,7 @@ pub fn trace_camera_path(
         }
         ray = Ray {
             mask: mask::SECONDARY,
-            origin: offset_origin(s.p, ng, wi),
+            origin: s.leave(ng, wi),
             dir: wi,
             tmin: 0.0,
             tmax: f32::INFINITY,

@@ -64,6 +64,10 @@ pub struct World {
     /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
     /// look at what they cross.
     pub has_cutouts: bool,
+    /// For each material (as [`World::materials`]), whether the scene marks it `opaque`:
+    /// mental ray's promise that it never transmits, so shadow rays stop at it without
+    /// its transparency or shadow shader (both engines); empty when none is marked.
+    pub shadow_opaque: Vec<bool>,
     /// Whether some material has a participating medium inside (the path engine then
     /// tracks the media its paths are in; see `integrator::media`).
     pub has_media: bool,
@@ -90,6 +94,13 @@ fn affine(m: glam::DMat4) -> Affine3A {
 }
 
 impl World {
+    /// Whether shadow rays stop at material `material` whatever its opacity (it is marked
+    /// `opaque`; see [`World::shadow_opaque`]).
+    #[inline]
+    pub fn blocks_shadows(&self, material: u32) -> bool {
+        self.shadow_opaque.get(material as usize).copied().unwrap_or(false)
+    }
+
     /// Whether light `light` (an index into [`World::lights`]) lights instance `instance`
     /// (an index into [`World::instances`]) by the instance's light list.
     pub fn lights_instance(&self, light: usize, instance: u32) -> bool {

@@ -460,7 +460,9 @@ impl<'a> Ctx<'a> {
             // (unless a medium entered varies over its surface).
             tracer.boundary_hits(&ray, max_dist, &mut |dist, material| {
                 media.advance(shading, dist, &mut filter);
-                blocked = !media.cross_material(shading, material, &mut filter);
+                // A material marked `opaque` stops the ray (mental ray).
+                let opaque = material.and_then(|m| shading.materials.get(m as usize)).is_some_and(|m| m.opaque);
+                blocked = opaque || !media.cross_material(shading, material, &mut filter);
                 !blocked
             });
             if blocked {
@@ -473,7 +475,13 @@ impl<'a> Ctx<'a> {
         }
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
             media.advance(shading, hit.dist, &mut filter);
-            let shader = hit.material.and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.shadow);
+            let material = hit.material.and_then(|m| shading.materials.get(m as usize));
+            if material.is_some_and(|m| m.opaque) {
+                // Marked `opaque`: it stops the ray without its shadow shader (mental ray).
+                blocked = true;
+                return false;
+            }
+            let shader = material.and_then(|m| m.shadow);
             let Some(shader) = shader else {
                 if media.cross(shading, hit, &mut filter) {
                     return true;

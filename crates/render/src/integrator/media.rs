@@ -45,7 +45,7 @@ use super::{
 };
 use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
-use crate::ray::{mask, offset_origin, Ray, RayCounts};
+use crate::ray::{mask, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 
@@ -292,6 +292,10 @@ fn shadow_transmittance_through(
         return shadow_passed(world, accel, shading, shadow, seed);
     }
     let walk = walk_media(world, accel, from, shadow, MAX_CUTOUT_CROSSINGS, |media, ray, s, crossing| {
+        if world.blocks_shadows(s.surface.material) {
+            // Marked `opaque`: no cutout, no boundary.
+            return Crossing::Blocked;
+        }
         let cut_out = world.has_cutouts && {
             let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
             m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity
@@ -415,7 +419,7 @@ fn walk_media(
             }
             Crossing::Blocked => return Ok(Rgb::ZERO),
         }
-        ray.origin = offset_origin(met.surface.p, met.surface.ng, ray.dir);
+        ray.origin = met.surface.leave(met.surface.ng, ray.dir);
         ray.tmax = (ray.tmax - segment).max(0.0);
     }
     Err(tr)
@@ -516,7 +520,7 @@ fn cross_between(world: &World, accel: &dyn Accel, media: &mut MediumStack, ends
                 media.leave(s.material);
             }
         }
-        ray.origin = offset_origin(s.p, s.ng, dir);
+        ray.origin = s.leave(s.ng, dir);
         ray.tmax = (ray.tmax - hit.t).max(0.0);
     }
 }
@@ -543,7 +547,7 @@ fn media_along(world: &World, accel: &dyn Accel, p: Vec3A, dir: Vec3A, time: f32
                 enclosing.push((s.material, medium_entered(world, s.material, &ray, &hit)));
             }
         }
-        ray.origin = offset_origin(s.p, s.ng, dir);
+        ray.origin = s.leave(s.ng, dir);
     }
     let mut stack = MediumStack::default();
     for (m, own) in enclosing.into_iter().rev() {

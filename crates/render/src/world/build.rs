@@ -102,6 +102,11 @@ impl World {
             materials.push(mat);
         }
         let has_cutouts = materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)));
+        let mut shadow_opaque: Vec<bool> =
+            std::iter::once(false).chain(scene.materials.iter().map(marked_opaque)).collect();
+        if !shadow_opaque.contains(&true) {
+            shadow_opaque = Vec::new();
+        }
         let has_media = materials.iter().any(|m| m.medium.is_some() && m.has_inside());
         let object_has_triangles: Vec<bool> = meshes.iter().map(|m| !m.triangles.is_empty()).collect();
         let mut meshes = meshes;
@@ -158,6 +163,7 @@ impl World {
             glow_buffer,
             warnings,
             has_cutouts,
+            shadow_opaque,
             has_media,
             shutter,
             light_motion,
@@ -181,4 +187,15 @@ fn user_buffers(scene: &Scene) -> Vec<(String, String)> {
         }
     }
     user_buffers
+}
+
+/// Whether the scene material `m` carries mental ray's `opaque` flag (in its last
+/// definition: an incremental redefinition replaces the material as a whole).
+fn marked_opaque(m: &scene::Material) -> bool {
+    match &m.kind {
+        scene::MaterialKind::Material(defs) => {
+            defs.last().is_some_and(|d| d.stmts.iter().any(|s| matches!(s, mi::ast::Stmt::Kw(k) if k.key == "opaque")))
+        }
+        _ => false,
+    }
 }

@@ -97,6 +97,7 @@ fn world(
 ) -> World {
     World {
         has_cutouts: false,
+        shadow_opaque: Vec::new(),
         has_media: false,
         meshes,
         instances,

@@ -51,9 +51,9 @@ const TILT_DEG: f32 = 75.0;
 fn tilted_scene(material: &str, extra: &str) -> String {
     let view = support::maya_view::top_down(SIDE);
     let a = TILT_DEG.to_radians();
-    // One triangle (no edge in view: with two, the path engine showed the plane's
-    // reflection doubled along their shared edge), its corners in units of 50 along x
-    // and along w = (0, −sin a, cos a), in the plane.
+    // One triangle (no edge in view; the path engine once showed the reflection doubled
+    // along two triangles' shared edge: `mirror_seam_path`), its corners in units of 50
+    // along x and along w = (0, −sin a, cos a), in the plane.
     let w = Vec3A::new(0.0, -a.sin(), a.cos()) * 50.0;
     let corner = |sx: f32, sw: f32| {
         let p = Vec3A::new(50.0 * sx, 0.0, 0.0) + w * sw;
