@@ -6,7 +6,7 @@
 //! element or an IES file). Texel values are used as stored, as for `.mi` textures (no gamma).
 //! `texture_3d` and `texture_cube` resources are read from DDS files ([`super::dds`]): a
 //! volume texture (or a 2D one, a volume one slice deep) and a cube map; a cube map may
-//! also be an image file of a horizontal cross ([`CubeMap::from_cross`]).
+//! also be an image file of a horizontal or vertical cross ([`CubeMap::from_cross`]).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -94,7 +94,8 @@ impl Textures {
             .clone()
     }
 
-    /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal cross)
+    /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal or vertical
+    /// cross)
     /// as written in a module in
     /// `module_dir`, read once. `Err` says why it could not be read.
     pub fn cube(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<CubeMap>, String> {
@@ -104,12 +105,13 @@ impl Textures {
             .or_insert_with(|| {
                 let fail = |e: String| format!("cube map file '{}': {e}", path.display());
                 if !is_dds(&path) {
-                    // An image file: a horizontal cross of six faces.
+                    // An image file: a horizontal or vertical cross of six faces.
                     let loaded = texture::load_image(&path).map_err(fail)?;
                     return CubeMap::from_cross(&loaded.image).map(Arc::new).ok_or_else(|| {
                         let (w, h) = loaded.image.size();
                         fail(format!(
-                            "a cube map is a DDS cube map or an image of a horizontal cross (4:3), not {w}×{h} texels"
+                            "a cube map is a DDS cube map or an image of a horizontal (4:3) or vertical (3:4) \
+                             cross, not {w}×{h} texels"
                         ))
                     });
                 }

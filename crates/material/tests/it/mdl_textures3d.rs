@@ -311,3 +311,69 @@ fn a_cube_map_from_a_horizontal_cross() {
     let grey = at(m, Vec3A::ZERO, Vec3A::new(-0.5, 1.0, -0.5));
     assert!(close(grey, Rgb::splat(128.0 / 255.0), 1e-6), "{grey:?}");
 }
+
+/// A binary PPM (P6) of `w` × `h` 8-bit RGB texels, rows top to bottom, written byte by
+/// byte as the Netpbm format documents it.
+fn ppm(w: usize, h: usize, texels: &[[u8; 3]]) -> Vec<u8> {
+    assert_eq!(texels.len(), w * h);
+    let mut out = format!("P6\n{w} {h}\n255\n").into_bytes();
+    out.extend(texels.iter().flatten());
+    out
+}
+
+/// The directions towards each face's centre and, slightly inside, its four corners
+/// (face, direction, whether it is the corner of the face's first row and column, as
+/// the cube-map convention orients it).
+fn centres_and_corners() -> Vec<(usize, Vec3A, bool)> {
+    // Per face: the axis, and the directions of its s and t (first column, first row at −).
+    let frames = [
+        (Vec3A::X, -Vec3A::Z, -Vec3A::Y),
+        (-Vec3A::X, Vec3A::Z, -Vec3A::Y),
+        (Vec3A::Y, Vec3A::X, Vec3A::Z),
+        (-Vec3A::Y, Vec3A::X, -Vec3A::Z),
+        (Vec3A::Z, Vec3A::X, -Vec3A::Y),
+        (-Vec3A::Z, -Vec3A::X, -Vec3A::Y),
+    ];
+    let mut out = Vec::new();
+    for (face, (axis, s, t)) in frames.into_iter().enumerate() {
+        out.push((face, axis * 3.0, false));
+        for (a, b) in [(-0.97, -0.97), (0.97, -0.97), (-0.97, 0.97), (0.97, 0.97)] {
+            out.push((face, axis + s * a + t * b, a < 0.0 && b < 0.0));
+        }
+    }
+    out
+}
+
+/// Checks cube map material `m` against [`FACE_COLOURS`]: each face's centre direction
+/// gives its colour, each corner direction its face's colour, except the first texel of
+/// face `marked`, which is grey.
+fn check_faces(m: &SurfaceMaterial, marked: usize) {
+    for (face, dir, first) in centres_and_corners() {
+        let want = if first && face == marked { [128; 3] } else { FACE_COLOURS[face] };
+        let [r, g, b] = want.map(|c| f32::from(c) / 255.0);
+        let got = at(m, Vec3A::ZERO, dir);
+        assert!(close(got, Rgb::new(r, g, b), 1e-5), "face {face} towards {dir}: {got:?}");
+    }
+}
+
+/// A vertical cross (12 × 16 texels, faces of 4 × 4: +y on top, −x, +z, +x in the middle
+/// row, −y below +z, −z at the bottom turned by 180°): each face's centre and corners give
+/// its colour, and −z's first texel by the convention (towards +x, +y) is stored at the
+/// last row and column of the bottom cell.
+#[test]
+fn a_cube_map_from_a_vertical_cross() {
+    let n = 4;
+    let mut texels = vec![[0u8; 3]; 3 * n * 4 * n];
+    let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (1, 3)];
+    for (face, (cx, cy)) in cells.iter().enumerate() {
+        for (x, y) in (0..n * n).map(|i| (i % n, i / n)) {
+            texels[(cy * n + y) * 3 * n + cx * n + x] = FACE_COLOURS[face];
+        }
+    }
+    texels[(3 * n + n - 1) * 3 * n + n + n - 1] = [128; 3];
+    let (mdl, lib) = compiled("vcross", |dir| {
+        std::fs::write(dir.join("vcross.ppm"), ppm(3 * n, 4 * n, &texels)).unwrap();
+        r#"shader "cube" "mdl::textures3d::cube" ("tex" "vcross.ppm")"#.into()
+    });
+    check_faces(get(&mdl, &lib, "cube"), 5);
+}
