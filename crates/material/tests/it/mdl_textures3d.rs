@@ -377,3 +377,63 @@ fn a_cube_map_from_a_vertical_cross() {
     });
     check_faces(get(&mdl, &lib, "cube"), 5);
 }
+
+/// Writes six face images `stem_px.ppm` … `stem_nz.ppm` into `dir`, each `sizes[face]`
+/// texels square of its [`FACE_COLOURS`] colour, the +x face's first texel grey.
+fn write_faces(dir: &std::path::Path, stem: &str, sizes: [usize; 6]) {
+    for (face, suffix) in ["px", "nx", "py", "ny", "pz", "nz"].into_iter().enumerate() {
+        let n = sizes[face];
+        let mut texels = vec![FACE_COLOURS[face]; n * n];
+        if face == 0 {
+            texels[0] = [128; 3];
+        }
+        std::fs::write(dir.join(format!("{stem}_{suffix}.ppm")), ppm(n, n, &texels)).unwrap();
+    }
+}
+
+/// Six face images `sky_px.ppm` … `sky_nz.ppm` (4 × 4 each) stand for `sky.ppm`, which
+/// does not exist, named by a `.mi` parameter and by a module: each face's centre and
+/// corners give its colour, the +x image's first texel is the convention's (towards
+/// +y, +z on that face).
+#[test]
+fn a_cube_map_from_six_face_images() {
+    let module = "mdl 1.7;\nimport ::df::*;\nimport ::tex::*;\nimport ::state::*;\n\
+        export material m() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+        tint: tex::lookup_color(texture_cube(\"./sky.ppm\"), state::normal()))));\n";
+    let (mdl, lib) = compiled("faces", |dir| {
+        write_faces(dir, "sky", [4; 6]);
+        std::fs::write(dir.join("faces.mdl"), module).unwrap();
+        "shader \"mi\" \"mdl::textures3d::cube\" (\"tex\" \"sky.ppm\")\nshader \"mdl\" \"mdl::faces::m\" ()".into()
+    });
+    check_faces(get(&mdl, &lib, "mi"), 0);
+    check_faces(get(&mdl, &lib, "mdl"), 0);
+}
+
+/// Six face images of unequal sizes, or a missing one, are an error at the module line
+/// naming the cube map, naming the offending face file.
+#[test]
+fn six_face_images_of_unequal_sizes_are_an_error_at_their_line() {
+    let dir = fixtures("faces_bad");
+    write_faces(&dir, "bad", [4, 4, 4, 4, 4, 2]);
+    write_faces(&dir, "part", [4; 6]);
+    std::fs::remove_file(dir.join("part_ny.ppm")).unwrap();
+    std::fs::write(
+        dir.join("faces_bad.mdl"),
+        "mdl 1.7;\nimport ::df::*;\nimport ::tex::*;\n\
+         export material m() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+         tint: tex::lookup_color(texture_cube(\"./bad.ppm\"), float3(1.0)))));\n\
+         export material p() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+         tint: tex::lookup_color(texture_cube(\"./part.ppm\"), float3(1.0)))));\n",
+    )
+    .unwrap();
+    let (_, _, diags) = compile_text_with(
+        "shader \"m\" \"mdl::faces_bad::m\" ()\nshader \"p\" \"mdl::faces_bad::p\" ()",
+        std::slice::from_ref(&dir),
+    );
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(diags.len(), 2, "{diags:#?}");
+    let sizes = diags.iter().find(|d| d.contains("'m'")).expect("a message for 'm'");
+    assert!(sizes.contains("faces_bad.mdl:5:29") && sizes.contains("bad_nz.ppm") && sizes.contains("2×2"), "{sizes}");
+    let part = diags.iter().find(|d| d.contains("'p'")).expect("a message for 'p'");
+    assert!(part.contains("faces_bad.mdl:7:29") && part.contains("part_ny.ppm"), "{part}");
+}
