@@ -437,3 +437,33 @@ fn six_face_images_of_unequal_sizes_are_an_error_at_their_line() {
     let part = diags.iter().find(|d| d.contains("'p'")).expect("a message for 'p'");
     assert!(part.contains("faces_bad.mdl:7:29") && part.contains("part_ny.ppm"), "{part}");
 }
+
+/// A DDS cube map of 4 × 4 faces with its full mip chain (4, 2, 1 texels a side, each
+/// face's chain stored after it): the faces are read from level 0 (the coarser levels
+/// are black), each face's centre and corners giving its colour, +z's first texel grey.
+#[test]
+fn a_dds_cube_map_with_mip_levels_reads_level_0() {
+    let n = 4u32;
+    let argb = [32, 0x41, 0, 32, 0x00ff_0000, 0x0000_ff00, 0x0000_00ff, 0xff00_0000];
+    let mut file = header(n, n, 1, argb, 0x200 | 0xfc00);
+    // Flags | MIPMAPCOUNT, the count 3, caps | MIPMAP (byte offsets 8, 28 and 108).
+    let word = |file: &[u8], at: usize| u32::from_le_bytes(file[at..at + 4].try_into().unwrap());
+    let flags = word(&file, 8) | 0x2_0000;
+    let caps = word(&file, 108) | 0x40_0000;
+    file[8..12].copy_from_slice(&flags.to_le_bytes());
+    file[28..32].copy_from_slice(&3u32.to_le_bytes());
+    file[108..112].copy_from_slice(&caps.to_le_bytes());
+    for (face, [r, g, b]) in FACE_COLOURS.into_iter().enumerate() {
+        for i in 0..n * n {
+            let [r, g, b] = if face == 4 && i == 0 { [128; 3] } else { [r, g, b] };
+            file.extend([b, g, r, 255]);
+        }
+        // Levels 1 and 2: 2 × 2 and 1 × 1 black texels.
+        file.extend(std::iter::repeat_n(0u8, 4 * (4 + 1)));
+    }
+    let (mdl, lib) = compiled("mips", |dir| {
+        std::fs::write(dir.join("mips.dds"), &file).unwrap();
+        r#"shader "cube" "mdl::textures3d::cube" ("tex" "mips.dds")"#.into()
+    });
+    check_faces(get(&mdl, &lib, "cube"), 4);
+}
