@@ -7,7 +7,8 @@
 //! `texture_3d` and `texture_cube` resources are read from DDS files ([`super::dds`]): a
 //! volume texture (or a 2D one, a volume one slice deep) and a cube map; a cube map may
 //! also be an image file of a horizontal or vertical cross ([`CubeMap::from_cross`]), or
-//! six face images beside a name that is no file ([`Textures::cube_faces`]).
+//! six face images beside a name that is no file (`_px` … `_nz` suffixes, see
+//! `Textures::cube_faces`).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -97,7 +98,7 @@ impl Textures {
 
     /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal or
     /// vertical cross; where no file `name` is found, six face images named after it, see
-    /// [`Textures::cube_faces`]) as written in a module in `module_dir`, read once. `Err`
+    /// `Textures::cube_faces`) as written in a module in `module_dir`, read once. `Err`
     /// says why it could not be read.
     pub fn cube(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<CubeMap>, String> {
         let path = match self.resolve(name, module_dir, "cube map file") {
