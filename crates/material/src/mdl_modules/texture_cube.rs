@@ -1,5 +1,6 @@
-//! MDL's `texture_cube` resources: six square faces read from a DDS cube map (or an image
-//! of a horizontal cross), looked up by direction (`tex::lookup_*(texture_cube, float3)`).
+//! MDL's `texture_cube` resources: six square faces read from a DDS cube map, an image of
+//! a horizontal or vertical cross ([`CubeMap::from_cross`]) or six face images
+//! ([`CubeMap::from_faces`]), looked up by direction (`tex::lookup_*(texture_cube, float3)`).
 //!
 //! Faces and orientation follow the cube-map convention of DirectX and OpenGL, which DDS
 //! files store and the MDL SDK's texture runtime looks up: the direction's component of
@@ -30,36 +31,62 @@ impl CubeMap {
             .then_some(CubeMap { size, faces })
     }
 
-    /// A cube map from an image of a horizontal cross, 4 × 3 faces: the middle row −x, +z,
-    /// +x, −z from the left, +y above +z and −y below it, each face as the convention
-    /// orients it (the cross folds into the cube without turning a face); `None` unless
-    /// the image is 4n × 3n texels.
+    /// A cube map from an image of a cross, `None` unless the image is 4n × 3n or 3n × 4n
+    /// texels (n ≥ 1):
+    ///
+    /// - a horizontal cross (4n × 3n): the middle row −x, +z, +x, −z from the left, +y
+    ///   above +z and −y below it, each face as the convention orients it (the cross folds
+    ///   into the cube without turning a face);
+    /// - a vertical cross (3n × 4n): +y on top, the middle row −x, +z, +x from the left,
+    ///   −y below +z and −z below −y, each face as the convention orients it except −z,
+    ///   which is stored turned by 180° (as the cross folds: its top row in the picture
+    ///   is the convention's bottom row, towards −y, and its left column the convention's
+    ///   right one, towards −x), the common vertical-cross layout.
     pub fn from_cross(image: &shader::texture::MipMap) -> Option<CubeMap> {
         let (w, h) = image.size();
-        let n = w / 4;
-        if n == 0 || w != 4 * n || h != 3 * n {
+        // (column, row from the top) of each face's cell, +x, −x, +y, −y, +z, −z, and
+        // whether −z is stored turned by 180°.
+        let (n, cells, turned) = if w % 4 == 0 && h * 4 == w * 3 {
+            (w / 4, [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)], false)
+        } else if w % 3 == 0 && h * 3 == w * 4 {
+            (w / 3, [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (1, 3)], true)
+        } else {
+            return None;
+        };
+        if n == 0 {
             return None;
         }
-        // (column, row from the top) of each face, +x, −x, +y, −y, +z, −z.
-        let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
         let faces = cells
             .iter()
-            .map(|&(cx, cy)| {
+            .enumerate()
+            .map(|(face, &(cx, cy))| {
                 let mut texels = Vec::with_capacity(n * n);
                 for row in 0..n {
+                    let row = if turned && face == 5 { n - 1 - row } else { row };
                     // The pyramid's rows count from the bottom of the picture.
                     let y = h - 1 - (cy * n + row);
                     texels.extend((0..n).map(|col| {
-                        let c = image.texel(cx * n + col, y);
-                        if image.channels < 3 {
-                            Vec4::new(c.x, c.x, c.x, if image.channels == 2 { c.y } else { 1.0 })
-                        } else {
-                            c
-                        }
+                        let col = if turned && face == 5 { n - 1 - col } else { col };
+                        rgba(image, cx * n + col, y)
                     }));
                 }
                 texels
             })
+            .collect();
+        CubeMap::new(n, faces)
+    }
+
+    /// A cube map from six images of the same square size, +x, −x, +y, −y, +z, −z, each
+    /// as the convention orients its face (first row the face's top, t = 0); `None` when
+    /// they are not six, not square or not all the same size.
+    pub fn from_faces(images: &[&shader::texture::MipMap]) -> Option<CubeMap> {
+        let n = images.first()?.size().0;
+        if images.len() != 6 || images.iter().any(|i| i.size() != (n, n)) {
+            return None;
+        }
+        let faces = images
+            .iter()
+            .map(|image| (0..n).flat_map(|row| (0..n).map(move |col| rgba(image, col, n - 1 - row))).collect())
             .collect();
         CubeMap::new(n, faces)
     }
@@ -102,6 +129,16 @@ impl CubeMap {
         let top = texel(x0, y0) * (1.0 - fx) + texel(x0 + 1.0, y0) * fx;
         let bottom = texel(x0, y0 + 1.0) * (1.0 - fx) + texel(x0 + 1.0, y0 + 1.0) * fx;
         top * (1.0 - fy) + bottom * fy
+    }
+}
+
+/// Texel (x, y) of `image` (y from the bottom) as RGBA: grey (and alpha) spread to RGB.
+fn rgba(image: &shader::texture::MipMap, x: usize, y: usize) -> Vec4 {
+    let c = image.texel(x, y);
+    if image.channels < 3 {
+        Vec4::new(c.x, c.x, c.x, if image.channels == 2 { c.y } else { 1.0 })
+    } else {
+        c
     }
 }
 

@@ -6,7 +6,9 @@
 //! element or an IES file). Texel values are used as stored, as for `.mi` textures (no gamma).
 //! `texture_3d` and `texture_cube` resources are read from DDS files ([`super::dds`]): a
 //! volume texture (or a 2D one, a volume one slice deep) and a cube map; a cube map may
-//! also be an image file of a horizontal cross ([`CubeMap::from_cross`]).
+//! also be an image file of a horizontal or vertical cross ([`CubeMap::from_cross`]), or
+//! six face images beside a name that is no file (`_px` … `_nz` suffixes, see
+//! `Textures::cube_faces`).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -94,22 +96,27 @@ impl Textures {
             .clone()
     }
 
-    /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal cross)
-    /// as written in a module in
-    /// `module_dir`, read once. `Err` says why it could not be read.
+    /// The `texture_cube` of file `name` (a DDS cube map, or an image of a horizontal or
+    /// vertical cross; where no file `name` is found, six face images named after it, see
+    /// `Textures::cube_faces`) as written in a module in `module_dir`, read once. `Err`
+    /// says why it could not be read.
     pub fn cube(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<CubeMap>, String> {
-        let path = self.resolve(name, module_dir, "cube map file")?;
+        let path = match self.resolve(name, module_dir, "cube map file") {
+            Ok(path) => path,
+            Err(e) => return self.cube_faces(name, module_dir).unwrap_or(Err(e)),
+        };
         self.cubes
             .entry(path.clone())
             .or_insert_with(|| {
                 let fail = |e: String| format!("cube map file '{}': {e}", path.display());
                 if !is_dds(&path) {
-                    // An image file: a horizontal cross of six faces.
+                    // An image file: a horizontal or vertical cross of six faces.
                     let loaded = texture::load_image(&path).map_err(fail)?;
                     return CubeMap::from_cross(&loaded.image).map(Arc::new).ok_or_else(|| {
                         let (w, h) = loaded.image.size();
                         fail(format!(
-                            "a cube map is a DDS cube map or an image of a horizontal cross (4:3), not {w}×{h} texels"
+                            "a cube map is a DDS cube map or an image of a horizontal (4:3) or vertical (3:4) \
+                             cross, not {w}×{h} texels"
                         ))
                     });
                 }
@@ -125,6 +132,54 @@ impl Textures {
                 CubeMap::new(image.width, image.layers).map(Arc::new).ok_or_else(|| fail("no texels".into()))
             })
             .clone()
+    }
+
+    /// The cube map of six face images named after `name`, a file that is not found: MDL
+    /// documents no naming of separate cube faces, so mira takes the common suffixes
+    /// `_px`, `_nx`, `_py`, `_ny`, `_pz`, `_nz` (+x, −x, +y, −y, +z, −z) before the
+    /// extension (`sky.png`: `sky_px.png` … `sky_nz.png`), each face as the cube-map
+    /// convention orients it, all square and of one size. `None` when none of the six is
+    /// found; `Err` names a missing face file or one of another size.
+    fn cube_faces(&mut self, name: &str, module_dir: Option<&Path>) -> Option<Result<Arc<CubeMap>, String>> {
+        // The extension's dot, if any, after the last directory separator.
+        let dot = name.rfind('.').filter(|&d| d > name.rfind('/').map_or(0, |s| s + 1));
+        let (stem, ext) = name.split_at(dot.unwrap_or(name.len()));
+        let names = ["px", "nx", "py", "ny", "pz", "nz"].map(|face| format!("{stem}_{face}{ext}"));
+        let paths = names.clone().map(|n| self.resolve(&n, module_dir, "cube face file").ok());
+        if paths.iter().all(Option::is_none) {
+            return None;
+        }
+        if let Some(i) = paths.iter().position(Option::is_none) {
+            return Some(Err(format!(
+                "cube map file '{name}' not found, nor its face file '{}' (of six, _px _nx _py _ny _pz _nz)",
+                names[i]
+            )));
+        }
+        let paths = paths.map(Option::unwrap);
+        // Cached under the (absent) name beside the +x face.
+        let key = paths[0].with_file_name(Path::new(name).file_name().unwrap_or_default());
+        let read = || {
+            let mut images = Vec::with_capacity(6);
+            for path in &paths {
+                let fail = |e: String| format!("cube face file '{}': {e}", path.display());
+                images.push(texture::load_image(path).map_err(fail)?.image);
+            }
+            let (n, _) = images[0].size();
+            for (image, path) in images.iter().zip(&paths) {
+                let (w, h) = image.size();
+                if (w, h) != (n, n) {
+                    return Err(format!(
+                        "cube face file '{}': {w}×{h} texels, but the six faces of '{name}' must be square and \
+                         of one size ({n}×{n}, as '{}')",
+                        path.display(),
+                        paths[0].display()
+                    ));
+                }
+            }
+            let refs: Vec<_> = images.iter().collect();
+            CubeMap::from_faces(&refs).map(Arc::new).ok_or_else(|| format!("cube map '{name}': no texels"))
+        };
+        Some(self.cubes.entry(key).or_insert_with(read).clone())
     }
 
     /// The image of file `name` as written in a module whose file is in `module_dir` (an

@@ -311,3 +311,159 @@ fn a_cube_map_from_a_horizontal_cross() {
     let grey = at(m, Vec3A::ZERO, Vec3A::new(-0.5, 1.0, -0.5));
     assert!(close(grey, Rgb::splat(128.0 / 255.0), 1e-6), "{grey:?}");
 }
+
+/// A binary PPM (P6) of `w` × `h` 8-bit RGB texels, rows top to bottom, written byte by
+/// byte as the Netpbm format documents it.
+fn ppm(w: usize, h: usize, texels: &[[u8; 3]]) -> Vec<u8> {
+    assert_eq!(texels.len(), w * h);
+    let mut out = format!("P6\n{w} {h}\n255\n").into_bytes();
+    out.extend(texels.iter().flatten());
+    out
+}
+
+/// The directions towards each face's centre and, slightly inside, its four corners
+/// (face, direction, whether it is the corner of the face's first row and column, as
+/// the cube-map convention orients it).
+fn centres_and_corners() -> Vec<(usize, Vec3A, bool)> {
+    // Per face: the axis, and the directions of its s and t (first column, first row at −).
+    let frames = [
+        (Vec3A::X, -Vec3A::Z, -Vec3A::Y),
+        (-Vec3A::X, Vec3A::Z, -Vec3A::Y),
+        (Vec3A::Y, Vec3A::X, Vec3A::Z),
+        (-Vec3A::Y, Vec3A::X, -Vec3A::Z),
+        (Vec3A::Z, Vec3A::X, -Vec3A::Y),
+        (-Vec3A::Z, -Vec3A::X, -Vec3A::Y),
+    ];
+    let mut out = Vec::new();
+    for (face, (axis, s, t)) in frames.into_iter().enumerate() {
+        out.push((face, axis * 3.0, false));
+        for (a, b) in [(-0.97, -0.97), (0.97, -0.97), (-0.97, 0.97), (0.97, 0.97)] {
+            out.push((face, axis + s * a + t * b, a < 0.0 && b < 0.0));
+        }
+    }
+    out
+}
+
+/// Checks cube map material `m` against [`FACE_COLOURS`]: each face's centre direction
+/// gives its colour, each corner direction its face's colour, except the first texel of
+/// face `marked`, which is grey.
+fn check_faces(m: &SurfaceMaterial, marked: usize) {
+    for (face, dir, first) in centres_and_corners() {
+        let want = if first && face == marked { [128; 3] } else { FACE_COLOURS[face] };
+        let [r, g, b] = want.map(|c| f32::from(c) / 255.0);
+        let got = at(m, Vec3A::ZERO, dir);
+        assert!(close(got, Rgb::new(r, g, b), 1e-5), "face {face} towards {dir}: {got:?}");
+    }
+}
+
+/// A vertical cross (12 × 16 texels, faces of 4 × 4: +y on top, −x, +z, +x in the middle
+/// row, −y below +z, −z at the bottom turned by 180°): each face's centre and corners give
+/// its colour, and −z's first texel by the convention (towards +x, +y) is stored at the
+/// last row and column of the bottom cell.
+#[test]
+fn a_cube_map_from_a_vertical_cross() {
+    let n = 4;
+    let mut texels = vec![[0u8; 3]; 3 * n * 4 * n];
+    let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (1, 3)];
+    for (face, (cx, cy)) in cells.iter().enumerate() {
+        for (x, y) in (0..n * n).map(|i| (i % n, i / n)) {
+            texels[(cy * n + y) * 3 * n + cx * n + x] = FACE_COLOURS[face];
+        }
+    }
+    texels[(3 * n + n - 1) * 3 * n + n + n - 1] = [128; 3];
+    let (mdl, lib) = compiled("vcross", |dir| {
+        std::fs::write(dir.join("vcross.ppm"), ppm(3 * n, 4 * n, &texels)).unwrap();
+        r#"shader "cube" "mdl::textures3d::cube" ("tex" "vcross.ppm")"#.into()
+    });
+    check_faces(get(&mdl, &lib, "cube"), 5);
+}
+
+/// Writes six face images `stem_px.ppm` … `stem_nz.ppm` into `dir`, each `sizes[face]`
+/// texels square of its [`FACE_COLOURS`] colour, the +x face's first texel grey.
+fn write_faces(dir: &std::path::Path, stem: &str, sizes: [usize; 6]) {
+    for (face, suffix) in ["px", "nx", "py", "ny", "pz", "nz"].into_iter().enumerate() {
+        let n = sizes[face];
+        let mut texels = vec![FACE_COLOURS[face]; n * n];
+        if face == 0 {
+            texels[0] = [128; 3];
+        }
+        std::fs::write(dir.join(format!("{stem}_{suffix}.ppm")), ppm(n, n, &texels)).unwrap();
+    }
+}
+
+/// Six face images `sky_px.ppm` … `sky_nz.ppm` (4 × 4 each) stand for `sky.ppm`, which
+/// does not exist, named by a `.mi` parameter and by a module: each face's centre and
+/// corners give its colour, the +x image's first texel is the convention's (towards
+/// +y, +z on that face).
+#[test]
+fn a_cube_map_from_six_face_images() {
+    let module = "mdl 1.7;\nimport ::df::*;\nimport ::tex::*;\nimport ::state::*;\n\
+        export material m() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+        tint: tex::lookup_color(texture_cube(\"./sky.ppm\"), state::normal()))));\n";
+    let (mdl, lib) = compiled("faces", |dir| {
+        write_faces(dir, "sky", [4; 6]);
+        std::fs::write(dir.join("faces.mdl"), module).unwrap();
+        "shader \"mi\" \"mdl::textures3d::cube\" (\"tex\" \"sky.ppm\")\nshader \"mdl\" \"mdl::faces::m\" ()".into()
+    });
+    check_faces(get(&mdl, &lib, "mi"), 0);
+    check_faces(get(&mdl, &lib, "mdl"), 0);
+}
+
+/// Six face images of unequal sizes, or a missing one, are an error at the module line
+/// naming the cube map, naming the offending face file.
+#[test]
+fn six_face_images_of_unequal_sizes_are_an_error_at_their_line() {
+    let dir = fixtures("faces_bad");
+    write_faces(&dir, "bad", [4, 4, 4, 4, 4, 2]);
+    write_faces(&dir, "part", [4; 6]);
+    std::fs::remove_file(dir.join("part_ny.ppm")).unwrap();
+    std::fs::write(
+        dir.join("faces_bad.mdl"),
+        "mdl 1.7;\nimport ::df::*;\nimport ::tex::*;\n\
+         export material m() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+         tint: tex::lookup_color(texture_cube(\"./bad.ppm\"), float3(1.0)))));\n\
+         export material p() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(\n    \
+         tint: tex::lookup_color(texture_cube(\"./part.ppm\"), float3(1.0)))));\n",
+    )
+    .unwrap();
+    let (_, _, diags) = compile_text_with(
+        "shader \"m\" \"mdl::faces_bad::m\" ()\nshader \"p\" \"mdl::faces_bad::p\" ()",
+        std::slice::from_ref(&dir),
+    );
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(diags.len(), 2, "{diags:#?}");
+    let sizes = diags.iter().find(|d| d.contains("'m'")).expect("a message for 'm'");
+    assert!(sizes.contains("faces_bad.mdl:5:29") && sizes.contains("bad_nz.ppm") && sizes.contains("2×2"), "{sizes}");
+    let part = diags.iter().find(|d| d.contains("'p'")).expect("a message for 'p'");
+    assert!(part.contains("faces_bad.mdl:7:29") && part.contains("part_ny.ppm"), "{part}");
+}
+
+/// A DDS cube map of 4 × 4 faces with its full mip chain (4, 2, 1 texels a side, each
+/// face's chain stored after it): the faces are read from level 0 (the coarser levels
+/// are black), each face's centre and corners giving its colour, +z's first texel grey.
+#[test]
+fn a_dds_cube_map_with_mip_levels_reads_level_0() {
+    let n = 4u32;
+    let argb = [32, 0x41, 0, 32, 0x00ff_0000, 0x0000_ff00, 0x0000_00ff, 0xff00_0000];
+    let mut file = header(n, n, 1, argb, 0x200 | 0xfc00);
+    // Flags | MIPMAPCOUNT, the count 3, caps | MIPMAP (byte offsets 8, 28 and 108).
+    let word = |file: &[u8], at: usize| u32::from_le_bytes(file[at..at + 4].try_into().unwrap());
+    let flags = word(&file, 8) | 0x2_0000;
+    let caps = word(&file, 108) | 0x40_0000;
+    file[8..12].copy_from_slice(&flags.to_le_bytes());
+    file[28..32].copy_from_slice(&3u32.to_le_bytes());
+    file[108..112].copy_from_slice(&caps.to_le_bytes());
+    for (face, [r, g, b]) in FACE_COLOURS.into_iter().enumerate() {
+        for i in 0..n * n {
+            let [r, g, b] = if face == 4 && i == 0 { [128; 3] } else { [r, g, b] };
+            file.extend([b, g, r, 255]);
+        }
+        // Levels 1 and 2: 2 × 2 and 1 × 1 black texels.
+        file.extend(std::iter::repeat_n(0u8, 4 * (4 + 1)));
+    }
+    let (mdl, lib) = compiled("mips", |dir| {
+        std::fs::write(dir.join("mips.dds"), &file).unwrap();
+        r#"shader "cube" "mdl::textures3d::cube" ("tex" "mips.dds")"#.into()
+    });
+    check_faces(get(&mdl, &lib, "cube"), 4);
+}
