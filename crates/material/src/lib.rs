@@ -11,7 +11,7 @@
 //! - materials of MDL modules on the search path: compiled by [`mdl_modules`] (see
 //!   [`translate_with`]).
 //!
-//! Constant parameters are read once ([`reader`]). Parameters connected to shaders —
+//! Constant parameters are read once (`reader`). Parameters connected to shaders —
 //! MDL `::base` textures, mental ray texture and bump shaders — are evaluated at every
 //! hit through the scene's shader graph ([`inputs`]), when the graph is given. Anything
 //! else is rendered as a grey diffuse surface or with the parameter's default, with a

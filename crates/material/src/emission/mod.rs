@@ -58,7 +58,7 @@ pub enum Power {
     /// direction, hard shadows).
     Sun {
         /// Irradiance on a plane facing the sun, in the path engine's units (see
-        /// [`physical_sun`]).
+        /// `physical_sun`).
         irradiance: Rgb,
         /// Half-angle of the cone of directions, radians.
         angular_radius: f32,

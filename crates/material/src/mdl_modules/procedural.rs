@@ -445,7 +445,7 @@ fn flow2(x: f32, y: f32, phase: f32) -> f32 {
     ((bottom + wy * (top - bottom)) * std::f32::consts::SQRT_2).clamp(-1.0, 1.0)
 }
 
-/// `flow_noise_texture`'s value: octaves of [`flow2`], each `gain` times the weight and
+/// `flow_noise_texture`'s value: octaves of `flow2`, each `gain` times the weight and
 /// `scale` times the frequency of the one before, u stretched by `u_scale` and v shifted
 /// by `v_motion` more per octave; |sum| when `absolute`, else mapped to [0, 1].
 #[allow(clippy::too_many_arguments)]

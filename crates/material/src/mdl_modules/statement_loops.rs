@@ -4,7 +4,7 @@
 //! loop's condition and one turn of its body run once over those slots, and what the turn
 //! leaves in each slot becomes the slot's next value. Inside the turn, a `break` or
 //! `continue` under a condition of the hit records the values where control leaves
-//! ([`Exit`]): a slot's value after the body is that of the first exit whose condition
+//! (`Exit`): a slot's value after the body is that of the first exit whose condition
 //! holds, else the body's end; a `for` loop's step runs after the body and after a
 //! `continue`, not after a `break`; a `break` taken ends the loop.
 
