@@ -44,7 +44,7 @@ impl Args<'_> {
     fn transform(&self) -> Result<Mat4, Problem> {
         let m = match self.get("transform") {
             None => return Ok(Mat4::IDENTITY),
-            Some(Value::Vector(m)) if m.len() == 16 => Mat4::from_cols_array(&std::array::from_fn(|k| m[k] as f32)),
+            Some(v) if super::matrix::mat4(v).is_some() => super::matrix::mat4(v).unwrap_or_default(),
             Some(v) => return Err(self.not_constant("transform", v)),
         };
         if m.row(3) != Vec4::W {

@@ -146,6 +146,9 @@ impl<'a> Evaluator<'a> {
                 Value::Bool(false) => self.eval(otherwise, env),
                 Value::Hit(c, _) => {
                     let (a, b) = (self.eval(then, env)?, self.eval(otherwise, env)?);
+                    if let Some(m) = super::state_space::select(&c, &a, &b) {
+                        return Ok(m);
+                    }
                     match (a.to_hit(), b.to_hit(), a.hit_type()) {
                         (Some(x), Some(y), Some(ty)) => Ok(Value::from_hit(HitExpr::Select(c, x, y), ty)),
                         _ => Err(problem(
@@ -182,6 +185,9 @@ impl<'a> Evaluator<'a> {
                     (Value::Array(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => Ok(a[i as usize].clone()),
                     (Value::Vector(a), Value::Int(i)) if i >= 0 && (i as usize) < a.len() => {
                         Ok(Value::Float(a[i as usize]))
+                    }
+                    (Value::Matrix { .. }, Value::Int(i)) if i >= 0 => {
+                        super::matrix::column(&v, i as usize).ok_or_else(|| problem(span, "column index out of range"))
                     }
                     _ => Err(problem(span, "index out of range or not constant")),
                 }
@@ -297,7 +303,7 @@ impl<'a> Evaluator<'a> {
             let mut out = Vec::new();
             for v in vs {
                 match v {
-                    Value::Vector(x) => out.extend(x),
+                    Value::Vector(x) | Value::Matrix { data: x, .. } => out.extend(x),
                     Value::Color(c) => out.extend([c.x as f64, c.y as f64, c.z as f64]),
                     v => out.push(v.float()?),
                 }
@@ -306,6 +312,9 @@ impl<'a> Evaluator<'a> {
         };
         let bad = || problem(span, format!("`{ty}(…)` with these arguments is not evaluated"));
         if values.iter().any(|v| matches!(v, Value::Hit(..))) {
+            if let Type::Matrix(_, c, r) = ty {
+                return super::state_space::construct(*c, *r, &values).ok_or_else(bad);
+            }
             return construct_hit(ty, &values).ok_or_else(bad);
         }
         match ty {
@@ -364,11 +373,10 @@ impl<'a> Evaluator<'a> {
             }
             Type::Matrix(_, c, r) => {
                 let n = usize::from(*c) * usize::from(*r);
-                return match floats(&values).as_deref() {
-                    Some([d]) => Ok(Value::Vector(
-                        (0..n).map(|k| if k / usize::from(*r) == k % usize::from(*r) { *d } else { 0.0 }).collect(),
-                    )),
-                    Some(v) if v.len() == n => Ok(Value::Vector(v.to_vec())),
+                return match floats(&values) {
+                    Some(v) if v.is_empty() => Ok(super::matrix::diagonal(*c, *r, 0.0)),
+                    Some(v) if v.len() == 1 => Ok(super::matrix::diagonal(*c, *r, v[0])),
+                    Some(data) if data.len() == n => Ok(Value::Matrix { columns: *c, rows: *r, data }),
                     _ => Err(bad()),
                 };
             }
@@ -463,6 +471,7 @@ pub fn kind(v: &Value) -> &'static str {
         Value::Int(_) => "an int",
         Value::Float(_) => "a float",
         Value::Vector(_) => "a vector",
+        Value::Matrix { .. } => "a matrix",
         Value::Color(_) => "a color",
         Value::Str(_) => "a string",
         Value::Enum(..) => "an enum value",
@@ -559,6 +568,7 @@ fn unary(op: UnaryOp, v: Value) -> Option<Value> {
         (UnaryOp::Neg, Value::Float(f)) => Some(Value::Float(-f)),
         (UnaryOp::Neg, Value::Color(c)) => Some(Value::Color(-c)),
         (UnaryOp::Neg, Value::Vector(v)) => Some(Value::Vector(v.iter().map(|x| -x).collect())),
+        (UnaryOp::Neg, m @ Value::Matrix { .. }) => super::matrix::negate(&m),
         (UnaryOp::Not, Value::Bool(b)) => Some(Value::Bool(!b)),
         (UnaryOp::BitNot, Value::Int(i)) => Some(Value::Int(!i)),
         _ => None,
@@ -580,6 +590,7 @@ pub fn binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
         })
     };
     match (a, b) {
+        (Value::Matrix { .. }, _) | (_, Value::Matrix { .. }) => super::matrix::binary(op, a, b),
         (Value::Bool(x), Value::Bool(y)) => match op {
             And => Some(Value::Bool(*x && *y)),
             Or => Some(Value::Bool(*x || *y)),

@@ -344,7 +344,7 @@ fn coordinate_projection(a: &Args) -> Eval {
     };
     let m = match a.get("projection_transform") {
         None => glam::Mat4::IDENTITY,
-        Some(Value::Vector(m)) if m.len() == 16 => glam::Mat4::from_cols_array(&std::array::from_fn(|i| m[i] as f32)),
+        Some(v) if super::matrix::mat4(v).is_some() => super::matrix::mat4(v).unwrap_or_default(),
         Some(v) => return Err(a.not_constant("projection_transform", v)),
     };
     let state = |f: StateFn| Arc::new(HitExpr::State(f));

@@ -324,18 +324,9 @@ pub fn state_value(f: StateFn) -> Value {
     Value::Hit(Arc::new(HitExpr::State(f)), HitType::Vector(3))
 }
 
-/// A `float4x4` value (16 numbers, column after column) as a matrix.
+/// A constant `float4x4` value as a matrix.
 fn matrix(v: &Value) -> Option<Mat4> {
-    match v {
-        Value::Vector(m) if m.len() == 16 => {
-            let mut a = [0.0f32; 16];
-            for (x, y) in a.iter_mut().zip(m) {
-                *x = *y as f32;
-            }
-            Some(Mat4::from_cols_array(&a))
-        }
-        _ => None,
-    }
+    super::matrix::mat4(v)
 }
 
 /// The `::base` function `def` with `args`.
@@ -382,7 +373,7 @@ pub fn base(def: &Function, args: &[Value], span: Span) -> Eval {
             // Scale, then rotate about x, y and z in that order, then translate.
             let rotation = glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x);
             let m = Mat4::from_scale_rotation_translation(s, rotation, t);
-            Ok(Value::Vector(m.to_cols_array().iter().map(|x| f64::from(*x)).collect()))
+            Ok(super::matrix::from_mat4(m))
         }
         "transform_coordinate" => {
             let m = arg("transform")

@@ -28,6 +28,7 @@ pub mod hit_eq;
 pub mod hit_loop;
 pub mod hit_natives;
 pub mod lower;
+pub mod matrix;
 pub mod natives;
 pub mod procedural;
 pub mod projection;

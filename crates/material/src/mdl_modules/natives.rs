@@ -218,7 +218,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             let global = matches!(arg("global_distribution"), Some(Value::Bool(true)) | None);
             // The frame's third column (column-major float3x3) is the spot's axis.
             let axis = match arg("global_frame") {
-                Some(Value::Vector(m)) if m.len() == 9 => glam::Vec3A::new(m[6] as f32, m[7] as f32, m[8] as f32),
+                Some(Value::Matrix { columns: 3, rows: 3, data: m }) => {
+                    glam::Vec3A::new(m[6] as f32, m[7] as f32, m[8] as f32)
+                }
                 Some(v) => return Err(not_constant(name, "global_frame", v, span)),
                 None => glam::Vec3A::Z,
             };
@@ -265,7 +267,7 @@ fn measured_edf<'a>(arg: &dyn Fn(&str) -> Option<&'a Value>, span: Span) -> Eval
     };
     let global = matches!(arg("global_distribution"), Some(Value::Bool(true)) | None);
     let frame = match arg("global_frame") {
-        Some(Value::Vector(m)) if m.len() == 9 => {
+        Some(Value::Matrix { columns: 3, rows: 3, data: m }) => {
             let c = |k: usize| glam::Vec3A::new(m[3 * k] as f32, m[3 * k + 1] as f32, m[3 * k + 2] as f32);
             glam::Mat3A::from_cols(c(0), c(1), c(2))
         }

@@ -11,10 +11,12 @@
 //! images of the three axes.
 //!
 //! `state::transform`'s matrix is a matrix of the hit: four column values (an array of
-//! `float4`s of the hit). It may be multiplied with a vector (either side), a matrix (of
-//! the hit, or a constant `float4x4`) or a scalar, added to and subtracted from another,
-//! divided by a scalar, transposed (`math::transpose`) and indexed (`m[i]` its column i,
-//! `m[i][j]` or `m[i].y` an element): each result is built from the columns, lane by lane.
+//! `float4`s of the hit); so is a `floatCxR(…)` built from values of the hit, and a choice
+//! between matrices by a condition of the hit. It may be multiplied with a vector (either
+//! side), a matrix (of the hit, or a constant [`Value::Matrix`]) or a scalar, added to and
+//! subtracted from another, divided by a scalar, transposed (`math::transpose`) and
+//! indexed (`m[i]` its column i, `m[i][j]` or `m[i].y` an element): each result is built
+//! from the columns, lane by lane; a constant matrix times a vector of the hit likewise.
 
 use std::sync::Arc;
 
@@ -87,39 +89,93 @@ pub fn transform(name: &str, args: &[Value], span: Span) -> Eval {
     Ok(Value::from_hit(e, HitType::Vector(3)))
 }
 
-/// The columns of a 4×4 matrix: one of the hit (four `float4` column values, as
-/// [`transform`] builds it) or a constant `float4x4` (16 numbers, column by column); `None`
-/// for anything else.
-fn columns_of(m: &Value) -> Option<Vec<Arc<HitExpr>>> {
+/// The columns of a matrix and the length of each: one of the hit (two to four column
+/// values of one width, as [`transform`] and [`construct`] build them) or a constant
+/// [`Value::Matrix`]; `None` for anything else.
+fn columns_of(m: &Value) -> Option<(Vec<Arc<HitExpr>>, u8)> {
     match m {
-        Value::Array(columns) if columns.len() == 4 => {
-            columns.iter().map(|c| c.to_hit().filter(|_| c.hit_type() == Some(HitType::Vector(4)))).collect()
+        Value::Array(columns) if (2..=4).contains(&columns.len()) => {
+            let rows = columns[0].hit_type().filter(|t| matches!(t, HitType::Vector(2..=4)))?;
+            let cs =
+                columns.iter().map(|c| c.to_hit().filter(|_| c.hit_type() == Some(rows))).collect::<Option<_>>()?;
+            Some((cs, rows.width()))
         }
-        Value::Vector(v) if v.len() == 16 => Some(
-            v.chunks(4)
-                .map(|c| Arc::new(HitExpr::Const(glam::Vec4::new(c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32))))
-                .collect(),
-        ),
+        Value::Matrix { rows, data, .. } => {
+            let columns = data
+                .chunks(usize::from(*rows))
+                .map(|c| {
+                    let mut lanes = [0.0f32; 4];
+                    for (l, x) in lanes.iter_mut().zip(c) {
+                        *l = *x as f32;
+                    }
+                    Arc::new(HitExpr::Const(glam::Vec4::from_array(lanes)))
+                })
+                .collect();
+            Some((columns, *rows))
+        }
         _ => None,
     }
 }
 
-/// A matrix of the given columns: a constant `float4x4` where every column is constant,
-/// else a matrix of the hit.
-fn matrix(columns: Vec<Arc<HitExpr>>) -> Value {
-    if let Some(cs) = columns.iter().map(|c| c.constant()).collect::<Option<Vec<_>>>() {
-        return Value::Vector(cs.iter().flat_map(|c| c.to_array()).map(f64::from).collect());
-    }
-    Value::Array(columns.into_iter().map(|c| Value::Hit(c, HitType::Vector(4))).collect())
+/// Whether `v` is a matrix of the hit: an array of column vectors of one width, four of
+/// them or some of the hit (an array of constant vectors is a matrix after an operation on
+/// the hit folded it column by column).
+fn hit_matrix(v: &Value) -> bool {
+    let Value::Array(columns) = v else { return false };
+    (columns.len() == 4 || columns.iter().any(|c| matches!(c, Value::Hit(..)))) && columns_of(v).is_some()
 }
 
-/// `a op b` where one side is a matrix of the hit ([`transform`]'s), or a constant
-/// `float4x4` meets a vector of the hit: with a vector (a column vector on the right, a
-/// row vector on the left), another matrix (of the hit or constant), a scalar; matrices
+/// A matrix of the given columns of `rows` lanes: a constant [`Value::Matrix`] where every
+/// column is constant, else a matrix of the hit.
+fn matrix(columns: Vec<Arc<HitExpr>>, rows: u8) -> Value {
+    if let Some(cs) = columns.iter().map(|c| c.constant()).collect::<Option<Vec<_>>>() {
+        let data = cs.iter().flat_map(|c| c.to_array()[..usize::from(rows)].to_vec()).map(f64::from).collect();
+        return Value::Matrix { columns: columns.len() as u8, rows, data };
+    }
+    Value::Array(columns.into_iter().map(|c| Value::Hit(c, HitType::Vector(rows))).collect())
+}
+
+/// `floatCxR(…)` of `values` some of which depend on the hit: `columns` vectors of `rows`
+/// lanes (the columns), or `columns · rows` scalars column after column; a matrix of the
+/// hit ([`columns_of`]'s form). `None` for other arguments.
+pub fn construct(columns: u8, rows: u8, values: &[Value]) -> Option<Value> {
+    let (c, r) = (usize::from(columns), usize::from(rows));
+    let exprs: Vec<Arc<HitExpr>> = if values.len() == c {
+        values
+            .iter()
+            .map(|v| v.to_hit().filter(|_| v.hit_type() == Some(HitType::Vector(rows))))
+            .collect::<Option<_>>()?
+    } else if values.len() == c * r {
+        let scalars: Vec<Arc<HitExpr>> = values
+            .iter()
+            .map(|v| v.to_hit().filter(|_| matches!(v.hit_type(), Some(HitType::Float | HitType::Int))))
+            .collect::<Option<_>>()?;
+        scalars.chunks(r).map(|col| fold(HitExpr::Compose(col.iter().map(|x| (x.clone(), 1)).collect()))).collect()
+    } else {
+        return None;
+    };
+    Some(matrix(exprs, rows))
+}
+
+/// `cond ? a : b` for matrices (constant or of the hit) of one shape and a condition of
+/// the hit: column by column; `None` when `a` and `b` are not such matrices.
+pub fn select(cond: &Arc<HitExpr>, a: &Value, b: &Value) -> Option<Value> {
+    if !matches!(a, Value::Matrix { .. } | Value::Array(_)) {
+        return None;
+    }
+    let ((ca, ra), (cb, rb)) = (columns_of(a)?, columns_of(b)?);
+    if ca.len() != cb.len() || ra != rb {
+        return None;
+    }
+    Some(matrix(ca.into_iter().zip(cb).map(|(x, y)| fold(HitExpr::Select(cond.clone(), x, y))).collect(), ra))
+}
+
+/// `a op b` where one side is a matrix of the hit ([`transform`]'s, [`construct`]'s), or a
+/// constant matrix meets a vector of the hit: with a vector (a column vector on the right,
+/// a row vector on the left), another matrix (of the hit or constant), a scalar; matrices
 /// added or subtracted. `None` when the operands are not those.
 pub fn matrix_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
-    let hit_matrix = |v: &Value| matches!(v, Value::Array(c) if c.len() == 4);
-    let constant_matrix = |v: &Value| matches!(v, Value::Vector(x) if x.len() == 16);
+    let constant_matrix = |v: &Value| matches!(v, Value::Matrix { .. });
     let hit = |v: &Value| matches!(v, Value::Hit(..));
     let involved = hit_matrix(a) || hit_matrix(b) || (constant_matrix(a) && hit(b)) || (hit(a) && constant_matrix(b));
     if !involved {
@@ -132,73 +188,78 @@ pub fn matrix_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
             && v.to_hit().is_some()
     };
     match (op, ma, mb) {
-        (BinaryOp::Mul, Some(ma), Some(mb)) => {
+        (BinaryOp::Mul, Some((ma, ra)), Some((mb, rb))) if ma.len() == usize::from(rb) => {
             // Column j of A·B: A's columns weighted by the lanes of B's column j.
             let columns = mb
                 .iter()
                 .map(|bj| {
-                    (0..4u8)
+                    (0..rb)
                         .map(|k| mul(ma[usize::from(k)].clone(), fold(HitExpr::Lane(bj.clone(), k))))
                         .reduce(add)
                         .unwrap_or_else(|| constant(0.0))
                 })
                 .collect();
-            Some(matrix(columns))
+            Some(matrix(columns, ra))
         }
-        (BinaryOp::Mul, Some(ma), None) if !scalar(b) => matrix_times(&ma, b),
-        (BinaryOp::Mul, None, Some(mb)) if !scalar(a) => {
-            // A row vector times the matrix: lane j is its dot product with column j.
+        (BinaryOp::Mul, Some((ma, ra)), None) if !scalar(b) => matrix_times(&ma, ra, b),
+        (BinaryOp::Mul, None, Some((mb, rb))) if !scalar(a) => {
+            // A row vector times the matrix: lane j is its dot product with column j (a
+            // `float3` with a 4×4 matrix: its first three rows and columns).
             let width = a.hit_type()?.width();
-            if !(3..=4).contains(&width) {
+            let n = if width == rb { mb.len() } else { usize::from(width) };
+            if !(2..=4).contains(&width) || width > rb || n > mb.len() {
                 return None;
             }
             let v = a.to_hit()?;
             let lanes = mb
                 .iter()
-                .take(usize::from(width))
+                .take(n)
                 .map(|c| (fold(HitExpr::Math(MathFn::Dot(width), [v.clone(), c.clone()].into())), 1))
                 .collect();
-            Some(Value::from_hit(HitExpr::Compose(lanes), HitType::Vector(width)))
+            Some(Value::from_hit(HitExpr::Compose(lanes), HitType::Vector(n as u8)))
         }
-        (BinaryOp::Mul | BinaryOp::Div, Some(m), None) if scalar(b) => {
+        (BinaryOp::Mul | BinaryOp::Div, Some((m, r)), None) if scalar(b) => {
             let s = b.to_hit()?;
             let hop = if op == BinaryOp::Mul { BinOp::Mul } else { BinOp::Div };
-            Some(matrix(m.into_iter().map(|c| fold(HitExpr::Binary(hop, c, s.clone()))).collect()))
+            Some(matrix(m.into_iter().map(|c| fold(HitExpr::Binary(hop, c, s.clone()))).collect(), r))
         }
-        (BinaryOp::Mul, None, Some(m)) if scalar(a) => {
+        (BinaryOp::Mul, None, Some((m, r))) if scalar(a) => {
             let s = a.to_hit()?;
-            Some(matrix(m.into_iter().map(|c| mul(s.clone(), c)).collect()))
+            Some(matrix(m.into_iter().map(|c| mul(s.clone(), c)).collect(), r))
         }
-        (BinaryOp::Add | BinaryOp::Sub, Some(ma), Some(mb)) => {
+        (BinaryOp::Add | BinaryOp::Sub, Some((ma, ra)), Some((mb, rb))) if ma.len() == mb.len() && ra == rb => {
             let hop = if op == BinaryOp::Add { BinOp::Add } else { BinOp::Sub };
-            Some(matrix(ma.into_iter().zip(mb).map(|(x, y)| fold(HitExpr::Binary(hop, x, y))).collect()))
+            Some(matrix(ma.into_iter().zip(mb).map(|(x, y)| fold(HitExpr::Binary(hop, x, y))).collect(), ra))
         }
         _ => None,
     }
 }
 
-/// `math::transpose` of a matrix of the hit (or of a constant `float4x4`): column j is
-/// lane j of each column.
+/// `math::transpose` of a matrix of the hit (column j is lane j of each column) or of a
+/// constant matrix ([`super::matrix::transpose`]).
 pub fn transpose(m: &Value) -> Option<Value> {
+    if matches!(m, Value::Matrix { .. }) {
+        return super::matrix::transpose(m);
+    }
     if !matches!(m, Value::Array(_)) {
         return None;
     }
-    let columns = columns_of(m)?;
-    let rows = (0..4u8)
+    let (columns, rows) = columns_of(m)?;
+    let rows_as_columns = (0..rows)
         .map(|j| {
             let parts = columns.iter().map(|c| (fold(HitExpr::Lane(c.clone(), j)), 1)).collect();
             fold(HitExpr::Compose(parts))
         })
         .collect();
-    Some(matrix(rows))
+    Some(matrix(rows_as_columns, columns.len() as u8))
 }
 
-/// `m * v` for a matrix of four columns (of the hit, or constant) and a `float4` (or
-/// `float3`: its lanes times the first three columns); `None` when the operands are not
-/// those.
-fn matrix_times(columns: &[Arc<HitExpr>], v: &Value) -> Option<Value> {
+/// `m * v` for a matrix of columns of `rows` lanes (of the hit, or constant) and a vector
+/// as long as a row (or, for four columns, a `float3`: its lanes times the first three
+/// columns); `None` when the operands are not those.
+fn matrix_times(columns: &[Arc<HitExpr>], rows: u8, v: &Value) -> Option<Value> {
     let width = v.hit_type()?.width();
-    if !(3..=4).contains(&width) {
+    if !(2..=4).contains(&width) || usize::from(width) > columns.len() {
         return None;
     }
     let of = v.to_hit()?;
@@ -210,12 +271,13 @@ fn matrix_times(columns: &[Arc<HitExpr>], v: &Value) -> Option<Value> {
             None => term,
         });
     }
-    Some(Value::from_hit((*sum?).clone(), HitType::Vector(width)))
+    let ty = if usize::from(width) == columns.len() { rows } else { width };
+    Some(Value::from_hit((*sum?).clone(), HitType::Vector(ty)))
 }
 
-/// The 4×4 identity (column-major, as constant matrices are held).
+/// The 4×4 identity.
 fn identity() -> Value {
-    Value::Vector((0..16).map(|k| if k % 5 == 0 { 1.0 } else { 0.0 }).collect())
+    super::matrix::diagonal(4, 4, 1.0)
 }
 
 fn column(m: Columns, i: u8) -> Arc<HitExpr> {

@@ -632,6 +632,8 @@ impl Evaluator<'_> {
                         items[i] = v;
                         Value::Array(items)
                     }
+                    m @ Value::Matrix { .. } => super::matrix::with_column(m, i, &v)
+                        .ok_or_else(|| problem(span, format!("column {i} of a matrix is not assigned {}", kind(&v))))?,
                     whole => with_lane(whole, i, v, span)?,
                 };
                 self.assign(run, base, updated, env)

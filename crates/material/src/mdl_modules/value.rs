@@ -290,6 +290,16 @@ pub enum Value {
     Float(f64),
     /// `floatN`, `intN`… as floats.
     Vector(Vec<f64>),
+    /// `floatCxR`, `doubleCxR`: `columns` columns of `rows` numbers, column after column
+    /// (see [`super::matrix`]).
+    Matrix {
+        /// How many columns.
+        columns: u8,
+        /// How many rows (the length of a column).
+        rows: u8,
+        /// The elements, column-major: element (row i, column j) is `data[j * rows + i]`.
+        data: Vec<f64>,
+    },
     /// `color` (linear RGB).
     Color(Rgb),
     /// `string`.

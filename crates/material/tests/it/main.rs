@@ -24,6 +24,7 @@ mod mdl_hit;
 mod mdl_hit_loops;
 mod mdl_layer_normals;
 mod mdl_layers;
+mod mdl_matrices;
 mod mdl_measured_edf;
 mod mdl_state_space;
 mod mdl_statements;
