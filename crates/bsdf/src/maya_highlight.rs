@@ -329,7 +329,7 @@ pub struct ViewRamps {
 
 /// A table of values at evenly spaced points over [0, 1], linearly interpolated at `x`
 /// (clamped).
-fn table_at<T>(table: &[T], x: f32) -> T
+pub fn table_at<T>(table: &[T], x: f32) -> T
 where
     T: Copy + std::ops::Mul<f32, Output = T> + std::ops::Add<Output = T>,
 {

@@ -158,6 +158,9 @@ pub struct HitMaterial<'a> {
     pub model: Cow<'a, SurfaceModel>,
     /// Coverage.
     pub opacity: f32,
+    /// What a ray that passes the surface is multiplied by, per channel (see
+    /// [`SurfaceMaterial::cutout_tint`]).
+    pub cutout_tint: Rgb,
     /// The shading normal the material asks for (world space, unit), if it bends it.
     pub normal: Option<Vec3A>,
     /// The direction (world space, unit, in the tangent plane of the state's normal) the
@@ -233,6 +236,7 @@ impl SurfaceMaterial {
             emission_shape: self.emission_shape.as_ref(),
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
+            cutout_tint: self.cutout_tint,
             normal: None,
             tangent: None,
             glow: self.glow,
@@ -243,6 +247,7 @@ impl SurfaceMaterial {
     /// or an opacity driven by a shader of `graph`).
     pub fn may_cut_out(&self, graph: Option<&Graph>) -> bool {
         self.opacity < 1.0
+            || self.view_transparency.is_some()
             || match &self.varying {
                 Varying::Constant => false,
                 Varying::Bindings(b) => b.iter().any(|b| b.target == Target::Opacity),

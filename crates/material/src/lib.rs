@@ -200,6 +200,11 @@ pub struct SurfaceMaterial {
     /// classic formula (Maya volume lights with `emitAmbient` and `emitSpecular`; see
     /// [`maya::MayaHighlight`]); `None` for every other material.
     pub maya_highlight: Option<maya::MayaHighlight>,
+    /// A rampShader's transparency and incandescence ramps by the view's facing ratio:
+    /// the path engine sets each hit's coverage, cut-out tint, diffuse colour and
+    /// emission from them ([`maya::ViewTransparency::apply`]); `None` for every other
+    /// material (and for a rampShader whose ramps are the same all along).
+    pub view_transparency: Option<Box<maya::ViewTransparency>>,
 }
 
 impl SurfaceMaterial {
@@ -226,6 +231,7 @@ impl SurfaceMaterial {
             glow: Rgb::ZERO,
             ambient: Rgb::ZERO,
             maya_highlight: None,
+            view_transparency: None,
         }
     }
 

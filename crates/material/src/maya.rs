@@ -25,8 +25,9 @@
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
-//!   and incandescence ramps at facing ratio 1 (transparency fading the lit colour and
-//!   incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
+//!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
+//!   coverage, cut-out tint and fade; at 1 for one that refracts; transparency fading the
+//!   lit colour and incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
 //!   `specularColor` ⊙ light · D with D Blinn's distribution of `eccentricity` (peak 1),
 //!   is Maya's lobe of that shape and tint (`bsdf::maya_highlight::ramp_blinn`, the
 //!   classic shader's own function), its reflection a mirror of weight `reflectivity`
@@ -84,6 +85,9 @@
 //! expressed is reported in the warnings and takes its declared default.
 
 use std::sync::Arc;
+
+mod view_transparency;
+pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
 use bsdf::Rgb;
@@ -532,7 +536,9 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
         None => Rgb::ZERO,
     };
     let tint = if by_view { tint } else { tint * at(&rolloff, 1.0).x.max(0.0) };
-    let tr = ramp_at(r, "transparency", "Color", Rgb::ZERO, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
+    let transparency = read(r, "transparency", "Color", Rgb::ZERO);
+    let incandescence = read(r, "incandescence", "Color", Rgb::ZERO);
+    let tr = at(&transparency, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
     // Refraction as for the lambert family (see `translate`), by the transparency at 1.
     let ior = refraction_index(r, tr, alone);
     cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects) && ior.is_none());
@@ -552,7 +558,17 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     // 1/d of the diffuse colour.
     let share = if input == ColorInput::LightAngle { d + t } else { d };
     surface.ambient = Rgb::splat(if share > 0.0 { 1.0 / share } else { 0.0 });
-    surface.emission = ramp_at(r, "incandescence", "Color", Rgb::ZERO, 1.0) * fade;
+    surface.emission = at(&incandescence, 1.0) * fade;
+    // Transparency and incandescence ramps that vary with the view: read at each hit's
+    // facing ratio, as the classic shader does (a refracting one keeps T(1)).
+    if alone && ior.is_none() && (varies(&transparency) || varies(&incandescence)) {
+        surface.view_transparency = Some(Box::new(ViewTransparency::tabulate(
+            |f| at(&transparency, f),
+            |f| at(&incandescence, f),
+            albedo,
+            tint != Rgb::ZERO || reflects,
+        )));
+    }
     let glow_intensity = r.scalar("glowIntensity", 0.0);
     if glow_intensity != 0.0 {
         surface.glow = c * glow_intensity;

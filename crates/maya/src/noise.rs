@@ -3,7 +3,7 @@
 //!
 //! Parameters (see `mayabase.mi`): `threshold` (0), `amplitude` (1), `ratio` (0.707),
 //! `frequencyRatio` (2), `depthMax` (3), `inflection` (off), `time` (0), `frequency` (8),
-//! `implode` (not read), `noiseType` (1, Billow: Maya's default), `numWaves` (5) and the
+//! `implode` (0) about `implodeCenterU`/`implodeCenterV` (0.5, 0.5) ([`Implode`]), `noiseType` (1, Billow: Maya's default), `numWaves` (5) and the
 //! Billow cells' `density` (1), `spottyness` (0.1), `sizeRand` (0), `randomness` (1) and
 //! `falloff` (2, Fast) ([`crate::billow`]).
 //!
@@ -184,6 +184,38 @@ pub fn wave(q: Vec3A, waves: u32, octave: u32, planar: bool) -> f32 {
     (sum / n as f32).clamp(-1.0, 1.0)
 }
 
+/// Maya's `implode`: the reference says it "warps the noise function in a concentric
+/// fashion" about `implodeCenter` (a UV point), no effect at 0, a spherical projection
+/// ("starburst") at 1, negative values skewing the noise outward. It gives no formula;
+/// mira's: the texture reads the noise at
+///
+/// ```text
+/// uv' = c + d · |d|^(−implode),   d = uv − c   (|d|' = |d|^(1 − implode))
+/// ```
+///
+/// so 0 is the identity, 1 puts every point on the unit circle about c (the noise then
+/// varies with the angle alone: the starburst) and negative values pull points towards
+/// c (the pattern spreads outward). The centre itself is left where it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Implode {
+    /// `implode`.
+    pub amount: f32,
+    /// `implodeCenterU`, `implodeCenterV`: the centre, in UV.
+    pub center: Vec2,
+}
+
+impl Implode {
+    /// The UV point whose noise the texture shows at `uv`.
+    pub fn warp(&self, uv: Vec2) -> Vec2 {
+        let d = uv - self.center;
+        let r = d.length();
+        if self.amount == 0.0 || r == 0.0 || !r.is_finite() {
+            return uv;
+        }
+        self.center + d * r.powf(-self.amount)
+    }
+}
+
 /// The settings of a noise texture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Noise {
@@ -299,7 +331,10 @@ maya_shader!(
         "spottyness",
         "sizeRand",
         "randomness",
-        "falloff"
+        "falloff",
+        "implode",
+        "implodeCenterU",
+        "implodeCenterV"
     ],
     noise
 );
@@ -307,7 +342,8 @@ maya_shader!(
 fn noise(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(uv) = crate::texture::texture_uv(ctx, n) else { return crate::texture::outside(ctx, n, out) };
     let settings = Noise::read(ctx, n, 8, 16);
-    let v = settings.value(uv);
+    let implode = Implode { amount: ctx.scalar(n, 23), center: Vec2::new(ctx.scalar(n, 24), ctx.scalar(n, 25)) };
+    let v = settings.value(implode.warp(uv));
     crate::texture::balance(ctx, n, Vec3A::splat(v), v, out)
 }
 
@@ -459,5 +495,40 @@ mod tests {
         assert_eq!(Shape::from_maya(0, 5, c), Shape::Perlin);
         assert_eq!(Shape::from_maya(3, 5, c), Shape::Wispy);
         assert_eq!(Shape::from_maya(1, 5, c), Shape::Billow { cells: c });
+    }
+
+    /// `implode`: 0 leaves every point (so the pattern) bit-identical; the centre keeps
+    /// its value; elsewhere the texture shows the unwarped noise at c + d·|d|^(−implode)
+    /// computed here by hand (1e-6), and implode 1 makes the value constant along each
+    /// ray from the centre (the starburst: 1e-6).
+    #[test]
+    fn implode_warps_about_its_centre() {
+        let n = maya_default();
+        let c = Vec2::new(0.5, 0.5);
+        let none = Implode { amount: 0.0, center: c };
+        for i in 0..400 {
+            let uv = Vec2::new((i % 20) as f32 / 20.0 + 0.013, (i / 20) as f32 / 20.0 + 0.029);
+            assert_eq!(none.warp(uv), uv);
+            assert_eq!(n.value(none.warp(uv)).to_bits(), n.value(uv).to_bits());
+        }
+        for amount in [0.5f32, 1.0, -0.7, 2.0] {
+            let imp = Implode { amount, center: c };
+            assert_eq!(imp.warp(c), c);
+            assert_eq!(n.value(imp.warp(c)), n.value(c));
+        }
+        // d = (0.3, 0.4), |d| = 0.5: at implode 0.5 |d|' = 0.5^0.5, along (0.6, 0.8).
+        let imp = Implode { amount: 0.5, center: c };
+        let uv = c + Vec2::new(0.3, 0.4);
+        let by_hand = c + Vec2::new(0.6, 0.8) * 0.5f32.sqrt();
+        assert!((imp.warp(uv) - by_hand).length() < 1e-6);
+        assert!((n.value(imp.warp(uv)) - n.value(by_hand)).abs() < 1e-6);
+        assert!((n.value(imp.warp(uv)) - n.value(uv)).abs() > 1e-4, "the warp changes the value");
+        // Implode 1: every point along a ray from c shows the noise at distance 1.
+        let star = Implode { amount: 1.0, center: c };
+        let dir = Vec2::new(0.8, -0.6);
+        let at_one = n.value(c + dir);
+        for t in [0.05f32, 0.2, 0.37, 0.9] {
+            assert!((n.value(star.warp(c + dir * t)) - at_one).abs() < 1e-6);
+        }
     }
 }

@@ -281,10 +281,16 @@ fn material_at<'w>(
     material: u32,
 ) -> HitMaterial<'w> {
     let m = &world.materials[material as usize];
-    match shading {
+    let mut at = match shading {
         Some(shading) if m.is_varying() => varying_material_at(world, accel, shading, ray, hit, m),
         _ => m.constant(),
+    };
+    if let Some(view) = &m.view_transparency {
+        // The facing ratio of the (bumped) shading normal, as the classic shader's N·V.
+        let n = at.normal.unwrap_or_else(|| surface(world, ray, hit).ns);
+        view.apply(n.dot(ray.dir).abs(), &mut at);
     }
+    at
 }
 
 /// [`material_at`] for a material with connected parameters (out of line: the constant
@@ -361,7 +367,7 @@ fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, sh
         if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
             return Rgb::ZERO;
         }
-        tint *= world.materials[s.material as usize].cutout_tint;
+        tint *= m.cutout_tint;
         let travelled = hit.t;
         ray.origin = s.leave(s.ng, ray.dir);
         ray.tmax = (ray.tmax - travelled).max(0.0);
@@ -489,7 +495,7 @@ pub fn trace_camera_path(
             }
             counts.rays += 1;
             // A coloured transparency filters what passes, per channel.
-            throughput *= world.materials[s.material as usize].cutout_tint;
+            throughput *= m.cutout_tint;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }

@@ -317,6 +317,8 @@ fn trace_photon(
             power *= r.powf(2.0 - exponent);
         }
         let (point, normal, normal_geom, inv_normal) = (s.point, s.normal, s.normal_geom, s.inv_normal);
+        // `opaque` is not read here: a speed hint for shadow rays (mental ray manual, material statement; Maya's
+        // Shading Group "Opaque"), see `World::blocks_shadows`; photons follow the surface's photon shader.
         let mut ctx = Ctx::new(shading, &tracer, s);
         let scatter = scatter_at(&mut ctx);
         drop(ctx);

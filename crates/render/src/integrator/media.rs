@@ -296,12 +296,12 @@ fn shadow_transmittance_through(
             // Marked `opaque`: no cutout, no boundary.
             return Crossing::Blocked;
         }
-        let cut_out = world.has_cutouts && {
+        let cut_out = world.has_cutouts.then(|| {
             let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
-            m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity
-        };
-        if cut_out {
-            return Crossing::Filtered(world.materials[s.surface.material as usize].cutout_tint);
+            (m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity).then_some(m.cutout_tint)
+        });
+        if let Some(Some(tint)) = cut_out {
+            return Crossing::Filtered(tint);
         }
         let matched = world.materials[s.surface.material as usize].model.index_matched();
         match (media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))), matched) {

@@ -26,6 +26,7 @@ mod maya_highlight_path;
 mod maya_opaque_shadows;
 mod maya_path;
 mod maya_ramp_highlight_path;
+mod maya_ramp_transparency_path;
 mod maya_reflection_path;
 mod maya_refraction_path;
 mod maya_soft_shadows_path;

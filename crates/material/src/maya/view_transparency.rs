@@ -1,0 +1,107 @@
+//! rampShader's `transparency` and `incandescence` ramps by the view's facing ratio in
+//! the path engine: the classic shader reads both at f = N·V for each ray (shadow rays
+//! included), so the path engine sets a hit's coverage, cut-out tint, faded diffuse
+//! colour and incandescence from them at each hit, by the rules a constant transparency
+//! follows (see `crate::maya`'s module doc), instead of taking them at f = 1.
+
+use std::borrow::Cow;
+
+use bsdf::maya_highlight::{table_at, VIEW_RAMP_STEPS};
+use bsdf::Rgb;
+
+use super::MIN_HIGHLIGHT_COVERAGE;
+use crate::{HitMaterial, SurfaceModel};
+
+/// A rampShader's transparency and incandescence ramps tabulated over the facing ratio
+/// (linear between [`VIEW_RAMP_STEPS`] points, as `bsdf::maya_highlight::ViewRamps`),
+/// with what the hit's material is made from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewTransparency {
+    /// `transparency` T at N·V = k/32, clamped to [0, 1] per channel.
+    pub transparency: [Rgb; VIEW_RAMP_STEPS],
+    /// `incandescence` at N·V = k/32 (emitted radiance before the fade by 1 − T).
+    pub incandescence: [Rgb; VIEW_RAMP_STEPS],
+    /// The lit colour's albedo before the fade by 1 − T.
+    pub albedo: Rgb,
+    /// The material shows a highlight or a reflection: its coverage is at least
+    /// [`MIN_HIGHLIGHT_COVERAGE`].
+    pub highlight: bool,
+}
+
+impl ViewTransparency {
+    /// The ramps tabulated from functions of the facing ratio.
+    pub fn tabulate(
+        transparency: impl Fn(f32) -> Rgb,
+        incandescence: impl Fn(f32) -> Rgb,
+        albedo: Rgb,
+        highlight: bool,
+    ) -> Self {
+        let at = |k: usize| k as f32 / (VIEW_RAMP_STEPS - 1) as f32;
+        ViewTransparency {
+            transparency: std::array::from_fn(|k| transparency(at(k)).clamp(Rgb::ZERO, Rgb::ONE)),
+            incandescence: std::array::from_fn(|k| incandescence(at(k))),
+            albedo,
+            highlight,
+        }
+    }
+
+    /// The transparency at facing ratio `facing` (N·V, clamped to [0, 1]).
+    pub fn transparency_at(&self, facing: f32) -> Rgb {
+        table_at(&self.transparency, facing)
+    }
+
+    /// Sets `hit`'s coverage p = 1 − mean T(f) (at least [`MIN_HIGHLIGHT_COVERAGE`] with a
+    /// highlight), cut-out tint T(f)/(1 − p), diffuse colour albedo ⊙ (1 − T(f))/p,
+    /// incandescence(f) ⊙ (1 − T(f))/p and its highlight's coverage, for the view of facing
+    /// ratio `facing`.
+    pub fn apply(&self, facing: f32, hit: &mut HitMaterial<'_>) {
+        let t = self.transparency_at(facing);
+        let mut p = 1.0 - (t.x + t.y + t.z) / 3.0;
+        if self.highlight {
+            p = p.max(MIN_HIGHLIGHT_COVERAGE);
+        }
+        hit.opacity = p;
+        hit.cutout_tint = if p < 1.0 { t / (1.0 - p) } else { Rgb::ONE };
+        let fade = if p > 0.0 { (Rgb::ONE - t) / p } else { Rgb::ONE };
+        hit.diffuse = self.albedo * fade;
+        hit.emission = table_at(&self.incandescence, facing) * fade;
+        let glossy = match &*hit.model {
+            SurfaceModel::Maya(g) => Some(g.with_coverage(p.max(1e-3))),
+            _ => None,
+        };
+        if let Some(g) = glossy {
+            hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// T(f) = 1 − f grey and incandescence (f, 0, 1 − f): at f = 0.3 (a table point
+    /// interpolated linearly: exact to 1e-6) the coverage is 0.3, the tint 1, the
+    /// diffuse colour albedo · 0.3/0.3 and the incandescence (0.3, 0, 0.7); with a
+    /// highlight at f = 0.1 the coverage is the least one and the tint 0.9/0.75.
+    #[test]
+    fn the_hit_follows_the_facing_ratio() {
+        let v = ViewTransparency::tabulate(
+            |f| Rgb::splat(1.0 - f),
+            |f| Rgb::new(f, 0.0, 1.0 - f),
+            Rgb::new(0.5, 0.25, 0.125),
+            false,
+        );
+        let m = crate::SurfaceMaterial::grey("g");
+        let mut hit = m.constant();
+        v.apply(0.3, &mut hit);
+        assert!((hit.opacity - 0.3).abs() < 1e-6);
+        assert!((hit.cutout_tint - Rgb::ONE).abs().max_element() < 1e-6);
+        assert!((hit.diffuse - Rgb::new(0.5, 0.25, 0.125)).abs().max_element() < 1e-6);
+        assert!((hit.emission - Rgb::new(0.3, 0.0, 0.7)).abs().max_element() < 1e-6);
+        let h = ViewTransparency { highlight: true, ..v };
+        let mut hit = m.constant();
+        h.apply(0.1, &mut hit);
+        assert_eq!(hit.opacity, MIN_HIGHLIGHT_COVERAGE);
+        assert!((hit.cutout_tint - Rgb::splat(0.9 / 0.75)).abs().max_element() < 1e-5);
+    }
+}
