@@ -6,7 +6,10 @@
 //! `continue` under a condition of the hit records the values where control leaves
 //! (`Exit`): a slot's value after the body is that of the first exit whose condition
 //! holds, else the body's end; a `for` loop's step runs after the body and after a
-//! `continue`, not after a `break`; a `break` taken ends the loop.
+//! `continue`, not after a `break`; a `break` taken ends the loop. A `return` inside is a
+//! `break` that sets two more carried values (whether it returned, and its value); after
+//! the loop, where it returned, the loop of the hit around leaves its turn the same way,
+//! or, outside every loop of the hit, the function returns that value.
 
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -19,7 +22,7 @@ use mi::Span;
 use super::eval::{kind, problem, Env, Evaluator, Problem};
 use super::hit::{cost_with, fold, HitExpr};
 use super::hit_loop::{HitLoop, MAX_LOOP_SLOTS};
-use super::statements::{both, Exit, Flow, Loop, Nest, Run, Step};
+use super::statements::{both, Exit, Flow, Loop, Nest, Run, Step, RETURNED, RETURN_VALUE};
 use super::value::{HitType, Value};
 
 /// A variable a loop assigns.
@@ -38,6 +41,8 @@ struct Scan {
     assigned: Vec<Var>,
     /// Locals declared inside.
     declared: HashSet<u32>,
+    /// Whether a `return` is inside.
+    returns: bool,
 }
 
 impl Scan {
@@ -63,6 +68,7 @@ impl Scan {
             }
             StmtKind::While { body, .. } | StmtKind::DoWhile { body, .. } => self.stmt(body),
             StmtKind::Switch { cases, .. } => cases.iter().flat_map(|c| &c.body).for_each(|s| self.stmt(s)),
+            StmtKind::Return(_) => self.returns = true,
             _ => {}
         }
     }
@@ -219,6 +225,17 @@ impl Evaluator<'_> {
         if let Some(step) = lp.step {
             scan.effect(step);
         }
+        // A `return` inside: whether it was taken and its value are carried as two more
+        // variables, which the outermost loop of the hit around it hands on after it.
+        let owner = scan.returns && !env.locals.contains_key(&RETURNED);
+        if owner {
+            let value = self.construct(&run.def.ret.ty, &[], env, span)?;
+            env.locals.insert(RETURNED, Value::Bool(false));
+            env.locals.insert(RETURN_VALUE, value);
+        }
+        if scan.returns {
+            scan.assigned.extend([Var::Local(RETURNED), Var::Local(RETURN_VALUE)]);
+        }
         let base = usize::from(self.slot_top);
         let mut slots = Vec::new();
         let mut vars: Vec<(Var, Value)> = Vec::new();
@@ -293,7 +310,36 @@ impl Evaluator<'_> {
                 run.check_depth(&v, span)?;
             }
         }
+        if scan.returns {
+            self.hand_on_return(run, env, owner);
+        }
         Ok(Flow::Normal)
+    }
+
+    /// After a loop of the hit with a `return` inside: where it returned, the turn of the
+    /// loop of the hit around leaves it too (a `break` with the return slots set), or
+    /// (outside every loop of the hit, `owner`) the function returns its value.
+    fn hand_on_return(&mut self, run: &mut Run, env: &mut Env, owner: bool) {
+        let flag = env.locals.get(&RETURNED).and_then(Value::to_hit);
+        let Some(flag) = flag.filter(|f| f.constant() != Some(Vec4::ZERO)) else {
+            if owner {
+                env.locals.remove(&RETURNED);
+                env.locals.remove(&RETURN_VALUE);
+            }
+            return;
+        };
+        let guard = Some(both(run.guard.as_ref(), &flag));
+        if owner {
+            env.locals.remove(&RETURNED);
+            if let Some(value) = env.locals.remove(&RETURN_VALUE) {
+                run.returns.push((guard, value));
+            }
+            return;
+        }
+        let exit = Exit { guard, brk: true, params: env.params.clone(), locals: env.locals.clone() };
+        if let Some(Nest::HitTurn(exits)) = run.nest.iter_mut().rev().find(|n| matches!(n, Nest::HitTurn(_))) {
+            exits.push(exit);
+        }
     }
 
     /// Runs the condition and one turn of `lp` over the slots (`placeholders`, the carried

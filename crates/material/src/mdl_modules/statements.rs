@@ -9,9 +9,13 @@
 //! joins what they assign with a per-hit choice (`c ? a : b`); a `return` in such a branch
 //! is kept with its condition, and the function's value is the first of its returns whose
 //! condition holds; a `switch` on an integer of the hit runs each case under the condition
-//! that control reaches it. A loop whose control depends on the hit — its condition, or a
-//! `break` or `continue` under a condition of the hit — is compiled into a loop that runs at
-//! each hit ([`super::statement_loops`], [`super::hit_loop`]).
+//! that control reaches it; a `break` under a condition of the hit leaves a `switch` there
+//! (the statements after it run under the opposite condition, and after the switch each
+//! value is that where the first `break` whose condition holds left, else the switch's
+//! end). A loop whose control depends on the hit — its condition, or a `break` or
+//! `continue` under a condition of the hit — is compiled into a loop that runs at each hit
+//! ([`super::statement_loops`], [`super::hit_loop`]); a `return` inside one leaves it like
+//! a `break` that sets two carried values, [`RETURNED`] and [`RETURN_VALUE`].
 //!
 //! Every statement run counts one step, and a material instance runs at most
 //! [`MAX_STEPS`] (the bound a per-hit expression may take, [`super::hit::MAX_HIT_NODES`]):
@@ -54,17 +58,24 @@ pub(super) enum Nest {
     /// A loop whose turns run when the material is compiled, with the condition its turns
     /// run under.
     Loop(Option<Arc<HitExpr>>),
-    /// A `switch`, with the condition its case runs under.
-    Switch(Option<Arc<HitExpr>>),
+    /// A `switch`, with the condition its case runs under and where a `break` under a
+    /// condition of the hit left it so far.
+    Switch(Option<Arc<HitExpr>>, Vec<Exit>),
     /// The turn of a loop of the hit being compiled: where control left it so far.
     HitTurn(Vec<Exit>),
 }
 
-/// Control leaving a turn of a loop of the hit by `break` or `continue`.
+/// The local that holds whether a `return` inside a loop of the hit was taken (a bool).
+pub(super) const RETURNED: u32 = u32::MAX;
+/// The local that holds the value of a `return` inside a loop of the hit.
+pub(super) const RETURN_VALUE: u32 = u32::MAX - 1;
+
+/// Control leaving a turn of a loop of the hit by `break`, `continue` or `return` (a
+/// `break` that sets [`RETURNED`] and [`RETURN_VALUE`]), or a `switch` by `break`.
 pub(super) struct Exit {
     /// The condition under which it leaves (within the turn; `None`: always).
     pub guard: Option<Arc<HitExpr>>,
-    /// `break`, else `continue`.
+    /// `break` (or `return`), else `continue`.
     pub brk: bool,
     /// The parameters' values there.
     pub params: Vec<Value>,
@@ -84,7 +95,7 @@ pub(super) struct Run<'f> {
     /// compiled: that loop's index in `nest`, which then compiles itself per hit.
     pub per_hit: Option<usize>,
     /// The values returned so far, each with the condition it was returned under, in order.
-    returns: Vec<(Option<Arc<HitExpr>>, Value)>,
+    pub returns: Vec<(Option<Arc<HitExpr>>, Value)>,
     /// How deep the values of the hit stored so far nest, by node (each kept alive here, so
     /// that its address names it): a new value's depth is measured down to them only.
     depths: HashMap<*const HitExpr, (Arc<HitExpr>, usize)>,
@@ -232,17 +243,27 @@ impl Evaluator<'_> {
                 Ok(Flow::Normal)
             }
             StmtKind::Return(value) => {
-                if run.nest.iter().any(|n| matches!(n, Nest::HitTurn(_))) {
-                    return Err(problem(
-                        span,
-                        format!("`return` inside a loop of the hit is not compiled (in `{}`)", run.def.name),
-                    ));
-                }
                 let v = match value {
                     Some(v) => convert(self.eval(v, env)?, &run.def.ret.ty),
                     None => return Err(problem(span, format!("`{}` returns no value", run.def.name))),
                 };
                 run.check_depth(&v, span)?;
+                // Inside a loop of the hit: a `break` out of its turn that sets the return
+                // slots (the loop hands the return on, see `statement_loops`).
+                if let Some(at) = run.nest.iter().rposition(|n| matches!(n, Nest::HitTurn(_))) {
+                    env.locals.insert(RETURN_VALUE, v);
+                    env.locals.insert(RETURNED, Value::Bool(true));
+                    let exit = Exit {
+                        guard: run.guard.clone(),
+                        brk: true,
+                        params: env.params.clone(),
+                        locals: env.locals.clone(),
+                    };
+                    if let Nest::HitTurn(exits) = &mut run.nest[at] {
+                        exits.push(exit);
+                    }
+                    return Ok(Flow::Return);
+                }
                 run.returns.push((run.guard.clone(), v));
                 Ok(Flow::Return)
             }
@@ -290,7 +311,8 @@ impl Evaluator<'_> {
                 };
                 // From the chosen label on, falling through the labels after it.
                 let at = run.nest.len();
-                run.nest.push(Nest::Switch(run.guard.clone()));
+                let outer = run.guard.clone();
+                run.nest.push(Nest::Switch(run.guard.clone(), Vec::new()));
                 let mut flow = Ok(Flow::Normal);
                 for case in &cases[start..] {
                     flow = self.stmts(run, &case.body, env);
@@ -298,11 +320,29 @@ impl Evaluator<'_> {
                         break;
                     }
                 }
+                let exits = match run.nest.pop() {
+                    Some(Nest::Switch(_, exits)) => exits,
+                    _ => Vec::new(),
+                };
                 run.nest.truncate(at);
-                match flow? {
-                    Flow::Break => Ok(Flow::Normal),
-                    flow => Ok(flow),
+                run.guard = outer;
+                let flow = match flow? {
+                    Flow::Break => Flow::Normal,
+                    flow => flow,
+                };
+                if exits.is_empty() {
+                    return Ok(flow);
                 }
+                // Where a `break` of the hit left, control goes on after the switch.
+                if flow != Flow::Normal {
+                    let mut exits = exits;
+                    let last = exits.pop().expect("an exit");
+                    (env.params, env.locals) = (last.params, last.locals);
+                    self.take_exits(run, exits, env, span)?;
+                } else {
+                    self.take_exits(run, exits, env, span)?;
+                }
+                Ok(Flow::Normal)
             }
         }
     }
@@ -338,6 +378,12 @@ impl Evaluator<'_> {
     /// under a condition of the hit), the loop starts again as a loop of the hit.
     fn run_loop(&mut self, run: &mut Run, lp: &Loop, env: &mut Env, span: Span) -> Step {
         let saved = (env.params.clone(), env.locals.clone(), run.returns.len());
+        // Where the turn of a loop of the hit around records a `return` of this loop.
+        let turn = run.nest.iter().rposition(|n| matches!(n, Nest::HitTurn(_)));
+        let turn_exits = match turn.map(|t| &run.nest[t]) {
+            Some(Nest::HitTurn(exits)) => exits.len(),
+            _ => 0,
+        };
         let at = run.nest.len();
         run.nest.push(Nest::Loop(run.guard.clone()));
         let turns = self.known_turns(run, lp, env, span);
@@ -350,6 +396,9 @@ impl Evaluator<'_> {
         }
         (env.params, env.locals) = (saved.0, saved.1);
         run.returns.truncate(saved.2);
+        if let Some(Nest::HitTurn(exits)) = turn.map(|t| &mut run.nest[t]) {
+            exits.truncate(turn_exits);
+        }
         self.hit_loop(run, lp, env, span)
     }
 
@@ -385,7 +434,7 @@ impl Evaluator<'_> {
         let flow = if brk { Flow::Break } else { Flow::Continue };
         let word = if brk { "break" } else { "continue" };
         // `continue` belongs to the innermost loop, `break` to the innermost loop or switch.
-        let Some(at) = run.nest.iter().rposition(|n| brk || !matches!(n, Nest::Switch(_))) else {
+        let Some(at) = run.nest.iter().rposition(|n| brk || !matches!(n, Nest::Switch(..))) else {
             return Ok(flow);
         };
         let guard = run.guard.clone();
@@ -393,22 +442,55 @@ impl Evaluator<'_> {
             exits.push(Exit { guard, brk, params: env.params.clone(), locals: env.locals.clone() });
             return Ok(flow);
         }
-        match &run.nest[at] {
-            Nest::Loop(g) | Nest::Switch(g) if run.under(g.as_ref()) => Ok(flow),
-            Nest::Loop(_) => {
-                run.per_hit = Some(at);
-                Err(problem(span, format!("`{word}` under a condition of the hit (in `{}`)", run.def.name)))
-            }
-            _ => Err(problem(
-                span,
-                format!("`break` under a condition of the hit in a `switch` is not compiled (in `{}`)", run.def.name),
-            )),
+        let under = match &run.nest[at] {
+            Nest::Loop(g) | Nest::Switch(g, _) => run.under(g.as_ref()),
+            Nest::HitTurn(_) => false,
+        };
+        if under {
+            return Ok(flow);
         }
+        if let Nest::Switch(_, exits) = &mut run.nest[at] {
+            // The switch joins the values where it was left after it (see `take_exits`).
+            exits.push(Exit { guard, brk, params: env.params.clone(), locals: env.locals.clone() });
+            return Ok(flow);
+        }
+        run.per_hit = Some(at);
+        Err(problem(span, format!("`{word}` under a condition of the hit (in `{}`)", run.def.name)))
     }
 
     /// An `if` whose condition `c` depends on the hit: both branches run, each under its
     /// condition; what they assign is joined by `c`.
     fn guarded_if(
+        &mut self,
+        run: &mut Run,
+        c: &Arc<HitExpr>,
+        then: &Stmt,
+        otherwise: Option<&Stmt>,
+        env: &mut Env,
+        span: Span,
+    ) -> Step {
+        let outer = run.guard.clone();
+        let switch_exits = match run.nest.last() {
+            Some(Nest::Switch(_, exits)) => exits.len(),
+            _ => 0,
+        };
+        let flow = self.guarded_branches(run, c, then, otherwise, env, span)?;
+        // Where a branch left the switch around by `break`, the statements after run only
+        // where it did not.
+        if let Some(Nest::Switch(_, exits)) = run.nest.last() {
+            let gone = exits[switch_exits.min(exits.len())..]
+                .iter()
+                .map(|e| e.guard.clone().unwrap_or_else(|| Arc::new(HitExpr::Const(Vec4::ONE))))
+                .reduce(|a, b| either(Some(&a), &b));
+            if let Some(gone) = gone {
+                run.guard = Some(both(outer.as_ref(), &fold(HitExpr::Unary(UnOp::Not, gone))));
+            }
+        }
+        Ok(flow)
+    }
+
+    /// The two branches of [`Self::guarded_if`], each under its condition, joined by `c`.
+    fn guarded_branches(
         &mut self,
         run: &mut Run,
         c: &Arc<HitExpr>,
@@ -490,6 +572,7 @@ impl Evaluator<'_> {
         let outer = run.guard.clone();
         // Control that left by `break` (None: none), and control falling into the next case.
         let (mut left, mut through): (Option<Arc<HitExpr>>, Option<Arc<HitExpr>>) = (None, None);
+        let mut taken = Vec::new();
         for (case, label) in cases.iter().zip(labels) {
             let matched = label.map_or_else(|| no_label.clone(), equals);
             let mut reached = either(through.as_ref(), &matched);
@@ -499,8 +582,16 @@ impl Evaluator<'_> {
             let before = (env.params.clone(), env.locals.clone());
             run.guard = Some(both(outer.as_ref(), &reached));
             let at = run.nest.len();
-            run.nest.push(Nest::Switch(run.guard.clone()));
+            run.nest.push(Nest::Switch(run.guard.clone(), Vec::new()));
             let flow = self.stmts(run, &case.body, env);
+            if let Some(Nest::Switch(_, exits)) = run.nest.pop() {
+                // Control that left by a `break` of the hit goes on after the switch only.
+                for e in &exits {
+                    let g = e.guard.clone().unwrap_or_else(|| Arc::new(HitExpr::Const(Vec4::ONE)));
+                    left = Some(either(left.as_ref(), &g));
+                }
+                taken.extend(exits);
+            }
             run.nest.truncate(at);
             run.guard = outer.clone();
             match flow? {
@@ -531,7 +622,30 @@ impl Evaluator<'_> {
                 }
             }
         }
+        self.take_exits(run, taken, env, span)?;
         Ok(Flow::Normal)
+    }
+
+    /// The values after a `switch` left by `break`s of the hit (`exits`, in order) and its
+    /// end (`env`): those of the first exit whose condition holds, else the end's.
+    fn take_exits(&mut self, run: &mut Run, exits: Vec<Exit>, env: &mut Env, span: Span) -> Result<(), Problem> {
+        for exit in exits.into_iter().rev() {
+            let Some(g) = exit.guard else {
+                (env.params, env.locals) = (exit.params, exit.locals);
+                continue;
+            };
+            for (slot, at) in env.params.iter_mut().zip(exit.params) {
+                *slot = join(&g, at, std::mem::replace(slot, Value::Bool(false)), span)?;
+                run.check_depth(slot, span)?;
+            }
+            for (id, slot) in env.locals.iter_mut() {
+                if let Some(at) = exit.locals.get(id) {
+                    *slot = join(&g, at.clone(), std::mem::replace(slot, Value::Bool(false)), span)?;
+                    run.check_depth(slot, span)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Declares local `d` with its value (the type's default when none is written).

@@ -2,7 +2,9 @@
 //! at each hit: each against its closed form at several hits (within 1e-6 relative) — a
 //! trip count read from a texture coordinate, `while`, `do`–`while`, nested loops, a
 //! `break` and a `continue` under conditions of the hit, `continue` in a `switch` of the
-//! hit, a struct carried through the turns — and an endless one stopped after its steps.
+//! hit, a struct carried through the turns, a `return` inside (early, nested, under an
+//! `if` of the hit, in a loop of fixed count inside), a `break` of the hit out of a
+//! `switch` — and an endless one stopped after its steps.
 
 use crate::mdl_support;
 
@@ -90,14 +92,37 @@ fn an_endless_loop_of_the_hit_stops_after_its_steps() {
     assert!(got >= 100.0 && got <= limit, "{got}");
 }
 
-/// What is not compiled in a loop of the hit — a `return` inside it — is an error at its
-/// `file:line:col`, naming the function; the material renders grey.
 #[test]
-fn a_return_inside_a_loop_of_the_hit_is_an_error_at_its_line() {
-    let (_, _, diags) = compile_text(r#"shader "m" "mdl::hit_loops::early_return" ()"#);
+fn a_return_inside_a_loop_of_the_hit_ends_the_function_where_taken() {
+    // The first k < ceil(10 u) with k k > 7 (k = 3, where 10 u > 3) returns 103; none
+    // returns the count ceil(10 u).
+    check("searching", &[(0.05, 1.0), (0.25, 3.0), (0.3, 3.0), (0.35, 103.0), (0.9, 103.0)]);
+    // Nested: the first pair j < i < floor(10 u) with i j > 6 is (4, 2): 42, from n = 5.
+    check("nested_returns", &[(0.0, 0.0), (0.25, -2.0), (0.45, -4.0), (0.55, 42.0), (0.95, 42.0)]);
+    // Under an `if` of the hit: s = ceil(10 u) up to 3, else returns 40 (u > 0.5) or -4.
+    check("early_return", &[(0.05, 1.0), (0.15, 2.0), (0.35, -4.0), (0.45, -4.0), (0.75, 40.0)]);
+    // In a loop of fixed count inside: s = 4, j = 2 returns 42 where 10 u > 4, else -ceil(10 u).
+    check("inner_known_return", &[(0.05, -1.0), (0.25, -3.0), (0.35, -4.0), (0.45, 42.0), (0.9, 42.0)]);
+}
+
+#[test]
+fn a_break_of_the_hit_leaves_its_switch() {
+    // Four turns of 100, odd k 1 each (2), even k below 10 u 11 each (k = 0, 2).
+    check("switch_breaks", &[(0.0, 402.0), (0.15, 413.0), (0.2, 413.0), (0.55, 424.0)]);
+    // k < ceil(10 u): k % 3 = 0 adds 11 where 2 k <= 10 u (else 0), 1 adds 1, 2 adds 1000.
+    check("hit_switch_breaks", &[(0.25, 1012.0), (0.45, 1013.0), (0.75, 2025.0)]);
+    // The `return` after a `break` of the hit runs only where the break is not taken.
+    check("break_skips_return", &[(0.25, 7.0), (0.75, 9.0)]);
+}
+
+/// What is not compiled in a loop of the hit — one carrying more values than it has slots
+/// for — is an error at its `file:line:col`, naming the function; the material renders grey.
+#[test]
+fn a_loop_of_the_hit_carrying_too_many_values_is_an_error_at_its_line() {
+    let (_, _, diags) = compile_text(r#"shader "m" "mdl::hit_loops::too_many" ()"#);
     assert_eq!(diags.len(), 1, "{diags:#?}");
     let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mdl/hit_loops.mdl")).unwrap();
-    let line = src.lines().position(|l| l.contains("if (s > 3.0)")).unwrap() + 2;
-    let at = format!("hit_loops.mdl:{line}:13");
-    assert!(diags[0].contains(&at) && diags[0].contains("`return`") && diags[0].contains("`early`"), "{}", diags[0]);
+    let line = src.lines().position(|l| l.contains("for (int i = 0; i < 40; i++)")).unwrap();
+    let at = format!("hit_loops.mdl:{line}:5");
+    assert!(diags[0].contains(&at) && diags[0].contains("carries") && diags[0].contains("`many`"), "{}", diags[0]);
 }
