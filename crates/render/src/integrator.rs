@@ -3,6 +3,7 @@
 //! surfaces in [`media`], the camera's volume (Maya's fogs) in [`fog`].
 
 mod ambient_highlight;
+mod cutout;
 mod fog;
 mod leave;
 mod media;
@@ -19,6 +20,7 @@ use crate::light::LightSource;
 use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
+use cutout::{cutout_number, shadow_passed, MAX_CUTOUT_CROSSINGS};
 use media::Departure;
 pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
 
@@ -265,9 +267,6 @@ fn environment_light(
     f * es.radiance * tr * (env.lighting_scale * wi.z.abs() * weight / (pick * es.pdf))
 }
 
-/// Most cutout surfaces a ray passes through before it stops at the next one.
-const MAX_CUTOUT_CROSSINGS: u32 = 64;
-
 /// The material at a hit: its constant parameters, or — for materials with connected
 /// parameters, when the scene's shader graph is given — the connected shaders run at the
 /// point.
@@ -329,50 +328,6 @@ fn shading_frame(ns: Vec3A, tangent: Option<Vec3A>) -> Frame {
         Some(t) => Frame::from_normal_and_tangent(ns, t),
         None => Frame::from_normal(ns),
     }
-}
-
-/// A number in [0, 1) for a cutout decision at `p`, decorrelated from the path's sampler.
-fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
-    // Each word goes through a full 64-bit avalanche (SplitMix64's finaliser) before the
-    // next is added, so nearby points and seeds give independent numbers.
-    let mix = |mut z: u64| {
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    };
-    let h = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), sampler_seed, depth]
-        .iter()
-        .fold(0x9e37_79b9_7f4a_7c15u64, |h, &w| mix(h.wrapping_add(u64::from(w)).wrapping_mul(0x9e37_79b9_7f4a_7c15)));
-    (h >> 40) as f32 / (1u64 << 24) as f32
-}
-
-/// The fraction of light (per channel) the shadow ray lets through: 0 when blocked by any
-/// surface, or with cutout materials by a surface that does not let it pass (one marked
-/// `opaque`, [`World::blocks_shadows`]; else a stochastic choice by its opacity); the
-/// product of the cut-out tints of the surfaces it
-/// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise.
-fn shadow_passed(world: &World, accel: &dyn Accel, shading: Option<&Shading>, shadow: &Ray, seed: u32) -> Rgb {
-    if !world.has_cutouts {
-        return if accel.occluded(shadow) { Rgb::ZERO } else { Rgb::ONE };
-    }
-    let mut ray = *shadow;
-    let mut tint = Rgb::ONE;
-    for crossing in 0..MAX_CUTOUT_CROSSINGS {
-        let Some(hit) = accel.intersect(&ray) else { return tint };
-        let s = surface(world, &ray, &hit);
-        if world.blocks_shadows(s.material) {
-            return Rgb::ZERO;
-        }
-        let m = material_at(world, accel, shading, &ray, &hit, s.material);
-        if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
-            return Rgb::ZERO;
-        }
-        tint *= m.cutout_tint;
-        let travelled = hit.t;
-        ray.origin = s.leave(s.ng, ray.dir);
-        ray.tmax = (ray.tmax - travelled).max(0.0);
-    }
-    Rgb::ZERO
 }
 
 /// Traces one camera path; `shading` (the scene's compiled shader graph) evaluates
@@ -795,31 +750,5 @@ fn towards_sphere(p: Vec3A, centre: Vec3A, radius: f32, u: glam::Vec2) -> (Vec3A
     } else {
         let d = centre - p;
         (d.normalize_or(Vec3A::Y), d.length())
-    }
-}
-
-#[cfg(test)]
-mod cutout_tests {
-    use super::*;
-
-    /// The cutout numbers of neighbouring points and seeds are uniform: the mean of 40 000
-    /// is ½ and each tenth of [0, 1) holds a tenth of them (chi-square below 30, 9 degrees
-    /// of freedom; 99.95 % quantile 29.7).
-    #[test]
-    fn cutout_numbers_are_uniform() {
-        let mut cells = [0u32; 10];
-        let mut sum = 0.0f64;
-        let n = 40_000;
-        for i in 0..n {
-            let p = Vec3A::new((i % 200) as f32 * 1e-3, (i / 200) as f32 * 1e-3, 1.0);
-            let u = cutout_number(i % 7, p, i % 3);
-            assert!((0.0..1.0).contains(&u));
-            sum += f64::from(u);
-            cells[(u * 10.0) as usize] += 1;
-        }
-        assert!((sum / f64::from(n) - 0.5).abs() < 0.005, "mean {}", sum / f64::from(n));
-        let expect = f64::from(n) / 10.0;
-        let chi2: f64 = cells.iter().map(|&c| (f64::from(c) - expect).powi(2) / expect).sum();
-        assert!(chi2 < 30.0, "chi-square {chi2}: {cells:?}");
     }
 }

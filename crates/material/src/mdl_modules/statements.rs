@@ -29,13 +29,15 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::Vec4;
-use mdl_lang::ast::{AssignOp, BinaryOp, Scalar, Stmt, StmtKind, SwitchCase, UnaryOp, VarDecl};
+use mdl_lang::ast::{AssignOp, BinaryOp, Scalar, Stmt, StmtKind, UnaryOp, VarDecl};
 use mdl_lang::{Expr, ExprKind, Function, Resolution, Type};
 use mi::Span;
 
 use super::eval::{binary, hit_binary, kind, problem, Env, Eval, Evaluator, Problem};
 use super::hit::{fold, BinOp, HitExpr, UnOp, MAX_HIT_DEPTH};
 use super::value::{HitType, Value};
+
+mod switch;
 
 /// Most statements one material instance's statement bodies may run.
 pub const MAX_STEPS: u64 = super::hit::MAX_HIT_NODES;
@@ -539,113 +541,6 @@ impl Evaluator<'_> {
                 Ok(Flow::Normal)
             }
         }
-    }
-
-    /// A `switch` on an integer `v` of the hit: each case's statements run under the
-    /// condition that control reaches them (its label matches, or the case before falls
-    /// through, and no `break` left before), and what they assign is joined by it.
-    fn guarded_switch(
-        &mut self,
-        run: &mut Run,
-        v: &Arc<HitExpr>,
-        cases: &[SwitchCase],
-        env: &mut Env,
-        span: Span,
-    ) -> Step {
-        let mut labels = Vec::with_capacity(cases.len());
-        for case in cases {
-            labels.push(match &case.label {
-                None => None,
-                Some(label) => match self.eval(label, env)? {
-                    Value::Int(i) | Value::Enum(_, i) => Some(i),
-                    other => return Err(problem(label.span, format!("a `case` label that is {}", kind(&other)))),
-                },
-            });
-        }
-        let equals =
-            |l: i64| fold(HitExpr::Binary(BinOp::Eq, v.clone(), Arc::new(HitExpr::Const(Vec4::splat(l as f32)))));
-        let any_label = labels.iter().flatten().map(|l| equals(*l)).reduce(|a, b| either(Some(&a), &b));
-        let no_label = match any_label {
-            Some(a) => fold(HitExpr::Unary(UnOp::Not, a)),
-            None => Arc::new(HitExpr::Const(Vec4::ONE)),
-        };
-        let outer = run.guard.clone();
-        // Control that left by `break` (None: none), and control falling into the next case.
-        let (mut left, mut through): (Option<Arc<HitExpr>>, Option<Arc<HitExpr>>) = (None, None);
-        let mut taken = Vec::new();
-        for (case, label) in cases.iter().zip(labels) {
-            let matched = label.map_or_else(|| no_label.clone(), equals);
-            let mut reached = either(through.as_ref(), &matched);
-            if let Some(l) = &left {
-                reached = both(Some(&reached), &fold(HitExpr::Unary(UnOp::Not, l.clone())));
-            }
-            let before = (env.params.clone(), env.locals.clone());
-            run.guard = Some(both(outer.as_ref(), &reached));
-            let at = run.nest.len();
-            run.nest.push(Nest::Switch(run.guard.clone(), Vec::new()));
-            let flow = self.stmts(run, &case.body, env);
-            if let Some(Nest::Switch(_, exits)) = run.nest.pop() {
-                // Control that left by a `break` of the hit goes on after the switch only.
-                for e in &exits {
-                    let g = e.guard.clone().unwrap_or_else(|| Arc::new(HitExpr::Const(Vec4::ONE)));
-                    left = Some(either(left.as_ref(), &g));
-                }
-                taken.extend(exits);
-            }
-            run.nest.truncate(at);
-            run.guard = outer.clone();
-            match flow? {
-                // Every path that came here returned, or left the turn of a loop of the hit
-                // (`continue`, recorded there): the others keep what they had.
-                Flow::Return | Flow::Continue => {
-                    (env.params, env.locals) = before;
-                    through = None;
-                }
-                flow => {
-                    let (params, locals) = before;
-                    for (slot, old) in env.params.iter_mut().zip(params) {
-                        *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
-                        run.check_depth(slot, span)?;
-                    }
-                    for (id, old) in locals {
-                        if let Some(slot) = env.locals.get_mut(&id) {
-                            *slot = join(&reached, std::mem::replace(slot, Value::Bool(false)), old, span)?;
-                            run.check_depth(slot, span)?;
-                        }
-                    }
-                    if flow == Flow::Break {
-                        left = Some(either(left.as_ref(), &reached));
-                        through = None;
-                    } else {
-                        through = Some(reached);
-                    }
-                }
-            }
-        }
-        self.take_exits(run, taken, env, span)?;
-        Ok(Flow::Normal)
-    }
-
-    /// The values after a `switch` left by `break`s of the hit (`exits`, in order) and its
-    /// end (`env`): those of the first exit whose condition holds, else the end's.
-    fn take_exits(&mut self, run: &mut Run, exits: Vec<Exit>, env: &mut Env, span: Span) -> Result<(), Problem> {
-        for exit in exits.into_iter().rev() {
-            let Some(g) = exit.guard else {
-                (env.params, env.locals) = (exit.params, exit.locals);
-                continue;
-            };
-            for (slot, at) in env.params.iter_mut().zip(exit.params) {
-                *slot = join(&g, at, std::mem::replace(slot, Value::Bool(false)), span)?;
-                run.check_depth(slot, span)?;
-            }
-            for (id, slot) in env.locals.iter_mut() {
-                if let Some(at) = exit.locals.get(id) {
-                    *slot = join(&g, at.clone(), std::mem::replace(slot, Value::Bool(false)), span)?;
-                    run.check_depth(slot, span)?;
-                }
-            }
-        }
-        Ok(())
     }
 
     /// Declares local `d` with its value (the type's default when none is written).
