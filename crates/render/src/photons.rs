@@ -309,7 +309,7 @@ fn trace_photon(
                 hit = Some((s, mode.receive));
                 break;
             }
-            from = shader::trace::offset_point(s.point, s.normal_geom, dir);
+            from = shader::trace::leave_point(s.point, s.point_error, s.normal_geom, dir);
         }
         let Some((s, receive)) = hit else { break };
         if events == 0 && falloff && exponent != 2.0 && exponent.is_finite() {
@@ -319,6 +319,7 @@ fn trace_photon(
         let (point, normal, normal_geom, inv_normal) = (s.point, s.normal, s.normal_geom, s.inv_normal);
         // `opaque` is not read here: a speed hint for shadow rays (mental ray manual, material statement; Maya's
         // Shading Group "Opaque"), see `World::blocks_shadows`; photons follow the surface's photon shader.
+        let point_error = s.point_error;
         let mut ctx = Ctx::new(shading, &tracer, s);
         let scatter = scatter_at(&mut ctx);
         drop(ctx);
@@ -383,7 +384,7 @@ fn trace_photon(
             break;
         }
         dir = next.normalize();
-        org = shader::trace::offset_point(point, normal_geom, dir);
+        org = shader::trace::leave_point(point, point_error, normal_geom, dir);
     }
     rays
 }

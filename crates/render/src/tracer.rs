@@ -82,6 +82,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.bary = [b0, b1, b2];
     let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
     s.shadow_point = s.point;
+    s.point_error = shader::trace::hit_error(p0, p1, p2, &placed.object_to_world);
     let mut ns = if mesh.normals.is_empty() {
         ng
     } else {
@@ -285,7 +286,7 @@ impl Tracer for SceneTracer<'_> {
             if !visit(&h) {
                 return;
             }
-            origin = shader::trace::offset_point(h.point, h.normal_geom, s.dir);
+            origin = shader::trace::leave_point(h.point, h.point_error, h.normal_geom, s.dir);
             remaining -= hit.t;
             if remaining <= 0.0 {
                 return;
@@ -310,20 +311,21 @@ impl Tracer for SceneTracer<'_> {
             let mesh = &self.world.meshes[inst.mesh as usize];
             let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
             let material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
-            let (point, ng) = if mesh.hair.is_some() {
+            let (point, ng, err) = if mesh.hair.is_some() {
                 let mut h = s.child(RayType::Shadow, origin, s.dir);
                 fill_state(self.world, &hit, &mut h);
-                (h.point, h.normal_geom)
+                (h.point, h.normal_geom, h.point_error)
             } else {
                 let tri = mesh.triangles[hit.prim as usize];
                 let [p0, p1, p2] = mesh.triangle_at(tri, s.time);
                 let placed = inst.placement(s.time);
-                (origin + s.dir * hit.t, (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z))
+                let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+                (origin + s.dir * hit.t, ng, shader::trace::hit_error(p0, p1, p2, &placed.object_to_world))
             };
             if !visit(hit.t, material) {
                 return;
             }
-            origin = shader::trace::offset_point(point, ng, s.dir);
+            origin = shader::trace::leave_point(point, err, ng, s.dir);
             remaining -= hit.t;
             if remaining <= 0.0 {
                 return;

@@ -240,6 +240,7 @@ impl<'a> Ctx<'a> {
         let mut ls = self.state.child(RayType::Light, light.origin, d.normalize_or(-light.direction));
         ls.point = p;
         ls.shadow_point = self.state.shadow_point;
+        ls.point_error = self.state.point_error;
         ls.dist = dist;
         ls.normal = self.state.normal;
         ls.normal_geom = self.state.normal_geom;
@@ -297,6 +298,7 @@ impl<'a> Ctx<'a> {
         let mut ls = self.state.child(RayType::Light, on_light, -to_light);
         ls.point = p;
         ls.shadow_point = self.state.shadow_point;
+        ls.point_error = self.state.point_error;
         ls.dist = dist;
         ls.normal = self.state.normal;
         ls.normal_geom = self.state.normal_geom;
@@ -387,7 +389,12 @@ impl<'a> Ctx<'a> {
                 lp.ahead |= 1 << lane;
                 let Some(g) = self.sample_geometry(lp, light, j) else { continue };
                 // The ray `trace_shadow` casts from this sample's light state.
-                let org = crate::trace::offset_point(self.state.shadow_point, self.state.normal_geom, g.to_light);
+                let org = crate::trace::leave_point(
+                    self.state.shadow_point,
+                    self.state.point_error,
+                    self.state.normal_geom,
+                    g.to_light,
+                );
                 let max_dist = if g.dist.is_finite() { g.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                 let query = ShadowQuery { org, dir: g.to_light, max_dist };
                 lp.ahead_reach |= 1 << lane;
@@ -428,7 +435,7 @@ impl<'a> Ctx<'a> {
         }
         let s = &self.state;
         let to_light = -s.dir;
-        let org = crate::trace::offset_point(s.shadow_point, s.normal_geom, to_light);
+        let org = crate::trace::leave_point(s.shadow_point, s.point_error, s.normal_geom, to_light);
         let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
         let tracer = self.tracer;
         if !shading.has_shadow_shaders() {

@@ -83,6 +83,10 @@ pub struct State {
     /// coarse tessellations do not shadow themselves near the terminator; the point itself
     /// on flat geometry.
     pub shadow_point: Vec3A,
+    /// How far `point` (and `shadow_point`) may lie off the surface as the ray–triangle
+    /// test sees it (world units, [`crate::trace::hit_error`]): rays leave from that far
+    /// off it ([`crate::trace::leave_point`]); 0 where no triangle was hit.
+    pub point_error: f32,
     /// Shading normal, unit length, facing the incoming ray (shaders may change it).
     pub normal: Vec3A,
     /// Geometric normal, unit length, facing the incoming ray.

@@ -38,6 +38,39 @@ pub fn offset_point(p: Vec3A, n: Vec3A, dir: Vec3A) -> Vec3A {
     )
 }
 
+/// [`offset_point`] of `p` after a step of `err` along `n`, towards the side `dir` leaves
+/// to: past the hit point's rounding error (which the ulps of `p` alone do not bound; see
+/// [`hit_error`]), so that the ray cannot find the surface it leaves again — neither the
+/// triangle itself nor a neighbour across a shared edge. Both engines leave surfaces here.
+#[inline]
+pub fn leave_point(p: Vec3A, err: f32, n: Vec3A, dir: Vec3A) -> Vec3A {
+    let n = if n.dot(dir) < 0.0 { -n } else { n };
+    offset_point(p + n * err, n, dir)
+}
+
+/// A bound on how far a hit point on the triangle `p0 p1 p2` (object space), placed by
+/// `to_world`, lies off the triangle and its neighbours as the ray–triangle test sees
+/// them (world units): the test and the barycentric sum round in units of the vertices'
+/// coordinates (and the placement's), not of the point's own, so on a large triangle the
+/// point's ulps are far too small — a point near the origin on a 100-unit mirror split in
+/// two lay behind its neighbour's plane, and the path engine's mirror ray found the
+/// neighbour at t ≈ 1e-5; the classic engine's transparency rays through a 75° tilted
+/// 150-unit plane found the same triangle again at t ≈ 3e-7 (from 1.4e-6 behind it).
+/// [`HIT_ERROR_ULPS`] of the largest coordinate involved.
+#[inline]
+pub fn hit_error(p0: Vec3A, p1: Vec3A, p2: Vec3A, to_world: &glam::Affine3A) -> f32 {
+    let reach = p0.abs().max(p1.abs()).max(p2.abs());
+    let m = &to_world.matrix3;
+    let world =
+        m.x_axis.abs() * reach.x + m.y_axis.abs() * reach.y + m.z_axis.abs() * reach.z + to_world.translation.abs();
+    HIT_ERROR_ULPS * f32::EPSILON * world.max_element()
+}
+
+/// The multiple of the largest coordinate's relative rounding (`f32::EPSILON`) a hit point
+/// is taken to be off its surface by ([`hit_error`]): Möller–Trumbore's t rounds by a few
+/// of them (measured: self-hits up to 2.5 ε × the coordinates along the ray).
+pub const HIT_ERROR_ULPS: f32 = 16.0;
+
 impl Ctx<'_> {
     /// Whether a ray of `kind` may leave this state under the depth limits.
     pub fn may_trace(&self, kind: RayType) -> bool {
@@ -113,7 +146,7 @@ impl Ctx<'_> {
 
     fn trace_limited(&mut self, kind: RayType, dir: Vec3A, max_dist: f32) -> Color {
         let s = &self.state;
-        let org = offset_point(s.point, s.normal_geom, dir);
+        let org = leave_point(s.point, s.point_error, s.normal_geom, dir);
         let mut child = s.child(kind, org, dir);
         // Crossing the surface: enter or leave the material's medium.
         if matches!(kind, RayType::Refract | RayType::Transparent) {
@@ -264,7 +297,7 @@ impl Ctx<'_> {
             if dir.dot(self.state.normal_geom) <= 0.0 {
                 continue;
             }
-            let org = offset_point(self.state.point, self.state.normal_geom, dir);
+            let org = leave_point(self.state.point, self.state.point_error, self.state.normal_geom, dir);
             let ray = self.state.child(RayType::Finalgather, org, dir);
             let max = fg.max_dist.unwrap_or(f32::INFINITY);
             let (c, dist) = self.shade_ray(ray, max);
@@ -313,7 +346,7 @@ impl Ctx<'_> {
     /// The distance to the first surface along `dir` from the point (any object, no
     /// shading), `None` if nothing is closer than `max_dist` (mental ray's `mi_trace_probe`).
     pub fn probe(&mut self, dir: Vec3A, max_dist: f32) -> Option<f32> {
-        let org = offset_point(self.state.point, self.state.normal_geom, dir);
+        let org = leave_point(self.state.point, self.state.point_error, self.state.normal_geom, dir);
         let mut ray = self.state.child(RayType::Probe, org, dir);
         self.tracer.intersect(&mut ray, max_dist).then_some(ray.dist)
     }

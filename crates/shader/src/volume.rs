@@ -194,7 +194,7 @@ impl Ctx<'_> {
             return color;
         }
         let to_light = -light.dir;
-        let org = crate::trace::offset_point(light.shadow_point, light.normal_geom, to_light);
+        let org = crate::trace::leave_point(light.shadow_point, light.point_error, light.normal_geom, to_light);
         let max_dist = if light.dist.is_finite() { light.dist * (1.0 - 1e-4) } else { f32::INFINITY };
         let mut ray = light.child(RayType::Shadow, org, to_light);
         ray.light = light.light;

@@ -9,6 +9,7 @@ mod analytic;
 mod area_lights;
 mod backends;
 mod classic;
+mod classic_seam;
 mod classic_shadows;
 mod environment;
 mod fgcache;
