@@ -7,6 +7,7 @@
 //! rays through a plane tilted 75° found it again (at t ≈ 3e-7) and crossed it twice. They
 //! now leave from past `shader::trace::hit_error`, as the path engine's do.
 
+use crate::mirror_seam_path::plane;
 use crate::support;
 
 use glam::Vec3A;
@@ -40,23 +41,6 @@ render "root" "cam_inst" "opt"
 "#,
         ENV.x, ENV.y, ENV.z
     )
-}
-
-/// The vertices and polygons of a triangle in the plane through the origin tilted by
-/// `tilt_deg` about x (normal (0, cos a, sin a)), corners at (±75, −50) and (0, 50) in
-/// units along x and along the plane's w = (0, −sin a, cos a): whole, or (`split`) as two
-/// triangles whose shared edge runs from the middle of the long side to the opposite
-/// corner through the origin (the image's centre column), covering the same region.
-fn plane(split: bool, tilt_deg: f32) -> String {
-    let a = tilt_deg.to_radians();
-    let w = Vec3A::new(0.0, -a.sin(), a.cos()) * 50.0;
-    let corner = |sx: f32, sw: f32| {
-        let p = Vec3A::new(50.0 * sx, 0.0, 0.0) + w * sw;
-        format!("{} {} {}", p.x, p.y, p.z)
-    };
-    let c = [corner(1.5, -1.0), corner(-1.5, -1.0), corner(0.0, 1.0), corner(0.0, -1.0)].join("  ");
-    let polygons = if split { r#"c "m" 0 3 2  c "m" 3 1 2"# } else { r#"c "m" 0 1 2"# };
-    format!("{c}  v 0 v 1 v 2 v 3 {polygons}")
 }
 
 /// The pixels of `text` rendered by the classic engine with 16 samples per pixel.

@@ -4,9 +4,10 @@
 //! transparency (`material::maya`'s cut-out tint and least coverage; `maya::material`).
 
 use crate::support;
+use crate::support::maya_view::{mean_and_error, pixels};
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 16;
@@ -47,24 +48,6 @@ render "root" "cam_inst" "opt"
 "#,
         d.x, d.y
     )
-}
-
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting the
-/// world was built without a warning.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
-
-/// The mean of `px` and its standard error (per channel, from the pixels' spread).
-fn mean_and_error(px: &[Vec3A]) -> (Vec3A, Vec3A) {
-    let n = px.len() as f32;
-    let mean = px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / n;
-    let var = px.iter().fold(Vec3A::ZERO, |v, p| v + (*p - mean) * (*p - mean)) / (n - 1.0);
-    (mean, (var / n).powf(0.5))
 }
 
 /// The cosine of the light's angle to the ground's normal.

@@ -5,9 +5,10 @@
 //! `behind`; `bsdf::MayaGlossy::refraction`).
 
 use crate::support;
+use crate::support::maya_view::pixels;
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 32;
@@ -150,16 +151,6 @@ fn pure_pixel(t: Vec3A, limit: u32, col: usize, row: usize) -> Option<Vec3A> {
         }
     }
     seen.map(|k| t * t * strip_colour(k))
-}
-
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel, asserting the
-/// world was built without a warning.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
 /// A slab (lambert and rampShader alike) of index 1.5 and transparency

@@ -5,9 +5,10 @@
 //! that error (`integrator::leave::hit_error`).
 
 use crate::support;
+use crate::support::maya_view::pixels;
 
 use glam::Vec3A;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 16;
@@ -41,7 +42,7 @@ render "root" "cam_inst" "opt"
 /// units along x and along the plane's w = (0, −sin a, cos a): whole, or (`split`) as two
 /// triangles whose shared edge runs from the middle of the long side to the opposite
 /// corner through the origin (the image's centre column), covering the same region.
-fn plane(split: bool, tilt_deg: f32) -> String {
+pub(crate) fn plane(split: bool, tilt_deg: f32) -> String {
     let a = tilt_deg.to_radians();
     let w = Vec3A::new(0.0, -a.sin(), a.cos()) * 50.0;
     let corner = |sx: f32, sw: f32| {
@@ -51,15 +52,6 @@ fn plane(split: bool, tilt_deg: f32) -> String {
     let c = [corner(1.5, -1.0), corner(-1.5, -1.0), corner(0.0, 1.0), corner(0.0, -1.0)].join("  ");
     let polygons = if split { r#"c "m" 0 3 2  c "m" 3 1 2"# } else { r#"c "m" 0 1 2"# };
     format!("{c}  v 0 v 1 v 2 v 3 {polygons}")
-}
-
-/// The pixels of `text` rendered by `engine` with `spp` samples per pixel.
-fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
 /// A Maya phongE mirror: black, no highlight, reflectivity 0.8, `specularColor` 1.

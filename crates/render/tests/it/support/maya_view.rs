@@ -51,6 +51,14 @@ pub fn mean(px: &[Vec3A]) -> Vec3A {
     px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / px.len() as f32
 }
 
+/// The mean of `px` and its standard error (per channel, from the pixels' spread).
+pub fn mean_and_error(px: &[Vec3A]) -> (Vec3A, Vec3A) {
+    let n = px.len() as f32;
+    let mean = mean(px);
+    let var = px.iter().fold(Vec3A::ZERO, |v, p| v + (*p - mean) * (*p - mean)) / (n - 1.0);
+    (mean, (var / n).powf(0.5))
+}
+
 /// The 5 × 5 pixels about the peak of a `side` × `side` image `want` (its brightest red
 /// pixel, moved two pixels in from the border): the peak's (column, row), and the means
 /// of those pixels in `got` and in `want`.
