@@ -51,7 +51,7 @@ use std::f32::consts::PI;
 use glam::Vec3A;
 
 use crate::settings::{luminance, sky_frame, turbidity};
-use crate::sky::{night_factor, Daylight, Perez};
+use crate::sky::{lift, night_factor, smoothstep, Daylight, Perez};
 use crate::sun::{air_mass, sun_illuminance, xyz_to_rgb, SUN_ANGULAR_RADIUS};
 
 /// The Perez 1993 coefficient rows (x₁, x₂, x₃, x₄) of a, b, c, d, e for the eight
@@ -376,23 +376,6 @@ fn disk_scale() -> f32 {
     let glow = 4.0 * pi - 24.0 * pi / (glow_radius * glow_radius) + 24.0 * pi * glow_radius.sin() / glow_radius.powi(3);
     let omega = 2.0 * std::f64::consts::PI * (1.0 - r.cos());
     ((std::f64::consts::PI - glow) / omega) as f32
-}
-
-/// `d` with its up component raised to at least 0.001, renormalised.
-fn lift(d: Vec3A) -> Vec3A {
-    const MIN_UP: f32 = 0.001;
-    if d.z >= MIN_UP {
-        return d;
-    }
-    let h = Vec3A::new(d.x, d.y, 0.0);
-    let len = h.length();
-    let h = if len > 0.0 { h / len } else { Vec3A::X };
-    h * (1.0 - MIN_UP * MIN_UP).sqrt() + Vec3A::new(0.0, 0.0, MIN_UP)
-}
-
-fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]

@@ -175,7 +175,7 @@ impl Daylight {
 }
 
 /// `d` with its up component raised to at least 0.001, renormalised.
-fn lift(d: Vec3A) -> Vec3A {
+pub(crate) fn lift(d: Vec3A) -> Vec3A {
     if d.z >= MIN_UP {
         return d;
     }
@@ -185,7 +185,8 @@ fn lift(d: Vec3A) -> Vec3A {
     h * (1.0 - MIN_UP * MIN_UP).sqrt() + Vec3A::new(0.0, 0.0, MIN_UP)
 }
 
-fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+/// Hermite smoothstep of `x` between the edges `e0` and `e1`.
+pub(crate) fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
     let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }
