@@ -94,11 +94,11 @@ impl HitLoop {
         outer.run(self, s, k)
     }
 
-    /// Runs the loop at the shading point `s` around the slots of `outer`: the slots after
-    /// it. Never inlined: its arrays would enlarge the stack frame of every evaluation.
+    /// Runs the loop at the shading point `s` in frame `f` (the slots of the loops around,
+    /// taken by value so that a fresh frame is not copied again): the slots after it. Never
+    /// inlined: its arrays would enlarge the stack frame of every evaluation.
     #[inline(never)]
-    fn run_in<const N: usize>(&self, s: &State, outer: &Frame<N>) -> Frame<N> {
-        let mut f = outer.clone();
+    fn run_in<const N: usize>(&self, s: &State, mut f: Frame<N>) -> Frame<N> {
         let base = usize::from(self.base);
         let mut fresh = [Vec4::ZERO; N];
         let n = self.init.len().min(N.saturating_sub(base));
@@ -125,7 +125,6 @@ impl HitLoop {
                 break;
             }
         }
-        outer.steps.set(f.steps.get());
         f
     }
 }
@@ -169,9 +168,9 @@ impl Slots for NoFrame {
 
     fn run(self, l: &HitLoop, s: &State, k: u8) -> Vec4 {
         if usize::from(l.top) <= SMALL_FRAME {
-            l.run_in(s, &Frame::<SMALL_FRAME>::new()).slot(k)
+            l.run_in(s, Frame::<SMALL_FRAME>::new()).slot(k)
         } else {
-            l.run_in(s, &Frame::<LARGE_FRAME>::new()).slot(k)
+            l.run_in(s, Frame::<LARGE_FRAME>::new()).slot(k)
         }
     }
 }
@@ -183,6 +182,10 @@ impl<const N: usize> Slots for &Frame<N> {
     }
 
     fn run(self, l: &HitLoop, s: &State, k: u8) -> Vec4 {
-        l.run_in(s, self).slot(k)
+        // The loop runs in a copy, so that it does not disturb the turn around it; the
+        // steps it took count for the loops around.
+        let f = l.run_in(s, self.clone());
+        self.steps.set(f.steps.get());
+        f.slot(k)
     }
 }

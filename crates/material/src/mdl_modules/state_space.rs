@@ -14,9 +14,11 @@
 //! `float4`s of the hit); so is a `floatCxR(…)` built from values of the hit, and a choice
 //! between matrices by a condition of the hit. It may be multiplied with a vector (either
 //! side), a matrix (of the hit, or a constant [`Value::Matrix`]) or a scalar, added to and
-//! subtracted from another, divided by a scalar, transposed (`math::transpose`) and
-//! indexed (`m[i]` its column i, `m[i][j]` or `m[i].y` an element): each result is built
-//! from the columns, lane by lane; a constant matrix times a vector of the hit likewise.
+//! subtracted from another, combined with a scalar (`+ - * /`, either side, element by
+//! element), negated, transposed (`math::transpose`) and indexed (`m[i]` its column i,
+//! `m[i][j]` or `m[i].y` an element; by an index of the hit see [`super::hit_index`]):
+//! each result is built from the columns, lane by lane; a constant matrix with a vector or
+//! scalar of the hit likewise.
 
 use std::sync::Arc;
 

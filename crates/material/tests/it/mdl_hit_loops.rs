@@ -145,3 +145,21 @@ fn a_loop_of_the_hit_carrying_too_many_values_is_an_error_at_its_line() {
     let d = &diags[0];
     assert!(d.contains(&line) && d.contains("nests 17 loops") && d.contains("`deep`"), "{d}");
 }
+
+/// What evaluating loops of the hit costs: 20 000 hits of `halving`, `nested` and
+/// `structs` (small frames). Not a check — a workload to measure, e.g.
+/// `valgrind --tool=callgrind target/debug/deps/it-… --ignored --exact
+/// mdl_hit_loops::evaluation_workload` before and after a change to the loops' frames.
+#[test]
+#[ignore]
+fn evaluation_workload() {
+    let mut sum = 0.0f32;
+    for name in ["halving", "nested", "structs"] {
+        let (mdl, lib) = material(name);
+        let m = get(&mdl, &lib, "m");
+        for k in 0..20_000 {
+            sum += emitted(m, std::hint::black_box((k % 100) as f32 / 100.0)).x;
+        }
+    }
+    assert!(sum.is_finite());
+}
