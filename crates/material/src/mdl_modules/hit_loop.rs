@@ -36,7 +36,8 @@ pub const SMALL_FRAME: usize = 32;
 pub const LARGE_FRAME: usize = 256;
 
 /// Most loops of the hit nested in one another when their nest runs in a large frame:
-/// each level keeps two frames on the stack of the render thread (8 KiB).
+/// each level keeps its copies of the frame on the stack of the render thread (up to 16
+/// KiB a level).
 pub const MAX_LARGE_NESTING: usize = 16;
 
 /// Most steps (expression nodes visited) the per-hit loops started by one evaluation take
