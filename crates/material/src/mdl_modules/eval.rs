@@ -22,6 +22,9 @@ use super::value::{HitType, Value};
 /// Deepest nesting of calls followed (recursion in a module is an error, not a hang).
 pub(super) const MAX_DEPTH: u32 = 64;
 
+/// Most elements of an array built of defaults (`T[n]()`, an uninitialised `T[n]`).
+const MAX_DEFAULT_ARRAY: u64 = 1 << 16;
+
 /// Why an expression has no constant value: the place (in the module's sources) and what.
 #[derive(Clone, Debug)]
 pub struct Problem {
@@ -59,6 +62,9 @@ pub struct Evaluator<'a> {
     pub(super) steps: u64,
     /// The first loop slot free for a loop of the hit compiled now ([`super::hit_loop`]).
     pub(super) slot_top: u8,
+    /// The most slots and levels the loops of the hit compiled inside the loop being
+    /// compiled reach ([`super::hit_loop::HitLoop::top`]).
+    pub(super) loop_nest: (u8, u8),
     /// The hit-dependent numbers the distribution functions read ([`super::value::Leaf`]).
     pub leaves: Vec<Arc<HitExpr>>,
     /// The texture files read.
@@ -73,7 +79,7 @@ pub fn problem(span: Span, message: impl Into<String>) -> Problem {
 impl<'a> Evaluator<'a> {
     /// An evaluator of `set`'s definitions.
     pub fn new(set: &'a ModuleSet, textures: &'a mut Textures) -> Evaluator<'a> {
-        Evaluator { set, depth: 0, steps: 0, slot_top: 0, leaves: Vec::new(), textures }
+        Evaluator { set, depth: 0, steps: 0, slot_top: 0, loop_nest: (0, 0), leaves: Vec::new(), textures }
     }
 
     /// The value of `e` in `env`.
@@ -118,6 +124,11 @@ impl<'a> Evaluator<'a> {
                         _ => return Err(problem(span, format!("operator {op:?} on a value of the hit"))),
                     };
                     return Ok(Value::from_hit(HitExpr::Unary(op, e.clone()), *ty));
+                }
+                if *op == UnaryOp::Neg {
+                    if let Some(m) = super::state_space::negate(&v) {
+                        return Ok(m);
+                    }
                 }
                 unary(*op, v).ok_or_else(|| problem(span, format!("operator {op:?} is not evaluated for this operand")))
             }
@@ -176,6 +187,12 @@ impl<'a> Evaluator<'a> {
             }
             ExprKind::Index { base, index } => {
                 let (v, i) = (self.eval(base, env)?, self.eval(index, env)?);
+                // An index of the hit: a choice between the elements, columns or lanes.
+                if let Value::Hit(at, HitType::Int) = &i {
+                    return super::hit_index::element(&v, at).ok_or_else(|| {
+                        problem(span, format!("{} indexed by an integer of the hit is not compiled", kind(&v)))
+                    });
+                }
                 if let (Value::Hit(e, ty), Value::Int(i)) = (&v, &i) {
                     if (0..i64::from(ty.width())).contains(i) {
                         return Ok(Value::from_hit(HitExpr::Lane(e.clone(), *i as u8), HitType::Float));
@@ -423,6 +440,14 @@ impl<'a> Evaluator<'a> {
                 Ok(Value::Vdf(super::value::Vdf::HenyeyGreenstein(super::value::VdfNumber::Const(Rgb::ZERO))))
             }
             Type::HairBsdf if values.is_empty() => Ok(Value::HairBsdf),
+            // `T[n]()`: n elements of T's default (an uninitialised `T[n] a;` likewise).
+            Type::Array(elem, mdl_lang::ast::ArrayLen::Fixed(n)) if values.is_empty() && *n > 0 => {
+                if *n > MAX_DEFAULT_ARRAY {
+                    return Err(problem(span, format!("`{ty}()`: more than {MAX_DEFAULT_ARRAY} elements")));
+                }
+                let one = self.construct(elem, &[], env, span)?;
+                Ok(Value::Array(vec![one; *n as usize]))
+            }
             Type::Array(..) => Ok(Value::Array(values)),
             Type::Material => self.construct_struct("material", args, env, span),
             Type::Struct(name) => self.construct_struct(name, args, env, span),
@@ -556,9 +581,26 @@ fn construct_hit(ty: &Type, values: &[Value]) -> Option<Value> {
                 lanes += w;
                 parts.push((v.to_hit()?, w));
             }
+            // The lanes of one vector in order (`color(r.x, r.y, r.z)`): that vector, read once.
+            if let Some(whole) = in_order(&parts) {
+                parts = vec![(whole, lanes)];
+            }
             (lanes == target.width()).then(|| Value::from_hit(HitExpr::Compose(parts.into()), target))
         }
     }
+}
+
+/// The vector whose lanes 0, 1, … `parts` are, one lane each, if they are.
+fn in_order(parts: &[(Arc<HitExpr>, u8)]) -> Option<Arc<HitExpr>> {
+    let mut whole: Option<&Arc<HitExpr>> = None;
+    for (k, (p, w)) in parts.iter().enumerate() {
+        let HitExpr::Lane(x, i) = &**p else { return None };
+        if *w != 1 || usize::from(*i) != k || whole.is_some_and(|y| !Arc::ptr_eq(x, y)) {
+            return None;
+        }
+        whole = Some(x);
+    }
+    whole.cloned()
 }
 
 fn unary(op: UnaryOp, v: Value) -> Option<Value> {

@@ -6,12 +6,15 @@
 //! condition of the hit are part of the turn's expressions (see
 //! [`super::statements`]); a `break` sets the turn's exit condition.
 //!
-//! Evaluating one needs no allocation: the slots are a fixed array ([`Frame`],
-//! [`MAX_LOOP_SLOTS`] of them, copied on the stack when a loop starts so that a loop
-//! evaluated inside another's turn does not disturb it). Endless loops end: the loops one
-//! evaluation starts (nested ones included) take at most [`MAX_LOOP_STEPS`] steps
-//! together — each turn counts the nodes its condition and body visit — and a loop that
-//! reaches that stops where it is, its variables keeping the values of its last turn.
+//! Evaluating one needs no allocation: the slots are a fixed array ([`Frame`], copied on
+//! the stack when a loop starts so that a loop evaluated inside another's turn does not
+//! disturb it). A nest of loops whose slots fit in [`SMALL_FRAME`] runs in a frame of that
+//! many (the common case: its copies stay small); a larger one, up to [`MAX_LOOP_SLOTS`]
+//! values, in a frame of [`LARGE_FRAME`]; the outermost loop of a nest picks the size from
+//! the most slots any loop of the nest reaches ([`HitLoop::top`]). Endless loops end: the
+//! loops one evaluation starts (nested ones included) take at most [`MAX_LOOP_STEPS`]
+//! steps together — each turn counts the nodes its condition and body visit — and a loop
+//! that reaches that stops where it is, its variables keeping the values of its last turn.
 
 use std::cell::Cell;
 use std::sync::Arc;
@@ -22,8 +25,20 @@ use shader::State;
 use super::hit::{HitExpr, MAX_HIT_NODES};
 
 /// Most values the per-hit loops around any point of a body carry together (nested loops
-/// add theirs to those of the loops around them).
-pub const MAX_LOOP_SLOTS: usize = 32;
+/// add theirs to those of the loops around them): slots are numbered by a `u8`.
+pub const MAX_LOOP_SLOTS: usize = 255;
+
+/// Slots of the frame a nest of loops of the hit runs in when they fit (512 bytes).
+pub const SMALL_FRAME: usize = 32;
+
+/// Slots of the frame of a nest that needs more than [`SMALL_FRAME`] (4 KiB, copied when a
+/// loop of the nest starts).
+pub const LARGE_FRAME: usize = 256;
+
+/// Most loops of the hit nested in one another when their nest runs in a large frame:
+/// each level keeps its copies of the frame on the stack of the render thread (up to 16
+/// KiB a level).
+pub const MAX_LARGE_NESTING: usize = 16;
 
 /// Most steps (expression nodes visited) the per-hit loops started by one evaluation take
 /// together: a quarter of what one evaluation may visit ([`MAX_HIT_NODES`]), which counts
@@ -51,6 +66,9 @@ pub struct HitLoop {
     /// Nodes one turn visits (condition, next values and exit; the loops nested in it
     /// count one turn, their further turns are counted as they run).
     pub turn_cost: u64,
+    /// One past the highest slot this loop and the loops nested in it use: the frame the
+    /// nest needs.
+    pub top: u8,
 }
 
 impl PartialEq for HitLoop {
@@ -71,14 +89,20 @@ impl HitLoop {
         self.init.iter().chain([&self.cond]).chain(self.next.iter()).chain([&self.exit])
     }
 
-    /// Runs the loop at the shading point `s` around `outer`'s slots: the slots after it.
-    /// Never inlined: its arrays would enlarge the stack frame of every evaluation.
+    /// Runs the loop at the shading point `s` in `outer`'s frame: slot `k` after it.
+    #[inline]
+    pub fn value<F: Slots>(&self, s: &State, outer: F, k: u8) -> Vec4 {
+        outer.run(self, s, k)
+    }
+
+    /// Runs the loop at the shading point `s` in frame `f` (the slots of the loops around,
+    /// taken by value so that a fresh frame is not copied again): the slots after it. Never
+    /// inlined: its arrays would enlarge the stack frame of every evaluation.
     #[inline(never)]
-    pub fn run<F: Slots>(&self, s: &State, outer: F) -> Frame {
-        let mut f = outer.enter();
+    fn run_in<const N: usize>(&self, s: &State, mut f: Frame<N>) -> Frame<N> {
         let base = usize::from(self.base);
-        let mut fresh = [Vec4::ZERO; MAX_LOOP_SLOTS];
-        let n = self.init.len().min(MAX_LOOP_SLOTS.saturating_sub(base));
+        let mut fresh = [Vec4::ZERO; N];
+        let n = self.init.len().min(N.saturating_sub(base));
         for (k, e) in self.init.iter().take(n).enumerate() {
             fresh[k] = e.eval_in(s, &f);
         }
@@ -102,18 +126,25 @@ impl HitLoop {
                 break;
             }
         }
-        outer.leave(&f);
         f
     }
 }
 
-/// The slots of the per-hit loops an evaluation is inside, and the steps they took.
+/// The slots of the per-hit loops an evaluation is inside (`N` of them), and the steps
+/// they took.
 #[derive(Clone, Debug)]
-pub struct Frame {
+pub struct Frame<const N: usize> {
     /// Slot values.
-    pub slots: [Vec4; MAX_LOOP_SLOTS],
+    pub slots: [Vec4; N],
     /// Loop steps taken so far in this evaluation.
     pub steps: Cell<u64>,
+}
+
+impl<const N: usize> Frame<N> {
+    /// A frame of zero slots that has taken no steps.
+    fn new() -> Frame<N> {
+        Frame { slots: [Vec4::ZERO; N], steps: Cell::new(0) }
+    }
 }
 
 /// Where an evaluation reads loop slots: nowhere outside loops ([`NoFrame`], a value of no
@@ -121,13 +152,12 @@ pub struct Frame {
 pub trait Slots: Copy {
     /// Slot `k`'s value (0 where there is none).
     fn slot(self, k: u8) -> Vec4;
-    /// The frame a loop starting here runs in.
-    fn enter(self) -> Frame;
-    /// Takes back the steps the loop run in `inner` took.
-    fn leave(self, inner: &Frame);
+    /// Runs loop `l` starting here at the shading point `s`: its slot `k` after it.
+    fn run(self, l: &HitLoop, s: &State, k: u8) -> Vec4;
 }
 
-/// No loop around: no slots, and each loop started here has its own steps.
+/// No loop around: no slots, and each loop started here has its own steps, in a frame as
+/// large as its nest needs.
 #[derive(Clone, Copy, Debug)]
 pub struct NoFrame;
 
@@ -137,24 +167,26 @@ impl Slots for NoFrame {
         Vec4::ZERO
     }
 
-    fn enter(self) -> Frame {
-        Frame { slots: [Vec4::ZERO; MAX_LOOP_SLOTS], steps: Cell::new(0) }
+    fn run(self, l: &HitLoop, s: &State, k: u8) -> Vec4 {
+        if usize::from(l.top) <= SMALL_FRAME {
+            l.run_in(s, Frame::<SMALL_FRAME>::new()).slot(k)
+        } else {
+            l.run_in(s, Frame::<LARGE_FRAME>::new()).slot(k)
+        }
     }
-
-    fn leave(self, _: &Frame) {}
 }
 
-impl Slots for &Frame {
+impl<const N: usize> Slots for &Frame<N> {
     #[inline]
     fn slot(self, k: u8) -> Vec4 {
         self.slots.get(usize::from(k)).copied().unwrap_or(Vec4::ZERO)
     }
 
-    fn enter(self) -> Frame {
-        self.clone()
-    }
-
-    fn leave(self, inner: &Frame) {
-        self.steps.set(inner.steps.get());
+    fn run(self, l: &HitLoop, s: &State, k: u8) -> Vec4 {
+        // The loop runs in a copy, so that it does not disturb the turn around it; the
+        // steps it took count for the loops around.
+        let f = l.run_in(s, self.clone());
+        self.steps.set(f.steps.get());
+        f.slot(k)
     }
 }

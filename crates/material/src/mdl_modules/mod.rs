@@ -25,6 +25,7 @@ pub mod eval;
 pub mod hit;
 pub mod hit_base;
 pub mod hit_eq;
+pub mod hit_index;
 pub mod hit_loop;
 pub mod hit_natives;
 pub mod lower;

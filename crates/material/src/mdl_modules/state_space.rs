@@ -14,9 +14,11 @@
 //! `float4`s of the hit); so is a `floatCxR(…)` built from values of the hit, and a choice
 //! between matrices by a condition of the hit. It may be multiplied with a vector (either
 //! side), a matrix (of the hit, or a constant [`Value::Matrix`]) or a scalar, added to and
-//! subtracted from another, divided by a scalar, transposed (`math::transpose`) and
-//! indexed (`m[i]` its column i, `m[i][j]` or `m[i].y` an element): each result is built
-//! from the columns, lane by lane; a constant matrix times a vector of the hit likewise.
+//! subtracted from another, combined with a scalar (`+ - * /`, either side, element by
+//! element), negated, transposed (`math::transpose`) and indexed (`m[i]` its column i,
+//! `m[i][j]` or `m[i].y` an element; by an index of the hit see [`super::hit_index`]):
+//! each result is built from the columns, lane by lane; a constant matrix with a vector or
+//! scalar of the hit likewise.
 
 use std::sync::Arc;
 
@@ -24,7 +26,7 @@ use mdl_lang::ast::BinaryOp;
 use mi::Span;
 
 use super::eval::{kind, problem, Eval};
-use super::hit::{fold, BinOp, HitExpr, MathFn, StateFn};
+use super::hit::{fold, BinOp, HitExpr, MathFn, StateFn, UnOp};
 use super::value::{HitType, Value};
 
 /// A matrix of the hit instance, by its columns ([`StateFn::ObjectToWorld`] or
@@ -92,7 +94,7 @@ pub fn transform(name: &str, args: &[Value], span: Span) -> Eval {
 /// The columns of a matrix and the length of each: one of the hit (two to four column
 /// values of one width, as [`transform`] and [`construct`] build them) or a constant
 /// [`Value::Matrix`]; `None` for anything else.
-fn columns_of(m: &Value) -> Option<(Vec<Arc<HitExpr>>, u8)> {
+pub(super) fn columns_of(m: &Value) -> Option<(Vec<Arc<HitExpr>>, u8)> {
     match m {
         Value::Array(columns) if (2..=4).contains(&columns.len()) => {
             let rows = columns[0].hit_type().filter(|t| matches!(t, HitType::Vector(2..=4)))?;
@@ -127,7 +129,7 @@ fn hit_matrix(v: &Value) -> bool {
 
 /// A matrix of the given columns of `rows` lanes: a constant [`Value::Matrix`] where every
 /// column is constant, else a matrix of the hit.
-fn matrix(columns: Vec<Arc<HitExpr>>, rows: u8) -> Value {
+pub(super) fn matrix(columns: Vec<Arc<HitExpr>>, rows: u8) -> Value {
     if let Some(cs) = columns.iter().map(|c| c.constant()).collect::<Option<Vec<_>>>() {
         let data = cs.iter().flat_map(|c| c.to_array()[..usize::from(rows)].to_vec()).map(f64::from).collect();
         return Value::Matrix { columns: columns.len() as u8, rows, data };
@@ -218,14 +220,20 @@ pub fn matrix_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
                 .collect();
             Some(Value::from_hit(HitExpr::Compose(lanes), HitType::Vector(n as u8)))
         }
-        (BinaryOp::Mul | BinaryOp::Div, Some((m, r)), None) if scalar(b) => {
+        // With a scalar: element by element, the scalar on either side.
+        (BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div, Some((m, r)), None) if scalar(b) => {
             let s = b.to_hit()?;
-            let hop = if op == BinaryOp::Mul { BinOp::Mul } else { BinOp::Div };
-            Some(matrix(m.into_iter().map(|c| fold(HitExpr::Binary(hop, c, s.clone()))).collect(), r))
+            Some(matrix(
+                m.into_iter().map(|c| within(fold(HitExpr::Binary(elementwise(op), c, s.clone())), r)).collect(),
+                r,
+            ))
         }
-        (BinaryOp::Mul, None, Some((m, r))) if scalar(a) => {
+        (BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div, None, Some((m, r))) if scalar(a) => {
             let s = a.to_hit()?;
-            Some(matrix(m.into_iter().map(|c| mul(s.clone(), c)).collect(), r))
+            Some(matrix(
+                m.into_iter().map(|c| within(fold(HitExpr::Binary(elementwise(op), s.clone(), c)), r)).collect(),
+                r,
+            ))
         }
         (BinaryOp::Add | BinaryOp::Sub, Some((ma, ra)), Some((mb, rb))) if ma.len() == mb.len() && ra == rb => {
             let hop = if op == BinaryOp::Add { BinOp::Add } else { BinOp::Sub };
@@ -233,6 +241,44 @@ pub fn matrix_binary(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
         }
         _ => None,
     }
+}
+
+/// The per-lane operator of an arithmetic operator on matrices and scalars.
+fn elementwise(op: BinaryOp) -> BinOp {
+    match op {
+        BinaryOp::Add => BinOp::Add,
+        BinaryOp::Sub => BinOp::Sub,
+        BinaryOp::Div => BinOp::Div,
+        _ => BinOp::Mul,
+    }
+}
+
+/// Column `c` of `rows` lanes with the lanes past them 0 (a scalar added to a column fills
+/// all four).
+fn within(c: Arc<HitExpr>, rows: u8) -> Arc<HitExpr> {
+    if rows >= 4 {
+        c
+    } else {
+        fold(HitExpr::Compose([(c, rows)].into()))
+    }
+}
+
+/// Matrix `m` (constant or of the hit) with column `i` replaced by the vector `v` (of the
+/// hit, or constant) as long as a column; `None` for anything else.
+pub fn with_column(m: &Value, i: usize, v: &Value) -> Option<Value> {
+    let (mut columns, rows) = columns_of(m)?;
+    let c = v.to_hit().filter(|_| v.hit_type() == Some(HitType::Vector(rows)))?;
+    *columns.get_mut(i)? = c;
+    Some(matrix(columns, rows))
+}
+
+/// `-m` for a matrix of the hit, column by column; `None` for anything else.
+pub fn negate(m: &Value) -> Option<Value> {
+    if !hit_matrix(m) {
+        return None;
+    }
+    let (columns, rows) = columns_of(m)?;
+    Some(matrix(columns.into_iter().map(|c| fold(HitExpr::Unary(UnOp::Neg, c))).collect(), rows))
 }
 
 /// `math::transpose` of a matrix of the hit (column j is lane j of each column) or of a

@@ -21,7 +21,8 @@ use mi::Span;
 
 use super::eval::{kind, problem, Env, Evaluator, Problem};
 use super::hit::{cost_with, fold, HitExpr};
-use super::hit_loop::{HitLoop, MAX_LOOP_SLOTS};
+use super::hit_loop::{HitLoop, MAX_LARGE_NESTING, MAX_LOOP_SLOTS, SMALL_FRAME};
+use super::state_space::{columns_of, matrix};
 use super::statements::{both, Exit, Flow, Loop, Nest, Run, Step, RETURNED, RETURN_VALUE};
 use super::value::{HitType, Value};
 
@@ -105,69 +106,122 @@ impl Scan {
     }
 }
 
-/// `v` with each number, vector and colour in it replaced by the next slot (from `base +
-/// slots.len()`), whose initial value and type are pushed on `slots`.
-fn slotify(v: &Value, base: usize, slots: &mut Vec<(Arc<HitExpr>, HitType)>) -> Value {
+/// Where a carried variable's values sit: its value with each number, vector and colour
+/// (and each column of a constant matrix) replaced by a slot.
+#[derive(Clone, Debug)]
+enum Shape {
+    /// Slot `k`, holding a value of this type.
+    Slot(u8, HitType),
+    /// A constant matrix carried column by column: the columns' slots and their length.
+    Matrix(Vec<u8>, u8),
+    /// A struct: its type name and fields.
+    Struct(String, Vec<(String, Shape)>),
+    /// An array (a matrix of the hit is an array of its columns).
+    Array(Vec<Shape>),
+    /// A value the loop may not change (an enum, a texture…).
+    Fixed(Value),
+}
+
+/// The shape of `v` with each number, vector and colour in it (and each column of a matrix)
+/// the next slot (from `base + slots.len()`), whose initial value and type are pushed on
+/// `slots`.
+fn slotify(v: &Value, base: usize, slots: &mut Vec<(Arc<HitExpr>, HitType)>) -> Shape {
+    let mut next = |e: Arc<HitExpr>, ty: HitType| {
+        let k = (base + slots.len()).min(usize::from(u8::MAX)) as u8;
+        slots.push((e, ty));
+        k
+    };
     match v {
         Value::Struct(name, fields) => {
-            Value::Struct(name.clone(), fields.iter().map(|(f, x)| (f.clone(), slotify(x, base, slots))).collect())
+            Shape::Struct(name.clone(), fields.iter().map(|(f, x)| (f.clone(), slotify(x, base, slots))).collect())
         }
-        Value::Array(items) => Value::Array(items.iter().map(|x| slotify(x, base, slots)).collect()),
-        Value::Enum(..) => v.clone(),
-        _ => match (v.hit_type(), v.to_hit()) {
-            (Some(ty), Some(e)) => {
-                let k = (base + slots.len()).min(usize::from(u8::MAX)) as u8;
-                slots.push((e, ty));
-                Value::Hit(Arc::new(HitExpr::Slot(k)), ty)
+        Value::Array(items) => Shape::Array(items.iter().map(|x| slotify(x, base, slots)).collect()),
+        Value::Matrix { .. } => match columns_of(v) {
+            Some((columns, rows)) => {
+                Shape::Matrix(columns.into_iter().map(|c| next(c, HitType::Vector(rows))).collect(), rows)
             }
-            _ => v.clone(),
+            None => Shape::Fixed(v.clone()),
+        },
+        Value::Enum(..) => Shape::Fixed(v.clone()),
+        _ => match (v.hit_type(), v.to_hit()) {
+            (Some(ty), Some(e)) => Shape::Slot(next(e, ty), ty),
+            _ => Shape::Fixed(v.clone()),
         },
     }
 }
 
-/// The values in `end` at the slots of `shape` (as [`slotify`] made it), in order; `None`
-/// where `end` differs from `shape` elsewhere (a struct of another kind, an array of
-/// another length, a texture changed).
-fn gather(shape: &Value, end: &Value, out: &mut Vec<Arc<HitExpr>>) -> Option<()> {
+/// The slots of `shape`, in order, as expressions.
+fn slots_of(shape: &Shape, out: &mut Vec<Arc<HitExpr>>) {
+    let slot = |k: &u8| Arc::new(HitExpr::Slot(*k));
+    match shape {
+        Shape::Slot(k, _) => out.push(slot(k)),
+        Shape::Matrix(ks, _) => out.extend(ks.iter().map(slot)),
+        Shape::Struct(_, fields) => fields.iter().for_each(|(_, f)| slots_of(f, out)),
+        Shape::Array(items) => items.iter().for_each(|x| slots_of(x, out)),
+        Shape::Fixed(_) => {}
+    }
+}
+
+/// The values in `end` at the slots of `shape`, in order; `None` where `end` differs from
+/// `shape` elsewhere (a struct of another kind, an array of another length, a texture
+/// changed).
+fn gather(shape: &Shape, end: &Value, out: &mut Vec<Arc<HitExpr>>) -> Option<()> {
     match (shape, end) {
-        (Value::Hit(e, _), _) if matches!(**e, HitExpr::Slot(_)) => out.push(end.to_hit()?),
-        (Value::Struct(n, fs), Value::Struct(m, gs)) if n == m && fs.len() == gs.len() => {
+        (Shape::Slot(..), _) => out.push(end.to_hit()?),
+        (Shape::Matrix(ks, rows), m) => {
+            let (columns, r) = columns_of(m)?;
+            if columns.len() != ks.len() || r != *rows {
+                return None;
+            }
+            out.extend(columns);
+        }
+        (Shape::Struct(n, fs), Value::Struct(m, gs)) if n == m && fs.len() == gs.len() => {
             for ((_, f), (_, g)) in fs.iter().zip(gs) {
                 gather(f, g, out)?;
             }
         }
-        (Value::Array(a), Value::Array(b)) if a.len() == b.len() => {
+        (Shape::Array(a), Value::Array(b)) if a.len() == b.len() => {
             for (x, y) in a.iter().zip(b) {
                 gather(x, y, out)?;
             }
         }
-        (a, b) if a == b => {}
+        // A matrix of the hit (an array of columns) that the turn made constant.
+        (Shape::Array(a), m @ Value::Matrix { columns, .. }) if a.len() == usize::from(*columns) => {
+            for (i, x) in a.iter().enumerate() {
+                gather(x, &super::matrix::column(m, i)?, out)?;
+            }
+        }
+        (Shape::Fixed(a), b) if a == b => {}
         _ => return None,
     }
     Some(())
 }
 
 /// `shape` with its slots replaced by `values`, in order (constants folded).
-fn rebuild(shape: &Value, values: &mut impl Iterator<Item = Arc<HitExpr>>) -> Value {
+fn rebuild(shape: &Shape, values: &mut impl Iterator<Item = Arc<HitExpr>>) -> Value {
     match shape {
-        Value::Hit(e, ty) if matches!(**e, HitExpr::Slot(_)) => {
-            let v = values.next().unwrap_or_else(|| e.clone());
+        Shape::Slot(k, ty) => {
+            let v = values.next().unwrap_or_else(|| Arc::new(HitExpr::Slot(*k)));
             match v.constant() {
                 Some(c) => Value::from_hit(HitExpr::Const(c), *ty),
                 None => Value::Hit(v, *ty),
             }
         }
-        Value::Struct(name, fields) => {
+        Shape::Matrix(ks, rows) => {
+            let columns = ks.iter().map(|k| values.next().unwrap_or_else(|| Arc::new(HitExpr::Slot(*k)))).collect();
+            matrix(columns, *rows)
+        }
+        Shape::Struct(name, fields) => {
             Value::Struct(name.clone(), fields.iter().map(|(f, x)| (f.clone(), rebuild(x, values))).collect())
         }
-        Value::Array(items) => Value::Array(items.iter().map(|x| rebuild(x, values)).collect()),
-        v => v.clone(),
+        Shape::Array(items) => Value::Array(items.iter().map(|x| rebuild(x, values)).collect()),
+        Shape::Fixed(v) => v.clone(),
     }
 }
 
 /// The values of the carried variables `vars` in `params` and `locals`, at their shapes.
 fn leaves(
-    vars: &[(Var, Value)],
+    vars: &[(Var, Shape)],
     params: &[Value],
     locals: &std::collections::HashMap<u32, Value>,
 ) -> Option<Vec<Arc<HitExpr>>> {
@@ -183,7 +237,7 @@ fn leaves(
 }
 
 /// Puts each carried variable's value, rebuilt from `values`, into `env`.
-fn store(vars: &[(Var, Value)], values: &[Arc<HitExpr>], env: &mut Env) {
+fn store(vars: &[(Var, Shape)], values: &[Arc<HitExpr>], env: &mut Env) {
     let mut it = values.iter().cloned();
     for (var, shape) in vars {
         let v = rebuild(shape, &mut it);
@@ -238,7 +292,7 @@ impl Evaluator<'_> {
         }
         let base = usize::from(self.slot_top);
         let mut slots = Vec::new();
-        let mut vars: Vec<(Var, Value)> = Vec::new();
+        let mut vars: Vec<(Var, Shape)> = Vec::new();
         for var in scan.assigned {
             let now = match var {
                 Var::Param(i) => env.params.get(i),
@@ -262,23 +316,36 @@ impl Evaluator<'_> {
             ));
         }
         let entry: HashSet<u32> = env.locals.keys().copied().collect();
-        let shapes: Vec<Value> = vars.iter().map(|(_, shape)| shape.clone()).collect();
         let placeholders: Vec<Arc<HitExpr>> = {
             let mut out = Vec::new();
-            for shape in &shapes {
-                gather(shape, shape, &mut out);
+            for (_, shape) in &vars {
+                slots_of(shape, &mut out);
             }
             out
         };
         store(&vars, &placeholders, env);
         self.slot_top = (base + slots.len()) as u8;
+        // The slots and levels of the loops of the hit nested in this one.
+        let around = std::mem::replace(&mut self.loop_nest, (self.slot_top, 0));
         let outer = run.guard.take();
         run.nest.push(Nest::HitTurn(Vec::new()));
         let turn = self.hit_turn(run, lp, &vars, &placeholders, env, span);
         run.nest.pop();
         run.guard = outer;
         self.slot_top = base as u8;
+        let (top, levels) = (self.loop_nest.0, self.loop_nest.1.saturating_add(1));
+        self.loop_nest = (around.0.max(top), around.1.max(levels));
         let turn = turn?;
+        if usize::from(top) > SMALL_FRAME && usize::from(levels) > MAX_LARGE_NESTING {
+            return Err(problem(
+                span,
+                format!(
+                    "`{}` nests {levels} loops of the hit in one another, carrying {top} values: more than mira \
+                     runs ({MAX_LARGE_NESTING} deep once they carry more than {SMALL_FRAME} values)",
+                    run.def.name
+                ),
+            ));
+        }
         let cond = match &run.guard {
             Some(g) => both(Some(g), &turn.cond),
             None => turn.cond,
@@ -296,6 +363,7 @@ impl Evaluator<'_> {
             exit: turn.exit,
             test_first: lp.test_first,
             turn_cost,
+            top,
         });
         let outs: Vec<Arc<HitExpr>> =
             (0..types.len()).map(|k| Arc::new(HitExpr::LoopOut(l.clone(), (base + k) as u8))).collect();
@@ -348,7 +416,7 @@ impl Evaluator<'_> {
         &mut self,
         run: &mut Run,
         lp: &Loop,
-        vars: &[(Var, Value)],
+        vars: &[(Var, Shape)],
         placeholders: &[Arc<HitExpr>],
         env: &mut Env,
         span: Span,

@@ -629,6 +629,16 @@ impl Evaluator<'_> {
             ExprKind::Index { base, index } => {
                 let i = match self.eval(index, env)? {
                     Value::Int(i) if i >= 0 => i as usize,
+                    Value::Hit(at, HitType::Int) => {
+                        let whole = self.eval(base, env)?;
+                        let updated = super::hit_index::assign(&whole, &at, &v).ok_or_else(|| {
+                            problem(
+                                span,
+                                format!("{} is not assigned {} at an index of the hit", kind(&whole), kind(&v)),
+                            )
+                        })?;
+                        return self.assign(run, base, updated, env);
+                    }
                     other => {
                         return Err(problem(
                             index.span,
@@ -641,7 +651,8 @@ impl Evaluator<'_> {
                         items[i] = v;
                         Value::Array(items)
                     }
-                    m @ Value::Matrix { .. } => super::matrix::with_column(m, i, &v)
+                    m @ Value::Matrix { .. } => super::matrix::with_column(m.clone(), i, &v)
+                        .or_else(|| super::state_space::with_column(&m, i, &v))
                         .ok_or_else(|| problem(span, format!("column {i} of a matrix is not assigned {}", kind(&v))))?,
                     whole => with_lane(whole, i, v, span)?,
                 };
@@ -714,12 +725,16 @@ fn join(c: &Arc<HitExpr>, a: Value, b: Value, span: Span) -> Eval {
 }
 
 /// `c ? a : b` per hit: equal values stay as they are, structs are chosen field by field,
-/// numbers, vectors and colours by a [`HitExpr::Select`].
-fn select(c: &Arc<HitExpr>, a: Value, b: Value) -> Option<Value> {
+/// matrices column by column, numbers, vectors and colours by a [`HitExpr::Select`].
+pub(super) fn select(c: &Arc<HitExpr>, a: Value, b: Value) -> Option<Value> {
     if a == b {
         return Some(a);
     }
     match (a, b) {
+        // A constant matrix and another matrix: column by column.
+        (a, b) if matches!(a, Value::Matrix { .. }) || matches!(b, Value::Matrix { .. }) => {
+            super::state_space::select(c, &a, &b)
+        }
         (Value::Struct(n, fa), Value::Struct(m, fb)) if n == m && fa.len() == fb.len() => {
             let mut fields = Vec::with_capacity(fa.len());
             for ((name, x), (_, y)) in fa.into_iter().zip(fb) {

@@ -453,6 +453,14 @@ pub fn from_mi(value: &MiValue, ty: &Type, enum_value: &dyn Fn(&str, &str) -> Op
             Some(v) if v.len() == *n as usize => Ok(Value::Vector(v)),
             _ => wrong(&format!("{n} numbers")),
         },
+        // Column after column, as MDL's `floatCxR(…)` of numbers takes them and as mental
+        // ray writes a `transform` (16 numbers, row-vector convention: the same order).
+        Type::Matrix(_, c, r) => match nums(value) {
+            Some(data) if data.len() == usize::from(*c) * usize::from(*r) => {
+                Ok(Value::Matrix { columns: *c, rows: *r, data })
+            }
+            _ => wrong(&format!("{} numbers, column after column", usize::from(*c) * usize::from(*r))),
+        },
         Type::String => match value {
             MiValue::Str(s) => Ok(Value::Str(s.text.clone())),
             _ => wrong("a string"),

@@ -22,6 +22,7 @@ mod mdl_base_functions;
 mod mdl_compile;
 mod mdl_hit;
 mod mdl_hit_loops;
+mod mdl_hit_matrices;
 mod mdl_layer_normals;
 mod mdl_layers;
 mod mdl_matrices;

@@ -115,14 +115,51 @@ fn a_break_of_the_hit_leaves_its_switch() {
     check("break_skips_return", &[(0.25, 7.0), (0.75, 9.0)]);
 }
 
+/// Loops of the hit carrying more than the small frame's 32 values run in a large one: 41
+/// and 100 values, and a loop nested in one of 42 (its slots past the small frame).
+#[test]
+fn loops_of_the_hit_carry_up_to_255_values() {
+    let ceil10 = |u: f32| (u * 10.0).ceil().max(0.0);
+    check("forty", &[0.0, 0.05, 0.31, 0.99].map(|u| (u, ceil10(u))));
+    check("wide_loop", &[0.0, 0.05, 0.31, 0.99].map(|u| (u, 99.0 * ceil10(u))));
+    let nest = |u: f32| (0..(u * 10.0) as i32).map(|k| (k * (k + 1)) as f32).sum::<f32>();
+    check("wide_nested", &[0.05, 0.15, 0.45, 0.99].map(|u| (u, nest(u))));
+}
+
 /// What is not compiled in a loop of the hit — one carrying more values than it has slots
-/// for — is an error at its `file:line:col`, naming the function; the material renders grey.
+/// for (255), or nesting more than 16 loops of the hit past the small frame — is an error
+/// at its `file:line:col`, naming the function; the material renders grey.
 #[test]
 fn a_loop_of_the_hit_carrying_too_many_values_is_an_error_at_its_line() {
+    let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mdl/hit_loops.mdl")).unwrap();
+    // The 1-based line of the loop: the line before the first one holding `inside`.
+    let at = |inside: &str| src.lines().position(|l| l.contains(inside)).unwrap();
     let (_, _, diags) = compile_text(r#"shader "m" "mdl::hit_loops::too_many" ()"#);
     assert_eq!(diags.len(), 1, "{diags:#?}");
-    let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mdl/hit_loops.mdl")).unwrap();
-    let line = src.lines().position(|l| l.contains("for (int i = 0; i < 40; i++)")).unwrap();
-    let at = format!("hit_loops.mdl:{line}:5");
-    assert!(diags[0].contains(&at) && diags[0].contains("carries") && diags[0].contains("`many`"), "{}", diags[0]);
+    let line = format!("hit_loops.mdl:{}:5", at("for (int k = 0; k < 300; k++)"));
+    let d = &diags[0];
+    assert!(d.contains(&line) && d.contains("carries 301 values") && d.contains("`too_wide`"), "{d}");
+    let (_, _, diags) = compile_text(r#"shader "m" "mdl::hit_loops::too_deep" ()"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    let line = format!("hit_loops.mdl:{}:5", at("a[0] += 1.0;"));
+    let d = &diags[0];
+    assert!(d.contains(&line) && d.contains("nests 17 loops") && d.contains("`deep`"), "{d}");
+}
+
+/// What evaluating loops of the hit costs: 20 000 hits of `halving`, `nested` and
+/// `structs` (small frames). Not a check — a workload to measure, e.g.
+/// `valgrind --tool=callgrind target/debug/deps/it-… --ignored --exact
+/// mdl_hit_loops::evaluation_workload` before and after a change to the loops' frames.
+#[test]
+#[ignore]
+fn evaluation_workload() {
+    let mut sum = 0.0f32;
+    for name in ["halving", "nested", "structs"] {
+        let (mdl, lib) = material(name);
+        let m = get(&mdl, &lib, "m");
+        for k in 0..20_000 {
+            sum += emitted(m, std::hint::black_box((k % 100) as f32 / 100.0)).x;
+        }
+    }
+    assert!(sum.is_finite());
 }

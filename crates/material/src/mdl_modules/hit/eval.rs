@@ -61,7 +61,7 @@ impl HitExpr {
     pub fn eval_in<F: Slots>(&self, s: &State, f: F) -> Vec4 {
         match self {
             HitExpr::Slot(k) => f.slot(*k),
-            HitExpr::LoopOut(l, k) => l.run(s, f).slot(*k),
+            HitExpr::LoopOut(l, k) => l.value(s, f, *k),
             HitExpr::Const(v) => *v,
             HitExpr::State(what) => state_value(*what, s),
             HitExpr::Unary(op, a) => {
