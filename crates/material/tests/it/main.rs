@@ -16,6 +16,7 @@ mod maya_irradiance;
 mod maya_materials;
 mod maya_path;
 mod maya_solid_textures;
+mod maya_textures2d;
 mod maya_textures3d;
 mod mdl_base_conversions;
 mod mdl_base_functions;
