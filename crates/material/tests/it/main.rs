@@ -18,6 +18,7 @@ mod maya_path;
 mod maya_solid_textures;
 mod maya_textures2d;
 mod maya_textures3d;
+mod maya_utilities;
 mod mdl_base_conversions;
 mod mdl_base_functions;
 mod mdl_compile;
