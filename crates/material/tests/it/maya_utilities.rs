@@ -163,3 +163,106 @@ fn ambient_color_adds_the_colour_times_itself_without_lights() {
         }
     }
 }
+
+/// rgbToHsv: red is (0°, 1, 1), teal (180°, 1, ½); hsvToRgb turns (120°, 1, ½) into
+/// green at ½.
+#[test]
+fn rgb_to_hsv_and_back() {
+    for adsk in [false, true] {
+        let to_hsv = name(adsk, "rgbtohsv", "RgbToHsv");
+        assert_rgb(
+            shows(&format!(r#"shader "u" "{to_hsv}" ("inRgb" 1 0 0)"#), "outHsv", adsk, [0.3, 0.6]),
+            [0.0, 1.0, 1.0],
+            1e-5,
+        );
+        assert_rgb(
+            shows(&format!(r#"shader "u" "{to_hsv}" ("inRgb" 0 0.5 0.5)"#), "outHsv", adsk, [0.3, 0.6]),
+            [180.0, 1.0, 0.5],
+            1e-4,
+        );
+        let to_rgb = name(adsk, "hsvtorgb", "HsvToRgb");
+        assert_rgb(
+            shows(&format!(r#"shader "u" "{to_rgb}" ("inHsv" 120 1 0.5)"#), "outRgb", adsk, [0.3, 0.6]),
+            [0.0, 0.5, 0.0],
+            1e-5,
+        );
+    }
+}
+
+/// samplerInfo's `rayDirection` is the eye ray's direction in world space (straight
+/// down here).
+#[test]
+fn sampler_info_ray_direction() {
+    for adsk in [false, true] {
+        let si = name(adsk, "samplerinfo", "SamplerInfo");
+        assert_rgb(
+            shows(&format!(r#"shader "u" "{si}" ()"#), "rayDirection", adsk, [0.3, 0.6]),
+            [0.0, -1.0, 0.0],
+            1e-6,
+        );
+    }
+}
+
+/// Translucence t lets a light behind the surface through as c·t·I·|cos θ| (a unit light
+/// straight below a lambert of translucence 0.5: c·0.5), none without it.
+#[test]
+fn translucence_passes_light_from_behind() {
+    let below = r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 1 0 end light
+        instance "sun_inst" "sun" end instance"#;
+    for adsk in [false, true] {
+        let lambert = name(adsk, "lambert", "Lambert");
+        let engine = if adsk { "adskMayaShadingEngine" } else { "maya_shadingengine" };
+        for (t, want) in [(0.5, [0.3, 0.25, 0.2]), (0.0, [0.0; 3])] {
+            let c = compile(
+                "",
+                &format!(
+                    r#"{LIBS}{below}
+                    shader "lam" "{lambert}" ("color" 0.6 0.5 0.4, "translucence" {t})
+                    material "m" opaque "{engine}" ("surfaceShader" = "lam.outColor") end material"#
+                ),
+                &["m"],
+                "",
+            );
+            assert!(c.messages.is_empty(), "{:#?}", c.messages);
+            assert_rgb(run(&c, &Empty::default(), c.material("m"), point([0.3, 0.6])).color(), want, 1e-5);
+        }
+    }
+}
+
+/// A file texture placed by a place2dTexture (repeat 2 × 3, offset, rotate UV 90°) on a
+/// lambert's colour: the path engine's translation reads the same colour per hit as the
+/// classic shader (1e-5) at points of different quadrants of the image.
+#[test]
+fn the_path_engine_reads_a_placed_file_texture_per_hit() {
+    let sun = r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
+        instance "sun_inst" "sun" end instance"#;
+    let c = compile(
+        "",
+        &format!(
+            r#"{LIBS}{sun}
+            color texture "quad" [ 2 2 ] 'ff0000' '00ff00' '0000ff' 'ffffff'
+            shader "place" "maya_place2dtexture" ("repeatU" 2, "repeatV" 3, "offsetU" 0.1, "offsetV" 0.2, "rotateUV" 1.5707963)
+            shader "f" "maya_file" ("fileTextureName" "quad", "uvCoord" = "place.outUV")
+            shader "lam" "maya_lambert" ("color" = "f.outColor", "diffuse" 0.5)
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#
+        ),
+        &["m"],
+        "",
+    );
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let (s, warnings) = material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("Maya");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let tracer = Empty::default();
+    let mut seen = Vec::new();
+    for uv in [[0.05, 0.05], [0.3, 0.6], [0.7, 0.2], [0.9, 0.85], [0.45, 0.4]] {
+        let mut ctx = shader::Ctx::new(&c.shading, &tracer, point(uv));
+        let hit = s.at(&mut ctx);
+        let classic = run(&c, &tracer, c.material("m"), point(uv)).color();
+        for i in 0..3 {
+            assert!((hit.diffuse[i] - classic[i]).abs() < 1e-5, "{uv:?}: path {} classic {classic}", hit.diffuse);
+        }
+        seen.push(classic);
+    }
+    // The placement moves the lookup across the image's texels: not one colour everywhere.
+    assert!(seen.iter().any(|c| (*c - seen[0]).abs().max_element() > 0.1), "{seen:?}");
+}
