@@ -266,3 +266,38 @@ fn the_path_engine_reads_a_placed_file_texture_per_hit() {
     // The placement moves the lookup across the image's texels: not one colour everywhere.
     assert!(seen.iter().any(|c| (*c - seen[0]).abs().max_element() > 0.1), "{seen:?}");
 }
+
+/// Shadow shaders under both names: an occluder whose shadow shader is `maya_shadow` /
+/// `adskMayaShadow` over a material of transparency (0.5, 0.25, 1) filters a unit light
+/// per channel; one whose shadow shader is `maya_transparent` / `adskMayaTransparent`
+/// (particles' shadow) lets it all through, whatever the material's transparency (1e-5).
+#[test]
+fn shadow_shaders_filter_or_pass_the_light() {
+    let light = r#"light "sun" "maya_directionallight" ("intensity" 1, "useRayTraceShadows" on) direction 0 -1 0 end light
+        instance "sun_inst" "sun" end instance"#;
+    for adsk in [false, true] {
+        let (shadow, transparent) =
+            if adsk { ("adskMayaShadow", "adskMayaTransparent") } else { ("maya_shadow", "maya_transparent") };
+        for (shader, params, want) in [
+            (shadow, r#""surfaceShader" = "occ.outColor""#, [0.6 * 0.5, 0.5 * 0.25, 0.4]),
+            (transparent, "", [0.6, 0.5, 0.4]),
+        ] {
+            let c = compile(
+                "",
+                &format!(
+                    r#"{LIBS}{light}
+                    shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 1)
+                    material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
+                    shader "occ" "maya_lambert" ("transparency" 0.5 0.25 1)
+                    material "g" "maya_shadingengine" ("surfaceShader" = "occ.outColor")
+                        shadow "{shader}" ({params}) end material"#
+                ),
+                &["m", "g"],
+                "",
+            );
+            assert!(c.messages.is_empty(), "{shader}: {:#?}", c.messages);
+            let tracer = support::maya::Occluder { material: c.material_index("g") };
+            assert_rgb(run(&c, &tracer, c.material("m"), point([0.0, 0.0])).color(), want, 1e-5);
+        }
+    }
+}
