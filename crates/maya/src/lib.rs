@@ -23,6 +23,7 @@
 //! surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
 //! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
+//! [`pattern_textures`] (bulge, cloth), [`height_textures`] (fractal, mountain, water),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
 //! (snow, rock, volumeNoise), [`fractal_textures`] (brownian, cloud), [`crater_textures`]
 //! (crater, stucco), [`cell_textures`] (leather, granite), [`projection`]
@@ -42,6 +43,7 @@ pub mod engine;
 pub mod fog;
 pub mod fractal_textures;
 pub mod glow;
+pub mod height_textures;
 pub mod lattice_hash;
 pub mod layered;
 pub mod layered_shader;
@@ -50,6 +52,7 @@ pub mod material;
 pub mod matte;
 pub mod noise;
 pub mod output;
+pub mod pattern_textures;
 pub mod physical_fog;
 pub mod projection;
 pub mod ramp_shader;
@@ -131,6 +134,16 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &layered::ADSK_LAYEREDTEXTURE,
     &noise::NOISE,
     &noise::ADSK_NOISE,
+    &pattern_textures::BULGE,
+    &pattern_textures::ADSK_BULGE,
+    &pattern_textures::CLOTH,
+    &pattern_textures::ADSK_CLOTH,
+    &height_textures::FRACTAL,
+    &height_textures::ADSK_FRACTAL,
+    &height_textures::MOUNTAIN,
+    &height_textures::ADSK_MOUNTAIN,
+    &height_textures::WATER,
+    &height_textures::ADSK_WATER,
     &texture::BUMP2D,
     &texture::ADSK_BUMP2D,
     &texture3d::PLACE3D,
@@ -187,6 +200,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &utility::ADSK_LUMINANCE,
     &utility::GAMMACORRECT,
     &utility::ADSK_GAMMACORRECT,
+    &utility::CONTRAST,
+    &utility::ADSK_CONTRAST,
     &utility::RGBTOHSV,
     &utility::ADSK_RGBTOHSV,
     &utility::HSVTORGB,

@@ -432,6 +432,10 @@ mod tests {
         // Translate frame moves the frame's origin.
         let t = Placement { translate_frame: Vec2::new(0.25, 0.0), ..Placement::default() };
         close(t.apply(Vec2::new(0.5, 0.5)).unwrap(), Vec2::new(0.25, 0.5));
+        // Rotate frame 90° turns the frame about its centre: the coordinate turns by −90°,
+        // (0.75, 0.5) → (0.5, 0.25), as rotateUV does before the repeat.
+        let f = Placement { rotate_frame: std::f32::consts::FRAC_PI_2, ..Placement::default() };
+        close(f.apply(Vec2::new(0.75, 0.5)).unwrap(), Vec2::new(0.5, 0.25));
         // Mirror: the second repeat runs backwards (1.2 → 1.8, i.e. 0.8 in its tile).
         let m = Placement { repeat: Vec2::new(2.0, 1.0), mirror: [true, false], ..Placement::default() };
         close(m.apply(Vec2::new(0.6, 0.5)).unwrap(), Vec2::new(1.8, 0.5));

@@ -367,6 +367,41 @@ fn gamma_correct(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     vector_out(out, "outValue", o)
 }
 
+maya_shader!(
+    /// contrast: per channel, `value` pushed away from `bias` by `contrast` ([`contrast_op`])
+    /// into `outValue`.
+    CONTRAST,
+    ADSK_CONTRAST,
+    "maya_contrast",
+    "adskMayaContrast",
+    &["value", "contrast", "bias"],
+    contrast
+);
+
+/// One channel of Maya's contrast node: x (clamped to [0, 1]) is mapped so that `bias`
+/// becomes ½ (Perlin's bias curve, t = x^(ln ½ / ln b)), steepened about ½ by the power
+/// `contrast` (t < ½: ½·(2t)^c, else 1 − ½·(2 − 2t)^c) and mapped back (t^(ln b / ln ½)).
+/// So 0, 1 and `bias` stay where they are, values above the bias get lighter and those
+/// below darker for c > 1, contrast 1 changes nothing and contrast 0 gives the bias
+/// everywhere ("decrease Contrast to make everything grey"; a higher bias makes more of
+/// the texture dark — Maya's node reference). The curve is mira's reading: the reference
+/// describes the behaviour, not the formula. A bias outside (0, 1) is clamped into it.
+pub fn contrast_op(x: f32, contrast: f32, bias: f32) -> f32 {
+    let x = x.clamp(0.0, 1.0);
+    let b = bias.clamp(1e-4, 1.0 - 1e-4);
+    let c = contrast.max(0.0);
+    let to_half = std::f32::consts::LN_2.recip() * -b.ln(); // log2(1/b): b^(1/k) = ½
+    let t = x.powf(1.0 / to_half);
+    let t = if t < 0.5 { 0.5 * (2.0 * t).powf(c) } else { 1.0 - 0.5 * (2.0 - 2.0 * t).powf(c) };
+    t.powf(to_half)
+}
+
+fn contrast(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    let (v, c, b) = (ctx.vector(n, 0), ctx.vector(n, 1), ctx.vector(n, 2));
+    let o = Vec3A::from_array(std::array::from_fn(|i| contrast_op(v[i], c[i], b[i])));
+    vector_out(out, "outValue", o)
+}
+
 /// RGB to (hue in degrees [0, 360), saturation, value), as Maya's rgbToHsv.
 pub fn rgb_to_hsv(c: Vec3A) -> Vec3A {
     let max = c.max_element();
@@ -525,6 +560,33 @@ mod tests {
         let v =
             set_range_op(Vec3A::splat(5.0), Vec3A::splat(100.0), Vec3A::splat(200.0), Vec3A::ZERO, Vec3A::splat(10.0));
         close(v, Vec3A::splat(150.0));
+    }
+
+    #[test]
+    fn contrast_keeps_its_ends_and_bias_and_steepens_about_the_bias() {
+        for b in [0.5, 0.3, 0.8] {
+            for c in [0.0, 0.5, 1.0, 2.0, 5.0] {
+                assert!((contrast_op(b, c, b) - b).abs() < 1e-5, "bias {b} contrast {c}");
+                assert!(contrast_op(1.0, c, b) > 1.0 - 1e-5 || c == 0.0);
+            }
+            assert!(contrast_op(0.0, 2.0, b) < 1e-6 && contrast_op(1.0, 2.0, b) > 1.0 - 1e-6);
+            // Contrast 1 is the identity; 0 gives the bias everywhere.
+            for x in [0.0, 0.1, 0.45, 0.9] {
+                assert!((contrast_op(x, 1.0, b) - x).abs() < 1e-5, "{x}");
+                assert!((contrast_op(x, 0.0, b) - b).abs() < 1e-5, "{x}");
+            }
+            // Contrast 2: darker below the bias, lighter above; ½ contrast the reverse.
+            assert!(
+                contrast_op(0.9 * b, 2.0, b) < 0.9 * b
+                    && contrast_op(b + 0.1 * (1.0 - b), 2.0, b) > b + 0.1 * (1.0 - b)
+            );
+            assert!(contrast_op(0.9 * b, 0.5, b) > 0.9 * b);
+        }
+        // Bias ½ by hand: 0.25 → ½·(0.5)² = 0.125, 0.75 → 1 − 0.125.
+        assert!((contrast_op(0.25, 2.0, 0.5) - 0.125).abs() < 1e-6);
+        assert!((contrast_op(0.75, 2.0, 0.5) - 0.875).abs() < 1e-6);
+        // A higher bias darkens more of the texture.
+        assert!(contrast_op(0.5, 2.0, 0.7) < contrast_op(0.5, 2.0, 0.3));
     }
 
     #[test]

@@ -4,7 +4,8 @@
 //!
 //! - π · `color` · `intensity` arrives undiminished with `decayRate` 0 (point, spot,
 //!   directional, area), else falls off as d^−decayRate (a photometric falloff of that
-//!   exponent). The factor π makes a lambert of albedo c·d give c·d·I·cos θ in the path
+//!   exponent); an area light's samples are weighted by the cosine between the light's
+//!   axis (local −Z) and the direction to the lit point, as the classic shader's are. The factor π makes a lambert of albedo c·d give c·d·I·cos θ in the path
 //!   engine too, as mental ray for Maya's classic shaders do (no 1/π in their light units);
 //! - a spot's cone: full light inside the inner half-angle (`coneAngle`/2, narrowed by a
 //!   negative `penumbraAngle`), fading to the scene light's `spread` — linear in the cosine
@@ -62,10 +63,14 @@ pub fn emission_of(decl: &str, params: &[Param], light_to_world: DMat4) -> Optio
         return Some(Err(format!("{decl} with emitDiffuse off: the path engine leaves the light out")));
     }
     let rate = if family == "directionallight" { 0 } else { (scalar("decayRate", 0.0) as i32).clamp(0, 3) };
+    // An area light shines from its rectangle's front, weighted by the cosine to the
+    // light's axis (its local −Z) as the classic shader weights each sample.
+    let area = family == "arealight";
     let power = match rate {
-        0 => Power::Constant { color, falloff: None },
+        0 if !area => Power::Constant { color, falloff: None },
         r => Power::Photometric { color, exponent: r as f32, range: None },
     };
+    let distribution = area.then_some(super::Distribution::Cosine(1.0));
     let cone = (family == "spotlight").then(|| {
         let half = 0.5 * scalar("coneAngle", 0.698_131_7);
         let inner = half + scalar("penumbraAngle", 0.0).min(0.0);
@@ -74,7 +79,7 @@ pub fn emission_of(decl: &str, params: &[Param], light_to_world: DMat4) -> Optio
     // Maya's `dropoff`: the spot's cosine power inside the cone.
     let dropoff = scalar("dropoff", 0.0);
     let spot_exponent = (family == "spotlight" && dropoff > 0.0).then_some(dropoff);
-    Some(Ok(Emission { power, spot_exponent, cone, distribution: None }))
+    Some(Ok(Emission { power, spot_exponent, cone, distribution }))
 }
 
 /// The emission of a scene light whose shader is a Maya light (see [`emission_of`]).

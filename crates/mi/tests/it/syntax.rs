@@ -716,3 +716,40 @@ fn declaration_options() {
     let again = parse(std::str::from_utf8(&mi::print(&parsed.items)).unwrap());
     assert_eq!(again.items, parsed.items);
 }
+
+/// The libraries Maya exports include resolve to mira's built-in declarations and their
+/// `link` lines pass without a message, while a real file of the same name on the
+/// include path wins over the built-in one (issue 17).
+#[test]
+fn maya_libraries_resolve_built_in_unless_a_real_file_is_on_the_include_path() {
+    let dir = std::env::temp_dir().join(format!("mira_maya_includes_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("mayabase.mi"), "declare shader color \"maya_local\" () end declare\n").expect("write");
+    let libs = [
+        "mayabase",
+        "AdskShaderSDK",
+        "MayaShaders",
+        "coreutil",
+        "object_light_phen",
+        "lookdevKitMR",
+        "syncolor_shaders",
+    ];
+    let scene: String = libs.iter().map(|l| format!("link \"{l}.so\"\n$include \"{l}.mi\"\n")).collect();
+    let file = dir.join("scene.mi");
+    std::fs::write(&file, scene).expect("write");
+    let options = mi::ReadOptions { include_paths: vec![dir.clone()], ..mi::ReadOptions::default() };
+    let parsed = mi::parse_file(&file, &options).expect("readable");
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(parsed.diagnostics.list.is_empty(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let targets: Vec<&mi::IncludeTarget> = parsed.includes.iter().map(|i| &i.target).collect();
+    assert!(matches!(targets[0], mi::IncludeTarget::File(p) if p.ends_with("mayabase.mi")), "{targets:?}");
+    for (lib, target) in libs.iter().zip(&targets).skip(1) {
+        assert_eq!(*target, &mi::IncludeTarget::Builtin(Box::leak(format!("{lib}.mi").into_boxed_str())), "{lib}");
+    }
+    // The real mayabase.mi was read: its one declaration, not the built-in maya_lambert.
+    let items = flat(&parsed.items);
+    let declared: Vec<&str> =
+        items.iter().filter_map(|i| if let Item::Declare(d) = i { Some(d.name.text.as_str()) } else { None }).collect();
+    assert!(declared.contains(&"maya_local") && !declared.contains(&"maya_lambert"), "{declared:?}");
+    assert!(declared.contains(&"adskMayaLambert"));
+}

@@ -20,6 +20,7 @@ mod maya;
 mod maya_ambient_links_path;
 mod maya_ambient_path;
 mod maya_coloured_transparency_path;
+mod maya_decay_path;
 mod maya_exports_agree;
 mod maya_fog_material_path;
 mod maya_fog_path;
