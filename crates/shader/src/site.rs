@@ -49,6 +49,8 @@ pub struct SitePairs {
     set: u32,
     /// The first of the two dimensions' lanes in the set (0 or 2).
     lane: usize,
+    /// The set's Sobol table ([`crate::sobol::set_table`]).
+    table: &'static crate::sobol::SetTable,
 }
 
 impl SitePairs {
@@ -62,7 +64,7 @@ impl SitePairs {
         let base = sample_index.wrapping_mul(n.max(1));
         let high = base >> 16;
         let keys = Keys::new(sequence_seed(words, high, site), set, lane);
-        SitePairs { words, site, base, high, keys, set, lane }
+        SitePairs { words, site, base, high, keys, set, lane, table: crate::sobol::set_table(set) }
     }
 
     /// The two sample numbers in [0, 1)² of sample `i` of the loop.
@@ -76,7 +78,7 @@ impl SitePairs {
             Keys::new(sequence_seed(self.words, high, self.site), self.set, self.lane)
         };
         let shuffled = parts::owen_scramble_rev((index & 0xffff).reverse_bits(), keys.shuffle);
-        let point: [u32; 4] = crate::sobol::sobol_int4_rev(shuffled, self.set).into();
+        let point: [u32; 4] = crate::sobol::sobol_int4_rev_in(self.table, shuffled).into();
         let number = |lane: usize, scramble: u32| {
             parts::u32_to_f32_norm(parts::owen_scramble_rev(point[lane], scramble).reverse_bits())
         };
@@ -96,7 +98,7 @@ impl SitePairs {
         let keys = self.keys;
         let low = Int4::from(index.map(|i| i & 0xffff));
         let shuffled: [u32; 4] = parts::owen_scramble_int4_rev(low.reverse_bits(), [keys.shuffle; 4].into()).into();
-        let points: [[u32; 4]; 4] = shuffled.map(|i| crate::sobol::sobol_int4_rev(i, self.set).into());
+        let points: [[u32; 4]; 4] = shuffled.map(|i| crate::sobol::sobol_int4_rev_in(self.table, i).into());
         let numbers = |lane: usize, scramble: u32| {
             let lanes = Int4::from(points.map(|p| p[lane]));
             parts::owen_scramble_int4_rev(lanes, [scramble; 4].into()).reverse_bits().to_f32_norm()
