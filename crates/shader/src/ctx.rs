@@ -100,6 +100,7 @@ impl<'a> Ctx<'a> {
         self.cache.clear();
     }
 
+    #[inline(always)]
     fn slot(&self, node: NodeId, i: usize) -> Option<&'a Slot> {
         self.shading.graph.nodes[node as usize].slots.get(i)
     }
@@ -182,8 +183,9 @@ impl<'a> Ctx<'a> {
         ok
     }
 
-    /// Parameter `i` as a colour.
-    #[inline]
+    /// Parameter `i` as a colour (always inlined, as are the other constant reads: a light
+    /// shader reads its parameters once per light sample).
+    #[inline(always)]
     pub fn color(&mut self, node: NodeId, i: usize) -> Color {
         match self.slot(node, i) {
             Some(Slot::Value(Value::Color(c))) => *c,
@@ -194,9 +196,10 @@ impl<'a> Ctx<'a> {
     }
 
     /// Parameter `i` as a scalar.
-    #[inline]
+    #[inline(always)]
     pub fn scalar(&mut self, node: NodeId, i: usize) -> f32 {
         match self.slot(node, i) {
+            Some(Slot::Value(Value::Scalar(s))) => *s,
             Some(Slot::Value(v)) => v.scalar(),
             Some(s) => self.eval_slot(s).scalar(),
             None => 0.0,
@@ -204,9 +207,10 @@ impl<'a> Ctx<'a> {
     }
 
     /// Parameter `i` as an integer.
-    #[inline]
+    #[inline(always)]
     pub fn int(&mut self, node: NodeId, i: usize) -> i32 {
         match self.slot(node, i) {
+            Some(Slot::Value(Value::Int(n))) => *n,
             Some(Slot::Value(v)) => v.int(),
             Some(s) => self.eval_slot(s).int(),
             None => 0,
@@ -214,9 +218,10 @@ impl<'a> Ctx<'a> {
     }
 
     /// Parameter `i` as a boolean.
-    #[inline]
+    #[inline(always)]
     pub fn bool(&mut self, node: NodeId, i: usize) -> bool {
         match self.slot(node, i) {
+            Some(Slot::Value(Value::Bool(b))) => *b,
             Some(Slot::Value(v)) => v.bool(),
             Some(s) => self.eval_slot(s).bool(),
             None => false,

@@ -23,6 +23,7 @@
 //! validity overlaps; a lookup reads one cell per level.
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::Vec3A;
 
@@ -194,11 +195,42 @@ impl FgPoint {
     }
 }
 
+/// Hashes a grid cell's key (its three cell coordinates) with a multiply per word: the
+/// std `HashMap`'s SipHash, made to resist crafted keys, cost as much as the rest of a
+/// lookup. Which points a cell holds, and their order, do not depend on the hash.
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl CellHasher {
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        // Fold the high bits, where the multiplies mix, into the low ones the table uses.
+        (self.0 ^ (self.0 >> 32)).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.add(n as u64);
+    }
+}
+
 /// One level of the grid: cell size and the points overlapping each cell.
 #[derive(Debug, Default)]
 struct Level {
     cell: f32,
-    cells: HashMap<[i32; 3], Vec<u32>>,
+    cells: HashMap<[i32; 3], Vec<u32>, BuildHasherDefault<CellHasher>>,
 }
 
 impl Level {
@@ -239,7 +271,7 @@ impl FgCache {
                 let k = ((p.radius / smallest).log2().ceil().max(0.0) as usize).min(MAX_LEVELS - 1);
                 while levels.len() <= k {
                     let cell = smallest * (1u64 << levels.len()) as f32;
-                    levels.push(Level { cell, cells: HashMap::new() });
+                    levels.push(Level { cell, cells: HashMap::default() });
                 }
                 let level = &mut levels[k];
                 let lo = level.key(p.position - Vec3A::splat(p.radius));

@@ -333,6 +333,19 @@ impl<'a> Ctx<'a> {
     /// this point to it, the distance, the point on the light and `dot(normal, dir)`;
     /// `None` when it does not reach the point (degenerate, or behind the surface).
     fn sample_geometry(&mut self, lp: &LightLoop, light: &ShadingLight, i: u32) -> Option<SampleGeometry> {
+        self.sample_geometry_jittered(lp, light, i, None)
+    }
+
+    /// [`Ctx::sample_geometry`] with sample `i`'s two numbers `jitter` when they were
+    /// made ahead (`lp.pairs`' `pair(i)`, bit for bit).
+    #[inline(always)]
+    fn sample_geometry_jittered(
+        &mut self,
+        lp: &LightLoop,
+        light: &ShadingLight,
+        i: u32,
+        jitter: Option<Vec2>,
+    ) -> Option<SampleGeometry> {
         let p = self.state.point;
         let (to_light, dist, on_light) = match (light.kind, &light.shape) {
             (LightKind::Directional, _) => (-light.direction, f32::INFINITY, p - light.direction * 1e30),
@@ -343,9 +356,10 @@ impl<'a> Ctx<'a> {
             }
             (_, Some(shape)) => {
                 // Stratified over the u×v grid, jittered.
-                let j = match lp.pairs {
-                    Some(pairs) => pairs.pair(i),
-                    None => self.sample2(lp.site, i, lp.grid.0 * lp.grid.1),
+                let j = match (jitter, lp.pairs) {
+                    (Some(j), _) => j,
+                    (None, Some(pairs)) => pairs.pair(i),
+                    (None, None) => self.sample2(lp.site, i, lp.grid.0 * lp.grid.1),
                 };
                 let (gu, gv) = lp.grid;
                 let u = Vec2::new(((i % gu) as f32 + j.x) / gu as f32, ((i / gu) as f32 + j.y) / gv as f32);
@@ -384,10 +398,22 @@ impl<'a> Ctx<'a> {
             let mut lanes = [0usize; AHEAD];
             let mut n = 0;
             (lp.ahead_from, lp.ahead, lp.ahead_reach, lp.ahead_blocked) = (i, 0, 0, 0);
+            // The samples' numbers, four at a time.
+            let mut jitter = [None; AHEAD];
+            if let Some(pairs) = lp.pairs {
+                for (k, four) in jitter.chunks_mut(4).enumerate() {
+                    if i + (4 * k) as u32 >= count {
+                        break;
+                    }
+                    for (slot, pair) in four.iter_mut().zip(pairs.pairs4(i + (4 * k) as u32)) {
+                        *slot = Some(pair);
+                    }
+                }
+            }
             for j in i..count.min(i + AHEAD as u32) {
                 let lane = (j - i) as usize;
                 lp.ahead |= 1 << lane;
-                let Some(g) = self.sample_geometry(lp, light, j) else { continue };
+                let Some(g) = self.sample_geometry_jittered(lp, light, j, jitter[lane]) else { continue };
                 // The ray `trace_shadow` casts from this sample's light state.
                 let org = crate::trace::leave_point(
                     self.state.shadow_point,

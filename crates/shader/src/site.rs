@@ -11,7 +11,7 @@
 //! scalar scrambles — exactly the bits of `sobol_burley::sample`, which the tests check.
 
 use glam::Vec2;
-use sobol_burley::parts;
+use sobol_burley::parts::{self, Int4};
 
 /// The scramble constants of the four lanes of a dimension set (`sobol_burley::sample_4d`'s).
 const LANE_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
@@ -49,6 +49,8 @@ pub struct SitePairs {
     set: u32,
     /// The first of the two dimensions' lanes in the set (0 or 2).
     lane: usize,
+    /// The set's Sobol table ([`crate::sobol::set_table`]).
+    table: &'static crate::sobol::SetTable,
 }
 
 impl SitePairs {
@@ -62,7 +64,7 @@ impl SitePairs {
         let base = sample_index.wrapping_mul(n.max(1));
         let high = base >> 16;
         let keys = Keys::new(sequence_seed(words, high, site), set, lane);
-        SitePairs { words, site, base, high, keys, set, lane }
+        SitePairs { words, site, base, high, keys, set, lane, table: crate::sobol::set_table(set) }
     }
 
     /// The two sample numbers in [0, 1)² of sample `i` of the loop.
@@ -76,11 +78,33 @@ impl SitePairs {
             Keys::new(sequence_seed(self.words, high, self.site), self.set, self.lane)
         };
         let shuffled = parts::owen_scramble_rev((index & 0xffff).reverse_bits(), keys.shuffle);
-        let point: [u32; 4] = crate::sobol::sobol_int4_rev(shuffled, self.set).into();
+        let point: [u32; 4] = crate::sobol::sobol_int4_rev_in(self.table, shuffled).into();
         let number = |lane: usize, scramble: u32| {
             parts::u32_to_f32_norm(parts::owen_scramble_rev(point[lane], scramble).reverse_bits())
         };
         Vec2::new(number(self.lane, keys.scramble[0]), number(self.lane + 1, keys.scramble[1]))
+    }
+
+    /// [`SitePairs::pair`] of samples `first` to `first + 3`, bit for bit, computed four
+    /// at a time (the scrambles and bit reversals in SIMD lanes): for a loop that takes its
+    /// samples' numbers ahead, as the light loop does for its shadow packets.
+    #[inline]
+    pub fn pairs4(&self, first: u32) -> [Vec2; 4] {
+        let index = [0, 1, 2, 3].map(|k| self.base.wrapping_add(first).wrapping_add(k));
+        if index.iter().any(|&i| i >> 16 != self.high) {
+            // Past an index multiple of 2¹⁶ (another sequence seed): one at a time.
+            return [0, 1, 2, 3].map(|k| self.pair(first.wrapping_add(k)));
+        }
+        let keys = self.keys;
+        let low = Int4::from(index.map(|i| i & 0xffff));
+        let shuffled: [u32; 4] = parts::owen_scramble_int4_rev(low.reverse_bits(), [keys.shuffle; 4].into()).into();
+        let points: [[u32; 4]; 4] = shuffled.map(|i| crate::sobol::sobol_int4_rev_in(self.table, i).into());
+        let numbers = |lane: usize, scramble: u32| {
+            let lanes = Int4::from(points.map(|p| p[lane]));
+            parts::owen_scramble_int4_rev(lanes, [scramble; 4].into()).reverse_bits().to_f32_norm()
+        };
+        let (x, y) = (numbers(self.lane, keys.scramble[0]), numbers(self.lane + 1, keys.scramble[1]));
+        [0, 1, 2, 3].map(|k| Vec2::new(x[k], y[k]))
     }
 }
 
@@ -128,6 +152,11 @@ mod tests {
                         expect.map(f32::to_bits),
                         "site {site} sample {sample_index} of {n}, i {i}"
                     );
+                    // Four at a time from here: the same numbers.
+                    for (k, four) in pairs.pairs4(i).into_iter().enumerate() {
+                        let one = pairs.pair(i + k as u32);
+                        assert_eq!([four.x.to_bits(), four.y.to_bits()], [one.x.to_bits(), one.y.to_bits()]);
+                    }
                 }
             }
         }

@@ -33,11 +33,26 @@ fn nibble_table() -> &'static NibbleTable {
     })
 }
 
+/// One dimension set's part of the nibble table: entry `[k][v]` as in [`NibbleTable`].
+pub type SetTable = [[[u32; 4]; 16]; 4];
+
+/// The nibble table's part for dimension set `set` (< 64), for a loop that looks many
+/// points of one set up ([`sobol_int4_rev_in`]).
+#[inline]
+pub fn set_table(set: u32) -> &'static SetTable {
+    &nibble_table()[set as usize % SETS]
+}
+
 /// The bit-reversed Sobol point of dimension set `set` (< 64) for the bit-reversed sample
 /// index `index_rev`: `sobol_burley::parts::sobol_int4_rev`, the same bits.
 #[inline]
 pub fn sobol_int4_rev(index_rev: u32, set: u32) -> Int4 {
-    let table = &nibble_table()[set as usize % SETS];
+    sobol_int4_rev_in(set_table(set), index_rev)
+}
+
+/// [`sobol_int4_rev`] of the set whose table is `table` ([`set_table`]).
+#[inline(always)]
+pub fn sobol_int4_rev_in(table: &SetTable, index_rev: u32) -> Int4 {
     let n = index_rev >> 16;
     let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
     point(0) ^ point(1) ^ point(2) ^ point(3)
