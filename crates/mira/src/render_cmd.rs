@@ -277,7 +277,13 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
             t.path = frame_path(&t.path, f);
         }
     }
-    let stages = StageTimes { load: load_times, world: t_world, scene: t_scene, accel: t_accel };
+    let stages = StageTimes {
+        load: load_times,
+        world: t_world,
+        scene: t_scene,
+        accel: t_accel,
+        cpu_at_render: crate::render_stats::process_cpu_seconds(),
+    };
     let job = FrameJob {
         args,
         stages: &stages,

@@ -12,6 +12,17 @@ fn peak_memory() -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// CPU time this process has used so far, all threads, in seconds (Linux: `/proc/self/stat`'s
+/// user and system times, in the kernel's 1/100 s ticks).
+pub fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which may hold spaces, so split after its ')'):
+    // state is the 3rd field, utime the 14th, stime the 15th.
+    let mut rest = stat.rsplit_once(')')?.1.split_whitespace().skip(11);
+    let (user, system): (u64, u64) = (rest.next()?.parse().ok()?, rest.next()?.parse().ok()?);
+    Some((user + system) as f64 / 100.0)
+}
+
 /// Adds one strip's counts to the whole image's (the pre-passes' once: every strip reports
 /// the same).
 pub fn add_strip_stats(total: &mut render::Stats, strip: &render::Stats, first: bool) {
@@ -41,6 +52,8 @@ pub struct StageTimes {
     pub scene: Duration,
     /// Building the acceleration structure.
     pub accel: Duration,
+    /// The process's CPU seconds when rendering starts ([`process_cpu_seconds`]).
+    pub cpu_at_render: Option<f64>,
 }
 
 /// Prints `--stats`.
@@ -70,6 +83,9 @@ pub fn print_stats(
     println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
     let engine = if classic { "classic" } else { "path" };
     println!("render:         {:.3} s ({engine}), {} x {} pixels, {} spp", secs, width, height, stats.spp);
+    if let (Some(start), Some(now)) = (stages.cpu_at_render, process_cpu_seconds()) {
+        println!("render CPU:     {:.2} s (all threads, until the report)", now - start);
+    }
     println!("samples:        {} ({:.0} samples/s)", stats.samples, stats.samples as f64 / secs);
     println!(
         "rays:           {} ({} shadow), {:.2} Mrays/s",

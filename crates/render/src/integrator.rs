@@ -126,7 +126,7 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     // Normals go to world space with the inverse transpose, so mirroring transforms keep
     // the counter-clockwise side as the front.
     let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
-    let ns = if mesh.normals.is_empty() {
+    let ns = if !mesh.has_normals() {
         ng
     } else {
         let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;

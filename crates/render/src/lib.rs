@@ -38,6 +38,7 @@ pub mod integrator;
 pub mod light;
 pub mod mesh;
 pub mod motion;
+pub mod octahedral;
 pub mod output_shaders;
 pub mod part;
 mod path_band;

@@ -83,7 +83,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
     s.shadow_point = s.point;
     s.point_error = shader::trace::hit_error(p0, p1, p2, &placed.object_to_world);
-    let mut ns = if mesh.normals.is_empty() {
+    let mut ns = if !mesh.has_normals() {
         ng
     } else {
         let (n0, n1, n2) = (mesh.normal(tri[0]), mesh.normal(tri[1]), mesh.normal(tri[2]));
@@ -367,7 +367,7 @@ impl Tracer for SceneTracer<'_> {
                 let p = mesh.triangle_at(tri.map(|i| i as u32), hit.time);
                 Some(p.map(|p| placed.object_to_world.transform_point3a(p)))
             }
-            VertexData::Normal if mesh.normals.is_empty() => Some([hit.normal_geom; 3]),
+            VertexData::Normal if !mesh.has_normals() => Some([hit.normal_geom; 3]),
             VertexData::Normal => {
                 Some(tri.map(|i| (placed.normal_to_world * mesh.normal(i as u32)).normalize_or_zero()))
             }

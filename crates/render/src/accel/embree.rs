@@ -163,15 +163,32 @@ extern "C" {
 /// Triangles stored (shared meshes once, flattened instances each) from which the scene's
 /// BVH is built compact (`RTC_SCENE_FLAG_COMPACT`: indexed triangle leaves instead of
 /// copied vertices). Measured on the 4 M-triangle heavy scene: peak memory 604 → 481 MB
-/// for about 12 % more traversal time; small scenes keep the faster layout.
-///
-/// Embree builds a compact scene as a 4-wide BVH of indexed leaves (`bvh4.triangle4i`,
-/// 33.2 B a triangle on the heavy scene). Its other indexed layouts, measured there
-/// through the device's `tri_accel` setting: 8-wide nodes (`bvh8.triangle4i`) 38.3 B a
-/// triangle and 14 % less render CPU time, over the 60-byte budget; quantized 8-wide
-/// nodes (`qbvh8.triangle4i`) 30.5 B but a 353 MiB peak while building, and no packet
+/// for about 12 % more traversal time; small scenes keep the faster layout. (The same
+/// size makes a mesh keep its normals in 32 bits, [`crate::mesh::LARGE_MESH_TRIANGLES`].)
+const COMPACT_FROM_TRIANGLES: usize = crate::mesh::LARGE_MESH_TRIANGLES;
+
+/// The device of a world with a compact scene: every triangle scene in 8-wide nodes over
+/// indexed leaves (`bvh8.triangle4i`), where Embree's own choice for compact scenes is 4-wide
+/// nodes (`bvh4.triangle4i`, 33.2 B a triangle on the heavy scene). Measured there: 38.3 B
+/// a triangle, 0.86 × the render's CPU time (speed15, perf samples) and 0.91 × (speed17,
+/// 10 interleaved pairs); it fits the 60-byte budget since large meshes keep their
+/// normals in 4 bytes a vertex. Images are the same as with the 4-wide nodes. Quantized 8-wide nodes
+/// (`qbvh8.triangle4i`) take 30.5 B but peak at 353 MiB while building, and have no packet
 /// kernels. Build quality has no effect on compact leaves (always binned SAH).
-const COMPACT_FROM_TRIANGLES: usize = 500_000;
+const COMPACT_DEVICE: &std::ffi::CStr = c"threads=0,tri_accel=bvh8.triangle4i";
+
+/// Whether this CPU runs Embree's 8-wide kernels (AVX; without it Embree has no 8-wide
+/// BVH factory to build with, so [`COMPACT_DEVICE`] must not be asked for).
+fn wide_nodes_supported() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
 
 /// Embree's build quality: medium (binned SAH). Measured against high (spatial splits):
 /// the Cornell box traces with 3.5 % fewer instructions (2.19 G against 2.27 G for
@@ -205,20 +222,48 @@ impl<'w> EmbreeAccel<'w> {
     /// Builds Embree scenes for a world (falls back to an empty scene on device errors,
     /// which are reported by [`EmbreeAccel::error`]).
     pub fn new(world: &'w World) -> EmbreeAccel<'w> {
-        // SAFETY: a null config string asks for the default device; every pointer passed
-        // below comes from Embree itself or from live Rust buffers of the stated sizes.
-        unsafe {
-            let device = rtcNewDevice(c"threads=0".as_ptr());
-            let flat = super::flat_instances(world);
-            let mut shared = vec![false; world.meshes.len()];
-            for (inst, f) in world.instances.iter().zip(&flat) {
-                shared[inst.mesh as usize] |= !f;
+        let flat = super::flat_instances(world);
+        let mut shared = vec![false; world.meshes.len()];
+        for (inst, f) in world.instances.iter().zip(&flat) {
+            shared[inst.mesh as usize] |= !f;
+        }
+        let flat_triangles: usize = world
+            .instances
+            .iter()
+            .zip(&flat)
+            .filter(|(_, &f)| f)
+            .map(|(i, _)| world.meshes[i.mesh as usize].triangles.len())
+            .sum();
+        let compact = flat_triangles >= COMPACT_FROM_TRIANGLES
+            || world.meshes.iter().zip(&shared).any(|(m, &used)| used && m.triangles.len() >= COMPACT_FROM_TRIANGLES);
+        if compact && wide_nodes_supported() {
+            let accel = Self::with_device(world, &flat, &shared, flat_triangles, COMPACT_DEVICE);
+            if accel.error() == 0 {
+                return accel;
             }
+            // An Embree built without 8-wide kernels rejects the layout: build the default.
+        }
+        Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0")
+    }
+
+    /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
+    /// `flat` says, the meshes in `shared` built as scenes of their own.
+    fn with_device(
+        world: &'w World,
+        flat: &[bool],
+        shared: &[bool],
+        flat_triangles: usize,
+        config: &std::ffi::CStr,
+    ) -> EmbreeAccel<'w> {
+        // SAFETY: `config` is a NUL-terminated string; every pointer passed below comes
+        // from Embree itself or from live Rust buffers of the stated sizes.
+        unsafe {
+            let device = rtcNewDevice(config.as_ptr());
             let mut compact = false;
             let meshes: Vec<RtcScene> = world
                 .meshes
                 .iter()
-                .zip(&shared)
+                .zip(shared)
                 .map(|(m, &used)| {
                     let scene = rtcNewScene(device);
                     rtcSetSceneBuildQuality(scene, BUILD_QUALITY);
@@ -241,13 +286,6 @@ impl<'w> EmbreeAccel<'w> {
                 .collect();
             let top = rtcNewScene(device);
             rtcSetSceneBuildQuality(top, BUILD_QUALITY);
-            let flat_triangles: usize = world
-                .instances
-                .iter()
-                .zip(&flat)
-                .filter(|(_, &f)| f)
-                .map(|(i, _)| world.meshes[i.mesh as usize].triangles.len())
-                .sum();
             if flat_triangles >= COMPACT_FROM_TRIANGLES {
                 rtcSetSceneFlags(top, SCENE_FLAG_COMPACT);
                 compact = true;

@@ -22,16 +22,18 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
 }
 
 /// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
-/// moved out of `m`, not copied.
+/// moved out of `m`, not copied (a large mesh's normals then packed to 32 bits,
+/// [`MeshData::pack_normals_if_large`]).
 pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
     let mut positions = std::mem::take(&mut m.positions);
     // Room for one more vertex past the end: Embree reads the last vertex of a shared
     // 12-byte-stride buffer with a 16-byte load (a large vector grows in place).
     positions.reserve_exact(1);
     let slots = std::mem::take(&mut m.triangle_slots);
-    MeshData {
+    let mut mesh = MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
+        normals_oct: Vec::new(),
         textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
         // Moved, not copied: the vectors keep the scene's packed form.
         user: m.user.iter_mut().map(|u| std::mem::take(&mut u.coords)).collect(),
@@ -43,5 +45,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
         position_keys: Vec::new(),
-    }
+    };
+    mesh.pack_normals_if_large();
+    mesh
 }

@@ -16,6 +16,7 @@ mod fgcache;
 mod first_shadow_packets;
 mod glossy_interpolation;
 mod iray_sun_and_sky;
+mod large_meshes;
 mod maya;
 mod maya_ambient_links_path;
 mod maya_ambient_path;

@@ -1,0 +1,127 @@
+//! A large mesh (at least `render::mesh::LARGE_MESH_TRIANGLES` triangles, as the heavy
+//! benchmark's sphere): the world keeps its vertex normals as 32-bit octahedral codes,
+//! each within `render::octahedral::MAX_ANGLE_ERROR` of the scene's direction, and Embree
+//! builds it compact (8-wide nodes over indexed leaves where the CPU has them) with the
+//! hits the Rust backend finds.
+
+use crate::support;
+
+use glam::Vec3A;
+use render::accel::{self, Backend};
+use render::mesh::LARGE_MESH_TRIANGLES;
+use render::pipeline::build_world_taking_meshes;
+use shader::ShadingOptions;
+
+/// Quads along each side of the height field: 2 × 501² = 502,002 triangles.
+const SIDE: usize = 501;
+
+/// The height field's surface y = 150 + 40 sin(x/23) cos(z/31) over x, z ∈ [60, 500] and
+/// its unit normal at (x, z).
+fn height_field(x: f32, z: f32) -> (f32, Vec3A) {
+    let y = 150.0 + 40.0 * (x / 23.0).sin() * (z / 31.0).cos();
+    let dy_dx = 40.0 / 23.0 * (x / 23.0).cos() * (z / 31.0).cos();
+    let dy_dz = -40.0 / 31.0 * (x / 23.0).sin() * (z / 31.0).sin();
+    (y, Vec3A::new(-dy_dx, 1.0, -dy_dz).normalize())
+}
+
+/// The seed Cornell box with the height field inside it (a trilist with vertex normals),
+/// and the normals the file gives, vertex by vertex.
+fn scene_text() -> (String, Vec<Vec3A>) {
+    let mut vertices = String::with_capacity((SIDE + 1) * (SIDE + 1) * 64);
+    let mut normals = Vec::new();
+    for j in 0..=SIDE {
+        for i in 0..=SIDE {
+            let (x, z) = (60.0 + 440.0 * i as f32 / SIDE as f32, 60.0 + 440.0 * j as f32 / SIDE as f32);
+            let (y, n) = height_field(x, z);
+            vertices.push_str(&format!("{x} {y} {z} {} {} {}\n", n.x, n.y, n.z));
+            normals.push(n);
+        }
+    }
+    let mut triangles = String::with_capacity(SIDE * SIDE * 40);
+    let at = |i: usize, j: usize| j * (SIDE + 1) + i;
+    for j in 0..SIDE {
+        for i in 0..SIDE {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            // Counter-clockwise seen from above (+y).
+            triangles.push_str(&format!("{a} {c} {b} {a} {d} {c}\n"));
+        }
+    }
+    let extra = format!(
+        "object \"Field_obj\"\n trilist vertex {} p n triangle {}\n[\n{vertices}]\n[\n{triangles}]\n end trilist\nend object\n\
+         instance \"Field_inst\" \"Field_obj\" end instance\n",
+        (SIDE + 1) * (SIDE + 1),
+        2 * SIDE * SIDE
+    );
+    let mut text = include_str!("../../../../scenes/iray_cornell_box.mi").to_string();
+    let root = text.find("instgroup").expect("the scene has a root group");
+    text.insert_str(root, &extra);
+    let list_end = text[root..].find("end instgroup").expect("closed root group") + root;
+    text.insert_str(list_end, "    \"Field_inst\"\n");
+    (text, normals)
+}
+
+fn world() -> (render::World, Vec<Vec3A>) {
+    let (text, normals) = scene_text();
+    let parsed = mi::parse_str("large_meshes.mi", &text);
+    assert!(!parsed.diagnostics.has_errors(), "{:?}", parsed.diagnostics.list);
+    let mut diags = Vec::new();
+    let mut scene = scene::Scene::build(&parsed, 0, &mut diags).expect("the scene builds");
+    let built = build_world_taking_meshes(&mut scene, &ShadingOptions::default(), &[]);
+    (built.world, normals)
+}
+
+/// The large mesh keeps its normals in 32 bits, each within the stated angle of the file's;
+/// the box's small meshes keep theirs (none here) and no mesh loses its normals.
+#[test]
+fn a_large_mesh_keeps_its_normals_in_32_bits_within_the_stated_angle() {
+    let (world, given) = world();
+    let large: Vec<_> = world.meshes.iter().filter(|m| m.triangles.len() >= LARGE_MESH_TRIANGLES).collect();
+    assert_eq!(large.len(), 1, "one large mesh");
+    let mesh = large[0];
+    assert!(mesh.normals.is_empty() && mesh.normals_oct.len() == given.len() && mesh.has_normals());
+    // The file's normals are printed to f32's shortest decimal: the stored direction is the
+    // given one to about 1e-7; the bound's small slack covers that and f32 arithmetic.
+    let mut worst = 0.0f32;
+    for (i, n) in given.iter().enumerate() {
+        let got = mesh.normal(i as u32);
+        assert!((got.length() - 1.0).abs() < 1e-6);
+        worst = worst.max(got.cross(*n).length().atan2(got.dot(*n)));
+    }
+    assert!(worst <= render::octahedral::MAX_ANGLE_ERROR + 1e-6, "largest error {worst} rad");
+    assert!(world.meshes.iter().filter(|m| m.triangles.len() < LARGE_MESH_TRIANGLES).all(|m| m.normals_oct.is_empty()));
+}
+
+/// Embree's compact build of the large mesh finds the Rust backend's hits (same triangle,
+/// distance within 1e-4 relative, barycentrics within 1e-3; a ray grazing an edge two
+/// triangles share may find either) and the same occlusion, on 20,000 random rays.
+#[cfg(embree)]
+#[test]
+fn embree_compact_build_of_a_large_mesh_agrees_with_the_rust_backend() {
+    let (world, _) = world();
+    let rust = accel::build(&world, Backend::Rust);
+    let embree = accel::build(&world, Backend::Embree);
+    assert_eq!(embree.backend(), Backend::Embree);
+    let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
+    let field = world.instances.len() as u32 - 1;
+    let (mut different, mut on_field) = (0, 0);
+    for ray in &rays {
+        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
+        match (a, b) {
+            (Some(a), Some(b)) => {
+                on_field += (a.instance == field) as u32;
+                if (a.instance, a.prim) != (b.instance, b.prim) {
+                    different += 1;
+                    assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                    continue;
+                }
+                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                assert!((a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3, "{a:?} vs {b:?}");
+            }
+            (None, None) => {}
+            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
+        }
+        assert_eq!(rust.occluded(ray), embree.occluded(ray), "{ray:?}");
+    }
+    assert!(on_field > 2_000, "{on_field} rays hit the height field");
+    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+}
