@@ -138,7 +138,8 @@ impl Phase {
     /// [`MAX_PHASE_LOBES`] lobes, the lightest ones are merged into one lobe of their
     /// weighted mean g (which keeps the mixture's mean cosine).
     pub fn mixture(lobes: &[(f32, f32)]) -> Phase {
-        let lobes: Vec<(f32, Draine)> = lobes.iter().map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
+        let lobes: Vec<(f32, Draine)> =
+            lobes.iter().filter(|(_, g)| !g.is_nan()).map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
         Phase::mixture_of(&lobes)
     }
 
@@ -182,7 +183,8 @@ impl Phase {
     /// channels' mean weight) are merged into one lobe of their weighted mean g. Weights
     /// proportional in every channel give the grey [`Phase::mixture`].
     pub fn chromatic_mixture(lobes: &[(Rgb, f32)]) -> Phase {
-        let lobes: Vec<(Rgb, Draine)> = lobes.iter().map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
+        let lobes: Vec<(Rgb, Draine)> =
+            lobes.iter().filter(|(_, g)| !g.is_nan()).map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
         Phase::chromatic_mixture_of(&lobes)
     }
 
