@@ -1,6 +1,8 @@
-//! Phase functions of participating media: the Henyey–Greenstein lobe and mixtures of up
-//! to [`MAX_PHASE_LOBES`] of them ([`Phase`], MDL's mixes of `anisotropic_vdf`s), whose
-//! weights may differ per colour channel.
+//! Phase functions of participating media: the Henyey–Greenstein lobe, Draine's
+//! ([`Draine`], Henyey–Greenstein reshaped by 1 + α cos²θ), and mixtures of up to
+//! [`MAX_PHASE_LOBES`] of them ([`Phase`], MDL's mixes of `anisotropic_vdf`s and
+//! `fog_vdf`s, the latter two lobes each: [`fog_lobes`]), whose weights may differ per
+//! colour channel.
 //!
 //! A *chromatic* mixture (colour weights that are not proportional to each other) is one
 //! phase function per channel: p_c(θ) = Σₖ w_{c,k} HGₖ(θ), each normalised. Its
@@ -21,6 +23,12 @@
 use glam::{Vec2, Vec3A};
 
 use crate::{Frame, Rgb};
+
+mod draine;
+mod fog;
+
+pub use draine::Draine;
+pub use fog::{fog_lobes, DEFAULT_PARTICLE_SIZE};
 
 /// The Henyey–Greenstein phase function with asymmetry `g` in (−1, 1): the mean cosine
 /// between the direction light travelled before and after scattering (> 0 forward, < 0
@@ -82,18 +90,18 @@ impl HenyeyGreenstein {
 /// Most Henyey–Greenstein lobes a [`Phase`] mixes.
 pub const MAX_PHASE_LOBES: usize = 4;
 
-/// A phase function: a mixture of Henyey–Greenstein lobes, usually one, with weights per
-/// colour channel summing to 1 in each channel (see the module documentation). A grey one
-/// (equal weights in all channels) is its own sampling density.
+/// A phase function: a mixture of Henyey–Greenstein or Draine lobes, usually one, with
+/// weights per colour channel summing to 1 in each channel (see the module documentation).
+/// A grey one (equal weights in all channels) is its own sampling density.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Phase {
-    /// The mixture's mean cosine, Σₖ wₖ gₖ (the lobe's g when there is one; the channels'
-    /// mean of it when the weights differ per channel).
+    /// The mixture's mean cosine, Σₖ wₖ ⟨cos θ⟩ₖ (a Henyey–Greenstein lobe's g when there
+    /// is one; the channels' mean of it when the weights differ per channel).
     pub g: f32,
     /// The lobes' weights per channel (r, g, b); the first `count` are used.
     weights: [[f32; 3]; MAX_PHASE_LOBES],
     /// The lobes; the first `count` are used.
-    lobes: [HenyeyGreenstein; MAX_PHASE_LOBES],
+    lobes: [Draine; MAX_PHASE_LOBES],
     /// How many lobes are used (≥ 1).
     count: u8,
     /// Whether the weights differ per channel.
@@ -115,7 +123,7 @@ pub struct PhaseSample {
 impl Phase {
     /// One Henyey–Greenstein lobe of asymmetry `g` (see [`HenyeyGreenstein::new`]).
     pub fn henyey_greenstein(g: f32) -> Phase {
-        let lobe = HenyeyGreenstein::new(g);
+        let lobe = Draine::henyey_greenstein(g);
         Phase {
             g: lobe.g,
             weights: [[1.0; 3]; MAX_PHASE_LOBES],
@@ -130,29 +138,40 @@ impl Phase {
     /// [`MAX_PHASE_LOBES`] lobes, the lightest ones are merged into one lobe of their
     /// weighted mean g (which keeps the mixture's mean cosine).
     pub fn mixture(lobes: &[(f32, f32)]) -> Phase {
-        let mut used: Vec<(f32, f32)> =
-            lobes.iter().filter(|(w, g)| w.is_finite() && *w > 0.0 && !g.is_nan()).copied().collect();
+        let lobes: Vec<(f32, Draine)> =
+            lobes.iter().filter(|(_, g)| !g.is_nan()).map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
+        Phase::mixture_of(&lobes)
+    }
+
+    /// [`Phase::mixture`] of any lobes (weight, lobe); merged lobes become one
+    /// Henyey–Greenstein lobe of their weighted mean cosine.
+    pub fn mixture_of(lobes: &[(f32, Draine)]) -> Phase {
+        let mut used: Vec<(f32, Draine)> = lobes.iter().filter(|(w, _)| w.is_finite() && *w > 0.0).copied().collect();
         let total: f32 = used.iter().map(|(w, _)| w).sum();
         if used.is_empty() || total <= 0.0 {
             return Phase::henyey_greenstein(0.0);
         }
         if used.len() == 1 {
-            return Phase::henyey_greenstein(used[0].1);
+            return Phase {
+                g: used[0].1.mean_cosine(),
+                lobes: [used[0].1; MAX_PHASE_LOBES],
+                ..Phase::henyey_greenstein(0.0)
+            };
         }
         if used.len() > MAX_PHASE_LOBES {
             used.sort_by(|a, b| b.0.total_cmp(&a.0));
             let rest = used.split_off(MAX_PHASE_LOBES - 1);
             let w: f32 = rest.iter().map(|(w, _)| w).sum();
-            let g = rest.iter().map(|(w, g)| w * g.clamp(-0.999, 0.999)).sum::<f32>() / w;
-            used.push((w, g));
+            let g = rest.iter().map(|(w, l)| w * l.mean_cosine()).sum::<f32>() / w;
+            used.push((w, Draine::henyey_greenstein(g)));
         }
         let mut phase = Phase::henyey_greenstein(0.0);
         phase.count = used.len() as u8;
         phase.g = 0.0;
-        for (k, (w, g)) in used.iter().enumerate() {
+        for (k, (w, lobe)) in used.iter().enumerate() {
             phase.weights[k] = [w / total; 3];
-            phase.lobes[k] = HenyeyGreenstein::new(*g);
-            phase.g += phase.weights[k][0] * phase.lobes[k].g;
+            phase.lobes[k] = *lobe;
+            phase.g += phase.weights[k][0] * lobe.mean_cosine();
         }
         phase
     }
@@ -164,15 +183,23 @@ impl Phase {
     /// channels' mean weight) are merged into one lobe of their weighted mean g. Weights
     /// proportional in every channel give the grey [`Phase::mixture`].
     pub fn chromatic_mixture(lobes: &[(Rgb, f32)]) -> Phase {
+        let lobes: Vec<(Rgb, Draine)> =
+            lobes.iter().filter(|(_, g)| !g.is_nan()).map(|(w, g)| (*w, Draine::henyey_greenstein(*g))).collect();
+        Phase::chromatic_mixture_of(&lobes)
+    }
+
+    /// [`Phase::chromatic_mixture`] of any lobes (weight per channel, lobe); merged lobes
+    /// become one Henyey–Greenstein lobe of their weighted mean cosine.
+    pub fn chromatic_mixture_of(lobes: &[(Rgb, Draine)]) -> Phase {
         let clean = |w: Rgb| Rgb::select(w.cmpgt(Rgb::ZERO) & w.is_finite_mask(), w, Rgb::ZERO);
-        let mut used: Vec<(Rgb, f32)> =
-            lobes.iter().map(|(w, g)| (clean(*w), *g)).filter(|(w, g)| *w != Rgb::ZERO && !g.is_nan()).collect();
+        let mut used: Vec<(Rgb, Draine)> =
+            lobes.iter().map(|(w, l)| (clean(*w), *l)).filter(|(w, _)| *w != Rgb::ZERO).collect();
         if used.len() > MAX_PHASE_LOBES {
             used.sort_by(|a, b| b.0.element_sum().total_cmp(&a.0.element_sum()));
             let rest = used.split_off(MAX_PHASE_LOBES - 1);
             let w = rest.iter().fold(Rgb::ZERO, |s, (w, _)| s + *w);
-            let g = rest.iter().map(|(w, g)| w.element_sum() * g.clamp(-0.999, 0.999)).sum::<f32>() / w.element_sum();
-            used.push((w, g));
+            let g = rest.iter().map(|(w, l)| w.element_sum() * l.mean_cosine()).sum::<f32>() / w.element_sum();
+            used.push((w, Draine::henyey_greenstein(g)));
         }
         let total = used.iter().fold(Rgb::ZERO, |s, (w, _)| s + *w);
         let scatters = total.cmpgt(Rgb::ZERO);
@@ -180,27 +207,27 @@ impl Phase {
             return Phase::henyey_greenstein(0.0);
         }
         // Each channel's weights normalized; a channel without any, the others' mean.
-        let normalized: Vec<(Rgb, f32)> = used
+        let normalized: Vec<(Rgb, Draine)> = used
             .iter()
-            .map(|(w, g)| {
+            .map(|(w, l)| {
                 let own = Rgb::select(scatters, *w / total, Rgb::ZERO);
                 let mean = own.element_sum() / scatters.bitmask().count_ones() as f32;
-                (Rgb::select(scatters, own, Rgb::splat(mean)), *g)
+                (Rgb::select(scatters, own, Rgb::splat(mean)), *l)
             })
             .collect();
         let grey = normalized.iter().all(|(w, _)| (w.max_element() - w.min_element()).abs() <= 1e-6);
         if grey {
-            let lobes: Vec<(f32, f32)> = normalized.iter().map(|(w, g)| (w.element_sum() / 3.0, *g)).collect();
-            return Phase::mixture(&lobes);
+            let lobes: Vec<(f32, Draine)> = normalized.iter().map(|(w, l)| (w.element_sum() / 3.0, *l)).collect();
+            return Phase::mixture_of(&lobes);
         }
         let mut phase = Phase::henyey_greenstein(0.0);
         phase.count = normalized.len() as u8;
         phase.chromatic = true;
         let mut mean_cosine = Rgb::ZERO;
-        for (k, (w, g)) in normalized.iter().enumerate() {
+        for (k, (w, lobe)) in normalized.iter().enumerate() {
             phase.weights[k] = [w.x, w.y, w.z];
-            phase.lobes[k] = HenyeyGreenstein::new(*g);
-            mean_cosine += *w * phase.lobes[k].g;
+            phase.lobes[k] = *lobe;
+            mean_cosine += *w * lobe.mean_cosine();
         }
         phase.g = mean_cosine.element_sum() / 3.0;
         phase
@@ -213,7 +240,7 @@ impl Phase {
     }
 
     /// The lobes: their weights per channel (each channel's summing to 1) and lobes.
-    pub fn lobes(&self) -> impl ExactSizeIterator<Item = (Rgb, HenyeyGreenstein)> + '_ {
+    pub fn lobes(&self) -> impl ExactSizeIterator<Item = (Rgb, Draine)> + '_ {
         let n = usize::from(self.count);
         self.weights[..n].iter().zip(&self.lobes[..n]).map(|(w, l)| (Rgb::from_array(*w), *l))
     }

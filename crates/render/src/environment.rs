@@ -32,9 +32,9 @@
 //!
 //! A sun much smaller than a texel (Iray's `base::sun_and_sky` at its default disk size
 //! covers a fifth of one) would still be found too rarely: when the environment is that
-//! shader (or `base::perez_sun_and_sky`), a share of the samples goes uniformly into the
-//! cone that holds the sun's disk and glow ([`SunLobe`]), combined with the grid as one
-//! mixture density.
+//! shader (or `base::perez_sun_and_sky`), or a module function that calls one, a share of
+//! the samples goes uniformly into the cone that holds the sun's disk and glow
+//! ([`SunLobe`]), combined with the grid as one mixture density.
 
 use std::f32::consts::PI;
 
@@ -257,30 +257,44 @@ fn light_differs(world: &World, accel: &dyn Accel, shading: &Shading, node: Node
 const MDL_SUN_RADIUS: f32 = 0.00465;
 
 /// The sun of an Iray `base::sun_and_sky` or `base::perez_sun_and_sky` environment at
-/// `node`, as a lobe taking a share of the samples equal to its part of the light on a
-/// plane facing it (between 0.1 and 0.9); `None` for other shaders or without a sun.
+/// `node` — the `.mi` shader, or a module function that calls one (the first such call
+/// with a sun; its varying parameters at their defaults) — as a lobe taking a share of
+/// the samples equal to its part of the light on a plane facing it (between 0.1 and 0.9);
+/// `None` for other shaders or without a sun.
 fn sun_lobe(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -> Option<SunLobe> {
+    if let Some(f) = material::mdl_modules::environment::of_node(shading, node) {
+        use material::mdl_modules::sky_model::SkyModel;
+        return f.sky_calls().iter().find_map(|call| match &call.model {
+            SkyModel::SunAndSky(sky) => sun_and_sky_lobe(sky),
+            SkyModel::Perez(sky) => perez_lobe(sky),
+        });
+    }
     let imp = shading.graph.nodes.get(node as usize)?.imp?;
     let tracer = SceneTracer::new(world, accel);
     let mut ctx = Ctx::new(shading, &tracer, State { ray_type: RayType::Environment, ..State::default() });
-    if imp.name == "mdl::base::perez_sun_and_sky" {
-        // Perez's sky: its disk is drawn within 0.15 × 10 sun radii of the sun and
-        // delivers about π × the direct illuminance (see `sky::perez`).
-        let sky = mdl::perez::sky_of(&mut ctx, node);
-        let sun_light = luminance(sky.sun_color) * PI;
-        if sun_light <= 0.0 {
-            return None;
-        }
-        let share = sun_light / (sun_light + sky.sky_illuminance.max(0.0));
-        let up = if sky.params.y_is_up { Vec3A::Y } else { Vec3A::Z };
-        let direction = sky.params.sun_direction.normalize_or(up);
-        let cos_max = (0.15 * 10.0 * MDL_SUN_RADIUS).cos();
-        return Some(SunLobe { direction, cos_max, share: share.clamp(0.1, 0.9) });
+    match imp.name {
+        "mdl::base::perez_sun_and_sky" => perez_lobe(&mdl::perez::sky_of(&mut ctx, node)),
+        "mdl::base::sun_and_sky" => sun_and_sky_lobe(&mdl::sky::sun_and_sky_of(&mut ctx, node)),
+        _ => None,
     }
-    if imp.name != "mdl::base::sun_and_sky" {
+}
+
+/// The sun lobe of Perez's sky `sky`: its disk is drawn within 0.15 × 10 sun radii of the
+/// sun and delivers about π × the direct illuminance (see `sky::perez`).
+fn perez_lobe(sky: &sky::perez::PerezSky) -> Option<SunLobe> {
+    let sun_light = luminance(sky.sun_color) * PI;
+    if sun_light <= 0.0 {
         return None;
     }
-    let sky = mdl::sky::sun_and_sky_of(&mut ctx, node);
+    let share = sun_light / (sun_light + sky.sky_illuminance.max(0.0));
+    let up = if sky.params.y_is_up { Vec3A::Y } else { Vec3A::Z };
+    let direction = sky.params.sun_direction.normalize_or(up);
+    let cos_max = (0.15 * 10.0 * MDL_SUN_RADIUS).cos();
+    Some(SunLobe { direction, cos_max, share: share.clamp(0.1, 0.9) })
+}
+
+/// The sun lobe of `base::sun_and_sky` `sky`: the cone of its disk and glow.
+fn sun_and_sky_lobe(sky: &mdl::sky::SunAndSky) -> Option<SunLobe> {
     let sun = sky.sun()?;
     let cos_max = sun.cone_radius.cos();
     if cos_max.is_nan() || cos_max >= 1.0 {
@@ -291,6 +305,11 @@ fn sun_lobe(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -
     let sun_light = luminance(sun.irradiance);
     let share = if sun_light + sky_light > 0.0 { sun_light / (sun_light + sky_light) } else { 0.5 };
     Some(SunLobe { direction: sun.direction.normalize_or(Vec3A::Y), cos_max, share: share.clamp(0.1, 0.9) })
+}
+
+/// The sun lobe the environment at `node` gets (for tests and diagnostics).
+pub fn sun_lobe_of(world: &World, accel: &dyn Accel, shading: &Shading, node: NodeId) -> Option<SunLobe> {
+    sun_lobe(world, accel, shading, node)
 }
 
 impl<'a> Environment<'a> {

@@ -203,6 +203,43 @@ pub fn night_factor(z: f32) -> f32 {
     }
 }
 
+/// What a [`PhysicalSky`]'s radiance takes from its parameters alone, whatever the
+/// direction: computed once ([`PhysicalSky::setup`]) for many lookups.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkySetup {
+    /// Turbidity (2 + haze).
+    pub turbidity: f32,
+    /// Unit direction to the sun in the sky frame (+Z up), not lifted.
+    pub sun_real: Vec3A,
+    /// How much of the daylit sky remains ([`night_factor`]).
+    pub night: f32,
+    /// The sun lifted to at least the horizon.
+    pub sun: Vec3A,
+    /// The daylight model.
+    pub day: Daylight,
+    /// What its luminance is scaled by (mode 2).
+    pub scale: f32,
+    /// The glow's and the disk's gains.
+    pub gains: (f32, f32),
+}
+
+/// The two terms of a sky's radiance that cost most: the sun's illuminance on a plane
+/// facing it and the sky's on a horizontal plane (lux, as RGB).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkyLight {
+    /// The sun's illuminance ([`sun_illuminance`]).
+    pub sun: Vec3A,
+    /// The sky's illuminance on a horizontal plane ([`Daylight::horizontal_illuminance`]).
+    pub sky_horizontal: Vec3A,
+}
+
+impl SkySetup {
+    /// The light terms, exactly.
+    pub fn light(&self) -> SkyLight {
+        SkyLight { sun: sun_illuminance(self.turbidity, self.sun.z), sky_horizontal: self.day.horizontal_illuminance() }
+    }
+}
+
 /// `mia_physicalsky`'s parameters (those the environment uses).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhysicalSky {
@@ -340,32 +377,80 @@ impl PhysicalSky {
         if radius <= 0.0 || angle >= radius {
             return 0.0;
         }
+        self.profile_with(angle, t, self.sun_gains(radius))
+    }
+
+    /// [`PhysicalSky::sun_profile`] with the gains [`PhysicalSky::sun_gains`] gave.
+    fn profile_with(&self, angle: f32, t: f32, (glow, disk): (f32, f32)) -> f32 {
+        let radius = SUN_ANGULAR_RADIUS * self.sun_disk_scale * 10.0;
+        if radius <= 0.0 || angle >= radius {
+            return 0.0;
+        }
         let k = (1.0 - angle / radius) * 10.0;
-        let (glow, disk) = self.sun_gains(radius);
         (k / 10.0).powi(3) * glow + smoothstep(8.5, 9.5 + t / 50.0, k) * disk
+    }
+
+    /// What [`PhysicalSky::radiance`] computes from the parameters alone, for any
+    /// direction (see [`SkySetup`]).
+    pub fn setup(&self) -> SkySetup {
+        let radius = SUN_ANGULAR_RADIUS * self.sun_disk_scale * 10.0;
+        let gains = if radius > 0.0 { self.sun_gains(radius) } else { (0.0, 0.0) };
+        self.setup_with_gains(gains)
+    }
+
+    /// [`PhysicalSky::setup`] taking the sun's gains from `other`, the setup of a sky
+    /// whose disk and glow parameters (`sun_disk_scale`, `sun_disk_intensity`,
+    /// `sun_glow_intensity`, `physically_scaled_sun`) are this one's.
+    pub fn setup_like(&self, other: &SkySetup) -> SkySetup {
+        self.setup_with_gains(other.gains)
+    }
+
+    fn setup_with_gains(&self, gains: (f32, f32)) -> SkySetup {
+        let turbidity = turbidity(self.haze);
+        let sun_real = self.sun_in_frame();
+        let night = night_factor(sun_real.z);
+        let sun = lift(sun_real);
+        let (day, scale) = self.daylight(sun);
+        SkySetup { turbidity, sun_real, night, sun, day, scale, gains }
+    }
+
+    /// Whether the daylight model is Preetham's own (no Perez coefficients or luminance
+    /// mode given): then its light terms depend on the turbidity and the sun's height only.
+    pub fn is_plain_daylight(&self) -> bool {
+        self.perez.iter().all(|&v| v == 0.0) && self.sky_luminance_mode == 0
     }
 
     /// What the sky shows in world direction `dir` (unit), output units (see the module
     /// comment), without alpha.
     pub fn radiance(&self, dir: Vec3A) -> Vec3A {
-        let t = turbidity(self.haze);
+        let setup = self.setup();
+        self.radiance_in(&setup, dir, &mut || setup.light())
+    }
+
+    /// [`PhysicalSky::radiance`] with the parameters' part computed beforehand (`setup`,
+    /// this sky's or one that equals it), and `light` giving the sun's illuminance and the
+    /// sky's horizontal illuminance (asked for only within the sun's disk and glow and
+    /// below the horizon: [`SkySetup::light`], or an approximation of it).
+    pub fn radiance_in(&self, setup: &SkySetup, dir: Vec3A, light: &mut dyn FnMut() -> SkyLight) -> Vec3A {
+        let t = setup.turbidity;
         let d = sky_frame(dir, self.y_is_up, self.horizon_height);
-        let s_real = self.sun_in_frame();
-        let night = night_factor(s_real.z);
-        let s = lift(s_real);
-        let (day, scale) = self.daylight(s);
-        let sun_e = sun_illuminance(t, s.z);
+        let (s_real, night, day, scale) = (setup.sun_real, setup.night, &setup.day, setup.scale);
+        let mut lit: Option<SkyLight> = None;
         let mut c = Vec3A::ZERO;
         if night > 0.0 {
             c = day.rgb(lift(d)) * (PI * scale);
             // The angle by atan2: acos of a dot product near 1 loses the tiny disk in f32.
-            c += sun_e * self.sun_profile(d.cross(s_real).length().atan2(d.dot(s_real)), t);
+            let profile = self.profile_with(d.cross(s_real).length().atan2(d.dot(s_real)), t, setup.gains);
+            if profile != 0.0 {
+                c += lit.get_or_insert_with(&mut *light).sun * profile;
+            }
             c *= night;
         }
         let mut night_weight = 1.0;
         if d.z <= 0.0 {
             let ground = if night > 0.0 {
-                let e = day.horizontal_illuminance() * scale + sun_e * s_real.z.max(0.0);
+                let l = *lit.get_or_insert_with(&mut *light);
+                let e = l.sky_horizontal * scale + l.sun * s_real.z.max(0.0);
                 self.ground_color.max(Vec3A::ZERO) * e * night
             } else {
                 Vec3A::ZERO

@@ -27,8 +27,49 @@ pub fn value(ev: &mut Evaluator, lib: &Library, target: &str, ty: &Type, depth: 
     let Some(ShaderItem::Call { decl, params, .. }) = lib.shaders.get(shader).and_then(|d| d.list.0.first()) else {
         return Err(format!("'{shader}' is not a shader call"));
     };
-    let Some((module, item)) = split_mi_name(&decl.text) else {
-        return Err(format!("'{shader}' is a mental ray shader ({}), not an MDL function", decl.text));
+    let v = function_call(ev, lib, shader, &decl.text, params, depth)?;
+    let v = match member {
+        Some(m) => v.field(m).cloned().ok_or_else(|| format!("`{}` has no member `{m}`", decl.text))?,
+        None => v,
+    };
+    Ok(texture_return_as(ty, v))
+}
+
+/// The value of a call of the `.mi` declaration `decl` (`mdl::module::function`) with the
+/// `.mi` parameters `params` (of shader `shader`, named in messages), as MDL type `ty`: a
+/// `texture_return` given for a colour or number is its tint or mono.
+pub fn call_value(
+    ev: &mut Evaluator,
+    lib: &Library,
+    shader: &str,
+    decl: &str,
+    params: &[mi::ast::Param],
+    ty: &Type,
+    depth: u32,
+) -> Result<Value, String> {
+    Ok(texture_return_as(ty, function_call(ev, lib, shader, decl, params, depth)?))
+}
+
+/// A `texture_return` `v` connected to a colour or number: its tint or mono (else `v`).
+fn texture_return_as(ty: &Type, v: Value) -> Value {
+    match (ty, &v) {
+        (Type::Color, Value::Struct(..)) => v.field("tint").cloned().unwrap_or(v),
+        (Type::Scalar(_), Value::Struct(..)) => v.field("mono").cloned().unwrap_or(v),
+        _ => v,
+    }
+}
+
+/// The value the MDL function `decl` returns for the `.mi` parameters `params`.
+fn function_call(
+    ev: &mut Evaluator,
+    lib: &Library,
+    shader: &str,
+    decl: &str,
+    params: &[mi::ast::Param],
+    depth: u32,
+) -> Result<Value, String> {
+    let Some((module, item)) = split_mi_name(decl) else {
+        return Err(format!("'{shader}' is a mental ray shader ({decl}), not an MDL function"));
     };
     let set = ev.set;
     let qualified = format!("{module}::{item}");
@@ -56,15 +97,5 @@ pub fn value(ev: &mut Evaluator, lib: &Library, target: &str, ty: &Type, depth: 
     let res = Resolution::Function { module: module.clone(), name: item.clone(), decl: 0 };
     let span = def.span;
     let result = ev.complete(def, given, span).and_then(|args| ev.call(def, &res, args, span));
-    let v = result.map_err(|p| format!("{}: {}", set.sources().location(p.span), p.message))?;
-    let v = match member {
-        Some(m) => v.field(m).cloned().ok_or_else(|| format!("`{qualified}` has no member `{m}`"))?,
-        None => v,
-    };
-    // A `texture_return` connected to a colour or number gives its tint or mono.
-    Ok(match (ty, &v) {
-        (Type::Color, Value::Struct(..)) => v.field("tint").cloned().unwrap_or(v),
-        (Type::Scalar(_), Value::Struct(..)) => v.field("mono").cloned().unwrap_or(v),
-        _ => v,
-    })
+    result.map_err(|p| format!("{}: {}", set.sources().location(p.span), p.message))
 }

@@ -1,7 +1,10 @@
-//! A module's own function as the scene's environment: the `.mi` shader that the camera's
-//! `environment` or the options' `environment_function` names calls a function of an MDL
-//! module (`color my_env()`, or one returning `base::texture_return`, whose `tint` is
-//! taken) that reads `state::direction()`.
+//! A module's own function as an environment: the `.mi` shader that the camera's
+//! `environment` or the options' `environment_function` names — or the call written
+//! inline as the camera's `environment` — calls a function of an MDL module (`color
+//! my_env()`, or one returning `base::texture_return`, whose `tint` is taken) that reads
+//! `state::direction()`. A material's own `environment` (named or inline) may be one too:
+//! the classic engine's rays leaving the scene from that material then look it up, as
+//! mental ray's do.
 //!
 //! The function is compiled once, like a function connected to a material parameter
 //! ([`super::connections`]): its `.mi` parameters bind to the definition, what does not
@@ -27,6 +30,7 @@ use shader::{Color, Ctx, NodeId, RayType, ShaderImpl, Shading, State, Value as S
 
 use super::eval::{kind, Evaluator};
 use super::hit::{too_costly, HitExpr};
+use super::sky_model::SkyCall;
 use super::textures::Textures;
 use super::value::Value;
 
@@ -62,15 +66,47 @@ impl ModuleEnvironment {
     pub fn constant(&self) -> Option<Rgb> {
         self.expr.constant().map(|v| Rgb::new(v.x, v.y, v.z))
     }
+
+    /// The `::base` daylight environments (`sun_and_sky`, `perez_sun_and_sky`) its function
+    /// calls, each once, in the order found (the path engine samples their suns).
+    pub fn sky_calls(&self) -> Vec<Arc<SkyCall>> {
+        let mut seen = std::collections::HashSet::new();
+        let mut stack = vec![&self.expr];
+        let mut calls: Vec<Arc<SkyCall>> = Vec::new();
+        while let Some(e) = stack.pop() {
+            if !seen.insert(Arc::as_ptr(e)) {
+                continue;
+            }
+            if let HitExpr::Sky(call, _) = &**e {
+                if !calls.iter().any(|c| Arc::ptr_eq(c, call)) {
+                    calls.push(call.clone());
+                }
+            }
+            stack.extend(e.operands());
+        }
+        calls
+    }
 }
 
 /// Compiles the `.mi` shader `shader` of `lib` (a call of a module function) with modules
 /// from `search` (the scene's MDL search path); `Err` says why it is not compiled.
 pub fn compile(lib: &Library, search: MdlSearchPath, shader: &str) -> Result<ModuleEnvironment, String> {
-    let Some(ShaderItem::Call { decl, .. }) = lib.shaders.get(shader).and_then(|d| d.list.0.first()) else {
+    let Some(ShaderItem::Call { decl, params, .. }) = lib.shaders.get(shader).and_then(|d| d.list.0.first()) else {
         return Err(format!("'{shader}' is not a shader call"));
     };
-    let Some((module, item)) = split_mi_name(&decl.text) else {
+    compile_call(lib, search, shader, &decl.text, params)
+}
+
+/// Compiles a call of the module function `decl` (`mdl::module::function`) with the
+/// `.mi` parameters `params` (a shader named `shader` in messages, or written inline).
+pub fn compile_call(
+    lib: &Library,
+    search: MdlSearchPath,
+    shader: &str,
+    decl: &str,
+    params: &[mi::ast::Param],
+) -> Result<ModuleEnvironment, String> {
+    let Some((module, item)) = split_mi_name(decl) else {
         return Err(format!("'{shader}' is not an MDL function"));
     };
     let mut texture_dirs = lib.mdl_dirs.clone();
@@ -88,7 +124,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath, shader: &str) -> Result<Mod
         return Err(format!("`{module}::{item}` is a material, not a function"));
     }
     let mut ev = Evaluator::new(&set, &mut textures);
-    let v = super::connections::value(&mut ev, lib, shader, &Type::Color, 0)?;
+    let v = super::connections::call_value(&mut ev, lib, shader, decl, params, &Type::Color, 0)?;
     let expr = match &v {
         Value::Hit(e, _) => e.clone(),
         other => match other.color() {
@@ -123,69 +159,142 @@ pub fn of_node(shading: &Shading, node: NodeId) -> Option<Arc<ModuleEnvironment>
     shading.precomputed.get_or_init(node, || ModuleEnvironment::black(&n.name))
 }
 
-/// The named shader the scene's environment is: the head of the camera's `environment`
-/// list when it names one, else the options' `environment_function`.
-fn environment_shader(scene: &scene::Scene) -> Option<String> {
-    let named = |list: &ShaderList| match list.0.first()? {
-        ShaderItem::Ref(name) => Some(name.text.clone()),
-        ShaderItem::Define { name, .. } => Some(name.text.clone()),
-        ShaderItem::Call { .. } => None,
+/// The call at the head of an environment shader list: the named shader it refers to (its
+/// name, the definition's call) or the call written inline (no name).
+struct EnvCall<'a> {
+    /// The named shader's name, `None` for an inline call.
+    name: Option<String>,
+    /// The declaration called (`mdl::module::function`).
+    decl: &'a mi::ast::Name,
+    /// Its `.mi` parameters.
+    params: &'a [mi::ast::Param],
+    /// The whole call.
+    span: Span,
+}
+
+/// The call at the head of `list` (a reference to a named shader, a shader defined in
+/// place, or an inline call), if it calls an MDL module function.
+fn head_call<'a>(lib: &'a Library, list: &'a ShaderList) -> Option<EnvCall<'a>> {
+    let named = |name: &str| -> Option<EnvCall<'a>> {
+        let def = lib.shaders.get(name)?;
+        let Some(ShaderItem::Call { decl, params, span }) = def.list.0.first() else { return None };
+        Some(EnvCall { name: Some(name.to_string()), decl, params, span: *span })
     };
+    let call = match list.0.first()? {
+        ShaderItem::Ref(name) => named(&name.text)?,
+        ShaderItem::Define { name, .. } => named(&name.text)?,
+        ShaderItem::Call { decl, params, span } => EnvCall { name: None, decl, params, span: *span },
+    };
+    split_mi_name(&call.decl.text).is_some().then_some(call)
+}
+
+/// The call the scene's environment is: the head of the camera's `environment` list,
+/// else the call the options' `environment_function` names.
+fn environment_call(scene: &scene::Scene) -> Option<EnvCall<'_>> {
+    let lib = &scene.library;
     match &scene.camera.environment {
-        Some(list) => named(list),
+        Some(list) => head_call(lib, list),
         None => match scene.options.attributes.get("environment_function") {
-            Some(scene::values::AttrValue::Str(name)) => Some(name.clone()),
+            Some(scene::values::AttrValue::Str(name)) => {
+                let def = lib.shaders.get(name)?;
+                let Some(ShaderItem::Call { decl, params, span }) = def.list.0.first() else { return None };
+                split_mi_name(&decl.text).is_some().then(|| EnvCall {
+                    name: Some(name.clone()),
+                    decl,
+                    params,
+                    span: *span,
+                })
+            }
             _ => None,
         },
     }
 }
 
-/// Makes the scene's environment a module function where it names one (see the module
-/// comment): compiles it with modules from `search`, and runs it at the environment's
-/// node (the node the declaration gave, or a new one where the scene does not declare the
-/// function). The warnings `diags` hold for the environment's shader (not implemented,
-/// no shader) are replaced by nothing when it compiles, else by one saying why it does not.
-pub fn attach(shading: &mut Shading, scene: &scene::Scene, search: MdlSearchPath, diags: &mut Vec<Diagnostic>) {
-    let Some(name) = environment_shader(scene) else { return };
-    let lib = &scene.library;
-    let Some(ShaderItem::Call { decl, span, .. }) = lib.shaders.get(&name).and_then(|d| d.list.0.first()) else {
-        return;
+/// The node of the shading that runs `call` when it heads a list whose node is `current`:
+/// `Ok(Some(node))` where the scene declares the function (the node the declaration
+/// gave), `Ok(None)` where no node runs it, `Err(())` where `current` is something else.
+fn node_of(shading: &Shading, call: &EnvCall, current: Option<NodeId>) -> Result<Option<NodeId>, ()> {
+    let Some(e) = current else { return Ok(None) };
+    let same = match &call.name {
+        Some(name) => shading.graph.named.get(name) == Some(&e),
+        None => shading.graph.nodes.get(e as usize).is_some_and(|n| n.span == call.span),
     };
-    if split_mi_name(&decl.text).is_none() {
-        return;
+    if same {
+        Ok(Some(e))
+    } else {
+        Err(())
     }
-    // The node the declaration gave the shader, if the scene declares it.
-    let head = match (shading.environment, shading.graph.named.get(&name).copied()) {
-        (Some(e), Some(n)) if e == n => Some(e),
-        // Something else is the environment.
-        (Some(_), _) => return,
-        (None, _) => None,
-    };
+}
+
+/// Makes the environments that name module functions run them (see the module comment):
+/// the scene's (the camera's `environment`, named or inline, or the options'
+/// `environment_function`) and the materials' own `environment`s. Each is compiled with
+/// modules from `search` and run at its node (the node the declaration gave, or a new one
+/// where the scene does not declare the function). The warnings `diags` hold for such a
+/// shader (not implemented, no shader) are replaced by nothing when it compiles, else by
+/// one saying why it does not.
+pub fn attach(shading: &mut Shading, scene: &scene::Scene, search: MdlSearchPath, diags: &mut Vec<Diagnostic>) {
+    if let Some(call) = environment_call(scene) {
+        if let Some(node) = attach_call(shading, &scene.library, search.clone(), &call, shading.environment, diags) {
+            shading.environment = Some(node);
+        }
+    }
+    for (i, m) in scene.materials.iter().enumerate() {
+        let scene::MaterialKind::Material(defs) = &m.kind else { continue };
+        let Some(list) = defs.last().and_then(|d| {
+            d.stmts.iter().rev().find_map(|s| match s {
+                mi::ast::Stmt::Kw(k) if k.key == "environment" => match k.args.first() {
+                    Some(mi::ast::Arg::Shaders(l)) => Some(l),
+                    _ => None,
+                },
+                _ => None,
+            })
+        }) else {
+            continue;
+        };
+        let Some(call) = head_call(&scene.library, list) else { continue };
+        let Some(current) = shading.materials.get(i).map(|s| s.environment) else { continue };
+        if let Some(node) = attach_call(shading, &scene.library, search.clone(), &call, current, diags) {
+            shading.materials[i].environment = Some(node);
+        }
+    }
+}
+
+/// Compiles `call` (heading a list whose node is `current`) and runs it at its node; the
+/// node, `None` where nothing changes (another shader, one mira implements, or a call
+/// that does not compile, warned about).
+fn attach_call(
+    shading: &mut Shading,
+    lib: &Library,
+    search: MdlSearchPath,
+    call: &EnvCall,
+    current: Option<NodeId>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<NodeId> {
+    let head = node_of(shading, call, current).ok()?;
     // A shader mira implements (`mdl::base::sun_and_sky`): nothing to do.
     if head.is_some_and(|n| shading.graph.nodes[n as usize].imp.is_some()) {
-        return;
+        return None;
     }
-    let (decl_span, call_span) = (decl.span, *span);
-    match compile(lib, search, &name) {
+    let label = call.name.clone().unwrap_or_else(|| call.decl.text.clone());
+    let (decl_span, call_span) = (call.decl.span, call.span);
+    diags.retain(|d| !is_environment_warning(d, &label, decl_span, call_span));
+    match compile_call(lib, search, &label, &call.decl.text, call.params) {
         Ok(env) => {
             let node = match head {
                 Some(n) => n,
-                None => {
-                    let Some(n) = push_node(shading, &name, call_span) else { return };
-                    shading.environment = Some(n);
-                    n
-                }
+                None => push_node(shading, &label, call_span)?,
             };
             shading.graph.nodes[node as usize].imp = Some(&MIRA_MDL_ENVIRONMENT);
             shading.precomputed.get_or_init(node, || env);
-            diags.retain(|d| !is_environment_warning(d, &name, decl_span, call_span));
+            Some(node)
         }
         Err(why) => {
-            diags.retain(|d| !is_environment_warning(d, &name, decl_span, call_span));
             diags.push(Diagnostic::warning(
                 decl_span,
-                format!("environment '{name}' (`{}`) is not compiled: {why}; no environment", decl.text),
+                format!("environment '{label}' (`{}`) is not compiled: {why}; no environment", call.decl.text),
             ));
+            None
         }
     }
 }

@@ -211,7 +211,13 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             Some((Value::Hit(e, _), None)) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Hit(e.clone())))),
             Some((v, None)) => Err(not_constant(name, "directional_bias", v, span)),
         },
-        "fog_vdf" => Ok(Value::Vdf(Vdf::Unsupported("`df::fog_vdf`".into(), span))),
+        "fog_vdf" => match arg("particle_size").map(|v| (v, v.float())) {
+            None => Ok(Value::Vdf(Vdf::Fog(VdfNumber::Const(Rgb::splat(bsdf::phase::DEFAULT_PARTICLE_SIZE))))),
+            Some((_, Some(d))) => Ok(Value::Vdf(Vdf::Fog(VdfNumber::Const(Rgb::splat(d as f32))))),
+            // Read where a path enters the volume's object.
+            Some((Value::Hit(e, _), None)) => Ok(Value::Vdf(Vdf::Fog(VdfNumber::Hit(e.clone())))),
+            Some((v, None)) => Err(not_constant(name, "particle_size", v, span)),
+        },
         "diffuse_edf" => Ok(Value::Edf(Edf::Diffuse)),
         "spot_edf" => {
             let float = |p: &str, default: f64| arg(p).and_then(Value::float).unwrap_or(default) as f32;

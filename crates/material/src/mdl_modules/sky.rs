@@ -85,7 +85,7 @@ pub fn sun_and_sky(def: &Function, args: &[Value], span: Span) -> Eval {
     s.sun_glow_intensity = num("sun_glow_intensity", s.sun_glow_intensity)?;
     s.y_is_up = flag("y_is_up", s.y_is_up)?;
     s.physically_scaled_sun = flag("physically_scaled_sun", s.physically_scaled_sun)?;
-    let call = SkyCall { model: SkyModel::SunAndSky(sky), varying: varying.into() };
+    let call = SkyCall::new(SkyModel::SunAndSky(sky), varying.into());
     let tint = Value::from_hit(HitExpr::Sky(Arc::new(call), operands.into()), HitType::Color);
     Ok(Value::Struct("texture_return".into(), vec![("tint".into(), tint), ("mono".into(), Value::Float(1.0))]))
 }
@@ -137,6 +137,6 @@ pub fn perez_sun_and_sky(def: &Function, args: &[Value], span: Span) -> Eval {
         dew_point: num("dew_point", d.dew_point)?,
         haze: num("haze", d.haze)?,
     };
-    let call = SkyCall { model: SkyModel::Perez(Box::new(PerezSky::new(params))), varying: varying.into() };
+    let call = SkyCall::new(SkyModel::Perez(Box::new(PerezSky::new(params))), varying.into());
     Ok(Value::from_hit(HitExpr::Sky(Arc::new(call), operands.into()), HitType::Color))
 }

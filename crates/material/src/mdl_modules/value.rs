@@ -254,6 +254,10 @@ pub enum Vdf {
     /// `directional_bias` (a constant or a value of the shading point; the first lane),
     /// 0 (isotropic) for the default `vdf()`.
     HenyeyGreenstein(VdfNumber),
+    /// `df::fog_vdf`: the approximate Mie scattering of droplets of the given diameter
+    /// (µm; a constant or a value of the shading point, the first lane), see
+    /// [`bsdf::phase::fog_lobes`].
+    Fog(VdfNumber),
     /// A mix or tint of vdfs (`df::normalized_mix`, `clamped_mix`, their colour forms,
     /// `df::tint` as a clamped mix of one component): its components with their weights
     /// (clamped: taken in order until they reach 1; else scaled to sum to at most 1), see

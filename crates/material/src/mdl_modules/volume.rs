@@ -5,15 +5,17 @@
 //! unit is the metre (as `state::meters_per_scene_unit` answers), so they are used per
 //! scene unit as they are. The volume's `scattering` vdf gives the phase function:
 //! `df::anisotropic_vdf(directional_bias)` is Henyey–Greenstein with g = directional_bias,
-//! the default `vdf()` isotropic. A thin-walled material has no inside: its volume is not
+//! the default `vdf()` isotropic, `df::fog_vdf(particle_size)` the blend of a
+//! Henyey–Greenstein and a Draine lobe that approximates Mie scattering by droplets of
+//! that diameter in µm ([`bsdf::phase::fog_lobes`], where its definition and sources are). A thin-walled material has no inside: its volume is not
 //! used (MDL ignores it too).
 //!
 //! A mix of vdfs (`df::normalized_mix`, `clamped_mix` and their colour forms) is lowered to
 //! one medium ([`mix`]): its total weight W per channel (≤ 1) is the fraction of the
 //! scattering coefficient that scatters (σs·W; the rest, σs·(1 − W), is absorbed, so the
 //! extinction is unchanged), and its phase function in each channel the mixture of its
-//! Henyey–Greenstein lobes weighted by what each scatters in that channel
-//! ([`bsdf::Phase::chromatic_mixture`], up to four lobes; more are merged). A tint of a vdf
+//! lobes weighted by what each scatters in that channel
+//! ([`bsdf::Phase::chromatic_mixture_of`], up to four lobes; more are merged). A tint of a vdf
 //! (`df::tint(color, vdf)`) scales what it scatters by the tint (clamped to [0, 1] per
 //! channel, as a mix's weights): a clamped mix of that one component.
 //!
@@ -31,6 +33,7 @@
 
 use std::sync::Arc;
 
+use bsdf::phase::{fog_lobes, Draine};
 use bsdf::{Medium, Phase, Rgb};
 use glam::{Vec3A, Vec4};
 use mi::Span;
@@ -88,6 +91,8 @@ fn number(v: &Value) -> Option<VdfNumber> {
 enum VdfTree {
     /// Henyey–Greenstein of asymmetry g (the leaf's first lane).
     HenyeyGreenstein(Leaf),
+    /// `df::fog_vdf` of the particle diameter (µm, the leaf's first lane).
+    Fog(Leaf),
     /// A mix: weights and components, clamped or normalized.
     Mix { parts: Vec<(Leaf, VdfTree)>, clamped: bool },
 }
@@ -143,6 +148,7 @@ fn tree(vdf: &Vdf, leaves: &mut Vec<Arc<HitExpr>>) -> Result<VdfTree, (String, O
     let too_many = || (format!("a vdf reading more than {MAX_LEAVES} values of the shading point"), None);
     match vdf {
         Vdf::HenyeyGreenstein(g) => Ok(VdfTree::HenyeyGreenstein(leaf(g, leaves).ok_or_else(too_many)?)),
+        Vdf::Fog(d) => Ok(VdfTree::Fog(leaf(d, leaves).ok_or_else(too_many)?)),
         Vdf::Mix { parts, clamped } => {
             let parts = parts
                 .iter()
@@ -155,11 +161,15 @@ fn tree(vdf: &Vdf, leaves: &mut Vec<Arc<HitExpr>>) -> Result<VdfTree, (String, O
 }
 
 /// What `tree` scatters per channel (its albedo, ≤ 1) and its lobes: (what each scatters
-/// per channel, asymmetry g), with its expressions evaluated to `values`.
-fn scattered(tree: &VdfTree, values: &[Vec4], lobes: &mut Vec<(Rgb, f32)>) -> Rgb {
+/// per channel, lobe), with its expressions evaluated to `values`.
+fn scattered(tree: &VdfTree, values: &[Vec4], lobes: &mut Vec<(Rgb, Draine)>) -> Rgb {
     match tree {
         VdfTree::HenyeyGreenstein(g) => {
-            lobes.push((Rgb::ONE, g.get(values).x));
+            lobes.push((Rgb::ONE, Draine::henyey_greenstein(g.get(values).x)));
+            Rgb::ONE
+        }
+        VdfTree::Fog(d) => {
+            lobes.extend(fog_lobes(d.get(values).x).map(|(w, l)| (Rgb::splat(w), l)));
             Rgb::ONE
         }
         VdfTree::Mix { parts, clamped } => {
@@ -207,7 +217,8 @@ fn lower(volume: &Volume, values: &[Vec4]) -> Medium {
     let albedo = scattered(&volume.scattering, values, &mut lobes);
     sigma_a += sigma_s * (Rgb::ONE - albedo);
     sigma_s *= albedo;
-    Medium::with_phase(sigma_a, sigma_s, Phase::chromatic_mixture(&lobes)).with_emission(coefficient(&volume.emission))
+    Medium::with_phase(sigma_a, sigma_s, Phase::chromatic_mixture_of(&lobes))
+        .with_emission(coefficient(&volume.emission))
 }
 
 /// The medium of the evaluated `material` value of material `name`: `None` when it has no

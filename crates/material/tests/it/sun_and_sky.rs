@@ -222,3 +222,49 @@ fn blackbody_of_a_varying_temperature_is_the_constant_forms_colour() {
     // Cooler is redder: the red/blue ratio falls as the temperature rises.
     assert!(seen.windows(2).all(|w| w[0].x / w[0].z.max(1e-9) > w[1].x / w[1].z.max(1e-9)), "{seen:?}");
 }
+
+/// A haze that varies per lookup, over many lookups as a render makes them (hazes 0 to 1
+/// as a texture coordinate gives them, 4000 lookups: a tenth within the sun's disk and
+/// glow, half below the horizon, the rest in the sky): the sky of that haze, within 1e-5
+/// relative in the sky and 1e-4 where the sun's and the ground's illuminance enter (the
+/// disk and glow, the ground: there mira interpolates those two terms between hazes
+/// 1/64 apart, see `sky::light_table`). Its cost, measured with
+/// `valgrind --tool=callgrind target/debug/deps/it-… sun_and_sky::varying_haze_lookups
+/// --exact --test-threads 1`, is in the commit that made it fast.
+#[test]
+fn varying_haze_lookups_match_the_exact_sky() {
+    use crate::mdl_support::{compile_text, get};
+    let (mdl, lib, diags) = compile_text(r#"shader "h" "mdl::sky_heat::hazy" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
+    let hazy = get(&mdl, &lib, "h");
+    let sun = SunAndSky::default().sun().expect("a sun");
+    let frame = bsdf::Frame::from_normal(sun.direction);
+    let mut worst = [0.0f32; 3];
+    // Directions outer, hazes inner: a render's neighbouring lookups seldom share a haze.
+    for j in 0..100 {
+        for i in 0..40 {
+            let haze = (i as f32 + 0.37) / 40.0;
+            let mut sky = SunAndSky::default();
+            sky.sky.haze = haze;
+            let (a, b) = ((j as f32 * 0.618_034).fract(), (j as f32 * 0.414_214 + 0.1).fract());
+            let phi = 2.0 * std::f32::consts::PI * a;
+            let (kind, d) = if j % 10 == 0 {
+                // Within the disk and glow's cone.
+                let r = sun.cone_radius * b;
+                (0, frame.to_world(Vec3A::new(r.sin() * phi.cos(), r.sin() * phi.sin(), r.cos())))
+            } else if j % 2 == 0 {
+                (1, Vec3A::new(phi.cos(), -b, phi.sin()).normalize())
+            } else {
+                (2, Vec3A::new(phi.cos(), b + 0.01, phi.sin()).normalize())
+            };
+            // The module's lookup first (the exact sky's costly terms are remembered for the
+            // last few skies: the lookup should not find them there).
+            let got = module_emission(hazy, d, haze) * std::f32::consts::PI;
+            let want = glam::Vec3::from(sky.radiance(d));
+            let error = (got - want).abs().max_element() / want.max_element().max(1e-12);
+            worst[kind] = worst[kind].max(error);
+        }
+    }
+    eprintln!("varying haze: worst relative error {worst:?} (sun cone, ground, sky)");
+    assert!(worst[0] <= 1e-4 && worst[1] <= 1e-4 && worst[2] <= 1e-5, "{worst:?}");
+}

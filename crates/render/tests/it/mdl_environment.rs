@@ -36,12 +36,12 @@ export material matte(color tint = color(0.5)) = material(surface: material_surf
 "#;
 
 /// `gradient_env` along unit direction `d` (× `scale`).
-fn gradient(d: Vec3A, scale: f32) -> [f32; 3] {
+pub(crate) fn gradient(d: Vec3A, scale: f32) -> [f32; 3] {
     [(0.5 + 0.5 * d.y) * scale, 0.25 * (1.0 + d.y * d.y) * scale, (1.0 - 0.5 * d.y) * scale]
 }
 
 /// Writes the module into a directory of its own.
-fn module_dir(tag: &str) -> std::path::PathBuf {
+pub(crate) fn module_dir(tag: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("mira_mdl_env_{tag}_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("envs.mdl"), MODULE).unwrap();
@@ -50,7 +50,7 @@ fn module_dir(tag: &str) -> std::path::PathBuf {
 
 /// An orthographic camera at the origin looking down −Z at a 2×2 view (`res`² pixels) with
 /// `camera` in its block; `body` holds the rest, `extra` names its instances.
-fn scene(camera: &str, options: &str, body: &str, extra: &[&str], res: u32) -> String {
+pub(crate) fn scene(camera: &str, options: &str, body: &str, extra: &[&str], res: u32) -> String {
     let instances: String = extra.iter().map(|n| format!(" \"{n}\"")).collect();
     format!(
         r#"
@@ -67,7 +67,7 @@ render "root" "cam_inst" "opt"
 /// Three mirror strips in pixel columns 1–3 of a 4-pixel-wide view (x from −0.5 to 1),
 /// tilted about x by 15°, 30° and 45° so that they reflect the camera's −Z rays into
 /// (0, sin 2α, cos 2α); column 0 sees the environment directly.
-fn mirrors() -> (String, Vec<&'static str>, [Vec3A; 4]) {
+pub(crate) fn mirrors() -> (String, Vec<&'static str>, [Vec3A; 4]) {
     let mut body =
         String::from("shader \"mirror\" \"mdl::envs::mirror\" ()\nmaterial \"mirror_mtl\" = \"mirror\" end material\n");
     let mut names = Vec::new();
