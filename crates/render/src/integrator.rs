@@ -420,8 +420,9 @@ pub fn trace_camera_path(
     // The mirror reflections the path has made (Maya's `reflectionLimit` counts them as
     // mental ray's reflection level does).
     let mut reflections = 0u32;
-    // The delta transmissions the path has made (Maya's `refractionLimit` counts them as
-    // mental ray's refraction level counts refraction and transparency rays).
+    // The delta transmissions and cut-out passes the path has made (Maya's
+    // `refractionLimit` counts them as mental ray's refraction level counts refraction
+    // and transparency rays).
     let mut refractions = 0u32;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
@@ -449,8 +450,10 @@ pub fn trace_camera_path(
                 break;
             }
             counts.rays += 1;
-            // A coloured transparency filters what passes, per channel.
+            // A coloured transparency filters what passes, per channel; the pass is a
+            // transparency ray of mental ray's refraction level (Maya's `refractionLimit`).
             throughput *= m.cutout_tint;
+            refractions += 1;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }
