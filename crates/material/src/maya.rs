@@ -90,6 +90,7 @@
 
 use std::sync::Arc;
 
+mod view_layers;
 mod view_transparency;
 pub use view_transparency::ViewTransparency;
 
@@ -685,6 +686,10 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         _ => Rgb::ZERO,
     };
     let transparencies: Vec<Rgb> = elements.iter().map(layer_transparency).collect();
+    // Each layer at the facing ratios k/32, for a stack whose rampShader layers' ramps
+    // follow the view: transparency, diffuse colour, incandescence, plain colour.
+    let mut by_view: Vec<view_layers::Layer> = Vec::new();
+    let mut follows_view = false;
     let mut through = Rgb::ONE;
     let mut lobe: Option<bsdf::MayaGlossy> = None;
     // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
@@ -712,6 +717,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 surface.diffuse += layer.diffuse * w;
                 surface.emission += layer.emission * w;
                 ambient_color += layer.diffuse * layer.ambient * w;
+                let tables = view_layers::ramp_tables(graph, m);
+                follows_view |= tables.is_some();
+                by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
                 // Maya's highlight shows by the layer's share, as its diffuse colour.
                 if let (SurfaceModel::Maya(g), None) = (layer.model, &lobe) {
                     lobe = Some(g.scaled(w));
@@ -725,11 +733,13 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 // A plain colour: already weighted by its opacity in shader mode.
                 let c = rgb_of(&v);
                 surface.diffuse += if texture { c * w } else { c * (through.x + through.y + through.z) / 3.0 };
+                by_view.push(view_layers::Layer::plain(t, c));
             }
             Some(_) => {
-                warnings.push("a layer's colour is connected to a texture; the path engine leaves it out".into())
+                warnings.push("a layer's colour is connected to a texture; the path engine leaves it out".into());
+                by_view.push(view_layers::Layer::plain(t, Rgb::ZERO));
             }
-            None => {}
+            None => by_view.push(view_layers::Layer::plain(t, Rgb::ZERO)),
         }
         through *= t;
     }
@@ -743,11 +753,18 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         ratio(ambient_color.y, surface.diffuse.y),
         ratio(ambient_color.z, surface.diffuse.z),
     );
+    // The hits of a stack that rays pass by its transparency carry its colours divided
+    // by its coverage (as a transparent lambert's, see `translate`).
+    let coverage = if refraction.is_none() && surface.opacity > 0.0 { surface.opacity } else { 1.0 };
+    surface.diffuse /= coverage;
+    surface.emission /= coverage;
     if let Some(g) = lobe {
-        surface.model = SurfaceModel::Maya(Box::new(g));
+        surface.model = SurfaceModel::Maya(Box::new(g.with_coverage(coverage)));
     }
     if let Some((t, ior, limit)) = refraction {
         refract_within(&mut surface, t, ior, limit);
+    } else if follows_view {
+        surface.view_transparency = Some(Box::new(view_layers::tabulate(&by_view, texture)));
     }
     (surface, warnings)
 }

@@ -175,3 +175,57 @@ fn a_refracting_ramp_shader_weighs_its_refraction_by_the_facing_ratio_in_both_en
         }
     }
 }
+
+/// The incandescence E of the opaque lambert under the rampShader layer.
+const UNDER: Vec3A = Vec3A::new(0.1, 0.6, 0.3);
+
+/// The rampShader of the first test as the top layer of a layeredShader over an opaque
+/// black lambert of incandescence E ([`UNDER`]): the classic layered shader composites the
+/// rampShader's own colour incandescence(f) ⊙ (1 − T(f)) over the lambert by T(f) at each
+/// ray's facing ratio, incandescence(f) ⊙ (1 − T(f)) + T(f) ⊙ E. Both engines give that
+/// at every pixel within 2 % of its brightest channel + 1e-3 (the stack is opaque and
+/// only emits: no noise but the pixel's sample positions). Before, the path engine took
+/// the layer's ramps at f = 1 — incandescence (0, 0.5, 1) alone — off the formula's image
+/// mean by more than 20 % in red and blue (asserted).
+#[test]
+fn a_ramp_shader_layer_follows_the_view_in_a_layered_shader_in_both_engines() {
+    let text = scene(false).replace(r#"shader "mat" "maya_rampshader""#, r#"shader "ramp" "maya_rampshader""#).replace(
+        r#"material "m" "maya_shadingengine""#,
+        &format!(
+            r#"shader "lower" "maya_lambert" ("color" 0 0 0, "diffuse" 0, "incandescence" {} {} {})
+shader "mat" "maya_layeredshader" ("inputs" [
+    {{ "color" = "ramp.outColor", "transparency" = "ramp.outTransparency" }},
+    {{ "color" = "lower.outColor", "transparency" = "lower.outTransparency" }} ])
+material "m" "maya_shadingengine""#,
+            UNDER.x, UNDER.y, UNDER.z
+        ),
+    );
+    let layered = |f: f32| {
+        let t = transparency(f, false);
+        incandescence(f) * (Vec3A::ONE - t) + t * UNDER
+    };
+    // The formula at each of 16 × 16 rays over a pixel (or at f = 1: `head_on`).
+    let formula = |col: usize, row: usize, head_on: bool| {
+        let a = TILT_DEG.to_radians();
+        let n = Vec3A::new(0.0, a.cos(), a.sin());
+        let points: Vec<Vec3A> = ground_points(SIDE, col, row, 16).collect();
+        points
+            .iter()
+            .fold(Vec3A::ZERO, |s, p| s + layered(if head_on { 1.0 } else { n.dot((*p - EYE).normalize()).abs() }))
+            / points.len() as f32
+    };
+    let want: Vec<Vec3A> = (0..SIDE * SIDE).map(|i| formula(i % SIDE, i / SIDE, false)).collect();
+    let n = want.len() as f32;
+    let want_mean = want.iter().fold(Vec3A::ZERO, |s, p| s + *p) / n;
+    let head_on = (0..SIDE * SIDE).fold(Vec3A::ZERO, |s, i| s + formula(i % SIDE, i / SIDE, true)) / n;
+    println!("formula mean {want_mean}, with the ramps at 1 {head_on}");
+    for k in [0, 2] {
+        assert!((want_mean[k] - head_on[k]).abs() > 0.2 * want_mean[k], "{want_mean} vs {head_on}");
+    }
+    for (name, engine) in [("classic", EngineKind::Classic), ("path", EngineKind::Path)] {
+        for (i, p) in pixels(&text, engine, 16).iter().enumerate() {
+            let tol = 0.02 * want[i].max_element() + 1e-3;
+            assert!((*p - want[i]).abs().max_element() < tol, "{name} pixel {i}: {p} vs {}", want[i]);
+        }
+    }
+}
