@@ -73,7 +73,8 @@
 //! - `reflectedColor`: emitted by the mirror's weight at each hit and view
 //!   (`bsdf::MayaGlossy::reflected`: blinn's roll-off at N·V, a connected
 //!   `specularColor`); `reflectionLimit`: the mirror reflects on paths of fewer mirror
-//!   reflections (`bsdf::MayaGlossy::reflection_limit`);
+//!   and `mia_material` glossy reflections, as mental ray's reflection level counts
+//!   reflection rays (`bsdf::MayaGlossy::reflection_limit`);
 //!   `incandescence`: emitted radiance;
 //! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
 //!   warning says so);
@@ -437,7 +438,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                 // what the ray finds) (with blinn's `reflectionRolloff`, × Schlick's
                 // factor at N·V): a mirror lobe of weight r·s that emits reflectedColor by
                 // its weight at each view and hit. It reflects while the path has made
-                // fewer than `reflectionLimit` mirror reflections, as the classic shader
+                // fewer than `reflectionLimit` reflections (mirror, glossy), as the classic shader
                 // traces its ray below that reflection level. (A layer's reflectedColor
                 // is emitted as seen head-on: the layered shader mixes the layers'
                 // emissions and keeps one lobe.)
