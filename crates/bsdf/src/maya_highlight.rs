@@ -140,8 +140,9 @@ pub struct MayaGlossy {
     /// r · s ⊙ (reflectedColor + traced)), so that it follows the view as the mirror's
     /// weight does (blinn's roll-off) and a per-hit `specularColor`.
     pub reflected: Rgb,
-    /// The most mirror reflections a path may have made before this surface for its
-    /// mirror to reflect (Maya's `reflectionLimit`: the classic shader traces its
+    /// The most reflections (mirror, and the glossy ones the classic engine traces as
+    /// reflection rays) a path may have made before this surface for its mirror to
+    /// reflect (Maya's `reflectionLimit`: the classic shader traces its
     /// reflection while the ray's reflection level is below it); `u32::MAX`: no limit.
     pub reflection_limit: u32,
     /// The raytraced refraction's weight, `transparency` T per channel (Maya's

@@ -68,6 +68,10 @@ pub enum Target {
     /// hit's diffuse colour ⊙ the value × the scale (`irradianceColor`) is added to its
     /// emission. Bind it after the diffuse colour and the emission.
     IrradianceMap,
+    /// [`Target::IrradianceMap`] for one channel (0 red, 1 green, 2 blue): that channel
+    /// of the hit's diffuse colour × the value's × the scale (that channel of a
+    /// non-grey `irradianceColor`) is added to the emission's.
+    IrradianceMapChannel(u8),
     /// A Maya material's `specularColor`: its highlight's tint and its mirror's weight
     /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
     /// value × the scale per channel.
@@ -320,6 +324,10 @@ impl SurfaceMaterial {
                 Target::Emission => hit.emission = rgb(),
                 Target::Glow => hit.glow = rgb(),
                 Target::IrradianceMap => hit.emission += hit.diffuse * rgb(),
+                Target::IrradianceMapChannel(c) => {
+                    let c = usize::from(c.min(2));
+                    hit.emission[c] += hit.diffuse[c] * rgb()[c];
+                }
                 Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
                 Target::SpecularColor => {
                     let tinted = match &*hit.model {

@@ -26,8 +26,8 @@
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
-//!   coverage, cut-out tint and fade; at 1 for one that refracts; transparency fading the
-//!   lit colour and incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
+//!   coverage, cut-out tint and fade, or for one that refracts its refraction's weight;
+//!   transparency fading the lit colour and incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
 //!   `specularColor` ⊙ light · D with D Blinn's distribution of `eccentricity` (peak 1),
 //!   is Maya's lobe of that shape and tint (`bsdf::maya_highlight::ramp_blinn`, the
 //!   classic shader's own function), its reflection a mirror of weight `reflectivity`
@@ -41,6 +41,9 @@
 //! - layeredShader: the layers' translations mixed by the share of each that shows,
 //!   w_i = mean(T_0 ⋯ T_(i−1) (1 − T_i)) (`compositingFlag` 0 or 1 alike): their
 //!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i);
+//!   a layer whose material refracts (as below) is the last that shows: the stack
+//!   refracts by P_k ⊙ T_k (P_k the transparencies above it) with its index and limit,
+//!   as the classic layeredShader shows what that layer's refraction ray finds;
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
@@ -49,11 +52,12 @@
 //!   as the classic shader's C(1) ⊙ ambient; layeredShader by Σ w_i ⊙ its material
 //!   layers' ambient colours (a ratio of its diffuse colour per channel; plain-colour
 //!   layers take none, as in the classic shader, where they are not lit);
-//! - `refractions` on (lambert family and rampShader, by its transparency at facing
-//!   ratio 1; an index other than 1, a constant T ≠ 0): the
+//! - `refractions` on (lambert family, rampShader — by its transparency at each hit's
+//!   facing ratio — and layeredShader layers; an index other than 1, T ≠ 0): the
 //!   classic shader's T ⊙ its refraction ray, bent by Snell's law with
 //!   `refractiveIndex` (no Fresnel; a mirror ray under total internal reflection) while
-//!   the ray has made fewer than `refractionLimit` refraction and transparency rays, a
+//!   the ray has made fewer than `refractionLimit` refraction and transparency rays (the
+//!   path engine counts its delta transmissions and its passes through cut-outs), a
 //!   straight transparency ray past it, is the BSDF's delta refraction of weight T
 //!   (`bsdf::MayaGlossy::refraction`): every non-shadow ray hits the surface (no
 //!   cut-out, the diffuse part faded by 1 − T, nothing divided by a coverage); shadow
@@ -69,7 +73,8 @@
 //! - `reflectedColor`: emitted by the mirror's weight at each hit and view
 //!   (`bsdf::MayaGlossy::reflected`: blinn's roll-off at N·V, a connected
 //!   `specularColor`); `reflectionLimit`: the mirror reflects on paths of fewer mirror
-//!   reflections (`bsdf::MayaGlossy::reflection_limit`);
+//!   and `mia_material` glossy reflections, as mental ray's reflection level counts
+//!   reflection rays (`bsdf::MayaGlossy::reflection_limit`);
 //!   `incandescence`: emitted radiance;
 //! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
 //!   warning says so);
@@ -86,6 +91,7 @@
 
 use std::sync::Arc;
 
+mod view_layers;
 mod view_transparency;
 pub use view_transparency::ViewTransparency;
 
@@ -223,8 +229,8 @@ fn glossy_shape(highlight: ::maya::specular::Highlight, specular: Rgb) -> Option
 /// The `irradiance` illumination map M of the lambert family (the reading is
 /// `maya::material`'s): light that reaches the surface whatever the lights, c·d ⊙
 /// `irradianceColor` ⊙ M added to the emission — constant, or per hit through a binding
-/// when M is connected (a baked map), then scaled by the mean of `irradianceColor` (a
-/// warning when that is not grey). A constant M on a surface whose colour or
+/// when M is connected (a baked map: one binding scaled by a grey `irradianceColor`, one
+/// per channel for a coloured one). A constant M on a surface whose colour or
 /// incandescence is connected is warned about (it takes the default colour, or is lost).
 fn irradiance_map(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
     let g = r.color("irradianceColor", Rgb::ONE);
@@ -232,11 +238,13 @@ fn irradiance_map(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
         Some((node, member)) => {
             let mean = (g.x + g.y + g.z) / 3.0;
             if (g - Rgb::splat(mean)).abs().max_element() > 1e-6 {
-                r.warnings.push(
-                    "'irradiance' is connected; the path engine scales it by the mean of 'irradianceColor'".into(),
-                );
+                for (c, scale) in [g.x, g.y, g.z].into_iter().enumerate() {
+                    let target = Target::IrradianceMapChannel(c as u8);
+                    r.bindings.push(Binding { node, member: member.clone(), target, scale });
+                }
+            } else {
+                r.bindings.push(Binding { node, member, target: Target::IrradianceMap, scale: mean });
             }
-            r.bindings.push(Binding { node, member, target: Target::IrradianceMap, scale: mean });
         }
         None => {
             let m = r.color("irradiance", Rgb::ZERO);
@@ -287,11 +295,25 @@ fn refraction_index(r: &mut Reader, t: Rgb, alone: bool) -> Option<f32> {
 /// its highlight and mirror, or a highlight of zero tint when it has none).
 fn refract(r: &mut Reader, surface: &mut SurfaceMaterial, t: Rgb, ior: f32) {
     let limit = r.scalar("refractionLimit", 6.0).max(0.0) as u32;
+    refract_within(surface, t, ior, limit);
+}
+
+/// [`refract`] with the limit given.
+fn refract_within(surface: &mut SurfaceMaterial, t: Rgb, ior: f32, limit: u32) {
     let glossy = match &surface.model {
         SurfaceModel::Maya(g) => **g,
         _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
     };
     surface.model = SurfaceModel::Maya(Box::new(glossy.with_refraction(t, ior, limit)));
+}
+
+/// The index and `refractionLimit` of a layeredShader's layer material `m` of constant
+/// transparency `t` when it refracts (as [`refraction_index`] decides for a shading
+/// engine's material), else `None`.
+fn layer_refraction(graph: &Graph, m: NodeId, t: Rgb) -> Option<(f32, u32)> {
+    let mut r = Reader { graph, node: m, bindings: Vec::new(), warnings: Vec::new() };
+    let ior = refraction_index(&mut r, t, true)?;
+    Some((ior, r.scalar("refractionLimit", 6.0).max(0.0) as u32))
 }
 
 /// The classic highlight of the Maya material `family` (blinn, phong or phongE), read
@@ -416,7 +438,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                 // what the ray finds) (with blinn's `reflectionRolloff`, × Schlick's
                 // factor at N·V): a mirror lobe of weight r·s that emits reflectedColor by
                 // its weight at each view and hit. It reflects while the path has made
-                // fewer than `reflectionLimit` mirror reflections, as the classic shader
+                // fewer than `reflectionLimit` reflections (mirror, glossy), as the classic shader
                 // traces its ray below that reflection level. (A layer's reflectedColor
                 // is emitted as seen head-on: the layered shader mixes the layers'
                 // emissions and keeps one lobe.)
@@ -539,8 +561,13 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     let transparency = read(r, "transparency", "Color", Rgb::ZERO);
     let incandescence = read(r, "incandescence", "Color", Rgb::ZERO);
     let tr = at(&transparency, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
-    // Refraction as for the lambert family (see `translate`), by the transparency at 1.
-    let ior = refraction_index(r, tr, alone);
+    // Refraction as for the lambert family (see `translate`) where the transparency ramp
+    // is not black somewhere, by T(1) — or by T at each hit's facing ratio when it varies
+    // (`ViewTransparency::refracting`).
+    let t_most = (0..VIEW_RAMP_STEPS)
+        .map(|k| at(&transparency, k as f32 / (VIEW_RAMP_STEPS - 1) as f32).clamp(Rgb::ZERO, Rgb::ONE))
+        .fold(tr, Rgb::max);
+    let ior = refraction_index(r, t_most, alone);
     cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects) && ior.is_none());
     // Transparency fades the lit colour and incandescence, not the highlight and the
     // reflection (as for the lambert family, see `translate`).
@@ -560,14 +587,16 @@ fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     surface.ambient = Rgb::splat(if share > 0.0 { 1.0 / share } else { 0.0 });
     surface.emission = at(&incandescence, 1.0) * fade;
     // Transparency and incandescence ramps that vary with the view: read at each hit's
-    // facing ratio, as the classic shader does (a refracting one keeps T(1)).
-    if alone && ior.is_none() && (varies(&transparency) || varies(&incandescence)) {
-        surface.view_transparency = Some(Box::new(ViewTransparency::tabulate(
+    // facing ratio, as the classic shader does (for a refracting one, the refraction's
+    // weight too).
+    if alone && (varies(&transparency) || varies(&incandescence)) {
+        let view = ViewTransparency::tabulate(
             |f| at(&transparency, f),
             |f| at(&incandescence, f),
             albedo,
             tint != Rgb::ZERO || reflects,
-        )));
+        );
+        surface.view_transparency = Some(Box::new(if ior.is_some() { view.refracting() } else { view }));
     }
     let glow_intensity = r.scalar("glowIntensity", 0.0);
     if glow_intensity != 0.0 {
@@ -641,28 +670,36 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             _ => None,
         }
     };
+    let layer_transparency = |e: &Slot| match member(e, "transparency") {
+        Some(Slot::Value(v)) => rgb_of(&v).clamp(Rgb::ZERO, Rgb::ONE),
+        Some(Slot::Connect { node: m, .. }) => {
+            // A material's outTransparency: its own constant transparency (a
+            // rampShader's ramp: the grey transparency its translation takes).
+            let c = match constant(graph, m, "transparency").or_else(|| constant(graph, m, "outTransparency")) {
+                Some(v) if !matches!(v, Value::Array(_)) => rgb_of(v),
+                _ if slot(graph, m, "transparency").is_some() => {
+                    Rgb::splat(1.0 - translate(name, graph, m, false).0.opacity)
+                }
+                _ => Rgb::ZERO,
+            };
+            c.clamp(Rgb::ZERO, Rgb::ONE)
+        }
+        _ => Rgb::ZERO,
+    };
+    let transparencies: Vec<Rgb> = elements.iter().map(layer_transparency).collect();
+    // Each layer at the facing ratios k/32, for a stack whose rampShader layers' ramps
+    // follow the view: transparency, diffuse colour, incandescence, plain colour.
+    let mut by_view: Vec<view_layers::Layer> = Vec::new();
+    let mut follows_view = false;
     let mut through = Rgb::ONE;
     let mut lobe: Option<bsdf::MayaGlossy> = None;
     // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
     // (plain colours take none).
     let mut ambient_color = Rgb::ZERO;
-    for e in elements {
-        let t = match member(e, "transparency") {
-            Some(Slot::Value(v)) => rgb_of(&v).clamp(Rgb::ZERO, Rgb::ONE),
-            Some(Slot::Connect { node: m, .. }) => {
-                // A material's outTransparency: its own constant transparency (a
-                // rampShader's ramp: the grey transparency its translation takes).
-                let c = match constant(graph, m, "transparency").or_else(|| constant(graph, m, "outTransparency")) {
-                    Some(v) if !matches!(v, Value::Array(_)) => rgb_of(v),
-                    _ if slot(graph, m, "transparency").is_some() => {
-                        Rgb::splat(1.0 - translate(name, graph, m, false).0.opacity)
-                    }
-                    _ => Rgb::ZERO,
-                };
-                c.clamp(Rgb::ZERO, Rgb::ONE)
-            }
-            _ => Rgb::ZERO,
-        };
+    // The first layer whose material refracts: P_k ⊙ T_k, its index and limit (the
+    // layers below it do not show, as in the classic shader).
+    let mut refraction: Option<(Rgb, f32, u32)> = None;
+    for (e, &t) in elements.iter().zip(&transparencies) {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         let shown = through * (Rgb::ONE - t);
         let w = (shown.x + shown.y + shown.z) / 3.0;
@@ -681,24 +718,34 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 surface.diffuse += layer.diffuse * w;
                 surface.emission += layer.emission * w;
                 ambient_color += layer.diffuse * layer.ambient * w;
+                let tables = view_layers::ramp_tables(graph, m);
+                follows_view |= tables.is_some();
+                by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
                 // Maya's highlight shows by the layer's share, as its diffuse colour.
                 if let (SurfaceModel::Maya(g), None) = (layer.model, &lobe) {
                     lobe = Some(g.scaled(w));
+                }
+                if let Some((ior, limit)) = layer_refraction(graph, m, t) {
+                    refraction = Some((through * t, ior, limit));
+                    break;
                 }
             }
             Some(Slot::Value(v)) => {
                 // A plain colour: already weighted by its opacity in shader mode.
                 let c = rgb_of(&v);
                 surface.diffuse += if texture { c * w } else { c * (through.x + through.y + through.z) / 3.0 };
+                by_view.push(view_layers::Layer::plain(t, c));
             }
             Some(_) => {
-                warnings.push("a layer's colour is connected to a texture; the path engine leaves it out".into())
+                warnings.push("a layer's colour is connected to a texture; the path engine leaves it out".into());
+                by_view.push(view_layers::Layer::plain(t, Rgb::ZERO));
             }
-            None => {}
+            None => by_view.push(view_layers::Layer::plain(t, Rgb::ZERO)),
         }
         through *= t;
     }
-    cut_out(&mut surface, through, false);
+    // Shadow rays pass the whole stack, filtered by every layer's transparency.
+    cut_out(&mut surface, transparencies.iter().fold(Rgb::ONE, |p, t| p * *t), false);
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
     let ratio = |a: f32, d: f32| if d > 0.0 { a / d } else { 0.0 };
@@ -707,8 +754,18 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         ratio(ambient_color.y, surface.diffuse.y),
         ratio(ambient_color.z, surface.diffuse.z),
     );
+    // The hits of a stack that rays pass by its transparency carry its colours divided
+    // by its coverage (as a transparent lambert's, see `translate`).
+    let coverage = if refraction.is_none() && surface.opacity > 0.0 { surface.opacity } else { 1.0 };
+    surface.diffuse /= coverage;
+    surface.emission /= coverage;
     if let Some(g) = lobe {
-        surface.model = SurfaceModel::Maya(Box::new(g));
+        surface.model = SurfaceModel::Maya(Box::new(g.with_coverage(coverage)));
+    }
+    if let Some((t, ior, limit)) = refraction {
+        refract_within(&mut surface, t, ior, limit);
+    } else if follows_view {
+        surface.view_transparency = Some(Box::new(view_layers::tabulate(&by_view, texture)));
     }
     (surface, warnings)
 }

@@ -16,6 +16,15 @@
 //! here), so that the stack shows what lies behind only through all of its layers. The
 //! two formulas are Maya's documented meaning of the flag (shaders composite by their
 //! transparency, textures as colours over one another) in mira's notation.
+//!
+//! A layer whose material refracts (`refractions` on, `refractiveIndex` not 1, its
+//! transparency not black: the material traces a refraction ray, bent within its
+//! `refractionLimit` and straight past it, see `crate::material::behind_with`) shows
+//! through its transparency what that ray finds, and the layers below it do not show:
+//! its colour is taken whole, as the last layer, `out = Σ_(i<k) P_i ⊙ c_i' + P_k ⊙ c_k`.
+//! Maya's reference says nothing of refraction in a layered shader: this reading (the
+//! refraction ray leaves the surface, so nothing below the refracting layer is crossed)
+//! is mira's. Shadow rays still pass the whole stack by P_n.
 
 use glam::Vec3A;
 use shader::{Color, Ctx, NodeId, RayType, Slot, Value};
@@ -65,35 +74,55 @@ maya_shader!(
     layered_shader
 );
 
-/// For each element of the `inputs` array, whether its `color` is connected to a shader
-/// whose result is a Maya material's (it has an `outTransparency` member).
-fn material_layers(ctx: &Ctx, n: NodeId) -> Vec<bool> {
+/// For each element of the `inputs` array, the shader its `color` is connected to when
+/// its result is a Maya material's (it has an `outTransparency` member).
+fn material_layers(ctx: &Ctx, n: NodeId) -> Vec<Option<NodeId>> {
     let Some(Slot::Array(elements)) = ctx.node(n).slots.first() else { return Vec::new() };
     elements
         .iter()
         .map(|e| {
-            let Slot::Struct(members) = e else { return false };
-            members.iter().any(|(name, slot)| {
-                &**name == "color"
-                    && matches!(slot, Slot::Connect { node, .. }
-                        if ctx.node(*node).decl.members().iter().any(|m| &**m == "outTransparency"))
+            let Slot::Struct(members) = e else { return None };
+            members.iter().find_map(|(name, slot)| match slot {
+                Slot::Connect { node, .. }
+                    if &**name == "color"
+                        && ctx.node(*node).decl.members().iter().any(|m| &**m == "outTransparency") =>
+                {
+                    Some(*node)
+                }
+                _ => None,
             })
         })
         .collect()
+}
+
+/// Whether the Maya material `m` traces a refraction ray where it is transparent:
+/// `refractions` on and a positive `refractiveIndex` other than 1 (as
+/// `crate::material::behind_with` decides; false for a node without them).
+fn refracts(ctx: &mut Ctx, m: NodeId) -> bool {
+    let index = |ctx: &Ctx, name: &str| {
+        let node = ctx.node(m);
+        match node.imp {
+            Some(imp) => imp.params.iter().position(|p| *p == name),
+            None => node.decl.param(name),
+        }
+    };
+    let (Some(on), Some(ior)) = (index(ctx, "refractions"), index(ctx, "refractiveIndex")) else { return false };
+    let ior = ctx.scalar(m, ior);
+    ctx.bool(m, on) && ior > 0.0 && (ior - 1.0).abs() > 1e-6
 }
 
 fn layered_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let texture = ctx.int(n, 1) == 1;
     let from_material = material_layers(ctx, n);
     let inputs = ctx.array(n, 0);
-    let layers: Vec<ShaderLayer> = inputs
+    let mut layers: Vec<ShaderLayer> = inputs
         .array()
         .iter()
         .enumerate()
         .map(|(i, e)| ShaderLayer {
             color: e.member("color").map_or(Vec3A::ZERO, |c| rgb(c.color())),
             transparency: e.member("transparency").map_or(Vec3A::ZERO, |c| rgb(c.color())),
-            includes_behind: from_material.get(i).copied().unwrap_or(false),
+            includes_behind: from_material.get(i).is_some_and(Option::is_some),
         })
         .collect();
     let (_, through) = composite_layers(&layers, texture, Vec3A::ZERO);
@@ -102,6 +131,16 @@ fn layered_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     }
     if !ctx.state.ray_type.is_visible() {
         return false;
+    }
+    // The first layer whose material refracts is the last that shows, whole (its
+    // colour holds what its refraction ray found; see the module doc).
+    let refracting = (0..layers.len()).find(|&i| {
+        layers[i].transparency.clamp(Vec3A::ZERO, Vec3A::ONE) != Vec3A::ZERO
+            && from_material.get(i).copied().flatten().is_some_and(|m| refracts(ctx, m))
+    });
+    if let Some(k) = refracting {
+        layers.truncate(k + 1);
+        layers[k] = ShaderLayer { color: layers[k].color, transparency: Vec3A::ZERO, includes_behind: false };
     }
     let needs_behind =
         through != Vec3A::ZERO || layers.iter().any(|l| l.includes_behind && l.transparency != Vec3A::ZERO);

@@ -6,6 +6,7 @@ mod ambient_highlight;
 mod cutout;
 mod fog;
 mod leave;
+mod levels;
 mod media;
 
 use bsdf::Bsdf;
@@ -417,11 +418,12 @@ pub fn trace_camera_path(
     let mut fogs = fog::PathFog::new(shading);
     let mut segment_type = RayType::Eye;
     let mut fog_cover = 0.0f32;
-    // The mirror reflections the path has made (Maya's `reflectionLimit` counts them as
-    // mental ray's reflection level does).
+    // The mirror and glossy reflections the path has made (Maya's `reflectionLimit`
+    // counts them as mental ray's reflection level does; see `levels`).
     let mut reflections = 0u32;
-    // The delta transmissions the path has made (Maya's `refractionLimit` counts them as
-    // mental ray's refraction level counts refraction and transparency rays).
+    // The delta transmissions and cut-out passes the path has made (Maya's
+    // `refractionLimit` counts them as mental ray's refraction level counts refraction
+    // and transparency rays).
     let mut refractions = 0u32;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
@@ -449,8 +451,10 @@ pub fn trace_camera_path(
                 break;
             }
             counts.rays += 1;
-            // A coloured transparency filters what passes, per channel.
+            // A coloured transparency filters what passes, per channel; the pass is a
+            // transparency ray of mental ray's refraction level (Maya's `refractionLimit`).
             throughput *= m.cutout_tint;
+            refractions += 1;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }
@@ -575,7 +579,7 @@ pub fn trace_camera_path(
         let wo = frame.to_local(-ray.dir);
         let mut bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
         if let Bsdf::Maya(b) = &mut bsdf {
-            // Maya's `reflectionLimit`: no mirror past that many mirror reflections; and
+            // Maya's `reflectionLimit`: no mirror past that many reflections; and
             // what the mirror's weight adds besides them (`reflectedColor`).
             if reflections >= b.reflection_limit {
                 b.without_mirror();
@@ -696,7 +700,7 @@ pub fn trace_camera_path(
         if (bs.wi.z > 0.0) != (wi.dot(ng) > 0.0) {
             break;
         }
-        if bs.delta && (bs.wi.z > 0.0) == (wo.z > 0.0) {
+        if levels::reflects(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
             reflections += 1;
         } else if bs.delta {
             refractions += 1;

@@ -185,6 +185,24 @@ impl MiaBsdf {
         g.d_visible(wv, h) * wi.dot(h).abs() / (denom * denom)
     }
 
+    /// The share (by luminance, 0..1) of f(ωo, ωi) that the glossy reflection lobe gives:
+    /// the probability with which a sample in ωi is taken as a glossy reflection (mental
+    /// ray's `mia_material` traces those as reflection rays); 0 on opposite sides or for a
+    /// smooth reflection (a delta lobe, not in f).
+    pub fn reflection_share(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if wo.z * wi.z <= 0.0 || self.reflect_ggx.is_smooth() {
+            return 0.0;
+        }
+        let h = (wo + wi).normalize() * wo.z.signum();
+        let glossy = self.reflect * (self.reflect_ggx.d(h) * self.reflect_ggx.g2(wo, wi) / (4.0 * (wo.z * wi.z).abs()));
+        let all = luminance(self.eval(wo, wi));
+        if all > 0.0 {
+            (luminance(glossy) / all).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
     /// Density of sampling ωi (non-delta lobes).
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z == 0.0 || wi.z == 0.0 {

@@ -2,7 +2,10 @@
 //! the path engine: the classic shader reads both at f = N·V for each ray (shadow rays
 //! included), so the path engine sets a hit's coverage, cut-out tint, faded diffuse
 //! colour and incandescence from them at each hit, by the rules a constant transparency
-//! follows (see `crate::maya`'s module doc), instead of taking them at f = 1.
+//! follows (see `crate::maya`'s module doc), instead of taking them at f = 1. A
+//! rampShader that refracts ([`ViewTransparency::refracts`]) takes T(f) as its
+//! refraction's weight at each hit instead, its lit colour and incandescence faded by
+//! 1 − T(f) (no cut-out for the rays that see it, as for a constant transparency).
 
 use std::borrow::Cow;
 
@@ -26,6 +29,14 @@ pub struct ViewTransparency {
     /// The material shows a highlight or a reflection: its coverage is at least
     /// [`MIN_HIGHLIGHT_COVERAGE`].
     pub highlight: bool,
+    /// The material refracts (`refractions` on): T(f) is its refraction's weight
+    /// ([`bsdf::MayaGlossy::refraction`]) and the rays that see it all hit it.
+    pub refracts: bool,
+    /// For a layeredShader whose layers' ramps follow the view: its lit colour and its
+    /// emission at N·V = k/32, each already weighted by the layers' shares (before the
+    /// division by the hit's coverage); `transparency` is then the stack's. `None` for a
+    /// rampShader, whose are `albedo` ⊙ (1 − T) and `incandescence` ⊙ (1 − T).
+    pub stack: Option<Box<[[Rgb; VIEW_RAMP_STEPS]; 2]>>,
 }
 
 impl ViewTransparency {
@@ -42,7 +53,33 @@ impl ViewTransparency {
             incandescence: std::array::from_fn(|k| incandescence(at(k))),
             albedo,
             highlight,
+            refracts: false,
+            stack: None,
         }
+    }
+
+    /// A layeredShader's stack tabulated over the facing ratio: its transparency (the
+    /// product of its layers'), its lit colour and its emission weighted by the layers'
+    /// shares (see [`ViewTransparency::stack`]).
+    pub fn stack(
+        transparency: [Rgb; VIEW_RAMP_STEPS],
+        lit: [Rgb; VIEW_RAMP_STEPS],
+        emission: [Rgb; VIEW_RAMP_STEPS],
+    ) -> Self {
+        ViewTransparency {
+            transparency: transparency.map(|t| t.clamp(Rgb::ZERO, Rgb::ONE)),
+            incandescence: [Rgb::ZERO; VIEW_RAMP_STEPS],
+            albedo: Rgb::ZERO,
+            highlight: false,
+            refracts: false,
+            stack: Some(Box::new([lit, emission])),
+        }
+    }
+
+    /// The same ramps on a material that refracts (see [`ViewTransparency::refracts`]).
+    pub fn refracting(mut self) -> Self {
+        self.refracts = true;
+        self
     }
 
     /// The transparency at facing ratio `facing` (N·V, clamped to [0, 1]).
@@ -54,14 +91,39 @@ impl ViewTransparency {
     /// highlight), cut-out tint T(f)/(1 − p), diffuse colour albedo ⊙ (1 − T(f))/p,
     /// incandescence(f) ⊙ (1 − T(f))/p and its highlight's coverage, for the view of facing
     /// ratio `facing`.
+    ///
+    /// A refracting material's hit takes T(f) as its refraction's weight, its diffuse
+    /// colour and incandescence faded by 1 − T(f), the coverage (for shadow rays) and
+    /// tint as above without the least coverage. A stack's ([`ViewTransparency::stack`])
+    /// takes its lit colour and emission at f divided by p (its highlight untouched).
     pub fn apply(&self, facing: f32, hit: &mut HitMaterial<'_>) {
         let t = self.transparency_at(facing);
         let mut p = 1.0 - (t.x + t.y + t.z) / 3.0;
+        if self.refracts {
+            hit.opacity = p;
+            hit.cutout_tint = if p < 1.0 { t / (1.0 - p) } else { Rgb::ONE };
+            hit.diffuse = self.albedo * (Rgb::ONE - t);
+            hit.emission = table_at(&self.incandescence, facing) * (Rgb::ONE - t);
+            let refracting = match &*hit.model {
+                SurfaceModel::Maya(g) => Some(g.with_refraction(t, g.ior, g.refraction_limit)),
+                _ => None,
+            };
+            if let Some(g) = refracting {
+                hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+            }
+            return;
+        }
         if self.highlight {
             p = p.max(MIN_HIGHLIGHT_COVERAGE);
         }
         hit.opacity = p;
         hit.cutout_tint = if p < 1.0 { t / (1.0 - p) } else { Rgb::ONE };
+        if let Some(stack) = &self.stack {
+            let k = if p > 0.0 { 1.0 / p } else { 1.0 };
+            hit.diffuse = table_at(&stack[0], facing) * k;
+            hit.emission = table_at(&stack[1], facing) * k;
+            return;
+        }
         let fade = if p > 0.0 { (Rgb::ONE - t) / p } else { Rgb::ONE };
         hit.diffuse = self.albedo * fade;
         hit.emission = table_at(&self.incandescence, facing) * fade;

@@ -76,3 +76,31 @@ fn a_connected_irradiance_map_lights_each_hit_in_both_engines() {
         }
     }
 }
+
+/// A connected map under a coloured `irradianceColor` g = (2, 0.5, 1): the path engine's
+/// hit emits c·d ⊙ g ⊙ M per channel, as the classic shader shows it (within 1e-5 of
+/// the classic engine, 1e-3 of the formula), with no warning. Before, it took g's mean
+/// (7/6) for every channel and warned.
+#[test]
+fn a_connected_irradiance_map_takes_a_coloured_irradiance_colour_per_channel() {
+    let c = scene(
+        r#"shader "bake" "maya_file" ("fileTextureName" "quad")
+        shader "lam" "maya_lambert" ("color" 0.5 0.6 0.7, "diffuse" 0.5, "irradiance" = "bake.outColor",
+            "irradianceColor" 2 0.5 1)
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+    );
+    let (s, warnings) = translate(&c);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let tracer = Empty::default();
+    // (0.25, 0.25): red; (0.75, 0.75): white. c·d ⊙ g ⊙ M = (0.5, 0.15, 0.35) ⊙ M.
+    for (uv, map) in [([0.25, 0.25], [1.0, 0.0, 0.0]), ([0.75, 0.75], [1.0, 1.0, 1.0])] {
+        let want = [0.5 * map[0], 0.15 * map[1], 0.35 * map[2]];
+        let classic = run(&c, &tracer, c.material("m"), point(uv)).color();
+        assert_rgb(classic, want, 1e-3);
+        let mut ctx = Ctx::new(&c.shading, &tracer, point(uv));
+        let hit = s.at(&mut ctx);
+        for i in 0..3 {
+            assert!((hit.emission[i] - classic[i]).abs() < 1e-5, "{uv:?}: path {} classic {classic}", hit.emission);
+        }
+    }
+}

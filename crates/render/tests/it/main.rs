@@ -26,6 +26,7 @@ mod maya_exports_agree;
 mod maya_fog_material_path;
 mod maya_fog_path;
 mod maya_highlight_path;
+mod maya_layered_path;
 mod maya_opaque_shadows;
 mod maya_path;
 mod maya_ramp_highlight_path;

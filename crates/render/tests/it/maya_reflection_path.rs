@@ -334,3 +334,55 @@ render "root" "cam_inst" "opt"
         }
     }
 }
+
+/// A glossy `mia_material` ground (reflectivity 1, `refl_gloss` 0.8, a constant
+/// reflectance curve of 1, no diffuse) under a Maya mirror ceiling (phongE without a
+/// highlight, reflectivity r = 0.5, incandescence e = 0.25, `reflectionLimit` L) at y = 5
+/// above the camera. The classic engine's glossy rays raise the reflection level as its
+/// mirror rays do, so the ceiling they find is at level 1 and reflects only for L ≥ 2:
+/// the ground shows e for L = 0 and 1 and e·(1 + r) for L = 2 (its glossy reflection of
+/// the uniform ceiling is the ceiling's colour; below it, the ceiling's reflection of the
+/// ground, at level 3, shows e). The classic engine gives that at every pixel within
+/// 1e-3, the path engine (which counts a glossy sample of `mia_material` as a reflection,
+/// `render::integrator::levels`) in its image mean within four standard errors + 1e-3.
+/// Before, the path engine counted only mirror reflections, and the ceiling reflected at
+/// L = 1 as at L = 2 (e·(1 + r) = 0.375 against 0.25).
+#[test]
+fn reflection_limit_counts_other_materials_glossy_reflections_in_both_engines() {
+    let (r, e) = (0.5f32, 0.25f32);
+    let text = |limit: u32| {
+        let view = support::maya_view::top_down(SIDE).replace("end options", "trace depth 8 8 16 end options");
+        format!(
+            r#"
+$include "mayabase.mi"
+{view}
+material "g" opaque "mia_material" ("diffuse_weight" 0, "reflectivity" 1, "refl_gloss" 0.8,
+    "refl_gloss_samples" 16, "brdf_fresnel" off, "brdf_0_degree_refl" 1, "brdf_90_degree_refl" 1,
+    "refl_color" 1 1 1, "refr_color" 0 0 0, "transparency" 0) end material
+shader "mat" "maya_phongE" ("color" 0 0 0, "diffuse" 0, "whiteness" 0 0 0, "specularColor" 1 1 1,
+    "reflectivity" {r}, "reflectionLimit" {limit}, "incandescence" {e} {e} {e})
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "mat.outColor") end material
+object "ground" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
+instance "ground_inst" "ground" end instance
+object "ceiling" group -500 5 500  500 5 500  500 5 -500  -500 5 -500  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
+instance "ceiling_inst" "ceiling" end instance
+instgroup "root" "cam_inst" "ground_inst" "ceiling_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+        )
+    };
+    for limit in [0u32, 1, 2] {
+        let want = if limit >= 2 { e * (1.0 + r) } else { e };
+        for (i, p) in pixels(&text(limit), EngineKind::Classic, 4).iter().enumerate() {
+            assert!(
+                (*p - Vec3A::splat(want)).abs().max_element() < 1e-3,
+                "L = {limit}, classic pixel {i}: {p} vs {want}"
+            );
+        }
+        let (mean, error) = mean_and_error(&pixels(&text(limit), EngineKind::Path, 64));
+        println!("L = {limit}: path {mean} ± {error}, formula {want}");
+        for k in 0..3 {
+            assert!((mean[k] - want).abs() < 4.0 * error[k] + 1e-3, "L = {limit}: path {mean} ± {error} vs {want}");
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! A layeredShader whose rampShader layers have `transparency` or `incandescence` ramps
+//! that follow the view, in the path engine: the classic rampShader reads them at each
+//! ray's facing ratio f = N·V and the layered shader composites the layers by those
+//! transparencies, so the path engine tabulates the whole stack over f — its
+//! transparency Π T_i(f), its lit colour Σ w_i(f) d_i and its emission Σ w_i(f) e_i(f),
+//! w_i(f) = mean(T_0(f) ⋯ T_(i−1)(f) (1 − T_i(f))), the rules of the constant stack
+//! (see `crate::maya`'s module doc) at each f — and sets each hit from the table
+//! ([`ViewTransparency::stack`]) instead of taking the ramps at f = 1.
+
+use bsdf::maya_highlight::VIEW_RAMP_STEPS;
+use bsdf::Rgb;
+use shader::{Graph, NodeId};
+
+use super::{ramp_of, Reader, ViewTransparency};
+
+/// A quantity at the facing ratios k/32, k = 0 … 32.
+type Table = [Rgb; VIEW_RAMP_STEPS];
+
+/// One layer of the stack at the facing ratios k/32.
+pub(super) struct Layer {
+    /// Its transparency.
+    transparency: Table,
+    /// A material layer's diffuse colour (its albedo, unfaded).
+    diffuse: Rgb,
+    /// A material layer's incandescence (unfaded).
+    emission: Table,
+    /// A plain colour layer's colour (`None` for a material).
+    plain: Option<Rgb>,
+}
+
+impl Layer {
+    /// A material layer of constant transparency `t`, diffuse colour and incandescence,
+    /// or of the transparency and incandescence tables `ramps` ([`ramp_tables`]).
+    pub(super) fn material(t: Rgb, diffuse: Rgb, emission: Rgb, ramps: Option<[Table; 2]>) -> Layer {
+        let (transparency, emission) = match ramps {
+            Some([t, e]) => (t, e),
+            None => ([t; VIEW_RAMP_STEPS], [emission; VIEW_RAMP_STEPS]),
+        };
+        Layer { transparency, diffuse, emission, plain: None }
+    }
+
+    /// A plain colour layer `c` of transparency `t` (black for a layer the path engine
+    /// leaves out).
+    pub(super) fn plain(t: Rgb, c: Rgb) -> Layer {
+        Layer {
+            transparency: [t; VIEW_RAMP_STEPS],
+            diffuse: Rgb::ZERO,
+            emission: [Rgb::ZERO; VIEW_RAMP_STEPS],
+            plain: Some(c),
+        }
+    }
+}
+
+/// The transparency (clamped to [0, 1]) and incandescence ramps of the rampShader `m`
+/// at the facing ratios k/32 when either varies with the view; `None` for other
+/// materials and for ramps that are the same all along (a connected ramp takes its
+/// default, as in the rampShader's own translation).
+pub(super) fn ramp_tables(graph: &Graph, m: NodeId) -> Option<[Table; 2]> {
+    let family = graph.nodes[m as usize].decl.name.trim_start_matches("maya_").trim_start_matches("adskMaya");
+    if !family.eq_ignore_ascii_case("rampshader") {
+        return None;
+    }
+    let mut r = Reader { graph, node: m, bindings: Vec::new(), warnings: Vec::new() };
+    let table = |r: &mut Reader, name: &str| -> Table {
+        let ramp = ramp_of(r, name, "Color", Rgb::ZERO);
+        std::array::from_fn(|k| {
+            ramp.as_ref().map_or(Rgb::ZERO, |ramp| {
+                let c = ramp.at(k as f32 / (VIEW_RAMP_STEPS - 1) as f32);
+                Rgb::new(c.x, c.y, c.z)
+            })
+        })
+    };
+    let transparency = table(&mut r, "transparency").map(|t| t.clamp(Rgb::ZERO, Rgb::ONE));
+    let incandescence = table(&mut r, "incandescence");
+    let varies = |t: &Table| t.iter().any(|x| (*x - t[VIEW_RAMP_STEPS - 1]).abs().max_element() > 1e-6);
+    (varies(&transparency) || varies(&incandescence)).then_some([transparency, incandescence])
+}
+
+/// The stack `layers` (top first; `texture`: `compositingFlag` 1, plain colours weighted
+/// by their opacity) tabulated over the facing ratio.
+pub(super) fn tabulate(layers: &[Layer], texture: bool) -> ViewTransparency {
+    let mean = |c: Rgb| (c.x + c.y + c.z) / 3.0;
+    let mut transparency = [Rgb::ZERO; VIEW_RAMP_STEPS];
+    let mut lit = [Rgb::ZERO; VIEW_RAMP_STEPS];
+    let mut emission = [Rgb::ZERO; VIEW_RAMP_STEPS];
+    for k in 0..VIEW_RAMP_STEPS {
+        let mut through = Rgb::ONE;
+        for l in layers {
+            let t = l.transparency[k].clamp(Rgb::ZERO, Rgb::ONE);
+            let w = mean(through * (Rgb::ONE - t));
+            match l.plain {
+                Some(c) => lit[k] += if texture { c * w } else { c * mean(through) },
+                None => {
+                    lit[k] += l.diffuse * w;
+                    emission[k] += l.emission[k] * w;
+                }
+            }
+            through *= t;
+        }
+        transparency[k] = through;
+    }
+    ViewTransparency::stack(transparency, lit, emission)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A layer whose transparency runs 1 − f over an opaque one of diffuse d and
+    /// incandescence e: at f = 0.75 (a table point) the stack is opaque, its lit colour
+    /// 0.75 · d_top + 0.25 · d and its emission 0.25 · e (within 1e-6).
+    #[test]
+    fn the_stack_follows_the_top_layers_transparency() {
+        let top_t: Table = std::array::from_fn(|k| Rgb::splat(1.0 - k as f32 / 32.0));
+        let top = Layer::material(Rgb::ZERO, Rgb::new(0.8, 0.0, 0.0), Rgb::ZERO, Some([top_t, [Rgb::ZERO; 33]]));
+        let (d, e) = (Rgb::new(0.0, 0.5, 0.0), Rgb::new(0.0, 0.0, 2.0));
+        let bottom = Layer::material(Rgb::ZERO, d, e, None);
+        let v = tabulate(&[top, bottom], false);
+        let stack = v.stack.as_ref().expect("a stack");
+        assert_eq!(v.transparency[24], Rgb::ZERO);
+        assert!((stack[0][24] - (Rgb::new(0.8, 0.0, 0.0) * 0.75 + d * 0.25)).abs().max_element() < 1e-6);
+        assert!((stack[1][24] - e * 0.25).abs().max_element() < 1e-6);
+    }
+}

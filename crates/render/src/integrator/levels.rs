@@ -1,0 +1,35 @@
+//! Which bounces of a path count as mental ray's reflection level (Maya's
+//! `reflectionLimit`): the classic engine raises it for every reflection ray a shader
+//! traces — mirror rays, and the glossy reflection rays of `mia_material` — but not for
+//! final gather rays, which stand for diffuse bounces. The path engine counts a delta
+//! reflection, and a sample of a `mia_material`-like BSDF ([`bsdf::Bsdf::Mia`]) in the
+//! same hemisphere with the probability that its glossy reflection lobe gave it (its
+//! share of f there, [`bsdf::MiaBsdf::reflection_share`]), so that on average the paths
+//! past a glossy bounce are counted as the classic engine counts its glossy rays.
+
+use bsdf::{Bsdf, BsdfSample};
+use glam::Vec3A;
+
+/// The `depth` offset of the number the glossy choice is made with (apart from the
+/// cut-out choices', `cutout::cutout_number`).
+pub(super) const SALT: u32 = 0x5eed_0000;
+
+/// Whether the sample `bs` of `bsdf` seen from `wo` (local frame) is a reflection that
+/// raises the reflection level; `u` gives a number in [0, 1) for the glossy choice (asked
+/// only for a non-delta sample of a `mia_material`-like BSDF).
+#[inline]
+pub(super) fn reflects(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample, u: impl FnOnce() -> f32) -> bool {
+    if (bs.wi.z > 0.0) != (wo.z > 0.0) {
+        return false;
+    }
+    if bs.delta {
+        return true;
+    }
+    match bsdf {
+        Bsdf::Mia(m) => {
+            let share = m.reflection_share(wo, bs.wi);
+            share > 0.0 && u() < share
+        }
+        _ => false,
+    }
+}
