@@ -20,7 +20,7 @@
 //! values of its last turn.
 
 use std::cell::{Cell, RefCell};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::marker::PhantomData;
 use std::sync::Arc;
 
 use glam::Vec4;
@@ -162,13 +162,11 @@ impl<'a, const N: usize> Frame<'a, N> {
 /// runs (an evaluation without loops costs nothing more).
 #[derive(Debug, Default)]
 pub struct Evaluation {
-    /// 0 until a loop runs in it.
+    /// 0 until a loop runs in it; then unique on its thread.
     id: Cell<u64>,
+    /// Not sent to another thread (its id names results in this thread's cache).
+    _thread: PhantomData<*const ()>,
 }
-
-/// Ids of evaluations that ran a loop (unique over all threads, so that an evaluation
-/// moved to another thread never meets another's results).
-static NEXT_EVALUATION: AtomicU64 = AtomicU64::new(1);
 
 impl Evaluation {
     /// A fresh evaluation: no loop has run in it.
@@ -177,19 +175,19 @@ impl Evaluation {
         Evaluation::default()
     }
 
-    /// The evaluation's id, given now if it has none.
-    fn id(&self) -> u64 {
-        if self.id.get() == 0 {
-            self.id.set(NEXT_EVALUATION.fetch_add(1, Ordering::Relaxed));
-        }
-        self.id.get()
-    }
-
     /// Slot `k` after loop `l` (base 0) at the shading point `s`, running it unless it
     /// already ran in this evaluation.
     fn once(&self, l: &HitLoop, s: &State, k: u8) -> Vec4 {
-        let (id, key) = (self.id(), std::ptr::from_ref(l));
-        if let Some(v) = RESULTS.with_borrow(|r| r.get(id, key, k)) {
+        let key = std::ptr::from_ref(l);
+        let (id, done) = RESULTS.with_borrow_mut(|r| {
+            // The evaluation's id, given now if it has none.
+            if self.id.get() == 0 {
+                r.last_id += 1;
+                self.id.set(r.last_id);
+            }
+            (self.id.get(), r.get(self.id.get(), key, k))
+        });
+        if let Some(v) = done {
             return v;
         }
         let n = l.init.len();
@@ -213,6 +211,9 @@ impl Evaluation {
 struct Results {
     /// Loops (base 0) run on this thread so far.
     runs: u64,
+    /// The latest id given to an evaluation on this thread.
+    last_id: u64,
+    /// The evaluation whose results these are.
     id: u64,
     loops: Vec<(*const HitLoop, usize, usize)>,
     values: Vec<Vec4>,
