@@ -159,7 +159,7 @@ impl<'a, const N: usize> Frame<'a, N> {
 /// however many of their values are read and wherever they are read (after them, in the
 /// starting values or turns of a later loop): their results stay in a cache of the
 /// render thread under the evaluation's id, which it is given when its first such loop
-/// runs (an evaluation without loops costs nothing more).
+/// runs (an evaluation without loops is only passed along, a pointer).
 #[derive(Debug, Default)]
 pub struct Evaluation {
     /// 0 until a loop runs in it; then unique on its thread.
