@@ -424,16 +424,21 @@ pub fn too_costly(e: &Arc<HitExpr>) -> Option<String> {
 }
 
 /// The nodes one evaluation of `e` visits (a shared subexpression counted each time it is
-/// reached; saturating; a per-hit loop as its start plus [`MAX_LOOP_STEPS`], all it may
-/// take) and its depth, computed without recursion, once per shared node.
+/// reached; saturating) and its depth, computed without recursion, once per shared node. A
+/// loop of the hit no loop is around runs once per evaluation however often its values are
+/// read: each distinct one counts as its start plus [`MAX_LOOP_STEPS`] (all it may take)
+/// once, and each read of it as one node.
 pub fn cost(e: &Arc<HitExpr>) -> (u64, usize) {
     cost_with(e, true)
 }
 
-/// [`cost`], with loops counted as their start and one turn when not `budgeted` (the cost
-/// of one turn of a loop around them, whose steps count theirs as they run).
+/// [`cost`], with loops inside others counted as their start and one turn when not
+/// `budgeted` (the cost of one turn of a loop around them, whose steps count theirs as they
+/// run).
 pub(super) fn cost_with(e: &Arc<HitExpr>, budgeted: bool) -> (u64, usize) {
     let mut done: HashMap<*const HitExpr, (u64, usize)> = HashMap::new();
+    // The loops no loop is around that the evaluation runs (once each).
+    let mut once: HashMap<*const HitLoop, &HitLoop> = HashMap::new();
     let mut stack: Vec<(&HitExpr, bool)> = vec![(&**e, false)];
     while let Some((node, ready)) = stack.pop() {
         let key = std::ptr::from_ref(node);
@@ -444,6 +449,10 @@ pub(super) fn cost_with(e: &Arc<HitExpr>, budgeted: bool) -> (u64, usize) {
         if ready {
             let (mut visits, mut depth) = (1u64, 0usize);
             let counted = match node {
+                HitExpr::LoopOut(l, _) if l.base == 0 => {
+                    once.insert(Arc::as_ptr(l), l);
+                    0
+                }
                 HitExpr::LoopOut(l, _) if budgeted => {
                     visits = visits.saturating_add(MAX_LOOP_STEPS);
                     l.init.len()
@@ -463,7 +472,16 @@ pub(super) fn cost_with(e: &Arc<HitExpr>, budgeted: bool) -> (u64, usize) {
             stack.extend(operands.into_iter().filter(|o| !done.contains_key(&Arc::as_ptr(o))).map(|o| (&**o, false)));
         }
     }
-    done.get(&Arc::as_ptr(e)).copied().unwrap_or((1, 1))
+    let (mut visits, depth) = done.get(&Arc::as_ptr(e)).copied().unwrap_or((1, 1));
+    if budgeted {
+        for l in once.values() {
+            visits = visits.saturating_add(MAX_LOOP_STEPS);
+            for i in l.init.iter() {
+                visits = visits.saturating_add(done.get(&Arc::as_ptr(i)).map_or(1, |c| c.0));
+            }
+        }
+    }
+    (visits, depth)
 }
 
 impl HitExpr {
@@ -573,6 +591,46 @@ mod tests {
             modest = fold(HitExpr::Binary(BinOp::Mul, modest.clone(), modest));
         }
         assert_eq!(too_costly(&modest), None);
+    }
+
+    /// A loop no loop is around runs once per evaluation: ten of its values read (and a
+    /// second loop starting from one of them) count its start and [`MAX_LOOP_STEPS`] once,
+    /// each read as one node; a loop inside another counts its start at each read.
+    #[test]
+    fn a_loop_counts_once_however_many_of_its_values_are_read() {
+        let u = fold(HitExpr::State(StateFn::TextureCoordinate(0)));
+        let slot = |k| Arc::new(HitExpr::Slot(k));
+        let make = |base: u8, init: Arc<HitExpr>| {
+            Arc::new(HitLoop {
+                base,
+                init: vec![init; 10].into(),
+                cond: fold(HitExpr::Binary(BinOp::Lt, slot(base), u.clone())),
+                next: (0..10).map(|k| fold(HitExpr::Binary(BinOp::Add, slot(base + k), c(1.0)))).collect(),
+                exit: c(0.0),
+                test_first: true,
+                turn_cost: 40,
+                top: base + 10,
+            })
+        };
+        let sum = |l: &Arc<HitLoop>| {
+            let mut e = c(0.0);
+            for k in 0..10 {
+                e = Arc::new(HitExpr::Binary(BinOp::Add, e, Arc::new(HitExpr::LoopOut(l.clone(), l.base + k))));
+            }
+            e
+        };
+        let first = make(0, u.clone());
+        // Ten reads and ten additions, the constant 0, the loop once (start: u, ten times).
+        assert_eq!(cost(&sum(&first)), (21 + MAX_LOOP_STEPS + 10, 13));
+        assert_eq!(too_costly(&sum(&first)), None);
+        // A second loop starting from the first one's values: each loop once.
+        let second = make(0, Arc::new(HitExpr::LoopOut(first.clone(), 3)));
+        let both = Arc::new(HitExpr::Binary(BinOp::Add, sum(&first), sum(&second)));
+        assert_eq!(cost(&both).0, 1 + 2 * 21 + 2 * MAX_LOOP_STEPS + 10 + 10);
+        // A loop inside another (base 10) reads slots around it: run at each read.
+        let inner = make(10, slot(0));
+        assert_eq!(cost(&sum(&inner)).0, 21 + 10 * (MAX_LOOP_STEPS + 10));
+        assert!(too_costly(&sum(&inner)).is_some());
     }
 
     #[test]

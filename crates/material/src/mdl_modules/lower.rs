@@ -33,6 +33,7 @@ use bsdf::{MiaBsdf, OrenNayar, Rgb, Unified, UnifiedParams};
 use glam::{Vec3A, Vec4};
 
 use super::hit::HitExpr;
+use super::hit_loop::Evaluation;
 use super::natives::{is_state_normal, leaf, mix_weights, MAX_LEAVES};
 use super::value::{Df, Edf, Leaf, ScatterMode, Value};
 use crate::edf::EmissionShape;
@@ -259,8 +260,10 @@ impl HitEvaluator for MdlHit {
     /// Lowers the material at the shading point `state` into `hit`.
     fn apply(&self, state: &shader::State, hit: &mut HitMaterial<'_>) {
         let mut values = [Vec4::ZERO; MAX_LEAVES];
+        // One evaluation: a loop of the hit runs once, whatever number of leaves read it.
+        let ev = Evaluation::new();
         for (v, e) in values.iter_mut().zip(&self.leaves) {
-            *v = e.eval_finite(state);
+            *v = e.eval_finite_with(state, &ev);
         }
         let values = &values[..self.leaves.len()];
         let ior = self.ior_hit.map_or(self.ior, |i| mean_ior(values[i as usize]));
@@ -405,7 +408,8 @@ pub fn surface(
     // otherwise where the warnings come from).
     let mut state =
         shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
-    let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
+    let ev = Evaluation::new();
+    let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite_with(&state, &ev)).collect();
     let ior_at = |values: &[Vec4]| ior_hit.map_or(ior, |i| mean_ior(values[i as usize]));
     let (mut diffuse, model) = lower_bsdf(&scattering, &values, (ior_at(&values), thin), Some((name, warnings)), false);
     if !leaves.is_empty() {
@@ -414,7 +418,8 @@ pub fn surface(
         let mut sum = Rgb::ZERO;
         for k in 0..64 {
             state.tex_list[0] = Vec3A::new((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5, 0.0) / 8.0;
-            let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite(&state)).collect();
+            let ev = Evaluation::new();
+            let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite_with(&state, &ev)).collect();
             sum += lower_bsdf(&scattering, &values, (ior_at(&values), thin), None, false).0;
         }
         diffuse = sum / 64.0;

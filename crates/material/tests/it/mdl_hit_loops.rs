@@ -4,7 +4,8 @@
 //! `break` and a `continue` under conditions of the hit, `continue` in a `switch` of the
 //! hit, a struct carried through the turns, a `return` inside (early, nested, under an
 //! `if` of the hit, in a loop of fixed count inside), a `break` of the hit out of a
-//! `switch` — and an endless one stopped after its steps.
+//! `switch`, ten array elements read after a loop, a loop starting from another's results
+//! (each loop run once per hit) — and an endless one stopped after its steps.
 
 use crate::mdl_support;
 
@@ -124,6 +125,47 @@ fn loops_of_the_hit_carry_up_to_255_values() {
     check("wide_loop", &[0.0, 0.05, 0.31, 0.99].map(|u| (u, 99.0 * ceil10(u))));
     let nest = |u: f32| (0..(u * 10.0) as i32).map(|k| (k * (k + 1)) as f32).sum::<f32>();
     check("wide_nested", &[0.05, 0.15, 0.45, 0.99].map(|u| (u, nest(u))));
+}
+
+/// How many loops of the hit (no loop around) one hit of `m` at u runs.
+fn runs_per_hit(m: &SurfaceMaterial, u: f32) -> u64 {
+    let before = material::mdl_modules::hit_loop::loops_run();
+    emitted(m, u);
+    material::mdl_modules::hit_loop::loops_run() - before
+}
+
+/// Ten array elements filled in a loop of the hit and all read after it: the closed form
+/// Σ (k + 1)(k² + 0.5) over k < floor(10 u), with the loop run once per hit (before, each
+/// read re-ran it and the module was refused as too costly: 10 × 16 385 steps and more).
+#[test]
+fn ten_elements_read_after_a_loop_run_it_once() {
+    let want = |u: f32| (0..(u * 10.0) as i32).map(|k| ((k + 1) * (k * k)) as f32 + 0.5 * (k + 1) as f32).sum::<f32>();
+    let cases = [0.05, 0.25, 0.55, 0.99].map(|u| (u, want(u)));
+    check("ten_read", &cases);
+    let (mdl, lib) = material("ten_read");
+    let m = get(&mdl, &lib, "m");
+    for (u, _) in cases {
+        assert_eq!(runs_per_hit(m, u), 1, "u {u}");
+    }
+}
+
+/// A loop whose starting values and turns read another loop's results (n = floor(10 u)):
+/// a + b s + t = n + 2^n + n² + (2^n − n) n + 2^n, each of the two loops run once per hit
+/// (the first is not run again inside the second's frame).
+#[test]
+fn a_loop_starting_from_another_loops_results_runs_each_once() {
+    let want = |u: f32| {
+        let n = (u * 10.0) as i32 as f32;
+        let p = n.exp2();
+        (n + p + n * n) + (p - n) * n + p
+    };
+    let cases = [0.05, 0.15, 0.45, 0.99].map(|u| (u, want(u)));
+    check("chained_loops", &cases);
+    let (mdl, lib) = material("chained_loops");
+    let m = get(&mdl, &lib, "m");
+    for (u, _) in cases {
+        assert_eq!(runs_per_hit(m, u), 2, "u {u}");
+    }
 }
 
 /// What is not compiled in a loop of the hit — one carrying more values than it has slots

@@ -1,7 +1,8 @@
 //! Matrices that vary over the surface in module materials (tests/mdl/hit_matrices.mdl):
 //! a constant matrix with a scalar of the hit, the surface's frame as a matrix of the hit,
 //! matrices, vectors and arrays indexed by integers of the hit, a matrix carried through a
-//! loop of the hit and assigned at its counter, and matrix parameters set from the `.mi`
+//! loop of the hit and assigned at its counter, a `float4x4` carried through one and read
+//! whole after it, and matrix parameters set from the `.mi`
 //! file (a wrong shape an error at its `.mi` line), each at several hits against glam's
 //! products of the same numbers (within 1e-5).
 
@@ -169,6 +170,41 @@ fn matrices_are_carried_through_loops_of_the_hit() {
         let chosen = if u > 0.5 { m() * 2.0 } else { Mat3::from_cols(m().x_axis, Vec3::splat(u), m().z_axis) };
         chosen * Vec3::ONE
     });
+}
+
+/// A `float4x4` carried through one loop of the hit and read whole after it (all four
+/// columns: before loops ran once per evaluation, each read re-ran the loop and the
+/// module was refused as too costly, 4 × 16 385 steps and more), against the closed form
+/// N · Tⁿ: Tⁿ turns by 0.25 n about z and steps n along z. The loop runs once per hit.
+#[test]
+fn a_float4x4_carried_through_a_loop_is_read_whole() {
+    let n_mat = Mat4::from_cols_array(&[
+        1.0, 0.5, -0.25, 0.125, 2.0, -1.0, 0.75, 0.5, 0.5, 0.25, 1.5, -0.5, -1.0, 0.3, 0.2, 1.0,
+    ]);
+    let m = |s: &State| {
+        let n = (u_of(s) * 10.0) as i32 as f32;
+        let (sin, cos) = (0.25 * n).sin_cos();
+        let t = Mat4::from_cols(
+            Vec4::new(cos, sin, 0.0, 0.0),
+            Vec4::new(-sin, cos, 0.0, 0.0),
+            Vec4::Z,
+            Vec4::new(0.0, 0.0, n, 1.0),
+        );
+        n_mat * t
+    };
+    let w = Vec4::new(1.0, 2.0, 3.0, 4.0);
+    check(r#"shader "m" "mdl::hit_matrices::carried4" ("which" 0)"#, |s| (m(s) * w).truncate());
+    check(r#"shader "m" "mdl::hit_matrices::carried4" ("which" 1)"#, |s| (m(s).transpose() * w).truncate());
+    check(r#"shader "m" "mdl::hit_matrices::carried4" ("which" 2)"#, |s| {
+        Vec3::new((m(s) * w).w, (m(s).transpose() * w).w, 0.0)
+    });
+    let (mdl, lib, _) = compile_text(r#"shader "m" "mdl::hit_matrices::carried4" ("which" 0)"#);
+    let material = get(&mdl, &lib, "m");
+    for s in hits() {
+        let before = material::mdl_modules::hit_loop::loops_run();
+        emitted(material, &s);
+        assert_eq!(material::mdl_modules::hit_loop::loops_run() - before, 1, "at {:?}", s.tex_list[0]);
+    }
 }
 
 #[test]

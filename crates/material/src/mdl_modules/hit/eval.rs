@@ -1,13 +1,14 @@
 //! Evaluation of a compiled [`HitExpr`] at a shading point. Interface:
 //! [`HitExpr::eval`] (the value at a hit), [`HitExpr::eval_finite`] (the same with NaN and
-//! infinite lanes read as 0, what materials use) and [`HitExpr::eval_in`] (inside the
-//! per-hit loops whose slots a [`Slots`] holds); [`fold`](super::fold) uses `eval` to fold
+//! infinite lanes read as 0, what materials use; [`HitExpr::eval_finite_with`] for several
+//! expressions of one [`Evaluation`]) and [`HitExpr::eval_in`] (inside the per-hit loops
+//! whose slots a [`Slots`] holds); [`fold`](super::fold) uses `eval` to fold
 //! constant nodes. The lane helpers, [`splat`] and [`math`] are `pub(super)` for the tests.
 
 use glam::{Vec3A, Vec4};
 use shader::State;
 
-use super::super::hit_loop::{NoFrame, Slots};
+use super::super::hit_loop::{Evaluation, Slots, Top};
 use super::super::sky_model::SkyParam;
 use super::{BinOp, HitExpr, MathFn, StateFn, UnOp};
 
@@ -43,7 +44,14 @@ impl HitExpr {
     /// reaches the film.
     #[inline]
     pub fn eval_finite(&self, s: &State) -> Vec4 {
-        let v = self.eval(s);
+        self.eval_finite_with(s, &Evaluation::new())
+    }
+
+    /// [`HitExpr::eval_finite`] as part of evaluation `ev`, whose other expressions share
+    /// the results of its loops of the hit (each runs once in it).
+    #[inline]
+    pub fn eval_finite_with(&self, s: &State, ev: &Evaluation) -> Vec4 {
+        let v = self.eval_in(s, Top(ev));
         if v.is_finite() {
             v
         } else {
@@ -54,7 +62,7 @@ impl HitExpr {
     /// The value at the shading point `s`.
     #[inline]
     pub fn eval(&self, s: &State) -> Vec4 {
-        self.eval_in(s, NoFrame)
+        self.eval_in(s, Top(&Evaluation::new()))
     }
 
     /// The value at the shading point `s` inside the per-hit loops whose slots `f` holds.
