@@ -20,6 +20,7 @@ mod maya_textures3d;
 mod mdl_base_conversions;
 mod mdl_base_functions;
 mod mdl_compile;
+mod mdl_furnace;
 mod mdl_hit;
 mod mdl_hit_loops;
 mod mdl_layer_normals;
