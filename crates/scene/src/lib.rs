@@ -107,6 +107,8 @@ pub struct Library {
     pub lightprofiles: BTreeMap<String, Vec<ast::Block>>,
     /// MDL modules the scene includes.
     pub mdl_modules: Vec<String>,
+    /// Where each of `mdl_modules` is included (the `$include`'s file name; same order).
+    pub mdl_module_spans: Vec<mi::Span>,
     /// The directories of the scene files that include MDL modules (searched first for
     /// them, in order; see `material::mdl`).
     pub mdl_dirs: Vec<std::path::PathBuf>,
@@ -117,6 +119,7 @@ impl Library {
         let mut lib = Library {
             declarations: table.declarations.iter().map(|(k, d)| (k.clone(), (*d).clone())).collect(),
             mdl_modules: table.mdl_modules.clone(),
+            mdl_module_spans: table.mdl_module_spans.clone(),
             ..Library::default()
         };
         for (name, e) in &table.elements {

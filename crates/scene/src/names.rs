@@ -81,6 +81,8 @@ pub struct Table<'a> {
     pub declarations: HashMap<String, &'a Declaration>,
     /// MDL modules included.
     pub mdl_modules: Vec<String>,
+    /// Where each of `mdl_modules` was included (same order).
+    pub mdl_module_spans: Vec<Span>,
     /// Order in which elements were first defined (full names).
     pub order: Vec<String>,
 }
@@ -121,6 +123,7 @@ impl<'a> Table<'a> {
                 Item::Include(inc) => {
                     if inc.target == mi::IncludeTarget::Mdl {
                         self.mdl_modules.push(inc.path.text.clone());
+                        self.mdl_module_spans.push(inc.path.span);
                     }
                     self.walk(&inc.items, scope, frame, renders, found, diags);
                 }

@@ -637,6 +637,24 @@ mod tests {
         assert_eq!(iray.filter.radius(), (2.0, 2.0));
     }
 
+    /// mental ray 3.7+'s progressive string options (as a 3.12 MDL scene writes them) set
+    /// the progressive limits as Iray's attributes do; `"progressive" on`, `"gi" on` and
+    /// `"light relative scale"` are kept as string options for whoever reads them.
+    #[test]
+    fn mental_ray_progressive_string_options() {
+        let o = options(
+            "options \"o\" \"progressive\" on \"progressive max samples\" 64 \"progressive min samples\" 4\n\
+             \"progressive max time\" 30 \"progressive error threshold\" 0.05 \"gi\" on \"light relative scale\" 0.5\n\
+             end options",
+            Dialect::MentalRay,
+        );
+        assert_eq!((o.progressive.max_samples, o.progressive.min_samples), (64, 4));
+        assert_eq!((o.progressive.max_time, o.progressive.quality), (Some(30.0), 0.05));
+        assert_eq!(o.string_options["progressive"], AttrValue::Bool(true));
+        assert_eq!(o.string_options["gi"], AttrValue::Bool(true));
+        assert_eq!(o.string_options["light relative scale"].as_f64(), Some(0.5));
+    }
+
     /// The `state` statement's shaders are kept in order: an inline call, a named shader
     /// (`state = "name"`), and a later statement replaces an earlier one.
     #[test]

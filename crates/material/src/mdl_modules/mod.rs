@@ -120,10 +120,17 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
     // The `::base` functions `.mi` connections may name (a built-in module: it loads).
     let _ = set.load("::base");
     let mut failed: HashMap<String, String> = HashMap::new();
-    for written in &lib.mdl_modules {
+    // Included modules that do not load, with where they were included: reported there
+    // unless a shader using them reports it.
+    let mut unused_failures = Vec::new();
+    for (k, written) in lib.mdl_modules.iter().enumerate() {
         let name = included_module(written);
+        if failed.contains_key(&name) {
+            continue;
+        }
         if let Err(e) = set.load(&name) {
-            failed.insert(name, e.to_string());
+            failed.insert(name.clone(), e.to_string());
+            unused_failures.push((name, lib.mdl_module_spans.get(k).copied().unwrap_or_default()));
         }
     }
     for (shader, def) in &lib.shaders {
@@ -142,6 +149,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
                 decl.span,
                 format!("MDL module `{module}` could not be loaded; '{shader}' renders grey:\n{why}"),
             ));
+            unused_failures.retain(|(m, _)| *m != module);
             continue;
         }
         let qualified = format!("{module}::{item}");
@@ -161,6 +169,12 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         diags.extend(warnings.into_iter().map(|w| Diagnostic::warning(decl.span, w)));
         diags.extend(textures.warnings.drain(..).map(|w| Diagnostic::warning(decl.span, w)));
         out.by_call.insert((span.file.0, span.lo), surface);
+    }
+    for (module, span) in unused_failures {
+        diags.push(Diagnostic::warning(
+            span,
+            format!("MDL module `{module}` could not be loaded:\n{}", failed[&module]),
+        ));
     }
     out.module_sources = set.sources().files().map(|(_, f)| f.bytes.shared_bytes()).collect();
     (out, diags)

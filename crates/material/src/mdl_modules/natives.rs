@@ -178,6 +178,14 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             Some(Value::Vdf(v)) => super::volume::tint(v, arg("tint"), span),
             _ => Err(problem(span, "`df::tint` of an edf or hair bsdf is not compiled yet")),
         },
+        "tint" => match arg("base") {
+            // `tint(reflection_tint, transmission_tint, base)`.
+            Some(Value::Bsdf(d)) => d
+                .tinted_apart(number("reflection_tint")?, number("transmission_tint")?)
+                .map(Value::Bsdf)
+                .map_err(|what| problem(span, format!("`df::tint` of {what} is not compiled yet"))),
+            _ => Err(problem(span, "`df::tint` of two tints and a hair bsdf is not compiled yet")),
+        },
         "weighted_layer" | "color_weighted_layer" => Ok(Value::Bsdf(Df::Layer {
             weight: number("weight")?,
             fresnel_ior: None,

@@ -228,6 +228,80 @@ impl ScatterMode {
     }
 }
 
+impl Df {
+    /// `df::tint(reflection_tint, transmission_tint, base)`: this tree with each reflecting
+    /// lobe tinted by `reflect` and each transmitting one by `transmit` — the tints pushed
+    /// down through mixes, layers and modifiers to the lobes, each lobe wrapped in the
+    /// one-component mix `df::tint(color, bsdf)` makes (a tint is linear in the lobes, and
+    /// the layers' curves do not depend on it). `Err` names what cannot be split: one lobe
+    /// that reflects and transmits under two different tints (mira's glass has one tint),
+    /// or a sheen whose base transmits.
+    pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
+        let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], clamped: false };
+        let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
+        Ok(match self {
+            Df::Black => Df::Black,
+            Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => wrap(reflect),
+            Df::DiffuseTransmission(_) => wrap(transmit),
+            Df::Specular { mode, .. } | Df::Glossy { mode, .. } => match mode {
+                ScatterMode::Reflect => wrap(reflect),
+                ScatterMode::Transmit => wrap(transmit),
+                ScatterMode::ReflectTransmit if reflect == transmit => wrap(reflect),
+                ScatterMode::ReflectTransmit => {
+                    return Err("a lobe that reflects and transmits (`scatter_reflect_transmit`) under two tints")
+                }
+            },
+            Df::Sheen { multiscatter, .. } if multiscatter.transmits() => {
+                return Err("a sheen whose base transmits, under two tints")
+            }
+            Df::Sheen { .. } => wrap(reflect),
+            Df::Mix { parts, clamped } => Df::Mix {
+                parts: parts
+                    .iter()
+                    .map(|(w, d)| Ok((*w, d.tinted_apart(reflect, transmit)?)))
+                    .collect::<Result<_, _>>()?,
+                clamped: *clamped,
+            },
+            Df::Layer { weight, fresnel_ior, layer, base, layer_normal } => Df::Layer {
+                weight: *weight,
+                fresnel_ior: *fresnel_ior,
+                layer: split(layer)?,
+                base: split(base)?,
+                layer_normal: *layer_normal,
+            },
+            Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => Df::CurveLayer {
+                weight: *weight,
+                normal: *normal,
+                grazing: *grazing,
+                exponent: *exponent,
+                layer: split(layer)?,
+                base: split(base)?,
+                layer_normal: *layer_normal,
+            },
+            Df::DirectionalFactor { normal, grazing, exponent, base } => {
+                Df::DirectionalFactor { normal: *normal, grazing: *grazing, exponent: *exponent, base: split(base)? }
+            }
+            Df::ThinFilm { thickness, ior, base } => {
+                Df::ThinFilm { thickness: *thickness, ior: *ior, base: split(base)? }
+            }
+        })
+    }
+
+    /// Whether any lobe of the tree transmits.
+    fn transmits(&self) -> bool {
+        match self {
+            Df::DiffuseTransmission(_) => true,
+            Df::Specular { mode, .. } | Df::Glossy { mode, .. } => *mode != ScatterMode::Reflect,
+            Df::Black | Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => false,
+            Df::Sheen { multiscatter: b, .. }
+            | Df::DirectionalFactor { base: b, .. }
+            | Df::ThinFilm { base: b, .. } => b.transmits(),
+            Df::Mix { parts, .. } => parts.iter().any(|(_, d)| d.transmits()),
+            Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => layer.transmits() || base.transmits(),
+        }
+    }
+}
+
 /// An emission distribution (MDL `edf`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Edf {

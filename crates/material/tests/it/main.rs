@@ -22,6 +22,7 @@ mod maya_utilities;
 mod mdl_base_conversions;
 mod mdl_base_functions;
 mod mdl_compile;
+mod mdl_furnace;
 mod mdl_hit;
 mod mdl_hit_loops;
 mod mdl_hit_matrices;

@@ -345,3 +345,58 @@ shader "seventeen" "mdl::lobes::seventeen_lobes" ()"#,
     assert_eq!(m.model, SurfaceModel::Lambert);
     assert!(close(m.diffuse, Rgb::splat(0.5 / 17.0), 1e-6), "{:?}", m.diffuse);
 }
+
+/// A `$include`d module that does not load — malformed, or on no directory of the search
+/// path — is a warning at the `$include`'s line naming the module's own `file:line:col`
+/// even when no shader uses it (it used to pass unnoticed); one a shader uses is reported
+/// at that shader, once.
+#[test]
+fn an_included_module_that_does_not_load_is_reported_at_its_include() {
+    let dir = std::env::temp_dir().join(format!("mira-mdl-bad-include-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("broken.mdl"),
+        "mdl 1.7;\nimport ::df::*;\nexport material m() = material(\n    surface: material_surface(scattering: df::no_such_bsdf()));\n",
+    )
+    .unwrap();
+    let (_, _, diags) = mdl_support::compile_text_with(
+        r#"$include "broken.mdl"
+$include "absent.mdl"
+$include "broken.mdl""#,
+        std::slice::from_ref(&dir),
+    );
+    assert_eq!(diags.len(), 2, "{diags:#?}");
+    assert!(
+        diags.iter().any(|d| d.contains("t.mi:1:")
+            && d.contains("`::broken` could not be loaded")
+            && d.contains("broken.mdl:4:")),
+        "{diags:#?}"
+    );
+    assert!(diags.iter().any(|d| d.contains("t.mi:2:") && d.contains("`::absent` could not be loaded")), "{diags:#?}");
+    let (_, _, diags) = mdl_support::compile_text_with(
+        r#"$include "broken.mdl"
+shader "s" "mdl::broken::m" ()"#,
+        std::slice::from_ref(&dir),
+    );
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(diags[0].contains("t.mi:2:") && diags[0].contains("renders grey"), "{}", diags[0]);
+}
+
+/// `material_emission(diffuse_edf(), intensity, mode)`: a radiant exitance E gives radiance
+/// E/π; a power Φ (`intensity_power`) gives Φ/π, marked to be divided by the area of all
+/// triangles of the material when the scene is built (the division `add_emission`'s
+/// `lumen` shares, `crates/render/tests/it/path_materials.rs`); 1e-6.
+#[test]
+fn emission_intensity_modes_give_radiance_or_power() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "exitance" "mdl::emission_modes::lamp" ("intensity" 2 4 6)
+shader "power" "mdl::emission_modes::lamp" ("intensity" 2 4 6, "mode" "intensity_power")"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let want = Rgb::new(2.0, 4.0, 6.0) / std::f32::consts::PI;
+    let e = get(&mdl, &lib, "exitance");
+    assert!(close(e.emission, want, 1e-6) && !e.emission_over_area, "{:?}", e.emission);
+    let p = get(&mdl, &lib, "power");
+    assert!(close(p.emission, want, 1e-6) && p.emission_over_area, "{:?}", p.emission);
+}

@@ -137,6 +137,45 @@ fn mdl_modules_are_found_with_dash_m_and_their_materials_checked() {
     assert!(png.is_file());
 }
 
+/// The third place modules are searched: the directories of `MDL_PATHS` (`:`-separated,
+/// after the scene's directory and `-M`). The Cornell box without its module beside it
+/// finds `::export_multi` through `MDL_PATHS` (a missing directory first is skipped), and
+/// a scene naming `mdl::chain::top::red_coat` loads the three-module chain
+/// `chain/top.mdl` → `chain/middle.mdl` → `chain/bottom.mdl` from there, with no warning.
+#[test]
+fn mdl_modules_are_found_on_mdl_paths() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-mdl-paths-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let modules = std::fs::canonicalize("../../scenes/mdl").unwrap();
+    let scene = std::fs::read_to_string("../../scenes/mdl/cornell_mdl.mi").unwrap();
+    let s = dir.join("cornell.mi");
+    std::fs::write(
+        &s,
+        scene.replace(
+            r#""mdl::export_multi::matte" ("tint" 0.5 0 0, "roughness" 0)"#,
+            r#""mdl::chain::top::red_coat" ()"#,
+        ),
+    )
+    .unwrap();
+    let check = |paths: Option<String>| {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_mira"));
+        cmd.args(["check", "--scene", "-W", s.to_str().unwrap()]).current_dir(env!("CARGO_MANIFEST_DIR"));
+        cmd.env_remove("MDL_PATHS");
+        if let Some(p) = paths {
+            cmd.env("MDL_PATHS", p);
+        }
+        let out = cmd.output().unwrap();
+        (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (code, err) = check(None);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("MDL module `::export_multi` could not be loaded"), "{err}");
+    let (code, err) = check(Some(format!("{}:{}", dir.join("absent").display(), modules.display())));
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("could not be loaded") && !err.contains("warning"), "{err}");
+}
+
 /// `--preview` writes the image rendered so far after every pass but the last (passes of
 /// 1, 1, 2 and 4 samples for 8 spp), changes no pixel of the final image, and leaves no
 /// hidden file behind; `--preview 0` writes none, and a negative interval is an error.
