@@ -6,6 +6,7 @@ mod ambient_highlight;
 mod cutout;
 mod fog;
 mod leave;
+mod matte;
 mod media;
 
 use bsdf::Bsdf;
@@ -441,6 +442,7 @@ pub fn trace_camera_path(
             // refracts them.)
             if m.opacity >= 1.0
                 || m.model.refracts()
+                || world.materials[s.material as usize].maya_matte.is_some()
                 || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity
             {
                 // Distances along the original ray.
@@ -558,6 +560,18 @@ pub fn trace_camera_path(
             let motion = crate::tracer::hit_motion(world, &stop, s.p, ray.time);
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
             glow = Some(material.glow);
+        }
+        if let Some(m) = &world.materials[s.material as usize].maya_matte {
+            // Maya's useBackground: the background less the shadows, and its mirror.
+            let at =
+                matte::Arrival { ray: &ray, surface: &s, instance: stop.instance, camera: depth == 0, reflections };
+            let hit = matte::shade(world, accel, shading, env, m, &at, sampler.next_2d(), seed, counts);
+            alpha = if depth == 0 { hit.alpha } else { alpha };
+            radiance += throughput * hit.color;
+            let Some((weight, next)) = hit.mirror else { break };
+            (throughput, ray, reflections, last_delta, from_instance) =
+                (throughput * weight, next, reflections + 1, true, Some(stop.instance));
+            continue;
         }
         if material.emission != Rgb::ZERO {
             let spread = material.emission_shape.map_or(1.0, |e| e.factor(s.ns, material.tangent, -ray.dir));

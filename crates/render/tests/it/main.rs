@@ -34,6 +34,7 @@ mod maya_refraction_path;
 mod maya_soft_shadows_path;
 mod maya_specular_texture_path;
 mod maya_transparent_path;
+mod maya_use_background_path;
 mod maya_vertex_data;
 mod maya_volume_axis_path;
 mod maya_volume_dir_path;
