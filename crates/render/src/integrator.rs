@@ -6,6 +6,7 @@ mod ambient_highlight;
 mod cutout;
 mod fog;
 mod leave;
+mod light_lobes;
 mod matte;
 mod media;
 
@@ -648,7 +649,7 @@ pub fn trace_camera_path(
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
-                let f = bsdf.eval(wo, wi);
+                let f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {

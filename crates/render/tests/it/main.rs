@@ -21,6 +21,7 @@ mod maya_ambient_links_path;
 mod maya_ambient_path;
 mod maya_coloured_transparency_path;
 mod maya_decay_path;
+mod maya_emit_lobes_path;
 mod maya_exports_agree;
 mod maya_fog_material_path;
 mod maya_fog_path;
