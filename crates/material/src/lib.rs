@@ -205,6 +205,9 @@ pub struct SurfaceMaterial {
     /// emission from them ([`maya::ViewTransparency::apply`]); `None` for every other
     /// material (and for a rampShader whose ramps are the same all along).
     pub view_transparency: Option<Box<maya::ViewTransparency>>,
+    /// Maya's useBackground: the shadow-catching matte the path engine shades it as
+    /// ([`maya::MayaMatte`]); `None` for every other material.
+    pub maya_matte: Option<maya::MayaMatte>,
 }
 
 impl SurfaceMaterial {
@@ -232,6 +235,7 @@ impl SurfaceMaterial {
             ambient: Rgb::ZERO,
             maya_highlight: None,
             view_transparency: None,
+            maya_matte: None,
         }
     }
 

@@ -76,8 +76,9 @@
 //!   and `mia_material` glossy reflections, as mental ray's reflection level counts
 //!   reflection rays (`bsdf::MayaGlossy::reflection_limit`);
 //!   `incandescence`: emitted radiance;
-//! - useBackground: fully transparent (the path engine has no shadow-catching matte; a
-//!   warning says so);
+//! - useBackground: a shadow-catching matte ([`MayaMatte`]: the background darkened by
+//!   `shadowMask` × the blocked share of the lights, a mirror of `reflectivity` ·
+//!   `specularColor`), fully transparent to shadow rays;
 //! - glow (what a camera's shader glow spreads, as the classic shaders' `outGlowColor`):
 //!   `glowIntensity` × `color` for the lambert family (a connected colour is bound per
 //!   hit), `glowIntensity` × the colour ramp at 1 for rampShader, `outGlowColor` for
@@ -91,8 +92,10 @@
 
 use std::sync::Arc;
 
+mod matte;
 mod view_layers;
 mod view_transparency;
+pub use matte::MayaMatte;
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -476,7 +479,14 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
         }
         "usebackground" => {
             surface.opacity = 0.0;
-            r.warnings.push("useBackground has no shadow-catching matte in the path engine; it is left out".into());
+            let (mask, s, limit) = (
+                r.scalar("shadowMask", 1.0),
+                r.color("specularColor", Rgb::splat(0.5)),
+                r.scalar("reflectionLimit", 1.0),
+            );
+            let mirror = s * r.scalar("reflectivity", 0.5).max(0.0);
+            surface.maya_matte =
+                Some(MayaMatte { shadow_mask: mask.clamp(0.0, 1.0), mirror, reflection_limit: limit.max(0.0) as u32 });
         }
         _ => {
             r.warnings.push(format!("'{material}' has no path-engine translation; rendered grey"));

@@ -7,6 +7,8 @@ mod cutout;
 mod fog;
 mod leave;
 mod levels;
+mod light_lobes;
+mod matte;
 mod media;
 
 use bsdf::Bsdf;
@@ -443,6 +445,7 @@ pub fn trace_camera_path(
             // refracts them.)
             if m.opacity >= 1.0
                 || m.model.refracts()
+                || world.materials[s.material as usize].maya_matte.is_some()
                 || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity
             {
                 // Distances along the original ray.
@@ -563,6 +566,18 @@ pub fn trace_camera_path(
             first = Some(FirstHit { point: s.p, normal: s.ns, tag: s.tag, motion });
             glow = Some(material.glow);
         }
+        if let Some(m) = &world.materials[s.material as usize].maya_matte {
+            // Maya's useBackground: the background less the shadows, and its mirror.
+            let at =
+                matte::Arrival { ray: &ray, surface: &s, instance: stop.instance, camera: depth == 0, reflections };
+            let hit = matte::shade(world, accel, shading, env, m, &at, sampler.next_2d(), seed, counts);
+            alpha = if depth == 0 { hit.alpha } else { alpha };
+            radiance += throughput * hit.color;
+            let Some((weight, next)) = hit.mirror else { break };
+            (throughput, ray, reflections, last_delta, from_instance) =
+                (throughput * weight, next, reflections + 1, true, Some(stop.instance));
+            continue;
+        }
         if material.emission != Rgb::ZERO {
             let spread = material.emission_shape.map_or(1.0, |e| e.factor(s.ns, material.tangent, -ray.dir));
             radiance += throughput * material.emission * spread;
@@ -638,7 +653,7 @@ pub fn trace_camera_path(
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
-                let f = bsdf.eval(wo, wi);
+                let f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {

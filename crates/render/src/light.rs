@@ -137,6 +137,9 @@ pub struct LightSource {
     /// light's triangles that change shape over the shutter carry their own keys in
     /// their [`Shape::Mesh`].)
     pub motion: Vec<glam::Affine3A>,
+    /// Which lobes of the materials it lights (Maya's `emitDiffuse`, `emitSpecular`;
+    /// both for every other light).
+    pub lobes: material::emission::maya::LightLobes,
 }
 
 /// A sampled light contribution towards a shading point.
@@ -254,6 +257,7 @@ impl LightSource {
             shadow_color,
             soft_shadow: material::emission::maya::soft_shadow(light, lib).filter(|_| !is_area),
             motion: Vec::new(),
+            lobes: material::emission::maya::light_lobes(light, lib).unwrap_or_default(),
         })
     }
 

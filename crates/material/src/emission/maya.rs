@@ -25,8 +25,8 @@
 //!   light arrives from for shading, its shadow rays still going to that point (as the
 //!   classic Maya materials shade it); with `emitAmbient` it is not sampled but lights as
 //!   Maya's ambient light does ([`super::ambient`]);
-//! - `emitDiffuse` off: the light is left out (the path engine has no specular-only
-//!   lights), with a message; ambient lights are not lights the path engine samples:
+//! - `emitDiffuse` / `emitSpecular` off: the light lights only the other part of the
+//!   materials' lobes ([`light_lobes`]); ambient lights are not lights the path engine samples:
 //!   see [`super::ambient`] (a message here when asked for as a light).
 
 use super::{Emission, Power};
@@ -58,9 +58,6 @@ pub fn emission_of(decl: &str, params: &[Param], light_to_world: DMat4) -> Optio
     }
     if family == "volumelight" {
         return Some(volume_emission(decl, params, light_to_world, color));
-    }
-    if scalar("emitDiffuse", 1.0) == 0.0 {
-        return Some(Err(format!("{decl} with emitDiffuse off: the path engine leaves the light out")));
     }
     let rate = if family == "directionallight" { 0 } else { (scalar("decayRate", 0.0) as i32).clamp(0, 3) };
     // An area light shines from its rectangle's front, weighted by the cosine to the
@@ -322,6 +319,32 @@ pub fn soft_shadow(light: &scene::Light, lib: &scene::Library) -> Option<SoftSha
     }
 }
 
+/// Which parts of the materials' lobes a light lights: Maya's `emitDiffuse` and
+/// `emitSpecular` (both on for every other light).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightLobes {
+    /// It lights the diffuse lobes.
+    pub diffuse: bool,
+    /// It lights the highlights and other glossy lobes.
+    pub specular: bool,
+}
+
+impl Default for LightLobes {
+    fn default() -> LightLobes {
+        LightLobes { diffuse: true, specular: true }
+    }
+}
+
+/// The lobes a Maya light lights (`emitDiffuse`, `emitSpecular`); `None` when its shader
+/// is not a Maya light.
+pub fn light_lobes(light: &scene::Light, lib: &scene::Library) -> Option<LightLobes> {
+    let list = light.shader.as_ref()?;
+    let (decl, params) = first_call(&list.0, lib)?;
+    family(crate::declaration_name(decl))?;
+    let on = |name: &str| scalar_param(params, name).unwrap_or(1.0) != 0.0;
+    Some(LightLobes { diffuse: on("emitDiffuse"), specular: on("emitSpecular") })
+}
+
 #[cfg(test)]
 mod tests {
     use std::f32::consts::PI;
@@ -358,7 +381,7 @@ mod tests {
         let e = emission_of("maya_directionallight", &params(r#""decayRate" 2"#), DMat4::IDENTITY).unwrap().unwrap();
         assert!(matches!(e.power, Power::Constant { .. }));
         assert!(emission_of("maya_ambientlight", &params(""), DMat4::IDENTITY).unwrap().is_err());
-        assert!(emission_of("maya_pointlight", &params(r#""emitDiffuse" off"#), DMat4::IDENTITY).unwrap().is_err());
+        assert!(emission_of("maya_pointlight", &params(r#""emitDiffuse" off"#), DMat4::IDENTITY).unwrap().is_ok());
         assert!(emission_of("mib_light_point", &params(""), DMat4::IDENTITY).is_none());
     }
 

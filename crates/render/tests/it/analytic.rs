@@ -228,6 +228,7 @@ fn lambertian_plane_under_a_point_light() {
         shadow_color: Rgb::ZERO,
         soft_shadow: None,
         motion: Vec::new(),
+        lobes: Default::default(),
     };
     // An orthographic camera 5 units up looking down, 4 units wide, 32×32 pixels.
     let cam = camera(Affine3A::from_translation(glam::Vec3::new(0.0, 0.0, 5.0)), 32, 4.0, true);
@@ -274,6 +275,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         shadow_color: Rgb::ZERO,
         soft_shadow: None,
         motion: Vec::new(),
+        lobes: Default::default(),
     };
     // Seen from below, through its middle: radiance E/π exactly.
     let from_below = Affine3A::from_rotation_x(std::f32::consts::PI) * Affine3A::IDENTITY;

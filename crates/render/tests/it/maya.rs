@@ -168,6 +168,7 @@ fn path_world(l: &Loaded) -> render::World {
                 shadow_color: glam::Vec3A::ZERO,
                 soft_shadow: None,
                 motion: Vec::new(),
+                lobes: Default::default(),
             })
         })
         .collect();

@@ -25,6 +25,7 @@ fn rect_light(two_sided: bool) -> LightSource {
         shadow_color: Rgb::ZERO,
         soft_shadow: None,
         motion: Vec::new(),
+        lobes: Default::default(),
     }
 }
 
