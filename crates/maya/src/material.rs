@@ -229,7 +229,7 @@ pub(crate) fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
 
 /// The lights a Maya material shades with: its `lightList` (parameter `i` of `node`) when
 /// the export filled it in, else the instance's light list (`light "exclusive"` links).
-pub(crate) fn material_lights(ctx: &mut Ctx, node: NodeId, i: usize) -> Vec<u32> {
+pub(crate) fn material_lights(ctx: &mut Ctx, node: NodeId, i: usize) -> shader::light_list::LightList {
     let listed = ctx.array(node, i);
     if listed.array().is_empty() {
         ctx.instance_lights()

@@ -32,6 +32,7 @@ pub mod fgcache;
 pub mod graph;
 pub mod inscatter;
 pub mod light;
+pub mod light_list;
 pub mod lights;
 pub mod media_chain;
 pub mod photon;

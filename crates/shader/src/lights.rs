@@ -23,11 +23,12 @@
 
 use std::borrow::Cow;
 
-use glam::{Vec2, Vec3A};
+use glam::{Vec2, Vec3A, Vec4};
 use scene::LightKind;
 
 use super::ctx::Ctx;
 use super::light::ShadingLight;
+use super::light_list::LightList;
 use super::site::SitePairs;
 use super::state::{RayType, State};
 use super::tracer::{ShadowHint, ShadowQuery};
@@ -122,30 +123,31 @@ impl<'a> Ctx<'a> {
 
     /// The lights a shader with light `mode` (0 listed, 1 listed ∩ all, 2 all but listed,
     /// 3 all, 4 the instance's light list) and light array `lights` uses.
-    pub fn light_list(&self, mode: i32, lights: &Value) -> Vec<u32> {
+    pub fn light_list(&self, mode: i32, lights: &Value) -> LightList {
         let all = self.shading().lights.len() as u32;
-        let listed: Vec<u32> = lights
-            .array()
-            .iter()
-            .filter_map(|v| match v.tag() {
+        let listed = || {
+            lights.array().iter().filter_map(move |v| match v.tag() {
                 Some(Tag::Light(i)) if i < all => Some(i),
                 _ => None,
             })
-            .collect();
+        };
         match mode {
             0 | 1 => {
-                let mut l = listed;
+                let mut l: LightList = listed().collect();
                 l.dedup();
                 l
             }
-            2 => (0..all).filter(|i| !listed.contains(i)).collect(),
+            2 => {
+                let listed: LightList = listed().collect();
+                (0..all).filter(|i| !listed.contains(i)).collect()
+            }
             4 => self.instance_lights(),
             _ => (0..all).collect(),
         }
     }
 
     /// The light list of the instance being shaded (all lights when it has none).
-    pub fn instance_lights(&self) -> Vec<u32> {
+    pub fn instance_lights(&self) -> LightList {
         let all = self.shading().lights.len() as u32;
         match self.shading().instance_lights.get(self.state.instance as usize).and_then(Option::as_ref) {
             None => (0..all).collect(),
@@ -438,9 +440,11 @@ impl<'a> Ctx<'a> {
         if lp.ahead_reach & (1 << k) == 0 {
             return (None, None);
         }
-        let (geometry, query) = lp.ahead_samples[k as usize];
+        let (geometry, _) = lp.ahead_samples[k as usize];
         let blocked = lp.ahead_blocked & (1 << k) != 0;
-        (Some(geometry), Some(ShadowHint { query, time: self.state.time, blocked }))
+        let s = &self.state;
+        let from = shadow_inputs(s.shadow_point, s.point_error, s.normal_geom, geometry.to_light, geometry.dist);
+        (Some(geometry), Some(ShadowHint { time: s.time, blocked, from }))
     }
 
     /// For a light shader: sends a shadow ray from the illuminated point to the light and
@@ -461,18 +465,27 @@ impl<'a> Ctx<'a> {
         }
         let s = &self.state;
         let to_light = -s.dir;
-        let org = crate::trace::leave_point(s.shadow_point, s.point_error, s.normal_geom, to_light);
         let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
         let tracer = self.tracer;
         if !shading.has_shadow_shaders() {
             // Every surface stops the light (no material filters it): the first surface
             // found on the way decides, with no need for the nearest one or its state.
             self.shadow_queried = true;
-            let query = ShadowQuery { org, dir: to_light, max_dist };
             let blocked = match self.shadow_hint.take() {
-                // Traced ahead by the light loop (the same ray, bit for bit).
-                Some(hint) if hint.query == query && hint.time == s.time => hint.blocked,
-                _ => tracer.shadow_blocked(org, to_light, max_dist, s.time),
+                // Traced ahead by the light loop: the same inputs, so the same ray bit for bit.
+                Some(hint)
+                    if hint.time == s.time
+                        && same_bits(
+                            &hint.from,
+                            &shadow_inputs(s.shadow_point, s.point_error, s.normal_geom, to_light, s.dist),
+                        ) =>
+                {
+                    hint.blocked
+                }
+                _ => {
+                    let org = crate::trace::leave_point(s.shadow_point, s.point_error, s.normal_geom, to_light);
+                    tracer.shadow_blocked(org, to_light, max_dist, s.time)
+                }
             };
             if blocked {
                 *color = Color::ZERO;
@@ -481,6 +494,7 @@ impl<'a> Ctx<'a> {
             return true;
         }
         self.media_walked = true;
+        let org = crate::trace::leave_point(s.shadow_point, s.point_error, s.normal_geom, to_light);
         let mut ray = s.child(RayType::Shadow, org, to_light);
         ray.light = s.light;
         let mut filter = *color;
@@ -545,4 +559,19 @@ impl<'a> Ctx<'a> {
         *color = filter;
         true
     }
+}
+
+/// What a shadow ray's origin, direction and reach are made of (see
+/// [`ShadowHint::from`]): the shading point's `shadow_point` and `point_error`, its
+/// geometric normal and the distance, and the unit direction to the light.
+#[inline(always)]
+fn shadow_inputs(shadow_point: Vec3A, point_error: f32, normal_geom: Vec3A, to_light: Vec3A, dist: f32) -> [Vec4; 3] {
+    [shadow_point.extend(point_error), normal_geom.extend(dist), to_light.extend(0.0)]
+}
+
+/// Whether `a` and `b` hold the same bits (unlike `==`, which takes -0 for 0).
+#[inline(always)]
+fn same_bits(a: &[Vec4; 3], b: &[Vec4; 3]) -> bool {
+    let bits = |v: &[Vec4; 3]| v.map(|v| v.to_array().map(f32::to_bits));
+    bits(a) == bits(b)
 }

@@ -43,13 +43,17 @@ pub struct ShadowQuery {
 }
 
 /// A shadow query of a light sample, traced ahead by the light loop, with its answer: the
-/// light shader's [`crate::Ctx::trace_shadow`] takes the answer when it asks exactly this
-/// query at this shutter time.
+/// light shader's [`crate::Ctx::trace_shadow`] takes the answer when its ray is made from
+/// the same inputs at this shutter time.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ShadowHint {
-    pub(crate) query: ShadowQuery,
     pub(crate) time: f32,
     pub(crate) blocked: bool,
+    /// What the query traced ahead was made from: the light state's `shadow_point`, `normal_geom`,
+    /// `-dir` (lanes x, y, z; `point_error` and `dist` in the `w` lanes of the first two).
+    /// The same inputs give the same ray, so `trace_shadow` compares these instead of
+    /// computing the ray's origin again.
+    pub(crate) from: [glam::Vec4; 3],
 }
 
 /// Ray casting for shaders (implemented by the renderer, one per rendering thread).
