@@ -56,10 +56,17 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &Shading, diagn
     // Each (mesh, materials) pair is displaced once, whichever instances share it.
     let mut made: HashMap<(u32, Vec<u32>), Option<u32>> = HashMap::new();
     let mut budget = MAX_DISPLACED_TRIANGLES;
-    let mut users = vec![0usize; world.meshes.len()];
+    // The material lists each mesh is placed with: a mesh placed with one list only is
+    // replaced by its displaced form, not kept twice.
+    let mut placements: HashMap<u32, Vec<&[u32]>> = HashMap::new();
     for inst in &world.instances {
-        users[inst.mesh as usize] += 1;
+        let lists = placements.entry(inst.mesh).or_default();
+        if !lists.contains(&inst.materials.as_slice()) {
+            lists.push(&inst.materials);
+        }
     }
+    let alone: std::collections::HashSet<u32> =
+        placements.into_iter().filter(|(_, l)| l.len() == 1).map(|(m, _)| m).collect();
     for index in 0..world.instances.len() {
         let inst = &world.instances[index];
         let (mesh_index, materials) = (inst.mesh, inst.materials.clone());
@@ -71,8 +78,7 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &Shading, diagn
             Some(t) => *t,
             None => {
                 let t = displace_mesh(world, scene, shading, index, &shader_of, &mut budget, diagnostics).map(|mesh| {
-                    // A mesh no other instance places is replaced, not kept twice.
-                    if users[mesh_index as usize] == 1 {
+                    if alone.contains(&mesh_index) {
                         world.meshes[mesh_index as usize] = mesh;
                         mesh_index
                     } else {

@@ -175,3 +175,23 @@ material "m" = "lam" displace = "disp" end material"#;
         assert!(outside[1] < 1e-6, "{engine:?}: {outside:?}");
     }
 }
+
+/// One object placed twice, with a displaced and a plain material: the displaced
+/// instance's hits are at d (1e-4), the plain one's stay at 0 (its mesh is kept).
+#[test]
+fn an_object_placed_with_and_without_displacement_keeps_both_forms() {
+    let body = format!(
+        "{}\nmaterial \"plain\" \"mib_illum_lambert\" (\"diffuse\" 1 1 1) end material",
+        constant_material(0.5)
+    );
+    let text = plane("", &body, "", "m").replace(
+        r#"instgroup "root" "cam_inst" "square_inst""#,
+        "instance \"moved_inst\" \"square\" material \"plain\" transform 1 0 0 0 0 1 0 0 0 0 1 0 -2 0 0 1 end instance\n\
+         instgroup \"root\" \"cam_inst\" \"moved_inst\" \"square_inst\"",
+    );
+    let b = build(&text);
+    assert!(!b.messages.iter().any(|m| m.contains("error")), "{:?}", b.messages);
+    let displaced = height_at(&b.built.world, 0.5, 0.5).expect("hit");
+    let plain = height_at(&b.built.world, 2.5, 0.5).expect("hit");
+    assert!((displaced - 0.5).abs() < 1e-4 && plain.abs() < 1e-4, "{displaced} {plain}");
+}
