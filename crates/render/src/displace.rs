@@ -21,7 +21,9 @@
 //! past that is an error at the `approximate` statement (nothing is rendered), the default
 //! level is lowered with a warning. Meshes whose vertices move over the shutter and hair
 //! are not displaced (a warning). Object area lights and emission spread over the area
-//! use the undisplaced surface.
+//! use the undisplaced surface. Instances of one object with the same materials share one
+//! displaced mesh, the shader evaluated where the first of them places it (world-space
+//! lookups differ between such instances in mental ray).
 
 pub mod subdivide;
 
