@@ -120,3 +120,21 @@ maya_shader!(
 fn transparent(_ctx: &mut Ctx, _n: NodeId, _out: &mut Value) -> bool {
     true
 }
+
+maya_shader!(
+    /// Displacement shader of a shading group (its `displacementShader` connection): the
+    /// scalar connected to `displacement` (a displacementShader's output, a texture's
+    /// `outAlpha`), object-space units along the normal (see the renderer's displacement
+    /// stage).
+    MATERIAL_DISPLACE,
+    ADSK_MATERIAL_DISPLACE,
+    "maya_material_displace",
+    "adskMayaMaterialDisplace",
+    &["displacement"],
+    material_displace
+);
+
+fn material_displace(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
+    *out = Value::Scalar(ctx.scalar(n, 0));
+    true
+}

@@ -94,6 +94,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &engine::ADSK_SHADOW,
     &engine::TRANSPARENT,
     &engine::ADSK_TRANSPARENT,
+    &engine::MATERIAL_DISPLACE,
+    &engine::ADSK_MATERIAL_DISPLACE,
     &volume::VOLUMESAMPLER,
     &volume::ADSK_VOLUMESAMPLER,
     &fog::ENVFOG,

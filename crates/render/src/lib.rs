@@ -7,7 +7,8 @@
 //!    `render` statement ([`pipeline::Loaded`]); settings that change the scene apply here
 //!    ([`pipeline::set_resolution`], [`pipeline::choose_engine`]).
 //! 2. **build the world** — [`pipeline::build_world`]: compile the shading and translate
-//!    the scene into the [`World`] the engines trace (meshes, materials, lights).
+//!    the scene into the [`World`] the engines trace (meshes, materials, lights), displaced
+//!    surfaces included ([`displace`]).
 //! 3. **prepare** — [`accel::build`] (the acceleration structure), then
 //!    [`prepare::prepare`]: the environment's importance table, the photon maps, the final
 //!    gather points ([`prepare::Prepared`]); a farm's parts may read the classic pre-passes
@@ -28,6 +29,7 @@
 pub mod accel;
 pub mod camera;
 pub mod classic;
+pub mod displace;
 pub mod engine;
 pub mod environment;
 pub mod fgcache;

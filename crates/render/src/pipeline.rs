@@ -184,10 +184,12 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 /// materials (modules found beside the scene, in `mdl_paths`, then `MDL_PATHS`), tabulates
 /// its `"shutter shape function"` shader ([`shader::shutter::tabulate_into`]), and
 /// translates the scene into the world the engines trace (copying the scene's meshes;
-/// [`build_world_taking_meshes`] moves them).
+/// [`build_world_taking_meshes`] moves them), then displaces the surfaces of materials with
+/// a displacement shader ([`crate::displace`]).
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
-    let (mut shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
-    let world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
+    let (mut shading, mdl, mut diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let mut world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
+    crate::displace::displace_world(&mut world, scene, &shading, &mut diagnostics);
     share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }
@@ -196,8 +198,9 @@ pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf
 /// instead of copying them ([`World::from_scene_taking_meshes`]): for callers that need
 /// the scene's geometry no more (the scene's object meshes are left empty).
 pub fn build_world_taking_meshes(scene: &mut Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
-    let (mut shading, mdl, diagnostics) = compile_scene_shading(scene, options, mdl_paths);
-    let world = World::from_scene_taking_meshes(scene, Some(&shading), &mdl);
+    let (mut shading, mdl, mut diagnostics) = compile_scene_shading(scene, options, mdl_paths);
+    let mut world = World::from_scene_taking_meshes(scene, Some(&shading), &mdl);
+    crate::displace::displace_world(&mut world, scene, &shading, &mut diagnostics);
     share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }

@@ -500,6 +500,10 @@ impl<'a> Builder<'a, '_> {
                     tagged: tagged.unwrap_or(false),
                     tag,
                     data: data_names(&stmts),
+                    displace: crate::displace::DisplaceSettings::of_object(
+                        &stmts,
+                        defs.iter().rev().find(|o| !o.geometry.is_empty()).map_or(&[], |o| &o.geometry),
+                    ),
                     geometry,
                     span: defs[0].span,
                 });

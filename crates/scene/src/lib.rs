@@ -11,6 +11,7 @@
 
 pub mod build;
 pub mod camera;
+pub mod displace;
 pub mod instance;
 pub mod light;
 pub mod mesh;
@@ -70,6 +71,8 @@ pub struct Object {
     pub data: Vec<String>,
     /// The tessellated geometry.
     pub geometry: ObjectGeometry,
+    /// Its `approximate displace` and `max displace` (for the renderer's displacement).
+    pub displace: displace::DisplaceSettings,
     /// Where the object is defined.
     pub span: mi::Span,
 }

@@ -234,6 +234,8 @@ pub struct Progressive {
 pub struct Options {
     /// The element's name.
     pub name: String,
+    /// `approximate displace … all` and `max displace`: the defaults of displaced objects.
+    pub displace: crate::displace::DisplaceSettings,
     /// The dialect the scene is written in.
     pub dialect: Dialect,
     /// `samples min max`: adaptive supersampling as powers of 4 per pixel (0 = 1 sample,
@@ -298,6 +300,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             name: String::new(),
+            displace: Default::default(),
             dialect: Dialect::MentalRay,
             samples: (-2, 0),
             contrast: [0.1; 4],
@@ -377,6 +380,7 @@ impl Options {
             ..Options::default()
         };
         let stmts: Vec<&Stmt> = blocks.iter().flat_map(|b| b.stmts.iter()).collect();
+        o.displace = crate::displace::DisplaceSettings::of_options(&stmts);
         if let Some(k) = last(&stmts, "samples") {
             let ints: Vec<i64> = (0..k.args.len()).filter_map(|i| int_arg(k, i)).collect();
             o.samples = match ints[..] {

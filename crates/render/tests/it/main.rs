@@ -2,6 +2,7 @@
 //! (one link instead of 38: CI's disk and time). Run one file's tests with
 //! `cargo test -p render --test it <module>::`.
 
+mod displacement;
 mod support;
 
 mod aerial_perspective;

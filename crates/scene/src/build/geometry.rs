@@ -98,6 +98,7 @@ impl<'a> Builder<'a, '_> {
                         tag: None,
                         data: Vec::new(),
                         geometry: ObjectGeometry { mesh, hair: Vec::new() },
+                        displace: Default::default(),
                         span: call.span,
                     });
                     let i = (self.objects.len() - 1) as u32;
