@@ -72,6 +72,10 @@ pub enum Target {
     /// of the hit's diffuse colour × the value's × the scale (that channel of a
     /// non-grey `irradianceColor`) is added to the emission's.
     IrradianceMapChannel(u8),
+    /// One channel (0 red, 1 green, 2 blue) of the value × the scale added to that of the
+    /// emission (a Maya material's `ambientColor` ⊙ a connected `color`, or a connected
+    /// `ambientColor` ⊙ a constant `color`). Bind it after the emission.
+    EmissionChannel(u8),
     /// A Maya material's `specularColor`: its highlight's tint and its mirror's weight
     /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
     /// value × the scale per channel.
@@ -327,6 +331,10 @@ impl SurfaceMaterial {
                 Target::IrradianceMapChannel(c) => {
                     let c = usize::from(c.min(2));
                     hit.emission[c] += hit.diffuse[c] * rgb()[c];
+                }
+                Target::EmissionChannel(c) => {
+                    let c = usize::from(c.min(2));
+                    hit.emission[c] += rgb()[c];
                 }
                 Target::Opacity => hit.opacity = num().clamp(0.0, 1.0),
                 Target::SpecularColor => {

@@ -75,7 +75,8 @@
 //!   `specularColor`); `reflectionLimit`: the mirror reflects on paths of fewer mirror
 //!   and `mia_material` glossy reflections, as mental ray's reflection level counts
 //!   reflection rays (`bsdf::MayaGlossy::reflection_limit`);
-//!   `incandescence`: emitted radiance;
+//!   `incandescence`: emitted radiance; `ambientColor` a: c ⊙ a emitted (faded by
+//!   1 − T), per hit when `color` or `ambientColor` is connected ([`ambient_color`]);
 //! - useBackground: a shadow-catching matte ([`MayaMatte`]: the background darkened by
 //!   `shadowMask` × the blocked share of the lights, a mirror of `reflectivity` ·
 //!   `specularColor`), fully transparent to shadow rays;
@@ -227,6 +228,36 @@ fn glossy_shape(highlight: ::maya::specular::Highlight, specular: Rgb) -> Option
             (Shape::PhongE { roughness, size }, specular * Rgb::new(whiteness.x, whiteness.y, whiteness.z))
         }
     })
+}
+
+/// The lambert family's `ambientColor` a: the classic shader adds c ⊙ a (faded by 1 − T
+/// like the rest of its diffuse part) whatever the lights, as it adds incandescence, so
+/// it is emitted radiance here, faded by `fade` per channel — constant, or per hit
+/// through one binding per channel when `color` or `ambientColor` is connected (both
+/// connected: warned about and left out). The classic shader returns it to every ray
+/// that is not a shadow or light ray, final-gather and reflection rays included, so
+/// it lights other surfaces there; as emission it does so in the path engine too.
+fn ambient_color(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
+    let color = connection(r.graph, r.node, "color");
+    let ambient = connection(r.graph, r.node, "ambientColor");
+    let (driver, weight) = match (color, ambient) {
+        (None, None) => {
+            surface.emission += r.color("color", Rgb::splat(0.5)) * r.color("ambientColor", Rgb::ZERO) * fade;
+            return;
+        }
+        (Some(_), Some(_)) => {
+            r.warnings.push("'color' and 'ambientColor' are both connected; the path engine leaves c ⊙ a out".into());
+            return;
+        }
+        (Some(c), None) => (c, r.color("ambientColor", Rgb::ZERO)),
+        (None, Some(a)) => (a, r.color("color", Rgb::splat(0.5))),
+    };
+    let (node, member) = driver;
+    for (c, scale) in [weight.x * fade.x, weight.y * fade.y, weight.z * fade.z].into_iter().enumerate() {
+        if scale != 0.0 {
+            r.bindings.push(Binding { node, member: member.clone(), target: Target::EmissionChannel(c as u8), scale });
+        }
+    }
 }
 
 /// The `irradiance` illumination map M of the lambert family (the reading is
@@ -403,6 +434,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
             // Ambient light goes by `color` alone: 1/d of the diffuse colour.
             surface.ambient = Rgb::splat(if d > 0.0 { 1.0 / d } else { 0.0 });
             surface.emission = r.driven("incandescence", Target::Emission, mean, Rgb::ZERO) * shape;
+            ambient_color(&mut r, &mut surface, fade);
             irradiance_map(&mut r, &mut surface, albedo);
             let glow_intensity = r.scalar("glowIntensity", 0.0);
             if glow_intensity != 0.0 {

@@ -19,6 +19,7 @@ mod glossy_interpolation;
 mod iray_sun_and_sky;
 mod large_meshes;
 mod maya;
+mod maya_ambient_color_path;
 mod maya_ambient_links_path;
 mod maya_ambient_path;
 mod maya_coloured_transparency_path;
