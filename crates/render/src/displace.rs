@@ -33,7 +33,7 @@ use glam::Vec3A;
 use mi::ast::{ApproxTerm, Approximation};
 use mi::Diagnostic;
 use scene::Scene;
-use shader::{Color, Ctx, NodeId, Shading, State, Tracer, Value, VertexData};
+use shader::{Ctx, NoScene, NodeId, Shading, State, Value};
 
 use crate::mesh::MeshData;
 use crate::world::World;
@@ -122,7 +122,9 @@ fn displace_mesh(
     }
     let settings = &object.displace;
     let approximation = settings.approximation.as_ref().or(scene.options.displace.approximation.as_ref());
-    let max_displace = settings.max_displace.or(scene.options.displace.max_displace).map(|d| d as f32);
+    // `f32::clamp` panics on a negative or NaN bound: a hostile `max displace -1` bounds by 1.
+    let max_displace =
+        settings.max_displace.or(scene.options.displace.max_displace).map(|d| (d as f32).abs()).filter(|d| !d.is_nan());
     let triangles = mesh.triangles.len();
     let level = match approximation {
         None => 0,
@@ -281,21 +283,5 @@ fn form(a: &Approximation) -> String {
         "(no technique)".to_string()
     } else {
         words.join(" ")
-    }
-}
-
-/// Casts no ray: displacement shaders see no scene.
-struct NoScene;
-
-impl Tracer for NoScene {
-    fn intersect(&self, _: &mut State, _: f32) -> bool {
-        false
-    }
-    fn shadow_hits(&self, _: &State, _: f32, _: &mut dyn FnMut(&State) -> bool) {}
-    fn triangle(&self, _: &State, _: VertexData) -> Option<[Vec3A; 3]> {
-        None
-    }
-    fn fb_put(&self, _: u32, _: Color) -> bool {
-        false
     }
 }

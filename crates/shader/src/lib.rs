@@ -56,7 +56,7 @@ pub use graph::{Graph, NodeId, Slot};
 pub use registry::{Library, Registry};
 pub use shading::{MaterialShaders, Shading, ShadingOptions};
 pub use state::{RayType, State};
-pub use tracer::{Hit, ShadowQuery, SurfaceScatter, Tracer, VertexData};
+pub use tracer::{Hit, NoScene, ShadowQuery, SurfaceScatter, Tracer, VertexData};
 pub use value::{Color, Tag, Value};
 
 /// What a shader does: reads parameters of node `node` through the context, writes its

@@ -4,34 +4,17 @@
 //! (`Shading::shutter_shape`); [`tabulate_into`] evaluates it once over the interval into
 //! `Shading::shutter_weights`, and the renderer draws sample times from that table.
 
-use glam::Vec3A;
 use mi::Diagnostic;
 
 use super::graph::NodeId;
 use super::shading::Shading;
 use super::state::State;
-use super::tracer::{Tracer, VertexData};
-use super::value::{Color, Value};
+use super::tracer::NoScene;
+use super::value::Value;
 use super::Ctx;
 
 /// The name of the string option.
 pub const OPTION: &str = "shutter shape function";
-
-/// Casts no ray: a shutter shape shader sees an empty scene.
-struct NoScene;
-
-impl Tracer for NoScene {
-    fn intersect(&self, _: &mut State, _: f32) -> bool {
-        false
-    }
-    fn shadow_hits(&self, _: &State, _: f32, _: &mut dyn FnMut(&State) -> bool) {}
-    fn triangle(&self, _: &State, _: VertexData) -> Option<[Vec3A; 3]> {
-        None
-    }
-    fn fb_put(&self, _: u32, _: Color) -> bool {
-        false
-    }
-}
 
 /// Shutter times the shape shader is evaluated at.
 pub const TABLE_SIZE: usize = 256;

@@ -178,3 +178,21 @@ pub struct SurfaceScatter {
     /// Emitted radiance (W·m⁻²·sr⁻¹ in scene units, the path engine's).
     pub emission: bsdf::Rgb,
 }
+
+/// A tracer over an empty scene: every ray misses and nothing is stored. Shaders run
+/// outside rendering (a shutter shape function, a displacement shader at tessellation)
+/// get it as their tracer.
+pub struct NoScene;
+
+impl Tracer for NoScene {
+    fn intersect(&self, _: &mut State, _: f32) -> bool {
+        false
+    }
+    fn shadow_hits(&self, _: &State, _: f32, _: &mut dyn FnMut(&State) -> bool) {}
+    fn triangle(&self, _: &State, _: VertexData) -> Option<[Vec3A; 3]> {
+        None
+    }
+    fn fb_put(&self, _: u32, _: Color) -> bool {
+        false
+    }
+}
