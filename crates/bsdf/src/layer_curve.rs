@@ -25,6 +25,12 @@ pub enum CurveKind {
         /// Index of refraction of the layer relative to the outside.
         ior: f32,
     },
+    /// The dielectric Fresnel reflectance of each channel's own relative index
+    /// (`color_fresnel_layer`): channel k is the reflectance of index `ior[k]`.
+    ColorFresnel {
+        /// Index of refraction of the layer relative to the outside, per channel.
+        ior: Rgb,
+    },
     /// A film of `film_ior` (per channel) and `thickness_nm` nanometres between the outside
     /// (index 1) and a medium of index `ior`: the Airy reflectance of the film, averaged
     /// over three wavelengths in each channel's band.
@@ -56,6 +62,9 @@ impl CurveKind {
                 (normal + (grazing - normal) * t).clamp(Rgb::ZERO, Rgb::ONE)
             }
             CurveKind::Fresnel { ior } => Rgb::splat(dielectric::fresnel(c, ior)),
+            CurveKind::ColorFresnel { ior } => {
+                Rgb::new(dielectric::fresnel(c, ior.x), dielectric::fresnel(c, ior.y), dielectric::fresnel(c, ior.z))
+            }
             CurveKind::ThinFilm { ior, film_ior, thickness_nm } => {
                 let film = film_ior.to_array();
                 let mut out = [0.0f32; 3];

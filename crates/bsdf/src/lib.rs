@@ -17,12 +17,14 @@ pub mod maya_highlight;
 pub mod medium;
 pub mod mia;
 pub mod microfacet;
+pub mod multiscatter;
 mod oren_nayar;
 pub mod phase;
 pub mod reflectance;
 pub mod sheen;
 pub mod sheen_albedo;
 pub mod unified;
+pub mod vcavity;
 
 pub use builtin::BuiltinBsdf;
 pub use color::{luminance, Rgb};

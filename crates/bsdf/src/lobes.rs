@@ -24,7 +24,9 @@ use glam::{Vec2, Vec3A};
 use crate::beckmann::BeckmannReflection;
 use crate::layer_curve::{CurveKind, LayerCurve};
 use crate::microfacet::Ggx;
+use crate::multiscatter::MultiScatter;
 use crate::sheen::Sheen;
+use crate::vcavity;
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
 
 /// Most lobes a compact sum ([`Lobes`], the common case, kept inline in a
@@ -105,6 +107,15 @@ pub enum Lobe {
     Backscatter(Ggx),
     /// A smooth mirror (a Dirac delta: not in `eval` or `pdf`; sampled with `delta`).
     Mirror,
+    /// GGX micro-mirrors with V-cavity masking–shadowing ([`crate::vcavity`]; no Fresnel
+    /// term), sampled as [`Lobe::Ggx`].
+    GgxVcavities(Ggx),
+    /// Beckmann micro-mirrors with V-cavity masking–shadowing (no Fresnel term), sampled
+    /// as [`Lobe::Beckmann`].
+    BeckmannVcavities(crate::beckmann::Beckmann),
+    /// What a micro-mirror lobe loses to masking–shadowing, given back
+    /// ([`crate::multiscatter`]; MDL's `multiscatter_tint`), sampled cosine-weighted.
+    MultiScatter(MultiScatter),
 }
 
 /// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
@@ -211,7 +222,7 @@ fn ward_eval(b: &crate::beckmann::Beckmann, wo: Vec3A, wi: Vec3A) -> f32 {
 
 impl Lobe {
     /// f(ωo, ωi) of the lobe at unit weight.
-    fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+    pub(crate) fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         match self {
             Lobe::Diffuse(sigma) => OrenNayar::new(Rgb::ONE, *sigma).eval(wo, wi),
             Lobe::Translucent => {
@@ -227,29 +238,34 @@ impl Lobe {
             Lobe::Ward(b) => Rgb::splat(ward_eval(b, wo, wi)),
             Lobe::Backscatter(g) => Rgb::splat(ggx_eval(g, wo, turned(wi))),
             Lobe::Mirror => Rgb::ZERO,
+            Lobe::GgxVcavities(g) => Rgb::splat(vcavity::ggx_eval(g, wo, wi)),
+            Lobe::BeckmannVcavities(b) => Rgb::splat(vcavity::beckmann_eval(b, wo, wi)),
+            Lobe::MultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
         }
     }
 
     /// The lobe's sampling density.
-    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    pub(crate) fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         match self {
-            Lobe::Diffuse(_) | Lobe::Sheen(_) => crate::cosine_pdf_on_side(wo, wi),
+            Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => crate::cosine_pdf_on_side(wo, wi),
             Lobe::Translucent => crate::cosine_pdf_on_side(wo, -wi),
-            Lobe::Ggx(g) => ggx_pdf(g, wo, wi),
-            Lobe::Beckmann(b) | Lobe::Ward(b) => BeckmannReflection { tint: Rgb::ONE, dist: *b }.pdf(wo, wi),
+            Lobe::Ggx(g) | Lobe::GgxVcavities(g) => ggx_pdf(g, wo, wi),
+            Lobe::Beckmann(b) | Lobe::Ward(b) | Lobe::BeckmannVcavities(b) => {
+                BeckmannReflection { tint: Rgb::ONE, dist: *b }.pdf(wo, wi)
+            }
             Lobe::Backscatter(g) => ggx_pdf(g, wo, turned(wi)),
             Lobe::Mirror => 0.0,
         }
     }
 
     /// A direction drawn from the lobe's sampling density.
-    fn sample_dir(&self, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
+    pub(crate) fn sample_dir(&self, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
         match self {
-            Lobe::Diffuse(_) | Lobe::Sheen(_) => cosine_on_side(wo, u),
+            Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => cosine_on_side(wo, u),
             Lobe::Translucent => cosine_on_side(-wo, u),
-            Lobe::Ggx(g) => ggx_sample(g, wo, u),
+            Lobe::Ggx(g) | Lobe::GgxVcavities(g) => ggx_sample(g, wo, u),
             Lobe::Backscatter(g) => ggx_sample(g, wo, u).map(turned),
-            Lobe::Beckmann(b) | Lobe::Ward(b) => {
+            Lobe::Beckmann(b) | Lobe::Ward(b) | Lobe::BeckmannVcavities(b) => {
                 BeckmannReflection { tint: Rgb::ONE, dist: *b }.sample(wo, u).map(|s| s.wi)
             }
             // The mirror direction about the normal: ωo turned by π about it.

@@ -3,4 +3,5 @@
 //! `cargo test -p bsdf --test it <module>::`.
 
 mod layered_lobes;
+mod multiscatter;
 mod own_frames;

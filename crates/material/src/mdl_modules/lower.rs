@@ -128,9 +128,15 @@ fn add_lobes(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut LobeSum) -> bool {
             true
         }
         Df::Specular { tint, mode: ScatterMode::Reflect } => add_glossy(tint.get(hit), (0.0, 0.0), scale, sum),
-        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann: false } => {
-            add_glossy(tint.get(hit), alpha(roughness), scale, sum)
-        }
+        Df::Glossy {
+            tint,
+            roughness,
+            mode: ScatterMode::Reflect,
+            beckmann: false,
+            vcavities: false,
+            multiscatter,
+            ..
+        } if is_black(*multiscatter) => add_glossy(tint.get(hit), alpha(roughness), scale, sum),
         Df::Mix { parts, clamped } => {
             let mut ok = true;
             mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_lobes(d, scale * w, hit, sum));
@@ -205,7 +211,11 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
 fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
     match df {
         Df::Specular { tint, mode } => Some((tint.get(hit), 0.0, *mode)),
-        Df::Glossy { tint, roughness: (u, v), mode, beckmann: false } => {
+        // A reflection with V-cavities or compensation is a general lobe sum's; in glass
+        // those are not compiled ([`glass_ignores`] says so).
+        Df::Glossy { tint, roughness: (u, v), mode, beckmann: false, vcavities, multiscatter, .. }
+            if *mode != ScatterMode::Reflect || (!*vcavities && is_black(*multiscatter)) =>
+        {
             Some((tint.get(hit), (u.get(hit).x.max(0.0) * v.get(hit).x.max(0.0)).sqrt(), *mode))
         }
         Df::Mix { parts, clamped } if parts.len() == 1 => {
@@ -214,6 +224,49 @@ fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
             glossy(&parts[0].1, hit).map(|(t, a, m)| (t * w, a, m))
         }
         _ => None,
+    }
+}
+
+/// Whether a tint is constant black (a `multiscatter_tint` that gives nothing back).
+fn is_black(tint: Leaf) -> bool {
+    tint == Leaf::Const(Rgb::ZERO)
+}
+
+/// What the glass [`glossy`] finds (a transmitting microfacet lobe, through one-part
+/// mixes) has that the unified material's glass does not compile, for a warning.
+fn glass_ignores(df: &Df) -> Vec<&'static str> {
+    match df {
+        Df::Glossy { vcavities, multiscatter, tangent, .. } => {
+            let mut what = Vec::new();
+            if *vcavities {
+                what.push("the V-cavity masking of `microfacet_*_vcavities_bsdf` (Smith's is used)");
+            }
+            if !is_black(*multiscatter) {
+                what.push("`multiscatter_tint` (no compensation)");
+            }
+            if tangent.is_some() {
+                what.push("anisotropic roughness and `tangent_u` (isotropic √(roughness_u·roughness_v) is used)");
+            }
+            what
+        }
+        Df::Mix { parts, .. } if parts.len() == 1 => glass_ignores(&parts[0].1),
+        _ => Vec::new(),
+    }
+}
+
+/// The `tangent_u` of every anisotropic microfacet lobe of a tree, in order.
+fn lobe_tangents(df: &Df, out: &mut Vec<Leaf>) {
+    match df {
+        Df::Glossy { tangent, .. } | Df::Ward { tangent, .. } | Df::Backscatter { tangent, .. } => out.extend(*tangent),
+        Df::Black | Df::Diffuse { .. } | Df::DiffuseTransmission(_) | Df::Specular { .. } => {}
+        Df::Sheen { multiscatter: b, .. } | Df::DirectionalFactor { base: b, .. } | Df::ThinFilm { base: b, .. } => {
+            lobe_tangents(b, out)
+        }
+        Df::Mix { parts, .. } => parts.iter().for_each(|(_, d)| lobe_tangents(d, out)),
+        Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => {
+            lobe_tangents(layer, out);
+            lobe_tangents(base, out);
+        }
     }
 }
 
@@ -377,6 +430,27 @@ pub fn surface(
             Some(_) => warnings.push(format!("material '{name}': this edf is not compiled yet; no emission")),
         }
     }
+    // Anisotropic lobes turn their roughness with their `tangent_u` (world space): the
+    // shading frame's u axis follows it at each hit (one axis for the whole BSDF).
+    let mut axes = Vec::new();
+    lobe_tangents(&scattering, &mut axes);
+    if let Some(&first) = axes.first() {
+        if axes.iter().any(|a| *a != first) {
+            warnings.push(format!(
+                "material '{name}': its anisotropic microfacet lobes have different `tangent_u`s; all follow the first"
+            ));
+        }
+        let along = match first {
+            Leaf::Const(c) => TangentU::Const(Vec3A::new(c.x, c.y, c.z)),
+            Leaf::Hit(i) => TangentU::Hit(i),
+        };
+        if tangent.is_some_and(|t| t != along) {
+            warnings.push(format!(
+                "material '{name}': its measured_edf's `tangent_u` differs from its anisotropic lobes'; the lobes' is used"
+            ));
+        }
+        tangent = Some(along);
+    }
     let mut opacity = None;
     let mut constant_opacity = 1.0;
     let mut normal = None;
@@ -480,6 +554,9 @@ fn lower_bsdf(
                 })
             }),
             ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
+                for what in glass_ignores(df) {
+                    say(&|name| format!("material '{name}': in glass, {what} is not compiled yet"));
+                }
                 if mode == ScatterMode::Transmit {
                     say(&|name| {
                         format!("material '{name}': a transmit-only lobe is rendered as glass that also reflects")
@@ -498,8 +575,9 @@ fn lower_bsdf(
         };
     }
     if let Df::Layer { weight, fresnel_ior: Some(coat_ior), layer, base, layer_normal: None } = df {
-        if let (Some((tint, alpha, ScatterMode::Reflect)), Some((albedo, _))) =
-            (glossy(layer, hit), diffuse_only(base, hit))
+        // A colour index (different per channel) is a general sum's Fresnel curve.
+        if let (Some((tint, alpha, ScatterMode::Reflect)), Some((albedo, _)), Ok(coat_ior)) =
+            (glossy(layer, hit), diffuse_only(base, hit), super::value::layer_ior(*coat_ior))
         {
             if tint != Rgb::ONE {
                 // A tinted coat: the general lobe sum has the tint (a Fresnel curve).

@@ -30,6 +30,7 @@ mod mdl_layer_normals;
 mod mdl_layers;
 mod mdl_matrices;
 mod mdl_measured_edf;
+mod mdl_microfacet_params;
 mod mdl_state_space;
 mod mdl_statements;
 mod mdl_textures3d;

@@ -6,12 +6,13 @@
 
 use bsdf::beckmann::Beckmann;
 use bsdf::microfacet::Ggx;
+use bsdf::multiscatter::{MultiScatter, Single};
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
 use super::diffuse_only;
 use crate::mdl_modules::natives::mix_weights;
-use crate::mdl_modules::value::{Df, Leaf, ScatterMode};
+use crate::mdl_modules::value::{layer_ior, Df, Leaf, ScatterMode};
 use crate::SurfaceModel;
 
 /// Adds `df` scaled by `scale` to a general sum of lobes (two glossy roughnesses,
@@ -46,28 +47,39 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
         Df::DiffuseTransmission(tint) => push(scale * tint.get(hit), Lobe::Translucent),
         Df::Specular { tint, mode: ScatterMode::Reflect } => push(scale * tint.get(hit), Lobe::Mirror),
-        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann } => {
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann, vcavities, multiscatter, .. } => {
             let (au, av) = alpha(roughness);
-            let lobe = if *beckmann {
-                Lobe::Beckmann(Beckmann::new(au, av))
-            } else {
-                let g = Ggx { alpha_x: au, alpha_y: av };
-                if g.is_smooth() {
-                    Lobe::Mirror
-                } else {
-                    Lobe::Ggx(g)
+            let (lobe, single) = match (*beckmann, *vcavities) {
+                (true, false) => (Lobe::Beckmann(Beckmann::new(au, av)), Single::BeckmannSmith),
+                (true, true) => (Lobe::BeckmannVcavities(Beckmann::new(au, av)), Single::BeckmannVcavities),
+                (false, v) => {
+                    let g = Ggx { alpha_x: au, alpha_y: av };
+                    match (g.is_smooth(), v) {
+                        (true, _) => (Lobe::Mirror, Single::GgxSmith),
+                        (false, false) => (Lobe::Ggx(g), Single::GgxSmith),
+                        (false, true) => (Lobe::GgxVcavities(g), Single::GgxVcavities),
+                    }
                 }
             };
-            push(scale * tint.get(hit), lobe)
+            let tint = scale * tint.get(hit);
+            // A mirror loses nothing to give back.
+            let lost = (lobe != Lobe::Mirror).then_some((single, au, av));
+            push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
-        Df::Backscatter { tint, roughness } => {
+        Df::Backscatter { tint, roughness, multiscatter, .. } => {
             let (au, av) = alpha(roughness);
             let g = Ggx { alpha_x: au, alpha_y: av };
-            !g.is_smooth() && push(scale * tint.get(hit), Lobe::Backscatter(g))
+            let tint = scale * tint.get(hit);
+            // Turned by π about the normal, the lobe loses what GGX–Smith reflection does.
+            !g.is_smooth()
+                && push(tint, Lobe::Backscatter(g))
+                && compensate(&mut push, tint, *multiscatter, Some((Single::GgxSmith, au, av)), hit)
         }
-        Df::Ward { tint, roughness } => {
+        Df::Ward { tint, roughness, multiscatter, .. } => {
             let (au, av) = alpha(roughness);
-            push(scale * tint.get(hit), Lobe::Ward(Beckmann::new(au, av)))
+            let tint = scale * tint.get(hit);
+            push(tint, Lobe::Ward(Beckmann::new(au, av)))
+                && compensate(&mut push, tint, *multiscatter, Some((Single::Ward, au, av)), hit)
         }
         Df::Sheen { tint, roughness, multiscatter_tint, multiscatter } => {
             // The base receives what the sheen leaves: it lies under the sheen's albedo.
@@ -99,9 +111,14 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame)
         }
         Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
-            let curve = match film {
-                Some((thickness_nm, film_ior)) => CurveKind::ThinFilm { ior: *ior, film_ior, thickness_nm },
-                None => CurveKind::Fresnel { ior: *ior },
+            let curve = match (film, layer_ior(*ior)) {
+                // A film's Airy sum has one index under it: a colour index's mean.
+                (Some((thickness_nm, film_ior)), one) => {
+                    let ior = one.unwrap_or_else(|c| (c.x + c.y + c.z) / 3.0);
+                    CurveKind::ThinFilm { ior, film_ior, thickness_nm }
+                }
+                (None, Ok(ior)) => CurveKind::Fresnel { ior },
+                (None, Err(ior)) => CurveKind::ColorFresnel { ior },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
@@ -135,6 +152,25 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             add_general(base, scale, hit, sum, role, film, frame)
         }
         _ => false,
+    }
+}
+
+/// Pushes the compensation of a micro-mirror lobe of weight `tint` (`lost`: its model and
+/// roughnesses; `None` for a mirror) with `push`, tinted by `multiscatter` (clamped to
+/// [0, 1]; black or a mirror: nothing to push). False when the sum is full.
+fn compensate(
+    push: &mut impl FnMut(Rgb, Lobe) -> bool,
+    tint: Rgb,
+    multiscatter: Leaf,
+    lost: Option<(Single, f32, f32)>,
+    hit: &[Vec4],
+) -> bool {
+    let ms = multiscatter.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+    match lost {
+        Some((single, au, av)) if ms != Rgb::ZERO => {
+            push(tint * ms, Lobe::MultiScatter(MultiScatter::new(single, au, av)))
+        }
+        _ => true,
     }
 }
 
