@@ -254,6 +254,21 @@ fn glass_ignores(df: &Df) -> Vec<&'static str> {
     }
 }
 
+/// Whether a `thin_film` of the tree (`film`: one is above `df`) covers a Fresnel layer
+/// whose index differs per channel (the film's Airy curve takes their mean).
+fn colour_ior_under_film(df: &Df, film: bool) -> bool {
+    match df {
+        Df::ThinFilm { base, .. } => colour_ior_under_film(base, true),
+        Df::Layer { fresnel_ior: Some(ior), .. } if film && super::value::layer_ior(*ior).is_err() => true,
+        Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => {
+            colour_ior_under_film(layer, film) || colour_ior_under_film(base, film)
+        }
+        Df::Sheen { multiscatter: b, .. } | Df::DirectionalFactor { base: b, .. } => colour_ior_under_film(b, film),
+        Df::Mix { parts, .. } => parts.iter().any(|(_, d)| colour_ior_under_film(d, film)),
+        _ => false,
+    }
+}
+
 /// The `tangent_u` of every anisotropic microfacet lobe of a tree, in order.
 fn lobe_tangents(df: &Df, out: &mut Vec<Leaf>) {
     match df {
@@ -532,11 +547,20 @@ fn lower_bsdf(
     mut warn: Option<(&str, &mut Vec<String>)>,
     per_hit: bool,
 ) -> (Rgb, SurfaceModel) {
+    // What only warnings need is looked for only when they are kept (not at each hit).
+    let warning = warn.is_some();
     let mut say = |text: &dyn Fn(&str) -> String| {
         if let Some((name, list)) = warn.as_mut() {
             list.push(text(name));
         }
     };
+    if warning && colour_ior_under_film(df, false) {
+        say(&|name| {
+            format!(
+                "material '{name}': a `thin_film` over a `color_fresnel_layer` of a colour `ior` takes the mean index under the film"
+            )
+        });
+    }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {
         let albedo = albedo.clamp(Rgb::ZERO, Rgb::ONE);
@@ -554,7 +578,7 @@ fn lower_bsdf(
                 })
             }),
             ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
-                for what in glass_ignores(df) {
+                for what in if warning { glass_ignores(df) } else { Vec::new() } {
                     say(&|name| format!("material '{name}': in glass, {what} is not compiled yet"));
                 }
                 if mode == ScatterMode::Transmit {

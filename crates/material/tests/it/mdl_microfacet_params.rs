@@ -202,3 +202,26 @@ fn color_fresnel_layer_weighs_each_channel_by_its_own_index() {
         assert!((w - want).abs().max_element() <= 1e-4, "{deg}°: {w} vs {want}");
     }
 }
+
+/// What mira does not compile is a warning at the `.mi` instance naming it: V-cavities,
+/// `multiscatter_tint` and anisotropy in glass; anisotropic lobes along different
+/// `tangent_u`s (all follow the first); a `thin_film` over a colour-index Fresnel layer.
+#[test]
+fn what_is_not_compiled_is_a_warning() {
+    let (_, _, diags) = compile_text(
+        r#"shader "vg" "mdl::microfacet_params::vcavities_glass" ()
+shader "two" "mdl::microfacet_params::two_axes" ()
+shader "film" "mdl::microfacet_params::film_over_colour_index" ()"#,
+    );
+    let all = diags.join("\n");
+    for what in [
+        "V-cavity masking",
+        "`multiscatter_tint` (no compensation)",
+        "anisotropic roughness and `tangent_u`",
+        "different `tangent_u`s",
+        "`thin_film` over a `color_fresnel_layer`",
+    ] {
+        assert!(all.contains(what), "no warning about {what}: {all}");
+    }
+    assert!(diags.iter().all(|d| d.contains("t.mi")), "{all}");
+}
