@@ -584,6 +584,7 @@ pub fn describe(df: &Df) -> String {
             format!("measured_curve_layer({}, {})", describe(layer), describe(base))
         }
         Df::FresnelFactor { base, .. } => format!("fresnel_factor({})", describe(base)),
+        Df::MeasuredCurveFactor { base, .. } => format!("measured_curve_factor({})", describe(base)),
         Df::Mix { parts, .. } => {
             format!("mix({})", parts.iter().map(|(_, d)| describe(d)).collect::<Vec<_>>().join(", "))
         }

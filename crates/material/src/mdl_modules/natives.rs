@@ -131,6 +131,10 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             base: Box::new(bsdf("base")?),
             layer_normal: if own_normal { Some(number("normal")?) } else { None },
         })),
+        "measured_curve_factor" => Ok(Value::Bsdf(Df::MeasuredCurveFactor {
+            curve: measured_curve(name, arg("curve_values"), span)?,
+            base: Box::new(bsdf("base")?),
+        })),
         "fresnel_factor" => {
             let mut constant = |p: &str| match number(p)? {
                 Leaf::Const(c) => Ok(c.max(Rgb::ZERO)),

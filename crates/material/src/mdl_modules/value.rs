@@ -204,6 +204,14 @@ pub enum Df {
         /// What is scaled.
         base: Box<Df>,
     },
+    /// `df::measured_curve_factor`: the base scaled by a tabulated curve (as
+    /// [`Df::MeasuredCurveLayer`]'s) of the angle at the half vector.
+    MeasuredCurveFactor {
+        /// The curve's samples over the angle 0 to π/2 (interned, constant).
+        curve: &'static [Rgb],
+        /// What is scaled.
+        base: Box<Df>,
+    },
     /// A mix of weighted components (`normalized_mix`, `clamped_mix`, `unbounded_mix` and
     /// the `color_` forms, `tint`): the weights as given (never negative); `bound` says
     /// how those above 1 in sum are cut (see [`super::natives::mix_weights`]).
@@ -343,6 +351,7 @@ impl Df {
             Df::FresnelFactor { ior, extinction, base } => {
                 Df::FresnelFactor { ior: *ior, extinction: *extinction, base: split(base)? }
             }
+            Df::MeasuredCurveFactor { curve, base } => Df::MeasuredCurveFactor { curve, base: split(base)? },
         })
     }
 
@@ -356,7 +365,8 @@ impl Df {
             Df::Sheen { multiscatter: b, .. }
             | Df::DirectionalFactor { base: b, .. }
             | Df::ThinFilm { base: b, .. }
-            | Df::FresnelFactor { base: b, .. } => b.has_unbounded_mix(),
+            | Df::FresnelFactor { base: b, .. }
+            | Df::MeasuredCurveFactor { base: b, .. } => b.has_unbounded_mix(),
             Df::Layer { layer, base, .. }
             | Df::CurveLayer { layer, base, .. }
             | Df::MeasuredCurveLayer { layer, base, .. } => layer.has_unbounded_mix() || base.has_unbounded_mix(),
@@ -383,7 +393,8 @@ impl Df {
             Df::Sheen { multiscatter: b, .. }
             | Df::DirectionalFactor { base: b, .. }
             | Df::ThinFilm { base: b, .. }
-            | Df::FresnelFactor { base: b, .. } => b.transmits(),
+            | Df::FresnelFactor { base: b, .. }
+            | Df::MeasuredCurveFactor { base: b, .. } => b.transmits(),
             Df::Mix { parts, .. } => parts.iter().any(|(_, d)| d.transmits()),
             Df::Layer { layer, base, .. }
             | Df::CurveLayer { layer, base, .. }

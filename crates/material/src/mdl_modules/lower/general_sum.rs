@@ -148,8 +148,14 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
         }
-        Df::FresnelFactor { ior, extinction, base } => {
-            let curve = CurveKind::Conductor { eta: *ior, k: *extinction };
+        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
+            let (curve, base) = match df {
+                Df::FresnelFactor { ior, extinction, base } => {
+                    (CurveKind::Conductor { eta: *ior, k: *extinction }, base)
+                }
+                Df::MeasuredCurveFactor { curve, base } => (CurveKind::Measured(curve), base),
+                _ => return false,
+            };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
             add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
         }
