@@ -3,10 +3,11 @@
 //! `directional_factor` (a Schlick-style curve from a normal to a grazing value),
 //! `fresnel_layer` (the unpolarised dielectric Fresnel reflectance), `thin_film` over a
 //! Fresnel layer (the interference of a film between the air and the layer, per
-//! wavelength), and the directional albedo of a sheen lobe (what a sheen layer takes from
-//! its base). Used by [`crate::lobes::Lobes`] to weigh a layer and its base.
+//! wavelength), the directional albedo of a sheen lobe (what a sheen layer takes from
+//! its base), a tabulated curve (`measured_curve_layer`) and a conductor's Fresnel
+//! reflectance (`fresnel_factor`). Used by [`crate::lobes::Lobes`] to weigh a layer and its base.
 
-use crate::{dielectric, sheen_albedo, Rgb};
+use crate::{conductor, dielectric, measured_curve, sheen_albedo, Rgb};
 
 /// A reflectance curve R(cos θ) ∈ [0, 1] per channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +48,17 @@ pub enum CurveKind {
         /// The sheen's roughness.
         roughness: f32,
     },
+    /// A tabulated curve (`measured_curve_layer`): samples at uniform steps of the angle
+    /// from 0 to π/2, linear between them (see [`crate::measured_curve`]).
+    Measured(&'static [Rgb]),
+    /// The unpolarised Fresnel reflectance of a conductor of complex index `eta` + i`k`
+    /// per channel, relative to the outside (`fresnel_factor`).
+    Conductor {
+        /// Real part of the index, per channel.
+        eta: Rgb,
+        /// Extinction coefficient, per channel.
+        k: Rgb,
+    },
 }
 
 /// Wavelengths (nm) averaged in each of the red, green and blue channels of a thin film.
@@ -75,6 +87,8 @@ impl CurveKind {
                 Rgb::from_array(out)
             }
             CurveKind::SheenAlbedo { roughness } => Rgb::splat(sheen_albedo::albedo(c, roughness)),
+            CurveKind::Measured(values) => measured_curve::eval(values, c),
+            CurveKind::Conductor { eta, k } => conductor::fresnel_conductor_rgb(c, eta, k),
         }
     }
 

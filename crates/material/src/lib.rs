@@ -18,6 +18,7 @@
 //! warning naming what was not understood.
 
 pub mod edf;
+pub mod edf_tree;
 pub mod emission;
 pub mod inputs;
 pub mod maya;

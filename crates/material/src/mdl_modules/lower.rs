@@ -83,9 +83,9 @@ fn add_diffuse(df: &Df, scale: Rgb, hit: &[Vec4], acc: &mut DiffuseSum) -> bool 
             acc.add(scale * tint.get(hit), roughness.get(hit).x.max(0.0));
             true
         }
-        Df::Mix { parts, clamped } => {
+        Df::Mix { parts, bound } => {
             let mut ok = true;
-            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_diffuse(d, scale * w, hit, acc));
+            mix_weights(parts, *bound, hit, |w, d| ok = ok && add_diffuse(d, scale * w, hit, acc));
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal: None } => {
@@ -137,9 +137,9 @@ fn add_lobes(df: &Df, scale: Rgb, hit: &[Vec4], sum: &mut LobeSum) -> bool {
             multiscatter,
             ..
         } if is_black(*multiscatter) => add_glossy(tint.get(hit), alpha(roughness), scale, sum),
-        Df::Mix { parts, clamped } => {
+        Df::Mix { parts, bound } => {
             let mut ok = true;
-            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_lobes(d, scale * w, hit, sum));
+            mix_weights(parts, *bound, hit, |w, d| ok = ok && add_lobes(d, scale * w, hit, sum));
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal: None } => {
@@ -171,7 +171,8 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
     }
     let sigma = sum.diffuse.sigma();
     let (ax, ay) = sum.alpha.unwrap_or((0.0, 0.0));
-    let clamp = |c: Rgb| c.clamp(Rgb::ZERO, Rgb::ONE);
+    let top = df.weight_bound();
+    let clamp = |c: Rgb| c.clamp(Rgb::ZERO, top);
     let lobes = MiaBsdf {
         diffuse: OrenNayar::new(clamp(sum.diffuse.albedo), sigma),
         reflect: clamp(sum.glossy),
@@ -190,16 +191,19 @@ fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
 fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
     match df {
         Df::Diffuse { tint, .. } => tint.get(hit),
-        Df::Mix { parts, clamped } => {
+        Df::Mix { parts, bound } => {
             let mut sum = Rgb::ZERO;
-            mix_weights(parts, *clamped, hit, |w, d| sum += w * diffuse_part(d, hit));
+            mix_weights(parts, *bound, hit, |w, d| sum += w * diffuse_part(d, hit));
             sum
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, .. } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             w * diffuse_part(layer, hit) + (Rgb::ONE - w) * diffuse_part(base, hit)
         }
-        Df::Layer { base, .. } | Df::CurveLayer { base, .. } | Df::ThinFilm { base, .. } => diffuse_part(base, hit),
+        Df::Layer { base, .. }
+        | Df::CurveLayer { base, .. }
+        | Df::MeasuredCurveLayer { base, .. }
+        | Df::ThinFilm { base, .. } => diffuse_part(base, hit),
         Df::DirectionalFactor { normal, base, .. } => {
             normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE) * diffuse_part(base, hit)
         }
@@ -218,9 +222,9 @@ fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
         {
             Some((tint.get(hit), (u.get(hit).x.max(0.0) * v.get(hit).x.max(0.0)).sqrt(), *mode))
         }
-        Df::Mix { parts, clamped } if parts.len() == 1 => {
+        Df::Mix { parts, bound } if parts.len() == 1 => {
             let mut w = Rgb::ZERO;
-            mix_weights(parts, *clamped, hit, |x, _| w = x);
+            mix_weights(parts, *bound, hit, |x, _| w = x);
             glossy(&parts[0].1, hit).map(|(t, a, m)| (t * w, a, m))
         }
         _ => None,
@@ -260,10 +264,15 @@ fn colour_ior_under_film(df: &Df, film: bool) -> bool {
     match df {
         Df::ThinFilm { base, .. } => colour_ior_under_film(base, true),
         Df::Layer { fresnel_ior: Some(ior), .. } if film && super::value::layer_ior(*ior).is_err() => true,
-        Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => {
+        Df::Layer { layer, base, .. }
+        | Df::CurveLayer { layer, base, .. }
+        | Df::MeasuredCurveLayer { layer, base, .. } => {
             colour_ior_under_film(layer, film) || colour_ior_under_film(base, film)
         }
-        Df::Sheen { multiscatter: b, .. } | Df::DirectionalFactor { base: b, .. } => colour_ior_under_film(b, film),
+        Df::Sheen { multiscatter: b, .. }
+        | Df::DirectionalFactor { base: b, .. }
+        | Df::FresnelFactor { base: b, .. }
+        | Df::MeasuredCurveFactor { base: b, .. } => colour_ior_under_film(b, film),
         Df::Mix { parts, .. } => parts.iter().any(|(_, d)| colour_ior_under_film(d, film)),
         _ => false,
     }
@@ -278,7 +287,10 @@ fn lobe_tangents(df: &Df, out: &mut Vec<Leaf>) {
             lobe_tangents(b, out)
         }
         Df::Mix { parts, .. } => parts.iter().for_each(|(_, d)| lobe_tangents(d, out)),
-        Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => {
+        Df::FresnelFactor { base: b, .. } | Df::MeasuredCurveFactor { base: b, .. } => lobe_tangents(b, out),
+        Df::Layer { layer, base, .. }
+        | Df::CurveLayer { layer, base, .. }
+        | Df::MeasuredCurveLayer { layer, base, .. } => {
             lobe_tangents(layer, out);
             lobe_tangents(base, out);
         }
@@ -400,7 +412,13 @@ pub fn surface(
     if let Some(e) = surf.as_ref().and_then(|s| s.field("emission")) {
         let power = matches!(e.field("mode"), Some(Value::Enum(_, 1)));
         match e.field("emission") {
-            Some(Value::Edf(edf @ (Edf::Diffuse | Edf::Spot(_) | Edf::Measured { .. }))) => {
+            Some(Value::Edf(
+                edf @ (Edf::Diffuse
+                | Edf::Spot(_)
+                | Edf::Measured { .. }
+                | Edf::Mix { .. }
+                | Edf::DirectionalFactor { .. }),
+            )) => {
                 // Lambertian: radiant exitance E gives radiance E/π; a power Φ over the
                 // whole surface gives Φ/π per area, divided by the area once it is known.
                 // A spot: N E on its axis, times its shape elsewhere. A profile: E times
@@ -429,6 +447,18 @@ pub fn surface(
                             false => 1.0,
                         }
                     }
+                    // Tints, factors and mixes: radiance per unit of intensity from the
+                    // tree (each component emits its intensity, as alone).
+                    Edf::Mix { .. } | Edf::DirectionalFactor { .. } => match super::edf_combinators::tree(edf) {
+                        Ok(tree) => {
+                            emission_shape = Some(EmissionShape::Tree(Arc::new(tree)));
+                            1.0
+                        }
+                        Err(what) => {
+                            warnings.push(format!("material '{name}': {what} is not compiled yet; no emission"));
+                            0.0
+                        }
+                    },
                     _ => 1.0 / std::f32::consts::PI,
                 };
                 match e.field("intensity").map(|v| leaf(v, &mut leaves)) {
@@ -563,7 +593,7 @@ fn lower_bsdf(
     }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {
-        let albedo = albedo.clamp(Rgb::ZERO, Rgb::ONE);
+        let albedo = albedo.clamp(Rgb::ZERO, df.weight_bound());
         let model = if sigma > 0.0 { SurfaceModel::OrenNayar(sigma) } else { SurfaceModel::Lambert };
         return (albedo, model);
     }
@@ -622,7 +652,7 @@ fn lower_bsdf(
     if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, per_hit)) {
         return lowered;
     }
-    let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, Rgb::ONE);
+    let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, df.weight_bound());
     let why = if filled_up(df, hit) {
         format!(
             "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
@@ -660,6 +690,11 @@ pub fn describe(df: &Df) -> String {
         Df::CurveLayer { layer, base, .. } => format!("custom_curve_layer({}, {})", describe(layer), describe(base)),
         Df::DirectionalFactor { base, .. } => format!("directional_factor({})", describe(base)),
         Df::ThinFilm { base, .. } => format!("thin_film({})", describe(base)),
+        Df::MeasuredCurveLayer { layer, base, .. } => {
+            format!("measured_curve_layer({}, {})", describe(layer), describe(base))
+        }
+        Df::FresnelFactor { base, .. } => format!("fresnel_factor({})", describe(base)),
+        Df::MeasuredCurveFactor { base, .. } => format!("measured_curve_factor({})", describe(base)),
         Df::Mix { parts, .. } => {
             format!("mix({})", parts.iter().map(|(_, d)| describe(d)).collect::<Vec<_>>().join(", "))
         }

@@ -20,6 +20,7 @@
 pub mod base_volume;
 pub mod connections;
 pub mod dds;
+pub mod edf_combinators;
 pub mod environment;
 pub mod eval;
 pub mod hit;

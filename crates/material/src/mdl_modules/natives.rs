@@ -12,7 +12,7 @@ use mi::Span;
 use super::eval::{kind, problem, Eval};
 use super::hit::{HitExpr, StateFn};
 use super::hit_natives;
-use super::value::{Df, Edf, Leaf, ScatterMode, Value, Vdf, VdfNumber};
+use super::value::{Df, Edf, Leaf, MixBound, ScatterMode, Value, Vdf, VdfNumber};
 
 /// The value of a module constant mira implements (`::math::PI`…).
 pub fn constant(module: &str, name: &str) -> Option<Value> {
@@ -80,8 +80,9 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
         let v = arg(p).ok_or_else(|| problem(span, format!("`{name}` has no parameter `{p}`")))?;
         leaf(v, leaves).ok_or_else(|| not_constant(name, p, v, span))
     };
-    // A vdf's tint is the volume's (read where a path enters), not one of the surface's.
-    let vdf_tint = name == "tint" && matches!(arg("base"), Some(Value::Vdf(_)));
+    // A vdf's tint is the volume's (read where a path enters), not one of the surface's;
+    // an edf's is a constant of its own (`edf_combinators`).
+    let vdf_tint = name == "tint" && matches!(arg("base"), Some(Value::Vdf(_) | Value::Edf(_)));
     let tint = if vdf_tint { Ok(Leaf::Const(Rgb::ZERO)) } else { number("tint") };
     let bsdf = |p: &str| -> Result<Df, super::eval::Problem> {
         match arg(p) {
@@ -134,6 +135,31 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             base: Box::new(bsdf("base")?),
             layer_normal: if own_normal { Some(number("normal")?) } else { None },
         })),
+        "measured_curve_layer" | "color_measured_curve_layer" => Ok(Value::Bsdf(Df::MeasuredCurveLayer {
+            curve: measured_curve(name, arg("curve_values"), span)?,
+            weight: number("weight")?,
+            layer: Box::new(bsdf("layer")?),
+            base: Box::new(bsdf("base")?),
+            layer_normal: if own_normal { Some(number("normal")?) } else { None },
+        })),
+        "measured_curve_factor" => Ok(Value::Bsdf(Df::MeasuredCurveFactor {
+            curve: measured_curve(name, arg("curve_values"), span)?,
+            base: Box::new(bsdf("base")?),
+        })),
+        "fresnel_factor" => {
+            let mut constant = |p: &str| match number(p)? {
+                Leaf::Const(c) => Ok(c.max(Rgb::ZERO)),
+                Leaf::Hit(_) => Err(problem(
+                    span,
+                    format!("`df::fresnel_factor` with an `{p}` that varies over the surface is not compiled yet"),
+                )),
+            };
+            Ok(Value::Bsdf(Df::FresnelFactor {
+                ior: constant("ior")?,
+                extinction: constant("extinction_coefficient")?,
+                base: Box::new(bsdf("base")?),
+            }))
+        }
         "directional_factor" => match arg("base") {
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::DirectionalFactor {
                 normal: number("normal_tint")?,
@@ -141,7 +167,8 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 exponent: number("exponent")?,
                 base: Box::new(d.clone()),
             })),
-            _ => Err(problem(span, "`df::directional_factor` of an edf is not compiled yet")),
+            Some(Value::Edf(e)) => super::edf_combinators::directional_factor(&arg, e, span),
+            _ => Err(problem(span, "`df::directional_factor` of this base is not compiled yet")),
         },
         "thin_film" => Ok(Value::Bsdf(Df::ThinFilm {
             thickness: number("thickness")?,
@@ -158,7 +185,12 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             multiscatter_tint: number("multiscatter_tint")?,
             multiscatter: Box::new(bsdf("multiscatter")?),
         })),
-        "normalized_mix" | "clamped_mix" | "color_normalized_mix" | "color_clamped_mix" => {
+        "normalized_mix"
+        | "clamped_mix"
+        | "unbounded_mix"
+        | "color_normalized_mix"
+        | "color_clamped_mix"
+        | "color_unbounded_mix" => {
             let Some(Value::Array(components)) = args.first() else {
                 return Err(problem(span, format!("`df::{name}` needs an array of components")));
             };
@@ -166,8 +198,15 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 Some(Value::Struct(_, _)) | None => {}
                 Some(v) => return Err(not_constant(name, "components", v, span)),
             }
+            let bound = MixBound::of_mix(name);
+            if matches!(components.first().and_then(|c| c.field("component")), Some(Value::Edf(_))) {
+                return super::edf_combinators::mix(name, components, bound, span);
+            }
             if matches!(components.first().and_then(|c| c.field("component")), Some(Value::Vdf(_))) {
-                return super::volume::mix(name, components, name.contains("clamped"), span);
+                if bound == MixBound::Unbounded {
+                    return Err(problem(span, format!("`df::{name}` of vdfs is not compiled yet")));
+                }
+                return super::volume::mix(name, components, bound == MixBound::Clamped, span);
             }
             let mut parts = Vec::with_capacity(components.len());
             for c in components {
@@ -177,18 +216,18 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 };
                 match c.field("component") {
                     Some(Value::Bsdf(d)) => parts.push((w, d.clone())),
-                    Some(Value::Edf(_)) => {
-                        return Err(problem(span, format!("`df::{name}` of EDFs is not compiled yet")))
-                    }
                     _ => return Err(problem(span, format!("a component of `df::{name}` is not a constant bsdf"))),
                 }
             }
-            Ok(Value::Bsdf(Df::Mix { parts, clamped: name.contains("clamped") }))
+            Ok(Value::Bsdf(Df::Mix { parts, bound }))
         }
         "tint" if def.params.len() == 2 => match arg("base") {
-            Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], clamped: false })),
+            Some(Value::Bsdf(d)) => {
+                Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], bound: MixBound::Normalized }))
+            }
             Some(Value::Vdf(v)) => super::volume::tint(v, arg("tint"), span),
-            _ => Err(problem(span, "`df::tint` of an edf or hair bsdf is not compiled yet")),
+            Some(Value::Edf(e)) => super::edf_combinators::tint(arg("tint"), e, span),
+            _ => Err(problem(span, "`df::tint` of a hair bsdf is not compiled yet")),
         },
         "tint" => match arg("base") {
             // `tint(reflection_tint, transmission_tint, base)`.
@@ -289,6 +328,25 @@ fn axes(
     Ok((roughness, tangent))
 }
 
+/// The `curve_values` of `df::{function}` (an array of constant colours) as an interned
+/// table.
+fn measured_curve(function: &str, values: Option<&Value>, span: Span) -> Result<&'static [Rgb], super::eval::Problem> {
+    let Some(Value::Array(items)) = values else {
+        return Err(problem(span, format!("`df::{function}` needs an array of colours `curve_values`")));
+    };
+    let table = items
+        .iter()
+        .map(|v| match v {
+            Value::Hit(..) => Err(problem(
+                span,
+                format!("`df::{function}` with `curve_values` that vary over the surface is not compiled yet"),
+            )),
+            v => v.color().ok_or_else(|| not_constant(function, "curve_values", v, span)),
+        })
+        .collect::<Result<Vec<Rgb>, _>>()?;
+    Ok(bsdf::measured_curve::intern(&table))
+}
+
 /// `df::measured_edf` of the arguments `arg` gives by parameter name: an invalid profile
 /// emits nothing; a global frame must be constant, its third column not zero.
 fn measured_edf<'a>(arg: &dyn Fn(&str) -> Option<&'a Value>, span: Span) -> Eval {
@@ -385,10 +443,15 @@ fn math_constant(name: &str, args: &[Value], span: Span) -> Option<Eval> {
 
 /// Calls `f` with each component of a mix and its weight, the weights evaluated to `hit`:
 /// `normalized_mix` divides them by their sum where it is above 1 (per channel),
-/// `clamped_mix` cuts the components that pass 1 (per channel). Negative weights count 0.
-pub fn mix_weights<'d>(parts: &'d [(Leaf, Df)], clamped: bool, hit: &[glam::Vec4], mut f: impl FnMut(Rgb, &'d Df)) {
+/// `clamped_mix` cuts the components that pass 1 (per channel), `unbounded_mix` takes them
+/// as given. Negative weights count 0.
+pub fn mix_weights<'d, T>(parts: &'d [(Leaf, T)], bound: MixBound, hit: &[glam::Vec4], mut f: impl FnMut(Rgb, &'d T)) {
     let weight = |w: &Leaf| w.get(hit).max(Rgb::ZERO);
-    if clamped {
+    if bound == MixBound::Unbounded {
+        for (w, d) in parts {
+            f(weight(w), d);
+        }
+    } else if bound == MixBound::Clamped {
         let mut used = Rgb::ZERO;
         for (w, d) in parts {
             let left = (Rgb::ONE - used).max(Rgb::ZERO);

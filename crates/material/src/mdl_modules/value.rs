@@ -195,14 +195,47 @@ pub enum Df {
         /// The layer the film lies on.
         base: Box<Df>,
     },
-    /// A mix of weighted components (`normalized_mix`, `clamped_mix` and the `color_`
-    /// forms, `tint`): the weights as given (never negative); `clamped` says how those
-    /// above 1 in sum are cut (see [`super::natives::mix_weights`]).
+    /// `df::measured_curve_layer` and `color_measured_curve_layer`: the layer weighted by
+    /// weight · R(θ), R the tabulated curve (see [`bsdf::measured_curve`]), the base by
+    /// what it leaves, as for [`Df::CurveLayer`].
+    MeasuredCurveLayer {
+        /// The curve's samples over the angle 0 to π/2 (interned, constant).
+        curve: &'static [Rgb],
+        /// The layer's weight.
+        weight: Leaf,
+        /// The top layer.
+        layer: Box<Df>,
+        /// The base.
+        base: Box<Df>,
+        /// The layer's own normal (world space), when it is not `state::normal()`.
+        layer_normal: Option<Leaf>,
+    },
+    /// `df::fresnel_factor`: the base scaled by the Fresnel reflectance of a conductor of
+    /// complex index `ior` + i`extinction` at the half vector.
+    FresnelFactor {
+        /// Real part of the index per channel (constant).
+        ior: Rgb,
+        /// Extinction coefficient per channel (constant).
+        extinction: Rgb,
+        /// What is scaled.
+        base: Box<Df>,
+    },
+    /// `df::measured_curve_factor`: the base scaled by a tabulated curve (as
+    /// [`Df::MeasuredCurveLayer`]'s) of the angle at the half vector.
+    MeasuredCurveFactor {
+        /// The curve's samples over the angle 0 to π/2 (interned, constant).
+        curve: &'static [Rgb],
+        /// What is scaled.
+        base: Box<Df>,
+    },
+    /// A mix of weighted components (`normalized_mix`, `clamped_mix`, `unbounded_mix` and
+    /// the `color_` forms, `tint`): the weights as given (never negative); `bound` says
+    /// how those above 1 in sum are cut (see [`super::natives::mix_weights`]).
     Mix {
         /// Weights and components.
         parts: Vec<(Leaf, Df)>,
-        /// `clamped_mix` (cut what passes 1), else `normalized_mix` (divide by the sum).
-        clamped: bool,
+        /// What happens to weights above 1 in sum.
+        bound: MixBound,
     },
     /// A layer over a base (`weighted_layer`, `fresnel_layer`, `color_` forms): the layer
     /// with `weight`, times the dielectric Fresnel reflectance of `fresnel_ior` if given
@@ -231,6 +264,30 @@ pub fn layer_ior(ior: Rgb) -> Result<f32, Rgb> {
         Ok(((ior.x + ior.y + ior.z) / 3.0).max(1e-3))
     } else {
         Err(ior.max(Rgb::splat(1e-3)))
+    }
+}
+
+/// How a mix treats weights whose sum passes 1 (per channel for the `color_` forms).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MixBound {
+    /// `normalized_mix`, `tint`: divided by their sum.
+    Normalized,
+    /// `clamped_mix`: taken in order, the one that passes 1 cut, the rest dropped.
+    Clamped,
+    /// `unbounded_mix`: summed as given (the mix may reflect more than it receives).
+    Unbounded,
+}
+
+impl MixBound {
+    /// The bound of mixer `name` (`clamped_mix`, `color_unbounded_mix`…).
+    pub fn of_mix(name: &str) -> MixBound {
+        if name.contains("unbounded") {
+            MixBound::Unbounded
+        } else if name.contains("clamped") {
+            MixBound::Clamped
+        } else {
+            MixBound::Normalized
+        }
     }
 }
 
@@ -265,7 +322,7 @@ impl Df {
     /// that reflects and transmits under two different tints (mira's glass has one tint),
     /// or a sheen whose base transmits.
     pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
-        let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], clamped: false };
+        let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], bound: MixBound::Normalized };
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
         Ok(match self {
             Df::Black => Df::Black,
@@ -283,12 +340,12 @@ impl Df {
                 return Err("a sheen whose base transmits, under two tints")
             }
             Df::Sheen { .. } => wrap(reflect),
-            Df::Mix { parts, clamped } => Df::Mix {
+            Df::Mix { parts, bound } => Df::Mix {
                 parts: parts
                     .iter()
                     .map(|(w, d)| Ok((*w, d.tinted_apart(reflect, transmit)?)))
                     .collect::<Result<_, _>>()?,
-                clamped: *clamped,
+                bound: *bound,
             },
             Df::Layer { weight, fresnel_ior, layer, base, layer_normal } => Df::Layer {
                 weight: *weight,
@@ -312,7 +369,47 @@ impl Df {
             Df::ThinFilm { thickness, ior, base } => {
                 Df::ThinFilm { thickness: *thickness, ior: *ior, base: split(base)? }
             }
+            Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => Df::MeasuredCurveLayer {
+                curve,
+                weight: *weight,
+                layer: split(layer)?,
+                base: split(base)?,
+                layer_normal: *layer_normal,
+            },
+            Df::FresnelFactor { ior, extinction, base } => {
+                Df::FresnelFactor { ior: *ior, extinction: *extinction, base: split(base)? }
+            }
+            Df::MeasuredCurveFactor { curve, base } => Df::MeasuredCurveFactor { curve, base: split(base)? },
         })
+    }
+
+    /// Whether the tree has an `unbounded_mix`, whose weights may sum past 1 (then what it
+    /// reflects is not bounded by 1 either).
+    pub fn has_unbounded_mix(&self) -> bool {
+        match self {
+            Df::Mix { parts, bound } => {
+                *bound == MixBound::Unbounded || parts.iter().any(|(_, d)| d.has_unbounded_mix())
+            }
+            Df::Sheen { multiscatter: b, .. }
+            | Df::DirectionalFactor { base: b, .. }
+            | Df::ThinFilm { base: b, .. }
+            | Df::FresnelFactor { base: b, .. }
+            | Df::MeasuredCurveFactor { base: b, .. } => b.has_unbounded_mix(),
+            Df::Layer { layer, base, .. }
+            | Df::CurveLayer { layer, base, .. }
+            | Df::MeasuredCurveLayer { layer, base, .. } => layer.has_unbounded_mix() || base.has_unbounded_mix(),
+            _ => false,
+        }
+    }
+
+    /// The most a sum of the tree's lobe weights may reach: 1, or no bound with an
+    /// `unbounded_mix` in it.
+    pub fn weight_bound(&self) -> Rgb {
+        if self.has_unbounded_mix() {
+            Rgb::splat(f32::MAX)
+        } else {
+            Rgb::ONE
+        }
     }
 
     /// Whether any lobe of the tree transmits.
@@ -323,9 +420,13 @@ impl Df {
             Df::Black | Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => false,
             Df::Sheen { multiscatter: b, .. }
             | Df::DirectionalFactor { base: b, .. }
-            | Df::ThinFilm { base: b, .. } => b.transmits(),
+            | Df::ThinFilm { base: b, .. }
+            | Df::FresnelFactor { base: b, .. }
+            | Df::MeasuredCurveFactor { base: b, .. } => b.transmits(),
             Df::Mix { parts, .. } => parts.iter().any(|(_, d)| d.transmits()),
-            Df::Layer { layer, base, .. } | Df::CurveLayer { layer, base, .. } => layer.transmits() || base.transmits(),
+            Df::Layer { layer, base, .. }
+            | Df::CurveLayer { layer, base, .. }
+            | Df::MeasuredCurveLayer { layer, base, .. } => layer.transmits() || base.transmits(),
         }
     }
 }
@@ -346,6 +447,27 @@ pub enum Edf {
         edf: Arc<crate::measured_edf::MeasuredEdf>,
         /// `tangent_u`, without `global_distribution`.
         tangent: Option<Arc<HitExpr>>,
+    },
+    /// A mix of edfs (`normalized_mix`, `clamped_mix`, `unbounded_mix`, their `color_`
+    /// forms) or `df::tint` of one (a one-component unbounded mix): constant weights
+    /// ([`Leaf::Const`]) and components.
+    Mix {
+        /// Weights and components.
+        parts: Vec<(Leaf, Edf)>,
+        /// What happens to weights above 1 in sum.
+        bound: MixBound,
+    },
+    /// `df::directional_factor` of an edf: its radiance scaled by normal + (grazing −
+    /// normal)(1 − cos θ)^exponent, θ the angle of emission from the normal.
+    DirectionalFactor {
+        /// The factor at normal emission.
+        normal: Rgb,
+        /// The factor at grazing emission.
+        grazing: Rgb,
+        /// The curve's exponent.
+        exponent: f32,
+        /// What is scaled.
+        base: Box<Edf>,
     },
 }
 

@@ -21,6 +21,7 @@ mod maya_textures3d;
 mod maya_utilities;
 mod mdl_base_conversions;
 mod mdl_base_functions;
+mod mdl_combinators;
 mod mdl_compile;
 mod mdl_furnace;
 mod mdl_hit;

@@ -138,8 +138,9 @@ shader "g" "mdl::layers::global_spot" ()"#,
     );
     assert!(diags.is_empty(), "{diags:#?}");
     let dir = |t: f32| Vec3A::new(t.sin(), 0.0, t.cos());
-    let radiance =
-        |m: &SurfaceMaterial, n: Vec3A, d: Vec3A| m.emission.x * m.emission_shape.as_ref().unwrap().factor(n, None, d);
+    let radiance = |m: &SurfaceMaterial, n: Vec3A, d: Vec3A| {
+        m.emission.x * m.emission_shape.as_ref().unwrap().factor(n, None, d).x
+    };
     let s4 = get(&mdl, &lib, "s4");
     for t in [0.0f32, 0.3, 0.7, 1.2, 1.5] {
         let expected = 10.0 * 6.0 / std::f32::consts::TAU * t.cos().powi(4);

@@ -36,7 +36,7 @@ fn radiance(m: &SurfaceMaterial, state: &State, dir: Vec3A) -> f32 {
         e.0.apply(state, &mut h);
     }
     let shape = h.emission_shape.expect("a measured emission");
-    h.emission.x * shape.factor(state.normal, h.tangent, dir)
+    h.emission.x * shape.factor(state.normal, h.tangent, dir).x
 }
 
 /// The direction at vertical angle `v` (degrees, from `axis`) and horizontal angle `h`

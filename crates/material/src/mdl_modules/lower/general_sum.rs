@@ -25,7 +25,8 @@ use crate::SurfaceModel;
 /// `fresnel_layer` / `color_fresnel_layer` (whose curve becomes the film's Airy
 /// reflectance over the layer's index) and `custom_curve_layer` (read as the Fresnel layer
 /// whose normal reflectivity it has, index (1 + √R₀)/(1 − √R₀), R₀ the mean of
-/// `normal_reflectivity`); elemental BSDFs in reflection have no Fresnel term for it to
+/// `normal_reflectivity`; `measured_curve_layer` likewise with its first sample);
+/// elemental BSDFs in reflection have no Fresnel term for it to
 /// change and are unchanged.
 ///
 /// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
@@ -99,9 +100,9 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                     frame,
                 )
         }
-        Df::Mix { parts, clamped } => {
+        Df::Mix { parts, bound } => {
             let mut ok = true;
-            mix_weights(parts, *clamped, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
+            mix_weights(parts, *bound, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
@@ -150,6 +151,30 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::ThinFilm { thickness, ior, base } => {
             let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
             add_general(base, scale, hit, sum, role, film, frame)
+        }
+        Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => {
+            let curve = match film {
+                // Read as the Fresnel layer of the curve's reflectivity at normal incidence.
+                Some((thickness_nm, film_ior)) => CurveKind::ThinFilm {
+                    ior: ior_of_reflectivity(curve.first().map_or(Rgb::ZERO, |r| r.clamp(Rgb::ZERO, Rgb::ONE))),
+                    film_ior,
+                    thickness_nm,
+                },
+                None => CurveKind::Measured(curve),
+            };
+            let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+        }
+        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
+            let (curve, base) = match df {
+                Df::FresnelFactor { ior, extinction, base } => {
+                    (CurveKind::Conductor { eta: *ior, k: *extinction }, base)
+                }
+                Df::MeasuredCurveFactor { curve, base } => (CurveKind::Measured(curve), base),
+                _ => return false,
+            };
+            let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
         }
         _ => false,
     }
