@@ -22,7 +22,7 @@
 //! [`material`] and [`specular`] (lambert, blinn, phong, phongE, anisotropic,
 //! surfaceShader), [`ramp_shader`]
 //! (rampShader), [`layered_shader`] (layeredShader), [`matte`] (useBackground),
-//! [`texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
+//! [`texture`], [`ramp_texture`], [`noise`] and [`layered`] (2D textures, place2dTexture, bump2d),
 //! [`pattern_textures`] (bulge, cloth), [`height_textures`] (fractal, mountain, water),
 //! [`texture3d`] (place3dTexture, solidFractal, marble, wood, bump3d), [`solid_textures`]
 //! (snow, rock, volumeNoise), [`fractal_textures`] (brownian, cloud), [`crater_textures`]
@@ -40,6 +40,7 @@ pub mod billow;
 pub mod cell_textures;
 pub mod crater_textures;
 pub mod engine;
+pub mod file_filter;
 pub mod fog;
 pub mod fractal_textures;
 pub mod glow;
@@ -56,6 +57,7 @@ pub mod pattern_textures;
 pub mod physical_fog;
 pub mod projection;
 pub mod ramp_shader;
+pub mod ramp_texture;
 pub mod solid_textures;
 pub mod specular;
 pub mod standin;
@@ -130,8 +132,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &texture::ADSK_CHECKER,
     &texture::GRID,
     &texture::ADSK_GRID,
-    &texture::RAMP,
-    &texture::ADSK_RAMP,
+    &ramp_texture::RAMP,
+    &ramp_texture::ADSK_RAMP,
     &layered::LAYEREDTEXTURE,
     &layered::ADSK_LAYEREDTEXTURE,
     &noise::NOISE,

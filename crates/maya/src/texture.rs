@@ -1,5 +1,5 @@
-//! Maya's 2D textures and their placement: place2dTexture, file, checker, grid, ramp and
-//! bump2d.
+//! Maya's 2D textures and their placement: place2dTexture, file, checker, grid and
+//! bump2d (the ramp is in [`crate::ramp_texture`]).
 //!
 //! Every 2D texture reads its coordinate from `uvCoord` — connected to a place2dTexture's
 //! `outUV` — or, unconnected, from the first texture space of the surface (the `data`
@@ -13,12 +13,15 @@
 //! `outAlpha = α · alphaGain + alphaOffset`.
 //!
 //! UV space: u to the right, v up, as in Maya and in mental ray's image lookups.
-//! `uvFilterSize`, `filter` and `filterOffset` are not read: image lookups are filtered
-//! by the ray footprint (mira's mip-mapping), procedural textures are point-sampled.
+//! `uvFilterSize` is not read; the file texture's `filterType`, `filter` and
+//! `filterOffset` choose its image filter ([`crate::file_filter`]); procedural textures
+//! are point-sampled.
 
 use glam::{Vec2, Vec3A};
+use shader::texture::Texture;
 use shader::{Color, Ctx, NodeId, Tag, Value};
 
+use crate::file_filter::{ray_footprint, FilterType};
 use crate::maya_shader;
 use crate::values::{luma, rgb, rgba, write_struct};
 
@@ -29,9 +32,10 @@ macro_rules! texture_params {
           "alphaOffset", "defaultColor", $($extra),*]
     };
 }
+pub(crate) use texture_params;
 
 /// The first parameter a texture adds to the shared ones.
-const EXTRA: usize = 8;
+pub(crate) const EXTRA: usize = 8;
 
 /// The coordinate a 2D texture looks up, modulo 1; `None` outside its placement frame.
 pub(crate) fn texture_uv(ctx: &mut Ctx, n: NodeId) -> Option<Vec2> {
@@ -211,21 +215,35 @@ fn place2d(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 }
 
 maya_shader!(
-    /// Maya's file texture: the image of `fileTextureName` at the coordinate, through
-    /// the colour balance. Filtering is the image's own (mira's mip-mapped lookup);
-    /// `filterType` and `exposure` are not read.
+    /// Maya's file texture: the image of `fileTextureName` at the coordinate, filtered as
+    /// `filterType`, `filter` and `filterOffset` say ([`crate::file_filter`]), through the
+    /// colour balance. `exposure` is not read.
     FILE,
     ADSK_FILE,
     "maya_file",
     "adskMayaFile",
-    texture_params!("fileTextureName"),
+    texture_params!("fileTextureName", "filterType", "filter", "filterOffset"),
     file
 );
 
 fn file(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let Some(uv) = texture_uv(ctx, n) else { return outside(ctx, n, out) };
     let looked = match ctx.tag(n, EXTRA) {
-        Some(tag @ Tag::Texture(_)) => ctx.lookup_color_texture(tag, Vec3A::new(uv.x, uv.y, 0.0)),
+        Some(Tag::Texture(i)) => match ctx.shading().textures.get(i as usize) {
+            Some(Texture::Image { image, filter, .. }) => {
+                let kind = FilterType::from_maya(ctx.int(n, EXTRA + 1));
+                let eye = filter.map_or(0.0, |s| s.max(0.0) * ray_footprint(&ctx.state));
+                let width = ctx.scalar(n, EXTRA + 2) * eye + ctx.scalar(n, EXTRA + 3);
+                let mut c = kind.lookup(image, uv, width);
+                if image.channels < 3 {
+                    // Grey (and alpha) images: the grey value in all three colour channels.
+                    let a = if image.channels == 2 { c.y } else { 1.0 };
+                    c = Color::new(c.x, c.x, c.x, a);
+                }
+                Some(c)
+            }
+            _ => None,
+        },
         _ => None,
     };
     match looked {
@@ -281,72 +299,6 @@ fn grid(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let on_line = uv.x < uw || uv.x > 1.0 - uw || uv.y < vw || uv.y > 1.0 - vw;
     let (c, a) = if on_line { (line, 0.5 + 0.5 * contrast) } else { (fill, 0.5 - 0.5 * contrast) };
     balance(ctx, n, c, a, out)
-}
-
-/// The position along a ramp of `type` (Maya's enumeration) at `uv`.
-pub fn ramp_position(kind: i32, uv: Vec2) -> f32 {
-    let d = uv - Vec2::splat(0.5);
-    match kind {
-        1 => uv.x,
-        2 => 0.5 * (uv.x + uv.y),
-        3 => (d.y.atan2(d.x) / std::f32::consts::TAU).rem_euclid(1.0),
-        4 => (2.0 * d.length()).min(1.0),
-        5 => 2.0 * d.x.abs().max(d.y.abs()),
-        _ => uv.y,
-    }
-}
-
-/// The colour of sorted ramp entries (position, colour) at `t` with Maya's
-/// `interpolation` (0 none, 1 linear, 4 smooth; the others read as linear).
-pub fn ramp_color(entries: &[(f32, Vec3A)], t: f32, interpolation: i32) -> Vec3A {
-    let Some(first) = entries.first() else { return Vec3A::ZERO };
-    if t <= first.0 {
-        return first.1;
-    }
-    for w in entries.windows(2) {
-        let ((p0, c0), (p1, c1)) = (w[0], w[1]);
-        if t < p1 {
-            let span = p1 - p0;
-            let x = if span > 0.0 { (t - p0) / span } else { 1.0 };
-            let x = match interpolation {
-                0 => 0.0,
-                4 => x * x * (3.0 - 2.0 * x),
-                _ => x,
-            };
-            return c0 + (c1 - c0) * x;
-        }
-    }
-    entries[entries.len() - 1].1
-}
-
-maya_shader!(
-    /// Maya's ramp: the colours of `colorEntryList` (array of {position, color}) along
-    /// the ramp's `type` (0 V, 1 U, 2 diagonal, 3 radial, 4 circular, 5 box; the
-    /// others read as V) with its `interpolation`. The wave and noise attributes are not
-    /// read.
-    RAMP,
-    ADSK_RAMP,
-    "maya_ramp",
-    "adskMayaRamp",
-    texture_params!("type", "interpolation", "colorEntryList"),
-    ramp
-);
-
-fn ramp(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let Some(uv) = texture_uv(ctx, n) else { return outside(ctx, n, out) };
-    let kind = ctx.int(n, EXTRA);
-    let interpolation = ctx.int(n, EXTRA + 1);
-    let list = ctx.array(n, EXTRA + 2);
-    let mut entries: Vec<(f32, Vec3A)> = list
-        .array()
-        .iter()
-        .map(|e| {
-            (e.member("position").map_or(0.0, Value::scalar), e.member("color").map_or(Vec3A::ZERO, |c| rgb(c.color())))
-        })
-        .collect();
-    entries.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let c = ramp_color(&entries, ramp_position(kind, uv), interpolation);
-    balance(ctx, n, c, 1.0, out)
 }
 
 /// The step in texture space bump2d differentiates over.
@@ -442,18 +394,5 @@ mod tests {
         // Stagger: odd rows shift half a tile.
         let s = Placement { repeat: Vec2::new(1.0, 2.0), stagger: true, ..Placement::default() };
         close(s.apply(Vec2::new(0.1, 0.6)).unwrap(), Vec2::new(0.6, 1.2));
-    }
-
-    #[test]
-    fn ramp_interpolates_between_sorted_entries() {
-        let e = [(0.0, Vec3A::ZERO), (0.5, Vec3A::ONE), (1.0, Vec3A::new(1.0, 0.0, 0.0))];
-        assert!((ramp_color(&e, 0.25, 1) - Vec3A::splat(0.5)).length() < 1e-6);
-        assert_eq!(ramp_color(&e, 0.25, 0), Vec3A::ZERO);
-        assert!((ramp_color(&e, 0.25, 4) - Vec3A::splat(0.5)).length() < 1e-6);
-        assert!((ramp_color(&e, 0.125, 4) - Vec3A::splat(0.15625)).length() < 1e-6);
-        assert!((ramp_color(&e, 0.75, 1) - Vec3A::new(1.0, 0.5, 0.5)).length() < 1e-6);
-        assert_eq!(ramp_position(0, Vec2::new(0.2, 0.7)), 0.7);
-        assert_eq!(ramp_position(1, Vec2::new(0.2, 0.7)), 0.2);
-        assert!((ramp_position(5, Vec2::new(0.5, 0.9)) - 0.8).abs() < 1e-6);
     }
 }

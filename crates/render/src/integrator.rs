@@ -23,7 +23,7 @@ use crate::light::LightSource;
 use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
-use cutout::{cutout_number, shadow_passed, MAX_CUTOUT_CROSSINGS};
+use cutout::{cutout_number, linked_shadow_passed, shadow_passed, MAX_CUTOUT_CROSSINGS};
 use media::Departure;
 pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
 
@@ -672,10 +672,14 @@ pub fn trace_camera_path(
                         && light.shadow_color == Rgb::ZERO
                         && !world.has_media
                         && !world.has_cutouts
+                        && world.shadow_unlinked.is_empty()
                         && !fogs.is_active();
                     let mut unshadowed = if defer {
                         pending = Some(shadow);
                         Rgb::ONE
+                    } else if light.shadow && !world.shadow_unlinked.is_empty() && !world.has_media {
+                        // Shadow links: objects that cast no shadow for this light let it pass.
+                        linked_shadow_passed(world, accel, shading, &shadow, seed, k)
                     } else {
                         media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow)
                     };

@@ -49,6 +49,11 @@ pub struct World {
     /// [`World::ambient`] of those that do not light it (empty altogether when no
     /// instance has a list; see [`World::ambient_lighting`]).
     pub unlinked_ambient: Vec<Vec<u32>>,
+    /// Shadow linking (instances' `light shadow ["exclusive"] [ … ]` lists, Maya's shadow
+    /// links): for each instance, the indices into [`World::lights`] of the lights it casts
+    /// no shadow for; empty altogether when no instance has a list (see
+    /// [`World::casts_shadow_for`]).
+    pub shadow_unlinked: Vec<Vec<u32>>,
     /// The camera.
     pub camera: CameraModel,
     /// The scene's options.
@@ -105,6 +110,12 @@ impl World {
     /// (an index into [`World::instances`]) by the instance's light list.
     pub fn lights_instance(&self, light: usize, instance: u32) -> bool {
         self.unlinked_lights.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
+    }
+
+    /// Whether instance `instance` (an index into [`World::instances`]) casts shadows for
+    /// light `light` (an index into [`World::lights`]) by its shadow light list.
+    pub fn casts_shadow_for(&self, light: usize, instance: u32) -> bool {
+        self.shadow_unlinked.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
     }
 
     /// The Maya ambient lights (of [`World::ambient`]) that instance `instance` (an index

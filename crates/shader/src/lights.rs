@@ -467,7 +467,9 @@ impl<'a> Ctx<'a> {
         let to_light = -s.dir;
         let max_dist = if s.dist.is_finite() { s.dist * (1.0 - 1e-4) } else { f32::INFINITY };
         let tracer = self.tracer;
-        if !shading.has_shadow_shaders() {
+        // Shadow links: the walk must know which instance each surface belongs to.
+        let linked = shading.has_shadow_links();
+        if !shading.has_shadow_shaders() && !linked {
             // Every surface stops the light (no material filters it): the first surface
             // found on the way decides, with no need for the nearest one or its state.
             self.shadow_queried = true;
@@ -501,7 +503,7 @@ impl<'a> Ctx<'a> {
         let mut blocked = false;
         let mut calls = 0;
         let mut media = crate::volume::ShadowMedia::new(&ray);
-        if !shading.has_surface_shadow_shaders() && !shading.has_varying_media() {
+        if !shading.has_surface_shadow_shaders() && !shading.has_varying_media() && !linked {
             // Only media boundaries let the light through (tinted where it enters): the
             // walk needs each surface's distance and material, not its shading state
             // (unless a medium entered varies over its surface).
@@ -520,8 +522,15 @@ impl<'a> Ctx<'a> {
             *color = filter;
             return true;
         }
+        let light = s.light;
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
             media.advance(shading, hit.dist, &mut filter);
+            if !shading.casts_shadow_for(hit.instance, light) {
+                // Shadow linking: this object casts no shadow for the light; the ray
+                // passes it (entering or leaving its medium, if it has one).
+                media.pass(shading, hit);
+                return true;
+            }
             let material = hit.material.and_then(|m| shading.materials.get(m as usize));
             if material.is_some_and(|m| m.opaque) {
                 // Marked `opaque`: it stops the ray without its shadow shader (mental ray).

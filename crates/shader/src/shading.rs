@@ -99,6 +99,9 @@ pub struct Shading {
     pub lights: Vec<ShadingLight>,
     /// Each scene instance's light list (mode 4).
     pub instance_lights: Vec<Option<LightLink>>,
+    /// Each scene instance's shadow light list (`light shadow ["exclusive"] [ … ]`, Maya's
+    /// shadow linking): the lights it casts shadows for. Empty when no instance has one.
+    pub instance_shadow_lights: Vec<Option<LightLink>>,
     /// The scene's user data elements (`Tag::Data`), read as written.
     pub data: Vec<super::user_data::UserData>,
     /// For each scene instance, the user data its object carries (indices into
@@ -318,6 +321,11 @@ impl Shading {
             materials,
             lights,
             instance_lights: scene.instances.iter().map(|i| i.lights.clone()).collect(),
+            instance_shadow_lights: if scene.instances.iter().any(|i| i.shadow_lights.is_some()) {
+                scene.instances.iter().map(|i| i.shadow_lights.clone()).collect()
+            } else {
+                Vec::new()
+            },
             data: lib.data.values().map(super::user_data::UserData::read).collect(),
             instance_data: scene
                 .instances
@@ -363,6 +371,22 @@ impl Shading {
     /// either, every surface stops shadow rays). Found once, on the first question: the materials are set by then.
     pub fn has_shadow_shaders(&self) -> bool {
         *self.shadow_shaders.get_or_init(|| self.materials.iter().any(|m| m.shadow.is_some() || m.medium.is_some()))
+    }
+
+    /// Whether scene instance `instance` casts shadows for light `light` (an index into
+    /// [`Shading::lights`]): always, unless the instance has a shadow light list, which
+    /// names the only lights it casts shadows for (`exclusive`: the lights it casts none
+    /// for).
+    pub fn casts_shadow_for(&self, instance: u32, light: Option<u32>) -> bool {
+        match (self.instance_shadow_lights.get(instance as usize).and_then(Option::as_ref), light) {
+            (Some(link), Some(light)) => link.lights.contains(&light) != link.exclusive,
+            _ => true,
+        }
+    }
+
+    /// Whether some instance has a shadow light list ([`Shading::casts_shadow_for`]).
+    pub fn has_shadow_links(&self) -> bool {
+        !self.instance_shadow_lights.is_empty()
     }
 
     /// Whether some material has a shadow shader list of its own (without one, shadow rays

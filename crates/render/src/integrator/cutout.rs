@@ -67,6 +67,43 @@ pub(super) fn shadow_passed(
     Rgb::ZERO
 }
 
+/// [`shadow_passed`] for light `light` (an index into [`World::lights`]) in a world with
+/// shadow links ([`World::casts_shadow_for`]): surfaces of instances that cast no shadow
+/// for the light let the ray through untouched; the others stop or filter it as there.
+/// (Scenes with media are not walked this way: see `World::shadow_unlinked`'s warning.)
+pub(super) fn linked_shadow_passed(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    shadow: &Ray,
+    seed: u32,
+    light: usize,
+) -> Rgb {
+    let mut ray = *shadow;
+    let mut tint = Rgb::ONE;
+    let mut crossing = 0;
+    // Surfaces passed for the link count against the same limit as cut-outs, twice over.
+    for _ in 0..2 * MAX_CUTOUT_CROSSINGS {
+        let Some(hit) = accel.intersect(&ray) else { return tint };
+        let s = surface(world, &ray, &hit);
+        if world.casts_shadow_for(light, hit.instance) {
+            if !world.has_cutouts || world.blocks_shadows(s.material) {
+                return Rgb::ZERO;
+            }
+            let m = material_at(world, accel, shading, &ray, &hit, s.material);
+            if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
+                return Rgb::ZERO;
+            }
+            tint *= m.cutout_tint;
+            crossing += 1;
+        }
+        let travelled = hit.t;
+        ray.origin = s.leave(s.ng, ray.dir);
+        ray.tmax = (ray.tmax - travelled).max(0.0);
+    }
+    Rgb::ZERO
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,7 +7,7 @@ use material::SurfaceMaterial;
 use scene::Scene;
 use shader::Shading;
 
-use super::lights::{ambient_lights, scene_lights, unlinked_lights, SceneLights};
+use super::lights::{ambient_lights, scene_lights, shadow_unlinked_lights, unlinked_lights, SceneLights};
 use super::meshes::{copy_of_rendered_arrays, mesh_data};
 use super::{deforming_emitters, hair, instance, light_motion, motion_keys, InstanceData, World};
 use crate::camera::CameraModel;
@@ -148,6 +148,14 @@ impl World {
         let light_indices: Vec<usize> = lights.iter().map(|(_, index)| *index).collect();
         let unlinked_ambient = unlinked_lights(scene, &instances, &ambient_indices);
         let unlinked_lights = unlinked_lights(scene, &instances, &light_indices);
+        let shadow_unlinked = shadow_unlinked_lights(scene, &instances, &light_indices);
+        if !shadow_unlinked.is_empty() && has_media {
+            warnings.push(
+                "instance shadow light lists (`light shadow [ … ]`, shadow linking) are not honoured by the path \
+                 engine in scenes with participating media: every object casts shadows for every light there"
+                    .to_string(),
+            );
+        }
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
             meshes,
@@ -157,6 +165,7 @@ impl World {
             ambient,
             unlinked_lights,
             unlinked_ambient,
+            shadow_unlinked,
             camera,
             options: scene.options.clone(),
             user_buffers,

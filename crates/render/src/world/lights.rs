@@ -17,8 +17,26 @@ pub(super) type SceneLights = (Vec<(LightSource, usize)>, Vec<String>);
 /// `exclusive` list names the lights that do not light the instance, another list the only
 /// ones that do.
 pub(super) fn unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[usize]) -> Vec<Vec<u32>> {
+    unlinked_by(scene, instances, lights, |i| i.lights.as_ref())
+}
+
+/// As [`unlinked_lights`] for the instances' shadow light lists (`light shadow
+/// ["exclusive"] [ … ]`): for each instance, the lights it casts no shadow for
+/// ([`World::shadow_unlinked`](super::World::shadow_unlinked)).
+pub(super) fn shadow_unlinked_lights(scene: &Scene, instances: &[InstanceData], lights: &[usize]) -> Vec<Vec<u32>> {
+    unlinked_by(scene, instances, lights, |i| i.shadow_lights.as_ref())
+}
+
+/// For each of `instances`, the indices into `lights` its list (`list` of its scene
+/// instance) leaves out; empty when no instance has a list.
+fn unlinked_by(
+    scene: &Scene,
+    instances: &[InstanceData],
+    lights: &[usize],
+    list: impl Fn(&scene::instance::Instance) -> Option<&scene::instance::LightLink>,
+) -> Vec<Vec<u32>> {
     let links: Vec<Option<&scene::instance::LightLink>> =
-        instances.iter().map(|i| scene.instances.get(i.scene_index as usize).and_then(|s| s.lights.as_ref())).collect();
+        instances.iter().map(|i| scene.instances.get(i.scene_index as usize).and_then(&list)).collect();
     if links.iter().all(Option::is_none) {
         return Vec::new();
     }

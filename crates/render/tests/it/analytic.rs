@@ -106,6 +106,7 @@ fn world(
         ambient: Vec::new(),
         unlinked_lights: Vec::new(),
         unlinked_ambient: Vec::new(),
+        shadow_unlinked: Vec::new(),
         camera,
         options: options(),
         user_buffers: Vec::new(),

@@ -36,6 +36,8 @@ mod maya_ramp_highlight_path;
 mod maya_ramp_transparency_path;
 mod maya_reflection_path;
 mod maya_refraction_path;
+mod maya_sampler_info;
+mod maya_shadow_links;
 mod maya_soft_shadows_path;
 mod maya_specular_texture_path;
 mod maya_transparent_path;

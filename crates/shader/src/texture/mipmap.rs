@@ -90,6 +90,37 @@ impl Level {
         }
     }
 
+    /// Mean of the texels around texture coordinates (u, v), wrapping, each weighted by
+    /// `kernel(x)` where x is its centre's distance from the point in units of the radius
+    /// (`rx`, `ry`: the radius in this level's texels along x and y): Euclidean, or the
+    /// larger of the two axis distances when `square` (a square footprint). Texels at x ≥ 1
+    /// are left out.
+    fn kernel_mean(&self, u: f32, v: f32, (rx, ry): (f32, f32), square: bool, kernel: &dyn Fn(f32) -> f32) -> Vec4 {
+        let cx = u * self.width as f32 - 0.5;
+        let cy = v * self.height as f32 - 0.5;
+        let wrap = |i: i64, n: usize| i.rem_euclid(n as i64) as usize;
+        let mut sum = Vec4::ZERO;
+        let mut total = 0.0;
+        for y in (cy - ry).ceil() as i64..=(cy + ry).floor() as i64 {
+            let dy = (y as f32 - cy) / ry;
+            let row = wrap(y, self.height);
+            for x in (cx - rx).ceil() as i64..=(cx + rx).floor() as i64 {
+                let dx = (x as f32 - cx) / rx;
+                let d = if square { dx.abs().max(dy.abs()) } else { (dx * dx + dy * dy).sqrt() };
+                if d < 1.0 {
+                    let w = kernel(d);
+                    sum += self.texel(wrap(x, self.width), row) * w;
+                    total += w;
+                }
+            }
+        }
+        if total > 0.0 {
+            sum / total
+        } else {
+            self.bilinear(u, v)
+        }
+    }
+
     /// The next smaller level: 2×2 box filter (a 1-texel edge is kept when a side is odd
     /// or 1).
     fn reduce(&self) -> Level {
@@ -295,6 +326,39 @@ impl MipMap {
     }
 }
 
+/// Texels the radius of a [`MipMap::kernel_mean`] spans at most on the level it filters.
+const KERNEL_TEXELS: f32 = 4.0;
+
+impl MipMap {
+    /// The value at (u, v) filtered by a radial `kernel` of `radius` (texture units, the
+    /// same fraction of both sides): the mean of the texels within the radius, each
+    /// weighted by `kernel(d / radius)` for its centre's distance d (Euclidean, or the
+    /// larger axis distance when `square`: a box). Filtered on the level where the radius
+    /// spans at most [`KERNEL_TEXELS`] texels, linearly between the two nearest; a radius
+    /// under half a texel of the full image is a bilinear lookup of it.
+    pub fn kernel_lookup(&self, u: f32, v: f32, radius: f32, square: bool, kernel: &dyn Fn(f32) -> f32) -> Vec4 {
+        let (w0, h0) = self.size();
+        let texels = radius * w0.max(h0) as f32;
+        if !texels.is_finite() || texels < 0.5 {
+            return self.levels[0].bilinear(u, v);
+        }
+        let level = (texels / KERNEL_TEXELS).log2().max(0.0).min((self.levels.len() - 1) as f32);
+        let at = |k: usize| {
+            let l = &self.levels[k];
+            let r = (radius * l.width as f32, radius * l.height as f32);
+            // At least half a texel: a coarse level's radius can shrink below its texels.
+            l.kernel_mean(u, v, (r.0.max(0.5), r.1.max(0.5)), square, kernel)
+        };
+        let l0 = level.floor();
+        let t = level - l0;
+        let lo = at(l0 as usize);
+        if t < 1e-4 {
+            return lo;
+        }
+        lo * (1.0 - t) + at((l0 as usize + 1).min(self.levels.len() - 1)) * t
+    }
+}
+
 fn flip_rows<T: Copy>(top_down: &[T], width: usize, height: usize) -> Vec<T> {
     let mut out = Vec::with_capacity(width * height);
     for row in (0..height).rev() {
@@ -426,5 +490,20 @@ mod tests {
         assert_eq!(m.level_count(), 3);
         let v = m.lookup(0.5, 0.5, 10.0);
         assert!((v.x - 10.0 / 255.0).abs() < 1e-3);
+    }
+
+    /// A constant texture stays constant under every kernel and radius (1e-5); a radius
+    /// under half a texel is the bilinear lookup, bit for bit.
+    #[test]
+    fn kernel_lookups_keep_a_constant_and_small_radii_are_bilinear() {
+        let m = float_texture(32, |_, _| 0.61);
+        for radius in [0.001, 0.02, 0.1, 0.7] {
+            for square in [false, true] {
+                let c = m.kernel_lookup(0.3, 0.8, radius, square, &|x| 1.0 - x * x);
+                assert!((c.x - 0.61).abs() < 1e-5, "{radius} {square}: {c}");
+            }
+        }
+        let ramp = float_texture(32, |x, _| x as f32 / 31.0);
+        assert_eq!(ramp.kernel_lookup(0.41, 0.5, 0.01, true, &|_| 1.0), ramp.lookup(0.41, 0.5, 0.0));
     }
 }
