@@ -3,6 +3,7 @@
 //! `cargo test -p render --test it <module>::`.
 
 mod displacement;
+mod displacement_adaptive;
 mod support;
 
 mod aerial_perspective;
