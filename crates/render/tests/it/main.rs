@@ -4,6 +4,7 @@
 
 mod displacement;
 mod displacement_adaptive;
+mod displacement_maya_node;
 mod support;
 
 mod aerial_perspective;
