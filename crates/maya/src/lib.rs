@@ -39,6 +39,7 @@
 pub mod billow;
 pub mod cell_textures;
 pub mod crater_textures;
+pub mod displacement;
 pub mod engine;
 pub mod file_filter;
 pub mod fog;
@@ -98,6 +99,8 @@ pub static REGISTRY: &[&ShaderImpl] = &[
     &engine::ADSK_TRANSPARENT,
     &engine::MATERIAL_DISPLACE,
     &engine::ADSK_MATERIAL_DISPLACE,
+    &displacement::DISPLACE,
+    &displacement::ADSK_DISPLACE,
     &volume::VOLUMESAMPLER,
     &volume::ADSK_VOLUMESAMPLER,
     &fog::ENVFOG,

@@ -4,39 +4,46 @@
 //! [`crate::pipeline::build_world`] after the world is translated, so that both engines
 //! trace the same displaced triangles.
 //!
-//! For each instance whose material has one, its object's triangles are split uniformly
-//! ([`subdivide`]) by the object's `approximate displace` statement (else the options'
-//! `approximate displace … all`): `[regular] parametric L` splits each triangle into 4^L
-//! (each edge into 2^L parts); the other forms (`length`, `view length`, `fine`, `angle`,
-//! `spatial`, …) are not implemented and take [`DEFAULT_LEVEL`] with a warning at their
-//! line; without any, the object's own vertices are displaced (level 0). The shader runs
-//! at every vertex (the classic shader model, a state with the world-space point and
-//! normal, the interpolated texture coordinates, the instance and material); its scalar
-//! result (a colour result: its red component, as mental ray reads a scalar there) is
-//! the distance the vertex moves along its unit object-space normal, clamped to
-//! ±`max displace` (the object's, else the options') where given. Normals are then
-//! recomputed from the displaced triangles (area-weighted).
+//! For each instance whose material has one, its object's triangles are subdivided by the
+//! object's `approximate displace` statement (else the options' `approximate displace …
+//! all`), read by [`plan`]: `[regular] parametric L` splits each triangle uniformly into
+//! 4^L ([`subdivide`]); the criteria forms (`length`, `distance`, `angle`, `spatial`,
+//! `curvature`, with `view`, `any`, `fine` and the least/greatest levels) refine edge by
+//! edge until the displaced triangles meet them ([`adaptive`]); forms mira does not
+//! implement (percentages, `fine` without a criterion) take [`DEFAULT_LEVEL`] with a
+//! warning at their line, invalid values (a length of 0, a negative level) are an error
+//! there; without any statement, the object's own vertices are displaced (level 0). The
+//! shader runs at every vertex (the classic shader model, a state with the world-space
+//! point and normal, the interpolated texture coordinates, the instance and material);
+//! its scalar result (a colour result: its red component, as mental ray reads a scalar
+//! there) is the distance the vertex moves along its unit object-space normal, clamped to
+//! ±`max displace` (the object's, else the options') where given; a shader that moves
+//! `state.point` or turns `state.normal` moves the vertex accordingly (vector
+//! displacement, see [`offset`]). Normals are then recomputed from the displaced
+//! triangles (area-weighted).
 //!
 //! Limits: at most [`MAX_DISPLACED_TRIANGLES`] triangles are made in all; an explicit level
-//! past that is an error at the `approximate` statement (nothing is rendered), the default
-//! level is lowered with a warning. Meshes whose vertices move over the shutter and hair
+//! or an adaptive refinement past that is an error at the `approximate` statement (the
+//! object is not displaced), the default level is lowered with a warning. Meshes whose vertices move over the shutter and hair
 //! are not displaced (a warning). Object area lights and emission spread over the area
 //! use the undisplaced surface. Instances of one object with the same materials share one
 //! displaced mesh, the shader evaluated where the first of them places it (world-space
 //! lookups differ between such instances in mental ray).
 
+pub mod adaptive;
+pub mod plan;
 pub mod subdivide;
 
 use std::collections::HashMap;
 
-use glam::Vec3A;
-use mi::ast::{ApproxTerm, Approximation};
+use glam::{Vec3, Vec3A};
 use mi::Diagnostic;
 use scene::Scene;
 use shader::{Ctx, NoScene, NodeId, Shading, State, Value};
 
 use crate::mesh::MeshData;
 use crate::world::World;
+use plan::{Plan, Reading};
 
 /// The subdivision level of approximation forms mira does not implement (each triangle
 /// into 4² = 16).
@@ -126,25 +133,25 @@ fn displace_mesh(
     let max_displace =
         settings.max_displace.or(scene.options.displace.max_displace).map(|d| (d as f32).abs()).filter(|d| !d.is_nan());
     let triangles = mesh.triangles.len();
-    let level = match approximation {
-        None => 0,
-        Some(a) => match parametric_level(a) {
-            Some(level) => {
-                let made = triangles as f64 * 4f64.powf(level);
-                if made > *budget as f64 {
-                    diagnostics.push(Diagnostic::error(
-                        a.span,
-                        format!(
-                            "object '{}': approximate displace parametric {level} would make {made:.3e} triangles, \
-                             more than the {} displacement may make",
-                            object.name, *budget
-                        ),
-                    ));
-                    return None;
+    let name = &object.name;
+    let plan = match approximation {
+        None => Plan::Uniform(0),
+        Some(a) => match plan::read(a) {
+            Reading::Plan(p, warnings) => {
+                for w in warnings {
+                    diagnostics
+                        .push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {w}")));
                 }
-                level as u32
+                p
             }
-            None => {
+            Reading::Invalid(why) => {
+                diagnostics.push(Diagnostic::error(
+                    a.span,
+                    format!("object '{name}': approximate displace {}: {why}; it is not displaced", plan::words(a)),
+                ));
+                return None;
+            }
+            Reading::Unsupported(words) => {
                 let mut level = DEFAULT_LEVEL;
                 while level > 0 && triangles.saturating_mul(1 << (2 * level)) > *budget {
                     level -= 1;
@@ -152,71 +159,110 @@ fn displace_mesh(
                 diagnostics.push(Diagnostic::warning(
                     a.span,
                     format!(
-                        "object '{}': approximate displace {} is not implemented; each triangle is split into {} \
-                         (parametric {level})",
-                        object.name,
-                        form(a),
+                        "object '{name}': approximate displace {words} is not implemented; each triangle is split \
+                         into {} (parametric {level})",
                         1u32 << (2 * level)
                     ),
                 ));
-                level
+                Plan::Uniform(level)
             }
         },
     };
+    let material_of = |slot: u32| -> u32 { inst.materials.get(slot as usize).copied().unwrap_or(0) };
+    let offset_at = |mesh: &MeshData, v: usize, slot: u32| -> Vec3 {
+        let m = material_of(slot);
+        match shader_of(m) {
+            Some(node) => offset(shading, node, mesh, v, m, inst, max_displace),
+            None => Vec3::ZERO,
+        }
+    };
+    let level = match plan {
+        Plan::Uniform(level) => level,
+        Plan::Adaptive(criteria) => {
+            let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
+            return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
+                Ok(out) => {
+                    *budget -= out.triangles.len();
+                    Some(out)
+                }
+                Err(made) => {
+                    let a = approximation.map_or(span, |a| a.span);
+                    diagnostics.push(Diagnostic::error(
+                        a,
+                        format!(
+                            "object '{name}': approximate displace {} would make {made} triangles, more than the {} \
+                             displacement may make",
+                            approximation.map(plan::words).unwrap_or_default(),
+                            *budget
+                        ),
+                    ));
+                    None
+                }
+            };
+        }
+    };
+    if let Some(a) = approximation.filter(|_| level > 0) {
+        let made = triangles as f64 * 4f64.powf(level as f64);
+        if made > *budget as f64 {
+            diagnostics.push(Diagnostic::error(
+                a.span,
+                format!(
+                    "object '{name}': approximate displace parametric {level} would make {made:.3e} triangles, \
+                     more than the {} displacement may make",
+                    *budget
+                ),
+            ));
+            return None;
+        }
+    }
+    let level = level.min(15);
     let made = triangles << (2 * level);
     if made > *budget {
         diagnostics.push(Diagnostic::error(
             span,
-            format!("object '{}': displacing it would make more triangles than displacement may make", object.name),
+            format!("object '{name}': displacing it would make more triangles than displacement may make"),
         ));
         return None;
     }
     *budget -= made;
     let sub = subdivide::subdivide(mesh, 1 << level);
     let mut out = sub.mesh;
-    let material_of = |t: u32| -> u32 {
-        let slot = out.slots.get(t as usize).copied().unwrap_or(0) as usize;
-        inst.materials.get(slot).copied().unwrap_or(0)
-    };
-    let heights: Vec<f32> = {
+    let slot_of = |t: u32| -> u32 { out.slots.get(t as usize).copied().unwrap_or(0) };
+    let offsets: Vec<Vec3> = {
         use rayon::prelude::*;
         let out = &out;
         (0..out.positions.len())
             .into_par_iter()
-            .map(|v| {
-                let owner = sub.owner[v];
-                if owner == u32::MAX {
-                    return 0.0;
-                }
-                let m = material_of(owner);
-                let Some(node) = shader_of(m) else { return 0.0 };
-                let d = height(shading, node, out, v, m, inst);
-                match max_displace {
-                    Some(max) => d.clamp(-max, max),
-                    None => d,
-                }
+            .map(|v| match sub.owner[v] {
+                u32::MAX => Vec3::ZERO,
+                owner => offset_at(out, v, slot_of(owner)),
             })
             .collect()
     };
-    for (v, d) in heights.iter().enumerate() {
-        if *d != 0.0 {
-            out.positions[v] += out.normals[v] * *d;
+    for (v, d) in offsets.iter().enumerate() {
+        if *d != Vec3::ZERO {
+            out.positions[v] += *d;
         }
     }
     out.normals = subdivide::vertex_normals(&out.positions, &out.triangles);
     Some(out)
 }
 
-/// What the displacement shader list `node` returns at vertex `v` of `mesh` (material
-/// `m` of the world, placed by `inst`): object-space units along the normal.
-fn height(
+/// Where the displacement shader list `node` moves vertex `v` of `mesh` (material `m` of
+/// the world, placed by `inst`): the object-space offset. Its scalar result d (clamped to
+/// ±`max`) moves the vertex along its unit object-space normal; as mental ray allows, a
+/// shader may also move `state.point` (the vertex, world space: the move is added) and
+/// turn `state.normal` (the direction d moves along); then the offset's length is clamped
+/// to `max`.
+fn offset(
     shading: &Shading,
     node: NodeId,
     mesh: &MeshData,
     v: usize,
     m: u32,
     inst: &crate::world::InstanceData,
-) -> f32 {
+    max: Option<f32>,
+) -> Vec3 {
     let p = Vec3A::from(mesh.positions[v]);
     let n = Vec3A::from(mesh.normals[v]);
     let point = inst.object_to_world.transform_point3a(p);
@@ -250,7 +296,7 @@ fn height(
     let mut ctx = Ctx::new(shading, &NoScene, state);
     let mut result = Value::Scalar(0.0);
     if !ctx.run_list(node, &mut result) {
-        return 0.0;
+        return Vec3::ZERO;
     }
     let d = match result {
         Value::Scalar(s) => s,
@@ -258,30 +304,24 @@ fn height(
         Value::Int(i) => i as f32,
         _ => 0.0,
     };
-    if d.is_finite() {
-        d
+    let d = if d.is_finite() { d } else { 0.0 };
+    let d = match max {
+        Some(max) => d.clamp(-max, max),
+        None => d,
+    };
+    let (moved, turned) = (ctx.state.point - point, ctx.state.normal);
+    if moved == Vec3A::ZERO && turned == normal {
+        return mesh.normals[v] * d;
+    }
+    let along = if turned == normal {
+        Vec3A::from(mesh.normals[v])
     } else {
-        0.0
-    }
-}
-
-/// The subdivision level `parametric L` asks for (`regular parametric L …`; L below 0 is
-/// 0, fractions are cut), `None` for other forms.
-fn parametric_level(a: &Approximation) -> Option<f64> {
-    let at = a.technique.iter().position(|t| *t == ApproxTerm::Word("parametric"))?;
-    match a.technique.get(at + 1) {
-        Some(ApproxTerm::Num(n)) => Some(n.as_f64().max(0.0).floor()),
-        _ => None,
-    }
-}
-
-/// The technique words of an approximation (`view length`, `fine`, …), for messages.
-fn form(a: &Approximation) -> String {
-    let words: Vec<&str> =
-        a.technique.iter().filter_map(|t| if let ApproxTerm::Word(w) = t { Some(*w) } else { None }).collect();
-    if words.is_empty() {
-        "(no technique)".to_string()
-    } else {
-        words.join(" ")
-    }
+        (inst.object_to_world.matrix3.transpose() * turned).normalize_or_zero()
+    };
+    let moved = if moved.is_finite() { inst.world_to_object.transform_vector3a(moved) } else { Vec3A::ZERO };
+    let off = along * d + moved;
+    Vec3::from(match max {
+        Some(max) if off.length() > max => off * (max / off.length()),
+        _ => off,
+    })
 }

@@ -13,7 +13,7 @@ use crate::support;
 /// A unit square in z = 0 (x, y and its texture coordinates 0…1, normal +z) with the
 /// material `material`, its object carrying `object_stmts`; `body` (shaders, materials)
 /// and `options` statements go before it. A camera above it at 8×8 pixels.
-fn plane(options: &str, body: &str, object_stmts: &str, material: &str) -> String {
+pub fn plane(options: &str, body: &str, object_stmts: &str, material: &str) -> String {
     format!(
         r#"
 options "opt" {options} end options
@@ -37,19 +37,19 @@ render "root" "cam_inst" "opt"
 
 /// The height of the displaced surface above (x, y): where a ray straight down from
 /// z = 10 hits it (Rust backend), or `None`.
-fn height_at(world: &render::World, x: f32, y: f32) -> Option<f32> {
+pub fn height_at(world: &render::World, x: f32, y: f32) -> Option<f32> {
     let bvh = accel::build(world, Backend::Rust);
     bvh.intersect(&Ray::new(Vec3A::new(x, y, 10.0), Vec3A::new(0.0, 0.0, -1.0))).map(|h| 10.0 - h.t)
 }
 
 /// Builds `text` through the pipeline's world stage: the built scene and its messages.
-fn build(text: &str) -> support::BuiltScene {
+pub fn build(text: &str) -> support::BuiltScene {
     support::build_parsed(&mi::parse_str("t.mi", text), 8, &[])
 }
 
 /// A material `m` whose displacement is the constant `d` through `maya_material_displace`
 /// (a shading group's displacement with nothing connected), shaded by a lambert.
-fn constant_material(d: f32) -> String {
+pub fn constant_material(d: f32) -> String {
     format!(
         r#"shader "lam" "maya_lambert" ("color" 1 1 1, "diffuse" 1)
 shader "disp" "maya_material_displace" ("displacement" {d})
@@ -126,7 +126,7 @@ material "m" = "sg" displace = "sg_disp" end material"#;
 
 /// A hostile `approximate displace regular parametric 40` (4^40 triangles per triangle)
 /// is an error at its line and column; nothing is made. A form mira does not implement
-/// (`view length`) warns at its line and splits by the default level.
+/// (`fine` without a criterion) warns at its line and splits by the default level.
 #[test]
 fn a_hostile_level_fails_at_its_line_and_other_forms_warn() {
     let b = build(&plane("", &constant_material(0.5), "approximate displace regular parametric 40", "m"));
@@ -135,8 +135,8 @@ fn a_hostile_level_fails_at_its_line_and_other_forms_warn() {
     assert!(errors[0].contains("t.mi:9:") && errors[0].contains("parametric 40"), "{}", errors[0]);
     assert!(b.built.diagnostics.iter().any(mi::Diagnostic::is_error));
 
-    let b = build(&plane("", &constant_material(0.5), "approximate displace view length 0.5 0 4", "m"));
-    let warning = b.messages.iter().find(|m| m.contains("view length")).expect("a warning");
+    let b = build(&plane("", &constant_material(0.5), "approximate displace fine sharp 0.5 0 4", "m"));
+    let warning = b.messages.iter().find(|m| m.contains("fine sharp")).expect("a warning");
     assert!(warning.contains("t.mi:9:") && warning.contains("not implemented"), "{warning}");
     let h = height_at(&b.built.world, 0.5, 0.5).expect("hit");
     assert!((h - 0.5).abs() < 1e-4);

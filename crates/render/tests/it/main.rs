@@ -3,6 +3,8 @@
 //! `cargo test -p render --test it <module>::`.
 
 mod displacement;
+mod displacement_adaptive;
+mod displacement_maya_node;
 mod support;
 
 mod aerial_perspective;
