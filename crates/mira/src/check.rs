@@ -100,6 +100,12 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         let _ = writeln!(stdout.lock(), "{}", summary(path, &parsed, &diags));
         if let Some(world) = &world {
             let _ = write!(stdout.lock(), "{}", scene::report::report(world));
+            let search = material::mdl_modules::search_path(&world.library, &args.include.mdl_paths);
+            let _ = write!(
+                stdout.lock(),
+                "{}",
+                mdl_annotations(&material::mdl_modules::annotations::of_scene(&world.library, search))
+            );
         }
     }
     if failed {
@@ -107,6 +113,24 @@ pub fn run(args: &CheckArgs) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// The `MDL annotations:` section: each annotated module material the scene's shaders
+/// instance, its definition's annotations, then one line per annotated parameter; empty
+/// when there is none.
+fn mdl_annotations(list: &[material::mdl_modules::annotations::MaterialAnnotations]) -> String {
+    if list.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from("MDL annotations:\n");
+    for m in list {
+        let shaders: Vec<String> = m.shaders.iter().map(|s| format!("\"{s}\"")).collect();
+        out += &format!("  {} (shader {}): {}\n", m.material, shaders.join(", "), m.annotations.join(", "));
+        for (param, annotations) in &m.params {
+            out += &format!("    {param}: {}\n", annotations.join(", "));
+        }
+    }
+    out
 }
 
 fn plural(n: usize, word: &str) -> String {

@@ -80,7 +80,7 @@ impl Source<'_> {
 
     /// [`Source::eval`]; with `gather`, a shader runs as for a final gather ray (its
     /// `finalgather_level` 1): the light the environment casts rather than what is seen.
-    fn eval_as(&self, dir: Vec3A, gather: bool) -> Rgb {
+    pub fn eval_as(&self, dir: Vec3A, gather: bool) -> Rgb {
         let c = match self {
             Source::Constant(c) => *c,
             Source::Function(f) => f(dir),
@@ -199,7 +199,7 @@ pub struct Environment<'a> {
     /// Camera rays that miss everything see it.
     pub camera_visible: bool,
     /// Next-event estimation samples it (off: only scattered rays that leave the scene
-    /// find it, for comparisons).
+    /// find it; mental ray's `"environment lighting mode" "off"`, and comparisons).
     pub sampled: bool,
     /// The importance grid; `None` for constant environments (uniform sampling).
     map: Option<LatLongMap>,
@@ -334,6 +334,9 @@ impl<'a> Environment<'a> {
         env.sun = sun_lobe(world, accel, shading, node);
         env.scale = attr("environment_function_intensity").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         env.lighting_scale = attr("environment_lighting_scale").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
+        // mental ray's `"environment lighting mode" "off"`: the environment is no light
+        // source, only seen by the rays that leave the scene (`scene::options::modes`).
+        env.sampled = world.options.environment_lighting() != Some(scene::options::EnvironmentLighting::Off);
         (!env.is_black()).then_some(env)
     }
 

@@ -8,6 +8,7 @@ mod fog;
 mod leave;
 mod levels;
 mod light_lobes;
+mod material_env;
 mod matte;
 mod media;
 
@@ -405,6 +406,8 @@ pub fn trace_camera_path(
     // The BSDF density of the last bounce (for MIS on lights hit), and whether it was a delta.
     let mut last_pdf = 0.0f32;
     let mut last_delta = true;
+    // The environment of the material the path last scattered at, when it has its own.
+    let mut last_env = None;
     let light_count = world.lights.len();
     // The environment is one more light to choose for next-event estimation.
     let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
@@ -496,6 +499,7 @@ pub fn trace_camera_path(
                     throughput *= weight;
                     last_pdf = pdf;
                     last_delta = false;
+                    last_env = None;
                     from_instance = None;
                     let u_rr = sampler.next_1d();
                     if depth + 1 >= settings.rr_depth {
@@ -529,6 +533,11 @@ pub fn trace_camera_path(
                 }
             }
         }
+        if let (None, None, Some(node), Some(shading)) = (&light_hit, &found, last_env, shading) {
+            // Left a material with an environment of its own: that one, all of it.
+            radiance += throughput * material_env::radiance(world, accel, shading, node, ray.dir, !last_delta);
+            break;
+        }
         if let (None, None, Some(env)) = (&light_hit, &found, env) {
             // Left the scene: the environment.
             let le = environment_seen(env, &ray, depth, (last_pdf, last_delta), pick, settings.mis);
@@ -560,6 +569,7 @@ pub fn trace_camera_path(
             break;
         }
         let Some((stop, s, material)) = found else { break };
+        let own_env = material_env::own(shading, s.material);
         if depth == 0 {
             alpha = 1.0;
             let motion = crate::tracer::hit_motion(world, &stop, s.p, ray.time);
@@ -576,6 +586,7 @@ pub fn trace_camera_path(
             let Some((weight, next)) = hit.mirror else { break };
             (throughput, ray, reflections, last_delta, from_instance) =
                 (throughput * weight, next, reflections + 1, true, Some(stop.instance));
+            last_env = own_env;
             continue;
         }
         if material.emission != Rgb::ZERO {
@@ -644,7 +655,8 @@ pub fn trace_camera_path(
         }
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
-        if let (Some(env), true) = (env, k == light_count && choices > light_count && !bsdf.is_delta()) {
+        let env_here = env.filter(|_| own_env.is_none());
+        if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
                 * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
@@ -726,6 +738,7 @@ pub fn trace_camera_path(
         }
         throughput *= bs.weight();
         from_instance = Some(stop.instance);
+        last_env = own_env;
         fogs.scattered(s.material, s.ng, ray.dir, wi);
         if fogs.is_active() {
             segment_type = fog::segment_type(depth + 1, bs.delta, ng, wi);

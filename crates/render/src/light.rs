@@ -171,7 +171,7 @@ impl LightSource {
             })?,
             _ => Shape::Point,
         };
-        Self::with_shape(light, lib, shape, &|_| None, 1.0)
+        Self::with_shape(light, lib, shape, &|_| None)
     }
 
     /// Translates a light of `scene`, `object` area lights included (their instance's
@@ -193,8 +193,7 @@ impl LightSource {
                 .map_err(|e| format!("light '{}': {e}; the path engine leaves it out", light.instance))?,
             _ => Shape::Point,
         };
-        let scale = material::emission::light_relative_scale(&scene.options);
-        Self::with_shape(light, &scene.library, shape, &|name| shading.and_then(|s| s.lightprofile(name)), scale)
+        Self::with_shape(light, &scene.library, shape, &|name| shading.and_then(|s| s.lightprofile(name)))
     }
 
     /// Translates a scene light given its shape, world space, and its light profiles.
@@ -203,9 +202,8 @@ impl LightSource {
         lib: &Library,
         shape: Shape,
         profiles: &dyn Fn(&str) -> Option<Arc<shader::light::ies::Profile>>,
-        light_relative_scale: f32,
     ) -> Result<LightSource, String> {
-        let emission: Emission = material::emission::emission_scaled(light, lib, profiles, light_relative_scale)?;
+        let emission: Emission = material::emission::emission_with(light, lib, profiles)?;
         let to_local = shader::light::profiles::to_local(light.light_to_world);
         let distribution =
             emission.distribution.clone().map(|distribution| Arc::new(LocalDistribution { distribution, to_local }));

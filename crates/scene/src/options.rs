@@ -3,6 +3,10 @@
 
 use mi::ast::{Arg, Block, Stmt};
 
+mod modes;
+
+pub use modes::EnvironmentLighting;
+
 use crate::values::{attributes, bool_arg, f64_arg, floats_arg, int_arg, last, str_arg, AttrValue, Attributes};
 
 /// Most photons a map's lookups gather (`caustic accuracy`, `globillum accuracy`) and most
@@ -643,7 +647,7 @@ mod tests {
 
     /// mental ray 3.7+'s progressive string options (as a 3.12 MDL scene writes them) set
     /// the progressive limits as Iray's attributes do; `"progressive" on`, `"gi" on` and
-    /// `"light relative scale"` are kept as string options for whoever reads them.
+    /// `"light relative scale"` read as their typed settings (`options::modes`).
     #[test]
     fn mental_ray_progressive_string_options() {
         let o = options(
@@ -657,6 +661,29 @@ mod tests {
         assert_eq!(o.string_options["progressive"], AttrValue::Bool(true));
         assert_eq!(o.string_options["gi"], AttrValue::Bool(true));
         assert_eq!(o.string_options["light relative scale"].as_f64(), Some(0.5));
+        assert!(o.progressive_mode() && o.gi_next() && o.asks_for_path_tracing());
+        assert_eq!(o.light_relative_scale(), 0.5);
+        assert_eq!(o.environment_lighting(), None);
+        let plain = options("options \"o\" \"progressive\" off end options", Dialect::MentalRay);
+        assert!(!plain.progressive_mode() && !plain.gi_next() && !plain.asks_for_path_tracing());
+        assert_eq!(plain.light_relative_scale(), 1.0);
+        let gi = options("options \"o\" \"gi\" on end options", Dialect::MentalRay);
+        assert!(gi.asks_for_path_tracing() && !gi.progressive_mode());
+    }
+
+    /// `"environment lighting mode"`: `"off"` (any case) is off, `"light"` and any other
+    /// value on, absent `None`.
+    #[test]
+    fn environment_lighting_mode() {
+        let mode = |v: &str| {
+            options(&format!("options \"o\" \"environment lighting mode\" {v} end options"), Dialect::MentalRay)
+                .environment_lighting()
+        };
+        assert_eq!(mode("\"off\""), Some(EnvironmentLighting::Off));
+        assert_eq!(mode("\"Off\""), Some(EnvironmentLighting::Off));
+        assert_eq!(mode("\"light\""), Some(EnvironmentLighting::Light));
+        assert_eq!(mode("\"automatic\""), Some(EnvironmentLighting::Light));
+        assert_eq!(options("options \"o\" end options", Dialect::MentalRay).environment_lighting(), None);
     }
 
     /// The `state` statement's shaders are kept in order: an inline call, a named shader

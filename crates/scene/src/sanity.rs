@@ -173,6 +173,7 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
         }
     }
     capped(&stmts, diags);
+    environment_lighting_mode(&stmts, diags);
     let f = &mut o.filter;
     let (o_w, o_h) = (f.width, f.height);
     if f.width > MAX_FILTER_SIZE || f.height > MAX_FILTER_SIZE || !(f.width > 0.0 && f.height > 0.0) {
@@ -258,6 +259,28 @@ fn capped(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
                 }
             }
             _ => {}
+        }
+    }
+}
+
+/// Warns where `"environment lighting mode"` is neither `"off"` nor `"light"`: mira reads
+/// any other value as `"light"` (`crate::options::EnvironmentLighting`).
+fn environment_lighting_mode(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
+    for s in stmts {
+        let Stmt::StringOption { name, value } = s else { continue };
+        if name.text != "environment lighting mode" {
+            continue;
+        }
+        let known = match crate::values::AttrValue::from_value(value) {
+            Some(crate::values::AttrValue::Str(v)) => v.eq_ignore_ascii_case("off") || v.eq_ignore_ascii_case("light"),
+            Some(crate::values::AttrValue::Bool(false)) => true,
+            _ => false,
+        };
+        if !known {
+            diags.push(Diagnostic::warning(
+                name.span,
+                "\"environment lighting mode\" is neither \"off\" nor \"light\": mira reads it as \"light\" (the environment lights the scene)",
+            ));
         }
     }
 }

@@ -444,8 +444,13 @@ impl Shading {
     /// material shader (not an MDL material). Decided without compiling anything. A shader
     /// no declaration names (an exporter's helper: the shader graph warns and ignores it)
     /// decides nothing, so that one helper on an MDL scene's lamp does not send the whole
-    /// scene to the classic engine.
+    /// scene to the classic engine. Options that ask for mental ray's progressive rendering
+    /// or its brute-force GI "Next" (`"progressive" on`, `"gi" on`:
+    /// [`scene::Options::asks_for_path_tracing`]) take the path engine whatever the materials.
     pub fn wants_classic(scene: &Scene) -> bool {
+        if scene.options.asks_for_path_tracing() {
+            return false;
+        }
         let mental_ray = |decl: &str| {
             !decl.starts_with("mdl::") && (decl == "unified_material" || scene.library.declarations.contains_key(decl))
         };

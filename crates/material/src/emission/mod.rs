@@ -100,28 +100,13 @@ pub fn emission(light: &Light, lib: &Library) -> Result<Emission, String> {
 /// The emission of `light`, with `profiles` giving the light profile of a `lightprofile`
 /// element's name (`None` where it is unknown or unreadable: the light is then uniform).
 /// A profile parameter that is not set falls back to the light's `lightprofile` statement.
+/// `physical_light`'s flux is its `color`, whatever the scene's `"light relative scale"`:
+/// mental ray scales what legacy (non-BSDF) shaders receive by it, and the path engine's
+/// materials are BSDFs (`scene::options::modes`).
 pub fn emission_with(
     light: &Light,
     lib: &Library,
     profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
-) -> Result<Emission, String> {
-    emission_scaled(light, lib, profiles, 1.0)
-}
-
-/// The string option `"light relative scale"` of a scene (mental ray 3.12 MDL scenes carry
-/// it): the factor mira applies to the emission of mental ray's physical light shaders
-/// (`physical_light`) in the path engine, 1 when absent.
-pub fn light_relative_scale(options: &scene::Options) -> f32 {
-    options.string_options.get("light relative scale").and_then(|v| v.as_f64()).map_or(1.0, |s| s.max(0.0) as f32)
-}
-
-/// [`emission_with`], with `physical_light` emission multiplied by `light_relative_scale`
-/// (see [`light_relative_scale`]).
-pub fn emission_scaled(
-    light: &Light,
-    lib: &Library,
-    profiles: &dyn Fn(&str) -> Option<Arc<Profile>>,
-    light_relative_scale: f32,
 ) -> Result<Emission, String> {
     let Some(list) = &light.shader else {
         return Err(format!("light '{}' has no light shader", light.name));
@@ -243,9 +228,8 @@ pub fn emission_scaled(
                 ));
             }
             let cone = (light.kind == scene::LightKind::Spot).then(|| scalar("cone", 0.0));
-            let scale = light_relative_scale;
             Ok(Emission {
-                power: Power::Flux(color("color", Rgb::splat(1000.0)) * scale),
+                power: Power::Flux(color("color", Rgb::splat(1000.0))),
                 spot_exponent: None,
                 cone,
                 distribution: None,

@@ -17,6 +17,7 @@
 //! The `::nvidia::core_definitions` materials keep mira's native translation unless a
 //! `core_definitions.mdl` on the search path replaces them.
 
+pub mod annotations;
 pub mod base_volume;
 pub mod connections;
 pub mod dds;

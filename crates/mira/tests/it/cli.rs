@@ -210,3 +210,74 @@ fn previews_are_written_between_passes_and_change_no_pixel() {
     assert!(err.contains("--preview -1 is not a number of seconds"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `mira check --scene` prints the annotations of the module materials the scene's shaders
+/// instance: after `MDL annotations:`, each material (its absolute name, the shaders that
+/// instance it) with its definition's annotations (absolute names, arguments as written),
+/// then one line per annotated parameter; a parameter or material without annotations is
+/// not listed.
+#[test]
+fn check_prints_the_annotations_of_mdl_materials() {
+    let dir = std::env::temp_dir().join(format!("mira-cli-annotations-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("notes.mdl"),
+        r#"mdl 1.7;
+import ::anno::*;
+import ::df::*;
+export material painted(
+    color tint = color(0.5) [[ anno::display_name("Paint colour"), anno::in_group("Base") ]],
+    uniform float weight = 1.0 [[ anno::soft_range(0.0,   1.0) ]],
+    float plain = 0.0
+)
+[[
+    anno::display_name("Painted surface"),
+    anno::description("A wall's paint"),
+    anno::key_words(string[]("paint", "wall"))
+]]
+= material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(tint: tint * weight)));
+export material bare(color tint = color(0.5)) = material();
+"#,
+    )
+    .unwrap();
+    let scene = dir.join("notes.mi");
+    std::fs::write(
+        &scene,
+        r#"$include "notes.mdl"
+options "opt" end options
+camera "cam" focal 1 aperture 1 aspect 1 resolution 4 4 end camera
+instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
+shader "wall" "mdl::notes::painted" ("tint" 1 0 0)
+shader "wall2" "mdl::notes::painted" ()
+shader "other" "mdl::notes::bare" ()
+object "tri" group
+    0 0 0  1 0 0  0 1 0
+    v 0 v 1 v 2
+    p "wall" 0 1 2
+end group end object
+instance "tri_inst" "tri" end instance
+instgroup "root" "cam_inst" "tri_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#,
+    )
+    .unwrap();
+    let (code, out, err) = mira(&["check", "--scene", scene.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let section: Vec<&str> = out.lines().skip_while(|l| *l != "MDL annotations:").collect();
+    assert_eq!(
+        section,
+        [
+            "MDL annotations:",
+            r#"  ::notes::painted (shader "wall", "wall2"): ::anno::display_name("Painted surface"), ::anno::description("A wall's paint"), ::anno::key_words(string[]("paint", "wall"))"#,
+            r#"    tint: ::anno::display_name("Paint colour"), ::anno::in_group("Base")"#,
+            "    weight: ::anno::soft_range(0.0, 1.0)",
+        ],
+        "{out}"
+    );
+    // Without annotations, no section.
+    std::fs::write(dir.join("notes.mi"), std::fs::read_to_string(&scene).unwrap().replace("painted", "bare")).unwrap();
+    let (code, out, err) = mira(&["check", "--scene", scene.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!out.contains("MDL annotations"), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+}

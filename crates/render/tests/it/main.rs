@@ -57,6 +57,7 @@ mod mdl_measured;
 mod mdl_object_space;
 mod mdl_sky_sun_share;
 mod mdl_spot;
+mod mdl_string_options;
 mod mdl_textures3d;
 mod mdl_vdf_tints;
 mod mdl_wide;

@@ -1,0 +1,83 @@
+//! mental ray's rendering-mode string options as typed settings: `"progressive"`, `"gi"`
+//! (GI "Next"), `"environment lighting mode"` and `"light relative scale"`, read as mental
+//! ray documented them (sources below; the stored copies of mental ray's own manual list
+//! these options only by section title, so where a statement comes from another page it is
+//! named).
+//!
+//! - `"progressive" on|off` — 3ds Max's reference of mental ray's string options
+//!   (<https://help.autodesk.com/cloudhelp/2017/ENU/MAXScript-Help/files/GUID-F64266AA-19D7-4F81-A3A7-90152F50F232.htm>,
+//!   "Progressive Rendering"): instead of finishing the image bucket by bucket, mental ray
+//!   delivers the whole image at full resolution and refines its quality step by step, for
+//!   interactive rendering of ray tracing and indirect light; off unless set.
+//! - `"gi" on` — mental ray 3.13's "Global Illumination \"Next\"" (the manual's options page,
+//!   <https://help.autodesk.com/cloudhelp/2016/ENU/mental-ray-docs/mr_docs/manual/options.html>,
+//!   lists the section; its text is not in the stored copy). Users' notes on it
+//!   (<https://3d1.com.br/forum/tira-duvidas/perguntas-de-maquete-eletronica/94349>,
+//!   <https://elementalray.wordpress.com/tag/gi/>): brute-force global illumination without a
+//!   cache or interpolation, which switches photons, final gathering and irradiance particles
+//!   off by itself; `"gi rays"` and `"gi depth"` tune it.
+//! - `"environment lighting mode"` — mental ray's built-in image-based lighting (since 3.7):
+//!   NVIDIA's mental ray blog (<https://elementalray.wordpress.com/tag/hdr/>, "The Native
+//!   (Builtin) IBL") describes it as fast automatic *direct* lighting from the camera's
+//!   environment (a dome light: the environment is baked by point sampling and lights the
+//!   scene as a light source); Maya 2015 shows it as "Light Emission". Maya writes `"off"`
+//!   by default. No stored page lists the other values; `"light"` is the one mental ray
+//!   scenes write to turn it on, and mira reads any value but `"off"` as on (with a warning
+//!   naming the value, `crate::sanity`). With it off, the environment is not a light: it is
+//!   seen only by rays that leave the scene (camera, reflection and refraction rays, and
+//!   final gather / GI rays).
+//! - `"light relative scale"` — the same blog page: set it (Maya 2015 writes 0.31831, 1/π)
+//!   so that physically calibrated lights (the environment light, `user_ibl_env`) light
+//!   *non-BSDF, legacy* materials correctly, which would otherwise blow out. It scales the
+//!   light legacy shaders receive (they carry no 1/π); BSDF materials (MDL, the layering
+//!   library) are lit by the lights' physical output, unscaled.
+
+use super::Options;
+use crate::values::AttrValue;
+
+/// Whether and how the camera's environment lights the scene (`"environment lighting mode"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EnvironmentLighting {
+    /// `"off"`: the environment is no light source; rays that leave the scene see it.
+    Off,
+    /// `"light"` (or any other value): the environment lights the scene as a light source,
+    /// sampled directly (mira: importance-sampled next-event estimation).
+    Light,
+}
+
+impl Options {
+    /// `"progressive" on`: mental ray's progressive rendering mode (see the module comment).
+    pub fn progressive_mode(&self) -> bool {
+        self.string_options.get("progressive").and_then(AttrValue::as_bool).unwrap_or(false)
+    }
+
+    /// `"gi" on`: mental ray 3.13's brute-force global illumination, GI "Next".
+    pub fn gi_next(&self) -> bool {
+        self.string_options.get("gi").and_then(AttrValue::as_bool).unwrap_or(false)
+    }
+
+    /// Whether the string options ask for mental ray's progressive or brute-force GI
+    /// rendering, which mira's path engine is (the automatic engine choice takes it).
+    pub fn asks_for_path_tracing(&self) -> bool {
+        self.progressive_mode() || self.gi_next()
+    }
+
+    /// `"environment lighting mode"` as written; `None` where the scene does not set it (the
+    /// path engine then lights with the environment as with [`EnvironmentLighting::Light`],
+    /// as Iray does).
+    pub fn environment_lighting(&self) -> Option<EnvironmentLighting> {
+        let v = self.string_options.get("environment lighting mode")?;
+        Some(match v {
+            AttrValue::Str(s) if s.eq_ignore_ascii_case("off") => EnvironmentLighting::Off,
+            AttrValue::Bool(false) => EnvironmentLighting::Off,
+            _ => EnvironmentLighting::Light,
+        })
+    }
+
+    /// `"light relative scale"` (default 1, negative read as 0): the factor on the light
+    /// legacy (non-BSDF) shaders receive from physically calibrated lights; BSDF materials
+    /// do not see it (see the module comment).
+    pub fn light_relative_scale(&self) -> f64 {
+        self.string_options.get("light relative scale").and_then(AttrValue::as_f64).map_or(1.0, |s| s.max(0.0))
+    }
+}
