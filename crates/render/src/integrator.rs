@@ -1,6 +1,7 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling
-//! (power heuristic), Russian roulette after a few bounces; participating media inside
-//! surfaces in [`media`], the camera's volume (Maya's fogs) in [`fog`].
+//! (power heuristic), Russian roulette after a few bounces (by each bounce's own weight);
+//! participating media inside surfaces in [`media`], the camera's volume (Maya's fogs) in
+//! [`fog`].
 
 mod ambient_highlight;
 mod cutout;
@@ -11,6 +12,7 @@ mod light_lobes;
 mod material_env;
 mod matte;
 mod media;
+mod roulette;
 
 use bsdf::Bsdf;
 use bsdf::{Frame, Rgb};
@@ -27,13 +29,16 @@ use crate::world::World;
 use cutout::{cutout_number, linked_shadow_passed, shadow_passed, MAX_CUTOUT_CROSSINGS};
 use media::Departure;
 pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
+use roulette::roulette_survival;
 
 /// Integrator settings.
 #[derive(Clone, Copy, Debug)]
 pub struct PathSettings {
     /// Most scattering events along a path.
     pub max_depth: u32,
-    /// Bounces before Russian roulette starts.
+    /// Bounces before Russian roulette starts. From then on a path goes on past a surface
+    /// with the probability of that bounce's own weight (its largest channel, at most 0.95:
+    /// [`roulette::roulette_survival`]); past a medium's scattering with that of its throughput's.
     pub rr_depth: u32,
     /// Combine light and BSDF sampling with MIS (off: light sampling only for lights that
     /// can be sampled, BSDF sampling only for emitters that cannot).
@@ -736,7 +741,8 @@ pub fn trace_camera_path(
         } else if bs.delta {
             refractions += 1;
         }
-        throughput *= bs.weight();
+        let bounce_weight = bs.weight();
+        throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;
         fogs.scattered(s.material, s.ng, ray.dir, wi);
@@ -751,8 +757,8 @@ pub fn trace_camera_path(
         }
         let u_rr = sampler.next_1d();
         if depth + 1 >= settings.rr_depth {
-            let q = throughput.max_element().min(0.95);
-            if q <= 0.0 || u_rr >= q {
+            let q = roulette_survival(bounce_weight);
+            if q.is_nan() || q <= 0.0 || u_rr >= q {
                 break;
             }
             throughput /= q;
