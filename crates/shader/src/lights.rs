@@ -18,6 +18,8 @@
 //! shadow shaders on the light's colour; a surface without a shadow shader blocks it.
 //! Where no material has a shadow shader, an area light's samples have their shadow rays
 //! traced ahead in batches of eight (one packet), answered when the shader asks.
+//! A base light shader with constant parameters ([`SimpleLight`]) is evaluated in place
+//! of its call, with the same functions and the same bits.
 //! The light's result then passes through the volume of the medium the point is seen in
 //! ([`super::volume`]).
 
