@@ -8,19 +8,8 @@
 
 use scene::LightKind;
 
-use shader::{Color, Ctx, NodeId, ShaderImpl, Tag, Value};
-
-/// Linear distance attenuation: 1 before `start`, 0 from `stop` on (`None`: no light, as
-/// for any distance when `stop` is 0).
-fn attenuation(dist: f32, start: f32, stop: f32) -> Option<f32> {
-    if dist >= stop {
-        None
-    } else if dist > start && (stop - start).abs() > 1e-4 {
-        Some(1.0 - (dist - start) / (stop - start))
-    } else {
-        Some(1.0)
-    }
-}
+use shader::light::simple::{attenuation, constant, shadowed, SimpleLight};
+use shader::{Color, Ctx, NodeId, ShaderImpl, Slot, Tag, Value};
 
 /// Shadows of the base lights: with `shadow` on and `factor` < 1, the light is filtered by
 /// the occluders' shadow shaders; what an occluder blocks is let through in proportion
@@ -31,16 +20,13 @@ fn shadow(ctx: &mut Ctx, color: &mut Color, on: bool, factor: f32) -> bool {
     }
     let mut filter = Color::ONE;
     let through = ctx.trace_shadow(&mut filter);
-    if !through {
-        if factor <= 0.0 {
-            return false;
+    match shadowed(*color, factor, through, filter) {
+        Some(c) => {
+            *color = c;
+            true
         }
-        *color *= factor;
-        return true;
+        None => false,
     }
-    let f = Color::splat(factor);
-    *color *= f + (Color::ONE - f) * filter;
-    true
 }
 
 /// `mib_light_point (color color, boolean shadow, scalar factor, boolean atten, scalar
@@ -49,8 +35,20 @@ pub static POINT: ShaderImpl = ShaderImpl {
     name: "mib_light_point",
     params: &["color", "shadow", "factor", "atten", "start", "stop"],
     run: point,
+    simple_light: Some(point_simple),
     ..ShaderImpl::PLAIN
 };
+
+/// `mib_light_point` with constant parameters as a [`SimpleLight`] (what [`point`]
+/// computes).
+fn point_simple(slots: &[Slot]) -> Option<SimpleLight> {
+    let p = |i| constant(slots, i);
+    let atten = match p(3)?.bool() {
+        true => Some((p(4)?.scalar(), p(5)?.scalar())),
+        false => None,
+    };
+    Some(SimpleLight { color: p(0)?.color(), atten, shadow: p(1)?.bool(), factor: p(2)?.scalar() })
+}
 
 fn point(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let mut c = ctx.color(n, 0);
@@ -108,8 +106,16 @@ pub static INFINITE: ShaderImpl = ShaderImpl {
     name: "mib_light_infinite",
     params: &["color", "shadow", "factor"],
     run: infinite,
+    simple_light: Some(infinite_simple),
     ..ShaderImpl::PLAIN
 };
+
+/// `mib_light_infinite` with constant parameters as a [`SimpleLight`] (what [`infinite`]
+/// computes).
+fn infinite_simple(slots: &[Slot]) -> Option<SimpleLight> {
+    let p = |i| constant(slots, i);
+    Some(SimpleLight { color: p(0)?.color(), atten: None, shadow: p(1)?.bool(), factor: p(2)?.scalar() })
+}
 
 fn infinite(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
     let mut c = ctx.color(n, 0);

@@ -77,6 +77,10 @@ pub type VolumeTermsRun = fn(ctx: &mut Ctx, node: NodeId) -> volume::VolumeTerms
 /// `shading` (see [`ShaderImpl::volume_affine`]).
 pub type VolumeAffine = fn(shading: &Shading, node: NodeId) -> bool;
 
+/// Reads a light shader's constant parameters from its node's slots (see
+/// [`ShaderImpl::simple_light`]).
+pub type SimpleLightRead = fn(slots: &[Slot]) -> Option<light::SimpleLight>;
+
 /// A shader mira implements.
 #[derive(Debug)]
 pub struct ShaderImpl {
@@ -100,6 +104,12 @@ pub struct ShaderImpl {
     /// over a mental ray volume shader it runs): whether the node is affine in the compiled
     /// shading. `None`: always.
     pub volume_affine: Option<VolumeAffine>,
+    /// For a light shader whose result is a constant colour, optionally ramped over
+    /// distance, through shadows ([`light::SimpleLight`]): that light read from a node's
+    /// parameter slots, `None` where a parameter is not a constant. The light loop then
+    /// evaluates the light in place of calling the shader per sample. `None`: no such
+    /// shader.
+    pub simple_light: Option<SimpleLightRead>,
 }
 
 impl ShaderImpl {
@@ -113,6 +123,7 @@ impl ShaderImpl {
         portal: false,
         volume_terms: None,
         volume_affine: None,
+        simple_light: None,
     };
 }
 

@@ -18,6 +18,8 @@
 //! shadow shaders on the light's colour; a surface without a shadow shader blocks it.
 //! Where no material has a shadow shader, an area light's samples have their shadow rays
 //! traced ahead in batches of eight (one packet), answered when the shader asks.
+//! A base light shader with constant parameters ([`SimpleLight`]) is evaluated in place
+//! of its call, with the same functions and the same bits.
 //! The light's result then passes through the volume of the medium the point is seen in
 //! ([`super::volume`]).
 
@@ -27,6 +29,7 @@ use glam::{Vec2, Vec3A, Vec4};
 use scene::LightKind;
 
 use super::ctx::Ctx;
+use super::light::simple::{shadowed, SimpleLight};
 use super::light::ShadingLight;
 use super::light_list::LightList;
 use super::site::SitePairs;
@@ -97,6 +100,9 @@ pub struct LightLoop {
     ahead_for: ([Vec3A; 4], f32, bool),
     /// Accept points behind the surface (for translucency: the shader flips the normal).
     pub both_sides: bool,
+    /// The light's shader is a [`SimpleLight`] the loop evaluates in place (no media to
+    /// cross, no shadow shaders to run): see [`Ctx::simple_light_sample`].
+    simple: Option<SimpleLight>,
 }
 
 impl<'a> Ctx<'a> {
@@ -170,6 +176,12 @@ impl<'a> Ctx<'a> {
         let pairs = l.shape.is_some().then(|| self.site_pairs(site, grid.0 * grid.1));
         let time = self.state.time;
         let still = self.tracer.light_motion(light, time).is_none() && self.tracer.light_mesh(light, time).is_none();
+        let shading = self.shading();
+        let simple = shading.simple_light(light).filter(|s| {
+            // Media to cross or shadow shaders to run need the light state: the shader runs.
+            let walks = s.casts_shadows() && shading.shadows && shading.has_shadow_shaders();
+            !(shading.has_media() || walks)
+        });
         LightLoop {
             light,
             samples: 0,
@@ -178,7 +190,9 @@ impl<'a> Ctx<'a> {
             site,
             pairs,
             still,
-            batch: false,
+            // A simple light that will ask for any-hit shadow rays has them traced ahead
+            // from its first sample on.
+            batch: simple.is_some_and(|s| s.casts_shadows() && shading.shadows),
             ahead_from: 0,
             ahead: 0,
             ahead_reach: 0,
@@ -189,6 +203,7 @@ impl<'a> Ctx<'a> {
             ); AHEAD],
             ahead_for: ([Vec3A::ZERO; 4], 0.0, false),
             both_sides: false,
+            simple,
         }
     }
 
@@ -297,6 +312,11 @@ impl<'a> Ctx<'a> {
         };
         let SampleGeometry { to_light, dist, on_light, dot_nl } = geometry?;
         let shader = light.shader?;
+        if let Some(simple) = lp.simple {
+            if self.volume_of(&self.state).is_none() {
+                return self.simple_light_sample(lp, &simple, geometry?, hint);
+            }
+        }
         let mut ls = self.state.child(RayType::Light, on_light, -to_light);
         ls.point = p;
         ls.shadow_point = self.state.shadow_point;
@@ -323,6 +343,48 @@ impl<'a> Ctx<'a> {
             color = self.light_media(&ctx.state, color);
         }
         let color = if crate::is_zero(color) { color } else { self.light_volume(&ctx.state, color) };
+        (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
+            color,
+            dir: to_light,
+            dot_nl,
+            dist,
+        })
+    }
+
+    /// A light sample of a [`SimpleLight`] at `geometry`, evaluated in place of its shader
+    /// call: the same colour bit for bit (the shader computes it with the same functions),
+    /// without a light state. Its shadow ray is the one [`Ctx::trace_shadow`] would send
+    /// from the light state (an any-hit query: the loop's `simple` excludes shadow shaders
+    /// and media), answered ahead when `hint` holds it.
+    #[inline(always)]
+    fn simple_light_sample(
+        &mut self,
+        lp: &mut LightLoop,
+        simple: &SimpleLight,
+        geometry: SampleGeometry,
+        hint: Option<ShadowHint>,
+    ) -> Option<LightSample> {
+        let SampleGeometry { to_light, dist, dot_nl, .. } = geometry;
+        // The shader call this stands for.
+        self.counts.calls += 1;
+        let mut color = simple.unshadowed(dist)?;
+        if simple.casts_shadows() {
+            let through = !self.shading().shadows || {
+                // Asked for an any-hit shadow ray: the next samples' are traced ahead.
+                lp.batch = true;
+                let blocked = match hint {
+                    Some(hint) => hint.blocked,
+                    None => {
+                        let s = &self.state;
+                        let org = crate::trace::leave_point(s.shadow_point, s.point_error, s.normal_geom, to_light);
+                        let max_dist = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
+                        self.tracer.shadow_blocked(org, to_light, max_dist, s.time)
+                    }
+                };
+                !blocked
+            };
+            color = shadowed(color, simple.factor, through, Color::ONE)?;
+        }
         (color.x != 0.0 || color.y != 0.0 || color.z != 0.0).then_some(LightSample {
             color,
             dir: to_light,

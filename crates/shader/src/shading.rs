@@ -11,7 +11,7 @@ use scene::{MaterialKind, Scene};
 
 use super::graph::{Builder, Graph, Names, NodeId};
 use super::value::{Color, Value};
-use crate::light::ShadingLight;
+use crate::light::{ShadingLight, SimpleLight};
 use crate::registry::Registry;
 use crate::texture::{self, SearchPath, Texture};
 
@@ -159,6 +159,9 @@ pub struct Shading {
     /// Whether some material has a medium that varies over its surface, found on first
     /// use ([`Shading::has_varying_media`]).
     varying_media: std::sync::OnceLock<bool>,
+    /// Each light's shader as a [`SimpleLight`] where it is one, found on first use
+    /// ([`Shading::simple_light`]).
+    simple_lights: std::sync::OnceLock<Vec<Option<SimpleLight>>>,
 }
 
 /// Trace-depth limits (`trace depth reflect refract sum`).
@@ -363,6 +366,7 @@ impl Shading {
             surface_shadow_shaders: Default::default(),
             media: Default::default(),
             varying_media: Default::default(),
+            simple_lights: Default::default(),
         };
         (shading, diags)
     }
@@ -400,6 +404,25 @@ impl Shading {
     /// over by the renderer before rendering). Found once, on the first question.
     pub fn has_media(&self) -> bool {
         *self.media.get_or_init(|| self.materials.iter().any(|m| m.medium.is_some()))
+    }
+
+    /// Light `light`'s shader as a [`SimpleLight`] (one shader, not a list, whose
+    /// implementation reads as one with these constant parameters), else `None`. Found for
+    /// every light on the first question.
+    pub fn simple_light(&self, light: u32) -> Option<SimpleLight> {
+        let all = self.simple_lights.get_or_init(|| {
+            self.lights
+                .iter()
+                .map(|l| {
+                    let node = self.graph.nodes.get(l.shader? as usize)?;
+                    if node.next.is_some() {
+                        return None;
+                    }
+                    (node.imp?.simple_light?)(&node.slots)
+                })
+                .collect()
+        });
+        all.get(light as usize).copied().flatten()
     }
 
     /// Whether some material has a participating medium that varies over its surface

@@ -79,6 +79,7 @@ mod photometric;
 mod photons;
 mod rect_light_paths;
 mod shutter_shape;
+mod simple_lights;
 mod sky;
 mod sun_sky_path;
 mod volume;

@@ -1,5 +1,5 @@
 //! Lights as shading sees them ([`ShadingLight`]): their shapes, their photometric profiles
-//! (IES files), and
+//! (IES files), light shaders the light loop evaluates in place ([`SimpleLight`]), and
 //! (in the `material` crate's `emission`) what they emit.
 
 pub mod deforming;
@@ -7,10 +7,12 @@ pub mod ies;
 pub mod mesh;
 pub mod profiles;
 pub mod shape;
+pub mod simple;
 
 pub use deforming::DeformingMesh;
 pub use mesh::MeshShape;
 pub use shape::Shape;
+pub use simple::SimpleLight;
 
 /// A light instance as the shader model sees it, world space.
 #[derive(Clone, Debug)]
