@@ -55,6 +55,7 @@ use glam::{Vec2, Vec3A};
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, Rgb};
 
 mod shape;
+pub mod translucence;
 
 pub use shape::{anisotropic, blinn, blinn_distribution, phong, phong_e, ramp_blinn, schlick, Shape};
 
@@ -167,6 +168,14 @@ pub struct MayaGlossy {
     /// rampShader's `specularColor` ramp by the highlight's strength H ∈ [0, 1] at
     /// H = k/8, when it varies: the highlight is then tint ⊙ S(H) · H.
     pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
+    /// The lambert family's `translucence`: the albedo c · t of the light it passes from
+    /// behind (linear RGB, faded and divided by the coverage as the diffuse colour is),
+    /// concentrated about the light's straight-through direction by the cosine power
+    /// [`MayaGlossy::focus`] ([`translucence`]); zero: none.
+    pub translucence: Rgb,
+    /// The forward lobe's exponent n ([`translucence::focus_exponent`] of
+    /// `translucenceFocus`; 0: diffuse translucence).
+    pub focus: f32,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -191,8 +200,18 @@ impl MayaGlossy {
             tinted_by: Rgb::ONE,
             view_ramps: None,
             specular_ramp: None,
+            translucence: Rgb::ZERO,
+            focus: 0.0,
             albedo,
         }
+    }
+
+    /// The same highlight with the translucence of albedo `albedo` (per channel) and
+    /// forward-lobe exponent `focus` (see [`MayaGlossy::translucence`]).
+    pub fn with_translucence(mut self, albedo: Rgb, focus: f32) -> MayaGlossy {
+        self.translucence = albedo.max(Rgb::ZERO);
+        self.focus = focus.max(0.0);
+        self
     }
 
     /// The same highlight and mirror with rampShader's view-dependent ramps (see
@@ -260,11 +279,12 @@ impl MayaGlossy {
         self
     }
 
-    /// The same highlight and reflection with their weights scaled by `k` (a layer's
-    /// share).
-    pub fn scaled(mut self, k: f32) -> MayaGlossy {
-        self.tint *= k.max(0.0);
-        self.mirror *= k.max(0.0);
+    /// The same highlight, reflection and translucence with their weights scaled by `k`
+    /// per channel (a layer's share).
+    pub fn scaled(mut self, k: Rgb) -> MayaGlossy {
+        self.tint *= k.max(Rgb::ZERO);
+        self.mirror *= k.max(Rgb::ZERO);
+        self.translucence *= k.max(Rgb::ZERO);
         self
     }
 
@@ -314,9 +334,10 @@ impl MayaGlossy {
         let mean = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + *c) / s.len() as f32);
         let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint * mean) * a, luminance(mirror).max(0.0));
         let t = luminance(self.refraction).max(0.0);
-        let total = d + g + m + t;
-        let (diffuse_share, mirror_share, refraction_share) =
-            if total > 0.0 { (d / total, m / total, t / total) } else { (1.0, 0.0, 0.0) };
+        let tl = luminance(self.translucence).max(0.0);
+        let total = d + g + m + t + tl;
+        let (diffuse_share, mirror_share, refraction_share, translucence_share) =
+            if total > 0.0 { (d / total, m / total, t / total, tl / total) } else { (1.0, 0.0, 0.0, 0.0) };
         MayaBsdf {
             diffuse,
             tint,
@@ -329,9 +350,12 @@ impl MayaGlossy {
             refraction_limit: self.refraction_limit,
             tinted_by: self.tinted_by,
             specular_ramp: self.specular_ramp,
+            translucence: self.translucence,
+            focus: self.focus,
             diffuse_share,
             mirror_share,
             refraction_share,
+            translucence_share,
         }
     }
 }
@@ -366,12 +390,19 @@ pub struct MayaBsdf {
     pub tinted_by: Rgb,
     /// [`MayaGlossy::specular_ramp`].
     pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
+    /// [`MayaGlossy::translucence`]: f = translucence · K(focus, −ωo·ωi)/π on the side
+    /// opposite ωo.
+    pub translucence: Rgb,
+    /// [`MayaGlossy::focus`].
+    pub focus: f32,
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
     /// The probability of sampling the mirror.
     mirror_share: f32,
     /// The probability of sampling the refraction.
     refraction_share: f32,
+    /// The probability of sampling the translucence.
+    translucence_share: f32,
 }
 
 /// `wo` and `wi` mirrored to the +Z side when `wo` is below; `None` when they lie on
@@ -391,6 +422,7 @@ impl MayaBsdf {
         let rest = 1.0 - self.mirror_share;
         self.diffuse_share = if rest > 0.0 { (self.diffuse_share / rest).min(1.0) } else { 0.0 };
         self.refraction_share = if rest > 0.0 { (self.refraction_share / rest).min(1.0) } else { 0.0 };
+        self.translucence_share = if rest > 0.0 { (self.translucence_share / rest).min(1.0) } else { 0.0 };
         self.mirror = Rgb::ZERO;
         self.mirror_share = 0.0;
     }
@@ -420,9 +452,34 @@ impl MayaBsdf {
         crate::dielectric::refract(wo, n, self.eta).unwrap_or(Vec3A::new(-wo.x, -wo.y, wo.z))
     }
 
-    /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side.
+    /// The translucence's f(ωo, ωi): translucence · K(focus, −ωo·ωi)/π for ωi on the side
+    /// opposite ωo, zero on ωo's side.
+    pub fn eval_translucence(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        if wo.z * wi.z >= 0.0 || self.translucence == Rgb::ZERO {
+            return Rgb::ZERO;
+        }
+        self.translucence * (translucence::forward_lobe(self.focus, -wo.dot(wi)) * FRAC_1_PI)
+    }
+
+    /// The density of the translucence's sampling ([`MayaBsdf::sample`]): cosine-weighted
+    /// on the side opposite ωo for diffuse translucence, else the cosine power about −ωo
+    /// (over the whole sphere: its samples on ωo's side carry the other lobes' f).
+    fn translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if self.focus <= 0.0 {
+            if wo.z * wi.z < 0.0 {
+                wi.z.abs() * FRAC_1_PI
+            } else {
+                0.0
+            }
+        } else {
+            translucence::pdf_about(self.focus, -wo.dot(wi))
+        }
+    }
+
+    /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side, the
+    /// translucence ([`MayaBsdf::eval_translucence`]) on the other.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        let Some((v, l)) = upper(wo, wi) else { return Rgb::ZERO };
+        let Some((v, l)) = upper(wo, wi) else { return self.eval_translucence(wo, wi) };
         let h = self.shape.value(v, l);
         let tint = match &self.specular_ramp {
             Some(s) => self.tint * table_at(s, h),
@@ -434,10 +491,12 @@ impl MayaBsdf {
     /// The density of the non-delta part of the mixture: the diffuse lobe's cosine
     /// density and the highlight's, by their shares.
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        let Some((v, l)) = upper(wo, wi) else { return 0.0 };
+        let translucent =
+            if self.translucence_share > 0.0 { self.translucence_share * self.translucence_pdf(wo, wi) } else { 0.0 };
+        let Some((v, l)) = upper(wo, wi) else { return translucent };
         let p = self.diffuse_share;
-        let glossy = (1.0 - p - self.mirror_share - self.refraction_share).max(0.0);
-        p * l.z * FRAC_1_PI + glossy * self.shape.pdf(v, l)
+        let glossy = (1.0 - p - self.mirror_share - self.refraction_share - self.translucence_share).max(0.0);
+        p * l.z * FRAC_1_PI + glossy * self.shape.pdf(v, l) + translucent
     }
 
     /// Chooses the mirror with probability `mirror_share`, the refraction with
@@ -449,7 +508,8 @@ impl MayaBsdf {
             || (self.mirror_share <= 0.0
                 && self.refraction_share <= 0.0
                 && self.diffuse == Rgb::ZERO
-                && self.tint == Rgb::ZERO)
+                && self.tint == Rgb::ZERO
+                && self.translucence == Rgb::ZERO)
         {
             return None;
         }
@@ -467,6 +527,12 @@ impl MayaBsdf {
         }
         let wi = if u_lobe < self.diffuse_share {
             cosine_on_side(wo, u)?
+        } else if u_lobe < self.diffuse_share + self.translucence_share {
+            if self.focus <= 0.0 {
+                -cosine_on_side(wo, u)?
+            } else {
+                translucence::sample_about(-wo, self.focus, u)
+            }
         } else {
             let v = Vec3A::new(wo.x, wo.y, wo.z.abs());
             let l = self.shape.sample(v, u)?;

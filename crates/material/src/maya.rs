@@ -38,12 +38,15 @@
 //!   `bsdf::maya_highlight::ViewRamps`). Colour ramps
 //!   indexed by the view angle or the brightness vary in ways a BSDF's albedo cannot (a
 //!   warning says so);
-//! - layeredShader: the layers' translations mixed by the share of each that shows,
-//!   w_i = mean(T_0 ⋯ T_(i−1) (1 − T_i)) (`compositingFlag` 0 or 1 alike): their
-//!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i);
+//! - layeredShader: the layers' translations mixed by the share of each that shows, per
+//!   channel, w_i = T_0 ⊙ ⋯ ⊙ T_(i−1) ⊙ (1 − T_i) (`compositingFlag` 0 or 1 alike): their
+//!   albedos, emissions and the first reflective layer's lobe; opacity 1 − mean(Π T_i)
+//!   and rays that pass tinted per channel (as a transparent lambert's, below);
 //!   a layer whose material refracts (as below) is the last that shows: the stack
 //!   refracts by P_k ⊙ T_k (P_k the transparencies above it) with its index and limit,
-//!   as the classic layeredShader shows what that layer's refraction ray finds;
+//!   as the classic layeredShader shows what that layer's refraction ray finds; rampShader
+//!   layers whose transparency or incandescence ramps follow the view are read at each
+//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
@@ -77,6 +80,8 @@
 //!   reflection rays (`bsdf::MayaGlossy::reflection_limit`);
 //!   `incandescence`: emitted radiance; `ambientColor` a: c ⊙ a emitted (faded by
 //!   1 − T), per hit when `color` or `ambientColor` is connected ([`ambient_color`]);
+//!   rampShader's C_ref ⊙ a likewise (`ramp_shader::Ambient`); `translucence` t: a
+//!   transmission lobe of albedo c·t shaped by `translucenceFocus` ([`translucence`]);
 //! - useBackground: a shadow-catching matte ([`MayaMatte`]: the background darkened by
 //!   `shadowMask` × the blocked share of the lights, a mirror of `reflectivity` ·
 //!   `specularColor`), fully transparent to shadow rays;
@@ -94,6 +99,7 @@
 use std::sync::Arc;
 
 mod matte;
+mod ramp_shader;
 mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
@@ -258,6 +264,34 @@ fn ambient_color(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
             r.bindings.push(Binding { node, member: member.clone(), target: Target::EmissionChannel(c as u8), scale });
         }
     }
+}
+
+/// The lambert family's `translucence` t: the light from behind, c · t ⊙ `fade` (the
+/// diffuse part's fade), concentrated by `translucenceFocus`
+/// ([`bsdf::maya_highlight::translucence`], the classic shader's lobe) — beside the
+/// material's highlight, or alone on a lobe of zero tint. A connected `color` lends it
+/// its default (warned about); `translucenceDepth` is not read (warned about).
+fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
+    let t = r.scalar("translucence", 0.0);
+    if t <= 0.0 {
+        return;
+    }
+    if connection(r.graph, r.node, "color").is_some() {
+        r.warnings
+            .push("'translucence' on a connected 'color': the path engine passes it by the default colour".into());
+    }
+    r.warnings.push(
+        "'translucenceDepth' is not read (light from behind passes shadowing objects only by their shadow \
+         shaders)"
+            .into(),
+    );
+    let albedo = r.color("color", Rgb::splat(0.5)) * t * fade;
+    let focus = bsdf::maya_highlight::translucence::focus_exponent(r.scalar("translucenceFocus", 0.5));
+    let glossy = match &surface.model {
+        SurfaceModel::Maya(g) => **g,
+        _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
+    };
+    surface.model = SurfaceModel::Maya(Box::new(glossy.with_translucence(albedo, focus)));
 }
 
 /// The `irradiance` illumination map M of the lambert family (the reading is
@@ -493,11 +527,12 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                     ));
                 }
             }
+            translucence(&mut r, &mut surface, fade);
             if let Some(ior) = ior {
                 refract(&mut r, &mut surface, t, ior);
             }
         }
-        "rampshader" => ramp_shader(&mut r, &mut surface, alone),
+        "rampshader" => ramp_shader::translate(&mut r, &mut surface, alone),
         "layeredshader" => {
             let (layered, warnings) = layered_shader(name, graph, node);
             surface = layered;
@@ -530,153 +565,6 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
     }
     let warnings = r.warnings.into_iter().map(|w| format!("material '{name}' ({material}): {w}")).collect();
     (surface, warnings)
-}
-
-/// A constant ramp parameter of the reader's node (`None` when the ramp is connected or
-/// has connected points, with a warning).
-fn ramp_of(r: &mut Reader, name: &str, member: &str, empty: Rgb) -> Option<::maya::utility::Ramp> {
-    if connection(r.graph, r.node, name).is_some() {
-        r.warnings.push(format!("the ramp '{name}' is connected; the path engine uses its default"));
-        return None;
-    }
-    let Some(v) = slot(r.graph, r.node, name).and_then(constant_value) else {
-        r.warnings.push(format!("the ramp '{name}' has connected points; the path engine uses its default"));
-        return None;
-    };
-    Some(::maya::utility::Ramp::read(&v, name, member, glam::Vec3A::new(empty.x, empty.y, empty.z)))
-}
-
-/// A constant ramp parameter of the reader's node at `x` (`empty` when the ramp has no
-/// points or is connected, with a warning for the latter).
-fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb {
-    ramp_of(r, name, member, empty).map_or(empty, |ramp| {
-        let c = ramp.at(x);
-        Rgb::new(c.x, c.y, c.z)
-    })
-}
-
-/// rampShader (see the module doc).
-fn ramp_shader(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
-    use ::maya::ramp_shader::ColorInput;
-    let input = ColorInput::from_maya(r.scalar("colorInput", 0.0) as i32);
-    let (d, t) = (r.scalar("diffuse", 0.8), r.scalar("translucence", 0.0));
-    let c = ramp_at(r, "color", "Color", Rgb::splat(0.5), 1.0);
-    let albedo = if input == ColorInput::LightAngle {
-        c * (d + t)
-    } else {
-        r.warnings.push(format!("the colour ramp indexed by {input:?} is taken at 1 (albedo = colour at 1 · diffuse)"));
-        c * d
-    };
-    // The classic highlight, specularity · rolloff(f) · S(h) ⊙ light · h with h Blinn's
-    // D, is Maya's lobe `RampBlinn` of tint specularity, coloured by the `specularColor`
-    // ramp at the highlight's strength and scaled by the roll-off ramp at the facing
-    // ratio f; the reflection, reflectivity(f) · (environment(R) + traced), a mirror of
-    // weight reflectivity(f) that emits the environment ramp at the world reflection
-    // direction's height — `bsdf::MayaGlossy`'s ramps, tabulated. A ramp the same all
-    // along is taken as its constant.
-    use bsdf::maya_highlight::{ViewRamps, VIEW_RAMP_STEPS};
-    let specularity = r.scalar("specularity", 0.0).max(0.0);
-    let read = |r: &mut Reader, name: &str, member: &str, empty: Rgb| {
-        ramp_of(r, name, member, empty)
-            .unwrap_or_else(|| ::maya::utility::Ramp::new(Vec::new(), glam::Vec3A::new(empty.x, empty.y, empty.z)))
-    };
-    let at = |ramp: &::maya::utility::Ramp, x: f32| {
-        let c = ramp.at(x);
-        Rgb::new(c.x, c.y, c.z)
-    };
-    let varies = |ramp: &::maya::utility::Ramp| {
-        (0..VIEW_RAMP_STEPS)
-            .any(|k| (at(ramp, k as f32 / (VIEW_RAMP_STEPS - 1) as f32) - at(ramp, 1.0)).abs().max_element() > 1e-6)
-    };
-    let specular = (specularity > 0.0).then(|| read(r, "specularColor", "Color", Rgb::splat(0.5)));
-    let rolloff = read(r, "specularRollOff", "FloatValue", Rgb::ONE);
-    let reflectivity = read(r, "reflectivity", "FloatValue", Rgb::ZERO);
-    let environment = read(r, "environment", "Color", Rgb::ZERO);
-    let reflects = (0..VIEW_RAMP_STEPS).any(|k| at(&reflectivity, k as f32 / (VIEW_RAMP_STEPS - 1) as f32).x > 0.0);
-    let by_view = varies(&rolloff) || reflects && (varies(&reflectivity) || varies(&environment));
-    let tint = match &specular {
-        Some(s) if varies(s) => Rgb::splat(specularity),
-        Some(s) => at(s, 1.0) * specularity,
-        None => Rgb::ZERO,
-    };
-    let tint = if by_view { tint } else { tint * at(&rolloff, 1.0).x.max(0.0) };
-    let transparency = read(r, "transparency", "Color", Rgb::ZERO);
-    let incandescence = read(r, "incandescence", "Color", Rgb::ZERO);
-    let tr = at(&transparency, 1.0).clamp(Rgb::ZERO, Rgb::ONE);
-    // Refraction as for the lambert family (see `translate`) where the transparency ramp
-    // is not black somewhere, by T(1) — or by T at each hit's facing ratio when it varies
-    // (`ViewTransparency::refracting`).
-    let t_most = (0..VIEW_RAMP_STEPS)
-        .map(|k| at(&transparency, k as f32 / (VIEW_RAMP_STEPS - 1) as f32).clamp(Rgb::ZERO, Rgb::ONE))
-        .fold(tr, Rgb::max);
-    let ior = refraction_index(r, t_most, alone);
-    cut_out(surface, tr, alone && (tint != Rgb::ZERO || reflects) && ior.is_none());
-    // Transparency fades the lit colour and incandescence, not the highlight and the
-    // reflection (as for the lambert family, see `translate`).
-    let fade = if ior.is_some() {
-        Rgb::ONE - tr
-    } else if alone && surface.opacity > 0.0 {
-        (Rgb::ONE - tr) / surface.opacity
-    } else {
-        Rgb::ONE
-    };
-    let coverage = if alone && ior.is_none() { surface.opacity.max(1e-3) } else { 1.0 };
-    surface.diffuse = albedo * fade;
-    // Ambient light goes by the colour at the ramp's reference index (C(1) for the light
-    // angle; the other inputs' reference is taken at 1 as their albedo is): 1/(d + t) or
-    // 1/d of the diffuse colour.
-    let share = if input == ColorInput::LightAngle { d + t } else { d };
-    surface.ambient = Rgb::splat(if share > 0.0 { 1.0 / share } else { 0.0 });
-    surface.emission = at(&incandescence, 1.0) * fade;
-    // Transparency and incandescence ramps that vary with the view: read at each hit's
-    // facing ratio, as the classic shader does (for a refracting one, the refraction's
-    // weight too).
-    if alone && (varies(&transparency) || varies(&incandescence)) {
-        let view = ViewTransparency::tabulate(
-            |f| at(&transparency, f),
-            |f| at(&incandescence, f),
-            albedo,
-            tint != Rgb::ZERO || reflects,
-        );
-        surface.view_transparency = Some(Box::new(if ior.is_some() { view.refracting() } else { view }));
-    }
-    let glow_intensity = r.scalar("glowIntensity", 0.0);
-    if glow_intensity != 0.0 {
-        surface.glow = c * glow_intensity;
-    }
-    if let Some((bump, member)) = connection(r.graph, r.node, "normalCamera") {
-        r.bindings.push(Binding { node: bump, member, target: Target::Normal, scale: 1.0 });
-    }
-    if tint != Rgb::ZERO || reflects {
-        let shape = bsdf::maya_highlight::Shape::RampBlinn { eccentricity: r.scalar("eccentricity", 0.3) };
-        let mut g = bsdf::MayaGlossy::new(shape, tint)
-            .with_reflection_limit(r.scalar("reflectionLimit", 1.0).max(0.0) as u32)
-            .with_coverage(coverage);
-        if let Some(s) = specular.as_ref().filter(|s| varies(s)) {
-            g = g.with_specular_ramp(|h| at(s, h));
-        }
-        if by_view {
-            g = g.with_mirror(Rgb::ONE, None).with_view_ramps(ViewRamps::tabulate(
-                |f| at(&rolloff, f).x,
-                |f| if reflects { at(&reflectivity, f).x } else { 0.0 },
-                |y| at(&environment, y),
-            ));
-        } else if reflects {
-            // A constant environment: emitted by the mirror's weight (a layer's emission
-            // is mixed by the layered shader).
-            let (weight, env) = (at(&reflectivity, 1.0).x.max(0.0), at(&environment, 1.0));
-            g = g.with_mirror(Rgb::splat(weight), None);
-            if alone {
-                g = g.with_reflected(env);
-            } else {
-                surface.emission += env * weight;
-            }
-        }
-        surface.model = SurfaceModel::Maya(Box::new(g));
-    }
-    if let Some(ior) = ior {
-        refract(r, surface, tr, ior);
-    }
 }
 
 /// The glow of a layeredShader layer: its constant `glowColor`, or the constant glow of
@@ -716,12 +604,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
         Some(Slot::Value(v)) => rgb_of(&v).clamp(Rgb::ZERO, Rgb::ONE),
         Some(Slot::Connect { node: m, .. }) => {
             // A material's outTransparency: its own constant transparency (a
-            // rampShader's ramp: the grey transparency its translation takes).
+            // rampShader's ramp: its value at facing ratio 1, per channel).
             let c = match constant(graph, m, "transparency").or_else(|| constant(graph, m, "outTransparency")) {
                 Some(v) if !matches!(v, Value::Array(_)) => rgb_of(v),
-                _ if slot(graph, m, "transparency").is_some() => {
-                    Rgb::splat(1.0 - translate(name, graph, m, false).0.opacity)
-                }
+                _ if slot(graph, m, "transparency").is_some() => ramp_shader::transparency_at_one(graph, m)
+                    .unwrap_or_else(|| Rgb::splat(1.0 - translate(name, graph, m, false).0.opacity)),
                 _ => Rgb::ZERO,
             };
             c.clamp(Rgb::ZERO, Rgb::ONE)
@@ -743,8 +630,8 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     let mut refraction: Option<(Rgb, f32, u32)> = None;
     for (e, &t) in elements.iter().zip(&transparencies) {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
-        let shown = through * (Rgb::ONE - t);
-        let w = (shown.x + shown.y + shown.z) / 3.0;
+        // The layer's share per channel, P_i ⊙ (1 − T_i).
+        let w = through * (Rgb::ONE - t);
         match member(e, "color") {
             Some(Slot::Connect { node: m, .. })
                 if graph.nodes[m as usize].decl.members().iter().any(|x| &**x == "outTransparency") =>
@@ -775,7 +662,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             Some(Slot::Value(v)) => {
                 // A plain colour: already weighted by its opacity in shader mode.
                 let c = rgb_of(&v);
-                surface.diffuse += if texture { c * w } else { c * (through.x + through.y + through.z) / 3.0 };
+                surface.diffuse += if texture { c * w } else { c * through };
                 by_view.push(view_layers::Layer::plain(t, c));
             }
             Some(_) => {
@@ -806,8 +693,14 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     }
     if let Some((t, ior, limit)) = refraction {
         refract_within(&mut surface, t, ior, limit);
+        if follows_view {
+            // The layers down to the refracting one at each hit's facing ratio; shadow
+            // rays also pass the layers below it (constant).
+            let below = transparencies[by_view.len()..].iter().fold(Rgb::ONE, |p, t| p * *t);
+            surface.view_transparency = Some(Box::new(view_layers::tabulate(&by_view, texture, below).refracting()));
+        }
     } else if follows_view {
-        surface.view_transparency = Some(Box::new(view_layers::tabulate(&by_view, texture)));
+        surface.view_transparency = Some(Box::new(view_layers::tabulate(&by_view, texture, Rgb::ONE)));
     }
     (surface, warnings)
 }

@@ -323,6 +323,25 @@ maya_shader!(
     spot
 );
 
+/// A Maya spot light's cone as its shader's parameters give it (radians): what
+/// [`spot_factor`] reads, shared by the classic light and the path engine's spot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotCone {
+    /// `coneAngle`: the full opening.
+    pub cone: f32,
+    /// `penumbraAngle`: widens (> 0) or narrows (< 0) the cone by a linear fade in the angle.
+    pub penumbra: f32,
+    /// `dropoff`: the exponent of cos α inside the cone (0: none).
+    pub dropoff: f32,
+}
+
+impl SpotCone {
+    /// The spot factor at angle `alpha` (radians) from the axis: [`spot_factor`].
+    pub fn factor(&self, alpha: f32) -> f32 {
+        spot_factor(alpha, self.cone, self.penumbra, self.dropoff)
+    }
+}
+
 /// The spot factor at angle `alpha` from the axis (radians).
 pub fn spot_factor(alpha: f32, cone: f32, penumbra: f32, dropoff: f32) -> f32 {
     let half = 0.5 * cone;

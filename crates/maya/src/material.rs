@@ -19,12 +19,18 @@
 //! ```text
 //! D   = Σ_lights light · cos θ            (emitDiffuse lights, in front)
 //! A   = Σ_ambient lights light · ((1 − ambientShade) + ambientShade · cos θ)
-//! B   = Σ_lights behind light · |cos θ|   (translucence)
+//! B   = Σ_lights behind light · |cos θ| · K(n, −v·l)   (translucence; K: `translucenceFocus`)
 //! out = (c ⊙ (a + A + d·(D + g ⊙ (E_fg/π + M)) + t·B) + incandescence) ⊙ (1 − T)
 //!       + s ⊙ Σ_lights light · highlight   (emitSpecular lights)
 //!       + r · s ⊙ (reflectedColor + traced reflection) [· Fresnel for blinn's rolloff]
 //!       + T ⊙ behind                     (a transparency or refraction ray)
 //! ```
+//!
+//! K is the forward lobe of `translucenceFocus` φ ([`bsdf::maya_highlight::translucence`]:
+//! K = (n + 2)/2 · max(−v·l, 0)^n, n = 2φ/(1 − φ), 1 for φ = 0; mira's reading, Maya
+//! publishes no formula). `translucenceDepth` is not read (Maya's renderer lets light
+//! through shadow maps by it; mira's shadow rays pass occluders only by their shadow
+//! shaders).
 //!
 //! E_fg is final gathering's irradiance (`mi_compute_irradiance`, the energy over the
 //! hemisphere). Unlike the base library's materials, which add diffuse ⊙ E_fg as the
@@ -58,7 +64,7 @@
 //!
 //! Not read: `shadowAttenuation` (Maya brightens the middle of transparent objects'
 //! shadows with it), `chromaticAberration`, `lightAbsorbance`, `surfaceThickness`,
-//! `translucenceDepth`, `translucenceFocus`, `matteOpacityMode`, `hideSource`,
+//! `translucenceDepth`, `matteOpacityMode`, `hideSource`,
 //! `reflectionSpecularity`; anisotropic's `anisotropicReflectivity` (Maya then derives the
 //! reflectivity from the roughness by an unpublished rule; mira uses `reflectivity`).
 
@@ -86,10 +92,11 @@ const GLOW_INTENSITY: usize = 11;
 const LIGHT_LIST: usize = 12;
 const IRRADIANCE_COLOR: usize = 13;
 const IRRADIANCE: usize = 14;
-const SPECULAR_COLOR: usize = 15;
-const REFLECTIVITY: usize = 16;
-const REFLECTED_COLOR: usize = 17;
-const REFLECTION_LIMIT: usize = 18;
+const TRANSLUCENCE_FOCUS: usize = 15;
+const SPECULAR_COLOR: usize = 16;
+const REFLECTIVITY: usize = 17;
+const REFLECTED_COLOR: usize = 18;
+const REFLECTION_LIMIT: usize = 19;
 /// The first parameter a reflective material adds to the shared ones.
 const EXTRA: usize = REFLECTION_LIMIT + 1;
 
@@ -110,6 +117,7 @@ const LAMBERT_PARAMS: &[&str] = &[
     "lightList",
     "irradianceColor",
     "irradiance",
+    "translucenceFocus",
 ];
 
 macro_rules! reflective_params {
@@ -117,7 +125,7 @@ macro_rules! reflective_params {
         &[
             "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
             "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
-            "glowIntensity", "lightList", "irradianceColor", "irradiance", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            "glowIntensity", "lightList", "irradianceColor", "irradiance", "translucenceFocus", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
             $($extra),*
         ]
     };
@@ -247,13 +255,16 @@ struct Received {
     specular: Vec3A,
 }
 
-fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, translucent: bool) -> Received {
+/// The light arriving at the point for the material `node` of `highlight`; `focus`, the
+/// forward lobe's exponent of a translucent material (`None`: not translucent), weights
+/// the light from behind ([`bsdf::maya_highlight::translucence`]).
+fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, focus: Option<f32>) -> Received {
     let mut r = Received::default();
     let (n, v) = (ctx.state.normal, -ctx.state.dir);
     for light in material_lights(ctx, node, LIGHT_LIST) {
         let role = light_role(ctx, light);
         let mut lp = ctx.light_loop(light);
-        lp.both_sides = role.needs_both_sides() || translucent;
+        lp.both_sides = role.needs_both_sides() || focus.is_some();
         let mut sum = Received::default();
         while let Some(s) = ctx.sample_light(&mut lp) {
             let c = rgb(s.color);
@@ -272,7 +283,8 @@ fn gather_lights(ctx: &mut Ctx, node: NodeId, highlight: Highlight, translucent:
                     sum.specular += c * highlight.value(n, v, dir);
                 }
             } else if role.diffuse {
-                sum.behind += c * -dot_nl;
+                let lobe = focus.map_or(1.0, |n| bsdf::maya_highlight::translucence::forward_lobe(n, -v.dot(dir)));
+                sum.behind += c * (-dot_nl * lobe);
             }
         }
         if lp.samples > 0 {
@@ -330,7 +342,9 @@ fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, No
     let translucence = ctx.scalar(n, TRANSLUCENCE);
     let highlight = highlight(ctx, n);
     let reflective = !matches!(highlight, Highlight::None);
-    let received = gather_lights(ctx, n, highlight, translucence > 0.0);
+    let focus = (translucence > 0.0)
+        .then(|| bsdf::maya_highlight::translucence::focus_exponent(ctx.scalar(n, TRANSLUCENCE_FOCUS)));
+    let received = gather_lights(ctx, n, highlight, focus);
     let fg = if diffuse > 0.0 && color != Vec3A::ZERO {
         let map = rgb(ctx.color(n, IRRADIANCE));
         rgb(ctx.color(n, IRRADIANCE_COLOR)) * (rgb(ctx.compute_irradiance()) * std::f32::consts::FRAC_1_PI + map)

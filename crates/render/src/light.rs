@@ -118,6 +118,9 @@ pub struct LightSource {
     pub cone: Option<f32>,
     /// MDL spot exponent.
     pub spot_exponent: Option<f32>,
+    /// A Maya spot's cone: its spot factor is the classic light's
+    /// ([`::maya::light::SpotCone::factor`]), whatever `spread`, `cone` and `spot_exponent`.
+    pub maya_spot: Option<::maya::light::SpotCone>,
     /// Seen by rays.
     pub visible: bool,
     /// Casts shadows.
@@ -250,6 +253,7 @@ impl LightSource {
             spread: light.spread as f32,
             cone: emission.cone,
             spot_exponent: emission.spot_exponent,
+            maya_spot: emission.maya_spot,
             visible: (light.visible && radiant || portal) && is_area,
             shadow: light.shadow && casts,
             shadow_color,
@@ -270,6 +274,10 @@ impl LightSource {
             return 1.0;
         }
         let c = out.dot(self.direction);
+        if let Some(maya) = self.maya_spot {
+            // Maya's spot: the classic light's factor of the angle from the axis.
+            return maya.factor(c.clamp(-1.0, 1.0).acos());
+        }
         let power = self.spot_exponent.map_or(1.0, |e| c.max(0.0).powf(e));
         if self.spot_exponent.is_some() && self.cone.is_none() {
             // MDL's spot: the cosine power alone.
@@ -278,8 +286,7 @@ impl LightSource {
         if c < self.spread {
             return 0.0;
         }
-        // mental ray's and Maya's spots: the cone, its edge fading linearly in the
-        // cosine; Maya's `dropoff` is the cosine power inside it.
+        // mental ray's spots: the cone, its edge fading linearly in the cosine.
         power
             * match self.cone {
                 Some(inner) if inner > self.spread && c < inner => (c - self.spread) / (inner - self.spread),

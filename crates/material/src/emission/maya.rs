@@ -7,10 +7,10 @@
 //!   exponent); an area light's samples are weighted by the cosine between the light's
 //!   axis (local −Z) and the direction to the lit point, as the classic shader's are. The factor π makes a lambert of albedo c·d give c·d·I·cos θ in the path
 //!   engine too, as mental ray for Maya's classic shaders do (no 1/π in their light units);
-//! - a spot's cone: full light inside the inner half-angle (`coneAngle`/2, narrowed by a
-//!   negative `penumbraAngle`), fading to the scene light's `spread` — linear in the cosine
-//!   where the classic shader fades linearly in the angle —, times cos^`dropoff` of the
-//!   angle from the axis, with or without a decay;
+//! - a spot's cone: the classic light's own factor ([`::maya::light::SpotCone`]: full
+//!   light inside the inner half-angle, fading linearly in the angle across
+//!   `penumbraAngle`, times cos^`dropoff` of the angle from the axis), with or without a
+//!   decay, whatever the scene light's `spread` (which the classic light does not read);
 //! - a volume light of sphere shape (`lightShape` 1) whose transform scales the unit
 //!   sphere uniformly to radius R: a point light at its centre with a linear falloff from
 //!   the centre to R when `colorRange` runs linearly from black on the boundary (position
@@ -76,7 +76,12 @@ pub fn emission_of(decl: &str, params: &[Param], light_to_world: DMat4) -> Optio
     // Maya's `dropoff`: the spot's cosine power inside the cone.
     let dropoff = scalar("dropoff", 0.0);
     let spot_exponent = (family == "spotlight" && dropoff > 0.0).then_some(dropoff);
-    Some(Ok(Emission { power, spot_exponent, cone, distribution }))
+    let maya_spot = (family == "spotlight").then(|| ::maya::light::SpotCone {
+        cone: scalar("coneAngle", 0.698_131_7),
+        penumbra: scalar("penumbraAngle", 0.0),
+        dropoff,
+    });
+    Some(Ok(Emission { power, spot_exponent, cone, distribution, maya_spot }))
 }
 
 /// The emission of a scene light whose shader is a Maya light (see [`emission_of`]).
@@ -199,7 +204,13 @@ fn volume_emission(decl: &str, params: &[Param], light_to_world: DMat4, color: R
         }
     }
     let volume = volume_light(params, light_to_world, color).map_err(|e| format!("{decl}: {e}"))?;
-    Ok(Emission { power: Power::Volume(Box::new(volume)), spot_exponent: None, cone: None, distribution: None })
+    Ok(Emission {
+        power: Power::Volume(Box::new(volume)),
+        spot_exponent: None,
+        cone: None,
+        distribution: None,
+        maya_spot: None,
+    })
 }
 
 /// The [`VolumeEmission`] of a volume light call's `params` on a light placed by
@@ -270,6 +281,7 @@ fn sphere_point_light(
         spot_exponent: None,
         cone: None,
         distribution: None,
+        maya_spot: None,
     })
 }
 

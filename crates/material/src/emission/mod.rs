@@ -85,6 +85,10 @@ pub struct Emission {
     pub spot_exponent: Option<f32>,
     /// mental ray `mib_light_spot`: cosine of the inner (full-intensity) cone.
     pub cone: Option<f32>,
+    /// A Maya spot light's cone, penumbra and dropoff: the light's spot factor is the
+    /// classic light's ([`::maya::light::SpotCone::factor`]) instead of `cone`'s linear
+    /// fade in the cosine and `spot_exponent`.
+    pub maya_spot: Option<::maya::light::SpotCone>,
     /// How a point light's intensity varies with direction in the light's local frame
     /// (a light profile or a cosine power; `None`: uniform). MDL `light_ies` and mental
     /// ray's photometric lights.
@@ -138,7 +142,7 @@ pub fn emission_with(
             let spot_exponent = declaration_name(decl)
                 .ends_with("light_spot")
                 .then(|| scalar_param(params, "spot_exponent").unwrap_or(30.0) as f32);
-            Ok(Emission { power, spot_exponent, cone: None, distribution: None })
+            Ok(Emission { power, spot_exponent, cone: None, distribution: None, maya_spot: None })
         }
         "mdl::nvidia::core_definitions::light_ies" => {
             // The profile's measured candela, times tint · intensity · unit_scale.
@@ -149,6 +153,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone: None,
                 distribution,
+                maya_spot: None,
             })
         }
         "mib_light_photometric" => {
@@ -165,6 +170,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone: None,
                 distribution,
+                maya_spot: None,
             })
         }
         "mia_photometric_light" => {
@@ -185,6 +191,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone: None,
                 distribution,
+                maya_spot: None,
             })
         }
         "mia_portal_light" => {
@@ -195,6 +202,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone: None,
                 distribution: None,
+                maya_spot: None,
             })
         }
         "mia_physicalsun" => physical_sun(light, params),
@@ -213,6 +221,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone,
                 distribution: None,
+                maya_spot: None,
             })
         }
         "physical_light" => {
@@ -233,6 +242,7 @@ pub fn emission_with(
                 spot_exponent: None,
                 cone,
                 distribution: None,
+                maya_spot: None,
             })
         }
         other => Err(format!("light '{}': light shader '{other}' is not supported yet", light.name)),
@@ -293,5 +303,6 @@ fn physical_sun(light: &Light, params: &[mi::ast::Param]) -> Result<Emission, St
         spot_exponent: None,
         cone: None,
         distribution: None,
+        maya_spot: None,
     })
 }

@@ -3,7 +3,7 @@
 //! ray's facing ratio f = N·V and the layered shader composites the layers by those
 //! transparencies, so the path engine tabulates the whole stack over f — its
 //! transparency Π T_i(f), its lit colour Σ w_i(f) d_i and its emission Σ w_i(f) e_i(f),
-//! w_i(f) = mean(T_0(f) ⋯ T_(i−1)(f) (1 − T_i(f))), the rules of the constant stack
+//! w_i(f) = T_0(f) ⊙ ⋯ ⊙ T_(i−1)(f) ⊙ (1 − T_i(f)) per channel, the rules of the constant stack
 //! (see `crate::maya`'s module doc) at each f — and sets each hit from the table
 //! ([`ViewTransparency::stack`]) instead of taking the ramps at f = 1.
 
@@ -11,7 +11,8 @@ use bsdf::maya_highlight::VIEW_RAMP_STEPS;
 use bsdf::Rgb;
 use shader::{Graph, NodeId};
 
-use super::{ramp_of, Reader, ViewTransparency};
+use super::ramp_shader::ramp_of;
+use super::{Reader, ViewTransparency};
 
 /// A quantity at the facing ratios k/32, k = 0 … 32.
 type Table = [Rgb; VIEW_RAMP_STEPS];
@@ -51,8 +52,9 @@ impl Layer {
     }
 }
 
-/// The transparency (clamped to [0, 1]) and incandescence ramps of the rampShader `m`
-/// at the facing ratios k/32 when either varies with the view; `None` for other
+/// The transparency (clamped to [0, 1]) and incandescence ramps (the latter with the
+/// ambient colour's C_ref ⊙ a added) of the rampShader `m` at the facing ratios k/32
+/// when either varies with the view; `None` for other
 /// materials and for ramps that are the same all along (a connected ramp takes its
 /// default, as in the rampShader's own translation).
 pub(super) fn ramp_tables(graph: &Graph, m: NodeId) -> Option<[Table; 2]> {
@@ -71,25 +73,33 @@ pub(super) fn ramp_tables(graph: &Graph, m: NodeId) -> Option<[Table; 2]> {
         })
     };
     let transparency = table(&mut r, "transparency").map(|t| t.clamp(Rgb::ZERO, Rgb::ONE));
+    // The ambient colour's C_ref ⊙ a joins the incandescence (both emitted, faded alike).
+    let ambient = super::ramp_shader::Ambient::read(&mut r);
     let incandescence = table(&mut r, "incandescence");
+    let incandescence: Table =
+        std::array::from_fn(|k| incandescence[k] + ambient.at(k as f32 / (VIEW_RAMP_STEPS - 1) as f32));
     let varies = |t: &Table| t.iter().any(|x| (*x - t[VIEW_RAMP_STEPS - 1]).abs().max_element() > 1e-6);
     (varies(&transparency) || varies(&incandescence)).then_some([transparency, incandescence])
 }
 
 /// The stack `layers` (top first; `texture`: `compositingFlag` 1, plain colours weighted
-/// by their opacity) tabulated over the facing ratio.
-pub(super) fn tabulate(layers: &[Layer], texture: bool) -> ViewTransparency {
-    let mean = |c: Rgb| (c.x + c.y + c.z) / 3.0;
+/// by their opacity) tabulated over the facing ratio, each layer's share w_i per channel;
+/// `below` is the transparency of the layers under the last of `layers` (those under a
+/// refracting layer, which shadow rays still pass: white when there are none). The
+/// stack's third table is the light `layers` let through, P_n(f): a refracting last
+/// layer's refraction weight (see [`ViewTransparency::refracting`]).
+pub(super) fn tabulate(layers: &[Layer], texture: bool, below: Rgb) -> ViewTransparency {
     let mut transparency = [Rgb::ZERO; VIEW_RAMP_STEPS];
     let mut lit = [Rgb::ZERO; VIEW_RAMP_STEPS];
     let mut emission = [Rgb::ZERO; VIEW_RAMP_STEPS];
+    let mut passed = [Rgb::ZERO; VIEW_RAMP_STEPS];
     for k in 0..VIEW_RAMP_STEPS {
         let mut through = Rgb::ONE;
         for l in layers {
             let t = l.transparency[k].clamp(Rgb::ZERO, Rgb::ONE);
-            let w = mean(through * (Rgb::ONE - t));
+            let w = through * (Rgb::ONE - t);
             match l.plain {
-                Some(c) => lit[k] += if texture { c * w } else { c * mean(through) },
+                Some(c) => lit[k] += if texture { c * w } else { c * through },
                 None => {
                     lit[k] += l.diffuse * w;
                     emission[k] += l.emission[k] * w;
@@ -97,9 +107,10 @@ pub(super) fn tabulate(layers: &[Layer], texture: bool) -> ViewTransparency {
             }
             through *= t;
         }
-        transparency[k] = through;
+        transparency[k] = through * below;
+        passed[k] = through;
     }
-    ViewTransparency::stack(transparency, lit, emission)
+    ViewTransparency::stack(transparency, lit, emission, passed)
 }
 
 #[cfg(test)]
@@ -115,7 +126,7 @@ mod tests {
         let top = Layer::material(Rgb::ZERO, Rgb::new(0.8, 0.0, 0.0), Rgb::ZERO, Some([top_t, [Rgb::ZERO; 33]]));
         let (d, e) = (Rgb::new(0.0, 0.5, 0.0), Rgb::new(0.0, 0.0, 2.0));
         let bottom = Layer::material(Rgb::ZERO, d, e, None);
-        let v = tabulate(&[top, bottom], false);
+        let v = tabulate(&[top, bottom], false, Rgb::ONE);
         let stack = v.stack.as_ref().expect("a stack");
         assert_eq!(v.transparency[24], Rgb::ZERO);
         assert!((stack[0][24] - (Rgb::new(0.8, 0.0, 0.0) * 0.75 + d * 0.25)).abs().max_element() < 1e-6);

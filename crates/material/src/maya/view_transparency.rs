@@ -32,11 +32,13 @@ pub struct ViewTransparency {
     /// The material refracts (`refractions` on): T(f) is its refraction's weight
     /// ([`bsdf::MayaGlossy::refraction`]) and the rays that see it all hit it.
     pub refracts: bool,
-    /// For a layeredShader whose layers' ramps follow the view: its lit colour and its
-    /// emission at N·V = k/32, each already weighted by the layers' shares (before the
-    /// division by the hit's coverage); `transparency` is then the stack's. `None` for a
-    /// rampShader, whose are `albedo` ⊙ (1 − T) and `incandescence` ⊙ (1 − T).
-    pub stack: Option<Box<[[Rgb; VIEW_RAMP_STEPS]; 2]>>,
+    /// For a layeredShader whose layers' ramps follow the view: its lit colour, its
+    /// emission (each already weighted by the layers' shares, before the division by the
+    /// hit's coverage) and the light its shown layers let through, P(f), at N·V = k/32;
+    /// `transparency` is then the stack's (what shadow rays pass) and, when it refracts,
+    /// P(f) the refraction's weight. `None` for a rampShader, whose are `albedo` ⊙ (1 −
+    /// T), `incandescence` ⊙ (1 − T) and T.
+    pub stack: Option<Box<[[Rgb; VIEW_RAMP_STEPS]; 3]>>,
 }
 
 impl ViewTransparency {
@@ -60,11 +62,12 @@ impl ViewTransparency {
 
     /// A layeredShader's stack tabulated over the facing ratio: its transparency (the
     /// product of its layers'), its lit colour and its emission weighted by the layers'
-    /// shares (see [`ViewTransparency::stack`]).
+    /// shares and the light its shown layers let through (see [`ViewTransparency::stack`]).
     pub fn stack(
         transparency: [Rgb; VIEW_RAMP_STEPS],
         lit: [Rgb; VIEW_RAMP_STEPS],
         emission: [Rgb; VIEW_RAMP_STEPS],
+        passed: [Rgb; VIEW_RAMP_STEPS],
     ) -> Self {
         ViewTransparency {
             transparency: transparency.map(|t| t.clamp(Rgb::ZERO, Rgb::ONE)),
@@ -72,7 +75,7 @@ impl ViewTransparency {
             albedo: Rgb::ZERO,
             highlight: false,
             refracts: false,
-            stack: Some(Box::new([lit, emission])),
+            stack: Some(Box::new([lit, emission, passed])),
         }
     }
 
@@ -94,7 +97,8 @@ impl ViewTransparency {
     ///
     /// A refracting material's hit takes T(f) as its refraction's weight, its diffuse
     /// colour and incandescence faded by 1 − T(f), the coverage (for shadow rays) and
-    /// tint as above without the least coverage. A stack's ([`ViewTransparency::stack`])
+    /// tint as above without the least coverage (a refracting stack: its lit colour,
+    /// emission and P(f) as the weight, undivided). A stack's ([`ViewTransparency::stack`])
     /// takes its lit colour and emission at f divided by p (its highlight untouched).
     pub fn apply(&self, facing: f32, hit: &mut HitMaterial<'_>) {
         let t = self.transparency_at(facing);
@@ -102,10 +106,20 @@ impl ViewTransparency {
         if self.refracts {
             hit.opacity = p;
             hit.cutout_tint = if p < 1.0 { t / (1.0 - p) } else { Rgb::ONE };
-            hit.diffuse = self.albedo * (Rgb::ONE - t);
-            hit.emission = table_at(&self.incandescence, facing) * (Rgb::ONE - t);
+            let weight = match &self.stack {
+                Some(stack) => {
+                    hit.diffuse = table_at(&stack[0], facing);
+                    hit.emission = table_at(&stack[1], facing);
+                    table_at(&stack[2], facing)
+                }
+                None => {
+                    hit.diffuse = self.albedo * (Rgb::ONE - t);
+                    hit.emission = table_at(&self.incandescence, facing) * (Rgb::ONE - t);
+                    t
+                }
+            };
             let refracting = match &*hit.model {
-                SurfaceModel::Maya(g) => Some(g.with_refraction(t, g.ior, g.refraction_limit)),
+                SurfaceModel::Maya(g) => Some(g.with_refraction(weight, g.ior, g.refraction_limit)),
                 _ => None,
             };
             if let Some(g) = refracting {

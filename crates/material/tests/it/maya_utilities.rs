@@ -203,8 +203,11 @@ fn sampler_info_ray_direction() {
     }
 }
 
-/// Translucence t lets a light behind the surface through as c·t·I·|cos θ| (a unit light
-/// straight below a lambert of translucence 0.5: c·0.5), none without it.
+/// Translucence t lets a light behind the surface through as c·t·I·|cos θ| · K (a unit
+/// light straight below a lambert of translucence 0.5 seen from straight above, along the
+/// light's straight-through direction), none without it: K = 1 for `translucenceFocus`
+/// 0 (diffuse translucence, c·0.5), K = (n + 2)/2 = 2 for the default focus 0.5 (n = 2:
+/// c·1), within 1e-5.
 #[test]
 fn translucence_passes_light_from_behind() {
     let below = r#"light "sun" "maya_directionallight" ("intensity" 1) direction 0 1 0 end light
@@ -212,12 +215,14 @@ fn translucence_passes_light_from_behind() {
     for adsk in [false, true] {
         let lambert = name(adsk, "lambert", "Lambert");
         let engine = if adsk { "adskMayaShadingEngine" } else { "maya_shadingengine" };
-        for (t, want) in [(0.5, [0.3, 0.25, 0.2]), (0.0, [0.0; 3])] {
+        for (t, focus, want) in
+            [(0.5, "0", [0.3, 0.25, 0.2]), (0.5, "0.5", [0.6, 0.5, 0.4]), (0.0, "0", [0.0; 3]), (0.0, "0.5", [0.0; 3])]
+        {
             let c = compile(
                 "",
                 &format!(
                     r#"{LIBS}{below}
-                    shader "lam" "{lambert}" ("color" 0.6 0.5 0.4, "translucence" {t})
+                    shader "lam" "{lambert}" ("color" 0.6 0.5 0.4, "translucence" {t}, "translucenceFocus" {focus})
                     material "m" opaque "{engine}" ("surfaceShader" = "lam.outColor") end material"#
                 ),
                 &["m"],

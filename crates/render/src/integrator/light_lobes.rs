@@ -29,7 +29,9 @@ fn split(bsdf: &Bsdf, wo: Vec3A, wi: Vec3A, lobes: LightLobes) -> Rgb {
     let (diffuse, specular) = match bsdf {
         Bsdf::Maya(b) => {
             let all = b.eval(wo, wi);
-            let d = if wo.z * wi.z > 0.0 { b.diffuse * std::f32::consts::FRAC_1_PI } else { Rgb::ZERO };
+            // The translucence is diffuse light too (the classic shaders' light from behind).
+            let d =
+                if wo.z * wi.z > 0.0 { b.diffuse * std::f32::consts::FRAC_1_PI } else { b.eval_translucence(wo, wi) };
             (d, (all - d).max(Rgb::ZERO))
         }
         Bsdf::Unified(u) => {

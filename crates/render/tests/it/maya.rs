@@ -163,6 +163,7 @@ fn path_world(l: &Loaded) -> render::World {
                 spread: light.spread as f32,
                 cone: e.cone,
                 spot_exponent: None,
+                maya_spot: None,
                 visible: false,
                 shadow: light.shadow,
                 shadow_color: glam::Vec3A::ZERO,

@@ -20,6 +20,7 @@ fn rect_light(two_sided: bool) -> LightSource {
         spread: 0.0,
         cone: None,
         spot_exponent: None,
+        maya_spot: None,
         visible: true,
         shadow: true,
         shadow_color: Rgb::ZERO,

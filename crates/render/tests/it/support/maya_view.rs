@@ -46,6 +46,16 @@ pub fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
     super::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
+/// [`pixels`] of a scene whose world warns only about what the test expects: every
+/// warning contains `expected`.
+pub fn pixels_warned(text: &str, engine: EngineKind, spp: u32, expected: &str) -> Vec<Vec3A> {
+    let (scene, shading) = super::build_clean(text);
+    let world = render::World::from_scene_shaded(&scene, Some(&shading));
+    assert!(world.warnings.iter().all(|w| w.contains(expected)), "{:?}", world.warnings);
+    let settings = Settings { engine, spp: Some(spp), ..Settings::default() };
+    super::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
+}
+
 /// The mean of `px`.
 pub fn mean(px: &[Vec3A]) -> Vec3A {
     px.iter().fold(Vec3A::ZERO, |m, p| m + *p) / px.len() as f32
