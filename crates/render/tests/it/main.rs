@@ -33,6 +33,7 @@ mod maya_fog_path;
 mod maya_highlight_path;
 mod maya_layered_path;
 mod maya_layered_stack_path;
+mod maya_limit_classic_glossy;
 mod maya_opaque_shadows;
 mod maya_path;
 mod maya_ramp_ambient_path;
