@@ -6,6 +6,7 @@
 mod ambient_highlight;
 mod cutout;
 mod fog;
+mod gi_depth;
 mod leave;
 mod levels;
 mod light_lobes;
