@@ -6,6 +6,7 @@
 mod ambient_highlight;
 mod cutout;
 mod fog;
+mod gi_depth;
 mod leave;
 mod levels;
 mod light_lobes;
@@ -484,8 +485,16 @@ pub fn trace_camera_path(
                     throughput *= weight;
                     let Some(medium) = media.current(world) else { break };
                     let p = ray.origin + ray.dir * t;
-                    let lighting =
-                        media::Lighting { world, accel, shading, env, pick, choices, seed, mis: settings.mis };
+                    let lighting = media::Lighting {
+                        world,
+                        accel,
+                        shading,
+                        env,
+                        pick,
+                        choices,
+                        seed,
+                        mis: settings.mis && depth + 1 < settings.max_depth,
+                    };
                     radiance += throughput
                         * media::direct_light(
                             &lighting,
@@ -658,13 +667,16 @@ pub fn trace_camera_path(
             }
             radiance += throughput * (material.diffuse * ambient * sum + highlight);
         }
+        // At the last vertex no scattered ray follows to find the lights by BSDF sampling:
+        // light sampling takes all of their light (no MIS), or a short depth loses it.
+        let mis = settings.mis && depth + 1 < settings.max_depth;
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
         let env_here = env.filter(|_| own_env.is_none());
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
-            radiance += throughput
-                * environment_light(world, accel, shading, env, &v, pick, u_light, seed, settings.mis, counts);
+            radiance +=
+                throughput * environment_light(world, accel, shading, env, &v, pick, u_light, seed, mis, counts);
         } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
             let light = &world.lights[k];
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
@@ -711,11 +723,8 @@ pub fn trace_camera_path(
                         unshadowed
                     };
                     if tr != Rgb::ZERO {
-                        let weight = if ls.delta || !settings.mis {
-                            1.0
-                        } else {
-                            power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi))
-                        };
+                        let weight =
+                            if ls.delta || !mis { 1.0 } else { power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi)) };
                         let term = throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
                         if defer {
                             radiance.lit += term;

@@ -647,7 +647,8 @@ mod tests {
 
     /// mental ray 3.7+'s progressive string options (as a 3.12 MDL scene writes them) set
     /// the progressive limits as Iray's attributes do; `"progressive" on`, `"gi" on` and
-    /// `"light relative scale"` read as their typed settings (`options::modes`).
+    /// `"light relative scale"` read as their typed settings (`options::modes`); `"gi depth"`
+    /// counts only with `"gi" on` (negative read as 0), `"gi rays"` is kept as written.
     #[test]
     fn mental_ray_progressive_string_options() {
         let o = options(
@@ -669,6 +670,13 @@ mod tests {
         assert_eq!(plain.light_relative_scale(), 1.0);
         let gi = options("options \"o\" \"gi\" on end options", Dialect::MentalRay);
         assert!(gi.asks_for_path_tracing() && !gi.progressive_mode());
+        assert_eq!((gi.gi_depth(), gi.gi_rays()), (None, None));
+        let tuned = options("options \"o\" \"gi\" on \"gi depth\" 3 \"gi rays\" 64 end options", Dialect::MentalRay);
+        assert_eq!((tuned.gi_depth(), tuned.gi_rays()), (Some(3), Some(64.0)));
+        let negative = options("options \"o\" \"gi\" on \"gi depth\" -2 end options", Dialect::MentalRay);
+        assert_eq!(negative.gi_depth(), Some(0));
+        let off = options("options \"o\" \"gi\" off \"gi depth\" 3 end options", Dialect::MentalRay);
+        assert_eq!(off.gi_depth(), None, "\"gi depth\" is GI \"Next\"'s only");
     }
 
     /// `"environment lighting mode"`: `"off"` (any case) is off, `"light"` and any other

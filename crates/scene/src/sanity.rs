@@ -174,6 +174,7 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
     }
     capped(&stmts, diags);
     environment_lighting_mode(&stmts, diags);
+    gi_rays(&stmts, diags);
     let f = &mut o.filter;
     let (o_w, o_h) = (f.width, f.height);
     if f.width > MAX_FILTER_SIZE || f.height > MAX_FILTER_SIZE || !(f.width > 0.0 && f.height > 0.0) {
@@ -280,6 +281,20 @@ fn environment_lighting_mode(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
             diags.push(Diagnostic::warning(
                 name.span,
                 "\"environment lighting mode\" is neither \"off\" nor \"light\": mira reads it as \"light\" (the environment lights the scene)",
+            ));
+        }
+    }
+}
+
+/// Notes at `"gi rays"` (GI "Next"'s rays per shading sample) that mira reads it but its
+/// path engine has no counterpart (`crate::options::modes`): it does not change the image.
+fn gi_rays(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
+    for s in stmts {
+        let Stmt::StringOption { name, .. } = s else { continue };
+        if name.text == "gi rays" {
+            diags.push(Diagnostic::warning(
+                name.span,
+                "\"gi rays\" does not change mira's path engine: it follows one ray per bounce and averages over the pixel's samples (raise the samples for less noise)",
             ));
         }
     }

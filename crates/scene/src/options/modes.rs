@@ -15,7 +15,14 @@
 //!   (<https://3d1.com.br/forum/tira-duvidas/perguntas-de-maquete-eletronica/94349>,
 //!   <https://elementalray.wordpress.com/tag/gi/>): brute-force global illumination without a
 //!   cache or interpolation, which switches photons, final gathering and irradiance particles
-//!   off by itself; `"gi rays"` and `"gi depth"` tune it.
+//!   off by itself; `"gi rays"` and `"gi depth"` tune it. No stored page gives their exact
+//!   meaning; mira takes the natural reading: `"gi depth" n` is the number of indirect
+//!   bounces a path makes (the path engine's most scattering events become n + 1: the
+//!   first hit's direct light, then n bounces, each with its direct light), and `"gi rays"`
+//!   the number of GI rays mental ray shoots per shading sample. A path tracer has no
+//!   counterpart of the latter (it follows one ray per bounce and averages over the pixel's
+//!   samples): mira reads it and does not change its estimator for it, and says so with a
+//!   warning at the option (`crate::sanity`, shown by `mira render --warnings`).
 //! - `"environment lighting mode"` — mental ray's built-in image-based lighting (since 3.7):
 //!   NVIDIA's mental ray blog (<https://elementalray.wordpress.com/tag/hdr/>, "The Native
 //!   (Builtin) IBL") describes it as fast automatic *direct* lighting from the camera's
@@ -54,6 +61,22 @@ impl Options {
     /// `"gi" on`: mental ray 3.13's brute-force global illumination, GI "Next".
     pub fn gi_next(&self) -> bool {
         self.string_options.get("gi").and_then(AttrValue::as_bool).unwrap_or(false)
+    }
+
+    /// `"gi depth"` where `"gi" on` is set: the most indirect bounces a path makes (negative
+    /// read as 0); `None` without GI "Next" or without the option (see the module comment).
+    pub fn gi_depth(&self) -> Option<u32> {
+        if !self.gi_next() {
+            return None;
+        }
+        let d = self.string_options.get("gi depth").and_then(AttrValue::as_f64)?;
+        Some(d.clamp(0.0, u32::MAX as f64 - 1.0) as u32)
+    }
+
+    /// `"gi rays"` as written (GI rays per shading sample in mental ray); read, but it does
+    /// not change mira's path engine (see the module comment).
+    pub fn gi_rays(&self) -> Option<f64> {
+        self.string_options.get("gi rays").and_then(AttrValue::as_f64)
     }
 
     /// Whether the string options ask for mental ray's progressive or brute-force GI
