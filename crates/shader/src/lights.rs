@@ -486,6 +486,8 @@ impl<'a> Ctx<'a> {
                     }
                 }
             }
+            // A simple light whose ramp or cone can leave a sample unlit.
+            let dims = lp.simple.filter(|s| s.atten.is_some() || s.cone.is_some());
             for j in i..count.min(i + AHEAD as u32) {
                 let lane = (j - i) as usize;
                 lp.ahead |= 1 << lane;
@@ -501,7 +503,7 @@ impl<'a> Ctx<'a> {
                 let query = ShadowQuery { org, dir: g.to_light, max_dist };
                 lp.ahead_reach |= 1 << lane;
                 lp.ahead_samples[lane] = g;
-                if let Some(simple) = lp.simple {
+                if let Some(simple) = dims {
                     let (axis_cos, spread) = spot_inputs(&simple, light, g.to_light);
                     if simple.unshadowed(g.dist, axis_cos, spread).is_none() {
                         // Past the ramp's stop or outside the spot's cone: neither the light
