@@ -8,6 +8,7 @@
 
 use scene::LightKind;
 
+pub use shader::light::simple::spot_factor;
 use shader::light::simple::{attenuation, constant, shadowed, SimpleLight};
 use shader::{Color, Ctx, NodeId, ShaderImpl, Slot, Tag, Value};
 
@@ -47,7 +48,7 @@ fn point_simple(slots: &[Slot]) -> Option<SimpleLight> {
         true => Some((p(4)?.scalar(), p(5)?.scalar())),
         false => None,
     };
-    Some(SimpleLight { color: p(0)?.color(), atten, shadow: p(1)?.bool(), factor: p(2)?.scalar() })
+    Some(SimpleLight { color: p(0)?.color(), atten, shadow: p(1)?.bool(), factor: p(2)?.scalar(), cone: None })
 }
 
 fn point(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
@@ -70,19 +71,15 @@ pub static SPOT: ShaderImpl = ShaderImpl {
     name: "mib_light_spot",
     params: &["color", "shadow", "factor", "atten", "start", "stop", "cone"],
     run: spot,
+    simple_light: Some(spot_simple),
     ..ShaderImpl::PLAIN
 };
 
-/// The spot factor for cosine `c` between the spot axis and the direction to the point.
-pub fn spot_factor(c: f32, spread: f32, cone: f32) -> Option<f32> {
-    if c <= 0.0 || c < spread {
-        return None;
-    }
-    if c < cone && cone > spread {
-        Some(1.0 - (c - cone) / (spread - cone))
-    } else {
-        Some(1.0)
-    }
+/// `mib_light_spot` with constant parameters as a [`SimpleLight`] (what [`spot`]
+/// computes: the spot factor, then the ramp, then shadows).
+fn spot_simple(slots: &[Slot]) -> Option<SimpleLight> {
+    let cone = constant(slots, 6)?.scalar();
+    Some(SimpleLight { cone: Some(cone), ..point_simple(slots)? })
 }
 
 fn spot(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
@@ -114,7 +111,7 @@ pub static INFINITE: ShaderImpl = ShaderImpl {
 /// computes).
 fn infinite_simple(slots: &[Slot]) -> Option<SimpleLight> {
     let p = |i| constant(slots, i);
-    Some(SimpleLight { color: p(0)?.color(), atten: None, shadow: p(1)?.bool(), factor: p(2)?.scalar() })
+    Some(SimpleLight { color: p(0)?.color(), atten: None, shadow: p(1)?.bool(), factor: p(2)?.scalar(), cone: None })
 }
 
 fn infinite(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {

@@ -66,6 +66,18 @@ struct SampleGeometry {
     dot_nl: f32,
 }
 
+/// What [`SimpleLight::unshadowed`] reads of `light` for a sample in direction `to_light`
+/// (unit, from the point to the light): for a spot shader, the cosine between the light's
+/// axis and the direction from the light to the point, as the shader finds it (the light
+/// state's `dir` is −`to_light`), and the light's spread cosine; zeros for other shaders.
+#[inline(always)]
+fn spot_inputs(simple: &SimpleLight, light: &ShadingLight, to_light: Vec3A) -> (f32, f32) {
+    match simple.cone {
+        Some(_) => (light.direction.dot(-to_light), light.spread),
+        None => (0.0, 0.0),
+    }
+}
+
 /// The progress of sampling one light.
 #[derive(Clone, Copy, Debug)]
 pub struct LightLoop {
@@ -87,13 +99,13 @@ pub struct LightLoop {
     batch: bool,
     /// The samples from `ahead_from` on whose points and shadow rays were found ahead:
     /// bit k of `ahead` is set when sample `ahead_from + k` was, of `ahead_reach` when it
-    /// reaches the point (its geometry and query are in `ahead_samples`), of
+    /// reaches the point (its geometry is in `ahead_samples`), of
     /// `ahead_blocked` when its shadow ray is blocked.
     ahead_from: u32,
     ahead: u8,
     ahead_reach: u8,
     ahead_blocked: u8,
-    ahead_samples: [(SampleGeometry, ShadowQuery); AHEAD],
+    ahead_samples: [SampleGeometry; AHEAD],
     /// What they were found for: the point, normal, shadow point, geometric normal and
     /// time of the shading state, and `both_sides` (a shader changing one between samples
     /// has them found again).
@@ -197,10 +209,7 @@ impl<'a> Ctx<'a> {
             ahead: 0,
             ahead_reach: 0,
             ahead_blocked: 0,
-            ahead_samples: [(
-                SampleGeometry::default(),
-                ShadowQuery { org: Vec3A::ZERO, dir: Vec3A::ZERO, max_dist: 0.0 },
-            ); AHEAD],
+            ahead_samples: [SampleGeometry::default(); AHEAD],
             ahead_for: ([Vec3A::ZERO; 4], 0.0, false),
             both_sides: false,
             simple,
@@ -314,7 +323,7 @@ impl<'a> Ctx<'a> {
         let shader = light.shader?;
         if let Some(simple) = lp.simple {
             if self.volume_of(&self.state).is_none() {
-                return self.simple_light_sample(lp, &simple, geometry?, hint);
+                return self.simple_light_sample(lp, &simple, geometry?, hint, spot_inputs(&simple, light, to_light));
             }
         }
         let mut ls = self.state.child(RayType::Light, on_light, -to_light);
@@ -355,7 +364,9 @@ impl<'a> Ctx<'a> {
     /// call: the same colour bit for bit (the shader computes it with the same functions),
     /// without a light state. Its shadow ray is the one [`Ctx::trace_shadow`] would send
     /// from the light state (an any-hit query: the loop's `simple` excludes shadow shaders
-    /// and media), answered ahead when `hint` holds it.
+    /// and media), answered ahead when `hint` holds it. `spot`: for a spot shader, the
+    /// cosine between the light's axis and the direction from the light to the point, and
+    /// the light's spread cosine ([`SimpleLight::unshadowed`]).
     #[inline(always)]
     fn simple_light_sample(
         &mut self,
@@ -363,11 +374,12 @@ impl<'a> Ctx<'a> {
         simple: &SimpleLight,
         geometry: SampleGeometry,
         hint: Option<ShadowHint>,
+        spot: (f32, f32),
     ) -> Option<LightSample> {
         let SampleGeometry { to_light, dist, dot_nl, .. } = geometry;
         // The shader call this stands for.
         self.counts.calls += 1;
-        let mut color = simple.unshadowed(dist)?;
+        let mut color = simple.unshadowed(dist, spot.0, spot.1)?;
         if simple.casts_shadows() {
             let through = !self.shading().shadows || {
                 // Asked for an any-hit shadow ray: the next samples' are traced ahead.
@@ -474,6 +486,8 @@ impl<'a> Ctx<'a> {
                     }
                 }
             }
+            // A simple light whose ramp or cone can leave a sample unlit.
+            let dims = lp.simple.filter(|s| s.atten.is_some() || s.cone.is_some());
             for j in i..count.min(i + AHEAD as u32) {
                 let lane = (j - i) as usize;
                 lp.ahead |= 1 << lane;
@@ -488,7 +502,15 @@ impl<'a> Ctx<'a> {
                 let max_dist = if g.dist.is_finite() { g.dist * (1.0 - 1e-4) } else { f32::INFINITY };
                 let query = ShadowQuery { org, dir: g.to_light, max_dist };
                 lp.ahead_reach |= 1 << lane;
-                lp.ahead_samples[lane] = (g, query);
+                lp.ahead_samples[lane] = g;
+                if let Some(simple) = dims {
+                    let (axis_cos, spread) = spot_inputs(&simple, light, g.to_light);
+                    if simple.unshadowed(g.dist, axis_cos, spread).is_none() {
+                        // Past the ramp's stop or outside the spot's cone: neither the light
+                        // loop nor the shader (no light there either) asks for this ray.
+                        continue;
+                    }
+                }
                 (queries[n], lanes[n]) = (query, lane);
                 n += 1;
             }
@@ -502,7 +524,7 @@ impl<'a> Ctx<'a> {
         if lp.ahead_reach & (1 << k) == 0 {
             return (None, None);
         }
-        let (geometry, _) = lp.ahead_samples[k as usize];
+        let geometry = lp.ahead_samples[k as usize];
         let blocked = lp.ahead_blocked & (1 << k) != 0;
         let s = &self.state;
         let from = shadow_inputs(s.shadow_point, s.point_error, s.normal_geom, geometry.to_light, geometry.dist);

@@ -1,6 +1,7 @@
 //! Light shaders whose result at a light sample is a constant colour, optionally ramped
-//! linearly over distance, passed through hard or partial shadows: `mib_light_point` and
-//! `mib_light_infinite` with constant parameters. The light loop evaluates such a light
+//! linearly over distance, for a spot limited to its cone, passed through hard or partial
+//! shadows: `mib_light_point`, `mib_light_spot` and `mib_light_infinite` with constant
+//! parameters. The light loop evaluates such a light
 //! ([`SimpleLight`]) in place, without a light state or a shader call per sample; the
 //! shaders themselves use the same functions ([`attenuation`], [`shadowed`]), so both give
 //! the same colour bit for bit.
@@ -19,6 +20,9 @@ pub struct SimpleLight {
     pub shadow: bool,
     /// `factor`: the share of an occluded light let through (0 hard shadows, 1 none).
     pub factor: f32,
+    /// For `mib_light_spot`: its inner `cone` (a cosine); the light's own `spread` (a
+    /// cosine) bounds the lit cone ([`spot_factor`]). `None`: not a spot shader.
+    pub cone: Option<f32>,
 }
 
 impl SimpleLight {
@@ -28,9 +32,14 @@ impl SimpleLight {
     }
 
     /// The colour arriving from distance `dist` before shadows; `None`: no light (past
-    /// the ramp's `stop`).
-    pub fn unshadowed(&self, dist: f32) -> Option<Color> {
+    /// the ramp's `stop`, or outside a spot's cone). For a spot, `axis_cos` is the cosine
+    /// between the light's axis and the direction from the light to the point and `spread`
+    /// the light's spread cosine (both unread for other lights).
+    pub fn unshadowed(&self, dist: f32, axis_cos: f32, spread: f32) -> Option<Color> {
         let mut c = self.color;
+        if let Some(cone) = self.cone {
+            c *= spot_factor(axis_cos, spread, cone)?;
+        }
         if let Some((start, stop)) = self.atten {
             c *= attenuation(dist, start, stop)?;
         }
@@ -56,6 +65,21 @@ pub fn attenuation(dist: f32, start: f32, stop: f32) -> Option<f32> {
         None
     } else if dist > start && (stop - start).abs() > 1e-4 {
         Some(1.0 - (dist - start) / (stop - start))
+    } else {
+        Some(1.0)
+    }
+}
+
+/// The spot factor of `mib_light_spot` for cosine `c` between the spot axis and the
+/// direction from the light to the point: `None` (no light) outside the `spread` cone (a
+/// cosine) or behind the light, 1 inside the inner `cone` (a cosine), falling off linearly
+/// in the cosine between them.
+pub fn spot_factor(c: f32, spread: f32, cone: f32) -> Option<f32> {
+    if c <= 0.0 || c < spread {
+        return None;
+    }
+    if c < cone && cone > spread {
+        Some(1.0 - (c - cone) / (spread - cone))
     } else {
         Some(1.0)
     }
