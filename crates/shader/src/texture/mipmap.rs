@@ -96,6 +96,11 @@ impl Level {
     /// larger of the two axis distances when `square` (a square footprint). Texels at x ≥ 1
     /// are left out.
     fn kernel_mean(&self, u: f32, v: f32, (rx, ry): (f32, f32), square: bool, kernel: &dyn Fn(f32) -> f32) -> Vec4 {
+        if self.width == 1 && self.height == 1 {
+            // One texel: every kernel's mean is that texel, however wide the kernel (a
+            // radius of millions of texels would otherwise loop over it millions of times).
+            return self.texel(0, 0);
+        }
         let cx = u * self.width as f32 - 0.5;
         let cy = v * self.height as f32 - 0.5;
         let wrap = |i: i64, n: usize| i.rem_euclid(n as i64) as usize;
@@ -505,5 +510,16 @@ mod tests {
         }
         let ramp = float_texture(32, |x, _| x as f32 / 31.0);
         assert_eq!(ramp.kernel_lookup(0.41, 0.5, 0.01, true, &|_| 1.0), ramp.lookup(0.41, 0.5, 0.0));
+    }
+
+    /// A radius far past the image (a hostile `filterOffset`) reads the 1×1 level once: the
+    /// image's mean (1e-5), with no loop over millions of texels.
+    #[test]
+    fn huge_kernel_radii_read_the_image_mean() {
+        let m = checker(8);
+        for radius in [1e3, 1e9, 1e30] {
+            let c = m.kernel_lookup(0.3, 0.8, radius, false, &|x| 1.0 - x * x);
+            assert!((c.x - 0.5).abs() < 1e-2, "{radius}: {c}");
+        }
     }
 }
