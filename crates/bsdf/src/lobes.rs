@@ -135,10 +135,15 @@ pub struct LobeSum<const N: usize, const C: usize, const F: usize> {
     /// How many curves are used.
     pub curve_count: u8,
     /// The own frames' normals (unit; world space until [`LobeSum::place`]d, then in the
-    /// local shading frame): frame k ≥ 1 is `normals[k − 1]`.
+    /// local shading frame): frame k ≥ 1 is `normals[k − 1]` — or, where bit k − 1 of
+    /// `tangent_frames` is set, its tangent.
     pub normals: [[f32; 3]; F],
     /// How many normals are used.
     pub normal_count: u8,
+    /// Bit k − 1 set: own frame k is the shading normal's, its x axis turned to the
+    /// tangent `normals[k − 1]` (an anisotropic lobe's own `tangent_u`; placed, it lies in
+    /// the tangent plane) instead of around a normal.
+    pub tangent_frames: u8,
     /// The frame of each part (0: the shading frame).
     pub part_frames: [u8; N],
     /// The frame each curve measures its angles in (0: the shading frame).
@@ -156,6 +161,7 @@ impl<const N: usize, const C: usize, const F: usize> Default for LobeSum<N, C, F
             curve_count: 0,
             normals: [[0.0, 0.0, 1.0]; F],
             normal_count: 0,
+            tangent_frames: 0,
             part_frames: [0; N],
             curve_frames: [0; C],
         }
@@ -286,31 +292,42 @@ fn ggx_sample(g: &Ggx, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
 }
 
 /// Own frame `k` (≥ 1) of `normals` (local shading frame): x the shading frame's x laid
-/// into its tangent plane.
+/// into its tangent plane; or, where bit k − 1 of `tangents` is set, the shading frame
+/// turned about its normal so that x is the tangent `normals[k − 1]`.
 #[inline]
-fn own_frame(normals: &[[f32; 3]], k: u8) -> Frame {
-    let n = Vec3A::from_array(normals[usize::from(k) - 1]);
-    Frame::from_normal_and_tangent(n, Vec3A::X)
-}
-
-/// Directions in frame `k` of `normals` and the cosine ratio (see [`in_own_frame`]); the
-/// shading frame's are the directions themselves.
-#[inline]
-fn directions_in(normals: &[[f32; 3]], k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
-    if k == 0 {
-        Some((wo, wi, 1.0))
+fn own_frame(normals: &[[f32; 3]], tangents: u8, k: u8) -> Frame {
+    let v = Vec3A::from_array(normals[usize::from(k) - 1]);
+    if tangents & (1 << (k - 1)) != 0 {
+        Frame::from_normal_and_tangent(Vec3A::Z, v)
     } else {
-        in_own_frame(&own_frame(normals, k), wo, wi)
+        Frame::from_normal_and_tangent(v, Vec3A::X)
     }
 }
 
-/// Brings normals from world space into the local shading frame `frame` (world space),
-/// each turned to the side of the shading normal.
-pub fn place_normals(normals: &mut [[f32; 3]], frame: &Frame) {
-    for n in normals {
+/// Directions in frame `k` of `normals` (`tangents`: which are tangents) and the cosine
+/// ratio (see [`in_own_frame`]); the shading frame's are the directions themselves.
+#[inline]
+fn directions_in(normals: &[[f32; 3]], tangents: u8, k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
+    if k == 0 {
+        Some((wo, wi, 1.0))
+    } else {
+        in_own_frame(&own_frame(normals, tangents, k), wo, wi)
+    }
+}
+
+/// Brings the own frames' normals from world space into the local shading frame `frame`
+/// (world space), each turned to the side of the shading normal; those that bit k of
+/// `tangents` marks as tangents are laid into the tangent plane instead (x where one has
+/// no direction there).
+pub fn place_normals(normals: &mut [[f32; 3]], tangents: u8, frame: &Frame) {
+    for (k, n) in normals.iter_mut().enumerate() {
         let local = frame.to_local(Vec3A::from_array(*n));
-        let local = if local.z < 0.0 { -local } else { local };
-        *n = local.normalize_or(Vec3A::Z).to_array();
+        *n = if tangents & (1 << k) != 0 {
+            Vec3A::new(local.x, local.y, 0.0).normalize_or(Vec3A::X).to_array()
+        } else {
+            let local = if local.z < 0.0 { -local } else { local };
+            local.normalize_or(Vec3A::Z).to_array()
+        };
     }
 }
 
@@ -371,15 +388,29 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
     /// (1 or more), or `None` when the sum has `F` already or `normal` has no direction.
     /// An equal normal already added is shared.
     pub fn add_normal(&mut self, normal: Vec3A) -> Option<u8> {
-        let n = normal.try_normalize()?;
+        self.add_frame(normal, false)
+    }
+
+    /// Adds an own frame that is the shading frame turned about its normal so that its x
+    /// axis follows `tangent` (world space, laid into the tangent plane when placed): an
+    /// anisotropic lobe's own `tangent_u`. Its frame number, or `None` when the sum has
+    /// `F` frames already or `tangent` has no direction; an equal tangent is shared.
+    pub fn add_tangent(&mut self, tangent: Vec3A) -> Option<u8> {
+        self.add_frame(tangent, true)
+    }
+
+    fn add_frame(&mut self, v: Vec3A, tangent: bool) -> Option<u8> {
+        let v = v.try_normalize()?;
         let used = usize::from(self.normal_count);
-        if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == n) {
+        let is_tangent = |k: usize| self.tangent_frames & (1 << k) != 0;
+        if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == v && is_tangent(k) == tangent) {
             return Some(k as u8 + 1);
         }
-        if used == F {
+        if used == F || used == 8 {
             return None;
         }
-        self.normals[used] = n.to_array();
+        self.normals[used] = v.to_array();
+        self.tangent_frames |= u8::from(tangent) << used;
         self.normal_count += 1;
         Some(self.normal_count)
     }
@@ -387,7 +418,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
     /// Brings the own frames' normals from world space into the local shading frame
     /// `frame` (world space), each turned to the side of the shading normal.
     pub fn place(&mut self, frame: &Frame) {
-        place_normals(&mut self.normals[..usize::from(self.normal_count)], frame);
+        place_normals(&mut self.normals[..usize::from(self.normal_count)], self.tangent_frames, frame);
     }
 
     /// How many parts are used.
@@ -429,7 +460,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             let (wo, wi) = match self.curve_frames[j] {
                 0 => (wo, wi),
                 own => {
-                    let frame = own_frame(normals, own);
+                    let frame = own_frame(normals, self.tangent_frames, own);
                     (frame.to_local(wo), frame.to_local(wi))
                 }
             };
@@ -493,7 +524,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             if l == Lobe::Mirror {
                 continue;
             }
-            if let Some((o, i, ratio)) = directions_in(normals, self.part_frames[k], wo, wi) {
+            if let Some((o, i, ratio)) = directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi) {
                 sum += w * l.eval(o, i) * (self.factor(normals, k, wo, wi) * ratio);
             }
         }
@@ -506,7 +537,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         let total = self.total_choice();
         (0..self.len())
             .map(|k| {
-                directions_in(normals, self.part_frames[k], wo, wi)
+                directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi)
                     .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i))
             })
             .sum()
@@ -532,7 +563,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         let wi = match self.part_frames[k] {
             0 => lobe.sample_dir(wo, u)?,
             own => {
-                let frame = own_frame(normals, own);
+                let frame = own_frame(normals, self.tangent_frames, own);
                 let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u)?);
                 // A direction the own frame sends through the surface is lost.
                 in_own_frame(&frame, wo, wi)?;
@@ -605,6 +636,7 @@ static EMPTY_WIDE: WideLobes = WideLobes {
     curve_count: 0,
     normals: [[0.0, 0.0, 1.0]; WIDE_FRAMES],
     normal_count: 0,
+    tangent_frames: 0,
     part_frames: [0; WIDE_LOBES],
     curve_frames: [0; WIDE_CURVES],
 };
@@ -627,7 +659,7 @@ impl WideBsdf {
     pub fn new(sum: SharedLobes, frame: Option<&Frame>) -> WideBsdf {
         let mut normals = sum.normals;
         if let Some(frame) = frame {
-            place_normals(&mut normals[..usize::from(sum.normal_count)], frame);
+            place_normals(&mut normals[..usize::from(sum.normal_count)], sum.tangent_frames, frame);
         }
         WideBsdf { sum, normals }
     }

@@ -122,6 +122,11 @@ pub trait HitEvaluator: std::fmt::Debug + Send + Sync {
     fn apply(&self, state: &shader::State, hit: &mut HitMaterial<'_>);
     /// Whether its opacity may be below 1 somewhere.
     fn may_cut_out(&self) -> bool;
+    /// The evaluator with its emission scaled by `scale` (an emission given for the
+    /// whole surface divided by its area), if its emission varies; `None`: nothing to scale.
+    fn with_emission_scaled(&self, _scale: f32) -> Option<Arc<dyn HitEvaluator>> {
+        None
+    }
 }
 
 /// A shared [`HitEvaluator`] (equal only to itself).
@@ -159,9 +164,10 @@ pub struct HitMaterial<'a> {
     pub diffuse: Rgb,
     /// Emitted radiance (towards the normal for a spot: see `emission_shape`).
     pub emission: Rgb,
-    /// The directional spread of the emission, if not Lambertian (the material's own:
-    /// borrowed, so that the common Lambertian hit carries a word instead of the shape).
-    pub emission_shape: Option<&'a crate::edf::EmissionShape>,
+    /// The directional spread of the emission, if not Lambertian (the material's own,
+    /// borrowed; owned where it varies over the surface: a mix of edfs whose weights
+    /// depend on the hit).
+    pub emission_shape: Option<Cow<'a, crate::edf::EmissionShape>>,
     /// The scattering model with the point's parameters.
     pub model: Cow<'a, SurfaceModel>,
     /// Coverage.
@@ -241,7 +247,7 @@ impl SurfaceMaterial {
         HitMaterial {
             diffuse: self.diffuse,
             emission: self.emission,
-            emission_shape: self.emission_shape.as_ref(),
+            emission_shape: self.emission_shape.as_ref().map(Cow::Borrowed),
             model: Cow::Borrowed(&self.model),
             opacity: self.opacity,
             cutout_tint: self.cutout_tint,

@@ -511,10 +511,18 @@ impl SurfaceMaterial {
         }
         let scale = if area > 0.0 { 1.0 / area } else { 0.0 };
         self.emission *= scale;
-        if let Varying::Bindings(bindings) = &mut self.varying {
-            for b in bindings.iter_mut().filter(|b| b.target == Target::Emission) {
-                b.scale *= scale;
+        match &mut self.varying {
+            Varying::Bindings(bindings) => {
+                for b in bindings.iter_mut().filter(|b| b.target == Target::Emission) {
+                    b.scale *= scale;
+                }
             }
+            Varying::Evaluated(e) => {
+                if let Some(scaled) = e.0.with_emission_scaled(scale) {
+                    e.0 = scaled;
+                }
+            }
+            _ => {}
         }
         self.emission_over_area = false;
     }

@@ -604,7 +604,8 @@ pub fn trace_camera_path(
             continue;
         }
         if material.emission != Rgb::ZERO {
-            let spread = material.emission_shape.map_or(Rgb::ONE, |e| e.factor(s.ns, material.tangent, -ray.dir));
+            let spread =
+                material.emission_shape.as_deref().map_or(Rgb::ONE, |e| e.factor(s.ns, material.tangent, -ray.dir));
             radiance += throughput * material.emission * spread;
         }
         // Two-sided shading: face the normals towards the ray, unless light can enter the

@@ -435,7 +435,8 @@ impl Tracer for SceneTracer<'_> {
         // normal (as the path engine's hits see it: nothing behind the surface);
         // Lambertian otherwise.
         let surface_normal = if hit.inv_normal { -hit.normal } else { hit.normal };
-        let spread = h.emission_shape.map_or(bsdf::Rgb::ONE, |e| e.factor(surface_normal, h.tangent, -hit.dir));
+        let spread =
+            h.emission_shape.as_deref().map_or(bsdf::Rgb::ONE, |e| e.factor(surface_normal, h.tangent, -hit.dir));
         Some(shader::SurfaceScatter {
             bsdf: h.model.bsdf_in(h.diffuse, wo, &frame),
             frame,

@@ -1,30 +1,33 @@
 //! The combinators of emission distributions (`edf`s): `df::tint(color, edf)`,
 //! `df::directional_factor(…, edf)` and the mixes of edfs (`normalized_mix`,
-//! `clamped_mix`, `unbounded_mix` and their `color_` forms), built as [`Edf`] values with
-//! constant weights, and lowered to the [`EdfTree`] the renderer evaluates (the mixes'
-//! weights normalised or clamped as for bsdfs, [`mix_weights`]). Their components may be
+//! `clamped_mix`, `unbounded_mix` and their `color_` forms), built as [`Edf`] values, and
+//! lowered to the [`EdfTree`] the renderer evaluates (the mixes' weights normalised or
+//! clamped as for bsdfs, [`mix_weights`]). The weights of mixes, the tint and the factor's
+//! tints and exponent may vary over the surface ([`Leaf::Hit`]: the tree is then lowered
+//! again at each hit, [`tree`] of the hit's values). Their components may be
 //! `diffuse_edf`, `spot_edf`, `edf()` and other combinators; a `measured_edf` among them
-//! and weights that vary over the surface are not compiled (an error naming them).
+//! is not compiled (an error naming the call).
+
+use std::sync::Arc;
 
 use bsdf::Rgb;
+use glam::Vec4;
 use mi::Span;
 
 use super::eval::{problem, Eval, Problem};
-use super::natives::mix_weights;
+use super::hit::HitExpr;
+use super::natives::{leaf, mix_weights, MAX_LEAVES};
 use super::value::{Edf, Leaf, MixBound, Value};
 use crate::edf_tree::EdfTree;
 
-/// A constant colour argument `what` of `df::{function}` (a number is a grey).
-fn constant(function: &str, what: &str, v: Option<&Value>, default: Rgb, span: Span) -> Result<Rgb, Problem> {
-    match v {
-        None => Ok(default),
-        Some(v) => v.color().filter(|c| c.is_finite()).ok_or_else(|| {
-            problem(
-                span,
-                format!("`df::{function}` of an edf with a `{what}` that varies over the surface is not compiled yet"),
-            )
-        }),
-    }
+/// A constant colour argument `what` of `df::{function}` (a number is a grey; finite).
+fn constant(function: &str, what: &str, v: &Value, span: Span) -> Result<Rgb, Problem> {
+    v.color().filter(|c| c.is_finite()).ok_or_else(|| {
+        problem(
+            span,
+            format!("`{what}` of `df::{function}` of an edf is {}, not a finite colour", super::eval::kind(v)),
+        )
+    })
 }
 
 /// `e` itself, or an error at `span` naming `df::{function}` when a `measured_edf` lies in
@@ -44,13 +47,38 @@ fn combinable(function: &str, e: &Edf, span: Span) -> Result<Edf, Problem> {
     Ok(e.clone())
 }
 
-/// `df::{name}` of the edf components `components` (structs of `weight` and `component`).
-pub fn mix(name: &str, components: &[Value], bound: MixBound, span: Span) -> Eval {
+/// A weight or tint `what` of `df::{function}` of edfs as a [`Leaf`] (`default` when not
+/// given): a constant, or an expression of the hit added to `leaves`.
+fn weight(
+    function: &str,
+    what: &str,
+    v: Option<&Value>,
+    default: Rgb,
+    leaves: &mut Vec<Arc<HitExpr>>,
+    span: Span,
+) -> Result<Leaf, Problem> {
+    match v {
+        None => Ok(Leaf::Const(default)),
+        Some(v @ Value::Hit(..)) => leaf(v, leaves).ok_or_else(|| {
+            problem(
+                span,
+                format!(
+                    "`{what}` of `df::{function}` of an edf depends on the shading point and the material reads more than {MAX_LEAVES} such values; not compiled"
+                ),
+            )
+        }),
+        Some(v) => constant(function, what, v, span).map(Leaf::Const),
+    }
+}
+
+/// `df::{name}` of the edf components `components` (structs of `weight` and `component`);
+/// weights that depend on the hit are added to `leaves`.
+pub fn mix(name: &str, components: &[Value], bound: MixBound, leaves: &mut Vec<Arc<HitExpr>>, span: Span) -> Eval {
     let mut parts = Vec::with_capacity(components.len());
     for c in components {
-        let w = constant(name, "weight", c.field("weight"), Rgb::ZERO, span)?;
+        let w = weight(name, "weight", c.field("weight"), Rgb::ZERO, leaves, span)?;
         match c.field("component") {
-            Some(Value::Edf(e)) => parts.push((Leaf::Const(w), combinable(name, e, span)?)),
+            Some(Value::Edf(e)) => parts.push((w, combinable(name, e, span)?)),
             _ => return Err(problem(span, format!("a component of `df::{name}` is not an edf"))),
         }
     }
@@ -58,27 +86,45 @@ pub fn mix(name: &str, components: &[Value], bound: MixBound, span: Span) -> Eva
 }
 
 /// `df::tint(tint, base)` of an edf: its radiance times the tint (a one-component
-/// unbounded mix).
-pub fn tint(tint: Option<&Value>, base: &Edf, span: Span) -> Eval {
-    let t = constant("tint", "tint", tint, Rgb::ONE, span)?;
+/// unbounded mix); a tint that depends on the hit is added to `leaves`.
+pub fn tint(tint: Option<&Value>, base: &Edf, leaves: &mut Vec<Arc<HitExpr>>, span: Span) -> Eval {
+    let t = weight("tint", "tint", tint, Rgb::ONE, leaves, span)?;
     let base = combinable("tint", base, span)?;
-    Ok(Value::Edf(Edf::Mix { parts: vec![(Leaf::Const(t), base)], bound: MixBound::Unbounded }))
+    Ok(Value::Edf(Edf::Mix { parts: vec![(t, base)], bound: MixBound::Unbounded }))
 }
 
 /// `df::directional_factor(normal_tint, grazing_tint, exponent, base)` of an edf, its
-/// arguments given by parameter name by `arg`.
-pub fn directional_factor<'a>(arg: &dyn Fn(&str) -> Option<&'a Value>, base: &Edf, span: Span) -> Eval {
+/// arguments given by parameter name by `arg` (those that depend on the hit added to
+/// `leaves`).
+pub fn directional_factor<'a>(
+    arg: &dyn Fn(&str) -> Option<&'a Value>,
+    base: &Edf,
+    leaves: &mut Vec<Arc<HitExpr>>,
+    span: Span,
+) -> Eval {
     let f = "directional_factor";
     Ok(Value::Edf(Edf::DirectionalFactor {
-        normal: constant(f, "normal_tint", arg("normal_tint"), Rgb::ONE, span)?,
-        grazing: constant(f, "grazing_tint", arg("grazing_tint"), Rgb::ONE, span)?,
-        exponent: constant(f, "exponent", arg("exponent"), Rgb::splat(5.0), span)?.x,
+        normal: weight(f, "normal_tint", arg("normal_tint"), Rgb::ONE, leaves, span)?,
+        grazing: weight(f, "grazing_tint", arg("grazing_tint"), Rgb::ONE, leaves, span)?,
+        exponent: weight(f, "exponent", arg("exponent"), Rgb::splat(5.0), leaves, span)?,
         base: Box::new(combinable(f, base, span)?),
     }))
 }
 
-/// The tree the renderer evaluates for `edf`; `Err` names what is not compiled.
-pub fn tree(edf: &Edf) -> Result<EdfTree, &'static str> {
+/// Whether a weight of the tree depends on the hit (then it is lowered at each hit).
+pub fn varies(edf: &Edf) -> bool {
+    match edf {
+        Edf::Mix { parts, .. } => parts.iter().any(|(w, e)| matches!(w, Leaf::Hit(_)) || varies(e)),
+        Edf::DirectionalFactor { normal, grazing, exponent, base } => {
+            [normal, grazing, exponent].iter().any(|l| matches!(l, Leaf::Hit(_))) || varies(base)
+        }
+        Edf::Black | Edf::Diffuse | Edf::Spot(_) | Edf::Measured { .. } => false,
+    }
+}
+
+/// The tree the renderer evaluates for `edf`, its weights evaluated to `hit` (the values
+/// of the material's expressions); `Err` names what is not compiled.
+pub fn tree(edf: &Edf, hit: &[Vec4]) -> Result<EdfTree, &'static str> {
     Ok(match edf {
         Edf::Black => EdfTree::Sum(Vec::new()),
         Edf::Diffuse => EdfTree::Diffuse,
@@ -87,7 +133,7 @@ pub fn tree(edf: &Edf) -> Result<EdfTree, &'static str> {
         Edf::Mix { parts, bound } => {
             let mut sum = Vec::with_capacity(parts.len());
             let mut failed = None;
-            mix_weights(parts, *bound, &[], |w, e| match tree(e) {
+            mix_weights(parts, *bound, hit, |w, e| match tree(e, hit) {
                 Ok(t) => sum.push((w, t)),
                 Err(what) => failed = Some(what),
             });
@@ -96,8 +142,11 @@ pub fn tree(edf: &Edf) -> Result<EdfTree, &'static str> {
             }
             EdfTree::Sum(sum)
         }
-        Edf::DirectionalFactor { normal, grazing, exponent, base } => {
-            EdfTree::Factor { normal: *normal, grazing: *grazing, exponent: *exponent, base: Box::new(tree(base)?) }
-        }
+        Edf::DirectionalFactor { normal, grazing, exponent, base } => EdfTree::Factor {
+            normal: normal.get(hit),
+            grazing: grazing.get(hit),
+            exponent: exponent.get(hit).x,
+            base: Box::new(tree(base, hit)?),
+        },
     })
 }

@@ -25,6 +25,7 @@
 //! boxed model; one without is lowered once, to constants.
 
 mod general_sum;
+mod tangents;
 
 use std::sync::Arc;
 
@@ -165,6 +166,10 @@ fn add_glossy(tint: Rgb, alpha: (f32, f32), scale: Rgb, sum: &mut LobeSum) -> bo
 /// constant-weight sum of diffuse reflection, one glossy reflection and diffuse
 /// transmission.
 fn lobes(df: &Df, hit: &[Vec4]) -> Option<(Rgb, SurfaceModel)> {
+    // Lobes turned by different `tangent_u`s are a general sum's (each in its own frame).
+    if tangents::differ(df) {
+        return None;
+    }
     let mut sum = LobeSum { diffuse: DiffuseSum::ZERO, glossy: Rgb::ZERO, alpha: None, transl: Rgb::ZERO };
     if !add_lobes(df, Rgb::ONE, hit, &mut sum) {
         return None;
@@ -259,48 +264,30 @@ fn glass_ignores(df: &Df) -> Vec<&'static str> {
 }
 
 /// Whether a `thin_film` of the tree (`film`: one is above `df`) covers a Fresnel layer
-/// whose index differs per channel (the film's Airy curve takes their mean).
-fn colour_ior_under_film(df: &Df, film: bool) -> bool {
+/// whose index differs per channel at the point whose expressions have `hit` (the film's
+/// Airy curve takes their mean).
+fn colour_ior_under_film(df: &Df, film: bool, hit: &[Vec4]) -> bool {
     match df {
-        Df::ThinFilm { base, .. } => colour_ior_under_film(base, true),
-        Df::Layer { fresnel_ior: Some(ior), .. } if film && super::value::layer_ior(*ior).is_err() => true,
+        Df::ThinFilm { base, .. } => colour_ior_under_film(base, true, hit),
+        Df::Layer { fresnel_ior: Some(ior), .. } if film && super::value::layer_ior(ior.get(hit)).is_err() => true,
         Df::Layer { layer, base, .. }
         | Df::CurveLayer { layer, base, .. }
         | Df::MeasuredCurveLayer { layer, base, .. } => {
-            colour_ior_under_film(layer, film) || colour_ior_under_film(base, film)
+            colour_ior_under_film(layer, film, hit) || colour_ior_under_film(base, film, hit)
         }
         Df::Sheen { multiscatter: b, .. }
         | Df::DirectionalFactor { base: b, .. }
         | Df::FresnelFactor { base: b, .. }
-        | Df::MeasuredCurveFactor { base: b, .. } => colour_ior_under_film(b, film),
-        Df::Mix { parts, .. } => parts.iter().any(|(_, d)| colour_ior_under_film(d, film)),
+        | Df::MeasuredCurveFactor { base: b, .. } => colour_ior_under_film(b, film, hit),
+        Df::Mix { parts, .. } => parts.iter().any(|(_, d)| colour_ior_under_film(d, film, hit)),
         _ => false,
-    }
-}
-
-/// The `tangent_u` of every anisotropic microfacet lobe of a tree, in order.
-fn lobe_tangents(df: &Df, out: &mut Vec<Leaf>) {
-    match df {
-        Df::Glossy { tangent, .. } | Df::Ward { tangent, .. } | Df::Backscatter { tangent, .. } => out.extend(*tangent),
-        Df::Black | Df::Diffuse { .. } | Df::DiffuseTransmission(_) | Df::Specular { .. } => {}
-        Df::Sheen { multiscatter: b, .. } | Df::DirectionalFactor { base: b, .. } | Df::ThinFilm { base: b, .. } => {
-            lobe_tangents(b, out)
-        }
-        Df::Mix { parts, .. } => parts.iter().for_each(|(_, d)| lobe_tangents(d, out)),
-        Df::FresnelFactor { base: b, .. } | Df::MeasuredCurveFactor { base: b, .. } => lobe_tangents(b, out),
-        Df::Layer { layer, base, .. }
-        | Df::CurveLayer { layer, base, .. }
-        | Df::MeasuredCurveLayer { layer, base, .. } => {
-            lobe_tangents(layer, out);
-            lobe_tangents(base, out);
-        }
     }
 }
 
 /// A module material's parts that depend on the shading point: the expressions its
 /// distribution functions, emission, cutout and normal read, and what to lower again at
 /// each hit.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct MdlHit {
     /// The expressions, by [`Leaf::Hit`] index.
     pub leaves: Vec<Arc<HitExpr>>,
@@ -312,9 +299,13 @@ pub struct MdlHit {
     pub ior_hit: Option<u16>,
     /// `thin_walled`.
     pub thin: bool,
-    /// Emitted radiance per unit of the emission's intensity (1/π for a Lambertian EDF)
-    /// and the intensity, when it depends on the hit.
+    /// Emitted radiance per unit of the emission's intensity (1/π for a Lambertian EDF;
+    /// for a power, also divided by the area once it is known) and the intensity, when it
+    /// depends on the hit.
     pub emission: Option<(f32, Leaf)>,
+    /// The edf tree (mixes, tints) when its weights depend on the hit: lowered again to
+    /// the hit's emission shape at each hit.
+    pub edf: Option<Edf>,
     /// The cutout opacity, when it depends on the hit.
     pub opacity: Option<Leaf>,
     /// The shading normal (world space), when the geometry's `normal` bends it.
@@ -337,6 +328,11 @@ impl HitEvaluator for MdlHit {
         self.opacity.is_some()
     }
 
+    fn with_emission_scaled(&self, scale: f32) -> Option<Arc<dyn HitEvaluator>> {
+        let (s, l) = self.emission?;
+        Some(Arc::new(MdlHit { emission: Some((s * scale, l)), ..self.clone() }))
+    }
+
     /// Lowers the material at the shading point `state` into `hit`.
     fn apply(&self, state: &shader::State, hit: &mut HitMaterial<'_>) {
         let mut values = [Vec4::ZERO; MAX_LEAVES];
@@ -352,6 +348,9 @@ impl HitEvaluator for MdlHit {
         hit.model = std::borrow::Cow::Owned(model);
         if let Some((scale, intensity)) = self.emission {
             hit.emission = intensity.get(values) * scale;
+        }
+        if let Some(tree) = self.edf.as_ref().and_then(|e| super::edf_combinators::tree(e, values).ok()) {
+            hit.emission_shape = Some(std::borrow::Cow::Owned(EmissionShape::Tree(Arc::new(tree))));
         }
         if let Some(o) = self.opacity {
             hit.opacity = o.get(values).x.clamp(0.0, 1.0);
@@ -409,6 +408,7 @@ pub fn surface(
     let mut over_area = false;
     let mut emission_shape = None;
     let mut tangent = None;
+    let mut edf_hit = None;
     if let Some(e) = surf.as_ref().and_then(|s| s.field("emission")) {
         let power = matches!(e.field("mode"), Some(Value::Enum(_, 1)));
         match e.field("emission") {
@@ -449,9 +449,11 @@ pub fn surface(
                     }
                     // Tints, factors and mixes: radiance per unit of intensity from the
                     // tree (each component emits its intensity, as alone).
-                    Edf::Mix { .. } | Edf::DirectionalFactor { .. } => match super::edf_combinators::tree(edf) {
+                    Edf::Mix { .. } | Edf::DirectionalFactor { .. } => match tree_at_default(edf, &leaves) {
                         Ok(tree) => {
                             emission_shape = Some(EmissionShape::Tree(Arc::new(tree)));
+                            // Weights that depend on the hit: lowered again at each hit.
+                            edf_hit = super::edf_combinators::varies(edf).then(|| edf.clone());
                             1.0
                         }
                         Err(what) => {
@@ -463,8 +465,9 @@ pub fn surface(
                 };
                 match e.field("intensity").map(|v| leaf(v, &mut leaves)) {
                     Some(Some(Leaf::Const(c))) => radiance = c * scale,
-                    Some(Some(l @ Leaf::Hit(_))) if !power => emission = Some((scale, l)),
-                    Some(_) => warnings.push(format!(
+                    // A power is divided by the area once it is known (`spread_emission_over`).
+                    Some(Some(l @ Leaf::Hit(_))) => emission = Some((scale, l)),
+                    Some(None) => warnings.push(format!(
                         "material '{name}': its emission intensity varies over the surface in a way not compiled yet; no emission"
                     )),
                     None => {}
@@ -476,13 +479,12 @@ pub fn surface(
         }
     }
     // Anisotropic lobes turn their roughness with their `tangent_u` (world space): the
-    // shading frame's u axis follows it at each hit (one axis for the whole BSDF).
-    let mut axes = Vec::new();
-    lobe_tangents(&scattering, &mut axes);
-    if let Some(&first) = axes.first() {
-        if axes.iter().any(|a| *a != first) {
+    // shading frame's u axis follows the first's at each hit, a lobe of another its own
+    // frame turned about the normal (`tangents`).
+    if let Some(first) = tangents::first(&scattering) {
+        if tangents::differ_under_own_normal(&scattering) {
             warnings.push(format!(
-                "material '{name}': its anisotropic microfacet lobes have different `tangent_u`s; all follow the first"
+                "material '{name}': an anisotropic microfacet lobe under a layer with its own `normal` has another `tangent_u` than the first lobe's; it follows the first's"
             ));
         }
         let along = match first {
@@ -554,10 +556,20 @@ pub fn surface(
         if let Some((scale, l)) = emission {
             out.emission = l.get(&values) * scale;
         }
-        let varying = MdlHit { leaves, df: scattering, ior, ior_hit, thin, emission, opacity, normal, tangent };
+        let varying =
+            MdlHit { leaves, df: scattering, ior, ior_hit, thin, emission, edf: edf_hit, opacity, normal, tangent };
         out.varying = Varying::Evaluated(Evaluated(Arc::new(varying)));
     }
     out
+}
+
+/// The edf tree with its weights at the default point (`leaves` evaluated there).
+fn tree_at_default(edf: &Edf, leaves: &[Arc<HitExpr>]) -> Result<crate::edf_tree::EdfTree, &'static str> {
+    let state =
+        shader::State { normal: Vec3A::Z, normal_geom: Vec3A::Z, dir: -Vec3A::Z, tex_count: 1, ..Default::default() };
+    let ev = Evaluation::new();
+    let values: Vec<Vec4> = leaves.iter().map(|e| e.eval_finite_with(&state, &ev)).collect();
+    super::edf_combinators::tree(edf, &values)
 }
 
 /// An `ior` value (a colour or a number in all lanes) as one index: the mean of its
@@ -584,7 +596,7 @@ fn lower_bsdf(
             list.push(text(name));
         }
     };
-    if warning && colour_ior_under_film(df, false) {
+    if warning && colour_ior_under_film(df, false, hit) {
         say(&|name| {
             format!(
                 "material '{name}': a `thin_film` over a `color_fresnel_layer` of a colour `ior` takes the mean index under the film"
@@ -631,7 +643,7 @@ fn lower_bsdf(
     if let Df::Layer { weight, fresnel_ior: Some(coat_ior), layer, base, layer_normal: None } = df {
         // A colour index (different per channel) is a general sum's Fresnel curve.
         if let (Some((tint, alpha, ScatterMode::Reflect)), Some((albedo, _)), Ok(coat_ior)) =
-            (glossy(layer, hit), diffuse_only(base, hit), super::value::layer_ior(*coat_ior))
+            (glossy(layer, hit), diffuse_only(base, hit), super::value::layer_ior(coat_ior.get(hit)))
         {
             if tint != Rgb::ONE {
                 // A tinted coat: the general lobe sum has the tint (a Fresnel curve).

@@ -146,20 +146,11 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             curve: measured_curve(name, arg("curve_values"), span)?,
             base: Box::new(bsdf("base")?),
         })),
-        "fresnel_factor" => {
-            let mut constant = |p: &str| match number(p)? {
-                Leaf::Const(c) => Ok(c.max(Rgb::ZERO)),
-                Leaf::Hit(_) => Err(problem(
-                    span,
-                    format!("`df::fresnel_factor` with an `{p}` that varies over the surface is not compiled yet"),
-                )),
-            };
-            Ok(Value::Bsdf(Df::FresnelFactor {
-                ior: constant("ior")?,
-                extinction: constant("extinction_coefficient")?,
-                base: Box::new(bsdf("base")?),
-            }))
-        }
+        "fresnel_factor" => Ok(Value::Bsdf(Df::FresnelFactor {
+            ior: number("ior")?,
+            extinction: number("extinction_coefficient")?,
+            base: Box::new(bsdf("base")?),
+        })),
         "directional_factor" => match arg("base") {
             Some(Value::Bsdf(d)) => Ok(Value::Bsdf(Df::DirectionalFactor {
                 normal: number("normal_tint")?,
@@ -167,7 +158,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 exponent: number("exponent")?,
                 base: Box::new(d.clone()),
             })),
-            Some(Value::Edf(e)) => super::edf_combinators::directional_factor(&arg, e, span),
+            Some(Value::Edf(e)) => super::edf_combinators::directional_factor(&arg, e, leaves, span),
             _ => Err(problem(span, "`df::directional_factor` of this base is not compiled yet")),
         },
         "thin_film" => Ok(Value::Bsdf(Df::ThinFilm {
@@ -200,7 +191,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             }
             let bound = MixBound::of_mix(name);
             if matches!(components.first().and_then(|c| c.field("component")), Some(Value::Edf(_))) {
-                return super::edf_combinators::mix(name, components, bound, span);
+                return super::edf_combinators::mix(name, components, bound, leaves, span);
             }
             if matches!(components.first().and_then(|c| c.field("component")), Some(Value::Vdf(_))) {
                 if bound == MixBound::Unbounded {
@@ -226,7 +217,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
                 Ok(Value::Bsdf(Df::Mix { parts: vec![(tint?, d.clone())], bound: MixBound::Normalized }))
             }
             Some(Value::Vdf(v)) => super::volume::tint(v, arg("tint"), span),
-            Some(Value::Edf(e)) => super::edf_combinators::tint(arg("tint"), e, span),
+            Some(Value::Edf(e)) => super::edf_combinators::tint(arg("tint"), e, leaves, span),
             _ => Err(problem(span, "`df::tint` of a hair bsdf is not compiled yet")),
         },
         "tint" => match arg("base") {
@@ -244,25 +235,15 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             base: Box::new(bsdf("base")?),
             layer_normal: if own_normal { Some(number("normal")?) } else { None },
         })),
-        "fresnel_layer" | "color_fresnel_layer" => {
-            let ior = match number("ior")? {
-                Leaf::Const(c) => c,
-                Leaf::Hit(_) => {
-                    return Err(problem(
-                        span,
-                        format!("`df::{name}` with an `ior` that varies over the surface is not compiled yet"),
-                    ))
-                }
-            };
-            Ok(Value::Bsdf(Df::Layer {
-                weight: number("weight")?,
-                // Per channel (`color_fresnel_layer`); see `value::layer_ior`.
-                fresnel_ior: Some(ior),
-                layer: Box::new(bsdf("layer")?),
-                base: Box::new(bsdf("base")?),
-                layer_normal: if own_normal { Some(number("normal")?) } else { None },
-            }))
-        }
+        "fresnel_layer" | "color_fresnel_layer" => Ok(Value::Bsdf(Df::Layer {
+            weight: number("weight")?,
+            // Per channel (`color_fresnel_layer`), read at each hit where it varies; see
+            // `value::layer_ior`.
+            fresnel_ior: Some(number("ior")?),
+            layer: Box::new(bsdf("layer")?),
+            base: Box::new(bsdf("base")?),
+            layer_normal: if own_normal { Some(number("normal")?) } else { None },
+        })),
         "anisotropic_vdf" => match arg("directional_bias").map(|v| (v, v.float())) {
             None => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Const(Rgb::ZERO)))),
             Some((_, Some(g))) => Ok(Value::Vdf(Vdf::HenyeyGreenstein(VdfNumber::Const(Rgb::splat(g as f32))))),

@@ -213,10 +213,10 @@ pub enum Df {
     /// `df::fresnel_factor`: the base scaled by the Fresnel reflectance of a conductor of
     /// complex index `ior` + i`extinction` at the half vector.
     FresnelFactor {
-        /// Real part of the index per channel (constant).
-        ior: Rgb,
-        /// Extinction coefficient per channel (constant).
-        extinction: Rgb,
+        /// Real part of the index per channel (constant or per hit; negatives read as 0).
+        ior: Leaf,
+        /// Extinction coefficient per channel (constant or per hit; negatives read as 0).
+        extinction: Leaf,
         /// What is scaled.
         base: Box<Df>,
     },
@@ -244,8 +244,9 @@ pub enum Df {
     Layer {
         /// The layer's weight (clamped to [0, 1] where it is used).
         weight: Leaf,
-        /// Index of refraction of the Fresnel term per channel, if any.
-        fresnel_ior: Option<Rgb>,
+        /// Index of refraction of the Fresnel term per channel, if any (constant or per
+        /// hit: [`layer_ior`] of its value at the hit).
+        fresnel_ior: Option<Leaf>,
         /// The top layer.
         layer: Box<Df>,
         /// The base.
@@ -449,8 +450,8 @@ pub enum Edf {
         tangent: Option<Arc<HitExpr>>,
     },
     /// A mix of edfs (`normalized_mix`, `clamped_mix`, `unbounded_mix`, their `color_`
-    /// forms) or `df::tint` of one (a one-component unbounded mix): constant weights
-    /// ([`Leaf::Const`]) and components.
+    /// forms) or `df::tint` of one (a one-component unbounded mix): weights (constant or
+    /// per hit) and components.
     Mix {
         /// Weights and components.
         parts: Vec<(Leaf, Edf)>,
@@ -461,11 +462,11 @@ pub enum Edf {
     /// normal)(1 − cos θ)^exponent, θ the angle of emission from the normal.
     DirectionalFactor {
         /// The factor at normal emission.
-        normal: Rgb,
+        normal: Leaf,
         /// The factor at grazing emission.
-        grazing: Rgb,
-        /// The curve's exponent.
-        exponent: f32,
+        grazing: Leaf,
+        /// The curve's exponent (first channel).
+        exponent: Leaf,
         /// What is scaled.
         base: Box<Edf>,
     },

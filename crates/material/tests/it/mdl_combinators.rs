@@ -196,14 +196,14 @@ shader "u" "mdl::combinators::edf_unbounded" ()"#,
 }
 
 /// What stays uncompiled is an error at its `file:line:col` naming the construct:
-/// `measured_factor`, and a tint of an edf that varies over the surface.
+/// `measured_factor`, and a tint of a `measured_edf`.
 #[test]
 fn what_is_not_compiled_is_an_error_at_its_line() {
     let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mdl/combinators.mdl")).unwrap();
     let line = |inside: &str| src.lines().position(|l| l.contains(inside)).unwrap() + 1;
     for (shader, call, name) in [
         ("curve_factor", "df::measured_factor(", "measured_factor"),
-        ("varying_edf_tint", "df::tint(color(state::texture_coordinate(0).x)", "`df::tint` of an edf"),
+        ("measured_edf_tint", "df::tint(color(0.5), df::measured_edf(", "`df::tint` of a `measured_edf`"),
     ] {
         let (_, _, diags) = compile_text(&format!("shader \"m\" \"mdl::combinators::{shader}\" ()"));
         assert_eq!(diags.len(), 1, "{diags:#?}");

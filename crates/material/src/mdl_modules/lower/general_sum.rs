@@ -31,7 +31,10 @@ use crate::SurfaceModel;
 ///
 /// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
 /// own `normal` puts its lobes and its curve in the frame of that normal (at most `F`
-/// normals a sum).
+/// normals a sum). `axis` is the `tangent_u` the shading frame's u axis follows (the
+/// first anisotropic lobe's): an anisotropic lobe in the shading frame with another gets
+/// an own frame turned about the normal to its tangent.
+#[allow(clippy::too_many_arguments)]
 fn add_general<const N: usize, const C: usize, const F: usize>(
     df: &Df,
     scale: Rgb,
@@ -40,6 +43,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
     role: Role,
     film: Option<(f32, Rgb)>,
     frame: u8,
+    axis: Option<Leaf>,
 ) -> bool {
     let alpha = |(u, v): &(Leaf, Leaf)| (u.get(hit).x.max(0.0), v.get(hit).x.max(0.0));
     let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
@@ -48,7 +52,9 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
         Df::DiffuseTransmission(tint) => push(scale * tint.get(hit), Lobe::Translucent),
         Df::Specular { tint, mode: ScatterMode::Reflect } => push(scale * tint.get(hit), Lobe::Mirror),
-        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann, vcavities, multiscatter, .. } => {
+        Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann, vcavities, multiscatter, tangent } => {
+            let Some(frame) = tangent_frame(*tangent, axis, hit, sum, frame) else { return false };
+            let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
             let (au, av) = alpha(roughness);
             let (lobe, single) = match (*beckmann, *vcavities) {
                 (true, false) => (Lobe::Beckmann(Beckmann::new(au, av)), Single::BeckmannSmith),
@@ -67,7 +73,9 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let lost = (lobe != Lobe::Mirror).then_some((single, au, av));
             push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
-        Df::Backscatter { tint, roughness, multiscatter, .. } => {
+        Df::Backscatter { tint, roughness, multiscatter, tangent } => {
+            let Some(frame) = tangent_frame(*tangent, axis, hit, sum, frame) else { return false };
+            let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
             let (au, av) = alpha(roughness);
             let g = Ggx { alpha_x: au, alpha_y: av };
             let tint = scale * tint.get(hit);
@@ -76,7 +84,9 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 && push(tint, Lobe::Backscatter(g))
                 && compensate(&mut push, tint, *multiscatter, Some((Single::GgxSmith, au, av)), hit)
         }
-        Df::Ward { tint, roughness, multiscatter, .. } => {
+        Df::Ward { tint, roughness, multiscatter, tangent } => {
+            let Some(frame) = tangent_frame(*tangent, axis, hit, sum, frame) else { return false };
+            let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
             let (au, av) = alpha(roughness);
             let tint = scale * tint.get(hit);
             push(tint, Lobe::Ward(Beckmann::new(au, av)))
@@ -98,21 +108,24 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                     under,
                     film,
                     frame,
+                    axis,
                 )
         }
         Df::Mix { parts, bound } => {
             let mut ok = true;
-            mix_weights(parts, *bound, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
+            mix_weights(parts, *bound, hit, |w, d| {
+                ok = ok && add_general(d, scale * w, hit, sum, role, film, frame, axis)
+            });
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            add_general(layer, scale * w, hit, sum, role, film, own)
-                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame)
+            add_general(layer, scale * w, hit, sum, role, film, own, axis)
+                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame, axis)
         }
         Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
-            let curve = match (film, layer_ior(*ior)) {
+            let curve = match (film, layer_ior(ior.get(hit))) {
                 // A film's Airy sum has one index under it: a colour index's mean.
                 (Some((thickness_nm, film_ior)), one) => {
                     let ior = one.unwrap_or_else(|c| (c.x + c.y + c.z) / 3.0);
@@ -122,7 +135,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 (None, Err(ior)) => CurveKind::ColorFresnel { ior },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
         }
         Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => {
             let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
@@ -137,7 +150,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
         }
         Df::DirectionalFactor { normal, grazing, exponent, base } => {
             let curve = CurveKind::Schlick {
@@ -146,11 +159,11 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 exponent: exponent.get(hit).x.max(0.0),
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
         Df::ThinFilm { thickness, ior, base } => {
             let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
-            add_general(base, scale, hit, sum, role, film, frame)
+            add_general(base, scale, hit, sum, role, film, frame, axis)
         }
         Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => {
             let curve = match film {
@@ -163,18 +176,19 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 None => CurveKind::Measured(curve),
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
         }
         Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
             let (curve, base) = match df {
-                Df::FresnelFactor { ior, extinction, base } => {
-                    (CurveKind::Conductor { eta: *ior, k: *extinction }, base)
-                }
+                Df::FresnelFactor { ior, extinction, base } => (
+                    CurveKind::Conductor { eta: ior.get(hit).max(Rgb::ZERO), k: extinction.get(hit).max(Rgb::ZERO) },
+                    base,
+                ),
                 Df::MeasuredCurveFactor { curve, base } => (CurveKind::Measured(curve), base),
                 _ => return false,
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
+            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
         _ => false,
     }
@@ -196,6 +210,33 @@ fn compensate(
             push(tint * ms, Lobe::MultiScatter(MultiScatter::new(single, au, av)))
         }
         _ => true,
+    }
+}
+
+/// The frame an anisotropic lobe of `tangent` lives in, inside `frame`: an own frame
+/// turned about the shading normal to its tangent (added to `sum`) when it lies in the
+/// shading frame and its `tangent_u` is not `axis` (the shading frame's); else `frame`
+/// (an isotropic lobe, the axis's own, or a layer's own normal frame). `None` when the sum
+/// holds no more frames.
+fn tangent_frame<const N: usize, const C: usize, const F: usize>(
+    tangent: Option<Leaf>,
+    axis: Option<Leaf>,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F>,
+    frame: u8,
+) -> Option<u8> {
+    match tangent {
+        Some(t) if frame == 0 && Some(t) != axis => {
+            let c = t.get(hit);
+            let t = glam::Vec3A::new(c.x, c.y, c.z);
+            // A tangent of no direction leaves the lobe in the shading frame.
+            if t.length_squared() > 0.0 && t.is_finite() {
+                sum.add_tangent(t)
+            } else {
+                Some(frame)
+            }
+        }
+        _ => Some(frame),
     }
 }
 
@@ -248,7 +289,8 @@ fn layer_roles<const N: usize, const C: usize, const F: usize>(
 }
 
 /// Adds a layer weighed by `curve` (`custom_curve_layer`, `fresnel_layer`, a film on one):
-/// the base in `frames.0`, the layer and its curve in `frames.1`.
+/// the base in `frames.0`, the layer and its curve in `frames.1` (`axis`: see
+/// [`add_general`]).
 #[allow(clippy::too_many_arguments)]
 fn curve_layer<const N: usize, const C: usize, const F: usize>(
     curve: CurveKind,
@@ -260,10 +302,11 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
     sum: &mut GeneralSum<N, C, F>,
     role: Role,
     frames: (u8, u8),
+    axis: Option<Leaf>,
 ) -> bool {
     let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum, frames) else { return false };
-    add_general(layer, scale, hit, sum, over, None, frames.1)
-        && add_general(base, scale, hit, sum, under, None, frames.0)
+    add_general(layer, scale, hit, sum, over, None, frames.1, axis)
+        && add_general(base, scale, hit, sum, under, None, frames.0, axis)
 }
 
 /// The tree as a lobe sum and its diffuse colour, if it is one: a compact
@@ -271,15 +314,16 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
 /// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs) or, lowered at a hit
 /// (`per_hit`), a [`SurfaceModel::MdlWideAt`] in the thread's ring of wide sums.
 pub(super) fn general(df: &Df, hit: &[Vec4], per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
+    let axis = super::tangents::first(df);
     let mut sum = Lobes::default();
-    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
+    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0, axis) {
         return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
     }
     if !filled(&sum) {
         return None;
     }
     let mut wide = WideLobes::default();
-    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0) {
+    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0, axis) {
         return None;
     }
     let model = if per_hit {
@@ -306,5 +350,6 @@ fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C,
 /// Whether lowering `df` as a wide lobe sum stopped with the sum full.
 pub(super) fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
     let mut sum = WideLobes::default();
-    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) && filled(&sum)
+    let axis = super::tangents::first(df);
+    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0, axis) && filled(&sum)
 }
