@@ -82,6 +82,10 @@ pub struct PendingShadow {
 }
 
 impl PathResult {
+    /// No radiance, nothing hit: a placeholder for a result still to be traced.
+    pub const EMPTY: PathResult =
+        PathResult { radiance: Rgb::ZERO, alpha: 0.0, first: None, glow: None, pending: None };
+
     /// The radiance of the path given whether its pending shadow ray is `blocked` (the
     /// radiance itself when none is pending).
     pub fn radiance_given(&self, blocked: bool) -> Rgb {
@@ -399,6 +403,26 @@ pub fn trace_camera_path(
     settings: &PathSettings,
     counts: &mut RayCounts,
 ) -> PathResult {
+    let mut result = PathResult::EMPTY;
+    trace_camera_path_into(world, accel, shading, env, camera, camera_media, sampler, settings, counts, &mut result);
+    result
+}
+
+/// [`trace_camera_path`] writing its result to `out` (where the caller keeps it: a
+/// result returned by value was copied there through a `memcpy`).
+#[allow(clippy::too_many_arguments)]
+pub fn trace_camera_path_into(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    env: Option<&Environment>,
+    camera: CameraRay,
+    camera_media: &MediumStack,
+    sampler: &mut Sampler,
+    settings: &PathSettings,
+    counts: &mut RayCounts,
+    out: &mut PathResult,
+) {
     let camera_ray = camera.ray;
     let mut camera_hit = camera.hit;
     let mut ray = camera_ray;
@@ -439,7 +463,13 @@ pub fn trace_camera_path(
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
-        let mut found: Option<(Hit, Surface, HitMaterial)> = None;
+        let mut found: Option<(Hit, Surface)> = None;
+        // The material of the surface found, when it is not the constant one of
+        // `world.materials` (connected parameters, view-dependent transparency). A
+        // constant material is built only after this loop, in its place: moved out of
+        // the loop as part of the hit, its 160 bytes went through a `memcpy` at every
+        // hit, whose wide loads of the fields just stored stalled on store forwarding.
+        let mut varying: Option<HitMaterial> = None;
         let mut through = ray;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
             // The camera ray's hit may be known (only for the ray itself, not past a cutout).
@@ -449,28 +479,37 @@ pub fn trace_camera_path(
             };
             let Some(h) = h else { break };
             let s = surface(world, &through, &h);
-            let m = material_at(world, accel, shading, &through, &h, s.material);
+            let surface_material = &world.materials[s.material as usize];
+            let constant =
+                !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
+            let m = if constant { None } else { Some(material_at(world, accel, shading, &through, &h, s.material)) };
+            // (What `material_at` gives a constant material, read in place.)
+            let (opacity, refracts, cutout_tint) = match &m {
+                Some(m) => (m.opacity, m.model.refracts(), m.cutout_tint),
+                None => (surface_material.opacity, surface_material.model.refracts(), surface_material.cutout_tint),
+            };
             // (A Maya material that refracts stops every ray but shadow rays: its BSDF
             // refracts them.)
-            if m.opacity >= 1.0
-                || m.model.refracts()
-                || world.materials[s.material as usize].maya_matte.is_some()
-                || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < m.opacity
+            if opacity >= 1.0
+                || refracts
+                || surface_material.maya_matte.is_some()
+                || cutout_number(seed, s.p, depth * MAX_CUTOUT_CROSSINGS + crossing) < opacity
             {
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
-                found = Some((Hit { t, ..h }, s, m));
+                found = Some((Hit { t, ..h }, s));
+                varying = m;
                 break;
             }
             counts.rays += 1;
             // A coloured transparency filters what passes, per channel; the pass is a
             // transparency ray of mental ray's refraction level (Maya's `refractionLimit`).
-            throughput *= m.cutout_tint;
+            throughput *= cutout_tint;
             refractions += 1;
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }
-        let hit = found.as_ref().map(|(h, _, _)| *h);
+        let hit = found.as_ref().map(|(h, _)| *h);
         let tmax = hit.map_or(ray.tmax, |h| h.t);
         let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
         if !media.is_empty() {
@@ -582,7 +621,11 @@ pub fn trace_camera_path(
             radiance += throughput * le * weight;
             break;
         }
-        let Some((stop, s, material)) = found else { break };
+        let Some((stop, s)) = found else { break };
+        let material = match varying {
+            Some(m) => m,
+            None => world.materials[s.material as usize].constant(),
+        };
         let own_env = material_env::own(shading, s.material);
         if depth == 0 {
             alpha = 1.0;
@@ -785,7 +828,7 @@ pub fn trace_camera_path(
     // The camera ray's fog covers what it did not find, as the classic fogs' alpha.
     let alpha = alpha + (1.0 - alpha) * fog_cover.clamp(0.0, 1.0);
     let pending = pending.map(|ray| PendingShadow { ray, blocked: radiance.shadowed });
-    PathResult { radiance: radiance.lit, alpha, first, glow, pending }
+    *out = PathResult { radiance: radiance.lit, alpha, first, glow, pending };
 }
 
 /// The direction (unit) and distance from `p` to a point uniform over the surface of the

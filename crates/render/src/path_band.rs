@@ -26,7 +26,7 @@ use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::film::Pixel;
 use crate::filter::PixelFilter;
-use crate::integrator::{trace_camera_path, CameraRay, MediumStack, PathResult, PathSettings};
+use crate::integrator::{trace_camera_path_into, CameraRay, MediumStack, PathResult, PathSettings};
 use crate::ray::{Ray, RayCounts};
 use crate::sampler::{pixel_seed, Sampler, SamplerPosition};
 use crate::world::World;
@@ -169,8 +169,9 @@ impl PathBand<'_> {
         }
         let mut hits: [Option<Hit>; PACKET] = [None; PACKET];
         self.accel.intersect_batch(&rays[..n], &mut hits[..n]);
-        let mut results: [Option<PathResult>; PACKET] = [None; PACKET];
-        for ((lane, hit), result) in lanes.iter().zip(hits).zip(&mut results) {
+        // (Each path writes its result in place: returned by value, it was copied.)
+        let mut results = [PathResult::EMPTY; PACKET];
+        for ((lane, &hit), result) in lanes.iter().zip(&hits).zip(&mut results) {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
             let camera = CameraRay { ray: lane.ray, hit: Some(hit), defer_shadow: true };
@@ -180,7 +181,7 @@ impl PathBand<'_> {
             let at_centre = moved_media.as_ref().unwrap_or(self.camera_media);
             // An orthographic camera's ray starts in the media around its own origin.
             let ray_media = crate::integrator::camera_ray_media(self.world, self.accel, at_centre, &lane.ray);
-            let r = trace_camera_path(
+            trace_camera_path_into(
                 self.world,
                 self.accel,
                 self.shading,
@@ -190,15 +191,15 @@ impl PathBand<'_> {
                 sampler,
                 self.path,
                 &mut out.counts,
+                result,
             );
-            *result = Some(r);
         }
         // The first bounces' shadow rays, traced together.
         let mut shadows = [Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z); PACKET];
         let mut owner = [0usize; PACKET];
         let mut m = 0;
         for (i, r) in results[..n].iter().enumerate() {
-            if let Some(p) = r.as_ref().and_then(|r| r.pending.as_ref()) {
+            if let Some(p) = r.pending.as_ref() {
                 shadows[m] = p.ray;
                 owner[m] = i;
                 m += 1;
@@ -212,7 +213,6 @@ impl PathBand<'_> {
         }
         let cam = &self.world.camera;
         for ((lane, r), blocked) in lanes.drain(..).zip(&results).zip(lane_blocked) {
-            let Some(r) = r else { continue };
             let radiance = r.radiance_given(blocked);
             let px = &mut pixels[lane.k];
             if lane.index == 0 {
