@@ -17,6 +17,7 @@ pub mod maya_highlight;
 pub mod measured_curve;
 pub mod medium;
 pub mod mia;
+pub mod mib_glossy;
 pub mod microfacet;
 pub mod multiscatter;
 mod oren_nayar;
@@ -38,6 +39,7 @@ pub use lobes::{Lobe, LobeSum, Lobes, Role, SharedLobes, WideBsdf, WideLobes};
 pub use maya_highlight::{MayaBsdf, MayaGlossy};
 pub use medium::Medium;
 pub use mia::MiaBsdf;
+pub use mib_glossy::{MibGlossy, MibGlossyLobe};
 pub use oren_nayar::OrenNayar;
 pub use phase::{HenyeyGreenstein, Phase, PhaseSample};
 pub use unified::{Unified, UnifiedParams};
@@ -96,6 +98,9 @@ pub enum Bsdf {
     /// A Maya material: Lambert plus Maya's own highlight (blinn, phong, phongE,
     /// anisotropic), unnormalised as Maya computes it.
     Maya(MayaBsdf),
+    /// mental ray's `mib_glossy_reflection`: a Ward-spread reflection (or mirror) over a
+    /// Lambertian base, as the classic shader's estimate converges to.
+    MibGlossy(MibGlossy),
 }
 
 impl Bsdf {
@@ -113,6 +118,7 @@ impl Bsdf {
             Bsdf::Lobes(l) => l.eval(wo, wi),
             Bsdf::Wide(l) => l.eval(wo, wi),
             Bsdf::Maya(l) => l.eval(wo, wi),
+            Bsdf::MibGlossy(l) => l.eval(wo, wi),
         }
     }
 
@@ -131,6 +137,7 @@ impl Bsdf {
             Bsdf::Lobes(l) => l.sample(wo, u, u_lobe),
             Bsdf::Wide(l) => l.sample(wo, u, u_lobe),
             Bsdf::Maya(l) => l.sample(wo, u, u_lobe),
+            Bsdf::MibGlossy(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -148,6 +155,7 @@ impl Bsdf {
             Bsdf::Lobes(l) => l.pdf(wo, wi),
             Bsdf::Wide(l) => l.pdf(wo, wi),
             Bsdf::Maya(l) => l.pdf(wo, wi),
+            Bsdf::MibGlossy(l) => l.pdf(wo, wi),
         }
     }
 
@@ -163,6 +171,7 @@ impl Bsdf {
             Bsdf::Mia(m) => m.is_delta(),
             Bsdf::Unified(u) => u.is_delta(),
             Bsdf::Builtin(b) => b.is_delta(),
+            Bsdf::MibGlossy(g) => g.is_delta(),
         }
     }
 }

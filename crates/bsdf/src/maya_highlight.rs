@@ -176,6 +176,10 @@ pub struct MayaGlossy {
     /// The forward lobe's exponent n ([`translucence::focus_exponent`] of
     /// `translucenceFocus`; 0: diffuse translucence).
     pub focus: f32,
+    /// When the material's colour varies over the surface (a connected `color`): the
+    /// translucence's albedo per unit of each hit's diffuse colour (t / `diffuse`), which
+    /// then replaces [`MayaGlossy::translucence`] at every hit; `None`: constant.
+    pub translucence_per_diffuse: Option<f32>,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -202,6 +206,7 @@ impl MayaGlossy {
             specular_ramp: None,
             translucence: Rgb::ZERO,
             focus: 0.0,
+            translucence_per_diffuse: None,
             albedo,
         }
     }
@@ -211,6 +216,13 @@ impl MayaGlossy {
     pub fn with_translucence(mut self, albedo: Rgb, focus: f32) -> MayaGlossy {
         self.translucence = albedo.max(Rgb::ZERO);
         self.focus = focus.max(0.0);
+        self
+    }
+
+    /// The same with the translucence following each hit's diffuse colour: its albedo is
+    /// `k` × that colour (see [`MayaGlossy::translucence_per_diffuse`]).
+    pub fn with_translucence_per_diffuse(mut self, k: f32) -> MayaGlossy {
+        self.translucence_per_diffuse = Some(k.max(0.0));
         self
     }
 
@@ -285,6 +297,8 @@ impl MayaGlossy {
         self.tint *= k.max(Rgb::ZERO);
         self.mirror *= k.max(Rgb::ZERO);
         self.translucence *= k.max(Rgb::ZERO);
+        // A layer's colour is its constant one (the layered shader warns when it varies).
+        self.translucence_per_diffuse = None;
         self
     }
 
@@ -334,7 +348,8 @@ impl MayaGlossy {
         let mean = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + *c) / s.len() as f32);
         let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint * mean) * a, luminance(mirror).max(0.0));
         let t = luminance(self.refraction).max(0.0);
-        let tl = luminance(self.translucence).max(0.0);
+        let translucence = self.translucence_per_diffuse.map_or(self.translucence, |k| diffuse.max(Rgb::ZERO) * k);
+        let tl = luminance(translucence).max(0.0);
         let total = d + g + m + t + tl;
         let (diffuse_share, mirror_share, refraction_share, translucence_share) =
             if total > 0.0 { (d / total, m / total, t / total, tl / total) } else { (1.0, 0.0, 0.0, 0.0) };
@@ -350,7 +365,7 @@ impl MayaGlossy {
             refraction_limit: self.refraction_limit,
             tinted_by: self.tinted_by,
             specular_ramp: self.specular_ramp,
-            translucence: self.translucence,
+            translucence,
             focus: self.focus,
             diffuse_share,
             mirror_share,

@@ -8,6 +8,7 @@
 //! - `mia_material` and `mia_material_x`: [`bsdf::mia::MiaBsdf`], whose layer
 //!   weights come from the author's curve and conservation at each viewing angle;
 //! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert);
+//! - `mib_glossy_reflection`: its glossy reflection over its base material (`reader::mib_glossy`);
 //! - materials of MDL modules on the search path: compiled by [`mdl_modules`] (see
 //!   [`translate_with`]).
 //!
@@ -142,6 +143,9 @@ pub enum SurfaceModel {
     /// Lambertian reflection of the `diffuse` colour plus Maya's own highlight, bounded per
     /// view, and its mirror ([`bsdf::MayaGlossy`]).
     Maya(Box<bsdf::MayaGlossy>),
+    /// mental ray's `mib_glossy_reflection`: its Ward-spread reflection (or mirror) over a
+    /// Lambertian base of the `diffuse` colour (its base material's).
+    MibGlossy(Box<bsdf::MibGlossyLobe>),
 }
 
 /// A surface's scattering and emission.
@@ -305,6 +309,7 @@ impl SurfaceModel {
                 None => Bsdf::Lambert(Lambert { albedo: diffuse }),
             },
             SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf_seen(diffuse, wo, frame)),
+            SurfaceModel::MibGlossy(g) => Bsdf::MibGlossy(g.bsdf(diffuse, wo)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);

@@ -269,16 +269,24 @@ fn ambient_color(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
 /// The lambert family's `translucence` t: the light from behind, c · t ⊙ `fade` (the
 /// diffuse part's fade), concentrated by `translucenceFocus`
 /// ([`bsdf::maya_highlight::translucence`], the classic shader's lobe) — beside the
-/// material's highlight, or alone on a lobe of zero tint. A connected `color` lends it
-/// its default (warned about); `translucenceDepth` is not read (warned about).
+/// material's highlight, or alone on a lobe of zero tint. A connected `color` c makes it
+/// follow each hit's diffuse colour c·d as t/d of it (a `diffuse` d of 0 lends it the
+/// default colour, warned about); `translucenceDepth` is not read (warned about).
 fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
     let t = r.scalar("translucence", 0.0);
     if t <= 0.0 {
         return;
     }
-    if connection(r.graph, r.node, "color").is_some() {
-        r.warnings
-            .push("'translucence' on a connected 'color': the path engine passes it by the default colour".into());
+    // A connected colour c: each hit's diffuse colour is c·d (times the fade's mean),
+    // so the translucence c·t follows it as t/d of it (by the default colour where d = 0,
+    // warned).
+    let d = r.scalar("diffuse", 0.8);
+    let connected = connection(r.graph, r.node, "color").is_some();
+    if connected && d <= 0.0 {
+        r.warnings.push(
+            "'translucence' on a connected 'color' with 'diffuse' 0: the path engine passes it by the default colour"
+                .into(),
+        );
     }
     r.warnings.push(
         "'translucenceDepth' is not read (light from behind passes shadowing objects only by their shadow \
@@ -291,7 +299,9 @@ fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
         SurfaceModel::Maya(g) => **g,
         _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
     };
-    surface.model = SurfaceModel::Maya(Box::new(glossy.with_translucence(albedo, focus)));
+    let glossy = glossy.with_translucence(albedo, focus);
+    let glossy = if connected && d > 0.0 { glossy.with_translucence_per_diffuse(t / d) } else { glossy };
+    surface.model = SurfaceModel::Maya(Box::new(glossy));
 }
 
 /// The `irradiance` illumination map M of the lambert family (the reading is

@@ -18,6 +18,8 @@ use bsdf::{Unified, UnifiedParams};
 use mia::params::Mia;
 use shader::{Graph, NodeId};
 
+mod mib_glossy;
+
 const CORE: &str = "mdl::nvidia::core_definitions::";
 
 /// Reads constant parameters and records the connected ones, warning about what it
@@ -47,6 +49,16 @@ impl<'a> Reader<'a> {
     /// A reader for material `material`, resolving connections in `graph`.
     pub(super) fn new(material: &'a str, warnings: &'a mut Vec<String>, graph: Option<&'a Graph>) -> Reader<'a> {
         Reader { material, warnings, graph, bindings: Vec::new(), node_evaluated: false }
+    }
+
+    /// The material's name.
+    fn material(&self) -> &'a str {
+        self.material
+    }
+
+    /// Records a warning about the material (prefixed by its name).
+    fn warn(&mut self, message: String) {
+        self.warnings.push(format!("material '{}': {message}", self.material));
     }
 
     /// What is varying per hit: the bindings recorded.
@@ -122,6 +134,7 @@ impl<'a> Reader<'a> {
         self.scalar_to(params, name, default, None)
     }
 
+    /// A boolean parameter (a number: non-zero is on).
     fn flag(&mut self, params: &[Param], name: &str, default: bool) -> bool {
         self.scalar(params, name, f32::from(u8::from(default))) != 0.0
     }
@@ -430,6 +443,7 @@ impl<'a> Reader<'a> {
                     self.color_to(params, "diffuse", Rgb::ZERO, base(Target::Diffuse)).clamp(Rgb::ZERO, Rgb::ONE);
                 SurfaceMaterial::lambert(name, diffuse)
             }
+            ("mib_glossy_reflection", _) => mib_glossy::glossy_reflection(self, params, lib, depth),
             (other, _) => {
                 self.warnings.push(format!(
                     "material '{name}': shader '{other}' is not supported by the path integrator yet; rendered grey"

@@ -45,6 +45,7 @@ mod mdl_volume;
 mod mdl_volume_textures;
 mod mdl_wide;
 mod mia;
+mod mib_glossy_translation;
 mod model;
 mod photometric;
 mod stand_in;

@@ -2,10 +2,12 @@
 //! `reflectionLimit`): the classic engine raises it for every reflection ray a shader
 //! traces — mirror rays, and the glossy reflection rays of `mia_material` — but not for
 //! final gather rays, which stand for diffuse bounces. The path engine counts a delta
-//! reflection, and a sample of a `mia_material`-like BSDF ([`bsdf::Bsdf::Mia`]) in the
-//! same hemisphere with the probability that its glossy reflection lobe gave it (its
-//! share of f there, [`bsdf::MiaBsdf::reflection_share`]), so that on average the paths
-//! past a glossy bounce are counted as the classic engine counts its glossy rays.
+//! reflection, and a sample of a `mia_material`-like BSDF ([`bsdf::Bsdf::Mia`]) or of
+//! `mib_glossy_reflection` ([`bsdf::Bsdf::MibGlossy`], whose rays the classic shader casts
+//! as reflection rays) in the same hemisphere with the probability that its glossy
+//! reflection lobe gave it (its share of f there, [`bsdf::MiaBsdf::reflection_share`],
+//! [`bsdf::MibGlossy::reflection_share`]), so that on average the paths past a glossy
+//! bounce are counted as the classic engine counts its glossy rays.
 
 use bsdf::{Bsdf, BsdfSample};
 use glam::Vec3A;
@@ -28,6 +30,10 @@ pub(super) fn reflects(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample, u: impl FnOnce()
     match bsdf {
         Bsdf::Mia(m) => {
             let share = m.reflection_share(wo, bs.wi);
+            share > 0.0 && u() < share
+        }
+        Bsdf::MibGlossy(g) => {
+            let share = g.reflection_share(wo, bs.wi);
             share > 0.0 && u() < share
         }
         _ => false,

@@ -6,7 +6,8 @@
 //! light: its Lambertian lobe (albedo/π, [`bsdf::MayaBsdf::diffuse`]) is the diffuse
 //! part and Maya's highlight the specular one; a unified BSDF (anisotropic, rampShader,
 //! layeredShader) gives its reflection lobes ([`bsdf::Unified::eval_glossy`]) as the
-//! specular part and the rest as the diffuse one; Lambertian and Oren–Nayar surfaces
+//! specular part and the rest as the diffuse one; `mib_glossy_reflection`'s base is the
+//! diffuse part and its glossy lobe the specular one; Lambertian and Oren–Nayar surfaces
 //! are all diffuse. Any other BSDF is lit whole by a light with `emitDiffuse` on and
 //! not at all by one with it off.
 
@@ -38,6 +39,7 @@ fn split(bsdf: &Bsdf, wo: Vec3A, wi: Vec3A, lobes: LightLobes) -> Rgb {
             let g = u.eval_glossy(wo, wi);
             ((u.eval(wo, wi) - g).max(Rgb::ZERO), g)
         }
+        Bsdf::MibGlossy(g) => g.eval_split(wo, wi),
         Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => (bsdf.eval(wo, wi), Rgb::ZERO),
         _ => (bsdf.eval(wo, wi), Rgb::ZERO),
     };

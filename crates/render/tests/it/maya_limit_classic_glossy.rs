@@ -2,8 +2,9 @@
 //! mental ray's glossy base shaders (`mib_glossy_reflection`, `mib_glossy_refraction`) as
 //! they count mirror and refraction rays: those shaders cast their rays as reflection
 //! (refraction) rays, which raise the state's reflection (refraction) level that the Maya
-//! materials compare with their limits. (The path engine does not run these shaders: it
-//! renders them grey with a warning, so it is not tested here.)
+//! materials compare with their limits. (The path engine's count of
+//! `mib_glossy_reflection` samples is tested in `mib_glossy_path`; it does not run
+//! `mib_glossy_refraction`, which it renders grey with a warning.)
 
 use crate::support;
 use crate::support::maya_view::pixels_warned;
@@ -59,7 +60,7 @@ fn reflection_limit_counts_mib_glossy_reflection_rays_in_the_classic_engine() {
             // G(0) = 2e·(1 + r + … + r^⌊L/2⌋).
             let want = 2.0 * e * (0..=limit / 2).map(|k| r.powi(k as i32)).sum::<f32>();
             let text = two_reflectors(limit, spread, e, r);
-            for (i, p) in pixels_warned(&text, EngineKind::Classic, 1, "path integrator").iter().enumerate() {
+            for (i, p) in pixels_warned(&text, EngineKind::Classic, 1, "the path").iter().enumerate() {
                 assert!(
                     (*p - Vec3A::splat(want)).abs().max_element() < 1e-4,
                     "spread {spread}, L = {limit}, pixel {i}: {p} vs {want}"

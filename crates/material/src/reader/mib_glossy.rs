@@ -1,0 +1,100 @@
+//! mental ray's `mib_glossy_reflection` in the path engine: its glossy reflection as a
+//! lobe over its base material ([`bsdf::MibGlossy`]).
+//!
+//! The lobe has the albedo and spread the classic shader's estimate converges to:
+//! `reflection_color` × the view-angle curve (`reflection_base_weight`,
+//! `reflection_edge_weight`, `edge_factor`) spread by Ward's distribution of `u_spread`,
+//! `v_spread` (radians; along the surface's dP/du and the normal × dP/du), the mirror of
+//! `mib_reflect` below 10⁻³. The base material (`base_material`, a shader the path engine
+//! translates: `mib_illum_*`, `mia_material`, …) is added under it as the classic shader
+//! adds its colour: its diffuse colour as a Lambertian base, its emission; a base that is
+//! not Lambertian (a `mia_material`'s layers) keeps only its diffuse colour (warned).
+//!
+//! Parameters without a path-tracing counterpart: `samples` only sets the classic
+//! shader's noise (the path engine's samples do that), except that 0 casts nothing (the
+//! base alone, as in the classic shader); `dispersion` and `spectrum` are ignored by both
+//! engines. Not honoured, warned where they change the result: `environment_color` (the
+//! path engine weighs rays that leave the scene by `reflection_color`, which the manual
+//! calls the physically accurate choice), `max_distance` (no fade towards the
+//! environment), `environment` (the scene's environment is used), `single_env_sample`
+//! with a spread lobe and an environment colour (each direction looks the environment
+//! up), `u_axis` / `v_axis` (dP/du is the lobe's axis), a connected `reflection_color` or
+//! spread (their defaults).
+
+use mi::ast::{Param, Value};
+use scene::Library;
+
+use super::Reader;
+use crate::{color_param, first_call, SurfaceMaterial, SurfaceModel};
+use bsdf::{MibGlossyLobe, Rgb};
+
+/// The surface of a `mib_glossy_reflection` with `params` (`depth` counts nested base
+/// materials).
+pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library, depth: u32) -> SurfaceMaterial {
+    let name = r.material();
+    let mut surface = match params.iter().rev().find(|p| p.name.text == "base_material").map(|p| &p.value) {
+        Some(Value::Connect(target) | Value::Str(target)) if depth < 8 => {
+            match lib.shaders.get(&target.text).and_then(|d| first_call(&d.list.0, lib)) {
+                Some((decl, inner)) => r.call(decl, inner, lib, depth + 1),
+                None => {
+                    r.warn(format!(
+                        "mib_glossy_reflection's base_material '{}' is not a shader mira knows; black",
+                        target.text
+                    ));
+                    SurfaceMaterial::lambert(name, Rgb::ZERO)
+                }
+            }
+        }
+        _ => SurfaceMaterial::lambert(name, Rgb::ZERO),
+    };
+    if surface.model != SurfaceModel::Lambert {
+        r.warn(
+            "mib_glossy_reflection's base material is kept as its diffuse colour under the glossy reflection".into(),
+        );
+    }
+    let color = r.color(params, "reflection_color", Rgb::ZERO);
+    let env_color = r.color(params, "environment_color", Rgb::ZERO);
+    let curve = (
+        r.scalar(params, "reflection_base_weight", 0.6),
+        r.scalar(params, "reflection_edge_weight", 1.0),
+        r.scalar(params, "edge_factor", 5.0),
+    );
+    let spreads = (r.scalar(params, "u_spread", 0.1), r.scalar(params, "v_spread", 0.1));
+    let samples = r.scalar(params, "samples", 16.0);
+    if samples <= 0.0 || color == Rgb::ZERO {
+        // Nothing cast (or nothing reflected): the base alone.
+        return surface;
+    }
+    let lobe = MibGlossyLobe::new(color, curve, spreads);
+    if env_color != color {
+        r.warn(format!(
+            "mib_glossy_reflection's environment_color {env_color} differs from its reflection_color {color}; \
+             the path engine weighs rays that leave the scene by reflection_color"
+        ));
+    }
+    if r.scalar(params, "max_distance", 0.0) > 0.0 {
+        r.warn("mib_glossy_reflection's max_distance is not honoured by the path engine (no fade)".into());
+    }
+    if params.iter().any(|p| p.name.text == "environment") {
+        r.warn("mib_glossy_reflection's own environment is not used by the path engine (the scene's is)".into());
+    }
+    if lobe.dist.is_some() && env_color != Rgb::ZERO && r.flag(params, "single_env_sample", true) {
+        r.warn(
+            "mib_glossy_reflection's single_env_sample is not honoured by the path engine (the environment is looked \
+             up along each reflected direction)"
+                .into(),
+        );
+    }
+    let given = |axis: &str| matches!(color_param(params, axis), Some(Ok(v)) if v != Rgb::ZERO);
+    if lobe.dist.is_some() && (given("u_axis") || given("v_axis")) {
+        r.warn(
+            "mib_glossy_reflection's u_axis / v_axis are not honoured by the path engine (dP/du is the axis)".into(),
+        );
+    }
+    if lobe.dist.is_some_and(|d| d.alpha_x != d.alpha_y) {
+        // The spreads lie along dP/du and the normal × dP/du.
+        surface.tangent_angle = Some(0.0);
+    }
+    surface.model = SurfaceModel::MibGlossy(Box::new(lobe));
+    surface
+}
