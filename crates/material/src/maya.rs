@@ -289,8 +289,8 @@ fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
         );
     }
     r.warnings.push(
-        "'translucenceDepth' is not read (light from behind passes shadowing objects only by their shadow \
-         shaders)"
+        "'translucenceDepth' is not read (mental ray for Maya hands it to the shadow shader `maya_shadow`, whose \
+         use of it is not published; light from behind passes shadowing objects only by their transparency)"
             .into(),
     );
     let albedo = r.color("color", Rgb::splat(0.5)) * t * fade;

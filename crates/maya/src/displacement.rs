@@ -16,8 +16,11 @@
 //! - `displacementMode` (0) of older Maya versions: 1, 2, 3 select a vector displacement in
 //!   tangent, object, world space (overriding `vectorSpace`);
 //! - `tangent` (vector, object space): the tangent of tangent space where not zero; else
-//!   the surface's bump basis u vector, else its dP/du, else the world x axis (y where x
-//!   is along the normal) made perpendicular to the normal — not Maya's UV tangent.
+//!   the surface's bump basis u vector, else its dP/du — Maya's UV tangent, the direction
+//!   of increasing u of the first texture space (the displacement stage gives each vertex
+//!   the mean dP/du of its triangles, from their texture coordinates) — else, on a
+//!   surface without texture coordinates, the world x axis (y where x is along the
+//!   normal); each made perpendicular to the normal.
 //!
 //! Unverified: the order of `vectorSpace`'s values (taken from the order the node
 //! reference lists them: world, object, tangent, with its default 1) and the `adskMaya*`

@@ -93,17 +93,22 @@ fn shading_engine(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
 
 maya_shader!(
     /// Shadow shader of a shading group: filters the light by the `outTransparency` of
-    /// the material its `surfaceShader` is connected to (black: opaque).
+    /// the material its `surfaceShader` is connected to (black: opaque); without that
+    /// connection, by `transparency`, which older translators connect to the material's
+    /// `outTransparency` instead (github.com/ggarra13/mrliquid,
+    /// `mrLiquid/src/mrShaderMayaShadow.cpp`, which also writes `shadowAttenuation` and
+    /// `translucenceDepth`: accepted, not read — how mental ray for Maya uses them is not
+    /// published).
     SHADOW,
     ADSK_SHADOW,
     "maya_shadow",
     "adskMayaShadow",
-    &["surfaceShader"],
+    &["surfaceShader", "transparency", "shadowAttenuation", "translucenceDepth"],
     shadow
 );
 
 fn shadow(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
-    let transparency = material_output(ctx, n).transparency;
+    let transparency = if ctx.is_connected(n, 0) { material_output(ctx, n).transparency } else { rgb(ctx.color(n, 1)) };
     filter_light(out, transparency)
 }
 

@@ -28,9 +28,14 @@
 //!
 //! K is the forward lobe of `translucenceFocus` φ ([`bsdf::maya_highlight::translucence`]:
 //! K = (n + 2)/2 · max(−v·l, 0)^n, n = 2φ/(1 − φ), 1 for φ = 0; mira's reading, Maya
-//! publishes no formula). `translucenceDepth` is not read (Maya's renderer lets light
-//! through shadow maps by it; mira's shadow rays pass occluders only by their shadow
-//! shaders).
+//! publishes no formula). `translucenceDepth` is not read. Maya's reference: the
+//! world-space depth past the point where the object is in shadow that light still
+//! penetrates. mental ray for Maya reads it in the shading group's shadow shader, not
+//! here: its translator writes `maya_shadow` with the material's `outTransparency`,
+//! `shadowAttenuation` and `translucenceDepth` (the open-source exporter
+//! github.com/ggarra13/mrliquid, `mrLiquid/src/mrShaderMayaShadow.cpp`), and that
+//! shader's use of it is not published; mira's shadow rays pass occluders only by their
+//! shadow shaders' transparency.
 //!
 //! E_fg is final gathering's irradiance (`mi_compute_irradiance`, the energy over the
 //! hemisphere). Unlike the base library's materials, which add diffuse ⊙ E_fg as the

@@ -14,7 +14,9 @@
 //! warning at their line, invalid values (a length of 0, a negative level) are an error
 //! there; without any statement, the object's own vertices are displaced (level 0). The
 //! shader runs at every vertex (the classic shader model, a state with the world-space
-//! point and normal, the interpolated texture coordinates, the instance and material);
+//! point and normal, the interpolated texture coordinates, their surface derivatives
+//! dP/du, dP/dv as `state.derivs` ([`uv_derivs`]; on meshes without a bump basis), the
+//! instance and material);
 //! its scalar result (a colour result: its red component, as mental ray reads a scalar
 //! there) is the distance the vertex moves along its unit object-space normal, clamped to
 //! ±`max displace` (the object's, else the options') where given; a shader that moves
@@ -33,6 +35,7 @@
 pub mod adaptive;
 pub mod plan;
 pub mod subdivide;
+pub mod uv_derivs;
 
 use std::collections::HashMap;
 
@@ -127,6 +130,17 @@ fn displace_mesh(
         ));
         return None;
     }
+    // The vertices' dP/du, dP/dv from the texture coordinates ride through the subdivision
+    // in the bump basis's place (interpolated alike) when the mesh has no bump basis, and
+    // reach the shaders as `state.derivs` (see `offset`); the displaced mesh keeps none.
+    let carried;
+    let (mesh, uv_derivs) = match mesh.bump_basis.is_empty().then(|| uv_derivs::vertex_derivs(mesh)).flatten() {
+        Some(derivs) => {
+            carried = MeshData { bump_basis: derivs, ..mesh.clone() };
+            (&carried, true)
+        }
+        None => (mesh, false),
+    };
     let settings = &object.displace;
     let approximation = settings.approximation.as_ref().or(scene.options.displace.approximation.as_ref());
     // `f32::clamp` panics on a negative or NaN bound: a hostile `max displace -1` bounds by 1.
@@ -172,7 +186,7 @@ fn displace_mesh(
     let offset_at = |mesh: &MeshData, v: usize, slot: u32| -> Vec3 {
         let m = material_of(slot);
         match shader_of(m) {
-            Some(node) => offset(shading, node, mesh, v, m, inst, max_displace),
+            Some(node) => offset(shading, node, (mesh, v, uv_derivs), m, inst, max_displace),
             None => Vec3::ZERO,
         }
     };
@@ -181,8 +195,11 @@ fn displace_mesh(
         Plan::Adaptive(criteria) => {
             let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
             return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
-                Ok(out) => {
+                Ok(mut out) => {
                     *budget -= out.triangles.len();
+                    if uv_derivs {
+                        out.bump_basis = Vec::new();
+                    }
                     Some(out)
                 }
                 Err(made) => {
@@ -245,11 +262,17 @@ fn displace_mesh(
         }
     }
     out.normals = subdivide::vertex_normals(&out.positions, &out.triangles);
+    if uv_derivs {
+        out.bump_basis = Vec::new();
+    }
     Some(out)
 }
 
 /// Where the displacement shader list `node` moves vertex `v` of `mesh` (material `m` of
-/// the world, placed by `inst`): the object-space offset. Its scalar result d (clamped to
+/// the world, placed by `inst`): the object-space offset. `uv_derivs`: the mesh's bump
+/// basis holds the vertices' dP/du, dP/dv from the texture coordinates
+/// ([`uv_derivs::vertex_derivs`]), given to the shader as `state.derivs` (world space);
+/// else a bump basis is the state's bump basis. Its scalar result d (clamped to
 /// ±`max`) moves the vertex along its unit object-space normal; as mental ray allows, a
 /// shader may also move `state.point` (the vertex, world space: the move is added) and
 /// turn `state.normal` (the direction d moves along); then the offset's length is clamped
@@ -257,8 +280,7 @@ fn displace_mesh(
 fn offset(
     shading: &Shading,
     node: NodeId,
-    mesh: &MeshData,
-    v: usize,
+    (mesh, v, uv_derivs): (&MeshData, usize, bool),
     m: u32,
     inst: &crate::world::InstanceData,
     max: Option<f32>,
@@ -290,8 +312,12 @@ fn offset(
         state.tex_list[k] = t[v];
     }
     if let Some([u, w]) = mesh.bump_basis.get(v) {
-        state.bump_basis =
-            Some([inst.object_to_world.transform_vector3a(*u), inst.object_to_world.transform_vector3a(*w)]);
+        let basis = [inst.object_to_world.transform_vector3a(*u), inst.object_to_world.transform_vector3a(*w)];
+        if uv_derivs {
+            state.derivs = basis;
+        } else {
+            state.bump_basis = Some(basis);
+        }
     }
     let mut ctx = Ctx::new(shading, &NoScene, state);
     let mut result = Value::Scalar(0.0);

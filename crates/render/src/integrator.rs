@@ -700,7 +700,7 @@ pub fn trace_camera_path_into(
                             tmax: dist * (1.0 - 1e-4),
                             time: ray.time,
                         };
-                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, true)
+                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, true, None)
                     }
                     None => Rgb::ONE,
                 };
@@ -754,7 +754,16 @@ pub fn trace_camera_path_into(
                         // Shadow links: objects that cast no shadow for this light let it pass.
                         linked_shadow_passed(world, accel, shading, &shadow, seed, k)
                     } else {
-                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, light.shadow)
+                        media::light_transmittance(
+                            world,
+                            accel,
+                            shading,
+                            &departure,
+                            &shadow,
+                            seed,
+                            light.shadow,
+                            Some(k),
+                        )
                     };
                     if fogs.is_active() && unshadowed != Rgb::ZERO {
                         unshadowed *= fogs.light_keep(world, accel, s.p, ls.wi, ls.dist, ray.time);

@@ -274,7 +274,9 @@ fn the_path_engine_reads_a_placed_file_texture_per_hit() {
 
 /// Shadow shaders under both names: an occluder whose shadow shader is `maya_shadow` /
 /// `adskMayaShadow` over a material of transparency (0.5, 0.25, 1) filters a unit light
-/// per channel; one whose shadow shader is `maya_transparent` / `adskMayaTransparent`
+/// per channel, through `surfaceShader` or (older translators' form) `transparency`
+/// connected to the material's `outTransparency`; one whose shadow shader is
+/// `maya_transparent` / `adskMayaTransparent`
 /// (particles' shadow) lets it all through, whatever the material's transparency (1e-5).
 #[test]
 fn shadow_shaders_filter_or_pass_the_light() {
@@ -285,6 +287,12 @@ fn shadow_shaders_filter_or_pass_the_light() {
             if adsk { ("adskMayaShadow", "adskMayaTransparent") } else { ("maya_shadow", "maya_transparent") };
         for (shader, params, want) in [
             (shadow, r#""surfaceShader" = "occ.outColor""#, [0.6 * 0.5, 0.5 * 0.25, 0.4]),
+            // The older translators' form (mrLiquid's): the material's transparency by member.
+            (
+                shadow,
+                r#""transparency" = "occ.outTransparency", "shadowAttenuation" 0.5, "translucenceDepth" 1"#,
+                [0.6 * 0.5, 0.5 * 0.25, 0.4],
+            ),
             (transparent, "", [0.6, 0.5, 0.4]),
         ] {
             let c = compile(

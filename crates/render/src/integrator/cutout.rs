@@ -70,7 +70,7 @@ pub(super) fn shadow_passed(
 /// [`shadow_passed`] for light `light` (an index into [`World::lights`]) in a world with
 /// shadow links ([`World::casts_shadow_for`]): surfaces of instances that cast no shadow
 /// for the light let the ray through untouched; the others stop or filter it as there.
-/// (Scenes with media are not walked this way: see `World::shadow_unlinked`'s warning.)
+/// (Scenes with media walk them in `media::light_transmittance`.)
 pub(super) fn linked_shadow_passed(
     world: &World,
     accel: &dyn Accel,

@@ -291,7 +291,31 @@ fn shadow_transmittance_through(
     if !world.has_media {
         return shadow_passed(world, accel, shading, shadow, seed);
     }
-    let walk = walk_media(world, accel, from, shadow, MAX_CUTOUT_CROSSINGS, |media, ray, s, crossing| {
+    media_shadow_walk(world, accel, shading, (from, shadow), seed, None)
+}
+
+/// The walk of [`shadow_transmittance_through`] in a scene with media, for light `light`
+/// (an index into [`World::lights`]) when its shadow links apply ([`World::casts_shadow_for`]):
+/// a surface of an instance that casts no shadow for that light blocks and tints nothing
+/// but is still a medium boundary, as it is for a light with `shadow off`
+/// ([`media_transmittance`]); surfaces passed for the link count against the limit twice
+/// over, as in `linked_shadow_passed`. `None`: every surface casts shadows.
+fn media_shadow_walk(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    (from, shadow): (&Departure, &Ray),
+    seed: u32,
+    light: Option<usize>,
+) -> Rgb {
+    let limit = if light.is_some() { 2 * MAX_CUTOUT_CROSSINGS } else { MAX_CUTOUT_CROSSINGS };
+    let walk = walk_media(world, accel, from, shadow, limit, |media, ray, s, crossing| {
+        if light.is_some_and(|k| !world.casts_shadow_for(k, s.hit.instance)) {
+            return match media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))) {
+                Some(next) => Crossing::Into(next, Rgb::ONE),
+                None => Crossing::Through,
+            };
+        }
         if world.blocks_shadows(s.surface.material) {
             // Marked `opaque`: no cutout, no boundary.
             return Crossing::Blocked;
@@ -326,6 +350,12 @@ fn shadow_transmittance_through(
 /// of the media they cross (the classic engine does the same, `shader::lights`' light
 /// volume); a participating medium is such a volume, so its Beer–Lambert transmittance
 /// still applies. Without media this is 1: scenes without media are unchanged.
+///
+/// `linked`: the light's index in [`World::lights`] when the instances' shadow light
+/// lists apply to it (Maya's shadow links, [`World::casts_shadow_for`]); in a scene with
+/// media and such lists, objects that cast no shadow for it let its light through
+/// untouched (the media inside them still attenuate it). Scenes without shadow lists, or
+/// without media (the caller walks those with `linked_shadow_passed`), are unchanged.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(super) fn light_transmittance(
@@ -336,9 +366,15 @@ pub(super) fn light_transmittance(
     shadow: &Ray,
     seed: u32,
     casts_shadows: bool,
+    linked: Option<usize>,
 ) -> Rgb {
     if casts_shadows {
-        shadow_transmittance(world, accel, shading, from, shadow, seed)
+        match linked {
+            Some(k) if world.has_media && !world.shadow_unlinked.is_empty() => {
+                media_shadow_walk(world, accel, shading, (from, shadow), seed, Some(k))
+            }
+            _ => shadow_transmittance(world, accel, shading, from, shadow, seed),
+        }
     } else if world.has_media {
         media_transmittance(world, accel, from, shadow)
     } else {
@@ -642,7 +678,7 @@ pub(super) fn direct_light(
         counts.shadow_rays += 1;
     }
     let shadow = shadow_ray(ls.wi, tmax);
-    let tr = light_transmittance(world, scene.accel, scene.shading, &from, &shadow, scene.seed, light.shadow);
+    let tr = light_transmittance(world, scene.accel, scene.shading, &from, &shadow, scene.seed, light.shadow, Some(k));
     if tr == Rgb::ZERO {
         return Rgb::ZERO;
     }

@@ -149,13 +149,6 @@ impl World {
         let unlinked_ambient = unlinked_lights(scene, &instances, &ambient_indices);
         let unlinked_lights = unlinked_lights(scene, &instances, &light_indices);
         let shadow_unlinked = shadow_unlinked_lights(scene, &instances, &light_indices);
-        if !shadow_unlinked.is_empty() && has_media {
-            warnings.push(
-                "instance shadow light lists (`light shadow [ … ]`, shadow linking) are not honoured by the path \
-                 engine in scenes with participating media: every object casts shadows for every light there"
-                    .to_string(),
-            );
-        }
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         World {
             meshes,

@@ -10,6 +10,11 @@ use crate::support;
 /// placed rotated a quarter turn about z and translated, whose material displaces through
 /// `shader "dn" "<node>" (<params>)` connected as `"displacement" = "dn.displacement"`.
 fn scene(node: &str, params: &str) -> String {
+    scene_uv(node, params, "0 0 0  1 0 0  1 1 0  0 1 0")
+}
+
+/// [`scene`] with the texture coordinates `uv` of the corners (0,0), (1,0), (1,1), (0,1).
+fn scene_uv(node: &str, params: &str, uv: &str) -> String {
     format!(
         r#"$include "mayabase.mi"
 $include "AdskShaderSDK.mi"
@@ -23,7 +28,8 @@ material "m" = "lam" displace = "sg_disp" end material
 object "square"
     group
     0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 0 v 1 t 1 v 2 t 2 v 3 t 3
+    {uv}
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
     p 0 1 2 3
 end group end object
 instance "square_inst" "square" material "m" transform 0 1 0 0 -1 0 0 0 0 0 1 0 0.5 0 0 1 end instance
@@ -91,4 +97,20 @@ fn vector_displacement_moves_by_the_vector_in_its_space() {
     let signed = r#""vectorDisplacement" 0.75 0.5 0.25, "vectorEncoding" 1"#;
     let (positions, _) = displaced(&scene("maya_displace", signed));
     assert_moved(&positions, Vec3A::new(0.5, 0.0, -0.5), "signed");
+}
+
+/// Tangent space without a `tangent` parameter or a bump basis takes Maya's UV tangent,
+/// dP/du of the texture coordinates (1e-4): with u = x (coordinates = positions) T = +x,
+/// so v = (0.1, 0.2, 0.3) × 2 moves 2·(x T + y N + z B) = (0.2, 0.6, 0.4) as with
+/// `tangent` 1 0 0 — the instance's quarter turn makes the world x axis (the fallback
+/// without coordinates) differ; with the coordinates turned a quarter turn (u = y,
+/// v = 1 − x) T = +y, B = N × T = −x, and the move is (−0.6, 0.2, 0.4).
+#[test]
+fn tangent_space_without_a_tangent_follows_the_texture_u_direction() {
+    let v = r#""vectorDisplacement" 0.1 0.2 0.3, "scale" 2, "vectorSpace" 2"#;
+    let (positions, _) = displaced(&scene("maya_displace", v));
+    assert_moved(&positions, Vec3A::new(0.2, 0.6, 0.4), "u along x");
+    let turned = "0 1 0  0 0 0  1 0 0  1 1 0";
+    let (positions, _) = displaced(&scene_uv("adskMayaDisplacementShader", v, turned));
+    assert_moved(&positions, Vec3A::new(-0.6, 0.2, 0.4), "u along y");
 }

@@ -43,6 +43,7 @@ mod maya_reflection_path;
 mod maya_refraction_path;
 mod maya_sampler_info;
 mod maya_shadow_links;
+mod maya_shadow_links_media;
 mod maya_soft_shadows_path;
 mod maya_specular_texture_path;
 mod maya_translucence_path;
