@@ -7,7 +7,7 @@
 //! `deforming_emitters`).
 
 mod build;
-mod deforming_emitters;
+pub mod deforming_emitters;
 mod hair;
 mod instance;
 mod light_motion;
@@ -26,7 +26,7 @@ use crate::mesh::MeshData;
 use crate::motion::Shutter;
 
 pub use instance::{InstanceData, Placement};
-pub use motion_keys::{world_key_positions, world_motion_bounds};
+pub use motion_keys::{vertex_keys, world_key_positions, world_motion_bounds};
 
 /// Everything an integrator needs.
 pub struct World {
@@ -92,6 +92,9 @@ pub struct World {
     /// displacement; the classic engine reads them through
     /// [`shader::Tracer::light_mesh`], the path engine in its lights' shapes.
     pub light_meshes: Vec<Option<Arc<shader::light::DeformingMesh>>>,
+    /// The index in the scene's light list of each of [`World::lights`] (empty for a world
+    /// not built from a scene).
+    pub light_scene_indices: Vec<usize>,
 }
 
 fn affine(m: glam::DMat4) -> Affine3A {

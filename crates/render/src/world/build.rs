@@ -177,6 +177,7 @@ impl World {
             shutter,
             light_motion,
             light_meshes,
+            light_scene_indices: light_indices,
         }
     }
 }

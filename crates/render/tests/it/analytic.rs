@@ -115,6 +115,7 @@ fn world(
         shutter: None,
         light_motion: Vec::new(),
         light_meshes: Vec::new(),
+        light_scene_indices: Vec::new(),
     }
 }
 
