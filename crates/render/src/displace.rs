@@ -28,8 +28,8 @@
 //! object is not displaced), the default level is lowered with a warning. Hair is not
 //! displaced. A mesh whose vertices move (motion vectors, `motion steps`) is displaced at
 //! every motion step on the same finer triangles ([`moving`]). Object area lights whose
-//! geometry is displaced emit from the displaced triangles ([`emitters`]); emission
-//! spread over the area (MDL `lumen`, `candela`) still divides by the undisplaced area.
+//! geometry is displaced emit from the displaced triangles, and emission given for a
+//! whole surface (MDL `lumen`, `candela`) is spread over its displaced area ([`emitters`]).
 //! Instances of one object with the same materials share one
 //! displaced mesh, the shader evaluated where the first of them places it (world-space
 //! lookups differ between such instances in mental ray).
@@ -112,6 +112,7 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &mut Shading, d
         }
     }
     emitters::reshape_object_lights(world, scene, shading, &displaced, diagnostics);
+    emitters::respread_emission(world, &displaced);
 }
 
 /// The displaced mesh of instance `index` (`None`: left as it is, with a message).

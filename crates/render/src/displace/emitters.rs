@@ -7,7 +7,8 @@
 //! engines: the path engine's light ([`World::lights`], its output per area recomputed
 //! for the new area, its motion kept), the classic engine's ([`Shading::lights`]), and
 //! the triangles over the shutter of a light whose geometry changes shape while the
-//! shutter is open ([`World::light_meshes`]).
+//! shutter is open ([`World::light_meshes`]). Emission given for a whole surface (MDL
+//! `lumen`, `candela`) is spread anew over the displaced area ([`respread_emission`]).
 
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -115,5 +116,37 @@ pub fn reshape_object_lights(
                 Err(e) => diagnostics.push(Diagnostic::warning(span, e)),
             }
         }
+    }
+}
+
+/// Spreads the emission of materials given for their whole surface (MDL `lumen`,
+/// `candela`; [`World::spread_areas`]) over the area of the triangles that carry them
+/// after displacement, where an instance in `displaced` (scene indices) carries them.
+pub fn respread_emission(world: &mut World, displaced: &HashSet<u32>) {
+    if displaced.is_empty() || world.spread_areas.iter().all(|a| *a <= 0.0) {
+        return;
+    }
+    let mut picked: Vec<bool> = world.spread_areas.iter().map(|a| *a > 0.0).collect();
+    // Only materials a displaced instance carries change.
+    let carried: HashSet<u32> = world
+        .instances
+        .iter()
+        .filter(|i| displaced.contains(&i.scene_index))
+        .flat_map(|i| i.materials.iter().copied())
+        .collect();
+    for (m, p) in picked.iter_mut().enumerate() {
+        *p &= carried.contains(&(m as u32));
+    }
+    let areas = crate::world::areas_of(&picked, &world.meshes, &world.instances);
+    for (m, area) in areas.into_iter().enumerate() {
+        let old = world.spread_areas[m];
+        if !picked[m] || area <= 0.0 || area == old {
+            continue;
+        }
+        // The emission is E / old; E / area is it spread once more over area / old.
+        let material = &mut world.materials[m];
+        material.emission_over_area = true;
+        material.spread_emission_over(area / old);
+        world.spread_areas[m] = area;
     }
 }

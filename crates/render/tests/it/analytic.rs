@@ -116,6 +116,7 @@ fn world(
         light_motion: Vec::new(),
         light_meshes: Vec::new(),
         light_scene_indices: Vec::new(),
+        spread_areas: Vec::new(),
     }
 }
 

@@ -115,3 +115,45 @@ fn an_object_light_emits_from_its_displaced_triangles() {
         assert!((path / want - 1.0).abs() < 0.02, "path, d = {d}: {path} vs {want}");
     }
 }
+
+/// Emission given for the whole surface is spread over the displaced surface: MDL's
+/// `add_emission` of 4 candela (radiance = 4 / area) on the 2 × 2 square of
+/// `support::lit_square` displaced by a wave of amplitude 0.3 across it (h = 0.3·cos 2πu,
+/// `regular parametric 4`), seen head-on by the path engine, shows 4 / A, A the area of
+/// the displaced triangles (within 1e-3), which lies within 2 % of the smooth surface's
+/// 2·∫ √(1 + (0.3π sin π(x + 1))²) dx over [−1, 1] (≈ 4.8, not the undisplaced 4).
+#[test]
+fn emission_over_the_whole_surface_spreads_over_the_displaced_area() {
+    let body = r#"shader "glow" "mdl::nvidia::core_definitions::add_emission" ("intensity" 4, "unit" "candela")
+shader "coord" "mib_texture_vector" ("select" 0, "selspace" 0)
+shader "wave" "mib_texture_wave" ("coord" = "coord", "amplitude_x" 0.3, "amplitude_y" 0, "amplitude_z" 0, "offset" 0)
+material "m" = "glow" displace = "wave" end material"#;
+    let text = support::lit_square(body, "m")
+        .replace("object \"square\" group", "object \"square\"\n approximate displace regular parametric 4\n group");
+    let b = build(&text);
+    assert!(!b.messages.iter().any(|m| m.contains("error") || m.contains("warning")), "{:?}", b.messages);
+    let world = &b.built.world;
+    let mut area = 0.0f64;
+    for inst in &world.instances {
+        let mesh = &world.meshes[inst.mesh as usize];
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| inst.object_to_world.transform_point3a(mesh.position(i)));
+            area += 0.5 * f64::from((b - a).cross(c - a).length());
+        }
+    }
+    let n = 20000;
+    let smooth: f64 = (0..n)
+        .map(|k| {
+            let x = -1.0 + 2.0 * (k as f64 + 0.5) / n as f64;
+            let slope = 0.3 * std::f64::consts::PI * (std::f64::consts::PI * (x + 1.0)).sin();
+            2.0 * (1.0 + slope * slope).sqrt() * 2.0 / n as f64
+        })
+        .sum();
+    assert!((area / smooth - 1.0).abs() < 0.02, "mesh {area} vs smooth {smooth}");
+    let settings = Settings { engine: EngineKind::Path, spp: Some(1), ..Settings::default() };
+    let px = support::render_world(world, &b.built.shading, &settings).0.rgba();
+    let want = (4.0 / area) as f32;
+    for i in [9, 27, 36, 54] {
+        assert!((px[i][0] / want - 1.0).abs() < 1e-3, "pixel {i}: {:?} vs {want} (area {area})", px[i]);
+    }
+}
