@@ -5,8 +5,9 @@
 //! trace the same displaced triangles.
 //!
 //! For each instance whose material has one, its object's triangles are subdivided by the
-//! object's `approximate displace` statement (else the options' `approximate displace …
-//! all`), read by [`plan`]: `[regular] parametric L` splits each triangle uniformly into
+//! options' `approximate displace … all` where given (mental ray: the options'
+//! approximations override the objects'), else the object's `approximate displace`
+//! statement, read by [`plan`]: `[regular] parametric L` splits each triangle uniformly into
 //! 4^L ([`subdivide`]); the criteria forms (`length`, `distance`, `angle`, `spatial`,
 //! `curvature`, with `view`, `any`, `fine` and the least/greatest levels) refine edge by
 //! edge until the displaced triangles meet them ([`adaptive`]); forms mira does not
@@ -26,13 +27,18 @@
 //!
 //! Limits: at most [`MAX_DISPLACED_TRIANGLES`] triangles are made in all; an explicit level
 //! or an adaptive refinement past that is an error at the `approximate` statement (the
-//! object is not displaced), the default level is lowered with a warning. Meshes whose vertices move over the shutter and hair
-//! are not displaced (a warning). Object area lights and emission spread over the area
-//! use the undisplaced surface. Instances of one object with the same materials share one
+//! object is not displaced), the default level is lowered with a warning. Hair is not
+//! displaced. A mesh whose vertices move (motion vectors, `motion steps`) is displaced at
+//! every motion step on the same finer triangles ([`moving`]). Object area lights whose
+//! geometry is displaced emit from the displaced triangles, and emission given for a
+//! whole surface (MDL `lumen`, `candela`) is spread over its displaced area ([`emitters`]).
+//! Instances of one object with the same materials share one
 //! displaced mesh, the shader evaluated where the first of them places it (world-space
 //! lookups differ between such instances in mental ray).
 
 pub mod adaptive;
+pub mod emitters;
+pub mod moving;
 pub mod plan;
 pub mod subdivide;
 pub mod uv_derivs;
@@ -59,11 +65,12 @@ pub const MAX_DISPLACED_TRIANGLES: usize = 1 << 23;
 /// Displaces the instances of `world` whose materials have a displacement shader in
 /// `shading` (`scene` gives the objects' and options' approximations). Scenes without
 /// displacement shaders are left untouched. Messages go to `diagnostics`.
-pub fn displace_world(world: &mut World, scene: &Scene, shading: &Shading, diagnostics: &mut Vec<Diagnostic>) {
+pub fn displace_world(world: &mut World, scene: &Scene, shading: &mut Shading, diagnostics: &mut Vec<Diagnostic>) {
     if !shading.materials.iter().any(|m| m.displace.is_some()) {
         return;
     }
     // World material m > 0 is scene material m − 1.
+    let mut displaced = std::collections::HashSet::new();
     let shader_of = |m: u32| m.checked_sub(1).and_then(|m| shading.materials.get(m as usize)).and_then(|m| m.displace);
     // Each (mesh, materials) pair is displaced once, whichever instances share it.
     let mut made: HashMap<(u32, Vec<u32>), Option<u32>> = HashMap::new();
@@ -104,8 +111,11 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &Shading, diagn
         };
         if let Some(t) = target {
             world.instances[index].mesh = t;
+            displaced.insert(world.instances[index].scene_index);
         }
     }
+    emitters::reshape_object_lights(world, scene, shading, &displaced, diagnostics);
+    emitters::respread_emission(world, &displaced);
 }
 
 /// The displaced mesh of instance `index` (`None`: left as it is, with a message).
@@ -119,30 +129,35 @@ fn displace_mesh(
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Option<MeshData> {
     let inst = &world.instances[index];
-    let mesh = &world.meshes[inst.mesh as usize];
-    let object = scene.objects.get(inst.mesh as usize).filter(|_| mesh.hair.is_none());
+    let original = &world.meshes[inst.mesh as usize];
+    let object = scene.objects.get(inst.mesh as usize).filter(|_| original.hair.is_none());
     let object = object?;
     let span = object.span;
-    if mesh.moves() || !mesh.motion.is_empty() {
-        diagnostics.push(Diagnostic::warning(
-            span,
-            format!("object '{}': its vertices move; it is not displaced (not implemented)", object.name),
-        ));
-        return None;
-    }
     // The vertices' dP/du, dP/dv from the texture coordinates ride through the subdivision
     // in the bump basis's place (interpolated alike) when the mesh has no bump basis, and
     // reach the shaders as `state.derivs` (see `offset`); the displaced mesh keeps none.
-    let carried;
-    let (mesh, uv_derivs) = match mesh.bump_basis.is_empty().then(|| uv_derivs::vertex_derivs(mesh)).flatten() {
+    let with_derivs;
+    let (base, uv_derivs) = match original.bump_basis.is_empty().then(|| uv_derivs::vertex_derivs(original)).flatten() {
         Some(derivs) => {
-            carried = MeshData { bump_basis: derivs, ..mesh.clone() };
-            (&carried, true)
+            with_derivs = MeshData { bump_basis: derivs, ..original.clone() };
+            (&with_derivs, true)
         }
-        None => (mesh, false),
+        None => (original, false),
     };
+    // A mesh whose vertices move carries its motion steps through the subdivision.
+    let steps = moving::steps_of(base);
+    let carried;
+    let mesh = if steps > 0 {
+        carried = moving::carry_steps(base, steps);
+        &carried
+    } else {
+        base
+    };
+    let first_carried = base.user.len();
     let settings = &object.displace;
-    let approximation = settings.approximation.as_ref().or(scene.options.displace.approximation.as_ref());
+    // mental ray: the options' approximation statements override the objects' (quick
+    // previews at a lower tessellation quality).
+    let approximation = scene.options.displace.approximation.as_ref().or(settings.approximation.as_ref());
     // `f32::clamp` panics on a negative or NaN bound: a hostile `max displace -1` bounds by 1.
     let max_displace =
         settings.max_displace.or(scene.options.displace.max_displace).map(|d| (d as f32).abs()).filter(|d| !d.is_nan());
@@ -183,24 +198,38 @@ fn displace_mesh(
         },
     };
     let material_of = |slot: u32| -> u32 { inst.materials.get(slot as usize).copied().unwrap_or(0) };
-    let offset_at = |mesh: &MeshData, v: usize, slot: u32| -> Vec3 {
+    let offset_with = |mesh: &MeshData, v: usize, p: Vec3, n: Vec3, slot: u32| -> Vec3 {
         let m = material_of(slot);
         match shader_of(m) {
-            Some(node) => offset(shading, node, (mesh, v, uv_derivs), m, inst, max_displace),
+            Some(node) => offset(shading, node, (mesh, v, uv_derivs), (p, n), m, inst, max_displace),
             None => Vec3::ZERO,
         }
+    };
+    let offset_at =
+        |mesh: &MeshData, v: usize, slot: u32| offset_with(mesh, v, mesh.positions[v], mesh.normals[v], slot);
+    // The moving mesh's every step displaced on the finer triangles, and its keys over the shutter.
+    let finish_moving = |mut out: MeshData| -> MeshData {
+        if steps > 0 {
+            moving::displace_steps(&mut out, first_carried, steps, &offset_with);
+            if let Some(Some(keys)) =
+                world.shutter.as_ref().filter(|_| original.moves()).and_then(|s| crate::world::vertex_keys(s, &out))
+            {
+                out.position_keys = keys;
+            }
+        }
+        if uv_derivs {
+            out.bump_basis = Vec::new();
+        }
+        out
     };
     let level = match plan {
         Plan::Uniform(level) => level,
         Plan::Adaptive(criteria) => {
             let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
             return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
-                Ok(mut out) => {
+                Ok(out) => {
                     *budget -= out.triangles.len();
-                    if uv_derivs {
-                        out.bump_basis = Vec::new();
-                    }
-                    Some(out)
+                    Some(finish_moving(out))
                 }
                 Err(made) => {
                     let a = approximation.map_or(span, |a| a.span);
@@ -244,6 +273,9 @@ fn displace_mesh(
     *budget -= made;
     let sub = subdivide::subdivide(mesh, 1 << level);
     let mut out = sub.mesh;
+    if steps > 0 {
+        return Some(finish_moving(out));
+    }
     let slot_of = |t: u32| -> u32 { out.slots.get(t as usize).copied().unwrap_or(0) };
     let offsets: Vec<Vec3> = {
         use rayon::prelude::*;
@@ -268,25 +300,28 @@ fn displace_mesh(
     Some(out)
 }
 
-/// Where the displacement shader list `node` moves vertex `v` of `mesh` (material `m` of
-/// the world, placed by `inst`): the object-space offset. `uv_derivs`: the mesh's bump
-/// basis holds the vertices' dP/du, dP/dv from the texture coordinates
-/// ([`uv_derivs::vertex_derivs`]), given to the shader as `state.derivs` (world space);
-/// else a bump basis is the state's bump basis. Its scalar result d (clamped to
+/// Where the displacement shader list `node` moves vertex `v` of `mesh` (its texture
+/// coordinates and bump basis; material `m` of the world, placed by `inst`) when it
+/// stands at the object-space point `p` with the unit object-space normal `n`: the
+/// object-space offset. `uv_derivs`: the mesh's bump basis holds the vertices' dP/du,
+/// dP/dv from the texture coordinates ([`uv_derivs::vertex_derivs`]), given to the shader
+/// as `state.derivs` (world space); else a bump basis is the state's bump basis. Its
+/// scalar result d (clamped to
 /// ±`max`) moves the vertex along its unit object-space normal; as mental ray allows, a
 /// shader may also move `state.point` (the vertex, world space: the move is added) and
 /// turn `state.normal` (the direction d moves along); then the offset's length is clamped
 /// to `max`.
+#[allow(clippy::too_many_arguments)]
 fn offset(
     shading: &Shading,
     node: NodeId,
     (mesh, v, uv_derivs): (&MeshData, usize, bool),
+    (p, n): (Vec3, Vec3),
     m: u32,
     inst: &crate::world::InstanceData,
     max: Option<f32>,
 ) -> Vec3 {
-    let p = Vec3A::from(mesh.positions[v]);
-    let n = Vec3A::from(mesh.normals[v]);
+    let (p, n) = (Vec3A::from(p), Vec3A::from(n));
     let point = inst.object_to_world.transform_point3a(p);
     let normal = (inst.normal_to_world * n).normalize_or_zero();
     let mut state = State {
@@ -337,13 +372,10 @@ fn offset(
     };
     let (moved, turned) = (ctx.state.point - point, ctx.state.normal);
     if moved == Vec3A::ZERO && turned == normal {
-        return mesh.normals[v] * d;
+        return Vec3::from(n * d);
     }
-    let along = if turned == normal {
-        Vec3A::from(mesh.normals[v])
-    } else {
-        (inst.object_to_world.matrix3.transpose() * turned).normalize_or_zero()
-    };
+    let along =
+        if turned == normal { n } else { (inst.object_to_world.matrix3.transpose() * turned).normalize_or_zero() };
     let moved = if moved.is_finite() { inst.world_to_object.transform_vector3a(moved) } else { Vec3A::ZERO };
     let off = along * d + moved;
     Vec3::from(match max {

@@ -196,6 +196,17 @@ impl LightSource {
                 .map_err(|e| format!("light '{}': {e}; the path engine leaves it out", light.instance))?,
             _ => Shape::Point,
         };
+        Self::in_scene_with_shape(light, scene, shading, shape)
+    }
+
+    /// [`LightSource::in_scene_shaded`] with the light's shape given (world space): an
+    /// object light whose triangles the displacement stage moved.
+    pub fn in_scene_with_shape(
+        light: &Light,
+        scene: &scene::Scene,
+        shading: Option<&shader::Shading>,
+        shape: Shape,
+    ) -> Result<LightSource, String> {
         Self::with_shape(light, &scene.library, shape, &|name| shading.and_then(|s| s.lightprofile(name)))
     }
 

@@ -190,7 +190,7 @@ pub fn texture_dirs(scene_path: &Path, include: &[PathBuf]) -> Vec<PathBuf> {
 pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
     let (mut shading, mdl, mut diagnostics) = compile_scene_shading(scene, options, mdl_paths);
     let mut world = World::from_scene_with_mdl(scene, Some(&shading), &mdl);
-    crate::displace::displace_world(&mut world, scene, &shading, &mut diagnostics);
+    crate::displace::displace_world(&mut world, scene, &mut shading, &mut diagnostics);
     share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }
@@ -201,7 +201,7 @@ pub fn build_world(scene: &Scene, options: &ShadingOptions, mdl_paths: &[PathBuf
 pub fn build_world_taking_meshes(scene: &mut Scene, options: &ShadingOptions, mdl_paths: &[PathBuf]) -> Built {
     let (mut shading, mdl, mut diagnostics) = compile_scene_shading(scene, options, mdl_paths);
     let mut world = World::from_scene_taking_meshes(scene, Some(&shading), &mdl);
-    crate::displace::displace_world(&mut world, scene, &shading, &mut diagnostics);
+    crate::displace::displace_world(&mut world, scene, &mut shading, &mut diagnostics);
     share_media(&mut shading, &world);
     Built { shading, world, diagnostics, mdl_sources: mdl.module_sources }
 }

@@ -7,7 +7,7 @@
 //! `deforming_emitters`).
 
 mod build;
-mod deforming_emitters;
+pub mod deforming_emitters;
 mod hair;
 mod instance;
 mod light_motion;
@@ -25,8 +25,9 @@ use crate::light::LightSource;
 use crate::mesh::MeshData;
 use crate::motion::Shutter;
 
+pub use build::areas_of;
 pub use instance::{InstanceData, Placement};
-pub use motion_keys::{world_key_positions, world_motion_bounds};
+pub use motion_keys::{vertex_keys, world_key_positions, world_motion_bounds};
 
 /// Everything an integrator needs.
 pub struct World {
@@ -92,6 +93,13 @@ pub struct World {
     /// displacement; the classic engine reads them through
     /// [`shader::Tracer::light_mesh`], the path engine in its lights' shapes.
     pub light_meshes: Vec<Option<Arc<shader::light::DeformingMesh>>>,
+    /// The index in the scene's light list of each of [`World::lights`] (empty for a world
+    /// not built from a scene).
+    pub light_scene_indices: Vec<usize>,
+    /// For each of [`World::materials`], the world-space area its emission given for the
+    /// whole surface (MDL `lumen`, `candela`) was divided by; 0 for the others; empty when
+    /// there is none (the displacement stage divides anew by the displaced area).
+    pub spread_areas: Vec<f32>,
 }
 
 fn affine(m: glam::DMat4) -> Affine3A {

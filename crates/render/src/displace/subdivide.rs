@@ -38,7 +38,8 @@ pub fn vertex_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
 type Weights = [(u32, f32); 3];
 
 /// Splits every triangle of `mesh` into `n × n` (n ≥ 1). Motion data and hair are not
-/// carried (the caller leaves moving meshes alone).
+/// carried (a moving mesh's motion steps travel as user vectors: see
+/// [`super::moving`]).
 pub fn subdivide(mesh: &MeshData, n: u32) -> Subdivided {
     let n = n.max(1);
     let normals = if mesh.normals.len() == mesh.positions.len() {

@@ -15,27 +15,37 @@ use crate::mesh::MeshData;
 use crate::motion::Shutter;
 
 /// Divides the emission of materials given for their whole surface (MDL `lumen`,
-/// `candela`) by the world-space area of the triangles that carry them.
-fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], instances: &[InstanceData]) {
+/// `candela`) by the world-space area of the triangles that carry them: the area each
+/// material's emission was divided by (0: none), see [`World::spread_areas`].
+fn spread_emission(materials: &mut [SurfaceMaterial], meshes: &[MeshData], instances: &[InstanceData]) -> Vec<f32> {
     if !materials.iter().any(|m| m.emission_over_area) {
-        return;
+        return Vec::new();
     }
-    let mut area = vec![0.0f64; materials.len()];
+    let spread: Vec<bool> = materials.iter().map(|m| m.emission_over_area).collect();
+    let area = areas_of(&spread, meshes, instances);
+    for (m, a) in materials.iter_mut().zip(&area) {
+        m.spread_emission_over(*a);
+    }
+    spread.iter().zip(area).map(|(s, a)| if *s { a } else { 0.0 }).collect()
+}
+
+/// The world-space area of the triangles of each material `m` with `picked[m]` (0 for
+/// the others).
+pub fn areas_of(picked: &[bool], meshes: &[MeshData], instances: &[InstanceData]) -> Vec<f32> {
+    let mut area = vec![0.0f64; picked.len()];
     for inst in instances {
         let mesh = &meshes[inst.mesh as usize];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let slot = mesh.slots.get(t).copied().unwrap_or(0) as usize;
             let m = inst.materials.get(slot).copied().unwrap_or(0) as usize;
-            if !materials.get(m).is_some_and(|m| m.emission_over_area) {
+            if !picked.get(m).copied().unwrap_or(false) {
                 continue;
             }
             let [a, b, c] = tri.map(|i| inst.object_to_world.transform_point3a(mesh.position(i)));
             area[m] += 0.5 * f64::from((b - a).cross(c - a).length());
         }
     }
-    for (m, a) in materials.iter_mut().zip(area) {
-        m.spread_emission_over(a as f32);
-    }
+    area.into_iter().map(|a| a as f32).collect()
 }
 
 impl World {
@@ -114,7 +124,7 @@ impl World {
         let hair_mesh = hair::crossed_meshes(scene, &mut meshes);
         let mut instances = instance::object_instances(scene, &object_has_triangles);
         let facing_hair = hair::place_hair(scene, &hair_mesh, &mut meshes, &mut instances);
-        spread_emission(&mut materials, &meshes, &instances);
+        let spread_areas = spread_emission(&mut materials, &meshes, &instances);
         let mut lights = lights;
         warnings.extend(light_warnings);
         let mut user_buffers = user_buffers(scene);
@@ -170,6 +180,8 @@ impl World {
             shutter,
             light_motion,
             light_meshes,
+            light_scene_indices: light_indices,
+            spread_areas,
         }
     }
 }

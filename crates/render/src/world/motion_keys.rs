@@ -43,29 +43,13 @@ pub(super) fn set_motion_keys(
         }
     }
     for mesh in meshes.iter_mut() {
-        let still = |m: &[Vec3A]| m.iter().all(|v| *v == Vec3A::ZERO);
-        if mesh.motion.is_empty()
-            || mesh.hair.is_some()
-            || still(&mesh.motion) && mesh.motion_more.iter().all(|m| still(m))
-        {
-            continue;
-        }
-        // One key per motion step (each vertex's `m` vectors are its motion path's corners).
-        let vectors = mesh.motion_steps().min(crate::mesh::MAX_MOTION_STEPS);
-        let keys = vectors;
-        let position_keys: Vec<Vec<Vec3A>> = shutter
-            .key_times(keys)
-            .map(|tau| {
-                (0..mesh.positions.len())
-                    .map(|i| motion_path(mesh.position(i as u32), &mesh.motion_vectors(i, vectors), tau))
-                    .collect()
-            })
-            .collect();
-        if position_keys.iter().flatten().all(|p| p.is_finite() && p.abs().max_element() <= limit) {
-            mesh.position_keys = position_keys;
-            moving = true;
-        } else {
-            out_of_range("a mesh's motion vectors: the mesh".into());
+        match vertex_keys(shutter, mesh) {
+            None => {}
+            Some(Some(position_keys)) => {
+                mesh.position_keys = position_keys;
+                moving = true;
+            }
+            Some(None) => out_of_range("a mesh's motion vectors: the mesh".into()),
         }
     }
     if let Some(end) = scene.camera.motion_world_to_camera {
@@ -81,6 +65,36 @@ pub(super) fn set_motion_keys(
         }
     }
     moving
+}
+
+/// The position keys over `shutter` of `mesh`'s vertices (object space, one key per
+/// motion step, see [`crate::motion`]): `None` when they do not move (no motion vectors,
+/// all zero, or hair), `Some(None)` when they move beyond single precision (the mesh is
+/// then kept still).
+pub fn vertex_keys(shutter: &Shutter, mesh: &MeshData) -> Option<Option<Vec<Vec<Vec3A>>>> {
+    let still = |m: &[Vec3A]| m.iter().all(|v| *v == Vec3A::ZERO);
+    if mesh.motion.is_empty() || mesh.hair.is_some() || still(&mesh.motion) && mesh.motion_more.iter().all(|m| still(m))
+    {
+        return None;
+    }
+    let limit = scene::sanity::WORLD_LIMIT as f32;
+    // One key per motion step (each vertex's `m` vectors are its motion path's corners).
+    let vectors = mesh.motion_steps().min(crate::mesh::MAX_MOTION_STEPS);
+    let position_keys: Vec<Vec<Vec3A>> = shutter
+        .key_times(vectors)
+        .map(|tau| {
+            (0..mesh.positions.len())
+                .map(|i| motion_path(mesh.position(i as u32), &mesh.motion_vectors(i, vectors), tau))
+                .collect()
+        })
+        .collect();
+    Some(
+        position_keys
+            .iter()
+            .flatten()
+            .all(|p| p.is_finite() && p.abs().max_element() <= limit)
+            .then_some(position_keys),
+    )
 }
 
 /// World-space positions of an instance's mesh at each key of its motion (the more keys of

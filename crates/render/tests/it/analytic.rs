@@ -115,6 +115,8 @@ fn world(
         shutter: None,
         light_motion: Vec::new(),
         light_meshes: Vec::new(),
+        light_scene_indices: Vec::new(),
+        spread_areas: Vec::new(),
     }
 }
 

@@ -195,3 +195,22 @@ fn an_object_placed_with_and_without_displacement_keeps_both_forms() {
     let plain = height_at(&b.built.world, 2.5, 0.5).expect("hit");
     assert!((displaced - 0.5).abs() < 1e-4 && plain.abs() < 1e-4, "{displaced} {plain}");
 }
+
+/// The options' `approximate displace … all` overrides the object's own (mental ray 3.9
+/// manual, "Approximations": options approximations "override the approximation
+/// statements in the object"): an object asking for `parametric 2` (2 × 16 triangles)
+/// under options' `parametric 1` is split into 2 × 4, still displaced by d (1e-4); the
+/// object's statement holds where the options have none.
+#[test]
+fn the_options_approximation_overrides_the_objects() {
+    let object = "approximate displace regular parametric 2";
+    for (options, triangles) in [("approximate displace regular parametric 1 all", 8), ("", 32)] {
+        let b = build(&plane(options, &constant_material(0.25), object, "m"));
+        assert!(!b.messages.iter().any(|m| m.contains("error")), "{:?}", b.messages);
+        let world = &b.built.world;
+        let made: usize = world.instances.iter().map(|i| world.meshes[i.mesh as usize].triangles.len()).sum();
+        assert_eq!(made, triangles, "options '{options}'");
+        let h = height_at(world, 0.3, 0.6).expect("hit");
+        assert!((h - 0.25).abs() < 1e-4, "{options}: {h}");
+    }
+}

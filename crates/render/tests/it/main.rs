@@ -4,7 +4,9 @@
 
 mod displacement;
 mod displacement_adaptive;
+mod displacement_emitters;
 mod displacement_maya_node;
+mod displacement_motion;
 mod support;
 
 mod aerial_perspective;
