@@ -14,6 +14,7 @@ mod lambert;
 pub mod layer_curve;
 pub mod lobes;
 pub mod maya_highlight;
+pub mod measured_bsdf;
 pub mod measured_curve;
 pub mod medium;
 pub mod mia;

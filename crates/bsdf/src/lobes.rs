@@ -23,6 +23,7 @@ use glam::{Vec2, Vec3A};
 
 use crate::beckmann::BeckmannReflection;
 use crate::layer_curve::{CurveKind, LayerCurve};
+use crate::measured_bsdf::MeasuredLobe;
 use crate::microfacet::Ggx;
 use crate::multiscatter::MultiScatter;
 use crate::sheen::Sheen;
@@ -116,6 +117,9 @@ pub enum Lobe {
     /// What a micro-mirror lobe loses to masking–shadowing, given back
     /// ([`crate::multiscatter`]; MDL's `multiscatter_tint`), sampled cosine-weighted.
     MultiScatter(MultiScatter),
+    /// A measured BSDF (MDL's `measured_bsdf`; [`crate::measured_bsdf`]): its tabulated
+    /// reflection and/or transmission, sampled by its tables.
+    Measured(MeasuredLobe),
 }
 
 /// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
@@ -247,6 +251,7 @@ impl Lobe {
             Lobe::GgxVcavities(g) => Rgb::splat(vcavity::ggx_eval(g, wo, wi)),
             Lobe::BeckmannVcavities(b) => Rgb::splat(vcavity::beckmann_eval(b, wo, wi)),
             Lobe::MultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
+            Lobe::Measured(m) => m.eval(wo, wi),
         }
     }
 
@@ -261,6 +266,7 @@ impl Lobe {
             }
             Lobe::Backscatter(g) => ggx_pdf(g, wo, turned(wi)),
             Lobe::Mirror => 0.0,
+            Lobe::Measured(m) => m.pdf(wo, wi),
         }
     }
 
@@ -276,6 +282,7 @@ impl Lobe {
             }
             // The mirror direction about the normal: ωo turned by π about it.
             Lobe::Mirror => (wo.z != 0.0).then(|| turned(wo)),
+            Lobe::Measured(m) => m.sample(wo, u),
         }
     }
 }

@@ -201,6 +201,11 @@ pub struct Environment<'a> {
     /// Next-event estimation samples it (off: only scattered rays that leave the scene
     /// find it; mental ray's `"environment lighting mode" "off"`, and comparisons).
     pub sampled: bool,
+    /// What its shadow rays do (mental ray's `"environment lighting shadow"`).
+    pub shadow: scene::options::EnvironmentShadow,
+    /// Directions one next-event estimate averages (mental ray's `"environment lighting
+    /// quality"`; at least 1).
+    pub samples: u32,
     /// The importance grid; `None` for constant environments (uniform sampling).
     map: Option<LatLongMap>,
     /// A small bright sun sampled on its own.
@@ -334,10 +339,21 @@ impl<'a> Environment<'a> {
         env.sun = sun_lobe(world, accel, shading, node);
         env.scale = attr("environment_function_intensity").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         env.lighting_scale = attr("environment_lighting_scale").filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
+        // mental ray's environment-light settings (`scene::options::modes`): its scale
+        // multiplies Iray's, its quality sets the directions per estimate.
+        env.lighting_scale *= world.options.environment_lighting_scale() as f32;
+        env.shadow = world.options.environment_shadow();
+        env.samples = world.options.environment_samples();
         // mental ray's `"environment lighting mode" "off"`: the environment is no light
         // source, only seen by the rays that leave the scene (`scene::options::modes`).
         env.sampled = world.options.environment_lighting() != Some(scene::options::EnvironmentLighting::Off);
         (!env.is_black()).then_some(env)
+    }
+
+    /// Whether its direct light is left to next-event estimation alone (no MIS): with
+    /// solid shadows or none, scattered rays would find it where its shadow rays do not.
+    pub fn nee_only(&self) -> bool {
+        self.shadow != scene::options::EnvironmentShadow::Transparent
     }
 
     /// An environment of `source`, its importance grid tabulated now (intensity and
@@ -358,6 +374,8 @@ impl<'a> Environment<'a> {
             lighting_scale: 1.0,
             camera_visible: true,
             sampled: true,
+            shadow: scene::options::EnvironmentShadow::Transparent,
+            samples: 1,
             map: None,
             sun: None,
             light_differs: false,

@@ -5,6 +5,7 @@
 
 mod ambient_highlight;
 mod cutout;
+mod env_light;
 mod fog;
 mod gi_depth;
 mod leave;
@@ -211,7 +212,7 @@ fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool),
     }
     let weight = if last_delta || !env.sampled {
         1.0
-    } else if mis {
+    } else if mis && !env.nee_only() {
         power_heuristic(last_pdf, pick * env.pdf(ray.dir))
     } else {
         0.0
@@ -237,48 +238,6 @@ struct Vertex<'v> {
     bsdf: &'v Bsdf,
     /// Where its shadow rays leave from (the media they start in).
     departure: Departure<'v>,
-}
-
-/// Next-event estimation towards the environment (chosen with probability `pick`): one
-/// direction drawn from it, unless it leaves through a portal (the portal's share) or is
-/// blocked; MIS against the BSDF.
-#[allow(clippy::too_many_arguments)]
-fn environment_light(
-    world: &World,
-    accel: &dyn Accel,
-    shading: Option<&Shading>,
-    env: &Environment,
-    v: &Vertex,
-    pick: f32,
-    u: glam::Vec2,
-    seed: u32,
-    mis: bool,
-    counts: &mut RayCounts,
-) -> Rgb {
-    let Some(es) = env.sample(u) else { return Rgb::ZERO };
-    if es.pdf <= 0.0 || es.radiance == Rgb::ZERO {
-        return Rgb::ZERO;
-    }
-    let wi = v.frame.to_local(es.dir);
-    if (es.dir.dot(v.ng) > 0.0) != (wi.z > 0.0) {
-        return Rgb::ZERO;
-    }
-    let f = v.bsdf.eval(v.wo, wi);
-    if f == Rgb::ZERO {
-        return Rgb::ZERO;
-    }
-    let origin = leave::leave_surface(v.p, v.err, v.ng, es.dir);
-    if through_portal(&world.lights, origin, es.dir) {
-        return Rgb::ZERO;
-    }
-    counts.shadow_rays += 1;
-    let shadow = Ray { mask: mask::SHADOW, origin, dir: es.dir, tmin: 0.0, tmax: f32::INFINITY, time: v.time };
-    let tr = media::shadow_transmittance(world, accel, shading, &v.departure, &shadow, seed);
-    if tr == Rgb::ZERO {
-        return Rgb::ZERO;
-    }
-    let weight = if mis { power_heuristic(pick * es.pdf, v.bsdf.pdf(v.wo, wi)) } else { 1.0 };
-    f * es.radiance * tr * (env.lighting_scale * wi.z.abs() * weight / (pick * es.pdf))
 }
 
 /// The material at a hit: its constant parameters, or — for materials with connected
@@ -719,8 +678,19 @@ pub fn trace_camera_path_into(
         let env_here = env.filter(|_| own_env.is_none());
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
-            radiance +=
-                throughput * environment_light(world, accel, shading, env, &v, pick, u_light, seed, mis, counts);
+            radiance += throughput
+                * env_light::environment_light(
+                    world,
+                    accel,
+                    shading,
+                    env,
+                    &v,
+                    pick,
+                    (u_light, sampler),
+                    seed,
+                    mis,
+                    counts,
+                );
         } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
             let light = &world.lights[k];
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {

@@ -5,7 +5,7 @@ use mi::ast::{Arg, Block, Stmt};
 
 mod modes;
 
-pub use modes::EnvironmentLighting;
+pub use modes::{EnvironmentLighting, EnvironmentShadow, MAX_ENVIRONMENT_SAMPLES};
 
 use crate::values::{attributes, bool_arg, f64_arg, floats_arg, int_arg, last, str_arg, AttrValue, Attributes};
 
@@ -692,6 +692,26 @@ mod tests {
         assert_eq!(mode("\"light\""), Some(EnvironmentLighting::Light));
         assert_eq!(mode("\"automatic\""), Some(EnvironmentLighting::Light));
         assert_eq!(options("options \"o\" end options", Dialect::MentalRay).environment_lighting(), None);
+    }
+
+    /// `"environment lighting shadow"`, `"quality"` and `"scale"`: the shadow modes (any
+    /// case; absent or unknown: transparent), ⌈2q⌉ directions (1 below 0.5 and without the
+    /// option, at most 64), the scale as a number or a colour's mean (negative: 1).
+    #[test]
+    fn environment_lighting_settings() {
+        let o = |v: &str| options(&format!("options \"o\" {v} end options"), Dialect::MentalRay);
+        let shadow = |v: &str| o(&format!("\"environment lighting shadow\" {v}")).environment_shadow();
+        assert_eq!(shadow("\"off\""), EnvironmentShadow::Off);
+        assert_eq!(shadow("\"Solid\""), EnvironmentShadow::Solid);
+        assert_eq!(shadow("\"transparent\""), EnvironmentShadow::Transparent);
+        assert_eq!(shadow("\"optimized\""), EnvironmentShadow::Transparent);
+        assert_eq!(o("").environment_shadow(), EnvironmentShadow::Transparent);
+        let samples = |v: &str| o(&format!("\"environment lighting quality\" {v}")).environment_samples();
+        assert_eq!((samples("0.2"), samples("0.5"), samples("1"), samples("2.2"), samples("1000")), (1, 1, 2, 5, 64));
+        assert_eq!((samples("-3"), o("").environment_samples()), (1, 1));
+        let scale = |v: &str| o(&format!("\"environment lighting scale\" {v}")).environment_lighting_scale();
+        assert_eq!((scale("2"), scale("0.5 1 1.5"), scale("-1")), (2.0, 1.0, 1.0));
+        assert_eq!(o("").environment_lighting_scale(), 1.0);
     }
 
     /// The `state` statement's shaders are kept in order: an inline call, a named shader

@@ -174,6 +174,7 @@ pub fn options(o: &mut Options, blocks: &[&Block], diags: &mut Vec<Diagnostic>) 
     }
     capped(&stmts, diags);
     environment_lighting_mode(&stmts, diags);
+    environment_lighting_settings(&stmts, diags);
     gi_rays(&stmts, diags);
     let f = &mut o.filter;
     let (o_w, o_h) = (f.width, f.height);
@@ -283,6 +284,38 @@ fn environment_lighting_mode(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
                 "\"environment lighting mode\" is neither \"off\" nor \"light\": mira reads it as \"light\" (the environment lights the scene)",
             ));
         }
+    }
+}
+
+/// Warns where `"environment lighting shadow"`, `"quality"` or `"scale"` has a value mira
+/// does not read as written (`crate::options::modes`): a shadow mode other than
+/// `"transparent"`, `"solid"` or `"off"` (read as `"transparent"`), a quality that is no
+/// finite number (one sample), a scale that is negative or no number (1) or a colour (the
+/// mean of its channels).
+fn environment_lighting_settings(stmts: &[&Stmt], diags: &mut Vec<Diagnostic>) {
+    use crate::values::AttrValue;
+    for s in stmts {
+        let Stmt::StringOption { name, value } = s else { continue };
+        let v = AttrValue::from_value(value);
+        let what = match name.text.as_str() {
+            "environment lighting shadow" => match v.as_ref().and_then(crate::options::EnvironmentShadow::parse) {
+                Some(_) => continue,
+                None => "is none of \"transparent\", \"solid\" and \"off\": mira reads it as \"transparent\"",
+            },
+            "environment lighting quality" => match v.as_ref().and_then(AttrValue::as_f64) {
+                Some(q) if q.is_finite() => continue,
+                _ => "is no number: mira takes one environment sample per estimate",
+            },
+            "environment lighting scale" => match v {
+                Some(AttrValue::Floats(f)) if f.len() > 1 => {
+                    "is a colour: mira scales the environment's light by the mean of its channels"
+                }
+                Some(v) if v.as_f64().is_some_and(|x| x.is_finite() && x >= 0.0) => continue,
+                _ => "is no number of at least 0: mira reads it as 1",
+            },
+            _ => continue,
+        };
+        diags.push(Diagnostic::warning(name.span, format!("\"{}\" {what}", name.text)));
     }
 }
 

@@ -3,5 +3,6 @@
 //! `cargo test -p bsdf --test it <module>::`.
 
 mod layered_lobes;
+mod measured_bsdf;
 mod multiscatter;
 mod own_frames;

@@ -388,6 +388,17 @@ impl<'a> Evaluator<'a> {
                     Err(why) => Err(problem(span, why)),
                 };
             }
+            Type::BsdfMeasurement => {
+                // `bsdf_measurement()`: the invalid measurement; a file: an MBSDF file, read once.
+                let Some(Value::Str(name)) = values.first() else {
+                    return if values.is_empty() { Ok(Value::BsdfMeasurement(None)) } else { Err(bad()) };
+                };
+                let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
+                return match self.textures.bsdf_measurement(name, dir.as_deref()) {
+                    Ok(m) => Ok(Value::BsdfMeasurement(Some(m))),
+                    Err(why) => Err(problem(span, why)),
+                };
+            }
             Type::Matrix(_, c, r) => {
                 let n = usize::from(*c) * usize::from(*r);
                 return match floats(&values) {
@@ -511,6 +522,7 @@ pub fn kind(v: &Value) -> &'static str {
         Value::Texture3d(_) => "a 3D texture",
         Value::TextureCube(_) => "a cube texture",
         Value::LightProfile(_) => "a light profile",
+        Value::BsdfMeasurement(_) => "a bsdf measurement",
     }
 }
 

@@ -281,6 +281,19 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             Ok(Value::Edf(Edf::Spot(spot)))
         }
         "measured_edf" => measured_edf(&arg, span),
+        "measured_bsdf" => {
+            let table = match arg("measurement") {
+                Some(Value::BsdfMeasurement(Some(m))) => *m,
+                Some(Value::BsdfMeasurement(None)) => return Ok(Value::Bsdf(Df::Black)),
+                Some(v) => return Err(not_constant(name, "measurement", v, span)),
+                None => return Err(problem(span, "`df::measured_bsdf` needs a measurement")),
+            };
+            let multiplier = match arg("multiplier") {
+                Some(v) => v.float().ok_or_else(|| not_constant(name, "multiplier", v, span))? as f32,
+                None => 1.0,
+            };
+            Ok(Value::Bsdf(Df::Measured { table, multiplier: multiplier.max(0.0), mode: mode() }))
+        }
         "light_profile_power" | "light_profile_maximum" | "light_profile_isvalid" => {
             let profile = match arg("profile") {
                 Some(Value::LightProfile(p)) => p.as_deref(),

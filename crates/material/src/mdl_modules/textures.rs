@@ -14,6 +14,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use bsdf::measured_bsdf::{self, MeasuredBsdf};
 use shader::light::ies::Profile;
 use shader::texture::{self, Texture};
 
@@ -35,6 +36,8 @@ pub struct Textures {
     volumes: HashMap<PathBuf, Result<Arc<Volume>, String>>,
     /// The cube maps read so far, by file.
     cubes: HashMap<PathBuf, Result<Arc<CubeMap>, String>>,
+    /// The BSDF measurements read so far, by file.
+    measurements: HashMap<PathBuf, Result<&'static MeasuredBsdf, String>>,
     /// Directories searched after the one of the module: the scene files' and the MDL
     /// search path's.
     pub dirs: Vec<PathBuf>,
@@ -51,6 +54,7 @@ impl Textures {
             profiles: HashMap::new(),
             volumes: HashMap::new(),
             cubes: HashMap::new(),
+            measurements: HashMap::new(),
             dirs,
             warnings: Vec::new(),
         }
@@ -194,6 +198,25 @@ impl Textures {
             return Err(format!("texture file '{name}' not found (searched {})", describe(&search.dirs)));
         };
         self.load(path)
+    }
+
+    /// The BSDF measurement (an MBSDF file, [`bsdf::measured_bsdf::reader`]) of file `name`
+    /// as written in a module in `module_dir`, read once (and interned for the process);
+    /// what reading it approximated is said once, as a warning. `Err` says why it could
+    /// not be read (`file:byte offset: what`).
+    pub fn bsdf_measurement(&mut self, name: &str, module_dir: Option<&Path>) -> Result<&'static MeasuredBsdf, String> {
+        let path = self.resolve(name, module_dir, "bsdf measurement")?;
+        let warnings = &mut self.warnings;
+        self.measurements
+            .entry(path.clone())
+            .or_insert_with(|| {
+                let bytes = std::fs::read(&path).map_err(|e| format!("bsdf measurement '{}': {e}", path.display()))?;
+                let (m, notes) = measured_bsdf::reader::read(&bytes)
+                    .map_err(|e| format!("bsdf measurement {}:{}: {}", path.display(), e.offset, e.message))?;
+                warnings.extend(notes.into_iter().map(|n| format!("bsdf measurement '{}': {n}", path.display())));
+                Ok(measured_bsdf::intern(m))
+            })
+            .clone()
     }
 
     /// The light profile (an IES LM-63 file) of file `name` as written in a module whose

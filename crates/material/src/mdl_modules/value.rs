@@ -220,6 +220,16 @@ pub enum Df {
         /// What is scaled.
         base: Box<Df>,
     },
+    /// `df::measured_bsdf`: a measurement's reflection and/or transmission (as `mode`
+    /// says), scaled by `multiplier`.
+    Measured {
+        /// The measurement (interned).
+        table: &'static bsdf::measured_bsdf::MeasuredBsdf,
+        /// The factor its values are scaled by.
+        multiplier: f32,
+        /// Which parts scatter.
+        mode: ScatterMode,
+    },
     /// `df::measured_curve_factor`: the base scaled by a tabulated curve (as
     /// [`Df::MeasuredCurveLayer`]'s) of the angle at the half vector.
     MeasuredCurveFactor {
@@ -327,6 +337,10 @@ impl Df {
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
         Ok(match self {
             Df::Black => Df::Black,
+            Df::Measured { mode: ScatterMode::Reflect, .. } => wrap(reflect),
+            Df::Measured { mode: ScatterMode::Transmit, .. } => wrap(transmit),
+            Df::Measured { .. } if reflect == transmit => wrap(reflect),
+            Df::Measured { .. } => return Err("a `measured_bsdf` that reflects and transmits, under two tints"),
             Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => wrap(reflect),
             Df::DiffuseTransmission(_) => wrap(transmit),
             Df::Specular { mode, .. } | Df::Glossy { mode, .. } => match mode {
@@ -419,6 +433,7 @@ impl Df {
             Df::DiffuseTransmission(_) => true,
             Df::Specular { mode, .. } | Df::Glossy { mode, .. } => *mode != ScatterMode::Reflect,
             Df::Black | Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => false,
+            Df::Measured { mode, table, .. } => *mode != ScatterMode::Reflect && table.transmission.is_some(),
             Df::Sheen { multiscatter: b, .. }
             | Df::DirectionalFactor { base: b, .. }
             | Df::ThinFilm { base: b, .. }
@@ -557,6 +572,8 @@ pub enum Value {
     TextureCube(Option<Arc<super::texture_cube::CubeMap>>),
     /// A `light_profile` (`None`: the invalid profile, which emits nothing).
     LightProfile(Option<Arc<shader::light::ies::Profile>>),
+    /// A `bsdf_measurement` (`None`: the invalid measurement, which scatters nothing).
+    BsdfMeasurement(Option<&'static bsdf::measured_bsdf::MeasuredBsdf>),
 }
 
 impl Value {

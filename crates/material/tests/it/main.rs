@@ -34,6 +34,7 @@ mod mdl_hit_matrices;
 mod mdl_layer_normals;
 mod mdl_layers;
 mod mdl_matrices;
+mod mdl_measured_bsdf;
 mod mdl_measured_edf;
 mod mdl_microfacet_params;
 mod mdl_per_hit;

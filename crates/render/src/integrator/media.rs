@@ -649,18 +649,19 @@ pub(super) fn direct_light(
         }
         let (phase, colour) = phase_towards(medium, dir, es.dir, by);
         counts.shadow_rays += 1;
-        let tr = shadow_transmittance(
+        let tr = super::env_light::environment_transmittance(
             world,
             scene.accel,
             scene.shading,
             &from,
             &shadow_ray(es.dir, f32::INFINITY),
             scene.seed,
+            env.shadow,
         );
         if tr == Rgb::ZERO {
             return Rgb::ZERO;
         }
-        let weight = if scene.mis { power_heuristic(scene.pick * es.pdf, phase) } else { 1.0 };
+        let weight = if scene.mis && !env.nee_only() { power_heuristic(scene.pick * es.pdf, phase) } else { 1.0 };
         return tr * es.radiance * colour * (env.lighting_scale * phase * weight / (scene.pick * es.pdf));
     }
     if k >= light_count {

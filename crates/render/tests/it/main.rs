@@ -58,6 +58,7 @@ mod maya_volume_highlight_path;
 mod mdl_classic;
 mod mdl_cornell;
 mod mdl_cube_forms;
+mod mdl_env_light_options;
 mod mdl_environment;
 mod mdl_environment_calls;
 mod mdl_measured;

@@ -38,6 +38,22 @@
 //!   *non-BSDF, legacy* materials correctly, which would otherwise blow out. It scales the
 //!   light legacy shaders receive (they carry no 1/π); BSDF materials (MDL, the layering
 //!   library) are lit by the lights' physical output, unscaled.
+//! - `"environment lighting quality"`, `"environment lighting shadow"`,
+//!   `"environment lighting scale"` — the environment light's settings. No stored page of
+//!   mental ray's manual gives their text (its options page lists "Image-Based Lighting"
+//!   by title only); 3ds Max's rollout of that light, "Skylight & Environment Lighting
+//!   (IBL)" (<https://help.autodesk.com/cloudhelp/2015/ENU/3DSMax/files/GUID-B93DEC38-90E2-4372-AF71-F54F74767D9D.htm>),
+//!   describes the first two: *Shadow Quality* — the lower, the grainier the shadows,
+//!   higher takes longer (0 to 10, default 0.5) — and *Shadow Mode* — transparent (the
+//!   default: accurate, slower) or opaque (less accurate, faster). mira's readings:
+//!   quality q sets how many directions the environment's next-event estimate averages,
+//!   max(1, ⌈2q⌉) up to 64 (the default 0.5 and below: one, as without the option) —
+//!   noise only, the mean is unchanged; shadow `"transparent"` (default) lets shadow rays
+//!   through cutouts and transparency as other lights' are, `"solid"` (3ds Max's opaque)
+//!   stops them at any surface, `"off"` traces none (only media attenuate, as for a light
+//!   with `shadow off`); scale multiplies the light the environment casts on surfaces,
+//!   as Iray's `environment_lighting_scale` does (the camera's view of it is unchanged).
+//!   Values mira does not understand are warnings at the option (`crate::sanity`).
 
 use super::Options;
 use crate::values::AttrValue;
@@ -51,6 +67,38 @@ pub enum EnvironmentLighting {
     /// sampled directly (mira: importance-sampled next-event estimation).
     Light,
 }
+
+/// What the environment light's shadow rays do (`"environment lighting shadow"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvironmentShadow {
+    /// `"transparent"` (the default): shadow rays pass cutouts and transparency, filtered.
+    #[default]
+    Transparent,
+    /// `"solid"`: any surface stops them.
+    Solid,
+    /// `"off"`: no shadow rays; only media attenuate the light.
+    Off,
+}
+
+impl EnvironmentShadow {
+    /// The mode a value names (any case); `None` for a value mira does not understand.
+    pub fn parse(v: &AttrValue) -> Option<EnvironmentShadow> {
+        match v {
+            AttrValue::Str(s) if s.eq_ignore_ascii_case("transparent") => Some(EnvironmentShadow::Transparent),
+            AttrValue::Str(s) if s.eq_ignore_ascii_case("solid") || s.eq_ignore_ascii_case("opaque") => {
+                Some(EnvironmentShadow::Solid)
+            }
+            AttrValue::Str(s) if s.eq_ignore_ascii_case("off") => Some(EnvironmentShadow::Off),
+            AttrValue::Bool(false) => Some(EnvironmentShadow::Off),
+            AttrValue::Bool(true) => Some(EnvironmentShadow::Transparent),
+            _ => None,
+        }
+    }
+}
+
+/// Most directions one next-event estimate of the environment averages
+/// (`"environment lighting quality"` 32 and above).
+pub const MAX_ENVIRONMENT_SAMPLES: u32 = 64;
 
 impl Options {
     /// `"progressive" on`: mental ray's progressive rendering mode (see the module comment).
@@ -102,5 +150,40 @@ impl Options {
     /// do not see it (see the module comment).
     pub fn light_relative_scale(&self) -> f64 {
         self.string_options.get("light relative scale").and_then(AttrValue::as_f64).map_or(1.0, |s| s.max(0.0))
+    }
+
+    /// `"environment lighting shadow"`: what the environment light's shadow rays do
+    /// (absent or not understood: [`EnvironmentShadow::Transparent`], the latter with a
+    /// warning from `crate::sanity`).
+    pub fn environment_shadow(&self) -> EnvironmentShadow {
+        self.string_options.get("environment lighting shadow").and_then(EnvironmentShadow::parse).unwrap_or_default()
+    }
+
+    /// How many directions one next-event estimate of the environment averages:
+    /// max(1, ⌈2q⌉) for `"environment lighting quality"` q, at most
+    /// [`MAX_ENVIRONMENT_SAMPLES`]; 1 without the option or for a value that is no
+    /// finite number (a warning from `crate::sanity`).
+    pub fn environment_samples(&self) -> u32 {
+        let q = self.string_options.get("environment lighting quality").and_then(AttrValue::as_f64);
+        match q {
+            Some(q) if q.is_finite() => (2.0 * q).ceil().clamp(1.0, f64::from(MAX_ENVIRONMENT_SAMPLES)) as u32,
+            _ => 1,
+        }
+    }
+
+    /// `"environment lighting scale"`: the factor on the light the environment casts on
+    /// surfaces (1 without the option; a colour is read as the mean of its channels, a
+    /// negative or non-finite value as 1 — each with a warning from `crate::sanity`).
+    pub fn environment_lighting_scale(&self) -> f64 {
+        let s = match self.string_options.get("environment lighting scale") {
+            Some(AttrValue::Floats(v)) if !v.is_empty() => v.iter().take(3).sum::<f64>() / v.len().min(3) as f64,
+            Some(v) => v.as_f64().unwrap_or(1.0),
+            None => 1.0,
+        };
+        if s.is_finite() && s >= 0.0 {
+            s
+        } else {
+            1.0
+        }
     }
 }

@@ -5,6 +5,7 @@
 //! sum.
 
 use bsdf::beckmann::Beckmann;
+use bsdf::measured_bsdf::MeasuredLobe;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
@@ -51,6 +52,14 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::Black => true,
         Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
         Df::DiffuseTransmission(tint) => push(scale * tint.get(hit), Lobe::Translucent),
+        Df::Measured { table, multiplier, mode } => {
+            let lobe = MeasuredLobe {
+                table,
+                reflect: *mode != ScatterMode::Transmit,
+                transmit: *mode != ScatterMode::Reflect,
+            };
+            push(scale * *multiplier, Lobe::Measured(lobe))
+        }
         Df::Specular { tint, mode: ScatterMode::Reflect } => push(scale * tint.get(hit), Lobe::Mirror),
         Df::Glossy { tint, roughness, mode: ScatterMode::Reflect, beckmann, vcavities, multiscatter, tangent } => {
             let Some(frame) = tangent_frame(*tangent, axis, hit, sum, frame) else { return false };

@@ -15,7 +15,7 @@ pub(super) fn visit(df: &Df, in_own_normal: bool, f: &mut impl FnMut(Leaf, bool)
                 f(*t, in_own_normal)
             }
         }
-        Df::Black | Df::Diffuse { .. } | Df::DiffuseTransmission(_) | Df::Specular { .. } => {}
+        Df::Black | Df::Diffuse { .. } | Df::DiffuseTransmission(_) | Df::Specular { .. } | Df::Measured { .. } => {}
         Df::Sheen { multiscatter: b, .. }
         | Df::DirectionalFactor { base: b, .. }
         | Df::ThinFilm { base: b, .. }
