@@ -25,6 +25,7 @@ use crate::beckmann::BeckmannReflection;
 use crate::layer_curve::{CurveKind, LayerCurve};
 use crate::microfacet::Ggx;
 use crate::multiscatter::MultiScatter;
+use crate::rough_glass::RoughGlass;
 use crate::sheen::Sheen;
 use crate::vcavity;
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
@@ -116,6 +117,11 @@ pub enum Lobe {
     /// What a micro-mirror lobe loses to masking–shadowing, given back
     /// ([`crate::multiscatter`]; MDL's `multiscatter_tint`), sampled cosine-weighted.
     MultiScatter(MultiScatter),
+    /// A rough dielectric boundary ([`crate::rough_glass`]): Fresnel-weighted reflection
+    /// and refraction (or refraction alone) on GGX or Beckmann micro-normals, its
+    /// transmitted radiance scaled by 1/η′²; under a film when it names one of the sum's
+    /// curves.
+    Glass(RoughGlass),
 }
 
 /// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
@@ -221,8 +227,8 @@ fn ward_eval(b: &crate::beckmann::Beckmann, wo: Vec3A, wi: Vec3A) -> f32 {
 }
 
 impl Lobe {
-    /// f(ωo, ωi) of the lobe at unit weight.
-    pub(crate) fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+    /// f(ωo, ωi) of the lobe at unit weight; `film` the curve a glass lobe's film is.
+    pub(crate) fn eval(&self, wo: Vec3A, wi: Vec3A, film: Option<&CurveKind>) -> Rgb {
         match self {
             Lobe::Diffuse(sigma) => OrenNayar::new(Rgb::ONE, *sigma).eval(wo, wi),
             Lobe::Translucent => {
@@ -241,11 +247,12 @@ impl Lobe {
             Lobe::GgxVcavities(g) => Rgb::splat(vcavity::ggx_eval(g, wo, wi)),
             Lobe::BeckmannVcavities(b) => Rgb::splat(vcavity::beckmann_eval(b, wo, wi)),
             Lobe::MultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
+            Lobe::Glass(g) => g.eval(wo, wi, film),
         }
     }
 
     /// The lobe's sampling density.
-    pub(crate) fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    pub(crate) fn pdf(&self, wo: Vec3A, wi: Vec3A, film: Option<&CurveKind>) -> f32 {
         match self {
             Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => crate::cosine_pdf_on_side(wo, wi),
             Lobe::Translucent => crate::cosine_pdf_on_side(wo, -wi),
@@ -255,11 +262,13 @@ impl Lobe {
             }
             Lobe::Backscatter(g) => ggx_pdf(g, wo, turned(wi)),
             Lobe::Mirror => 0.0,
+            Lobe::Glass(g) => g.pdf(wo, wi, film),
         }
     }
 
-    /// A direction drawn from the lobe's sampling density.
-    pub(crate) fn sample_dir(&self, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
+    /// A direction drawn from the lobe's sampling density (`u_choice`: a third uniform
+    /// number, for the glass lobe's choice between reflecting and refracting).
+    pub(crate) fn sample_dir(&self, wo: Vec3A, u: Vec2, u_choice: f32, film: Option<&CurveKind>) -> Option<Vec3A> {
         match self {
             Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => cosine_on_side(wo, u),
             Lobe::Translucent => cosine_on_side(-wo, u),
@@ -270,6 +279,7 @@ impl Lobe {
             }
             // The mirror direction about the normal: ωo turned by π about it.
             Lobe::Mirror => (wo.z != 0.0).then(|| turned(wo)),
+            Lobe::Glass(g) => g.sample(wo, u, u_choice, film),
         }
     }
 }
@@ -416,6 +426,11 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         self.count > 0 && self.lobes[..self.len()].iter().all(|l| *l == Lobe::Mirror)
     }
 
+    /// Whether light enters the surface: a glass lobe bounds a solid (not thin-walled).
+    pub fn has_inside(&self) -> bool {
+        self.lobes[..self.len()].iter().any(|l| matches!(l, Lobe::Glass(g) if !g.thin))
+    }
+
     /// The curves' factor of part `k` for the pair of directions, with the own frames
     /// around `normals`.
     fn factor(&self, normals: &[[f32; 3]], k: usize, wo: Vec3A, wi: Vec3A) -> Rgb {
@@ -447,6 +462,17 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             }
         }
         f
+    }
+
+    /// The curve that is part `k`'s film, when its lobe is glass under one.
+    #[inline]
+    fn film(&self, k: usize) -> Option<&CurveKind> {
+        match self.lobes[k] {
+            Lobe::Glass(RoughGlass { film, .. }) if film > 0 && film <= self.curve_count => {
+                Some(&self.curves[usize::from(film) - 1].kind)
+            }
+            _ => None,
+        }
     }
 
     /// The sum of the luminances of the parts' weights (what lobes are chosen by).
@@ -494,7 +520,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
                 continue;
             }
             if let Some((o, i, ratio)) = directions_in(normals, self.part_frames[k], wo, wi) {
-                sum += w * l.eval(o, i) * (self.factor(normals, k, wo, wi) * ratio);
+                sum += w * l.eval(o, i, self.film(k)) * (self.factor(normals, k, wo, wi) * ratio);
             }
         }
         sum
@@ -507,7 +533,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         (0..self.len())
             .map(|k| {
                 directions_in(normals, self.part_frames[k], wo, wi)
-                    .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i))
+                    .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i, self.film(k)))
             })
             .sum()
     }
@@ -529,11 +555,15 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         }
         let k = chosen?;
         let lobe = self.lobes[k];
+        // What is left of `u_lobe` within the chosen lobe's share, uniform again.
+        let p = self.choice(k, total);
+        let u_choice = if p > 0.0 { (left / p).clamp(0.0, 1.0 - f32::EPSILON) } else { 0.0 };
+        let film = self.film(k);
         let wi = match self.part_frames[k] {
-            0 => lobe.sample_dir(wo, u)?,
+            0 => lobe.sample_dir(wo, u, u_choice, film)?,
             own => {
                 let frame = own_frame(normals, own);
-                let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u)?);
+                let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u, u_choice, film)?);
                 // A direction the own frame sends through the surface is lost.
                 in_own_frame(&frame, wo, wi)?;
                 wi

@@ -39,7 +39,7 @@ use super::value::{Df, Edf, Leaf, ScatterMode, Value};
 use crate::edf::EmissionShape;
 use crate::inputs::{Evaluated, HitEvaluator, HitMaterial, Varying};
 use crate::{SurfaceMaterial, SurfaceModel};
-use general_sum::{filled_up, general};
+use general_sum::{filled_up, general, Medium};
 
 /// The diffuse lobes of a tree summed: albedo, Σ σ · luminance, Σ luminance, and the
 /// range of σ (an average of equal σ is that σ exactly).
@@ -592,6 +592,7 @@ fn lower_bsdf(
         });
     }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
+    let medium = Medium { ior: ior.max(1e-3), thin };
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {
         let albedo = albedo.clamp(Rgb::ZERO, df.weight_bound());
         let model = if sigma > 0.0 { SurfaceModel::OrenNayar(sigma) } else { SurfaceModel::Lambert };
@@ -635,7 +636,7 @@ fn lower_bsdf(
         {
             if tint != Rgb::ONE {
                 // A tinted coat: the general lobe sum has the tint (a Fresnel curve).
-                if let Some(lowered) = general(df, hit, per_hit) {
+                if let Some(lowered) = general(df, hit, medium, per_hit) {
                     return lowered;
                 }
                 say(&|name| format!("material '{name}': the coat's tint is not compiled yet; a white coat is used"));
@@ -649,11 +650,11 @@ fn lower_bsdf(
             });
         }
     }
-    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, per_hit)) {
+    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, medium, per_hit)) {
         return lowered;
     }
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, df.weight_bound());
-    let why = if filled_up(df, hit) {
+    let why = if filled_up(df, hit, medium) {
         format!(
             "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
             bsdf::lobes::WIDE_LOBES,

@@ -36,6 +36,7 @@ mod mdl_layers;
 mod mdl_matrices;
 mod mdl_measured_edf;
 mod mdl_microfacet_params;
+mod mdl_rough_transmission;
 mod mdl_state_space;
 mod mdl_statements;
 mod mdl_textures3d;

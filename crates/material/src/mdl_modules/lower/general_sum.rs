@@ -7,6 +7,7 @@
 use bsdf::beckmann::Beckmann;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
+use bsdf::rough_glass::RoughGlass;
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
@@ -31,11 +32,13 @@ use crate::SurfaceModel;
 ///
 /// `frame` is the frame the lobes of `df` live in (0: the shading frame): a layer with its
 /// own `normal` puts its lobes and its curve in the frame of that normal (at most `F`
-/// normals a sum).
+/// normals a sum). `medium` is what a glass lobe bounds.
+#[allow(clippy::too_many_arguments)]
 fn add_general<const N: usize, const C: usize, const F: usize>(
     df: &Df,
     scale: Rgb,
     hit: &[Vec4],
+    medium: Medium,
     sum: &mut GeneralSum<N, C, F>,
     role: Role,
     film: Option<(f32, Rgb)>,
@@ -67,6 +70,32 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let lost = (lobe != Lobe::Mirror).then_some((single, au, av));
             push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
+        // Rough glass (`scatter_reflect_transmit`, `scatter_transmit`): the dielectric lobe
+        // of the material's index, thin when the material is; under a film, the film's
+        // Airy reflectance on its Fresnel term (a curve of the sum the lobe names). Smooth
+        // glass, V-cavities and `multiscatter_tint` in transmission are not lobes of the sum.
+        Df::Glossy { tint, roughness, mode, beckmann, vcavities: false, multiscatter, .. }
+            if *multiscatter == Leaf::Const(Rgb::ZERO) =>
+        {
+            let (alpha_x, alpha_y) = alpha(roughness);
+            let (eta, thin) = (medium.ior, medium.thin);
+            let reflect = *mode == ScatterMode::ReflectTransmit;
+            let glass = RoughGlass { alpha_x, alpha_y, eta, beckmann: *beckmann, reflect, thin, film: 0 };
+            if !glass.is_valid() {
+                return false;
+            }
+            let film = match film {
+                None => 0,
+                Some((thickness_nm, film_ior)) => {
+                    let curve = CurveKind::ThinFilm { ior: eta, film_ior, thickness_nm };
+                    match sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) {
+                        Some(k) => k + 1,
+                        None => return false,
+                    }
+                }
+            };
+            sum.push_in_frame(scale * tint.get(hit), Lobe::Glass(RoughGlass { film, ..glass }), role, frame)
+        }
         Df::Backscatter { tint, roughness, multiscatter, .. } => {
             let (au, av) = alpha(roughness);
             let g = Ggx { alpha_x: au, alpha_y: av };
@@ -94,6 +123,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                     multiscatter,
                     scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
                     hit,
+                    medium,
                     sum,
                     under,
                     film,
@@ -102,14 +132,16 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         }
         Df::Mix { parts, bound } => {
             let mut ok = true;
-            mix_weights(parts, *bound, hit, |w, d| ok = ok && add_general(d, scale * w, hit, sum, role, film, frame));
+            mix_weights(parts, *bound, hit, |w, d| {
+                ok = ok && add_general(d, scale * w, hit, medium, sum, role, film, frame)
+            });
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            add_general(layer, scale * w, hit, sum, role, film, own)
-                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame)
+            add_general(layer, scale * w, hit, medium, sum, role, film, own)
+                && add_general(base, scale * (Rgb::ONE - w), hit, medium, sum, role, film, frame)
         }
         Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
             let curve = match (film, layer_ior(*ior)) {
@@ -122,7 +154,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 (None, Err(ior)) => CurveKind::ColorFresnel { ior },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own))
         }
         Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => {
             let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
@@ -137,7 +169,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own))
         }
         Df::DirectionalFactor { normal, grazing, exponent, base } => {
             let curve = CurveKind::Schlick {
@@ -146,11 +178,11 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 exponent: exponent.get(hit).x.max(0.0),
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
+            add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
         }
         Df::ThinFilm { thickness, ior, base } => {
             let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
-            add_general(base, scale, hit, sum, role, film, frame)
+            add_general(base, scale, hit, medium, sum, role, film, frame)
         }
         Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => {
             let curve = match film {
@@ -163,7 +195,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 None => CurveKind::Measured(curve),
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own))
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own))
         }
         Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
             let (curve, base) = match df {
@@ -174,10 +206,20 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 _ => return false,
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
+            add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame)
         }
         _ => false,
     }
+}
+
+/// The medium a glass lobe bounds: the material's index of refraction (inside over
+/// outside) and whether it is thin-walled (no inside: transmission straight through).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Medium {
+    /// `ior` (the mean of its channels).
+    pub ior: f32,
+    /// `thin_walled`.
+    pub thin: bool,
 }
 
 /// Pushes the compensation of a micro-mirror lobe of weight `tint` (`lost`: its model and
@@ -257,29 +299,30 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
     base: &Df,
     scale: Rgb,
     hit: &[Vec4],
+    medium: Medium,
     sum: &mut GeneralSum<N, C, F>,
     role: Role,
     frames: (u8, u8),
 ) -> bool {
     let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum, frames) else { return false };
-    add_general(layer, scale, hit, sum, over, None, frames.1)
-        && add_general(base, scale, hit, sum, under, None, frames.0)
+    add_general(layer, scale, hit, medium, sum, over, None, frames.1)
+        && add_general(base, scale, hit, medium, sum, under, None, frames.0)
 }
 
 /// The tree as a lobe sum and its diffuse colour, if it is one: a compact
 /// [`SurfaceModel::MdlLobes`] where it fits (the common case, copied into each hit's BSDF),
 /// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs) or, lowered at a hit
 /// (`per_hit`), a [`SurfaceModel::MdlWideAt`] in the thread's ring of wide sums.
-pub(super) fn general(df: &Df, hit: &[Vec4], per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
+pub(super) fn general(df: &Df, hit: &[Vec4], medium: Medium, per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
     let mut sum = Lobes::default();
-    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) {
+    if add_general(df, Rgb::ONE, hit, medium, &mut sum, Role::default(), None, 0) {
         return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
     }
     if !filled(&sum) {
         return None;
     }
     let mut wide = WideLobes::default();
-    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0) {
+    if !add_general(df, Rgb::ONE, hit, medium, &mut wide, Role::default(), None, 0) {
         return None;
     }
     let model = if per_hit {
@@ -304,7 +347,7 @@ fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C,
 }
 
 /// Whether lowering `df` as a wide lobe sum stopped with the sum full.
-pub(super) fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
+pub(super) fn filled_up(df: &Df, hit: &[Vec4], medium: Medium) -> bool {
     let mut sum = WideLobes::default();
-    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0) && filled(&sum)
+    !add_general(df, Rgb::ONE, hit, medium, &mut sum, Role::default(), None, 0) && filled(&sum)
 }
