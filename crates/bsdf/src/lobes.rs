@@ -117,10 +117,10 @@ pub enum Lobe {
     /// What a micro-mirror lobe loses to masking–shadowing, given back
     /// ([`crate::multiscatter`]; MDL's `multiscatter_tint`), sampled cosine-weighted.
     MultiScatter(MultiScatter),
-    /// A rough dielectric boundary ([`crate::rough_glass`]): Fresnel-weighted reflection
-    /// and refraction (or refraction alone) on GGX or Beckmann micro-normals, its
-    /// transmitted radiance scaled by 1/η′²; under a film when it names one of the sum's
-    /// curves.
+    /// A dielectric boundary ([`crate::rough_glass`]): Fresnel-weighted reflection and
+    /// refraction (or refraction alone) on GGX or Beckmann micro-normals, its transmitted
+    /// radiance scaled by 1/η′²; under a film when it names one of the sum's curves.
+    /// Smooth (α < 10⁻³), two Dirac lobes (sampled with `delta`, as the mirror).
     Glass(RoughGlass),
 }
 
@@ -421,9 +421,12 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         (0..self.len()).map(|k| self.part(k))
     }
 
-    /// Whether every lobe is a smooth mirror.
+    /// Whether every lobe is a Dirac lobe (a smooth mirror or smooth glass).
     pub fn is_delta(&self) -> bool {
-        self.count > 0 && self.lobes[..self.len()].iter().all(|l| *l == Lobe::Mirror)
+        self.count > 0
+            && self.lobes[..self.len()]
+                .iter()
+                .all(|l| matches!(l, Lobe::Mirror) || matches!(l, Lobe::Glass(g) if g.is_smooth()))
     }
 
     /// Whether light enters the surface: a glass lobe bounds a solid (not thin-walled).
@@ -559,20 +562,33 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         let p = self.choice(k, total);
         let u_choice = if p > 0.0 { (left / p).clamp(0.0, 1.0 - f32::EPSILON) } else { 0.0 };
         let film = self.film(k);
-        let wi = match self.part_frames[k] {
-            0 => lobe.sample_dir(wo, u, u_choice, film)?,
+        // The direction, and both directions in the part's frame.
+        let (wi, local) = match self.part_frames[k] {
+            0 => {
+                let wi = lobe.sample_dir(wo, u, u_choice, film)?;
+                (wi, (wo, wi))
+            }
             own => {
                 let frame = own_frame(normals, own);
-                let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u, u_choice, film)?);
+                let o = frame.to_local(wo);
+                let i = lobe.sample_dir(o, u, u_choice, film)?;
+                let wi = frame.to_world(i);
                 // A direction the own frame sends through the surface is lost.
                 in_own_frame(&frame, wo, wi)?;
-                wi
+                (wi, (o, i))
             }
         };
-        if lobe == Lobe::Mirror {
-            // A discrete choice of probability p: f |cos θi| / p is the part's weight / p.
-            let (p, cos) = (self.choice(k, total), wi.z.abs());
-            let f = self.weights[k] * self.factor(normals, k, wo, wi) / cos.max(1e-8);
+        // A Dirac lobe: its f |cos θi| and the probability of its branch.
+        let delta = match lobe {
+            Lobe::Mirror => Some((Rgb::ONE, 1.0)),
+            Lobe::Glass(g) if g.is_smooth() => Some(g.delta(local.0, local.1, film)),
+            _ => None,
+        };
+        if let Some((value, branch)) = delta {
+            // A discrete choice of probability p: f |cos θi| / p is the part's weight ×
+            // the lobe's value / p.
+            let (p, cos) = (self.choice(k, total) * branch, wi.z.abs());
+            let f = self.weights[k] * value * self.factor(normals, k, wo, wi) / cos.max(1e-8);
             return (p > 0.0).then_some(BsdfSample { wi, f, pdf: p, delta: true });
         }
         let pdf = self.pdf_around(normals, wo, wi);

@@ -14,7 +14,8 @@
 //!   [`SurfaceModel::Lobes`]: Oren–Nayar, GGX reflection weighted by its tint (MDL's glossy
 //!   BSDFs have no Fresnel term), Lambert translucency;
 //! - a specular or glossy `scatter_reflect_transmit` lobe with the material's `ior` is the
-//!   unified material's glass, thin when the material is `thin_walled`.
+//!   unified material's glass, thin when the material is `thin_walled` (transmit-only and
+//!   anisotropic ones, and glass in any other tree, the general lobe sum's glass lobe).
 //!
 //! Other combinations are approximated by their diffuse part, with a warning naming the
 //! construct.
@@ -228,6 +229,17 @@ fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
             glossy(&parts[0].1, hit).map(|(t, a, m)| (t * w, a, m))
         }
         _ => None,
+    }
+}
+
+/// Whether a lone glass lobe (through one-part mixes) is more than the unified material's
+/// glass holds: `scatter_transmit` (the unified glass also reflects) or anisotropic.
+fn beyond_unified_glass(df: &Df) -> bool {
+    match df {
+        Df::Specular { mode, .. } => *mode == ScatterMode::Transmit,
+        Df::Glossy { mode, tangent, .. } => *mode == ScatterMode::Transmit || tangent.is_some(),
+        Df::Mix { parts, .. } if parts.len() == 1 => beyond_unified_glass(&parts[0].1),
+        _ => false,
     }
 }
 
@@ -609,6 +621,13 @@ fn lower_bsdf(
                 })
             }),
             ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
+                // What the unified glass holds only approximately (transmission alone,
+                // anisotropic roughness) is the lobe sum's glass lobe where it can be one.
+                if beyond_unified_glass(df) {
+                    if let Some(lowered) = general(df, hit, medium, per_hit) {
+                        return lowered;
+                    }
+                }
                 for what in if warning { glass_ignores(df) } else { Vec::new() } {
                     say(&|name| format!("material '{name}': in glass, {what} is not compiled yet"));
                 }

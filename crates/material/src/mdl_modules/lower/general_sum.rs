@@ -70,31 +70,19 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let lost = (lobe != Lobe::Mirror).then_some((single, au, av));
             push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
-        // Rough glass (`scatter_reflect_transmit`, `scatter_transmit`): the dielectric lobe
-        // of the material's index, thin when the material is; under a film, the film's
-        // Airy reflectance on its Fresnel term (a curve of the sum the lobe names). Smooth
-        // glass, V-cavities and `multiscatter_tint` in transmission are not lobes of the sum.
+        // Glass (`scatter_reflect_transmit`, `scatter_transmit`), rough or smooth: the
+        // dielectric lobe of the material's index. V-cavities and `multiscatter_tint` in
+        // transmission are not lobes of the sum.
         Df::Glossy { tint, roughness, mode, beckmann, vcavities: false, multiscatter, .. }
             if *multiscatter == Leaf::Const(Rgb::ZERO) =>
         {
             let (alpha_x, alpha_y) = alpha(roughness);
-            let (eta, thin) = (medium.ior, medium.thin);
-            let reflect = *mode == ScatterMode::ReflectTransmit;
-            let glass = RoughGlass { alpha_x, alpha_y, eta, beckmann: *beckmann, reflect, thin, film: 0 };
-            if !glass.is_valid() {
-                return false;
-            }
-            let film = match film {
-                None => 0,
-                Some((thickness_nm, film_ior)) => {
-                    let curve = CurveKind::ThinFilm { ior: eta, film_ior, thickness_nm };
-                    match sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) {
-                        Some(k) => k + 1,
-                        None => return false,
-                    }
-                }
-            };
-            sum.push_in_frame(scale * tint.get(hit), Lobe::Glass(RoughGlass { film, ..glass }), role, frame)
+            let glass = glass_lobe((alpha_x, alpha_y), *beckmann, *mode, medium);
+            push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
+        }
+        Df::Specular { tint, mode } => {
+            let glass = glass_lobe((0.0, 0.0), false, *mode, medium);
+            push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
         }
         Df::Backscatter { tint, roughness, multiscatter, .. } => {
             let (au, av) = alpha(roughness);
@@ -220,6 +208,48 @@ pub(super) struct Medium {
     pub ior: f32,
     /// `thin_walled`.
     pub thin: bool,
+}
+
+/// The glass lobe of roughness `alpha` (GGX, or Beckmann) in transmission mode `mode`
+/// bounding `medium`.
+fn glass_lobe(alpha: (f32, f32), beckmann: bool, mode: ScatterMode, medium: Medium) -> RoughGlass {
+    RoughGlass {
+        alpha_x: alpha.0,
+        alpha_y: alpha.1,
+        eta: medium.ior,
+        beckmann,
+        reflect: mode == ScatterMode::ReflectTransmit,
+        thin: medium.thin,
+        film: 0,
+    }
+}
+
+/// Pushes `glass` of weight `weight` (as `role` says, in `frame`); under `film` (thickness
+/// in nm, film index), the film's Airy reflectance over the glass's index on its Fresnel
+/// term, a curve of the sum the lobe names. False when the sum is full or the lobe is none
+/// (a solid of index 1).
+fn push_glass<const N: usize, const C: usize, const F: usize>(
+    sum: &mut GeneralSum<N, C, F>,
+    weight: Rgb,
+    glass: RoughGlass,
+    film: Option<(f32, Rgb)>,
+    role: Role,
+    frame: u8,
+) -> bool {
+    if !glass.is_valid() {
+        return false;
+    }
+    let film = match film {
+        None => 0,
+        Some((thickness_nm, film_ior)) => {
+            let curve = CurveKind::ThinFilm { ior: glass.eta, film_ior, thickness_nm };
+            match sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) {
+                Some(k) => k + 1,
+                None => return false,
+            }
+        }
+    };
+    sum.push_in_frame(weight, Lobe::Glass(RoughGlass { film, ..glass }), role, frame)
 }
 
 /// Pushes the compensation of a micro-mirror lobe of weight `tint` (`lost`: its model and
