@@ -24,6 +24,7 @@ pub mod multiscatter;
 mod oren_nayar;
 pub mod phase;
 pub mod reflectance;
+pub mod rough_glass;
 pub mod sheen;
 pub mod sheen_albedo;
 pub mod unified;

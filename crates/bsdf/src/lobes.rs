@@ -26,6 +26,7 @@ use crate::layer_curve::{CurveKind, LayerCurve};
 use crate::measured_bsdf::MeasuredLobe;
 use crate::microfacet::Ggx;
 use crate::multiscatter::MultiScatter;
+use crate::rough_glass::RoughGlass;
 use crate::sheen::Sheen;
 use crate::vcavity;
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
@@ -120,6 +121,11 @@ pub enum Lobe {
     /// A measured BSDF (MDL's `measured_bsdf`; [`crate::measured_bsdf`]): its tabulated
     /// reflection and/or transmission, sampled by its tables.
     Measured(MeasuredLobe),
+    /// A dielectric boundary ([`crate::rough_glass`]): Fresnel-weighted reflection and
+    /// refraction (or refraction alone) on GGX or Beckmann micro-normals, its transmitted
+    /// radiance scaled by 1/η′²; under a film when it names one of the sum's curves.
+    /// Smooth (α < 10⁻³), two Dirac lobes (sampled with `delta`, as the mirror).
+    Glass(RoughGlass),
 }
 
 /// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
@@ -231,8 +237,8 @@ fn ward_eval(b: &crate::beckmann::Beckmann, wo: Vec3A, wi: Vec3A) -> f32 {
 }
 
 impl Lobe {
-    /// f(ωo, ωi) of the lobe at unit weight.
-    pub(crate) fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+    /// f(ωo, ωi) of the lobe at unit weight; `film` the curve a glass lobe's film is.
+    pub(crate) fn eval(&self, wo: Vec3A, wi: Vec3A, film: Option<&CurveKind>) -> Rgb {
         match self {
             Lobe::Diffuse(sigma) => OrenNayar::new(Rgb::ONE, *sigma).eval(wo, wi),
             Lobe::Translucent => {
@@ -252,11 +258,12 @@ impl Lobe {
             Lobe::BeckmannVcavities(b) => Rgb::splat(vcavity::beckmann_eval(b, wo, wi)),
             Lobe::MultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
             Lobe::Measured(m) => m.eval(wo, wi),
+            Lobe::Glass(g) => g.eval(wo, wi, film),
         }
     }
 
     /// The lobe's sampling density.
-    pub(crate) fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    pub(crate) fn pdf(&self, wo: Vec3A, wi: Vec3A, film: Option<&CurveKind>) -> f32 {
         match self {
             Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => crate::cosine_pdf_on_side(wo, wi),
             Lobe::Translucent => crate::cosine_pdf_on_side(wo, -wi),
@@ -267,11 +274,13 @@ impl Lobe {
             Lobe::Backscatter(g) => ggx_pdf(g, wo, turned(wi)),
             Lobe::Mirror => 0.0,
             Lobe::Measured(m) => m.pdf(wo, wi),
+            Lobe::Glass(g) => g.pdf(wo, wi, film),
         }
     }
 
-    /// A direction drawn from the lobe's sampling density.
-    pub(crate) fn sample_dir(&self, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
+    /// A direction drawn from the lobe's sampling density (`u_choice`: a third uniform
+    /// number, for the glass lobe's choice between reflecting and refracting).
+    pub(crate) fn sample_dir(&self, wo: Vec3A, u: Vec2, u_choice: f32, film: Option<&CurveKind>) -> Option<Vec3A> {
         match self {
             Lobe::Diffuse(_) | Lobe::Sheen(_) | Lobe::MultiScatter(_) => cosine_on_side(wo, u),
             Lobe::Translucent => cosine_on_side(-wo, u),
@@ -283,6 +292,7 @@ impl Lobe {
             // The mirror direction about the normal: ωo turned by π about it.
             Lobe::Mirror => (wo.z != 0.0).then(|| turned(wo)),
             Lobe::Measured(m) => m.sample(wo, u),
+            Lobe::Glass(g) => g.sample(wo, u, u_choice, film),
         }
     }
 }
@@ -449,9 +459,17 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         (0..self.len()).map(|k| self.part(k))
     }
 
-    /// Whether every lobe is a smooth mirror.
+    /// Whether every lobe is a Dirac lobe (a smooth mirror or smooth glass).
     pub fn is_delta(&self) -> bool {
-        self.count > 0 && self.lobes[..self.len()].iter().all(|l| *l == Lobe::Mirror)
+        self.count > 0
+            && self.lobes[..self.len()]
+                .iter()
+                .all(|l| matches!(l, Lobe::Mirror) || matches!(l, Lobe::Glass(g) if g.is_smooth()))
+    }
+
+    /// Whether light enters the surface: a glass lobe bounds a solid (not thin-walled).
+    pub fn has_inside(&self) -> bool {
+        self.lobes[..self.len()].iter().any(|l| matches!(l, Lobe::Glass(g) if !g.thin))
     }
 
     /// The curves' factor of part `k` for the pair of directions, with the own frames
@@ -485,6 +503,17 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             }
         }
         f
+    }
+
+    /// The curve that is part `k`'s film, when its lobe is glass under one.
+    #[inline]
+    fn film(&self, k: usize) -> Option<&CurveKind> {
+        match self.lobes[k] {
+            Lobe::Glass(RoughGlass { film, .. }) if film > 0 && film <= self.curve_count => {
+                Some(&self.curves[usize::from(film) - 1].kind)
+            }
+            _ => None,
+        }
     }
 
     /// The sum of the luminances of the parts' weights (what lobes are chosen by).
@@ -532,7 +561,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
                 continue;
             }
             if let Some((o, i, ratio)) = directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi) {
-                sum += w * l.eval(o, i) * (self.factor(normals, k, wo, wi) * ratio);
+                sum += w * l.eval(o, i, self.film(k)) * (self.factor(normals, k, wo, wi) * ratio);
             }
         }
         sum
@@ -545,7 +574,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         (0..self.len())
             .map(|k| {
                 directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi)
-                    .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i))
+                    .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i, self.film(k)))
             })
             .sum()
     }
@@ -567,20 +596,37 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         }
         let k = chosen?;
         let lobe = self.lobes[k];
-        let wi = match self.part_frames[k] {
-            0 => lobe.sample_dir(wo, u)?,
+        // What is left of `u_lobe` within the chosen lobe's share, uniform again.
+        let p = self.choice(k, total);
+        let u_choice = if p > 0.0 { (left / p).clamp(0.0, 1.0 - f32::EPSILON) } else { 0.0 };
+        let film = self.film(k);
+        // The direction, and both directions in the part's frame.
+        let (wi, local) = match self.part_frames[k] {
+            0 => {
+                let wi = lobe.sample_dir(wo, u, u_choice, film)?;
+                (wi, (wo, wi))
+            }
             own => {
                 let frame = own_frame(normals, self.tangent_frames, own);
-                let wi = frame.to_world(lobe.sample_dir(frame.to_local(wo), u)?);
+                let o = frame.to_local(wo);
+                let i = lobe.sample_dir(o, u, u_choice, film)?;
+                let wi = frame.to_world(i);
                 // A direction the own frame sends through the surface is lost.
                 in_own_frame(&frame, wo, wi)?;
-                wi
+                (wi, (o, i))
             }
         };
-        if lobe == Lobe::Mirror {
-            // A discrete choice of probability p: f |cos θi| / p is the part's weight / p.
-            let (p, cos) = (self.choice(k, total), wi.z.abs());
-            let f = self.weights[k] * self.factor(normals, k, wo, wi) / cos.max(1e-8);
+        // A Dirac lobe: its f |cos θi| and the probability of its branch.
+        let delta = match lobe {
+            Lobe::Mirror => Some((Rgb::ONE, 1.0)),
+            Lobe::Glass(g) if g.is_smooth() => Some(g.delta(local.0, local.1, film)),
+            _ => None,
+        };
+        if let Some((value, branch)) = delta {
+            // A discrete choice of probability p: f |cos θi| / p is the part's weight ×
+            // the lobe's value / p.
+            let (p, cos) = (self.choice(k, total) * branch, wi.z.abs());
+            let f = self.weights[k] * value * self.factor(normals, k, wo, wi) / cos.max(1e-8);
             return (p > 0.0).then_some(BsdfSample { wi, f, pdf: p, delta: true });
         }
         let pdf = self.pdf_around(normals, wo, wi);

@@ -357,6 +357,8 @@ impl SurfaceModel {
             SurfaceModel::Unified(u) => u.params().spec_trans > 0.0 && !u.params().thin,
             SurfaceModel::Mia(m) => m.0.transparency > 0.0 && !m.0.thin_walled,
             SurfaceModel::Lobes(l) => l.transmit != Rgb::ZERO && !l.thin,
+            SurfaceModel::MdlLobes(l) => l.has_inside(),
+            SurfaceModel::MdlWide(l) => l.has_inside(),
             _ => false,
         }
     }

@@ -14,7 +14,8 @@
 //!   [`SurfaceModel::Lobes`]: Oren–Nayar, GGX reflection weighted by its tint (MDL's glossy
 //!   BSDFs have no Fresnel term), Lambert translucency;
 //! - a specular or glossy `scatter_reflect_transmit` lobe with the material's `ior` is the
-//!   unified material's glass, thin when the material is `thin_walled`.
+//!   unified material's glass, thin when the material is `thin_walled` (transmit-only and
+//!   anisotropic ones, and glass in any other tree, the general lobe sum's glass lobe).
 //!
 //! Other combinations are approximated by their diffuse part, with a warning naming the
 //! construct.
@@ -40,7 +41,7 @@ use super::value::{Df, Edf, Leaf, ScatterMode, Value};
 use crate::edf::EmissionShape;
 use crate::inputs::{Evaluated, HitEvaluator, HitMaterial, Varying};
 use crate::{SurfaceMaterial, SurfaceModel};
-use general_sum::{filled_up, general};
+use general_sum::{filled_up, general, Medium};
 
 /// The diffuse lobes of a tree summed: albedo, Σ σ · luminance, Σ luminance, and the
 /// range of σ (an average of equal σ is that σ exactly).
@@ -233,6 +234,17 @@ fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
             glossy(&parts[0].1, hit).map(|(t, a, m)| (t * w, a, m))
         }
         _ => None,
+    }
+}
+
+/// Whether a lone glass lobe (through one-part mixes) is more than the unified material's
+/// glass holds: `scatter_transmit` (the unified glass also reflects) or anisotropic.
+fn beyond_unified_glass(df: &Df) -> bool {
+    match df {
+        Df::Specular { mode, .. } => *mode == ScatterMode::Transmit,
+        Df::Glossy { mode, tangent, .. } => *mode == ScatterMode::Transmit || tangent.is_some(),
+        Df::Mix { parts, .. } if parts.len() == 1 => beyond_unified_glass(&parts[0].1),
+        _ => false,
     }
 }
 
@@ -604,6 +616,7 @@ fn lower_bsdf(
         });
     }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
+    let medium = Medium { ior: ior.max(1e-3), thin };
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {
         let albedo = albedo.clamp(Rgb::ZERO, df.weight_bound());
         let model = if sigma > 0.0 { SurfaceModel::OrenNayar(sigma) } else { SurfaceModel::Lambert };
@@ -620,6 +633,13 @@ fn lower_bsdf(
                 })
             }),
             ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
+                // What the unified glass holds only approximately (transmission alone,
+                // anisotropic roughness) is the lobe sum's glass lobe where it can be one.
+                if beyond_unified_glass(df) {
+                    if let Some(lowered) = general(df, hit, medium, per_hit) {
+                        return lowered;
+                    }
+                }
                 for what in if warning { glass_ignores(df) } else { Vec::new() } {
                     say(&|name| format!("material '{name}': in glass, {what} is not compiled yet"));
                 }
@@ -647,7 +667,7 @@ fn lower_bsdf(
         {
             if tint != Rgb::ONE {
                 // A tinted coat: the general lobe sum has the tint (a Fresnel curve).
-                if let Some(lowered) = general(df, hit, per_hit) {
+                if let Some(lowered) = general(df, hit, medium, per_hit) {
                     return lowered;
                 }
                 say(&|name| format!("material '{name}': the coat's tint is not compiled yet; a white coat is used"));
@@ -661,11 +681,11 @@ fn lower_bsdf(
             });
         }
     }
-    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, per_hit)) {
+    if let Some(lowered) = lobes(df, hit).or_else(|| general(df, hit, medium, per_hit)) {
         return lowered;
     }
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, df.weight_bound());
-    let why = if filled_up(df, hit) {
+    let why = if filled_up(df, hit, medium) {
         format!(
             "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
             bsdf::lobes::WIDE_LOBES,

@@ -8,6 +8,7 @@ use bsdf::beckmann::Beckmann;
 use bsdf::measured_bsdf::MeasuredLobe;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
+use bsdf::rough_glass::RoughGlass;
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
@@ -34,12 +35,14 @@ use crate::SurfaceModel;
 /// own `normal` puts its lobes and its curve in the frame of that normal (at most `F`
 /// normals a sum). `axis` is the `tangent_u` the shading frame's u axis follows (the
 /// first anisotropic lobe's): an anisotropic lobe in the shading frame with another gets
-/// an own frame turned about the normal to its tangent.
+/// an own frame turned about the normal to its tangent. `medium` is what a glass lobe
+/// bounds.
 #[allow(clippy::too_many_arguments)]
 fn add_general<const N: usize, const C: usize, const F: usize>(
     df: &Df,
     scale: Rgb,
     hit: &[Vec4],
+    medium: Medium,
     sum: &mut GeneralSum<N, C, F>,
     role: Role,
     film: Option<(f32, Rgb)>,
@@ -82,6 +85,20 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let lost = (lobe != Lobe::Mirror).then_some((single, au, av));
             push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
+        // Glass (`scatter_reflect_transmit`, `scatter_transmit`), rough or smooth: the
+        // dielectric lobe of the material's index. V-cavities and `multiscatter_tint` in
+        // transmission are not lobes of the sum.
+        Df::Glossy { tint, roughness, mode, beckmann, vcavities: false, multiscatter, .. }
+            if *multiscatter == Leaf::Const(Rgb::ZERO) =>
+        {
+            let (alpha_x, alpha_y) = alpha(roughness);
+            let glass = glass_lobe((alpha_x, alpha_y), *beckmann, *mode, medium);
+            push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
+        }
+        Df::Specular { tint, mode } => {
+            let glass = glass_lobe((0.0, 0.0), false, *mode, medium);
+            push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
+        }
         Df::Backscatter { tint, roughness, multiscatter, tangent } => {
             let Some(frame) = tangent_frame(*tangent, axis, hit, sum, frame) else { return false };
             let mut push = |w: Rgb, lobe: Lobe| sum.push_in_frame(w, lobe, role, frame);
@@ -113,6 +130,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                     multiscatter,
                     scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
                     hit,
+                    medium,
                     sum,
                     under,
                     film,
@@ -123,15 +141,15 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::Mix { parts, bound } => {
             let mut ok = true;
             mix_weights(parts, *bound, hit, |w, d| {
-                ok = ok && add_general(d, scale * w, hit, sum, role, film, frame, axis)
+                ok = ok && add_general(d, scale * w, hit, medium, sum, role, film, frame, axis)
             });
             ok
         }
         Df::Layer { weight, fresnel_ior: None, layer, base, layer_normal } => {
             let w = weight.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            add_general(layer, scale * w, hit, sum, role, film, own, axis)
-                && add_general(base, scale * (Rgb::ONE - w), hit, sum, role, film, frame, axis)
+            add_general(layer, scale * w, hit, medium, sum, role, film, own, axis)
+                && add_general(base, scale * (Rgb::ONE - w), hit, medium, sum, role, film, frame, axis)
         }
         Df::Layer { weight, fresnel_ior: Some(ior), layer, base, layer_normal } => {
             let curve = match (film, layer_ior(ior.get(hit))) {
@@ -144,7 +162,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 (None, Err(ior)) => CurveKind::ColorFresnel { ior },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
         }
         Df::CurveLayer { weight, normal, grazing, exponent, layer, base, layer_normal } => {
             let normal = normal.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
@@ -159,7 +177,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
         }
         Df::DirectionalFactor { normal, grazing, exponent, base } => {
             let curve = CurveKind::Schlick {
@@ -168,11 +186,11 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 exponent: exponent.get(hit).x.max(0.0),
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
+            add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
         Df::ThinFilm { thickness, ior, base } => {
             let film = Some((thickness.get(hit).x.max(0.0), ior.get(hit)));
-            add_general(base, scale, hit, sum, role, film, frame, axis)
+            add_general(base, scale, hit, medium, sum, role, film, frame, axis)
         }
         Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => {
             let curve = match film {
@@ -185,7 +203,7 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 None => CurveKind::Measured(curve),
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
-            curve_layer(curve, weight.get(hit), layer, base, scale, hit, sum, role, (frame, own), axis)
+            curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
         }
         Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
             let (curve, base) = match df {
@@ -197,10 +215,62 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                 _ => return false,
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
-            add_general(base, scale, hit, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
+            add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
         _ => false,
     }
+}
+
+/// The medium a glass lobe bounds: the material's index of refraction (inside over
+/// outside) and whether it is thin-walled (no inside: transmission straight through).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Medium {
+    /// `ior` (the mean of its channels).
+    pub ior: f32,
+    /// `thin_walled`.
+    pub thin: bool,
+}
+
+/// The glass lobe of roughness `alpha` (GGX, or Beckmann) in transmission mode `mode`
+/// bounding `medium`.
+fn glass_lobe(alpha: (f32, f32), beckmann: bool, mode: ScatterMode, medium: Medium) -> RoughGlass {
+    RoughGlass {
+        alpha_x: alpha.0,
+        alpha_y: alpha.1,
+        eta: medium.ior,
+        beckmann,
+        reflect: mode == ScatterMode::ReflectTransmit,
+        thin: medium.thin,
+        film: 0,
+    }
+}
+
+/// Pushes `glass` of weight `weight` (as `role` says, in `frame`); under `film` (thickness
+/// in nm, film index), the film's Airy reflectance over the glass's index on its Fresnel
+/// term, a curve of the sum the lobe names. False when the sum is full or the lobe is none
+/// (a solid of index 1).
+fn push_glass<const N: usize, const C: usize, const F: usize>(
+    sum: &mut GeneralSum<N, C, F>,
+    weight: Rgb,
+    glass: RoughGlass,
+    film: Option<(f32, Rgb)>,
+    role: Role,
+    frame: u8,
+) -> bool {
+    if !glass.is_valid() {
+        return false;
+    }
+    let film = match film {
+        None => 0,
+        Some((thickness_nm, film_ior)) => {
+            let curve = CurveKind::ThinFilm { ior: glass.eta, film_ior, thickness_nm };
+            match sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) {
+                Some(k) => k + 1,
+                None => return false,
+            }
+        }
+    };
+    sum.push_in_frame(weight, Lobe::Glass(RoughGlass { film, ..glass }), role, frame)
 }
 
 /// Pushes the compensation of a micro-mirror lobe of weight `tint` (`lost`: its model and
@@ -308,31 +378,32 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
     base: &Df,
     scale: Rgb,
     hit: &[Vec4],
+    medium: Medium,
     sum: &mut GeneralSum<N, C, F>,
     role: Role,
     frames: (u8, u8),
     axis: Option<Leaf>,
 ) -> bool {
     let Some((over, under)) = layer_roles(curve, weight, base, role, hit, sum, frames) else { return false };
-    add_general(layer, scale, hit, sum, over, None, frames.1, axis)
-        && add_general(base, scale, hit, sum, under, None, frames.0, axis)
+    add_general(layer, scale, hit, medium, sum, over, None, frames.1, axis)
+        && add_general(base, scale, hit, medium, sum, under, None, frames.0, axis)
 }
 
 /// The tree as a lobe sum and its diffuse colour, if it is one: a compact
 /// [`SurfaceModel::MdlLobes`] where it fits (the common case, copied into each hit's BSDF),
 /// else a [`SurfaceModel::MdlWide`] (shared by the hits' BSDFs) or, lowered at a hit
 /// (`per_hit`), a [`SurfaceModel::MdlWideAt`] in the thread's ring of wide sums.
-pub(super) fn general(df: &Df, hit: &[Vec4], per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
+pub(super) fn general(df: &Df, hit: &[Vec4], medium: Medium, per_hit: bool) -> Option<(Rgb, SurfaceModel)> {
     let axis = super::tangents::first(df);
     let mut sum = Lobes::default();
-    if add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0, axis) {
+    if add_general(df, Rgb::ONE, hit, medium, &mut sum, Role::default(), None, 0, axis) {
         return Some((diffuse_of(&sum), SurfaceModel::MdlLobes(Box::new(sum))));
     }
     if !filled(&sum) {
         return None;
     }
     let mut wide = WideLobes::default();
-    if !add_general(df, Rgb::ONE, hit, &mut wide, Role::default(), None, 0, axis) {
+    if !add_general(df, Rgb::ONE, hit, medium, &mut wide, Role::default(), None, 0, axis) {
         return None;
     }
     let model = if per_hit {
@@ -357,8 +428,8 @@ fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C,
 }
 
 /// Whether lowering `df` as a wide lobe sum stopped with the sum full.
-pub(super) fn filled_up(df: &Df, hit: &[Vec4]) -> bool {
+pub(super) fn filled_up(df: &Df, hit: &[Vec4], medium: Medium) -> bool {
     let mut sum = WideLobes::default();
     let axis = super::tangents::first(df);
-    !add_general(df, Rgb::ONE, hit, &mut sum, Role::default(), None, 0, axis) && filled(&sum)
+    !add_general(df, Rgb::ONE, hit, medium, &mut sum, Role::default(), None, 0, axis) && filled(&sum)
 }
