@@ -41,6 +41,7 @@ pub mod precomputed;
 pub mod registry;
 pub mod shading;
 pub mod shutter;
+pub mod simd;
 pub mod site;
 pub mod sobol;
 pub mod state;

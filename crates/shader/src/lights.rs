@@ -106,6 +106,11 @@ pub struct LightLoop {
     ahead_reach: u8,
     ahead_blocked: u8,
     ahead_samples: [SampleGeometry; AHEAD],
+    /// For a [`SimpleLight`]: bit k set when sample `ahead_from + k` arrives lit (its
+    /// colour after the light and its shadow ray in `ahead_colors`, which holds the
+    /// unshadowed colour until the batch's rays are answered).
+    ahead_lit: u8,
+    ahead_colors: [Color; AHEAD],
     /// What they were found for: the point, normal, shadow point, geometric normal and
     /// time of the shading state, and `both_sides` (a shader changing one between samples
     /// has them found again).
@@ -115,6 +120,9 @@ pub struct LightLoop {
     /// The light's shader is a [`SimpleLight`] the loop evaluates in place (no media to
     /// cross, no shadow shaders to run): see [`Ctx::simple_light_sample`].
     simple: Option<SimpleLight>,
+    /// `simple`, with shadow rays, on a still area light: every sample is evaluated when
+    /// its batch is found ahead ([`Ctx::simple_area_sample`]).
+    simple_area: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -194,6 +202,7 @@ impl<'a> Ctx<'a> {
             let walks = s.casts_shadows() && shading.shadows && shading.has_shadow_shaders();
             !(shading.has_media() || walks)
         });
+        let batch = simple.is_some_and(|s| s.casts_shadows() && shading.shadows);
         LightLoop {
             light,
             samples: 0,
@@ -204,15 +213,18 @@ impl<'a> Ctx<'a> {
             still,
             // A simple light that will ask for any-hit shadow rays has them traced ahead
             // from its first sample on.
-            batch: simple.is_some_and(|s| s.casts_shadows() && shading.shadows),
+            batch,
             ahead_from: 0,
             ahead: 0,
             ahead_reach: 0,
             ahead_blocked: 0,
             ahead_samples: [SampleGeometry::default(); AHEAD],
+            ahead_lit: 0,
+            ahead_colors: [Color::ZERO; AHEAD],
             ahead_for: ([Vec3A::ZERO; 4], 0.0, false),
             both_sides: false,
             simple,
+            simple_area: batch && still && l.shape.is_some() && !l.user,
         }
     }
 
@@ -226,6 +238,9 @@ impl<'a> Ctx<'a> {
     /// loop in `sample_index`; it arrives with `org` at the light's origin. The call
     /// that returns false ends the loop and is no sample.
     pub fn sample_light(&mut self, lp: &mut LightLoop) -> Option<LightSample> {
+        if lp.simple_area && self.volume_of(&self.state).is_none() {
+            return self.simple_area_sample(lp);
+        }
         let count = lp.grid.0 * lp.grid.1;
         let user = self.shading().lights[lp.light as usize].user;
         while lp.next < count {
@@ -409,11 +424,12 @@ impl<'a> Ctx<'a> {
     /// this point to it, the distance, the point on the light and `dot(normal, dir)`;
     /// `None` when it does not reach the point (degenerate, or behind the surface).
     fn sample_geometry(&mut self, lp: &LightLoop, light: &ShadingLight, i: u32) -> Option<SampleGeometry> {
-        self.sample_geometry_jittered(lp, light, i, None)
+        self.sample_geometry_jittered(lp, light, i, None, None)
     }
 
     /// [`Ctx::sample_geometry`] with sample `i`'s two numbers `jitter` when they were
-    /// made ahead (`lp.pairs`' `pair(i)`, bit for bit).
+    /// made ahead (`lp.pairs`' `pair(i)`, bit for bit), and its cell `(i mod u, i div u)`
+    /// of the light's u×v grid when the caller knows it.
     #[inline(always)]
     fn sample_geometry_jittered(
         &mut self,
@@ -421,6 +437,7 @@ impl<'a> Ctx<'a> {
         light: &ShadingLight,
         i: u32,
         jitter: Option<Vec2>,
+        cell: Option<(u32, u32)>,
     ) -> Option<SampleGeometry> {
         let p = self.state.point;
         let (to_light, dist, on_light) = match (light.kind, &light.shape) {
@@ -438,7 +455,8 @@ impl<'a> Ctx<'a> {
                     (None, None) => self.sample2(lp.site, i, lp.grid.0 * lp.grid.1),
                 };
                 let (gu, gv) = lp.grid;
-                let u = Vec2::new(((i % gu) as f32 + j.x) / gu as f32, ((i / gu) as f32 + j.y) / gv as f32);
+                let (col, row) = cell.unwrap_or((i % gu, i / gu));
+                let u = Vec2::new((col as f32 + j.x) / gu as f32, (row as f32 + j.y) / gv as f32);
                 let (q, _) = shape.point_on(light.origin, u);
                 let d = q - p;
                 let dist = d.length();
@@ -455,6 +473,43 @@ impl<'a> Ctx<'a> {
         Some(SampleGeometry { to_light, dist, on_light, dot_nl })
     }
 
+    /// [`Ctx::sample_light`] for a loop with `simple_area` set, where no volume shader
+    /// changes the light (`volume_of` the state is none): the samples' colours are
+    /// evaluated as their batch is found ahead ([`Ctx::find_ahead`]), and each sample
+    /// reads its own — what [`Ctx::simple_light_sample`] gives, bit for bit.
+    fn simple_area_sample(&mut self, lp: &mut LightLoop) -> Option<LightSample> {
+        let count = lp.grid.0 * lp.grid.1;
+        let light = &self.shading().lights[lp.light as usize];
+        // No shader runs within this call: the state stays as it is.
+        let s = &self.state;
+        let at = ([s.point, s.normal, s.shadow_point, s.normal_geom], s.time, lp.both_sides);
+        while lp.next < count {
+            let i = lp.next;
+            lp.next += 1;
+            lp.samples += 1;
+            let mut k = i.wrapping_sub(lp.ahead_from);
+            if k >= AHEAD as u32 || lp.ahead & (1 << k) == 0 || lp.ahead_for != at {
+                self.find_ahead(lp, light, i, at);
+                k = 0;
+            }
+            if lp.ahead_reach & (1 << k) == 0 {
+                continue;
+            }
+            // The shader call this stands for.
+            self.counts.calls += 1;
+            if lp.ahead_lit & (1 << k) != 0 {
+                let g = &lp.ahead_samples[k as usize];
+                return Some(LightSample {
+                    color: lp.ahead_colors[k as usize],
+                    dir: g.to_light,
+                    dot_nl: g.dot_nl,
+                    dist: g.dist,
+                });
+            }
+        }
+        None
+    }
+
     /// Sample `i`'s geometry and the answer to its shadow query, found ahead together
     /// with the next samples' (up to [`AHEAD`] from `i`, their shadow rays traced as one
     /// batch) when sample `i` was not.
@@ -468,57 +523,7 @@ impl<'a> Ctx<'a> {
         let at = ([s.point, s.normal, s.shadow_point, s.normal_geom], s.time, lp.both_sides);
         let mut k = i.wrapping_sub(lp.ahead_from);
         if k >= AHEAD as u32 || lp.ahead & (1 << k) == 0 || lp.ahead_for != at {
-            lp.ahead_for = at;
-            let count = lp.grid.0 * lp.grid.1;
-            let mut queries = [ShadowQuery { org: Vec3A::ZERO, dir: Vec3A::ZERO, max_dist: 0.0 }; AHEAD];
-            let mut lanes = [0usize; AHEAD];
-            let mut n = 0;
-            (lp.ahead_from, lp.ahead, lp.ahead_reach, lp.ahead_blocked) = (i, 0, 0, 0);
-            // The samples' numbers, four at a time.
-            let mut jitter = [None; AHEAD];
-            if let Some(pairs) = lp.pairs {
-                for (k, four) in jitter.chunks_mut(4).enumerate() {
-                    if i + (4 * k) as u32 >= count {
-                        break;
-                    }
-                    for (slot, pair) in four.iter_mut().zip(pairs.pairs4(i + (4 * k) as u32)) {
-                        *slot = Some(pair);
-                    }
-                }
-            }
-            // A simple light whose ramp or cone can leave a sample unlit.
-            let dims = lp.simple.filter(|s| s.atten.is_some() || s.cone.is_some());
-            for j in i..count.min(i + AHEAD as u32) {
-                let lane = (j - i) as usize;
-                lp.ahead |= 1 << lane;
-                let Some(g) = self.sample_geometry_jittered(lp, light, j, jitter[lane]) else { continue };
-                // The ray `trace_shadow` casts from this sample's light state.
-                let org = crate::trace::leave_point(
-                    self.state.shadow_point,
-                    self.state.point_error,
-                    self.state.normal_geom,
-                    g.to_light,
-                );
-                let max_dist = if g.dist.is_finite() { g.dist * (1.0 - 1e-4) } else { f32::INFINITY };
-                let query = ShadowQuery { org, dir: g.to_light, max_dist };
-                lp.ahead_reach |= 1 << lane;
-                lp.ahead_samples[lane] = g;
-                if let Some(simple) = dims {
-                    let (axis_cos, spread) = spot_inputs(&simple, light, g.to_light);
-                    if simple.unshadowed(g.dist, axis_cos, spread).is_none() {
-                        // Past the ramp's stop or outside the spot's cone: neither the light
-                        // loop nor the shader (no light there either) asks for this ray.
-                        continue;
-                    }
-                }
-                (queries[n], lanes[n]) = (query, lane);
-                n += 1;
-            }
-            let mut blocked = [false; AHEAD];
-            self.tracer.shadow_blocked_batch(&queries[..n], self.state.time, &mut blocked[..n]);
-            for (&lane, &b) in lanes[..n].iter().zip(&blocked[..n]) {
-                lp.ahead_blocked |= u8::from(b) << lane;
-            }
+            self.find_ahead(lp, light, i, at);
             k = 0;
         }
         if lp.ahead_reach & (1 << k) == 0 {
@@ -529,6 +534,81 @@ impl<'a> Ctx<'a> {
         let s = &self.state;
         let from = shadow_inputs(s.shadow_point, s.point_error, s.normal_geom, geometry.to_light, geometry.dist);
         (Some(geometry), Some(ShadowHint { time: s.time, blocked, from }))
+    }
+
+    /// Finds samples `i` to `i + AHEAD − 1` (those the loop has) of `lp` for the state
+    /// `at` ([`LightLoop::ahead_for`]): their geometry, their shadow rays traced as one
+    /// batch, and for a [`SimpleLight`] their colours.
+    fn find_ahead(&mut self, lp: &mut LightLoop, light: &ShadingLight, i: u32, at: ([Vec3A; 4], f32, bool)) {
+        lp.ahead_for = at;
+        let count = lp.grid.0 * lp.grid.1;
+        let mut queries = [ShadowQuery { org: Vec3A::ZERO, dir: Vec3A::ZERO, max_dist: 0.0 }; AHEAD];
+        let mut lanes = [0usize; AHEAD];
+        let mut n = 0;
+        (lp.ahead_from, lp.ahead, lp.ahead_reach, lp.ahead_blocked, lp.ahead_lit) = (i, 0, 0, 0, 0);
+        // The samples' numbers: eight at a time, or four when no more are left.
+        let jitter = lp.pairs.map(|pairs| {
+            if count - i > 4 {
+                pairs.pairs8(i)
+            } else {
+                let four = pairs.pairs4(i);
+                std::array::from_fn(|k| four[k % 4])
+            }
+        });
+        // Sample j's cell of the light's grid, kept from sample to sample.
+        let gu = lp.grid.0.max(1);
+        let mut cell = (i % gu, i / gu);
+        for j in i..count.min(i + AHEAD as u32) {
+            let lane = (j - i) as usize;
+            lp.ahead |= 1 << lane;
+            let at_cell = cell;
+            cell = if cell.0 + 1 == gu { (0, cell.1 + 1) } else { (cell.0 + 1, cell.1) };
+            let Some(g) =
+                self.sample_geometry_jittered(lp, light, j, jitter.as_ref().map(|jit| jit[lane]), Some(at_cell))
+            else {
+                continue;
+            };
+            lp.ahead_reach |= 1 << lane;
+            lp.ahead_samples[lane] = g;
+            if let Some(simple) = lp.simple {
+                let (axis_cos, spread) = spot_inputs(&simple, light, g.to_light);
+                let Some(color) = simple.unshadowed(g.dist, axis_cos, spread) else {
+                    // Past the ramp's stop or outside the spot's cone: neither the light
+                    // loop nor the shader (no light there either) asks for this ray.
+                    continue;
+                };
+                lp.ahead_colors[lane] = color;
+                lp.ahead_lit |= 1 << lane;
+            }
+            // The ray `trace_shadow` casts from this sample's light state.
+            let org = crate::trace::leave_point(
+                self.state.shadow_point,
+                self.state.point_error,
+                self.state.normal_geom,
+                g.to_light,
+            );
+            let max_dist = if g.dist.is_finite() { g.dist * (1.0 - 1e-4) } else { f32::INFINITY };
+            (queries[n], lanes[n]) = (ShadowQuery { org, dir: g.to_light, max_dist }, lane);
+            n += 1;
+        }
+        let mut blocked = [false; AHEAD];
+        self.tracer.shadow_blocked_batch(&queries[..n], self.state.time, &mut blocked[..n]);
+        for (&lane, &b) in lanes[..n].iter().zip(&blocked[..n]) {
+            lp.ahead_blocked |= u8::from(b) << lane;
+        }
+        if let Some(simple) = lp.simple {
+            // What `simple_light_sample` makes of each lit sample and its shadow ray.
+            for lane in 0..AHEAD {
+                if lp.ahead_lit & (1 << lane) == 0 {
+                    continue;
+                }
+                let through = lp.ahead_blocked & (1 << lane) == 0;
+                match shadowed(lp.ahead_colors[lane], simple.factor, through, Color::ONE) {
+                    Some(c) if c.x != 0.0 || c.y != 0.0 || c.z != 0.0 => lp.ahead_colors[lane] = c,
+                    _ => lp.ahead_lit &= !(1 << lane),
+                }
+            }
+        }
     }
 
     /// For a light shader: sends a shadow ray from the illuminated point to the light and

@@ -106,6 +106,90 @@ impl SitePairs {
         let (x, y) = (numbers(self.lane, keys.scramble[0]), numbers(self.lane + 1, keys.scramble[1]));
         [0, 1, 2, 3].map(|k| Vec2::new(x[k], y[k]))
     }
+
+    /// [`SitePairs::pair`] of samples `first` to `first + 7`, bit for bit, computed
+    /// eight at a time in plain integer code over arrays, built for the CPU's vector
+    /// units ([`crate::simd`]): for the light loop's batches of eight.
+    #[inline]
+    pub fn pairs8(&self, first: u32) -> [Vec2; 8] {
+        let index: [u32; 8] = std::array::from_fn(|k| self.base.wrapping_add(first).wrapping_add(k as u32));
+        if index.iter().any(|&i| i >> 16 != self.high) {
+            // Past an index multiple of 2¹⁶ (another sequence seed): one at a time.
+            return std::array::from_fn(|k| self.pair(first.wrapping_add(k as u32)));
+        }
+        let (x, y) = self.numbers8_dispatched(index);
+        std::array::from_fn(|k| Vec2::new(x[k], y[k]))
+    }
+
+    /// [`SitePairs::numbers8`] built for AVX2 or SSE4.1 when the CPU has it (the
+    /// same bits; see [`crate::simd`]), else the baseline build.
+    #[inline]
+    #[allow(unsafe_code)]
+    fn numbers8_dispatched(&self, index: [u32; 8]) -> ([f32; 8], [f32; 8]) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::has_avx2() {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.numbers8_avx2(index) };
+        }
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::has_sse41() {
+            // SAFETY: the CPU has SSE4.1 (checked just above).
+            return unsafe { self.numbers8_sse41(index) };
+        }
+        self.numbers8(index)
+    }
+
+    /// [`SitePairs::numbers8`] built with AVX2.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(unsafe_code)]
+    unsafe fn numbers8_avx2(&self, index: [u32; 8]) -> ([f32; 8], [f32; 8]) {
+        self.numbers8(index)
+    }
+
+    /// [`SitePairs::numbers8`] built with SSE4.1.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support SSE4.1.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "sse4.1")]
+    #[allow(unsafe_code)]
+    unsafe fn numbers8_sse41(&self, index: [u32; 8]) -> ([f32; 8], [f32; 8]) {
+        self.numbers8(index)
+    }
+
+    /// The two numbers of the samples with sequence indices `index` (all sharing
+    /// `self.high`), lane by lane as [`SitePairs::pair`] makes them.
+    #[inline(always)]
+    fn numbers8(&self, index: [u32; 8]) -> ([f32; 8], [f32; 8]) {
+        let keys = self.keys;
+        let mut shuffled = [0u32; 8];
+        for (s, &i) in shuffled.iter_mut().zip(&index) {
+            *s = parts::owen_scramble_rev((i & 0xffff).reverse_bits(), keys.shuffle);
+        }
+        // The two dimensions' lanes of each point: the XOR of its four nibbles' entries.
+        let (mut xs, mut ys) = ([0u32; 8], [0u32; 8]);
+        for k in 0..8 {
+            let n = shuffled[k] >> 16;
+            let entry = |nibble: usize| &self.table[nibble][((n >> (4 * nibble)) & 15) as usize];
+            let (e0, e1, e2, e3) = (entry(0), entry(1), entry(2), entry(3));
+            xs[k] = e0[self.lane] ^ e1[self.lane] ^ e2[self.lane] ^ e3[self.lane];
+            ys[k] = e0[self.lane + 1] ^ e1[self.lane + 1] ^ e2[self.lane + 1] ^ e3[self.lane + 1];
+        }
+        let finish = |points: [u32; 8], scramble: u32| {
+            let mut out = [0.0; 8];
+            for (o, &p) in out.iter_mut().zip(&points) {
+                *o = parts::u32_to_f32_norm(parts::owen_scramble_rev(p, scramble).reverse_bits());
+            }
+            out
+        };
+        (finish(xs, keys.scramble[0]), finish(ys, keys.scramble[1]))
+    }
 }
 
 /// The seed of the Sobol sequence of a site's samples whose indices share `high`.
@@ -133,6 +217,7 @@ mod tests {
     /// its dimensions under its sequence seed: every site, loops of several lengths, eye
     /// sample indices whose loops cross an index multiple of 2¹⁶ and wrap past 2³².
     #[test]
+    #[allow(unsafe_code)]
     fn pairs_are_the_one_dimension_samples() {
         let words = [3u32, 7, 0x5eed, 9];
         for site in 0..130 {
@@ -152,10 +237,36 @@ mod tests {
                         expect.map(f32::to_bits),
                         "site {site} sample {sample_index} of {n}, i {i}"
                     );
-                    // Four at a time from here: the same numbers.
+                    // Four and eight at a time from here: the same numbers.
                     for (k, four) in pairs.pairs4(i).into_iter().enumerate() {
                         let one = pairs.pair(i + k as u32);
                         assert_eq!([four.x.to_bits(), four.y.to_bits()], [one.x.to_bits(), one.y.to_bits()]);
+                    }
+                    let index = |k: u32| sample_index.wrapping_mul(n).wrapping_add(i + k);
+                    let eight = pairs.pairs8(i);
+                    // The vector builds and the baseline one, each where it ran.
+                    let mut builds = vec![];
+                    if (0..8).all(|k| index(k) >> 16 == index(0) >> 16) {
+                        let indices = std::array::from_fn(|k| index(k as u32));
+                        builds.push(pairs.numbers8(indices));
+                        #[cfg(target_arch = "x86_64")]
+                        if std::is_x86_feature_detected!("sse4.1") {
+                            // SAFETY: checked just above.
+                            builds.push(unsafe { pairs.numbers8_sse41(indices) });
+                        }
+                        #[cfg(target_arch = "x86_64")]
+                        if std::is_x86_feature_detected!("avx2") {
+                            // SAFETY: checked just above.
+                            builds.push(unsafe { pairs.numbers8_avx2(indices) });
+                        }
+                    }
+                    for k in 0..8 {
+                        let one = pairs.pair(i + k as u32);
+                        let want = [one.x.to_bits(), one.y.to_bits()];
+                        assert_eq!([eight[k].x.to_bits(), eight[k].y.to_bits()], want, "pairs8, i {i} + {k}");
+                        for (x, y) in &builds {
+                            assert_eq!([x[k].to_bits(), y[k].to_bits()], want, "a build of numbers8, i {i} + {k}");
+                        }
                     }
                 }
             }
