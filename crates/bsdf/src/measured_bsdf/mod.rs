@@ -18,7 +18,8 @@
 pub mod reader;
 
 use std::f32::consts::{FRAC_PI_2, PI};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
 
 use glam::{Vec2, Vec3A};
 
@@ -230,37 +231,51 @@ pub struct MeasuredBsdf {
     pub transmission: Option<Part>,
 }
 
-/// Every distinct measurement interned so far (kept for the life of the process: one per
-/// distinct file a scene's materials use).
+/// The most distinct measurements one process interns (a slot each in [`SLOTS`]).
+pub const MAX_MEASUREMENTS: usize = 4096;
+
+/// Every distinct measurement interned so far, in the order interned (kept for the life of
+/// the process: one per distinct file a scene's materials use). Interning takes the lock;
+/// lobes read [`SLOTS`] without it.
 static TABLES: Mutex<Vec<&'static MeasuredBsdf>> = Mutex::new(Vec::new());
 
-/// The interned copy of `m`: an equal measurement interned before, or `m` itself.
-pub fn intern(m: MeasuredBsdf) -> &'static MeasuredBsdf {
+/// The interned measurements by index, readable without a lock: slot k is set once, when
+/// the k-th distinct measurement is interned.
+static SLOTS: [OnceLock<&'static MeasuredBsdf>; MAX_MEASUREMENTS] = [const { OnceLock::new() }; MAX_MEASUREMENTS];
+
+/// How many slots of [`SLOTS`] are set.
+static COUNT: AtomicUsize = AtomicUsize::new(0);
+
+/// The interned copy of `m`: an equal measurement interned before, or `m` itself; `Err`
+/// when [`MAX_MEASUREMENTS`] distinct ones are interned already.
+pub fn intern(m: MeasuredBsdf) -> Result<&'static MeasuredBsdf, String> {
     let mut tables = TABLES.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     if let Some(t) = tables.iter().find(|t| ***t == m) {
-        return t;
+        return Ok(t);
+    }
+    if tables.len() >= MAX_MEASUREMENTS {
+        return Err(format!("more than {MAX_MEASUREMENTS} distinct bsdf measurements in one process"));
     }
     let table: &'static MeasuredBsdf = Box::leak(Box::new(m));
+    // Set under the lock, so slots fill in order and `COUNT` only grows past set slots.
+    let _ = SLOTS[tables.len()].set(table);
     tables.push(table);
-    table
+    COUNT.store(tables.len(), Ordering::Release);
+    Ok(table)
 }
 
 /// A measured lobe: an interned measurement and the parts it uses (MDL's `mode`), at unit
-/// weight (the `multiplier` is the lobe sum's weight).
-#[derive(Clone, Copy, Debug)]
+/// weight (the `multiplier` is the lobe sum's weight). The measurement is held by its
+/// index among the interned ones, not a pointer, so that the lobe is 4-byte aligned and
+/// [`crate::Lobe`] stays 16 bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeasuredLobe {
-    /// The measurement.
-    pub table: &'static MeasuredBsdf,
+    /// The measurement's index in the interned ones.
+    table: u32,
     /// Whether the reflection part is used.
     pub reflect: bool,
     /// Whether the transmission part is used.
     pub transmit: bool,
-}
-
-impl PartialEq for MeasuredLobe {
-    fn eq(&self, other: &Self) -> bool {
-        std::ptr::eq(self.table, other.table) && self.reflect == other.reflect && self.transmit == other.transmit
-    }
 }
 
 /// θ of a direction from the normal on its own side, [0, π/2].
@@ -276,13 +291,28 @@ fn azimuth_difference(a: Vec3A, b: Vec3A) -> f32 {
 }
 
 impl MeasuredLobe {
+    /// The lobe of the interned measurement `table` (from [`intern`]) using its reflection
+    /// and/or transmission part; `None` if `table` was not interned.
+    pub fn new(table: &'static MeasuredBsdf, reflect: bool, transmit: bool) -> Option<MeasuredLobe> {
+        let count = COUNT.load(Ordering::Acquire);
+        let index = SLOTS[..count].iter().position(|slot| slot.get().is_some_and(|t| std::ptr::eq(*t, table)))?;
+        Some(MeasuredLobe { table: index as u32, reflect, transmit })
+    }
+
+    /// The measurement.
+    #[inline]
+    pub fn table(&self) -> &'static MeasuredBsdf {
+        // Only `new` makes lobes, from slots that are set.
+        SLOTS[self.table as usize].get().expect("an interned measurement")
+    }
+
     /// The part that scatters from ωo to ωi (reflection on ωo's side, transmission
     /// through), if used and present.
     fn part(&self, wo: Vec3A, wi: Vec3A) -> Option<&'static Part> {
         if wo.z * wi.z > 0.0 {
-            self.table.reflection.as_ref().filter(|_| self.reflect)
+            self.table().reflection.as_ref().filter(|_| self.reflect)
         } else if wo.z * wi.z < 0.0 {
-            self.table.transmission.as_ref().filter(|_| self.transmit)
+            self.table().transmission.as_ref().filter(|_| self.transmit)
         } else {
             None
         }
@@ -296,8 +326,8 @@ impl MeasuredLobe {
     /// The probability of choosing the reflection part at ωo (the two rows' albedos).
     fn reflect_share(&self, wo: Vec3A) -> f32 {
         let ti = theta(wo);
-        let r = self.table.reflection.as_ref().filter(|_| self.reflect).map(|p| p.row_albedo(ti));
-        let t = self.table.transmission.as_ref().filter(|_| self.transmit).map(|p| p.row_albedo(ti));
+        let r = self.table().reflection.as_ref().filter(|_| self.reflect).map(|p| p.row_albedo(ti));
+        let t = self.table().transmission.as_ref().filter(|_| self.transmit).map(|p| p.row_albedo(ti));
         match (r, t) {
             (Some(_), None) => 1.0,
             (None, _) => 0.0,
@@ -325,7 +355,7 @@ impl MeasuredLobe {
         } else {
             (false, ((u.x - share) / (1.0 - share)).min(1.0 - f32::EPSILON))
         };
-        let part = if reflect { self.table.reflection.as_ref()? } else { self.table.transmission.as_ref()? };
+        let part = if reflect { self.table().reflection.as_ref()? } else { self.table().transmission.as_ref()? };
         let (cos, sin, dphi) = part.sample(theta(wo), Vec2::new(ux, u.y));
         let phi_o = wo.y.atan2(wo.x);
         let phi = phi_o + dphi;

@@ -13,7 +13,7 @@ use glam::Vec3A;
 /// The lobe sum of one measured lobe of weight `w`.
 fn lobe_of(m: MeasuredBsdf, reflect: bool, transmit: bool, w: f32) -> Bsdf {
     let mut l = Lobes::default();
-    assert!(l.push(Rgb::splat(w), Lobe::Measured(MeasuredLobe { table: intern(m), reflect, transmit })));
+    assert!(l.push(Rgb::splat(w), Lobe::Measured(MeasuredLobe::new(intern(m).unwrap(), reflect, transmit).unwrap())));
     Bsdf::Lobes(l)
 }
 

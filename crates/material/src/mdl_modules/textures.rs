@@ -214,7 +214,7 @@ impl Textures {
                 let (m, notes) = measured_bsdf::reader::read(&bytes)
                     .map_err(|e| format!("bsdf measurement {}:{}: {}", path.display(), e.offset, e.message))?;
                 warnings.extend(notes.into_iter().map(|n| format!("bsdf measurement '{}': {n}", path.display())));
-                Ok(measured_bsdf::intern(m))
+                measured_bsdf::intern(m).map_err(|e| format!("bsdf measurement '{}': {e}", path.display()))
             })
             .clone()
     }

@@ -56,11 +56,9 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
         Df::Diffuse { tint, roughness } => push(scale * tint.get(hit), Lobe::Diffuse(roughness.get(hit).x.max(0.0))),
         Df::DiffuseTransmission(tint) => push(scale * tint.get(hit), Lobe::Translucent),
         Df::Measured { table, multiplier, mode } => {
-            let lobe = MeasuredLobe {
-                table,
-                reflect: *mode != ScatterMode::Transmit,
-                transmit: *mode != ScatterMode::Reflect,
-            };
+            let (reflect, transmit) = (*mode != ScatterMode::Transmit, *mode != ScatterMode::Reflect);
+            // Measurements come interned from the module's textures: always found.
+            let Some(lobe) = MeasuredLobe::new(table, reflect, transmit) else { return false };
             push(scale * *multiplier, Lobe::Measured(lobe))
         }
         Df::Specular { tint, mode: ScatterMode::Reflect } => push(scale * tint.get(hit), Lobe::Mirror),
