@@ -37,6 +37,7 @@ mod mdl_matrices;
 mod mdl_measured_edf;
 mod mdl_microfacet_params;
 mod mdl_per_hit;
+mod mdl_per_hit_curves;
 mod mdl_state_space;
 mod mdl_statements;
 mod mdl_textures3d;
