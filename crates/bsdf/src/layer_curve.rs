@@ -51,6 +51,15 @@ pub enum CurveKind {
     /// A tabulated curve (`measured_curve_layer`): samples at uniform steps of the angle
     /// from 0 to π/2, linear between them (see [`crate::measured_curve`]).
     Measured(&'static [Rgb]),
+    /// A tabulated curve as [`CurveKind::Measured`] whose samples the lobe sum keeps itself
+    /// (`len` samples from `start` of its table, [`crate::lobes::LobeSum::add_table`]): the
+    /// per-hit curves of `measured_curve_layer`; read with [`CurveKind::eval_in`].
+    Tabulated {
+        /// The first sample's index in the sum's table.
+        start: u8,
+        /// How many samples.
+        len: u8,
+    },
     /// The unpolarised Fresnel reflectance of a conductor of complex index `eta` + i`k`
     /// per channel, relative to the outside (`fresnel_factor`).
     Conductor {
@@ -65,8 +74,16 @@ pub enum CurveKind {
 const BANDS_NM: [[f32; 3]; 3] = [[600.0, 630.0, 660.0], [510.0, 540.0, 570.0], [420.0, 450.0, 480.0]];
 
 impl CurveKind {
-    /// R(cos θ), `cos` the cosine of the angle of incidence (its absolute value is used).
+    /// R(cos θ), `cos` the cosine of the angle of incidence (its absolute value is used);
+    /// a [`CurveKind::Tabulated`] curve reads an empty table here (0): see
+    /// [`CurveKind::eval_in`].
     pub fn eval(&self, cos: f32) -> Rgb {
+        self.eval_in(cos, &[])
+    }
+
+    /// R(cos θ) as [`CurveKind::eval`], a [`CurveKind::Tabulated`] curve reading its samples
+    /// from `table` (its lobe sum's; samples past its end read as none).
+    pub fn eval_in(&self, cos: f32, table: &[Rgb]) -> Rgb {
         let c = cos.abs().min(1.0);
         match *self {
             CurveKind::Schlick { normal, grazing, exponent } => {
@@ -88,6 +105,10 @@ impl CurveKind {
             }
             CurveKind::SheenAlbedo { roughness } => Rgb::splat(sheen_albedo::albedo(c, roughness)),
             CurveKind::Measured(values) => measured_curve::eval(values, c),
+            CurveKind::Tabulated { start, len } => {
+                let (start, end) = (usize::from(start), usize::from(start) + usize::from(len));
+                measured_curve::eval(table.get(start..end).unwrap_or(&[]), c)
+            }
             CurveKind::Conductor { eta, k } => conductor::fresnel_conductor_rgb(c, eta, k),
         }
     }
@@ -95,6 +116,11 @@ impl CurveKind {
     /// The cosine-weighted hemispherical mean 2 ∫₀¹ R(μ) μ dμ (Schlick: exact; the others
     /// by a 64-point midpoint rule).
     pub fn mean(&self) -> Rgb {
+        self.mean_in(&[])
+    }
+
+    /// The mean as [`CurveKind::mean`], a [`CurveKind::Tabulated`] curve reading `table`.
+    pub fn mean_in(&self, table: &[Rgb]) -> Rgb {
         match *self {
             CurveKind::Schlick { normal, grazing, exponent } => {
                 let e = exponent.max(0.0);
@@ -106,7 +132,7 @@ impl CurveKind {
                 let mut sum = Rgb::ZERO;
                 for i in 0..N {
                     let mu = (i as f32 + 0.5) / N as f32;
-                    sum += self.eval(mu) * mu;
+                    sum += self.eval_in(mu, table) * mu;
                 }
                 sum * (2.0 / N as f32)
             }
@@ -163,9 +189,15 @@ impl LayerCurve {
     /// A curve of `weight` (clamped to [0, 1]); `lambertian_base` asks for the
     /// compensation that makes a Lambertian base lossless.
     pub fn new(kind: CurveKind, weight: Rgb, lambertian_base: bool) -> LayerCurve {
+        LayerCurve::new_in(kind, weight, lambertian_base, &[])
+    }
+
+    /// A curve as [`LayerCurve::new`], a [`CurveKind::Tabulated`] one reading `table` (the
+    /// table of the lobe sum it is added to).
+    pub fn new_in(kind: CurveKind, weight: Rgb, lambertian_base: bool, table: &[Rgb]) -> LayerCurve {
         let weight = weight.clamp(Rgb::ZERO, Rgb::ONE);
         let compensation = if lambertian_base {
-            let left = Rgb::ONE - weight * kind.mean();
+            let left = Rgb::ONE - weight * kind.mean_in(table);
             Rgb::new(inv_or_one(left.x), inv_or_one(left.y), inv_or_one(left.z))
         } else {
             Rgb::ONE
@@ -175,16 +207,26 @@ impl LayerCurve {
 
     /// The layer's factor for directions of cosines `co`, `ci`.
     pub fn over(&self, co: f32, ci: f32) -> Rgb {
+        self.over_in(co, ci, &[])
+    }
+
+    /// The layer's factor as [`LayerCurve::over`], a tabulated curve reading `table`.
+    pub fn over_in(&self, co: f32, ci: f32, table: &[Rgb]) -> Rgb {
         if matches!(self.kind, CurveKind::SheenAlbedo { .. }) {
             return Rgb::ONE;
         }
-        self.weight * self.kind.eval(co).min(self.kind.eval(ci))
+        self.weight * self.kind.eval_in(co, table).min(self.kind.eval_in(ci, table))
     }
 
     /// The base's factor for directions of cosines `co`, `ci`.
     pub fn under(&self, co: f32, ci: f32) -> Rgb {
-        (Rgb::ONE - self.weight * self.kind.eval(co))
-            * (Rgb::ONE - self.weight * self.kind.eval(ci))
+        self.under_in(co, ci, &[])
+    }
+
+    /// The base's factor as [`LayerCurve::under`], a tabulated curve reading `table`.
+    pub fn under_in(&self, co: f32, ci: f32, table: &[Rgb]) -> Rgb {
+        (Rgb::ONE - self.weight * self.kind.eval_in(co, table))
+            * (Rgb::ONE - self.weight * self.kind.eval_in(ci, table))
             * self.compensation
     }
 }
@@ -228,6 +270,28 @@ mod tests {
         // Normal incidence of the bare interface: ((n − 1)/(n + 1))².
         let f0 = ((n2 - 1.0) / (n2 + 1.0)).powi(2);
         assert!((half - f0).abs() < 1e-5);
+    }
+
+    /// A curve kept in a wide sum's own table reads as the interned curve of the same
+    /// samples (values and mean equal exactly); a table takes at most its `WIDE_TABLE`
+    /// samples in all, and a compact sum none.
+    #[test]
+    fn a_tabulated_curve_reads_as_the_measured_one() {
+        use crate::lobes::{Lobes, WideLobes, WIDE_TABLE};
+        let v = [Rgb::new(0.1, 0.2, 0.3), Rgb::new(0.5, 0.2, 0.9), Rgb::new(1.0, 0.0, 0.6)];
+        let mut sum = WideLobes::default();
+        assert!(sum.add_table(&[Rgb::splat(0.7)]).is_some());
+        let kind = sum.add_table(&v).unwrap();
+        assert_eq!(kind, CurveKind::Tabulated { start: 1, len: 3 });
+        let measured = CurveKind::Measured(measured_curve::intern(&v));
+        for i in 0..=16 {
+            let c = i as f32 / 16.0;
+            assert_eq!(kind.eval_in(c, sum.table()), measured.eval(c), "cos {c}");
+        }
+        assert_eq!(kind.mean_in(sum.table()), measured.mean());
+        assert_eq!(sum.add_table(&[Rgb::ONE; WIDE_TABLE - 3]), None, "one sample too many");
+        assert!(sum.add_table(&[Rgb::ONE; WIDE_TABLE - 4]).is_some());
+        assert_eq!(Lobes::default().add_table(&v), None);
     }
 
     /// The Schlick curve's mean is exact: compared with a 4000-point midpoint rule (1e-4).

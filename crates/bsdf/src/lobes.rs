@@ -50,14 +50,18 @@ pub const WIDE_CURVES: usize = 8;
 /// Most own frames a wide sum holds besides the shading frame.
 pub const WIDE_FRAMES: usize = 8;
 
+/// Most samples of tabulated curves a wide sum keeps itself ([`LobeSum::add_table`]: the
+/// per-hit `curve_values` of MDL's measured curves; a compact sum keeps none).
+pub const WIDE_TABLE: usize = 32;
+
 /// The common sum: up to [`MAX_LOBES`] lobes, [`MAX_CURVES`] curves and [`MAX_FRAMES`]
 /// own normals, `Copy`, inline in [`crate::Bsdf::Lobes`] (at most 320 bytes).
-pub type Lobes = LobeSum<MAX_LOBES, MAX_CURVES, MAX_FRAMES>;
+pub type Lobes = LobeSum<MAX_LOBES, MAX_CURVES, MAX_FRAMES, 0>;
 
 /// A sum too large for [`Lobes`]: up to [`WIDE_LOBES`] lobes, [`WIDE_CURVES`] curves and
 /// [`WIDE_FRAMES`] own normals; shared behind an `Arc` by [`crate::Bsdf::Wide`] (built
 /// once per material, or once per hit where the material varies).
-pub type WideLobes = LobeSum<WIDE_LOBES, WIDE_CURVES, WIDE_FRAMES>;
+pub type WideLobes = LobeSum<WIDE_LOBES, WIDE_CURVES, WIDE_FRAMES, WIDE_TABLE>;
 
 /// How the layer curves of a sum weigh one part: bit k of `over` scales it by curve k's
 /// layer factor ([`LayerCurve::over`]: the part is in the layer), of `under` by its base
@@ -128,10 +132,10 @@ pub enum Lobe {
     Glass(RoughGlass),
 }
 
-/// A weighted sum of up to `N` lobes with up to `C` layer curves and `F` own frames
-/// (`C` ≤ 8: a [`Role`]'s masks are 8 bits).
+/// A weighted sum of up to `N` lobes with up to `C` layer curves, `F` own frames and `T`
+/// samples of its own tabulated curves (`C` ≤ 8: a [`Role`]'s masks are 8 bits).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LobeSum<const N: usize, const C: usize, const F: usize> {
+pub struct LobeSum<const N: usize, const C: usize, const F: usize, const T: usize> {
     /// The parts' weights (tints); the first `count` are used.
     pub weights: [Rgb; N],
     /// The parts' lobes, beside their weights.
@@ -158,9 +162,14 @@ pub struct LobeSum<const N: usize, const C: usize, const F: usize> {
     pub part_frames: [u8; N],
     /// The frame each curve measures its angles in (0: the shading frame).
     pub curve_frames: [u8; C],
+    /// Samples of the sum's own tabulated curves ([`CurveKind::Tabulated`]); the first
+    /// `table_len` are used.
+    pub table: [Rgb; T],
+    /// How many samples of `table` are used.
+    pub table_len: u8,
 }
 
-impl<const N: usize, const C: usize, const F: usize> Default for LobeSum<N, C, F> {
+impl<const N: usize, const C: usize, const F: usize, const T: usize> Default for LobeSum<N, C, F, T> {
     fn default() -> Self {
         LobeSum {
             weights: [Rgb::ZERO; N],
@@ -174,6 +183,8 @@ impl<const N: usize, const C: usize, const F: usize> Default for LobeSum<N, C, F
             tangent_frames: 0,
             part_frames: [0; N],
             curve_frames: [0; C],
+            table: [Rgb::ZERO; T],
+            table_len: 0,
         }
     }
 }
@@ -348,7 +359,7 @@ pub fn place_normals(normals: &mut [[f32; 3]], tangents: u8, frame: &Frame) {
     }
 }
 
-impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
+impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, C, F, T> {
     /// Adds `lobe` of weight `weight`; false when the sum is full.
     pub fn push(&mut self, weight: Rgb, lobe: Lobe) -> bool {
         self.push_with_role(weight, lobe, Role::default())
@@ -399,6 +410,26 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
         self.curve_frames[used] = frame;
         self.curve_count += 1;
         Some(self.curve_count - 1)
+    }
+
+    /// Keeps `values` (a tabulated curve's samples, see [`crate::measured_curve`]) in the
+    /// sum's own table: the curve that reads them, or `None` when fewer than
+    /// `values.len()` samples are left of the `T` (or the table is empty).
+    pub fn add_table(&mut self, values: &[Rgb]) -> Option<CurveKind> {
+        let start = usize::from(self.table_len);
+        let end = start + values.len();
+        if values.is_empty() || end > T || end > usize::from(u8::MAX) {
+            return None;
+        }
+        self.table[start..end].copy_from_slice(values);
+        self.table_len = end as u8;
+        Some(CurveKind::Tabulated { start: start as u8, len: values.len() as u8 })
+    }
+
+    /// The samples of the sum's own tabulated curves (what [`CurveKind::Tabulated`]
+    /// indexes).
+    pub fn table(&self) -> &[Rgb] {
+        &self.table[..usize::from(self.table_len)]
     }
 
     /// Adds an own frame around `normal` (world space; normalised here); its frame number
@@ -491,15 +522,15 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             };
             let (co, ci) = (wo.z.abs(), wi.z.abs());
             if role.over & bit != 0 {
-                f *= c.over(co, ci);
+                f *= c.over_in(co, ci, self.table());
             }
             if role.under & bit != 0 {
-                f *= c.under(co, ci);
+                f *= c.under_in(co, ci, self.table());
             }
             if role.factor & bit != 0 {
                 let (o, i) = (Vec3A::new(wo.x, wo.y, co), Vec3A::new(wi.x, wi.y, ci));
                 let h = (o + i).normalize_or(Vec3A::Z);
-                f *= c.weight * c.kind.eval(o.dot(h));
+                f *= c.weight * c.kind.eval_in(o.dot(h), self.table());
             }
         }
         f
@@ -692,6 +723,8 @@ static EMPTY_WIDE: WideLobes = WideLobes {
     tangent_frames: 0,
     part_frames: [0; WIDE_LOBES],
     curve_frames: [0; WIDE_CURVES],
+    table: [Rgb::ZERO; WIDE_TABLE],
+    table_len: 0,
 };
 
 /// A [`WideLobes`] sum at one shading point: shared (built once per material, or once
@@ -802,6 +835,17 @@ mod tests {
     #[test]
     fn a_bsdf_is_336_bytes_at_most() {
         assert!(std::mem::size_of::<Bsdf>() <= 336, "{}", std::mem::size_of::<Bsdf>());
+    }
+
+    /// A compact sum is 336 bytes at most (x86-64), no more than the `Bsdf` that holds it
+    /// (320 until the bytes of the own tangent frames (mdl30), the table's length (mdl32)
+    /// and the glass lobe's merge crossed a 16-byte boundary; it keeps no table of its own,
+    /// `T` = 0); a wide one, shared behind an `Arc`, 1792 bytes at most (1264 before its
+    /// table of [`WIDE_TABLE`] samples, 16 bytes each).
+    #[test]
+    fn a_compact_sum_is_336_bytes_and_a_wide_one_1792_at_most() {
+        assert!(std::mem::size_of::<Lobes>() <= 336, "{}", std::mem::size_of::<Lobes>());
+        assert!(std::mem::size_of::<WideLobes>() <= 1792, "{}", std::mem::size_of::<WideLobes>());
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! Tabulated reflectance curves (MDL's `measured_curve_layer` and its colour form): colour
 //! values sampled at uniform steps of the angle of incidence θ from 0 (normal incidence) to
 //! π/2 (grazing), read between the samples by linear interpolation in θ, each channel
-//! clamped to [0, 1]. Tables are interned ([`intern`]): a layer curve holds a `'static`
-//! slice, so that the lobe sums that weigh lobes by it stay `Copy` and of fixed size.
+//! clamped to [0, 1]. Constant tables are interned ([`intern`]): a layer curve holds a
+//! `'static` slice, so that the lobe sums that weigh lobes by it stay `Copy` and of fixed
+//! size; tables that vary per hit are kept in the lobe sum's own table instead
+//! ([`crate::layer_curve::CurveKind::Tabulated`], [`crate::lobes::LobeSum::add_table`]).
 
 use std::sync::Mutex;
 

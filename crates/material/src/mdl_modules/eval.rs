@@ -329,6 +329,11 @@ impl<'a> Evaluator<'a> {
         };
         let bad = || problem(span, format!("`{ty}(…)` with these arguments is not evaluated"));
         if values.iter().any(|v| matches!(v, Value::Hit(..))) {
+            if let Type::Array(..) = ty {
+                // An array of which some elements vary (a measured curve's `curve_values`):
+                // its elements as they are, read by what takes the array.
+                return Ok(Value::Array(values));
+            }
             if let Type::Matrix(_, c, r) = ty {
                 return super::state_space::construct(*c, *r, &values).ok_or_else(bad);
             }

@@ -687,10 +687,11 @@ fn lower_bsdf(
     let albedo = diffuse_part(df, hit).clamp(Rgb::ZERO, df.weight_bound());
     let why = if filled_up(df, hit, medium) {
         format!(
-            "needs more than the {} lobes and {} layer curves (and {} layer normals) mira's lobe sums hold",
+            "needs more than the {} lobes and {} layer curves (and {} layer normals, {} samples of varying measured curves) mira's lobe sums hold",
             bsdf::lobes::WIDE_LOBES,
             bsdf::lobes::WIDE_CURVES,
-            bsdf::lobes::WIDE_FRAMES
+            bsdf::lobes::WIDE_FRAMES,
+            bsdf::lobes::WIDE_TABLE
         )
     } else {
         "has no path-engine form yet".to_string()

@@ -12,7 +12,7 @@ use mi::Span;
 use super::eval::{kind, problem, Eval};
 use super::hit::{HitExpr, StateFn};
 use super::hit_natives;
-use super::value::{Df, Edf, Leaf, MixBound, ScatterMode, Value, Vdf, VdfNumber};
+use super::value::{CurveValues, Df, Edf, Leaf, MixBound, ScatterMode, Value, Vdf, VdfNumber};
 
 /// The value of a module constant mira implements (`::math::PI`…).
 pub fn constant(module: &str, name: &str) -> Option<Value> {
@@ -135,15 +135,19 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             base: Box::new(bsdf("base")?),
             layer_normal: if own_normal { Some(number("normal")?) } else { None },
         })),
-        "measured_curve_layer" | "color_measured_curve_layer" => Ok(Value::Bsdf(Df::MeasuredCurveLayer {
-            curve: measured_curve(name, arg("curve_values"), span)?,
-            weight: number("weight")?,
-            layer: Box::new(bsdf("layer")?),
-            base: Box::new(bsdf("base")?),
-            layer_normal: if own_normal { Some(number("normal")?) } else { None },
-        })),
+        "measured_curve_layer" | "color_measured_curve_layer" => {
+            let weight = number("weight")?;
+            let layer_normal = if own_normal { Some(number("normal")?) } else { None };
+            Ok(Value::Bsdf(Df::MeasuredCurveLayer {
+                curve: measured_curve(name, arg("curve_values"), span, leaves)?,
+                weight,
+                layer: Box::new(bsdf("layer")?),
+                base: Box::new(bsdf("base")?),
+                layer_normal,
+            }))
+        }
         "measured_curve_factor" => Ok(Value::Bsdf(Df::MeasuredCurveFactor {
-            curve: measured_curve(name, arg("curve_values"), span)?,
+            curve: measured_curve(name, arg("curve_values"), span, leaves)?,
             base: Box::new(bsdf("base")?),
         })),
         "fresnel_factor" => Ok(Value::Bsdf(Df::FresnelFactor {
@@ -322,23 +326,42 @@ fn axes(
     Ok((roughness, tangent))
 }
 
-/// The `curve_values` of `df::{function}` (an array of constant colours) as an interned
-/// table.
-fn measured_curve(function: &str, values: Option<&Value>, span: Span) -> Result<&'static [Rgb], super::eval::Problem> {
+/// The `curve_values` of `df::{function}` (an array of colours): an interned table when
+/// every sample is constant, else the samples as leaves (at most
+/// [`super::value::MAX_HIT_CURVE`]; more are an error at `span`), their expressions added
+/// to `leaves`.
+fn measured_curve(
+    function: &str,
+    values: Option<&Value>,
+    span: Span,
+    leaves: &mut Vec<Arc<HitExpr>>,
+) -> Result<CurveValues, super::eval::Problem> {
     let Some(Value::Array(items)) = values else {
         return Err(problem(span, format!("`df::{function}` needs an array of colours `curve_values`")));
     };
-    let table = items
+    if items.iter().all(|v| !matches!(v, Value::Hit(..))) {
+        let table = items
+            .iter()
+            .map(|v| v.color().ok_or_else(|| not_constant(function, "curve_values", v, span)))
+            .collect::<Result<Vec<Rgb>, _>>()?;
+        return Ok(CurveValues::Const(bsdf::measured_curve::intern(&table)));
+    }
+    if items.len() > super::value::MAX_HIT_CURVE {
+        return Err(problem(
+            span,
+            format!(
+                "`df::{function}` with `curve_values` that vary over the surface has {} samples; \
+                 at most {} are compiled",
+                items.len(),
+                super::value::MAX_HIT_CURVE
+            ),
+        ));
+    }
+    let samples = items
         .iter()
-        .map(|v| match v {
-            Value::Hit(..) => Err(problem(
-                span,
-                format!("`df::{function}` with `curve_values` that vary over the surface is not compiled yet"),
-            )),
-            v => v.color().ok_or_else(|| not_constant(function, "curve_values", v, span)),
-        })
-        .collect::<Result<Vec<Rgb>, _>>()?;
-    Ok(bsdf::measured_curve::intern(&table))
+        .map(|v| leaf(v, leaves).ok_or_else(|| not_constant(function, "curve_values", v, span)))
+        .collect::<Result<Vec<Leaf>, _>>()?;
+    Ok(CurveValues::Hit(samples))
 }
 
 /// `df::measured_edf` of the arguments `arg` gives by parameter name: an invalid profile

@@ -40,6 +40,31 @@ impl Leaf {
     }
 }
 
+/// The samples of a measured curve (`curve_values` of `df::measured_curve_layer`,
+/// `color_measured_curve_layer`, `measured_curve_factor`) over the angle 0 to π/2.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CurveValues {
+    /// Constant samples, interned ([`bsdf::measured_curve::intern`]).
+    Const(&'static [Rgb]),
+    /// Samples of which some vary over the surface (at most [`MAX_HIT_CURVE`]): read at
+    /// each hit into the lobe sum's own table.
+    Hit(Vec<Leaf>),
+}
+
+/// Most samples a measured curve that varies over the surface may have (two such
+/// curves fit a wide lobe sum's table, [`bsdf::lobes::WIDE_TABLE`]).
+pub const MAX_HIT_CURVE: usize = bsdf::lobes::WIDE_TABLE / 2;
+
+impl CurveValues {
+    /// The first sample (normal incidence) at `hit`; 0 for an empty curve.
+    pub fn first(&self, hit: &[Vec4]) -> Rgb {
+        match self {
+            CurveValues::Const(t) => t.first().copied().unwrap_or(Rgb::ZERO),
+            CurveValues::Hit(l) => l.first().map_or(Rgb::ZERO, |l| l.get(hit)),
+        }
+    }
+}
+
 /// The type of a hit-dependent value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HitType {
@@ -199,8 +224,8 @@ pub enum Df {
     /// weight · R(θ), R the tabulated curve (see [`bsdf::measured_curve`]), the base by
     /// what it leaves, as for [`Df::CurveLayer`].
     MeasuredCurveLayer {
-        /// The curve's samples over the angle 0 to π/2 (interned, constant).
-        curve: &'static [Rgb],
+        /// The curve's samples over the angle 0 to π/2.
+        curve: CurveValues,
         /// The layer's weight.
         weight: Leaf,
         /// The top layer.
@@ -233,8 +258,8 @@ pub enum Df {
     /// `df::measured_curve_factor`: the base scaled by a tabulated curve (as
     /// [`Df::MeasuredCurveLayer`]'s) of the angle at the half vector.
     MeasuredCurveFactor {
-        /// The curve's samples over the angle 0 to π/2 (interned, constant).
-        curve: &'static [Rgb],
+        /// The curve's samples over the angle 0 to π/2.
+        curve: CurveValues,
         /// What is scaled.
         base: Box<Df>,
     },
@@ -385,7 +410,7 @@ impl Df {
                 Df::ThinFilm { thickness: *thickness, ior: *ior, base: split(base)? }
             }
             Df::MeasuredCurveLayer { curve, weight, layer, base, layer_normal } => Df::MeasuredCurveLayer {
-                curve,
+                curve: curve.clone(),
                 weight: *weight,
                 layer: split(layer)?,
                 base: split(base)?,
@@ -394,7 +419,9 @@ impl Df {
             Df::FresnelFactor { ior, extinction, base } => {
                 Df::FresnelFactor { ior: *ior, extinction: *extinction, base: split(base)? }
             }
-            Df::MeasuredCurveFactor { curve, base } => Df::MeasuredCurveFactor { curve, base: split(base)? },
+            Df::MeasuredCurveFactor { curve, base } => {
+                Df::MeasuredCurveFactor { curve: curve.clone(), base: split(base)? }
+            }
         })
     }
 

@@ -38,6 +38,7 @@ mod mdl_measured_bsdf;
 mod mdl_measured_edf;
 mod mdl_microfacet_params;
 mod mdl_per_hit;
+mod mdl_per_hit_curves;
 mod mdl_rough_transmission;
 mod mdl_state_space;
 mod mdl_statements;

@@ -14,7 +14,7 @@ use glam::Vec4;
 
 use super::diffuse_only;
 use crate::mdl_modules::natives::mix_weights;
-use crate::mdl_modules::value::{layer_ior, Df, Leaf, ScatterMode};
+use crate::mdl_modules::value::{layer_ior, CurveValues, Df, Leaf, ScatterMode, MAX_HIT_CURVE};
 use crate::SurfaceModel;
 
 /// Adds `df` scaled by `scale` to a general sum of lobes (two glossy roughnesses,
@@ -38,12 +38,12 @@ use crate::SurfaceModel;
 /// an own frame turned about the normal to its tangent. `medium` is what a glass lobe
 /// bounds.
 #[allow(clippy::too_many_arguments)]
-fn add_general<const N: usize, const C: usize, const F: usize>(
+fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
     df: &Df,
     scale: Rgb,
     hit: &[Vec4],
     medium: Medium,
-    sum: &mut GeneralSum<N, C, F>,
+    sum: &mut GeneralSum<N, C, F, T>,
     role: Role,
     film: Option<(f32, Rgb)>,
     frame: u8,
@@ -194,11 +194,14 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let curve = match film {
                 // Read as the Fresnel layer of the curve's reflectivity at normal incidence.
                 Some((thickness_nm, film_ior)) => CurveKind::ThinFilm {
-                    ior: ior_of_reflectivity(curve.first().map_or(Rgb::ZERO, |r| r.clamp(Rgb::ZERO, Rgb::ONE))),
+                    ior: ior_of_reflectivity(curve.first(hit).clamp(Rgb::ZERO, Rgb::ONE)),
                     film_ior,
                     thickness_nm,
                 },
-                None => CurveKind::Measured(curve),
+                None => match measured(curve, hit, sum) {
+                    Some(kind) => kind,
+                    None => return false,
+                },
             };
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
@@ -209,10 +212,15 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
                     CurveKind::Conductor { eta: ior.get(hit).max(Rgb::ZERO), k: extinction.get(hit).max(Rgb::ZERO) },
                     base,
                 ),
-                Df::MeasuredCurveFactor { curve, base } => (CurveKind::Measured(curve), base),
+                Df::MeasuredCurveFactor { curve, base } => match measured(curve, hit, sum) {
+                    Some(kind) => (kind, base),
+                    None => return false,
+                },
                 _ => return false,
             };
-            let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
+            let Some(k) = sum.add_curve_in_frame(LayerCurve::new_in(curve, Rgb::ONE, false, sum.table()), frame) else {
+                return false;
+            };
             add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
         _ => false,
@@ -247,8 +255,8 @@ fn glass_lobe(alpha: (f32, f32), beckmann: bool, mode: ScatterMode, medium: Medi
 /// in nm, film index), the film's Airy reflectance over the glass's index on its Fresnel
 /// term, a curve of the sum the lobe names. False when the sum is full or the lobe is none
 /// (a solid of index 1).
-fn push_glass<const N: usize, const C: usize, const F: usize>(
-    sum: &mut GeneralSum<N, C, F>,
+fn push_glass<const N: usize, const C: usize, const F: usize, const T: usize>(
+    sum: &mut GeneralSum<N, C, F, T>,
     weight: Rgb,
     glass: RoughGlass,
     film: Option<(f32, Rgb)>,
@@ -295,11 +303,11 @@ fn compensate(
 /// shading frame and its `tangent_u` is not `axis` (the shading frame's); else `frame`
 /// (an isotropic lobe, the axis's own, or a layer's own normal frame). `None` when the sum
 /// holds no more frames.
-fn tangent_frame<const N: usize, const C: usize, const F: usize>(
+fn tangent_frame<const N: usize, const C: usize, const F: usize, const T: usize>(
     tangent: Option<Leaf>,
     axis: Option<Leaf>,
     hit: &[Vec4],
-    sum: &mut GeneralSum<N, C, F>,
+    sum: &mut GeneralSum<N, C, F, T>,
     frame: u8,
 ) -> Option<u8> {
     match tangent {
@@ -326,10 +334,10 @@ fn ior_of_reflectivity(r0: Rgb) -> f32 {
 
 /// The frame a layer's lobes live in: its own normal's (added to `sum`), or `frame` (the
 /// frame around it) without one; `None` when the sum holds no more frames.
-fn own_frame<const N: usize, const C: usize, const F: usize>(
+fn own_frame<const N: usize, const C: usize, const F: usize, const T: usize>(
     layer_normal: Option<Leaf>,
     hit: &[Vec4],
-    sum: &mut GeneralSum<N, C, F>,
+    sum: &mut GeneralSum<N, C, F, T>,
     frame: u8,
 ) -> Option<u8> {
     match layer_normal {
@@ -351,17 +359,17 @@ fn own_frame<const N: usize, const C: usize, const F: usize>(
 /// are the base's frame and the layer's (whose normal the curve measures its angles
 /// from). The base's share is normalised when it is Lambertian, under no other curve and
 /// in the layer's frame (then a white base stays lossless).
-fn layer_roles<const N: usize, const C: usize, const F: usize>(
+fn layer_roles<const N: usize, const C: usize, const F: usize, const T: usize>(
     curve: CurveKind,
     weight: Rgb,
     base: &Df,
     role: Role,
     hit: &[Vec4],
-    sum: &mut GeneralSum<N, C, F>,
+    sum: &mut GeneralSum<N, C, F, T>,
     (frame, own): (u8, u8),
 ) -> Option<(Role, Role)> {
     let lambertian = role.under == 0 && frame == own && diffuse_only(base, hit).is_some_and(|(_, sigma)| sigma == 0.0);
-    let k = sum.add_curve_in_frame(LayerCurve::new(curve, weight, lambertian), own)?;
+    let k = sum.add_curve_in_frame(LayerCurve::new_in(curve, weight, lambertian, sum.table()), own)?;
     Some((Role { over: role.over | 1 << k, ..role }, Role { under: role.under | 1 << k, ..role }))
 }
 
@@ -369,7 +377,7 @@ fn layer_roles<const N: usize, const C: usize, const F: usize>(
 /// the base in `frames.0`, the layer and its curve in `frames.1` (`axis`: see
 /// [`add_general`]).
 #[allow(clippy::too_many_arguments)]
-fn curve_layer<const N: usize, const C: usize, const F: usize>(
+fn curve_layer<const N: usize, const C: usize, const F: usize, const T: usize>(
     curve: CurveKind,
     weight: Rgb,
     layer: &Df,
@@ -377,7 +385,7 @@ fn curve_layer<const N: usize, const C: usize, const F: usize>(
     scale: Rgb,
     hit: &[Vec4],
     medium: Medium,
-    sum: &mut GeneralSum<N, C, F>,
+    sum: &mut GeneralSum<N, C, F, T>,
     role: Role,
     frames: (u8, u8),
     axis: Option<Leaf>,
@@ -412,8 +420,35 @@ pub(super) fn general(df: &Df, hit: &[Vec4], medium: Medium, per_hit: bool) -> O
     Some((diffuse_of(&wide), model))
 }
 
+/// A measured curve's samples at `hit` as a curve of `sum`: a constant table as it is, one
+/// that varies kept in the sum's own table (`None` when that is full — a compact sum keeps
+/// none — after marking the sum's curves full for [`filled`]).
+fn measured<const N: usize, const C: usize, const F: usize, const T: usize>(
+    curve: &CurveValues,
+    hit: &[Vec4],
+    sum: &mut GeneralSum<N, C, F, T>,
+) -> Option<CurveKind> {
+    match curve {
+        CurveValues::Const(table) => Some(CurveKind::Measured(table)),
+        CurveValues::Hit(samples) => {
+            let mut values = [Rgb::ZERO; MAX_HIT_CURVE];
+            let values = values.get_mut(..samples.len())?;
+            for (v, s) in values.iter_mut().zip(samples) {
+                *v = s.get(hit);
+            }
+            let kind = sum.add_table(values);
+            if kind.is_none() {
+                // The table is full (a compact sum has none): the sum, whose lowering
+                // stops here, reads as full to `filled` (a wide sum is tried next).
+                sum.curve_count = C as u8;
+            }
+            kind
+        }
+    }
+}
+
 /// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
-fn diffuse_of<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> Rgb {
+fn diffuse_of<const N: usize, const C: usize, const F: usize, const T: usize>(sum: &GeneralSum<N, C, F, T>) -> Rgb {
     let diffuse = sum.parts().filter(|(_, l)| matches!(l, Lobe::Diffuse(_))).fold(Rgb::ZERO, |s, (w, _)| s + w);
     diffuse.clamp(Rgb::ZERO, Rgb::ONE)
 }
@@ -421,7 +456,7 @@ fn diffuse_of<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N
 /// Whether a sum whose lowering stopped is full (a lobe, curve or normal more than it
 /// holds: [`GeneralSum::push_in_frame`], [`GeneralSum::add_curve_in_frame`] and
 /// [`GeneralSum::add_normal`] refuse only then).
-fn filled<const N: usize, const C: usize, const F: usize>(sum: &GeneralSum<N, C, F>) -> bool {
+fn filled<const N: usize, const C: usize, const F: usize, const T: usize>(sum: &GeneralSum<N, C, F, T>) -> bool {
     sum.len() == N || usize::from(sum.curve_count) == C || usize::from(sum.normal_count) == F
 }
 

@@ -1,0 +1,123 @@
+//! Measured curves (`measured_curve_layer`, `color_measured_curve_layer`,
+//! `measured_curve_factor`) whose `curve_values` vary over the surface, read at each hit
+//! into the lobe sum's own table (tests/mdl/per_hit_curves.mdl). Each varying material,
+//! driven by the texture coordinate u, is compared at two points with its constant twin
+//! of the samples u gives there. Each test states its tolerance.
+
+use crate::mdl_support;
+
+use glam::Vec3A;
+use material::{HitMaterial, SurfaceMaterial, SurfaceModel, Varying};
+use mdl_support::{close, compile_text, get};
+use shader::State;
+
+/// A shading point with texture coordinate (u, 0.5), world position (u, 0.5, 0), normal +z.
+fn uv(u: f32) -> State {
+    let mut s = State {
+        tex_count: 1,
+        normal: Vec3A::Z,
+        normal_geom: Vec3A::Z,
+        dir: -Vec3A::Z,
+        point: Vec3A::new(u, 0.5, 0.0),
+        ..State::default()
+    };
+    s.tex_list[0] = Vec3A::new(u, 0.5, 0.0);
+    s
+}
+
+/// The material `m` evaluated at texture coordinate u.
+fn at(m: &SurfaceMaterial, u: f32) -> HitMaterial<'_> {
+    let Varying::Evaluated(hit) = &m.varying else { panic!("{} is not evaluated per hit: {:?}", m.name, m.varying) };
+    let mut h = m.constant();
+    hit.0.apply(&uv(u), &mut h);
+    h
+}
+
+/// Directions for comparing BSDFs: 23 on the sphere, every pair.
+fn direction_pairs() -> Vec<(Vec3A, Vec3A)> {
+    let dirs: Vec<Vec3A> = (1..24)
+        .map(|i| {
+            let u = bsdf::testing::r2(i);
+            let z = 1.0 - 2.0 * u.x;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = std::f32::consts::TAU * u.y;
+            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect();
+    dirs.iter().flat_map(|a| dirs.iter().map(move |b| (*a, *b))).collect()
+}
+
+/// Compiles `varying` and, for each (u, constant shader parameters), its constant twin
+/// `constant`; checks that at u the varying material's BSDF (a per-hit wide lobe sum that
+/// keeps the samples) agrees with the twin's (a compact sum of the interned curve) at
+/// every pair of directions within 1e-6 of the larger value, and that the BSDFs at the
+/// two points differ by more than 1e-3 somewhere (the samples are read per hit).
+fn same_as_constant_twins(varying: &str, constant: &str, twins: [(f32, &str); 2]) {
+    let mut text = format!("shader \"v\" \"mdl::per_hit_curves::{varying}\" ()\n");
+    for (k, (_, params)) in twins.iter().enumerate() {
+        text += &format!("shader \"c{k}\" \"mdl::per_hit_curves::{constant}\" ({params})\n");
+    }
+    let (mdl, lib, diags) = compile_text(&text);
+    assert!(diags.is_empty(), "{varying}: {diags:#?}");
+    let v = get(&mdl, &lib, "v");
+    let mut values = Vec::new();
+    for (k, (u, _)) in twins.iter().enumerate() {
+        let h = at(v, *u);
+        assert!(matches!(*h.model, SurfaceModel::MdlWideAt(_)), "{varying}: {:?}", h.model);
+        let want = get(&mdl, &lib, &format!("c{k}"));
+        let mut these = Vec::new();
+        for (wo, wi) in direction_pairs() {
+            let a = h.model.bsdf(h.diffuse, wo).eval(wo, wi);
+            let b = want.bsdf(wo).eval(wo, wi);
+            let scale = a.max_element().max(b.max_element()).max(1.0);
+            assert!(close(a, b, 1e-6 * scale), "{varying} at u = {u}, {wo:?} → {wi:?}: {a:?} vs {b:?}");
+            these.push(a);
+        }
+        values.push(these);
+    }
+    let most = values[0].iter().zip(&values[1]).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+    assert!(most > 1e-3, "{varying}: the samples change the BSDF (most difference {most})");
+}
+
+/// `color_measured_curve_layer` of three samples (0.25, 0.5, 0.125) + u/2, u, 1 − u/2 over
+/// rough GGX and a white Lambertian base is, at u = 0.5 and 0.75, the constant curve of
+/// those samples (BSDF values within 1e-6).
+#[test]
+fn a_measured_curve_layer_of_varying_samples_is_read_per_hit() {
+    same_as_constant_twins(
+        "layer_varying",
+        "layer_of",
+        [
+            (0.5, r#""a" 0.5 0.75 0.375, "b" 0.5 0.5 0.5, "c" 0.75 0.75 0.75"#),
+            (0.75, r#""a" 0.625 0.875 0.5, "b" 0.75 0.75 0.75, "c" 0.625 0.625 0.625"#),
+        ],
+    );
+    same_as_constant_twins(
+        "grey_layer_varying",
+        "grey_layer_of",
+        [(0.5, r#""a" 0.5, "b" 0.5"#), (0.75, r#""a" 0.625, "b" 0.25"#)],
+    );
+}
+
+/// `measured_curve_factor` of samples (u, 0.5, 1 − u), u/2 over rough GGX is, at u = 0.5
+/// and 0.75, the constant factor of those samples (BSDF values within 1e-6).
+#[test]
+fn a_measured_curve_factor_of_varying_samples_is_read_per_hit() {
+    same_as_constant_twins(
+        "factor_varying",
+        "factor_of",
+        [(0.5, r#""a" 0.5 0.5 0.5, "b" 0.25 0.25 0.25"#), (0.75, r#""a" 0.75 0.5 0.25, "b" 0.375 0.375 0.375"#)],
+    );
+}
+
+/// A varying curve of more samples than the lobe sum's table takes per curve (17 > 16) is
+/// an error naming the call and the count, at the module's line.
+#[test]
+fn a_varying_curve_of_too_many_samples_is_an_error() {
+    let (_, _, diags) = compile_text("shader \"v\" \"mdl::per_hit_curves::too_long\" ()\n");
+    let text = diags.join("\n");
+    assert!(
+        text.contains("measured_curve_factor") && text.contains("17 samples") && text.contains("per_hit_curves.mdl:"),
+        "{text}"
+    );
+}
