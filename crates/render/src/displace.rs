@@ -23,7 +23,8 @@
 //! ±`max displace` (the object's, else the options') where given; a shader that moves
 //! `state.point` or turns `state.normal` moves the vertex accordingly (vector
 //! displacement, see [`offset`]). Normals are then recomputed from the displaced
-//! triangles (area-weighted).
+//! triangles (area-weighted), and the approximation's `sharp` leans them towards the
+//! triangles' faceted normals (see [`displace_mesh`]).
 //!
 //! Limits: at most [`MAX_DISPLACED_TRIANGLES`] triangles are made in all; an explicit level
 //! or an adaptive refinement past that is an error at the `approximate` statement (the
@@ -118,8 +119,50 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &mut Shading, d
     emitters::respread_emission(world, &displaced);
 }
 
-/// The displaced mesh of instance `index` (`None`: left as it is, with a message).
+/// The displaced mesh of instance `index` (`None`: left as it is, with a message), its
+/// shading normals set by the approximation's `sharp` ([`plan::sharpness`]): 0 (or none)
+/// keeps the smooth vertex normals, 1 drops them (every hit shades with its triangle's
+/// geometric normal), a value between leans the interpolated normal towards the geometric
+/// one at every hit ([`MeshData::sharpen`]).
 fn displace_mesh(
+    world: &World,
+    scene: &Scene,
+    shading: &Shading,
+    index: usize,
+    shader_of: &(dyn Fn(u32) -> Option<NodeId> + Sync),
+    budget: &mut usize,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<MeshData> {
+    let mut out = displace_vertices(world, scene, shading, index, shader_of, budget, diagnostics)?;
+    let object = scene.objects.get(world.instances[index].mesh as usize)?;
+    let approximation = scene.options.displace.approximation.as_ref().or(object.displace.approximation.as_ref());
+    if let Some(a) = approximation {
+        let name = &object.name;
+        let (sharp, warning) = plan::sharpness(a);
+        if let Some(w) = warning {
+            diagnostics.push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {w}")));
+        }
+        for word in plan::ignored(a) {
+            diagnostics.push(Diagnostic::warning(
+                a.span,
+                format!("object '{name}': approximate displace: '{word}' is read without effect"),
+            ));
+        }
+        match sharp {
+            Some(s) if s >= 1.0 => {
+                out.normals = Vec::new();
+                out.normals_oct = Vec::new();
+            }
+            Some(s) if s > 0.0 => out.sharp = s,
+            _ => {}
+        }
+    }
+    Some(out)
+}
+
+/// The displaced vertices and triangles of instance `index`, with smooth normals
+/// (`None`: left as it is, with a message).
+fn displace_vertices(
     world: &World,
     scene: &Scene,
     shading: &Shading,

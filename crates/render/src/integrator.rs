@@ -127,6 +127,13 @@ struct Surface {
     err: f32,
 }
 
+/// The unit geometric and shading normals (world space, the shading normal on the
+/// geometric normal's side) the path engine shades the hit `hit` of `ray` with.
+pub fn hit_normals(world: &World, ray: &Ray, hit: &Hit) -> (Vec3A, Vec3A) {
+    let s = surface(world, ray, hit);
+    (s.ng, s.ns)
+}
+
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
@@ -146,11 +153,7 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     } else {
         let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;
         let n = (placed.normal_to_world * n).normalize_or(ng);
-        if n.dot(ng) < 0.0 {
-            -n
-        } else {
-            n
-        }
+        mesh.sharpen(if n.dot(ng) < 0.0 { -n } else { n }, ng)
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);

@@ -46,6 +46,10 @@ pub struct MeshData {
     /// [`crate::motion`]), when the vertices move while it is open; empty: they stay at
     /// `positions`.
     pub position_keys: Vec<Vec<Vec3A>>,
+    /// How far the shading normal leans from the interpolated vertex normal towards the
+    /// triangle's geometric normal, 0…1 (a displacement approximation's `sharp`, see
+    /// [`MeshData::sharpen`]); 0 for every mesh that has none.
+    pub sharp: f32,
 }
 
 /// Triangles from which a mesh counts as large: its vertex normals are kept in 32 bits
@@ -78,6 +82,19 @@ impl MeshData {
     #[inline(always)]
     pub fn has_normals(&self) -> bool {
         !self.normals.is_empty() || !self.normals_oct.is_empty()
+    }
+
+    /// The shading normal of a hit given the interpolated vertex normal `ns` and the
+    /// geometric normal `ng` (unit, world space, on one side): `ns` itself where
+    /// [`MeshData::sharp`] is 0, else normalize((1 − s)·ns + s·ng), so that 1 gives the
+    /// faceted normal of the triangle (mental ray's `sharp` of fine displacement).
+    #[inline(always)]
+    pub fn sharpen(&self, ns: Vec3A, ng: Vec3A) -> Vec3A {
+        if self.sharp > 0.0 {
+            (ns * (1.0 - self.sharp) + ng * self.sharp).normalize_or(ng)
+        } else {
+            ns
+        }
     }
 
     /// Moves the vertex normals into their 32-bit form ([`MeshData::normals_oct`]) if the

@@ -107,6 +107,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     if ns.dot(ng) < 0.0 {
         ns = -ns;
     }
+    let ns = mesh.sharpen(ns, ng);
     // Face the ray: a back-side hit flips both normals and says so.
     s.inv_normal = ng.dot(s.dir) > 0.0;
     let (ng, ns) = if s.inv_normal { (-ng, -ns) } else { (ng, ns) };

@@ -20,9 +20,13 @@
 //!   `max n` (the keyword) bounds the object's triangles: refinement stops before the
 //!   level that would pass `n`.
 //!
-//! `sharp s` (how fine approximations blend normals), `offscreen`, `nosmoothing`, `tree`,
-//! `grid`, `delaunay`, `grading` do not change which triangles are made and are read
-//! as written, without effect.
+//! `sharp s` does not change which triangles are made: it sets how the displaced
+//! surface's shading normals lean from the smooth interpolated vertex normals (0) to the
+//! faceted geometric normals of the fine triangles (1), blending in between
+//! ([`sharpness`], applied by [`crate::mesh::MeshData::sharpen`]). `nosmoothing`, `tree`,
+//! `grid`, `delaunay` are read as written, without effect; `offscreen` and `grading` too,
+//! each with a warning ([`ignored`]): the manual pages at hand do not say precisely what
+//! they change.
 
 use mi::ast::{ApproxTerm, Approximation};
 
@@ -185,6 +189,31 @@ pub fn read(a: &Approximation) -> Reading {
     Reading::Plan(Plan::Adaptive(c), warnings)
 }
 
+/// The `sharp s` of an approximation: `None` where it gives none, else s clamped to 0…1,
+/// with a warning where the value was outside (or not a number: then 0, smooth).
+pub fn sharpness(a: &Approximation) -> (Option<f32>, Option<String>) {
+    let Some(i) = a.technique.iter().position(|t| *t == ApproxTerm::Word("sharp")) else {
+        return (None, None);
+    };
+    match a.technique.get(i + 1) {
+        Some(ApproxTerm::Num(n)) => {
+            let x = n.as_f64();
+            if (0.0..=1.0).contains(&x) {
+                (Some(x as f32), None)
+            } else {
+                let s = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+                (Some(s as f32), Some(format!("sharp {x} is outside 0…1; {s} is used")))
+            }
+        }
+        _ => (None, None),
+    }
+}
+
+/// The words of `a` that mira reads without effect and says so: `offscreen`, `grading`.
+pub fn ignored(a: &Approximation) -> Vec<&'static str> {
+    ["offscreen", "grading"].into_iter().filter(|w| a.technique.contains(&ApproxTerm::Word(w))).collect()
+}
+
 /// The technique words of an approximation (`view length`, `fine`, …), for messages.
 pub fn words(a: &Approximation) -> String {
     let words: Vec<&str> =
@@ -202,6 +231,11 @@ mod tests {
 
     /// The plan of the technique `text` (words, numbers and `%` separated by blanks).
     fn reading(text: &str) -> Reading {
+        read(&approximation(text))
+    }
+
+    /// The `approximate displace … all` statement of the technique `text`.
+    fn approximation(text: &str) -> Approximation {
         let technique = text
             .split_whitespace()
             .map(|w| match w.trim_end_matches('%').parse::<f64>() {
@@ -210,18 +244,18 @@ mod tests {
                 Err(_) => ApproxTerm::Word(Box::leak(w.to_string().into_boxed_str())),
             })
             .collect();
-        read(&Approximation {
+        Approximation {
             flags: vec![],
             target: Some("displace"),
             technique,
             names: vec![],
             all: true,
             span: Default::default(),
-        })
+        }
     }
 
     /// Maya's forms read into their criteria: `fine view length 0.5 sharp 0.83 0 5`
-    /// (view, length 0.5, levels 0…5, sharp ignored), `length 0.1 distance 0.01 angle 5 any
+    /// (view, length 0.5, levels 0…5, sharp 0.833333 read apart), `length 0.1 distance 0.01 angle 5 any
     /// 1 4`, `spatial view 0.25 0 4 max 500000`, `curvature 0.1 10`; parametric stays
     /// uniform; percentages and a missing criterion are unsupported; a zero or negative
     /// length, a negative level are invalid; a level of 40 is lowered to 16 with a warning.
@@ -244,6 +278,12 @@ mod tests {
         for bad in ["length 0 0 5", "length -1 0 5", "view length 0.5 -1 5", "angle -3"] {
             assert!(matches!(reading(bad), Reading::Invalid(_)), "{bad}");
         }
+        let (sharp, w) = sharpness(&approximation("fine view length 0.5 sharp 0.833333 0 5"));
+        assert_eq!((sharp, w), (Some(0.833333), None));
+        assert_eq!(sharpness(&approximation("length 0.5 0 5")), (None, None));
+        let (sharp, w) = sharpness(&approximation("fine length 0.5 sharp 3 0 5"));
+        assert!(sharp == Some(1.0) && w.is_some());
+        assert_eq!(ignored(&approximation("fine view offscreen length 0.5 grading 2 0 5")), ["offscreen", "grading"]);
         let Reading::Plan(Plan::Adaptive(c), w) = reading("length 0.5 0 40") else { panic!() };
         assert_eq!(c.max_level, MAX_LEVEL);
         assert_eq!(w.len(), 1, "{w:?}");

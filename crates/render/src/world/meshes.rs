@@ -45,6 +45,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
         position_keys: Vec::new(),
+        sharp: 0.0,
     };
     mesh.pack_normals_if_large();
     mesh

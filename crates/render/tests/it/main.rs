@@ -7,6 +7,7 @@ mod displacement_adaptive;
 mod displacement_emitters;
 mod displacement_maya_node;
 mod displacement_motion;
+mod displacement_sharp;
 mod support;
 
 mod aerial_perspective;
