@@ -7,6 +7,7 @@
 //! its base), a tabulated curve (`measured_curve_layer`) and a conductor's Fresnel
 //! reflectance (`fresnel_factor`). Used by [`crate::lobes::Lobes`] to weigh a layer and its base.
 
+use crate::measured_factor::FactorTable;
 use crate::{conductor, dielectric, measured_curve, sheen_albedo, Rgb};
 
 /// A reflectance curve R(cos θ) ∈ [0, 1] per channel.
@@ -59,6 +60,10 @@ pub enum CurveKind {
         /// Extinction coefficient, per channel.
         k: Rgb,
     },
+    /// A factor texture (`measured_factor`) read at the angles of the half vector to a
+    /// direction and to the normal (see [`crate::measured_factor`]); as a curve of one
+    /// cosine (a layer's), the texture at the normal's half vector (v = 0).
+    MeasuredFactor(&'static FactorTable),
 }
 
 /// Wavelengths (nm) averaged in each of the red, green and blue channels of a thin film.
@@ -89,6 +94,17 @@ impl CurveKind {
             CurveKind::SheenAlbedo { roughness } => Rgb::splat(sheen_albedo::albedo(c, roughness)),
             CurveKind::Measured(values) => measured_curve::eval(values, c),
             CurveKind::Conductor { eta, k } => conductor::fresnel_conductor_rgb(c, eta, k),
+            CurveKind::MeasuredFactor(table) => table.eval(c, 1.0),
+        }
+    }
+
+    /// The curve as a directional factor at a half vector h: `cos_kh` the cosine of the
+    /// angle between a direction and h, `cos_nh` that of the angle between the normal and
+    /// h. Every curve but a factor texture depends on `cos_kh` alone.
+    pub fn factor(&self, cos_kh: f32, cos_nh: f32) -> Rgb {
+        match *self {
+            CurveKind::MeasuredFactor(table) => table.eval(cos_kh, cos_nh),
+            _ => self.eval(cos_kh),
         }
     }
 

@@ -499,7 +499,7 @@ impl<const N: usize, const C: usize, const F: usize> LobeSum<N, C, F> {
             if role.factor & bit != 0 {
                 let (o, i) = (Vec3A::new(wo.x, wo.y, co), Vec3A::new(wi.x, wi.y, ci));
                 let h = (o + i).normalize_or(Vec3A::Z);
-                f *= c.weight * c.kind.eval(o.dot(h));
+                f *= c.weight * c.kind.factor(o.dot(h), h.z);
             }
         }
         f

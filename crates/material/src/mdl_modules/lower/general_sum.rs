@@ -205,13 +205,14 @@ fn add_general<const N: usize, const C: usize, const F: usize>(
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
         }
-        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
+        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } | Df::MeasuredFactor { .. } => {
             let (curve, base) = match df {
                 Df::FresnelFactor { ior, extinction, base } => (
                     CurveKind::Conductor { eta: ior.get(hit).max(Rgb::ZERO), k: extinction.get(hit).max(Rgb::ZERO) },
                     base,
                 ),
                 Df::MeasuredCurveFactor { curve, base } => (CurveKind::Measured(curve), base),
+                Df::MeasuredFactor { table, base } => (CurveKind::MeasuredFactor(table), base),
                 _ => return false,
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new(curve, Rgb::ONE, false), frame) else { return false };
