@@ -7,6 +7,7 @@
 //! its base), a tabulated curve (`measured_curve_layer`) and a conductor's Fresnel
 //! reflectance (`fresnel_factor`). Used by [`crate::lobes::Lobes`] to weigh a layer and its base.
 
+use crate::measured_factor::FactorTable;
 use crate::{conductor, dielectric, measured_curve, sheen_albedo, Rgb};
 
 /// A reflectance curve R(cos θ) ∈ [0, 1] per channel.
@@ -68,6 +69,10 @@ pub enum CurveKind {
         /// Extinction coefficient, per channel.
         k: Rgb,
     },
+    /// A factor texture (`measured_factor`) read at the angles of the half vector to a
+    /// direction and to the normal (see [`crate::measured_factor`]); as a curve of one
+    /// cosine (a layer's), the texture at the normal's half vector (v = 0).
+    MeasuredFactor(&'static FactorTable),
 }
 
 /// Wavelengths (nm) averaged in each of the red, green and blue channels of a thin film.
@@ -110,6 +115,23 @@ impl CurveKind {
                 measured_curve::eval(table.get(start..end).unwrap_or(&[]), c)
             }
             CurveKind::Conductor { eta, k } => conductor::fresnel_conductor_rgb(c, eta, k),
+            CurveKind::MeasuredFactor(table) => table.eval(c, 1.0),
+        }
+    }
+
+    /// The curve as a directional factor at a half vector h: `cos_kh` the cosine of the
+    /// angle between a direction and h, `cos_nh` that of the angle between the normal and
+    /// h. Every curve but a factor texture depends on `cos_kh` alone.
+    pub fn factor(&self, cos_kh: f32, cos_nh: f32) -> Rgb {
+        self.factor_in(cos_kh, cos_nh, &[])
+    }
+
+    /// The factor as [`CurveKind::factor`], a [`CurveKind::Tabulated`] curve reading its
+    /// samples from `table` (its lobe sum's).
+    pub fn factor_in(&self, cos_kh: f32, cos_nh: f32, table: &[Rgb]) -> Rgb {
+        match *self {
+            CurveKind::MeasuredFactor(factors) => factors.eval(cos_kh, cos_nh),
+            _ => self.eval_in(cos_kh, table),
         }
     }
 

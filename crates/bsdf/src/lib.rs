@@ -16,6 +16,7 @@ pub mod lobes;
 pub mod maya_highlight;
 pub mod measured_bsdf;
 pub mod measured_curve;
+pub mod measured_factor;
 pub mod medium;
 pub mod mia;
 pub mod mib_glossy;

@@ -530,7 +530,7 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
             if role.factor & bit != 0 {
                 let (o, i) = (Vec3A::new(wo.x, wo.y, co), Vec3A::new(wi.x, wi.y, ci));
                 let h = (o + i).normalize_or(Vec3A::Z);
-                f *= c.weight * c.kind.eval_in(o.dot(h), self.table());
+                f *= c.weight * c.kind.factor_in(o.dot(h), h.z, self.table());
             }
         }
         f

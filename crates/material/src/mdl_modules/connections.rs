@@ -89,6 +89,9 @@ fn function_call(
             (Type::Texture(shape), MiValue::Str(name)) => {
                 ev.textures.value_from_mi(*shape, &name.text, lib).unwrap_or_else(|_| super::textures::invalid(*shape))
             }
+            (Type::BsdfMeasurement, MiValue::Str(name)) => {
+                Value::BsdfMeasurement(ev.textures.bsdf_measurement(&name.text, None).ok())
+            }
             (ty, v) => {
                 value::from_mi(v, ty, &enum_value).map_err(|why| format!("'{}' of '{shader}': {why}", p.name.text))?
             }

@@ -290,7 +290,8 @@ fn colour_ior_under_film(df: &Df, film: bool, hit: &[Vec4]) -> bool {
         Df::Sheen { multiscatter: b, .. }
         | Df::DirectionalFactor { base: b, .. }
         | Df::FresnelFactor { base: b, .. }
-        | Df::MeasuredCurveFactor { base: b, .. } => colour_ior_under_film(b, film, hit),
+        | Df::MeasuredCurveFactor { base: b, .. }
+        | Df::MeasuredFactor { base: b, .. } => colour_ior_under_film(b, film, hit),
         Df::Mix { parts, .. } => parts.iter().any(|(_, d)| colour_ior_under_film(d, film, hit)),
         _ => false,
     }
@@ -729,6 +730,7 @@ pub fn describe(df: &Df) -> String {
         }
         Df::FresnelFactor { base, .. } => format!("fresnel_factor({})", describe(base)),
         Df::MeasuredCurveFactor { base, .. } => format!("measured_curve_factor({})", describe(base)),
+        Df::MeasuredFactor { base, .. } => format!("measured_factor({})", describe(base)),
         Df::Mix { parts, .. } => {
             format!("mix({})", parts.iter().map(|(_, d)| describe(d)).collect::<Vec<_>>().join(", "))
         }

@@ -240,6 +240,22 @@ impl Instance<'_> {
                 }
                 continue;
             }
+            if let (Type::BsdfMeasurement, mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
+                match ev.textures.bsdf_measurement(&name.text, None) {
+                    Ok(m) => given[i] = Some(Value::BsdfMeasurement(Some(m))),
+                    Err(why) => {
+                        diags.push(Diagnostic::warning(
+                            p.span,
+                            format!(
+                                "parameter '{}' of `{qualified}`: {why}; the invalid measurement (no scattering) is used",
+                                p.name.text
+                            ),
+                        ));
+                        given[i] = Some(Value::BsdfMeasurement(None));
+                    }
+                }
+                continue;
+            }
             if let (Type::LightProfile, mi::ast::Value::Str(name)) = (&decl.ty.ty, &p.value) {
                 match ev.textures.profile_from_mi(&name.text, self.lib) {
                     Ok(profile) => given[i] = Some(Value::LightProfile(Some(profile))),

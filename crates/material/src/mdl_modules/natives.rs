@@ -150,6 +150,16 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             curve: measured_curve(name, arg("curve_values"), span, leaves)?,
             base: Box::new(bsdf("base")?),
         })),
+        "measured_factor" => match arg("values") {
+            // An invalid texture is black where looked up: the factor 0.
+            Some(Value::Texture(None)) => Ok(Value::Bsdf(Df::Black)),
+            Some(Value::Texture(Some(image))) => match factor_table(image) {
+                Some(table) => Ok(Value::Bsdf(Df::MeasuredFactor { table, base: Box::new(bsdf("base")?) })),
+                None => Ok(Value::Bsdf(Df::Black)),
+            },
+            Some(v) => Err(not_constant(name, "values", v, span)),
+            None => Err(problem(span, "`df::measured_factor` needs a texture `values`")),
+        },
         "fresnel_factor" => Ok(Value::Bsdf(Df::FresnelFactor {
             ior: number("ior")?,
             extinction: number("extinction_coefficient")?,
@@ -362,6 +372,15 @@ fn measured_curve(
         .map(|v| leaf(v, leaves).ok_or_else(|| not_constant(function, "curve_values", v, span)))
         .collect::<Result<Vec<Leaf>, _>>()?;
     Ok(CurveValues::Hit(samples))
+}
+
+/// The texels of `image` (row 0 at the bottom, linear RGB as lookups read them) as an
+/// interned factor table; `None` for a texture that could not be read (no texels).
+fn factor_table(image: &super::hit::Image) -> Option<&'static bsdf::measured_factor::FactorTable> {
+    let (w, h) = image.size();
+    let texels: Vec<Rgb> =
+        (0..h).flat_map(|y| (0..w).map(move |x| image.texel(x as f32, y as f32).truncate().into())).collect();
+    bsdf::measured_factor::intern(w, h, &texels)
 }
 
 /// `df::measured_edf` of the arguments `arg` gives by parameter name: an invalid profile

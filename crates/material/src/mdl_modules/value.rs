@@ -263,6 +263,14 @@ pub enum Df {
         /// What is scaled.
         base: Box<Df>,
     },
+    /// `df::measured_factor`: the base scaled by a factor texture read at the angles of
+    /// the half vector to a direction and to the normal (see [`bsdf::measured_factor`]).
+    MeasuredFactor {
+        /// The texture's texels (interned, constant).
+        table: &'static bsdf::measured_factor::FactorTable,
+        /// What is scaled.
+        base: Box<Df>,
+    },
     /// A mix of weighted components (`normalized_mix`, `clamped_mix`, `unbounded_mix` and
     /// the `color_` forms, `tint`): the weights as given (never negative); `bound` says
     /// how those above 1 in sum are cut (see [`super::natives::mix_weights`]).
@@ -422,6 +430,7 @@ impl Df {
             Df::MeasuredCurveFactor { curve, base } => {
                 Df::MeasuredCurveFactor { curve: curve.clone(), base: split(base)? }
             }
+            Df::MeasuredFactor { table, base } => Df::MeasuredFactor { table, base: split(base)? },
         })
     }
 
@@ -436,7 +445,8 @@ impl Df {
             | Df::DirectionalFactor { base: b, .. }
             | Df::ThinFilm { base: b, .. }
             | Df::FresnelFactor { base: b, .. }
-            | Df::MeasuredCurveFactor { base: b, .. } => b.has_unbounded_mix(),
+            | Df::MeasuredCurveFactor { base: b, .. }
+            | Df::MeasuredFactor { base: b, .. } => b.has_unbounded_mix(),
             Df::Layer { layer, base, .. }
             | Df::CurveLayer { layer, base, .. }
             | Df::MeasuredCurveLayer { layer, base, .. } => layer.has_unbounded_mix() || base.has_unbounded_mix(),
@@ -465,7 +475,8 @@ impl Df {
             | Df::DirectionalFactor { base: b, .. }
             | Df::ThinFilm { base: b, .. }
             | Df::FresnelFactor { base: b, .. }
-            | Df::MeasuredCurveFactor { base: b, .. } => b.transmits(),
+            | Df::MeasuredCurveFactor { base: b, .. }
+            | Df::MeasuredFactor { base: b, .. } => b.transmits(),
             Df::Mix { parts, .. } => parts.iter().any(|(_, d)| d.transmits()),
             Df::Layer { layer, base, .. }
             | Df::CurveLayer { layer, base, .. }

@@ -36,6 +36,7 @@ mod mdl_layers;
 mod mdl_matrices;
 mod mdl_measured_bsdf;
 mod mdl_measured_edf;
+mod mdl_measured_factor;
 mod mdl_microfacet_params;
 mod mdl_per_hit;
 mod mdl_per_hit_curves;

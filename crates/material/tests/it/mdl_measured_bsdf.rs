@@ -22,6 +22,8 @@ export material lambert() = material(surface: material_surface(
     scattering: df::diffuse_reflection_bsdf(tint: color(0.2 * 3.14159265358979))));
 export material glossy(uniform df::scatter_mode mode = df::scatter_reflect) = material(surface: material_surface(
     scattering: df::measured_bsdf(measurement: bsdf_measurement("./glossy.mbsdf"), mode: mode)));
+export material given(uniform bsdf_measurement m = bsdf_measurement()) = material(surface: material_surface(
+    scattering: df::measured_bsdf(measurement: m)));
 export material invalid() = material(surface: material_surface(
     scattering: df::measured_bsdf(measurement: bsdf_measurement())));
 export material truncated() = material(surface: material_surface(
@@ -146,4 +148,27 @@ fn bad_measurements_are_errors_at_their_module_line() {
         let at = format!("measured_test.mdl:{}:", line(file));
         assert!(diags[0].contains(&at) && diags[0].contains(says) && diags[0].contains(file), "{}", diags[0]);
     }
+}
+
+/// A `bsdf_measurement` parameter set from the `.mi` file (a string naming the file, found
+/// on the search path) is read: `given` with "flat.mbsdf" equals `flat` at pairs of
+/// directions (1e-6); a name that is not found is a warning naming the parameter and the
+/// file, and the invalid measurement (nothing scattered) is used.
+#[test]
+fn measurements_set_from_the_mi_file_are_read() {
+    let (mdl, lib, diags) = compile(
+        r#"shader "g" "mdl::measured_test::given" ("m" "flat.mbsdf")
+shader "f" "mdl::measured_test::flat" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let (g, f) = (get(&mdl, &lib, "g"), get(&mdl, &lib, "f"));
+    for (wo, wi) in [(Vec3A::Z, Vec3A::new(0.6, 0.0, 0.8)), (Vec3A::new(0.0, 0.8, 0.6), Vec3A::new(-0.28, 0.0, 0.96))] {
+        let (a, b) = (g.bsdf(wo).eval(wo, wi), f.bsdf(wo).eval(wo, wi));
+        assert!(b.max_element() > 0.0 && (a - b).abs().max_element() <= 1e-6, "{a:?} vs {b:?}");
+    }
+    let (mdl, lib, diags) = compile(r#"shader "n" "mdl::measured_test::given" ("m" "elsewhere.mbsdf")"#);
+    assert_eq!(diags.len(), 1, "{diags:#?}");
+    assert!(diags[0].contains("'m'") && diags[0].contains("elsewhere.mbsdf"), "{}", diags[0]);
+    let n = get(&mdl, &lib, "n");
+    assert_eq!(n.bsdf(Vec3A::Z).eval(Vec3A::Z, Vec3A::new(0.6, 0.0, 0.8)), Rgb::ZERO);
 }

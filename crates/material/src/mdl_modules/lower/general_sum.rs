@@ -206,7 +206,7 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
             let Some(own) = own_frame(*layer_normal, hit, sum, frame) else { return false };
             curve_layer(curve, weight.get(hit), layer, base, scale, hit, medium, sum, role, (frame, own), axis)
         }
-        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } => {
+        Df::FresnelFactor { .. } | Df::MeasuredCurveFactor { .. } | Df::MeasuredFactor { .. } => {
             let (curve, base) = match df {
                 Df::FresnelFactor { ior, extinction, base } => (
                     CurveKind::Conductor { eta: ior.get(hit).max(Rgb::ZERO), k: extinction.get(hit).max(Rgb::ZERO) },
@@ -216,6 +216,7 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
                     Some(kind) => (kind, base),
                     None => return false,
                 },
+                Df::MeasuredFactor { table, base } => (CurveKind::MeasuredFactor(table), base),
                 _ => return false,
             };
             let Some(k) = sum.add_curve_in_frame(LayerCurve::new_in(curve, Rgb::ONE, false, sum.table()), frame) else {

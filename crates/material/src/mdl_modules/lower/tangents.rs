@@ -20,7 +20,8 @@ pub(super) fn visit(df: &Df, in_own_normal: bool, f: &mut impl FnMut(Leaf, bool)
         | Df::DirectionalFactor { base: b, .. }
         | Df::ThinFilm { base: b, .. }
         | Df::FresnelFactor { base: b, .. }
-        | Df::MeasuredCurveFactor { base: b, .. } => visit(b, in_own_normal, f),
+        | Df::MeasuredCurveFactor { base: b, .. }
+        | Df::MeasuredFactor { base: b, .. } => visit(b, in_own_normal, f),
         Df::Mix { parts, .. } => parts.iter().for_each(|(_, d)| visit(d, in_own_normal, f)),
         Df::Layer { layer, base, layer_normal, .. }
         | Df::CurveLayer { layer, base, layer_normal, .. }

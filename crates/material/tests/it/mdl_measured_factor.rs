@@ -1,0 +1,156 @@
+//! `df::measured_factor` of float textures the tests write (EXR, beside a module they
+//! write, in the target's temporary directory): its base scaled by the texture read at
+//! u = θ′·2/π (θ′ between a direction and the half vector) and v = θ″·2/π (θ″ between the
+//! normal and the half vector), bilinearly between texel centres. Each test states its
+//! tolerance.
+
+use std::path::PathBuf;
+
+use bsdf::testing::{albedo, incidences, standard_checks};
+use bsdf::Rgb;
+use glam::Vec3A;
+
+use crate::mdl_support::{compile_text_with, get};
+
+/// The module the tests compile (`factor_test`), with its materials.
+const MODULE: &str = r#"mdl 1.7;
+import ::df::*;
+
+export material constant_factor() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d("constant.exr"), base: df::normalized_mix(
+        df::bsdf_component[](df::bsdf_component(0.5, df::diffuse_reflection_bsdf()),
+            df::bsdf_component(0.5, df::microfacet_ggx_smith_bsdf(roughness_u: 0.3)))))));
+export material constant_tint() = material(surface: material_surface(
+    scattering: df::tint(color(0.8, 0.5, 0.25), df::normalized_mix(
+        df::bsdf_component[](df::bsdf_component(0.5, df::diffuse_reflection_bsdf()),
+            df::bsdf_component(0.5, df::microfacet_ggx_smith_bsdf(roughness_u: 0.3)))))));
+export material u_mirror() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d("./u_ramp.exr"), base: df::specular_bsdf())));
+export material v_lambert() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d("v_ramp.exr"), base: df::diffuse_reflection_bsdf())));
+export material lambert() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf()));
+export material rough() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d("varying.exr"),
+        base: df::microfacet_ggx_smith_bsdf(roughness_u: 0.4, roughness_v: 0.2))));
+export material invalid() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d(), base: df::diffuse_reflection_bsdf())));
+"#;
+
+/// The constant texture's colour.
+const CONSTANT: [f32; 3] = [0.8, 0.5, 0.25];
+/// The u ramp's left (a) and right (b) texels; the v ramp's bottom (c) and top (d) ones.
+const A: [f32; 3] = [0.9, 0.5, 0.3];
+const B: [f32; 3] = [0.1, 0.7, 1.0];
+const C: [f32; 3] = [1.0, 0.6, 0.2];
+const D: [f32; 3] = [0.2, 0.3, 0.9];
+
+/// The directory of the written module and textures (each test writes the same bytes).
+fn written() -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("mdl_measured_factor");
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, bytes: &[u8]| {
+        // Written under a unique name and renamed: a test reading it never sees half a file.
+        let tmp = dir.join(format!("{name}.{:?}", std::thread::current().id()));
+        std::fs::write(&tmp, bytes).unwrap();
+        std::fs::rename(&tmp, dir.join(name)).unwrap();
+    };
+    write("factor_test.mdl", MODULE.as_bytes());
+    // Rows as the file stores them: the top row first.
+    let exr = |name: &str, rows: &[&[[f32; 3]]]| {
+        let (w, h) = (rows[0].len() as u32, rows.len() as u32);
+        let img = image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb(rows[y as usize][x as usize]));
+        let tmp = dir.join(format!("{:?}.{name}", std::thread::current().id()));
+        img.save(&tmp).unwrap();
+        std::fs::rename(&tmp, dir.join(name)).unwrap();
+    };
+    exr("constant.exr", &[&[CONSTANT; 3], &[CONSTANT; 3]]);
+    exr("u_ramp.exr", &[&[A, B]]);
+    exr("v_ramp.exr", &[&[D], &[C]]);
+    exr("varying.exr", &[&[A, B, [1.0; 3]], &[C, D, [0.3; 3]], &[[0.05; 3], B, C]]);
+    dir
+}
+
+/// Compiles `.mi` shaders of the written module.
+fn compile(text: &str) -> (material::mdl_modules::MdlMaterials, scene::Library, Vec<String>) {
+    compile_text_with(text, &[written()])
+}
+
+/// A direction at `deg` from the normal and azimuth `phi` (radians).
+fn dir(deg: f32, phi: f32) -> Vec3A {
+    let t = deg.to_radians();
+    Vec3A::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+/// A constant texture of colour c is `df::tint(c)` of the same base (a Lambertian and GGX
+/// mix): equal BSDF values at pairs of directions within 1e-5 of the larger.
+#[test]
+fn a_constant_texture_is_the_tint_of_its_colour() {
+    let (mdl, lib, diags) = compile(
+        r#"shader "f" "mdl::factor_test::constant_factor" ()
+shader "t" "mdl::factor_test::constant_tint" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let (f, t) = (get(&mdl, &lib, "f"), get(&mdl, &lib, "t"));
+    let pairs = [(0.0f32, 30.0f32, 1.0f32), (37.0, 72.0, 2.5), (80.0, 10.0, 0.2), (55.0, 55.0, 3.1), (20.0, 25.0, 3.0)];
+    for (a, b, phi) in pairs {
+        let (wo, wi) = (dir(a, 0.0), dir(b, phi));
+        let (x, y) = (f.bsdf(wo).eval(wo, wi), t.bsdf(wo).eval(wo, wi));
+        let scale = x.max_element().max(y.max_element());
+        assert!(scale > 0.0 && (x - y).abs().max_element() <= 1e-5 * scale, "{a}°, {b}°: {x:?} vs {y:?}");
+    }
+}
+
+/// A texture varying in u (two texels a, b) over a mirror (h = n, so u = θ·2/π, v = 0)
+/// reflects a + (b − a) t, t = 2u − ½ clamped, at 30° and 60° (1e-4); one varying in v
+/// (bottom c, top d) over a white Lambertian scales it by c + (d − c) t, t = 2v − ½, v the
+/// half vector's angle to the normal ·2/π, at half-vector angles of 30° and 60° (1e-4).
+#[test]
+fn a_varying_texture_gives_the_factor_at_its_angles() {
+    let (mdl, lib, diags) = compile(
+        r#"shader "u" "mdl::factor_test::u_mirror" ()
+shader "v" "mdl::factor_test::v_lambert" ()
+shader "l" "mdl::factor_test::lambert" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let ramp = |lo: [f32; 3], hi: [f32; 3], deg: f32| {
+        let t = (2.0 * deg / 90.0 - 0.5).clamp(0.0, 1.0);
+        Rgb::from(lo) + (Rgb::from(hi) - Rgb::from(lo)) * t
+    };
+    let u = get(&mdl, &lib, "u");
+    for deg in [30.0f32, 60.0] {
+        let wo = dir(deg, 0.0);
+        let got = albedo(&u.bsdf(wo), wo, 16);
+        let want = ramp(A, B, deg);
+        assert!((got - want).abs().max_element() <= 1e-4, "{deg}°: {got:?} vs {want:?}");
+    }
+    let (v, l) = (get(&mdl, &lib, "v"), get(&mdl, &lib, "l"));
+    // (wo, wi) with the half vector at 30° (60° and 0°) and at 60° (80° and 40°) from n.
+    for (a, b, half) in [(60.0f32, 0.0f32, 30.0f32), (80.0, 40.0, 60.0)] {
+        let (wo, wi) = (dir(a, 0.0), dir(b, 0.0));
+        let (fv, fl) = (v.bsdf(wo).eval(wo, wi), l.bsdf(wo).eval(wo, wi));
+        let got = fv / fl;
+        let want = ramp(C, D, half);
+        assert!((got - want).abs().max_element() <= 1e-4, "h at {half}°: {got:?} vs {want:?}");
+    }
+}
+
+/// A varying texture of factors ≤ 1 over an anisotropic GGX lobe reflects at most what it
+/// receives (albedo ≤ 1 + 1 % at the standard incidences) and passes the standard checks
+/// (reciprocity, χ² sampling); the invalid texture scatters nothing.
+#[test]
+fn measured_factors_pass_the_furnace_and_the_standard_checks() {
+    let (mdl, lib, diags) = compile(
+        r#"shader "r" "mdl::factor_test::rough" ()
+shader "i" "mdl::factor_test::invalid" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let r = get(&mdl, &lib, "r");
+    for wo in incidences() {
+        let a = albedo(&r.bsdf(wo), wo, 20_000);
+        assert!(a.max_element() <= 1.01, "albedo {a:?} at {wo:?}");
+    }
+    standard_checks(&r.bsdf(Vec3A::Z), 1.01, "measured_factor_rough");
+    let i = get(&mdl, &lib, "i");
+    let wo = Vec3A::Z;
+    assert_eq!(i.bsdf(wo).eval(wo, dir(30.0, 0.0)), Rgb::ZERO);
+}
