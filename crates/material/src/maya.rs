@@ -271,7 +271,8 @@ fn ambient_color(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
 /// ([`bsdf::maya_highlight::translucence`], the classic shader's lobe) — beside the
 /// material's highlight, or alone on a lobe of zero tint. A connected `color` c makes it
 /// follow each hit's diffuse colour c·d as t/d of it (a `diffuse` d of 0 lends it the
-/// default colour, warned about); `translucenceDepth` is not read (warned about).
+/// default colour, warned about); `translucenceDepth` is not read here (warned about; the
+/// classic shader reads it, `maya::material`).
 fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
     let t = r.scalar("translucence", 0.0);
     if t <= 0.0 {
@@ -289,8 +290,9 @@ fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
         );
     }
     r.warnings.push(
-        "'translucenceDepth' is not read (mental ray for Maya hands it to the shadow shader `maya_shadow`, whose \
-         use of it is not published; light from behind passes shadowing objects only by their transparency)"
+        "'translucenceDepth' is not read by the path engine (the classic engine lets light from behind through \
+         the object's own geometry, falling off to nothing at that depth; here it passes shadowing objects only \
+         by their transparency)"
             .into(),
     );
     let albedo = r.color("color", Rgb::splat(0.5)) * t * fade;

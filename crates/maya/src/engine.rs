@@ -98,7 +98,8 @@ maya_shader!(
     /// `outTransparency` instead (github.com/ggarra13/mrliquid,
     /// `mrLiquid/src/mrShaderMayaShadow.cpp`, which also writes `shadowAttenuation` and
     /// `translucenceDepth`: accepted, not read — how mental ray for Maya uses them is not
-    /// published).
+    /// published; the material's own `translucenceDepth` acts through the
+    /// `outTransparency` it reports in a shadow ray, `crate::material`).
     SHADOW,
     ADSK_SHADOW,
     "maya_shadow",

@@ -28,14 +28,22 @@
 //!
 //! K is the forward lobe of `translucenceFocus` φ ([`bsdf::maya_highlight::translucence`]:
 //! K = (n + 2)/2 · max(−v·l, 0)^n, n = 2φ/(1 − φ), 1 for φ = 0; mira's reading, Maya
-//! publishes no formula). `translucenceDepth` is not read. Maya's reference: the
-//! world-space depth past the point where the object is in shadow that light still
-//! penetrates. mental ray for Maya reads it in the shading group's shadow shader, not
-//! here: its translator writes `maya_shadow` with the material's `outTransparency`,
-//! `shadowAttenuation` and `translucenceDepth` (the open-source exporter
-//! github.com/ggarra13/mrliquid, `mrLiquid/src/mrShaderMayaShadow.cpp`), and that
-//! shader's use of it is not published; mira's shadow rays pass occluders only by their
-//! shadow shaders' transparency.
+//! publishes no formula).
+//!
+//! `translucenceDepth` D (world units): Maya's node reference describes it as how far
+//! past the point where the object is in shadow light still penetrates it (0: no light
+//! shows through; seen with raytraced shadows). mental ray for Maya hands it to the
+//! shading group's shadow shader (its translator writes `maya_shadow` with the material's
+//! `outTransparency`, `shadowAttenuation` and `translucenceDepth`: the open-source
+//! exporter github.com/ggarra13/mrliquid, `mrLiquid/src/mrShaderMayaShadow.cpp`), whose
+//! formula is not published. mira's reading, in the material's shadow mode: a shadow ray
+//! from a point of the object that leaves the object's own geometry (from inside) after
+//! a stretch of length s through it passes a fraction max(1 − s/D, 0) of what its
+//! transparency T stops, T + (1 − T)·max(1 − s/D, 0), when the material's `translucence`
+//! is above 0 — a linear fall-off to nothing at s = D, so light from behind (the
+//! translucence term B) reaches a slab of thickness s as B·(1 − s/D). Each stretch
+//! inside counts on its own; other objects, and the object's own surfaces met from
+//! outside, shadow as before. D = 0 (or no translucence) is the plain filter by T.
 //!
 //! E_fg is final gathering's irradiance (`mi_compute_irradiance`, the energy over the
 //! hemisphere). Unlike the base library's materials, which add diffuse ⊙ E_fg as the
@@ -69,7 +77,7 @@
 //!
 //! Not read: `shadowAttenuation` (Maya brightens the middle of transparent objects'
 //! shadows with it), `chromaticAberration`, `lightAbsorbance`, `surfaceThickness`,
-//! `translucenceDepth`, `matteOpacityMode`, `hideSource`,
+//! `matteOpacityMode`, `hideSource`,
 //! `reflectionSpecularity`; anisotropic's `anisotropicReflectivity` (Maya then derives the
 //! reflectivity from the roughness by an unpublished rule; mira uses `reflectivity`).
 
@@ -98,10 +106,11 @@ const LIGHT_LIST: usize = 12;
 const IRRADIANCE_COLOR: usize = 13;
 const IRRADIANCE: usize = 14;
 const TRANSLUCENCE_FOCUS: usize = 15;
-const SPECULAR_COLOR: usize = 16;
-const REFLECTIVITY: usize = 17;
-const REFLECTED_COLOR: usize = 18;
-const REFLECTION_LIMIT: usize = 19;
+const TRANSLUCENCE_DEPTH: usize = 16;
+const SPECULAR_COLOR: usize = 17;
+const REFLECTIVITY: usize = 18;
+const REFLECTED_COLOR: usize = 19;
+const REFLECTION_LIMIT: usize = 20;
 /// The first parameter a reflective material adds to the shared ones.
 const EXTRA: usize = REFLECTION_LIMIT + 1;
 
@@ -123,6 +132,7 @@ const LAMBERT_PARAMS: &[&str] = &[
     "irradianceColor",
     "irradiance",
     "translucenceFocus",
+    "translucenceDepth",
 ];
 
 macro_rules! reflective_params {
@@ -130,7 +140,7 @@ macro_rules! reflective_params {
         &[
             "color", "transparency", "ambientColor", "incandescence", "normalCamera", "diffuse",
             "translucence", "refractions", "refractiveIndex", "refractionLimit", "matteOpacity",
-            "glowIntensity", "lightList", "irradianceColor", "irradiance", "translucenceFocus", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
+            "glowIntensity", "lightList", "irradianceColor", "irradiance", "translucenceFocus", "translucenceDepth", "specularColor", "reflectivity", "reflectedColor", "reflectionLimit",
             $($extra),*
         ]
     };
@@ -240,6 +250,19 @@ pub(crate) fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
     f != Vec3A::ZERO
 }
 
+/// What a shadow ray passes where it leaves the receiving point's own object after going
+/// `inside` world units through it (see the module doc): with `translucence` > 0 and
+/// `translucenceDepth` D > 0, the transparency T raised to T + (1 − T)·max(1 − inside/D, 0)
+/// (mira's reading of Maya's reference); else T unchanged.
+fn translucent_passage(ctx: &mut Ctx, n: NodeId, transparency: Vec3A, inside: f32) -> Vec3A {
+    let depth = ctx.scalar(n, TRANSLUCENCE_DEPTH);
+    if depth <= 0.0 || ctx.scalar(n, TRANSLUCENCE) <= 0.0 {
+        return transparency;
+    }
+    let kept = (1.0 - inside / depth).max(0.0);
+    transparency + (Vec3A::ONE - transparency) * kept
+}
+
 /// The lights a Maya material shades with: its `lightList` (parameter `i` of `node`) when
 /// the export filled it in, else the instance's light list (`light "exclusive"` links).
 pub(crate) fn material_lights(ctx: &mut Ctx, node: NodeId, i: usize) -> shader::light_list::LightList {
@@ -331,6 +354,10 @@ pub(crate) fn behind_with(ctx: &mut Ctx, refract: bool, ior: f32, limit: u32) ->
 fn surface(ctx: &mut Ctx, n: NodeId, out: &mut Value, highlight: fn(&mut Ctx, NodeId) -> Highlight) -> bool {
     let transparency = rgb(ctx.color(n, TRANSPARENCY)).clamp(Vec3A::ZERO, Vec3A::ONE);
     if ctx.state.ray_type == RayType::Shadow {
+        let transparency = match ctx.state.inside_own {
+            Some(inside) => translucent_passage(ctx, n, transparency, inside),
+            None => transparency,
+        };
         return shadow_filter(out, transparency);
     }
     if !ctx.state.ray_type.is_visible() {

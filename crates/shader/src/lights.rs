@@ -687,8 +687,22 @@ impl<'a> Ctx<'a> {
             return true;
         }
         let light = s.light;
+        // The receiving instance, the distance walked along the ray, and where the ray
+        // last entered the receiving instance (it starts on it): for `State::inside_own`.
+        let own = s.instance;
+        let mut walked = 0.0f32;
+        let mut entered = 0.0f32;
         tracer.shadow_hits(&ray, max_dist, &mut |hit: &State| {
             media.advance(shading, hit.dist, &mut filter);
+            walked += hit.dist;
+            let mut inside_own = None;
+            if hit.instance == own {
+                if hit.inv_normal {
+                    inside_own = Some(walked - entered);
+                } else {
+                    entered = walked;
+                }
+            }
             if !shading.casts_shadow_for(hit.instance, light) {
                 // Shadow linking: this object casts no shadow for the light; the ray
                 // passes it (entering or leaving its medium, if it has one).
@@ -709,7 +723,9 @@ impl<'a> Ctx<'a> {
                 blocked = true;
                 return false;
             };
-            let mut ctx = Ctx::new(shading, tracer, hit.clone());
+            let mut at = hit.clone();
+            at.inside_own = inside_own;
+            let mut ctx = Ctx::new(shading, tracer, at);
             let mut result = Value::Color(filter);
             let ok = ctx.run_list(shader, &mut result);
             calls += ctx.counts.calls;

@@ -155,6 +155,10 @@ pub struct State {
     /// Distance travelled by the last ray traced from this state (mental ray's
     /// `child->dist`), infinite if it hit nothing.
     pub child_dist: f32,
+    /// At a shadow ray's hit that leaves the receiving point's own instance (from inside):
+    /// the world-space length of the stretch the ray went inside it, from where it entered
+    /// (or from the receiving point) to this hit; `None` at any other hit and ray.
+    pub inside_own: Option<f32>,
     /// Hair data when the hit is on a hair.
     pub hair: Option<HairState>,
     /// Position in the pixel's sample sequence (for shaders that sample).

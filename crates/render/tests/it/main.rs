@@ -49,6 +49,7 @@ mod maya_shadow_links;
 mod maya_shadow_links_media;
 mod maya_soft_shadows_path;
 mod maya_specular_texture_path;
+mod maya_translucence_depth;
 mod maya_translucence_path;
 mod maya_transparent_path;
 mod maya_use_background_path;

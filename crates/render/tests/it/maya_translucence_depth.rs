@@ -1,0 +1,96 @@
+//! A Maya lambert's `translucenceDepth` D (mira's reading of Maya's reference,
+//! `maya::material`): light from behind reaching a point whose shadow ray leaves the
+//! object's own geometry after a stretch s inside it keeps the fraction max(1 − s/D, 0)
+//! of what the material's transparency stops. A slab of thickness s (top face y = 0 seen
+//! from above, bottom face y = −s, outward normals) lit by a unit directional light
+//! travelling straight up shows c · t · (1 − s/D) with `translucenceFocus` 0.
+
+use crate::support;
+use crate::support::maya_view::pixels_warned;
+
+use glam::Vec3A;
+use render::EngineKind;
+
+/// The image's side in pixels.
+const SIDE: usize = 8;
+
+/// The slab's colour c.
+const COLOR: Vec3A = Vec3A::new(0.6, 0.5, 0.4);
+
+/// The slab's `translucence` t.
+const T: f32 = 0.7;
+
+/// The pixels of `text` (whose world may warn only about `translucenceDepth`).
+fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
+    pixels_warned(text, engine, spp, "translucenceDepth")
+}
+
+/// The slab of thickness `thick` with `translucenceDepth` `depth` and `transparency`
+/// `transparency` (grey); `split`: its bottom face is a separate object (another
+/// occluder, not the slab's own geometry).
+fn scene(thick: f32, depth: f32, transparency: f32, split: bool) -> String {
+    let view = support::maya_view::top_down(SIDE);
+    let y = -thick;
+    let top = "v 0 v 1 v 2 v 3 c \"m\" 0 1 2 3";
+    let (objects, instances) = if split {
+        (
+            format!(
+                r#"object "top" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  {top} end group end object
+instance "top_inst" "top" end instance
+object "bottom" group -5 {y} -5  5 {y} -5  5 {y} 5  -5 {y} 5  {top} end group end object
+instance "bottom_inst" "bottom" end instance"#
+            ),
+            r#""top_inst" "bottom_inst""#,
+        )
+    } else {
+        (
+            format!(
+                r#"object "slab" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  -5 {y} -5  5 {y} -5  5 {y} 5  -5 {y} 5
+  v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 c "m" 0 1 2 3 c "m" 4 5 6 7 end group end object
+instance "slab_inst" "slab" end instance"#
+            ),
+            r#""slab_inst""#,
+        )
+    };
+    format!(
+        r#"
+$include "mayabase.mi"
+{view}
+light "l" "maya_directionallight" ("intensity" 1, "useRayTraceShadows" on) direction 0 1 0 end light
+instance "l_inst" "l" end instance
+shader "mat" "maya_lambert" ("color" {} {} {}, "diffuse" 0.8, "translucence" {T}, "translucenceFocus" 0,
+  "translucenceDepth" {depth}, "transparency" {transparency} {transparency} {transparency})
+material "m" "maya_shadingengine" ("surfaceShader" = "mat.outColor")
+  shadow "maya_shadingengine" ("surfaceShader" = "mat.outColor") end material
+{objects}
+instgroup "root" "cam_inst" "l_inst" {instances} end instgroup
+render "root" "cam_inst" "opt"
+"#,
+        COLOR.x, COLOR.y, COLOR.z
+    )
+}
+
+/// Classic engine, opaque slab: every pixel is c · t · (1 − s/D) within 1e-3 per
+/// channel for s/D = 0.1, 0.25, 0.6 and 0 past the depth (s/D = 1.5). D = 0 and a
+/// bottom face that is another object (whatever D) block the light as before: those
+/// images are bit-identical to each other (and black), also for a slab of transparency
+/// 0.3 (the plain filter by T). Before, the slab's own bottom face stopped all the light.
+#[test]
+fn translucence_depth_lets_light_through_the_own_object_falling_off_linearly() {
+    for (thick, depth) in [(0.1f32, 1.0f32), (0.5, 2.0), (0.3, 0.5), (0.75, 0.5)] {
+        let px = pixels(&scene(thick, depth, 0.0, false), EngineKind::Classic, 4);
+        let want = COLOR * T * (1.0 - thick / depth).max(0.0);
+        for p in &px {
+            assert!((*p - want).abs().max_element() < 1e-3, "s {thick} D {depth}: {p} vs {want}");
+        }
+    }
+    for transparency in [0.0f32, 0.3] {
+        let zero = pixels(&scene(0.25, 0.0, transparency, false), EngineKind::Classic, 4);
+        let other = pixels(&scene(0.25, 2.0, transparency, true), EngineKind::Classic, 4);
+        let bits = |px: &[Vec3A]| px.iter().flat_map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(&zero), bits(&other), "transparency {transparency}: D 0 vs another occluder");
+        if transparency == 0.0 {
+            assert!(zero.iter().all(|p| *p == Vec3A::ZERO), "{:?}", &zero[..4]);
+        }
+    }
+}
