@@ -359,6 +359,7 @@ impl SurfaceModel {
             SurfaceModel::Lobes(l) => l.transmit != Rgb::ZERO && !l.thin,
             SurfaceModel::MdlLobes(l) => l.has_inside(),
             SurfaceModel::MdlWide(l) => l.has_inside(),
+            SurfaceModel::MdlWideAt(slot) => slot.has_inside(),
             _ => false,
         }
     }

@@ -26,6 +26,9 @@ pub const SLOTS: usize = 16;
 pub struct WideSlot {
     index: u32,
     generation: u32,
+    /// Whether light enters the surface ([`bsdf::lobes::LobeSum::has_inside`] of the sum),
+    /// kept with the slot so that the engines ask it without the thread's ring.
+    inside: bool,
 }
 
 /// The ring of one thread.
@@ -55,8 +58,14 @@ impl WideSlot {
                 }
                 *generation = generation.wrapping_add(1);
             }
-            WideSlot { index: index as u32, generation: ring.slots[index].1 }
+            WideSlot { index: index as u32, generation: ring.slots[index].1, inside: sum.has_inside() }
         })
+    }
+
+    /// Whether light can enter the surface (a solid glass lobe in the sum), as for a
+    /// constant sum ([`crate::SurfaceModel::has_inside`]): media inside are tracked.
+    pub fn has_inside(self) -> bool {
+        self.inside
     }
 
     /// A share of the sum (for a BSDF), if the slot still holds it: `None` on another
