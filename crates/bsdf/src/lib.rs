@@ -20,6 +20,7 @@ pub mod measured_factor;
 pub mod medium;
 pub mod mia;
 pub mod mib_glossy;
+pub mod mib_glossy_refraction;
 pub mod microfacet;
 pub mod multiscatter;
 mod oren_nayar;
@@ -43,6 +44,7 @@ pub use maya_highlight::{MayaBsdf, MayaGlossy};
 pub use medium::Medium;
 pub use mia::MiaBsdf;
 pub use mib_glossy::{MibGlossy, MibGlossyLobe};
+pub use mib_glossy_refraction::{MibGlossyRefraction, MibGlossyRefractionLobe};
 pub use oren_nayar::OrenNayar;
 pub use phase::{HenyeyGreenstein, Phase, PhaseSample};
 pub use unified::{Unified, UnifiedParams};
@@ -104,6 +106,9 @@ pub enum Bsdf {
     /// mental ray's `mib_glossy_reflection`: a Ward-spread reflection (or mirror) over a
     /// Lambertian base, as the classic shader's estimate converges to.
     MibGlossy(MibGlossy),
+    /// mental ray's `mib_glossy_refraction`: a Ward-spread refraction (or sharp one) under a
+    /// Lambertian top, as the classic shader's estimate converges to.
+    MibGlossyRefraction(MibGlossyRefraction),
 }
 
 impl Bsdf {
@@ -122,6 +127,7 @@ impl Bsdf {
             Bsdf::Wide(l) => l.eval(wo, wi),
             Bsdf::Maya(l) => l.eval(wo, wi),
             Bsdf::MibGlossy(l) => l.eval(wo, wi),
+            Bsdf::MibGlossyRefraction(l) => l.eval(wo, wi),
         }
     }
 
@@ -141,6 +147,7 @@ impl Bsdf {
             Bsdf::Wide(l) => l.sample(wo, u, u_lobe),
             Bsdf::Maya(l) => l.sample(wo, u, u_lobe),
             Bsdf::MibGlossy(l) => l.sample(wo, u, u_lobe),
+            Bsdf::MibGlossyRefraction(l) => l.sample(wo, u, u_lobe),
         }
     }
 
@@ -159,6 +166,7 @@ impl Bsdf {
             Bsdf::Wide(l) => l.pdf(wo, wi),
             Bsdf::Maya(l) => l.pdf(wo, wi),
             Bsdf::MibGlossy(l) => l.pdf(wo, wi),
+            Bsdf::MibGlossyRefraction(l) => l.pdf(wo, wi),
         }
     }
 
@@ -175,6 +183,7 @@ impl Bsdf {
             Bsdf::Unified(u) => u.is_delta(),
             Bsdf::Builtin(b) => b.is_delta(),
             Bsdf::MibGlossy(g) => g.is_delta(),
+            Bsdf::MibGlossyRefraction(g) => g.is_delta(),
         }
     }
 }

@@ -166,7 +166,7 @@ pub fn edge_weight(cos: f32, (base, edge, factor): (f32, f32, f32)) -> f32 {
 /// A micro-normal of Ward's distribution by the classic shader's mapping (Walter 2005's
 /// form of Ward 1992): φ from the aspect of the spreads, tan²θ = −ln(1 − u.x) /
 /// (cos²φ/αx² + sin²φ/αy²). The same distribution as [`Beckmann::sample`].
-fn ward_normal(dist: &Beckmann, u: Vec2) -> Vec3A {
+pub(crate) fn ward_normal(dist: &Beckmann, u: Vec2) -> Vec3A {
     let (ax, ay) = (dist.alpha_x, dist.alpha_y);
     let a = std::f32::consts::TAU * u.y;
     let phi = (ay * a.sin()).atan2(ax * a.cos());
@@ -232,6 +232,25 @@ impl UpperFraction {
         }
         UpperFraction { values, phis }
     }
+
+    /// A table of `share(ωo)` (upper views; a share of micro-normals, as A) at the
+    /// nodes of [`UpperFraction::new`], for another lobe of `dist`.
+    pub fn of(dist: &Beckmann, share: impl Fn(Vec3A) -> f32) -> UpperFraction {
+        let phis = if dist.alpha_x == dist.alpha_y { 1 } else { PHI_NODES };
+        let mut values = Vec::with_capacity(COS_NODES * phis);
+        for c in 0..COS_NODES {
+            let cos = c as f32 / (COS_NODES - 1) as f32;
+            let sin = (1.0 - cos * cos).max(0.0).sqrt();
+            for p in 0..phis {
+                let phi = if phis > 1 { FRAC_PI_2 * p as f32 / (phis - 1) as f32 } else { 0.0 };
+                values.push(share(Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos)));
+            }
+        }
+        UpperFraction { values, phis }
+    }
+
+    /// The quadrature's side per node of the tables.
+    pub const QUADRATURE: u32 = QUADRATURE;
 
     /// A(ωo), interpolated.
     pub fn at(&self, wo: Vec3A) -> f32 {

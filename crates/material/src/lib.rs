@@ -9,6 +9,7 @@
 //!   weights come from the author's curve and conservation at each viewing angle;
 //! - the mental ray illumination shaders (`mib_illum_*`) their `diffuse` colour (Lambert);
 //! - `mib_glossy_reflection`: its glossy reflection over its base material (`reader::mib_glossy`);
+//! - `mib_glossy_refraction`: its glossy refraction under its top material (`reader::mib_glossy_refraction`);
 //! - materials of MDL modules on the search path: compiled by [`mdl_modules`] (see
 //!   [`translate_with`]).
 //!
@@ -146,6 +147,9 @@ pub enum SurfaceModel {
     /// mental ray's `mib_glossy_reflection`: its Ward-spread reflection (or mirror) over a
     /// Lambertian base of the `diffuse` colour (its base material's).
     MibGlossy(Box<bsdf::MibGlossyLobe>),
+    /// mental ray's `mib_glossy_refraction`: its Ward-spread (or sharp) refraction under a
+    /// Lambertian top of the `diffuse` colour (its top material's) on the front.
+    MibGlossyRefraction(Box<bsdf::MibGlossyRefractionLobe>),
 }
 
 /// A surface's scattering and emission.
@@ -310,6 +314,7 @@ impl SurfaceModel {
             },
             SurfaceModel::Maya(g) => Bsdf::Maya(g.bsdf_seen(diffuse, wo, frame)),
             SurfaceModel::MibGlossy(g) => Bsdf::MibGlossy(g.bsdf(diffuse, wo)),
+            SurfaceModel::MibGlossyRefraction(g) => Bsdf::MibGlossyRefraction(g.bsdf(diffuse, wo)),
             SurfaceModel::Mia(m) => {
                 let (mia, refr_gloss) = &**m;
                 let w = mia.weights(wo.z.abs(), true);
@@ -360,6 +365,7 @@ impl SurfaceModel {
             SurfaceModel::MdlLobes(l) => l.has_inside(),
             SurfaceModel::MdlWide(l) => l.has_inside(),
             SurfaceModel::MdlWideAt(slot) => slot.has_inside(),
+            SurfaceModel::MibGlossyRefraction(_) => true,
             _ => false,
         }
     }

@@ -19,6 +19,7 @@ use mia::params::Mia;
 use shader::{Graph, NodeId};
 
 mod mib_glossy;
+mod mib_glossy_refraction;
 
 const CORE: &str = "mdl::nvidia::core_definitions::";
 
@@ -444,6 +445,7 @@ impl<'a> Reader<'a> {
                 SurfaceMaterial::lambert(name, diffuse)
             }
             ("mib_glossy_reflection", _) => mib_glossy::glossy_reflection(self, params, lib, depth),
+            ("mib_glossy_refraction", _) => mib_glossy_refraction::glossy_refraction(self, params, lib, depth),
             (other, _) => {
                 self.warnings.push(format!(
                     "material '{name}': shader '{other}' is not supported by the path integrator yet; rendered grey"

@@ -87,3 +87,44 @@ material "m" "mib_glossy_reflection" ("base_material" "base", {params}) end mate
         assert_eq!(s.diffuse, Rgb::splat(0.4));
     }
 }
+
+/// `mib_glossy_refraction` over a `mib_illum_lambert` top: the top's diffuse colour over
+/// the lobe (front only), which is seen from inside too (the model has an inside); its
+/// weight at normal incidence from the front is `refraction_color` × the base weight 1
+/// (exactly, 1e-6), η = 1/`ior` there and `ior` from inside; no warning when every
+/// parameter is honoured; `samples` 0 leaves the top alone. `back_material`,
+/// `max_distance` and `v_axis` are warned about.
+#[test]
+fn glossy_refraction_lies_under_its_top_material() {
+    let (s, warnings) = translated(
+        r#"shader "top" "mib_illum_lambert" ("diffuse" 0.3 0.2 0.1)
+material "m" "mib_glossy_refraction" ("top_material" "top", "refraction_color" 0.5 0.6 0.7, "ior" 1.5) end material
+"#,
+    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(s.diffuse, Rgb::new(0.3, 0.2, 0.1));
+    assert!(s.has_inside());
+    let SurfaceModel::MibGlossyRefraction(lobe) = &s.model else { panic!("{:?}", s.model) };
+    let front = lobe.bsdf(s.diffuse, Vec3A::Z);
+    assert!((front.tint - Rgb::new(0.5, 0.6, 0.7)).abs().max_element() < 1e-6, "{}", front.tint);
+    assert_eq!(front.base, s.diffuse);
+    assert!((front.eta - 1.0 / 1.5).abs() < 1e-6);
+    let inside = lobe.bsdf(s.diffuse, -Vec3A::Z);
+    assert_eq!((inside.base, inside.eta), (Rgb::ZERO, 1.5));
+    let (alone, warnings) = translated(
+        r#"shader "top" "mib_illum_lambert" ("diffuse" 0.4 0.4 0.4)
+material "m" "mib_glossy_refraction" ("top_material" "top", "samples" 0) end material
+"#,
+    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!((alone.model, alone.diffuse), (SurfaceModel::Lambert, Rgb::splat(0.4)));
+    let (_, warnings) = translated(
+        r#"shader "top" "mib_illum_lambert" ("diffuse" 0.4 0.4 0.4)
+material "m" "mib_glossy_refraction" ("top_material" "top", "back_material" "top", "max_distance" 3,
+    "v_axis" 1 0 0) end material
+"#,
+    );
+    for what in ["back_material", "max_distance", "v_axis"] {
+        assert!(warnings.iter().any(|w| w.contains(what)), "no warning about {what}: {warnings:?}");
+    }
+}

@@ -8,6 +8,12 @@
 //! reflection lobe gave it (its share of f there, [`bsdf::MiaBsdf::reflection_share`],
 //! [`bsdf::MibGlossy::reflection_share`]), so that on average the paths past a glossy
 //! bounce are counted as the classic engine counts its glossy rays.
+//!
+//! The refraction level (Maya's `refractionLimit`) counts a delta transmission, and every
+//! transmitted sample of `mib_glossy_refraction` ([`bsdf::Bsdf::MibGlossyRefraction`],
+//! whose rays through the surface the classic shader casts as refraction rays, but for
+//! the sharp straight pass of `ior` 1, a transparency ray); its totally reflected samples
+//! count as reflections (the classic shader casts them as reflection rays).
 
 use bsdf::{Bsdf, BsdfSample};
 use glam::Vec3A;
@@ -36,6 +42,23 @@ pub(super) fn reflects(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample, u: impl FnOnce()
             let share = g.reflection_share(wo, bs.wi);
             share > 0.0 && u() < share
         }
+        Bsdf::MibGlossyRefraction(g) => {
+            let share = g.glossy_share(wo, bs.wi);
+            share > 0.0 && u() < share
+        }
         _ => false,
+    }
+}
+
+/// Whether the sample `bs` of `bsdf` seen from `wo` (local frame) is a transmission that
+/// raises the refraction level.
+#[inline]
+pub(super) fn refracts(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> bool {
+    if (bs.wi.z > 0.0) == (wo.z > 0.0) {
+        return false;
+    }
+    match bsdf {
+        Bsdf::MibGlossyRefraction(g) => g.refracts(),
+        _ => bs.delta,
     }
 }

@@ -40,6 +40,7 @@ fn split(bsdf: &Bsdf, wo: Vec3A, wi: Vec3A, lobes: LightLobes) -> Rgb {
             ((u.eval(wo, wi) - g).max(Rgb::ZERO), g)
         }
         Bsdf::MibGlossy(g) => g.eval_split(wo, wi),
+        Bsdf::MibGlossyRefraction(g) => g.eval_split(wo, wi),
         Bsdf::Lambert(_) | Bsdf::OrenNayar(_) => (bsdf.eval(wo, wi), Rgb::ZERO),
         _ => (bsdf.eval(wo, wi), Rgb::ZERO),
     };

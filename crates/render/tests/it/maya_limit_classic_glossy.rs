@@ -3,8 +3,9 @@
 //! they count mirror and refraction rays: those shaders cast their rays as reflection
 //! (refraction) rays, which raise the state's reflection (refraction) level that the Maya
 //! materials compare with their limits. (The path engine's count of
-//! `mib_glossy_reflection` samples is tested in `mib_glossy_path`; it does not run
-//! `mib_glossy_refraction`, which it renders grey with a warning.)
+//! `mib_glossy_reflection` samples is tested in `mib_glossy_path`; its count of
+//! `mib_glossy_refraction`'s transmissions here, with the classic engine's, and in
+//! `mib_glossy_refraction_path`.)
 
 use crate::support;
 use crate::support::maya_view::pixels_warned;
@@ -78,7 +79,8 @@ fn reflection_limit_counts_mib_glossy_reflection_rays_in_the_classic_engine() {
 /// With `refractionLimit` 0 and 1 the lower plane is reached at refraction level 1 and
 /// passes the ray straight, with 2 it bends it: at every pixel within one strip by the
 /// formula the classic engine gives T ⊙ that strip's colour within 1e-3 per channel, and
-/// ≥ 15 % of those pixels tell limits 1 and 2 apart.
+/// ≥ 15 % of those pixels tell limits 1 and 2 apart; the path engine (which passes the
+/// ray straight at `ior` 1 and counts the pass as a refraction) the same, 1e-3 per channel.
 #[test]
 fn refraction_limit_counts_mib_glossy_refraction_rays_in_the_classic_engine() {
     crate::maya_refraction_path::refraction_limit_past_the_top(Some(

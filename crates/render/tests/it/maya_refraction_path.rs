@@ -5,7 +5,7 @@
 //! `behind`; `bsdf::MayaGlossy::refraction`).
 
 use crate::support;
-use crate::support::maya_view::{pixels, pixels_warned};
+use crate::support::maya_view::pixels;
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -293,7 +293,7 @@ fn the_refraction_limit_counts_other_materials_transparency_rays_in_both_engines
 
 /// [`the_refraction_limit_counts_other_materials_transparency_rays_in_both_engines`]
 /// with the top plane's material `top` (a whole `material … end material`, named "m") in
-/// place of the transparent lambert's, in the classic engine only (when `top` is given).
+/// place of the transparent lambert's (when given), in both engines.
 pub(crate) fn refraction_limit_past_the_top(top: Option<&str>) {
     let t = Vec3A::new(0.9, 0.7, 0.5);
     let shaders = format!(
@@ -310,13 +310,8 @@ pub(crate) fn refraction_limit_past_the_top(top: Option<&str>) {
             let end = start + text[start..].find("end material").expect("its end") + "end material".len();
             text.replace_range(start..end, top);
         }
-        let classic = if top.is_some() {
-            pixels_warned(&text, EngineKind::Classic, 4, "path integrator")
-        } else {
-            pixels(&text, EngineKind::Classic, 4)
-        };
-        // (The path engine does not run every top material: then the classic image twice.)
-        let path = if top.is_some() { classic.clone() } else { pixels(&text, EngineKind::Path, 16) };
+        let classic = pixels(&text, EngineKind::Classic, 4);
+        let path = pixels(&text, EngineKind::Path, 16);
         let (mut pure, mut differ) = (0, 0);
         let pixel = 2.0 * HALF / SIDE as f32;
         for i in 0..SIDE * SIDE {

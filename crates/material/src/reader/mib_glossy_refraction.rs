@@ -1,0 +1,86 @@
+//! mental ray's `mib_glossy_refraction` in the path engine: its glossy refraction as a
+//! lobe under its top material ([`bsdf::MibGlossyRefraction`]).
+//!
+//! The lobe has the albedo and spread the classic shader's estimate converges to:
+//! `refraction_color` × the view-angle curve (`refraction_base_weight`,
+//! `refraction_edge_weight`, `edge_factor`) refracted by `ior` (the inside's index: the
+//! surface's front faces the outside) about micro-normals of Ward's distribution of
+//! `u_spread`, `v_spread` (radians; along the surface's dP/du and the normal × dP/du), the
+//! sharp refraction of `mib_refract` below 10⁻³, the mirror under total internal
+//! reflection. The top material (`top_material`, a shader the path engine translates) is
+//! added over it on the front as the classic shader adds its colour: its diffuse colour as
+//! a Lambertian top, its emission; a top that is not Lambertian keeps only its diffuse
+//! colour (warned).
+//!
+//! Parameters without a path-tracing counterpart: `samples` only sets the classic
+//! shader's noise, except that 0 casts nothing (the top alone); `dispersion` and
+//! `spectrum` are ignored by both engines. Not honoured, warned: `back_material` (nothing
+//! is added seen from inside), `max_distance` with `deep_material` (no fade), `u_axis` /
+//! `v_axis` (dP/du is the lobe's axis).
+
+use mi::ast::{Param, Value};
+use scene::Library;
+
+use super::Reader;
+use crate::{color_param, first_call, SurfaceMaterial, SurfaceModel};
+use bsdf::{MibGlossyRefractionLobe, Rgb};
+
+/// The surface of a `mib_glossy_refraction` with `params` (`depth` counts nested
+/// materials).
+pub(super) fn glossy_refraction(r: &mut Reader, params: &[Param], lib: &Library, depth: u32) -> SurfaceMaterial {
+    let name = r.material();
+    let shader = |p: &str| params.iter().rev().find(|q| q.name.text == p).map(|q| &q.value);
+    let mut surface = match shader("top_material") {
+        Some(Value::Connect(target) | Value::Str(target)) if depth < 8 => {
+            match lib.shaders.get(&target.text).and_then(|d| first_call(&d.list.0, lib)) {
+                Some((decl, inner)) => r.call(decl, inner, lib, depth + 1),
+                None => {
+                    r.warn(format!(
+                        "mib_glossy_refraction's top_material '{}' is not a shader mira knows; black",
+                        target.text
+                    ));
+                    SurfaceMaterial::lambert(name, Rgb::ZERO)
+                }
+            }
+        }
+        _ => SurfaceMaterial::lambert(name, Rgb::ZERO),
+    };
+    if surface.model != SurfaceModel::Lambert {
+        r.warn("mib_glossy_refraction's top material is kept as its diffuse colour over the glossy refraction".into());
+    }
+    let color = r.color(params, "refraction_color", Rgb::ONE);
+    let curve = (
+        r.scalar(params, "refraction_base_weight", 1.0),
+        r.scalar(params, "refraction_edge_weight", 0.6),
+        r.scalar(params, "edge_factor", 5.0),
+    );
+    let ior = r.scalar(params, "ior", 1.0);
+    let spreads = (r.scalar(params, "u_spread", 0.1), r.scalar(params, "v_spread", 0.1));
+    let samples = r.scalar(params, "samples", 16.0);
+    if samples <= 0.0 || color == Rgb::ZERO {
+        // Nothing cast (or nothing refracted): the top alone.
+        return surface;
+    }
+    let lobe = MibGlossyRefractionLobe::new(color, curve, ior, spreads);
+    if matches!(shader("back_material"), Some(Value::Connect(_) | Value::Str(_))) {
+        r.warn("mib_glossy_refraction's back_material is not honoured by the path engine (nothing is added seen from inside)".into());
+    }
+    if r.scalar(params, "max_distance", 0.0) > 0.0 {
+        r.warn(
+            "mib_glossy_refraction's max_distance is not honoured by the path engine (no fade into deep_material)"
+                .into(),
+        );
+    }
+    let given = |axis: &str| matches!(color_param(params, axis), Some(Ok(v)) if v != Rgb::ZERO);
+    if lobe.dist.is_some() && (given("u_axis") || given("v_axis")) {
+        r.warn(
+            "mib_glossy_refraction's u_axis / v_axis are not honoured by the path engine (dP/du is the axis)".into(),
+        );
+    }
+    if lobe.dist.is_some_and(|d| d.alpha_x != d.alpha_y) {
+        // The spreads lie along dP/du and the normal × dP/du.
+        surface.tangent_angle = Some(0.0);
+    }
+    surface.model = SurfaceModel::MibGlossyRefraction(Box::new(lobe));
+    surface
+}
