@@ -10,6 +10,7 @@ pub mod color;
 pub mod conductor;
 pub mod dielectric;
 pub mod frame;
+pub mod glass_multiscatter;
 mod lambert;
 pub mod layer_curve;
 pub mod lobes;

@@ -22,6 +22,7 @@
 use glam::{Vec2, Vec3A};
 
 use crate::beckmann::BeckmannReflection;
+use crate::glass_multiscatter::GlassMultiScatter;
 use crate::layer_curve::{CurveKind, LayerCurve};
 use crate::measured_bsdf::MeasuredLobe;
 use crate::microfacet::Ggx;
@@ -130,6 +131,10 @@ pub enum Lobe {
     /// radiance scaled by 1/η′²; under a film when it names one of the sum's curves.
     /// Smooth (α < 10⁻³), two Dirac lobes (sampled with `delta`, as the mirror).
     Glass(RoughGlass),
+    /// What a glass lobe loses to masking–shadowing, given back on both sides
+    /// ([`crate::glass_multiscatter`]; `multiscatter_tint` on glass), sampled cosine-weighted
+    /// on a side chosen by its shares.
+    GlassMultiScatter(GlassMultiScatter),
 }
 
 /// A weighted sum of up to `N` lobes with up to `C` layer curves, `F` own frames and `T`
@@ -270,6 +275,7 @@ impl Lobe {
             Lobe::MultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
             Lobe::Measured(m) => m.eval(wo, wi),
             Lobe::Glass(g) => g.eval(wo, wi, film),
+            Lobe::GlassMultiScatter(m) => Rgb::splat(m.eval(wo, wi)),
         }
     }
 
@@ -286,6 +292,7 @@ impl Lobe {
             Lobe::Mirror => 0.0,
             Lobe::Measured(m) => m.pdf(wo, wi),
             Lobe::Glass(g) => g.pdf(wo, wi, film),
+            Lobe::GlassMultiScatter(m) => m.pdf(wo, wi),
         }
     }
 
@@ -304,6 +311,7 @@ impl Lobe {
             Lobe::Mirror => (wo.z != 0.0).then(|| turned(wo)),
             Lobe::Measured(m) => m.sample(wo, u),
             Lobe::Glass(g) => g.sample(wo, u, u_choice, film),
+            Lobe::GlassMultiScatter(m) => m.sample(wo, u, u_choice),
         }
     }
 }

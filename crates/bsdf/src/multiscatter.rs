@@ -170,6 +170,12 @@ pub fn directional_albedo(single: Single, alpha: f32, mu: f32) -> f32 {
     table(single).e(alpha, mu.abs())
 }
 
+/// The tabulated hemispherical average E_avg = 2 ∫₀¹ E(μ) μ dμ of the lobe of `single`
+/// and roughness `alpha` (of [`directional_albedo`] as interpolated).
+pub fn average_albedo(single: Single, alpha: f32) -> f32 {
+    table(single).mean(alpha)
+}
+
 /// The compensation lobe of a micro-mirror lobe (unit weight: the part's weight is the
 /// lobe's tint times `multiscatter_tint`).
 #[derive(Clone, Copy, Debug, PartialEq)]

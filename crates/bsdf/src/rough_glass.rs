@@ -6,7 +6,10 @@
 //! Walter et al. 2007's microfacet refraction: reflection D G F / (4 |cos θo cos θi|),
 //! refraction D G (1 − F) |ωi·h| |ωo·h| / (|cos θi cos θo| (ωi·h + ωo·h/η′)²) / η′², η′ the
 //! relative index across the boundary (η entering, 1/η leaving), with Smith's
-//! height-correlated G. Radiance entering the denser side is compressed by 1/η′² as in
+//! height-correlated G — or, for MDL's `microfacet_*_vcavities_bsdf`, Heitz's V-cavity G
+//! ([`crate::vcavity`]: min(G1(ωo), G1(ωi)) in reflection, max(0, G1(ωo) + G1(ωi) − 1)
+//! in refraction, as the MDL SDK's libbsdf has it; sampled as the Smith form is, with
+//! that sampling's exact density). Radiance entering the denser side is compressed by 1/η′² as in
 //! [`crate::Dielectric`] (the path tracer carries radiance): f(a, b)/n(b)² = f(b, a)/n(a)².
 //! GGX micro-normals are sampled from the visible normals (Heitz 2018), Beckmann ones from
 //! D(h) cos θh; then reflection or refraction in proportion to F and 1 − F (transmission
@@ -29,7 +32,7 @@ use crate::beckmann::Beckmann;
 use crate::dielectric::{fresnel, refract};
 use crate::layer_curve::CurveKind;
 use crate::microfacet::Ggx;
-use crate::Rgb;
+use crate::{vcavity, Rgb};
 
 /// A rough dielectric lobe of unit weight (its tint is the sum's weight).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,8 +43,8 @@ pub struct RoughGlass {
     pub alpha_y: f32,
     /// Index of refraction inside over outside (the normal points outside).
     pub eta: f32,
-    /// Beckmann's distribution, else GGX.
-    pub beckmann: bool,
+    /// The distribution (GGX or Beckmann) and its masking (Smith's or V-cavities).
+    pub micro: Microfacet,
     /// Whether the Fresnel-reflected half scatters too (`scatter_reflect_transmit`); else
     /// only the transmitted half (`scatter_transmit`).
     pub reflect: bool,
@@ -49,6 +52,42 @@ pub struct RoughGlass {
     pub thin: bool,
     /// The layer curve of the sum that is the lobe's film (k + 1 for curve k), 0 for none.
     pub film: u8,
+}
+
+/// The micro-normal distribution of a glass lobe and the masking–shadowing it is used
+/// with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Microfacet {
+    /// GGX, Smith's height-correlated G2.
+    Ggx,
+    /// Beckmann, Smith's height-correlated G2 (Walter's Λ).
+    Beckmann,
+    /// GGX, V-cavity masking–shadowing.
+    GgxVcavities,
+    /// Beckmann, V-cavity masking–shadowing.
+    BeckmannVcavities,
+}
+
+impl Microfacet {
+    /// The distribution of `beckmann` (else GGX) with V-cavity masking where `vcavities`.
+    pub fn new(beckmann: bool, vcavities: bool) -> Microfacet {
+        match (beckmann, vcavities) {
+            (false, false) => Microfacet::Ggx,
+            (true, false) => Microfacet::Beckmann,
+            (false, true) => Microfacet::GgxVcavities,
+            (true, true) => Microfacet::BeckmannVcavities,
+        }
+    }
+
+    /// Whether the distribution is Beckmann's (else GGX).
+    pub fn is_beckmann(self) -> bool {
+        matches!(self, Microfacet::Beckmann | Microfacet::BeckmannVcavities)
+    }
+
+    /// Whether the masking is the V-cavity form (else Smith's).
+    pub fn is_vcavities(self) -> bool {
+        matches!(self, Microfacet::GgxVcavities | Microfacet::BeckmannVcavities)
+    }
 }
 
 /// Beckmann micro-normals of a smaller density are not sampled (nor counted in the
@@ -73,6 +112,16 @@ impl Micro {
         match self {
             Micro::Ggx(g) => g.g2(o, i),
             Micro::Beckmann(b) => b.g2(o, i),
+        }
+    }
+
+    /// The masking–shadowing of the pair `o`, `i` about micro-normal `h`, `refracted` when
+    /// they lie on opposite sides: Smith's G2, or with `vcavities` the V-cavity form.
+    fn shadowing(&self, vcavities: bool, o: Vec3A, i: Vec3A, h: Vec3A, refracted: bool) -> f32 {
+        match (vcavities, refracted) {
+            (false, _) => self.g2(o, i),
+            (true, false) => vcavity::g_reflect(o, i, h),
+            (true, true) => vcavity::g_refract(o, i, h),
         }
     }
 
@@ -152,7 +201,7 @@ impl RoughGlass {
     }
 
     fn micro(&self) -> Micro {
-        if self.beckmann {
+        if self.micro.is_beckmann() {
             Micro::Beckmann(Beckmann::new(self.alpha_x, self.alpha_y))
         } else {
             Micro::Ggx(Ggx { alpha_x: self.alpha_x, alpha_y: self.alpha_y })
@@ -213,7 +262,9 @@ impl RoughGlass {
             let (o, r) = (up(wo), up(wi));
             let Some(h) = (o + r).try_normalize() else { return Rgb::ZERO };
             let f = self.reflectance(o.dot(h), film);
-            let m = micro.d(h) * micro.g2(o, r) / (4.0 * o.z * r.z);
+            // Mirrored through the sheet, the transmitted half is masked as the reflected.
+            let g = micro.shadowing(self.micro.is_vcavities(), o, r, h, false);
+            let m = micro.d(h) * g / (4.0 * o.z * r.z);
             return if reflected { f * m } else { (Rgb::ONE - f) * m };
         }
         let etap = self.etap(wo, wi);
@@ -222,7 +273,7 @@ impl RoughGlass {
             return Rgb::ZERO;
         }
         let f = self.reflectance(wo.dot(h), film);
-        let dg = micro.d(h) * micro.g2(wo, wi);
+        let dg = micro.d(h) * micro.shadowing(self.micro.is_vcavities(), wo, wi, h, !reflected);
         if reflected {
             f * (dg / (4.0 * (wo.z * wi.z).abs()))
         } else {
@@ -267,6 +318,35 @@ impl RoughGlass {
             let denom = wi.dot(h) + wo.dot(h) / etap;
             dens * wi.dot(h).abs() / (denom * denom) * (1.0 - p)
         }
+    }
+
+    /// One sample of the lobe's directional albedo at `wo` (z > 0) in n²-weighted radiance
+    /// (what refracts counted η² times), film and thinness aside: for a micro-normal drawn
+    /// as [`RoughGlass::sample`] draws it, both its reflected and its refracted direction,
+    /// each weighted by f |cos θi| · n(ωi)²/n(ωo)² over the density it would have had, had
+    /// it been chosen (the mean over micro-normals is the albedo, with less noise than a
+    /// random choice of branch). 0 for a smooth, thin or invalid lobe.
+    pub(crate) fn albedo_sample(&self, wo: Vec3A, u: Vec2) -> f32 {
+        if self.thin || !self.is_valid() || self.is_smooth() || wo.z <= 0.0 {
+            return 0.0;
+        }
+        let micro = self.micro();
+        let Some(h) = micro.sample(wo, u) else { return 0.0 };
+        let (dens, oh) = (micro.density(wo, h), wo.dot(h));
+        if dens <= 0.0 || oh <= 0.0 {
+            return 0.0;
+        }
+        let mut e = 0.0;
+        let r = 2.0 * oh * h - wo;
+        if self.reflect && r.z > 0.0 {
+            e += self.eval(wo, r, None).x * r.z * 4.0 * oh / dens;
+        }
+        if let Some(t) = refract(wo, h, self.eta).filter(|t| t.z < 0.0) {
+            let th = t.dot(h);
+            let denom = th + oh / self.eta;
+            e += self.eval(wo, t, None).x * -t.z * self.eta * self.eta * denom * denom / (dens * th.abs());
+        }
+        e
     }
 
     /// A direction: a micro-normal facing ωo (a smooth lobe: the normal), then reflection
@@ -321,8 +401,12 @@ mod tests {
     use crate::testing::{chi_square, incidences, r2, r3};
     use crate::{Bsdf, Dielectric, LayerCurve};
 
-    fn glass(alpha: f32, beckmann: bool, reflect: bool, thin: bool) -> RoughGlass {
-        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, beckmann, reflect, thin, film: 0 }
+    /// Every distribution and masking.
+    const MICROS: [Microfacet; 4] =
+        [Microfacet::Ggx, Microfacet::Beckmann, Microfacet::GgxVcavities, Microfacet::BeckmannVcavities];
+
+    fn glass(alpha: f32, micro: Microfacet, reflect: bool, thin: bool) -> RoughGlass {
+        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, reflect, thin, film: 0 }
     }
 
     fn lone(g: RoughGlass) -> Bsdf {
@@ -364,7 +448,7 @@ mod tests {
     /// f and density within 1e-4 (relative; f32 rounding of a different order of operations) over 40 × 40 pairs of directions.
     #[test]
     fn ggx_reflect_transmit_is_the_dielectric() {
-        let g = glass(0.3, false, true, false);
+        let g = glass(0.3, Microfacet::Ggx, true, false);
         let d = Dielectric::glass(1.5, Ggx::isotropic(0.3));
         for i in 0..40 {
             for j in 0..40 {
@@ -373,6 +457,48 @@ mod tests {
                 assert!((f1 - f2).abs() <= 1e-4 * f1.abs().max(f2.abs()).max(1e-3), "{a} {b}: {f1} vs {f2}");
                 let (p1, p2) = (g.pdf(a, b, None), d.pdf(a, b));
                 assert!((p1 - p2).abs() <= 1e-4 * p1.max(p2).max(1e-3), "{a} {b}: {p1} vs {p2}");
+            }
+        }
+    }
+
+    /// The V-cavity forms are Walter's formulas with Heitz's V-cavity G instead of Smith's:
+    /// at a refracted pair (entering from 50°, leaving from inside) and a reflected one (both
+    /// sides), f_vcavities / f_smith = G_v / G2 within 1e-5 (relative), G_v computed here
+    /// from G1(k) = min(1, 2 |n·h| |n·k| / |k·h|): max(0, G1o + G1i − 1) through the
+    /// boundary, min(G1o, G1i) on one side; GGX and Beckmann, solid and (reflection) thin.
+    #[test]
+    fn vcavity_glass_is_walter_with_the_v_cavity_g() {
+        let g1 = |k: Vec3A, h: Vec3A| (2.0 * h.z.abs() * k.z.abs() / k.dot(h).abs()).min(1.0);
+        let a = 50f32.to_radians();
+        let wo = Vec3A::new(a.sin(), 0.1, a.cos()).normalize();
+        let down = Vec3A::new(-0.2, -0.3, -0.93).normalize();
+        let up = Vec3A::new(-0.5, 0.3, 0.81).normalize();
+        for (smith, vcav) in
+            [(Microfacet::Ggx, Microfacet::GgxVcavities), (Microfacet::Beckmann, Microfacet::BeckmannVcavities)]
+        {
+            for thin in [false, true] {
+                let (s, v) = (glass(0.4, smith, true, thin), glass(0.4, vcav, true, thin));
+                let pairs: &[(Vec3A, Vec3A)] =
+                    if thin { &[(wo, up)] } else { &[(wo, down), (down, wo), (wo, up), (-wo, -up)] };
+                for &(o, i) in pairs {
+                    let through = o.z * i.z < 0.0 && !thin;
+                    let etap = if !through {
+                        1.0
+                    } else if o.z > 0.0 {
+                        1.5
+                    } else {
+                        1.0 / 1.5
+                    };
+                    let h = (i * etap + o).normalize();
+                    let h = if h.z < 0.0 { -h } else { h };
+                    let (go, gi) = (g1(o, h), g1(i, h));
+                    let gv = if through { (go + gi - 1.0).max(0.0) } else { go.min(gi) };
+                    let gs = s.micro().g2(o, i);
+                    let (fs, fv) = (s.eval(o, i, None).x, v.eval(o, i, None).x);
+                    assert!(fs > 0.0 && gv > 0.0, "{vcav:?} {o} {i}: {fs} {gv}");
+                    let want = fs * gv / gs;
+                    assert!((fv - want).abs() <= 1e-5 * want, "{vcav:?} thin {thin} {o} → {i}: {fv} vs {want}");
+                }
             }
         }
     }
@@ -386,11 +512,11 @@ mod tests {
     #[test]
     fn reflection_is_reciprocal_and_transmission_generalised_reciprocal() {
         let film = CurveKind::ThinFilm { ior: 1.5, film_ior: Rgb::new(1.3, 1.4, 1.8), thickness_nm: 400.0 };
-        for beckmann in [false, true] {
+        for micro in MICROS {
             for reflect in [false, true] {
                 for thin in [false, true] {
                     for film in [None, Some(&film)] {
-                        let g = glass(0.3, beckmann, reflect, thin);
+                        let g = glass(0.3, micro, reflect, thin);
                         for i in 0..60 {
                             for j in 0..60 {
                                 let (a, b) = (sphere(i + 1), sphere(j + 201));
@@ -419,10 +545,10 @@ mod tests {
     #[test]
     fn sampling_matches_the_density() {
         for alpha in [0.1, 0.3, 0.7] {
-            for beckmann in [false, true] {
+            for micro in MICROS {
                 for reflect in [false, true] {
                     for thin in [false, true] {
-                        let b = lone(glass(alpha, beckmann, reflect, thin));
+                        let b = lone(glass(alpha, micro, reflect, thin));
                         for wo in
                             [Vec3A::new(0.562, 0.174, 0.808).normalize(), Vec3A::new(-0.3, 0.5, -0.81).normalize()]
                         {
@@ -442,15 +568,15 @@ mod tests {
     #[test]
     fn energy_in_radiance_units() {
         for wo in incidences() {
-            for beckmann in [false, true] {
+            for micro in MICROS {
                 for thin in [false, true] {
-                    let g = glass(0.05, beckmann, true, thin);
+                    let g = glass(0.05, micro, true, thin);
                     let e = energy(&lone(g), &g, wo, 50_000);
                     let low = if wo.z > 0.5 { 0.99 } else { 0.98 };
                     assert!(e.max_element() <= 1.01 && e.min_element() >= low, "{g:?} at {wo}: {e}");
                     for alpha in [0.1, 0.3, 0.7] {
                         for reflect in [false, true] {
-                            let g = glass(alpha, beckmann, reflect, thin);
+                            let g = glass(alpha, micro, reflect, thin);
                             let e = energy(&lone(g), &g, wo, 20_000);
                             assert!(e.max_element() <= 1.01, "{g:?} at {wo}: {e}");
                             let e_in = energy(&lone(g), &g, -wo, 20_000);
@@ -460,7 +586,7 @@ mod tests {
                 }
             }
         }
-        let g = glass(0.05, false, false, false);
+        let g = glass(0.05, Microfacet::Ggx, false, false);
         let e = energy(&lone(g), &g, Vec3A::Z, 50_000).x;
         assert!((e - 0.96).abs() <= 0.01, "transmit only, head-on: {e}");
     }
@@ -474,7 +600,7 @@ mod tests {
         let film = CurveKind::ThinFilm { ior: 1.5, film_ior: Rgb::new(1.3, 1.4, 1.8), thickness_nm: 400.0 };
         let mut l = Lobes::default();
         let k = l.add_curve(LayerCurve::new(film, Rgb::ONE, false)).unwrap();
-        let g = RoughGlass { film: k + 1, ..glass(0.05, false, true, false) };
+        let g = RoughGlass { film: k + 1, ..glass(0.05, Microfacet::Ggx, true, false) };
         assert!(l.push(Rgb::ONE, Lobe::Glass(g)));
         let b = Bsdf::Lobes(l);
         for wo in incidences() {
@@ -504,7 +630,7 @@ mod tests {
     fn smooth_glass_is_two_dirac_lobes() {
         let a = 40f32.to_radians();
         let wo = Vec3A::new(a.sin(), 0.0, a.cos());
-        let g = glass(0.0, false, true, false);
+        let g = glass(0.0, Microfacet::Ggx, true, false);
         let b = lone(g);
         assert!(b.is_delta());
         assert_eq!(b.eval(wo, -wo), Rgb::ZERO);
@@ -524,7 +650,7 @@ mod tests {
                 }
             }
         }
-        let thin = lone(glass(0.0, false, true, true));
+        let thin = lone(glass(0.0, Microfacet::Ggx, true, true));
         let s = thin.sample(wo, Vec2::ZERO, 0.99).unwrap();
         assert!((s.wi + wo).length() < 1e-6 && (s.weight().x - 1.0).abs() < 1e-5, "{s:?}");
         let film = CurveKind::ThinFilm { ior: 1.5, film_ior: Rgb::new(1.3, 1.4, 1.8), thickness_nm: 400.0 };

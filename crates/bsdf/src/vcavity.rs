@@ -29,6 +29,32 @@ pub fn g(o: Vec3A, i: Vec3A, m: Vec3A) -> f32 {
     shadow(o, om).min(shadow(i, im)).min(1.0)
 }
 
+/// The V-cavity masking of one direction `k` by the groove of micro-normal `m`, from
+/// either side of the surface: G1(k, m) = min(1, 2 |n·m| |n·k| / |k·m|) (local frame, n =
+/// z; which side sees which face is the caller's check).
+pub fn g1(k: Vec3A, m: Vec3A) -> f32 {
+    let km = k.dot(m).abs();
+    if km == 0.0 {
+        return 1.0;
+    }
+    (2.0 * m.z.abs() * k.z.abs() / km).min(1.0)
+}
+
+/// The V-cavity masking–shadowing of a pair of directions on the same side (reflection,
+/// from either side): min(G1(ωo), G1(ωi)) — [`g`] without its checks of sides.
+pub fn g_reflect(o: Vec3A, i: Vec3A, m: Vec3A) -> f32 {
+    g1(o, m).min(g1(i, m))
+}
+
+/// The V-cavity masking–shadowing of a pair on opposite sides (refraction through the
+/// face `m`): max(0, G1(ωo) + G1(ωi) − 1), the form the MDL SDK's libbsdf gives
+/// transmitted pairs (the light that is neither masked on the way in nor shadowed on the
+/// way out when the two are as anti-correlated as they can be); symmetric, and at most
+/// the reflection's min(G1(ωo), G1(ωi)).
+pub fn g_refract(o: Vec3A, i: Vec3A, m: Vec3A) -> f32 {
+    (g1(o, m) + g1(i, m) - 1.0).max(0.0)
+}
+
 /// ωo and ωi flipped onto +z together when ωo is below (two-sided), with their half
 /// vector; `None` when they lie on opposite sides or have no half vector.
 fn upper_half(wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, Vec3A)> {

@@ -221,8 +221,9 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
 fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
     match df {
         Df::Specular { tint, mode } => Some((tint.get(hit), 0.0, *mode)),
-        // A reflection with V-cavities or compensation is a general lobe sum's; in glass
-        // those are not compiled ([`glass_ignores`] says so).
+        // A reflection with V-cavities or compensation is a general lobe sum's, and so is
+        // glass with them ([`beyond_unified_glass`]; where the sum cannot hold it, the
+        // unified glass without them, [`glass_ignores`] says so).
         Df::Glossy { tint, roughness: (u, v), mode, beckmann: false, vcavities, multiscatter, .. }
             if *mode != ScatterMode::Reflect || (!*vcavities && is_black(*multiscatter)) =>
         {
@@ -238,11 +239,14 @@ fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
 }
 
 /// Whether a lone glass lobe (through one-part mixes) is more than the unified material's
-/// glass holds: `scatter_transmit` (the unified glass also reflects) or anisotropic.
+/// glass holds: `scatter_transmit` (the unified glass also reflects), anisotropic, with
+/// V-cavity masking or with `multiscatter_tint`.
 fn beyond_unified_glass(df: &Df) -> bool {
     match df {
         Df::Specular { mode, .. } => *mode == ScatterMode::Transmit,
-        Df::Glossy { mode, tangent, .. } => *mode == ScatterMode::Transmit || tangent.is_some(),
+        Df::Glossy { mode, tangent, vcavities, multiscatter, .. } => {
+            *mode == ScatterMode::Transmit || tangent.is_some() || *vcavities || !is_black(*multiscatter)
+        }
         Df::Mix { parts, .. } if parts.len() == 1 => beyond_unified_glass(&parts[0].1),
         _ => false,
     }

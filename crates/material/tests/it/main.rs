@@ -28,6 +28,7 @@ mod mdl_base_functions;
 mod mdl_combinators;
 mod mdl_compile;
 mod mdl_furnace;
+mod mdl_glass_masking;
 mod mdl_hit;
 mod mdl_hit_loops;
 mod mdl_hit_matrices;

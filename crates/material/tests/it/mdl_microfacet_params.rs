@@ -203,25 +203,21 @@ fn color_fresnel_layer_weighs_each_channel_by_its_own_index() {
     }
 }
 
-/// What mira does not compile is a warning at the `.mi` instance naming it: V-cavities,
-/// `multiscatter_tint` and anisotropy in glass; an anisotropic lobe under a layer with its
-/// own normal along another `tangent_u` than the first lobe's (it follows the first's); a
-/// `thin_film` over a colour-index Fresnel layer.
+/// What mira does not compile is a warning at the `.mi` instance naming it: an
+/// anisotropic lobe under a layer with its own normal along another `tangent_u` than the
+/// first lobe's (it follows the first's); a `thin_film` over a colour-index Fresnel layer.
+/// Anisotropic V-cavity glass with `multiscatter_tint` is compiled (mdl35: a glass lobe and
+/// its compensation) and warns of nothing.
 #[test]
 fn what_is_not_compiled_is_a_warning() {
+    let (_, _, diags) = compile_text(r#"shader "vg" "mdl::microfacet_params::vcavities_glass" ()"#);
+    assert!(diags.is_empty(), "{diags:#?}");
     let (_, _, diags) = compile_text(
-        r#"shader "vg" "mdl::microfacet_params::vcavities_glass" ()
-shader "two" "mdl::microfacet_params::two_axes" ()
+        r#"shader "two" "mdl::microfacet_params::two_axes" ()
 shader "film" "mdl::microfacet_params::film_over_colour_index" ()"#,
     );
     let all = diags.join("\n");
-    for what in [
-        "V-cavity masking",
-        "`multiscatter_tint` (no compensation)",
-        "anisotropic roughness and `tangent_u`",
-        "has another `tangent_u` than the first lobe's",
-        "`thin_film` over a `color_fresnel_layer`",
-    ] {
+    for what in ["has another `tangent_u` than the first lobe's", "`thin_film` over a `color_fresnel_layer`"] {
         assert!(all.contains(what), "no warning about {what}: {all}");
     }
     assert!(diags.iter().all(|d| d.contains("t.mi")), "{all}");

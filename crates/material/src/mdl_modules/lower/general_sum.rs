@@ -5,10 +5,11 @@
 //! sum.
 
 use bsdf::beckmann::Beckmann;
+use bsdf::glass_multiscatter::GlassMultiScatter;
 use bsdf::measured_bsdf::MeasuredLobe;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
-use bsdf::rough_glass::RoughGlass;
+use bsdf::rough_glass::{Microfacet, RoughGlass};
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
@@ -84,17 +85,26 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
             push(tint, lobe) && compensate(&mut push, tint, *multiscatter, lost, hit)
         }
         // Glass (`scatter_reflect_transmit`, `scatter_transmit`), rough or smooth: the
-        // dielectric lobe of the material's index. V-cavities and `multiscatter_tint` in
-        // transmission are not lobes of the sum.
-        Df::Glossy { tint, roughness, mode, beckmann, vcavities: false, multiscatter, .. }
-            if *multiscatter == Leaf::Const(Rgb::ZERO) =>
-        {
+        // dielectric lobe of the material's index, Smith's or V-cavity masking, and the
+        // compensation `multiscatter_tint` asks for.
+        Df::Glossy { tint, roughness, mode, beckmann, vcavities, multiscatter, .. } => {
             let (alpha_x, alpha_y) = alpha(roughness);
-            let glass = glass_lobe((alpha_x, alpha_y), *beckmann, *mode, medium);
-            push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
+            let glass = glass_lobe((alpha_x, alpha_y), Microfacet::new(*beckmann, *vcavities), *mode, medium);
+            let tint = scale * tint.get(hit);
+            let ms = multiscatter.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            // Smooth glass loses nothing to give back.
+            let compensated = ms != Rgb::ZERO && !glass.is_smooth();
+            push_glass(sum, tint, glass, film, role, frame)
+                && (!compensated
+                    || sum.push_in_frame(
+                        tint * ms,
+                        Lobe::GlassMultiScatter(GlassMultiScatter::new(&glass)),
+                        role,
+                        frame,
+                    ))
         }
         Df::Specular { tint, mode } => {
-            let glass = glass_lobe((0.0, 0.0), false, *mode, medium);
+            let glass = glass_lobe((0.0, 0.0), Microfacet::Ggx, *mode, medium);
             push_glass(sum, scale * tint.get(hit), glass, film, role, frame)
         }
         Df::Backscatter { tint, roughness, multiscatter, tangent } => {
@@ -224,7 +234,6 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
             };
             add_general(base, scale, hit, medium, sum, Role { factor: role.factor | 1 << k, ..role }, film, frame, axis)
         }
-        _ => false,
     }
 }
 
@@ -238,14 +247,14 @@ pub(super) struct Medium {
     pub thin: bool,
 }
 
-/// The glass lobe of roughness `alpha` (GGX, or Beckmann) in transmission mode `mode`
-/// bounding `medium`.
-fn glass_lobe(alpha: (f32, f32), beckmann: bool, mode: ScatterMode, medium: Medium) -> RoughGlass {
+/// The glass lobe of roughness `alpha` (of distribution and masking `micro`) in
+/// transmission mode `mode` bounding `medium`.
+fn glass_lobe(alpha: (f32, f32), micro: Microfacet, mode: ScatterMode, medium: Medium) -> RoughGlass {
     RoughGlass {
         alpha_x: alpha.0,
         alpha_y: alpha.1,
         eta: medium.ior,
-        beckmann,
+        micro,
         reflect: mode == ScatterMode::ReflectTransmit,
         thin: medium.thin,
         film: 0,
