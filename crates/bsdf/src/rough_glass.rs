@@ -507,8 +507,9 @@ mod tests {
     /// generalised reciprocity f(ωo, ωi)/n(ωo)² = f(ωi, ωo)/n(ωi)² (Veach's
     /// f(i→o)/η_o² = f(o→i)/η_i² for `eval(ωo, ωi)` = f(i→o)), both within 1e-3
     /// (relative; values under 0.01, far in the tails where f32 rounding of the half vector
-    /// dominates, within 1e-5 absolute), for GGX and Beckmann, both modes, solid and thin,
-    /// with and without a film, over 60 × 60 pairs of directions.
+    /// dominates, within 1e-5 absolute), for GGX and Beckmann with Smith's and V-cavity
+    /// masking, both modes, solid and thin, with and without a film, over 60 × 60 pairs of
+    /// directions.
     #[test]
     fn reflection_is_reciprocal_and_transmission_generalised_reciprocal() {
         let film = CurveKind::ThinFilm { ior: 1.5, film_ior: Rgb::new(1.3, 1.4, 1.8), thickness_nm: 400.0 };
@@ -536,9 +537,9 @@ mod tests {
         }
     }
 
-    /// Sampling matches the density (χ² at 1 %, 200 000 samples) for GGX and Beckmann in
-    /// both modes at roughness 0.1, 0.3 and 0.7, from outside and inside, solid and thin
-    /// (48 tests at 1 %. Beckmann transmission at α 0.1 fails the fixed seed's test at 1
+    /// Sampling matches the density (χ² at 1 %, 200 000 samples) for GGX and Beckmann with
+    /// Smith's and V-cavity masking in both modes at roughness 0.1, 0.3 and 0.7, from
+    /// outside and inside, solid and thin (96 tests at 1 %; with Smith's masking alone, 48. Beckmann transmission at α 0.1 fails the fixed seed's test at 1
     /// of 12 azimuths of a 36° incidence, and at 1 of 10 incidences, by χ² ≈ 13 for 3–4
     /// dof — a chance rate at 1 % — while a 10⁶-sample θ histogram there agrees with the
     /// integrated density within 2.3 σ in every one of 34 bins; these directions pass).
@@ -562,7 +563,8 @@ mod tests {
 
     /// Energy in n²-weighted radiance: `scatter_reflect_transmit` keeps all of it at low
     /// roughness (α 0.05, outside: 1 ± 1 % at 0° and 37°; at 72° at least 98 %, as a GGX
-    /// reflection lobe of that roughness, which loses 1.4 % to masking there); every form at every roughness scatters at most
+    /// reflection lobe of that roughness, which loses 1.4 % to masking there; Smith's and
+    /// V-cavity masking alike); every form at every roughness scatters at most
     /// all of it (≤ 1 + 1 %); `scatter_transmit` scatters 1 − F of the lossless form's
     /// (the mean Fresnel loss, checked at normal incidence within 1 %).
     #[test]
