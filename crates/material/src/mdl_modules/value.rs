@@ -46,13 +46,15 @@ impl Leaf {
 pub enum CurveValues {
     /// Constant samples, interned ([`bsdf::measured_curve::intern`]).
     Const(&'static [Rgb]),
-    /// Samples of which some vary over the surface (at most [`MAX_HIT_CURVE`]): read at
-    /// each hit into the lobe sum's own table.
+    /// Samples of which some vary over the surface: read at each hit into the lobe sum's
+    /// own table (more than [`MAX_HIT_CURVE`]: resampled to that many, uniform in the
+    /// angle).
     Hit(Vec<Leaf>),
 }
 
-/// Most samples a measured curve that varies over the surface may have (two such
-/// curves fit a wide lobe sum's table, [`bsdf::lobes::WIDE_TABLE`]).
+/// Most samples of a measured curve that varies over the surface a lobe sum keeps (two
+/// such curves fit a wide lobe sum's table, [`bsdf::lobes::WIDE_TABLE`]); a curve of more
+/// is resampled to this many at each hit.
 pub const MAX_HIT_CURVE: usize = bsdf::lobes::WIDE_TABLE / 2;
 
 impl CurveValues {
