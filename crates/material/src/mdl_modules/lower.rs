@@ -220,6 +220,10 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
 /// A glossy or specular lobe as (tint, α, mode), looking through tints.
 fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
     match df {
+        // The reflected half of glass alone is a general sum's.
+        Df::Specular { mode: ScatterMode::GlassReflect, .. } | Df::Glossy { mode: ScatterMode::GlassReflect, .. } => {
+            None
+        }
         Df::Specular { tint, mode } => Some((tint.get(hit), 0.0, *mode)),
         // A reflection with V-cavities or compensation is a general lobe sum's; in glass
         // those are not compiled ([`glass_ignores`] says so).
@@ -633,7 +637,7 @@ fn lower_bsdf(
                     ..Default::default()
                 })
             }),
-            ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
+            ScatterMode::ReflectTransmit | ScatterMode::Transmit | ScatterMode::GlassReflect => {
                 // What the unified glass holds only approximately (transmission alone,
                 // anisotropic roughness) is the lobe sum's glass lobe where it can be one.
                 if beyond_unified_glass(df) {

@@ -8,7 +8,7 @@ use bsdf::beckmann::Beckmann;
 use bsdf::measured_bsdf::MeasuredLobe;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
-use bsdf::rough_glass::RoughGlass;
+use bsdf::rough_glass::{Halves, RoughGlass};
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
@@ -246,7 +246,12 @@ fn glass_lobe(alpha: (f32, f32), beckmann: bool, mode: ScatterMode, medium: Medi
         alpha_y: alpha.1,
         eta: medium.ior,
         beckmann,
-        reflect: mode == ScatterMode::ReflectTransmit,
+        halves: match mode {
+            ScatterMode::Transmit => Halves::Transmit,
+            ScatterMode::GlassReflect => Halves::Reflect,
+            // A plain `scatter_reflect` lobe is no glass (never lowered here).
+            ScatterMode::ReflectTransmit | ScatterMode::Reflect => Halves::Both,
+        },
         thin: medium.thin,
         film: 0,
     }
