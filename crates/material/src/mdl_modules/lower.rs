@@ -642,6 +642,14 @@ fn lower_bsdf(
             )
         });
     }
+    if let Some(n) = warning.then(|| general_sum::resampled_curve(df)).flatten() {
+        say(&|name| {
+            format!(
+                "material '{name}': a measured curve of {n} samples that vary over the surface is resampled to {} steps of the angle at each hit",
+                super::value::MAX_HIT_CURVE
+            )
+        });
+    }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
     let medium = Medium { ior: ior.max(1e-3), thin };
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {

@@ -475,6 +475,35 @@ fn resample<'a>(samples: &[Leaf], hit: &[Vec4], out: &'a mut [Rgb]) -> &'a [Rgb]
     out
 }
 
+/// The most samples of a measured curve in `df` that varies over the surface and has more
+/// than a lobe sum keeps ([`MAX_HIT_CURVE`]: such a curve is resampled, [`resample`]); for
+/// a warning.
+pub(super) fn resampled_curve(df: &Df) -> Option<usize> {
+    let own = match df {
+        Df::MeasuredCurveLayer { curve: CurveValues::Hit(s), .. }
+        | Df::MeasuredCurveFactor { curve: CurveValues::Hit(s), .. }
+            if s.len() > MAX_HIT_CURVE =>
+        {
+            Some(s.len())
+        }
+        _ => None,
+    };
+    let children = match df {
+        Df::Mix { parts, .. } => parts.iter().filter_map(|(_, d)| resampled_curve(d)).max(),
+        Df::Layer { layer, base, .. }
+        | Df::CurveLayer { layer, base, .. }
+        | Df::MeasuredCurveLayer { layer, base, .. } => resampled_curve(layer).max(resampled_curve(base)),
+        Df::Sheen { multiscatter: b, .. }
+        | Df::DirectionalFactor { base: b, .. }
+        | Df::ThinFilm { base: b, .. }
+        | Df::FresnelFactor { base: b, .. }
+        | Df::MeasuredCurveFactor { base: b, .. }
+        | Df::MeasuredFactor { base: b, .. } => resampled_curve(b),
+        _ => None,
+    };
+    own.max(children)
+}
+
 /// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
 fn diffuse_of<const N: usize, const C: usize, const F: usize, const T: usize>(sum: &GeneralSum<N, C, F, T>) -> Rgb {
     let diffuse = sum.parts().filter(|(_, l)| matches!(l, Lobe::Diffuse(_))).fold(Rgb::ZERO, |s, (w, _)| s + w);
