@@ -44,7 +44,7 @@ use glam::{Vec2, Vec3A};
 
 use crate::dielectric::fresnel;
 use crate::multiscatter::{self, Single};
-use crate::rough_glass::{Microfacet, RoughGlass};
+use crate::rough_glass::{Halves, Microfacet, RoughGlass};
 
 /// Grid points in μ = cos θ (μ = j / 31).
 const MUS: usize = 32;
@@ -67,9 +67,10 @@ pub struct GlassMultiScatter {
     pub eta: f32,
     /// The glass's distribution and masking.
     pub micro: Microfacet,
-    /// Whether the glass reflects too (`scatter_reflect_transmit`); else only the crossing
-    /// part of the compensation.
-    pub reflect: bool,
+    /// Which halves of the glass scatter: both (`scatter_reflect_transmit`), the crossing
+    /// one alone (`scatter_transmit`: only the crossing part of the compensation) or the
+    /// reflected one alone (a half `df::tint` split off: only the part that stays).
+    pub halves: Halves,
     /// A thin-walled sheet (no inside).
     pub thin: bool,
 }
@@ -162,7 +163,7 @@ impl Tables {
                         alpha_y: alpha,
                         eta: etap,
                         micro,
-                        reflect: true,
+                        halves: Halves::Both,
                         thin: false,
                         film: 0,
                     };
@@ -265,7 +266,7 @@ impl GlassMultiScatter {
             alpha: (glass.alpha_x.max(0.0) * glass.alpha_y.max(0.0)).sqrt().min(1.0),
             eta: glass.eta,
             micro: glass.micro,
-            reflect: glass.reflect,
+            halves: glass.halves,
             thin: glass.thin,
         }
     }
@@ -299,16 +300,9 @@ impl GlassMultiScatter {
         if self.thin {
             let lost = 1.0 - multiscatter::average_albedo(single(self.micro), self.alpha);
             let f_avg = fresnel_average_at(self.eta);
-            let stay = if self.reflect { f_avg } else { 0.0 };
+            let (stay, cross) = self.halves_of(f_avg, 1.0 - f_avg);
             let (lost_here, lost_there, n2_here, n2_there) = (lost, lost, 1.0, 1.0);
-            return (lost >= 1e-4).then_some(Shares {
-                stay,
-                cross: 1.0 - f_avg,
-                lost_here,
-                lost_there,
-                n2_here,
-                n2_there,
-            });
+            return (lost >= 1e-4).then_some(Shares { stay, cross, lost_here, lost_there, n2_here, n2_there });
         }
         let t = tables(self.micro);
         let (lost_out, lost_in) = (t.lost(self.alpha, self.eta), t.lost(self.alpha, 1.0 / self.eta));
@@ -324,8 +318,17 @@ impl GlassMultiScatter {
         }
         let (t_here, here, there, n2_here, n2_there) =
             if above { (t_out, lost_out, lost_in, 1.0, eta2) } else { (t_in, lost_in, lost_out, eta2, 1.0) };
-        let stay = if self.reflect { 1.0 - t_here } else { 0.0 };
-        Some(Shares { stay, cross: t_here, lost_here: here, lost_there: there, n2_here, n2_there })
+        let (stay, cross) = self.halves_of(1.0 - t_here, t_here);
+        Some(Shares { stay, cross, lost_here: here, lost_there: there, n2_here, n2_there })
+    }
+
+    /// The shares `stay` and `cross` of the halves that scatter (the other one 0).
+    fn halves_of(&self, stay: f32, cross: f32) -> (f32, f32) {
+        match self.halves {
+            Halves::Both => (stay, cross),
+            Halves::Transmit => (0.0, cross),
+            Halves::Reflect => (stay, 0.0),
+        }
     }
 
     /// f_ms(ωo, ωi).
@@ -383,7 +386,8 @@ mod tests {
         [Microfacet::Ggx, Microfacet::Beckmann, Microfacet::GgxVcavities, Microfacet::BeckmannVcavities];
 
     fn glass(alpha: f32, micro: Microfacet, reflect: bool, thin: bool) -> RoughGlass {
-        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, reflect, thin, film: 0 }
+        let halves = if reflect { Halves::Both } else { Halves::Transmit };
+        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, halves, thin, film: 0 }
     }
 
     /// The glass alone, or with its compensation.

@@ -19,8 +19,8 @@ pub enum EmissionShape {
     Spot(SpotEdf),
     /// A light profile (`measured_edf`), in candela times its multiplier.
     Measured(Arc<MeasuredEdf>),
-    /// Tints, directional factors and mixes of `diffuse_edf` and `spot_edf`: radiance per
-    /// unit of intensity, per channel.
+    /// Tints, directional factors and mixes of `diffuse_edf`, `spot_edf` and
+    /// `measured_edf`: radiance per unit of intensity, per channel.
     Tree(Arc<EdfTree>),
 }
 
@@ -34,7 +34,7 @@ impl EmissionShape {
         match self {
             EmissionShape::Spot(spot) => Rgb::splat(spot.factor(normal, dir_out)),
             EmissionShape::Measured(m) => Rgb::splat(m.factor(normal, tangent, dir_out)),
-            EmissionShape::Tree(t) => t.radiance(normal, dir_out),
+            EmissionShape::Tree(t) => t.radiance(normal, tangent, dir_out),
         }
     }
 }

@@ -5,8 +5,9 @@
 //! clamped as for bsdfs, [`mix_weights`]). The weights of mixes, the tint and the factor's
 //! tints and exponent may vary over the surface ([`Leaf::Hit`]: the tree is then lowered
 //! again at each hit, [`tree`] of the hit's values). Their components may be
-//! `diffuse_edf`, `spot_edf`, `edf()` and other combinators; a `measured_edf` among them
-//! is not compiled (an error naming the call).
+//! `diffuse_edf`, `spot_edf`, `measured_edf`, `edf()` and other combinators (the
+//! measured ones in power mode are each normalised to the power they emit alone,
+//! [`per_power`]).
 
 use std::sync::Arc;
 
@@ -28,23 +29,6 @@ fn constant(function: &str, what: &str, v: &Value, span: Span) -> Result<Rgb, Pr
             format!("`{what}` of `df::{function}` of an edf is {}, not a finite colour", super::eval::kind(v)),
         )
     })
-}
-
-/// `e` itself, or an error at `span` naming `df::{function}` when a `measured_edf` lies in
-/// it (its profile and frame are not combined with others yet).
-fn combinable(function: &str, e: &Edf, span: Span) -> Result<Edf, Problem> {
-    fn has_measured(e: &Edf) -> bool {
-        match e {
-            Edf::Measured { .. } => true,
-            Edf::Mix { parts, .. } => parts.iter().any(|(_, p)| has_measured(p)),
-            Edf::DirectionalFactor { base, .. } => has_measured(base),
-            Edf::Black | Edf::Diffuse | Edf::Spot(_) => false,
-        }
-    }
-    if has_measured(e) {
-        return Err(problem(span, format!("`df::{function}` of a `measured_edf` is not compiled yet")));
-    }
-    Ok(e.clone())
 }
 
 /// A weight or tint `what` of `df::{function}` of edfs as a [`Leaf`] (`default` when not
@@ -78,7 +62,7 @@ pub fn mix(name: &str, components: &[Value], bound: MixBound, leaves: &mut Vec<A
     for c in components {
         let w = weight(name, "weight", c.field("weight"), Rgb::ZERO, leaves, span)?;
         match c.field("component") {
-            Some(Value::Edf(e)) => parts.push((w, combinable(name, e, span)?)),
+            Some(Value::Edf(e)) => parts.push((w, e.clone())),
             _ => return Err(problem(span, format!("a component of `df::{name}` is not an edf"))),
         }
     }
@@ -89,8 +73,7 @@ pub fn mix(name: &str, components: &[Value], bound: MixBound, leaves: &mut Vec<A
 /// unbounded mix); a tint that depends on the hit is added to `leaves`.
 pub fn tint(tint: Option<&Value>, base: &Edf, leaves: &mut Vec<Arc<HitExpr>>, span: Span) -> Eval {
     let t = weight("tint", "tint", tint, Rgb::ONE, leaves, span)?;
-    let base = combinable("tint", base, span)?;
-    Ok(Value::Edf(Edf::Mix { parts: vec![(t, base)], bound: MixBound::Unbounded }))
+    Ok(Value::Edf(Edf::Mix { parts: vec![(t, base.clone())], bound: MixBound::Unbounded }))
 }
 
 /// `df::directional_factor(normal_tint, grazing_tint, exponent, base)` of an edf, its
@@ -107,7 +90,7 @@ pub fn directional_factor<'a>(
         normal: weight(f, "normal_tint", arg("normal_tint"), Rgb::ONE, leaves, span)?,
         grazing: weight(f, "grazing_tint", arg("grazing_tint"), Rgb::ONE, leaves, span)?,
         exponent: weight(f, "exponent", arg("exponent"), Rgb::splat(5.0), leaves, span)?,
-        base: Box::new(combinable(f, base, span)?),
+        base: Box::new(base.clone()),
     }))
 }
 
@@ -129,7 +112,7 @@ pub fn tree(edf: &Edf, hit: &[Vec4]) -> Result<EdfTree, &'static str> {
         Edf::Black => EdfTree::Sum(Vec::new()),
         Edf::Diffuse => EdfTree::Diffuse,
         Edf::Spot(spot) => EdfTree::Spot(*spot),
-        Edf::Measured { .. } => return Err("a measured_edf under a tint, a directional_factor or a mix"),
+        Edf::Measured { edf, .. } => EdfTree::Measured(edf.clone()),
         Edf::Mix { parts, bound } => {
             let mut sum = Vec::with_capacity(parts.len());
             let mut failed = None;
@@ -149,4 +132,45 @@ pub fn tree(edf: &Edf, hit: &[Vec4]) -> Result<EdfTree, &'static str> {
             base: Box::new(tree(base, hit)?),
         },
     })
+}
+
+/// The tree with each `measured_edf` in it scaled to emit, per unit of intensity, the
+/// power a lone one does in `intensity_power` mode: its multiplier divided by what it
+/// emits over the hemisphere of its axis ([`crate::measured_edf::MeasuredEdf::hemisphere_power`];
+/// 0 when that is 0). Diffuse and spot components already emit their intensity.
+pub fn per_power(edf: &Edf) -> Edf {
+    match edf {
+        Edf::Measured { edf: m, tangent } => {
+            let p = m.hemisphere_power();
+            let multiplier = if p > 0.0 { m.multiplier / p } else { 0.0 };
+            let scaled = crate::measured_edf::MeasuredEdf::new(m.profile.clone(), multiplier, m.global_frame);
+            Edf::Measured { edf: Arc::new(scaled), tangent: tangent.clone() }
+        }
+        Edf::Mix { parts, bound } => {
+            Edf::Mix { parts: parts.iter().map(|(w, e)| (*w, per_power(e))).collect(), bound: *bound }
+        }
+        Edf::DirectionalFactor { normal, grazing, exponent, base } => Edf::DirectionalFactor {
+            normal: *normal,
+            grazing: *grazing,
+            exponent: *exponent,
+            base: Box::new(per_power(base)),
+        },
+        Edf::Black | Edf::Diffuse | Edf::Spot(_) => edf.clone(),
+    }
+}
+
+/// The `tangent_u` expressions of the tree's `measured_edf`s in the surface's frame, in
+/// order (a profile in a global frame has none).
+pub fn measured_tangents(edf: &Edf) -> Vec<Arc<HitExpr>> {
+    let mut out = Vec::new();
+    fn walk(e: &Edf, out: &mut Vec<Arc<HitExpr>>) {
+        match e {
+            Edf::Measured { tangent: Some(t), .. } => out.push(t.clone()),
+            Edf::Mix { parts, .. } => parts.iter().for_each(|(_, p)| walk(p, out)),
+            Edf::DirectionalFactor { base, .. } => walk(base, out),
+            Edf::Black | Edf::Diffuse | Edf::Spot(_) | Edf::Measured { .. } => {}
+        }
+    }
+    walk(edf, &mut out);
+    out
 }

@@ -220,6 +220,10 @@ fn diffuse_part(df: &Df, hit: &[Vec4]) -> Rgb {
 /// A glossy or specular lobe as (tint, α, mode), looking through tints.
 fn glossy(df: &Df, hit: &[Vec4]) -> Option<(Rgb, f32, ScatterMode)> {
     match df {
+        // The reflected half of glass alone is a general sum's.
+        Df::Specular { mode: ScatterMode::GlassReflect, .. } | Df::Glossy { mode: ScatterMode::GlassReflect, .. } => {
+            None
+        }
         Df::Specular { tint, mode } => Some((tint.get(hit), 0.0, *mode)),
         // A reflection with V-cavities or compensation is a general lobe sum's, and so is
         // glass with them ([`beyond_unified_glass`]; where the sum cannot hold it, the
@@ -449,12 +453,11 @@ pub fn surface(
                     Edf::Measured { edf, tangent: along } => {
                         emission_shape = Some(EmissionShape::Measured(edf.clone()));
                         if let Some(t) = along {
-                            match leaf(&Value::Hit(t.clone(), super::value::HitType::Vector(3)), &mut leaves) {
-                                Some(Leaf::Hit(i)) => tangent = Some(TangentU::Hit(i)),
-                                Some(Leaf::Const(c)) => tangent = Some(TangentU::Const(Vec3A::new(c.x, c.y, c.z))),
-                                None => warnings.push(format!(
+                            tangent = measured_tangent(t, &mut leaves);
+                            if tangent.is_none() {
+                                warnings.push(format!(
                                     "material '{name}': its measured_edf's tangent_u is not compiled; any tangent is used"
-                                )),
+                                ));
                             }
                         }
                         let p = edf.hemisphere_power();
@@ -465,19 +468,33 @@ pub fn surface(
                         }
                     }
                     // Tints, factors and mixes: radiance per unit of intensity from the
-                    // tree (each component emits its intensity, as alone).
-                    Edf::Mix { .. } | Edf::DirectionalFactor { .. } => match tree_at_default(edf, &leaves) {
-                        Ok(tree) => {
-                            emission_shape = Some(EmissionShape::Tree(Arc::new(tree)));
-                            // Weights that depend on the hit: lowered again at each hit.
-                            edf_hit = super::edf_combinators::varies(edf).then(|| edf.clone());
-                            1.0
+                    // tree (each component emits its intensity, as alone: a measured one
+                    // emitting a power is scaled by what it emits alone). Measured
+                    // components in the surface's frame follow the first one's tangent.
+                    Edf::Mix { .. } | Edf::DirectionalFactor { .. } => {
+                        let edf = if power { super::edf_combinators::per_power(edf) } else { edf.clone() };
+                        let tangents = super::edf_combinators::measured_tangents(&edf);
+                        if let Some(first) = tangents.first() {
+                            tangent = measured_tangent(first, &mut leaves);
+                            if tangent.is_none() || tangents.iter().any(|t| **t != **first) {
+                                warnings.push(format!(
+                                    "material '{name}': the tangent_u of its measured_edfs is not compiled or differs between them; the first one's (or any tangent) is used"
+                                ));
+                            }
                         }
-                        Err(what) => {
-                            warnings.push(format!("material '{name}': {what} is not compiled yet; no emission"));
-                            0.0
+                        match tree_at_default(&edf, &leaves) {
+                            Ok(tree) => {
+                                emission_shape = Some(EmissionShape::Tree(Arc::new(tree)));
+                                // Weights that depend on the hit: lowered again at each hit.
+                                edf_hit = super::edf_combinators::varies(&edf).then(|| edf.clone());
+                                1.0
+                            }
+                            Err(what) => {
+                                warnings.push(format!("material '{name}': {what} is not compiled yet; no emission"));
+                                0.0
+                            }
                         }
-                    },
+                    }
                     _ => 1.0 / std::f32::consts::PI,
                 };
                 match e.field("intensity").map(|v| leaf(v, &mut leaves)) {
@@ -580,6 +597,15 @@ pub fn surface(
     out
 }
 
+/// A `measured_edf`'s `tangent_u` expression as the material's [`TangentU`] (added to
+/// `leaves` when it depends on the hit); `None` when it cannot be read.
+fn measured_tangent(t: &Arc<HitExpr>, leaves: &mut Vec<Arc<HitExpr>>) -> Option<TangentU> {
+    match leaf(&Value::Hit(t.clone(), super::value::HitType::Vector(3)), leaves)? {
+        Leaf::Hit(i) => Some(TangentU::Hit(i)),
+        Leaf::Const(c) => Some(TangentU::Const(Vec3A::new(c.x, c.y, c.z))),
+    }
+}
+
 /// The edf tree with its weights at the default point (`leaves` evaluated there).
 fn tree_at_default(edf: &Edf, leaves: &[Arc<HitExpr>]) -> Result<crate::edf_tree::EdfTree, &'static str> {
     let state =
@@ -620,6 +646,14 @@ fn lower_bsdf(
             )
         });
     }
+    if let Some(n) = warning.then(|| general_sum::resampled_curve(df)).flatten() {
+        say(&|name| {
+            format!(
+                "material '{name}': a measured curve of {n} samples that vary over the surface is resampled to {} steps of the angle at each hit",
+                super::value::MAX_HIT_CURVE
+            )
+        });
+    }
     let unified = |p: UnifiedParams| (p.base_color, SurfaceModel::Unified(Box::new(Unified::new(&p))));
     let medium = Medium { ior: ior.max(1e-3), thin };
     if let Some((albedo, sigma)) = diffuse_only(df, hit) {
@@ -637,7 +671,7 @@ fn lower_bsdf(
                     ..Default::default()
                 })
             }),
-            ScatterMode::ReflectTransmit | ScatterMode::Transmit => {
+            ScatterMode::ReflectTransmit | ScatterMode::Transmit | ScatterMode::GlassReflect => {
                 // What the unified glass holds only approximately (transmission alone,
                 // anisotropic roughness) is the lobe sum's glass lobe where it can be one.
                 if beyond_unified_glass(df) {

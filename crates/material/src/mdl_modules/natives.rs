@@ -337,9 +337,9 @@ fn axes(
 }
 
 /// The `curve_values` of `df::{function}` (an array of colours): an interned table when
-/// every sample is constant, else the samples as leaves (at most
-/// [`super::value::MAX_HIT_CURVE`]; more are an error at `span`), their expressions added
-/// to `leaves`.
+/// every sample is constant, else the samples as leaves, their expressions added to
+/// `leaves` (more than [`super::value::MAX_HIT_CURVE`] are resampled to that many at each
+/// hit).
 fn measured_curve(
     function: &str,
     values: Option<&Value>,
@@ -355,17 +355,6 @@ fn measured_curve(
             .map(|v| v.color().ok_or_else(|| not_constant(function, "curve_values", v, span)))
             .collect::<Result<Vec<Rgb>, _>>()?;
         return Ok(CurveValues::Const(bsdf::measured_curve::intern(&table)));
-    }
-    if items.len() > super::value::MAX_HIT_CURVE {
-        return Err(problem(
-            span,
-            format!(
-                "`df::{function}` with `curve_values` that vary over the surface has {} samples; \
-                 at most {} are compiled",
-                items.len(),
-                super::value::MAX_HIT_CURVE
-            ),
-        ));
     }
     let samples = items
         .iter()

@@ -46,13 +46,15 @@ impl Leaf {
 pub enum CurveValues {
     /// Constant samples, interned ([`bsdf::measured_curve::intern`]).
     Const(&'static [Rgb]),
-    /// Samples of which some vary over the surface (at most [`MAX_HIT_CURVE`]): read at
-    /// each hit into the lobe sum's own table.
+    /// Samples of which some vary over the surface: read at each hit into the lobe sum's
+    /// own table (more than [`MAX_HIT_CURVE`]: resampled to that many, uniform in the
+    /// angle).
     Hit(Vec<Leaf>),
 }
 
-/// Most samples a measured curve that varies over the surface may have (two such
-/// curves fit a wide lobe sum's table, [`bsdf::lobes::WIDE_TABLE`]).
+/// Most samples of a measured curve that varies over the surface a lobe sum keeps (two
+/// such curves fit a wide lobe sum's table, [`bsdf::lobes::WIDE_TABLE`]); a curve of more
+/// is resampled to this many at each hit.
 pub const MAX_HIT_CURVE: usize = bsdf::lobes::WIDE_TABLE / 2;
 
 impl CurveValues {
@@ -344,6 +346,10 @@ pub enum ScatterMode {
     Transmit,
     /// `scatter_reflect_transmit`.
     ReflectTransmit,
+    /// Not one of MDL's modes: the Fresnel-reflected half alone of a
+    /// `scatter_reflect_transmit` glass lobe, which `df::tint` of two tints splits off to
+    /// tint it apart from the transmitted half ([`Df::tinted_apart`]).
+    GlassReflect,
 }
 
 impl ScatterMode {
@@ -362,9 +368,12 @@ impl Df {
     /// lobe tinted by `reflect` and each transmitting one by `transmit` — the tints pushed
     /// down through mixes, layers and modifiers to the lobes, each lobe wrapped in the
     /// one-component mix `df::tint(color, bsdf)` makes (a tint is linear in the lobes, and
-    /// the layers' curves do not depend on it). `Err` names what cannot be split: one lobe
-    /// that reflects and transmits under two different tints (mira's glass has one tint),
-    /// or a sheen whose base transmits.
+    /// the layers' curves do not depend on it). A glass lobe (`scatter_reflect_transmit`)
+    /// under two different tints is split into its Fresnel-reflected half
+    /// ([`ScatterMode::GlassReflect`]) under the reflection tint and its transmitted half
+    /// (`scatter_transmit`) under the transmission tint: the two halves sum to the lobe.
+    /// `Err` names what cannot be split: a `measured_bsdf` that reflects and transmits
+    /// under two tints, or a sheen whose base transmits.
     pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
         let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], bound: MixBound::Normalized };
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
@@ -381,8 +390,21 @@ impl Df {
                 ScatterMode::Transmit => wrap(transmit),
                 ScatterMode::ReflectTransmit if reflect == transmit => wrap(reflect),
                 ScatterMode::ReflectTransmit => {
-                    return Err("a lobe that reflects and transmits (`scatter_reflect_transmit`) under two tints")
+                    let half = |mode: ScatterMode, w: Leaf| {
+                        let mut lobe = self.clone();
+                        if let Df::Specular { mode: m, .. } | Df::Glossy { mode: m, .. } = &mut lobe {
+                            *m = mode;
+                        }
+                        (Leaf::Const(Rgb::ONE), Df::Mix { parts: vec![(w, lobe)], bound: MixBound::Normalized })
+                    };
+                    // Summed as they are: each half under its own tint (clamped to 1, as
+                    // the one-component mix of a tint is).
+                    Df::Mix {
+                        parts: vec![half(ScatterMode::GlassReflect, reflect), half(ScatterMode::Transmit, transmit)],
+                        bound: MixBound::Unbounded,
+                    }
                 }
+                ScatterMode::GlassReflect => wrap(reflect),
             },
             Df::Sheen { multiscatter, .. } if multiscatter.transmits() => {
                 return Err("a sheen whose base transmits, under two tints")
@@ -468,7 +490,9 @@ impl Df {
     fn transmits(&self) -> bool {
         match self {
             Df::DiffuseTransmission(_) => true,
-            Df::Specular { mode, .. } | Df::Glossy { mode, .. } => *mode != ScatterMode::Reflect,
+            Df::Specular { mode, .. } | Df::Glossy { mode, .. } => {
+                matches!(mode, ScatterMode::Transmit | ScatterMode::ReflectTransmit)
+            }
             Df::Black | Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => false,
             Df::Measured { mode, table, .. } => *mode != ScatterMode::Reflect && table.transmission.is_some(),
             Df::Sheen { multiscatter: b, .. }

@@ -141,13 +141,25 @@ fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
 
 /// `df::tint(reflection_tint, transmission_tint, base)` of a half-and-half diffuse
 /// reflector and transmitter reflects ½ r and transmits ½ t (exactly, in the compiled
-/// lobes; 1 % in the furnace); a glass lobe under two tints is an error at its module line.
+/// lobes; 1 % in the furnace). A glass lobe under two tints (thin smooth glass under 1 and
+/// ½; rough solid GGX glass, α 0.3, index 1.5, under (0.9, 0.6, 0.3) and (0.3, 0.6, 0.9))
+/// is its Fresnel-reflected half under the reflection tint and its transmitted half under
+/// the transmission tint: two glass lobes of exactly those weights (1e-6), the reflected
+/// one reflecting only, the transmitted one transmitting only; the thin smooth glass
+/// reflects F(θ) and passes ½ (1 − F(θ)) (the furnace within 1 %, both sides); the rough
+/// solid one scatters at most the tints' largest channel of what it receives (n²-weighted
+/// radiance, ≤ 1 % over, from both sides) and keeps the generalised reciprocity
+/// f(ωo, ωi)/n(ωo)² = f(ωi, ωo)/n(ωi)² (1e-3 relative, values under 0.01 within 1e-5
+/// absolute) over 30 × 30 pairs. No diagnostic.
 #[test]
 fn a_tint_of_two_colours_tints_reflection_and_transmission_apart() {
+    use bsdf::rough_glass::Halves;
     let (mdl, lib, diags) = compile_text(
         r#"shader "split" "mdl::furnace::split_tint" ()
-shader "glass" "mdl::furnace::split_tint_glass" ()"#,
+shader "glass" "mdl::furnace::split_tint_glass" ()
+shader "rough" "mdl::furnace::split_tint_rough_glass" ()"#,
     );
+    assert!(diags.is_empty(), "{diags:#?}");
     let (r, t) = (Rgb::new(0.5, 0.25, 1.0), Rgb::new(0.25, 1.0, 0.5));
     let m = get(&mdl, &lib, "split");
     let material::SurfaceModel::Lobes(l) = &m.model else { panic!("{:?}", m.model) };
@@ -156,12 +168,74 @@ shader "glass" "mdl::furnace::split_tint_glass" ()"#,
     for a in albedos(m) {
         assert!((a - (r + t) * 0.5).abs().max_element() <= 0.01, "{a:?}");
     }
-    assert_eq!(diags.len(), 1, "{diags:#?}");
-    assert!(
-        diags[0].contains("t.mi:2:") && diags[0].contains("furnace.mdl:") && diags[0].contains("under two tints"),
-        "{}",
-        diags[0]
-    );
+    let glass_parts = |name: &str| -> Vec<(Rgb, bsdf::rough_glass::RoughGlass)> {
+        let parts: Vec<_> = match &get(&mdl, &lib, name).model {
+            material::SurfaceModel::MdlLobes(l) => l.parts().collect(),
+            other => panic!("{name}: not a lobe sum: {other:?}"),
+        };
+        parts
+            .into_iter()
+            .map(|(w, l)| match l {
+                bsdf::Lobe::Glass(g) => (w, g),
+                other => panic!("{name}: {other:?}"),
+            })
+            .collect()
+    };
+    let tints = [("glass", Rgb::ONE, Rgb::splat(0.5)), ("rough", Rgb::new(0.9, 0.6, 0.3), Rgb::new(0.3, 0.6, 0.9))];
+    for (name, r, t) in tints {
+        let parts = glass_parts(name);
+        assert_eq!(parts.len(), 2, "{name}: {parts:?}");
+        assert_eq!((parts[0].1.halves, parts[1].1.halves), (Halves::Reflect, Halves::Transmit), "{name}");
+        assert!((parts[0].0 - r).abs().max_element() < 1e-6 && (parts[1].0 - t).abs().max_element() < 1e-6, "{name}");
+        assert_eq!(parts[0].1.thin, name == "glass");
+    }
+    let eta = 1.5f32;
+    let fresnel = |c: f32| {
+        let t = (1.0 - (1.0 - c * c) / (eta * eta)).sqrt();
+        let rs = (c - eta * t) / (c + eta * t);
+        let rp = (eta * c - t) / (eta * c + t);
+        (rs * rs + rp * rp) / 2.0
+    };
+    let glass = get(&mdl, &lib, "glass");
+    for wo in incidences() {
+        for wo in [wo, -wo] {
+            let f = fresnel(wo.z.abs());
+            let want = f + 0.5 * (1.0 - f);
+            let a = albedo(&glass.bsdf(wo), wo, 20_000);
+            assert!((a - Rgb::splat(want)).abs().max_element() <= 0.01 * want, "glass at {wo:?}: {a:?} vs {want}");
+        }
+    }
+    let rough = get(&mdl, &lib, "rough");
+    let index = |w: Vec3A| if w.z < 0.0 { eta } else { 1.0 };
+    for wo in incidences() {
+        for wo in [wo, -wo] {
+            let b = rough.bsdf(wo);
+            let mut sum = Rgb::ZERO;
+            for k in 0..20_000 {
+                let (u, c) = bsdf::testing::r3(k);
+                if let Some(s) = b.sample(wo, u, c) {
+                    sum += s.weight() * (index(s.wi) / index(wo)).powi(2);
+                }
+            }
+            let e = sum / 20_000.0;
+            assert!(e.max_element() <= 0.9 * 1.01 && e.min_element() >= 0.0, "rough at {wo:?}: {e:?}");
+        }
+    }
+    let b = rough.bsdf(Vec3A::Z);
+    let sphere = |i: u32| {
+        let u = bsdf::testing::r2(i);
+        let z = 1.0 - 2.0 * u.x;
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        Vec3A::new(s * (std::f32::consts::TAU * u.y).cos(), s * (std::f32::consts::TAU * u.y).sin(), z)
+    };
+    for i in 0..30 {
+        for j in 0..30 {
+            let (a, c) = (sphere(i + 1), sphere(j + 301));
+            let (f1, f2) = (b.eval(a, c) / index(a).powi(2), b.eval(c, a) / index(c).powi(2));
+            let scale = f1.max_element().max(f2.max_element()).max(1e-2);
+            assert!((f1 - f2).abs().max_element() <= 1e-3 * scale, "rough: f({a}, {c}) {f1} vs {f2}");
+        }
+    }
 }
 
 /// Solid glass (`specular_bsdf(scatter_reflect_transmit)`, `ior` 1.5, not thin-walled)

@@ -164,3 +164,69 @@ shader "default" "mdl::profiles::given_profile" ()"#,
         assert_eq!(get(&mdl, &lib, name).diffuse, Rgb::ZERO, "{name}");
     }
 }
+
+/// The radiance (all channels) material `m` emits towards `dir` from the point of
+/// `state`, before any division by the area (a power as given).
+fn radiance_rgb(m: &SurfaceMaterial, state: &State, dir: Vec3A) -> Rgb {
+    let mut h = m.constant();
+    if let Varying::Evaluated(e) = &m.varying {
+        e.0.apply(state, &mut h);
+    }
+    match h.emission_shape {
+        Some(shape) => h.emission * shape.factor(state.normal, h.tangent, dir),
+        // Lambertian: the radiance itself.
+        None => h.emission,
+    }
+}
+
+/// A `measured_edf` inside edf combinators emits the weighted sum of its parts, each as
+/// it emits alone (within 1e-4 of the larger value, at six directions and three u
+/// tangents): a normalized mix of ½ the profile and ¼ diffuse emission = ½ `measured` +
+/// ¼ a lone diffuse emitter; a tint (0.2, 0.5, 1) of the profile along world +Y = the tint
+/// × `measured_along_y` (the tangent read inside the tint); an unbounded mix of ½ and ½
+/// emitting a power of 10 = ½ `measured_power` + ½ the diffuse emitter of intensity 10
+/// (each part normalised to the power it emits alone); the profile under a directional
+/// factor (normal (1, 0.5, 0.25), grazing 0.2, exponent 3) = the Schlick curve of the
+/// emission angle × `measured`. No diagnostic.
+#[test]
+fn measured_edfs_in_mixes_tints_and_factors_emit_the_weighted_sum_of_their_parts() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "mix" "mdl::profiles::measured_mix" ()
+shader "m" "mdl::profiles::measured" ()
+shader "d" "mdl::profiles::diffuse_emitter" ()
+shader "tint" "mdl::profiles::measured_tint" ()
+shader "y" "mdl::profiles::measured_along_y" ()
+shader "pmix" "mdl::profiles::measured_power_mix" ()
+shader "p" "mdl::profiles::measured_power" ()
+shader "d10" "mdl::profiles::diffuse_emitter" ("intensity" 10 10 10)
+shader "factor" "mdl::profiles::measured_factor_edf" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let g = |name: &str| get(&mdl, &lib, name);
+    let tint = Rgb::new(0.2, 0.5, 1.0);
+    let (normal, grazing) = (Rgb::new(1.0, 0.5, 0.25), Rgb::splat(0.2));
+    for angle in [0.0f32, 0.4, 2.5] {
+        let s = state(angle);
+        let x = Vec3A::new(angle.cos(), angle.sin(), 0.0);
+        let y = x.cross(Vec3A::Z);
+        for (v, h) in [(0.0, 0.0), (30.0, 0.0), (45.0, 60.0), (60.0, 90.0), (75.0, 200.0), (20.0, 300.0)] {
+            let d = toward(Vec3A::Z, x, y, v, h);
+            let r = |name: &str| radiance_rgb(g(name), &s, d);
+            let schlick = normal + (grazing - normal) * (1.0 - d.z).powi(3);
+            let cases = [
+                ("mix", r("mix"), r("m") * 0.5 + r("d") * 0.25),
+                ("tint", r("tint"), r("y") * tint),
+                ("pmix", r("pmix"), r("p") * 0.5 + r("d10") * 0.5),
+                ("factor", r("factor"), r("m") * schlick),
+            ];
+            for (name, got, want) in cases {
+                let scale = got.max_element().max(want.max_element());
+                assert!(scale > 0.0, "{name}: nothing emitted");
+                assert!(
+                    (got - want).abs().max_element() <= 1e-4 * scale,
+                    "{name}, tangent {angle}, V {v} H {h}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}

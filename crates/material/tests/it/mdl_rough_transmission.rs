@@ -8,6 +8,7 @@
 
 use crate::mdl_support;
 
+use bsdf::rough_glass::Halves;
 use bsdf::testing::{chi_square, incidences, r3};
 use bsdf::{Bsdf, Lobe, Rgb};
 use glam::Vec3A;
@@ -104,7 +105,8 @@ fn rough_transmission_compiles_to_a_glass_lobe() {
                 let (w, g) = glass[0];
                 assert!((g.eta - 1.5).abs() < 1e-6 && g.thin == thin, "{name}: {g:?}");
                 assert!((g.alpha_x - r).abs() < 1e-6 && (g.alpha_y - r).abs() < 1e-6, "{name}: {g:?}");
-                assert_eq!(g.reflect, !m.starts_with("weighted_transmit"), "{name}");
+                let halves = if m.starts_with("weighted_transmit") { Halves::Transmit } else { Halves::Both };
+                assert_eq!(g.halves, halves, "{name}");
                 assert_eq!(g.micro.is_beckmann(), m.ends_with("beckmann"), "{name}");
                 assert_eq!(g.film > 0, m == "film_over_glass", "{name}");
                 let want = match m {
@@ -286,8 +288,12 @@ fn lone_anisotropic_and_transmit_only_glass_are_glass_lobes() {
             let parts = lobes(got);
             let [(w, Lobe::Glass(g))] = parts[..] else { panic!("{name}: {parts:?}") };
             assert!((w - Rgb::ONE).abs().max_element() < 1e-6, "{name}: {w:?}");
-            let want = if m == "transmit_only" { (0.05, 0.05, false, true) } else { (0.1, 0.4, true, false) };
-            assert_eq!((g.alpha_x, g.alpha_y, g.reflect, g.micro.is_beckmann()), want, "{name}");
+            let want = if m == "transmit_only" {
+                (0.05, 0.05, Halves::Transmit, true)
+            } else {
+                (0.1, 0.4, Halves::Both, false)
+            };
+            assert_eq!((g.alpha_x, g.alpha_y, g.halves, g.micro.is_beckmann()), want, "{name}");
             assert_eq!(g.thin, thin, "{name}");
             for wo in incidences() {
                 for wo in [wo, -wo] {

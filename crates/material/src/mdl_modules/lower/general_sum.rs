@@ -9,7 +9,7 @@ use bsdf::glass_multiscatter::GlassMultiScatter;
 use bsdf::measured_bsdf::MeasuredLobe;
 use bsdf::microfacet::Ggx;
 use bsdf::multiscatter::{MultiScatter, Single};
-use bsdf::rough_glass::{Microfacet, RoughGlass};
+use bsdf::rough_glass::{Halves, Microfacet, RoughGlass};
 use bsdf::{CurveKind, LayerCurve, Lobe, LobeSum as GeneralSum, Lobes, Rgb, Role, WideLobes};
 use glam::Vec4;
 
@@ -255,7 +255,12 @@ fn glass_lobe(alpha: (f32, f32), micro: Microfacet, mode: ScatterMode, medium: M
         alpha_y: alpha.1,
         eta: medium.ior,
         micro,
-        reflect: mode == ScatterMode::ReflectTransmit,
+        halves: match mode {
+            ScatterMode::Transmit => Halves::Transmit,
+            ScatterMode::GlassReflect => Halves::Reflect,
+            // A plain `scatter_reflect` lobe is no glass (never lowered here).
+            ScatterMode::ReflectTransmit | ScatterMode::Reflect => Halves::Both,
+        },
         thin: medium.thin,
         film: 0,
     }
@@ -432,7 +437,8 @@ pub(super) fn general(df: &Df, hit: &[Vec4], medium: Medium, per_hit: bool) -> O
 
 /// A measured curve's samples at `hit` as a curve of `sum`: a constant table as it is, one
 /// that varies kept in the sum's own table (`None` when that is full — a compact sum keeps
-/// none — after marking the sum's curves full for [`filled`]).
+/// none — after marking the sum's curves full for [`filled`]). A varying curve of more
+/// than [`MAX_HIT_CURVE`] samples is resampled to that many ([`resample`]).
 fn measured<const N: usize, const C: usize, const F: usize, const T: usize>(
     curve: &CurveValues,
     hit: &[Vec4],
@@ -442,10 +448,7 @@ fn measured<const N: usize, const C: usize, const F: usize, const T: usize>(
         CurveValues::Const(table) => Some(CurveKind::Measured(table)),
         CurveValues::Hit(samples) => {
             let mut values = [Rgb::ZERO; MAX_HIT_CURVE];
-            let values = values.get_mut(..samples.len())?;
-            for (v, s) in values.iter_mut().zip(samples) {
-                *v = s.get(hit);
-            }
+            let values = resample(samples, hit, &mut values);
             let kind = sum.add_table(values);
             if kind.is_none() {
                 // The table is full (a compact sum has none): the sum, whose lowering
@@ -455,6 +458,59 @@ fn measured<const N: usize, const C: usize, const F: usize, const T: usize>(
             kind
         }
     }
+}
+
+/// The samples of a curve at `hit` into `out`: all of them when they fit, else the curve
+/// (linear in the angle between its samples, [`bsdf::measured_curve::eval`]) read at
+/// `out.len()` uniform steps of the angle from 0 to π/2 — the resampled curve, linear
+/// between those, differs from the curve by at most the largest distance of a sample from
+/// it (both are linear between the samples and the new steps, and agree at the steps).
+fn resample<'a>(samples: &[Leaf], hit: &[Vec4], out: &'a mut [Rgb]) -> &'a [Rgb] {
+    let (n, m) = (samples.len(), out.len());
+    if n <= m {
+        for (v, s) in out.iter_mut().zip(samples) {
+            *v = s.get(hit);
+        }
+        return &out[..n];
+    }
+    for (j, v) in out.iter_mut().enumerate() {
+        // Step j of m − 1 lies at sample position j (n − 1)/(m − 1).
+        let num = j * (n - 1);
+        let (i, rest) = (num / (m - 1), num % (m - 1));
+        let t = rest as f32 / (m - 1) as f32;
+        *v =
+            if rest == 0 { samples[i].get(hit) } else { samples[i].get(hit) * (1.0 - t) + samples[i + 1].get(hit) * t };
+    }
+    out
+}
+
+/// The most samples of a measured curve in `df` that varies over the surface and has more
+/// than a lobe sum keeps ([`MAX_HIT_CURVE`]: such a curve is resampled, [`resample`]); for
+/// a warning.
+pub(super) fn resampled_curve(df: &Df) -> Option<usize> {
+    let own = match df {
+        Df::MeasuredCurveLayer { curve: CurveValues::Hit(s), .. }
+        | Df::MeasuredCurveFactor { curve: CurveValues::Hit(s), .. }
+            if s.len() > MAX_HIT_CURVE =>
+        {
+            Some(s.len())
+        }
+        _ => None,
+    };
+    let children = match df {
+        Df::Mix { parts, .. } => parts.iter().filter_map(|(_, d)| resampled_curve(d)).max(),
+        Df::Layer { layer, base, .. }
+        | Df::CurveLayer { layer, base, .. }
+        | Df::MeasuredCurveLayer { layer, base, .. } => resampled_curve(layer).max(resampled_curve(base)),
+        Df::Sheen { multiscatter: b, .. }
+        | Df::DirectionalFactor { base: b, .. }
+        | Df::ThinFilm { base: b, .. }
+        | Df::FresnelFactor { base: b, .. }
+        | Df::MeasuredCurveFactor { base: b, .. }
+        | Df::MeasuredFactor { base: b, .. } => resampled_curve(b),
+        _ => None,
+    };
+    own.max(children)
 }
 
 /// The sum of a lobe sum's diffuse reflection weights, clamped to [0, 1].
