@@ -80,6 +80,11 @@ pub enum Target {
     /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
     /// value × the scale per channel.
     SpecularColor,
+    /// The direction the BSDF's local x axis follows (world space; mental ray's
+    /// `mib_glossy_*` `u_axis` connected to a shader): projected onto the plane of the
+    /// normal at the hit, as the classic shaders build their frame; a zero (or normal)
+    /// value leaves the material's own tangent rule.
+    TangentAxis,
 }
 
 /// One connected parameter.
@@ -298,7 +303,9 @@ impl SurfaceMaterial {
                 }
             }
         }
-        hit.tangent = self.tangent_at(ctx.state.normal, ctx.state.derivs[0]);
+        if hit.tangent.is_none() {
+            hit.tangent = self.tangent_at(ctx.state.normal, ctx.state.derivs[0]);
+        }
         hit
     }
 
@@ -364,6 +371,10 @@ impl SurfaceMaterial {
                     if let Some(g) = tinted {
                         hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
                     }
+                }
+                Target::TangentAxis => {
+                    let (axis, n) = (value.vector() * b.scale, ctx.state.normal);
+                    hit.tangent = (axis - n * axis.dot(n)).try_normalize();
                 }
                 Target::Normal => {
                     let n = value.vector();

@@ -15,9 +15,8 @@
 //! Parameters without a path-tracing counterpart: `samples` only sets the classic
 //! shader's noise, except that 0 casts nothing (the top alone); `dispersion` and
 //! `spectrum` are ignored by both engines. Not honoured, warned: `back_material` (nothing
-//! is added seen from inside), `max_distance` with `deep_material` (no fade), a
-//! connected `u_axis` (dP/du is the lobe's axis; a constant one lays the spreads along it,
-//! as `mib_glossy_reflection`'s).
+//! is added seen from inside), `max_distance` with `deep_material` (no fade). `u_axis`
+//! (constant or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
 use scene::Library;
