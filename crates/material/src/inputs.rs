@@ -80,6 +80,11 @@ pub enum Target {
     /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
     /// value × the scale per channel.
     SpecularColor,
+    /// The direction the BSDF's local x axis follows (world space; mental ray's
+    /// `mib_glossy_*` `u_axis` connected to a shader): projected onto the plane of the
+    /// normal at the hit, as the classic shaders build their frame; a zero (or normal)
+    /// value leaves the material's own tangent rule.
+    TangentAxis,
 }
 
 /// One connected parameter.
@@ -238,7 +243,7 @@ impl SurfaceMaterial {
     /// Whether anything of the material varies over its surface.
     #[inline]
     pub fn is_varying(&self) -> bool {
-        self.varying != Varying::Constant || self.tangent_angle.is_some()
+        self.varying != Varying::Constant || self.tangent_angle.is_some() || self.tangent_axis.is_some()
     }
 
     /// The material with its constant parameters (what it is where nothing varies).
@@ -298,11 +303,26 @@ impl SurfaceMaterial {
                 }
             }
         }
-        if let Some(angle) = self.tangent_angle {
-            // The rule is Maya's (its anisotropic material's grooves), the only user today.
-            hit.tangent = Some(::maya::specular::groove_direction(ctx.state.normal, ctx.state.derivs[0], angle));
+        if hit.tangent.is_none() {
+            hit.tangent = self.tangent_at(ctx.state.normal, ctx.state.derivs[0]);
         }
         hit
+    }
+
+    /// The BSDF's local x axis (world space) at a hit of shading normal `normal` and
+    /// surface derivative `dpdu` (dP/du of the first texture space): the projected
+    /// `tangent_axis` where given, else `dpdu` turned by `tangent_angle` (the rule is
+    /// Maya's, its anisotropic material's grooves); `None` where neither is set.
+    pub fn tangent_at(&self, normal: Vec3A, dpdu: Vec3A) -> Option<Vec3A> {
+        if let Some(axis) = self.tangent_axis {
+            // As the classic `mib_glossy_*` shaders build their frame.
+            return Some(
+                (axis - normal * axis.dot(normal))
+                    .try_normalize()
+                    .unwrap_or_else(|| bsdf::Frame::from_normal(normal).tangent),
+            );
+        }
+        self.tangent_angle.map(|angle| ::maya::specular::groove_direction(normal, dpdu, angle))
     }
 
     fn apply(&self, bindings: &[Binding], ctx: &mut Ctx, hit: &mut HitMaterial<'_>) {
@@ -351,6 +371,10 @@ impl SurfaceMaterial {
                     if let Some(g) = tinted {
                         hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
                     }
+                }
+                Target::TangentAxis => {
+                    let (axis, n) = (value.vector() * b.scale, ctx.state.normal);
+                    hit.tangent = (axis - n * axis.dot(n)).try_normalize();
                 }
                 Target::Normal => {
                     let n = value.vector();

@@ -192,6 +192,11 @@ pub struct SurfaceMaterial {
     /// turned by this angle (radians, counter-clockwise about the shading normal), for
     /// anisotropic lobes (Maya's anisotropic material); `None`: any tangent of the normal.
     pub tangent_angle: Option<f32>,
+    /// A fixed direction the BSDF's local x axis follows instead (world space, as the
+    /// classic engine reads mental ray's `mib_glossy_*` `u_axis`): at each hit, projected
+    /// onto the plane of the shading normal (a tangent of the normal where it is
+    /// parallel to it). It takes the place of `tangent_angle`.
+    pub tangent_axis: Option<glam::Vec3A>,
     /// The glow a camera sees on the surface (linear RGB; Maya materials' `outGlowColor`,
     /// `glowIntensity` × their colour): what the path engine stores in the glow frame
     /// buffer a shader glow spreads (zero for materials that do not glow).
@@ -240,6 +245,7 @@ impl SurfaceMaterial {
             medium: None,
             varying_medium: None,
             tangent_angle: None,
+            tangent_axis: None,
             glow: Rgb::ZERO,
             ambient: Rgb::ZERO,
             maya_highlight: None,

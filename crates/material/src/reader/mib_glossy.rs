@@ -13,19 +13,22 @@
 //! Parameters without a path-tracing counterpart: `samples` only sets the classic
 //! shader's noise (the path engine's samples do that), except that 0 casts nothing (the
 //! base alone, as in the classic shader); `dispersion` and `spectrum` are ignored by both
-//! engines. Not honoured, warned where they change the result: `environment_color` (the
-//! path engine weighs rays that leave the scene by `reflection_color`, which the manual
-//! calls the physically accurate choice), `max_distance` (no fade towards the
-//! environment), `environment` (the scene's environment is used), `single_env_sample`
-//! with a spread lobe and an environment colour (each direction looks the environment
-//! up), `u_axis` / `v_axis` (dP/du is the lobe's axis), a connected `reflection_color` or
-//! spread (their defaults).
+//! engines. `u_axis` (constant, or connected: evaluated at each hit) lays the spreads
+//! along it ([`lobe_axes`]); the shader's
+//! own `environment` is what every ray leaving the material sees where it finds nothing
+//! (`render`'s `integrator::material_env`, as a material's own environment: its base's
+//! rays included). Not honoured, warned where they change the result:
+//! `environment_color` (the path engine weighs rays that leave the scene by
+//! `reflection_color`, which the manual calls the physically accurate choice),
+//! `max_distance` (no fade towards the environment), `single_env_sample` with a spread
+//! lobe and an environment colour (each direction looks the environment up), a connected
+//! `reflection_color` or spread (their defaults).
 
 use mi::ast::{Param, Value};
 use scene::Library;
 
 use super::Reader;
-use crate::{color_param, first_call, SurfaceMaterial, SurfaceModel};
+use crate::{color_param, first_call, SurfaceMaterial, SurfaceModel, Target};
 use bsdf::{MibGlossyLobe, Rgb};
 
 /// The surface of a `mib_glossy_reflection` with `params` (`depth` counts nested base
@@ -75,9 +78,6 @@ pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library,
     if r.scalar(params, "max_distance", 0.0) > 0.0 {
         r.warn("mib_glossy_reflection's max_distance is not honoured by the path engine (no fade)".into());
     }
-    if params.iter().any(|p| p.name.text == "environment") {
-        r.warn("mib_glossy_reflection's own environment is not used by the path engine (the scene's is)".into());
-    }
     if lobe.dist.is_some() && env_color != Rgb::ZERO && r.flag(params, "single_env_sample", true) {
         r.warn(
             "mib_glossy_reflection's single_env_sample is not honoured by the path engine (the environment is looked \
@@ -85,16 +85,33 @@ pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library,
                 .into(),
         );
     }
-    let given = |axis: &str| matches!(color_param(params, axis), Some(Ok(v)) if v != Rgb::ZERO);
-    if lobe.dist.is_some() && (given("u_axis") || given("v_axis")) {
-        r.warn(
-            "mib_glossy_reflection's u_axis / v_axis are not honoured by the path engine (dP/du is the axis)".into(),
-        );
-    }
     if lobe.dist.is_some_and(|d| d.alpha_x != d.alpha_y) {
-        // The spreads lie along dP/du and the normal × dP/du.
-        surface.tangent_angle = Some(0.0);
+        lobe_axes(r, params, "mib_glossy_reflection", &mut surface);
     }
     surface.model = SurfaceModel::MibGlossy(Box::new(lobe));
     surface
+}
+
+/// Lays an anisotropic lobe's spreads along `u_axis` (world space, projected onto the
+/// tangent plane at each hit, as the classic shaders read it; a connected `u_axis` is
+/// evaluated at each hit) and the normal × that axis, or along dP/du and the normal ×
+/// dP/du where `u_axis` is not given (zero). `v_axis` changes nothing: the classic shaders
+/// take the tangent that is perpendicular to u as v, which is ± normal × u, and Ward's
+/// distribution is the same mirrored across u.
+pub(super) fn lobe_axes(r: &mut Reader, params: &[Param], shader: &str, surface: &mut SurfaceMaterial) {
+    // dP/du where the axis is not given (or a connected one gives zero at a hit).
+    surface.tangent_angle = Some(0.0);
+    if r.bind(params, "u_axis", Some((Target::TangentAxis, 1.0))) {
+        return;
+    }
+    match color_param(params, "u_axis") {
+        Some(Ok(axis)) if axis != Rgb::ZERO => {
+            surface.tangent_axis = Some(axis);
+            surface.tangent_angle = None;
+        }
+        Some(Err(why)) => {
+            r.warn(format!("{shader}'s u_axis is not honoured by the path engine ({why}; dP/du is the axis)"))
+        }
+        _ => {}
+    }
 }

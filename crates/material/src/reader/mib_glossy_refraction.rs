@@ -15,14 +15,14 @@
 //! Parameters without a path-tracing counterpart: `samples` only sets the classic
 //! shader's noise, except that 0 casts nothing (the top alone); `dispersion` and
 //! `spectrum` are ignored by both engines. Not honoured, warned: `back_material` (nothing
-//! is added seen from inside), `max_distance` with `deep_material` (no fade), `u_axis` /
-//! `v_axis` (dP/du is the lobe's axis).
+//! is added seen from inside), `max_distance` with `deep_material` (no fade). `u_axis`
+//! (constant or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
 use scene::Library;
 
 use super::Reader;
-use crate::{color_param, first_call, SurfaceMaterial, SurfaceModel};
+use crate::{first_call, SurfaceMaterial, SurfaceModel};
 use bsdf::{MibGlossyRefractionLobe, Rgb};
 
 /// The surface of a `mib_glossy_refraction` with `params` (`depth` counts nested
@@ -71,15 +71,8 @@ pub(super) fn glossy_refraction(r: &mut Reader, params: &[Param], lib: &Library,
                 .into(),
         );
     }
-    let given = |axis: &str| matches!(color_param(params, axis), Some(Ok(v)) if v != Rgb::ZERO);
-    if lobe.dist.is_some() && (given("u_axis") || given("v_axis")) {
-        r.warn(
-            "mib_glossy_refraction's u_axis / v_axis are not honoured by the path engine (dP/du is the axis)".into(),
-        );
-    }
     if lobe.dist.is_some_and(|d| d.alpha_x != d.alpha_y) {
-        // The spreads lie along dP/du and the normal × dP/du.
-        surface.tangent_angle = Some(0.0);
+        super::mib_glossy::lobe_axes(r, params, "mib_glossy_refraction", &mut surface);
     }
     surface.model = SurfaceModel::MibGlossyRefraction(Box::new(lobe));
     surface

@@ -1,7 +1,8 @@
 //! Displacement of meshes whose vertices move (`crate::displace::moving`): every motion
 //! step displaced on the same finer triangles, measured by ray hits at the shutter's
-//! opening and close, a closed moving mesh that stays closed, and both engines rendering
-//! the displaced surface where the motion has carried it.
+//! opening and close, a closed moving mesh that stays closed, both engines rendering
+//! the displaced surface where the motion has carried it, and a moving instance carrying
+//! its displaced triangles rigidly.
 
 use std::collections::HashMap;
 
@@ -166,4 +167,32 @@ material "m" = "lam" displace = "disp" end material"#;
         let outside = support::mean(&px, 8, (0, 1), (0, 8));
         assert!(outside[1] < 1e-6, "{engine:?}: {outside:?}");
     }
+}
+
+/// An instance that moves (`motion transform`: +0.5 in x at the shutter's close) carries
+/// its displaced triangles with it: the square displaced by the constant d = 0.375 stands
+/// at height d over x ∈ (0, 1) at the opening and over x ∈ (0.5, 1.5) at the close
+/// (1e-4), and is absent at x = 1.25 at the opening and at x = 0.25 at the close. The
+/// displacement is evaluated once (as mental ray's tessellator calls the displacement
+/// shader, once per vertex it makes) and moves rigidly with the instance.
+#[test]
+fn a_moving_instance_carries_its_displaced_surface() {
+    let text = crate::displacement::plane("motion on shutter 0 1", &constant_material(0.375), "", "m").replace(
+        r#"material "m" end instance"#,
+        r#"material "m" motion transform 1 0 0 0  0 1 0 0  0 0 1 0  -0.5 0 0 1 end instance"#,
+    );
+    assert!(text.contains("motion transform"), "{text}");
+    let b = build(&text);
+    assert!(!b.messages.iter().any(|m| m.contains("error")), "{:?}", b.messages);
+    let world = &b.built.world;
+    let height =
+        |x: f32, y: f32, time: f32| hit_at(world, Vec3A::new(x, y, 10.0), Vec3A::NEG_Z, time).map(|t| 10.0 - t);
+    for (x, y) in [(0.1, 0.1), (0.5, 0.5), (0.9, 0.3)] {
+        let h = height(x, y, 0.0).expect("hit at the opening");
+        assert!((h - 0.375).abs() < 1e-4, "opening ({x}, {y}) at {h}");
+        let h = height(x + 0.5, y, 1.0).expect("hit at the close");
+        assert!((h - 0.375).abs() < 1e-4, "close ({x}, {y}) at {h}");
+    }
+    assert_eq!(height(1.25, 0.5, 0.0), None);
+    assert_eq!(height(0.25, 0.5, 1.0), None);
 }
