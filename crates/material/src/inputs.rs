@@ -80,6 +80,15 @@ pub enum Target {
     /// (a [`SurfaceModel::Maya`] built with the colour 1/scale) are multiplied by the
     /// value × the scale per channel.
     SpecularColor,
+    /// A Maya material's `translucence` t (the value as a number, as the classic engine
+    /// reads it: a colour's red): the Maya model's translucence — its albedo, or its share
+    /// of each hit's diffuse colour — is multiplied by the value × the scale (the model
+    /// built with [`crate::maya::CONNECTED_STAND_IN`], the scale its inverse). Bind it
+    /// after [`Target::TranslucenceColor`].
+    Translucence,
+    /// A Maya material's connected `color` where `diffuse` is 0: the Maya model's
+    /// translucence albedo is the value × the scale (t ⊙ the fade's mean) per channel.
+    TranslucenceColor,
 }
 
 /// One connected parameter.
@@ -349,6 +358,18 @@ impl SurfaceMaterial {
                         _ => None,
                     };
                     if let Some(g) = tinted {
+                        hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+                    }
+                }
+                Target::Translucence | Target::TranslucenceColor => {
+                    let lit = match &*hit.model {
+                        SurfaceModel::Maya(g) if b.target == Target::Translucence => {
+                            Some(g.translucence_scaled((value.scalar() * b.scale).max(0.0)))
+                        }
+                        SurfaceModel::Maya(g) => Some(g.with_translucence(rgb(), g.focus)),
+                        _ => None,
+                    };
+                    if let Some(g) = lit {
                         hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
                     }
                 }
