@@ -226,6 +226,16 @@ impl MayaGlossy {
         self
     }
 
+    /// The same with the translucence scaled by `k` (≥ 0): its albedo, and its share of
+    /// each hit's diffuse colour where it follows it (a connected `translucence` at one
+    /// hit).
+    pub fn translucence_scaled(mut self, k: f32) -> MayaGlossy {
+        let k = k.max(0.0);
+        self.translucence *= k;
+        self.translucence_per_diffuse = self.translucence_per_diffuse.map(|r| r * k);
+        self
+    }
+
     /// The same highlight and mirror with rampShader's view-dependent ramps (see
     /// [`MayaGlossy::view_ramps`]).
     pub fn with_view_ramps(mut self, ramps: ViewRamps) -> MayaGlossy {

@@ -85,6 +85,15 @@ pub enum Target {
     /// normal at the hit, as the classic shaders build their frame; a zero (or normal)
     /// value leaves the material's own tangent rule.
     TangentAxis,
+    /// A Maya material's `translucence` t (the value as a number, as the classic engine
+    /// reads it: a colour's red): the Maya model's translucence — its albedo, or its share
+    /// of each hit's diffuse colour — is multiplied by the value × the scale (the model
+    /// built with [`crate::maya::CONNECTED_STAND_IN`], the scale its inverse). Bind it
+    /// after [`Target::TranslucenceColor`].
+    Translucence,
+    /// A Maya material's connected `color` where `diffuse` is 0: the Maya model's
+    /// translucence albedo is the value × the scale (t ⊙ the fade's mean) per channel.
+    TranslucenceColor,
 }
 
 /// One connected parameter.
@@ -375,6 +384,18 @@ impl SurfaceMaterial {
                 Target::TangentAxis => {
                     let (axis, n) = (value.vector() * b.scale, ctx.state.normal);
                     hit.tangent = (axis - n * axis.dot(n)).try_normalize();
+                }
+                Target::Translucence | Target::TranslucenceColor => {
+                    let lit = match &*hit.model {
+                        SurfaceModel::Maya(g) if b.target == Target::Translucence => {
+                            Some(g.translucence_scaled((value.scalar() * b.scale).max(0.0)))
+                        }
+                        SurfaceModel::Maya(g) => Some(g.with_translucence(rgb(), g.focus)),
+                        _ => None,
+                    };
+                    if let Some(g) = lit {
+                        hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+                    }
                 }
                 Target::Normal => {
                     let n = value.vector();

@@ -222,6 +222,11 @@ pub struct SurfaceMaterial {
     /// Maya's useBackground: the shadow-catching matte the path engine shades it as
     /// ([`maya::MayaMatte`]); `None` for every other material.
     pub maya_matte: Option<maya::MayaMatte>,
+    /// Maya's `translucenceDepth` D of a lambert-family material with translucence (world
+    /// units; 0: none): a shadow ray that leaves the receiving point's own object through
+    /// this surface after a stretch s inside it passes T + (1 − T)·max(1 − s/D, 0)
+    /// ([`maya::translucent_passage`]).
+    pub translucence_depth: f32,
 }
 
 impl SurfaceMaterial {
@@ -251,6 +256,7 @@ impl SurfaceMaterial {
             maya_highlight: None,
             view_transparency: None,
             maya_matte: None,
+            translucence_depth: 0.0,
         }
     }
 

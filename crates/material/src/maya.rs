@@ -81,7 +81,9 @@
 //!   `incandescence`: emitted radiance; `ambientColor` a: c ⊙ a emitted (faded by
 //!   1 − T), per hit when `color` or `ambientColor` is connected ([`ambient_color`]);
 //!   rampShader's C_ref ⊙ a likewise (`ramp_shader::Ambient`); `translucence` t: a
-//!   transmission lobe of albedo c·t shaped by `translucenceFocus` ([`translucence`]);
+//!   transmission lobe of albedo c·t shaped by `translucenceFocus`, `translucenceDepth`
+//!   the light it lets through the object's own geometry in shadow rays
+//!   ([`translucence`]);
 //! - useBackground: a shadow-catching matte ([`MayaMatte`]: the background darkened by
 //!   `shadowMask` × the blocked share of the lights, a mirror of `reflectivity` ·
 //!   `specularColor`), fully transparent to shadow rays;
@@ -100,9 +102,11 @@ use std::sync::Arc;
 
 mod matte;
 mod ramp_shader;
+mod translucence;
 mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
+pub use translucence::{translucent_passage, CONNECTED_STAND_IN};
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -264,46 +268,6 @@ fn ambient_color(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
             r.bindings.push(Binding { node, member: member.clone(), target: Target::EmissionChannel(c as u8), scale });
         }
     }
-}
-
-/// The lambert family's `translucence` t: the light from behind, c · t ⊙ `fade` (the
-/// diffuse part's fade), concentrated by `translucenceFocus`
-/// ([`bsdf::maya_highlight::translucence`], the classic shader's lobe) — beside the
-/// material's highlight, or alone on a lobe of zero tint. A connected `color` c makes it
-/// follow each hit's diffuse colour c·d as t/d of it (a `diffuse` d of 0 lends it the
-/// default colour, warned about); `translucenceDepth` is not read here (warned about; the
-/// classic shader reads it, `maya::material`).
-fn translucence(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb) {
-    let t = r.scalar("translucence", 0.0);
-    if t <= 0.0 {
-        return;
-    }
-    // A connected colour c: each hit's diffuse colour is c·d (times the fade's mean),
-    // so the translucence c·t follows it as t/d of it (by the default colour where d = 0,
-    // warned).
-    let d = r.scalar("diffuse", 0.8);
-    let connected = connection(r.graph, r.node, "color").is_some();
-    if connected && d <= 0.0 {
-        r.warnings.push(
-            "'translucence' on a connected 'color' with 'diffuse' 0: the path engine passes it by the default colour"
-                .into(),
-        );
-    }
-    r.warnings.push(
-        "'translucenceDepth' is not read by the path engine (the classic engine lets light from behind through \
-         the object's own geometry, falling off to nothing at that depth; here it passes shadowing objects only \
-         by their transparency)"
-            .into(),
-    );
-    let albedo = r.color("color", Rgb::splat(0.5)) * t * fade;
-    let focus = bsdf::maya_highlight::translucence::focus_exponent(r.scalar("translucenceFocus", 0.5));
-    let glossy = match &surface.model {
-        SurfaceModel::Maya(g) => **g,
-        _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
-    };
-    let glossy = glossy.with_translucence(albedo, focus);
-    let glossy = if connected && d > 0.0 { glossy.with_translucence_per_diffuse(t / d) } else { glossy };
-    surface.model = SurfaceModel::Maya(Box::new(glossy));
 }
 
 /// The `irradiance` illumination map M of the lambert family (the reading is
@@ -539,7 +503,7 @@ fn translate(name: &str, graph: &Graph, node: NodeId, alone: bool) -> (SurfaceMa
                     ));
                 }
             }
-            translucence(&mut r, &mut surface, fade);
+            translucence::translate(&mut r, &mut surface, fade);
             if let Some(ior) = ior {
                 refract(&mut r, &mut surface, t, ior);
             }

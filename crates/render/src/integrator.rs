@@ -14,6 +14,7 @@ mod light_lobes;
 mod material_env;
 mod matte;
 mod media;
+mod own_stretch;
 mod roulette;
 
 use bsdf::Bsdf;
@@ -725,7 +726,7 @@ pub fn trace_camera_path_into(
                         Rgb::ONE
                     } else if light.shadow && !world.shadow_unlinked.is_empty() && !world.has_media {
                         // Shadow links: objects that cast no shadow for this light let it pass.
-                        linked_shadow_passed(world, accel, shading, &shadow, seed, k)
+                        linked_shadow_passed(world, accel, shading, &shadow, seed, (k, Some(stop.instance)))
                     } else {
                         media::light_transmittance(
                             world,

@@ -67,8 +67,9 @@ pub struct World {
     pub glow_buffer: Option<u32>,
     /// Things approximated or left out while translating, for the user.
     pub warnings: Vec<String>,
-    /// Whether some material has cutouts (opacity below 1 somewhere): shadow rays then
-    /// look at what they cross.
+    /// Whether some material has cutouts (opacity below 1 somewhere) or a translucence
+    /// depth (Maya's `translucenceDepth`: light through the object's own geometry):
+    /// shadow rays then look at what they cross.
     pub has_cutouts: bool,
     /// For each material (as [`World::materials`]), whether the scene marks it `opaque`:
     /// mental ray's promise that it never transmits, so shadow rays stop at it without

@@ -9,6 +9,7 @@ use bsdf::Rgb;
 use glam::Vec3A;
 use shader::Shading;
 
+use super::own_stretch::{passage, OwnStretch};
 use super::{material_at, surface};
 use crate::accel::Accel;
 use crate::ray::Ray;
@@ -36,30 +37,39 @@ pub(super) fn cutout_number(sampler_seed: u32, p: Vec3A, depth: u32) -> f32 {
 /// surface, or with cutout materials by a surface that does not let it pass (one marked
 /// `opaque`, [`World::blocks_shadows`]; else a stochastic choice by its opacity); the
 /// product of the cut-out tints of the surfaces it
-/// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise.
+/// passes ([`material::SurfaceMaterial::cutout_tint`]) otherwise. Where the ray leaves
+/// `own` (the receiving point's instance) through a surface with a translucence depth,
+/// that surface passes its translucent share instead (`own_stretch`).
 pub(super) fn shadow_passed(
     world: &World,
     accel: &dyn Accel,
     shading: Option<&Shading>,
     shadow: &Ray,
     seed: u32,
+    own: Option<u32>,
 ) -> Rgb {
     if !world.has_cutouts {
         return if accel.occluded(shadow) { Rgb::ZERO } else { Rgb::ONE };
     }
     let mut ray = *shadow;
     let mut tint = Rgb::ONE;
+    let mut stretch = OwnStretch::new(own);
     for crossing in 0..MAX_CUTOUT_CROSSINGS {
         let Some(hit) = accel.intersect(&ray) else { return tint };
         let s = surface(world, &ray, &hit);
+        let inside = stretch.step(&hit, &s, ray.dir);
         if world.blocks_shadows(s.material) {
             return Rgb::ZERO;
         }
         let m = material_at(world, accel, shading, &ray, &hit, s.material);
-        if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
+        match passage(world, &m, &s, inside) {
+            Some(through) => tint *= through,
+            None if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity => return Rgb::ZERO,
+            None => tint *= m.cutout_tint,
+        }
+        if tint == Rgb::ZERO {
             return Rgb::ZERO;
         }
-        tint *= m.cutout_tint;
         let travelled = hit.t;
         ray.origin = s.leave(s.ng, ray.dir);
         ray.tmax = (ray.tmax - travelled).max(0.0);
@@ -67,7 +77,8 @@ pub(super) fn shadow_passed(
     Rgb::ZERO
 }
 
-/// [`shadow_passed`] for light `light` (an index into [`World::lights`]) in a world with
+/// [`shadow_passed`] (from a point of instance `own`) for light `light` (an index into
+/// [`World::lights`]) in a world with
 /// shadow links ([`World::casts_shadow_for`]): surfaces of instances that cast no shadow
 /// for the light let the ray through untouched; the others stop or filter it as there.
 /// (Scenes with media walk them in `media::light_transmittance`.)
@@ -77,24 +88,30 @@ pub(super) fn linked_shadow_passed(
     shading: Option<&Shading>,
     shadow: &Ray,
     seed: u32,
-    light: usize,
+    (light, own): (usize, Option<u32>),
 ) -> Rgb {
     let mut ray = *shadow;
     let mut tint = Rgb::ONE;
     let mut crossing = 0;
+    let mut stretch = OwnStretch::new(own);
     // Surfaces passed for the link count against the same limit as cut-outs, twice over.
     for _ in 0..2 * MAX_CUTOUT_CROSSINGS {
         let Some(hit) = accel.intersect(&ray) else { return tint };
         let s = surface(world, &ray, &hit);
+        let inside = stretch.step(&hit, &s, ray.dir);
         if world.casts_shadow_for(light, hit.instance) {
             if !world.has_cutouts || world.blocks_shadows(s.material) {
                 return Rgb::ZERO;
             }
             let m = material_at(world, accel, shading, &ray, &hit, s.material);
-            if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity {
+            match passage(world, &m, &s, inside) {
+                Some(through) => tint *= through,
+                None if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity => return Rgb::ZERO,
+                None => tint *= m.cutout_tint,
+            }
+            if tint == Rgb::ZERO {
                 return Rgb::ZERO;
             }
-            tint *= m.cutout_tint;
             crossing += 1;
         }
         let travelled = hit.t;

@@ -128,7 +128,8 @@ fn blocked_share(
         let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
         counts.shadow_rays += 1;
         let shadow = Ray { mask: mask::SHADOW, origin: at.surface.leave(ng, dir), dir, tmin: 0.0, tmax, time };
-        let through = bsdf::luminance(shadow_passed(world, accel, shading, &shadow, seed)).clamp(0.0, 1.0);
+        let through =
+            bsdf::luminance(shadow_passed(world, accel, shading, &shadow, seed, Some(at.instance))).clamp(0.0, 1.0);
         blocked += cos * (1.0 - through);
     }
     if total > 0.0 {

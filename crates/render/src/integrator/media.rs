@@ -39,6 +39,7 @@ use glam::Vec3A;
 use shader::state::RayType;
 use shader::{Shading, State};
 
+use super::own_stretch::{passage, OwnStretch};
 use super::{
     cutout_number, light_radiance, material_at, power_heuristic, shadow_passed, surface, through_portal, Surface,
     MAX_CUTOUT_CROSSINGS,
@@ -244,6 +245,11 @@ pub(super) struct Departure<'a> {
 }
 
 impl Departure<'_> {
+    /// The instance of the surface the ray leaves (`None` in a medium).
+    fn instance(&self) -> Option<u32> {
+        self.surface.map(|(_, _, _, hit)| hit.instance)
+    }
+
     /// The media a shadow ray along `dir` starts in.
     fn media_towards(&self, world: &World, dir: Vec3A) -> MediumStack {
         self.surface
@@ -289,7 +295,7 @@ fn shadow_transmittance_through(
     seed: u32,
 ) -> Rgb {
     if !world.has_media {
-        return shadow_passed(world, accel, shading, shadow, seed);
+        return shadow_passed(world, accel, shading, shadow, seed, from.instance());
     }
     media_shadow_walk(world, accel, shading, (from, shadow), seed, None)
 }
@@ -309,7 +315,9 @@ fn media_shadow_walk(
     light: Option<usize>,
 ) -> Rgb {
     let limit = if light.is_some() { 2 * MAX_CUTOUT_CROSSINGS } else { MAX_CUTOUT_CROSSINGS };
+    let mut stretch = OwnStretch::new(from.instance());
     let walk = walk_media(world, accel, from, shadow, limit, |media, ray, s, crossing| {
+        let inside = stretch.step(&s.hit, &s.surface, ray.dir);
         if light.is_some_and(|k| !world.casts_shadow_for(k, s.hit.instance)) {
             return match media.after(world, s.surface.material, s.surface.ng, (ray.dir, ray.dir), Some((ray, &s.hit))) {
                 Some(next) => Crossing::Into(next, Rgb::ONE),
@@ -322,7 +330,11 @@ fn media_shadow_walk(
         }
         let cut_out = world.has_cutouts.then(|| {
             let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
-            (m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity).then_some(m.cutout_tint)
+            // Leaving the receiving point's own object: its translucent passage, if any.
+            passage(world, &m, &s.surface, inside).or_else(|| {
+                (m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity)
+                    .then_some(m.cutout_tint)
+            })
         });
         if let Some(Some(tint)) = cut_out {
             return Crossing::Filtered(tint);

@@ -111,7 +111,9 @@ impl World {
             warnings.extend(w);
             materials.push(mat);
         }
-        let has_cutouts = materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)));
+        // (Maya's `translucenceDepth` lets shadow rays through the object's own surfaces.)
+        let has_cutouts =
+            materials.iter().any(|m| m.may_cut_out(shading.map(|s| &s.graph)) || m.translucence_depth > 0.0);
         let mut shadow_opaque: Vec<bool> =
             std::iter::once(false).chain(scene.materials.iter().map(marked_opaque)).collect();
         if !shadow_opaque.contains(&true) {
