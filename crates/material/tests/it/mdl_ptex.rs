@@ -472,3 +472,43 @@ fn block_len(file: &[u8]) -> usize {
     let headers = u32::from_le_bytes(file[info_at + 8..info_at + 12].try_into().unwrap()) as usize;
     level - headers
 }
+
+/// Face edits appended after the file's sections (the extension header's edit position 0:
+/// read to the end of the file) replace a face's info, constant value and data: face 1
+/// (constant) becomes a zipped face of resolution 2, face 0 a constant face (1e-6).
+#[test]
+fn face_edits_replace_faces() {
+    let (mut file, _) = two_triangles();
+    let floats = |v: &[f64]| v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect::<Vec<u8>>();
+    let edit = |face: u32, log2: u8, flags: u8, constant: &[f64], data: Option<Vec<u8>>| {
+        let mut body = face.to_le_bytes().to_vec();
+        body.extend([log2, log2, 0, flags]);
+        body.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
+        let word = data.as_ref().map_or(0, |d| d.len() as u32 | 1 << 30);
+        body.extend(word.to_le_bytes());
+        body.extend(floats(constant));
+        body.extend(data.unwrap_or_default());
+        let mut out = vec![0u8];
+        out.extend((body.len() as u32).to_le_bytes());
+        out.extend(body);
+        out
+    };
+    let texels: Vec<f64> = (0..12).map(|k| 0.05 * k as f64).collect();
+    let data = zlib(&planes(3, 3, &texels, false), 6);
+    file.extend(edit(1, 1, 0, &[0.0; 3], Some(data)));
+    file.extend(edit(0, 0, 1, &[0.125, 0.25, 0.375], None));
+    let ptex = read(&file);
+    for t in 0..4 {
+        let (u, v) = centroid(2, t);
+        let got = ptex.texel(1, u, v).expect("a texel");
+        for (c, g) in got.iter().enumerate() {
+            assert!((g - texels[t * 3 + c] as f32).abs() <= 1e-6, "texel {t}: {got:?}");
+        }
+    }
+    assert_eq!(ptex.texel(0, 0.9, 0.05), Some(&[0.125f32, 0.25, 0.375][..]));
+    // An edit of a face the file lacks is an error at the edit.
+    let at = file.len();
+    file.extend(edit(9, 0, 1, &[0.0; 3], None));
+    let e = reader::read(&file).unwrap_err();
+    assert!(e.offset == at as u64 + 5 && e.message.contains("face 9"), "{e}");
+}
