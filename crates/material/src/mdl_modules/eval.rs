@@ -369,17 +369,15 @@ impl<'a> Evaluator<'a> {
                 };
                 return read.map_err(|why| problem(span, why));
             }
-            Type::Texture(_) => {
-                // Ptex needs the C++ Ptex library and per-face ids mira's meshes do not carry:
-                // an error here, at its line, rather than an invalid texture that would look
-                // black. `texture_ptex()` is the invalid texture.
-                return if values.is_empty() {
-                    Ok(Value::Texture(None))
-                } else {
-                    Err(problem(
-                        span,
-                        format!("`{ty}(…)`: mira reads no Ptex textures (no Rust Ptex reader; meshes carry no Ptex face ids)"),
-                    ))
+            Type::Texture(TextureShape::Ptex) => {
+                // `texture_ptex()`: the invalid texture; a file: a Ptex file, read once.
+                let Some(Value::Str(name)) = values.first() else {
+                    return if values.is_empty() { Ok(Value::TexturePtex(None)) } else { Err(bad()) };
+                };
+                let dir = self.set.sources().file(span.file).dir().map(std::path::Path::to_path_buf);
+                return match self.textures.ptex(name, dir.as_deref()) {
+                    Ok(ptex) => Ok(Value::TexturePtex(Some(ptex))),
+                    Err(why) => Err(problem(span, why)),
                 };
             }
             Type::LightProfile => {
@@ -526,6 +524,7 @@ pub fn kind(v: &Value) -> &'static str {
         Value::Texture(_) => "a texture",
         Value::Texture3d(_) => "a 3D texture",
         Value::TextureCube(_) => "a cube texture",
+        Value::TexturePtex(_) => "a Ptex texture",
         Value::LightProfile(_) => "a light profile",
         Value::BsdfMeasurement(_) => "a bsdf measurement",
     }

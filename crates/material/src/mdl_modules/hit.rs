@@ -24,6 +24,7 @@ use shader::State;
 
 use super::hit_loop::{HitLoop, MAX_LOOP_STEPS};
 use super::procedural::Pattern;
+use super::ptex::Ptex;
 use super::sky_model::SkyCall;
 use super::texture_3d::Volume;
 use super::texture_cube::CubeMap;
@@ -330,6 +331,15 @@ pub enum HitExpr {
         /// The direction.
         dir: Arc<HitExpr>,
     },
+    /// The RGBA value of a `texture_ptex` at the hit's Ptex face (its triangle's index
+    /// within its object) and barycentric coordinates, channels `channel` on
+    /// ([`Ptex::lookup`]).
+    LookupPtex {
+        /// The texture.
+        ptex: Arc<Ptex>,
+        /// The first channel read.
+        channel: usize,
+    },
     /// A procedural pattern of `::base` at a texture-space position.
     Pattern(Arc<Pattern>, Arc<HitExpr>),
     /// A `::base` daylight environment's radiance towards a world direction (output units,
@@ -369,7 +379,7 @@ pub fn fold(e: HitExpr) -> Arc<HitExpr> {
     let foldable = match &e {
         HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Lookup { .. } => false,
         HitExpr::Slot(_) | HitExpr::LoopOut(..) => false,
-        HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } => false,
+        HitExpr::Lookup3d { .. } | HitExpr::LookupCube { .. } | HitExpr::LookupPtex { .. } => false,
         HitExpr::Texel { coord, .. } | HitExpr::Texel3d { coord, .. } => constant(coord),
         HitExpr::Pattern(_, p) => constant(p),
         HitExpr::Sky(_, args) => args.iter().all(constant),
@@ -496,7 +506,7 @@ impl HitExpr {
     /// The subexpressions this node evaluates (both branches of a `?:`).
     pub(super) fn operands(&self) -> Vec<&Arc<HitExpr>> {
         match self {
-            HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Slot(_) => Vec::new(),
+            HitExpr::Const(_) | HitExpr::State(_) | HitExpr::Slot(_) | HitExpr::LookupPtex { .. } => Vec::new(),
             HitExpr::LoopOut(l, _) => l.operands().collect(),
             HitExpr::Unary(_, a) | HitExpr::Lane(a, _) => vec![a],
             HitExpr::Transform { of, .. } => vec![of],

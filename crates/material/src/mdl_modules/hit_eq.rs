@@ -70,6 +70,7 @@ fn same_node(x: &HitExpr, y: &HitExpr) -> bool {
         }
         (H::Texel3d { volume: a, .. }, H::Texel3d { volume: b, .. }) => Arc::ptr_eq(a, b),
         (H::LookupCube { cube: a, .. }, H::LookupCube { cube: b, .. }) => Arc::ptr_eq(a, b),
+        (H::LookupPtex { ptex: a, channel: c }, H::LookupPtex { ptex: b, channel: d }) => Arc::ptr_eq(a, b) && c == d,
         (H::Pattern(p, _), H::Pattern(q, _)) => p == q,
         (H::Sky(p, _), H::Sky(q, _)) => p == q,
         (H::Bump { height: h, factor: f, delta: d, .. }, H::Bump { height: k, factor: g, delta: e, .. }) => {

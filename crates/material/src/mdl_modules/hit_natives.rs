@@ -195,12 +195,18 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
     if matches!(shape, Some(TextureShape::Tex3d | TextureShape::Cube)) && name != "texture_isvalid" {
         return tex_3d_or_cube(name, &arg, texture, span);
     }
+    if shape == Some(TextureShape::Ptex) && name != "texture_isvalid" {
+        return tex_ptex(name, arg("channel"), texture, span);
+    }
     match name {
         "width" if is_2d => Ok(Value::Int(size().0 as i64)),
         "height" if is_2d => Ok(Value::Int(size().1 as i64)),
         "texture_isvalid" => Ok(Value::Bool(matches!(
             texture,
-            Value::Texture(Some(_)) | Value::Texture3d(Some(_)) | Value::TextureCube(Some(_))
+            Value::Texture(Some(_))
+                | Value::Texture3d(Some(_))
+                | Value::TextureCube(Some(_))
+                | Value::TexturePtex(Some(_))
         ))),
         "lookup_color" | "lookup_float" | "lookup_float2" | "lookup_float3" | "lookup_float4" if is_2d => {
             let crop = crops(arg("crop_u"), arg("crop_v"), span)?;
@@ -227,13 +233,6 @@ pub fn tex(def: &Function, args: &[Value], span: Span) -> Eval {
             };
             Ok(texel_value(name, texel))
         }
-        _ if !is_2d => Err(problem(
-            span,
-            format!(
-                "`tex::{name}` of a `{}` is not compiled: mira reads no Ptex textures",
-                def.params.first().map_or_else(String::new, |p| p.ty.ty.to_string())
-            ),
-        )),
         _ => Err(problem(span, format!("`tex::{name}` is not compiled yet"))),
     }
 }
@@ -281,6 +280,31 @@ fn tex_3d_or_cube<'a>(name: &str, arg: &dyn Fn(&str) -> Option<&'a Value>, textu
             }
         }
         _ => return Err(problem(span, format!("`tex::{name}` is not compiled yet"))),
+    };
+    Ok(texel_value(name, Arc::new(texel)))
+}
+
+/// The `::tex` function `name` of a `texture_ptex` (`channel`: its first channel, a
+/// constant): a lookup at the hit's Ptex face and barycentric coordinates
+/// ([`super::ptex`]).
+fn tex_ptex(name: &str, channel: Option<&Value>, texture: &Value, span: Span) -> Eval {
+    if !matches!(name, "lookup_color" | "lookup_float" | "lookup_float2" | "lookup_float3" | "lookup_float4") {
+        return Err(problem(span, format!("`tex::{name}` of a `texture_ptex` is not compiled")));
+    }
+    let channel = match channel {
+        None => 0,
+        Some(Value::Int(c)) if *c >= 0 => *c as usize,
+        Some(v) => {
+            return Err(problem(
+                span,
+                format!("`tex::{name}` of a Ptex texture reads a constant channel ≥ 0, not {}", kind(v)),
+            ))
+        }
+    };
+    let texel = match texture {
+        Value::TexturePtex(Some(ptex)) => HitExpr::LookupPtex { ptex: ptex.clone(), channel },
+        Value::TexturePtex(None) | Value::Texture(None) => HitExpr::Const(Vec4::ZERO),
+        v => return Err(problem(span, format!("a Ptex lookup of {}", kind(v)))),
     };
     Ok(texel_value(name, Arc::new(texel)))
 }

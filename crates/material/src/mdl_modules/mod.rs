@@ -35,6 +35,7 @@ pub mod matrix;
 pub mod natives;
 pub mod procedural;
 pub mod projection;
+pub mod ptex;
 pub mod sky;
 pub mod sky_model;
 pub mod spectral;

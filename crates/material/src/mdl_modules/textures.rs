@@ -8,7 +8,8 @@
 //! volume texture (or a 2D one, a volume one slice deep) and a cube map; a cube map may
 //! also be an image file of a horizontal or vertical cross ([`CubeMap::from_cross`]), or
 //! six face images beside a name that is no file (`_px` … `_nz` suffixes, see
-//! `Textures::cube_faces`).
+//! `Textures::cube_faces`). `texture_ptex` resources are read from Ptex files
+//! ([`super::ptex`]).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -22,6 +23,7 @@ use mdl_lang::ast::TextureShape;
 
 use super::dds;
 use super::hit::Image;
+use super::ptex::{MeshType, Ptex};
 use super::texture_3d::Volume;
 use super::texture_cube::CubeMap;
 use super::value::Value;
@@ -36,6 +38,8 @@ pub struct Textures {
     volumes: HashMap<PathBuf, Result<Arc<Volume>, String>>,
     /// The cube maps read so far, by file.
     cubes: HashMap<PathBuf, Result<Arc<CubeMap>, String>>,
+    /// The Ptex textures read so far, by file.
+    ptexes: HashMap<PathBuf, Result<Arc<Ptex>, String>>,
     /// The BSDF measurements read so far, by file.
     measurements: HashMap<PathBuf, Result<&'static MeasuredBsdf, String>>,
     /// Directories searched after the one of the module: the scene files' and the MDL
@@ -54,6 +58,7 @@ impl Textures {
             profiles: HashMap::new(),
             volumes: HashMap::new(),
             cubes: HashMap::new(),
+            ptexes: HashMap::new(),
             measurements: HashMap::new(),
             dirs,
             warnings: Vec::new(),
@@ -96,6 +101,38 @@ impl Textures {
                 }
                 let size = [image.width, image.height, image.depth];
                 Volume::from_file_order(size, &image.layers[0]).map(Arc::new).ok_or_else(|| fail("no texels".into()))
+            })
+            .clone()
+    }
+
+    /// The `texture_ptex` of file `name` (a Ptex file of a triangle mesh, [`super::ptex`])
+    /// as written in a module in `module_dir`, read once; NaN and infinite texels are said
+    /// once, as a warning. `Err` says why it could not be read (`file:byte offset: what`),
+    /// or that its faces are quads: mira's meshes are triangles, whose Ptex face ids are
+    /// their triangles' indices, so a quad mesh's face ids cannot be found.
+    pub fn ptex(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<Ptex>, String> {
+        let path = self.resolve(name, module_dir, "Ptex file")?;
+        let warnings = &mut self.warnings;
+        self.ptexes
+            .entry(path.clone())
+            .or_insert_with(|| {
+                let bytes = std::fs::read(&path).map_err(|e| format!("Ptex file '{}': {e}", path.display()))?;
+                let (ptex, non_finite) = super::ptex::reader::read(&bytes)
+                    .map_err(|e| format!("Ptex file {}:{}: {}", path.display(), e.offset, e.message))?;
+                if ptex.mesh == MeshType::Quad {
+                    return Err(format!(
+                        "Ptex file '{}' textures a quad mesh: mira's meshes are triangles and give Ptex face ids \
+                         only to triangle-mesh Ptex files (mesh type 0)",
+                        path.display()
+                    ));
+                }
+                if non_finite > 0 {
+                    warnings.push(format!(
+                        "Ptex file '{}': {non_finite} texel components are NaN or infinite; they are read as 0",
+                        path.display()
+                    ));
+                }
+                Ok(Arc::new(ptex))
             })
             .clone()
     }
@@ -274,7 +311,7 @@ impl Textures {
         match shape {
             TextureShape::Tex3d => self.volume(file, None).map(|v| Value::Texture3d(Some(v))),
             TextureShape::Cube => self.cube(file, None).map(|c| Value::TextureCube(Some(c))),
-            TextureShape::Ptex => Err(format!("'{name}': mira reads no Ptex textures")),
+            TextureShape::Ptex => self.ptex(file, None).map(|p| Value::TexturePtex(Some(p))),
             TextureShape::Tex2d => self.from_mi(name, lib).map(|i| Value::Texture(Some(i))),
         }
     }
@@ -339,6 +376,7 @@ pub fn invalid(shape: TextureShape) -> Value {
     match shape {
         TextureShape::Tex3d => Value::Texture3d(None),
         TextureShape::Cube => Value::TextureCube(None),
+        TextureShape::Ptex => Value::TexturePtex(None),
         _ => Value::Texture(None),
     }
 }

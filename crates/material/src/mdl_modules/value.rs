@@ -632,6 +632,8 @@ pub enum Value {
     Texture3d(Option<Arc<super::texture_3d::Volume>>),
     /// A `texture_cube` (`None`: an invalid texture, black where looked up).
     TextureCube(Option<Arc<super::texture_cube::CubeMap>>),
+    /// A `texture_ptex` (`None`: an invalid texture, black where looked up).
+    TexturePtex(Option<Arc<super::ptex::Ptex>>),
     /// A `light_profile` (`None`: the invalid profile, which emits nothing).
     LightProfile(Option<Arc<shader::light::ies::Profile>>),
     /// A `bsdf_measurement` (`None`: the invalid measurement, which scatters nothing).

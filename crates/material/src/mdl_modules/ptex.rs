@@ -1,0 +1,169 @@
+//! MDL's `texture_ptex` resources: per-face textures read from Ptex files (`.ptx`,
+//! [`reader`]) and looked up by `tex::lookup_*` at the hit's face and position on it.
+//!
+//! A Ptex file holds one small image per face of the mesh it was painted on. mira reads the
+//! highest resolution of every face (the file's level 0; the reduced levels and the meta
+//! data are not read) into texels of `f32` (8- and 16-bit integers scaled to [0, 1], half
+//! floats widened, NaN and infinite texels read as 0).
+//!
+//! Looking up at a hit ([`Ptex::lookup`]): the Ptex face id is the hit triangle's index
+//! within its object (mira's meshes are triangles, numbered in the order the object's
+//! polygons give them), and the position on the face is the hit's barycentric
+//! coordinates, Ptex's triangle convention: u weights the triangle's second vertex, v its
+//! third (the first at (0, 0), the second at (1, 0), the third at (0, 1)). mira takes the
+//! nearest texel (Ptex's point filter): no filtering between texels or across faces.
+//!
+//! Triangle textures (Ptex's layout): a face of resolution 2^n is cut into 4^n small
+//! triangles of side 1/2^n; the upright one with its right angle at grid corner (i, j)
+//! (i + j < 2^n) is texel (i, j) of a square image of 2^n × 2^n texels, the inverted one
+//! with its right angle at corner (i + 1, j + 1) (i + j < 2^n − 1) is texel
+//! (2^n − 1 − j, 2^n − 1 − i), the image's upper right half. Quad textures: texel
+//! (⌊u w⌋, ⌊v h⌋) of the face's w × h image (row v = 0 first).
+
+use glam::Vec4;
+
+pub mod reader;
+
+/// The mesh type a Ptex file's faces are textures of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshType {
+    /// Triangles (barycentric face coordinates).
+    Triangle,
+    /// Quads (bilinear face coordinates).
+    Quad,
+}
+
+/// The texels of one face: `start` of its first texel's first channel in [`Ptex`]'s
+/// texels, its resolution (log2 along u and v; a constant face is 1 × 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceTexels {
+    /// Index of its first value in the texture's texels.
+    pub start: usize,
+    /// log2 of its width (texels along u).
+    pub ulog2: u8,
+    /// log2 of its height (texels along v).
+    pub vlog2: u8,
+}
+
+/// A Ptex texture: the highest resolution of every face, as `f32` texels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ptex {
+    /// The faces' mesh type.
+    pub mesh: MeshType,
+    /// Channels per texel.
+    pub channels: usize,
+    /// The alpha channel, if the file names one.
+    pub alpha: Option<usize>,
+    /// Per face (by Ptex face id): where its texels are.
+    pub faces: Vec<FaceTexels>,
+    /// Every face's texels, row by row (v = 0 first, u fastest), channels interleaved.
+    pub texels: Vec<f32>,
+}
+
+impl Ptex {
+    /// The channels of the texel of face `face` nearest to face coordinates (`u`, `v`)
+    /// (clamped to the face); `None` for a face id the file has not.
+    pub fn texel(&self, face: u32, u: f32, v: f32) -> Option<&[f32]> {
+        let f = self.faces.get(face as usize)?;
+        let index = match self.mesh {
+            MeshType::Quad => quad_texel(f.ulog2, f.vlog2, u, v),
+            MeshType::Triangle => triangle_texel(f.ulog2, u, v),
+        };
+        let at = f.start + index * self.channels;
+        self.texels.get(at..at + self.channels)
+    }
+
+    /// The value `tex::lookup_*` gives at face `face`, coordinates (`u`, `v`): channels
+    /// `channel`, `channel + 1`, … of the nearest texel in lanes x, y, z, w (lanes past
+    /// the last channel 0; a texture with one channel from `channel` on gives it in every
+    /// lane, a grey colour). Black for a face the file has not or a channel past the last.
+    pub fn lookup(&self, face: u32, u: f32, v: f32, channel: usize) -> Vec4 {
+        let Some(texel) = self.texel(face, u, v) else { return Vec4::ZERO };
+        let rest = texel.get(channel..).unwrap_or(&[]);
+        match rest {
+            [] => Vec4::ZERO,
+            [x] => Vec4::splat(*x),
+            _ => {
+                let mut lanes = [0.0f32; 4];
+                for (lane, value) in lanes.iter_mut().zip(rest) {
+                    *lane = *value;
+                }
+                Vec4::from_array(lanes)
+            }
+        }
+    }
+}
+
+/// Texel index (row-major, row v = 0 first) of a quad face of 2^`ulog2` × 2^`vlog2` texels
+/// nearest to (`u`, `v`), clamped to the face.
+fn quad_texel(ulog2: u8, vlog2: u8, u: f32, v: f32) -> usize {
+    let (w, h) = (1usize << ulog2, 1usize << vlog2);
+    let cell = |x: f32, n: usize| ((x.clamp(0.0, 1.0) * n as f32) as usize).min(n - 1);
+    cell(v, h) * w + cell(u, w)
+}
+
+/// Texel index of a triangle face of resolution 2^`log2` (Ptex's layout, see the module
+/// documentation) of the small triangle holding barycentric (`u`, `v`), clamped to the
+/// face (u, v ≥ 0, u + v ≤ 1).
+fn triangle_texel(log2: u8, u: f32, v: f32) -> usize {
+    let n = 1usize << log2;
+    let (mut u, mut v) = (if u.is_finite() { u.max(0.0) } else { 0.0 }, if v.is_finite() { v.max(0.0) } else { 0.0 });
+    if u + v > 1.0 {
+        let sum = u + v;
+        (u, v) = (u / sum, v / sum);
+    }
+    let (x, y) = (u * n as f32, v * n as f32);
+    let i = (x as usize).min(n - 1);
+    let j = (y as usize).min(n - 1);
+    let inverted = (x - i as f32) + (y - j as f32) >= 1.0;
+    if inverted && i + j + 2 <= n {
+        // The inverted small triangle with its right angle at corner (i + 1, j + 1).
+        (n - 1 - i) * n + (n - 1 - j)
+    } else {
+        // The upright one at corner (i, j); on the face's long side, the last of its row.
+        let i = i.min(n - 1 - j.min(n - 1));
+        j * n + i
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every small triangle of a resolution-4 face, at its centroid, maps to its own texel
+    /// and the 16 texels are all used once (exact).
+    #[test]
+    fn triangle_texels_cover_the_square_image_once() {
+        let n = 4usize;
+        let mut seen = vec![0; n * n];
+        for j in 0..n {
+            for i in 0..n - j {
+                let up = triangle_texel(2, (i as f32 + 1.0 / 3.0) / n as f32, (j as f32 + 1.0 / 3.0) / n as f32);
+                assert_eq!(up, j * n + i);
+                seen[up] += 1;
+                if i + j + 2 <= n {
+                    let c = |k: usize| (k as f32 + 2.0 / 3.0) / n as f32;
+                    let down = triangle_texel(2, c(i), c(j));
+                    assert_eq!(down, (n - 1 - i) * n + (n - 1 - j));
+                    seen[down] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&k| k == 1), "{seen:?}");
+        // The corners and outside points clamp onto the face.
+        assert_eq!(triangle_texel(2, 1.0, 0.0), 3);
+        assert_eq!(triangle_texel(2, 0.0, 1.0), 12);
+        assert_eq!(triangle_texel(2, 2.0, 2.0), triangle_texel(2, 0.5, 0.5));
+        assert_eq!(triangle_texel(0, 0.3, 0.3), 0);
+    }
+
+    /// Quad texels: ⌊u w⌋, ⌊v h⌋, clamped (exact).
+    #[test]
+    fn quad_texels_are_row_major_from_v_zero() {
+        assert_eq!(quad_texel(2, 1, 0.0, 0.0), 0);
+        assert_eq!(quad_texel(2, 1, 0.99, 0.0), 3);
+        assert_eq!(quad_texel(2, 1, 0.3, 0.7), 4 + 1);
+        assert_eq!(quad_texel(2, 1, 1.0, 1.0), 7);
+        assert_eq!(quad_texel(2, 1, -1.0, f32::NAN), 0);
+    }
+}
