@@ -6,7 +6,8 @@
 //!
 //! **Tables.** The glass lobe's directional albedo E(μ, α, η′) in n²-weighted radiance
 //! (what refracts counted η′² times: the flux it carries) is tabulated once per
-//! distribution and masking ([`Microfacet`]), lazily on first use, for light arriving from
+//! distribution and masking ([`Microfacet`]), lazily on first use (its rows shared among
+//! the machine's cores: the same tables at any count), for light arriving from
 //! the side of lower index (η′ = η ≥ 1, entering) and from the other (η′ = 1/η, leaving):
 //! 32 points in μ = cos θ ∈ [0, 1], 16 in α ∈ [0, 1] (α 0, smooth glass, loses nothing),
 //! 17 in η ∈ [1, 3] (η past 3 read as 3), each entry the mean of 256 quasi-random
@@ -148,33 +149,29 @@ fn fresnel_average(etap: f32) -> f32 {
 }
 
 impl Tables {
+    /// The tables of `micro`, their rows shared among the machine's cores.
     fn build(micro: Microfacet) -> Tables {
-        let mut e = vec![1.0f32; 2 * ETAS * ALPHAS * MUS];
-        for side in 0..2 {
-            for i in 0..ETAS {
-                // η = 1 is no boundary: tabulated just above it.
-                let eta = grid_eta(i).max(1.001);
-                let etap = if side == 0 { eta } else { 1.0 / eta };
-                // Row α = 0 (smooth glass) loses nothing: it stays 1.
-                for k in 1..ALPHAS {
-                    let alpha = k as f32 / (ALPHAS - 1) as f32;
-                    let glass = RoughGlass {
-                        alpha_x: alpha,
-                        alpha_y: alpha,
-                        eta: etap,
-                        micro,
-                        halves: Halves::Both,
-                        thin: false,
-                        film: 0,
-                    };
-                    for j in 0..MUS {
-                        let mu = (j as f32 / (MUS - 1) as f32).max(1e-3);
-                        let wo = Vec3A::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-                        e[((side * ETAS + i) * ALPHAS + k) * MUS + j] = albedo(&glass, wo).clamp(0.0, 1.0);
+        let threads = std::thread::available_parallelism().map_or(1, usize::from);
+        Tables::build_on(micro, threads)
+    }
+
+    /// The tables of `micro`, their rows shared among `threads` scoped threads (each entry
+    /// is computed alone: the same tables at any thread count). Plain threads, not a
+    /// work-stealing pool: a waiting pool thread could run a job that reads these very
+    /// tables and block on their own initialisation.
+    fn build_on(micro: Microfacet, threads: usize) -> Tables {
+        let rows = 2 * ETAS * ALPHAS;
+        let mut e = vec![1.0f32; rows * MUS];
+        let per_thread = rows.div_ceil(threads.clamp(1, rows));
+        std::thread::scope(|scope| {
+            for (n, chunk) in e.chunks_mut(per_thread * MUS).enumerate() {
+                scope.spawn(move || {
+                    for (r, row) in chunk.chunks_mut(MUS).enumerate() {
+                        fill_row(micro, n * per_thread + r, row);
                     }
-                }
+                });
             }
-        }
+        });
         let lost = e
             .chunks(MUS)
             .map(|row| {
@@ -213,6 +210,26 @@ impl Tables {
         let at = |i: usize, k: usize| self.lost[(side * ETAS + i) * ALPHAS + k];
         let blend = |i: usize| at(i, k) * (1.0 - r) + at(i, k + 1) * r;
         blend(i) * (1.0 - s) + blend(i + 1) * s
+    }
+}
+
+/// Row `r` of the E table (side, η index and α index in that order of nesting): E at the
+/// [`MUS`] points in μ. Row α = 0 (smooth glass) loses nothing: it stays 1.
+fn fill_row(micro: Microfacet, r: usize, row: &mut [f32]) {
+    let (side, i, k) = (r / (ETAS * ALPHAS), r / ALPHAS % ETAS, r % ALPHAS);
+    if k == 0 {
+        return;
+    }
+    // η = 1 is no boundary: tabulated just above it.
+    let eta = grid_eta(i).max(1.001);
+    let etap = if side == 0 { eta } else { 1.0 / eta };
+    let alpha = k as f32 / (ALPHAS - 1) as f32;
+    let glass =
+        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: etap, micro, halves: Halves::Both, thin: false, film: 0 };
+    for (j, entry) in row.iter_mut().enumerate() {
+        let mu = (j as f32 / (MUS - 1) as f32).max(1e-3);
+        let wo = Vec3A::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+        *entry = albedo(&glass, wo).clamp(0.0, 1.0);
     }
 }
 
@@ -418,6 +435,22 @@ mod tests {
             }
         }
         sum / n as f32
+    }
+
+    /// The tables do not depend on how many threads build them: rows of the tables built
+    /// on 7 threads and of the shared ones (the machine's count) equal, bit for bit, the
+    /// same rows computed alone on this thread (every 29th row and the last, GGX).
+    #[test]
+    fn the_tables_are_the_same_at_any_thread_count() {
+        let micro = Microfacet::Ggx;
+        let (seven, shared) = (Tables::build_on(micro, 7), tables(micro));
+        let rows = 2 * ETAS * ALPHAS;
+        for r in (0..rows).step_by(29).chain([rows - 1]) {
+            let mut alone = [1.0f32; MUS];
+            fill_row(micro, r, &mut alone);
+            let span = r * MUS..(r + 1) * MUS;
+            assert!(seven.e[span.clone()] == alone && shared.e[span] == alone, "row {r}");
+        }
     }
 
     /// The tables are the glass's albedo: at grid points and between them (α 0.37, η 1.33),

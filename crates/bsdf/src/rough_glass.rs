@@ -362,17 +362,21 @@ impl RoughGlass {
         if dens <= 0.0 || oh <= 0.0 {
             return 0.0;
         }
-        let mut e = 0.0;
+        // Either branch's f |cos θi| n(ωi)²/n(ωo)² over its density, f and the density
+        // written out, is its Fresnel share times D G oh/(cos θo · density of h): the
+        // Jacobians of reflection and refraction cancel, so D and F are evaluated once.
+        let vcavities = self.micro.is_vcavities();
+        let scale = micro.d(h) * oh / (wo.z * dens);
+        let f = fresnel(oh, self.eta);
         let r = 2.0 * oh * h - wo;
+        let mut e = 0.0;
         if self.scatters(true) && r.z > 0.0 {
-            e += self.eval(wo, r, None).x * r.z * 4.0 * oh / dens;
+            e += f * micro.shadowing(vcavities, wo, r, h, false);
         }
         if let Some(t) = refract(wo, h, self.eta).filter(|t| t.z < 0.0) {
-            let th = t.dot(h);
-            let denom = th + oh / self.eta;
-            e += self.eval(wo, t, None).x * -t.z * self.eta * self.eta * denom * denom / (dens * th.abs());
+            e += (1.0 - f) * micro.shadowing(vcavities, wo, t, h, true);
         }
-        e
+        e * scale
     }
 
     /// A direction: a micro-normal facing ωo (a smooth lobe: the normal), then reflection

@@ -32,6 +32,10 @@ export material lambert() = material(surface: material_surface(scattering: df::d
 export material rough() = material(surface: material_surface(
     scattering: df::measured_factor(values: texture_2d("varying.exr"),
         base: df::microfacet_ggx_smith_bsdf(roughness_u: 0.4, roughness_v: 0.2))));
+export material chosen(uniform texture_2d values = texture_2d("constant.exr")) = material(surface: material_surface(
+    scattering: df::measured_factor(values: values, base: df::specular_bsdf())));
+export material constant_mirror() = material(surface: material_surface(
+    scattering: df::measured_factor(values: texture_2d("constant.exr"), base: df::specular_bsdf())));
 export material invalid() = material(surface: material_surface(
     scattering: df::measured_factor(values: texture_2d(), base: df::diffuse_reflection_bsdf())));
 export material glass_factor() = material(ior: color(1.5), surface: material_surface(
@@ -44,6 +48,17 @@ export material transl_factor() = material(thin_walled: true, surface: material_
     scattering: df::measured_factor(values: texture_2d("varying.exr"), base: df::diffuse_transmission_bsdf())));
 export material transl_ones() = material(thin_walled: true, surface: material_surface(
     scattering: df::measured_factor(values: texture_2d("ones.exr"), base: df::diffuse_transmission_bsdf())));
+"#;
+
+/// A module (`factor_by_hit`) choosing `values` by a condition of the hit: not MDL (the
+/// parameter is uniform), in a module of its own as it fails to load.
+const BY_HIT: &str = r#"mdl 1.7;
+import ::df::*;
+import ::state::*;
+
+export material by_hit() = material(surface: material_surface(
+    scattering: df::measured_factor(values: state::texture_coordinate(0).x > 0.5 ?
+        texture_2d("u_ramp.exr") : texture_2d("constant.exr"), base: df::specular_bsdf())));
 "#;
 
 /// The constant texture's colour.
@@ -67,6 +82,7 @@ fn written() -> PathBuf {
         std::fs::rename(&tmp, dir.join(name)).unwrap();
     };
     write("factor_test.mdl", MODULE.as_bytes());
+    write("factor_by_hit.mdl", BY_HIT.as_bytes());
     // Rows as the file stores them: the top row first.
     let exr = |name: &str, rows: &[&[[f32; 3]]]| {
         let (w, h) = (rows[0].len() as u32, rows.len() as u32);
@@ -275,4 +291,36 @@ shader "t1" "mdl::factor_test::transl_ones" ()"#,
             }
         }
     }
+}
+
+/// A `texture_2d` parameter of the material set from the `.mi` file is the constant texture
+/// it names: `values` set to the u ramp over a mirror reflects exactly what the material
+/// naming the ramp in its body reflects (albedo at 30° and 60°, 1e-6), and left at its
+/// default (the constant texture) what the constant mirror reflects (1e-6). `values` is
+/// a uniform parameter: a choice between textures by a condition of the hit is an error at
+/// its line and column of the module.
+#[test]
+fn a_texture_set_from_the_mi_file_is_the_constant_case() {
+    let (mdl, lib, diags) = compile(
+        r#"shader "set" "mdl::factor_test::chosen" ("values" "u_ramp.exr")
+shader "default" "mdl::factor_test::chosen" ()
+shader "u" "mdl::factor_test::u_mirror" ()
+shader "c" "mdl::factor_test::constant_mirror" ()"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let [set, default, u, c] = ["set", "default", "u", "c"].map(|n| get(&mdl, &lib, n));
+    for deg in [30.0f32, 60.0] {
+        let wo = dir(deg, 0.0);
+        for (a, b, what) in [(set, u, "set"), (default, c, "default")] {
+            let (x, y) = (albedo(&a.bsdf(wo), wo, 16), albedo(&b.bsdf(wo), wo, 16));
+            assert!((x - y).abs().max_element() <= 1e-6, "{what} at {deg}°: {x:?} vs {y:?}");
+        }
+    }
+    let (_, _, diags) = compile(r#"shader "h" "mdl::factor_by_hit::by_hit" ()"#);
+    assert!(
+        diags.iter().any(
+            |d| d.contains("factor_by_hit.mdl:6:37: error: parameter `values` of `df::measured_factor` is uniform")
+        ),
+        "{diags:#?}"
+    );
 }
