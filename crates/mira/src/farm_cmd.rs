@@ -199,7 +199,7 @@ fn needs_prepass(args: &SlurmArgs) -> Result<bool, String> {
     };
     let o = &args.options;
     let resolution = o.resolution.as_ref().map(|r| (r[0], r[1]));
-    let loaded = crate::render_cmd::load_scene(&args.scene, &o.include.include, first, resolution, false)?;
+    let loaded = crate::render_cmd::load_scene(&args.scene, &o.include.include, first, resolution, false, false)?;
     let engine = render::pipeline::choose_engine(&loaded.scene, crate::render_cmd::asked_engine(o.engine));
     Ok(engine == render::EngineKind::Classic && render::prepass_file::scene_has_prepass(&loaded.scene.options))
 }

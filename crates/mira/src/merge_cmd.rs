@@ -130,7 +130,7 @@ pub fn run(args: &MergeArgs) -> ExitCode {
     }
     let info = &parts[0].1.info;
     // The scene gives the tone mapping and the buffers the outputs ask for.
-    let loaded = match load_scene(&info.scene, &info.include, info.frame, Some(info.size), false) {
+    let loaded = match load_scene(&info.scene, &info.include, info.frame, Some(info.size), false, true) {
         Ok(l) => l,
         Err(e) => return err(format!("cannot read the parts' scene {}: {e}", info.scene.display())),
     };

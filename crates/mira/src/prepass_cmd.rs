@@ -55,7 +55,7 @@ fn prepass(args: &PrepassArgs) -> Result<(), String> {
     let t0 = Instant::now();
     let opts = &args.options;
     let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
-    let loaded = load_scene(&args.scene, &opts.include.include, args.frame, resolution, args.warnings)?;
+    let loaded = load_scene(&args.scene, &opts.include.include, args.frame, resolution, args.warnings, true)?;
     let sc = &loaded.scene;
     let name = args.scene.display();
     if render::pipeline::choose_engine(sc, asked_engine(opts.engine)) != EngineKind::Classic {

@@ -119,7 +119,7 @@ struct FrameJob<'a> {
     numbered: Option<usize>,
     /// The acceleration structure's kind.
     backend: Backend,
-    /// Hash of the scene's text.
+    /// Hash of the scene's text (0 unless a part or pre-pass file needs it).
     content_hash: u64,
     /// Hash of what the scene reads besides its text (0 unless a part or pre-pass file
     /// needs it).
@@ -145,10 +145,12 @@ fn render_frame(args: &RenderArgs, frame: usize, numbered: Option<usize>, cancel
         .build()
         .map_err(|e| err(format!("cannot start worker threads: {e}")))?;
     let t0 = Instant::now();
-    // Stage 1: load.
+    // Stage 1: load. The scene's text is hashed only for the files that record it (parts
+    // and pre-pass files).
+    let hash = part.is_some() || args.prepass.is_some();
     let resolution = opts.resolution.as_ref().map(|r| (r[0], r[1]));
     let mut loaded = pool
-        .install(|| load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings))
+        .install(|| load_scene(&args.scene, &opts.include.include, frame, resolution, args.warnings, hash))
         .map_err(err)?;
     // The syntax tree is not needed past the scene: freed now, it does not add to the peak
     // memory of building the world (the sources stay, for messages).

@@ -23,8 +23,9 @@ pub struct Loaded {
     pub scene: Option<Scene>,
     /// The reader's and the scene layer's messages, in order.
     pub diagnostics: Vec<mi::Diagnostic>,
-    /// [`Loaded::content_hash`], taken while the text was at hand.
-    content_hash: u64,
+    /// [`Loaded::content_hash`], taken while the text was at hand (`None` when the load
+    /// was asked for no hash, [`load_unhashed`]).
+    content_hash: Option<u64>,
     /// How long its parts took.
     pub times: LoadTimes,
 }
@@ -46,8 +47,9 @@ impl Loaded {
 
     /// A hash of every file the scene was read from (the main file and its `$include`s,
     /// in reading order): equal hashes mean the same scene text. FNV-1a, 64 bits: it tells
-    /// files apart, it is no protection against a crafted collision.
-    pub fn content_hash(&self) -> u64 {
+    /// files apart, it is no protection against a crafted collision. `None` when the file
+    /// was loaded without it ([`load_unhashed`]).
+    pub fn content_hash(&self) -> Option<u64> {
         self.content_hash
     }
 }
@@ -67,13 +69,16 @@ fn file_hash(h: &mut Fnv, bytes: &[u8]) {
     h.write(bytes);
 }
 
-/// Reads and parses the file at `path`; the main file's part of the content hash (FNV is
-/// serial, about 0.3 s for a 190 MB file) is computed on a second thread while it parses.
-/// Returns the parsed file and the whole content hash.
-fn parse_hashing(path: &Path, options: &mi::ReadOptions) -> Result<(mi::Parsed, u64), String> {
+/// Reads and parses the file at `path`; with `hash`, the main file's part of the content
+/// hash (FNV is serial, about 0.3 s for a 190 MB file) is computed on a second thread while
+/// it parses. Returns the parsed file and the whole content hash (`None` without `hash`).
+fn parse_hashing(path: &Path, options: &mi::ReadOptions, hash: bool) -> Result<(mi::Parsed, Option<u64>), String> {
     let bytes = mi::source::read_source(path)
         .map_err(|message| mi::ReadError { path: path.display().to_string(), message }.to_string())?;
     let origin = mi::Origin::Disk(path.to_path_buf());
+    if !hash {
+        return Ok((mi::parse_source(origin, bytes, options), None));
+    }
     let text = bytes.clone();
     let hash_main = move || {
         let mut h = Fnv::new();
@@ -92,7 +97,7 @@ fn parse_hashing(path: &Path, options: &mi::ReadOptions) -> Result<(mi::Parsed, 
         Some(h) => sources_hash(h, &parsed.sources, 1),
         None => sources_hash(Fnv::new(), &parsed.sources, 0),
     };
-    Ok((parsed, hash))
+    Ok((parsed, Some(hash)))
 }
 
 /// Source files at least this long have their text freed between parsing and building the
@@ -106,15 +111,31 @@ pub const RELEASE_TEXT_FROM_BYTES: usize = 16 << 20;
 ///
 /// The text of big files ([`RELEASE_TEXT_FROM_BYTES`]) is freed once parsed, unless a
 /// message needs it; it is read again when the scene layer has something to say, so the
-/// sources of the result quote every message in [`Loaded::diagnostics`].
+/// sources of the result quote every message in [`Loaded::diagnostics`]. The trilists'
+/// vertex numbers and indices move from the syntax tree into the scene's meshes
+/// ([`Scene::build_taking`]): the tree of the result holds them empty.
 pub fn load(path: &Path, options: &mi::ReadOptions, frame: usize) -> Result<Loaded, String> {
-    load_releasing(path, options, frame, RELEASE_TEXT_FROM_BYTES)
+    load_releasing(path, options, frame, RELEASE_TEXT_FROM_BYTES, true)
 }
 
-/// [`load`], freeing the text of files of at least `release_from` bytes.
-fn load_releasing(path: &Path, options: &mi::ReadOptions, frame: usize, release_from: usize) -> Result<Loaded, String> {
+/// [`load`] without the content hash ([`Loaded::content_hash`] is `None`), for a render
+/// that writes no part or pre-pass file: hashing a 190 MB scene costs about 0.3 s of CPU,
+/// taken from the parse's number lists on a two-core machine.
+pub fn load_unhashed(path: &Path, options: &mi::ReadOptions, frame: usize) -> Result<Loaded, String> {
+    load_releasing(path, options, frame, RELEASE_TEXT_FROM_BYTES, false)
+}
+
+/// [`load`], freeing the text of files of at least `release_from` bytes, hashing the text
+/// when `hash` says so.
+fn load_releasing(
+    path: &Path,
+    options: &mi::ReadOptions,
+    frame: usize,
+    release_from: usize,
+    hash: bool,
+) -> Result<Loaded, String> {
     let start = Instant::now();
-    let (mut parsed, content_hash) = parse_hashing(path, options)?;
+    let (mut parsed, content_hash) = parse_hashing(path, options, hash)?;
     let parse = start.elapsed();
     let mut diagnostics = parsed.diagnostics.list.clone();
     let scene = if parsed.diagnostics.has_errors() {
@@ -123,7 +144,8 @@ fn load_releasing(path: &Path, options: &mi::ReadOptions, frame: usize, release_
         if diagnostics.is_empty() {
             parsed.sources.release_text(release_from);
         }
-        Scene::build(&parsed, frame, &mut diagnostics)
+        // The syntax tree's trilist arrays move into the meshes (nothing reads them again).
+        Scene::build_taking(&mut parsed, frame, &mut diagnostics)
     };
     let times = LoadTimes { parse, scene: start.elapsed() - parse };
     if !diagnostics.is_empty() && parsed.sources.has_released_text() {
@@ -339,26 +361,26 @@ mod tests {
         let clean = scene("instgroup \"root\" \"cam_inst\" end instgroup");
         let path = dir.join("clean.mi");
         std::fs::write(&path, &clean).unwrap();
-        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1).unwrap();
+        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1, true).unwrap();
         assert!(loaded.diagnostics.is_empty() && loaded.scene.is_some());
         assert!(loaded.parsed.sources.has_released_text());
         assert!(loaded.parsed.sources.files().all(|(_, f)| f.bytes.is_empty()));
-        assert_eq!(loaded.content_hash(), hash(&clean));
+        assert_eq!(loaded.content_hash(), Some(hash(&clean)));
 
         let broken = scene("instgroup \"root\" \"cam_inst\" \"no_such_thing\" end instgroup");
         let path = dir.join("broken.mi");
         std::fs::write(&path, &broken).unwrap();
-        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1).unwrap();
+        let loaded = load_releasing(&path, &mi::ReadOptions::default(), 0, 1, true).unwrap();
         assert!(!loaded.diagnostics.is_empty());
         assert!(!loaded.parsed.sources.has_released_text());
         let message = loaded.diagnostics[0].render(&loaded.parsed.sources);
         assert!(message.contains("\"no_such_thing\" end instgroup"), "{message}");
-        assert_eq!(loaded.content_hash(), hash(&broken));
+        assert_eq!(loaded.content_hash(), Some(hash(&broken)));
         std::fs::remove_dir_all(&dir).ok();
     }
 
     /// The content hash covers the main file and then each included file in reading
-    /// order, whichever thread hashed the main file.
+    /// order, whichever thread hashed the main file; a load asked for no hash has none.
     #[test]
     fn content_hash_covers_included_files_in_reading_order() {
         let dir = std::env::temp_dir().join(format!("render-hash-{}", std::process::id()));
@@ -377,7 +399,11 @@ mod tests {
             h.write(&(text.len() as u64).to_le_bytes());
             h.write(text.as_bytes());
         }
-        assert_eq!(loaded.content_hash(), h.finish());
+        assert_eq!(loaded.content_hash(), Some(h.finish()));
+        // Loaded without the hash: the same scene, no hash.
+        let unhashed = load_unhashed(&path, &mi::ReadOptions::default(), 0).unwrap();
+        assert!(unhashed.diagnostics.is_empty() && unhashed.scene.is_some());
+        assert_eq!(unhashed.content_hash(), None);
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -15,6 +15,7 @@ use crate::light::Light;
 use crate::mesh::MaterialSlot;
 use crate::names::{Def, Table};
 use crate::options::{Dialect, Options};
+use crate::tessellate::taken::TakenTrilists;
 use crate::tessellate::{self, ObjectGeometry};
 use crate::transform;
 use crate::{Library, Material, MaterialKind, Object, Scene};
@@ -74,6 +75,8 @@ struct Inherited {
 
 struct Builder<'a, 'd> {
     table: &'a Table<'a>,
+    /// Trilist arrays moved out of the syntax tree, moved on into the meshes.
+    taken: &'a TakenTrilists,
     diags: &'d mut Vec<Diagnostic>,
     options: Options,
     objects: Vec<Object>,
@@ -106,6 +109,18 @@ fn dialect(table: &Table) -> Dialect {
 
 /// Builds the world at the `frame`-th `render` statement (0 for the first).
 pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> Option<Scene> {
+    build_with(items, &TakenTrilists::default(), frame, diags)
+}
+
+/// [`build`], moving the trilists' vertex and index arrays out of `items` into the meshes
+/// instead of copying them ([`TakenTrilists::take_from`]; `items` keeps empty arrays).
+pub fn build_taking(items: &mut [ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> Option<Scene> {
+    let taken = TakenTrilists::take_from(items);
+    build_with(items, &taken, frame, diags)
+}
+
+/// [`build`] with the trilist arrays already moved into `taken`.
+fn build_with(items: &[ast::Item], taken: &TakenTrilists, frame: usize, diags: &mut Vec<Diagnostic>) -> Option<Scene> {
     let (table, render) = Table::collect(items, frame, diags);
     let Some(render) = render else {
         let span = items.last().map_or(mi::Span::default(), item_span);
@@ -154,6 +169,7 @@ pub fn build(items: &[ast::Item], frame: usize, diags: &mut Vec<Diagnostic>) -> 
     };
     let mut b = Builder {
         table: &table,
+        taken,
         diags,
         options,
         objects: Vec::new(),
@@ -480,9 +496,9 @@ impl<'a> Builder<'a, '_> {
                                 ),
                             ));
                         }
-                        tessellate::tessellate(&o, self.diags)
+                        tessellate::tessellate_with(&o, self.taken, self.diags)
                     }
-                    Some(o) => tessellate::tessellate(o, self.diags),
+                    Some(o) => tessellate::tessellate_with(o, self.taken, self.diags),
                     None => ObjectGeometry::default(),
                 };
                 crate::sanity::mesh(&mut geometry, full, defs[0].span, self.diags);

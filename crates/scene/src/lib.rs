@@ -179,6 +179,15 @@ impl Scene {
         Some(scene)
     }
 
+    /// [`Scene::build`], moving the trilists' vertex numbers and triangle indices out of
+    /// the syntax tree into the meshes instead of copying them (`parsed`'s trilists are left
+    /// with empty arrays): for a caller that needs the tree's geometry no more.
+    pub fn build_taking(parsed: &mut mi::Parsed, frame: usize, diagnostics: &mut Vec<mi::Diagnostic>) -> Option<Scene> {
+        let mut scene = build::build_taking(&mut parsed.items, frame, diagnostics)?;
+        mdl_include_dirs(&parsed.items, &parsed.sources, &mut scene.library.mdl_dirs);
+        Some(scene)
+    }
+
     /// Triangles of all instances (instanced geometry counted once per instance).
     pub fn instanced_triangles(&self) -> usize {
         self.instances.iter().map(|i| self.objects[i.object as usize].geometry.mesh.triangles.len()).sum()

@@ -39,8 +39,10 @@ pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
         user: m.user.iter_mut().map(|u| std::mem::take(&mut u.coords)).collect(),
         bump_basis: m.bump_basis.iter().map(|[u, v]| [Vec3A::from(*u), Vec3A::from(*v)]).collect(),
         triangles: std::mem::take(&mut m.triangles),
-        // One slot for every triangle (the common case) is stored as none.
-        slots: if slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
+        // One slot for every triangle (the common case) is stored as none. A mesh of one
+        // distinct slot has every triangle's 0 without reading them (a large trilist's
+        // zeroed slots are never touched: no page faults).
+        slots: if m.slots.len() <= 1 || slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
         hair: None,
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),

@@ -12,6 +12,7 @@ pub mod hair;
 pub mod polygon;
 pub mod procedural;
 pub mod subdiv;
+pub mod taken;
 pub mod trilist;
 
 use glam::DVec3;
@@ -47,6 +48,12 @@ pub struct ObjectGeometry {
 /// Tessellates an object. Problems in one geometry block are reported and that block is
 /// skipped; the rest of the object still comes out.
 pub fn tessellate(object: &Object, diags: &mut Vec<Diagnostic>) -> ObjectGeometry {
+    tessellate_with(object, &taken::TakenTrilists::default(), diags)
+}
+
+/// [`tessellate`], the object's trilists' arrays that were moved out of the syntax tree
+/// into `taken` moved on into the mesh.
+pub fn tessellate_with(object: &Object, taken: &taken::TakenTrilists, diags: &mut Vec<Diagnostic>) -> ObjectGeometry {
     let name = &object.name.text;
     let mut out = ObjectGeometry { mesh: Mesh::new(name), hair: Vec::new() };
     let object_approx: Vec<&Approximation> = object
@@ -69,7 +76,16 @@ pub fn tessellate(object: &Object, diags: &mut Vec<Diagnostic>) -> ObjectGeometr
                 }
             }
             Geometry::Trilist(list) => {
-                if let Some(mesh) = trilist::trilist_mesh(list, name, diags) {
+                let arrays = taken.take(list);
+                if arrays.is_none() && taken.was_handed_out(list) {
+                    // Ruled out by `TakenTrilists::take_from`; never an empty mesh in silence.
+                    diags.push(Diagnostic::error(
+                        list.span.start(),
+                        format!("object '{name}': this trilist's data was already used by another tessellation"),
+                    ));
+                    continue;
+                }
+                if let Some(mesh) = trilist::trilist_mesh_with(list, arrays, name, diags) {
                     out.mesh.append(mesh);
                 }
             }
