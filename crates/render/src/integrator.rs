@@ -145,9 +145,15 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     let w = 1.0 - hit.u - hit.v;
     let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
     let p = placed.object_to_world.transform_point3a(p_obj);
-    // Normals go to world space with the inverse transpose, so mirroring transforms keep
-    // the counter-clockwise side as the front.
-    let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
+    // The face's unit normal and hit-error bound: kept for instances that hold still
+    // (the same numbers as computed here), else computed.
+    let (ng, err) = match world.faces.get(hit.instance, hit.prim) {
+        Some(face) => face,
+        None => (
+            crate::world::face_normal(&placed.normal_to_world, p0, p1, p2),
+            leave::hit_error(p0, p1, p2, &placed.object_to_world),
+        ),
+    };
     let ns = if !mesh.has_normals() {
         ng
     } else {
@@ -157,7 +163,6 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    let err = leave::hit_error(p0, p1, p2, &placed.object_to_world);
     Surface { p, ng, ns, material, tag: inst.tag, err }
 }
 
@@ -422,16 +427,18 @@ pub fn trace_camera_path_into(
     // `refractionLimit` counts them as mental ray's refraction level counts refraction
     // and transparency rays).
     let mut refractions = 0u32;
+    // The material of the surface last found, when it is not the constant one of
+    // `world.materials` (connected parameters, view-dependent transparency); `None` for a
+    // constant one, which is built after the cutout loop, in its place. Written where it
+    // lives and only read by reference: moved as an `Option` (208 bytes) it went through
+    // two `memcpy` calls at every hit, constant or not, whose wide loads of fields just
+    // stored stalled on store forwarding; declared out here, it is dropped once a path
+    // rather than at every bounce (speed29 in `docs/performance.md`).
+    let mut varying: Option<HitMaterial> = None;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
         // The nearest surface that stops the ray: cutouts let it through by their opacity.
         let mut found: Option<(Hit, Surface)> = None;
-        // The material of the surface found, when it is not the constant one of
-        // `world.materials` (connected parameters, view-dependent transparency). A
-        // constant material is built only after this loop, in its place: moved out of
-        // the loop as part of the hit, its 160 bytes went through a `memcpy` at every
-        // hit, whose wide loads of the fields just stored stalled on store forwarding.
-        let mut varying: Option<HitMaterial> = None;
         let mut through = ray;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
             // The camera ray's hit may be known (only for the ray itself, not past a cutout).
@@ -444,9 +451,14 @@ pub fn trace_camera_path_into(
             let surface_material = &world.materials[s.material as usize];
             let constant =
                 !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
-            let m = if constant { None } else { Some(material_at(world, accel, shading, &through, &h, s.material)) };
+            if !constant {
+                varying = Some(material_at(world, accel, shading, &through, &h, s.material));
+            } else if varying.is_some() {
+                // (A varying material's hit passed through before.)
+                varying = None;
+            }
             // (What `material_at` gives a constant material, read in place.)
-            let (opacity, refracts, cutout_tint) = match &m {
+            let (opacity, refracts, cutout_tint) = match &varying {
                 Some(m) => (m.opacity, m.model.refracts(), m.cutout_tint),
                 None => (surface_material.opacity, surface_material.model.refracts(), surface_material.cutout_tint),
             };
@@ -460,7 +472,6 @@ pub fn trace_camera_path_into(
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
                 found = Some((Hit { t, ..h }, s));
-                varying = m;
                 break;
             }
             counts.rays += 1;
@@ -584,9 +595,16 @@ pub fn trace_camera_path_into(
             break;
         }
         let Some((stop, s)) = found else { break };
-        let material = match varying {
+        // A constant material borrows all it holds (`SurfaceMaterial::constant`): it has
+        // nothing to drop, and `ManuallyDrop` spares every bounce the call that would
+        // find that out.
+        let constant_material;
+        let material: &HitMaterial = match &varying {
             Some(m) => m,
-            None => world.materials[s.material as usize].constant(),
+            None => {
+                constant_material = std::mem::ManuallyDrop::new(world.materials[s.material as usize].constant());
+                &constant_material
+            }
         };
         let own_env = material_env::own(shading, s.material);
         if depth == 0 {
