@@ -134,7 +134,23 @@ pub fn hit_normals(world: &World, ray: &Ray, hit: &Hit) -> (Vec3A, Vec3A) {
     (s.ng, s.ns)
 }
 
+impl Surface {
+    /// A placeholder, overwritten by [`surface_into`] before it is read.
+    const UNSET: Surface = Surface { p: Vec3A::ZERO, ng: Vec3A::Z, ns: Vec3A::Z, material: 0, tag: 0, err: 0.0 };
+}
+
+/// The surface data of hit `hit` of `ray`.
+#[inline]
 fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
+    let mut s = Surface::UNSET;
+    surface_into(world, ray, hit, &mut s);
+    s
+}
+
+/// [`surface`] written to `out` (where the path loop keeps it: returned by value, it was
+/// copied there and copied again out of the cutout loop).
+#[inline(never)]
+fn surface_into(world: &World, ray: &Ray, hit: &Hit, out: &mut Surface) {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
     let tri = mesh.triangles[hit.prim as usize];
@@ -163,7 +179,7 @@ fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
     };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
-    Surface { p, ng, ns, material, tag: inst.tag, err }
+    *out = Surface { p, ng, ns, material, tag: inst.tag, err };
 }
 
 /// Power heuristic weight of a strategy with density `a` against one with `b`.
@@ -435,10 +451,13 @@ pub fn trace_camera_path_into(
     // stored stalled on store forwarding; declared out here, it is dropped once a path
     // rather than at every bounce (speed29 in `docs/performance.md`).
     let mut varying: Option<HitMaterial> = None;
+    // The surface data of the last hit found (written in place, [`surface_into`]).
+    let mut s = Surface::UNSET;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
-        // The nearest surface that stops the ray: cutouts let it through by their opacity.
-        let mut found: Option<(Hit, Surface)> = None;
+        // The nearest surface that stops the ray (cutouts let it through by their
+        // opacity): its hit, and in `s` its surface data.
+        let mut found: Option<Hit> = None;
         let mut through = ray;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
             // The camera ray's hit may be known (only for the ray itself, not past a cutout).
@@ -447,7 +466,7 @@ pub fn trace_camera_path_into(
                 None => accel.intersect(&through),
             };
             let Some(h) = h else { break };
-            let s = surface(world, &through, &h);
+            surface_into(world, &through, &h, &mut s);
             let surface_material = &world.materials[s.material as usize];
             let constant =
                 !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
@@ -471,7 +490,7 @@ pub fn trace_camera_path_into(
             {
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
-                found = Some((Hit { t, ..h }, s));
+                found = Some(Hit { t, ..h });
                 break;
             }
             counts.rays += 1;
@@ -482,7 +501,7 @@ pub fn trace_camera_path_into(
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }
-        let hit = found.as_ref().map(|(h, _)| *h);
+        let hit = found;
         let tmax = hit.map_or(ray.tmax, |h| h.t);
         let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
         if !media.is_empty() {
@@ -594,7 +613,7 @@ pub fn trace_camera_path_into(
             radiance += throughput * le * weight;
             break;
         }
-        let Some((stop, s)) = found else { break };
+        let Some(stop) = found else { break };
         // A constant material borrows all it holds (`SurfaceMaterial::constant`): it has
         // nothing to drop, and `ManuallyDrop` spares every bounce the call that would
         // find that out.
