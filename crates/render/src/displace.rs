@@ -117,6 +117,8 @@ pub fn displace_world(world: &mut World, scene: &Scene, shading: &mut Shading, d
     }
     emitters::reshape_object_lights(world, scene, shading, &displaced, diagnostics);
     emitters::respread_emission(world, &displaced);
+    // The displaced meshes' faces, and no faces of the meshes they replaced.
+    world.cache_faces();
 }
 
 /// The displaced mesh of instance `index` (`None`: left as it is, with a message), its

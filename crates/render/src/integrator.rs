@@ -8,6 +8,7 @@ mod cutout;
 mod env_light;
 mod fog;
 mod gi_depth;
+mod hit_surface;
 mod leave;
 mod levels;
 mod light_lobes;
@@ -30,6 +31,8 @@ use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use cutout::{cutout_number, linked_shadow_passed, shadow_passed, MAX_CUTOUT_CROSSINGS};
+pub use hit_surface::hit_normals;
+use hit_surface::{surface, surface_into, Surface};
 use media::Departure;
 pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
 use roulette::roulette_survival;
@@ -114,52 +117,6 @@ impl std::ops::AddAssign<Rgb> for RadianceSum {
         self.lit += term;
         self.shadowed += term;
     }
-}
-
-/// Surface data at a hit.
-struct Surface {
-    p: Vec3A,
-    ng: Vec3A,
-    ns: Vec3A,
-    material: u32,
-    tag: u32,
-    /// How far `p` may lie off the surface as the intersector sees it (world units; see
-    /// [`leave::hit_error`]): rays leave from that far off it ([`Surface::leave`]).
-    err: f32,
-}
-
-/// The unit geometric and shading normals (world space, the shading normal on the
-/// geometric normal's side) the path engine shades the hit `hit` of `ray` with.
-pub fn hit_normals(world: &World, ray: &Ray, hit: &Hit) -> (Vec3A, Vec3A) {
-    let s = surface(world, ray, hit);
-    (s.ng, s.ns)
-}
-
-fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
-    let inst = &world.instances[hit.instance as usize];
-    let mesh = &world.meshes[inst.mesh as usize];
-    let tri = mesh.triangles[hit.prim as usize];
-    let [i0, i1, i2] = tri;
-    // Where the instance and its vertices are at the ray's time (see `crate::motion`).
-    let placed = inst.placement(ray.time);
-    let [p0, p1, p2] = mesh.triangle_at(tri, ray.time);
-    let w = 1.0 - hit.u - hit.v;
-    let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
-    let p = placed.object_to_world.transform_point3a(p_obj);
-    // Normals go to world space with the inverse transpose, so mirroring transforms keep
-    // the counter-clockwise side as the front.
-    let ng = (placed.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3A::Z);
-    let ns = if !mesh.has_normals() {
-        ng
-    } else {
-        let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;
-        let n = (placed.normal_to_world * n).normalize_or(ng);
-        mesh.sharpen(if n.dot(ng) < 0.0 { -n } else { n }, ng)
-    };
-    let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
-    let material = inst.materials.get(slot).copied().unwrap_or(0);
-    let err = leave::hit_error(p0, p1, p2, &placed.object_to_world);
-    Surface { p, ng, ns, material, tag: inst.tag, err }
 }
 
 /// Power heuristic weight of a strategy with density `a` against one with `b`.
@@ -423,16 +380,21 @@ pub fn trace_camera_path_into(
     // `refractionLimit` counts them as mental ray's refraction level counts refraction
     // and transparency rays).
     let mut refractions = 0u32;
+    // The material of the surface last found, when it is not the constant one of
+    // `world.materials` (connected parameters, view-dependent transparency); `None` for a
+    // constant one, which is built after the cutout loop, in its place. Written where it
+    // lives and only read by reference: moved as an `Option` (208 bytes) it went through
+    // two `memcpy` calls at every hit, constant or not, whose wide loads of fields just
+    // stored stalled on store forwarding; declared out here, it is dropped once a path
+    // rather than at every bounce (speed29 in `docs/performance.md`).
+    let mut varying: Option<HitMaterial> = None;
+    // The surface data of the last hit found (written in place, [`surface_into`]).
+    let mut s = Surface::UNSET;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
-        // The nearest surface that stops the ray: cutouts let it through by their opacity.
-        let mut found: Option<(Hit, Surface)> = None;
-        // The material of the surface found, when it is not the constant one of
-        // `world.materials` (connected parameters, view-dependent transparency). A
-        // constant material is built only after this loop, in its place: moved out of
-        // the loop as part of the hit, its 160 bytes went through a `memcpy` at every
-        // hit, whose wide loads of the fields just stored stalled on store forwarding.
-        let mut varying: Option<HitMaterial> = None;
+        // The nearest surface that stops the ray (cutouts let it through by their
+        // opacity): its hit, and in `s` its surface data.
+        let mut found: Option<Hit> = None;
         let mut through = ray;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
             // The camera ray's hit may be known (only for the ray itself, not past a cutout).
@@ -441,13 +403,18 @@ pub fn trace_camera_path_into(
                 None => accel.intersect(&through),
             };
             let Some(h) = h else { break };
-            let s = surface(world, &through, &h);
+            surface_into(world, &through, &h, &mut s);
             let surface_material = &world.materials[s.material as usize];
             let constant =
                 !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
-            let m = if constant { None } else { Some(material_at(world, accel, shading, &through, &h, s.material)) };
+            if !constant {
+                varying = Some(material_at(world, accel, shading, &through, &h, s.material));
+            } else if varying.is_some() {
+                // (A varying material's hit passed through before.)
+                varying = None;
+            }
             // (What `material_at` gives a constant material, read in place.)
-            let (opacity, refracts, cutout_tint) = match &m {
+            let (opacity, refracts, cutout_tint) = match &varying {
                 Some(m) => (m.opacity, m.model.refracts(), m.cutout_tint),
                 None => (surface_material.opacity, surface_material.model.refracts(), surface_material.cutout_tint),
             };
@@ -460,8 +427,7 @@ pub fn trace_camera_path_into(
             {
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
-                found = Some((Hit { t, ..h }, s));
-                varying = m;
+                found = Some(Hit { t, ..h });
                 break;
             }
             counts.rays += 1;
@@ -472,7 +438,7 @@ pub fn trace_camera_path_into(
             fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             through.origin = s.leave(s.ng, ray.dir);
         }
-        let hit = found.as_ref().map(|(h, _)| *h);
+        let hit = found;
         let tmax = hit.map_or(ray.tmax, |h| h.t);
         let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
         if !media.is_empty() {
@@ -584,10 +550,17 @@ pub fn trace_camera_path_into(
             radiance += throughput * le * weight;
             break;
         }
-        let Some((stop, s)) = found else { break };
-        let material = match varying {
+        let Some(stop) = found else { break };
+        // A constant material borrows all it holds (`SurfaceMaterial::constant`): it has
+        // nothing to drop, and `ManuallyDrop` spares every bounce the call that would
+        // find that out.
+        let constant_material;
+        let material: &HitMaterial = match &varying {
             Some(m) => m,
-            None => world.materials[s.material as usize].constant(),
+            None => {
+                constant_material = std::mem::ManuallyDrop::new(world.materials[s.material as usize].constant());
+                &constant_material
+            }
         };
         let own_env = material_env::own(shading, s.material);
         if depth == 0 {

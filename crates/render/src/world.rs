@@ -8,6 +8,7 @@
 
 mod build;
 pub mod deforming_emitters;
+mod faces;
 mod hair;
 mod instance;
 mod light_motion;
@@ -26,6 +27,7 @@ use crate::mesh::MeshData;
 use crate::motion::Shutter;
 
 pub use build::areas_of;
+pub use faces::{face_normal, FaceCache, FACE_CACHE_BUDGET, FACE_CACHE_TRIANGLES};
 pub use instance::{InstanceData, Placement};
 pub use motion_keys::{vertex_keys, world_key_positions, world_motion_bounds};
 
@@ -101,6 +103,10 @@ pub struct World {
     /// whole surface (MDL `lumen`, `candela`) was divided by; 0 for the others; empty when
     /// there is none (the displacement stage divides anew by the displaced area).
     pub spread_areas: Vec<f32>,
+    /// The world-space geometric normals and hit-error bounds of the triangles of the
+    /// instances that hold still (see [`FaceCache`]); to be built anew
+    /// ([`World::cache_faces`]) after editing [`World::meshes`] or [`World::instances`].
+    pub faces: FaceCache,
 }
 
 fn affine(m: glam::DMat4) -> Affine3A {
@@ -159,6 +165,11 @@ impl World {
             hi = hi.max(h);
         }
         (lo, hi)
+    }
+
+    /// Builds [`World::faces`] anew from the meshes and instances as they are now.
+    pub fn cache_faces(&mut self) {
+        self.faces = FaceCache::build(&self.meshes, &self.instances);
     }
 
     /// Number of triangles over all instances.

@@ -162,6 +162,7 @@ impl World {
         let unlinked_lights = unlinked_lights(scene, &instances, &light_indices);
         let shadow_unlinked = shadow_unlinked_lights(scene, &instances, &light_indices);
         let lights = lights.into_iter().map(|(l, _)| l).collect();
+        let faces = super::FaceCache::build(&meshes, &instances);
         World {
             meshes,
             instances,
@@ -184,6 +185,7 @@ impl World {
             light_meshes,
             light_scene_indices: light_indices,
             spread_areas,
+            faces,
         }
     }
 }

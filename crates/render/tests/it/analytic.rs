@@ -117,6 +117,7 @@ fn world(
         light_meshes: Vec::new(),
         light_scene_indices: Vec::new(),
         spread_areas: Vec::new(),
+        faces: render::world::FaceCache::default(),
     }
 }
 

@@ -18,6 +18,7 @@ mod classic;
 mod classic_seam;
 mod classic_shadows;
 mod environment;
+mod face_cache;
 mod fgcache;
 mod first_shadow_packets;
 mod glossy_interpolation;
