@@ -1,6 +1,7 @@
 //! A module material that looks up a `texture_ptex` renders each triangle's Ptex face: a
-//! square of two triangles (`c 0 1 2`, face 0; `c 0 2 3`, face 1: convex polygons keep
-//! their vertex order, which `p` polygons' ear clipping may rotate) seen and lit head-on so
+//! square of two triangles given as `p` polygons (`p 0 1 2`, face 0; `p 0 2 3`, face 1: a
+//! 3-vertex polygon keeps its vertex order, where ear clipping had started face 1 at another
+//! vertex and turned its texels) seen and lit head-on so
 //! that a Lambertian pixel is its albedo, in both engines (the classic engine's pixels π
 //! times the path engine's, as in `mdl_textures3d`). The Ptex file is written here byte
 //! by byte (zlib blocks stored uncompressed, by hand): face 0 one constant colour, face 1
@@ -106,8 +107,8 @@ shader "tinted" "mdl::ptexmod::faces" ()
 object "square" group
     -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
     v 0 v 1 v 2 v 3
-    c 0 1 2
-    c 0 2 3
+    p 0 1 2
+    p 0 2 3
 end group end object
 instance "square_inst" "square" material "tinted" end instance
 instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup

@@ -207,6 +207,17 @@ impl Triangulator {
         if !normal.is_finite() || normal.length_squared() == 0.0 {
             return false;
         }
+        // A lone triangle is its own triangulation: keep its vertex order (ear clipping
+        // may start at another vertex, which turns per-face parametrisations such as Ptex's).
+        if let [outline] = loops {
+            if outline.len() == 3 {
+                if outline.iter().any(|&i| !pos(i).is_finite()) {
+                    return false;
+                }
+                mesh.triangles.push([outline[0], outline[1], outline[2]].map(|i| i + base));
+                return true;
+            }
+        }
         let n = normal.normalize();
         let u = n.any_orthonormal_vector();
         let v = n.cross(u);
@@ -311,6 +322,22 @@ mod tests {
         assert!(tri.triangulate(&[&[0, 1, 2, 3, 4, 5]], &mut m, 0));
         assert!((m.area() - 3.0).abs() < 1e-5);
         assert_eq!(m.triangles.len(), 4);
+    }
+
+    /// A triangle keeps its vertex order exactly, whichever way it winds (exact indices).
+    #[test]
+    fn a_triangle_keeps_its_vertex_order() {
+        let mut m = mesh_of(&[[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]]);
+        let mut tri = Triangulator::default();
+        for t in [[1u32, 2, 3], [2, 3, 1], [3, 1, 2], [3, 2, 1], [2, 1, 3], [1, 3, 2]] {
+            m.triangles.clear();
+            assert!(tri.triangulate(&[&t], &mut m, 0));
+            assert_eq!(m.triangles, vec![t]);
+        }
+        // With a base offset too.
+        let mut m = mesh_of(&[[9., 9., 9.], [0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]);
+        assert!(tri.triangulate(&[&[1, 2, 0]], &mut m, 1));
+        assert_eq!(m.triangles, vec![[2, 3, 1]]);
     }
 
     #[test]
