@@ -17,10 +17,12 @@
 //! along it ([`lobe_axes`]); the shader's
 //! own `environment` is what every ray leaving the material sees where it finds nothing
 //! (`render`'s `integrator::material_env`, as a material's own environment: its base's
-//! rays included). Not honoured, warned where they change the result:
+//! rays included). `max_distance` and `falloff` are the lobe's: its rays take the
+//! environment past the distance and fade towards it nearer (`render`'s
+//! `integrator::glossy_reach`). Not honoured, warned where they change the result:
 //! `environment_color` (the path engine weighs rays that leave the scene by
 //! `reflection_color`, which the manual calls the physically accurate choice),
-//! `max_distance` (no fade towards the environment), `single_env_sample` with a spread
+//! `single_env_sample` with a spread
 //! lobe and an environment colour (each direction looks the environment up), a connected
 //! `reflection_color` or spread (their defaults).
 
@@ -68,15 +70,14 @@ pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library,
         // Nothing cast (or nothing reflected): the base alone.
         return surface;
     }
-    let lobe = MibGlossyLobe::new(color, curve, spreads);
+    let max_distance = r.scalar(params, "max_distance", 0.0);
+    let falloff = r.scalar(params, "falloff", 2.0);
+    let lobe = MibGlossyLobe::new(color, curve, spreads).with_reach(color, max_distance, falloff);
     if env_color != color {
         r.warn(format!(
             "mib_glossy_reflection's environment_color {env_color} differs from its reflection_color {color}; \
              the path engine weighs rays that leave the scene by reflection_color"
         ));
-    }
-    if r.scalar(params, "max_distance", 0.0) > 0.0 {
-        r.warn("mib_glossy_reflection's max_distance is not honoured by the path engine (no fade)".into());
     }
     if lobe.dist.is_some() && env_color != Rgb::ZERO && r.flag(params, "single_env_sample", true) {
         r.warn(
