@@ -286,6 +286,16 @@ pub struct MibGlossyLobe {
     pub dist: Option<Beckmann>,
     /// A(ωo) of `dist`.
     upper: Option<UpperFraction>,
+    /// `environment_color`: what the lobe's rays that take the environment (leaving the
+    /// scene, or past `max_distance`) weigh it by instead of `color` (the path engine
+    /// applies the ratio per channel: see [`MibGlossyLobe::environment_ratio`]).
+    pub env_color: Rgb,
+    /// `max_distance` (scene units): the lobe's rays that travel farther take the
+    /// environment; a hit at distance d nearer fades towards it by (d / max)^`falloff`.
+    /// 0: no limit.
+    pub max_distance: f32,
+    /// `falloff`: the power of that fade.
+    pub falloff: f32,
 }
 
 impl MibGlossyLobe {
@@ -294,7 +304,30 @@ impl MibGlossyLobe {
         let (su, sv) = (spreads.0.max(0.0), spreads.1.max(0.0));
         let dist = (su >= MIRROR_SPREAD || sv >= MIRROR_SPREAD).then(|| Beckmann::new(su, sv));
         let upper = dist.as_ref().map(UpperFraction::new);
-        MibGlossyLobe { color, curve, dist, upper }
+        MibGlossyLobe { color, curve, dist, upper, env_color: color, max_distance: 0.0, falloff: 2.0 }
+    }
+
+    /// The lobe whose rays weigh the environment by `env_color` and take it past
+    /// `max_distance` (0: no limit), fading towards it by (d / max)^`falloff` nearer.
+    pub fn with_reach(self, env_color: Rgb, max_distance: f32, falloff: f32) -> MibGlossyLobe {
+        MibGlossyLobe { env_color, max_distance: max_distance.max(0.0), falloff, ..self }
+    }
+
+    /// Whether the lobe's rays see the environment otherwise than a path's other rays do
+    /// (an `environment_color` other than `color`, or a `max_distance`).
+    pub fn reaches(&self) -> bool {
+        self.max_distance > 0.0 || self.env_color != self.color
+    }
+
+    /// `env_color` / `color` per channel (0 where `color` is 0: the lobe reflects nothing
+    /// there to weigh).
+    pub fn environment_ratio(&self) -> Rgb {
+        let ratio = |e: f32, c: f32| if c > 0.0 { e / c } else { 0.0 };
+        Rgb::new(
+            ratio(self.env_color.x, self.color.x),
+            ratio(self.env_color.y, self.color.y),
+            ratio(self.env_color.z, self.color.z),
+        )
     }
 
     /// The BSDF seen from `wo` (local frame) over a base of Lambertian albedo `base`.

@@ -8,6 +8,7 @@ mod cutout;
 mod env_light;
 mod fog;
 mod gi_depth;
+mod glossy_reach;
 mod hit_surface;
 mod leave;
 mod levels;
@@ -358,6 +359,8 @@ pub fn trace_camera_path_into(
     let mut last_delta = true;
     // The environment of the material the path last scattered at, when it has its own.
     let mut last_env = None;
+    // The glossy share of the last bounce, where it splits what its rays see.
+    let mut reach: Option<glossy_reach::Reach> = None;
     let light_count = world.lights.len();
     // The environment is one more light to choose for next-event estimation.
     let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
@@ -392,6 +395,7 @@ pub fn trace_camera_path_into(
     let mut s = Surface::UNSET;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
+        let reach_here = reach.take();
         // The nearest surface that stops the ray (cutouts let it through by their
         // opacity): its hit, and in `s` its surface data.
         let mut found: Option<Hit> = None;
@@ -514,6 +518,22 @@ pub fn trace_camera_path_into(
                     fog_cover = (3.0 - terms.keep.element_sum()) / 3.0;
                 }
             }
+        }
+        if let Some(r) = reach_here {
+            // Past a glossy bounce whose rays see the environment their own way.
+            let d = light_hit.map(|(_, t, _)| t).or(hit.map(|h| h.t)).unwrap_or(f32::INFINITY);
+            let left = light_hit.is_none() && found.is_none();
+            let (keep, to_env) = r.split(d);
+            let weight = if left { keep + to_env } else { to_env };
+            if weight != Rgb::ZERO {
+                radiance += throughput
+                    * weight
+                    * glossy_reach::environment(world, accel, shading, env, last_env, ray.dir, last_delta);
+            }
+            if left {
+                break;
+            }
+            throughput *= keep;
         }
         if let (None, None, Some(node), Some(shading)) = (&light_hit, &found, last_env, shading) {
             // Left a material with an environment of its own: that one, all of it.
@@ -652,7 +672,7 @@ pub fn trace_camera_path_into(
         let mis = settings.mis && depth + 1 < settings.max_depth;
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
-        let env_here = env.filter(|_| own_env.is_none());
+        let env_here = env.filter(|_| own_env.is_none() && !glossy_reach::reaches(&material.model));
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
@@ -751,6 +771,7 @@ pub fn trace_camera_path_into(
             refractions += 1;
         }
         let bounce_weight = bs.weight();
+        reach = glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs);
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;

@@ -17,11 +17,15 @@
 //! along it ([`lobe_axes`]); the shader's
 //! own `environment` is what every ray leaving the material sees where it finds nothing
 //! (`render`'s `integrator::material_env`, as a material's own environment: its base's
-//! rays included). Not honoured, warned where they change the result:
-//! `environment_color` (the path engine weighs rays that leave the scene by
-//! `reflection_color`, which the manual calls the physically accurate choice),
-//! `max_distance` (no fade towards the environment), `single_env_sample` with a spread
-//! lobe and an environment colour (each direction looks the environment up), a connected
+//! rays included). `max_distance`, `falloff` and `environment_color` are the lobe's: its
+//! rays take the environment past the distance and fade towards it nearer, and weigh it
+//! by `environment_color` where `reflection_color` weighs what they find (`render`'s
+//! `integrator::glossy_reach`). Not honoured, warned where they change the result:
+//! `environment_color` in channels where `reflection_color` is 0 (the lobe carries
+//! nothing there), `single_env_sample` with a spread lobe and an environment colour (a
+//! per-pixel economy of the classic shader, one environment lookup along the mirror
+//! direction for all its rays; a path has one ray per bounce, which looks the environment
+//! up along its own direction: there is nothing to share), a connected
 //! `reflection_color` or spread (their defaults).
 
 use mi::ast::{Param, Value};
@@ -66,17 +70,22 @@ pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library,
     let samples = r.scalar(params, "samples", 16.0);
     if samples <= 0.0 || color == Rgb::ZERO {
         // Nothing cast (or nothing reflected): the base alone.
+        if samples > 0.0 && env_color != Rgb::ZERO {
+            r.warn(format!(
+                "mib_glossy_reflection's environment_color {env_color} under a black reflection_color is not honoured \
+                 by the path engine (the base alone)"
+            ));
+        }
         return surface;
     }
-    let lobe = MibGlossyLobe::new(color, curve, spreads);
-    if env_color != color {
+    let max_distance = r.scalar(params, "max_distance", 0.0);
+    let falloff = r.scalar(params, "falloff", 2.0);
+    let lobe = MibGlossyLobe::new(color, curve, spreads).with_reach(env_color, max_distance, falloff);
+    if (0..3).any(|c| color[c] <= 0.0 && env_color[c] > 0.0) {
         r.warn(format!(
-            "mib_glossy_reflection's environment_color {env_color} differs from its reflection_color {color}; \
-             the path engine weighs rays that leave the scene by reflection_color"
+            "mib_glossy_reflection's environment_color {env_color} has light where its reflection_color {color} \
+             has none; the path engine's glossy rays carry nothing there"
         ));
-    }
-    if r.scalar(params, "max_distance", 0.0) > 0.0 {
-        r.warn("mib_glossy_reflection's max_distance is not honoured by the path engine (no fade)".into());
     }
     if lobe.dist.is_some() && env_color != Rgb::ZERO && r.flag(params, "single_env_sample", true) {
         r.warn(

@@ -15,8 +15,13 @@
 //! Parameters without a path-tracing counterpart: `samples` only sets the classic
 //! shader's noise, except that 0 casts nothing (the top alone); `dispersion` and
 //! `spectrum` are ignored by both engines. Not honoured, warned: `back_material` (nothing
-//! is added seen from inside), `max_distance` with `deep_material` (no fade). `u_axis`
-//! (constant or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
+//! is added seen from inside; it would map onto a Lambertian layer seen from the back —
+//! diffuse reflection inside, or diffuse transmission of the outside's light with
+//! `render_reverse_of_back_material` — not built yet), `max_distance` with
+//! `deep_material` (no fade: the classic shader blends its refracted rays towards the
+//! deep material's colour shaded at the entry point, a lit colour rather than radiance
+//! found along the ray, which has no clean path-tracing counterpart). `u_axis` (constant
+//! or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
 use scene::Library;

@@ -57,9 +57,10 @@ material "m" "mib_glossy_reflection" ("base_material" "base", "reflection_color"
 }
 
 /// Parameters the path engine does not honour are named in warnings: an
-/// `environment_color` other than the reflection colour (here its default, black),
-/// `max_distance`, `single_env_sample` (default on) with a spread lobe, a `u_axis`
-/// connected where there is no shader graph to follow (translated without one).
+/// `single_env_sample` (default on) with a spread lobe, a `u_axis` connected where there
+/// is no shader graph to follow (translated without one), an `environment_color` with
+/// light in a channel where `reflection_color` has none. `max_distance` (5), `falloff`
+/// (its default 2) and `environment_color` (0.2) are the lobe's, unwarned.
 #[test]
 fn unhonoured_parameters_are_warned_about() {
     let (s, warnings) = translated(
@@ -69,9 +70,17 @@ material "m" "mib_glossy_reflection" ("reflection_color" 1 1 1, "environment_col
 "#,
     );
     assert!(matches!(s.model, SurfaceModel::MibGlossy(_)));
-    for what in ["environment_color", "max_distance", "single_env_sample", "u_axis"] {
+    for what in ["single_env_sample", "u_axis"] {
         assert!(warnings.iter().any(|w| w.contains(what)), "no warning about {what}: {warnings:?}");
     }
+    assert!(!warnings.iter().any(|w| w.contains("max_distance") || w.contains("environment_color")), "{warnings:?}");
+    let SurfaceModel::MibGlossy(lobe) = &s.model else { panic!("a mib_glossy lobe") };
+    assert_eq!((lobe.max_distance, lobe.falloff, lobe.env_color), (5.0, 2.0, Rgb::splat(0.2)));
+    let (_, warnings) = translated(
+        r#"material "m" "mib_glossy_reflection" ("reflection_color" 1 0 1, "environment_color" 1 1 1) end material
+"#,
+    );
+    assert!(warnings.iter().any(|w| w.contains("environment_color")), "{warnings:?}");
     assert_eq!((s.tangent_axis, s.tangent_angle), (None, Some(0.0)), "dP/du is the axis");
 }
 

@@ -211,3 +211,100 @@ fn u_axis_lays_the_spreads_alike_in_both_engines() {
         "the axis changes the blur across the seam: right halves {classic_right:?}"
     );
 }
+
+/// A mirror-like ground (`reflection_color` 0.8, `environment_color` `env_color`, weights
+/// 1, spread `spread`, `extra` parameters) under a ceiling at y = 5 glowing 1 (a Maya
+/// lambert of colour 0, incandescence 1) where `ceiling`, in the camera's constant
+/// environment (0.3, 0.6, 0.9), seen from above (the camera at y = 4).
+fn reach_scene(spread: f32, env_color: &str, extra: &str, ceiling: bool) -> String {
+    let view = support::maya_view::top_down(8).replace("end camera", "environment = \"camera_env\" end camera");
+    let (object, instance) = if ceiling {
+        (
+            r#"object "ceiling" group -500 5 500  500 5 500  500 5 -500  -500 5 -500  v 0 v 1 v 2 v 3 c "c" 0 1 2 3 end group end object
+instance "ceiling_inst" "ceiling" end instance"#,
+            r#" "ceiling_inst""#,
+        )
+    } else {
+        ("", "")
+    };
+    format!(
+        r#"
+$include "mayabase.mi"
+shader "camera_env" "mib_color_mix" ("num" 0, "color_base" 0.3 0.6 0.9 1)
+{view}
+material "g" opaque "mib_glossy_reflection" ("reflection_color" 0.8 0.8 0.8,
+    "environment_color" {env_color}, "reflection_base_weight" 1, "reflection_edge_weight" 1,
+    "samples" 16, "single_env_sample" off, "u_spread" {spread}, "v_spread" {spread}{extra}) end material
+shader "glow" "maya_lambert" ("color" 0 0 0, "incandescence" 1 1 1)
+material "c" opaque "maya_shadingengine" ("surfaceShader" = "glow.outColor") end material
+object "ground" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
+instance "ground_inst" "ground" end instance
+{object}
+instgroup "root" "cam_inst" "ground_inst"{instance} end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// `max_distance`: the glossy rays of a ground whose ceiling lies 5 away or farther take
+/// the environment past `max_distance` 3, as the classic shader's do (its rays stop
+/// there): a mirror (spread 0) and a spread-0.01 lobe show 0.8 × the environment (0.3,
+/// 0.6, 0.9) at every pixel within 1e-3 in both engines (without the limit they show
+/// 0.8 × the ceiling's 1, checked the same way). With `max_distance` 10 and `falloff` 2
+/// or 1 a hit at d fades towards the environment by (d / 10)^falloff: the path engine's
+/// image mean within 2 % of the classic engine's, and between the two images above.
+#[test]
+fn glossy_rays_past_max_distance_take_the_environment() {
+    let env = Vec3A::new(0.3, 0.6, 0.9) * 0.8;
+    let ceiling = Vec3A::splat(0.8);
+    for spread in [0.0f32, 0.01] {
+        for (extra, want) in [(r#", "max_distance" 3"#, env), ("", ceiling)] {
+            let text = reach_scene(spread, "0.8 0.8 0.8", extra, true);
+            for engine in [EngineKind::Classic, EngineKind::Path] {
+                for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
+                    assert!(
+                        (*p - want).abs().max_element() < 1e-3,
+                        "spread {spread}{extra}, {engine:?} pixel {i}: {p} vs {want}"
+                    );
+                }
+            }
+        }
+        for falloff in [2.0f32, 1.0] {
+            let text =
+                reach_scene(spread, "0.8 0.8 0.8", &format!(r#", "max_distance" 10, "falloff" {falloff}"#), true);
+            let (c, p) = (mean(&pixels(&text, EngineKind::Classic, 8)), mean(&pixels(&text, EngineKind::Path, 8)));
+            println!("spread {spread}, falloff {falloff}: classic {c}, path {p}");
+            assert!(
+                (p - c).abs().max_element() <= 0.02 * c.max_element(),
+                "falloff {falloff}: path {p} vs classic {c}"
+            );
+            assert!(c.x > env.x + 0.05 && c.x < ceiling.x - 0.05, "a fade between the two: {c}");
+        }
+    }
+}
+
+/// `environment_color` weighs what the glossy rays take from the environment,
+/// `reflection_color` what they find, in both engines: a mirror (spread 0) and a
+/// spread-0.01 lobe of `reflection_color` 0.8 and `environment_color` (0.2, 0.4, 1) show
+/// (0.2, 0.4, 1) ⊙ the environment (0.3, 0.6, 0.9) under the open sky and past
+/// `max_distance` 3 below the ceiling, and 0.8 × the ceiling's 1 below it without a
+/// limit: at every pixel within 1e-3.
+#[test]
+fn environment_color_weighs_the_environment_in_both_engines() {
+    let env = Vec3A::new(0.2, 0.4, 1.0) * Vec3A::new(0.3, 0.6, 0.9);
+    for spread in [0.0f32, 0.01] {
+        for (extra, ceiling, want) in
+            [("", false, env), (r#", "max_distance" 3"#, true, env), ("", true, Vec3A::splat(0.8))]
+        {
+            let text = reach_scene(spread, "0.2 0.4 1", extra, ceiling);
+            for engine in [EngineKind::Classic, EngineKind::Path] {
+                for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
+                    assert!(
+                        (*p - want).abs().max_element() < 1e-3,
+                        "spread {spread}{extra}, ceiling {ceiling}, {engine:?} pixel {i}: {p} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,115 @@
+//! `mib_glossy_reflection`'s `max_distance`, `falloff` and `environment_color` in the path
+//! engine. The classic shader weighs what its glossy rays find by `reflection_color`,
+//! but the environment by `environment_color`; with `max_distance` > 0 a ray that finds a
+//! surface at distance d fades towards the environment by t = (d / max_distance)^falloff,
+//! and a ray that travels farther (or leaves the scene) sees only the environment.
+//!
+//! A path bounce at such a surface ([`material::SurfaceModel::MibGlossy`] whose lobe
+//! [`reaches`](bsdf::MibGlossyLobe::reaches)) carries, per channel, the share of its
+//! weight f·cos/pdf the glossy lobe gave (g) and the base's (b = 1 − g where f > 0; all
+//! of it glossy for the mirror). The segment that follows is then split exactly: at a
+//! surface or light at distance d, the environment along the ray weighed by
+//! t·ratio⊙g (ratio = `environment_color` / `reflection_color`) is added and the path goes
+//! on with b + (1 − t)·g; a ray that leaves the scene takes the environment by
+//! b + ratio⊙g. Next-event estimation does not sample the scene's environment at such a
+//! surface (its shadow rays know nothing of the split), so a ray that leaves takes all of
+//! it (no MIS), as at a material with its own environment (`material_env`). The
+//! environment is that one where the material has it (the shader's own `environment`
+//! included), else the scene's. Not split: light reached by next-event estimation through
+//! the lobe (the classic shader's glossy rays find only lights that are geometry), and a
+//! segment through a participating medium that scatters before its end (it goes on with
+//! the whole bounce).
+
+use bsdf::{Bsdf, BsdfSample, Rgb};
+use glam::Vec3A;
+use material::SurfaceModel;
+use shader::{NodeId, Shading};
+
+use super::material_env;
+use crate::accel::Accel;
+use crate::environment::Environment;
+use crate::world::World;
+
+/// Whether a surface of `model` splits its glossy rays' view of the environment from its
+/// base's (and so is not lit by environment sampling).
+#[inline]
+pub(super) fn reaches(model: &SurfaceModel) -> bool {
+    matches!(model, SurfaceModel::MibGlossy(lobe) if lobe.reaches())
+}
+
+/// The glossy share of a bounce, to split the segment after it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Reach {
+    /// The glossy lobe's share of the bounce's weight, per channel (the base has the rest).
+    glossy: Rgb,
+    /// The base's share.
+    base: Rgb,
+    /// `environment_color` / `reflection_color`, per channel.
+    ratio: Rgb,
+    /// `max_distance` (0: none).
+    max_distance: f32,
+    /// `falloff`.
+    falloff: f32,
+}
+
+impl Reach {
+    /// The split of the bounce `bs` sampled from `bsdf` seen from `wo` (local frame) at a
+    /// surface of `model`; `None` where the surface does not split its rays.
+    pub(super) fn after(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
+        let SurfaceModel::MibGlossy(lobe) = model else { return None };
+        let Bsdf::MibGlossy(b) = bsdf else { return None };
+        if !lobe.reaches() {
+            return None;
+        }
+        let (base, glossy) = if bs.delta {
+            // Only the mirror has a delta.
+            (Rgb::ZERO, Rgb::ONE)
+        } else {
+            let (fb, fg) = b.eval_split(wo, bs.wi);
+            let sum = fb + fg;
+            let share = |x: Rgb| {
+                Rgb::new(
+                    if sum.x > 0.0 { x.x / sum.x } else { 0.0 },
+                    if sum.y > 0.0 { x.y / sum.y } else { 0.0 },
+                    if sum.z > 0.0 { x.z / sum.z } else { 0.0 },
+                )
+            };
+            (share(fb), share(fg))
+        };
+        Some(Reach {
+            glossy,
+            base,
+            ratio: lobe.environment_ratio(),
+            max_distance: lobe.max_distance,
+            falloff: lobe.falloff,
+        })
+    }
+
+    /// For a segment that found something at distance `d` (infinite: it left the scene):
+    /// the factor the path's throughput keeps and the weight of the environment along it.
+    pub(super) fn split(&self, d: f32) -> (Rgb, Rgb) {
+        let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
+        (self.base + self.glossy * (1.0 - t), self.ratio * self.glossy * t)
+    }
+}
+
+/// The environment along `dir` for a ray that left a surface (all of it, no MIS; as
+/// light, or as seen after a `delta` bounce): `own` (the material's environment shader)
+/// where given, else the scene's `env`, else black.
+pub(super) fn environment(
+    world: &World,
+    accel: &dyn Accel,
+    shading: Option<&Shading>,
+    env: Option<&Environment>,
+    own: Option<NodeId>,
+    dir: Vec3A,
+    delta: bool,
+) -> Rgb {
+    if let (Some(node), Some(shading)) = (own, shading) {
+        return material_env::radiance(world, accel, shading, node, dir, !delta);
+    }
+    match env {
+        Some(e) => (if delta { e.radiance(dir) } else { e.light_radiance(dir) }) * e.lighting_scale,
+        None => Rgb::ZERO,
+    }
+}
