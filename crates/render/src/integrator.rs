@@ -444,9 +444,17 @@ pub fn trace_camera_path_into(
             let surface_material = &world.materials[s.material as usize];
             let constant =
                 !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
-            let m = if constant { None } else { Some(material_at(world, accel, shading, &through, &h, s.material)) };
+            // Written to `varying` itself, a constant material's `None` on its own: moved
+            // there from a local (or from an `if` expression's value), the whole `Option` went
+            // through a `memcpy` at every hit, constant materials' `None` included. (A surface
+            // passed through leaves its material there; it is read only with `found`.)
+            if constant {
+                varying = None;
+            } else {
+                varying = Some(material_at(world, accel, shading, &through, &h, s.material));
+            }
             // (What `material_at` gives a constant material, read in place.)
-            let (opacity, refracts, cutout_tint) = match &m {
+            let (opacity, refracts, cutout_tint) = match &varying {
                 Some(m) => (m.opacity, m.model.refracts(), m.cutout_tint),
                 None => (surface_material.opacity, surface_material.model.refracts(), surface_material.cutout_tint),
             };
@@ -460,7 +468,6 @@ pub fn trace_camera_path_into(
                 // Distances along the original ray.
                 let t = (s.p - ray.origin).dot(ray.dir);
                 found = Some((Hit { t, ..h }, s));
-                varying = m;
                 break;
             }
             counts.rays += 1;
