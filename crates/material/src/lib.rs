@@ -227,6 +227,11 @@ pub struct SurfaceMaterial {
     /// this surface after a stretch s inside it passes T + (1 − T)·max(1 − s/D, 0)
     /// ([`maya::translucent_passage`]).
     pub translucence_depth: f32,
+    /// What the rest of a layeredShader stack lets shadow rays through (per channel) where
+    /// the translucence depth is one of its layers': the passage is this times the
+    /// layer's own T + (1 − T)·max(1 − s/D, 0), as the classic stack multiplies its
+    /// layers' transparencies; 1 for a material on its own.
+    pub translucence_others: Rgb,
 }
 
 impl SurfaceMaterial {
@@ -257,6 +262,7 @@ impl SurfaceMaterial {
             view_transparency: None,
             maya_matte: None,
             translucence_depth: 0.0,
+            translucence_others: Rgb::ONE,
         }
     }
 

@@ -46,7 +46,9 @@
 //!   refracts by P_k ⊙ T_k (P_k the transparencies above it) with its index and limit,
 //!   as the classic layeredShader shows what that layer's refraction ray finds; rampShader
 //!   layers whose transparency or incandescence ramps follow the view are read at each
-//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`);
+//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`); the
+//!   translucence depth of the layer whose lobe shows passes shadow rays times the other
+//!   layers' transparency ([`SurfaceMaterial::translucence_others`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
@@ -604,7 +606,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     // The first layer whose material refracts: P_k ⊙ T_k, its index and limit (the
     // layers below it do not show, as in the classic shader).
     let mut refraction: Option<(Rgb, f32, u32)> = None;
-    for (e, &t) in elements.iter().zip(&transparencies) {
+    // The layer (its index) whose lobe carries a translucence depth, and that depth.
+    let mut translucent_layer: Option<(usize, f32)> = None;
+    for (lobe_layer, (e, &t)) in elements.iter().zip(&transparencies).enumerate() {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         // The layer's share per channel, P_i ⊙ (1 − T_i).
         let w = through * (Rgb::ONE - t);
@@ -629,6 +633,17 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 // Maya's highlight shows by the layer's share, as its diffuse colour.
                 if let (SurfaceModel::Maya(g), None) = (layer.model, &lobe) {
                     lobe = Some(g.scaled(w));
+                    // Its translucence depth, for the stack's shadow rays (the other
+                    // layers' transparencies multiply its passage, below).
+                    if layer.translucence_depth > 0.0 {
+                        translucent_layer = Some((lobe_layer, layer.translucence_depth));
+                    }
+                } else if layer.translucence_depth > 0.0 {
+                    warnings.push(format!(
+                        "layer '{}': the path engine shows the first layer's highlight and translucence only; \
+                         its translucence and 'translucenceDepth' are left out",
+                        graph.nodes[m as usize].name
+                    ));
                 }
                 if let Some((ior, limit)) = layer_refraction(graph, m, t) {
                     refraction = Some((through * t, ior, limit));
@@ -651,6 +666,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     }
     // Shadow rays pass the whole stack, filtered by every layer's transparency.
     cut_out(&mut surface, transparencies.iter().fold(Rgb::ONE, |p, t| p * *t), false);
+    if let Some((i, depth)) = translucent_layer {
+        surface.translucence_depth = depth;
+        surface.translucence_others =
+            transparencies.iter().enumerate().filter(|&(j, _)| j != i).fold(Rgb::ONE, |p, (_, t)| p * *t);
+    }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
     let ratio = |a: f32, d: f32| if d > 0.0 { a / d } else { 0.0 };

@@ -255,8 +255,16 @@ pub(crate) fn shadow_filter(out: &mut Value, transparency: Vec3A) -> bool {
 /// `translucenceDepth` D > 0, the transparency T raised to T + (1 − T)·max(1 − inside/D, 0)
 /// (mira's reading of Maya's reference); else T unchanged.
 fn translucent_passage(ctx: &mut Ctx, n: NodeId, transparency: Vec3A, inside: f32) -> Vec3A {
-    let depth = ctx.scalar(n, TRANSLUCENCE_DEPTH);
-    if depth <= 0.0 || ctx.scalar(n, TRANSLUCENCE) <= 0.0 {
+    let (translucence, depth) = (ctx.scalar(n, TRANSLUCENCE), ctx.scalar(n, TRANSLUCENCE_DEPTH));
+    passage(transparency, translucence, depth, inside)
+}
+
+/// The shadow passage of a material of `translucence` t and `translucenceDepth` D where a
+/// shadow ray leaves its own object after `inside` world units (see the module doc):
+/// T + (1 − T)·max(1 − inside/D, 0) when t > 0 and D > 0, else T (`transparency`).
+/// rampShader reads it too (`crate::ramp_shader`).
+pub(crate) fn passage(transparency: Vec3A, translucence: f32, depth: f32, inside: f32) -> Vec3A {
+    if depth <= 0.0 || translucence <= 0.0 {
         return transparency;
     }
     let kept = (1.0 - inside / depth).max(0.0);

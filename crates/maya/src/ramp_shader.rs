@@ -37,7 +37,12 @@
 //! other rows, the indices of the specular and reflection ramps and Blinn's distribution
 //! for the highlight are mira's reading of Maya's description.
 //!
-//! Not read: `forwardScatter`, `translucenceDepth`, `translucenceFocus`,
+//! `translucenceDepth` D (0.5): as the lambert family's (see [`crate::material`]), a
+//! shadow ray that leaves the object's own geometry from inside after a stretch s passes
+//! T + (1 − T)·max(1 − s/D, 0) of it where `translucence` > 0 (T the transparency ramp at
+//! the shadow ray's facing ratio).
+//!
+//! Not read: `forwardScatter`, `translucenceFocus`,
 //! `reflectionSpecularity`, `lightAbsorbance`, `surfaceThickness`, `shadowAttenuation`,
 //! `chromaticAberration`, `matteOpacityMode`, `hideSource`.
 
@@ -45,7 +50,7 @@ use glam::Vec3A;
 use shader::{Ctx, NodeId, RayType, Value};
 
 use crate::light::light_role;
-use crate::material::{behind_with, material_lights, shadow_filter};
+use crate::material::{behind_with, material_lights, passage, shadow_filter};
 use crate::maya_shader;
 use crate::utility::Ramp;
 use crate::values::{luma, rgb, rgba, write_struct};
@@ -71,6 +76,7 @@ const REFRACTION_LIMIT: usize = 17;
 const MATTE_OPACITY: usize = 18;
 const GLOW_INTENSITY: usize = 19;
 const LIGHT_LIST: usize = 20;
+const TRANSLUCENCE_DEPTH: usize = 21;
 
 /// What indexes the colour ramp (`colorInput`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -158,6 +164,7 @@ maya_shader!(
         "matteOpacity",
         "glowIntensity",
         "lightList",
+        "translucenceDepth",
     ],
     ramp_shader
 );
@@ -175,6 +182,12 @@ fn ramp_shader(ctx: &mut Ctx, n: NodeId, out: &mut Value) -> bool {
         .at(facing)
         .clamp(Vec3A::ZERO, Vec3A::ONE);
     if ctx.state.ray_type == RayType::Shadow {
+        let transparency = match ctx.state.inside_own {
+            Some(inside) => {
+                passage(transparency, ctx.scalar(n, TRANSLUCENCE), ctx.scalar(n, TRANSLUCENCE_DEPTH), inside)
+            }
+            None => transparency,
+        };
         return shadow_filter(out, transparency);
     }
     if !ctx.state.ray_type.is_visible() {

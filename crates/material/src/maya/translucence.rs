@@ -64,7 +64,10 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb
 /// going `inside` world units through it: T + (1 − T)·max(1 − inside/D, 0), T the
 /// transparency the surface lets shadow rays through by (its cut-out's, (1 − coverage) ·
 /// tint) and D its [`SurfaceMaterial::translucence_depth`], where D > 0 and the surface is
-/// translucent there; `None` otherwise (the surface filters the ray as any other).
+/// translucent there; `None` otherwise (the surface filters the ray as any other). In a
+/// layeredShader stack (O = [`SurfaceMaterial::translucence_others`] ≠ 1, the other
+/// layers' transparency) it is O ⊙ (T' + (1 − T')·max(1 − inside/D, 0)), T' = T / O the
+/// translucent layer's own transparency (per channel; 0 where O is).
 pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside: f32) -> Option<Rgb> {
     let depth = material.translucence_depth;
     if depth <= 0.0 {
@@ -80,5 +83,11 @@ pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside
     let t =
         if hit.opacity < 1.0 { (hit.cutout_tint * (1.0 - hit.opacity)).clamp(Rgb::ZERO, Rgb::ONE) } else { Rgb::ZERO };
     let kept = (1.0 - inside / depth).max(0.0);
-    Some(t + (Rgb::ONE - t) * kept)
+    let others = material.translucence_others;
+    if others == Rgb::ONE {
+        return Some(t + (Rgb::ONE - t) * kept);
+    }
+    let own = |t: f32, o: f32| if o > 0.0 { (t / o).min(1.0) } else { 0.0 };
+    let t = Rgb::new(own(t.x, others.x), own(t.y, others.y), own(t.z, others.z));
+    Some(others * (t + (Rgb::ONE - t) * kept))
 }
