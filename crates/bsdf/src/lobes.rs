@@ -32,6 +32,10 @@ use crate::sheen::Sheen;
 use crate::vcavity;
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, OrenNayar, Rgb};
 
+mod frames;
+
+use frames::{directions_in, in_own_frame, own_frame, place_normals, FrameKinds};
+
 /// Most lobes a compact sum ([`Lobes`], the common case, kept inline in a
 /// [`crate::Bsdf`]) holds.
 pub const MAX_LOBES: usize = 4;
@@ -163,6 +167,11 @@ pub struct LobeSum<const N: usize, const C: usize, const F: usize, const T: usiz
     /// tangent `normals[k − 1]` (an anisotropic lobe's own `tangent_u`; placed, it lies in
     /// the tangent plane) instead of around a normal.
     pub tangent_frames: u8,
+    /// Bit k − 1 set (with bit k − 1 of `tangent_frames`): tangent frame k turns about the
+    /// normal of frame k − 1 (a layer's own, kept in the slot before it) instead of the
+    /// shading normal, its x axis the tangent made orthogonal to that normal (placed, the
+    /// tangent is kept whole).
+    pub tangents_in_layer: u8,
     /// The frame of each part (0: the shading frame).
     pub part_frames: [u8; N],
     /// The frame each curve measures its angles in (0: the shading frame).
@@ -186,21 +195,13 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> Default for
             normals: [[0.0, 0.0, 1.0]; F],
             normal_count: 0,
             tangent_frames: 0,
+            tangents_in_layer: 0,
             part_frames: [0; N],
             curve_frames: [0; C],
             table: [Rgb::ZERO; T],
             table_len: 0,
         }
     }
-}
-
-/// Two directions in a part's own frame, and |cos θi| there over |cos θi| in the shading
-/// frame; `None` where the frames disagree on a side (the part scatters nothing there).
-#[inline]
-fn in_own_frame(frame: &Frame, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
-    let (o, i) = (frame.to_local(wo), frame.to_local(wi));
-    let agree = (o.z * wo.z > 0.0) && (i.z * wi.z > 0.0) && wi.z.abs() > 1e-6;
-    agree.then(|| (o, i, i.z.abs() / wi.z.abs()))
 }
 
 /// ωi turned by π about the normal (the backscattering lobe's change of variable).
@@ -327,46 +328,6 @@ fn ggx_sample(g: &Ggx, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
     (i.z > 0.0).then(|| Vec3A::new(i.x, i.y, i.z * wo.z.signum()))
 }
 
-/// Own frame `k` (≥ 1) of `normals` (local shading frame): x the shading frame's x laid
-/// into its tangent plane; or, where bit k − 1 of `tangents` is set, the shading frame
-/// turned about its normal so that x is the tangent `normals[k − 1]`.
-#[inline]
-fn own_frame(normals: &[[f32; 3]], tangents: u8, k: u8) -> Frame {
-    let v = Vec3A::from_array(normals[usize::from(k) - 1]);
-    if tangents & (1 << (k - 1)) != 0 {
-        Frame::from_normal_and_tangent(Vec3A::Z, v)
-    } else {
-        Frame::from_normal_and_tangent(v, Vec3A::X)
-    }
-}
-
-/// Directions in frame `k` of `normals` (`tangents`: which are tangents) and the cosine
-/// ratio (see [`in_own_frame`]); the shading frame's are the directions themselves.
-#[inline]
-fn directions_in(normals: &[[f32; 3]], tangents: u8, k: u8, wo: Vec3A, wi: Vec3A) -> Option<(Vec3A, Vec3A, f32)> {
-    if k == 0 {
-        Some((wo, wi, 1.0))
-    } else {
-        in_own_frame(&own_frame(normals, tangents, k), wo, wi)
-    }
-}
-
-/// Brings the own frames' normals from world space into the local shading frame `frame`
-/// (world space), each turned to the side of the shading normal; those that bit k of
-/// `tangents` marks as tangents are laid into the tangent plane instead (x where one has
-/// no direction there).
-pub fn place_normals(normals: &mut [[f32; 3]], tangents: u8, frame: &Frame) {
-    for (k, n) in normals.iter_mut().enumerate() {
-        let local = frame.to_local(Vec3A::from_array(*n));
-        *n = if tangents & (1 << k) != 0 {
-            Vec3A::new(local.x, local.y, 0.0).normalize_or(Vec3A::X).to_array()
-        } else {
-            let local = if local.z < 0.0 { -local } else { local };
-            local.normalize_or(Vec3A::Z).to_array()
-        };
-    }
-}
-
 impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, C, F, T> {
     /// Adds `lobe` of weight `weight`; false when the sum is full.
     pub fn push(&mut self, weight: Rgb, lobe: Lobe) -> bool {
@@ -455,11 +416,48 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
         self.add_frame(tangent, true)
     }
 
+    /// Adds an own frame around the normal of frame `base` (0: the shading frame, else a
+    /// layer's own, from [`LobeSum::add_normal`]) whose x axis is `tangent` (world space)
+    /// made orthogonal to that normal: an anisotropic lobe's own `tangent_u` inside a
+    /// layer with its own normal. The tangent takes the slot after that normal's — a copy
+    /// of it is added first when another frame took that slot. Its frame number, or `None`
+    /// when the sum has too few frames left or `tangent` has no direction; an equal
+    /// tangent about an equal normal is shared.
+    pub fn add_tangent_in(&mut self, tangent: Vec3A, base: u8) -> Option<u8> {
+        if base == 0 {
+            return self.add_tangent(tangent);
+        }
+        let t = tangent.try_normalize()?;
+        let n = self.normals[usize::from(base) - 1];
+        let used = usize::from(self.normal_count);
+        let in_layer = |k: usize| self.tangents_in_layer & (1 << k) != 0;
+        if let Some(k) = (1..used).find(|&k| in_layer(k) && self.normals[k] == t.to_array() && self.normals[k - 1] == n)
+        {
+            return Some(k as u8 + 1);
+        }
+        let copy = usize::from(base) != used;
+        if used + 1 + usize::from(copy) > F.min(8) {
+            return None;
+        }
+        if copy {
+            self.normals[used] = n;
+            self.normal_count += 1;
+        }
+        let k = usize::from(self.normal_count);
+        self.normals[k] = t.to_array();
+        self.tangent_frames |= 1 << k;
+        self.tangents_in_layer |= 1 << k;
+        self.normal_count += 1;
+        Some(self.normal_count)
+    }
+
+    /// Adds an own frame around the normal `v`, or (`tangent`) turned about the shading
+    /// normal to the tangent `v`; an equal one already added is shared.
     fn add_frame(&mut self, v: Vec3A, tangent: bool) -> Option<u8> {
         let v = v.try_normalize()?;
         let used = usize::from(self.normal_count);
-        let is_tangent = |k: usize| self.tangent_frames & (1 << k) != 0;
-        if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == v && is_tangent(k) == tangent) {
+        let kind = |k: usize| (self.tangent_frames & (1 << k) != 0, self.tangents_in_layer & (1 << k) != 0);
+        if let Some(k) = (0..used).find(|&k| Vec3A::from_array(self.normals[k]) == v && kind(k) == (tangent, false)) {
             return Some(k as u8 + 1);
         }
         if used == F || used == 8 {
@@ -471,10 +469,17 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
         Some(self.normal_count)
     }
 
+    /// Which own frames are tangent frames and what they turn about.
+    #[inline]
+    fn kinds(&self) -> FrameKinds {
+        FrameKinds { tangents: self.tangent_frames, in_layer: self.tangents_in_layer }
+    }
+
     /// Brings the own frames' normals from world space into the local shading frame
     /// `frame` (world space), each turned to the side of the shading normal.
     pub fn place(&mut self, frame: &Frame) {
-        place_normals(&mut self.normals[..usize::from(self.normal_count)], self.tangent_frames, frame);
+        let kinds = self.kinds();
+        place_normals(&mut self.normals[..usize::from(self.normal_count)], kinds, frame);
     }
 
     /// How many parts are used.
@@ -524,7 +529,7 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
             let (wo, wi) = match self.curve_frames[j] {
                 0 => (wo, wi),
                 own => {
-                    let frame = own_frame(normals, self.tangent_frames, own);
+                    let frame = own_frame(normals, self.kinds(), own);
                     (frame.to_local(wo), frame.to_local(wi))
                 }
             };
@@ -599,7 +604,7 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
             if l == Lobe::Mirror {
                 continue;
             }
-            if let Some((o, i, ratio)) = directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi) {
+            if let Some((o, i, ratio)) = directions_in(normals, self.kinds(), self.part_frames[k], wo, wi) {
                 sum += w * l.eval(o, i, self.film(k)) * (self.factor(normals, k, wo, wi) * ratio);
             }
         }
@@ -612,7 +617,7 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
         let total = self.total_choice();
         (0..self.len())
             .map(|k| {
-                directions_in(normals, self.tangent_frames, self.part_frames[k], wo, wi)
+                directions_in(normals, self.kinds(), self.part_frames[k], wo, wi)
                     .map_or(0.0, |(o, i, _)| self.choice(k, total) * self.lobes[k].pdf(o, i, self.film(k)))
             })
             .sum()
@@ -646,7 +651,7 @@ impl<const N: usize, const C: usize, const F: usize, const T: usize> LobeSum<N, 
                 (wi, (wo, wi))
             }
             own => {
-                let frame = own_frame(normals, self.tangent_frames, own);
+                let frame = own_frame(normals, self.kinds(), own);
                 let o = frame.to_local(wo);
                 let i = lobe.sample_dir(o, u, u_choice, film)?;
                 let wi = frame.to_world(i);
@@ -729,6 +734,7 @@ static EMPTY_WIDE: WideLobes = WideLobes {
     normals: [[0.0, 0.0, 1.0]; WIDE_FRAMES],
     normal_count: 0,
     tangent_frames: 0,
+    tangents_in_layer: 0,
     part_frames: [0; WIDE_LOBES],
     curve_frames: [0; WIDE_CURVES],
     table: [Rgb::ZERO; WIDE_TABLE],
@@ -753,7 +759,7 @@ impl WideBsdf {
     pub fn new(sum: SharedLobes, frame: Option<&Frame>) -> WideBsdf {
         let mut normals = sum.normals;
         if let Some(frame) = frame {
-            place_normals(&mut normals[..usize::from(sum.normal_count)], sum.tangent_frames, frame);
+            place_normals(&mut normals[..usize::from(sum.normal_count)], sum.kinds(), frame);
         }
         WideBsdf { sum, normals }
     }

@@ -514,13 +514,8 @@ pub fn surface(
     }
     // Anisotropic lobes turn their roughness with their `tangent_u` (world space): the
     // shading frame's u axis follows the first's at each hit, a lobe of another its own
-    // frame turned about the normal (`tangents`).
+    // frame turned about the normal — a layer's own normal inside one (`tangents`).
     if let Some(first) = tangents::first(&scattering) {
-        if tangents::differ_under_own_normal(&scattering) {
-            warnings.push(format!(
-                "material '{name}': an anisotropic microfacet lobe under a layer with its own `normal` has another `tangent_u` than the first lobe's; it follows the first's"
-            ));
-        }
         let along = match first {
             Leaf::Const(c) => TangentU::Const(Vec3A::new(c.x, c.y, c.z)),
             Leaf::Hit(i) => TangentU::Hit(i),

@@ -371,9 +371,10 @@ impl Df {
     /// the layers' curves do not depend on it). A glass lobe (`scatter_reflect_transmit`)
     /// under two different tints is split into its Fresnel-reflected half
     /// ([`ScatterMode::GlassReflect`]) under the reflection tint and its transmitted half
-    /// (`scatter_transmit`) under the transmission tint: the two halves sum to the lobe.
-    /// `Err` names what cannot be split: a `measured_bsdf` that reflects and transmits
-    /// under two tints, or a sheen whose base transmits.
+    /// (`scatter_transmit`) under the transmission tint: the two halves sum to the lobe;
+    /// so is a `measured_bsdf` that reflects and transmits, into its reflection part and
+    /// its transmission part. `Err` names what cannot be split: a sheen whose base
+    /// transmits, under two tints.
     pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
         let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], bound: MixBound::Normalized };
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
@@ -382,7 +383,18 @@ impl Df {
             Df::Measured { mode: ScatterMode::Reflect, .. } => wrap(reflect),
             Df::Measured { mode: ScatterMode::Transmit, .. } => wrap(transmit),
             Df::Measured { .. } if reflect == transmit => wrap(reflect),
-            Df::Measured { .. } => return Err("a `measured_bsdf` that reflects and transmits, under two tints"),
+            // Its reflection part under the reflection tint, its transmission part under
+            // the transmission tint: the two parts sum to the lobe.
+            Df::Measured { table, multiplier, .. } => {
+                let part = |mode: ScatterMode, w: Leaf| {
+                    let lobe = Df::Measured { table, multiplier: *multiplier, mode };
+                    (Leaf::Const(Rgb::ONE), Df::Mix { parts: vec![(w, lobe)], bound: MixBound::Normalized })
+                };
+                Df::Mix {
+                    parts: vec![part(ScatterMode::Reflect, reflect), part(ScatterMode::Transmit, transmit)],
+                    bound: MixBound::Unbounded,
+                }
+            }
             Df::Diffuse { .. } | Df::Ward { .. } | Df::Backscatter { .. } => wrap(reflect),
             Df::DiffuseTransmission(_) => wrap(transmit),
             Df::Specular { mode, .. } | Df::Glossy { mode, .. } => match mode {

@@ -9,56 +9,16 @@ use crate::mdl_support;
 
 use bsdf::Rgb;
 use glam::Vec3A;
-use material::{HitMaterial, SurfaceMaterial, Varying};
+use material::{HitMaterial, SurfaceMaterial};
+use mdl_support::per_hit::{at, direction_pairs, twins_text};
 use mdl_support::{close, compile_text, get};
-use shader::State;
-
-/// A shading point with texture coordinate (u, 0.5), world position (u, 0.5, 0), normal +z.
-fn uv(u: f32) -> State {
-    let mut s = State {
-        tex_count: 1,
-        normal: Vec3A::Z,
-        normal_geom: Vec3A::Z,
-        dir: -Vec3A::Z,
-        point: Vec3A::new(u, 0.5, 0.0),
-        ..State::default()
-    };
-    s.tex_list[0] = Vec3A::new(u, 0.5, 0.0);
-    s
-}
-
-/// The material `m` evaluated at texture coordinate u.
-fn at(m: &SurfaceMaterial, u: f32) -> HitMaterial<'_> {
-    let Varying::Evaluated(hit) = &m.varying else { panic!("{} is not evaluated per hit: {:?}", m.name, m.varying) };
-    let mut h = m.constant();
-    hit.0.apply(&uv(u), &mut h);
-    h
-}
-
-/// Directions for comparing BSDFs: 23 on the sphere, every pair.
-fn direction_pairs() -> Vec<(Vec3A, Vec3A)> {
-    let dirs: Vec<Vec3A> = (1..24)
-        .map(|i| {
-            let u = bsdf::testing::r2(i);
-            let z = 1.0 - 2.0 * u.x;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = std::f32::consts::TAU * u.y;
-            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    dirs.iter().flat_map(|a| dirs.iter().map(move |b| (*a, *b))).collect()
-}
 
 /// Compiles `varying` and, for each (u, constant shader parameters), its constant twin
 /// `constant`; checks that at u the varying material's model is the twin's and that their
 /// BSDFs agree at every pair of directions within 1e-6 of the larger value, and that the
 /// models at the two points differ (the parameter is read per hit).
 fn same_as_constant_twins(varying: &str, constant: &str, twins: [(f32, &str); 2]) {
-    let mut text = format!("shader \"v\" \"mdl::per_hit::{varying}\" ()\n");
-    for (k, (_, params)) in twins.iter().enumerate() {
-        text += &format!("shader \"c{k}\" \"mdl::per_hit::{constant}\" ({params})\n");
-    }
-    let (mdl, lib, diags) = compile_text(&text);
+    let (mdl, lib, diags) = compile_text(&twins_text("per_hit", varying, constant, &twins));
     assert!(diags.is_empty(), "{varying}: {diags:#?}");
     let v = get(&mdl, &lib, "v");
     let mut models = Vec::new();
@@ -125,11 +85,7 @@ fn radiance(h: &HitMaterial<'_>, deg: f32) -> Rgb {
 /// Checks that `varying` at each u emits what its constant twin (parameters given) emits
 /// at 0°, 30°, 55° and 80° (1e-4 of the larger), and that the two points differ.
 fn emits_as_constant_twins(varying: &str, constant: &str, twins: [(f32, &str); 2]) {
-    let mut text = format!("shader \"v\" \"mdl::per_hit::{varying}\" ()\n");
-    for (k, (_, params)) in twins.iter().enumerate() {
-        text += &format!("shader \"c{k}\" \"mdl::per_hit::{constant}\" ({params})\n");
-    }
-    let (mdl, lib, diags) = compile_text(&text);
+    let (mdl, lib, diags) = compile_text(&twins_text("per_hit", varying, constant, &twins));
     assert!(diags.is_empty(), "{varying}: {diags:#?}");
     let v = get(&mdl, &lib, "v");
     let mut seen = Vec::new();
@@ -233,6 +189,63 @@ shader "wx" "mdl::per_hit::ward_along" ()"#,
         let h = at(two, u);
         let frame = bsdf::Frame::from_normal_and_tangent(Vec3A::Z, h.tangent.unwrap_or(Vec3A::X));
         bsdf::testing::standard_checks(&h.model.bsdf_in(h.diffuse, Vec3A::Z, &frame), 1.01, "two tangents");
+    }
+    assert!(differs, "the Ward lobe's own tangent changes the mix");
+}
+
+/// A Ward lobe of its own `tangent_u` (1, u, 0) inside a `weighted_layer` of its own
+/// `normal` n = (0.3, 0.1, 1) (normalised), mixed half and half with a GGX lobe along x
+/// (the shading frame's), at u = 0.5 and 2: half the GGX lobe plus half the Ward lobe built
+/// alone and evaluated in the frame of normal n whose x axis is the tangent made
+/// orthogonal to n — its value times |cos θi| about n over |cos θi| about the shading
+/// normal, nothing where the two normals disagree on a side — within 1e-5 of the larger
+/// value at every pair of directions (before, the lobe followed the shading frame's x laid
+/// into the layer's plane, with a warning: that differs by more than 1e-3 somewhere). No
+/// warning; the mix reflects at most 1 + 1 % (50 000 samples) and samples its density
+/// (χ²) at the standard incidences. (Not reciprocal: no part in a tilted own frame is,
+/// by the ratio of cosines; the Ward lobe in it is, as built alone.)
+#[test]
+fn a_tangent_under_a_layer_normal_turns_about_that_normal() {
+    let (mdl, lib, diags) = compile_text(
+        r#"shader "mix" "mdl::per_hit::tangent_under_normal" ()
+shader "ggx" "mdl::per_hit::ggx_along" ()
+shader "w0" "mdl::per_hit::ward_along" ("t" 1 0.5 0)
+shader "w1" "mdl::per_hit::ward_along" ("t" 1 2 0)"#,
+    );
+    assert!(diags.is_empty(), "{diags:#?}");
+    let (mix, ggx) = (get(&mdl, &lib, "mix"), get(&mdl, &lib, "ggx"));
+    let n = Vec3A::new(0.3, 0.1, 1.0).normalize();
+    // A lone lobe evaluated in `frame` (world directions), as it counts in the mix.
+    let in_frame = |m: &SurfaceMaterial, frame: &bsdf::Frame, wo: Vec3A, wi: Vec3A| {
+        let agree = wo.dot(n) * wo.z > 0.0 && wi.dot(n) * wi.z > 0.0 && wi.z.abs() > 1e-6;
+        if !agree {
+            return Rgb::ZERO;
+        }
+        let h = m.constant();
+        let (o, i) = (frame.to_local(wo), frame.to_local(wi));
+        h.model.bsdf_in(h.diffuse, o, frame).eval(o, i) * (wi.dot(n).abs() / wi.z.abs())
+    };
+    let mut differs = false;
+    for (u, ward, t) in [(0.5, "w0", Vec3A::new(1.0, 0.5, 0.0)), (2.0, "w1", Vec3A::new(1.0, 2.0, 0.0))] {
+        let ward = get(&mdl, &lib, ward);
+        let (own, laid) =
+            (bsdf::Frame::from_normal_and_tangent(n, t), bsdf::Frame::from_normal_and_tangent(n, Vec3A::X));
+        for (wo, wi) in direction_pairs() {
+            let got = eval_world(mix, u, wo, wi);
+            let want = 0.5 * (eval_world(ggx, u, wo, wi) + in_frame(ward, &own, wo, wi));
+            let followed = 0.5 * (eval_world(ggx, u, wo, wi) + in_frame(ward, &laid, wo, wi));
+            let scale = got.max_element().max(want.max_element()).max(1e-3);
+            assert!(close(got, want, 1e-5 * scale), "u = {u}, {wo:?} → {wi:?}: {got:?} vs {want:?}");
+            differs |= !close(followed, want, 1e-3 * scale);
+        }
+        let h = at(mix, u);
+        let frame = bsdf::Frame::from_normal_and_tangent(Vec3A::Z, h.tangent.unwrap_or(Vec3A::X));
+        let b = h.model.bsdf_in(h.diffuse, Vec3A::Z, &frame);
+        for wo in bsdf::testing::incidences() {
+            let a = bsdf::testing::albedo(&b, wo, 50_000);
+            assert!(a.max_element() <= 1.01, "u = {u}: albedo {a:?} at {wo:?}");
+            bsdf::testing::chi_square(&b, wo);
+        }
     }
     assert!(differs, "the Ward lobe's own tangent changes the mix");
 }

@@ -6,46 +6,9 @@
 
 use crate::mdl_support;
 
-use glam::Vec3A;
-use material::{HitMaterial, SurfaceMaterial, SurfaceModel, Varying};
+use material::SurfaceModel;
+use mdl_support::per_hit::{at, direction_pairs, twins_text};
 use mdl_support::{close, compile_text, get};
-use shader::State;
-
-/// A shading point with texture coordinate (u, 0.5), world position (u, 0.5, 0), normal +z.
-fn uv(u: f32) -> State {
-    let mut s = State {
-        tex_count: 1,
-        normal: Vec3A::Z,
-        normal_geom: Vec3A::Z,
-        dir: -Vec3A::Z,
-        point: Vec3A::new(u, 0.5, 0.0),
-        ..State::default()
-    };
-    s.tex_list[0] = Vec3A::new(u, 0.5, 0.0);
-    s
-}
-
-/// The material `m` evaluated at texture coordinate u.
-fn at(m: &SurfaceMaterial, u: f32) -> HitMaterial<'_> {
-    let Varying::Evaluated(hit) = &m.varying else { panic!("{} is not evaluated per hit: {:?}", m.name, m.varying) };
-    let mut h = m.constant();
-    hit.0.apply(&uv(u), &mut h);
-    h
-}
-
-/// Directions for comparing BSDFs: 23 on the sphere, every pair.
-fn direction_pairs() -> Vec<(Vec3A, Vec3A)> {
-    let dirs: Vec<Vec3A> = (1..24)
-        .map(|i| {
-            let u = bsdf::testing::r2(i);
-            let z = 1.0 - 2.0 * u.x;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = std::f32::consts::TAU * u.y;
-            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    dirs.iter().flat_map(|a| dirs.iter().map(move |b| (*a, *b))).collect()
-}
 
 /// Compiles `varying` and, for each (u, constant shader parameters), its constant twin
 /// `constant`; checks that at u the varying material's BSDF (a per-hit wide lobe sum that
@@ -66,11 +29,7 @@ fn within_of_constant_twins(
     tol: &dyn Fn(f32) -> f32,
     resampled: Option<usize>,
 ) {
-    let mut text = format!("shader \"v\" \"mdl::per_hit_curves::{varying}\" ()\n");
-    for (k, (_, params)) in twins.iter().enumerate() {
-        text += &format!("shader \"c{k}\" \"mdl::per_hit_curves::{constant}\" ({params})\n");
-    }
-    let (mdl, lib, diags) = compile_text(&text);
+    let (mdl, lib, diags) = compile_text(&twins_text("per_hit_curves", varying, constant, &twins));
     match resampled {
         None => assert!(diags.is_empty(), "{varying}: {diags:#?}"),
         Some(n) => assert!(

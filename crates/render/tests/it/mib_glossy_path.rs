@@ -5,7 +5,7 @@
 //! `maya_limit_classic_glossy`.
 
 use crate::support;
-use crate::support::maya_view::{mean, mean_and_error, pixels};
+use crate::support::maya_view::{mean_and_error, pixels};
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -81,26 +81,11 @@ fn reflection_limit_counts_mib_glossy_reflection_samples_in_the_path_engine() {
 /// incandescence), seen from above.
 fn two_tone(spread: f32) -> String {
     let view = support::maya_view::top_down(16).replace("samples 0 2", "samples 2 2");
-    format!(
-        r#"
-$include "mayabase.mi"
-{view}
-material "g" opaque "mib_glossy_reflection" ("reflection_color" 0.8 0.8 0.8,
-    "environment_color" 0.8 0.8 0.8, "samples" 64, "single_env_sample" off, "u_spread" {spread}, "v_spread" {spread}) end material
-shader "bright" "maya_lambert" ("color" 0 0 0, "incandescence" 1 1 1)
-material "b" opaque "maya_shadingengine" ("surfaceShader" = "bright.outColor") end material
-shader "dim" "maya_lambert" ("color" 0 0 0, "incandescence" 0.2 0.2 0.2)
-material "d" opaque "maya_shadingengine" ("surfaceShader" = "dim.outColor") end material
-object "ground" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
-instance "ground_inst" "ground" end instance
-object "left" group -500 5 500  0 5 500  0 5 -500  -500 5 -500  v 0 v 1 v 2 v 3 c "b" 0 1 2 3 end group end object
-instance "left_inst" "left" end instance
-object "right" group 0 5 500  500 5 500  500 5 -500  0 5 -500  v 0 v 1 v 2 v 3 c "d" 0 1 2 3 end group end object
-instance "right_inst" "right" end instance
-instgroup "root" "cam_inst" "ground_inst" "left_inst" "right_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    let material = format!(
+        r#"material "g" opaque "mib_glossy_reflection" ("reflection_color" 0.8 0.8 0.8,
+    "environment_color" 0.8 0.8 0.8, "samples" 64, "single_env_sample" off, "u_spread" {spread}, "v_spread" {spread}) end material"#
+    );
+    support::two_tone::scene(&view, &material, "ground", 0.0, 5.0)
 }
 
 /// The path engine's image of [`two_tone`] agrees with the classic engine's (64 glossy
@@ -109,25 +94,7 @@ render "root" "cam_inst" "opt"
 #[test]
 fn the_path_engine_agrees_with_the_classic_glossy_reflection() {
     for spread in [0.05f32, 0.3] {
-        let text = two_tone(spread);
-        let classic = pixels(&text, EngineKind::Classic, 4);
-        let path = pixels(&text, EngineKind::Path, 256);
-        let half = |px: &[Vec3A], left: bool| -> Vec3A {
-            let sel: Vec<Vec3A> =
-                px.iter().enumerate().filter(|(i, _)| ((i % 16) < 8) == left).map(|(_, p)| *p).collect();
-            mean(&sel)
-        };
-        for (what, c, p) in [
-            ("image", mean(&classic), mean(&path)),
-            ("left half", half(&classic, true), half(&path, true)),
-            ("right half", half(&classic, false), half(&path, false)),
-        ] {
-            println!("spread {spread}, {what}: classic {c}, path {p}");
-            assert!(
-                (p - c).abs().max_element() <= 0.02 * c.max_element(),
-                "spread {spread}, {what}: path {p} vs classic {c}"
-            );
-        }
+        support::two_tone::assert_path_agrees_with_classic(&two_tone(spread), 16, spread);
     }
 }
 

@@ -4,7 +4,7 @@
 //! (Maya's `refractionLimit` counting its transmissions: `maya_limit_classic_glossy`.)
 
 use crate::support;
-use crate::support::maya_view::{mean, pixels, pixels_warned};
+use crate::support::maya_view::{pixels, pixels_warned};
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -19,25 +19,7 @@ const SIDE: usize = 16;
 /// pixel sees one side of the floor: the seam lies between columns 7 and 8.
 fn over_two_tone(pane: &str) -> String {
     let view = support::maya_view::top_down(SIDE).replace("samples 0 2", "samples 2 2");
-    format!(
-        r#"
-$include "mayabase.mi"
-{view}
-{pane}
-shader "bright" "maya_lambert" ("color" 0 0 0, "incandescence" 1 1 1)
-material "b" opaque "maya_shadingengine" ("surfaceShader" = "bright.outColor") end material
-shader "dim" "maya_lambert" ("color" 0 0 0, "incandescence" 0.2 0.2 0.2)
-material "d" opaque "maya_shadingengine" ("surfaceShader" = "dim.outColor") end material
-object "pane" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
-instance "pane_inst" "pane" end instance
-object "left" group -500 -3 500  0 -3 500  0 -3 -500  -500 -3 -500  v 0 v 1 v 2 v 3 c "b" 0 1 2 3 end group end object
-instance "left_inst" "left" end instance
-object "right" group 0 -3 500  500 -3 500  500 -3 -500  0 -3 -500  v 0 v 1 v 2 v 3 c "d" 0 1 2 3 end group end object
-instance "right_inst" "right" end instance
-instgroup "root" "cam_inst" "pane_inst" "left_inst" "right_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    support::two_tone::scene(&view, pane, "pane", 0.0, -3.0)
 }
 
 /// A `mib_glossy_refraction` pane of `ior` 1.5, `refraction_color` (0.9, 0.7, 0.5), the
@@ -87,24 +69,6 @@ material "g" "mib_refract" ("input" = "black", "refract" 0.9 0.7 0.5, "ior" 1.5)
 #[test]
 fn the_path_engine_agrees_with_the_classic_glossy_refraction() {
     for spread in [0.05f32, 0.3] {
-        let text = over_two_tone(&glossy_pane(spread));
-        let classic = pixels(&text, EngineKind::Classic, 4);
-        let path = pixels(&text, EngineKind::Path, 256);
-        let half = |px: &[Vec3A], left: bool| -> Vec3A {
-            let sel: Vec<Vec3A> =
-                px.iter().enumerate().filter(|(i, _)| ((i % SIDE) < SIDE / 2) == left).map(|(_, p)| *p).collect();
-            mean(&sel)
-        };
-        for (what, c, p) in [
-            ("image", mean(&classic), mean(&path)),
-            ("left half", half(&classic, true), half(&path, true)),
-            ("right half", half(&classic, false), half(&path, false)),
-        ] {
-            println!("spread {spread}, {what}: classic {c}, path {p}");
-            assert!(
-                (p - c).abs().max_element() <= 0.02 * c.max_element(),
-                "spread {spread}, {what}: path {p} vs classic {c}"
-            );
-        }
+        support::two_tone::assert_path_agrees_with_classic(&over_two_tone(&glossy_pane(spread)), SIDE, spread);
     }
 }

@@ -313,11 +313,11 @@ fn compensate(
     }
 }
 
-/// The frame an anisotropic lobe of `tangent` lives in, inside `frame`: an own frame
-/// turned about the shading normal to its tangent (added to `sum`) when it lies in the
-/// shading frame and its `tangent_u` is not `axis` (the shading frame's); else `frame`
-/// (an isotropic lobe, the axis's own, or a layer's own normal frame). `None` when the sum
-/// holds no more frames.
+/// The frame an anisotropic lobe of `tangent` lives in, inside `frame`: when its
+/// `tangent_u` is not `axis` (the shading frame's), an own frame (added to `sum`) turned
+/// about `frame`'s normal — the shading normal, or a layer's own — so that its x axis is
+/// the tangent made orthogonal to that normal; else `frame` (an isotropic lobe or the
+/// axis's own). `None` when the sum holds no more frames.
 fn tangent_frame<const N: usize, const C: usize, const F: usize, const T: usize>(
     tangent: Option<Leaf>,
     axis: Option<Leaf>,
@@ -326,12 +326,12 @@ fn tangent_frame<const N: usize, const C: usize, const F: usize, const T: usize>
     frame: u8,
 ) -> Option<u8> {
     match tangent {
-        Some(t) if frame == 0 && Some(t) != axis => {
+        Some(t) if Some(t) != axis => {
             let c = t.get(hit);
             let t = glam::Vec3A::new(c.x, c.y, c.z);
-            // A tangent of no direction leaves the lobe in the shading frame.
+            // A tangent of no direction leaves the lobe in the frame around it.
             if t.length_squared() > 0.0 && t.is_finite() {
-                sum.add_tangent(t)
+                sum.add_tangent_in(t, frame)
             } else {
                 Some(frame)
             }

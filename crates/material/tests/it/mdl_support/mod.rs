@@ -1,5 +1,6 @@
 //! What the MDL compiler's tests share: compiling a `.mi` fragment whose shaders are
-//! instances of the test modules (tests/mdl/, scenes/mdl/), and finding a compiled material.
+//! instances of the test modules (tests/mdl/, scenes/mdl/), and finding a compiled material;
+//! the per-hit tests' shading points ([`per_hit`]).
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -9,6 +10,8 @@ use material::mdl_modules::{compile, MdlMaterials};
 use material::SurfaceMaterial;
 use mdl_lang::MdlSearchPath;
 use mi::ast::ShaderItem;
+
+pub mod per_hit;
 
 /// The test modules' directories (the MDL search path of the tests).
 pub fn dirs() -> Vec<PathBuf> {

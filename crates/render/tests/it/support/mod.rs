@@ -3,7 +3,8 @@
 //! it at once ([`render_text`]); scenes with MDL module materials through the render
 //! pipeline's world stage ([`build_parsed`]); and the textured square the material tests and
 //! benchmarks look at ([`lit_square`]); the top-down view of the Maya path-engine tests
-//! ([`maya_view`]); a box object of quads ([`box_object`]). The benchmarks include this file
+//! ([`maya_view`]); the two-tone scene of the glossy path tests ([`two_tone`]); a box object
+//! of quads ([`box_object`]). The benchmarks include this file
 //! too.
 
 #![allow(dead_code)]
@@ -11,6 +12,7 @@
 pub mod maya_view;
 pub mod moving_quad;
 pub mod rays;
+pub mod two_tone;
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
