@@ -5,7 +5,7 @@
 //! `maya_limit_classic_glossy`.
 
 use crate::support;
-use crate::support::maya_view::{mean_and_error, pixels};
+use crate::support::maya_view::{mean, mean_and_error, pixels};
 
 use glam::Vec3A;
 use render::EngineKind;
