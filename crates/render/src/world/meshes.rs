@@ -15,6 +15,8 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
         bump_basis: m.bump_basis.clone(),
         triangles: m.triangles.clone(),
         triangle_slots: m.triangle_slots.clone(),
+        // The slot table itself is small; `mesh_data` reads its length.
+        slots: m.slots.clone(),
         motion: m.motion.clone(),
         motion_more: m.motion_more.clone(),
         ..scene::Mesh::default()
