@@ -27,8 +27,9 @@ struct Axis {
     sign: Vec<f32>,
     /// Whether f is negative anywhere (else every sample's sign is 1, not looked up).
     signed: bool,
-    /// Offsets at u = k / INVERSE, k = 0..=INVERSE (the inverse of `cdf`).
-    inverse: Vec<f32>,
+    /// Offsets at u = k / INVERSE, k = 0..=INVERSE (the inverse of `cdf`); a fixed-size
+    /// table, so that a sample's two reads need no bounds checks.
+    inverse: Box<[f32; INVERSE + 1]>,
 }
 
 /// A 2-D filter, separable into x and y.
@@ -98,8 +99,10 @@ impl Axis {
             *c /= acc;
         }
         let signed = sign.iter().any(|&s| s < 0.0);
-        let mut axis = Axis { radius, cdf, sign, signed, inverse: Vec::new() };
-        axis.inverse = (0..=INVERSE).map(|k| axis.search(k as f32 / INVERSE as f32)).collect();
+        let mut axis = Axis { radius, cdf, sign, signed, inverse: Box::new([0.0; INVERSE + 1]) };
+        for k in 0..=INVERSE {
+            axis.inverse[k] = axis.search(k as f32 / INVERSE as f32);
+        }
         axis
     }
 
@@ -115,7 +118,7 @@ impl Axis {
     #[inline]
     fn sample(&self, u: f32) -> (f32, f32) {
         let x = u * INVERSE as f32;
-        let k = (x as usize).min(INVERSE - 1);
+        let k = inverse_cell(x);
         let d = self.inverse[k] + (self.inverse[k + 1] - self.inverse[k]) * (x - k as f32);
         if !self.signed {
             return (d, 1.0);
@@ -123,6 +126,14 @@ impl Axis {
         let cell = (((d + self.radius) / (2.0 * self.radius)) * TABLE as f32) as usize;
         (d, self.sign[cell.min(TABLE - 1)])
     }
+}
+
+/// `(x as usize).min(INVERSE − 1)` for any `x` (NaN and negative numbers give 0), with the
+/// float clamped first so that the conversion needs none of the saturating cast's checks.
+#[inline(always)]
+fn inverse_cell(x: f32) -> usize {
+    // `max` returns 0 for NaN; the clamped float's integer part is the clamped integer.
+    (x.max(0.0).min((INVERSE - 1) as f32) as i32 as usize).min(INVERSE - 1)
 }
 
 impl PixelFilter {
@@ -182,6 +193,18 @@ impl PixelFilter {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`inverse_cell`] equals the saturating cast it replaces for every float of the unit
+    /// interval's 2²⁴ steps scaled to the table, and at the edges (negative, NaN, ±∞,
+    /// huge, just below 1024).
+    #[test]
+    fn inverse_cell_equals_the_saturating_cast() {
+        let edges = [-1.0, -0.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1e30, 1023.9999, 1024.0, 1e-40];
+        let steps = (0..1u32 << 24).map(|i| i as f32 / (1u32 << 24) as f32 * INVERSE as f32);
+        for x in steps.chain(edges) {
+            assert_eq!(inverse_cell(x), (x as usize).min(INVERSE - 1), "{x}");
+        }
+    }
 
     #[test]
     fn one_pixel_box_stays_in_its_pixel_and_samples_uniformly() {

@@ -101,7 +101,7 @@ impl PathBand<'_> {
         cancel: &AtomicBool,
         out: &mut BandOutput,
     ) {
-        let cam = &self.world.camera;
+        let cam = self.world.camera.raster_rays();
         let mut lanes: Vec<Lane> = Vec::with_capacity(PACKET);
         // The samplers of the pixels with lanes waiting (the last one the current pixel's).
         let mut samplers: Vec<Sampler> = Vec::with_capacity(PACKET + 1);

@@ -59,12 +59,31 @@ fn nibble_table() -> &'static NibbleTable {
 #[inline]
 fn set_scramble(seed: u32, set: u32) -> Int4 {
     let s = seed.wrapping_mul(0x9c8f_2d3b) ^ set;
-    let lanes: Int4 = [s ^ 0x912f_69ba, s ^ 0x174f_18ab, s ^ 0x691e_72ca, s ^ 0xb40c_c1b8].into();
+    let lanes: Int4 = LANE_SALTS.map(|salt| s ^ salt).into();
     parts::hash_int4(lanes)
 }
 
 /// Dimensions made at once: two of Sobol's four-dimension sets.
 const BUFFERED: u32 = 8;
+
+/// The salts of the four lanes of a set's scramble hash (`sobol_burley::sample_4d`'s).
+const LANE_SALTS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
+
+/// The scramble hashes of the kept dimension sets under `seed`: [`set_scramble`] of sets
+/// `0 .. KEPT_SETS`, in plain integer code so that the 64 lanes vectorise (see
+/// [`scramble::dispatch`]).
+#[inline(always)]
+fn kept_scrambles(seed: u32) -> [[u32; 4]; KEPT_SETS] {
+    let base = seed.wrapping_mul(0x9c8f_2d3b);
+    let mut out = [[0u32; 4]; KEPT_SETS];
+    for (set, lanes) in out.iter_mut().enumerate() {
+        let s = base ^ set as u32;
+        for (lane, salt) in lanes.iter_mut().zip(LANE_SALTS) {
+            *lane = parts::hash(s ^ salt);
+        }
+    }
+    out
+}
 
 /// The sample stream of one pixel sample. Numbers are made eight dimensions at a time
 /// (two of Sobol's four-dimension sets together) and handed out one by one.
@@ -72,30 +91,41 @@ const BUFFERED: u32 = 8;
 pub struct Sampler {
     index: u32,
     seed: u32,
+    /// The hash of the seed that Owen-shuffles the sample index ([`Sampler::shuffle`]).
+    shuffle_seed: u32,
     /// The sample index bit-reversed and Owen-shuffled by the seed (which Sobol point of
     /// the pixel's sequence this sample is).
     shuffled: u32,
     dimension: u32,
-    buffer: [f32; BUFFERED as usize],
+    /// Dimensions below this one are in `buffer` (dimension `d` at `d % 8`; the buffer holds
+    /// `filled − 8 .. filled`); 0 when nothing is. Past the Sobol table it stays at the
+    /// table's end, so every later dimension is hashed.
+    filled: u32,
+    /// The numbers of dimensions `filled − 8 .. filled`, and one spare slot so that a pair
+    /// read at `d % 8` and `d % 8 + 1` needs no bounds check.
+    buffer: [f32; BUFFERED as usize + 1],
     /// Scramble hashes of the first dimension sets (they depend on the seed alone, so they
-    /// outlive [`Sampler::restart`]).
+    /// outlive [`Sampler::restart`]), all made with the sampler.
     scrambles: [[u32; 4]; KEPT_SETS],
-    /// How many of `scrambles` are computed.
-    kept: u32,
     nibbles: &'static NibbleTable,
 }
 
 impl Sampler {
     /// Sample `index` of the pixel whose scramble seed is `seed`.
     pub fn new(seed: u32, index: u32) -> Sampler {
+        let shuffle_seed = parts::hash(seed ^ 0x79c6_8e4a);
         Sampler {
             index,
             seed,
-            shuffled: Self::shuffle(seed, index),
+            shuffle_seed,
+            shuffled: Self::shuffle(shuffle_seed, index),
             dimension: 0,
-            buffer: [0.0; BUFFERED as usize],
-            scrambles: [[0; 4]; KEPT_SETS],
-            kept: 0,
+            filled: 0,
+            buffer: [0.0; BUFFERED as usize + 1],
+            scrambles: scramble::dispatch(
+                #[inline(always)]
+                || kept_scrambles(seed),
+            ),
             nibbles: nibble_table(),
         }
     }
@@ -105,24 +135,23 @@ impl Sampler {
     #[inline]
     pub fn restart(&mut self, index: u32) {
         self.index = index;
-        self.shuffled = Self::shuffle(self.seed, index);
+        self.shuffled = Self::shuffle(self.shuffle_seed, index);
         self.dimension = 0;
+        self.filled = 0;
     }
 
+    /// The sample index bit-reversed and Owen-shuffled by `shuffle_seed` (the hash of the
+    /// pixel's seed `sobol_burley` uses).
     #[inline]
-    fn shuffle(seed: u32, index: u32) -> u32 {
-        parts::owen_scramble_rev(index.reverse_bits(), parts::hash(seed ^ 0x79c6_8e4a))
+    fn shuffle(shuffle_seed: u32, index: u32) -> u32 {
+        parts::owen_scramble_rev(index.reverse_bits(), shuffle_seed)
     }
 
     /// The bit-reversed Sobol points and the scramble hashes of dimensions
     /// `4·set … 4·set + 3` of this sample.
     #[inline(always)]
-    fn set_parts(&mut self, set: u32) -> ([u32; 4], [u32; 4]) {
+    fn set_parts(&self, set: u32) -> ([u32; 4], [u32; 4]) {
         if (set as usize) < KEPT_SETS {
-            while self.kept <= set {
-                self.scrambles[self.kept as usize] = set_scramble(self.seed, self.kept).into();
-                self.kept += 1;
-            }
             let table = &self.nibbles[set as usize];
             let n = self.shuffled >> 16;
             let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
@@ -134,7 +163,7 @@ impl Sampler {
 
     /// Dimensions `4·set … 4·set + 7` of this sample (sets `set` and `set + 1`).
     #[inline(always)]
-    fn two_sets(&mut self, set: u32) -> [f32; BUFFERED as usize] {
+    fn two_sets(&self, set: u32) -> [f32; BUFFERED as usize] {
         let (s0, h0) = self.set_parts(set);
         let (s1, h1) = self.set_parts(set + 1);
         let mut sobol = [0u32; 8];
@@ -150,29 +179,31 @@ impl Sampler {
     #[inline(always)]
     pub fn next_1d(&mut self) -> f32 {
         let d = self.dimension;
-        self.dimension += 1;
-        let lane = (d % BUFFERED) as usize;
+        self.dimension = d + 1;
         // Seven numbers in eight come from the buffer filled at the first dimension of a
         // pair of sets: that path stays small enough to inline into the integrator.
-        if lane != 0 && d < sobol_burley::NUM_DIMENSIONS {
-            self.buffer[lane]
+        if d < self.filled {
+            self.buffer[(d % BUFFERED) as usize]
         } else {
             self.refill(d)
         }
     }
 
-    /// Dimension `d`, the first of a pair of sets (which fills the buffer) or past the table.
+    /// Dimension `d` (= `filled`), the first of a pair of sets (which fills the buffer) or
+    /// past the table.
     #[inline(never)]
     fn refill(&mut self, d: u32) -> f32 {
         if d < sobol_burley::NUM_DIMENSIONS {
             // The set's arithmetic built for the best instructions the CPU has.
             // (`d` is a multiple of 8 below 256: sets `d / 4` and `d / 4 + 1` are both in
             // the table.)
-            self.buffer = scramble::dispatch(
+            let numbers = scramble::dispatch(
                 #[inline(always)]
                 || self.two_sets(d / 4),
             );
-            self.buffer[0]
+            self.buffer[..BUFFERED as usize].copy_from_slice(&numbers);
+            self.filled = d + BUFFERED;
+            numbers[0]
         } else {
             // Past the Sobol table: a hashed random number (still deterministic).
             let h = pixel_seed(self.index, d, self.seed);
@@ -184,7 +215,13 @@ impl Sampler {
     /// from there with [`Sampler::resume`] after other samples of the pixel were drawn.
     #[inline]
     pub fn position(&self) -> SamplerPosition {
-        SamplerPosition { index: self.index, shuffled: self.shuffled, dimension: self.dimension, buffer: self.buffer }
+        SamplerPosition {
+            index: self.index,
+            shuffled: self.shuffled,
+            dimension: self.dimension,
+            filled: self.filled,
+            buffer: self.buffer,
+        }
     }
 
     /// Goes on with the sample at `position` (taken from this pixel's sampler): the next
@@ -194,6 +231,7 @@ impl Sampler {
         self.index = position.index;
         self.shuffled = position.shuffled;
         self.dimension = position.dimension;
+        self.filled = position.filled;
         self.buffer = position.buffer;
     }
 
@@ -203,10 +241,18 @@ impl Sampler {
         pixel_seed(self.index, 0x5eed, self.seed)
     }
 
-    /// The next two numbers.
+    /// The next two numbers (the same as two calls of [`Sampler::next_1d`]).
     #[inline(always)]
     pub fn next_2d(&mut self) -> glam::Vec2 {
-        glam::Vec2::new(self.next_1d(), self.next_1d())
+        let d = self.dimension;
+        // Both in the buffer (then `d % 8` ≤ 6: `filled` is a multiple of 8): one test.
+        if d + 1 < self.filled {
+            self.dimension = d + 2;
+            let lane = (d % BUFFERED) as usize;
+            glam::Vec2::new(self.buffer[lane], self.buffer[lane + 1])
+        } else {
+            glam::Vec2::new(self.next_1d(), self.next_1d())
+        }
     }
 }
 
@@ -217,7 +263,8 @@ pub struct SamplerPosition {
     index: u32,
     shuffled: u32,
     dimension: u32,
-    buffer: [f32; BUFFERED as usize],
+    filled: u32,
+    buffer: [f32; BUFFERED as usize + 1],
 }
 
 #[cfg(test)]
@@ -275,6 +322,41 @@ mod tests {
                     fresh.next_1d();
                 }
                 assert_eq!(s.next_1d().to_bits(), fresh.next_1d().to_bits());
+            }
+        }
+    }
+
+    /// The scramble hashes made with the sampler (all kept sets at once, in the build the
+    /// CPU's best instructions give) equal [`set_scramble`]'s, set by set, bit for bit.
+    #[test]
+    fn kept_scrambles_equal_set_scramble() {
+        for seed in [0u32, 1, 0x8000_0000, u32::MAX, 0xdead_beef, pixel_seed(3, 9, 42)] {
+            let s = Sampler::new(seed, 0);
+            for set in 0..KEPT_SETS {
+                assert_eq!(s.scrambles[set], <[u32; 4]>::from(set_scramble(seed, set as u32)), "{seed} {set}");
+            }
+        }
+    }
+
+    /// [`Sampler::next_2d`] gives, bit for bit, the numbers of two [`Sampler::next_1d`]
+    /// calls, whatever dimension it starts at (every offset within the eight-number
+    /// buffer, its last slot, and past the Sobol table).
+    #[test]
+    fn pairs_equal_two_single_numbers() {
+        let seed = pixel_seed(7, 2, 9);
+        for index in [0u32, 3, 17, 4095] {
+            for start in 0..40u32 {
+                let (mut pairs, mut singles) = (Sampler::new(seed, 0), Sampler::new(seed, 0));
+                pairs.restart(index);
+                singles.restart(index);
+                for _ in 0..start {
+                    assert_eq!(pairs.next_1d().to_bits(), singles.next_1d().to_bits());
+                }
+                for _ in 0..(sobol_burley::NUM_DIMENSIONS + 8) / 2 {
+                    let p = pairs.next_2d();
+                    let (a, b) = (singles.next_1d(), singles.next_1d());
+                    assert_eq!((p.x.to_bits(), p.y.to_bits()), (a.to_bits(), b.to_bits()), "{index} {start}");
+                }
             }
         }
     }
