@@ -18,6 +18,7 @@
 # peer scripts; default ../shared/bench beside the checkout), MIRA (the binary; default:
 # built with cargo build --release), THREADS (default: every core), RUNS (3), WARMUP (1),
 # HEAVY_TRIS (1000000,4000000), PEERS (mitsuba_scalar,mitsuba_llvm,cycles).
+# With the peers, the run is also drawn as $BENCH_DIR/performance.svg (tools/bench_plot.py).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -80,6 +81,16 @@ if [ "$peers_here" = 1 ]; then
   if [ "$WHAT" != cbox ]; then
     "$VENV/bin/python" "$SCRIPTS/run_heavy.py" --tris "$HEAVY_TRIS" --threads "$THREADS" --runs "$RUNS" \
       --warmup "$WARMUP" --peers "$PEERS" --extra "$(extra "{mi}")"
+  fi
+  # The run as a chart (tools/bench_plot.py; the README's is drawn from docs/bench/).
+  cbox_json="$BENCH_DIR/bench-out/cbox/timings.json"
+  heavy_json="$BENCH_DIR/bench-out/heavy/bench/heavy_timings.json"
+  if [ -f "$cbox_json" ]; then
+    if [ -f "$heavy_json" ]; then
+      python3 "$ROOT/tools/bench_plot.py" "$cbox_json" "$heavy_json" -o "$BENCH_DIR/performance.svg" >&2
+    else
+      python3 "$ROOT/tools/bench_plot.py" "$cbox_json" -o "$BENCH_DIR/performance.svg" >&2
+    fi
   fi
   exit 0
 fi
