@@ -227,11 +227,13 @@ pub struct SurfaceMaterial {
     /// this surface after a stretch s inside it passes T + (1 − T)·max(1 − s/D, 0)
     /// ([`maya::translucent_passage`]).
     pub translucence_depth: f32,
-    /// What the rest of a layeredShader stack lets shadow rays through (per channel) where
-    /// the translucence depth is one of its layers': the passage is this times the
-    /// layer's own T + (1 − T)·max(1 − s/D, 0), as the classic stack multiplies its
-    /// layers' transparencies; 1 for a material on its own.
-    pub translucence_others: Rgb,
+    /// A layeredShader stack whose layers carry translucence depths: each layer's
+    /// constant transparency T_i (per channel) and translucence depth D_i (0: none), top
+    /// first. Its shadow passage is the hit's transparency raised by
+    /// Π_i (T_i + (1 − T_i)·max(1 − s/D_i, 0)) − Π_i T_i, as the classic stack multiplies
+    /// its layers' passages ([`maya::translucent_passage`]); empty for a material on its
+    /// own ([`SurfaceMaterial::translucence_depth`] is then its own).
+    pub translucence_layers: Box<[(Rgb, f32)]>,
 }
 
 impl SurfaceMaterial {
@@ -262,7 +264,7 @@ impl SurfaceMaterial {
             view_transparency: None,
             maya_matte: None,
             translucence_depth: 0.0,
-            translucence_others: Rgb::ONE,
+            translucence_layers: Box::new([]),
         }
     }
 

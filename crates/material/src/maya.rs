@@ -24,7 +24,10 @@
 //!   share of it emitted;
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
-//!   input, whose documented lambert recipe this reproduces exactly); the transparency
+//!   input, whose documented lambert recipe this reproduces exactly); its light from
+//!   behind a diffuse transmission lobe of albedo C(0) · `translucence` (light angle: the
+//!   light straight behind) or C(1) · `translucence` (the other inputs), faded as the
+//!   lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
 //!   coverage, cut-out tint and fade, or for one that refracts its refraction's weight;
 //!   transparency fading the lit colour and incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
@@ -47,8 +50,10 @@
 //!   as the classic layeredShader shows what that layer's refraction ray finds; rampShader
 //!   layers whose transparency or incandescence ramps follow the view are read at each
 //!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`); the
-//!   translucence depth of the layer whose lobe shows passes shadow rays times the other
-//!   layers' transparency ([`SurfaceMaterial::translucence_others`]);
+//!   first layer's highlight and mirror, every layer's translucence by its share w_i
+//!   (divided by the stack's coverage as its diffuse colour is; the first translucent
+//!   layer's focus) and every translucent layer's depth for shadow rays, which pass the
+//!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
@@ -606,9 +611,12 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     // The first layer whose material refracts: P_k ⊙ T_k, its index and limit (the
     // layers below it do not show, as in the classic shader).
     let mut refraction: Option<(Rgb, f32, u32)> = None;
-    // The layer (its index) whose lobe carries a translucence depth, and that depth.
-    let mut translucent_layer: Option<(usize, f32)> = None;
-    for (lobe_layer, (e, &t)) in elements.iter().zip(&transparencies).enumerate() {
+    // Each layer's translucence depth (0: none), for the stack's shadow rays.
+    let mut depths = vec![0.0f32; elements.len()];
+    // The forward-lobe exponent of the first translucent layer, which the stack's
+    // translucence takes.
+    let mut focus: Option<f32> = None;
+    for (i, (e, &t)) in elements.iter().zip(&transparencies).enumerate() {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         // The layer's share per channel, P_i ⊙ (1 − T_i).
         let w = through * (Rgb::ONE - t);
@@ -630,20 +638,33 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 let tables = view_layers::ramp_tables(graph, m);
                 follows_view |= tables.is_some();
                 by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
-                // Maya's highlight shows by the layer's share, as its diffuse colour.
-                if let (SurfaceModel::Maya(g), None) = (layer.model, &lobe) {
-                    lobe = Some(g.scaled(w));
-                    // Its translucence depth, for the stack's shadow rays (the other
-                    // layers' transparencies multiply its passage, below).
-                    if layer.translucence_depth > 0.0 {
-                        translucent_layer = Some((lobe_layer, layer.translucence_depth));
+                // Maya's highlight shows by the layer's share, as its diffuse colour (the
+                // first layer's); every layer's translucence adds to the stack's by its
+                // share, with its depth for the stack's shadow rays.
+                if let SurfaceModel::Maya(g) = layer.model {
+                    // (A translucent layer that does not show still passes shadow rays
+                    // by its translucence depth, as in the classic stack.)
+                    let translucent = g.translucence != Rgb::ZERO || g.translucence_per_diffuse.is_some();
+                    let g = g.scaled(w);
+                    if translucent {
+                        depths[i] = layer.translucence_depth;
+                        match focus {
+                            Some(n) if (n - g.focus).abs() > 1e-6 => warnings.push(format!(
+                                "layer '{}': the path engine gives the stack's translucence the first \
+                                 translucent layer's 'translucenceFocus'",
+                                graph.nodes[m as usize].name
+                            )),
+                            Some(_) => {}
+                            None => focus = Some(g.focus),
+                        }
                     }
-                } else if layer.translucence_depth > 0.0 {
-                    warnings.push(format!(
-                        "layer '{}': the path engine shows the first layer's highlight and translucence only; \
-                         its translucence and 'translucenceDepth' are left out",
-                        graph.nodes[m as usize].name
-                    ));
+                    lobe = Some(match lobe {
+                        None => g,
+                        Some(first) => {
+                            let n = focus.unwrap_or(first.focus);
+                            first.with_translucence(first.translucence + g.translucence, n)
+                        }
+                    });
                 }
                 if let Some((ior, limit)) = layer_refraction(graph, m, t) {
                     refraction = Some((through * t, ior, limit));
@@ -666,10 +687,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     }
     // Shadow rays pass the whole stack, filtered by every layer's transparency.
     cut_out(&mut surface, transparencies.iter().fold(Rgb::ONE, |p, t| p * *t), false);
-    if let Some((i, depth)) = translucent_layer {
-        surface.translucence_depth = depth;
-        surface.translucence_others =
-            transparencies.iter().enumerate().filter(|&(j, _)| j != i).fold(Rgb::ONE, |p, (_, t)| p * *t);
+    if depths.iter().any(|&d| d > 0.0) {
+        surface.translucence_depth = depths.iter().fold(0.0f32, |m, &d| m.max(d));
+        surface.translucence_layers = transparencies.iter().copied().zip(depths).collect();
     }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
@@ -685,6 +705,9 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     surface.diffuse /= coverage;
     surface.emission /= coverage;
     if let Some(g) = lobe {
+        // The translucence divided by the coverage as the diffuse colour is (the
+        // highlight and the mirror by the lobe's coverage).
+        let g = g.with_translucence(g.translucence / coverage, g.focus);
         surface.model = SurfaceModel::Maya(Box::new(g.with_coverage(coverage)));
     }
     if let Some((t, ior, limit)) = refraction {

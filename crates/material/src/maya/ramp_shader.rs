@@ -19,21 +19,26 @@ pub(super) fn ramp_of(r: &mut Reader, name: &str, member: &str, empty: Rgb) -> O
     Some(::maya::utility::Ramp::read(&v, name, member, glam::Vec3A::new(empty.x, empty.y, empty.z)))
 }
 
-/// A constant ramp parameter of the reader's node at `x` (`empty` when the ramp has no
-/// points or is connected, with a warning for the latter).
-fn ramp_at(r: &mut Reader, name: &str, member: &str, empty: Rgb, x: f32) -> Rgb {
-    ramp_of(r, name, member, empty).map_or(empty, |ramp| {
-        let c = ramp.at(x);
-        Rgb::new(c.x, c.y, c.z)
-    })
-}
-
 /// rampShader (see `crate::maya`'s module doc).
 pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bool) {
     use ::maya::ramp_shader::ColorInput;
     let input = ColorInput::from_maya(r.scalar("colorInput", 0.0) as i32);
     let (d, t) = (r.scalar("diffuse", 0.8), r.scalar("translucence", 0.0));
-    let c = ramp_at(r, "color", "Color", Rgb::splat(0.5), 1.0);
+    let color = ramp_of(r, "color", "Color", Rgb::splat(0.5));
+    let color_at = |x: f32| {
+        color.as_ref().map_or(Rgb::splat(0.5), |ramp| {
+            let c = ramp.at(x);
+            Rgb::new(c.x, c.y, c.z)
+        })
+    };
+    let c = color_at(1.0);
+    // The light from behind (`translucence` t), a diffuse transmission lobe of this
+    // albedo before the fade: the classic C((1 + cos θ)/2) ⊙ L · t of the light-angle
+    // input is C(0) · t for a light straight behind (exactly a Lambertian transmission
+    // where the ramp falls linearly from C(0) at 0 to black at 1/2, as the front's
+    // C(1) · (d + t) is exact for Maya's documented recipe); the other inputs' C ⊙ L · t ·
+    // |cos θ| takes C at 1, as their albedo does.
+    let behind = if input == ColorInput::LightAngle { color_at(0.0) } else { c } * t.max(0.0);
     let albedo = if input == ColorInput::LightAngle {
         c * (d + t)
     } else {
@@ -113,7 +118,8 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
             |f| at(&incandescence, f) + ambient.at(f),
             albedo,
             tint != Rgb::ZERO || reflects,
-        );
+        )
+        .with_translucence(behind);
         surface.view_transparency = Some(Box::new(if ior.is_some() { view.refracting() } else { view }));
     }
     let glow_intensity = r.scalar("glowIntensity", 0.0);
@@ -150,6 +156,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
         }
         surface.model = SurfaceModel::Maya(Box::new(g));
     }
+    super::translucence::translate_ramp(r, surface, behind * fade);
     if let Some(ior) = ior {
         refract(r, surface, tr, ior);
     }

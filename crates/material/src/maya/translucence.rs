@@ -1,5 +1,6 @@
 //! The lambert family's translucence in the path engine: `translucence` t, its focus and
-//! its depth.
+//! its depth (rampShader's too: `translate_ramp`; a layeredShader's layers':
+//! `super::layered_shader`).
 //!
 //! - `translucence` t: a transmission lobe of albedo c · t ⊙ the diffuse part's fade,
 //!   concentrated by `translucenceFocus` ([`bsdf::maya_highlight::translucence`], the
@@ -35,11 +36,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb
     let d = r.scalar("diffuse", 0.8);
     let albedo = r.color("color", Rgb::splat(0.5)) * t * fade;
     let focus = bsdf::maya_highlight::translucence::focus_exponent(r.scalar("translucenceFocus", 0.5));
-    let glossy = match &surface.model {
-        SurfaceModel::Maya(g) => **g,
-        _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
-    };
-    let mut glossy = glossy.with_translucence(albedo, focus);
+    let mut glossy = with_lobe(surface, albedo, focus);
     match connection(r.graph, r.node, "color") {
         // Each hit's diffuse colour is c·d (times the fade's mean): the translucence c·t
         // follows it as t/d of it.
@@ -59,15 +56,39 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, fade: Rgb
     surface.model = SurfaceModel::Maya(Box::new(glossy));
 }
 
+/// The material's Maya model (a highlight-less one when it has none) with a translucence
+/// of albedo `albedo` and forward-lobe exponent `focus` ([`bsdf::MayaGlossy::translucence`]).
+fn with_lobe(surface: &SurfaceMaterial, albedo: Rgb, focus: f32) -> bsdf::MayaGlossy {
+    let glossy = match &surface.model {
+        SurfaceModel::Maya(g) => **g,
+        _ => bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO),
+    };
+    glossy.with_translucence(albedo, focus)
+}
+
+/// Gives the rampShader `surface` its translucence: a diffuse transmission lobe (focus 0:
+/// the classic rampShader reads no `translucenceFocus`) of albedo `albedo` (the colour
+/// behind ⊙ t ⊙ the fade; see `super::ramp_shader`) and the reader's
+/// `translucenceDepth` for shadow rays, as the lambert family's (see the module doc).
+pub(super) fn translate_ramp(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+    if albedo == Rgb::ZERO {
+        return;
+    }
+    surface.model = SurfaceModel::Maya(Box::new(with_lobe(surface, albedo, 0.0)));
+    surface.translucence_depth = r.scalar("translucenceDepth", 0.5).max(0.0);
+}
+
 /// What a shadow ray passes, per channel, where it leaves the receiving point's own
 /// object through a surface of `material` (`hit`: that material at the point) after
 /// going `inside` world units through it: T + (1 − T)·max(1 − inside/D, 0), T the
 /// transparency the surface lets shadow rays through by (its cut-out's, (1 − coverage) ·
 /// tint) and D its [`SurfaceMaterial::translucence_depth`], where D > 0 and the surface is
-/// translucent there; `None` otherwise (the surface filters the ray as any other). In a
-/// layeredShader stack (O = [`SurfaceMaterial::translucence_others`] ≠ 1, the other
-/// layers' transparency) it is O ⊙ (T' + (1 − T')·max(1 − inside/D, 0)), T' = T / O the
-/// translucent layer's own transparency (per channel; 0 where O is).
+/// translucent there; `None` otherwise (the surface filters the ray as any other). For a
+/// layeredShader stack ([`SurfaceMaterial::translucence_layers`] not empty) it is
+/// T + Π_i (T_i + (1 − T_i)·max(1 − inside/D_i, 0)) − Π_i T_i over its layers' constant
+/// transparencies T_i and depths D_i (a layer without a depth: T_i) — the classic stack's
+/// product of its layers' passages where T is their product, the hit's own T kept where
+/// it follows the view.
 pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside: f32) -> Option<Rgb> {
     let depth = material.translucence_depth;
     if depth <= 0.0 {
@@ -77,17 +98,20 @@ pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside
         SurfaceModel::Maya(g) => g.translucence_per_diffuse.map_or(g.translucence != Rgb::ZERO, |k| k > 0.0),
         _ => false,
     };
-    if !translucent {
+    // (A stack's layers say themselves which are translucent: a layer that does not show
+    // still passes shadow rays by its depth.)
+    if !translucent && material.translucence_layers.is_empty() {
         return None;
     }
     let t =
         if hit.opacity < 1.0 { (hit.cutout_tint * (1.0 - hit.opacity)).clamp(Rgb::ZERO, Rgb::ONE) } else { Rgb::ZERO };
-    let kept = (1.0 - inside / depth).max(0.0);
-    let others = material.translucence_others;
-    if others == Rgb::ONE {
-        return Some(t + (Rgb::ONE - t) * kept);
+    let kept = |depth: f32| if depth > 0.0 { (1.0 - inside / depth).max(0.0) } else { 0.0 };
+    if material.translucence_layers.is_empty() {
+        return Some(t + (Rgb::ONE - t) * kept(depth));
     }
-    let own = |t: f32, o: f32| if o > 0.0 { (t / o).min(1.0) } else { 0.0 };
-    let t = Rgb::new(own(t.x, others.x), own(t.y, others.y), own(t.z, others.z));
-    Some(others * (t + (Rgb::ONE - t) * kept))
+    let (passed, filtered) = material
+        .translucence_layers
+        .iter()
+        .fold((Rgb::ONE, Rgb::ONE), |(p, f), &(t, d)| (p * (t + (Rgb::ONE - t) * kept(d)), f * t));
+    Some((t + passed - filtered).clamp(Rgb::ZERO, Rgb::ONE))
 }

@@ -26,6 +26,10 @@ pub struct ViewTransparency {
     pub incandescence: [Rgb; VIEW_RAMP_STEPS],
     /// The lit colour's albedo before the fade by 1 − T.
     pub albedo: Rgb,
+    /// The translucence's albedo before the fade by 1 − T (the Maya model's
+    /// [`bsdf::MayaGlossy::translucence`], faded at each hit as the diffuse colour is);
+    /// zero: none.
+    pub translucence: Rgb,
     /// The material shows a highlight or a reflection: its coverage is at least
     /// [`MIN_HIGHLIGHT_COVERAGE`].
     pub highlight: bool,
@@ -54,6 +58,7 @@ impl ViewTransparency {
             transparency: std::array::from_fn(|k| transparency(at(k)).clamp(Rgb::ZERO, Rgb::ONE)),
             incandescence: std::array::from_fn(|k| incandescence(at(k))),
             albedo,
+            translucence: Rgb::ZERO,
             highlight,
             refracts: false,
             stack: None,
@@ -73,10 +78,18 @@ impl ViewTransparency {
             transparency: transparency.map(|t| t.clamp(Rgb::ZERO, Rgb::ONE)),
             incandescence: [Rgb::ZERO; VIEW_RAMP_STEPS],
             albedo: Rgb::ZERO,
+            translucence: Rgb::ZERO,
             highlight: false,
             refracts: false,
             stack: Some(Box::new([lit, emission, passed])),
         }
+    }
+
+    /// The same ramps on a material whose translucence has the albedo `translucence`
+    /// before the fade (see [`ViewTransparency::translucence`]).
+    pub fn with_translucence(mut self, translucence: Rgb) -> Self {
+        self.translucence = translucence;
+        self
     }
 
     /// The same ramps on a material that refracts (see [`ViewTransparency::refracts`]).
@@ -118,8 +131,12 @@ impl ViewTransparency {
                     t
                 }
             };
+            let translucence = self.translucence * (Rgb::ONE - t);
             let refracting = match &*hit.model {
-                SurfaceModel::Maya(g) => Some(g.with_refraction(weight, g.ior, g.refraction_limit)),
+                SurfaceModel::Maya(g) => Some(
+                    g.with_refraction(weight, g.ior, g.refraction_limit)
+                        .with_translucence(if self.stack.is_some() { g.translucence } else { translucence }, g.focus),
+                ),
                 _ => None,
             };
             if let Some(g) = refracting {
@@ -142,7 +159,9 @@ impl ViewTransparency {
         hit.diffuse = self.albedo * fade;
         hit.emission = table_at(&self.incandescence, facing) * fade;
         let glossy = match &*hit.model {
-            SurfaceModel::Maya(g) => Some(g.with_coverage(p.max(1e-3))),
+            SurfaceModel::Maya(g) => {
+                Some(g.with_coverage(p.max(1e-3)).with_translucence(self.translucence * fade, g.focus))
+            }
             _ => None,
         };
         if let Some(g) = glossy {
@@ -179,5 +198,25 @@ mod tests {
         h.apply(0.1, &mut hit);
         assert_eq!(hit.opacity, MIN_HIGHLIGHT_COVERAGE);
         assert!((hit.cutout_tint - Rgb::splat(0.9 / 0.75)).abs().max_element() < 1e-5);
+    }
+
+    /// A rampShader's translucence is faded at each hit as its diffuse colour: at
+    /// f = 0.1 with a highlight (coverage 0.75) by (1 − 0.9)/0.75, refracting by
+    /// 1 − 0.9 (within 1e-6); its focus kept.
+    #[test]
+    fn the_translucence_follows_the_facing_ratio() {
+        let behind = Rgb::new(0.4, 0.2, 0.1);
+        let v = ViewTransparency::tabulate(|f| Rgb::splat(1.0 - f), |_| Rgb::ZERO, Rgb::splat(0.5), true)
+            .with_translucence(behind);
+        let mut m = crate::SurfaceMaterial::grey("g");
+        let g = bsdf::MayaGlossy::new(bsdf::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO);
+        m.model = SurfaceModel::Maya(Box::new(g.with_translucence(behind, 2.0)));
+        for (view, fade) in [(v.clone(), 0.1 / MIN_HIGHLIGHT_COVERAGE), (v.refracting(), 0.1)] {
+            let mut hit = m.constant();
+            view.apply(0.1, &mut hit);
+            let SurfaceModel::Maya(g) = &*hit.model else { panic!("not a Maya model") };
+            assert!((g.translucence - behind * fade).abs().max_element() < 1e-6, "{:?}", g.translucence);
+            assert_eq!(g.focus, 2.0);
+        }
     }
 }
