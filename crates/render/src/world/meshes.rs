@@ -27,16 +27,19 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh, quad_ptex: bool) -> scene
 
 /// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
 /// moved out of `m`, not copied (a large mesh's normals then packed to 32 bits,
-/// [`MeshData::pack_normals_if_large`]). Its quad-mesh Ptex faces are kept (moved) only
-/// where `quad_ptex` (the scene reads a quad-mesh Ptex file), else dropped: no bytes per
-/// triangle.
+/// [`MeshData::pack_normals_if_large`]). Its quad-mesh Ptex faces are moved out of `m`
+/// and kept only where `quad_ptex` (the scene reads a quad-mesh Ptex file), else dropped:
+/// no bytes per triangle.
 pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
     let mut positions = std::mem::take(&mut m.positions);
     // Room for one more vertex past the end: Embree reads the last vertex of a shared
     // 12-byte-stride buffer with a 16-byte load (a large vector grows in place).
     positions.reserve_exact(1);
     let slots = std::mem::take(&mut m.triangle_slots);
-    let keep_quads = quad_ptex && m.ptex_quads.len() == m.triangles.len();
+    // Taken either way: where not kept, the scene's copy is freed too (a mesh the world
+    // takes no longer holds it).
+    let quads = std::mem::take(&mut m.ptex_quads);
+    let keep_quads = quad_ptex && quads.len() == m.triangles.len();
     let mut mesh = MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
@@ -50,7 +53,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         // distinct slot has every triangle's 0 without reading them (a large trilist's
         // zeroed slots are never touched: no page faults).
         slots: if m.slots.len() <= 1 || slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
-        ptex_quads: if keep_quads { std::mem::take(&mut m.ptex_quads) } else { Vec::new() },
+        ptex_quads: if keep_quads { quads } else { Vec::new() },
         hair: None,
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
