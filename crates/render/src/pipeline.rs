@@ -256,10 +256,32 @@ fn compile_scene_shading(
     let search = material::mdl_modules::search_path(&scene.library, mdl_paths);
     let (mdl, mdl_diagnostics) = material::mdl_modules::compile(&scene.library, search.clone());
     diagnostics.extend(mdl_diagnostics);
+    if mdl.quad_ptex {
+        unmapped_quad_ptex_polygons(scene, &mut diagnostics);
+    }
     material::module_stand_ins(&mut shading, scene, &mdl);
     material::mdl_modules::environment::attach(&mut shading, scene, search, &mut diagnostics);
     shader::shutter::tabulate_into(&mut shading, &scene.options, &mut diagnostics);
     (shading, mdl, diagnostics)
+}
+
+/// In a scene that reads a quad-mesh Ptex file: a warning at the first polygon of each
+/// object with quads that has no quad face (Ptex's n sub-quads of a polygon of other than
+/// 4 vertices are not mapped; lookups there are black).
+fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnostic>) {
+    for object in &scene.objects {
+        if let Some((span, vertices)) = object.geometry.mesh.ptex_unmapped {
+            diagnostics.push(mi::Diagnostic::warning(
+                span,
+                format!(
+                    "object '{}': a polygon of {vertices} vertices among quads has no quad-mesh Ptex face (mira \
+                     maps quads only, not Ptex's sub-quads of other polygons): quad-mesh Ptex lookups on it \
+                     are black",
+                    object.name
+                ),
+            ));
+        }
+    }
 }
 
 /// A hash of what a scene reads besides its `.mi` text ([`Loaded::content_hash`]): each

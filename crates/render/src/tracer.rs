@@ -161,6 +161,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.instance = inst.scene_index;
     s.geometry = hit.instance;
     s.prim = hit.prim;
+    s.ptex_quad = mesh.ptex_quads.get(hit.prim as usize).copied().filter(|&c| c != scene::mesh::ptex_quads::NONE);
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     s.material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
     s.object_to_world = placed.object_to_world;

@@ -7,6 +7,8 @@
 
 use glam::Vec3;
 
+pub mod ptex_quads;
+
 /// What a face says about its material; the instance decides what it becomes.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum MaterialSlot {
@@ -60,6 +62,16 @@ pub struct Mesh {
     pub triangle_slots: Vec<u32>,
     /// The distinct material slots of the faces.
     pub slots: Vec<MaterialSlot>,
+    /// Per triangle: its quad-mesh Ptex face id and which corners of that quad its vertices
+    /// are, packed ([`ptex_quads`]); empty, nothing per triangle, when none of the mesh's
+    /// polygons is a quad (4 bytes per triangle when one is).
+    pub ptex_quads: Vec<u32>,
+    /// How many quad-mesh Ptex face ids the mesh's polygons number ([`ptex_quads`]: a quad
+    /// one, any other polygon one per outline vertex).
+    pub ptex_faces: u32,
+    /// In a mesh with quads ([`Mesh::ptex_quads`] not empty): the first polygon that has no
+    /// quad face (of other than 4 vertices, or with holes) and its outline's vertex count.
+    pub ptex_unmapped: Option<(mi::Span, usize)>,
 }
 
 impl Mesh {
@@ -109,6 +121,7 @@ impl Mesh {
             + self.bump_basis.len() * 24
             + self.triangles.len() * 12
             + self.triangle_slots.len() * 4
+            + self.ptex_quads.len() * 4
     }
 
     /// Appends `other`, offsetting its indices and merging its slots. Appended to an empty
@@ -124,6 +137,7 @@ impl Mesh {
         let base = self.positions.len() as u32;
         let had = self.positions.len();
         let slot_map: Vec<u32> = other.slots.iter().map(|s| self.slot(s.clone())).collect();
+        self.append_ptex_quads(&other);
         self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
         self.triangle_slots.extend(other.triangle_slots.iter().map(|&s| slot_map[s as usize]));
         // Per-vertex arrays: keep them aligned with positions, padding what one side lacks.
@@ -159,6 +173,26 @@ impl Mesh {
             && self.triangles.is_empty()
             && self.triangle_slots.is_empty()
             && self.slots.is_empty()
+            && self.ptex_quads.is_empty()
+            && self.ptex_faces == 0
+            && self.ptex_unmapped.is_none()
+    }
+
+    /// Appends the quad-mesh Ptex faces of `other` (before its triangles are appended):
+    /// its face ids follow this mesh's, and a side without them pads with none.
+    fn append_ptex_quads(&mut self, other: &Mesh) {
+        let (mine, theirs) = (self.triangles.len(), other.triangles.len());
+        if !self.ptex_quads.is_empty() || !other.ptex_quads.is_empty() {
+            self.ptex_quads.resize(mine, ptex_quads::NONE);
+            if other.ptex_quads.is_empty() {
+                self.ptex_quads.resize(mine + theirs, ptex_quads::NONE);
+            } else {
+                let offset = self.ptex_faces;
+                self.ptex_quads.extend(other.ptex_quads.iter().map(|&c| ptex_quads::offset(c, offset)));
+            }
+        }
+        self.ptex_faces = self.ptex_faces.saturating_add(other.ptex_faces);
+        self.ptex_unmapped = self.ptex_unmapped.or(other.ptex_unmapped);
     }
 
     /// Whether appending the mesh to a blank one would give it back unchanged: its texture

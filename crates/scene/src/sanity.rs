@@ -412,6 +412,13 @@ pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: 
                 keep[i - 1]
             });
         }
+        if mesh.ptex_quads.len() == keep.len() {
+            let mut i = 0;
+            mesh.ptex_quads.retain(|_| {
+                i += 1;
+                keep[i - 1]
+            });
+        }
     }
     diags.push(Diagnostic::warning(
         span,

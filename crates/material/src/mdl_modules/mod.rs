@@ -72,6 +72,9 @@ pub struct MdlMaterials {
     /// The text of every MDL module file that was read (imports included), in reading
     /// order: what a farm part's scene hash covers besides the `.mi` files.
     pub module_sources: Vec<std::sync::Arc<[u8]>>,
+    /// Whether a quad-mesh Ptex file was read: the renderer then keeps the meshes' quad
+    /// faces ([`ptex::quad`]).
+    pub quad_ptex: bool,
 }
 
 impl MdlMaterials {
@@ -180,6 +183,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
         ));
     }
     out.module_sources = set.sources().files().map(|(_, f)| f.bytes.shared_bytes()).collect();
+    out.quad_ptex = textures.read_quad_ptex();
     (out, diags)
 }
 

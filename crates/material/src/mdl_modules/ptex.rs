@@ -6,12 +6,16 @@
 //! data are not read) into texels of `f32` (8- and 16-bit integers scaled to [0, 1], half
 //! floats widened, NaN and infinite texels read as 0).
 //!
-//! Looking up at a hit ([`Ptex::lookup`]): the Ptex face id is the hit triangle's index
-//! within its object (mira's meshes are triangles, numbered in the order the object's
-//! polygons give them), and the position on the face is the hit's barycentric
-//! coordinates, Ptex's triangle convention: u weights the triangle's second vertex, v its
-//! third (the first at (0, 0), the second at (1, 0), the third at (0, 1)). mira takes the
-//! nearest texel (Ptex's point filter): no filtering between texels or across faces.
+//! Looking up at a hit ([`Ptex::lookup`] at the face and coordinates [`quad::face_at`]
+//! finds): in a triangle-mesh file the Ptex face id is the hit triangle's index within its
+//! object (mira's meshes are triangles, numbered in the order the object's polygons give
+//! them), and the position on the face is the hit's barycentric coordinates, Ptex's
+//! triangle convention: u weights the triangle's second vertex, v its third (the first at
+//! (0, 0), the second at (1, 0), the third at (0, 1)). In a quad-mesh file the face id is
+//! the quad polygon's (Ptex's numbering: a quad one face, another polygon one per vertex)
+//! and the position the hit's place on the quad (origin at its vertex 0, u along the edge
+//! 0 → 1, v along 0 → 3). mira takes the nearest texel (Ptex's point filter): no filtering
+//! between texels or across faces.
 //!
 //! Triangle textures (Ptex's layout): a face of resolution 2^n is cut into 4^n small
 //! triangles of side 1/2^n; the upright one with its right angle at grid corner (i, j)
@@ -22,6 +26,7 @@
 
 use glam::Vec4;
 
+pub mod quad;
 pub mod reader;
 
 /// The mesh type a Ptex file's faces are textures of.

@@ -105,11 +105,15 @@ impl Textures {
             .clone()
     }
 
-    /// The `texture_ptex` of file `name` (a Ptex file of a triangle mesh, [`super::ptex`])
-    /// as written in a module in `module_dir`, read once; NaN and infinite texels are said
-    /// once, as a warning. `Err` says why it could not be read (`file:byte offset: what`),
-    /// or that its faces are quads: mira's meshes are triangles, whose Ptex face ids are
-    /// their triangles' indices, so a quad mesh's face ids cannot be found.
+    /// Whether a quad-mesh Ptex file was read.
+    pub fn read_quad_ptex(&self) -> bool {
+        self.ptexes.values().any(|p| matches!(p, Ok(p) if p.mesh == MeshType::Quad))
+    }
+
+    /// The `texture_ptex` of file `name` (a Ptex file of a triangle or quad mesh,
+    /// [`super::ptex`]) as written in a module in `module_dir`, read once; NaN and infinite
+    /// texels are said once, as a warning. `Err` says why it could not be read
+    /// (`file:byte offset: what`).
     pub fn ptex(&mut self, name: &str, module_dir: Option<&Path>) -> Result<Arc<Ptex>, String> {
         let path = self.resolve(name, module_dir, "Ptex file")?;
         let warnings = &mut self.warnings;
@@ -119,13 +123,6 @@ impl Textures {
                 let bytes = std::fs::read(&path).map_err(|e| format!("Ptex file '{}': {e}", path.display()))?;
                 let (ptex, non_finite) = super::ptex::reader::read(&bytes)
                     .map_err(|e| format!("Ptex file {}:{}: {}", path.display(), e.offset, e.message))?;
-                if ptex.mesh == MeshType::Quad {
-                    return Err(format!(
-                        "Ptex file '{}' textures a quad mesh: mira's meshes are triangles and give Ptex face ids \
-                         only to triangle-mesh Ptex files (mesh type 0)",
-                        path.display()
-                    ));
-                }
                 if non_finite > 0 {
                     warnings.push(format!(
                         "Ptex file '{}': {non_finite} texel components are NaN or infinite; they are read as 0",

@@ -8,7 +8,9 @@
 //! channel count (1–4) reads back as its value (integers scaled to [0, 1]) within 1e-6,
 //! at the centroid of its small triangle (Ptex's triangle layout); constant, diff-zipped
 //! and tiled faces; a two-triangle mesh's hits (face = triangle index, barycentrics)
-//! through a compiled module material give each face's texel within 1e-6; hostile files
+//! through a compiled module material give each face's texel within 1e-6; so do a
+//! quad-mesh file's faces at hits on both triangles of a quad (face id and quad corners
+//! from `State::ptex_quad`), 1e-6; hostile files
 //! (bad magic, truncated anywhere, absurd resolutions, corrupt bytes anywhere) are errors
 //! naming the byte offset, never a panic.
 
@@ -328,7 +330,7 @@ fn fixtures(test: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
     std::fs::write(dir.join("two.ptx"), two_triangles().0).unwrap();
-    std::fs::write(dir.join("quad.ptx"), ptex_file(1, 0, 1, &[zipped_face(0, 1, 1, How::Zipped)], 6)).unwrap();
+    std::fs::write(dir.join("quad.ptx"), quad_faces().0).unwrap();
     let mut bad = two_triangles().0;
     bad.truncate(100);
     std::fs::write(dir.join("bad.ptx"), bad).unwrap();
@@ -393,8 +395,92 @@ shader "valid" "mdl::ptexmod::pt_valid" ("tex" "two.ptx")"#,
     assert!(close(get(&mdl, &lib, "valid").diffuse, Rgb::ONE, 0.0));
 }
 
+/// The quad-mesh test texture (RGB floats): face 0 of 4 × 2 texels, each its own colour;
+/// face 1 constant.
+fn quad_faces() -> (Vec<u8>, Vec<Face>) {
+    let texels = (0..8).flat_map(|t| [0.1 * t as f64, 0.05 + 0.1 * t as f64, 0.9 - 0.1 * t as f64]).collect();
+    let faces = vec![
+        Face { log2: (2, 1), texels, how: How::Zipped },
+        Face { log2: (0, 0), texels: vec![0.3, 0.6, 0.9], how: How::ConstantInfo },
+    ];
+    (ptex_file(1, 3, 3, &faces, 6), faces)
+}
+
+/// A quad-mesh file through a compiled material: a hit on either triangle of a quad (cut
+/// along the diagonal from vertex 0: corners 0, 1, 2 and 0, 2, 3; or along the other:
+/// 1, 2, 3 and 1, 3, 0) at the barycentrics of each texel's centre reads that texel of the
+/// quad's face (1e-6); the constant face everywhere; a triangle of no quad is black.
 #[test]
-fn quad_and_broken_ptex_files_are_errors_at_their_module_line() {
+fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
+    use scene::mesh::ptex_quads::{encode, CORNER_UV};
+    let dir = fixtures("quads");
+    let (mdl, lib, diags) = compile_text_with(r#"shader "q" "mdl::ptexmod::pt_quad" ()"#, std::slice::from_ref(&dir));
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(diags.is_empty(), "{diags:#?}");
+    let m = get(&mdl, &lib, "q");
+    let Varying::Evaluated(hit) = &m.varying else { panic!("a Ptex lookup varies with the hit") };
+    let (_, faces) = quad_faces();
+    let colour = |face: u32, bary: [f32; 3], corners: [u8; 3]| {
+        let mut h = m.constant();
+        let n = glam::Vec3A::Z;
+        let s = State {
+            prim: 99,
+            bary,
+            ptex_quad: Some(encode(face, corners)),
+            normal: n,
+            normal_geom: n,
+            dir: -n,
+            ..State::default()
+        };
+        hit.0.apply(&s, &mut h);
+        h.diffuse
+    };
+    // The barycentrics of quad point (u, v) on the triangle of quad corners `corners`
+    // (solved from the corners' (u, v)), if it lies on it.
+    let bary_of = |corners: [u8; 3], u: f32, v: f32| -> Option<[f32; 3]> {
+        let [a, b, c] = corners.map(|k| CORNER_UV[k as usize]);
+        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        let b1 = ((u - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (v - a[1])) / det;
+        let b2 = ((b[0] - a[0]) * (v - a[1]) - (u - a[0]) * (b[1] - a[1])) / det;
+        let b0 = 1.0 - b1 - b2;
+        (b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0).then_some([b0, b1, b2])
+    };
+    let splits = [[[0, 1, 2], [0, 2, 3]], [[1, 2, 3], [1, 3, 0]]];
+    for split in splits {
+        let mut on = [0; 2];
+        for t in 0..8 {
+            // Texel t's centre, and points near its corners (inset by a tenth of a texel).
+            let (i, j) = ((t % 4) as f32, (t / 4) as f32);
+            for (du, dv) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.1), (0.1, 0.9), (0.9, 0.9)] {
+                let (u, v) = ((i + du) / 4.0, (j + dv) / 2.0);
+                let want = Rgb::new(
+                    faces[0].texels[t * 3] as f32,
+                    faces[0].texels[t * 3 + 1] as f32,
+                    faces[0].texels[t * 3 + 2] as f32,
+                );
+                for (half, corners) in split.iter().enumerate() {
+                    let Some(bary) = bary_of(*corners, u, v) else { continue };
+                    on[half] += 1;
+                    let got = colour(0, bary, *corners);
+                    assert!(close(got, want, 1e-6), "{corners:?} at ({u}, {v}): {got:?} vs texel {t} {want:?}");
+                }
+            }
+        }
+        assert!(on[0] > 10 && on[1] > 10, "{split:?}: points on both triangles {on:?}");
+        for bary in [[1.0, 0.0, 0.0], [0.2, 0.3, 0.5]] {
+            let got = colour(1, bary, split[1]);
+            assert!(close(got, Rgb::new(0.3, 0.6, 0.9), 1e-6), "{got:?}");
+        }
+    }
+    // A hit without a quad face (`ptex_quad` none) and a face the file lacks are black.
+    let mut h = m.constant();
+    hit.0.apply(&State { prim: 0, bary: [0.3, 0.3, 0.4], ..State::default() }, &mut h);
+    assert!(close(h.diffuse, Rgb::ZERO, 0.0), "{:?}", h.diffuse);
+    assert!(close(colour(2, [0.3, 0.3, 0.4], [0, 1, 2]), Rgb::ZERO, 0.0));
+}
+
+#[test]
+fn broken_ptex_files_are_errors_at_their_module_line() {
     let dir = fixtures("errors");
     let (_, _, diags) = compile_text_with(
         r#"shader "q" "mdl::ptexmod::pt_quad" ()
@@ -402,9 +488,8 @@ shader "b" "mdl::ptexmod::pt_bad" ()"#,
         std::slice::from_ref(&dir),
     );
     std::fs::remove_dir_all(&dir).ok();
-    assert_eq!(diags.len(), 2, "{diags:#?}");
-    let quad = diags.iter().find(|d| d.contains("quad mesh")).expect("a quad-mesh message");
-    assert!(quad.contains("ptexmod.mdl:15:") && quad.contains("'q'"), "{quad}");
+    // The quad-mesh file reads.
+    assert_eq!(diags.len(), 1, "{diags:#?}");
     let bad = diags.iter().find(|d| d.contains("truncated")).expect("a truncation message");
     assert!(bad.contains("ptexmod.mdl:18:") && bad.contains("bad.ptx:") && bad.contains("'b'"), "{bad}");
 }

@@ -75,7 +75,11 @@ impl World {
         mdl: &material::mdl_modules::MdlMaterials,
     ) -> World {
         let lights = scene_lights(scene, shading);
-        let meshes = scene.objects.iter().map(|o| mesh_data(&mut copy_of_rendered_arrays(&o.geometry.mesh))).collect();
+        let meshes = scene
+            .objects
+            .iter()
+            .map(|o| mesh_data(&mut copy_of_rendered_arrays(&o.geometry.mesh, mdl.quad_ptex), mdl.quad_ptex))
+            .collect();
         World::assemble(scene, shading, mdl, meshes, lights)
     }
 
@@ -90,7 +94,7 @@ impl World {
     ) -> World {
         // Object area lights read the scene's meshes: they are made before the meshes move.
         let lights = scene_lights(scene, shading);
-        let meshes = scene.objects.iter_mut().map(|o| mesh_data(&mut o.geometry.mesh)).collect();
+        let meshes = scene.objects.iter_mut().map(|o| mesh_data(&mut o.geometry.mesh, mdl.quad_ptex)).collect();
         World::assemble(scene, shading, mdl, meshes, lights)
     }
 

@@ -5,8 +5,9 @@ use glam::Vec3A;
 
 use crate::mesh::MeshData;
 
-/// A copy of the arrays of `m` that the renderer keeps (see [`mesh_data`]).
-pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
+/// A copy of the arrays of `m` that the renderer keeps (see [`mesh_data`]; its quad-mesh
+/// Ptex faces only where `quad_ptex`).
+pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh, quad_ptex: bool) -> scene::Mesh {
     scene::Mesh {
         positions: m.positions.clone(),
         normals: m.normals.clone(),
@@ -15,6 +16,7 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
         bump_basis: m.bump_basis.clone(),
         triangles: m.triangles.clone(),
         triangle_slots: m.triangle_slots.clone(),
+        ptex_quads: if quad_ptex { m.ptex_quads.clone() } else { Vec::new() },
         // The slot table itself is small; `mesh_data` reads its length.
         slots: m.slots.clone(),
         motion: m.motion.clone(),
@@ -25,13 +27,19 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh) -> scene::Mesh {
 
 /// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
 /// moved out of `m`, not copied (a large mesh's normals then packed to 32 bits,
-/// [`MeshData::pack_normals_if_large`]).
-pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
+/// [`MeshData::pack_normals_if_large`]). Its quad-mesh Ptex faces are moved out of `m`
+/// and kept only where `quad_ptex` (the scene reads a quad-mesh Ptex file), else dropped:
+/// no bytes per triangle.
+pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
     let mut positions = std::mem::take(&mut m.positions);
     // Room for one more vertex past the end: Embree reads the last vertex of a shared
     // 12-byte-stride buffer with a 16-byte load (a large vector grows in place).
     positions.reserve_exact(1);
     let slots = std::mem::take(&mut m.triangle_slots);
+    // Taken either way: where not kept, the scene's copy is freed too (a mesh the world
+    // takes no longer holds it).
+    let quads = std::mem::take(&mut m.ptex_quads);
+    let keep_quads = quad_ptex && quads.len() == m.triangles.len();
     let mut mesh = MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
@@ -45,6 +53,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh) -> MeshData {
         // distinct slot has every triangle's 0 without reading them (a large trilist's
         // zeroed slots are never touched: no page faults).
         slots: if m.slots.len() <= 1 || slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
+        ptex_quads: if keep_quads { quads } else { Vec::new() },
         hair: None,
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),

@@ -33,31 +33,44 @@ const FACE0: [f32; 3] = [0.9, 0.6, 0.3];
 /// (0, 1), 3 the inverted one.
 const FACE1: [[f32; 3]; 4] = [[0.1, 0.2, 0.3], [0.4, 0.5, 0.6], [0.7, 0.8, 0.9], [0.25, 0.5, 0.75]];
 
-/// The Ptex file: triangle mesh, RGB floats, face 0 flagged constant, face 1 of
-/// resolution 2 × 2 zipped (each channel's plane in turn).
-fn ptex_file() -> Vec<u8> {
+/// One face the writer stores: its resolution (log2 along u, v) and its RGB texels (row
+/// v = 0 first); one texel and `log2` (0, 0): flagged constant.
+struct FaceSpec {
+    log2: (u8, u8),
+    texels: Vec<[f32; 3]>,
+}
+
+/// A Ptex file of `faces` (mesh type `mesh`: 0 triangles, 1 quads; RGB floats, no alpha,
+/// one level), constant faces flagged in their face info, the others zipped (each
+/// channel's plane in turn).
+fn ptex_bytes(mesh: u32, faces: &[FaceSpec]) -> Vec<u8> {
     let floats = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
-    let mut infos = vec![0u8, 0, 0, 1];
-    infos.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
-    infos.extend([1u8, 1, 0, 0]);
-    infos.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
-    let mut constants = floats(&FACE0);
-    constants.extend(floats(&[0.5; 3]));
-    let planes: Vec<f32> = (0..3).flat_map(|c| FACE1.iter().map(move |t| t[c])).collect();
-    let block = zlib_stored(&floats(&planes));
-    let mut words = 0u32.to_le_bytes().to_vec();
-    words.extend((block.len() as u32 | 1 << 30).to_le_bytes());
+    let (mut infos, mut constants, mut words, mut blocks) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for f in faces {
+        let constant = f.texels.len() == 1;
+        infos.extend([f.log2.0, f.log2.1, 0, u8::from(constant)]);
+        infos.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
+        constants.extend(floats(&f.texels[0]));
+        if constant {
+            words.extend(0u32.to_le_bytes());
+        } else {
+            let planes: Vec<f32> = (0..3).flat_map(|c| f.texels.iter().map(move |t| t[c])).collect();
+            let block = zlib_stored(&floats(&planes));
+            words.extend((block.len() as u32 | 1 << 30).to_le_bytes());
+            blocks.extend(block);
+        }
+    }
     let (zinfo, zconst, zwords) = (zlib_stored(&infos), zlib_stored(&constants), zlib_stored(&words));
-    let level = (zwords.len() + block.len()) as u64;
+    let level = (zwords.len() + blocks.len()) as u64;
     let mut out = b"Ptex".to_vec();
-    // Version 1, triangles, float, no alpha, 3 channels, 1 level, 2 faces.
-    for w in [1u32, 0, 3] {
+    // Version 1, the mesh type, float, no alpha, 3 channels, 1 level, the faces.
+    for w in [1u32, mesh, 3] {
         out.extend(w.to_le_bytes());
     }
     out.extend((-1i32).to_le_bytes());
     out.extend(3u16.to_le_bytes());
     out.extend(1u16.to_le_bytes());
-    for w in [2u32, 40, zinfo.len() as u32, zconst.len() as u32, 16, 4] {
+    for w in [faces.len() as u32, 40, zinfo.len() as u32, zconst.len() as u32, 16, 4] {
         out.extend(w.to_le_bytes());
     }
     out.extend(level.to_le_bytes());
@@ -67,11 +80,16 @@ fn ptex_file() -> Vec<u8> {
     out.extend(zconst);
     out.extend(level.to_le_bytes());
     out.extend((zwords.len() as u32).to_le_bytes());
-    out.extend(2u32.to_le_bytes());
+    out.extend((faces.len() as u32).to_le_bytes());
     out.extend(zwords);
-    out.extend(block);
+    out.extend(blocks);
     out.extend([0u8; 8]);
     out
+}
+
+/// The triangle-mesh Ptex file: face 0 constant, face 1 of resolution 2 × 2.
+fn ptex_file() -> Vec<u8> {
+    ptex_bytes(0, &[FaceSpec { log2: (0, 0), texels: vec![FACE0] }, FaceSpec { log2: (1, 1), texels: FACE1.to_vec() }])
 }
 
 /// The colour at square point (x, y) ∈ [−1, 1]²: face 0 below the diagonal, else face 1's
@@ -152,6 +170,99 @@ fn each_triangle_renders_its_ptex_faces_texels() {
             }
         }
         assert_eq!(seen.len(), 5, "{engine:?}: pixels of every face region");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The quad-mesh file's face 0 (the left quad, `c 0 1 4 5`: u along +x, v along +y):
+/// 2 × 2 texels.
+const QUAD0: [[f32; 3]; 4] = [[0.9, 0.1, 0.1], [0.1, 0.9, 0.1], [0.1, 0.1, 0.9], [0.8, 0.8, 0.2]];
+
+/// Face 1 (the right quad, `p 3 4 1 2`: vertex 0 at the upper right, u along −x, v along
+/// −y): 4 × 2 texels, each its own colour.
+fn quad1() -> Vec<[f32; 3]> {
+    (0..8).map(|t| [0.1 + 0.1 * t as f32, 0.8 - 0.1 * t as f32, 0.05 * t as f32]).collect()
+}
+
+/// The colour at square point (x, y) ∈ [−1, 1]²: the left quad's texel at u = x + 1,
+/// v = (y + 1)/2; the right quad's at u = 1 − x, v = (1 − y)/2 (nearest texel: ⌊u w⌋,
+/// ⌊v h⌋).
+fn expected_quads(x: f32, y: f32) -> [f32; 3] {
+    let texel = |u: f32, v: f32, w: usize, h: usize| ((v * h as f32) as usize) * w + (u * w as f32) as usize;
+    if x < 0.0 {
+        QUAD0[texel(x + 1.0, (y + 1.0) / 2.0, 2, 2)]
+    } else {
+        quad1()[texel(1.0 - x, (1.0 - y) / 2.0, 4, 2)]
+    }
+}
+
+/// Two quads side by side (and, out of view, a pentagon after them: faces 2–6).
+const QUAD_SCENE: &str = r#"
+options "opt" filter box 1 1 end options
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+shader "tinted" "mdl::ptexmod::faces" ()
+object "quads" group
+    -1 -1 -1  0 -1 -1  1 -1 -1  1 1 -1  0 1 -1  -1 1 -1
+    10 10 -1  11 10 -1  11.5 10.5 -1  11 11 -1  10 11 -1
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8 v 9 v 10
+    c 0 1 4 5
+    p 3 4 1 2
+    p 6 7 8 9 10
+end group end object
+instance "quads_inst" "quads" material "tinted" end instance
+instgroup "root" "cam_inst" "sun_inst" "quads_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+
+/// A quad-mesh Ptex file on two quads (one fanned `c` polygon, one ear-clipped `p` polygon
+/// whose vertex 0 is its upper right corner): every pixel wholly inside one texel's region
+/// is that texel's colour within 1e-4 in both engines (the classic engine's π times), all
+/// 12 texels are seen, on both triangles of each quad; the pentagon (no quad face) is
+/// warned of at its line.
+#[test]
+fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_quads_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    let faces = [
+        FaceSpec { log2: (1, 1), texels: QUAD0.to_vec() },
+        FaceSpec { log2: (2, 1), texels: quad1() },
+        FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] },
+    ];
+    std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let parsed = mi::parse_str("t.mi", QUAD_SCENE);
+        let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
+        let [warning] = &built.messages[..] else { panic!("{:#?}", built.messages) };
+        assert!(warning.contains("t.mi:14:") && warning.contains("5 vertices"), "{warning}");
+        // Each quad's diagonal leaves whole texels on either side (the left quad's, from
+        // (−1, −1) to (0, 1), has its upper left texel above, its lower right below).
+        let settings = Settings { engine, spp: Some(4), ..Settings::default() };
+        let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
+        let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
+        let mut seen = std::collections::HashSet::new();
+        for (k, p) in film.rgba().iter().enumerate() {
+            let (px, py) = ((k % 8) as f32, (k / 8) as f32);
+            let (x0, x1) = (-1.0 + px / 4.0 + 1e-3, -1.0 + (px + 1.0) / 4.0 - 1e-3);
+            let (y0, y1) = (1.0 - (py + 1.0) / 4.0 + 1e-3, 1.0 - py / 4.0 - 1e-3);
+            let corners =
+                [expected_quads(x0, y0), expected_quads(x1, y0), expected_quads(x0, y1), expected_quads(x1, y1)];
+            if corners.iter().any(|c| *c != corners[0]) {
+                continue;
+            }
+            let want = corners[0];
+            seen.insert(want.map(f32::to_bits));
+            for c in 0..3 {
+                assert!(
+                    (p[c] - want[c] * scale).abs() <= 1e-4 * scale,
+                    "{engine:?}, pixel {k}: {p:?} vs {want:?} × {scale}"
+                );
+            }
+        }
+        assert_eq!(seen.len(), 12, "{engine:?}: pixels of every texel");
     }
     std::fs::remove_dir_all(&dir).ok();
 }

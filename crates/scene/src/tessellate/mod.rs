@@ -108,6 +108,10 @@ fn drop_nonfinite(out: &mut ObjectGeometry, span: mi::Span, diags: &mut Vec<Diag
         mesh.triangles.retain(|_| *k.next().expect("one flag per triangle"));
         let mut k = keep.iter();
         mesh.triangle_slots.retain(|_| *k.next().expect("one flag per triangle"));
+        if mesh.ptex_quads.len() == keep.len() {
+            let mut k = keep.iter();
+            mesh.ptex_quads.retain(|_| *k.next().expect("one flag per triangle"));
+        }
         let dropped = before - mesh.triangles.len();
         if dropped == 0 {
             return;

@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3};
 use mi::ast::{Group, PolygonKind, PolygonMaterial, VertexAttr};
 use mi::{Diagnostic, Span};
 
-use crate::mesh::{MaterialSlot, Mesh, TexSpace};
+use crate::mesh::{ptex_quads, MaterialSlot, Mesh, TexSpace};
 
 /// Reusable buffers for triangulating many polygons.
 #[derive(Default)]
@@ -130,7 +130,16 @@ pub fn triangulate_polygons(
     let file = group.span.file;
     let mut slot_of_material: Vec<Option<u32>> = vec![None; polys.material_names.len()];
     let mut last_named: Option<u32> = None;
+    // Quad-mesh Ptex faces: kept per triangle only where some polygon is a quad.
+    let with_quads = (0..polys.list.len()).any(|pi| quad_of(group, pi).is_some());
+    if with_quads {
+        mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
+    }
     for (pi, poly) in polys.list.iter().enumerate() {
+        let quad = quad_of(group, pi);
+        let face = mesh.ptex_faces;
+        let faces = if quad.is_some() { 1 } else { polys.loops(pi).next().map_or(0, |l| l.len() as u32) };
+        mesh.ptex_faces = face.saturating_add(faces);
         let at = Span::new(file, poly.offset.0, poly.offset.0 + 1);
         let slot = match poly.material {
             PolygonMaterial::Label(l) => mesh.slot(MaterialSlot::Label(l)),
@@ -185,7 +194,38 @@ pub fn triangulate_polygons(
         }
         let added = mesh.triangles.len() - before;
         mesh.triangle_slots.extend(std::iter::repeat_n(slot, added));
+        if with_quads {
+            match quad {
+                Some(q) => {
+                    let codes = ptex_quads::quad_triangles(face, q.map(|v| v + base), &mesh.triangles[before..]);
+                    let codes: Vec<u32> = codes.collect();
+                    mesh.ptex_quads.extend(codes);
+                }
+                None => {
+                    mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
+                    if added > 0 && mesh.ptex_unmapped.is_none() {
+                        mesh.ptex_unmapped = Some((at, outline.len()));
+                    }
+                }
+            }
+        }
     }
+}
+
+/// The four vertices of polygon `pi` of `group` (group-relative, in the polygon's order)
+/// if it is a quad: a `c`, `cp` or `p` polygon of 4 vertices without holes.
+fn quad_of(group: &Group, pi: usize) -> Option<[u32; 4]> {
+    let polys = &group.polygons;
+    let kind = polys.list[pi].kind;
+    if !matches!(kind, PolygonKind::Convex | PolygonKind::ConvexLegacy | PolygonKind::General) {
+        return None;
+    }
+    let mut loops = polys.loops(pi);
+    let outline = loops.next()?;
+    if loops.next().is_some() {
+        return None;
+    }
+    outline.try_into().ok()
 }
 
 impl Triangulator {

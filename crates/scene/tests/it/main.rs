@@ -4,5 +4,6 @@
 
 mod geometry_shaders;
 mod hostile;
+mod ptex_quads;
 mod taken;
 mod world;

@@ -1,0 +1,91 @@
+//! Quad-mesh Ptex face ids of polygon meshes (`scene::mesh::ptex_quads`): each triangle cut
+//! from a quad keeps its polygon's Ptex face id and which quad corner each of its vertices
+//! is; a polygon of other than 4 vertices takes one face id per vertex (Ptex's sub-quads)
+//! and its triangles none; groups of one object number their faces on.
+//!
+//! Asserted exactly: face ids, corner of every triangle vertex (the vertex's position is
+//! that quad vertex's), none for the pentagon's triangles and its line, no table (no bytes
+//! per triangle) for an object of triangles only.
+
+use glam::Vec3;
+use scene::mesh::ptex_quads;
+use scene::Scene;
+
+fn build(text: &str) -> (Scene, mi::Parsed) {
+    let parsed = mi::parse_str("t.mi", text);
+    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
+    let mut diags = Vec::new();
+    let scene = Scene::build(&parsed, 0, &mut diags);
+    let errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.render(&parsed.sources)).collect();
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+    (scene.expect("a scene"), parsed)
+}
+
+const SCENE: &str = r#"
+options "opt" end options
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+object "quads" group
+    0 0 0  1 0 0  1 1 0  0 1 0  2 0 0  2 1 0  3 0.5 0  3 2 0  2 2 0  1 2 0
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8 v 9
+    c 0 1 2 3
+    p 1 4 6 5 2
+    p 2 5 8 9
+    p 5 6 7
+    p 3 2 9
+end group
+group
+    0 0 1  1 0 1  1 1 1  0 1 1
+    v 0 v 1 v 2 v 3
+    p 1 2 3 0
+end group end object
+object "tris" group
+    0 0 0  1 0 0  1 1 0
+    v 0 v 1 v 2
+    p 0 1 2
+end group end object
+instance "q" "quads" end instance
+instance "t" "tris" end instance
+instgroup "root" "cam_inst" "q" "t" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+
+#[test]
+fn triangles_of_quads_keep_their_polygons_face_and_corners() {
+    let (scene, parsed) = build(SCENE);
+    let mesh = &scene.objects.iter().find(|o| o.name == "quads").expect("quads").geometry.mesh;
+    assert_eq!(mesh.ptex_quads.len(), mesh.triangles.len());
+    // Faces: quad 0, pentagon 1–5, quad 6, triangle 7–9, triangle 10–12; the second group's
+    // quad 13.
+    assert_eq!(mesh.ptex_faces, 14);
+    // The quads (face, vertex positions in polygon order).
+    let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    let quads = [
+        (0, [p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 0.), p(0., 1., 0.)]),
+        (6, [p(1., 1., 0.), p(2., 1., 0.), p(2., 2., 0.), p(1., 2., 0.)]),
+        (13, [p(1., 0., 1.), p(1., 1., 1.), p(0., 1., 1.), p(0., 0., 1.)]),
+    ];
+    let mut halves = [0; 3];
+    let mut none = 0;
+    for (t, code) in mesh.triangles.iter().zip(&mesh.ptex_quads) {
+        let Some((face, corners)) = ptex_quads::decode(*code) else {
+            none += 1;
+            continue;
+        };
+        let q = quads.iter().position(|(f, _)| *f == face).unwrap_or_else(|| panic!("face {face}"));
+        halves[q] += 1;
+        for (v, k) in t.iter().zip(corners) {
+            assert_eq!(mesh.positions[*v as usize], quads[q].1[k as usize], "face {face}, triangle {t:?}");
+        }
+    }
+    assert_eq!(halves, [2, 2, 2], "two triangles per quad");
+    // The pentagon's three and the two triangles: no quad face.
+    assert_eq!(none, 3 + 2);
+    let (span, n) = mesh.ptex_unmapped.expect("the pentagon");
+    assert_eq!(n, 5);
+    assert!(parsed.sources.location(span).starts_with("t.mi:9:"), "{}", parsed.sources.location(span));
+    // Triangles only: no table.
+    let tris = &scene.objects.iter().find(|o| o.name == "tris").expect("tris").geometry.mesh;
+    assert!(tris.ptex_quads.is_empty() && tris.ptex_unmapped.is_none());
+    assert_eq!(tris.ptex_faces, 3);
+}
