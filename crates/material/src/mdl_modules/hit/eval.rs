@@ -143,7 +143,7 @@ impl HitExpr {
                 volume.texel(c.x as i64, c.y as i64, c.z as i64)
             }
             HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval_in(s, f).truncate().into()),
-            HitExpr::LookupPtex { ptex, channel } => ptex.lookup(s.prim, s.bary[1], s.bary[2], *channel),
+            HitExpr::LookupPtex { ptex, channel } => ptex.lookup(s.prim, s.bary[1], s.bary[2], None, *channel),
             HitExpr::Pattern(p, at) => p.eval(at.eval_in(s, f).truncate().into()),
             HitExpr::Sky(sky, args) => {
                 let dir =
