@@ -252,6 +252,75 @@ fn reduced_levels_read_back_and_a_wide_footprint_picks_them() {
     assert!((got - want as f32).abs() <= 1e-6, "{got} vs {want}");
 }
 
+/// With an alpha channel Ptex stores reduced levels premultiplied by alpha (level 0 and
+/// the averages straight): RGBA floats, alpha channel 3, read back straight (1e-6); alpha
+/// channel 0 divides the channels after it. A face with an edit drops its reduced levels
+/// (the file's are of the face before the edit).
+#[test]
+fn reduced_levels_are_read_straight_and_edits_drop_them() {
+    let texels = |n: usize, alpha_at: usize| -> Vec<f64> {
+        (0..n * 4)
+            .map(|k| if k % 4 == alpha_at { 0.25 + 0.5 * ((k / 4) % 2) as f64 } else { (k % 7) as f64 / 8.0 })
+            .collect()
+    };
+    for alpha_at in [3usize, 0] {
+        let straight = texels(16, alpha_at);
+        let premultiplied: Vec<f64> = straight
+            .chunks(4)
+            .flat_map(|t| {
+                (0..4).map(move |c| {
+                    let colour = if alpha_at == 0 { c > 0 } else { c < alpha_at };
+                    if colour {
+                        t[c] * t[alpha_at]
+                    } else {
+                        t[c]
+                    }
+                })
+            })
+            .collect();
+        let faces = [Face { log2: (3, 3), texels: texels(64, alpha_at), how: How::Zipped }];
+        let level1 = vec![Face { log2: (2, 2), texels: premultiplied, how: How::Zipped }];
+        let mut file = ptex_file_full(1, 3, 4, &faces, 6, &[], &[level1]);
+        file[16..20].copy_from_slice(&(alpha_at as i32).to_le_bytes());
+        let ptex = read(&file);
+        assert_eq!(ptex.alpha, Some(alpha_at));
+        for t in 0..16 {
+            let (u, v) = (((t % 4) as f32 + 0.5) / 4.0, ((t / 4) as f32 + 0.5) / 4.0);
+            let mut out = [0.0f32; 4];
+            assert!(ptex.sample(0, u, v, Some(0.25), Filter::Nearest, 0, &mut out));
+            for c in 0..4 {
+                let want = straight[t * 4 + c] as f32;
+                assert!((out[c] - want).abs() <= 1e-6, "alpha {alpha_at}, texel {t}, channel {c}: {out:?}");
+            }
+        }
+    }
+
+    // An edit of face 0 (after the file's sections): its reduced level is dropped, its
+    // average is the edit's constant value.
+    let faces = [face((3, 3), varied(0, 64))];
+    let mut file = ptex_file_full(1, 3, 1, &faces, 6, &[], &[vec![face((2, 2), varied(1, 16))]]);
+    assert_eq!(read(&file).reductions[0].len(), 2);
+    let data = {
+        let floats: Vec<u8> = varied(2, 4).iter().flat_map(|x| (*x as f32).to_le_bytes()).collect();
+        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::new(6));
+        std::io::Write::write_all(&mut z, &floats).unwrap();
+        z.finish().unwrap()
+    };
+    let mut body = 0u32.to_le_bytes().to_vec();
+    body.extend([1u8, 1, 0, 0]);
+    body.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
+    body.extend((data.len() as u32 | 1 << 30).to_le_bytes());
+    body.extend(0.625f32.to_le_bytes());
+    body.extend(data);
+    file.push(0);
+    file.extend((body.len() as u32).to_le_bytes());
+    file.extend(body);
+    let ptex = read(&file);
+    assert_eq!(ptex.reductions[0].len(), 1, "the edit's average only");
+    assert!((at(&ptex, 0, 0.5, 0.5, Some(1.0), Filter::Bilinear) - 0.625).abs() <= 1e-6);
+    assert!((at(&ptex, 0, 0.25, 0.25, Some(0.25), Filter::Nearest) - varied(2, 4)[0] as f32).abs() <= 1e-6);
+}
+
 /// Triangle faces' reduced levels (square, in Ptex's triangle layout) read back texel by
 /// texel at their small triangles' centroids (1e-6).
 #[test]

@@ -13,7 +13,8 @@
 //! order. Reduced level k (after level 0, in turn) is laid out alike for the first n
 //! faces (n in its level info) of Ptex's reduction order (faces by their smaller log2
 //! side, largest first, ties in face order; a face flagged constant counts as 1), each of
-//! 2^(u − k) × 2^(v − k) texels; a face with an edit keeps none of them. Adjacency per
+//! 2^(u − k) × 2^(v − k) texels, premultiplied by alpha where the file has an alpha
+//! channel (mira divides it out); a face with an edit keeps none of them. Adjacency per
 //! face edge: the adjacent face (−1: none) and its edge (2 bits), checked against the
 //! face count and edge count. A face's data is: constant (one texel), zipped (zlib of the face's texels, each
 //! channel's plane in turn, rows from v = 0), diff-zipped (the same, 8- and 16-bit values
@@ -405,6 +406,9 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
                 let (ulog2, vlog2) = (info.ulog2 as u8 - (k as u8 + 1), info.vlog2 as u8 - (k as u8 + 1));
                 let start = out.texels.len();
                 non_finite += reader.face(*block, ulog2, vlog2, id, &mut out.texels)?;
+                if let Some(alpha) = out.alpha {
+                    unpremultiply(&mut out.texels[start..], h.channels, alpha);
+                }
                 levels.push(FaceTexels { start, ulog2, vlog2 });
             }
             if levels.last().is_none_or(|l: &FaceTexels| l.ulog2 + l.vlog2 > 0) {
@@ -416,6 +420,22 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
         out.reductions.push(levels);
     }
     Ok((out, non_finite))
+}
+
+/// Divides the colour channels of `texels` (`channels` a texel) by their alpha (channel
+/// `alpha`): Ptex stores reduced levels premultiplied by alpha, level 0 and the averages
+/// not. The colour channels are those before the alpha channel, or all after it when it
+/// is the first (Ptex's convention); a texel of alpha 0 is left as it is.
+fn unpremultiply(texels: &mut [f32], channels: usize, alpha: usize) {
+    let colour = if alpha == 0 { 1..channels } else { 0..alpha };
+    for texel in texels.chunks_exact_mut(channels) {
+        let a = texel[alpha];
+        if a != 0.0 {
+            for c in colour.clone() {
+                texel[c] /= a;
+            }
+        }
+    }
 }
 
 /// Ptex's reduction order: the face ids sorted by their smaller log2 side, largest first,
