@@ -1,10 +1,12 @@
 //! MDL's `texture_ptex` resources: per-face textures read from Ptex files (`.ptx`,
 //! [`reader`]) and looked up by `tex::lookup_*` at the hit's face and position on it.
 //!
-//! A Ptex file holds one small image per face of the mesh it was painted on. mira reads the
-//! highest resolution of every face (the file's level 0; the reduced levels and the meta
-//! data are not read) into texels of `f32` (8- and 16-bit integers scaled to [0, 1], half
-//! floats widened, NaN and infinite texels read as 0).
+//! A Ptex file holds one small image per face of the mesh it was painted on. mira reads
+//! every face's highest resolution (the file's level 0), its reduced levels (each half
+//! the one before along u and v, as the file stores them) and its average (the file's
+//! constant value of the face), and the faces' adjacency; not the meta data. Texels are
+//! `f32` (8- and 16-bit integers scaled to [0, 1], half floats widened, NaN and infinite
+//! texels read as 0).
 //!
 //! Looking up at a hit ([`Ptex::lookup`] at the face and coordinates [`quad::face_at`]
 //! finds): in a triangle-mesh file the Ptex face id is the hit triangle's index within its
@@ -14,8 +16,9 @@
 //! (0, 0), the second at (1, 0), the third at (0, 1)). In a quad-mesh file the face id is
 //! the quad polygon's (Ptex's numbering: a quad one face, another polygon one per vertex)
 //! and the position the hit's place on the quad (origin at its vertex 0, u along the edge
-//! 0 → 1, v along 0 → 3). mira takes the nearest texel (Ptex's point filter): no filtering
-//! between texels or across faces.
+//! 0 → 1, v along 0 → 3). The lookup interpolates between texels and across face edges
+//! ([`filter`]); [`Ptex::texel`] and [`Filter::Nearest`] give the nearest texel (Ptex's
+//! point filter).
 //!
 //! Triangle textures (Ptex's layout): a face of resolution 2^n is cut into 4^n small
 //! triangles of side 1/2^n; the upright one with its right angle at grid corner (i, j)
@@ -26,8 +29,11 @@
 
 use glam::Vec4;
 
+pub mod filter;
 pub mod quad;
 pub mod reader;
+
+pub use filter::Filter;
 
 /// The mesh type a Ptex file's faces are textures of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +56,27 @@ pub struct FaceTexels {
     pub vlog2: u8,
 }
 
-/// A Ptex texture: the highest resolution of every face, as `f32` texels.
+/// A face's neighbours as the file records them: per edge (quads: 0 v = 0, 1 u = 1, 2
+/// v = 1, 3 u = 0; triangles: 0 v = 0, 1 u + v = 1, 2 u = 0; counter-clockwise) the
+/// adjacent face (−1: none) and which of its edges is shared (2 bits per edge).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Adjacency {
+    /// Adjacent face per edge, −1 where there is none.
+    pub faces: [i32; 4],
+    /// The adjacent face's edge per edge, 2 bits each (edge 0 in the lowest).
+    pub edges: u8,
+}
+
+impl Adjacency {
+    /// The face and edge across edge `edge`, if any.
+    pub fn across(&self, edge: usize) -> Option<(usize, usize)> {
+        let face = usize::try_from(*self.faces.get(edge)?).ok()?;
+        Some((face, usize::from((self.edges >> (2 * edge)) & 3)))
+    }
+}
+
+/// A Ptex texture: every face's texels at its highest resolution and its reduced levels,
+/// as `f32` texels, and how the faces adjoin.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ptex {
     /// The faces' mesh type.
@@ -59,8 +85,14 @@ pub struct Ptex {
     pub channels: usize,
     /// The alpha channel, if the file names one.
     pub alpha: Option<usize>,
-    /// Per face (by Ptex face id): where its texels are.
+    /// Per face (by Ptex face id): where its texels are (level 0, the highest resolution).
     pub faces: Vec<FaceTexels>,
+    /// Per face: its reduced levels in turn (each half the one before along u and v, as
+    /// the file stores them), the last the face's average (1 × 1); none for a constant
+    /// face.
+    pub reductions: Vec<Vec<FaceTexels>>,
+    /// Per face: its neighbours.
+    pub adjacency: Vec<Adjacency>,
     /// Every face's texels, row by row (v = 0 first, u fastest), channels interleaved.
     pub texels: Vec<f32>,
 }
@@ -78,24 +110,21 @@ impl Ptex {
         self.texels.get(at..at + self.channels)
     }
 
-    /// The value `tex::lookup_*` gives at face `face`, coordinates (`u`, `v`): channels
-    /// `channel`, `channel + 1`, … of the nearest texel in lanes x, y, z, w (lanes past
-    /// the last channel 0; a texture with one channel from `channel` on gives it in every
-    /// lane, a grey colour). Black for a face the file has not or a channel past the last.
-    pub fn lookup(&self, face: u32, u: f32, v: f32, channel: usize) -> Vec4 {
-        let Some(texel) = self.texel(face, u, v) else { return Vec4::ZERO };
-        let rest = texel.get(channel..).unwrap_or(&[]);
-        match rest {
-            [] => Vec4::ZERO,
-            [x] => Vec4::splat(*x),
-            _ => {
-                let mut lanes = [0.0f32; 4];
-                for (lane, value) in lanes.iter_mut().zip(rest) {
-                    *lane = *value;
-                }
-                Vec4::from_array(lanes)
-            }
+    /// The value `tex::lookup_*` gives at face `face`, coordinates (`u`, `v`), for a filter
+    /// of width `width` (face units; `None`: the highest resolution): channels `channel`,
+    /// `channel + 1`, … interpolated between texels ([`Filter::Bilinear`]) in lanes x, y,
+    /// z, w (lanes past the last channel 0; a texture with one channel from `channel` on
+    /// gives it in every lane, a grey colour). Black for a face the file has not or a
+    /// channel past the last.
+    pub fn lookup(&self, face: u32, u: f32, v: f32, width: Option<f32>, channel: usize) -> Vec4 {
+        let mut lanes = [0.0f32; 4];
+        if channel >= self.channels || !self.sample(face, u, v, width, Filter::Bilinear, channel, &mut lanes) {
+            return Vec4::ZERO;
         }
+        if self.channels - channel == 1 {
+            return Vec4::splat(lanes[0]);
+        }
+        Vec4::from_array(lanes)
     }
 }
 

@@ -26,16 +26,16 @@ use crate::mdl_support::{close, compile_text_with, get};
 
 /// A face the writer stores: its resolution (log2 u, v) and how.
 #[derive(Clone)]
-struct Face {
-    log2: (i8, i8),
+pub(crate) struct Face {
+    pub(crate) log2: (i8, i8),
     /// Stored element values, texels row by row (v = 0 first), channels interleaved: the
     /// integers of 8- and 16-bit files, the numbers of half and float files.
-    texels: Vec<f64>,
-    how: How,
+    pub(crate) texels: Vec<f64>,
+    pub(crate) how: How,
 }
 
 #[derive(Clone, Copy, PartialEq)]
-enum How {
+pub(crate) enum How {
     /// Flagged constant in the face info; the value in the constant block only.
     ConstantInfo,
     /// A constant block in level 0.
@@ -49,7 +49,7 @@ enum How {
 }
 
 /// The bytes of one element `x` of data type `dt`.
-fn elem(dt: u32, x: f64) -> Vec<u8> {
+pub(crate) fn elem(dt: u32, x: f64) -> Vec<u8> {
     match dt {
         0 => vec![x as u8],
         1 => (x as u16).to_le_bytes().to_vec(),
@@ -59,7 +59,7 @@ fn elem(dt: u32, x: f64) -> Vec<u8> {
 }
 
 /// The value the reader should give for stored element `x` of data type `dt`.
-fn expected(dt: u32, x: f64) -> f32 {
+pub(crate) fn expected(dt: u32, x: f64) -> f32 {
     match dt {
         0 => (x / 255.0) as f32,
         1 => (x / 65535.0) as f32,
@@ -68,7 +68,7 @@ fn expected(dt: u32, x: f64) -> f32 {
     }
 }
 
-fn zlib(bytes: &[u8], level: u32) -> Vec<u8> {
+pub(crate) fn zlib(bytes: &[u8], level: u32) -> Vec<u8> {
     let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::new(level));
     z.write_all(bytes).unwrap();
     z.finish().unwrap()
@@ -108,77 +108,109 @@ fn planes(dt: u32, channels: usize, texels: &[f64], diff: bool) -> Vec<u8> {
 }
 
 /// A Ptex file of `faces` (mesh type 0 triangles, 1 quads; data type `dt`; `channels`),
-/// zlib blocks written at compression `level` (0: stored, uncompressed).
-fn ptex_file(mesh: u32, dt: u32, channels: u16, faces: &[Face], level: u32) -> Vec<u8> {
+/// zlib blocks written at compression `level` (0: stored, uncompressed); no adjacency,
+/// no reduced levels.
+pub(crate) fn ptex_file(mesh: u32, dt: u32, channels: u16, faces: &[Face], level: u32) -> Vec<u8> {
+    ptex_file_full(mesh, dt, channels, faces, level, &[], &[])
+}
+
+/// Face `f`'s data block and its encoding (`None` for a face flagged constant).
+fn face_block(dt: u32, n: usize, f: &Face, level: u32) -> Option<(u32, Vec<u8>)> {
+    let pixel = |values: &[f64]| values.iter().flat_map(|x| elem(dt, *x)).collect::<Vec<u8>>();
+    let (w, h) = (1usize << f.log2.0, 1usize << f.log2.1);
+    Some(match f.how {
+        How::ConstantInfo => return None,
+        How::ConstantBlock => (0u32, pixel(&f.texels[..n])),
+        How::Zipped | How::DiffZipped => {
+            let diff = f.how == How::DiffZipped;
+            (u32::from(diff) + 1, zlib(&planes(dt, n, &f.texels, diff), level))
+        }
+        How::Tiled => {
+            let (tu, tv) = (f.log2.0 - 1, f.log2.1 - 1);
+            let (tw, th) = (1usize << tu, 1usize << tv);
+            let mut words = Vec::new();
+            let mut tiles = Vec::new();
+            for ty in 0..h / th {
+                for tx in 0..w / tw {
+                    let mut tile = Vec::new();
+                    for y in 0..th {
+                        let row = (ty * th + y) * w + tx * tw;
+                        tile.extend_from_slice(&f.texels[row * n..(row + tw) * n]);
+                    }
+                    let z = zlib(&planes(dt, n, &tile, false), level);
+                    words.extend((z.len() as u32 | 1 << 30).to_le_bytes());
+                    tiles.extend(z);
+                }
+            }
+            let zw = zlib(&words, level);
+            let mut block = vec![tu as u8, tv as u8];
+            block.extend((zw.len() as u32).to_le_bytes());
+            block.extend(zw);
+            block.extend(tiles);
+            (3, block)
+        }
+    })
+}
+
+/// One level's data: the zlib block of its faces' data headers (a face flagged constant:
+/// a header of size 0), then their blocks.
+fn level_data(dt: u32, n: usize, faces: &[Face], level: u32) -> Vec<u8> {
+    let mut words = Vec::new();
+    let mut data = Vec::new();
+    for f in faces {
+        match face_block(dt, n, f, level) {
+            Some((encoding, block)) => {
+                words.extend((block.len() as u32 | encoding << 30).to_le_bytes());
+                data.extend(block);
+            }
+            None => words.extend(0u32.to_le_bytes()),
+        }
+    }
+    let mut out = zlib(&words, level);
+    out.extend(data);
+    out
+}
+
+/// A Ptex file as [`ptex_file`], with per face its adjacent faces and their edges
+/// (`adjacency`; empty: none) and reduced levels 1, 2, … (`reduced`: each level's faces
+/// in the order the file stores them, Ptex's reduction order).
+pub(crate) fn ptex_file_full(
+    mesh: u32,
+    dt: u32,
+    channels: u16,
+    faces: &[Face],
+    level: u32,
+    adjacency: &[([i32; 4], [u8; 4])],
+    reduced: &[Vec<Face>],
+) -> Vec<u8> {
     let n = channels as usize;
     let pixel = |values: &[f64]| values.iter().flat_map(|x| elem(dt, *x)).collect::<Vec<u8>>();
     let mut infos = Vec::new();
     let mut constants = Vec::new();
-    let mut headers = Vec::new();
-    let mut data = Vec::new();
-    for f in faces {
-        infos.extend([f.log2.0 as u8, f.log2.1 as u8, 0, u8::from(f.how == How::ConstantInfo)]);
-        infos.extend([-1i32; 4].iter().flat_map(|a| a.to_le_bytes()));
-        constants.extend(pixel(&f.texels[..n]));
-        let (w, h) = (1usize << f.log2.0, 1usize << f.log2.1);
-        let (encoding, block) = match f.how {
-            How::ConstantInfo => continue,
-            How::ConstantBlock => (0u32, pixel(&f.texels[..n])),
-            How::Zipped | How::DiffZipped => {
-                let diff = f.how == How::DiffZipped;
-                (u32::from(diff) + 1, zlib(&planes(dt, n, &f.texels, diff), level))
-            }
-            How::Tiled => {
-                let (tu, tv) = (f.log2.0 - 1, f.log2.1 - 1);
-                let (tw, th) = (1usize << tu, 1usize << tv);
-                let mut words = Vec::new();
-                let mut tiles = Vec::new();
-                for ty in 0..h / th {
-                    for tx in 0..w / tw {
-                        let mut tile = Vec::new();
-                        for y in 0..th {
-                            let row = (ty * th + y) * w + tx * tw;
-                            tile.extend_from_slice(&f.texels[row * n..(row + tw) * n]);
-                        }
-                        let z = zlib(&planes(dt, n, &tile, false), level);
-                        words.extend((z.len() as u32 | 1 << 30).to_le_bytes());
-                        tiles.extend(z);
-                    }
-                }
-                let zw = zlib(&words, level);
-                let mut block = vec![tu as u8, tv as u8];
-                block.extend((zw.len() as u32).to_le_bytes());
-                block.extend(zw);
-                block.extend(tiles);
-                (3, block)
-            }
-        };
-        headers.extend((block.len() as u32 | encoding << 30).to_le_bytes());
-        data.extend(block);
+    for (id, f) in faces.iter().enumerate() {
+        let (adjfaces, adjedges) = adjacency.get(id).copied().unwrap_or(([-1; 4], [0; 4]));
+        let edges = adjedges.iter().enumerate().fold(0u8, |b, (k, e)| b | e << (2 * k));
+        infos.extend([f.log2.0 as u8, f.log2.1 as u8, edges, u8::from(f.how == How::ConstantInfo)]);
+        infos.extend(adjfaces.iter().flat_map(|a| a.to_le_bytes()));
+        // The constant block: a constant face's value, else the face's average.
+        let count = f.texels.len() / n;
+        let average: Vec<f64> = (0..n).map(|c| f.texels.chunks(n).map(|t| t[c]).sum::<f64>() / count as f64).collect();
+        constants.extend(pixel(if f.how == How::ConstantInfo { &f.texels[..n] } else { &average }));
     }
-    // Constant-flagged faces have a data header of size 0 in level 0 too.
-    let mut words = Vec::new();
-    let mut k = 0;
-    for f in faces {
-        if f.how == How::ConstantInfo {
-            words.extend(0u32.to_le_bytes());
-        } else {
-            words.extend_from_slice(&headers[k..k + 4]);
-            k += 4;
-        }
-    }
+    let mut levels = vec![level_data(dt, n, faces, level)];
+    levels.extend(reduced.iter().map(|faces| level_data(dt, n, faces, level)));
     let zinfo = zlib(&infos, level);
     let zconst = zlib(&constants, level);
-    let zheaders = zlib(&words, level);
-    let level_size = (zheaders.len() + data.len()) as u64;
+    let level_size: u64 = levels.iter().map(|l| l.len() as u64).sum();
     let mut out = b"Ptex".to_vec();
     for w in [1u32, mesh, dt] {
         out.extend(w.to_le_bytes());
     }
     out.extend((-1i32).to_le_bytes());
     out.extend(channels.to_le_bytes());
-    out.extend(1u16.to_le_bytes());
-    for w in [faces.len() as u32, 40, zinfo.len() as u32, zconst.len() as u32, 16, 4] {
+    out.extend((levels.len() as u16).to_le_bytes());
+    let info_size = 16 * levels.len() as u32;
+    for w in [faces.len() as u32, 40, zinfo.len() as u32, zconst.len() as u32, info_size, 4] {
         out.extend(w.to_le_bytes());
     }
     out.extend(level_size.to_le_bytes());
@@ -187,22 +219,35 @@ fn ptex_file(mesh: u32, dt: u32, channels: u16, faces: &[Face], level: u32) -> V
     out.extend([0u8; 40]);
     out.extend(zinfo);
     out.extend(zconst);
-    out.extend(level_size.to_le_bytes());
-    out.extend((zheaders.len() as u32).to_le_bytes());
-    out.extend((faces.len() as u32).to_le_bytes());
-    out.extend(zheaders);
-    out.extend(data);
+    let counts = std::iter::once(faces.len()).chain(reduced.iter().map(Vec::len));
+    for (data, count) in levels.iter().zip(counts) {
+        out.extend((data.len() as u64).to_le_bytes());
+        out.extend((header_zip_len(data, count) as u32).to_le_bytes());
+        out.extend((count as u32).to_le_bytes());
+    }
+    for data in &levels {
+        out.extend(data);
+    }
     out.extend([0u8; 8]);
     out
 }
 
+/// The length of the zlib stream at the start of `data` (a level's data headers of
+/// `count` faces).
+fn header_zip_len(data: &[u8], count: usize) -> usize {
+    let mut z = flate2::Decompress::new(true);
+    let mut out = vec![0u8; 4 * count];
+    z.decompress(data, &mut out, flate2::FlushDecompress::Finish).unwrap();
+    z.total_in() as usize
+}
+
 /// Stored value of texel `t`, channel `c` of a face: varied per face, texel and channel,
 /// within range of every data type (< 251).
-fn value(face: usize, t: usize, c: usize) -> f64 {
+pub(crate) fn value(face: usize, t: usize, c: usize) -> f64 {
     ((1 + face * 61 + t * 13 + c * 5) % 251) as f64
 }
 
-fn zipped_face(face: usize, log2: i8, channels: usize, how: How) -> Face {
+pub(crate) fn zipped_face(face: usize, log2: i8, channels: usize, how: How) -> Face {
     let count = 1usize << (2 * log2);
     let texels = (0..count).flat_map(|t| (0..channels).map(move |c| value(face, t, c))).collect();
     Face { log2: (log2, log2), texels, how }
@@ -211,7 +256,7 @@ fn zipped_face(face: usize, log2: i8, channels: usize, how: How) -> Face {
 /// The centroid (barycentric u, v) of the small triangle stored as texel `t` of a
 /// triangle face of resolution `n` (Ptex's layout: the upright ones in the lower left
 /// half of the square image, the inverted ones mirrored into its upper right half).
-fn centroid(n: usize, t: usize) -> (f32, f32) {
+pub(crate) fn centroid(n: usize, t: usize) -> (f32, f32) {
     let (x, y) = (t % n, t / n);
     let nf = n as f32;
     if x + y < n {
@@ -223,7 +268,7 @@ fn centroid(n: usize, t: usize) -> (f32, f32) {
     }
 }
 
-fn read(bytes: &[u8]) -> Ptex {
+pub(crate) fn read(bytes: &[u8]) -> Ptex {
     reader::read(bytes).unwrap_or_else(|e| panic!("{e}")).0
 }
 
@@ -365,21 +410,25 @@ shader "valid" "mdl::ptexmod::pt_valid" ("tex" "two.ptx")"#,
     assert!(matches!(m.varying, Varying::Evaluated(_)), "a Ptex lookup varies with the hit");
     let rgb = |t: &[f64]| Rgb::new(t[0] as f32, t[1] as f32, t[2] as f32);
     let (_, faces) = two_triangles();
-    // Triangle 0: the four small triangles at their centroids and near their corners.
-    let points = [
-        ((1.0 / 6.0, 1.0 / 6.0), 0),
-        ((0.05, 0.05), 0),
-        ((4.0 / 6.0, 1.0 / 6.0), 1),
-        ((0.9, 0.05), 1),
-        ((1.0 / 6.0, 4.0 / 6.0), 2),
-        ((0.05, 0.9), 2),
-        ((2.0 / 6.0, 2.0 / 6.0), 3),
-        ((0.45, 0.45), 3),
+    // Triangle 0 (interpolated between texels, the default filter): each small
+    // triangle's texel at its centroid; the face's corners their texel (no texels around
+    // them but theirs); a grid vertex the mean of the texels around it.
+    let points: [((f32, f32), &[usize]); 9] = [
+        ((1.0 / 6.0, 1.0 / 6.0), &[0]),
+        ((4.0 / 6.0, 1.0 / 6.0), &[1]),
+        ((1.0 / 6.0, 4.0 / 6.0), &[2]),
+        ((2.0 / 6.0, 2.0 / 6.0), &[3]),
+        ((0.0, 0.0), &[0]),
+        ((1.0, 0.0), &[1]),
+        ((0.0, 1.0), &[2]),
+        ((0.5, 0.0), &[0, 1, 3]),
+        ((0.5, 0.5), &[1, 2, 3]),
     ];
-    for ((u, v), t) in points {
+    for ((u, v), texels) in points {
         let got = at(m, 0, u, v);
-        let want = rgb(&faces[0].texels[t * 3..t * 3 + 3]);
-        assert!(close(got, want, 1e-6), "triangle 0 at ({u}, {v}): {got:?} vs texel {t} {want:?}");
+        let sum = texels.iter().fold(Rgb::ZERO, |s, &t| s + rgb(&faces[0].texels[t * 3..t * 3 + 3]));
+        let want = sum * (1.0 / texels.len() as f32);
+        assert!(close(got, want, 1e-6), "triangle 0 at ({u}, {v}): {got:?} vs the mean of texels {texels:?} {want:?}");
     }
     // Triangle 1: its constant value everywhere on it.
     for (u, v) in [(0.2, 0.2), (0.9, 0.05), (0.0, 1.0), (1.0 / 3.0, 1.0 / 3.0)] {

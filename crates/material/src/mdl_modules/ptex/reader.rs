@@ -10,7 +10,13 @@
 //! count), the levels' data, the meta data, eight bytes, the large meta data, and edits.
 //! Level 0 (the highest resolution) is a zlib block of one 32-bit word per face (bits
 //! 0–29 the size of the face's data, 30–31 its encoding), then the faces' data in face
-//! order. A face's data is: constant (one texel), zipped (zlib of the face's texels, each
+//! order. Reduced level k (after level 0, in turn) is laid out alike for the first n
+//! faces (n in its level info) of Ptex's reduction order (faces by their smaller log2
+//! side, largest first, ties in face order; a face flagged constant counts as 1), each of
+//! 2^(u − k) × 2^(v − k) texels, premultiplied by alpha where the file has an alpha
+//! channel (mira divides it out); a face with an edit keeps none of them. Adjacency per
+//! face edge: the adjacent face (−1: none) and its edge (2 bits), checked against the
+//! face count and edge count. A face's data is: constant (one texel), zipped (zlib of the face's texels, each
 //! channel's plane in turn, rows from v = 0), diff-zipped (the same, 8- and 16-bit values
 //! stored as differences from the one before, across the whole block) or tiled (the tile
 //! resolution, the size of a zlib block of one word per tile as above, then the tiles
@@ -23,7 +29,7 @@
 //! zlib block must expand to exactly the size the file says. What is wrong is an error
 //! naming the byte offset of the part it was found in; nothing panics.
 
-use super::{FaceTexels, MeshType, Ptex};
+use super::{Adjacency, FaceTexels, MeshType, Ptex};
 
 /// Most faces a file may have.
 pub const MAX_FACES: u64 = 1 << 24;
@@ -183,17 +189,36 @@ fn header(f: &File) -> Result<Header, ReadError> {
     })
 }
 
-/// A face's info: its resolution (log2 along u and v) and flags.
+/// A face's info: its resolution (log2 along u and v), adjacency and flags.
 #[derive(Clone, Copy)]
 struct FaceInfo {
     ulog2: i8,
     vlog2: i8,
+    adjedges: u8,
     flags: u8,
+    adjfaces: [i32; 4],
 }
 
 impl FaceInfo {
     fn parse(b: &[u8]) -> FaceInfo {
-        FaceInfo { ulog2: b[0] as i8, vlog2: b[1] as i8, flags: b[3] }
+        let adj = |k: usize| i32::from_le_bytes([b[4 + 4 * k], b[5 + 4 * k], b[6 + 4 * k], b[7 + 4 * k]]);
+        FaceInfo {
+            ulog2: b[0] as i8,
+            vlog2: b[1] as i8,
+            adjedges: b[2],
+            flags: b[3],
+            adjfaces: [adj(0), adj(1), adj(2), adj(3)],
+        }
+    }
+
+    /// The resolution Ptex sorts faces by for its reduced levels: the smaller log2 side, a
+    /// face flagged constant counting as 1.
+    fn min_log2(&self) -> i8 {
+        if self.flags & 1 != 0 {
+            1
+        } else {
+            self.ulog2.min(self.vlog2)
+        }
     }
 
     fn constant(&self) -> bool {
@@ -273,6 +298,9 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
         }
     }
 
+    let reduced = reduced_levels(&f, &h, &infos, level_info_at, level_data_at)?;
+    let mut reduced = reduced;
+
     // Edits: each replaces a face's info, constant value and (unless constant) data.
     let mut pos = edit_pos.max(after_meta);
     let end = if edit_pos > 0 { add(pos, edit_size)? } else { bytes.len() as u64 };
@@ -293,6 +321,8 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
             constants[face * pixel..(face + 1) * pixel].copy_from_slice(&e[28..]);
             let word = u32::from_le_bytes([e[24], e[25], e[26], e[27]]);
             blocks[face] = Some(Block { at: body + 28 + pixel as u64, word });
+            // The file's reductions are of the face before the edit.
+            reduced[face].clear();
         }
         pos = add(body, size)?;
     }
@@ -316,8 +346,24 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
                 format!("triangle face {id}: resolution 2^{} × 2^{} is not square", info.ulog2, info.vlog2),
             );
         }
+        let edges = if h.mesh == MeshType::Triangle { 3 } else { 4 };
+        for edge in 0..edges {
+            let (adjacent, adjacent_edge) = (info.adjfaces[edge], (info.adjedges >> (2 * edge)) & 3);
+            if adjacent < -1 || i64::from(adjacent) >= nfaces as i64 || (adjacent >= 0 && adjacent_edge >= edges as u8)
+            {
+                return fail(
+                    face_info_at,
+                    format!(
+                        "face {id}: edge {edge} adjoins face {adjacent}'s edge {adjacent_edge} (the file has \
+                         {nfaces} faces of {edges} edges; -1 for none)"
+                    ),
+                );
+            }
+        }
         let texels = if info.constant() { 1 } else { 1u64 << (info.ulog2 + info.vlog2) };
-        total = total.saturating_add(texels * h.channels as u64);
+        // Reduced levels: each a quarter of the one before; the average.
+        let reductions = (1..=reduced[id].len() as i8).map(|k| 1u64 << (info.ulog2 + info.vlog2 - 2 * k)).sum::<u64>();
+        total = total.saturating_add((texels + reductions + 1) * h.channels as u64);
         if total > MAX_VALUES {
             return fail(
                 face_info_at,
@@ -331,6 +377,8 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
         channels: h.channels,
         alpha: usize::try_from(h.alpha).ok().filter(|&a| a < h.channels),
         faces: Vec::with_capacity(nfaces),
+        reductions: Vec::with_capacity(nfaces),
+        adjacency: infos.iter().map(|i| Adjacency { faces: i.adjfaces, edges: i.adjedges }).collect(),
         texels: Vec::new(),
     };
     let mut non_finite = 0usize;
@@ -349,7 +397,110 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
         non_finite += reader.face(block, ulog2, vlog2, id, &mut out.texels)?;
         out.faces.push(FaceTexels { start, ulog2, vlog2 });
     }
+    // Each face's reduced levels, then its average (the constant value the file keeps for
+    // every face) unless the last level is already one texel.
+    for (id, info) in infos.iter().enumerate() {
+        let mut levels = Vec::new();
+        if !info.constant() {
+            for (k, block) in reduced[id].iter().enumerate() {
+                let (ulog2, vlog2) = (info.ulog2 as u8 - (k as u8 + 1), info.vlog2 as u8 - (k as u8 + 1));
+                let start = out.texels.len();
+                non_finite += reader.face(*block, ulog2, vlog2, id, &mut out.texels)?;
+                if let Some(alpha) = out.alpha {
+                    unpremultiply(&mut out.texels[start..], h.channels, alpha);
+                }
+                levels.push(FaceTexels { start, ulog2, vlog2 });
+            }
+            if levels.last().is_none_or(|l: &FaceTexels| l.ulog2 + l.vlog2 > 0) {
+                let start = out.texels.len();
+                non_finite += reader.push_constant(&constants[id * pixel..(id + 1) * pixel], 1, &mut out.texels);
+                levels.push(FaceTexels { start, ulog2: 0, vlog2: 0 });
+            }
+        }
+        out.reductions.push(levels);
+    }
     Ok((out, non_finite))
+}
+
+/// Divides the colour channels of `texels` (`channels` a texel) by their alpha (channel
+/// `alpha`): Ptex stores reduced levels premultiplied by alpha, level 0 and the averages
+/// not. The colour channels are those before the alpha channel, or all after it when it
+/// is the first (Ptex's convention); a texel of alpha 0 is left as it is.
+fn unpremultiply(texels: &mut [f32], channels: usize, alpha: usize) {
+    let colour = if alpha == 0 { 1..channels } else { 0..alpha };
+    for texel in texels.chunks_exact_mut(channels) {
+        let a = texel[alpha];
+        if a != 0.0 {
+            for c in colour.clone() {
+                texel[c] /= a;
+            }
+        }
+    }
+}
+
+/// Ptex's reduction order: the face ids sorted by their smaller log2 side, largest first,
+/// ties in face order (a reduced level holds the first faces of this order).
+fn reduction_order(infos: &[FaceInfo]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..infos.len()).collect();
+    order.sort_by_key(|&id| std::cmp::Reverse(infos[id].min_log2()));
+    order
+}
+
+/// Where each face's reduced levels 1, 2, … are (level `k` of 2^(u − k) × 2^(v − k)
+/// texels): level `k`'s info gives its size and face count `n`, its data is a zlib block
+/// of `n` data headers then the data of the first `n` faces in [`reduction_order`].
+/// Levels follow level 0 in the level data. Constant faces keep none.
+fn reduced_levels(
+    f: &File,
+    h: &Header,
+    infos: &[FaceInfo],
+    level_info_at: u64,
+    level_data_at: u64,
+) -> Result<Vec<Vec<Block>>, ReadError> {
+    let mut reduced: Vec<Vec<Block>> = vec![Vec::new(); infos.len()];
+    if h.levels < 2 {
+        return Ok(reduced);
+    }
+    let order = reduction_order(infos);
+    let mut level_at = level_data_at;
+    for level in 0..h.levels {
+        let info_at = level_info_at + 16 * level;
+        let l = f.slice(info_at, 16, "the level infos")?;
+        let size = u64::from_le_bytes(l[0..8].try_into().unwrap_or([0; 8]));
+        let header_zip = u64::from(u32::from_le_bytes([l[8], l[9], l[10], l[11]]));
+        let count = u64::from(u32::from_le_bytes([l[12], l[13], l[14], l[15]]));
+        if level > 0 {
+            if count > h.faces {
+                return fail(info_at, format!("level {level} has {count} faces, the file {}", h.faces));
+            }
+            let what = format!("level {level}'s face data headers");
+            let words = f.inflate(level_at, header_zip, 4 * count as usize, &what)?;
+            let mut at = add(level_at, header_zip)?;
+            for (word, &id) in words.chunks_exact(4).zip(&order) {
+                let block = Block { at, word: u32::from_le_bytes([word[0], word[1], word[2], word[3]]) };
+                at = add(at, block.size())?;
+                let info = infos[id];
+                if info.constant() || reduced[id].len() + 1 != level as usize {
+                    continue;
+                }
+                if i64::from(info.ulog2.min(info.vlog2)) < level as i64 {
+                    return fail(
+                        info_at,
+                        format!(
+                            "level {level} reduces face {id} of 2^{} × 2^{} below one texel",
+                            info.ulog2, info.vlog2
+                        ),
+                    );
+                }
+                reduced[id].push(block);
+            }
+            if at > add(level_at, size)? {
+                return fail(level_at, format!("level {level}'s faces need more than its {size} bytes"));
+            }
+        }
+        level_at = add(level_at, size)?;
+    }
+    Ok(reduced)
 }
 
 /// Decodes faces' data into `f32` texels.
