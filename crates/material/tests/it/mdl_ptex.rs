@@ -458,7 +458,8 @@ fn quad_faces() -> (Vec<u8>, Vec<Face>) {
 /// A quad-mesh file through a compiled material: a hit on either triangle of a quad (cut
 /// along the diagonal from vertex 0: corners 0, 1, 2 and 0, 2, 3; or along the other:
 /// 1, 2, 3 and 1, 3, 0) at the barycentrics of each texel's centre reads that texel of the
-/// quad's face (1e-6); the constant face everywhere; a triangle of no quad is black.
+/// quad's face, and near its corners the file's lookup at that point of the face (1e-6);
+/// the constant face everywhere; a triangle of no quad is black.
 #[test]
 fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
     use scene::mesh::ptex_quads::{encode, CORNER_UV};
@@ -468,7 +469,8 @@ fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
     assert!(diags.is_empty(), "{diags:#?}");
     let m = get(&mdl, &lib, "q");
     let Varying::Evaluated(hit) = &m.varying else { panic!("a Ptex lookup varies with the hit") };
-    let (_, faces) = quad_faces();
+    let (bytes, faces) = quad_faces();
+    let file = material::mdl_modules::ptex::reader::read(&bytes).expect("the quad file").0;
     let colour = |face: u32, bary: [f32; 3], corners: [u8; 3]| {
         let mut h = m.constant();
         let n = glam::Vec3A::Z;
@@ -502,11 +504,18 @@ fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
             let (i, j) = ((t % 4) as f32, (t / 4) as f32);
             for (du, dv) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.1), (0.1, 0.9), (0.9, 0.9)] {
                 let (u, v) = ((i + du) / 4.0, (j + dv) / 2.0);
-                let want = Rgb::new(
-                    faces[0].texels[t * 3] as f32,
-                    faces[0].texels[t * 3 + 1] as f32,
-                    faces[0].texels[t * 3 + 2] as f32,
-                );
+                // At a texel's centre the texel itself; elsewhere the file's interpolating
+                // lookup at (u, v) of face 0, which the hit must reach through its corners.
+                let want = if (du, dv) == (0.5, 0.5) {
+                    Rgb::new(
+                        faces[0].texels[t * 3] as f32,
+                        faces[0].texels[t * 3 + 1] as f32,
+                        faces[0].texels[t * 3 + 2] as f32,
+                    )
+                } else {
+                    let c = file.lookup(0, u, v, None, 0);
+                    Rgb::new(c.x, c.y, c.z)
+                };
                 for (half, corners) in split.iter().enumerate() {
                     let Some(bary) = bary_of(*corners, u, v) else { continue };
                     on[half] += 1;
