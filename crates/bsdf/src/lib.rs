@@ -30,6 +30,7 @@ pub mod reflectance;
 pub mod rough_glass;
 pub mod sheen;
 pub mod sheen_albedo;
+pub mod trig;
 pub mod unified;
 pub mod vcavity;
 
@@ -233,12 +234,16 @@ pub fn concentric_disc(u: Vec2) -> Vec2 {
     if o.x == 0.0 && o.y == 0.0 {
         return Vec2::ZERO;
     }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    // The angle is π/4 · ratio in the x-major wedges, π/2 − π/4 · ratio in the y-major
+    // ones: both take sin and cos of π/4 · ratio ∈ [−π/4, π/4], swapped in the latter.
+    let x_major = o.x.abs() > o.y.abs();
+    let (r, ratio) = if x_major { (o.x, o.y / o.x) } else { (o.y, o.x / o.y) };
+    let (s, c) = trig::sin_cos_reduced(std::f32::consts::FRAC_PI_4 * ratio);
+    if x_major {
+        Vec2::new(r * c, r * s)
     } else {
-        (o.y, std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y))
-    };
-    Vec2::new(r * theta.cos(), r * theta.sin())
+        Vec2::new(r * s, r * c)
+    }
 }
 
 pub mod testing;

@@ -9,6 +9,7 @@ mod env_light;
 mod fog;
 mod gi_depth;
 mod glossy_reach;
+mod hit_material;
 mod hit_surface;
 mod leave;
 mod levels;
@@ -23,7 +24,7 @@ use bsdf::Bsdf;
 use bsdf::{Frame, Rgb};
 use glam::Vec3A;
 use material::HitMaterial;
-use shader::{Ctx, RayType, Shading, State};
+use shader::{RayType, Shading};
 
 use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
@@ -32,6 +33,8 @@ use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use cutout::{cutout_number, linked_shadow_passed, shadow_passed, MAX_CUTOUT_CROSSINGS};
+pub use hit_material::constant_materials;
+use hit_material::material_at;
 pub use hit_surface::hit_normals;
 use hit_surface::{surface, surface_into, Surface};
 use media::Departure;
@@ -202,58 +205,6 @@ struct Vertex<'v> {
     departure: Departure<'v>,
 }
 
-/// The material at a hit: its constant parameters, or — for materials with connected
-/// parameters, when the scene's shader graph is given — the connected shaders run at the
-/// point.
-#[inline]
-fn material_at<'w>(
-    world: &'w World,
-    accel: &dyn Accel,
-    shading: Option<&Shading>,
-    ray: &Ray,
-    hit: &Hit,
-    material: u32,
-) -> HitMaterial<'w> {
-    let m = &world.materials[material as usize];
-    let mut at = match shading {
-        Some(shading) if m.is_varying() => varying_material_at(world, accel, shading, ray, hit, m),
-        _ => m.constant(),
-    };
-    if let Some(view) = &m.view_transparency {
-        // The facing ratio of the (bumped) shading normal, as the classic shader's N·V.
-        let n = at.normal.unwrap_or_else(|| surface(world, ray, hit).ns);
-        view.apply(n.dot(ray.dir).abs(), &mut at);
-    }
-    at
-}
-
-/// [`material_at`] for a material with connected parameters (out of line: the constant
-/// case is the common one).
-#[inline(never)]
-fn varying_material_at<'w>(
-    world: &'w World,
-    accel: &dyn Accel,
-    shading: &Shading,
-    ray: &Ray,
-    hit: &Hit,
-    m: &'w material::SurfaceMaterial,
-) -> HitMaterial<'w> {
-    let tracer = crate::tracer::SceneTracer::new(world, accel);
-    let mut state = State {
-        ray_type: RayType::Eye,
-        org: ray.origin,
-        dir: ray.dir,
-        ior_in: 1.0,
-        ior: 1.0,
-        child_dist: f32::INFINITY,
-        time: ray.time,
-        ..State::default()
-    };
-    crate::tracer::fill_state(world, hit, &mut state);
-    let mut ctx = Ctx::new(shading, &tracer, state);
-    m.at(&mut ctx)
-}
-
 /// The local shading frame around the unit normal `ns`: its x axis along the material's
 /// tangent (the axis an anisotropic lobe is stretched along), or any tangent when the
 /// material names none.
@@ -294,6 +245,21 @@ pub fn trace_path(
     trace_camera_path(world, accel, shading, env, camera, camera_media, sampler, settings, counts)
 }
 
+/// What paths are traced in: the scene and what the render made of it once.
+#[derive(Clone, Copy)]
+pub struct PathScene<'a> {
+    /// The scene.
+    pub world: &'a World,
+    /// Its acceleration structure.
+    pub accel: &'a dyn Accel,
+    /// The compiled shader graph (materials with connected parameters, fogs).
+    pub shading: Option<&'a Shading>,
+    /// The environment lighting the scene from infinitely far away, if any.
+    pub env: Option<&'a Environment<'a>>,
+    /// `world`'s materials with their constant parameters ([`constant_materials`]).
+    pub constants: &'a [HitMaterial<'a>],
+}
+
 /// A camera ray, and what [`Accel::intersect`] finds along it when that is known already
 /// (a tile's camera rays traced together, [`Accel::intersect_batch`]).
 #[derive(Clone, Copy, Debug)]
@@ -325,18 +291,16 @@ pub fn trace_camera_path(
     counts: &mut RayCounts,
 ) -> PathResult {
     let mut result = PathResult::EMPTY;
-    trace_camera_path_into(world, accel, shading, env, camera, camera_media, sampler, settings, counts, &mut result);
+    let constants = constant_materials(world);
+    let scene = PathScene { world, accel, shading, env, constants: &constants };
+    trace_camera_path_into(&scene, camera, camera_media, sampler, settings, counts, &mut result);
     result
 }
 
 /// [`trace_camera_path`] writing its result to `out` (where the caller keeps it: a
 /// result returned by value was copied there through a `memcpy`).
-#[allow(clippy::too_many_arguments)]
 pub fn trace_camera_path_into(
-    world: &World,
-    accel: &dyn Accel,
-    shading: Option<&Shading>,
-    env: Option<&Environment>,
+    scene: &PathScene,
     camera: CameraRay,
     camera_media: &MediumStack,
     sampler: &mut Sampler,
@@ -344,6 +308,7 @@ pub fn trace_camera_path_into(
     counts: &mut RayCounts,
     out: &mut PathResult,
 ) {
+    let PathScene { world, accel, shading, env, constants } = *scene;
     let camera_ray = camera.ray;
     let mut camera_hit = camera.hit;
     let mut ray = camera_ray;
@@ -374,6 +339,8 @@ pub fn trace_camera_path_into(
     // the mental ray type of the path's current segment, and the share of the camera
     // ray's colour they cover (for alpha, as the classic fogs give it).
     let mut fogs = fog::PathFog::new(shading);
+    // (Most scenes have no fog: the bookkeeping is then skipped.)
+    let fog_possible = fogs.possible();
     let mut segment_type = RayType::Eye;
     let mut fog_cover = 0.0f32;
     // The mirror and glossy reflections the path has made (Maya's `reflectionLimit`
@@ -439,7 +406,9 @@ pub fn trace_camera_path_into(
             // transparency ray of mental ray's refraction level (Maya's `refractionLimit`).
             throughput *= cutout_tint;
             refractions += 1;
-            fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
+            if fog_possible {
+                fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
+            }
             through.origin = s.leave(s.ng, ray.dir);
         }
         let hit = found;
@@ -502,7 +471,7 @@ pub fn trace_camera_path_into(
                 None => {}
             }
         }
-        if fogs.is_active() {
+        if fog_possible && fogs.is_active() {
             // The fogs over the segment, in front of all that lies behind it.
             let (t_end, end) = match (&light_hit, &hit) {
                 (Some((_, t, _)), _) => (*t, None),
@@ -571,16 +540,10 @@ pub fn trace_camera_path_into(
             break;
         }
         let Some(stop) = found else { break };
-        // A constant material borrows all it holds (`SurfaceMaterial::constant`): it has
-        // nothing to drop, and `ManuallyDrop` spares every bounce the call that would
-        // find that out.
-        let constant_material;
+        // (A constant material is read where the render built it once.)
         let material: &HitMaterial = match &varying {
             Some(m) => m,
-            None => {
-                constant_material = std::mem::ManuallyDrop::new(world.materials[s.material as usize].constant());
-                &constant_material
-            }
+            None => &constants[s.material as usize],
         };
         let own_env = material_env::own(shading, s.material);
         if depth == 0 {
@@ -713,7 +676,7 @@ pub fn trace_camera_path_into(
                         && !world.has_media
                         && !world.has_cutouts
                         && world.shadow_unlinked.is_empty()
-                        && !fogs.is_active();
+                        && !(fog_possible && fogs.is_active());
                     let mut unshadowed = if defer {
                         pending = Some(shadow);
                         Rgb::ONE
@@ -732,7 +695,7 @@ pub fn trace_camera_path_into(
                             Some(k),
                         )
                     };
-                    if fogs.is_active() && unshadowed != Rgb::ZERO {
+                    if fog_possible && fogs.is_active() && unshadowed != Rgb::ZERO {
                         unshadowed *= fogs.light_keep(world, accel, s.p, ls.wi, ls.dist, ray.time);
                     }
                     // Maya's `shadowColor`: what a shadowed point still receives.
@@ -775,9 +738,11 @@ pub fn trace_camera_path_into(
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;
-        fogs.scattered(s.material, s.ng, ray.dir, wi);
-        if fogs.is_active() {
-            segment_type = fog::segment_type(depth + 1, bs.delta, ng, wi);
+        if fog_possible {
+            fogs.scattered(s.material, s.ng, ray.dir, wi);
+            if fogs.is_active() {
+                segment_type = fog::segment_type(depth + 1, bs.delta, ng, wi);
+            }
         }
         // Straight through an index-matched medium boundary is no bounce for MIS: what is
         // found next is weighed against the sampling at the vertex before.

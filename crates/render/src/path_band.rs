@@ -26,7 +26,7 @@ use crate::accel::{Accel, Hit};
 use crate::environment::Environment;
 use crate::film::Pixel;
 use crate::filter::PixelFilter;
-use crate::integrator::{trace_camera_path_into, CameraRay, MediumStack, PathResult, PathSettings};
+use crate::integrator::{trace_camera_path_into, CameraRay, MediumStack, PathResult, PathScene, PathSettings};
 use crate::ray::{Ray, RayCounts};
 use crate::sampler::{pixel_seed, Sampler, SamplerPosition};
 use crate::world::World;
@@ -45,6 +45,9 @@ pub(crate) struct PathBand<'a> {
     pub shading: Option<&'a Shading>,
     /// The environment, if the scene has one.
     pub env: Option<&'a Environment<'a>>,
+    /// The world's materials with their constant parameters, built once per render
+    /// ([`crate::integrator::constant_materials`]).
+    pub constants: &'a [material::HitMaterial<'a>],
     /// The pixel filter the camera samples are drawn from.
     pub filter: &'a PixelFilter,
     /// The media around the camera.
@@ -171,6 +174,13 @@ impl PathBand<'_> {
         self.accel.intersect_batch(&rays[..n], &mut hits[..n]);
         // (Each path writes its result in place: returned by value, it was copied.)
         let mut results = [PathResult::EMPTY; PACKET];
+        let scene = PathScene {
+            world: self.world,
+            accel: self.accel,
+            shading: self.shading,
+            env: self.env,
+            constants: self.constants,
+        };
         for ((lane, &hit), result) in lanes.iter().zip(&hits).zip(&mut results) {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
@@ -182,10 +192,7 @@ impl PathBand<'_> {
             // An orthographic camera's ray starts in the media around its own origin.
             let ray_media = crate::integrator::camera_ray_media(self.world, self.accel, at_centre, &lane.ray);
             trace_camera_path_into(
-                self.world,
-                self.accel,
-                self.shading,
-                self.env,
+                &scene,
                 camera,
                 ray_media.as_ref().unwrap_or(at_centre),
                 sampler,

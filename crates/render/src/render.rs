@@ -311,6 +311,8 @@ pub fn render_prepared_with_film(
     let env = prepared.env.as_ref();
     // The path engine's settings, with the scene's `"gi depth"` (GI "Next") as its depth.
     let path_settings = settings.path.with_scene_options(&world.options);
+    // The path engine's constant materials, built once (empty for the classic engine).
+    let constants = if classic.is_none() { crate::integrator::constant_materials(world) } else { Vec::new() };
     // The media the camera is in (both engines; found once, where the camera is when the
     // shutter opens; a moving camera follows its way from there, per sample).
     let camera_media = crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0);
@@ -444,6 +446,7 @@ pub fn render_prepared_with_film(
                     accel,
                     shading,
                     env,
+                    constants: &constants,
                     filter: &filter,
                     camera_media: &camera_media,
                     path: &path_settings,

@@ -203,7 +203,9 @@ fn motion(inst: &crate::world::InstanceData, mesh: &crate::mesh::MeshData, v: [u
 }
 
 /// World-space motion over the shutter interval of `point` on `hit` (as [`fill_state`]
-/// finds it at shutter time `time`; for the path engine's first hit).
+/// finds it at shutter time `time`; for the path engine's first hit). (The test whether
+/// anything moves is inlined: most hits are on still objects.)
+#[inline]
 pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A, time: f32) -> Vec3A {
     let inst = &world.instances[hit.instance as usize];
     let mesh = &world.meshes[inst.mesh as usize];
@@ -211,6 +213,18 @@ pub fn hit_motion(world: &World, hit: &Hit, point: Vec3A, time: f32) -> Vec3A {
         // Nothing of it moves (`motion` would add nothing): skip building a state.
         return Vec3A::ZERO;
     }
+    moving_hit_motion(inst, mesh, hit, point, time)
+}
+
+/// [`hit_motion`] on an instance or mesh that moves.
+#[inline(never)]
+fn moving_hit_motion(
+    inst: &crate::world::InstanceData,
+    mesh: &crate::mesh::MeshData,
+    hit: &Hit,
+    point: Vec3A,
+    time: f32,
+) -> Vec3A {
     let tri = mesh.triangles[hit.prim as usize].map(|i| i as usize);
     let s = State {
         point,

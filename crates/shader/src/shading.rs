@@ -159,6 +159,9 @@ pub struct Shading {
     /// Whether some material has a medium that varies over its surface, found on first
     /// use ([`Shading::has_varying_media`]).
     varying_media: std::sync::OnceLock<bool>,
+    /// Whether the camera or some material has an affine volume shader list, found on
+    /// first use ([`Shading::has_affine_volumes`]).
+    pub(crate) affine_volumes: std::sync::OnceLock<bool>,
     /// Each light's shader as a [`SimpleLight`] where it is one, found on first use
     /// ([`Shading::simple_light`]).
     simple_lights: std::sync::OnceLock<Vec<Option<SimpleLight>>>,
@@ -366,6 +369,7 @@ impl Shading {
             surface_shadow_shaders: Default::default(),
             media: Default::default(),
             varying_media: Default::default(),
+            affine_volumes: Default::default(),
             simple_lights: Default::default(),
         };
         (shading, diags)

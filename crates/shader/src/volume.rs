@@ -96,6 +96,17 @@ pub fn is_affine(shading: &Shading, head: NodeId) -> bool {
     true
 }
 
+impl Shading {
+    /// Whether the camera's volume shader list or some material's is affine
+    /// ([`is_affine`]: the fogs the path engine applies). Found once, on the
+    /// first question (after the renderer handed over what affinity depends on).
+    pub fn has_affine_volumes(&self) -> bool {
+        *self.affine_volumes.get_or_init(|| {
+            self.volume.into_iter().chain(self.materials.iter().filter_map(|m| m.volume)).any(|v| is_affine(self, v))
+        })
+    }
+}
+
 impl Ctx<'_> {
     /// The affine terms of the volume shader list at `head` over the segment of the
     /// context's state (mental ray's volume state, see the module documentation): each

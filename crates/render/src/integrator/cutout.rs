@@ -9,8 +9,9 @@ use bsdf::Rgb;
 use glam::Vec3A;
 use shader::Shading;
 
+use super::hit_material::material_at;
 use super::own_stretch::{passage, OwnStretch};
-use super::{material_at, surface};
+use super::surface;
 use crate::accel::Accel;
 use crate::ray::Ray;
 use crate::world::World;

@@ -78,9 +78,19 @@ pub(super) struct PathFog<'s> {
 }
 
 impl<'s> PathFog<'s> {
-    /// Outside every fog material, with the camera's volume of `shading`.
+    /// Outside every fog material, with the camera's volume of `shading`. (A scene without
+    /// an affine volume keeps no shading: no fog can apply, [`PathFog::possible`].)
     pub(super) fn new(shading: Option<&'s Shading>) -> Self {
+        let shading = shading.filter(|s| s.has_affine_volumes());
         PathFog { shading, camera: camera_fog(shading).map(|(_, v)| v), inside: Vec::new(), crossings: Vec::new() }
+    }
+
+    /// Whether any fog may apply to the path: the scene has an affine volume. When not,
+    /// [`PathFog::is_active`] is false throughout and the other methods change nothing,
+    /// so the path loop skips them.
+    #[inline]
+    pub(super) fn possible(&self) -> bool {
+        self.shading.is_some()
     }
 
     /// Whether some fog applies to the path's current ray.

@@ -54,8 +54,19 @@ pub(super) struct Reach {
 
 impl Reach {
     /// The split of the bounce `bs` sampled from `bsdf` seen from `wo` (local frame) at a
-    /// surface of `model`; `None` where the surface does not split its rays.
+    /// surface of `model`; `None` where the surface does not split its rays. (Inlined into
+    /// the path loop, which asks at every bounce: most surfaces are no glossy lobe.)
+    #[inline]
     pub(super) fn after(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
+        match model {
+            SurfaceModel::MibGlossy(_) => Reach::after_glossy(model, bsdf, wo, bs),
+            _ => None,
+        }
+    }
+
+    /// [`Reach::after`] for a glossy lobe's surface.
+    #[inline(never)]
+    fn after_glossy(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
         let SurfaceModel::MibGlossy(lobe) = model else { return None };
         let Bsdf::MibGlossy(b) = bsdf else { return None };
         if !lobe.reaches() {
