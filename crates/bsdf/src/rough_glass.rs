@@ -351,7 +351,9 @@ impl RoughGlass {
     /// as [`RoughGlass::sample`] draws it, both its reflected and its refracted direction,
     /// each weighted by f |cos θi| · n(ωi)²/n(ωo)² over the density it would have had, had
     /// it been chosen (the mean over micro-normals is the albedo, with less noise than a
-    /// random choice of branch). 0 for a smooth, thin or invalid lobe.
+    /// random choice of branch). 0 for a smooth, thin or invalid lobe. (The generator of
+    /// [`crate::glass_multiscatter`]'s stored tables.)
+    #[cfg(test)]
     pub(crate) fn albedo_sample(&self, wo: Vec3A, u: Vec2) -> f32 {
         if self.thin || !self.is_valid() || self.is_smooth() || wo.z <= 0.0 {
             return 0.0;
