@@ -219,15 +219,11 @@ impl GlassMultiScatter {
 mod tests {
     use super::*;
     use crate::lobes::{Lobe, Lobes};
-    use crate::testing::{chi_square, incidences, r2, r3};
+    use crate::rough_glass::test_glass::{glass, glass_energy, n_of};
+    use crate::testing::{chi_square, incidences, r2};
     use crate::{Bsdf, Rgb};
 
     use tables::MICROS;
-
-    fn glass(alpha: f32, micro: Microfacet, reflect: bool, thin: bool) -> RoughGlass {
-        let halves = if reflect { Halves::Both } else { Halves::Transmit };
-        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, halves, thin, film: 0 }
-    }
 
     /// The glass alone, or with its compensation.
     fn sum(g: RoughGlass, compensated: bool) -> Bsdf {
@@ -239,24 +235,9 @@ mod tests {
         Bsdf::Lobes(l)
     }
 
-    fn n_of(g: &RoughGlass, w: Vec3A) -> f32 {
-        if w.z < 0.0 && !g.thin {
-            g.eta
-        } else {
-            1.0
-        }
-    }
-
-    /// ∑ weight · n(ωi)²/n(ωo)² over `n` samples, divided by `n`.
+    /// [`glass_energy`] of the first channel.
     fn energy(b: &Bsdf, g: &RoughGlass, wo: Vec3A, n: u32) -> f32 {
-        let mut sum = 0.0;
-        for k in 0..n {
-            let (u, c) = r3(k);
-            if let Some(s) = b.sample(wo, u, c) {
-                sum += s.weight().x * (n_of(g, s.wi) / n_of(g, wo)).powi(2);
-            }
-        }
-        sum / n as f32
+        glass_energy(b, g, wo, n).x
     }
 
     /// The tables are the glass's albedo: at grid points and between them (α 0.37, η 1.33),

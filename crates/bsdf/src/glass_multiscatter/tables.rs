@@ -14,6 +14,7 @@
 
 use std::sync::OnceLock;
 
+use crate::albedo_grid::{cosine_mean, grid};
 use crate::dielectric::fresnel;
 use crate::rough_glass::Microfacet;
 
@@ -92,13 +93,6 @@ pub(super) fn tables(micro: Microfacet) -> &'static Tables {
     TABLES[index(micro)].get_or_init(|| Tables::decode(micro))
 }
 
-/// Grid position of `x` ∈ [0, 1] on `n` points: the lower index and the fraction.
-fn grid(x: f32, n: usize) -> (usize, f32) {
-    let f = x.clamp(0.0, 1.0) * (n - 1) as f32;
-    let k = (f as usize).min(n - 2);
-    (k, f - k as f32)
-}
-
 /// The hemispherical average 2 ∫₀¹ F(μ, η′) μ dμ of the Fresnel reflectance (midpoint
 /// rule, 4096 points).
 fn fresnel_average(etap: f32) -> f32 {
@@ -124,21 +118,8 @@ impl Tables {
     /// The tables of `micro` from the stored ones.
     fn decode(micro: Microfacet) -> Tables {
         let e = stored(micro);
-        let lost = e
-            .chunks(MUS)
-            .map(|row| {
-                // 1 − 2 ∫ E(μ) μ dμ of the row as interpolated (midpoint rule, 2048 points).
-                const N: usize = 2048;
-                let sum: f64 = (0..N)
-                    .map(|i| {
-                        let mu = (i as f32 + 0.5) / N as f32;
-                        let (j, t) = grid(mu, MUS);
-                        f64::from((row[j] * (1.0 - t) + row[j + 1] * t) * mu)
-                    })
-                    .sum();
-                (1.0 - 2.0 * sum / N as f64).max(0.0) as f32
-            })
-            .collect();
+        // 1 − 2 ∫ E(μ) μ dμ of each row as interpolated.
+        let lost = e.chunks(MUS).map(|row| (1.0 - cosine_mean(row)).max(0.0) as f32).collect();
         Tables { e, lost }
     }
 
