@@ -329,4 +329,30 @@ mod tests {
             }
         }
     }
+
+    /// A `thin_film` over the glass is not seen by the compensation (it gives back plain
+    /// Fresnel's loss, split by plain Fresnel's F_avg), yet glass under a film plus its
+    /// compensation keeps what it receives within 1 ± 3 % (n²-weighted radiance, 20 000
+    /// samples, from both sides at 0°, 37° and 72°, GGX α 0.5 and 1, film 400 nm of index
+    /// (1.3, 1.4, 1.8) over glass of 1.5).
+    #[test]
+    fn a_film_over_compensated_glass_keeps_nearly_all() {
+        use crate::layer_curve::{CurveKind, LayerCurve};
+        let film = CurveKind::ThinFilm { ior: 1.5, film_ior: Rgb::new(1.3, 1.4, 1.8), thickness_nm: 400.0 };
+        for alpha in [0.5, 1.0] {
+            let mut l = Lobes::default();
+            let k = l.add_curve(LayerCurve::new(film, Rgb::ONE, false)).unwrap();
+            let g = RoughGlass { film: k + 1, ..glass(alpha, Microfacet::Ggx, true, false) };
+            assert!(l.push(Rgb::ONE, Lobe::Glass(g)));
+            assert!(l.push(Rgb::ONE, Lobe::GlassMultiScatter(GlassMultiScatter::new(&g))));
+            let b = Bsdf::Lobes(l);
+            for wo in incidences() {
+                for wo in [wo, -wo] {
+                    let e = glass_energy(&b, &g, wo, 20_000);
+                    eprintln!("film α {alpha} at {wo}: {e}");
+                    assert!((e - Rgb::ONE).abs().max_element() <= 0.03, "film α {alpha} at {wo}: {e}");
+                }
+            }
+        }
+    }
 }
