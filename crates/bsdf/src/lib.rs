@@ -4,6 +4,7 @@
 //! away from the surface; `eval` returns f(ωo, ωi) without the cosine; `sample` returns a
 //! direction with `f · |cos θi| / pdf` as its weight; `pdf` is per unit solid angle.
 
+mod albedo_grid;
 pub mod beckmann;
 pub mod builtin;
 pub mod color;

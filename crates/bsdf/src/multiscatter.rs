@@ -18,6 +18,7 @@ use std::sync::OnceLock;
 
 use glam::{Vec2, Vec3A};
 
+use crate::albedo_grid::{cosine_mean, grid};
 use crate::beckmann::{Beckmann, BeckmannReflection};
 use crate::microfacet::Ggx;
 use crate::{vcavity, Rgb};
@@ -100,13 +101,6 @@ fn table(single: Single) -> &'static Table {
     TABLES[single.index()].get_or_init(|| Table::build(single))
 }
 
-/// Grid position of `x` ∈ [0, 1] on `n` points: the lower index and the fraction.
-fn grid(x: f32, n: usize) -> (usize, f32) {
-    let f = x.clamp(0.0, 1.0) * (n - 1) as f32;
-    let k = (f as usize).min(n - 2);
-    (k, f - k as f32)
-}
-
 impl Table {
     fn build(single: Single) -> Table {
         let mut e = [[1.0f32; MUS]; ALPHAS];
@@ -121,16 +115,7 @@ impl Table {
         }
         let mut mean = [0.0f32; ALPHAS];
         for (m, row) in mean.iter_mut().zip(&e) {
-            // 2 ∫ E(μ) μ dμ of the row as interpolated (midpoint rule, 2048 points).
-            const N: usize = 2048;
-            let sum: f64 = (0..N)
-                .map(|i| {
-                    let mu = (i as f32 + 0.5) / N as f32;
-                    let (j, t) = grid(mu, MUS);
-                    f64::from((row[j] * (1.0 - t) + row[j + 1] * t) * mu)
-                })
-                .sum();
-            *m = (2.0 * sum / N as f64) as f32;
+            *m = cosine_mean(row) as f32;
         }
         Table { e, mean }
     }

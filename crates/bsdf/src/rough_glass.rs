@@ -351,7 +351,9 @@ impl RoughGlass {
     /// as [`RoughGlass::sample`] draws it, both its reflected and its refracted direction,
     /// each weighted by f |cos θi| · n(ωi)²/n(ωo)² over the density it would have had, had
     /// it been chosen (the mean over micro-normals is the albedo, with less noise than a
-    /// random choice of branch). 0 for a smooth, thin or invalid lobe.
+    /// random choice of branch). 0 for a smooth, thin or invalid lobe. (The generator of
+    /// [`crate::glass_multiscatter`]'s stored tables.)
+    #[cfg(test)]
     pub(crate) fn albedo_sample(&self, wo: Vec3A, u: Vec2) -> f32 {
         if self.thin || !self.is_valid() || self.is_smooth() || wo.z <= 0.0 {
             return 0.0;
@@ -424,8 +426,49 @@ impl RoughGlass {
     }
 }
 
+/// Helpers of the glass tests (here and in [`crate::glass_multiscatter`]).
+#[cfg(test)]
+pub(crate) mod test_glass {
+    use glam::Vec3A;
+
+    use super::{Halves, Microfacet, RoughGlass};
+    use crate::testing::r3;
+    use crate::{Bsdf, Rgb};
+
+    /// The rough glass lobe the glass tests use: index 1.5, isotropic roughness `alpha`,
+    /// distribution and masking `micro`, both halves (`reflect`) or the transmitted one alone,
+    /// thin-walled or solid, no film.
+    pub fn glass(alpha: f32, micro: Microfacet, reflect: bool, thin: bool) -> RoughGlass {
+        let halves = if reflect { Halves::Both } else { Halves::Transmit };
+        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, halves, thin, film: 0 }
+    }
+
+    /// The index on `w`'s side of `g` (1 outside, η inside; 1 on both sides of a thin sheet).
+    pub fn n_of(g: &RoughGlass, w: Vec3A) -> f32 {
+        if w.z < 0.0 && !g.thin {
+            g.eta
+        } else {
+            1.0
+        }
+    }
+
+    /// Energy `b` scatters from ωo counted in n²-weighted radiance (what crosses `g`'s
+    /// boundary keeps its flux): ∑ weight · n(ωi)²/n(ωo)² over `n` samples, divided by `n`.
+    pub fn glass_energy(b: &Bsdf, g: &RoughGlass, wo: Vec3A, n: u32) -> Rgb {
+        let mut sum = Rgb::ZERO;
+        for k in 0..n {
+            let (u, c) = r3(k);
+            if let Some(s) = b.sample(wo, u, c) {
+                sum += s.weight() * (n_of(g, s.wi) / n_of(g, wo)).powi(2);
+            }
+        }
+        sum / n as f32
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::test_glass::{glass, glass_energy as energy, n_of};
     use super::*;
     use crate::lobes::{Lobe, Lobes};
     use crate::testing::{chi_square, incidences, r2, r3};
@@ -435,37 +478,10 @@ mod tests {
     const MICROS: [Microfacet; 4] =
         [Microfacet::Ggx, Microfacet::Beckmann, Microfacet::GgxVcavities, Microfacet::BeckmannVcavities];
 
-    fn glass(alpha: f32, micro: Microfacet, reflect: bool, thin: bool) -> RoughGlass {
-        let halves = if reflect { Halves::Both } else { Halves::Transmit };
-        RoughGlass { alpha_x: alpha, alpha_y: alpha, eta: 1.5, micro, halves, thin, film: 0 }
-    }
-
     fn lone(g: RoughGlass) -> Bsdf {
         let mut l = Lobes::default();
         assert!(l.push(Rgb::ONE, Lobe::Glass(g)));
         Bsdf::Lobes(l)
-    }
-
-    /// The index on `w`'s side (1 outside, 1.5 inside; 1 on both sides of a thin sheet).
-    fn n_of(g: &RoughGlass, w: Vec3A) -> f32 {
-        if w.z < 0.0 && !g.thin {
-            g.eta
-        } else {
-            1.0
-        }
-    }
-
-    /// Energy scattered from ωo counted in n²-weighted radiance (what crosses keeps its
-    /// flux): ∑ weight · n(ωi)²/n(ωo)² over `n` samples.
-    fn energy(b: &Bsdf, g: &RoughGlass, wo: Vec3A, n: u32) -> Rgb {
-        let mut sum = Rgb::ZERO;
-        for k in 0..n {
-            let (u, c) = r3(k);
-            if let Some(s) = b.sample(wo, u, c) {
-                sum += s.weight() * (n_of(g, s.wi) / n_of(g, wo)).powi(2);
-            }
-        }
-        sum / n as f32
     }
 
     fn sphere(i: u32) -> Vec3A {

@@ -169,6 +169,10 @@ pub enum Df {
         multiscatter_tint: Leaf,
         /// The base.
         multiscatter: Box<Df>,
+        /// The reflection tint of a `df::tint` of two tints over a sheen whose base
+        /// transmits ([`Df::tinted_apart`]): it weights the sheen lobe alone, the base's
+        /// halves being tinted apart below it (white otherwise).
+        reflection_tint: Leaf,
     },
     /// `df::backscattering_glossy_reflection_bsdf`: GGX micro-mirrors around the direction
     /// back to the viewer, α = roughness.
@@ -373,8 +377,10 @@ impl Df {
     /// ([`ScatterMode::GlassReflect`]) under the reflection tint and its transmitted half
     /// (`scatter_transmit`) under the transmission tint: the two halves sum to the lobe;
     /// so is a `measured_bsdf` that reflects and transmits, into its reflection part and
-    /// its transmission part. `Err` names what cannot be split: a sheen whose base
-    /// transmits, under two tints.
+    /// its transmission part; a sheen whose base transmits keeps its lobe under the
+    /// reflection tint (`reflection_tint`) and its base tinted apart below it. `Err` names
+    /// what cannot be split: such a sheen under two such nested tints both varying per
+    /// hit.
     pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
         let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], bound: MixBound::Normalized };
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
@@ -418,10 +424,22 @@ impl Df {
                 }
                 ScatterMode::GlassReflect => wrap(reflect),
             },
-            Df::Sheen { multiscatter, .. } if multiscatter.transmits() => {
-                return Err("a sheen whose base transmits, under two tints")
-            }
-            Df::Sheen { .. } => wrap(reflect),
+            Df::Sheen { multiscatter, .. } if !multiscatter.transmits() || reflect == transmit => wrap(reflect),
+            // The sheen is a reflection lobe: it takes the reflection tint; its base, under
+            // the sheen's albedo curve as before (the tints do not change what the sheen
+            // leaves it), is tinted apart.
+            Df::Sheen { tint, roughness, multiscatter_tint, multiscatter, reflection_tint } => Df::Sheen {
+                tint: *tint,
+                roughness: *roughness,
+                multiscatter_tint: *multiscatter_tint,
+                multiscatter: split(multiscatter)?,
+                reflection_tint: match (reflection_tint.constant(), reflect.constant()) {
+                    (Some(a), _) if a == Rgb::ONE => reflect,
+                    (_, Some(b)) if b == Rgb::ONE => *reflection_tint,
+                    (Some(a), Some(b)) => Leaf::Const(a * b),
+                    _ => return Err("a sheen whose base transmits, under two nested tints that vary per hit"),
+                },
+            },
             Df::Mix { parts, bound } => Df::Mix {
                 parts: parts
                     .iter()

@@ -126,14 +126,17 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
             push(tint, Lobe::Ward(Beckmann::new(au, av)))
                 && compensate(&mut push, tint, *multiscatter, Some((Single::Ward, au, av)), hit)
         }
-        Df::Sheen { tint, roughness, multiscatter_tint, multiscatter } => {
+        Df::Sheen { tint, roughness, multiscatter_tint, multiscatter, reflection_tint } => {
             // The base receives what the sheen leaves: it lies under the sheen's albedo.
             let r = roughness.get(hit).x;
             let tint = tint.get(hit);
             let curve = CurveKind::SheenAlbedo { roughness: r };
             let frames = (frame, frame);
             let Some((_, under)) = layer_roles(curve, tint, multiscatter, role, hit, sum, frames) else { return false };
-            sum.push_in_frame(scale * tint, Lobe::Sheen(r), role, frame)
+            // Under two tints, the lobe alone takes the reflection tint (clamped to 1, as a
+            // tint's one-component mix is).
+            let lobe = tint * reflection_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            sum.push_in_frame(scale * lobe, Lobe::Sheen(r), role, frame)
                 && add_general(
                     multiscatter,
                     scale * multiscatter_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE),
