@@ -1,7 +1,6 @@
 //! The two-tone scene of the `mib_glossy_reflection` and `mib_glossy_refraction` path
-//! tests (`mib_glossy_path`, `mib_glossy_refraction_path`): a glossy surface facing a
-//! plane that glows 1 for x < 0 and 0.2 for x > 0, seen from above, and the check that the
-//! path engine's image agrees with the classic engine's.
+//! tests (`mib_glossy_path`, `mib_glossy_refraction_path`): a glossy surface facing a plane that glows 1 for x < 0 and 0.2 for x > 0, seen from above, and the
+//! check that the path engine's image agrees with the classic engine's.
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -13,7 +12,38 @@ use super::maya_view::{mean, pixels};
 /// `surface_y` facing up) and, at height `glow_y`, a plane glowing 1 for x < 0 and 0.2 for
 /// x > 0 (Maya lamberts of colour 0 and that incandescence).
 pub fn scene(view: &str, material: &str, surface: &str, surface_y: f32, glow_y: f32) -> String {
-    let (s, g) = (surface_y, glow_y);
+    let s = surface_y;
+    let object = format!(
+        r#"object "{surface}" group -500 {s} 500  500 {s} 500  500 {s} -500  -500 {s} -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
+instance "{surface}_inst" "{surface}" end instance"#
+    );
+    with_objects(view, material, &object, &format!("\"{surface}_inst\""), glow_y)
+}
+
+/// A `.mi` scene: `view`, `material` (material "g" and whatever else it needs) and a
+/// square of "g" at height `y` facing up (`up`) or down, over the plane glowing 1 for x < 0
+/// and 0.2 for x > 0 at height `glow_y` (none: nothing else); the instances `extra`
+/// (quoted names: lights `material` defines) join the root group.
+pub fn facing(view: &str, material: &str, (y, up): (f32, bool), glow_y: Option<f32>, extra: &str) -> String {
+    let corners = if up { "0 1 2 3" } else { "3 2 1 0" };
+    let object = format!(
+        r#"object "pane" group -500 {y} 500  500 {y} 500  500 {y} -500  -500 {y} -500  v 0 v 1 v 2 v 3 c "g" {corners} end group end object
+instance "pane_inst" "pane" end instance"#
+    );
+    let instances = format!("\"pane_inst\" {extra}");
+    match glow_y {
+        Some(g) => with_objects(view, material, &object, &instances, g),
+        None => format!(
+            "\n$include \"mayabase.mi\"\n{view}\n{material}\n{object}\n\
+             instgroup \"root\" \"cam_inst\" {instances} end instgroup\nrender \"root\" \"cam_inst\" \"opt\"\n"
+        ),
+    }
+}
+
+/// `view`, `material`, the `objects` (`.mi` text) whose instances `instances` (quoted
+/// names) join the root group, and the two-tone glowing plane at height `glow_y`.
+fn with_objects(view: &str, material: &str, objects: &str, instances: &str, glow_y: f32) -> String {
+    let g = glow_y;
     format!(
         r#"
 $include "mayabase.mi"
@@ -23,13 +53,12 @@ shader "bright" "maya_lambert" ("color" 0 0 0, "incandescence" 1 1 1)
 material "b" opaque "maya_shadingengine" ("surfaceShader" = "bright.outColor") end material
 shader "dim" "maya_lambert" ("color" 0 0 0, "incandescence" 0.2 0.2 0.2)
 material "d" opaque "maya_shadingengine" ("surfaceShader" = "dim.outColor") end material
-object "{surface}" group -500 {s} 500  500 {s} 500  500 {s} -500  -500 {s} -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
-instance "{surface}_inst" "{surface}" end instance
+{objects}
 object "left" group -500 {g} 500  0 {g} 500  0 {g} -500  -500 {g} -500  v 0 v 1 v 2 v 3 c "b" 0 1 2 3 end group end object
 instance "left_inst" "left" end instance
 object "right" group 0 {g} 500  500 {g} 500  500 {g} -500  0 {g} -500  v 0 v 1 v 2 v 3 c "d" 0 1 2 3 end group end object
 instance "right_inst" "right" end instance
-instgroup "root" "cam_inst" "{surface}_inst" "left_inst" "right_inst" end instgroup
+instgroup "root" "cam_inst" {instances} "left_inst" "right_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#
     )
