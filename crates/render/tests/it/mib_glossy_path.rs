@@ -80,7 +80,7 @@ fn reflection_limit_counts_mib_glossy_reflection_samples_in_the_path_engine() {
 /// glowing 1 for x < 0 and 0.2 for x > 0 (Maya lambert of colour 0 and that
 /// incandescence), seen from above.
 fn two_tone(spread: f32) -> String {
-    let view = support::maya_view::top_down(16).replace("samples 0 2", "samples 2 2");
+    let view = support::two_tone::view(16);
     let material = format!(
         r#"material "g" opaque "mib_glossy_reflection" ("reflection_color" 0.8 0.8 0.8,
     "environment_color" 0.8 0.8 0.8, "samples" 64, "single_env_sample" off, "u_spread" {spread}, "v_spread" {spread}) end material"#
@@ -94,7 +94,7 @@ fn two_tone(spread: f32) -> String {
 #[test]
 fn the_path_engine_agrees_with_the_classic_glossy_reflection() {
     for spread in [0.05f32, 0.3] {
-        support::two_tone::assert_path_agrees_with_classic(&two_tone(spread), 16, spread);
+        support::two_tone::assert_path_agrees_with_classic(&two_tone(spread), 16, &format!("spread {spread}"));
     }
 }
 
@@ -150,28 +150,12 @@ fn two_tone_anisotropic(axis: &str) -> String {
 /// halves of the two axes differ by over 10 % (the axis matters).
 #[test]
 fn u_axis_lays_the_spreads_alike_in_both_engines() {
-    let half = |px: &[Vec3A], left: bool| -> Vec3A {
-        let sel: Vec<Vec3A> = px.iter().enumerate().filter(|(i, _)| ((i % 16) < 8) == left).map(|(_, p)| *p).collect();
-        mean(&sel)
-    };
     let mut classic_right = Vec::new();
     for axis in ["1 0 0", "0 0 1"] {
         let text = two_tone_anisotropic(axis);
         assert!(text.contains("u_axis"), "{text}");
-        let classic = pixels(&text, EngineKind::Classic, 4);
-        let path = pixels(&text, EngineKind::Path, 256);
-        for (what, c, p) in [
-            ("image", mean(&classic), mean(&path)),
-            ("left half", half(&classic, true), half(&path, true)),
-            ("right half", half(&classic, false), half(&path, false)),
-        ] {
-            println!("u_axis {axis}, {what}: classic {c}, path {p}");
-            assert!(
-                (p - c).abs().max_element() <= 0.02 * c.max_element(),
-                "u_axis {axis}, {what}: path {p} vs classic {c}"
-            );
-        }
-        classic_right.push(half(&classic, false).x);
+        let classic = support::two_tone::assert_path_agrees_with_classic(&text, 16, &format!("u_axis {axis}"));
+        classic_right.push(support::two_tone::half_mean(&classic, 16, false).x);
     }
     assert!(
         (classic_right[0] - classic_right[1]).abs() > 0.1 * classic_right[1],

@@ -18,7 +18,7 @@ const SIDE: usize = 16;
 /// per pixel). Refraction through a horizontal plane keeps a ray's azimuth, so every
 /// pixel sees one side of the floor: the seam lies between columns 7 and 8.
 fn over_two_tone(pane: &str) -> String {
-    let view = support::maya_view::top_down(SIDE).replace("samples 0 2", "samples 2 2");
+    let view = support::two_tone::view(SIDE);
     support::two_tone::scene(&view, pane, "pane", 0.0, -3.0)
 }
 
@@ -69,7 +69,11 @@ material "g" "mib_refract" ("input" = "black", "refract" 0.9 0.7 0.5, "ior" 1.5)
 #[test]
 fn the_path_engine_agrees_with_the_classic_glossy_refraction() {
     for spread in [0.05f32, 0.3] {
-        support::two_tone::assert_path_agrees_with_classic(&over_two_tone(&glossy_pane(spread)), SIDE, spread);
+        support::two_tone::assert_path_agrees_with_classic(
+            &over_two_tone(&glossy_pane(spread)),
+            SIDE,
+            &format!("spread {spread}"),
+        );
     }
 }
 
@@ -81,7 +85,7 @@ fn the_path_engine_agrees_with_the_classic_glossy_refraction() {
 /// without shadows travelling along (2, `light_y`, 0) (63° from the normal: the glossy
 /// lobe does not reach it, as the classic shader's rays find no light).
 fn pane(back: Option<&str>, reverse: bool, up: bool, floor: bool, light_y: f32) -> String {
-    let view = support::maya_view::top_down(SIDE).replace("samples 0 2", "samples 2 2");
+    let view = support::two_tone::view(SIDE);
     let back_params = back.map_or(String::new(), |_| {
         format!(r#", "back_material" "back", "render_reverse_of_back_material" {}"#, if reverse { "on" } else { "off" })
     });

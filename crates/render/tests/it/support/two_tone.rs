@@ -7,7 +7,13 @@ use render::EngineKind;
 
 use super::maya_view::{mean, pixels};
 
-/// A `.mi` scene: `view` (`maya_view::top_down`), `material` (the surface's material "g",
+/// The view of the two-tone scenes: `maya_view::top_down` of a `side` × `side` image with
+/// 2 samples per pixel (at least and at most: every pixel sees the same count).
+pub fn view(side: usize) -> String {
+    super::maya_view::top_down(side).replace("samples 0 2", "samples 2 2")
+}
+
+/// A `.mi` scene: `view` ([`view`]), `material` (the surface's material "g",
 /// a whole `material … end material`), the surface `surface` (a square at height
 /// `surface_y` facing up) and, at height `glow_y`, a plane glowing 1 for x < 0 and 0.2 for
 /// x > 0 (Maya lamberts of colour 0 and that incandescence).
@@ -64,27 +70,28 @@ render "root" "cam_inst" "opt"
     )
 }
 
+/// The mean of the left (`left`) or right half of the pixels `px` of an image `side`
+/// pixels wide.
+pub fn half_mean(px: &[Vec3A], side: usize, left: bool) -> Vec3A {
+    let sel: Vec<Vec3A> =
+        px.iter().enumerate().filter(|(i, _)| ((i % side) < side / 2) == left).map(|(_, p)| *p).collect();
+    mean(&sel)
+}
+
 /// The path engine's image of `text` (256 samples per pixel, an image `side` pixels
 /// wide) agrees with the classic engine's (4): the image mean and the means of its left
-/// and right halves within 2 % of the classic value's largest channel (`spread` names
-/// the case).
-pub fn assert_path_agrees_with_classic(text: &str, side: usize, spread: f32) {
+/// and right halves within 2 % of the classic value's largest channel (`case` names the
+/// case in messages). Returns the classic pixels.
+pub fn assert_path_agrees_with_classic(text: &str, side: usize, case: &str) -> Vec<Vec3A> {
     let classic = pixels(text, EngineKind::Classic, 4);
     let path = pixels(text, EngineKind::Path, 256);
-    let half = |px: &[Vec3A], left: bool| -> Vec3A {
-        let sel: Vec<Vec3A> =
-            px.iter().enumerate().filter(|(i, _)| ((i % side) < side / 2) == left).map(|(_, p)| *p).collect();
-        mean(&sel)
-    };
     for (what, c, p) in [
         ("image", mean(&classic), mean(&path)),
-        ("left half", half(&classic, true), half(&path, true)),
-        ("right half", half(&classic, false), half(&path, false)),
+        ("left half", half_mean(&classic, side, true), half_mean(&path, side, true)),
+        ("right half", half_mean(&classic, side, false), half_mean(&path, side, false)),
     ] {
-        println!("spread {spread}, {what}: classic {c}, path {p}");
-        assert!(
-            (p - c).abs().max_element() <= 0.02 * c.max_element(),
-            "spread {spread}, {what}: path {p} vs classic {c}"
-        );
+        println!("{case}, {what}: classic {c}, path {p}");
+        assert!((p - c).abs().max_element() <= 0.02 * c.max_element(), "{case}, {what}: path {p} vs classic {c}");
     }
+    classic
 }
