@@ -58,9 +58,11 @@ material "m" "mib_glossy_reflection" ("base_material" "base", "reflection_color"
 
 /// Parameters the path engine does not honour are named in warnings: an
 /// `single_env_sample` (default on) with a spread lobe, a `u_axis` connected where there
-/// is no shader graph to follow (translated without one), an `environment_color` with
-/// light in a channel where `reflection_color` has none. `max_distance` (5), `falloff`
-/// (its default 2) and `environment_color` (0.2) are the lobe's, unwarned.
+/// is no shader graph to follow (translated without one). `max_distance` (5), `falloff`
+/// (its default 2) and `environment_color` (0.2) are the lobe's, unwarned; so is an
+/// `environment_color` with light where `reflection_color` has none (the lobe carries it
+/// there and sees nothing it finds: `carried` 1, `seen` 0 in those channels), even under
+/// a black `reflection_color`.
 #[test]
 fn unhonoured_parameters_are_warned_about() {
     let (s, warnings) = translated(
@@ -76,11 +78,16 @@ material "m" "mib_glossy_reflection" ("reflection_color" 1 1 1, "environment_col
     assert!(!warnings.iter().any(|w| w.contains("max_distance") || w.contains("environment_color")), "{warnings:?}");
     let SurfaceModel::MibGlossy(lobe) = &s.model else { panic!("a mib_glossy lobe") };
     assert_eq!((lobe.max_distance, lobe.falloff, lobe.env_color), (5.0, 2.0, Rgb::splat(0.2)));
-    let (_, warnings) = translated(
-        r#"material "m" "mib_glossy_reflection" ("reflection_color" 1 0 1, "environment_color" 1 1 1) end material
-"#,
-    );
-    assert!(warnings.iter().any(|w| w.contains("environment_color")), "{warnings:?}");
+    for (reflection, seen) in [("1 0 1", Rgb::new(1.0, 0.0, 1.0)), ("0 0 0", Rgb::ZERO)] {
+        let (t, warnings) = translated(&format!(
+            r#"material "m" "mib_glossy_reflection" ("reflection_color" {reflection}, "environment_color" 1 1 1,
+    "single_env_sample" off) end material
+"#
+        ));
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let SurfaceModel::MibGlossy(lobe) = &t.model else { panic!("a mib_glossy lobe: {:?}", t.model) };
+        assert_eq!((lobe.carried(), lobe.seen()), (Rgb::ONE, seen), "reflection_color {reflection}");
+    }
     assert_eq!((s.tangent_axis, s.tangent_angle), (None, Some(0.0)), "dP/du is the axis");
 }
 

@@ -236,24 +236,27 @@ fn glossy_rays_past_max_distance_take_the_environment() {
 
 /// `environment_color` weighs what the glossy rays take from the environment,
 /// `reflection_color` what they find, in both engines: a mirror (spread 0) and a
-/// spread-0.01 lobe of `reflection_color` 0.8 and `environment_color` (0.2, 0.4, 1) show
-/// (0.2, 0.4, 1) ⊙ the environment (0.3, 0.6, 0.9) under the open sky and past
-/// `max_distance` 3 below the ceiling, and 0.8 × the ceiling's 1 below it without a
-/// limit: at every pixel within 1e-3.
+/// spread-0.01 lobe of `reflection_color` 0.8, or (0.8, 0, 0.8) (green: the environment
+/// alone), and `environment_color` (0.2, 0.4, 1) show (0.2, 0.4, 1) ⊙ the environment
+/// (0.3, 0.6, 0.9) under the open sky and past `max_distance` 3 below the ceiling, and
+/// `reflection_color` × the ceiling's 1 below it without a limit: at every pixel within
+/// 1e-3.
 #[test]
 fn environment_color_weighs_the_environment_in_both_engines() {
     let env = Vec3A::new(0.2, 0.4, 1.0) * Vec3A::new(0.3, 0.6, 0.9);
-    for spread in [0.0f32, 0.01] {
-        for (extra, ceiling, want) in
-            [("", false, env), (r#", "max_distance" 3"#, true, env), ("", true, Vec3A::splat(0.8))]
-        {
-            let text = reach_scene(spread, "0.2 0.4 1", extra, ceiling);
-            for engine in [EngineKind::Classic, EngineKind::Path] {
-                for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
-                    assert!(
-                        (*p - want).abs().max_element() < 1e-3,
-                        "spread {spread}{extra}, ceiling {ceiling}, {engine:?} pixel {i}: {p} vs {want}"
-                    );
+    for (reflection, seen) in [("0.8 0.8 0.8", Vec3A::splat(0.8)), ("0.8 0 0.8", Vec3A::new(0.8, 0.0, 0.8))] {
+        for spread in [0.0f32, 0.01] {
+            for (extra, ceiling, want) in [("", false, env), (r#", "max_distance" 3"#, true, env), ("", true, seen)] {
+                let text = reach_scene(spread, "0.2 0.4 1", extra, ceiling)
+                    .replace(r#""reflection_color" 0.8 0.8 0.8"#, &format!(r#""reflection_color" {reflection}"#));
+                for engine in [EngineKind::Classic, EngineKind::Path] {
+                    for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
+                        assert!(
+                            (*p - want).abs().max_element() < 1e-3,
+                            "reflection {reflection}, spread {spread}{extra}, ceiling {ceiling}, {engine:?} pixel {i}: \
+                             {p} vs {want}"
+                        );
+                    }
                 }
             }
         }
