@@ -22,8 +22,10 @@
 //! connected parameters keep their constant values and its emission is not shown
 //! (warned). Not honoured, warned: `max_distance` with
 //! `deep_material` (no fade: the classic shader blends its refracted rays towards the
-//! deep material's colour shaded at the entry point, a lit colour rather than radiance
-//! found along the ray, which has no clean path-tracing counterpart). `u_axis` (constant
+//! deep material's colour shaded once at the entry point, a lit colour rather than
+//! radiance found along the ray; a path reading needs that colour as a second estimate at
+//! the entry point — direct and indirect light on a Lambertian of the deep colour —
+//! weighted by the fade of the segment traced next: `docs/maya_coverage.md`). `u_axis` (constant
 //! or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
