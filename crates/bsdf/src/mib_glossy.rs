@@ -35,11 +35,18 @@ pub const MIRROR_SPREAD: f32 = 1e-3;
 pub struct MibGlossy {
     /// Lambertian albedo of the base material under the lobe.
     pub base: Rgb,
-    /// The glossy lobe's weight for the view it was made for: `reflection_color` × the
-    /// view-angle curve / A(ωo) (the albedo of the lobe is then `tint`·A(ωo)).
+    /// The glossy lobe's weight for the view it was made for: the colour its rays carry
+    /// ([`MibGlossyLobe::carried`]: `reflection_color`, or `environment_color` where that
+    /// is 0) × the view-angle curve / A(ωo) (the albedo of the lobe is then `tint`·A(ωo)).
+    /// Sampled rays carry it; what they find is weighed by `seen` on top.
     pub tint: Rgb,
     /// Ward's distribution of micro-normals; `None`: a mirror.
     pub dist: Option<Beckmann>,
+    /// The share of `tint` the lobe reflects of what its rays find, per channel (1; 0
+    /// where only `environment_color` is carried): [`MibGlossy::eval`] (light found by
+    /// next-event estimation) holds it, [`MibGlossy::sample`]'s weight does not (the path
+    /// engine applies it along the segment, `render`'s `integrator::glossy_reach`).
+    pub seen: Rgb,
 }
 
 /// ωo and ωi flipped onto +z together when ωo is below; `None` across the surface.
@@ -79,8 +86,17 @@ impl MibGlossy {
         self.tint * (reflected_density(&dist, o, i) / i.z)
     }
 
-    /// f(ωo, ωi) of the non-delta lobes: the base's albedo/π plus the glossy lobe.
+    /// f(ωo, ωi) of the non-delta lobes: the base's albedo/π plus the glossy lobe (its
+    /// `seen` share).
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        if wo.z * wi.z <= 0.0 {
+            return Rgb::ZERO;
+        }
+        self.base * FRAC_1_PI + self.eval_glossy(wo, wi) * self.seen
+    }
+
+    /// f(ωo, ωi) with the glossy lobe's whole carried colour (the weight of its samples).
+    fn eval_carried(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         if wo.z * wi.z <= 0.0 {
             return Rgb::ZERO;
         }
@@ -129,7 +145,7 @@ impl MibGlossy {
         };
         let wi = back(i);
         let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval(wo, wi), pdf, delta: false })
+        (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval_carried(wo, wi), pdf, delta: false })
     }
 
     /// Whether every lobe is a delta (a mirror without a base).
@@ -140,7 +156,7 @@ impl MibGlossy {
     /// The glossy lobe's share of f(ωo, ωi) (luminance), for a non-delta sample: the
     /// probability that the glossy lobe rather than the base gave it.
     pub fn reflection_share(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        let all = luminance(self.eval(wo, wi));
+        let all = luminance(self.eval_carried(wo, wi));
         if all > 0.0 {
             (luminance(self.eval_glossy(wo, wi)) / all).clamp(0.0, 1.0)
         } else {
@@ -148,8 +164,16 @@ impl MibGlossy {
         }
     }
 
-    /// The base's part of f(ωo, ωi) (diffuse) and the glossy lobe's (specular).
+    /// The base's part of f(ωo, ωi) (diffuse) and the glossy lobe's (specular, its `seen`
+    /// share: what lights light).
     pub fn eval_split(&self, wo: Vec3A, wi: Vec3A) -> (Rgb, Rgb) {
+        let (b, g) = self.carried_split(wo, wi);
+        (b, g * self.seen)
+    }
+
+    /// The base's part of a sample's f(ωo, ωi) and the glossy lobe's (its whole carried
+    /// colour): the shares of a sampled bounce's weight.
+    pub fn carried_split(&self, wo: Vec3A, wi: Vec3A) -> (Rgb, Rgb) {
         if wo.z * wi.z <= 0.0 {
             return (Rgb::ZERO, Rgb::ZERO);
         }
@@ -319,22 +343,38 @@ impl MibGlossyLobe {
         self.max_distance > 0.0 || self.env_color != self.color
     }
 
-    /// `env_color` / `color` per channel (0 where `color` is 0: the lobe reflects nothing
-    /// there to weigh).
+    /// The colour the lobe's rays carry, per channel: `color`, or `env_color` where
+    /// `color` is 0 (or less) and `env_color` is not (the classic shader's rays there see
+    /// the environment alone).
+    pub fn carried(&self) -> Rgb {
+        let pick = |c: f32, e: f32| if c <= 0.0 && e > 0.0 { e } else { c };
+        Rgb::new(
+            pick(self.color.x, self.env_color.x),
+            pick(self.color.y, self.env_color.y),
+            pick(self.color.z, self.env_color.z),
+        )
+    }
+
+    /// `color` / [`MibGlossyLobe::carried`] per channel: 1, or 0 where the rays carry
+    /// `env_color` alone (what they find is not reflected there).
+    pub fn seen(&self) -> Rgb {
+        let k = self.carried();
+        let share = |c: f32, k: f32| if c == k { 1.0 } else { 0.0 };
+        Rgb::new(share(self.color.x, k.x), share(self.color.y, k.y), share(self.color.z, k.z))
+    }
+
+    /// `env_color` / [`MibGlossyLobe::carried`] per channel (0 where nothing is carried).
     pub fn environment_ratio(&self) -> Rgb {
         let ratio = |e: f32, c: f32| if c > 0.0 { e / c } else { 0.0 };
-        Rgb::new(
-            ratio(self.env_color.x, self.color.x),
-            ratio(self.env_color.y, self.color.y),
-            ratio(self.env_color.z, self.color.z),
-        )
+        let k = self.carried();
+        Rgb::new(ratio(self.env_color.x, k.x), ratio(self.env_color.y, k.y), ratio(self.env_color.z, k.z))
     }
 
     /// The BSDF seen from `wo` (local frame) over a base of Lambertian albedo `base`.
     pub fn bsdf(&self, base: Rgb, wo: Vec3A) -> MibGlossy {
         let w = edge_weight(wo.z.abs(), self.curve);
         let a = self.upper.as_ref().map_or(1.0, |u| u.at(wo));
-        MibGlossy { base, tint: self.color * (w.max(0.0) / a), dist: self.dist }
+        MibGlossy { base, tint: self.carried() * (w.max(0.0) / a), dist: self.dist, seen: self.seen() }
     }
 }
 

@@ -20,8 +20,13 @@
 //! an `ior` within 10⁻⁴ of 1 passes straight through (the classic shader's refraction then
 //! bends only about micro-normals facing away from the view: mira's reading). The top
 //! material is a Lambertian albedo on the front (ωo above) only, as the classic shader
-//! adds its top material there. Directions are in the local shading frame (z = the
-//! surface's front normal: the lobe knows inside from outside).
+//! adds its top material there. Seen from the back the classic shader adds its
+//! `back_material` instead, shaded with the normal turned towards the view (a Lambertian
+//! albedo reflecting light from the back's side) or, with
+//! `render_reverse_of_back_material`, with the normal facing out (light from the front's
+//! side reaching the back: a Lambertian diffuse transmission, f = albedo/π for ωo below
+//! and ωi above). Directions are in the local shading frame (z = the surface's front
+//! normal: the lobe knows inside from outside).
 
 use std::f32::consts::FRAC_1_PI;
 
@@ -107,8 +112,12 @@ pub fn kept_fraction(dist: &Beckmann, o: Vec3A, eta: f32, n: u32) -> f32 {
 /// direction (its weight already holds the view-angle curve and 1/A(ωo)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MibGlossyRefraction {
-    /// Lambertian albedo of the top material (0 seen from the back).
+    /// Lambertian albedo of the material added on the side seen: the top material from
+    /// the front, the back material from the back.
     pub base: Rgb,
+    /// Whether `base` seen from the back transmits light from the front's side (the back
+    /// material rendered reversed) rather than reflecting the back's.
+    pub base_through: bool,
     /// The glossy lobe's weight: `refraction_color` × the view-angle curve / A(ωo).
     pub tint: Rgb,
     /// Ward's distribution of micro-normals; `None`: sharp.
@@ -158,9 +167,26 @@ impl MibGlossyRefraction {
         }
     }
 
-    /// The top's part of f(ωo, ωi).
+    /// Whether the top (or back) material's Lambertian lobe scatters from `wo` to `wi`:
+    /// reflection on the front; on the back reflection, or transmission from the front's
+    /// side where `base_through`.
+    fn base_pair(&self, wo: Vec3A, wi: Vec3A) -> bool {
+        if wo.z > 0.0 {
+            wi.z > 0.0
+        } else if wo.z < 0.0 {
+            if self.base_through {
+                wi.z > 0.0
+            } else {
+                wi.z < 0.0
+            }
+        } else {
+            false
+        }
+    }
+
+    /// The top's (or back's) part of f(ωo, ωi).
     fn eval_base(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        if wo.z > 0.0 && wi.z > 0.0 {
+        if self.base_pair(wo, wi) {
             self.base * FRAC_1_PI
         } else {
             Rgb::ZERO
@@ -175,7 +201,7 @@ impl MibGlossyRefraction {
     /// Density of [`MibGlossyRefraction::sample`] (non-delta lobes).
     pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         let pg = self.glossy_probability();
-        let base = if wo.z > 0.0 && wi.z > 0.0 { (1.0 - pg) * wi.z * FRAC_1_PI } else { 0.0 };
+        let base = if self.base_pair(wo, wi) { (1.0 - pg) * wi.z.abs() * FRAC_1_PI } else { 0.0 };
         let glossy = match self.dist {
             Some(dist) if !self.straight() && wo.z != 0.0 => {
                 let (o, i) = Self::flipped(wo, wi);
@@ -214,10 +240,16 @@ impl MibGlossyRefraction {
             }
             back(i)
         } else {
-            if wo.z < 0.0 {
+            if wo.z < 0.0 && self.base == Rgb::ZERO {
                 return None;
             }
-            cosine_hemisphere(u)
+            let w = cosine_hemisphere(u);
+            // On the back: reflected below, or transmitted above.
+            if wo.z < 0.0 && !self.base_through {
+                Vec3A::new(w.x, w.y, -w.z)
+            } else {
+                w
+            }
         };
         let pdf = self.pdf(wo, wi);
         (pdf > 0.0).then(|| BsdfSample { wi, f: self.eval(wo, wi), pdf, delta: false })
@@ -235,8 +267,16 @@ impl MibGlossyRefraction {
         !(self.straight() && self.dist.is_none())
     }
 
+    /// Whether a transmitted sample seen from `wo` may be the back material's diffuse
+    /// transmission rather than the glossy lobe's (then [`MibGlossyRefraction::glossy_share`]
+    /// tells them apart).
+    pub fn base_transmits(&self, wo: Vec3A) -> bool {
+        wo.z < 0.0 && self.base_through && self.base != Rgb::ZERO
+    }
+
     /// The glossy lobe's share of f(ωo, ωi) (luminance) for a non-delta sample: the
-    /// probability that it (a totally reflected ray, on ωo's side) rather than the top gave it.
+    /// probability that it (a totally reflected ray, on ωo's side, or a refracted one
+    /// beside a back material's diffuse transmission) rather than the top or back gave it.
     pub fn glossy_share(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         let all = luminance(self.eval(wo, wi));
         if all > 0.0 {
@@ -267,6 +307,12 @@ pub struct MibGlossyRefractionLobe {
     pub dist: Option<Beckmann>,
     /// A(ωo) entering from the front and leaving from the back.
     kept: Option<(UpperFraction, UpperFraction)>,
+    /// The back material's Lambertian albedo (`back_material`: what the classic shader
+    /// adds seen from the back, in place of the top material).
+    pub back: Rgb,
+    /// `render_reverse_of_back_material`: the back material is lit from the front's side
+    /// (a diffuse transmission) rather than from the back's.
+    pub back_through: bool,
 }
 
 impl MibGlossyRefractionLobe {
@@ -283,17 +329,24 @@ impl MibGlossyRefractionLobe {
                 UpperFraction::of(&d, |o| kept_fraction(&d, o, ior, n)),
             )
         });
-        MibGlossyRefractionLobe { color, curve, ior, dist, kept }
+        MibGlossyRefractionLobe { color, curve, ior, dist, kept, back: Rgb::ZERO, back_through: false }
+    }
+
+    /// The lobe with a back material of Lambertian albedo `back`, lit from the front's
+    /// side (`through`, mental ray's `render_reverse_of_back_material`) or the back's.
+    pub fn with_back(self, back: Rgb, through: bool) -> MibGlossyRefractionLobe {
+        MibGlossyRefractionLobe { back, back_through: through, ..self }
     }
 
     /// The BSDF seen from `wo` (local frame, z = the front normal) over a top of Lambertian
-    /// albedo `base`.
+    /// albedo `base` (the back material's albedo seen from the back).
     pub fn bsdf(&self, base: Rgb, wo: Vec3A) -> MibGlossyRefraction {
         let front = wo.z > 0.0;
         let w = edge_weight(wo.z.abs(), self.curve);
         let a = self.kept.as_ref().map_or(1.0, |(f, b)| if front { f.at(wo) } else { b.at(wo) });
         MibGlossyRefraction {
-            base: if front { base } else { Rgb::ZERO },
+            base: if front { base } else { self.back },
+            base_through: !front && self.back_through,
             tint: self.color * (w.max(0.0) / a),
             dist: self.dist,
             eta: if front { 1.0 / self.ior } else { self.ior },

@@ -148,7 +148,8 @@ pub enum SurfaceModel {
     /// Lambertian base of the `diffuse` colour (its base material's).
     MibGlossy(Box<bsdf::MibGlossyLobe>),
     /// mental ray's `mib_glossy_refraction`: its Ward-spread (or sharp) refraction under a
-    /// Lambertian top of the `diffuse` colour (its top material's) on the front.
+    /// Lambertian top of the `diffuse` colour (its top material's) on the front, and the
+    /// lobe's back material on the back.
     MibGlossyRefraction(Box<bsdf::MibGlossyRefractionLobe>),
 }
 

@@ -730,7 +730,7 @@ pub fn trace_camera_path_into(
         }
         if levels::reflects(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
             reflections += 1;
-        } else if levels::refracts(&bsdf, wo, &bs) {
+        } else if levels::refracts(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
             refractions += 1;
         }
         let bounce_weight = bs.weight();

@@ -142,3 +142,31 @@ fn the_kept_share_table_follows_the_quadrature() {
     let a80 = upper_fraction(&Beckmann::new(0.3, 0.3), Vec3A::new(0.985, 0.0, 0.174), 256);
     assert!(a80 < 0.97 && a80 > 0.5, "{a80}");
 }
+
+/// `environment_color` where `reflection_color` is 0: the lobe of colour (0.8, 0, 0.8)
+/// and environment colour (0.2, 0.4, 1) carries (0.8, 0.4, 0.8) (its samples' weight
+/// over a glossy direction is that × the view curve / A, exactly as a lobe of that
+/// colour's, 1e-6), reflects (1, 0, 1) of what it finds (f for lights: green 0) and
+/// weighs the environment by (0.25, 1, 1.25); a lobe without environment colour carries
+/// its own colour, sees all of it.
+#[test]
+fn environment_colour_is_carried_where_the_reflection_colour_is_black() {
+    let lobe = MibGlossyLobe::new(Rgb::new(0.8, 0.0, 0.8), (1.0, 1.0, 5.0), (0.2, 0.2)).with_reach(
+        Rgb::new(0.2, 0.4, 1.0),
+        0.0,
+        2.0,
+    );
+    assert_eq!(lobe.carried(), Rgb::new(0.8, 0.4, 0.8));
+    assert_eq!(lobe.seen(), Rgb::new(1.0, 0.0, 1.0));
+    assert!((lobe.environment_ratio() - Rgb::new(0.25, 1.0, 1.25)).abs().max_element() < 1e-6);
+    let twin = MibGlossyLobe::new(Rgb::new(0.8, 0.4, 0.8), (1.0, 1.0, 5.0), (0.2, 0.2));
+    let wo = Vec3A::new(0.3, 0.0, 0.95).normalize();
+    let (b, t) = (lobe.bsdf(Rgb::ZERO, wo), twin.bsdf(Rgb::ZERO, wo));
+    let s = b.sample(wo, Vec2::new(0.3, 0.6), 0.5).expect("a glossy sample");
+    let s2 = t.sample(wo, Vec2::new(0.3, 0.6), 0.5).expect("a glossy sample");
+    assert!((s.weight() - s2.weight()).abs().max_element() < 1e-6, "{} vs {}", s.weight(), s2.weight());
+    let f = b.eval(wo, s.wi);
+    assert!(f.y == 0.0 && (f.x - s2.f.x).abs() < 1e-6 * s2.f.x.max(1.0), "{f} vs {}", s2.f);
+    let plain = MibGlossyLobe::new(Rgb::new(0.8, 0.0, 0.8), (1.0, 1.0, 5.0), (0.2, 0.2));
+    assert_eq!((plain.carried(), plain.seen()), (Rgb::new(0.8, 0.0, 0.8), Rgb::ONE));
+}

@@ -20,10 +20,10 @@
 //! rays included). `max_distance`, `falloff` and `environment_color` are the lobe's: its
 //! rays take the environment past the distance and fade towards it nearer, and weigh it
 //! by `environment_color` where `reflection_color` weighs what they find (`render`'s
-//! `integrator::glossy_reach`). Not honoured, warned where they change the result:
-//! `environment_color` in channels where `reflection_color` is 0 (the lobe carries
-//! nothing there), `single_env_sample` with a spread lobe and an environment colour (a
-//! per-pixel economy of the classic shader, one environment lookup along the mirror
+//! `integrator::glossy_reach`); in channels where `reflection_color` is 0 the lobe carries
+//! `environment_color` and reflects nothing it finds (`bsdf::MibGlossyLobe::carried`,
+//! `seen`). Not honoured, warned where they change the result: `single_env_sample` with
+//! a spread lobe and an environment colour (a per-pixel economy of the classic shader, one environment lookup along the mirror
 //! direction for all its rays; a path has one ray per bounce, which looks the environment
 //! up along its own direction: there is nothing to share), a connected
 //! `reflection_color` or spread (their defaults).
@@ -68,25 +68,13 @@ pub(super) fn glossy_reflection(r: &mut Reader, params: &[Param], lib: &Library,
     );
     let spreads = (r.scalar(params, "u_spread", 0.1), r.scalar(params, "v_spread", 0.1));
     let samples = r.scalar(params, "samples", 16.0);
-    if samples <= 0.0 || color == Rgb::ZERO {
+    if samples <= 0.0 || (color == Rgb::ZERO && env_color == Rgb::ZERO) {
         // Nothing cast (or nothing reflected): the base alone.
-        if samples > 0.0 && env_color != Rgb::ZERO {
-            r.warn(format!(
-                "mib_glossy_reflection's environment_color {env_color} under a black reflection_color is not honoured \
-                 by the path engine (the base alone)"
-            ));
-        }
         return surface;
     }
     let max_distance = r.scalar(params, "max_distance", 0.0);
     let falloff = r.scalar(params, "falloff", 2.0);
     let lobe = MibGlossyLobe::new(color, curve, spreads).with_reach(env_color, max_distance, falloff);
-    if (0..3).any(|c| color[c] <= 0.0 && env_color[c] > 0.0) {
-        r.warn(format!(
-            "mib_glossy_reflection's environment_color {env_color} has light where its reflection_color {color} \
-             has none; the path engine's glossy rays carry nothing there"
-        ));
-    }
     if lobe.dist.is_some() && env_color != Rgb::ZERO && r.flag(params, "single_env_sample", true) {
         r.warn(
             "mib_glossy_reflection's single_env_sample is not honoured by the path engine (the environment is looked \

@@ -14,13 +14,18 @@
 //!
 //! Parameters without a path-tracing counterpart: `samples` only sets the classic
 //! shader's noise, except that 0 casts nothing (the top alone); `dispersion` and
-//! `spectrum` are ignored by both engines. Not honoured, warned: `back_material` (nothing
-//! is added seen from inside; it would map onto a Lambertian layer seen from the back —
-//! diffuse reflection inside, or diffuse transmission of the outside's light with
-//! `render_reverse_of_back_material` — not built yet), `max_distance` with
+//! `spectrum` are ignored by both engines. `back_material` (a shader the path engine
+//! translates, kept as its diffuse colour as the top is) is added seen from the back, in
+//! place of the top: a Lambertian reflection of the light on the back's side, or with
+//! `render_reverse_of_back_material` (the classic shader then shades it with the normal
+//! facing out) a Lambertian transmission of the light on the front's side; its
+//! connected parameters keep their constant values and its emission is not shown
+//! (warned). Not honoured, warned: `max_distance` with
 //! `deep_material` (no fade: the classic shader blends its refracted rays towards the
-//! deep material's colour shaded at the entry point, a lit colour rather than radiance
-//! found along the ray, which has no clean path-tracing counterpart). `u_axis` (constant
+//! deep material's colour shaded once at the entry point, a lit colour rather than
+//! radiance found along the ray; a path reading needs that colour as a second estimate at
+//! the entry point — direct and indirect light on a Lambertian of the deep colour —
+//! weighted by the fade of the segment traced next: `docs/maya_coverage.md`). `u_axis` (constant
 //! or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
@@ -62,13 +67,20 @@ pub(super) fn glossy_refraction(r: &mut Reader, params: &[Param], lib: &Library,
     let ior = r.scalar(params, "ior", 1.0);
     let spreads = (r.scalar(params, "u_spread", 0.1), r.scalar(params, "v_spread", 0.1));
     let samples = r.scalar(params, "samples", 16.0);
-    if samples <= 0.0 || color == Rgb::ZERO {
+    let back = match shader("back_material") {
+        Some(Value::Connect(target) | Value::Str(target)) => back_albedo(r, &target.text, lib, depth)
+            .map(|albedo| (albedo, r.flag(params, "render_reverse_of_back_material", false))),
+        _ => None,
+    };
+    let refracts = samples > 0.0 && color != Rgb::ZERO;
+    if !refracts && back.is_none() {
         // Nothing cast (or nothing refracted): the top alone.
         return surface;
     }
-    let lobe = MibGlossyRefractionLobe::new(color, curve, ior, spreads);
-    if matches!(shader("back_material"), Some(Value::Connect(_) | Value::Str(_))) {
-        r.warn("mib_glossy_refraction's back_material is not honoured by the path engine (nothing is added seen from inside)".into());
+    // (Without refraction, a lobe of colour 0: the top on the front, the back behind.)
+    let mut lobe = MibGlossyRefractionLobe::new(if refracts { color } else { Rgb::ZERO }, curve, ior, spreads);
+    if let Some((albedo, through)) = back {
+        lobe = lobe.with_back(albedo, through);
     }
     if r.scalar(params, "max_distance", 0.0) > 0.0 {
         r.warn(
@@ -81,4 +93,38 @@ pub(super) fn glossy_refraction(r: &mut Reader, params: &[Param], lib: &Library,
     }
     surface.model = SurfaceModel::MibGlossyRefraction(Box::new(lobe));
     surface
+}
+
+/// The Lambertian albedo of the back material `target` (its diffuse colour, as the top
+/// material's), warning where the path engine keeps less of it: a model that is not
+/// Lambertian, parameters connected to shaders (their constant values), emission.
+fn back_albedo(r: &mut Reader, target: &str, lib: &Library, depth: u32) -> Option<Rgb> {
+    if depth >= 8 {
+        return None;
+    }
+    let Some((decl, inner)) = lib.shaders.get(target).and_then(|d| first_call(&d.list.0, lib)) else {
+        r.warn(format!("mib_glossy_refraction's back_material '{target}' is not a shader mira knows; black"));
+        return None;
+    };
+    // The back material's connections would drive the top's parameters: dropped.
+    let bound = r.bindings.len();
+    let back = r.call(decl, inner, lib, depth + 1);
+    if r.bindings.len() > bound {
+        r.bindings.truncate(bound);
+        r.warn(format!(
+            "mib_glossy_refraction's back_material '{target}' has connected parameters; the path engine keeps their \
+             constant values"
+        ));
+    }
+    if back.model != SurfaceModel::Lambert {
+        r.warn(
+            "mib_glossy_refraction's back material is kept as its diffuse colour under the glossy refraction".into(),
+        );
+    }
+    if back.emission != Rgb::ZERO {
+        r.warn(format!(
+            "mib_glossy_refraction's back_material '{target}' emits; the path engine does not show its emission"
+        ));
+    }
+    Some(back.diffuse)
 }

@@ -58,9 +58,11 @@ material "m" "mib_glossy_reflection" ("base_material" "base", "reflection_color"
 
 /// Parameters the path engine does not honour are named in warnings: an
 /// `single_env_sample` (default on) with a spread lobe, a `u_axis` connected where there
-/// is no shader graph to follow (translated without one), an `environment_color` with
-/// light in a channel where `reflection_color` has none. `max_distance` (5), `falloff`
-/// (its default 2) and `environment_color` (0.2) are the lobe's, unwarned.
+/// is no shader graph to follow (translated without one). `max_distance` (5), `falloff`
+/// (its default 2) and `environment_color` (0.2) are the lobe's, unwarned; so is an
+/// `environment_color` with light where `reflection_color` has none (the lobe carries it
+/// there and sees nothing it finds: `carried` 1, `seen` 0 in those channels), even under
+/// a black `reflection_color`.
 #[test]
 fn unhonoured_parameters_are_warned_about() {
     let (s, warnings) = translated(
@@ -76,11 +78,16 @@ material "m" "mib_glossy_reflection" ("reflection_color" 1 1 1, "environment_col
     assert!(!warnings.iter().any(|w| w.contains("max_distance") || w.contains("environment_color")), "{warnings:?}");
     let SurfaceModel::MibGlossy(lobe) = &s.model else { panic!("a mib_glossy lobe") };
     assert_eq!((lobe.max_distance, lobe.falloff, lobe.env_color), (5.0, 2.0, Rgb::splat(0.2)));
-    let (_, warnings) = translated(
-        r#"material "m" "mib_glossy_reflection" ("reflection_color" 1 0 1, "environment_color" 1 1 1) end material
-"#,
-    );
-    assert!(warnings.iter().any(|w| w.contains("environment_color")), "{warnings:?}");
+    for (reflection, seen) in [("1 0 1", Rgb::new(1.0, 0.0, 1.0)), ("0 0 0", Rgb::ZERO)] {
+        let (t, warnings) = translated(&format!(
+            r#"material "m" "mib_glossy_reflection" ("reflection_color" {reflection}, "environment_color" 1 1 1,
+    "single_env_sample" off) end material
+"#
+        ));
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let SurfaceModel::MibGlossy(lobe) = &t.model else { panic!("a mib_glossy lobe: {:?}", t.model) };
+        assert_eq!((lobe.carried(), lobe.seen()), (Rgb::ONE, seen), "reflection_color {reflection}");
+    }
     assert_eq!((s.tangent_axis, s.tangent_angle), (None, Some(0.0)), "dP/du is the axis");
 }
 
@@ -254,12 +261,52 @@ material "m" "mib_glossy_refraction" ("top_material" "top", "samples" 0) end mat
     assert_eq!((alone.model, alone.diffuse), (SurfaceModel::Lambert, Rgb::splat(0.4)));
     let (_, warnings) = translated(
         r#"shader "top" "mib_illum_lambert" ("diffuse" 0.4 0.4 0.4)
-material "m" "mib_glossy_refraction" ("top_material" "top", "back_material" "top", "max_distance" 3,
-    "v_axis" 1 0 0) end material
+material "m" "mib_glossy_refraction" ("top_material" "top", "max_distance" 3, "v_axis" 1 0 0) end material
 "#,
     );
     assert!(!warnings.iter().any(|w| w.contains("v_axis")), "{warnings:?}");
-    for what in ["back_material", "max_distance"] {
-        assert!(warnings.iter().any(|w| w.contains(what)), "no warning about {what}: {warnings:?}");
+    assert!(warnings.iter().any(|w| w.contains("max_distance")), "no warning about max_distance: {warnings:?}");
+}
+
+/// `mib_glossy_refraction`'s `back_material` (a `mib_illum_lambert`): its diffuse colour
+/// is the lobe's base seen from the back (exactly), reflected on the back's side, or
+/// transmitted from the front's with `render_reverse_of_back_material`; the top stays the
+/// front's; no warning. A black `refraction_color` with a back material keeps both (a
+/// lobe of colour 0). A back material whose colour is connected to a texture warns (its
+/// constant colour is kept, the top's colour is not driven by it).
+#[test]
+fn glossy_refraction_shows_its_back_material_from_the_back() {
+    for (reverse, through) in [("off", false), ("on", true)] {
+        let (s, warnings) = translated(&format!(
+            r#"shader "top" "mib_illum_lambert" ("diffuse" 0.3 0.2 0.1)
+shader "back" "mib_illum_lambert" ("diffuse" 0.1 0.5 0.9)
+material "m" "mib_glossy_refraction" ("top_material" "top", "back_material" "back",
+    "render_reverse_of_back_material" {reverse}, "ior" 1.5) end material
+"#
+        ));
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(s.diffuse, Rgb::new(0.3, 0.2, 0.1));
+        let SurfaceModel::MibGlossyRefraction(lobe) = &s.model else { panic!("{:?}", s.model) };
+        let inside = lobe.bsdf(s.diffuse, -Vec3A::Z);
+        assert_eq!((inside.base, inside.base_through), (Rgb::new(0.1, 0.5, 0.9), through));
+        let front = lobe.bsdf(s.diffuse, Vec3A::Z);
+        assert_eq!((front.base, front.base_through), (s.diffuse, false));
     }
+    let (s, warnings) = translated(
+        r#"shader "back" "mib_illum_lambert" ("diffuse" 0.1 0.5 0.9)
+material "m" "mib_glossy_refraction" ("back_material" "back", "refraction_color" 0 0 0) end material
+"#,
+    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let SurfaceModel::MibGlossyRefraction(lobe) = &s.model else { panic!("{:?}", s.model) };
+    assert_eq!(lobe.color, Rgb::ZERO);
+    assert_eq!(lobe.bsdf(s.diffuse, -Vec3A::Z).base, Rgb::new(0.1, 0.5, 0.9));
+    let (s, warnings, _) = translated_with_graph(
+        r#"shader "tex" "mib_color_mix" ("num" 0, "color_base" 0.2 0.2 0.2 1)
+shader "back" "mib_illum_lambert" ("diffuse" = "tex")
+material "m" "mib_glossy_refraction" ("back_material" "back") end material
+"#,
+    );
+    assert!(warnings.iter().any(|w| w.contains("back_material 'back' has connected")), "{warnings:?}");
+    assert!(matches!(s.varying, material::Varying::Constant), "{:?}", s.varying);
 }

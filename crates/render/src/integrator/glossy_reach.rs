@@ -9,9 +9,13 @@
 //! weight f·cos/pdf the glossy lobe gave (g) and the base's (b = 1 − g where f > 0; all
 //! of it glossy for the mirror). The segment that follows is then split exactly: at a
 //! surface or light at distance d, the environment along the ray weighed by
-//! t·ratio⊙g (ratio = `environment_color` / `reflection_color`) is added and the path goes
-//! on with b + (1 − t)·g; a ray that leaves the scene takes the environment by
-//! b + ratio⊙g. Next-event estimation does not sample the scene's environment at such a
+//! t·ratio⊙g (ratio: see below) is added and the path goes
+//! on with b + (1 − t)·s⊙g; a ray that leaves the scene takes the environment by
+//! b + ratio⊙g. In channels where `reflection_color` is 0 and `environment_color` is
+//! not, the lobe carries `environment_color` ([`bsdf::MibGlossyLobe::carried`]): ratio is
+//! 1 there and s (the share of what the rays find that is reflected,
+//! [`bsdf::MibGlossyLobe::seen`]) 0; elsewhere s is 1 and ratio = `environment_color` /
+//! `reflection_color`. Next-event estimation does not sample the scene's environment at such a
 //! surface (its shadow rays know nothing of the split), so a ray that leaves takes all of
 //! it (no MIS), as at a material with its own environment (`material_env`). The
 //! environment is that one where the material has it (the shader's own `environment`
@@ -42,6 +46,9 @@ pub(super) fn reaches(model: &SurfaceModel) -> bool {
 pub(super) struct Reach {
     /// The glossy lobe's share of the bounce's weight, per channel (the base has the rest).
     glossy: Rgb,
+    /// The share of the glossy lobe's carried colour it reflects of what its rays find
+    /// ([`bsdf::MibGlossyLobe::seen`]).
+    seen: Rgb,
     /// The base's share.
     base: Rgb,
     /// `environment_color` / `reflection_color`, per channel.
@@ -76,7 +83,7 @@ impl Reach {
             // Only the mirror has a delta.
             (Rgb::ZERO, Rgb::ONE)
         } else {
-            let (fb, fg) = b.eval_split(wo, bs.wi);
+            let (fb, fg) = b.carried_split(wo, bs.wi);
             let sum = fb + fg;
             let share = |x: Rgb| {
                 Rgb::new(
@@ -89,6 +96,7 @@ impl Reach {
         };
         Some(Reach {
             glossy,
+            seen: lobe.seen(),
             base,
             ratio: lobe.environment_ratio(),
             max_distance: lobe.max_distance,
@@ -100,7 +108,7 @@ impl Reach {
     /// the factor the path's throughput keeps and the weight of the environment along it.
     pub(super) fn split(&self, d: f32) -> (Rgb, Rgb) {
         let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
-        (self.base + self.glossy * (1.0 - t), self.ratio * self.glossy * t)
+        (self.base + self.glossy * self.seen * (1.0 - t), self.ratio * self.glossy * t)
     }
 }
 

@@ -13,7 +13,9 @@
 //! transmitted sample of `mib_glossy_refraction` ([`bsdf::Bsdf::MibGlossyRefraction`],
 //! whose rays through the surface the classic shader casts as refraction rays, but for
 //! the sharp straight pass of `ior` 1, a transparency ray); its totally reflected samples
-//! count as reflections (the classic shader casts them as reflection rays).
+//! count as reflections (the classic shader casts them as reflection rays); a transmitted
+//! sample its back material's diffuse transmission may have given counts with the glossy
+//! lobe's share of f.
 
 use bsdf::{Bsdf, BsdfSample};
 use glam::Vec3A;
@@ -51,13 +53,20 @@ pub(super) fn reflects(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample, u: impl FnOnce()
 }
 
 /// Whether the sample `bs` of `bsdf` seen from `wo` (local frame) is a transmission that
-/// raises the refraction level.
+/// raises the refraction level; `u` gives a number in [0, 1) for the choice between
+/// `mib_glossy_refraction`'s glossy lobe and its back material's diffuse transmission
+/// (`render_reverse_of_back_material`, which the classic shader lights without casting a
+/// refraction ray), by the glossy lobe's share of f.
 #[inline]
-pub(super) fn refracts(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> bool {
+pub(super) fn refracts(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample, u: impl FnOnce() -> f32) -> bool {
     if (bs.wi.z > 0.0) == (wo.z > 0.0) {
         return false;
     }
     match bsdf {
+        Bsdf::MibGlossyRefraction(g) if !bs.delta && g.base_transmits(wo) => {
+            let share = g.glossy_share(wo, bs.wi);
+            g.refracts() && share > 0.0 && u() < share
+        }
         Bsdf::MibGlossyRefraction(g) => g.refracts(),
         _ => bs.delta,
     }

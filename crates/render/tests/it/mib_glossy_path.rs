@@ -80,7 +80,7 @@ fn reflection_limit_counts_mib_glossy_reflection_samples_in_the_path_engine() {
 /// glowing 1 for x < 0 and 0.2 for x > 0 (Maya lambert of colour 0 and that
 /// incandescence), seen from above.
 fn two_tone(spread: f32) -> String {
-    let view = support::maya_view::top_down(16).replace("samples 0 2", "samples 2 2");
+    let view = support::two_tone::view(16);
     let material = format!(
         r#"material "g" opaque "mib_glossy_reflection" ("reflection_color" 0.8 0.8 0.8,
     "environment_color" 0.8 0.8 0.8, "samples" 64, "single_env_sample" off, "u_spread" {spread}, "v_spread" {spread}) end material"#
@@ -94,7 +94,7 @@ fn two_tone(spread: f32) -> String {
 #[test]
 fn the_path_engine_agrees_with_the_classic_glossy_reflection() {
     for spread in [0.05f32, 0.3] {
-        support::two_tone::assert_path_agrees_with_classic(&two_tone(spread), 16, spread);
+        support::two_tone::assert_path_agrees_with_classic(&two_tone(spread), 16, &format!("spread {spread}"));
     }
 }
 
@@ -150,28 +150,12 @@ fn two_tone_anisotropic(axis: &str) -> String {
 /// halves of the two axes differ by over 10 % (the axis matters).
 #[test]
 fn u_axis_lays_the_spreads_alike_in_both_engines() {
-    let half = |px: &[Vec3A], left: bool| -> Vec3A {
-        let sel: Vec<Vec3A> = px.iter().enumerate().filter(|(i, _)| ((i % 16) < 8) == left).map(|(_, p)| *p).collect();
-        mean(&sel)
-    };
     let mut classic_right = Vec::new();
     for axis in ["1 0 0", "0 0 1"] {
         let text = two_tone_anisotropic(axis);
         assert!(text.contains("u_axis"), "{text}");
-        let classic = pixels(&text, EngineKind::Classic, 4);
-        let path = pixels(&text, EngineKind::Path, 256);
-        for (what, c, p) in [
-            ("image", mean(&classic), mean(&path)),
-            ("left half", half(&classic, true), half(&path, true)),
-            ("right half", half(&classic, false), half(&path, false)),
-        ] {
-            println!("u_axis {axis}, {what}: classic {c}, path {p}");
-            assert!(
-                (p - c).abs().max_element() <= 0.02 * c.max_element(),
-                "u_axis {axis}, {what}: path {p} vs classic {c}"
-            );
-        }
-        classic_right.push(half(&classic, false).x);
+        let classic = support::two_tone::assert_path_agrees_with_classic(&text, 16, &format!("u_axis {axis}"));
+        classic_right.push(support::two_tone::half_mean(&classic, 16, false).x);
     }
     assert!(
         (classic_right[0] - classic_right[1]).abs() > 0.1 * classic_right[1],
@@ -252,24 +236,27 @@ fn glossy_rays_past_max_distance_take_the_environment() {
 
 /// `environment_color` weighs what the glossy rays take from the environment,
 /// `reflection_color` what they find, in both engines: a mirror (spread 0) and a
-/// spread-0.01 lobe of `reflection_color` 0.8 and `environment_color` (0.2, 0.4, 1) show
-/// (0.2, 0.4, 1) ⊙ the environment (0.3, 0.6, 0.9) under the open sky and past
-/// `max_distance` 3 below the ceiling, and 0.8 × the ceiling's 1 below it without a
-/// limit: at every pixel within 1e-3.
+/// spread-0.01 lobe of `reflection_color` 0.8, or (0.8, 0, 0.8) (green: the environment
+/// alone), and `environment_color` (0.2, 0.4, 1) show (0.2, 0.4, 1) ⊙ the environment
+/// (0.3, 0.6, 0.9) under the open sky and past `max_distance` 3 below the ceiling, and
+/// `reflection_color` × the ceiling's 1 below it without a limit: at every pixel within
+/// 1e-3.
 #[test]
 fn environment_color_weighs_the_environment_in_both_engines() {
     let env = Vec3A::new(0.2, 0.4, 1.0) * Vec3A::new(0.3, 0.6, 0.9);
-    for spread in [0.0f32, 0.01] {
-        for (extra, ceiling, want) in
-            [("", false, env), (r#", "max_distance" 3"#, true, env), ("", true, Vec3A::splat(0.8))]
-        {
-            let text = reach_scene(spread, "0.2 0.4 1", extra, ceiling);
-            for engine in [EngineKind::Classic, EngineKind::Path] {
-                for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
-                    assert!(
-                        (*p - want).abs().max_element() < 1e-3,
-                        "spread {spread}{extra}, ceiling {ceiling}, {engine:?} pixel {i}: {p} vs {want}"
-                    );
+    for (reflection, seen) in [("0.8 0.8 0.8", Vec3A::splat(0.8)), ("0.8 0 0.8", Vec3A::new(0.8, 0.0, 0.8))] {
+        for spread in [0.0f32, 0.01] {
+            for (extra, ceiling, want) in [("", false, env), (r#", "max_distance" 3"#, true, env), ("", true, seen)] {
+                let text = reach_scene(spread, "0.2 0.4 1", extra, ceiling)
+                    .replace(r#""reflection_color" 0.8 0.8 0.8"#, &format!(r#""reflection_color" {reflection}"#));
+                for engine in [EngineKind::Classic, EngineKind::Path] {
+                    for (i, p) in pixels(&text, engine, 8).iter().enumerate() {
+                        assert!(
+                            (*p - want).abs().max_element() < 1e-3,
+                            "reflection {reflection}, spread {spread}{extra}, ceiling {ceiling}, {engine:?} pixel {i}: \
+                             {p} vs {want}"
+                        );
+                    }
                 }
             }
         }
