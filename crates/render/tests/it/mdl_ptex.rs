@@ -263,7 +263,13 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
                     let x = -1.0 + (px + a as f32 / 16.0) / 4.0;
                     let y = 1.0 - (py + b as f32 / 16.0) / 4.0;
                     // The seam x = 0 itself belongs to either quad: stay on the pixel's side.
-                    let x = if px == 3.0 { x.min(-1e-4) } else if px == 4.0 { x.max(1e-4) } else { x };
+                    let x = if px == 3.0 {
+                        x.min(-1e-4)
+                    } else if px == 4.0 {
+                        x.max(1e-4)
+                    } else {
+                        x
+                    };
                     let c = expected_quads(&ptex, x, y);
                     for ch in 0..3 {
                         lo[ch] = lo[ch].min(c[ch]);
