@@ -411,8 +411,8 @@ impl LightSource {
                 if let Shape::Sphere { radius } = self.shape {
                     return self.sample_sphere_cone(p, radius, *l, u);
                 }
-                if let Shape::Rect { u: eu, v: ev, normal } = self.shape {
-                    return rect_sample(self.position, eu, ev, normal, *l, *two_sided, p, u);
+                if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
+                    return rect_sample(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
                 }
                 let (q, n) = self.point_on(u);
                 let d = q - p;
@@ -542,10 +542,10 @@ impl LightSource {
     /// `sample_any_at`, out of line.
     #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
-        if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal }, true) =
+        if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal, area }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
-            return rect_sample(self.position, eu, ev, normal, *l, *two_sided, p, u);
+            return rect_sample(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
         }
         self.sample_any_at(p, u, time)
     }
@@ -642,7 +642,7 @@ impl LightSource {
 }
 
 /// A sample of a rectangle of radiance `l` centred at `centre` (full edges `eu`, `ev`, unit
-/// normal `normal` on its emitting side; both sides when `two_sided`) seen from `p`: the
+/// normal `normal` on its emitting side, area `area`; both sides when `two_sided`) seen from `p`: the
 /// point picked uniformly by area by `u`, its density per solid angle. `None` when that
 /// point is `p` itself or faces away.
 #[allow(clippy::too_many_arguments)]
@@ -652,6 +652,7 @@ fn rect_sample(
     eu: Vec3A,
     ev: Vec3A,
     normal: Vec3A,
+    area: f32,
     l: Rgb,
     two_sided: bool,
     p: Vec3A,
@@ -671,6 +672,6 @@ fn rect_sample(
     if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
         return None;
     }
-    let pdf = dist2 / (cos_l.abs() * eu.cross(ev).length());
+    let pdf = dist2 / (cos_l.abs() * area);
     Some(LightSample { wi, dist, radiance: l, pdf, delta: false })
 }

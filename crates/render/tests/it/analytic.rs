@@ -270,7 +270,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         kind: LightKind::Point,
         position: Vec3A::new(0.0, 0.0, 1.0),
         direction: -Vec3A::Z,
-        shape: Shape::Rect { u: Vec3A::new(2.0, 0.0, 0.0), v: Vec3A::new(0.0, 2.0, 0.0), normal: -Vec3A::Z },
+        shape: Shape::rect(Vec3A::new(2.0, 0.0, 0.0), Vec3A::new(0.0, 2.0, 0.0), -Vec3A::Z),
         output: Output::Radiance { l: Rgb::splat(e / std::f32::consts::PI), two_sided: false },
         spread: 0.0,
         cone: None,

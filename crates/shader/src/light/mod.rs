@@ -72,7 +72,7 @@ impl ShadingLight {
         let shape = self.shape.as_ref().map(|shape| match shape {
             Shape::Point | Shape::Sphere { .. } => shape.clone(),
             Shape::Mesh(mesh) => Shape::Mesh(std::sync::Arc::new(mesh.displaced(by))),
-            &Shape::Rect { u, v, normal } => Shape::Rect { u: edge(u), v: edge(v), normal: turn * normal },
+            &Shape::Rect { u, v, normal, .. } => Shape::rect(edge(u), edge(v), turn * normal),
             &Shape::Disc { normal, radius } => Shape::Disc { normal: turn * normal, radius },
             &Shape::Cylinder { axis, radius } => Shape::Cylinder { axis: edge(axis), radius },
         });

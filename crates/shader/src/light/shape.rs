@@ -16,7 +16,8 @@ use bsdf::Frame;
 pub enum Shape {
     /// A point (or the origin of a directional light).
     Point,
-    /// A parallelogram centred on the position, full edges `u` and `v`.
+    /// A parallelogram centred on the position, full edges `u` and `v`. Build it with
+    /// [`Shape::rect`], which works out `area` from the edges.
     Rect {
         /// First edge.
         u: Vec3A,
@@ -24,6 +25,9 @@ pub enum Shape {
         v: Vec3A,
         /// Unit normal of the emitting side.
         normal: Vec3A,
+        /// Its area, `u.cross(v).length()` (world units²): kept with the shape so that a
+        /// light sample's density needs no square root.
+        area: f32,
     },
     /// A disc centred on the position.
     Disc {
@@ -50,12 +54,18 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The parallelogram of full edges `u`, `v` (world space) and unit normal `normal`
+    /// (its emitting side), with its area.
+    pub fn rect(u: Vec3A, v: Vec3A, normal: Vec3A) -> Shape {
+        Shape::Rect { u, v, normal, area: u.cross(v).length() }
+    }
+
     /// The shape of a scene area light (`None` for object and user shapes, which have no
     /// shape of their own).
     pub fn from_area(area: &AreaShape) -> Option<Shape> {
         Some(match area {
             AreaShape::Rectangle { edge_u, edge_v, normal } => {
-                Shape::Rect { u: edge_u.as_vec3a(), v: edge_v.as_vec3a(), normal: normal.as_vec3a() }
+                Shape::rect(edge_u.as_vec3a(), edge_v.as_vec3a(), normal.as_vec3a())
             }
             AreaShape::Disc { normal, radius } => Shape::Disc { normal: normal.as_vec3a(), radius: *radius as f32 },
             AreaShape::Sphere { radius } => Shape::Sphere { radius: *radius as f32 },
@@ -81,7 +91,7 @@ impl Shape {
     pub fn area(&self) -> f32 {
         match *self {
             Shape::Point => 0.0,
-            Shape::Rect { u, v, .. } => u.cross(v).length(),
+            Shape::Rect { area, .. } => area,
             Shape::Disc { radius, .. } => PI * radius * radius,
             Shape::Sphere { radius } => 4.0 * PI * radius * radius,
             Shape::Cylinder { axis, radius } => 2.0 * PI * radius * axis.length(),
@@ -95,7 +105,7 @@ impl Shape {
     pub fn point_on(&self, center: Vec3A, u: Vec2) -> (Vec3A, Vec3A) {
         match *self {
             Shape::Point => (center, Vec3A::ZERO),
-            Shape::Rect { u: eu, v: ev, normal } => (center + eu * (u.x - 0.5) + ev * (u.y - 0.5), normal),
+            Shape::Rect { u: eu, v: ev, normal, .. } => (center + eu * (u.x - 0.5) + ev * (u.y - 0.5), normal),
             Shape::Disc { normal, radius } => {
                 let f = Frame::from_normal(normal);
                 let d = bsdf::concentric_disc(u) * radius;
@@ -148,7 +158,7 @@ impl Shape {
         };
         match *self {
             Shape::Mesh(ref m) => m.intersect(origin, dir, tmin, tmax),
-            Shape::Rect { u, v, normal } => {
+            Shape::Rect { u, v, normal, .. } => {
                 let (t, denom) = plane(normal)?;
                 let q = origin + dir * t - center;
                 // The edges need not be orthogonal: solve in the parallelogram's own basis.
@@ -201,11 +211,60 @@ impl Shape {
 mod tests {
     use super::*;
 
+    /// A rectangle keeps the area its edges give, `u.cross(v).length()`, bit for bit (what
+    /// light samples' densities used before the shape kept it), for edges of many lengths
+    /// and angles, and so does a rectangle carried by a rigid motion with a scale
+    /// ([`super::super::ShadingLight::moved`] rebuilds it from its moved edges).
+    #[test]
+    fn rectangles_keep_their_edges_area_bit_for_bit() {
+        let mut z = 0x5eed_u32;
+        let mut r = move || {
+            z ^= z << 13;
+            z ^= z >> 17;
+            z ^= z << 5;
+            (z >> 8) as f32 / (1u32 << 24) as f32
+        };
+        for _ in 0..1000 {
+            let scale = 10f32.powf(6.0 * r() - 3.0);
+            let u = Vec3A::new(r() - 0.5, r() - 0.5, r() - 0.5) * scale;
+            let v = Vec3A::new(r() - 0.5, r() - 0.5, r() - 0.5) * scale * (0.1 + r());
+            let n = u.cross(v).normalize_or(Vec3A::Z);
+            let s = Shape::rect(u, v, n);
+            assert_eq!(s.area().to_bits(), u.cross(v).length().to_bits(), "{u} {v}");
+            let by = glam::Affine3A::from_scale_rotation_translation(
+                glam::Vec3::splat(0.5 + 2.0 * r()),
+                glam::Quat::from_rotation_arc(glam::Vec3::Z, glam::Vec3::new(r() - 0.5, r(), 0.3).normalize()),
+                glam::Vec3::new(r(), r(), r()),
+            );
+            let light = super::super::ShadingLight {
+                name: "rect".into(),
+                shader: None,
+                kind: scene::LightKind::Point,
+                origin: Vec3A::ZERO,
+                direction: -Vec3A::Z,
+                spread: 0.0,
+                shape: Some(s),
+                user: false,
+                samples: (1, 1),
+                low: None,
+                visible: true,
+                exponent: 2.0,
+                to_local: glam::Mat3A::IDENTITY,
+                profile: None,
+                photons: None,
+            }
+            .moved(by);
+            let Some(Shape::Rect { u: mu, v: mv, area, .. }) = light.shape else { panic!("a rectangle") };
+            assert_eq!(area.to_bits(), mu.cross(mv).length().to_bits(), "{mu} {mv}");
+            assert_eq!(mu, by.transform_vector3a(u));
+        }
+    }
+
     #[test]
     fn sampled_points_lie_on_the_surface_and_are_hit_by_rays_through_them() {
         let c = Vec3A::new(1.0, 2.0, 3.0);
         let shapes = [
-            Shape::Rect { u: Vec3A::X * 2.0, v: Vec3A::new(0.5, 1.0, 0.0), normal: Vec3A::Z },
+            Shape::rect(Vec3A::X * 2.0, Vec3A::new(0.5, 1.0, 0.0), Vec3A::Z),
             Shape::Disc { normal: Vec3A::Z, radius: 0.7 },
             Shape::Sphere { radius: 0.5 },
         ];
