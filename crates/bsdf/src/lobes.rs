@@ -667,13 +667,15 @@ mod tests {
         }
     }
 
-    /// A `Bsdf` is at most 336 bytes (x86-64; 352 before the counts became bytes and the
-    /// weights moved out of the lobes' tuples, 320 before the Maya BSDF gained its
+    /// A `Bsdf` is at most 352 bytes (x86-64; 336 before the Maya BSDF's translucence
+    /// gained rampShader's light-angle share, one colour, and the Maya BSDF, whose
+    /// scalars filled their last 16 bytes, grew by 16; 352 before the counts became bytes
+    /// and the weights moved out of the lobes' tuples, 320 before the Maya BSDF gained its
     /// translucence — albedo, focus and share, 20 bytes — which made it the largest
     /// variant); this keeps it from growing unnoticed.
     #[test]
-    fn a_bsdf_is_336_bytes_at_most() {
-        assert!(std::mem::size_of::<Bsdf>() <= 336, "{}", std::mem::size_of::<Bsdf>());
+    fn a_bsdf_is_352_bytes_at_most() {
+        assert!(std::mem::size_of::<Bsdf>() <= 352, "{}", std::mem::size_of::<Bsdf>());
     }
 
     /// A compact sum is 336 bytes at most (x86-64), no more than the `Bsdf` that holds it;

@@ -180,6 +180,10 @@ pub struct MayaGlossy {
     /// translucence's albedo per unit of each hit's diffuse colour (t / `diffuse`), which
     /// then replaces [`MayaGlossy::translucence`] at every hit; `None`: constant.
     pub translucence_per_diffuse: Option<f32>,
+    /// rampShader's light-angle translucence: the share g (per channel, in [0, 1]) of
+    /// [`MayaGlossy::translucence`] that follows the light's angle
+    /// ([`translucence::light_angle_factor`]); zero: none (the lambert family's).
+    pub translucence_grazing: Rgb,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -207,6 +211,7 @@ impl MayaGlossy {
             translucence: Rgb::ZERO,
             focus: 0.0,
             translucence_per_diffuse: None,
+            translucence_grazing: Rgb::ZERO,
             albedo,
         }
     }
@@ -216,6 +221,13 @@ impl MayaGlossy {
     pub fn with_translucence(mut self, albedo: Rgb, focus: f32) -> MayaGlossy {
         self.translucence = albedo.max(Rgb::ZERO);
         self.focus = focus.max(0.0);
+        self
+    }
+
+    /// The same with the share `g` of the translucence that follows the light's angle
+    /// (see [`MayaGlossy::translucence_grazing`]; clamped to [0, 1]).
+    pub fn with_translucence_grazing(mut self, g: Rgb) -> MayaGlossy {
+        self.translucence_grazing = g.clamp(Rgb::ZERO, Rgb::ONE);
         self
     }
 
@@ -377,6 +389,7 @@ impl MayaGlossy {
             specular_ramp: self.specular_ramp,
             translucence,
             focus: self.focus,
+            translucence_grazing: self.translucence_grazing,
             diffuse_share,
             mirror_share,
             refraction_share,
@@ -420,6 +433,9 @@ pub struct MayaBsdf {
     pub translucence: Rgb,
     /// [`MayaGlossy::focus`].
     pub focus: f32,
+    /// [`MayaGlossy::translucence_grazing`]: f is further multiplied by
+    /// [`translucence::light_angle_factor`] at ωi.
+    pub translucence_grazing: Rgb,
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
     /// The probability of sampling the mirror.
@@ -483,7 +499,11 @@ impl MayaBsdf {
         if wo.z * wi.z >= 0.0 || self.translucence == Rgb::ZERO {
             return Rgb::ZERO;
         }
-        self.translucence * (translucence::forward_lobe(self.focus, -wo.dot(wi)) * FRAC_1_PI)
+        let f = self.translucence * (translucence::forward_lobe(self.focus, -wo.dot(wi)) * FRAC_1_PI);
+        if self.translucence_grazing == Rgb::ZERO {
+            return f;
+        }
+        f * translucence::light_angle_factor(self.translucence_grazing, wi.z.abs())
     }
 
     /// The density of the translucence's sampling ([`MayaBsdf::sample`]): cosine-weighted
@@ -492,6 +512,9 @@ impl MayaBsdf {
     fn translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if self.focus <= 0.0 {
             if wo.z * wi.z < 0.0 {
+                if self.translucence_grazing != Rgb::ZERO {
+                    return translucence::UNIFORM_PDF;
+                }
                 wi.z.abs() * FRAC_1_PI
             } else {
                 0.0
@@ -553,7 +576,9 @@ impl MayaBsdf {
         let wi = if u_lobe < self.diffuse_share {
             cosine_on_side(wo, u)?
         } else if u_lobe < self.diffuse_share + self.translucence_share {
-            if self.focus <= 0.0 {
+            if self.focus <= 0.0 && self.translucence_grazing != Rgb::ZERO {
+                translucence::uniform_opposite(wo, u)
+            } else if self.focus <= 0.0 {
                 -cosine_on_side(wo, u)?
             } else {
                 translucence::sample_about(-wo, self.focus, u)

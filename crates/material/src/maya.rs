@@ -25,9 +25,11 @@
 //! - rampShader: a Lambertian lobe whose albedo is the colour ramp at 1 (the surface
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); its light from
-//!   behind a diffuse transmission lobe of albedo C(0) · `translucence` (light angle: the
-//!   light straight behind) or C(1) · `translucence` (the other inputs), faded as the
-//!   lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
+//!   behind a transmission lobe: for the light-angle input the classic
+//!   t · C((1 + cos θ)/2) ⊙ L read as the ramp's chord over [0, ½] (albedo
+//!   t · (C(0) + C(½)), capped at 1, of which the share C(½)/(C(0) + C(½)) follows the
+//!   light's angle: `bsdf::MayaGlossy::translucence_grazing`), for the other inputs a
+//!   Lambertian one of albedo C(1) · `translucence`, faded as the lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
 //!   coverage, cut-out tint and fade, or for one that refracts its refraction's weight;
 //!   transparency fading the lit colour and incandescence only, as below); its highlight, `specularity` · `specularRollOff` ·
@@ -662,7 +664,13 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                         None => g,
                         Some(first) => {
                             let n = focus.unwrap_or(first.focus);
-                            first.with_translucence(first.translucence + g.translucence, n)
+                            // (A rampShader layer's light-angle share mixes by albedo.)
+                            let sum = first.translucence + g.translucence;
+                            let edge = first.translucence * first.translucence_grazing
+                                + g.translucence * g.translucence_grazing;
+                            let share = |e: f32, a: f32| if a > 0.0 { e / a } else { 0.0 };
+                            let grazing = Rgb::new(share(edge.x, sum.x), share(edge.y, sum.y), share(edge.z, sum.z));
+                            first.with_translucence(sum, n).with_translucence_grazing(grazing)
                         }
                     });
                 }

@@ -32,13 +32,24 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
         })
     };
     let c = color_at(1.0);
-    // The light from behind (`translucence` t), a diffuse transmission lobe of this
-    // albedo before the fade: the classic C((1 + cos θ)/2) ⊙ L · t of the light-angle
-    // input is C(0) · t for a light straight behind (exactly a Lambertian transmission
-    // where the ramp falls linearly from C(0) at 0 to black at 1/2, as the front's
-    // C(1) · (d + t) is exact for Maya's documented recipe); the other inputs' C ⊙ L · t ·
-    // |cos θ| takes C at 1, as their albedo does.
-    let behind = if input == ColorInput::LightAngle { color_at(0.0) } else { c } * t.max(0.0);
+    // The light from behind (`translucence` t), a transmission lobe of this albedo
+    // before the fade. The light-angle input's classic P(u) ⊙ L = t · C((1 − u)/2) ⊙ L
+    // for a light behind at |cos θ| = u (no cosine factor) is read as the chord of
+    // P(1) = t · C(0) and P(0) = t · C(½): a lobe of albedo A = P(1) + P(0) of which the
+    // share g = P(0)/A follows the light's angle
+    // (`bsdf::maya_highlight::translucence::light_angle_factor`; exact where the ramp is
+    // linear over [0, ½]), A capped at 1 per channel (energy; the classic shader, which
+    // passes more, is then brighter). The other inputs' C ⊙ L · t · |cos θ| is a
+    // Lambertian transmission taking C at 1, as their albedo does.
+    let (behind, grazing) = if input == ColorInput::LightAngle {
+        let (straight, edge) = (color_at(0.0) * t.max(0.0), color_at(0.5) * t.max(0.0));
+        let total = straight + edge;
+        let share = |e: f32, a: f32| if a > 0.0 { e / a } else { 0.0 };
+        let g = Rgb::new(share(edge.x, total.x), share(edge.y, total.y), share(edge.z, total.z));
+        (total.min(Rgb::ONE), g)
+    } else {
+        (c * t.max(0.0), Rgb::ZERO)
+    };
     let albedo = if input == ColorInput::LightAngle {
         c * (d + t)
     } else {
@@ -156,7 +167,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
         }
         surface.model = SurfaceModel::Maya(Box::new(g));
     }
-    super::translucence::translate_ramp(r, surface, behind * fade);
+    super::translucence::translate_ramp(r, surface, behind * fade, grazing);
     if let Some(ior) = ior {
         refract(r, surface, tr, ior);
     }

@@ -66,15 +66,17 @@ fn with_lobe(surface: &SurfaceMaterial, albedo: Rgb, focus: f32) -> bsdf::MayaGl
     glossy.with_translucence(albedo, focus)
 }
 
-/// Gives the rampShader `surface` its translucence: a diffuse transmission lobe (focus 0:
-/// the classic rampShader reads no `translucenceFocus`) of albedo `albedo` (the colour
-/// behind ⊙ t ⊙ the fade; see `super::ramp_shader`) and the reader's
+/// Gives the rampShader `surface` its translucence: a transmission lobe (focus 0: the
+/// classic rampShader reads no `translucenceFocus`) of albedo `albedo` (see
+/// `super::ramp_shader`: ⊙ the fade) of which the share `grazing` follows the light's
+/// angle ([`bsdf::MayaGlossy::translucence_grazing`]; zero: diffuse), and the reader's
 /// `translucenceDepth` for shadow rays, as the lambert family's (see the module doc).
-pub(super) fn translate_ramp(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb) {
+pub(super) fn translate_ramp(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb, grazing: Rgb) {
     if albedo == Rgb::ZERO {
         return;
     }
-    surface.model = SurfaceModel::Maya(Box::new(with_lobe(surface, albedo, 0.0)));
+    let lobe = with_lobe(surface, albedo, 0.0).with_translucence_grazing(grazing);
+    surface.model = SurfaceModel::Maya(Box::new(lobe));
     surface.translucence_depth = r.scalar("translucenceDepth", 0.5).max(0.0);
 }
 

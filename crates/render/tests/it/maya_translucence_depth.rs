@@ -257,9 +257,10 @@ fn a_layered_shader_carries_its_layers_translucence_depth() {
     }
 }
 
-/// The path engine's rampShader passes light from behind as the classic one: a diffuse
-/// transmission lobe of albedo C(0) · t (light-angle input: the classic C((1 + cos θ)/2) ⊙
-/// L · t at cos θ = −1) and its `translucenceDepth` in shadow rays. Direct light (paths
+/// The path engine's rampShader passes light from behind as the classic one: a
+/// transmission lobe giving C(0) · t for a light straight behind (light-angle input: the
+/// classic C((1 + cos θ)/2) ⊙ L · t at cos θ = −1; other angles: the next test) and its
+/// `translucenceDepth` in shadow rays. Direct light (paths
 /// of one ray), the slabs of the classic test lit from behind: opaque, every pixel is
 /// c · t · (1 − s/D) within 2 % of it and of the classic pixel (0 past the depth: below
 /// 1e-6); with transparency 0.3, for D > 0 and D = 0 (the plain filter by T), the image
@@ -381,6 +382,39 @@ fn a_layered_shader_carries_every_layers_translucence_in_the_path_engine() {
         println!("{name}: path {path} ± {error} classic {classic} want {want}");
         for k in 0..3 {
             assert!((path[k] / classic[k] - 1.0).abs() < 0.02, "{name}: path {path} vs classic {classic}");
+        }
+    }
+}
+
+/// The path engine's rampShader passes light from behind at every angle as the classic
+/// one: under the light-angle input the classic shader adds t · C((1 + cos θ)/2) ⊙ L for a
+/// light behind (no cosine factor), which the path lobe reads as the chord of the ramp
+/// over [0, ½] (`bsdf::maya_highlight::translucence::light_angle_factor`), exact for this
+/// linear ramp. The opaque slab (s = 0.1, D = 1) lit from behind at θ = 0°, 30° and 60°
+/// from the normal (direct light, 4 samples per pixel): the path image's mean is the
+/// classic one's within 2 % per channel, and every path pixel the closed form
+/// t · C((1 − cos θ)/2) · (1 − s/(D cos θ)) within 2 %. Before, the path lobe was
+/// Lambertian, t · C(0) · cos θ: 37 % darker than the classic at 60° (red).
+#[test]
+fn the_path_engine_follows_ramp_shader_translucence_at_every_light_angle() {
+    let (thick, depth) = (0.1f32, 1.0f32);
+    let b = Vec3A::new(0.1, 0.2, 0.9);
+    for degrees in [0.0f32, 30.0, 60.0] {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let text = ramp_slab(thick, depth, 0.0).replace("direction 0 1 0", &format!("direction {sin} {cos} 0"));
+        let path = path_pixels(&text, 4, 1);
+        let classic = mean(&pixels(&text, EngineKind::Classic, 4));
+        let x = 0.5 * (1.0 - cos);
+        let want = (COLOR * (1.0 - x) + b * x) * T * (1.0 - thick / (depth * cos));
+        let m = mean(&path);
+        println!("ramp behind at {degrees}°: path {m} classic {classic} want {want}");
+        for k in 0..3 {
+            assert!((m[k] / classic[k] - 1.0).abs() < 0.02, "{degrees}°: path {m} vs classic {classic}");
+        }
+        for p in &path {
+            for k in 0..3 {
+                assert!((p[k] / want[k] - 1.0).abs() < 0.02, "{degrees}°: {p} vs {want}");
+            }
         }
     }
 }
