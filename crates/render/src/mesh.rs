@@ -35,9 +35,9 @@ pub struct MeshData {
     /// Material slot of each triangle; empty when every triangle has slot 0 (readers take
     /// a missing entry as slot 0), which saves 4 bytes per triangle of one-material meshes.
     pub slots: Vec<u32>,
-    /// Per triangle: its quad-mesh Ptex face and corners, packed
-    /// ([`scene::mesh::ptex_quads`]; 4 bytes a triangle); empty for meshes without quads and
-    /// in scenes that read no quad-mesh Ptex file.
+    /// Per triangle: its quad-mesh Ptex face and corners, or its n-gon's first sub-quad
+    /// face, packed ([`scene::mesh::ptex_quads`]; 4 bytes a triangle); empty for meshes
+    /// without quads or n-gons and in scenes that read no quad-mesh Ptex file.
     pub ptex_quads: Vec<u32>,
     /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
     pub hair: Option<HairData>,

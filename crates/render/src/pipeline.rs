@@ -266,17 +266,17 @@ fn compile_scene_shading(
 }
 
 /// In a scene that reads a quad-mesh Ptex file: a warning at the first polygon of each
-/// object with quads that has no quad face (Ptex's n sub-quads of a polygon of other than
-/// 4 vertices are not mapped; lookups there are black).
+/// object with quads or n-gons that has no quad-mesh Ptex face (a polygon with holes, a
+/// strip or a fan; lookups there are black).
 fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnostic>) {
     for object in &scene.objects {
         if let Some((span, vertices)) = object.geometry.mesh.ptex_unmapped {
             diagnostics.push(mi::Diagnostic::warning(
                 span,
                 format!(
-                    "object '{}': a polygon of {vertices} vertices among quads has no quad-mesh Ptex face (mira \
-                     maps quads only, not Ptex's sub-quads of other polygons): quad-mesh Ptex lookups on it \
-                     are black",
+                    "object '{}': a polygon of {vertices} vertices (with holes, a strip or a fan) has no \
+                     quad-mesh Ptex face (mira maps c and p polygons without holes): quad-mesh Ptex lookups \
+                     on it are black",
                     object.name
                 ),
             ));

@@ -161,7 +161,7 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.instance = inst.scene_index;
     s.geometry = hit.instance;
     s.prim = hit.prim;
-    s.ptex_quad = mesh.ptex_quads.get(hit.prim as usize).copied().filter(|&c| c != scene::mesh::ptex_quads::NONE);
+    s.ptex_quad = ptex_quad_face(mesh, hit.prim as usize, s.bary);
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     s.material = inst.materials.get(slot).copied().and_then(|m| m.checked_sub(1));
     s.object_to_world = placed.object_to_world;
@@ -460,4 +460,13 @@ impl Tracer for SceneTracer<'_> {
             emission: h.emission * spread,
         })
     }
+}
+
+/// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on triangle `prim`
+/// of `mesh` (`None` where the mesh keeps no such table or the triangle has no face).
+fn ptex_quad_face(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) -> Option<(u32, f32, f32)> {
+    use scene::mesh::ptex_quads;
+    let code = *mesh.ptex_quads.get(prim)?;
+    ptex_quads::face_uv(code, bary)
+        .or_else(|| ptex_quads::ngon_face_uv(&mesh.ptex_quads, &mesh.triangles, &mesh.positions, prim, bary))
 }

@@ -63,14 +63,16 @@ pub struct Mesh {
     /// The distinct material slots of the faces.
     pub slots: Vec<MaterialSlot>,
     /// Per triangle: its quad-mesh Ptex face id and which corners of that quad its vertices
-    /// are, packed ([`ptex_quads`]); empty, nothing per triangle, when none of the mesh's
-    /// polygons is a quad (4 bytes per triangle when one is).
+    /// are, or its n-gon's first sub-quad face id, packed ([`ptex_quads`]); empty, nothing
+    /// per triangle, when none of the mesh's polygons is a quad or an n-gon of 5 or more
+    /// vertices (4 bytes per triangle when one is).
     pub ptex_quads: Vec<u32>,
     /// How many quad-mesh Ptex face ids the mesh's polygons number ([`ptex_quads`]: a quad
     /// one, any other polygon one per outline vertex).
     pub ptex_faces: u32,
-    /// In a mesh with quads ([`Mesh::ptex_quads`] not empty): the first polygon that has no
-    /// quad face (of other than 4 vertices, or with holes) and its outline's vertex count.
+    /// In a mesh with quads or n-gons ([`Mesh::ptex_quads`] not empty): the first polygon
+    /// that has no quad-mesh Ptex face (with holes, a strip or a fan) and its outline's
+    /// vertex count.
     pub ptex_unmapped: Option<(mi::Span, usize)>,
 }
 

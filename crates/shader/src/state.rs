@@ -128,10 +128,10 @@ pub struct State {
     pub geometry: u32,
     /// The triangle that was hit.
     pub prim: u32,
-    /// The hit triangle's quad-mesh Ptex face and quad corners, packed
-    /// ([`scene::mesh::ptex_quads`]); `None` where its polygon is no quad (or the mesh
-    /// keeps no such table).
-    pub ptex_quad: Option<u32>,
+    /// The hit's quad-mesh Ptex face id and face coordinates (u, v) ∈ [0, 1]² (its quad's,
+    /// or its n-gon's sub-quad's; [`scene::mesh::ptex_quads`]); `None` where its polygon
+    /// has no such face (or the mesh keeps no such table).
+    pub ptex_quad: Option<(u32, f32, f32)>,
     /// The current material (scene index), if any.
     pub material: Option<u32>,
     /// Object → world of the hit instance.

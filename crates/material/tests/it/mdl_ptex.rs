@@ -462,7 +462,7 @@ fn quad_faces() -> (Vec<u8>, Vec<Face>) {
 /// the constant face everywhere; a triangle of no quad is black.
 #[test]
 fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
-    use scene::mesh::ptex_quads::{encode, CORNER_UV};
+    use scene::mesh::ptex_quads::{encode, face_uv, CORNER_UV};
     let dir = fixtures("quads");
     let (mdl, lib, diags) = compile_text_with(r#"shader "q" "mdl::ptexmod::pt_quad" ()"#, std::slice::from_ref(&dir));
     std::fs::remove_dir_all(&dir).ok();
@@ -477,7 +477,7 @@ fn a_quad_mesh_file_gives_each_quads_texel_at_its_hits() {
         let s = State {
             prim: 99,
             bary,
-            ptex_quad: Some(encode(face, corners)),
+            ptex_quad: face_uv(encode(face, corners), bary),
             normal: n,
             normal_geom: n,
             dir: -n,

@@ -130,13 +130,15 @@ pub fn triangulate_polygons(
     let file = group.span.file;
     let mut slot_of_material: Vec<Option<u32>> = vec![None; polys.material_names.len()];
     let mut last_named: Option<u32> = None;
-    // Quad-mesh Ptex faces: kept per triangle only where some polygon is a quad.
-    let with_quads = (0..polys.list.len()).any(|pi| quad_of(group, pi).is_some());
+    // Quad-mesh Ptex faces: kept per triangle only where some polygon is a quad or an
+    // n-gon of 5 or more vertices (an object of triangles pays nothing).
+    let with_quads = (0..polys.list.len()).any(|pi| ptex_outline(group, pi).is_some_and(|o| o.len() >= 4));
     if with_quads {
         mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
     }
     for (pi, poly) in polys.list.iter().enumerate() {
-        let quad = quad_of(group, pi);
+        let quad = ptex_outline(group, pi).and_then(|o| <[u32; 4]>::try_from(o).ok());
+        let ngon = quad.is_none() && ptex_outline(group, pi).is_some();
         let face = mesh.ptex_faces;
         let faces = if quad.is_some() { 1 } else { polys.loops(pi).next().map_or(0, |l| l.len() as u32) };
         mesh.ptex_faces = face.saturating_add(faces);
@@ -201,6 +203,10 @@ pub fn triangulate_polygons(
                     let codes: Vec<u32> = codes.collect();
                     mesh.ptex_quads.extend(codes);
                 }
+                None if ngon && added > 0 && starts_at(&mut mesh.triangles[before..], outline[0] + base) => {
+                    let code = ptex_quads::encode_ngon(face);
+                    mesh.ptex_quads.resize(mesh.triangles.len(), code);
+                }
                 None => {
                     mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
                     if added > 0 && mesh.ptex_unmapped.is_none() {
@@ -212,9 +218,21 @@ pub fn triangulate_polygons(
     }
 }
 
-/// The four vertices of polygon `pi` of `group` (group-relative, in the polygon's order)
-/// if it is a quad: a `c`, `cp` or `p` polygon of 4 vertices without holes.
-fn quad_of(group: &Group, pi: usize) -> Option<[u32; 4]> {
+/// Makes the polygon's triangles `tris` start with `v0` (the polygon's vertex 0, which an
+/// n-gon's Ptex sub-quads are numbered from): the first triangle that has it moved to the
+/// front, its vertices turned (winding kept) to begin there. `false` if none has it.
+fn starts_at(tris: &mut [[u32; 3]], v0: u32) -> bool {
+    let Some(t) = tris.iter().position(|t| t.contains(&v0)) else { return false };
+    tris.swap(0, t);
+    while tris[0][0] != v0 {
+        tris[0].rotate_left(1);
+    }
+    true
+}
+
+/// The outline of polygon `pi` of `group` (group-relative, in the polygon's order) if it
+/// has quad-mesh Ptex faces: a `c`, `cp` or `p` polygon of 3 or more vertices without holes.
+fn ptex_outline(group: &Group, pi: usize) -> Option<&[u32]> {
     let polys = &group.polygons;
     let kind = polys.list[pi].kind;
     if !matches!(kind, PolygonKind::Convex | PolygonKind::ConvexLegacy | PolygonKind::General) {
@@ -222,10 +240,10 @@ fn quad_of(group: &Group, pi: usize) -> Option<[u32; 4]> {
     }
     let mut loops = polys.loops(pi);
     let outline = loops.next()?;
-    if loops.next().is_some() {
+    if loops.next().is_some() || outline.len() < 3 {
         return None;
     }
-    outline.try_into().ok()
+    Some(outline)
 }
 
 impl Triangulator {

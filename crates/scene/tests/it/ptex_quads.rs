@@ -1,11 +1,12 @@
 //! Quad-mesh Ptex face ids of polygon meshes (`scene::mesh::ptex_quads`): each triangle cut
 //! from a quad keeps its polygon's Ptex face id and which quad corner each of its vertices
 //! is; a polygon of other than 4 vertices takes one face id per vertex (Ptex's sub-quads)
-//! and its triangles none; groups of one object number their faces on.
+//! and its triangles that first id (n-gon packed), the first starting at the polygon's
+//! vertex 0; groups of one object number their faces on.
 //!
 //! Asserted exactly: face ids, corner of every triangle vertex (the vertex's position is
-//! that quad vertex's), none for the pentagon's triangles and its line, no table (no bytes
-//! per triangle) for an object of triangles only.
+//! that quad vertex's), the n-gons' first ids and first vertices, nothing unmapped, no
+//! table (no bytes per triangle) for an object of triangles only.
 
 use glam::Vec3;
 use scene::mesh::ptex_quads;
@@ -52,7 +53,7 @@ render "root" "cam_inst" "opt"
 
 #[test]
 fn triangles_of_quads_keep_their_polygons_face_and_corners() {
-    let (scene, parsed) = build(SCENE);
+    let (scene, _) = build(SCENE);
     let mesh = &scene.objects.iter().find(|o| o.name == "quads").expect("quads").geometry.mesh;
     assert_eq!(mesh.ptex_quads.len(), mesh.triangles.len());
     // Faces: quad 0, pentagon 1–5, quad 6, triangle 7–9, triangle 10–12; the second group's
@@ -66,10 +67,13 @@ fn triangles_of_quads_keep_their_polygons_face_and_corners() {
         (13, [p(1., 0., 1.), p(1., 1., 1.), p(0., 1., 1.), p(0., 0., 1.)]),
     ];
     let mut halves = [0; 3];
-    let mut none = 0;
+    let mut ngons: Vec<(u32, u32)> = Vec::new();
     for (t, code) in mesh.triangles.iter().zip(&mesh.ptex_quads) {
         let Some((face, corners)) = ptex_quads::decode(*code) else {
-            none += 1;
+            let first = ptex_quads::ngon_first(*code).expect("an n-gon's triangle");
+            if ngons.last().is_none_or(|n| n.0 != first) {
+                ngons.push((first, t[0]));
+            }
             continue;
         };
         let q = quads.iter().position(|(f, _)| *f == face).unwrap_or_else(|| panic!("face {face}"));
@@ -79,11 +83,12 @@ fn triangles_of_quads_keep_their_polygons_face_and_corners() {
         }
     }
     assert_eq!(halves, [2, 2, 2], "two triangles per quad");
-    // The pentagon's three and the two triangles: no quad face.
-    assert_eq!(none, 3 + 2);
-    let (span, n) = mesh.ptex_unmapped.expect("the pentagon");
-    assert_eq!(n, 5);
-    assert!(parsed.sources.location(span).starts_with("t.mi:9:"), "{}", parsed.sources.location(span));
+    // The pentagon (`p 1 4 6 5 2`) and the two triangles (`p 5 6 7`, `p 3 2 9`): their
+    // first face ids, their first triangles starting at their vertex 0.
+    let first = ngons.iter().map(|n| (n.0, mesh.positions[n.1 as usize])).collect::<Vec<_>>();
+    assert_eq!(first, [(1, p(1., 0., 0.)), (7, p(2., 1., 0.)), (10, p(0., 1., 0.))]);
+    assert_eq!(mesh.ptex_quads.iter().filter(|c| ptex_quads::ngon_first(**c).is_some()).count(), 3 + 2);
+    assert!(mesh.ptex_unmapped.is_none());
     // Triangles only: no table.
     let tris = &scene.objects.iter().find(|o| o.name == "tris").expect("tris").geometry.mesh;
     assert!(tris.ptex_quads.is_empty() && tris.ptex_unmapped.is_none());
