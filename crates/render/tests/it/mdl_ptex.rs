@@ -133,6 +133,37 @@ instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#;
 
+/// The range (per channel, low and high) of `colour(px, x, y)` over pixel `k` of the 8 × 8
+/// image: pixel (px, py from the top) covers x ∈ [−1 + px/4, −1 + (px + 1)/4], y likewise
+/// from the top, sampled on a 17 × 17 grid.
+fn lookup_range(k: usize, colour: impl Fn(f32, f32, f32) -> [f32; 3]) -> ([f32; 3], [f32; 3]) {
+    let (px, py) = ((k % 8) as f32, (k / 8) as f32);
+    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for a in 0..=16 {
+        for b in 0..=16 {
+            let x = -1.0 + (px + a as f32 / 16.0) / 4.0;
+            let y = 1.0 - (py + b as f32 / 16.0) / 4.0;
+            let c = colour(px, x, y);
+            for ch in 0..3 {
+                lo[ch] = lo[ch].min(c[ch]);
+                hi[ch] = hi[ch].max(c[ch]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// Asserts that pixel `k`'s colour `p` lies within `range` × `scale` per channel, within
+/// 1e-4 × `scale`.
+fn assert_within(engine: EngineKind, k: usize, p: &[f32; 4], (lo, hi): ([f32; 3], [f32; 3]), scale: f32) {
+    for c in 0..3 {
+        assert!(
+            p[c] >= (lo[c] - 1e-4) * scale && p[c] <= (hi[c] + 1e-4) * scale,
+            "{engine:?}, pixel {k}: {p:?} outside {lo:?} … {hi:?} × {scale}"
+        );
+    }
+}
+
 /// Every pixel (a box filter of one pixel: the mean of the colour over it) lies within
 /// the range of the file's lookup over the pixel, per channel, within 1e-4 (the classic
 /// engine's π times); on face 0 (constant) the range is its colour, and on face 1 a
@@ -153,27 +184,8 @@ fn each_triangle_renders_its_ptex_faces_texels() {
         let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
         let (mut constant, mut narrow) = (0, 0);
         for (k, p) in film.rgba().iter().enumerate() {
-            // Pixel (px, py from the top) covers x ∈ [−1 + px/4, −1 + (px + 1)/4], y likewise
-            // from the top: the lookup's range over a 17 × 17 grid of it.
-            let (px, py) = ((k % 8) as f32, (k / 8) as f32);
-            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-            for a in 0..=16 {
-                for b in 0..=16 {
-                    let x = -1.0 + (px + a as f32 / 16.0) / 4.0;
-                    let y = 1.0 - (py + b as f32 / 16.0) / 4.0;
-                    let c = expected(&ptex, x, y);
-                    for ch in 0..3 {
-                        lo[ch] = lo[ch].min(c[ch]);
-                        hi[ch] = hi[ch].max(c[ch]);
-                    }
-                }
-            }
-            for c in 0..3 {
-                assert!(
-                    p[c] >= (lo[c] - 1e-4) * scale && p[c] <= (hi[c] + 1e-4) * scale,
-                    "{engine:?}, pixel {k}: {p:?} outside {lo:?} … {hi:?} × {scale}"
-                );
-            }
+            let (lo, hi) = lookup_range(k, |_, x, y| expected(&ptex, x, y));
+            assert_within(engine, k, p, (lo, hi), scale);
             let spread = (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f32::max);
             constant += usize::from(spread == 0.0);
             narrow += usize::from(spread > 0.0 && spread < 0.15);
@@ -255,34 +267,18 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
         let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
         let (mut inside, mut spread_sum) = (0, 0.0f32);
         for (k, p) in film.rgba().iter().enumerate() {
-            // Pixel (px, py from the top): the lookup's range over a 17 × 17 grid of it.
-            let (px, py) = ((k % 8) as f32, (k / 8) as f32);
-            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-            for a in 0..=16 {
-                for b in 0..=16 {
-                    let x = -1.0 + (px + a as f32 / 16.0) / 4.0;
-                    let y = 1.0 - (py + b as f32 / 16.0) / 4.0;
-                    // The seam x = 0 itself belongs to either quad: stay on the pixel's side.
-                    let x = if px == 3.0 {
-                        x.min(-1e-4)
-                    } else if px == 4.0 {
-                        x.max(1e-4)
-                    } else {
-                        x
-                    };
-                    let c = expected_quads(&ptex, x, y);
-                    for ch in 0..3 {
-                        lo[ch] = lo[ch].min(c[ch]);
-                        hi[ch] = hi[ch].max(c[ch]);
-                    }
-                }
-            }
-            for c in 0..3 {
-                assert!(
-                    p[c] >= (lo[c] - 1e-4) * scale && p[c] <= (hi[c] + 1e-4) * scale,
-                    "{engine:?}, pixel {k}: {p:?} outside {lo:?} … {hi:?} × {scale}"
-                );
-            }
+            // The seam x = 0 itself belongs to either quad: stay on the pixel's side.
+            let (lo, hi) = lookup_range(k, |px, x, y| {
+                let x = if px == 3.0 {
+                    x.min(-1e-4)
+                } else if px == 4.0 {
+                    x.max(1e-4)
+                } else {
+                    x
+                };
+                expected_quads(&ptex, x, y)
+            });
+            assert_within(engine, k, p, (lo, hi), scale);
             inside += 1;
             spread_sum += (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f32::max);
         }
