@@ -267,17 +267,21 @@ fn compile_scene_shading(
 
 /// In a scene that reads a quad-mesh Ptex file: a warning at the first polygon of each
 /// object with quads or n-gons that has no quad-mesh Ptex face (a polygon with holes, a
-/// strip or a fan; lookups there are black).
+/// strip or a fan, or an n-gon of over [`MAX_NGON_VERTICES`] vertices; lookups there are
+/// black).
+///
+/// [`MAX_NGON_VERTICES`]: scene::mesh::ptex_quads::MAX_NGON_VERTICES
 fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnostic>) {
     for object in &scene.objects {
         if let Some((span, vertices)) = object.geometry.mesh.ptex_unmapped {
             diagnostics.push(mi::Diagnostic::warning(
                 span,
                 format!(
-                    "object '{}': a polygon of {vertices} vertices (with holes, a strip or a fan) has no \
-                     quad-mesh Ptex face (mira maps c and p polygons without holes): quad-mesh Ptex lookups \
-                     on it are black",
-                    object.name
+                    "object '{}': a polygon of {vertices} vertices (with holes, a strip or a fan, or an \
+                     n-gon of over {} vertices) has no quad-mesh Ptex face (mira maps c and p polygons \
+                     without holes): quad-mesh Ptex lookups on it are black",
+                    object.name,
+                    scene::mesh::ptex_quads::MAX_NGON_VERTICES
                 ),
             ));
         }

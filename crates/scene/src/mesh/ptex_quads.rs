@@ -36,6 +36,11 @@ pub const MAX_FACE: u32 = (1 << 25) - 1;
 /// The largest first face id of an n-gon the packing holds.
 pub const MAX_NGON_FACE: u32 = (1 << 31) - 2;
 
+/// The most vertices an n-gon may have to get sub-quad faces: [`ngon_face_uv`] rebuilds
+/// the outline at each hit in O(n²), so a larger polygon (a hostile 10⁶-gon would hang the
+/// render) gets [`NONE`] and the unmapped-polygon warning instead.
+pub const MAX_NGON_VERTICES: usize = 64;
+
 /// The bit that marks an n-gon's triangle.
 const NGON: u32 = 1 << 31;
 
@@ -136,6 +141,10 @@ pub fn ngon_face_uv(
         hi += 1;
     }
     let tris = triangles.get(lo..hi)?;
+    // An n-gon of n vertices has n − 2 triangles; a longer run is not one (bounds the cost).
+    if tris.len() + 2 > MAX_NGON_VERTICES {
+        return None;
+    }
     let edges: Vec<[u32; 2]> = tris.iter().flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]]).collect();
     let boundary: Vec<[u32; 2]> = edges.iter().copied().filter(|&[a, b]| !edges.contains(&[b, a])).collect();
     let mut outline = vec![tris[0][0]];

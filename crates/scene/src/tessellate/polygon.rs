@@ -138,7 +138,7 @@ pub fn triangulate_polygons(
     }
     for (pi, poly) in polys.list.iter().enumerate() {
         let quad = ptex_outline(group, pi).and_then(|o| <[u32; 4]>::try_from(o).ok());
-        let ngon = quad.is_none() && ptex_outline(group, pi).is_some();
+        let ngon = quad.is_none() && ptex_outline(group, pi).is_some_and(|o| o.len() <= ptex_quads::MAX_NGON_VERTICES);
         let face = mesh.ptex_faces;
         let faces = if quad.is_some() { 1 } else { polys.loops(pi).next().map_or(0, |l| l.len() as u32) };
         mesh.ptex_faces = face.saturating_add(faces);

@@ -94,3 +94,43 @@ fn triangles_of_quads_keep_their_polygons_face_and_corners() {
     assert!(tris.ptex_quads.is_empty() && tris.ptex_unmapped.is_none());
     assert_eq!(tris.ptex_faces, 3);
 }
+
+/// An n-gon of more than `MAX_NGON_VERTICES` vertices gets no sub-quad faces (its
+/// triangles none, the object's unmapped polygon it, its n face ids still counted) while
+/// one of exactly that many keeps them: the hit-time outline rebuild is O(n²), so a
+/// hostile 10⁶-gon must not reach it. Exact counts.
+#[test]
+fn a_huge_ngon_gets_no_sub_quads() {
+    let cap = ptex_quads::MAX_NGON_VERTICES;
+    for n in [cap, cap + 1] {
+        let ring = |k: usize| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            format!("{} {} 0", a.cos(), a.sin())
+        };
+        let points: Vec<String> = (0..n).map(ring).collect();
+        let verts: Vec<String> = (0..n).map(|k| format!("v {k}")).collect();
+        let poly: Vec<String> = (0..n).map(|k| k.to_string()).collect();
+        let text = SCENE.replace(
+            "object \"tris\" group\n    0 0 0  1 0 0  1 1 0\n    v 0 v 1 v 2\n    p 0 1 2\n",
+            &format!(
+                "object \"tris\" group\n    {}\n    {}\n    p {}\n",
+                points.join("  "),
+                verts.join(" "),
+                poly.join(" ")
+            ),
+        );
+        let (scene, _) = build(&text);
+        let mesh = &scene.objects.iter().find(|o| o.name == "tris").expect("tris").geometry.mesh;
+        assert_eq!(mesh.triangles.len(), n - 2);
+        assert_eq!(mesh.ptex_faces as usize, n);
+        let ngon = mesh.ptex_quads.iter().filter(|c| ptex_quads::ngon_first(**c).is_some()).count();
+        if n <= cap {
+            assert_eq!(ngon, n - 2);
+            assert!(mesh.ptex_unmapped.is_none());
+        } else {
+            assert_eq!(ngon, 0);
+            assert!(mesh.ptex_quads.iter().all(|&c| c == ptex_quads::NONE));
+            assert_eq!(mesh.ptex_unmapped.map(|u| u.1), Some(n));
+        }
+    }
+}
