@@ -10,6 +10,7 @@ use bsdf::testing::{albedo, incidences, standard_checks};
 use bsdf::Rgb;
 use glam::Vec3A;
 use material::SurfaceModel;
+use mdl_support::per_hit::direction_pairs;
 use mdl_support::{close, compile_text, get};
 
 /// `unbounded_mix` sums its weights as given (MDL: no normalisation, no clamp): 0.75 + 0.5
@@ -47,20 +48,6 @@ shader "g" "mdl::combinators::unbounded_glossy" ()"#,
     let SurfaceModel::MdlLobes(l) = &g.model else { panic!("{:?}", g.model) };
     let weights: Vec<Rgb> = l.parts().map(|p| p.0).collect();
     assert_eq!(weights, vec![Rgb::splat(0.7), Rgb::splat(0.6), Rgb::splat(0.2)]);
-}
-
-/// Directions for comparing BSDFs: pairs over both hemispheres (the standard checks' set).
-fn direction_pairs() -> Vec<(Vec3A, Vec3A)> {
-    let dirs: Vec<Vec3A> = (1..24)
-        .map(|i| {
-            let u = bsdf::testing::r2(i);
-            let z = 1.0 - 2.0 * u.x;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = std::f32::consts::TAU * u.y;
-            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    dirs.iter().flat_map(|a| dirs.iter().map(move |b| (*a, *b))).collect()
 }
 
 /// A measured curve equal to the constant w is `weighted_layer(w)` (over a white

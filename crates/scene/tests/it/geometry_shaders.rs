@@ -7,14 +7,10 @@ use std::f64::consts::PI;
 use glam::DVec3;
 use scene::{Instance, Mesh, Scene};
 
+/// [`crate::support::build`] without the parse.
 fn build(text: &str) -> (Scene, Vec<mi::Diagnostic>) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = Scene::build(&parsed, 0, &mut diags);
-    let errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.render(&parsed.sources)).collect();
-    assert!(errors.is_empty(), "{}", errors.join("\n"));
-    (scene.expect("a scene"), diags)
+    let (scene, diags, _) = crate::support::build(text);
+    (scene, diags)
 }
 
 /// A scene with `body` (elements) whose root group holds the camera and `members`.

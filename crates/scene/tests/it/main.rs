@@ -5,5 +5,6 @@
 mod geometry_shaders;
 mod hostile;
 mod ptex_quads;
+mod support;
 mod taken;
 mod world;

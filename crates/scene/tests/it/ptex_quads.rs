@@ -8,19 +8,9 @@
 //! that quad vertex's), the n-gons' first ids and first vertices, nothing unmapped, no
 //! table (no bytes per triangle) for an object of triangles only.
 
+use crate::support::build;
 use glam::Vec3;
 use scene::mesh::ptex_quads;
-use scene::Scene;
-
-fn build(text: &str) -> (Scene, mi::Parsed) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = Scene::build(&parsed, 0, &mut diags);
-    let errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.render(&parsed.sources)).collect();
-    assert!(errors.is_empty(), "{}", errors.join("\n"));
-    (scene.expect("a scene"), parsed)
-}
 
 const SCENE: &str = r#"
 options "opt" end options
@@ -53,7 +43,7 @@ render "root" "cam_inst" "opt"
 
 #[test]
 fn triangles_of_quads_keep_their_polygons_face_and_corners() {
-    let (scene, _) = build(SCENE);
+    let (scene, ..) = build(SCENE);
     let mesh = &scene.objects.iter().find(|o| o.name == "quads").expect("quads").geometry.mesh;
     assert_eq!(mesh.ptex_quads.len(), mesh.triangles.len());
     // Faces: quad 0, pentagon 1–5, quad 6, triangle 7–9, triangle 10–12; the second group's

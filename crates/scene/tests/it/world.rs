@@ -3,15 +3,7 @@
 use glam::{DVec3, Vec3};
 use scene::{LightKind, MaterialSlot, Scene};
 
-fn build(text: &str) -> (Scene, Vec<mi::Diagnostic>, mi::Parsed) {
-    let parsed = mi::parse_str("t.mi", text);
-    assert!(!parsed.diagnostics.has_errors(), "{}", parsed.diagnostics.render(&parsed.sources));
-    let mut diags = Vec::new();
-    let scene = Scene::build(&parsed, 0, &mut diags);
-    let errors: Vec<String> = diags.iter().filter(|d| d.is_error()).map(|d| d.render(&parsed.sources)).collect();
-    assert!(errors.is_empty(), "{}", errors.join("\n"));
-    (scene.expect("a scene"), diags, parsed)
-}
+use crate::support::build;
 
 fn cornell() -> Scene {
     build(include_str!("../../../../scenes/iray_cornell_box.mi")).0
