@@ -109,7 +109,7 @@ fn a_huge_ngon_gets_no_sub_quads() {
                 poly.join(" ")
             ),
         );
-        let (scene, _) = build(&text);
+        let (scene, ..) = build(&text);
         let mesh = &scene.objects.iter().find(|o| o.name == "tris").expect("tris").geometry.mesh;
         assert_eq!(mesh.triangles.len(), n - 2);
         assert_eq!(mesh.ptex_faces as usize, n);
