@@ -85,12 +85,14 @@ if [ "$peers_here" = 1 ]; then
   # The run as a chart (tools/bench_plot.py; the README's is drawn from docs/bench/).
   cbox_json="$BENCH_DIR/bench-out/cbox/timings.json"
   heavy_json="$BENCH_DIR/bench-out/heavy/bench/heavy_timings.json"
+  # The figures are already printed: a chart that cannot be drawn is reported, not fatal.
   if [ -f "$cbox_json" ]; then
+    plot_inputs=("$cbox_json")
     if [ -f "$heavy_json" ]; then
-      python3 "$ROOT/tools/bench_plot.py" "$cbox_json" "$heavy_json" -o "$BENCH_DIR/performance.svg" >&2
-    else
-      python3 "$ROOT/tools/bench_plot.py" "$cbox_json" -o "$BENCH_DIR/performance.svg" >&2
+      plot_inputs+=("$heavy_json")
     fi
+    python3 "$ROOT/tools/bench_plot.py" "${plot_inputs[@]}" -o "$BENCH_DIR/performance.svg" >&2 ||
+      echo "bench_peers: the chart was not drawn (tools/bench_plot.py failed; the figures above stand)" >&2
   fi
   exit 0
 fi
