@@ -479,13 +479,21 @@ impl LightSource {
     /// rest is `intersect_any`, out of line.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        self.intersect_until(ray, ray.tmax)
+    }
+
+    /// [`LightSource::intersect`] for `ray` cut at distance `tmax` instead of its own
+    /// `tmax` (the path engine asks it of every ray up to the surface the ray found,
+    /// without copying the ray for each light).
+    #[inline]
+    pub fn intersect_until(&self, ray: &Ray, tmax: f32) -> Option<(f32, Rgb)> {
         if let (Output::Radiance { l, two_sided }, Shape::Rect { .. }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
-            let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
+            let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, tmax)?;
             return (facing || *two_sided).then_some((t, *l));
         }
-        self.intersect_any(ray)
+        self.intersect_any(&Ray { tmax, ..*ray })
     }
 
     /// [`LightSource::intersect`] for any light.
