@@ -583,8 +583,8 @@ impl LightSource {
     /// the unshadowed light is unchanged, the share of such rays let through shadows it.
     /// A Maya volume light whose `volumeLightDir` turns the sample's direction: towards
     /// the point it shines from (its origin, or the nearest point of a cylinder's or
-    /// cone's axis).
-    #[inline]
+    /// cone's axis). (Always inlined: its common case is one test.)
+    #[inline(always)]
     pub fn shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
         // Most lights: the sample's own ray (tested inline; the others out of line).
         if self.soft_shadow.is_none() && !matches!(self.output, Output::Volume(_)) {
