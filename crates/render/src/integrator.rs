@@ -718,9 +718,14 @@ pub fn trace_camera_path_into(
         // Scatter.
         let u_dir = sampler.next_2d();
         let u_lobe = sampler.next_1d();
-        let scattered =
-            if lambert { lambert_hit::sample(material.diffuse, wo, u_dir) } else { bsdf.sample(wo, u_dir, u_lobe) };
-        let Some(bs) = scattered else { break };
+        // (Each branch ends the path itself: one merged `Option` went through the stack.)
+        let bs = if lambert {
+            let Some(bs) = lambert_hit::sample(material.diffuse, wo, u_dir) else { break };
+            bs
+        } else {
+            let Some(bs) = bsdf.sample(wo, u_dir, u_lobe) else { break };
+            bs
+        };
         let wi = frame.to_world(bs.wi);
         // A reflected ray must leave above the geometric surface, a transmitted one below:
         // shading normals can say otherwise, and then the path ends.
