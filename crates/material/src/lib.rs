@@ -372,7 +372,9 @@ impl SurfaceModel {
     /// Whether rays that see the surface refract through its BSDF rather than pass it as
     /// a cut-out (a Maya material with `refractions` on: [`bsdf::MayaGlossy::refraction`]);
     /// shadow rays still pass by its opacity and [`SurfaceMaterial::cutout_tint`], as the
-    /// classic shader filters them by its transparency.
+    /// classic shader filters them by its transparency. (Inlined: every hit of the path
+    /// engine asks it.)
+    #[inline]
     pub fn refracts(&self) -> bool {
         matches!(self, SurfaceModel::Maya(g) if g.refraction != Rgb::ZERO)
     }

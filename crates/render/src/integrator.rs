@@ -5,12 +5,14 @@
 
 mod ambient_highlight;
 mod cutout;
+mod emitters;
 mod env_light;
 mod fog;
 mod gi_depth;
 mod glossy_reach;
 mod hit_material;
 mod hit_surface;
+mod lambert_hit;
 mod leave;
 mod levels;
 mod light_lobes;
@@ -33,6 +35,7 @@ use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
 use cutout::{cutout_number, linked_shadow_passed, shadow_passed, MAX_CUTOUT_CROSSINGS};
+use emitters::{environment_seen, through_portal, towards_sphere};
 pub use hit_material::constant_materials;
 use hit_material::material_at;
 pub use hit_surface::hit_normals;
@@ -133,16 +136,17 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     }
 }
 
-/// The closest visible light hit by `ray` before distance `tmax`; camera rays pass through
-/// portal windows. (Inlined into the path loop: every ray asks it.)
+/// The closest visible light hit by `ray` before distance `tmax` (instead of the ray's
+/// own); camera rays pass through portal windows. (Inlined into the path loop: every ray
+/// asks it.)
 #[inline]
-fn hit_light(lights: &[LightSource], ray: &Ray, camera: bool) -> Option<(usize, f32, Rgb)> {
+fn hit_light(lights: &[LightSource], ray: &Ray, tmax: f32, camera: bool) -> Option<(usize, f32, Rgb)> {
     let mut best: Option<(usize, f32, Rgb)> = None;
     for (i, l) in lights.iter().enumerate() {
         if !l.visible || camera && l.is_portal() {
             continue;
         }
-        if let Some((t, le)) = l.intersect(ray) {
+        if let Some((t, le)) = l.intersect_until(ray, tmax) {
             if best.is_none_or(|(_, bt, _)| t < bt) {
                 best = Some((i, t, le));
             }
@@ -158,36 +162,6 @@ fn light_radiance(light: &LightSource, le: Rgb, env: Option<&Environment>, dir: 
         return le;
     }
     env.map_or(Rgb::ZERO, |env| le * env.light_radiance(dir) * env.lighting_scale)
-}
-
-/// Whether a ray from `origin` along unit `dir` leaves through the emitting side of a portal
-/// window: the portal light then accounts for the environment in that direction.
-fn through_portal(lights: &[LightSource], origin: Vec3A, dir: Vec3A) -> bool {
-    lights.iter().any(|l| l.is_portal() && l.intersect(&Ray::new(origin, dir)).is_some())
-}
-
-/// The environment seen by a ray that left the scene after `depth` bounces: all of it for
-/// camera rays (when the camera sees it), after delta bounces and when next-event
-/// estimation does not sample it, else its MIS share
-/// against environment sampling chosen with probability `pick` (none without MIS).
-fn environment_seen(env: &Environment, ray: &Ray, depth: u32, last: (f32, bool), pick: f32, mis: bool) -> Rgb {
-    let (last_pdf, last_delta) = last;
-    if depth == 0 {
-        return if env.camera_visible { env.radiance(ray.dir) } else { Rgb::ZERO };
-    }
-    let weight = if last_delta || !env.sampled {
-        1.0
-    } else if mis && !env.nee_only() {
-        power_heuristic(last_pdf, pick * env.pdf(ray.dir))
-    } else {
-        0.0
-    };
-    if weight == 0.0 {
-        return Rgb::ZERO;
-    }
-    // After a mirror bounce the environment is seen; after others it is light.
-    let l = if last_delta { env.radiance(ray.dir) } else { env.light_radiance(ray.dir) };
-    l * (env.lighting_scale * weight)
 }
 
 /// A shading point as next-event estimation sees it.
@@ -216,8 +190,9 @@ fn shading_frame(ns: Vec3A, tangent: Option<Vec3A>) -> Frame {
     }
 }
 
-/// Traces one camera path; `shading` (the scene's compiled shader graph) evaluates
-/// materials with connected parameters; `env` lights the scene from infinitely far away.
+/// Traces one camera path through `scene` (its compiled shader graph evaluates materials
+/// with connected parameters; its environment lights it from infinitely far away; its
+/// constant materials, [`constant_materials`], built once by the caller for all its paths).
 ///
 /// Portal lights (`mia_portal_light`) and the environment share the environment's light
 /// without counting it twice: a ray that crosses a portal window from its emitting side
@@ -229,12 +204,8 @@ fn shading_frame(ns: Vec3A, tangent: Option<Vec3A>) -> Frame {
 ///
 /// `camera_media` are the media around the camera ray's origin (see [`media_at`]; the
 /// default outside all).
-#[allow(clippy::too_many_arguments)]
 pub fn trace_path(
-    world: &World,
-    accel: &dyn Accel,
-    shading: Option<&Shading>,
-    env: Option<&Environment>,
+    scene: &PathScene,
     camera_ray: Ray,
     camera_media: &MediumStack,
     sampler: &mut Sampler,
@@ -242,7 +213,7 @@ pub fn trace_path(
     counts: &mut RayCounts,
 ) -> PathResult {
     let camera = CameraRay { ray: camera_ray, hit: None, defer_shadow: false };
-    trace_camera_path(world, accel, shading, env, camera, camera_media, sampler, settings, counts)
+    trace_camera_path(scene, camera, camera_media, sampler, settings, counts)
 }
 
 /// What paths are traced in: the scene and what the render made of it once.
@@ -277,13 +248,9 @@ pub struct CameraRay {
 
 /// [`trace_path`] from a [`CameraRay`] whose closest hit may be known already (then the
 /// path is the same, bit for bit, as the one traced from the bare ray).
-#[allow(clippy::too_many_arguments)]
 #[inline]
 pub fn trace_camera_path(
-    world: &World,
-    accel: &dyn Accel,
-    shading: Option<&Shading>,
-    env: Option<&Environment>,
+    scene: &PathScene,
     camera: CameraRay,
     camera_media: &MediumStack,
     sampler: &mut Sampler,
@@ -291,9 +258,7 @@ pub fn trace_camera_path(
     counts: &mut RayCounts,
 ) -> PathResult {
     let mut result = PathResult::EMPTY;
-    let constants = constant_materials(world);
-    let scene = PathScene { world, accel, shading, env, constants: &constants };
-    trace_camera_path_into(&scene, camera, camera_media, sampler, settings, counts, &mut result);
+    trace_camera_path_into(scene, camera, camera_media, sampler, settings, counts, &mut result);
     result
 }
 
@@ -362,24 +327,27 @@ pub fn trace_camera_path_into(
     let mut s = Surface::UNSET;
     for depth in 0..settings.max_depth {
         counts.rays += 1;
-        let reach_here = reach.take();
+        // (The last bounce's glossy share, `reach`, is read where it is used below, not
+        // moved out here at every bounce: every bounce that goes on sets it anew.)
         // The nearest surface that stops the ray (cutouts let it through by their
         // opacity): its hit, and in `s` its surface data.
         let mut found: Option<Hit> = None;
-        let mut through = ray;
+        // The ray on from the last cutout it passed (none passed: `ray` itself, not copied).
+        let mut passed: Option<Ray> = None;
         for crossing in 0..MAX_CUTOUT_CROSSINGS {
+            let through = passed.as_ref().unwrap_or(&ray);
             // The camera ray's hit may be known (only for the ray itself, not past a cutout).
             let h = match camera_hit.take() {
                 Some(known) => known,
-                None => accel.intersect(&through),
+                None => accel.intersect(through),
             };
             let Some(h) = h else { break };
-            surface_into(world, &through, &h, &mut s);
+            surface_into(world, through, &h, &mut s);
             let surface_material = &world.materials[s.material as usize];
             let constant =
                 !(shading.is_some() && surface_material.is_varying()) && surface_material.view_transparency.is_none();
             if !constant {
-                varying = Some(material_at(world, accel, shading, &through, &h, s.material));
+                varying = Some(material_at(world, accel, shading, through, &h, s.material));
             } else if varying.is_some() {
                 // (A varying material's hit passed through before.)
                 varying = None;
@@ -409,11 +377,11 @@ pub fn trace_camera_path_into(
             if fog_possible {
                 fogs.passed_through(s.material, (s.p - ray.origin).dot(ray.dir), h.instance);
             }
-            through.origin = s.leave(s.ng, ray.dir);
+            passed = Some(Ray { origin: s.leave(s.ng, ray.dir), ..ray });
         }
         let hit = found;
         let tmax = hit.map_or(ray.tmax, |h| h.t);
-        let light_hit = hit_light(&world.lights, &Ray { tmax, ..ray }, depth == 0);
+        let light_hit = hit_light(&world.lights, &ray, tmax, depth == 0);
         if !media.is_empty() {
             // In a medium the ray may scatter before what it found.
             let t_end = light_hit.map_or(tmax, |(_, t, _)| t);
@@ -465,6 +433,7 @@ pub fn trace_camera_path_into(
                         throughput /= q;
                     }
                     ray = Ray { mask: mask::SECONDARY, origin: p, dir, tmin: 0.0, tmax: f32::INFINITY, time: ray.time };
+                    reach = None;
                     continue;
                 }
                 Some(bsdf::medium::Flight::Through { weight }) => throughput *= weight,
@@ -488,7 +457,7 @@ pub fn trace_camera_path_into(
                 }
             }
         }
-        if let Some(r) = reach_here {
+        if let Some(r) = reach {
             // Past a glossy bounce whose rays see the environment their own way.
             let d = light_hit.map(|(_, t, _)| t).or(hit.map(|h| h.t)).unwrap_or(f32::INFINITY);
             let left = light_hit.is_none() && found.is_none();
@@ -563,8 +532,12 @@ pub fn trace_camera_path_into(
             (throughput, ray, reflections, last_delta, from_instance) =
                 (throughput * weight, next, reflections + 1, true, Some(stop.instance));
             last_env = own_env;
+            reach = None;
             continue;
         }
+        // The commonest hit, one Lambertian lobe, skips the general BSDF's dispatch below
+        // (`lambert_hit`: the same numbers bit for bit).
+        let lambert = lambert_hit::is_lambert(material);
         if material.emission != Rgb::ZERO {
             let spread =
                 material.emission_shape.as_deref().map_or(Rgb::ONE, |e| e.factor(s.ns, material.tangent, -ray.dir));
@@ -572,7 +545,7 @@ pub fn trace_camera_path_into(
         }
         // Two-sided shading: face the normals towards the ray, unless light can enter the
         // surface — then the front is outside, and a ray from behind sees the inside.
-        let facing = material.model.has_inside() || s.ng.dot(ray.dir) <= 0.0;
+        let facing = !lambert && material.model.has_inside() || s.ng.dot(ray.dir) <= 0.0;
         let (ng, mut ns) = if facing { (s.ng, s.ns) } else { (-s.ng, -s.ns) };
         if let Some(bent) = material.normal {
             // A bump or normal map (given facing the ray): on the side of `ns`.
@@ -580,7 +553,11 @@ pub fn trace_camera_path_into(
         }
         let frame = shading_frame(ns, material.tangent);
         let wo = frame.to_local(-ray.dir);
-        let mut bsdf = material.model.bsdf_in(material.diffuse, wo, &frame);
+        let mut bsdf = if lambert {
+            Bsdf::Lambert(bsdf::Lambert { albedo: material.diffuse })
+        } else {
+            material.model.bsdf_in(material.diffuse, wo, &frame)
+        };
         if let Bsdf::Maya(b) = &mut bsdf {
             // Maya's `reflectionLimit`: no mirror past that many reflections; and
             // what the mirror's weight adds besides them (`reflectedColor`).
@@ -592,7 +569,8 @@ pub fn trace_camera_path_into(
             b.refract_at(s.ng.dot(ray.dir) > 0.0, refractions);
             radiance += throughput * b.emitted;
         }
-        let departure = Departure { media: &media, surface: Some((s.material, s.ng, &ray, &stop)) };
+        // (Built where a shadow ray leaves: most bounces trace theirs in a packet or not at all.)
+        let departure = || Departure { media: &media, surface: Some((s.material, s.ng, &ray, &stop)) };
         // Next-event estimation (the sample numbers are drawn even when unused, so that
         // every bounce uses the same dimensions).
         let choice = sampler.next_1d();
@@ -619,7 +597,7 @@ pub fn trace_camera_path_into(
                             tmax: dist * (1.0 - 1e-4),
                             time: ray.time,
                         };
-                        media::light_transmittance(world, accel, shading, &departure, &shadow, seed, true, None)
+                        media::light_transmittance(world, accel, shading, &departure(), &shadow, seed, true, None)
                     }
                     None => Rgb::ONE,
                 };
@@ -635,9 +613,20 @@ pub fn trace_camera_path_into(
         let mis = settings.mis && depth + 1 < settings.max_depth;
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
-        let env_here = env.filter(|_| own_env.is_none() && !glossy_reach::reaches(&material.model));
-        if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
-            let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
+        let env_here = env.filter(|_| own_env.is_none() && (lambert || !glossy_reach::reaches(&material.model)));
+        // (A Lambertian lobe is no delta: light sampling always applies.)
+        let sampled = lambert || !bsdf.is_delta();
+        if let (Some(env), true) = (env_here, k == light_count && choices > light_count && sampled) {
+            let v = Vertex {
+                p: s.p,
+                err: s.err,
+                time: ray.time,
+                ng,
+                frame: &frame,
+                wo,
+                bsdf: &bsdf,
+                departure: departure(),
+            };
             radiance += throughput
                 * env_light::environment_light(
                     world,
@@ -651,12 +640,16 @@ pub fn trace_camera_path_into(
                     mis,
                     counts,
                 );
-        } else if k < light_count && !bsdf.is_delta() && world.lights_instance(k, stop.instance) {
+        } else if k < light_count && sampled && world.lights_instance(k, stop.instance) {
             let light = &world.lights[k];
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
-                let f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
+                let f = if lambert {
+                    lambert_hit::eval(material.diffuse, wo, wi, light.lobes)
+                } else {
+                    light_lobes::eval(&bsdf, wo, wi, light.lobes)
+                };
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
@@ -688,7 +681,7 @@ pub fn trace_camera_path_into(
                             world,
                             accel,
                             shading,
-                            &departure,
+                            &departure(),
                             &shadow,
                             seed,
                             light.shadow,
@@ -706,8 +699,12 @@ pub fn trace_camera_path_into(
                         unshadowed
                     };
                     if tr != Rgb::ZERO {
-                        let weight =
-                            if ls.delta || !mis { 1.0 } else { power_heuristic(pick * ls.pdf, bsdf.pdf(wo, wi)) };
+                        let weight = if ls.delta || !mis {
+                            1.0
+                        } else {
+                            let bsdf_pdf = if lambert { lambert_hit::pdf(wo, wi) } else { bsdf.pdf(wo, wi) };
+                            power_heuristic(pick * ls.pdf, bsdf_pdf)
+                        };
                         let term = throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
                         if defer {
                             radiance.lit += term;
@@ -721,20 +718,30 @@ pub fn trace_camera_path_into(
         // Scatter.
         let u_dir = sampler.next_2d();
         let u_lobe = sampler.next_1d();
-        let Some(bs) = bsdf.sample(wo, u_dir, u_lobe) else { break };
+        // (Each branch ends the path itself: one merged `Option` went through the stack.)
+        let bs = if lambert {
+            let Some(bs) = lambert_hit::sample(material.diffuse, wo, u_dir) else { break };
+            bs
+        } else {
+            let Some(bs) = bsdf.sample(wo, u_dir, u_lobe) else { break };
+            bs
+        };
         let wi = frame.to_world(bs.wi);
         // A reflected ray must leave above the geometric surface, a transmitted one below:
         // shading normals can say otherwise, and then the path ends.
         if (bs.wi.z > 0.0) != (wi.dot(ng) > 0.0) {
             break;
         }
-        if levels::reflects(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
-            reflections += 1;
-        } else if levels::refracts(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
-            refractions += 1;
+        // (A Lambertian sample is neither a mirror's nor a transmission, nor glossy.)
+        if !lambert {
+            if levels::reflects(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
+                reflections += 1;
+            } else if levels::refracts(&bsdf, wo, &bs, || cutout_number(seed, s.p, depth + levels::SALT)) {
+                refractions += 1;
+            }
         }
         let bounce_weight = bs.weight();
-        reach = glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs);
+        reach = if lambert { None } else { glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs) };
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;
@@ -771,21 +778,4 @@ pub fn trace_camera_path_into(
     let alpha = alpha + (1.0 - alpha) * fog_cover.clamp(0.0, 1.0);
     let pending = pending.map(|ray| PendingShadow { ray, blocked: radiance.shadowed });
     *out = PathResult { radiance: radiance.lit, alpha, first, glow, pending };
-}
-
-/// The direction (unit) and distance from `p` to a point uniform over the surface of the
-/// sphere of `radius` around `centre`, picked by `u` (uniform in [0, 1)²); to the centre
-/// itself when that point is `p`.
-fn towards_sphere(p: Vec3A, centre: Vec3A, radius: f32, u: glam::Vec2) -> (Vec3A, f32) {
-    let z = 1.0 - 2.0 * u.x;
-    let s = (1.0 - z * z).max(0.0).sqrt();
-    let phi = std::f32::consts::TAU * u.y;
-    let d = centre + radius * Vec3A::new(s * phi.cos(), s * phi.sin(), z) - p;
-    let dist = d.length();
-    if dist > 0.0 && dist.is_finite() {
-        (d / dist, dist)
-    } else {
-        let d = centre - p;
-        (d.normalize_or(Vec3A::Y), d.length())
-    }
 }

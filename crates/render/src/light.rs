@@ -479,13 +479,21 @@ impl LightSource {
     /// rest is `intersect_any`, out of line.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Rgb)> {
+        self.intersect_until(ray, ray.tmax)
+    }
+
+    /// [`LightSource::intersect`] for `ray` cut at distance `tmax` instead of its own
+    /// `tmax` (the path engine asks it of every ray up to the surface the ray found,
+    /// without copying the ray for each light).
+    #[inline]
+    pub fn intersect_until(&self, ray: &Ray, tmax: f32) -> Option<(f32, Rgb)> {
         if let (Output::Radiance { l, two_sided }, Shape::Rect { .. }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
-            let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, ray.tmax)?;
+            let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, tmax)?;
             return (facing || *two_sided).then_some((t, *l));
         }
-        self.intersect_any(ray)
+        self.intersect_any(&Ray { tmax, ..*ray })
     }
 
     /// [`LightSource::intersect`] for any light.
@@ -575,8 +583,8 @@ impl LightSource {
     /// the unshadowed light is unchanged, the share of such rays let through shadows it.
     /// A Maya volume light whose `volumeLightDir` turns the sample's direction: towards
     /// the point it shines from (its origin, or the nearest point of a cylinder's or
-    /// cone's axis).
-    #[inline]
+    /// cone's axis). (Always inlined: its common case is one test.)
+    #[inline(always)]
     pub fn shadow_ray_at(&self, p: Vec3A, ls: &LightSample, u: Vec2, time: f32) -> (Vec3A, f32) {
         // Most lights: the sample's own ray (tested inline; the others out of line).
         if self.soft_shadow.is_none() && !matches!(self.output, Output::Volume(_)) {

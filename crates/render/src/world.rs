@@ -122,7 +122,9 @@ impl World {
     }
 
     /// Whether light `light` (an index into [`World::lights`]) lights instance `instance`
-    /// (an index into [`World::instances`]) by the instance's light list.
+    /// (an index into [`World::instances`]) by the instance's light list. (Inlined: every
+    /// light sample of the path engine asks it.)
+    #[inline]
     pub fn lights_instance(&self, light: usize, instance: u32) -> bool {
         self.unlinked_lights.get(instance as usize).is_none_or(|out| !out.contains(&(light as u32)))
     }

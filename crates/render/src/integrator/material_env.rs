@@ -28,12 +28,21 @@ pub(super) fn own(shading: Option<&Shading>, material: u32) -> Option<NodeId> {
 /// The `environment` parameter of `node` when it is a `mib_glossy_reflection` that casts
 /// glossy rays (`samples` above 0, a `reflection_color` other than black, as the path
 /// engine translates it): the environment its reflection rays see where they miss.
+#[inline]
 fn glossy_environment(shading: &Shading, node: NodeId) -> Option<NodeId> {
     let glossy = &baselib::glossy::GLOSSY_REFLECTION;
     let n = shading.graph.nodes.get(node as usize)?;
+    // (The test inlined into every hit's question; the glossy shader's slots out of line.)
     if !n.imp.is_some_and(|i| std::ptr::eq(i, glossy)) {
         return None;
     }
+    glossy_slots_environment(n)
+}
+
+/// [`glossy_environment`] for a node `n` of `mib_glossy_reflection`.
+#[inline(never)]
+fn glossy_slots_environment(n: &shader::graph::Node) -> Option<NodeId> {
+    let glossy = &baselib::glossy::GLOSSY_REFLECTION;
     let slot = |name: &str| glossy.params.iter().position(|p| *p == name).and_then(|i| n.slots.get(i));
     let constant = |name: &str| match slot(name) {
         Some(Slot::Value(v)) => Some(v),

@@ -8,7 +8,7 @@ use crate::support;
 use bsdf::Rgb;
 use glam::Vec3A;
 use render::environment::{Environment, Source};
-use render::integrator::{trace_path, PathSettings};
+use render::integrator::{constant_materials, trace_path, PathScene, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::{EngineKind, Settings};
@@ -139,6 +139,8 @@ fn bright_spot(centre: Vec3A) -> Environment<'static> {
 pub(crate) fn plane_stats(world: &render::World, env: &Environment, res: u32, spp: u32) -> (f64, f64) {
     let accel = render::accel::build(world, render::Backend::default_available());
     let settings = PathSettings::default();
+    let constants = constant_materials(world);
+    let scene = PathScene { world, accel: accel.as_ref(), shading: None, env: Some(env), constants: &constants };
     let mut values = Vec::new();
     for y in 0..res {
         for x in 0..res {
@@ -148,17 +150,7 @@ pub(crate) fn plane_stats(world: &render::World, env: &Environment, res: u32, sp
                 let _ = sampler.next_2d();
                 let ray = world.camera.ray(x as f32 + 0.5, y as f32 + 0.5);
                 let mut counts = RayCounts::default();
-                let r = trace_path(
-                    world,
-                    accel.as_ref(),
-                    None,
-                    Some(env),
-                    ray,
-                    &Default::default(),
-                    &mut sampler,
-                    &settings,
-                    &mut counts,
-                );
+                let r = trace_path(&scene, ray, &Default::default(), &mut sampler, &settings, &mut counts);
                 sum += f64::from(r.radiance.x);
             }
             values.push(sum / f64::from(spp));

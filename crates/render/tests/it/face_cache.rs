@@ -3,7 +3,7 @@
 //! bits as computed at a hit, rebuilt after displacement, and changing no path's radiance.
 
 use glam::Vec3A;
-use render::integrator::{trace_camera_path, CameraRay, PathSettings};
+use render::integrator::{constant_materials, trace_camera_path, CameraRay, PathScene, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::world::{face_normal, FaceCache};
@@ -110,33 +110,27 @@ fn kept_faces_change_no_path() {
     let (accel_kept, accel_computed) = (render::accel::build(&kept, backend), render::accel::build(&computed, backend));
     let (w, h) = (kept.camera.width, kept.camera.height);
     let settings = PathSettings::default();
+    let (constants_kept, constants_computed) = (constant_materials(&kept), constant_materials(&computed));
+    let scene = |world, accel, constants| PathScene { world, accel, shading: None, env: None, constants };
+    let scene_kept = scene(&kept, accel_kept.as_ref(), &constants_kept);
+    let scene_computed = scene(&computed, accel_computed.as_ref(), &constants_computed);
     let mut lit = 0;
     for y in 0..16u32 {
         for x in 0..16u32 {
             let raster = ((x as f32 + 0.5) * w as f32 / 16.0, (y as f32 + 0.5) * h as f32 / 16.0);
             for index in 0..4 {
-                let trace = |world: &World, accel: &dyn render::accel::Accel| {
+                let trace = |scene: &PathScene| {
                     let mut sampler = Sampler::new(pixel_seed(x, y, 5), index);
                     let _ = sampler.next_2d();
                     let camera =
-                        CameraRay { ray: world.camera.ray(raster.0, raster.1), hit: None, defer_shadow: false };
+                        CameraRay { ray: scene.world.camera.ray(raster.0, raster.1), hit: None, defer_shadow: false };
                     let media = Default::default();
                     let mut counts = RayCounts::default();
-                    let r = trace_camera_path(
-                        world,
-                        accel,
-                        None,
-                        None,
-                        camera,
-                        &media,
-                        &mut sampler,
-                        &settings,
-                        &mut counts,
-                    );
+                    let r = trace_camera_path(scene, camera, &media, &mut sampler, &settings, &mut counts);
                     (r.radiance.to_array().map(f32::to_bits), r.alpha.to_bits(), counts.rays)
                 };
-                let a = trace(&kept, accel_kept.as_ref());
-                assert_eq!(a, trace(&computed, accel_computed.as_ref()), "pixel ({x}, {y}) sample {index}");
+                let a = trace(&scene_kept);
+                assert_eq!(a, trace(&scene_computed), "pixel ({x}, {y}) sample {index}");
                 lit += u32::from(a.0 != [0; 3]);
             }
         }

@@ -3,7 +3,7 @@
 //! radiance is bit for bit the one it makes tracing the ray itself, on both backends.
 
 use render::accel::Backend;
-use render::integrator::{trace_camera_path, CameraRay, PathSettings};
+use render::integrator::{constant_materials, trace_camera_path, CameraRay, PathScene, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::World;
@@ -27,6 +27,8 @@ fn deferred_first_shadow_rays_give_the_paths_own_radiance() {
     let settings = PathSettings::default();
     for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
         let accel = render::accel::build(&world, backend);
+        let constants = constant_materials(&world);
+        let scene = PathScene { world: &world, accel: accel.as_ref(), shading: None, env: None, constants: &constants };
         let (mut blocked, mut lit) = (0u32, 0u32);
         for y in 0..24u32 {
             for x in 0..24u32 {
@@ -40,17 +42,7 @@ fn deferred_first_shadow_rays_give_the_paths_own_radiance() {
                     let path = |defer_shadow: bool, sampler: &mut Sampler, counts: &mut RayCounts| {
                         let camera = CameraRay { ray, hit: None, defer_shadow };
                         let media = Default::default();
-                        trace_camera_path(
-                            &world,
-                            accel.as_ref(),
-                            None,
-                            None,
-                            camera,
-                            &media,
-                            sampler,
-                            &settings,
-                            counts,
-                        )
+                        trace_camera_path(&scene, camera, &media, sampler, &settings, counts)
                     };
                     let own = path(false, &mut own_sampler, &mut own_counts);
                     let left = path(true, &mut left_sampler, &mut left_counts);
