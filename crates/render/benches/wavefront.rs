@@ -10,8 +10,12 @@
 //!   origin);
 //!
 //! and with Embree's stream kernel (`rtcIntersect1M`, incoherent and coherent flags) on
-//! the same waves. Prints CPU nanoseconds per ray (the median of interleaved repetitions) and
-//! checks that the one-ray kernel's hits are the recorded ones in every order.
+//! the same waves; and, to see whether two paths in flight would hide the hit's vertex
+//! reads (the triangle's indices, then its normals) behind the other path's traversal,
+//! path order with those reads after each ray against two paths' rays interleaved with
+//! each hit's index line prefetched and read one ray later. Prints CPU nanoseconds per ray
+//! (the median of interleaved repetitions) and checks that the one-ray kernel's hits are
+//! the recorded ones in every order.
 //!
 //! Needs Embree and a scene: `MIRA_WAVEFRONT_SCENE=/path/heavy_4M.mi cargo bench -p render
 //! --bench wavefront` (optional `MIRA_WAVEFRONT_RES=256`, `MIRA_WAVEFRONT_SPP=16`,
@@ -198,12 +202,10 @@ fn hit_reads(world: &render::World, h: &Hit) -> f32 {
 #[inline(always)]
 fn prefetch_indices(world: &render::World, h: &Hit) {
     let mesh = &world.meshes[world.instances[h.instance as usize].mesh as usize];
+    #[cfg(target_arch = "x86_64")]
     if let Some(t) = mesh.triangles.get(h.prim as usize) {
-        #[cfg(target_arch = "x86_64")]
         // SAFETY: a prefetch reads nothing architecturally; the address is a live element.
-        unsafe {
-            std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(t.as_ptr().cast())
-        };
+        unsafe { std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(t.as_ptr().cast()) };
     }
 }
 
