@@ -158,6 +158,13 @@ extern "C" {
     fn rtcOccluded1(scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay);
     fn rtcIntersect8(valid: *const Valid8, scene: RtcScene, context: *mut IntersectContext, rayhit: *mut RtcRayHit8);
     fn rtcOccluded8(valid: *const Valid8, scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay8);
+    fn rtcIntersect1M(
+        scene: RtcScene,
+        context: *mut IntersectContext,
+        rayhit: *mut RtcRayHit,
+        count: c_uint,
+        byte_stride: usize,
+    );
 }
 
 /// Triangles stored (shared meshes once, flattened instances each) from which the scene's
@@ -384,6 +391,44 @@ impl<'w> EmbreeAccel<'w> {
 
     fn context() -> IntersectContext {
         IntersectContext { flags: 0, filter: std::ptr::null(), inst_id: [INVALID_ID] }
+    }
+
+    /// The closest hits of `rays` into `hits` (as long as `rays`) through Embree's stream
+    /// kernel (`rtcIntersect1M`), which packs the rays into packets itself (`coherent`: the
+    /// coherent-rays flag). For measurements only (`benches/wavefront.rs`): with compact
+    /// leaves its packet kernels may move hits in the last bit against
+    /// [`Accel::intersect`].
+    pub fn intersect_stream(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
+        let mut rh: Vec<RtcRayHit> = rays
+            .iter()
+            .map(|r| RtcRayHit {
+                ray: Self::rtc_ray(r),
+                hit: RtcHit {
+                    ng: [0.0; 3],
+                    u: 0.0,
+                    v: 0.0,
+                    prim_id: INVALID_ID,
+                    geom_id: INVALID_ID,
+                    inst_id: [INVALID_ID],
+                },
+            })
+            .collect();
+        let mut ctx = IntersectContext { flags: if coherent { CONTEXT_FLAG_COHERENT } else { 0 }, ..Self::context() };
+        // SAFETY: `top` is a committed scene; `rh` holds `rays.len()` 16-byte aligned
+        // `RTCRayHit`s one after another (stride = their size).
+        unsafe {
+            rtcIntersect1M(self.top, &mut ctx, rh.as_mut_ptr(), rh.len() as c_uint, std::mem::size_of::<RtcRayHit>())
+        };
+        for (h, rh) in hits.iter_mut().zip(&rh) {
+            let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
+            *h = (rh.hit.geom_id != INVALID_ID).then_some(Hit {
+                t: rh.ray.tfar,
+                instance,
+                prim: rh.hit.prim_id,
+                u: rh.hit.u,
+                v: rh.hit.v,
+            });
+        }
     }
 }
 

@@ -121,6 +121,41 @@ fn embree_and_rust_backends_agree() {
     assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
 }
 
+/// Embree's stream kernel (`EmbreeAccel::intersect_stream`, the measurement hook of
+/// `benches/wavefront.rs`), with either coherence flag, finds what the one-ray query finds
+/// for 5,000 scattered rays in the Cornell box, given all at once and in uneven pieces:
+/// the same instance and triangle (at most 1 ray in 1,000 grazing a shared edge may take
+/// the neighbour) and the same distance within 1e-4 relative.
+#[cfg(embree)]
+#[test]
+fn embree_stream_matches_single_rays() {
+    let world = cornell();
+    let embree = render::accel::embree::EmbreeAccel::new(&world);
+    let rays = support::rays::in_cornell_box(5_000, 0x2545_f491_4f6c_dd1d);
+    let single: Vec<_> = rays.iter().map(|r| accel::Accel::intersect(&embree, r)).collect();
+    assert!(single.iter().filter(|h| h.is_some()).count() > rays.len() / 2, "most rays hit the box");
+    for coherent in [false, true] {
+        for piece in [rays.len(), 7, 1] {
+            let mut stream = vec![None; rays.len()];
+            for (r, h) in rays.chunks(piece).zip(stream.chunks_mut(piece)) {
+                embree.intersect_stream(r, h, coherent);
+            }
+            let mut different = 0;
+            for (a, b) in single.iter().zip(&stream) {
+                match (a, b) {
+                    (Some(a), Some(b)) => {
+                        different += usize::from((a.instance, a.prim) != (b.instance, b.prim));
+                        assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                    }
+                    (None, None) => {}
+                    _ => panic!("the stream and the one-ray query disagree: {a:?} {b:?}"),
+                }
+            }
+            assert!(different <= rays.len() / 1000, "{different} rays hit other triangles");
+        }
+    }
+}
+
 /// Occlusion asked for a batch of rays (as the light loop asks for a light's samples: from
 /// one point, up to a distance, in groups of every size up to 19, which Embree traces as
 /// packets of eight) answers each ray as the one-ray query does, on both backends; the
