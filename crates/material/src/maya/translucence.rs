@@ -68,14 +68,20 @@ fn with_lobe(surface: &SurfaceMaterial, albedo: Rgb, focus: f32) -> bsdf::MayaGl
 
 /// Gives the rampShader `surface` its translucence: a transmission lobe (focus 0: the
 /// classic rampShader reads no `translucenceFocus`) of albedo `albedo` (see
-/// `super::ramp_shader`: ⊙ the fade) of which the share `grazing` follows the light's
-/// angle ([`bsdf::MayaGlossy::translucence_grazing`]; zero: diffuse), and the reader's
+/// `super::ramp_shader`: ⊙ the fade) shaped over the light's angle by `light_angle`
+/// ([`bsdf::MayaGlossy::light_angle`]; `None`: diffuse), and the reader's
 /// `translucenceDepth` for shadow rays, as the lambert family's (see the module doc).
-pub(super) fn translate_ramp(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb, grazing: Rgb) {
+pub(super) fn translate_ramp(
+    r: &mut Reader,
+    surface: &mut SurfaceMaterial,
+    albedo: Rgb,
+    light_angle: Option<bsdf::maya_highlight::translucence::LightAngle>,
+) {
     if albedo == Rgb::ZERO {
         return;
     }
-    let lobe = with_lobe(surface, albedo, 0.0).with_translucence_grazing(grazing);
+    let mut lobe = with_lobe(surface, albedo, 0.0);
+    lobe.light_angle = light_angle;
     surface.model = SurfaceModel::Maya(Box::new(lobe));
     surface.translucence_depth = r.scalar("translucenceDepth", 0.5).max(0.0);
 }
