@@ -116,7 +116,7 @@ mod translucence;
 mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
-pub use translucence::{translucent_passage, CONNECTED_STAND_IN};
+pub use translucence::{translucent_passage, TranslucentLayer, CONNECTED_STAND_IN};
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -616,6 +616,10 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     let mut refraction: Option<(Rgb, f32, u32)> = None;
     // Each layer's translucence depth (0: none), for the stack's shadow rays.
     let mut depths = vec![0.0f32; elements.len()];
+    // Each rampShader layer's transparency at the facing ratios k/32 where it follows the
+    // view, for the stack's shadow rays.
+    let mut view_transparencies: Vec<Option<Box<[Rgb; bsdf::maya_highlight::VIEW_RAMP_STEPS]>>> =
+        vec![None; elements.len()];
     for (i, (e, &t)) in elements.iter().zip(&transparencies).enumerate() {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         // The layer's share per channel, P_i ⊙ (1 − T_i).
@@ -637,6 +641,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 ambient_color += layer.diffuse * layer.ambient * w;
                 let tables = view_layers::ramp_tables(graph, m);
                 follows_view |= tables.is_some();
+                view_transparencies[i] = tables.as_ref().map(|[t, _]| Box::new(*t));
                 by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
                 // Maya's highlight shows by the layer's share, as its diffuse colour (the
                 // first layer's); every layer's translucence adds to the stack's by its
@@ -694,7 +699,12 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     cut_out(&mut surface, transparencies.iter().fold(Rgb::ONE, |p, t| p * *t), false);
     if depths.iter().any(|&d| d > 0.0) {
         surface.translucence_depth = depths.iter().fold(0.0f32, |m, &d| m.max(d));
-        surface.translucence_layers = transparencies.iter().copied().zip(depths).collect();
+        surface.translucence_layers = transparencies
+            .iter()
+            .zip(view_transparencies)
+            .zip(depths)
+            .map(|((&transparency, by_view), depth)| TranslucentLayer { transparency, by_view, depth })
+            .collect();
     }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
