@@ -80,7 +80,7 @@ impl BsdfSample {
 }
 
 /// A BSDF at one shading point. Every variant but [`Bsdf::Wide`] is plain data on the
-/// stack (at most 320 bytes); `Wide` shares its sum ([`SharedLobes`], an `Arc`: cloning it
+/// stack (at most 416 bytes); `Wide` shares its sum ([`SharedLobes`], an `Arc`: cloning it
 /// counts a reference, allocates nothing).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Bsdf {

@@ -73,6 +73,10 @@ pub const VIEW_RAMP_STEPS: usize = 33;
 /// ([`MayaGlossy::specular_ramp`]), evenly spaced over [0, 1].
 pub const SPECULAR_RAMP_STEPS: usize = 9;
 
+/// How many further forward lobes of their own focus a [`MayaGlossy`] carries besides
+/// its first translucence (a layeredShader's layers of other `translucenceFocus`).
+pub const MORE_TRANSLUCENCE: usize = 2;
+
 /// rampShader's ramps that follow the view, tabulated (linear between the points: a
 /// ramp whose points lie on the table's and interpolate linearly is exact):
 /// `specularRollOff` and `reflectivity` by the facing ratio N·V, `environment` by the
@@ -85,6 +89,16 @@ pub struct ViewRamps {
     pub reflectivity: [f32; VIEW_RAMP_STEPS],
     /// `environment` at (1 + R_y)/2 = k/32: emitted by the mirror's weight.
     pub environment: [Rgb; VIEW_RAMP_STEPS],
+}
+
+/// A table of colours (linear RGB) at evenly spaced points over [0, 1], linearly
+/// interpolated at `x` (clamped), as [`table_at`] of the same colours as [`Rgb`].
+pub fn rgb_table_at(table: &[[f32; 3]], x: f32) -> Rgb {
+    let last = table.len() - 1;
+    let x = x.clamp(0.0, 1.0) * last as f32;
+    let k = (x as usize).min(last - 1);
+    let t = x - k as f32;
+    Rgb::from(table[k]) * (1.0 - t) + Rgb::from(table[k + 1]) * t
 }
 
 /// A table of values at evenly spaced points over [0, 1], linearly interpolated at `x`
@@ -166,8 +180,8 @@ pub struct MayaGlossy {
     /// mirror emits the environment ramp instead of `reflected`.
     pub view_ramps: Option<ViewRamps>,
     /// rampShader's `specularColor` ramp by the highlight's strength H ∈ [0, 1] at
-    /// H = k/8, when it varies: the highlight is then tint ⊙ S(H) · H.
-    pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
+    /// H = k/8 (linear RGB), when it varies: the highlight is then tint ⊙ S(H) · H.
+    pub specular_ramp: Option<[[f32; 3]; SPECULAR_RAMP_STEPS]>,
     /// The lambert family's `translucence`: the albedo c · t of the light it passes from
     /// behind (linear RGB, faded and divided by the coverage as the diffuse colour is),
     /// concentrated about the light's straight-through direction by the cosine power
@@ -180,10 +194,14 @@ pub struct MayaGlossy {
     /// translucence's albedo per unit of each hit's diffuse colour (t / `diffuse`), which
     /// then replaces [`MayaGlossy::translucence`] at every hit; `None`: constant.
     pub translucence_per_diffuse: Option<f32>,
-    /// rampShader's light-angle translucence: the share g (per channel, in [0, 1]) of
-    /// [`MayaGlossy::translucence`] that follows the light's angle
-    /// ([`translucence::light_angle_factor`]); zero: none (the lambert family's).
-    pub translucence_grazing: Rgb,
+    /// rampShader's light-angle translucence: the shape over the light's angle
+    /// ([`translucence::LightAngle`]) of [`MayaGlossy::translucence`] where its focus is
+    /// 0; `None`: diffuse (the lambert family's).
+    pub light_angle: Option<translucence::LightAngle>,
+    /// Further forward lobes, each of its own focus (a layeredShader whose translucent
+    /// layers differ in `translucenceFocus`): albedo (linear RGB, as
+    /// [`MayaGlossy::translucence`]) and exponent n; an albedo of zero: none.
+    pub translucence_more: [[f32; 4]; MORE_TRANSLUCENCE],
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -211,7 +229,8 @@ impl MayaGlossy {
             translucence: Rgb::ZERO,
             focus: 0.0,
             translucence_per_diffuse: None,
-            translucence_grazing: Rgb::ZERO,
+            light_angle: None,
+            translucence_more: [[0.0; 4]; MORE_TRANSLUCENCE],
             albedo,
         }
     }
@@ -224,11 +243,80 @@ impl MayaGlossy {
         self
     }
 
-    /// The same with the share `g` of the translucence that follows the light's angle
-    /// (see [`MayaGlossy::translucence_grazing`]; clamped to [0, 1]).
-    pub fn with_translucence_grazing(mut self, g: Rgb) -> MayaGlossy {
-        self.translucence_grazing = g.clamp(Rgb::ZERO, Rgb::ONE);
+    /// The same with the translucence shaped over the light's angle by `table` (see
+    /// [`MayaGlossy::light_angle`]).
+    pub fn with_light_angle(mut self, table: translucence::LightAngle) -> MayaGlossy {
+        self.light_angle = Some(table);
         self
+    }
+
+    /// Adds a translucence of albedo `albedo` (linear RGB), forward-lobe exponent `focus`
+    /// and light-angle shape `light_angle` (only for focus 0) to this one's: merged into
+    /// the first lobe where the focus is the same (their light-angle shapes mixed by
+    /// albedo), else carried as a lobe of its own ([`MayaGlossy::translucence_more`]; a
+    /// focus-0 lobe is always the first, the only one with a light-angle shape). `false`
+    /// when no room was left and it was merged into the last further lobe, whose focus
+    /// it then takes.
+    pub fn add_translucence(&mut self, albedo: Rgb, focus: f32, light_angle: Option<translucence::LightAngle>) -> bool {
+        let albedo = albedo.max(Rgb::ZERO);
+        let focus = focus.max(0.0);
+        if albedo == Rgb::ZERO {
+            return true;
+        }
+        if self.translucence == Rgb::ZERO {
+            self.translucence = albedo;
+            self.focus = focus;
+            self.light_angle = if focus <= 0.0 { light_angle } else { None };
+            return true;
+        }
+        if (focus - self.focus).abs() <= 1e-6 {
+            if focus <= 0.0 && (light_angle.is_some() || self.light_angle.is_some()) {
+                let mine = self.light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
+                let theirs = light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
+                self.light_angle = Some(mine.mixed(self.translucence, &theirs, albedo));
+            }
+            self.translucence += albedo;
+            return true;
+        }
+        if focus <= 0.0 {
+            // The focus-0 lobe goes first (it alone carries a light-angle shape).
+            let (first, n) = (self.translucence, self.focus);
+            self.translucence = albedo;
+            self.focus = 0.0;
+            self.light_angle = light_angle;
+            return self.add_further(first, n);
+        }
+        self.add_further(albedo, focus)
+    }
+
+    /// Adds a forward lobe (`albedo`, exponent `n` > 0) among the further ones (see
+    /// [`MayaGlossy::add_translucence`]).
+    fn add_further(&mut self, albedo: Rgb, n: f32) -> bool {
+        let add = |lobe: &mut [f32; 4]| {
+            for c in 0..3 {
+                lobe[c] += albedo[c];
+            }
+        };
+        if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] != [0.0; 3] && (l[3] - n).abs() <= 1e-6) {
+            add(lobe);
+            return true;
+        }
+        if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] == [0.0; 3]) {
+            *lobe = [albedo.x, albedo.y, albedo.z, n];
+            return true;
+        }
+        let last = &mut self.translucence_more[MORE_TRANSLUCENCE - 1];
+        add(last);
+        last[3] = n;
+        false
+    }
+
+    /// Every translucence lobe: albedo (linear RGB) and exponent, the first
+    /// ([`MayaGlossy::translucence`]) first, then the further ones that are not empty.
+    pub fn translucence_lobes(&self) -> impl Iterator<Item = (Rgb, f32)> + '_ {
+        std::iter::once((self.translucence, self.focus)).chain(
+            self.translucence_more.iter().filter(|l| l[..3] != [0.0; 3]).map(|l| (Rgb::new(l[0], l[1], l[2]), l[3])),
+        )
     }
 
     /// The same with the translucence following each hit's diffuse colour: its albedo is
@@ -244,7 +332,20 @@ impl MayaGlossy {
     pub fn translucence_scaled(mut self, k: f32) -> MayaGlossy {
         let k = k.max(0.0);
         self.translucence *= k;
+        for lobe in &mut self.translucence_more {
+            lobe[..3].iter_mut().for_each(|c| *c *= k);
+        }
         self.translucence_per_diffuse = self.translucence_per_diffuse.map(|r| r * k);
+        self
+    }
+
+    /// The same with every translucence lobe's albedo divided by `k` (> 0; a stack's
+    /// coverage, as its diffuse colour is).
+    pub fn translucence_divided(mut self, k: f32) -> MayaGlossy {
+        self.translucence /= k;
+        for lobe in &mut self.translucence_more {
+            lobe[..3].iter_mut().for_each(|c| *c /= k);
+        }
         self
     }
 
@@ -259,7 +360,7 @@ impl MayaGlossy {
     /// [`MayaGlossy::specular_ramp`]; `ramp` gives the colour at a strength in [0, 1]).
     pub fn with_specular_ramp(mut self, ramp: impl Fn(f32) -> Rgb) -> MayaGlossy {
         self.specular_ramp =
-            Some(std::array::from_fn(|k| ramp(k as f32 / (SPECULAR_RAMP_STEPS - 1) as f32).max(Rgb::ZERO)));
+            Some(std::array::from_fn(|k| ramp(k as f32 / (SPECULAR_RAMP_STEPS - 1) as f32).max(Rgb::ZERO).into()));
         self
     }
 
@@ -319,6 +420,11 @@ impl MayaGlossy {
         self.tint *= k.max(Rgb::ZERO);
         self.mirror *= k.max(Rgb::ZERO);
         self.translucence *= k.max(Rgb::ZERO);
+        for lobe in &mut self.translucence_more {
+            for c in 0..3 {
+                lobe[c] *= k[c].max(0.0);
+            }
+        }
         // A layer's colour is its constant one (the layered shader warns when it varies).
         self.translucence_per_diffuse = None;
         self
@@ -358,7 +464,7 @@ impl MayaGlossy {
             }
             None => (self.tint, self.mirror, self.reflected),
         };
-        let colour = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m.max(*c)));
+        let colour = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m.max(Rgb::from(*c))));
         let most = (tint * colour).max_element() * a;
         let tint = if most > 1.0 { tint / most } else { tint };
         let rolloff = self.mirror_rolloff.map_or(1.0, |r0| schlick(r0, facing));
@@ -367,11 +473,14 @@ impl MayaGlossy {
         let emitted =
             if reflected == Rgb::ZERO { Rgb::ZERO } else { reflected * mirror_weight * (rolloff / self.coverage) };
         // The highlight's share by its colour's mean.
-        let mean = self.specular_ramp.map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + *c) / s.len() as f32);
+        let mean = self
+            .specular_ramp
+            .map_or(Rgb::ONE, |s| s.iter().fold(Rgb::ZERO, |m, c| m + Rgb::from(*c)) / s.len() as f32);
         let (d, g, m) = (luminance(diffuse).max(0.0), luminance(tint * mean) * a, luminance(mirror).max(0.0));
         let t = luminance(self.refraction).max(0.0);
         let translucence = self.translucence_per_diffuse.map_or(self.translucence, |k| diffuse.max(Rgb::ZERO) * k);
-        let tl = luminance(translucence).max(0.0);
+        let more = self.translucence_more.iter().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
+        let tl = luminance(translucence).max(0.0) + more;
         let total = d + g + m + t + tl;
         let (diffuse_share, mirror_share, refraction_share, translucence_share) =
             if total > 0.0 { (d / total, m / total, t / total, tl / total) } else { (1.0, 0.0, 0.0, 0.0) };
@@ -389,7 +498,8 @@ impl MayaGlossy {
             specular_ramp: self.specular_ramp,
             translucence,
             focus: self.focus,
-            translucence_grazing: self.translucence_grazing,
+            light_angle: self.light_angle,
+            translucence_more: self.translucence_more,
             diffuse_share,
             mirror_share,
             refraction_share,
@@ -427,15 +537,18 @@ pub struct MayaBsdf {
     /// [`MayaGlossy::tinted_by`].
     pub tinted_by: Rgb,
     /// [`MayaGlossy::specular_ramp`].
-    pub specular_ramp: Option<[Rgb; SPECULAR_RAMP_STEPS]>,
+    pub specular_ramp: Option<[[f32; 3]; SPECULAR_RAMP_STEPS]>,
     /// [`MayaGlossy::translucence`]: f = translucence · K(focus, −ωo·ωi)/π on the side
     /// opposite ωo.
     pub translucence: Rgb,
     /// [`MayaGlossy::focus`].
     pub focus: f32,
-    /// [`MayaGlossy::translucence_grazing`]: f is further multiplied by
-    /// [`translucence::light_angle_factor`] at ωi.
-    pub translucence_grazing: Rgb,
+    /// [`MayaGlossy::light_angle`]: the first lobe's f is further multiplied by
+    /// [`translucence::LightAngle::factor`] at ωi.
+    pub light_angle: Option<translucence::LightAngle>,
+    /// [`MayaGlossy::translucence_more`]: further forward lobes, each
+    /// albedo · K(n, −ωo·ωi)/π.
+    pub translucence_more: [[f32; 4]; MORE_TRANSLUCENCE],
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
     /// The probability of sampling the mirror.
@@ -493,26 +606,51 @@ impl MayaBsdf {
         crate::dielectric::refract(wo, n, self.eta).unwrap_or(Vec3A::new(-wo.x, -wo.y, wo.z))
     }
 
-    /// The translucence's f(ωo, ωi): translucence · K(focus, −ωo·ωi)/π for ωi on the side
-    /// opposite ωo, zero on ωo's side.
+    /// The translucence's f(ωo, ωi) for ωi on the side opposite ωo: the first lobe's
+    /// translucence · K(focus, −ωo·ωi)/π (times its light-angle factor at ωi where it has
+    /// one) plus each further lobe's albedo · K(n, −ωo·ωi)/π; zero on ωo's side.
     pub fn eval_translucence(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        if wo.z * wi.z >= 0.0 || self.translucence == Rgb::ZERO {
+        if wo.z * wi.z >= 0.0 {
             return Rgb::ZERO;
         }
-        let f = self.translucence * (translucence::forward_lobe(self.focus, -wo.dot(wi)) * FRAC_1_PI);
-        if self.translucence_grazing == Rgb::ZERO {
-            return f;
+        let x = -wo.dot(wi);
+        let mut f = Rgb::ZERO;
+        if self.translucence != Rgb::ZERO {
+            f = self.translucence * (translucence::forward_lobe(self.focus, x) * FRAC_1_PI);
+            if let Some(table) = &self.light_angle {
+                f *= table.factor(wi.z.abs());
+            }
         }
-        f * translucence::light_angle_factor(self.translucence_grazing, wi.z.abs())
+        for lobe in self.further() {
+            f += Rgb::new(lobe[0], lobe[1], lobe[2]) * (translucence::forward_lobe(lobe[3], x) * FRAC_1_PI);
+        }
+        f
     }
 
-    /// The density of the translucence's sampling ([`MayaBsdf::sample`]): cosine-weighted
-    /// on the side opposite ωo for diffuse translucence, else the cosine power about −ωo
-    /// (over the whole sphere: its samples on ωo's side carry the other lobes' f).
-    fn translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    /// The further forward lobes that are not empty.
+    fn further(&self) -> impl Iterator<Item = &[f32; 4]> {
+        self.translucence_more.iter().filter(|l| l[..3] != [0.0; 3])
+    }
+
+    /// The first translucence lobe's share of the translucence's samples (by luminance;
+    /// 1 without further lobes).
+    fn first_translucence_share(&self) -> f32 {
+        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
+        if more <= 0.0 {
+            return 1.0;
+        }
+        let first = luminance(self.translucence).max(0.0);
+        first / (first + more)
+    }
+
+    /// The density of the first translucence lobe's sampling ([`MayaBsdf::sample`]):
+    /// uniform on the side opposite ωo for a light-angle shape, cosine-weighted there for
+    /// diffuse translucence, else the cosine power about −ωo (over the whole sphere: its
+    /// samples on ωo's side carry the other lobes' f).
+    fn first_translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if self.focus <= 0.0 {
             if wo.z * wi.z < 0.0 {
-                if self.translucence_grazing != Rgb::ZERO {
+                if self.light_angle.is_some() {
                     return translucence::UNIFORM_PDF;
                 }
                 wi.z.abs() * FRAC_1_PI
@@ -524,13 +662,56 @@ impl MayaBsdf {
         }
     }
 
+    /// The density of the translucence's sampling: the first lobe's and each further
+    /// lobe's (the cosine power about −ωo), mixed by their luminance.
+    fn translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        let first = self.first_translucence_share();
+        if first >= 1.0 {
+            return self.first_translucence_pdf(wo, wi);
+        }
+        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
+        let x = -wo.dot(wi);
+        let further = self
+            .further()
+            .map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0) * translucence::pdf_about(l[3], x))
+            .sum::<f32>();
+        let first_pdf = if first > 0.0 { first * self.first_translucence_pdf(wo, wi) } else { 0.0 };
+        first_pdf + (1.0 - first) * further / more
+    }
+
+    /// A direction of the translucence's sampling from `wo` by `u`, the lobe chosen by
+    /// `v` ∈ [0, 1) (see [`MayaBsdf::translucence_pdf`]).
+    fn sample_translucence(&self, wo: Vec3A, u: Vec2, v: f32) -> Option<Vec3A> {
+        let first = self.first_translucence_share();
+        if v < first {
+            return if self.focus <= 0.0 && self.light_angle.is_some() {
+                Some(translucence::uniform_opposite(wo, u))
+            } else if self.focus <= 0.0 {
+                Some(-cosine_on_side(wo, u)?)
+            } else {
+                Some(translucence::sample_about(-wo, self.focus, u))
+            };
+        }
+        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
+        let mut pick = (v - first) / (1.0 - first) * more;
+        let mut n = 0.0;
+        for l in self.further() {
+            n = l[3];
+            pick -= luminance(Rgb::new(l[0], l[1], l[2])).max(0.0);
+            if pick < 0.0 {
+                break;
+            }
+        }
+        Some(translucence::sample_about(-wo, n, u))
+    }
+
     /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side, the
     /// translucence ([`MayaBsdf::eval_translucence`]) on the other.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         let Some((v, l)) = upper(wo, wi) else { return self.eval_translucence(wo, wi) };
         let h = self.shape.value(v, l);
         let tint = match &self.specular_ramp {
-            Some(s) => self.tint * table_at(s, h),
+            Some(s) => self.tint * rgb_table_at(s, h),
             None => self.tint,
         };
         (self.diffuse + tint * (h / l.z)) * FRAC_1_PI
@@ -557,7 +738,8 @@ impl MayaBsdf {
                 && self.refraction_share <= 0.0
                 && self.diffuse == Rgb::ZERO
                 && self.tint == Rgb::ZERO
-                && self.translucence == Rgb::ZERO)
+                && self.translucence == Rgb::ZERO
+                && self.further().next().is_none())
         {
             return None;
         }
@@ -576,13 +758,7 @@ impl MayaBsdf {
         let wi = if u_lobe < self.diffuse_share {
             cosine_on_side(wo, u)?
         } else if u_lobe < self.diffuse_share + self.translucence_share {
-            if self.focus <= 0.0 && self.translucence_grazing != Rgb::ZERO {
-                translucence::uniform_opposite(wo, u)
-            } else if self.focus <= 0.0 {
-                -cosine_on_side(wo, u)?
-            } else {
-                translucence::sample_about(-wo, self.focus, u)
-            }
+            self.sample_translucence(wo, u, ((u_lobe - self.diffuse_share) / self.translucence_share).min(0.999_999))?
         } else {
             let v = Vec3A::new(wo.x, wo.y, wo.z.abs());
             let l = self.shape.sample(v, u)?;

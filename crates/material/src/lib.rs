@@ -229,12 +229,13 @@ pub struct SurfaceMaterial {
     /// ([`maya::translucent_passage`]).
     pub translucence_depth: f32,
     /// A layeredShader stack whose layers carry translucence depths: each layer's
-    /// constant transparency T_i (per channel) and translucence depth D_i (0: none), top
-    /// first. Its shadow passage is the hit's transparency raised by
+    /// transparency T_i (per channel; by the shadow ray's facing ratio where a rampShader
+    /// layer's ramp follows the view) and translucence depth D_i (0: none), top first. Its
+    /// shadow passage is the hit's transparency raised by
     /// Π_i (T_i + (1 − T_i)·max(1 − s/D_i, 0)) − Π_i T_i, as the classic stack multiplies
     /// its layers' passages ([`maya::translucent_passage`]); empty for a material on its
     /// own ([`SurfaceMaterial::translucence_depth`] is then its own).
-    pub translucence_layers: Box<[(Rgb, f32)]>,
+    pub translucence_layers: Box<[maya::TranslucentLayer]>,
 }
 
 impl SurfaceMaterial {

@@ -26,9 +26,9 @@
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); its light from
 //!   behind a transmission lobe: for the light-angle input the classic
-//!   t · C((1 + cos θ)/2) ⊙ L read as the ramp's chord over [0, ½] (albedo
-//!   t · (C(0) + C(½)), capped at 1, of which the share C(½)/(C(0) + C(½)) follows the
-//!   light's angle: `bsdf::MayaGlossy::translucence_grazing`), for the other inputs a
+//!   t · C((1 + cos θ)/2) ⊙ L tabulated over the ramp's [0, ½] at every sixteenth and
+//!   read linearly between (albedo 2∫t · C((1 − u)/2) du, not capped:
+//!   `bsdf::MayaGlossy::light_angle`), for the other inputs a
 //!   Lambertian one of albedo C(1) · `translucence`, faded as the lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
 //!   coverage, cut-out tint and fade, or for one that refracts its refraction's weight;
@@ -53,8 +53,9 @@
 //!   layers whose transparency or incandescence ramps follow the view are read at each
 //!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`); the
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
-//!   (divided by the stack's coverage as its diffuse colour is; the first translucent
-//!   layer's focus) and every translucent layer's depth for shadow rays, which pass the
+//!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
+//!   `bsdf::MayaGlossy::add_translucence`: up to three distinct foci, a fourth merged
+//!   into the third's with a warning) and every translucent layer's depth for shadow rays, which pass the
 //!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
@@ -115,7 +116,7 @@ mod translucence;
 mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
-pub use translucence::{translucent_passage, CONNECTED_STAND_IN};
+pub use translucence::{translucent_passage, TranslucentLayer, CONNECTED_STAND_IN};
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -615,9 +616,10 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     let mut refraction: Option<(Rgb, f32, u32)> = None;
     // Each layer's translucence depth (0: none), for the stack's shadow rays.
     let mut depths = vec![0.0f32; elements.len()];
-    // The forward-lobe exponent of the first translucent layer, which the stack's
-    // translucence takes.
-    let mut focus: Option<f32> = None;
+    // Each rampShader layer's transparency at the facing ratios k/32 where it follows the
+    // view, for the stack's shadow rays.
+    let mut view_transparencies: Vec<Option<Box<[Rgb; bsdf::maya_highlight::VIEW_RAMP_STEPS]>>> =
+        vec![None; elements.len()];
     for (i, (e, &t)) in elements.iter().zip(&transparencies).enumerate() {
         surface.glow += through * layer_glow(graph, member(e, "glowColor"));
         // The layer's share per channel, P_i ⊙ (1 − T_i).
@@ -639,6 +641,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 ambient_color += layer.diffuse * layer.ambient * w;
                 let tables = view_layers::ramp_tables(graph, m);
                 follows_view |= tables.is_some();
+                view_transparencies[i] = tables.as_ref().map(|[t, _]| Box::new(*t));
                 by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
                 // Maya's highlight shows by the layer's share, as its diffuse colour (the
                 // first layer's); every layer's translucence adds to the stack's by its
@@ -650,27 +653,26 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                     let g = g.scaled(w);
                     if translucent {
                         depths[i] = layer.translucence_depth;
-                        match focus {
-                            Some(n) if (n - g.focus).abs() > 1e-6 => warnings.push(format!(
-                                "layer '{}': the path engine gives the stack's translucence the first \
-                                 translucent layer's 'translucenceFocus'",
-                                graph.nodes[m as usize].name
-                            )),
-                            Some(_) => {}
-                            None => focus = Some(g.focus),
-                        }
                     }
                     lobe = Some(match lobe {
                         None => g,
-                        Some(first) => {
-                            let n = focus.unwrap_or(first.focus);
-                            // (A rampShader layer's light-angle share mixes by albedo.)
-                            let sum = first.translucence + g.translucence;
-                            let edge = first.translucence * first.translucence_grazing
-                                + g.translucence * g.translucence_grazing;
-                            let share = |e: f32, a: f32| if a > 0.0 { e / a } else { 0.0 };
-                            let grazing = Rgb::new(share(edge.x, sum.x), share(edge.y, sum.y), share(edge.z, sum.z));
-                            first.with_translucence(sum, n).with_translucence_grazing(grazing)
+                        Some(mut first) => {
+                            // Each layer's translucence keeps its own focus: a lobe of its
+                            // own beside the others (same focus: merged; a rampShader
+                            // layer's light-angle shape mixed by albedo).
+                            let mut fits = first.add_translucence(g.translucence, g.focus, g.light_angle);
+                            for (a, n) in g.translucence_lobes().skip(1) {
+                                fits &= first.add_translucence(a, n, None);
+                            }
+                            if !fits {
+                                warnings.push(format!(
+                                    "layer '{}': the path engine carries {} translucence lobes of distinct \
+                                     'translucenceFocus'; this layer's is merged into the last one's focus",
+                                    graph.nodes[m as usize].name,
+                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE
+                                ));
+                            }
+                            first
                         }
                     });
                 }
@@ -697,7 +699,12 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     cut_out(&mut surface, transparencies.iter().fold(Rgb::ONE, |p, t| p * *t), false);
     if depths.iter().any(|&d| d > 0.0) {
         surface.translucence_depth = depths.iter().fold(0.0f32, |m, &d| m.max(d));
-        surface.translucence_layers = transparencies.iter().copied().zip(depths).collect();
+        surface.translucence_layers = transparencies
+            .iter()
+            .zip(view_transparencies)
+            .zip(depths)
+            .map(|((&transparency, by_view), depth)| TranslucentLayer { transparency, by_view, depth })
+            .collect();
     }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
@@ -715,7 +722,7 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     if let Some(g) = lobe {
         // The translucence divided by the coverage as the diffuse colour is (the
         // highlight and the mirror by the lobe's coverage).
-        let g = g.with_translucence(g.translucence / coverage, g.focus);
+        let g = g.translucence_divided(coverage);
         surface.model = SurfaceModel::Maya(Box::new(g.with_coverage(coverage)));
     }
     if let Some((t, ior, limit)) = refraction {

@@ -28,18 +28,92 @@ use crate::{Frame, Rgb};
 /// The density of [`uniform_opposite`]'s directions, 1/(2π).
 pub const UNIFORM_PDF: f32 = 0.5 * FRAC_1_PI;
 
+/// How many light cosines rampShader's light-angle table holds ([`LightAngle`]), evenly
+/// spaced over [0, 1]: u = k/8, where the classic shader reads the colour ramp at
+/// (1 − u)/2 = ½, 7/16, … 0 (every sixteenth of [0, ½]).
+pub const LIGHT_ANGLE_STEPS: usize = 9;
+
 /// rampShader's light-angle translucence (`maya::ramp_shader`): the classic shader adds
 /// P(u) ⊙ L for a light of colour L behind the surface at |N·l| = u, P(u) = t · C((1 − u)/2)
-/// (C the colour ramp), with no cosine factor. mira's path lobe reads P as the chord
-/// A ⊙ ((1 − g) · u + g · (1 − u)) (A = P(1) + P(0) its albedo, g = P(0)/A), exact where
-/// the ramp is linear over [0, ½]: f = A/π ⊙ this factor, (1 − g) + g · (1 − u)/u. Its
-/// albedo is A whatever g; it depends on the light's direction only, as the classic
-/// formula (not reciprocal: the classic shaders evaluate it towards the lights, as the
-/// path engine's camera paths do). `u` is clamped to 1e-4 (the factor's pole at the
-/// horizon, which [`uniform_opposite`]'s samples keep bounded: f · u/pdf ≤ 2A).
-pub fn light_angle_factor(g: Rgb, u: f32) -> Rgb {
-    let u = u.clamp(1e-4, 1.0);
-    (Rgb::ONE - g) + g * ((1.0 - u) / u)
+/// (C the colour ramp), with no cosine factor. mira's path lobe tabulates P at
+/// u = k/8 ([`LIGHT_ANGLE_STEPS`]) and reads it linearly between (exact for a linear ramp
+/// whose knots lie on sixteenths of [0, ½]): f = P(u)/(π u) = A/π ⊙ S(u)/u, A = 2∫P du its
+/// albedo (per channel, not capped: where the classic shader passes more light than it
+/// receives, so does the lobe) and S = P/A the shape this table holds (2∫S du = 1).
+/// Diffuse translucence is S(u) = u ([`LightAngle::DIFFUSE`]). It depends on the light's
+/// direction only, as the classic formula (not reciprocal: the classic shaders evaluate it
+/// towards the lights, as the path engine's camera paths do). It is sampled uniformly over
+/// the far hemisphere ([`uniform_opposite`]), whose weight f · u/pdf = 2A ⊙ S(u) stays
+/// bounded at the factor's pole at the horizon (u is clamped to 1e-4 there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightAngle {
+    /// S per channel at u = k/8.
+    shape: [[f32; 3]; LIGHT_ANGLE_STEPS],
+}
+
+impl LightAngle {
+    /// Diffuse translucence, S(u) = u: the factor is 1 at every angle.
+    pub const DIFFUSE: LightAngle = LightAngle {
+        shape: {
+            let mut shape = [[0.0; 3]; LIGHT_ANGLE_STEPS];
+            let mut k = 0;
+            while k < LIGHT_ANGLE_STEPS {
+                let u = k as f32 / (LIGHT_ANGLE_STEPS - 1) as f32;
+                shape[k] = [u, u, u];
+                k += 1;
+            }
+            shape
+        },
+    };
+
+    /// The table of P(u) (per channel, negative values taken as 0) at u = k/8: its albedo
+    /// A = 2∫P du (the trapezoid rule, exact for the piecewise linear P the lobe reads)
+    /// and its shape P/A (a channel of albedo 0 takes the diffuse shape).
+    pub fn tabulate(p: impl Fn(f32) -> Rgb) -> (Rgb, LightAngle) {
+        let last = (LIGHT_ANGLE_STEPS - 1) as f32;
+        let values: [Rgb; LIGHT_ANGLE_STEPS] = std::array::from_fn(|k| p(k as f32 / last).max(Rgb::ZERO));
+        let inner = values[1..LIGHT_ANGLE_STEPS - 1].iter().fold(Rgb::ZERO, |s, v| s + *v);
+        let albedo = (inner + (values[0] + values[LIGHT_ANGLE_STEPS - 1]) * 0.5) * (2.0 / last);
+        let shape = std::array::from_fn(|k| {
+            let diffuse = k as f32 / last;
+            let s = |c: usize| if albedo[c] > 0.0 { values[k][c] / albedo[c] } else { diffuse };
+            [s(0), s(1), s(2)]
+        });
+        (albedo, LightAngle { shape })
+    }
+
+    /// The shape of the sum of a lobe of albedo `a` and shape `self` and one of albedo
+    /// `b` and shape `other` (per channel by their albedos; the sum's albedo is a + b).
+    pub fn mixed(&self, a: Rgb, other: &LightAngle, b: Rgb) -> LightAngle {
+        let (a, b) = (a.max(Rgb::ZERO), b.max(Rgb::ZERO));
+        let shape = std::array::from_fn(|k| {
+            let s = |c: usize| {
+                let total = a[c] + b[c];
+                if total > 0.0 {
+                    (a[c] * self.shape[k][c] + b[c] * other.shape[k][c]) / total
+                } else {
+                    self.shape[k][c]
+                }
+            };
+            [s(0), s(1), s(2)]
+        });
+        LightAngle { shape }
+    }
+
+    /// S(u) per channel, linear between the table's points (`u` clamped to [0, 1]).
+    pub fn shape_at(&self, u: f32) -> Rgb {
+        let x = u.clamp(0.0, 1.0) * (LIGHT_ANGLE_STEPS - 1) as f32;
+        let k = (x as usize).min(LIGHT_ANGLE_STEPS - 2);
+        let t = x - k as f32;
+        Rgb::from(self.shape[k]) * (1.0 - t) + Rgb::from(self.shape[k + 1]) * t
+    }
+
+    /// The factor S(u)/u that multiplies the albedo's A/π at the light's cosine `u`
+    /// (clamped to 1e-4, the pole at the horizon).
+    pub fn factor(&self, u: f32) -> Rgb {
+        let u = u.clamp(1e-4, 1.0);
+        self.shape_at(u) / u
+    }
 }
 
 /// A direction uniform over the hemisphere opposite `wo` (local frame, +Z the normal),
@@ -134,27 +208,38 @@ mod tests {
         }
     }
 
-    /// The light-angle factor (rampShader) leaves the albedo at 1 for every share g: the
-    /// midpoint rule of 2 ∫ factor · u du over 200 000 steps is 1 within 1e-3; at u the
-    /// lobe's f · u · π is the chord (1 − g) · u + g · (1 − u) within 1e-6; and
-    /// `uniform_opposite` lands on the far side, unit length, with z uniform (mean |z| ½
-    /// within 1e-3 over 10 000 stratified samples).
+    /// The light-angle table (rampShader) of a P(u) with a knot at u = ½ (the colour ramp's
+    /// at ¼), P = (0.2, 0.9, 0.5) at 0, (1.1, 0.3, 0.5) at ½, (0.6, 0.6, 0.5) at 1: its albedo
+    /// is 2∫P du within 1e-6 (uncapped: red's is 1.5), A ⊙ S(u) · π … the lobe's
+    /// f · u · π is P(u) within 1e-6 at u = 0.05 … 1 (the knot followed), 2∫S du is 1 per
+    /// channel within 1e-3 (midpoint rule, 100 000 steps), the diffuse table's factor is
+    /// 1 within 1e-6 at every angle, and a mix of two tables is the albedo-weighted sum
+    /// of their P within 1e-6. `uniform_opposite` lands on the far side, unit length,
+    /// with z uniform (mean |z| ½ within 1e-3 over 10 000 stratified samples).
     #[test]
-    fn the_light_angle_lobe_keeps_its_albedo_and_follows_the_chord() {
-        for g in [0.0f32, 0.3, 0.5, 1.0] {
-            let steps = 200_000;
-            let sum: f64 = (0..steps)
-                .map(|i| {
-                    let u = (i as f32 + 0.5) / steps as f32;
-                    f64::from(light_angle_factor(Rgb::splat(g), u).x * u)
-                })
-                .sum();
-            let albedo = 2.0 * sum / f64::from(steps);
-            assert!((albedo - 1.0).abs() < 1e-3, "g {g}: {albedo}");
-            for u in [0.1f32, 0.5, 0.9, 1.0] {
-                let chord = (1.0 - g) * u + g * (1.0 - u);
-                assert!((light_angle_factor(Rgb::splat(g), u).x * u - chord).abs() < 1e-6);
-            }
+    fn the_light_angle_table_follows_the_ramp_and_keeps_its_albedo() {
+        let (p0, p1, p2) = (Rgb::new(0.2, 0.9, 0.5), Rgb::new(1.1, 0.3, 0.5), Rgb::new(0.6, 0.6, 0.5));
+        let p = |u: f32| if u < 0.5 { p0 + (p1 - p0) * (u / 0.5) } else { p1 + (p2 - p1) * ((u - 0.5) / 0.5) };
+        let (a, table) = LightAngle::tabulate(p);
+        let want = (p0 + p1 * 2.0 + p2) * 0.5;
+        assert!((a - want).abs().max_element() < 1e-6, "{a} vs {want}");
+        assert!(a.x > 1.0);
+        for u in [0.05f32, 0.2, 0.4, 0.5, 0.6, 0.93, 1.0] {
+            let got = a * table.factor(u) * u;
+            assert!((got - p(u)).abs().max_element() < 1e-6, "u {u}: {got} vs {}", p(u));
+            assert!((LightAngle::DIFFUSE.factor(u) - Rgb::ONE).abs().max_element() < 1e-6);
+        }
+        let steps = 100_000;
+        let integral =
+            (0..steps).map(|i| table.shape_at((i as f32 + 0.5) / steps as f32)).fold(Rgb::ZERO, |s, v| s + v)
+                * (2.0 / steps as f32);
+        assert!((integral - Rgb::ONE).abs().max_element() < 1e-3, "{integral}");
+        let b = Rgb::new(0.3, 0.1, 0.7);
+        let mixed = table.mixed(a, &LightAngle::DIFFUSE, b);
+        for u in [0.1f32, 0.5, 0.8] {
+            let got = (a + b) * mixed.shape_at(u);
+            let want = p(u) + b * u;
+            assert!((got - want).abs().max_element() < 1e-6, "u {u}: {got} vs {want}");
         }
         let wo = Vec3A::new(0.3, 0.1, 0.9).normalize();
         let mut sum = 0.0;
@@ -169,17 +254,29 @@ mod tests {
         assert!((UNIFORM_PDF * TAU - 1.0).abs() < 1e-6);
     }
 
-    /// A Maya BSDF with the light-angle translucence (albedo A = (0.5, 0.4, 0.3), shares
-    /// g = (0.3, 0.5, 0.7), diffuse 0.3): its sampling passes the chi-square test of its
-    /// density at the standard incidences, and its albedo by sampling (50 000 samples) is
-    /// 0.3 + A within 1 % per channel (≤ 1: energy). It is not reciprocal (the classic
-    /// formula follows the light's direction only).
+    /// A Maya BSDF with a light-angle translucence (P from 0.5 · (0.9, 0.6, 0.3) straight
+    /// behind to 0.5 · (0.2, 0.5, 0.9) at the horizon with a knot (0.8, 0.1, 0.4) · 0.5
+    /// at u = ½; diffuse 0.3): its sampling passes the chi-square test of its density at
+    /// the standard incidences, and its albedo by sampling (50 000 samples) is 0.3 + A
+    /// within 1 % per channel. It is not reciprocal (the classic formula follows the
+    /// light's direction only).
     #[test]
     fn the_light_angle_lobe_samples_its_density_and_keeps_its_albedo() {
-        let a = Rgb::new(0.5, 0.4, 0.3);
+        let (p0, p1, p2) =
+            (Rgb::new(0.2, 0.5, 0.9) * 0.5, Rgb::new(0.8, 0.1, 0.4) * 0.5, Rgb::new(0.9, 0.6, 0.3) * 0.5);
+        let (a, table) =
+            LightAngle::tabulate(
+                |u| {
+                    if u < 0.5 {
+                        p0 + (p1 - p0) * (u / 0.5)
+                    } else {
+                        p1 + (p2 - p1) * ((u - 0.5) / 0.5)
+                    }
+                },
+            );
         let g = crate::MayaGlossy::new(crate::maya_highlight::Shape::Phong { power: 1.0 }, Rgb::ZERO)
             .with_translucence(a, 0.0)
-            .with_translucence_grazing(Rgb::new(0.3, 0.5, 0.7));
+            .with_light_angle(table);
         for wo in crate::testing::incidences() {
             let bsdf = crate::Bsdf::Maya(g.bsdf(Rgb::splat(0.3), wo));
             crate::testing::chi_square(&bsdf, wo);

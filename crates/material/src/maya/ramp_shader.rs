@@ -34,21 +34,19 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
     let c = color_at(1.0);
     // The light from behind (`translucence` t), a transmission lobe of this albedo
     // before the fade. The light-angle input's classic P(u) ⊙ L = t · C((1 − u)/2) ⊙ L
-    // for a light behind at |cos θ| = u (no cosine factor) is read as the chord of
-    // P(1) = t · C(0) and P(0) = t · C(½): a lobe of albedo A = P(1) + P(0) of which the
-    // share g = P(0)/A follows the light's angle
-    // (`bsdf::maya_highlight::translucence::light_angle_factor`; exact where the ramp is
-    // linear over [0, ½]), A capped at 1 per channel (energy; the classic shader, which
-    // passes more, is then brighter). The other inputs' C ⊙ L · t · |cos θ| is a
-    // Lambertian transmission taking C at 1, as their albedo does.
-    let (behind, grazing) = if input == ColorInput::LightAngle {
-        let (straight, edge) = (color_at(0.0) * t.max(0.0), color_at(0.5) * t.max(0.0));
-        let total = straight + edge;
-        let share = |e: f32, a: f32| if a > 0.0 { e / a } else { 0.0 };
-        let g = Rgb::new(share(edge.x, total.x), share(edge.y, total.y), share(edge.z, total.z));
-        (total.min(Rgb::ONE), g)
+    // for a light behind at |cos θ| = u (no cosine factor) is tabulated at u = k/8 (the
+    // ramp at every sixteenth of [0, ½], read linearly between:
+    // `bsdf::maya_highlight::translucence::LightAngle`, exact for a linear ramp whose
+    // knots lie on those points): a lobe of albedo A = 2∫P du, not capped (where the
+    // classic shader passes more light than it receives, so does the lobe). The other
+    // inputs' C ⊙ L · t · |cos θ| is a Lambertian transmission taking C at 1, as their
+    // albedo does.
+    let (behind, light_angle) = if input == ColorInput::LightAngle {
+        let (a, table) =
+            bsdf::maya_highlight::translucence::LightAngle::tabulate(|u| color_at(0.5 * (1.0 - u)) * t.max(0.0));
+        (a, Some(table))
     } else {
-        (c * t.max(0.0), Rgb::ZERO)
+        (c * t.max(0.0), None)
     };
     let albedo = if input == ColorInput::LightAngle {
         c * (d + t)
@@ -167,7 +165,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
         }
         surface.model = SurfaceModel::Maya(Box::new(g));
     }
-    super::translucence::translate_ramp(r, surface, behind * fade, grazing);
+    super::translucence::translate_ramp(r, surface, behind * fade, light_angle);
     if let Some(ior) = ior {
         refract(r, surface, tr, ior);
     }

@@ -19,6 +19,7 @@
 
 use super::{connection, Reader};
 use crate::{Binding, HitMaterial, SurfaceMaterial, SurfaceModel, Target};
+use bsdf::maya_highlight::{table_at, VIEW_RAMP_STEPS};
 use bsdf::Rgb;
 
 /// The translucence a connected `translucence` stands in with in the material's constant
@@ -68,30 +69,60 @@ fn with_lobe(surface: &SurfaceMaterial, albedo: Rgb, focus: f32) -> bsdf::MayaGl
 
 /// Gives the rampShader `surface` its translucence: a transmission lobe (focus 0: the
 /// classic rampShader reads no `translucenceFocus`) of albedo `albedo` (see
-/// `super::ramp_shader`: ⊙ the fade) of which the share `grazing` follows the light's
-/// angle ([`bsdf::MayaGlossy::translucence_grazing`]; zero: diffuse), and the reader's
+/// `super::ramp_shader`: ⊙ the fade) shaped over the light's angle by `light_angle`
+/// ([`bsdf::MayaGlossy::light_angle`]; `None`: diffuse), and the reader's
 /// `translucenceDepth` for shadow rays, as the lambert family's (see the module doc).
-pub(super) fn translate_ramp(r: &mut Reader, surface: &mut SurfaceMaterial, albedo: Rgb, grazing: Rgb) {
+pub(super) fn translate_ramp(
+    r: &mut Reader,
+    surface: &mut SurfaceMaterial,
+    albedo: Rgb,
+    light_angle: Option<bsdf::maya_highlight::translucence::LightAngle>,
+) {
     if albedo == Rgb::ZERO {
         return;
     }
-    let lobe = with_lobe(surface, albedo, 0.0).with_translucence_grazing(grazing);
+    let mut lobe = with_lobe(surface, albedo, 0.0);
+    lobe.light_angle = light_angle;
     surface.model = SurfaceModel::Maya(Box::new(lobe));
     surface.translucence_depth = r.scalar("translucenceDepth", 0.5).max(0.0);
 }
 
+/// One layer of a layeredShader stack as its shadow rays pass it
+/// ([`SurfaceMaterial::translucence_layers`]): its transparency and its translucence depth.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TranslucentLayer {
+    /// The layer's transparency T_i per channel, clamped to [0, 1] (a rampShader's ramp at
+    /// facing ratio 1 when it does not follow the view).
+    pub transparency: Rgb,
+    /// A rampShader layer whose transparency ramp follows the view: T_i at the facing ratios
+    /// k/32 (clamped to [0, 1]), read at the shadow ray's facing ratio as the classic
+    /// rampShader reads its ramp in shadow rays; `None`: `transparency` everywhere.
+    pub by_view: Option<Box<[Rgb; VIEW_RAMP_STEPS]>>,
+    /// The layer's `translucenceDepth` D_i (world units; 0: none or not translucent).
+    pub depth: f32,
+}
+
+impl TranslucentLayer {
+    /// The layer's transparency T_i at facing ratio `facing` (|N·D| of the shadow ray).
+    pub fn transparency_at(&self, facing: f32) -> Rgb {
+        self.by_view.as_deref().map_or(self.transparency, |t| table_at(t, facing))
+    }
+}
+
 /// What a shadow ray passes, per channel, where it leaves the receiving point's own
-/// object through a surface of `material` (`hit`: that material at the point) after
-/// going `inside` world units through it: T + (1 − T)·max(1 − inside/D, 0), T the
+/// object through a surface of `material` (`hit`: that material at the point, met at
+/// facing ratio `facing` = |N·D| of the ray) after going `inside` world units through it:
+/// T + (1 − T)·max(1 − inside/D, 0), T the
 /// transparency the surface lets shadow rays through by (its cut-out's, (1 − coverage) ·
 /// tint) and D its [`SurfaceMaterial::translucence_depth`], where D > 0 and the surface is
 /// translucent there; `None` otherwise (the surface filters the ray as any other). For a
 /// layeredShader stack ([`SurfaceMaterial::translucence_layers`] not empty) it is
-/// T + Π_i (T_i + (1 − T_i)·max(1 − inside/D_i, 0)) − Π_i T_i over its layers' constant
-/// transparencies T_i and depths D_i (a layer without a depth: T_i) — the classic stack's
-/// product of its layers' passages where T is their product, the hit's own T kept where
-/// it follows the view.
-pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside: f32) -> Option<Rgb> {
+/// T + Π_i (T_i + (1 − T_i)·max(1 − inside/D_i, 0)) − Π_i T_i over its layers'
+/// transparencies T_i at `facing` ([`TranslucentLayer::transparency_at`]: a rampShader
+/// layer's ramp where it follows the view, as the classic rampShader reads it at the
+/// shadow ray's facing ratio) and depths D_i (a layer without a depth: T_i) — the classic
+/// stack's product of its layers' passages where T is their product.
+pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside: f32, facing: f32) -> Option<Rgb> {
     let depth = material.translucence_depth;
     if depth <= 0.0 {
         return None;
@@ -111,9 +142,9 @@ pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside
     if material.translucence_layers.is_empty() {
         return Some(t + (Rgb::ONE - t) * kept(depth));
     }
-    let (passed, filtered) = material
-        .translucence_layers
-        .iter()
-        .fold((Rgb::ONE, Rgb::ONE), |(p, f), &(t, d)| (p * (t + (Rgb::ONE - t) * kept(d)), f * t));
+    let (passed, filtered) = material.translucence_layers.iter().fold((Rgb::ONE, Rgb::ONE), |(p, f), layer| {
+        let t = layer.transparency_at(facing);
+        (p * (t + (Rgb::ONE - t) * kept(layer.depth)), f * t)
+    });
     Some((t + passed - filtered).clamp(Rgb::ZERO, Rgb::ONE))
 }

@@ -14,6 +14,7 @@ mod maya_exports;
 mod maya_file_filter;
 mod maya_final_gather;
 mod maya_irradiance;
+mod maya_layered_focus;
 mod maya_materials;
 mod maya_path;
 mod maya_ramp;

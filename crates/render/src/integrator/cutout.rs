@@ -63,7 +63,7 @@ pub(super) fn shadow_passed(
             return Rgb::ZERO;
         }
         let m = material_at(world, accel, shading, &ray, &hit, s.material);
-        match passage(world, &m, &s, inside) {
+        match passage(world, &m, &s, ray.dir, inside) {
             Some(through) => tint *= through,
             None if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity => return Rgb::ZERO,
             None => tint *= m.cutout_tint,
@@ -105,7 +105,7 @@ pub(super) fn linked_shadow_passed(
                 return Rgb::ZERO;
             }
             let m = material_at(world, accel, shading, &ray, &hit, s.material);
-            match passage(world, &m, &s, inside) {
+            match passage(world, &m, &s, ray.dir, inside) {
                 Some(through) => tint *= through,
                 None if m.opacity >= 1.0 || cutout_number(seed, s.p, crossing + 100) < m.opacity => return Rgb::ZERO,
                 None => tint *= m.cutout_tint,

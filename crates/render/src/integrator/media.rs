@@ -331,7 +331,7 @@ fn media_shadow_walk(
         let cut_out = world.has_cutouts.then(|| {
             let m = material_at(world, accel, shading, ray, &s.hit, s.surface.material);
             // Leaving the receiving point's own object: its translucent passage, if any.
-            passage(world, &m, &s.surface, inside).or_else(|| {
+            passage(world, &m, &s.surface, ray.dir, inside).or_else(|| {
                 (m.opacity < 1.0 && cutout_number(seed, s.surface.p, crossing + 100) >= m.opacity)
                     .then_some(m.cutout_tint)
             })

@@ -45,11 +45,19 @@ impl OwnStretch {
     }
 }
 
-/// What the shadow ray `ray` passes at its hit `hit` on `surface` (material `m` there),
+/// What a shadow ray along `dir` passes at its hit on `surface` (material `m` there),
 /// having gone `inside` through the receiving point's own object when it leaves it there:
-/// the material's translucent passage ([`material::maya::translucent_passage`]) when it
-/// has one, else `None` (the surface filters the ray as any other).
-pub(super) fn passage(world: &World, m: &HitMaterial, surface: &Surface, inside: Option<f32>) -> Option<Rgb> {
+/// the material's translucent passage ([`material::maya::translucent_passage`], at the
+/// ray's facing ratio |N·D| of the (bumped) shading normal, as `material_at` reads the
+/// view's ramps) when it has one, else `None` (the surface filters the ray as any other).
+pub(super) fn passage(
+    world: &World,
+    m: &HitMaterial,
+    surface: &Surface,
+    dir: glam::Vec3A,
+    inside: Option<f32>,
+) -> Option<Rgb> {
     let inside = inside?;
-    material::maya::translucent_passage(&world.materials[surface.material as usize], m, inside)
+    let facing = m.normal.unwrap_or(surface.ns).dot(dir).abs().min(1.0);
+    material::maya::translucent_passage(&world.materials[surface.material as usize], m, inside, facing)
 }

@@ -388,9 +388,9 @@ fn a_layered_shader_carries_every_layers_translucence_in_the_path_engine() {
 
 /// The path engine's rampShader passes light from behind at every angle as the classic
 /// one: under the light-angle input the classic shader adds t · C((1 + cos θ)/2) ⊙ L for a
-/// light behind (no cosine factor), which the path lobe reads as the chord of the ramp
-/// over [0, ½] (`bsdf::maya_highlight::translucence::light_angle_factor`), exact for this
-/// linear ramp. The opaque slab (s = 0.1, D = 1) lit from behind at θ = 0°, 30° and 60°
+/// light behind (no cosine factor), which the path lobe reads from its table of the ramp
+/// at every sixteenth of [0, ½] (`bsdf::maya_highlight::translucence::LightAngle`), exact
+/// for this linear ramp. The opaque slab (s = 0.1, D = 1) lit from behind at θ = 0°, 30° and 60°
 /// from the normal (direct light, 4 samples per pixel): the path image's mean is the
 /// classic one's within 2 % per channel, and every path pixel the closed form
 /// t · C((1 − cos θ)/2) · (1 − s/(D cos θ)) within 2 %. Before, the path lobe was
@@ -415,6 +415,156 @@ fn the_path_engine_follows_ramp_shader_translucence_at_every_light_angle() {
             for k in 0..3 {
                 assert!((p[k] / want[k] - 1.0).abs() < 0.02, "{degrees}°: {p} vs {want}");
             }
+        }
+    }
+}
+
+/// An opaque rampShader slab (light-angle input, `diffuse` 0.8, `translucence` `t`,
+/// `translucenceDepth` `depth`) whose colour ramp has the points `points` (position,
+/// colour; linear).
+fn ramp_slab_points(thick: f32, depth: f32, t: f32, points: &[(f32, Vec3A)]) -> String {
+    let points: Vec<String> = points
+        .iter()
+        .map(|(x, c)| format!(r#"{{ "color_Position" {x}, "color_Color" {} {} {}, "color_Interp" 1 }}"#, c.x, c.y, c.z))
+        .collect();
+    let ramp = format!(
+        r#"shader "mat" "maya_rampshader" ("colorInput" 0, "diffuse" 0.8, "translucence" {t}, "translucenceDepth" {depth},
+    "color" [ {} ])"#,
+        points.join(",\n    ")
+    );
+    scene_with(thick, false, &ramp)
+}
+
+/// The linear ramp through `points` (sorted by position) at `x`.
+fn ramp_at(points: &[(f32, Vec3A)], x: f32) -> Vec3A {
+    let k = points.iter().rposition(|(p, _)| *p <= x).unwrap_or(0).min(points.len() - 2);
+    let ((x0, c0), (x1, c1)) = (points[k], points[k + 1]);
+    c0 + (c1 - c0) * ((x - x0) / (x1 - x0)).clamp(0.0, 1.0)
+}
+
+/// The path engine's rampShader follows a colour ramp with a knot inside [0, ½] (at ¼:
+/// (0.6, 0.5, 0.4) at 0, (0.9, 0.2, 0.1) at ¼, (0.1, 0.2, 0.9) at 1), read from behind
+/// through the lobe's table of the ramp at every sixteenth of [0, ½]
+/// (`bsdf::maya_highlight::translucence::LightAngle`). The opaque slab (s = 0.1, D = 1)
+/// lit from behind at θ = 0°, 30°, 45° and 60° (the knot) from the normal (direct light,
+/// 4 samples per pixel): the path image's mean is the classic one's within 2 % per
+/// channel, and every path pixel the closed form t · C((1 − cos θ)/2) · (1 − s/(D cos θ))
+/// within 2 %. Before, the lobe read the ramp's chord over [0, ½]: at 60° it gave the
+/// mean of C(0) and C(½) where the ramp has its knot, red 31 % dark and green 75 %
+/// bright.
+#[test]
+fn the_path_engine_follows_a_ramp_with_a_knot_lit_from_behind() {
+    let (thick, depth) = (0.1f32, 1.0f32);
+    let points = [(0.0, COLOR), (0.25, Vec3A::new(0.9, 0.2, 0.1)), (1.0, Vec3A::new(0.1, 0.2, 0.9))];
+    for degrees in [0.0f32, 30.0, 45.0, 60.0] {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let text =
+            ramp_slab_points(thick, depth, T, &points).replace("direction 0 1 0", &format!("direction {sin} {cos} 0"));
+        let path = path_pixels(&text, 4, 1);
+        let classic = mean(&pixels(&text, EngineKind::Classic, 4));
+        let want = ramp_at(&points, 0.5 * (1.0 - cos)) * T * (1.0 - thick / (depth * cos));
+        let m = mean(&path);
+        println!("knotted ramp behind at {degrees}°: path {m} classic {classic} want {want}");
+        for k in 0..3 {
+            assert!((m[k] / classic[k] - 1.0).abs() < 0.02, "{degrees}°: path {m} vs classic {classic}");
+        }
+        for p in &path {
+            for k in 0..3 {
+                assert!((p[k] / want[k] - 1.0).abs() < 0.02, "{degrees}°: {p} vs {want}");
+            }
+        }
+    }
+}
+
+/// A rampShader whose light from behind passes more than it receives: `translucence`
+/// 0.9 and a ramp (0.9, 0.8, 0.3) at 0 to (0.9, 0.6, 0.5) at 1, so t · (C(0) + C(½)) =
+/// (1.62, 1.35, 0.63) and the lobe's albedo 2∫t · C((1 − u)/2) du is the same, above 1 in
+/// red and green. Lit from behind at 0° and 60° (opaque slab, s = 0.1, D = 1, direct
+/// light): the path image mean is the classic one's within 2 % per channel and every path
+/// pixel the closed form within 2 %. Before, the lobe's albedo was capped at 1 per
+/// channel: red 38 % dark at 0°.
+#[test]
+fn a_ramp_passing_more_than_it_receives_matches_the_classic_engine() {
+    let (thick, depth, t) = (0.1f32, 1.0f32, 0.9f32);
+    let points = [(0.0, Vec3A::new(0.9, 0.8, 0.3)), (1.0, Vec3A::new(0.9, 0.6, 0.5))];
+    for degrees in [0.0f32, 60.0] {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let text =
+            ramp_slab_points(thick, depth, t, &points).replace("direction 0 1 0", &format!("direction {sin} {cos} 0"));
+        let path = path_pixels(&text, 4, 1);
+        let classic = mean(&pixels(&text, EngineKind::Classic, 4));
+        let want = ramp_at(&points, 0.5 * (1.0 - cos)) * t * (1.0 - thick / (depth * cos));
+        let m = mean(&path);
+        println!("bright ramp behind at {degrees}°: path {m} classic {classic} want {want}");
+        for k in 0..3 {
+            assert!((m[k] / classic[k] - 1.0).abs() < 0.02, "{degrees}°: path {m} vs classic {classic}");
+        }
+        for p in &path {
+            for k in 0..3 {
+                assert!((p[k] / want[k] - 1.0).abs() < 0.02, "{degrees}°: {p} vs {want}");
+            }
+        }
+    }
+}
+
+/// The transparency ramp of [`view_stack_slab`]'s top layer at facing ratio `f`: 0.9 at 0
+/// to 0.2 at 0.75, linear, 0.2 up to 1 (the eye rays of [`SIDE`]-pixel top-down views all
+/// meet the top face at f ≥ 0.76, where it is 0.2).
+fn view_ramp(f: f32) -> f32 {
+    0.2 + 0.7 * ((0.75 - f) / 0.75).max(0.0)
+}
+
+/// A layeredShader slab (s = 0.1) whose top layer follows the view: a rampShader
+/// (light-angle input, colour ramp the constant c, `translucence` t, `translucenceDepth`
+/// 0.5, transparency ramp [`view_ramp`]) over an opaque lambert (colour [`B`],
+/// `translucence` 0.5, focus 0, `translucenceDepth` 1).
+fn view_stack_slab() -> String {
+    let stack = format!(
+        r#"shader "a" "maya_rampshader" ("colorInput" 0, "diffuse" 0.8, "translucence" {T}, "translucenceDepth" 0.5,
+    "color" [ {{ "color_Position" 0, "color_Color" {} {} {}, "color_Interp" 1 }} ],
+    "transparency" [ {{ "transparency_Position" 0, "transparency_Color" 0.9 0.9 0.9, "transparency_Interp" 1 }},
+                     {{ "transparency_Position" 0.75, "transparency_Color" 0.2 0.2 0.2, "transparency_Interp" 1 }} ])
+shader "b" "maya_lambert" ("color" {} {} {}, "diffuse" 0.8, "translucence" 0.5, "translucenceFocus" 0,
+  "translucenceDepth" 1, "transparency" 0 0 0)
+shader "mat" "maya_layeredshader" ("inputs" [
+    {{ "color" = "a.outColor", "transparency" = "a.outTransparency" }},
+    {{ "color" = "b.outColor", "transparency" = "b.outTransparency" }} ])"#,
+        COLOR.x, COLOR.y, COLOR.z, B.x, B.y, B.z
+    );
+    scene_with(0.1, false, &stack)
+}
+
+/// A stack whose rampShader layer's transparency follows the view passes shadow rays by
+/// that layer's transparency at the shadow ray's facing ratio in both engines: the classic
+/// rampShader reads its ramp at the shadow ray's |N·D| and the stack multiplies its layers'
+/// passages; the path engine's passage reads each layer's table there
+/// (`material::maya::TranslucentLayer`). [`view_stack_slab`] lit from behind at θ = 50°
+/// and 65° from the normal: every classic pixel is the closed form
+/// ((1 − T_e) · c · t + T_e · B · 0.5 · cos θ) · (T_s + (1 − T_s) k_a) · k_b within 1e-3
+/// per channel (T_e = 0.2 the eye rays' transparency, T_s = [`view_ramp`]`(cos θ)` the
+/// shadow ray's, k = max(1 − s/(D cos θ), 0), D_a = 0.5, D_b = 1), and the path image mean
+/// (direct light, 16 samples per pixel: the stack is opaque) is the classic one's within
+/// 2 % per channel. Before, the path passage read the ramp layer at facing ratio 1
+/// (T = 0.2): 4 % dark at 50° and 19 % at 65°.
+#[test]
+fn a_stack_whose_ramp_layer_follows_the_view_passes_shadow_rays_at_their_facing_ratio() {
+    let (thick, te) = (0.1f32, 0.2f32);
+    for degrees in [50.0f32, 65.0] {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let text = view_stack_slab().replace("direction 0 1 0", &format!("direction {sin} {cos} 0"));
+        let kept = |d: f32| (1.0 - thick / (d * cos)).max(0.0);
+        let ts = view_ramp(cos);
+        let lit = COLOR * T * (1.0 - te) + B * 0.5 * cos * te;
+        let want = lit * (ts + (1.0 - ts) * kept(0.5)) * kept(1.0);
+        let classic = pixels(&text, EngineKind::Classic, 4);
+        for c in &classic {
+            assert!((*c - want).abs().max_element() < 1e-3, "{degrees}°: classic {c} vs {want}");
+        }
+        let classic = mean(&classic);
+        let path = mean(&path_pixels(&text, 16, 1));
+        println!("view-following stack behind at {degrees}°: path {path} classic {classic} want {want}");
+        for k in 0..3 {
+            assert!((path[k] / classic[k] - 1.0).abs() < 0.02, "{degrees}°: path {path} vs classic {classic}");
         }
     }
 }
