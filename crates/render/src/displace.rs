@@ -270,6 +270,15 @@ fn displace_vertices(
     let level = match plan {
         Plan::Uniform(level) => level,
         Plan::Adaptive(criteria) => {
+            if !original.ptex_quads.is_empty() {
+                diagnostics.push(Diagnostic::warning(
+                    approximation.map_or(span, |a| a.span),
+                    format!(
+                        "object '{name}': adaptive displacement does not carry quad-mesh Ptex faces to its finer \
+                         triangles: quad-mesh Ptex lookups on it are black (a `parametric` level carries them)"
+                    ),
+                ));
+            }
             let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
             return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
                 Ok(out) => {
@@ -318,6 +327,7 @@ fn displace_vertices(
     *budget -= made;
     let sub = subdivide::subdivide(mesh, 1 << level);
     let mut out = sub.mesh;
+    out.ptex_split = ptex_split_of(original, 1 << level);
     if steps > 0 {
         return Some(finish_moving(out));
     }
@@ -343,6 +353,22 @@ fn displace_vertices(
         out.bump_basis = Vec::new();
     }
     Some(out)
+}
+
+/// The quad-mesh Ptex faces of `original` for a mesh split n × n from it, which each
+/// fine triangle keeps ([`crate::mesh::ptex_split`]); `None` where it keeps none (the
+/// scene reads no quad-mesh Ptex file, or the mesh has no polygons).
+fn ptex_split_of(original: &MeshData, n: u32) -> Option<std::sync::Arc<crate::mesh::ptex_split::PtexSplit>> {
+    if original.ptex_quads.is_empty() {
+        return None;
+    }
+    Some(std::sync::Arc::new(crate::mesh::ptex_split::PtexSplit {
+        n,
+        codes: original.ptex_quads.clone(),
+        ngons: original.ptex_ngons.clone(),
+        triangles: original.triangles.clone(),
+        positions: original.positions.clone(),
+    }))
 }
 
 /// Where the displacement shader list `node` moves vertex `v` of `mesh` (its texture
