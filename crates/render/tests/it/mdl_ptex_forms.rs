@@ -178,3 +178,59 @@ fn a_hostile_ngon_is_warned_of_at_its_line() {
     assert!(built.messages.iter().any(|m| m.starts_with("t.mi:22:") && m.contains(&want)), "{:#?}", built.messages);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A subdivision surface and an adaptively displaced quad in a scene that reads a
+/// quad-mesh file: neither carries the faces (black), and each is warned of at its line
+/// (the surface's name, the `approximate` statement).
+#[test]
+fn surfaces_and_adaptive_displacement_are_warned_of_at_their_lines() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_surfaces_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &[FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] }])).unwrap();
+    let text = r#"
+options "opt" end options
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+shader "tinted" "mdl::ptexmod::faces" ()
+shader "disp" "maya_material_displace" ("displacement" 0)
+material "m" = "tinted" displace = "disp" end material
+object "cube" group
+    -1 -1 -11  1 -1 -11  -1 1 -11  1 1 -11  -1 -1 -9  1 -1 -9  -1 1 -9  1 1 -9
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
+    subdivision surface "s"
+    p 0 2 3 1
+    p 4 5 7 6
+    p 0 1 5 4
+    p 2 6 7 3
+    p 0 4 6 2
+    p 1 3 7 5
+    end subdivision surface
+end group end object
+object "plane"
+    approximate displace length 0.05 0 10
+    group
+    -1 -1 -5  1 -1 -5  1 1 -5  -1 1 -5
+    v 0 v 1 v 2 v 3
+    c 0 1 2 3
+end group end object
+instance "cube_inst" "cube" material "tinted" end instance
+instance "plane_inst" "plane" material "m" end instance
+instgroup "root" "cam_inst" "cube_inst" "plane_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+    let line = |what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
+    let parsed = mi::parse_str("t.mi", text);
+    let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
+    for (at, what) in [
+        (line("subdivision surface \"s\""), "subdivision surface has no quad-mesh Ptex faces"),
+        (line("approximate displace length"), "adaptive displacement does not carry quad-mesh Ptex faces"),
+    ] {
+        assert!(
+            built.messages.iter().any(|m| m.starts_with(&format!("t.mi:{at}:")) && m.contains(what)),
+            "{what} at line {at}: {:#?}",
+            built.messages
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
