@@ -17,8 +17,9 @@
 //! children).
 //!
 //! A triangle that is a polygon of its own (a 3-vertex `c` or `p` polygon, each triangle
-//! of a `strip` or a `fan`, each triangle of a trilist: mental ray makes a strip's and a
-//! fan's triangles its faces, and OpenSubdiv and Ptex count a mesh's faces in order,
+//! of a `strip` or a `fan`, each triangle of a trilist — mira's reading: mental ray
+//! documents no Ptex numbering for strips, fans or trilists, whose triangles are its
+//! faces once it has read them, and OpenSubdiv and Ptex count a mesh's faces in order,
 //! a triangle three sub-quads) keeps its vertex order, so its sub-quad and (u, v) follow
 //! from the hit's barycentrics alone ([`triangle_face_uv`]: the bilinear maps of the
 //! sub-quads are inverted in barycentric coordinates, which any affine map of the triangle
