@@ -270,19 +270,12 @@ fn displace_vertices(
     let level = match plan {
         Plan::Uniform(level) => level,
         Plan::Adaptive(criteria) => {
-            if !original.ptex_quads.is_empty() {
-                diagnostics.push(Diagnostic::warning(
-                    approximation.map_or(span, |a| a.span),
-                    format!(
-                        "object '{name}': adaptive displacement does not carry quad-mesh Ptex faces to its finer \
-                         triangles: quad-mesh Ptex lookups on it are black (a `parametric` level carries them)"
-                    ),
-                ));
-            }
             let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
-            return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
-                Ok(out) => {
+            let carry = !original.ptex_quads.is_empty();
+            return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at, carry) {
+                Ok((mut out, fine)) => {
                     *budget -= out.triangles.len();
+                    out.ptex_split = ptex_split_of(original, 0, fine);
                     Some(finish_moving(out))
                 }
                 Err(made) => {
@@ -327,7 +320,7 @@ fn displace_vertices(
     *budget -= made;
     let sub = subdivide::subdivide(mesh, 1 << level);
     let mut out = sub.mesh;
-    out.ptex_split = ptex_split_of(original, 1 << level);
+    out.ptex_split = ptex_split_of(original, 1 << level, Vec::new());
     if steps > 0 {
         return Some(finish_moving(out));
     }
@@ -355,15 +348,21 @@ fn displace_vertices(
     Some(out)
 }
 
-/// The quad-mesh Ptex faces of `original` for a mesh split n × n from it, which each
-/// fine triangle keeps ([`crate::mesh::ptex_split`]); `None` where it keeps none (the
-/// scene reads no quad-mesh Ptex file, or the mesh has no polygons).
-fn ptex_split_of(original: &MeshData, n: u32) -> Option<std::sync::Arc<crate::mesh::ptex_split::PtexSplit>> {
+/// The quad-mesh Ptex faces of `original` for a mesh split from it (n × n, or unevenly
+/// where `fine` says where each fine triangle lies), which each fine triangle keeps
+/// ([`crate::mesh::ptex_split`]); `None` where it keeps none (the scene reads no
+/// quad-mesh Ptex file, or the mesh has no polygons).
+fn ptex_split_of(
+    original: &MeshData,
+    n: u32,
+    fine: Vec<crate::mesh::ptex_split::FineOrigin>,
+) -> Option<std::sync::Arc<crate::mesh::ptex_split::PtexSplit>> {
     if original.ptex_quads.is_empty() {
         return None;
     }
     Some(std::sync::Arc::new(crate::mesh::ptex_split::PtexSplit {
         n,
+        fine,
         codes: original.ptex_quads.clone(),
         ngons: original.ptex_ngons.clone(),
         triangles: original.triangles.clone(),

@@ -1,7 +1,10 @@
-//! Quad-mesh Ptex faces of a mesh made by splitting another's triangles evenly (uniform
-//! displacement, [`crate::displace::subdivide`]): each fine triangle keeps its original
-//! triangle's Ptex face and its place on it, found from the fine triangle's index alone (no
-//! bytes per fine triangle).
+//! Quad-mesh Ptex faces of a mesh made by splitting another's triangles: each fine
+//! triangle keeps its original triangle's Ptex face and its place on it. Split evenly
+//! (uniform displacement, [`crate::displace::subdivide`]), the original and the place are
+//! found from the fine triangle's index alone (no bytes per fine triangle); split unevenly
+//! (adaptive displacement, [`crate::displace::adaptive`]), each fine triangle carries them
+//! ([`FineOrigin`], 28 bytes a fine triangle, kept only in scenes that read a quad-mesh
+//! Ptex file).
 //!
 //! Triangle t of the original split n × n gives fine triangles t·n² … t·n² + n² − 1, row
 //! by row: row j (j = 0 … n − 1) holds 2(n − j) − 1 of them, starting at j(2n − j); in a
@@ -15,11 +18,32 @@
 
 use glam::Vec3;
 
-/// The original mesh's Ptex data and how evenly its triangles were split.
+/// Where a fine triangle of an unevenly split mesh lies on the original's triangles: the
+/// original triangle, and its corners' barycentrics (b1, b2) on it (b0 = 1 − b1 − b2;
+/// midpoints of midpoints, exact in `f32` to far past the deepest level). 28 bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FineOrigin {
+    /// The original triangle's index.
+    pub triangle: u32,
+    /// Each corner's barycentrics (b1, b2) on the original triangle.
+    pub corners: [[f32; 2]; 3],
+}
+
+impl FineOrigin {
+    /// An original triangle `t` itself (its corners at its own corners).
+    pub fn whole(t: u32) -> Self {
+        FineOrigin { triangle: t, corners: [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] }
+    }
+}
+
+/// The original mesh's Ptex data and how its triangles were split.
 #[derive(Clone, Debug, Default)]
 pub struct PtexSplit {
-    /// n: each original triangle split n × n.
+    /// n: each original triangle split n × n (when `fine` is empty).
     pub n: u32,
+    /// Per fine triangle, where it lies on the originals (uneven splits); empty for even
+    /// splits, whose places follow from `n`.
+    pub fine: Vec<FineOrigin>,
     /// The original's packed values ([`scene::mesh::ptex_quads`]).
     pub codes: Vec<u32>,
     /// The original's prepared n-gons.
@@ -34,6 +58,17 @@ impl PtexSplit {
     /// The original triangle and the barycentrics on it of a hit at barycentrics `bary` on
     /// fine triangle `prim`.
     pub fn original(&self, prim: usize, bary: [f32; 3]) -> Option<(usize, [f32; 3])> {
+        if !self.fine.is_empty() {
+            let o = self.fine.get(prim)?;
+            let mut b = [0.0f64; 3];
+            for (c, w) in o.corners.into_iter().zip(bary) {
+                let (c1, c2, w) = (f64::from(c[0]), f64::from(c[1]), f64::from(w));
+                b[0] += w * (1.0 - c1 - c2);
+                b[1] += w * c1;
+                b[2] += w * c2;
+            }
+            return Some((o.triangle as usize, b.map(|x| x as f32)));
+        }
         let n = u64::from(self.n.max(1));
         let per = n * n;
         let (t, k) = (prim as u64 / per, prim as u64 % per);
@@ -58,6 +93,11 @@ impl PtexSplit {
             b[2] += w * cj / nf;
         }
         Some((usize::try_from(t).ok()?, b.map(|x| x as f32)))
+    }
+
+    /// Bytes held per fine triangle beyond the original's data.
+    pub fn memory_bytes(&self) -> usize {
+        self.fine.len() * std::mem::size_of::<FineOrigin>()
     }
 
     /// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on fine triangle

@@ -244,8 +244,9 @@ render "root" "cam_inst" "opt"
 /// lies within the range of the file's lookup over the pixel within 1e-4 in both engines
 /// (the classic engine's π times), the ranges narrow; the pentagon (now its sub-quads'
 /// faces) is not warned of. The same with the quads displaced (`approximate displace
-/// parametric 2`, by 0: each triangle split into 16 finer ones): the fine triangles keep
-/// their quads' texels, within the same 1e-4.
+/// parametric 2`, by 0: each triangle split into 16 finer ones; and adaptively, `length
+/// 0.05`, each triangle split unevenly into hundreds): the fine triangles keep their
+/// quads' texels, within the same 1e-4, and nothing is warned of.
 #[test]
 fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
     let dir = std::env::temp_dir().join(format!("mira_render_ptex_quads_{}", std::process::id()));
@@ -268,16 +269,24 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
         )
         .replace("object \"quads\" group", "object \"quads\"\n    approximate displace parametric 2\n    group")
         .replace("material \"tinted\" end instance", "material \"m\" end instance");
+    let adaptive = displaced.replace("approximate displace parametric 2", "approximate displace length 0.05");
     for (engine, text) in [
         (EngineKind::Path, QUAD_SCENE),
         (EngineKind::Classic, QUAD_SCENE),
         (EngineKind::Path, &displaced),
         (EngineKind::Classic, &displaced),
+        (EngineKind::Path, &adaptive),
+        (EngineKind::Classic, &adaptive),
     ] {
         let parsed = mi::parse_str("t.mi", text);
         let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
-        let fine = built.built.world.meshes.iter().map(|m| m.triangles.len()).max();
-        assert_eq!(fine, Some(if text == QUAD_SCENE { 7 } else { 7 * 16 }), "{engine:?}");
+        let fine = built.built.world.meshes.iter().map(|m| m.triangles.len()).max().unwrap_or(0);
+        if text == QUAD_SCENE || text == displaced {
+            assert_eq!(fine, if text == QUAD_SCENE { 7 } else { 7 * 16 }, "{engine:?}");
+        } else {
+            // Uneven: not 7 · 4^k.
+            assert!(fine > 7 * 64 && !(0..8).any(|k| fine == 7 << (2 * k)), "{engine:?}: {fine} fine triangles");
+        }
         assert!(built.messages.is_empty(), "{:#?}", built.messages);
         // Each quad's diagonal leaves whole texels on either side (the left quad's, from
         // (−1, −1) to (0, 1), has its upper left texel above, its lower right below).
