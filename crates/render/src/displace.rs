@@ -271,9 +271,11 @@ fn displace_vertices(
         Plan::Uniform(level) => level,
         Plan::Adaptive(criteria) => {
             let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
-            return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at) {
-                Ok(out) => {
+            let carry = !original.ptex_quads.is_empty();
+            return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at, carry) {
+                Ok((mut out, fine)) => {
                     *budget -= out.triangles.len();
+                    out.ptex_split = ptex_split_of(original, 0, fine);
                     Some(finish_moving(out))
                 }
                 Err(made) => {
@@ -318,6 +320,7 @@ fn displace_vertices(
     *budget -= made;
     let sub = subdivide::subdivide(mesh, 1 << level);
     let mut out = sub.mesh;
+    out.ptex_split = ptex_split_of(original, 1 << level, Vec::new());
     if steps > 0 {
         return Some(finish_moving(out));
     }
@@ -343,6 +346,28 @@ fn displace_vertices(
         out.bump_basis = Vec::new();
     }
     Some(out)
+}
+
+/// The quad-mesh Ptex faces of `original` for a mesh split from it (n × n, or unevenly
+/// where `fine` says where each fine triangle lies), which each fine triangle keeps
+/// ([`crate::mesh::ptex_split`]); `None` where it keeps none (the scene reads no
+/// quad-mesh Ptex file, or the mesh has no polygons).
+fn ptex_split_of(
+    original: &MeshData,
+    n: u32,
+    fine: Vec<crate::mesh::ptex_split::FineOrigin>,
+) -> Option<std::sync::Arc<crate::mesh::ptex_split::PtexSplit>> {
+    if original.ptex_quads.is_empty() {
+        return None;
+    }
+    Some(std::sync::Arc::new(crate::mesh::ptex_split::PtexSplit {
+        n,
+        fine,
+        codes: original.ptex_quads.clone(),
+        ngons: original.ptex_ngons.clone(),
+        triangles: original.triangles.clone(),
+        positions: original.positions.clone(),
+    }))
 }
 
 /// Where the displacement shader list `node` moves vertex `v` of `mesh` (its texture

@@ -3,6 +3,8 @@
 
 use glam::{Vec3, Vec3A};
 
+pub mod ptex_split;
+
 /// A triangle mesh, object space.
 ///
 /// Positions and normals are stored packed (`Vec3`, 12 bytes a vertex each, as the scene
@@ -35,10 +37,18 @@ pub struct MeshData {
     /// Material slot of each triangle; empty when every triangle has slot 0 (readers take
     /// a missing entry as slot 0), which saves 4 bytes per triangle of one-material meshes.
     pub slots: Vec<u32>,
-    /// Per triangle: its quad-mesh Ptex face and corners, or its n-gon's first sub-quad
-    /// face, packed ([`scene::mesh::ptex_quads`]; 4 bytes a triangle); empty for meshes
-    /// without quads or n-gons and in scenes that read no quad-mesh Ptex file.
+    /// Per triangle: its quad-mesh Ptex face and corners, its n-gon's first sub-quad face,
+    /// or a lone triangle's first sub-quad face, packed ([`scene::mesh::ptex_quads`]; 4
+    /// bytes a triangle); empty for meshes without polygons and in scenes that read no
+    /// quad-mesh Ptex file.
     pub ptex_quads: Vec<u32>,
+    /// The n-gons' outlines, prepared for the per-hit search
+    /// ([`scene::mesh::ptex_ngons`]); empty where `ptex_quads` is.
+    pub ptex_ngons: scene::mesh::ptex_ngons::Ngons,
+    /// For a mesh whose triangles were split from another's (uniform or adaptive
+    /// displacement) where the scene reads a quad-mesh Ptex file: that one's Ptex faces,
+    /// which each fine triangle keeps ([`ptex_split`]); `ptex_quads` is then empty.
+    pub ptex_split: Option<std::sync::Arc<ptex_split::PtexSplit>>,
     /// For hair ribbons: where each vertex lies on its hair, and the hairs' tangents.
     pub hair: Option<HairData>,
     /// Vertex motion vectors, object space per shutter interval (empty: none).
@@ -124,6 +134,8 @@ impl MeshData {
             + self.triangles.len() * 12
             + self.slots.len() * 4
             + self.ptex_quads.len() * 4
+            + self.ptex_ngons.memory_bytes()
+            + self.ptex_split.as_ref().map_or(0, |s| s.memory_bytes())
             + self.motion.len() * 16
             + vecs(&self.motion_more)
             + vecs(&self.position_keys)

@@ -265,23 +265,45 @@ fn compile_scene_shading(
     (shading, mdl, diagnostics)
 }
 
-/// In a scene that reads a quad-mesh Ptex file: a warning at the first polygon of each
-/// object with quads or n-gons that has no quad-mesh Ptex face (a polygon with holes, a
-/// strip or a fan, or an n-gon of over [`MAX_NGON_VERTICES`] vertices; lookups there are
-/// black).
+/// In a scene that reads a quad-mesh Ptex file, for each object: a warning at its first
+/// polygon that has no quad-mesh Ptex face (an n-gon of over [`MAX_NGON_VERTICES`]
+/// vertices: lookups there are black), at its first polygon with holes (given its outer
+/// boundary's sub-quads, mira's reading), and at its first subdivision or free-form surface
+/// (no quad-mesh faces: black).
 ///
 /// [`MAX_NGON_VERTICES`]: scene::mesh::ptex_quads::MAX_NGON_VERTICES
 fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnostic>) {
     for object in &scene.objects {
-        if let Some((span, vertices)) = object.geometry.mesh.ptex_unmapped {
+        let mesh = &object.geometry.mesh;
+        if let Some((span, vertices)) = mesh.ptex_unmapped {
             diagnostics.push(mi::Diagnostic::warning(
                 span,
                 format!(
-                    "object '{}': a polygon of {vertices} vertices (with holes, a strip or a fan, or an \
-                     n-gon of over {} vertices) has no quad-mesh Ptex face (mira maps c and p polygons \
-                     without holes): quad-mesh Ptex lookups on it are black",
+                    "object '{}': a polygon of {vertices} vertices has no quad-mesh Ptex faces (mira gives \
+                     sub-quads to n-gons of at most {} vertices): quad-mesh Ptex lookups on it are black",
                     object.name,
                     scene::mesh::ptex_quads::MAX_NGON_VERTICES
+                ),
+            ));
+        }
+        if let Some(span) = mesh.ptex_holed {
+            diagnostics.push(mi::Diagnostic::warning(
+                span,
+                format!(
+                    "object '{}': a polygon with holes is given its outer boundary's quad-mesh Ptex sub-quads \
+                     (one face for a 4-vertex boundary); Ptex has no faces with holes, so this numbering is a \
+                     guess",
+                    object.name
+                ),
+            ));
+        }
+        if let Some((span, what)) = mesh.ptex_surface {
+            diagnostics.push(mi::Diagnostic::warning(
+                span,
+                format!(
+                    "object '{}': this {what} has no quad-mesh Ptex faces (mira does not carry its control \
+                     faces through the refinement): quad-mesh Ptex lookups on it are black",
+                    object.name
                 ),
             ));
         }

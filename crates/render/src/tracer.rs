@@ -465,8 +465,18 @@ impl Tracer for SceneTracer<'_> {
 /// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on triangle `prim`
 /// of `mesh` (`None` where the mesh keeps no such table or the triangle has no face).
 fn ptex_quad_face(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) -> Option<(u32, f32, f32)> {
-    use scene::mesh::ptex_quads;
-    let code = *mesh.ptex_quads.get(prim)?;
-    ptex_quads::face_uv(code, bary)
-        .or_else(|| ptex_quads::ngon_face_uv(&mesh.ptex_quads, &mesh.triangles, &mesh.positions, prim, bary))
+    if let Some(split) = &mesh.ptex_split {
+        return split.face_uv(prim, bary);
+    }
+    if mesh.ptex_quads.is_empty() {
+        return None;
+    }
+    scene::mesh::ptex_ngons::hit_face_uv(
+        &mesh.ptex_quads,
+        &mesh.ptex_ngons,
+        &mesh.triangles,
+        &mesh.positions,
+        prim,
+        bary,
+    )
 }

@@ -7,6 +7,7 @@
 
 use glam::Vec3;
 
+pub mod ptex_ngons;
 pub mod ptex_quads;
 
 /// What a face says about its material; the instance decides what it becomes.
@@ -63,17 +64,31 @@ pub struct Mesh {
     /// The distinct material slots of the faces.
     pub slots: Vec<MaterialSlot>,
     /// Per triangle: its quad-mesh Ptex face id and which corners of that quad its vertices
-    /// are, or its n-gon's first sub-quad face id, packed ([`ptex_quads`]); empty, nothing
-    /// per triangle, when none of the mesh's polygons is a quad or an n-gon of 5 or more
-    /// vertices (4 bytes per triangle when one is).
+    /// are, its n-gon's first sub-quad face id, or, for a triangle that is a polygon of its
+    /// own, its first sub-quad face id, packed ([`ptex_quads`]); empty, nothing per
+    /// triangle, when the mesh is of lone triangles only ([`Mesh::ptex_triangles`]) or has
+    /// no polygons (4 bytes per triangle otherwise).
     pub ptex_quads: Vec<u32>,
+    /// With no [`Mesh::ptex_quads`] table: every triangle is a polygon of its own (3-vertex
+    /// `c`/`p` polygons, strips, fans, trilists), triangle t's sub-quad faces 3t … 3t + 2
+    /// ([`Mesh::materialize_ptex_triangles`] writes the table out).
+    pub ptex_triangles: bool,
+    /// The mesh's n-gons' outlines ([`ptex_ngons`]), where its n-gon triangles find their
+    /// sub-quads.
+    pub ptex_ngons: ptex_ngons::Ngons,
     /// How many quad-mesh Ptex face ids the mesh's polygons number ([`ptex_quads`]: a quad
-    /// one, any other polygon one per outline vertex).
+    /// one, any other polygon one per outline vertex, a strip's or a fan's triangles 3
+    /// each).
     pub ptex_faces: u32,
-    /// In a mesh with quads or n-gons ([`Mesh::ptex_quads`] not empty): the first polygon
-    /// that has no quad-mesh Ptex face (with holes, a strip or a fan) and its outline's
-    /// vertex count.
+    /// The first polygon that has no quad-mesh Ptex face (an n-gon of over
+    /// [`ptex_quads::MAX_NGON_VERTICES`] vertices, or one past the face ids the packing
+    /// holds) and its outline's vertex count.
     pub ptex_unmapped: Option<(mi::Span, usize)>,
+    /// The first polygon with holes (given its outer boundary's sub-quads: mira's reading).
+    pub ptex_holed: Option<mi::Span>,
+    /// The first surface whose triangles have no quad-mesh Ptex faces (a subdivision
+    /// surface, a ccmesh, a free-form surface): its name's place and what it is.
+    pub ptex_surface: Option<(mi::Span, &'static str)>,
 }
 
 impl Mesh {
@@ -124,6 +139,18 @@ impl Mesh {
             + self.triangles.len() * 12
             + self.triangle_slots.len() * 4
             + self.ptex_quads.len() * 4
+            + self.ptex_ngons.memory_bytes()
+    }
+
+    /// Writes out the table of a mesh of lone triangles ([`Mesh::ptex_triangles`]): before
+    /// its triangles are removed or reordered (their face ids would follow their index).
+    pub fn materialize_ptex_triangles(&mut self) {
+        if self.ptex_triangles {
+            self.ptex_triangles = false;
+            self.ptex_quads = (0..self.triangles.len() as u32)
+                .map(|t| t.checked_mul(3).map_or(ptex_quads::NONE, ptex_quads::encode_triangle))
+                .collect();
+        }
     }
 
     /// Appends `other`, offsetting its indices and merging its slots. Appended to an empty
@@ -139,7 +166,7 @@ impl Mesh {
         let base = self.positions.len() as u32;
         let had = self.positions.len();
         let slot_map: Vec<u32> = other.slots.iter().map(|s| self.slot(s.clone())).collect();
-        self.append_ptex_quads(&other);
+        self.append_ptex_quads(&other, base);
         self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
         self.triangle_slots.extend(other.triangle_slots.iter().map(|&s| slot_map[s as usize]));
         // Per-vertex arrays: keep them aligned with positions, padding what one side lacks.
@@ -176,25 +203,46 @@ impl Mesh {
             && self.triangle_slots.is_empty()
             && self.slots.is_empty()
             && self.ptex_quads.is_empty()
+            && !self.ptex_triangles
+            && self.ptex_ngons.is_empty()
             && self.ptex_faces == 0
             && self.ptex_unmapped.is_none()
+            && self.ptex_holed.is_none()
+            && self.ptex_surface.is_none()
     }
 
-    /// Appends the quad-mesh Ptex faces of `other` (before its triangles are appended):
-    /// its face ids follow this mesh's, and a side without them pads with none.
-    fn append_ptex_quads(&mut self, other: &Mesh) {
+    /// Appends the quad-mesh Ptex faces of `other` (before its triangles are appended; its
+    /// vertices will start at `base`): its face ids follow this mesh's, a side without
+    /// them pads with none; two meshes of lone triangles stay without a table.
+    fn append_ptex_quads(&mut self, other: &Mesh, base: u32) {
         let (mine, theirs) = (self.triangles.len(), other.triangles.len());
-        if !self.ptex_quads.is_empty() || !other.ptex_quads.is_empty() {
+        let offset = self.ptex_faces;
+        let empty = |m: &Mesh| m.triangles.is_empty() && m.ptex_faces == 0;
+        let lone = |m: &Mesh| m.ptex_triangles || empty(m);
+        if lone(self) && lone(other) {
+            self.ptex_triangles = self.ptex_triangles || other.ptex_triangles;
+        } else if !self.ptex_quads.is_empty()
+            || !other.ptex_quads.is_empty()
+            || self.ptex_triangles
+            || other.ptex_triangles
+        {
+            self.materialize_ptex_triangles();
             self.ptex_quads.resize(mine, ptex_quads::NONE);
-            if other.ptex_quads.is_empty() {
+            if other.ptex_triangles {
+                let first = |t: u32| t.checked_mul(3).and_then(|f| f.checked_add(offset));
+                self.ptex_quads
+                    .extend((0..theirs as u32).map(|t| first(t).map_or(ptex_quads::NONE, ptex_quads::encode_triangle)));
+            } else if other.ptex_quads.is_empty() {
                 self.ptex_quads.resize(mine + theirs, ptex_quads::NONE);
             } else {
-                let offset = self.ptex_faces;
                 self.ptex_quads.extend(other.ptex_quads.iter().map(|&c| ptex_quads::offset(c, offset)));
             }
         }
+        self.ptex_ngons.append(&other.ptex_ngons, offset, base);
         self.ptex_faces = self.ptex_faces.saturating_add(other.ptex_faces);
         self.ptex_unmapped = self.ptex_unmapped.or(other.ptex_unmapped);
+        self.ptex_holed = self.ptex_holed.or(other.ptex_holed);
+        self.ptex_surface = self.ptex_surface.or(other.ptex_surface);
     }
 
     /// Whether appending the mesh to a blank one would give it back unchanged: its texture

@@ -400,6 +400,10 @@ pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: 
         let keep: Vec<bool> =
             mesh.triangles.iter().map(|t| t.iter().all(|&v| !bad.get(v as usize).copied().unwrap_or(true))).collect();
         dropped = keep.iter().filter(|k| !**k).count();
+        if dropped > 0 {
+            // Lone triangles' face ids follow their index: kept with the triangles.
+            mesh.materialize_ptex_triangles();
+        }
         let mut i = 0;
         mesh.triangles.retain(|_| {
             i += 1;

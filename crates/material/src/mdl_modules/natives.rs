@@ -189,7 +189,7 @@ pub fn call(module: &str, def: &Function, args: &[Value], span: Span, leaves: &m
             roughness: number("roughness")?,
             multiscatter_tint: number("multiscatter_tint")?,
             multiscatter: Box::new(bsdf("multiscatter")?),
-            reflection_tint: Leaf::Const(Rgb::ONE),
+            reflection_tint: Vec::new(),
         })),
         "normalized_mix"
         | "clamped_mix"

@@ -171,10 +171,12 @@ pub enum Df {
         multiscatter_tint: Leaf,
         /// The base.
         multiscatter: Box<Df>,
-        /// The reflection tint of a `df::tint` of two tints over a sheen whose base
-        /// transmits ([`Df::tinted_apart`]): it weights the sheen lobe alone, the base's
-        /// halves being tinted apart below it (white otherwise).
-        reflection_tint: Leaf,
+        /// The reflection tints of the `df::tint`s of two tints over a sheen whose base
+        /// transmits ([`Df::tinted_apart`]), outermost last: their product (each clamped to
+        /// [0, 1], as a tint's one-component mix is) weights the sheen lobe alone, the
+        /// base's halves being tinted apart below it (none: white). Constant ones are kept
+        /// as one product.
+        reflection_tint: Vec<Leaf>,
     },
     /// `df::backscattering_glossy_reflection_bsdf`: GGX micro-mirrors around the direction
     /// back to the viewer, α = roughness.
@@ -369,6 +371,23 @@ impl ScatterMode {
     }
 }
 
+/// The reflection tints `tints` of a sheen ([`Df::Sheen`]) with `reflect` added outermost:
+/// white ones dropped, constant ones multiplied into one.
+fn with_tint(tints: &[Leaf], reflect: Leaf) -> Vec<Leaf> {
+    let mut out: Vec<Leaf> = Vec::with_capacity(tints.len() + 1);
+    let mut constant = Rgb::ONE;
+    for t in tints.iter().copied().chain([reflect]) {
+        match t.constant() {
+            Some(c) => constant *= c,
+            None => out.push(t),
+        }
+    }
+    if constant != Rgb::ONE {
+        out.insert(0, Leaf::Const(constant));
+    }
+    out
+}
+
 impl Df {
     /// `df::tint(reflection_tint, transmission_tint, base)`: this tree with each reflecting
     /// lobe tinted by `reflect` and each transmitting one by `transmit` — the tints pushed
@@ -380,9 +399,9 @@ impl Df {
     /// (`scatter_transmit`) under the transmission tint: the two halves sum to the lobe;
     /// so is a `measured_bsdf` that reflects and transmits, into its reflection part and
     /// its transmission part; a sheen whose base transmits keeps its lobe under the
-    /// reflection tint (`reflection_tint`) and its base tinted apart below it. `Err` names
-    /// what cannot be split: such a sheen under two such nested tints both varying per
-    /// hit.
+    /// reflection tint (`reflection_tint`; under nested tints, the product of theirs) and
+    /// its base tinted apart below it. `Err` names what cannot be split (nothing at
+    /// present: kept for the lobes to come).
     pub fn tinted_apart(&self, reflect: Leaf, transmit: Leaf) -> Result<Df, &'static str> {
         let wrap = |w: Leaf| Df::Mix { parts: vec![(w, self.clone())], bound: MixBound::Normalized };
         let split = |d: &Df| d.tinted_apart(reflect, transmit).map(Box::new);
@@ -435,12 +454,7 @@ impl Df {
                 roughness: *roughness,
                 multiscatter_tint: *multiscatter_tint,
                 multiscatter: split(multiscatter)?,
-                reflection_tint: match (reflection_tint.constant(), reflect.constant()) {
-                    (Some(a), _) if a == Rgb::ONE => reflect,
-                    (_, Some(b)) if b == Rgb::ONE => *reflection_tint,
-                    (Some(a), Some(b)) => Leaf::Const(a * b),
-                    _ => return Err("a sheen whose base transmits, under two nested tints that vary per hit"),
-                },
+                reflection_tint: with_tint(reflection_tint, reflect),
             },
             Df::Mix { parts, bound } => Df::Mix {
                 parts: parts

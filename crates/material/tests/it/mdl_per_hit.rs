@@ -75,6 +75,23 @@ fn a_custom_curve_of_varying_reflectivities_is_read_per_hit() {
     );
 }
 
+/// Two nested `df::tint`s of two tints, both reflection tints varying per hit (outer
+/// (u, 0.6, 0.3), inner (0.8, u, 0.5), the inner transmission tint (0.5, 0.5, u)), over a
+/// sheen whose base transmits (once an error at its line): at u = 0.5 and 0.75 the
+/// material is its constant twin (the sheen lobe under the product of the reflection
+/// tints, the base's halves tinted apart; models equal, BSDF values within 1e-6).
+#[test]
+fn nested_two_tint_tints_varying_per_hit_over_a_transmitting_sheen_compile() {
+    same_as_constant_twins(
+        "nested_tint_sheen_varying",
+        "nested_tint_sheen_of",
+        [
+            (0.5, r#""r1" 0.5 0.6 0.3, "r2" 0.8 0.5 0.5, "t2" 0.5 0.5 0.5"#),
+            (0.75, r#""r1" 0.75 0.6 0.3, "r2" 0.8 0.75 0.5, "t2" 0.5 0.5 0.75"#),
+        ],
+    );
+}
+
 /// The emitted radiance of `h` towards the direction at `deg` degrees from the normal
 /// (z), in the x–z plane.
 fn radiance(h: &HitMaterial<'_>, deg: f32) -> Rgb {

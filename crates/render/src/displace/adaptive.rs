@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use super::plan::{Criteria, MAX_LEVEL};
 use super::subdivide::vertex_normals;
 use crate::camera::CameraModel;
+use crate::mesh::ptex_split::FineOrigin;
 use crate::mesh::MeshData;
 
 /// How `view` criteria measure: the instance's placement and the camera.
@@ -53,15 +54,18 @@ impl View<'_> {
 pub type Offset<'a> = dyn Fn(&MeshData, usize, u32) -> Vec3 + Sync + 'a;
 
 /// Refines and displaces `mesh` (object space) under `c`: the displaced mesh (normals
-/// recomputed), or `Err(n)` when the next level would make `n` triangles, more than
-/// `budget`. `view` is needed by `view` criteria (without it they measure in object space).
+/// recomputed) and, where `carry` asks for them (a scene reading a quad-mesh Ptex file),
+/// where each fine triangle lies on `mesh`'s triangles (else empty); or `Err(n)` when the
+/// next level would make `n` triangles, more than `budget`. `view` is needed by `view`
+/// criteria (without it they measure in object space).
 pub fn refine(
     mesh: &MeshData,
     c: &Criteria,
     view: Option<&View>,
     budget: usize,
     offset: &Offset,
-) -> Result<MeshData, usize> {
+    carry: bool,
+) -> Result<(MeshData, Vec<FineOrigin>), usize> {
     // The levels every edge is split for make 4^min_level triangles of each.
     let forced = mesh.triangles.len() as f64 * 4f64.powi(c.min_level.min(MAX_LEVEL) as i32);
     if forced > budget as f64 {
@@ -83,6 +87,8 @@ pub fn refine(
     };
     let mut triangles = mesh.triangles.clone();
     let mut slots = mesh.slots.clone();
+    let mut origins: Vec<FineOrigin> =
+        if carry { (0..triangles.len() as u32).map(FineOrigin::whole).collect() } else { Vec::new() };
     let slot_of = |slots: &[u32], t: usize| slots.get(t).copied().unwrap_or(0);
     // Each original vertex is displaced by the material of the first triangle using it.
     let mut owner: Vec<Option<u32>> = vec![None; base.positions.len()];
@@ -167,18 +173,44 @@ pub fn refine(
         // The triangles, each split by its split edges.
         let mut next = Vec::with_capacity(made);
         let mut next_slots = Vec::with_capacity(if slots.is_empty() { 0 } else { made });
+        let mut next_origins = Vec::with_capacity(if carry { made } else { 0 });
         for (t, tri) in triangles.iter().enumerate() {
             let m = tri_edges[t].map(|e| middle[e as usize]);
+            let first = next.len();
             split_triangle(*tri, m, &shifted, &mut next);
             if !slots.is_empty() {
                 next_slots.resize(next.len(), slots[t]);
             }
+            if carry {
+                let o = origins[t];
+                next_origins.extend(next[first..].iter().map(|f| FineOrigin {
+                    triangle: o.triangle,
+                    corners: f.map(|v| corner_place(*tri, m, &o.corners, v)),
+                }));
+            }
         }
         triangles = next;
         slots = next_slots;
+        origins = next_origins;
     }
     let normals = vertex_normals(&shifted, &triangles);
-    Ok(MeshData { positions: shifted, normals, triangles, slots, ..base })
+    Ok((MeshData { positions: shifted, normals, triangles, slots, ..base }, origins))
+}
+
+/// The barycentrics (b1, b2) on the original triangle of vertex `v` of a triangle split
+/// from `tri` (corners a, b, c at `places` on the original) by the middles `m` of its
+/// edges ab, bc, ca: a corner's own place, or the mean of its edge's ends'.
+fn corner_place(tri: [u32; 3], m: [u32; 3], places: &[[f32; 2]; 3], v: u32) -> [f32; 2] {
+    if let Some(k) = tri.iter().position(|&x| x == v) {
+        return places[k];
+    }
+    match m.iter().position(|&x| x == v) {
+        Some(k) => {
+            let (p, q) = (places[k], places[(k + 1) % 3]);
+            [(p[0] + q[0]) * 0.5, (p[1] + q[1]) * 0.5]
+        }
+        None => places[0],
+    }
 }
 
 /// Whether the edge `(a, b)` (between the triangles `sides`, `u32::MAX` where none) fails
@@ -300,7 +332,8 @@ mod tests {
             ..MeshData::default()
         };
         let push = |m: &MeshData, v: usize, _s: u32| m.normals[v] * (0.1 * (m.positions[v].x * 7.0).sin());
-        let out = refine(&mesh, &criteria(0.2, DEFAULT_MAX_LEVEL + 4), None, 1 << 20, &push).expect("within budget");
+        let out =
+            refine(&mesh, &criteria(0.2, DEFAULT_MAX_LEVEL + 4), None, 1 << 20, &push, false).expect("within budget").0;
         let mut count: HashMap<(u32, u32), u32> = HashMap::new();
         for t in &out.triangles {
             for k in 0..3 {
@@ -323,6 +356,37 @@ mod tests {
             ..MeshData::default()
         };
         let zero = |_: &MeshData, _: usize, _: u32| Vec3::ZERO;
-        assert_eq!(refine(&mesh, &criteria(1e-6, 16), None, 1000, &zero).err(), Some(1024));
+        assert_eq!(refine(&mesh, &criteria(1e-6, 16), None, 1000, &zero, false).err(), Some(1024));
+    }
+
+    /// Two triangles of unequal edges refined unevenly (edges at most 0.3, displaced by 0),
+    /// carrying where each fine triangle lies: every fine corner's carried barycentrics,
+    /// mixed over its original's corners, give the corner's position (within 1e-6), and the
+    /// fine triangles of each original cover its area (within 1e-5); without `carry`
+    /// nothing is kept.
+    #[test]
+    fn fine_triangles_carry_their_places_on_the_originals() {
+        let positions = vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(1.5, 0.4, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+        let triangles = vec![[0, 1, 2], [0, 2, 3]];
+        let mesh = MeshData { positions: positions.clone(), triangles: triangles.clone(), ..MeshData::default() };
+        let zero = |_: &MeshData, _: usize, _: u32| Vec3::ZERO;
+        let (out, origins) = refine(&mesh, &criteria(0.3, 8), None, 1 << 20, &zero, true).expect("within budget");
+        assert_eq!(origins.len(), out.triangles.len());
+        let area = |p: [Vec3; 3]| (p[1] - p[0]).cross(p[2] - p[0]).length() * 0.5;
+        let mut covered = [0.0f32; 2];
+        for (tri, o) in out.triangles.iter().zip(&origins) {
+            let t = triangles[o.triangle as usize].map(|v| positions[v as usize]);
+            for (&v, c) in tri.iter().zip(o.corners) {
+                let back = t[0] * (1.0 - c[0] - c[1]) + t[1] * c[0] + t[2] * c[1];
+                assert!((back - out.positions[v as usize]).length() < 1e-6, "{back} vs {}", out.positions[v as usize]);
+            }
+            covered[o.triangle as usize] += area(tri.map(|v| out.positions[v as usize]));
+        }
+        for (t, c) in covered.iter().enumerate() {
+            let whole = area(triangles[t].map(|v| positions[v as usize]));
+            assert!((c - whole).abs() < 1e-5, "triangle {t}: {c} of {whole}");
+        }
+        assert!(!(0..9).any(|k| out.triangles.len() == 2 << (2 * k)), "an uneven split: {}", out.triangles.len());
+        assert!(refine(&mesh, &criteria(0.3, 8), None, 1 << 20, &zero, false).expect("within budget").1.is_empty());
     }
 }

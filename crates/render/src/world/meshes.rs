@@ -17,6 +17,8 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh, quad_ptex: bool) -> scene
         triangles: m.triangles.clone(),
         triangle_slots: m.triangle_slots.clone(),
         ptex_quads: if quad_ptex { m.ptex_quads.clone() } else { Vec::new() },
+        ptex_triangles: quad_ptex && m.ptex_triangles,
+        ptex_ngons: if quad_ptex { m.ptex_ngons.clone() } else { Default::default() },
         // The slot table itself is small; `mesh_data` reads its length.
         slots: m.slots.clone(),
         motion: m.motion.clone(),
@@ -38,8 +40,18 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
     let slots = std::mem::take(&mut m.triangle_slots);
     // Taken either way: where not kept, the scene's copy is freed too (a mesh the world
     // takes no longer holds it).
+    if quad_ptex {
+        // A mesh of lone triangles gets its table only here (4 bytes a triangle).
+        m.materialize_ptex_triangles();
+    }
     let quads = std::mem::take(&mut m.ptex_quads);
     let keep_quads = quad_ptex && quads.len() == m.triangles.len();
+    let mut ngons = std::mem::take(&mut m.ptex_ngons);
+    if keep_quads {
+        ngons.prepare(&positions);
+    } else {
+        ngons = Default::default();
+    }
     let mut mesh = MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
@@ -54,6 +66,8 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         // zeroed slots are never touched: no page faults).
         slots: if m.slots.len() <= 1 || slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
         ptex_quads: if keep_quads { quads } else { Vec::new() },
+        ptex_ngons: ngons,
+        ptex_split: None,
         hair: None,
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),

@@ -37,15 +37,15 @@ const FACE1: [[f32; 3]; 4] = [[0.1, 0.2, 0.3], [0.4, 0.5, 0.6], [0.7, 0.8, 0.9],
 
 /// One face the writer stores: its resolution (log2 along u, v) and its RGB texels (row
 /// v = 0 first); one texel and `log2` (0, 0): flagged constant.
-struct FaceSpec {
-    log2: (u8, u8),
-    texels: Vec<[f32; 3]>,
+pub(crate) struct FaceSpec {
+    pub(crate) log2: (u8, u8),
+    pub(crate) texels: Vec<[f32; 3]>,
 }
 
 /// A Ptex file of `faces` (mesh type `mesh`: 0 triangles, 1 quads; RGB floats, no alpha,
 /// one level), constant faces flagged in their face info, the others zipped (each
 /// channel's plane in turn).
-fn ptex_bytes(mesh: u32, faces: &[FaceSpec]) -> Vec<u8> {
+pub(crate) fn ptex_bytes(mesh: u32, faces: &[FaceSpec]) -> Vec<u8> {
     let floats = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
     let (mut infos, mut constants, mut words, mut blocks) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for f in faces {
@@ -107,7 +107,7 @@ fn expected(ptex: &Ptex, x: f32, y: f32) -> [f32; 3] {
     [c.x, c.y, c.z]
 }
 
-const MODULE: &str = r#"mdl 1.7;
+pub(crate) const MODULE: &str = r#"mdl 1.7;
 import ::df::*;
 import ::tex::*;
 export material faces() = material(surface: material_surface(scattering: df::diffuse_reflection_bsdf(
@@ -243,7 +243,10 @@ render "root" "cam_inst" "opt"
 /// whose vertex 0 is its upper right corner): every pixel, on both triangles of each quad,
 /// lies within the range of the file's lookup over the pixel within 1e-4 in both engines
 /// (the classic engine's π times), the ranges narrow; the pentagon (now its sub-quads'
-/// faces) is not warned of.
+/// faces) is not warned of. The same with the quads displaced (`approximate displace
+/// parametric 2`, by 0: each triangle split into 16 finer ones; and adaptively, `length
+/// 0.05`, each triangle split unevenly into hundreds): the fine triangles keep their
+/// quads' texels, within the same 1e-4, and nothing is warned of.
 #[test]
 fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
     let dir = std::env::temp_dir().join(format!("mira_render_ptex_quads_{}", std::process::id()));
@@ -256,9 +259,34 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
     ];
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
     let ptex = reader::read(&ptex_bytes(1, &faces)).expect("the quad file").0;
-    for engine in [EngineKind::Path, EngineKind::Classic] {
-        let parsed = mi::parse_str("t.mi", QUAD_SCENE);
+    // The same quads displaced (by 0, `parametric 2`: each triangle split into 16, which
+    // keep their original's faces and places on them).
+    let displaced = QUAD_SCENE
+        .replace(
+            "shader \"tinted\" \"mdl::ptexmod::faces\" ()\n",
+            "shader \"tinted\" \"mdl::ptexmod::faces\" ()\nshader \"disp\" \"maya_material_displace\" (\"displacement\" 0)\n\
+             material \"m\" = \"tinted\" displace = \"disp\" end material\n",
+        )
+        .replace("object \"quads\" group", "object \"quads\"\n    approximate displace parametric 2\n    group")
+        .replace("material \"tinted\" end instance", "material \"m\" end instance");
+    let adaptive = displaced.replace("approximate displace parametric 2", "approximate displace length 0.05");
+    for (engine, text) in [
+        (EngineKind::Path, QUAD_SCENE),
+        (EngineKind::Classic, QUAD_SCENE),
+        (EngineKind::Path, &displaced),
+        (EngineKind::Classic, &displaced),
+        (EngineKind::Path, &adaptive),
+        (EngineKind::Classic, &adaptive),
+    ] {
+        let parsed = mi::parse_str("t.mi", text);
         let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
+        let fine = built.built.world.meshes.iter().map(|m| m.triangles.len()).max().unwrap_or(0);
+        if text == QUAD_SCENE || text == displaced {
+            assert_eq!(fine, if text == QUAD_SCENE { 7 } else { 7 * 16 }, "{engine:?}");
+        } else {
+            // Uneven: not 7 · 4^k.
+            assert!(fine > 7 * 64 && !(0..8).any(|k| fine == 7 << (2 * k)), "{engine:?}: {fine} fine triangles");
+        }
         assert!(built.messages.is_empty(), "{:#?}", built.messages);
         // Each quad's diagonal leaves whole texels on either side (the left quad's, from
         // (−1, −1) to (0, 1), has its upper left texel above, its lower right below).

@@ -1,6 +1,6 @@
 //! Ptex face ids of quad-mesh files ([`Mesh::ptex_quads`](super::Mesh::ptex_quads)): for
-//! each triangle of an object whose polygons include quads or n-gons, the Ptex face of
-//! the polygon it was cut from, packed in one `u32` (4 bytes per triangle).
+//! each triangle of an object, the Ptex face of the polygon it was cut from, packed in one
+//! `u32` (4 bytes per triangle).
 //!
 //! Ptex numbers the faces of a quad mesh in polygon order: a quad is one face, any other
 //! polygon of n vertices n faces (its n sub-quads, one per corner). A quad face's
@@ -14,18 +14,24 @@
 //! midpoint of edge i → i+1, the polygon's centroid (vertex mean), the midpoint of edge
 //! i−1 → i) at (u, v) = (0, 0), (1, 0), (1, 1), (0, 1), and face id = the polygon's first
 //! face id + i (OpenSubdiv's and Ptex's one face per corner, the level-1 Catmull-Clark
-//! children). A hit's sub-quad and (u, v) are found at hit time ([`ngon_face_uv`]): the
-//! polygon's outline is rebuilt from its triangles (consecutive, one packed value, the
-//! first starting at the polygon's vertex 0), projected on its Newell plane, and the
-//! bilinear map of each sub-quad inverted ([`invert_bilinear`]).
+//! children).
+//!
+//! A triangle that is a polygon of its own (a 3-vertex `c` or `p` polygon, each triangle
+//! of a `strip` or a `fan`, each triangle of a trilist — mira's reading: mental ray
+//! documents no Ptex numbering for strips, fans or trilists, whose triangles are its
+//! faces once it has read them, and OpenSubdiv and Ptex count a mesh's faces in order,
+//! a triangle three sub-quads) keeps its vertex order, so its sub-quad and (u, v) follow
+//! from the hit's barycentrics alone ([`triangle_face_uv`]: the bilinear maps of the
+//! sub-quads are inverted in barycentric coordinates, which any affine map of the triangle
+//! leaves unchanged). A larger n-gon's outline is kept per polygon
+//! ([`super::ptex_ngons`]), where the hit's sub-quad is found.
 //!
 //! Packing: a quad's triangle has bit 31 clear, bits 0–5 the corners k₀, k₁, k₂ of its
 //! vertices 0, 1, 2 (two bits each), bits 6–30 the face id (at most [`MAX_FACE`]); an
-//! n-gon's triangle has bit 31 set and bits 0–30 the polygon's first face id (at most
-//! [`MAX_NGON_FACE`]); [`NONE`] for a triangle that has no face (a polygon with holes, a
-//! strip or a fan, or beyond the face ids the packing holds).
-
-use glam::DVec3;
+//! n-gon's triangle has bits 31, 30 = 1, 0 and bits 0–29 the polygon's first face id (at
+//! most [`MAX_NGON_FACE`]); a triangle of its own has bits 31, 30 = 1, 1 and bits 0–29 its
+//! first face id (at most [`MAX_NGON_FACE`] − 1); [`NONE`] for a triangle that has no
+//! face (a polygon of too many vertices, or beyond the face ids the packing holds).
 
 /// The packed value of a triangle with no quad face.
 pub const NONE: u32 = u32::MAX;
@@ -34,15 +40,19 @@ pub const NONE: u32 = u32::MAX;
 pub const MAX_FACE: u32 = (1 << 25) - 1;
 
 /// The largest first face id of an n-gon the packing holds.
-pub const MAX_NGON_FACE: u32 = (1 << 31) - 2;
+pub const MAX_NGON_FACE: u32 = (1 << 30) - 1;
 
-/// The most vertices an n-gon may have to get sub-quad faces: [`ngon_face_uv`] rebuilds
-/// the outline at each hit in O(n²), so a larger polygon (a hostile 10⁶-gon would hang the
-/// render) gets [`NONE`] and the unmapped-polygon warning instead.
-pub const MAX_NGON_VERTICES: usize = 64;
+/// The most vertices an n-gon may have to get sub-quad faces: a hostile polygon of more
+/// (10⁶ vertices, say) gets [`NONE`] and the unmapped-polygon warning at its line. Its
+/// outline is searched in O(log n) per hit where its sub-quads lie in angular order
+/// around its centroid, else in O(n) ([`super::ptex_ngons`]).
+pub const MAX_NGON_VERTICES: usize = 4096;
 
-/// The bit that marks an n-gon's triangle.
+/// The bit that marks an n-gon's or a lone triangle's value.
 const NGON: u32 = 1 << 31;
+
+/// The bit that, with [`NGON`], marks a triangle that is a polygon of its own.
+const OWN: u32 = 1 << 30;
 
 /// The face coordinates (u, v) of a quad's corners 0…3 (Ptex's quad convention).
 pub const CORNER_UV: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
@@ -59,6 +69,9 @@ pub fn encode(face: u32, corners: [u8; 3]) -> u32 {
 /// Packed value `code` with its face id moved on by `by` (a mesh appended after another:
 /// its faces numbered after that one's).
 pub fn offset(code: u32, by: u32) -> u32 {
+    if let Some(first) = triangle_first(code) {
+        return first.checked_add(by).map_or(NONE, encode_triangle);
+    }
     if let Some(first) = ngon_first(code) {
         return first.checked_add(by).map_or(NONE, encode_ngon);
     }
@@ -68,8 +81,8 @@ pub fn offset(code: u32, by: u32) -> u32 {
     }
 }
 
-/// The face id and the quad corners of packed value `code` (`None` for [`NONE`] and an
-/// n-gon's triangle).
+/// The face id and the quad corners of packed value `code` (`None` for [`NONE`], an
+/// n-gon's triangle and a lone triangle).
 pub fn decode(code: u32) -> Option<(u32, [u8; 3])> {
     (code & NGON == 0).then(|| (code >> 6, [0, 2, 4].map(|s| (code >> s & 3) as u8)))
 }
@@ -83,10 +96,48 @@ pub fn encode_ngon(first: u32) -> u32 {
     NGON | first
 }
 
-/// The first face id of the n-gon of packed value `code` (`None` for a quad's triangle and
-/// [`NONE`]).
+/// The first face id of the n-gon of packed value `code` (`None` for a quad's triangle, a
+/// lone triangle's and [`NONE`]).
 pub fn ngon_first(code: u32) -> Option<u32> {
-    (code & NGON != 0 && code != NONE).then_some(code & !NGON)
+    (code & (NGON | OWN) == NGON).then_some(code & MAX_NGON_FACE)
+}
+
+/// The packed value of a triangle that is a polygon of its own, its vertex 0 the
+/// polygon's, whose first sub-quad face id is `first`; [`NONE`] beyond
+/// [`MAX_NGON_FACE`] − 1.
+pub fn encode_triangle(first: u32) -> u32 {
+    if first >= MAX_NGON_FACE {
+        return NONE;
+    }
+    NGON | OWN | first
+}
+
+/// The first sub-quad face id of the lone triangle of packed value `code` (`None` for any
+/// other value and [`NONE`]).
+pub fn triangle_first(code: u32) -> Option<u32> {
+    (code & (NGON | OWN) == NGON | OWN && code != NONE).then_some(code & MAX_NGON_FACE)
+}
+
+/// The sub-quad face id and its (u, v) of a hit at barycentrics `bary` on a triangle that
+/// is a polygon of its own with first face id `first`: sub-quad i is where bᵢ is the
+/// largest (its borders, the lines from the edge midpoints to the centroid, are where two
+/// weights are equal; ties go to the lower i), (u, v) its bilinear map's inverse at
+/// (b1, b2) in the plane of barycentric coordinates, clamped to [0, 1].
+pub fn triangle_face_uv(first: u32, bary: [f32; 3]) -> Option<(u32, f32, f32)> {
+    let b = bary.map(f64::from);
+    let i = if b[0] >= b[1] && b[0] >= b[2] {
+        0
+    } else if b[1] >= b[2] {
+        1
+    } else {
+        2
+    };
+    // Vertices, edge midpoints and centroid at (b1, b2).
+    const V: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+    let mid = |a: usize, c: usize| [(V[a][0] + V[c][0]) * 0.5, (V[a][1] + V[c][1]) * 0.5];
+    let quad = [V[i], mid(i, (i + 1) % 3), [1.0 / 3.0; 2], mid((i + 2) % 3, i)];
+    let [u, v] = invert_bilinear(quad, [b[1], b[2]])?;
+    Some((first.checked_add(i as u32)?, u.clamp(0.0, 1.0) as f32, v.clamp(0.0, 1.0) as f32))
 }
 
 /// The Ptex face id and the face coordinates (u, v) of a hit at barycentrics `bary`
@@ -113,73 +164,6 @@ pub fn quad_triangles(face: u32, quad: [u32; 4], triangles: &[[u32; 3]]) -> impl
             _ => NONE,
         }
     })
-}
-
-/// The Ptex sub-quad face id and its face coordinates (u, v) of a hit at barycentrics
-/// `bary` on triangle `prim` of a mesh (`codes` its packed values, `triangles` its vertex
-/// indices, `positions` its object-space vertices) whose packed value is an n-gon's
-/// (`None` otherwise, or where its outline cannot be rebuilt). The polygon's triangles are
-/// the run of equal packed values around `prim`; its outline their edges that no other of
-/// them has reversed, from the first triangle's vertex 0 (the polygon's vertex 0). The
-/// sub-quad is the one whose inverted bilinear map puts the point inside [0, 1]² (or
-/// nearest to it, on a non-planar or non-convex polygon); (u, v) clamped to [0, 1]. Costs
-/// O(n²) in the polygon's vertex count n.
-pub fn ngon_face_uv(
-    codes: &[u32],
-    triangles: &[[u32; 3]],
-    positions: &[glam::Vec3],
-    prim: usize,
-    bary: [f32; 3],
-) -> Option<(u32, f32, f32)> {
-    let code = *codes.get(prim)?;
-    let first = ngon_first(code)?;
-    let (mut lo, mut hi) = (prim, prim + 1);
-    while lo > 0 && codes[lo - 1] == code {
-        lo -= 1;
-    }
-    while hi < codes.len().min(triangles.len()) && codes[hi] == code {
-        hi += 1;
-    }
-    let tris = triangles.get(lo..hi)?;
-    // An n-gon of n vertices has n − 2 triangles; a longer run is not one (bounds the cost).
-    if tris.len() + 2 > MAX_NGON_VERTICES {
-        return None;
-    }
-    let edges: Vec<[u32; 2]> = tris.iter().flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]]).collect();
-    let boundary: Vec<[u32; 2]> = edges.iter().copied().filter(|&[a, b]| !edges.contains(&[b, a])).collect();
-    let mut outline = vec![tris[0][0]];
-    while outline.len() < boundary.len() {
-        let last = *outline.last()?;
-        outline.push(boundary.iter().find(|e| e[0] == last)?[1]);
-    }
-    let pos = |i: u32| positions.get(i as usize).map(|p| p.as_dvec3());
-    let points: Vec<DVec3> = outline.iter().map(|&i| pos(i)).collect::<Option<_>>()?;
-    let tri = triangles[prim];
-    let hit = pos(tri[0])? * f64::from(bary[0]) + pos(tri[1])? * f64::from(bary[1]) + pos(tri[2])? * f64::from(bary[2]);
-    // The polygon's plane: Newell normal, any basis in it.
-    let n = points.len();
-    let mut normal = DVec3::ZERO;
-    for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        normal += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-    }
-    let normal = normal.try_normalize()?;
-    let e1 = normal.any_orthonormal_vector();
-    let e2 = normal.cross(e1);
-    let flat = |p: DVec3| [p.dot(e1), p.dot(e2)];
-    let centroid = points.iter().sum::<DVec3>() / n as f64;
-    let mut best: Option<(f64, u32, [f64; 2])> = None;
-    for i in 0..n {
-        let (prev, here, next) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
-        let quad = [here, (here + next) * 0.5, centroid, (prev + here) * 0.5].map(flat);
-        let Some(uv) = invert_bilinear(quad, flat(hit)) else { continue };
-        let outside = [-uv[0], uv[0] - 1.0, -uv[1], uv[1] - 1.0].into_iter().fold(0.0, f64::max);
-        if best.is_none_or(|b| outside < b.0) {
-            best = Some((outside, i as u32, uv));
-        }
-    }
-    let (_, i, [u, v]) = best?;
-    Some((first.checked_add(i)?, u.clamp(0.0, 1.0) as f32, v.clamp(0.0, 1.0) as f32))
 }
 
 /// The (u, v) of 2D point `p` in the bilinear map of quad `q` (corners at (u, v) = (0, 0),
@@ -280,44 +264,30 @@ mod tests {
         assert!((u - 0.5).abs() < 1e-12 && (v - 0.5).abs() < 1e-12, "{u} {v}");
     }
 
-    /// A pentagon fanned from vertex 0: each sub-quad's corners, centre and a point near
-    /// its vertex map to that sub-quad's face and the (u, v) they have on it (1e-5), from
-    /// every triangle of the fan; n-gon values round-trip and offset.
+    /// A lone triangle's sub-quads: points placed by each sub-quad's bilinear map (in
+    /// barycentric coordinates) come back as that sub-quad's face and (u, v) (1e-6); lone
+    /// triangle and n-gon values round-trip, offset, and stay apart from quads and none.
     #[test]
-    fn ngon_hits_map_to_their_sub_quads() {
-        use glam::Vec3;
-        let pts = [[0.0, 0.0], [2.0, 0.0], [2.5, 1.5], [1.0, 2.5], [-0.5, 1.5]];
-        let positions: Vec<Vec3> = pts.iter().map(|p| Vec3::new(p[0], p[1], 1.0)).collect();
-        // Vertex 0 of the polygon is mesh vertex 0; a foreign triangle before and after.
-        let triangles = vec![[9, 9, 9], [0, 1, 2], [0, 2, 3], [0, 3, 4], [9, 9, 9]];
-        let codes = vec![encode(0, [0, 1, 2]), encode_ngon(7), encode_ngon(7), encode_ngon(7), NONE];
-        assert_eq!(ngon_first(codes[1]), Some(7));
-        assert_eq!(ngon_first(offset(codes[1], 3)), Some(10));
-        assert_eq!(decode(codes[1]), None);
-        assert_eq!(ngon_first(codes[0]), None);
-        let p = |i: usize| Vec3::new(pts[i % 5][0], pts[i % 5][1], 1.0);
-        let centroid = (0..5).map(p).sum::<Vec3>() / 5.0;
-        for i in 0..5 {
-            let quad = [p(i), (p(i) + p(i + 1)) * 0.5, centroid, (p(i + 4) + p(i)) * 0.5];
-            for (u, v) in [(0.5, 0.5), (0.1, 0.2), (0.9, 0.05), (0.3, 0.95)] {
-                let w = [(1.0 - u) * (1.0 - v), u * (1.0 - v), u * v, (1.0 - u) * v];
-                let x: Vec3 = (0..4).map(|k| quad[k] * w[k]).sum();
-                // Which fan triangle holds x, and its barycentrics there.
-                let (prim, bary) = (1..4)
-                    .find_map(|t| {
-                        let [a, b, c] = triangles[t].map(|k| positions[k as usize]);
-                        let (v0, v1, v2) = (b - a, c - a, x - a);
-                        let d = v0.x * v1.y - v1.x * v0.y;
-                        let b1 = (v2.x * v1.y - v1.x * v2.y) / d;
-                        let b2 = (v0.x * v2.y - v2.x * v0.y) / d;
-                        (b1 >= -1e-6 && b2 >= -1e-6 && b1 + b2 <= 1.0 + 1e-6).then_some((t, [1.0 - b1 - b2, b1, b2]))
-                    })
-                    .expect("inside the pentagon");
-                let (face, gu, gv) = ngon_face_uv(&codes, &triangles, &positions, prim, bary).expect("an n-gon face");
-                assert_eq!(face, 7 + i as u32, "sub-quad {i} at ({u}, {v})");
-                assert!((gu - u).abs() < 1e-5 && (gv - v).abs() < 1e-5, "sub-quad {i}: ({u}, {v}) vs ({gu}, {gv})");
+    fn a_lone_triangles_hits_map_to_its_sub_quads() {
+        let v = [[1.0f64, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let mix = |a: [f64; 3], b: [f64; 3], t: f64| [0, 1, 2].map(|k| a[k] * (1.0 - t) + b[k] * t);
+        for i in 0..3 {
+            let quad = [v[i], mix(v[i], v[(i + 1) % 3], 0.5), [1.0 / 3.0; 3], mix(v[(i + 2) % 3], v[i], 0.5)];
+            for (u, w) in [(0.5, 0.5), (0.1, 0.2), (0.9, 0.05), (0.3, 0.95), (0.0, 0.0), (0.97, 0.97)] {
+                let wt = [(1.0 - u) * (1.0 - w), u * (1.0 - w), u * w, (1.0 - u) * w];
+                let b = [0, 1, 2].map(|k| (0..4).map(|c| wt[c] * quad[c][k]).sum::<f64>() as f32);
+                let (face, gu, gv) = triangle_face_uv(10, b).expect("a face");
+                assert_eq!(face, 10 + i as u32, "sub-quad {i} at ({u}, {w})");
+                assert!((f64::from(gu) - u).abs() < 1e-6 && (f64::from(gv) - w).abs() < 1e-6, "{i}: {gu} {gv}");
             }
         }
-        assert_eq!(ngon_face_uv(&codes, &triangles, &positions, 0, [1.0, 0.0, 0.0]), None);
+        let code = encode_triangle(12);
+        assert_eq!((triangle_first(code), ngon_first(code), decode(code)), (Some(12), None, None));
+        assert_eq!(triangle_first(offset(code, 3)), Some(15));
+        assert_eq!((triangle_first(encode_ngon(12)), ngon_first(encode_ngon(12))), (None, Some(12)));
+        assert_eq!((triangle_first(NONE), ngon_first(NONE)), (None, None));
+        assert_eq!(encode_triangle(MAX_NGON_FACE), NONE);
+        assert_eq!(triangle_first(encode_triangle(MAX_NGON_FACE - 1)), Some(MAX_NGON_FACE - 1));
+        assert_eq!(triangle_first(encode(7, [0, 1, 2])), None);
     }
 }

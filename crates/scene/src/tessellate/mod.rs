@@ -104,6 +104,10 @@ fn drop_nonfinite(out: &mut ObjectGeometry, span: mi::Span, diags: &mut Vec<Diag
     if finite.iter().any(|f| !f) {
         let before = mesh.triangles.len();
         let keep: Vec<bool> = mesh.triangles.iter().map(|t| t.iter().all(|&i| finite[i as usize])).collect();
+        if keep.contains(&false) {
+            // Lone triangles' face ids follow their index: kept with the triangles.
+            mesh.materialize_ptex_triangles();
+        }
         let mut k = keep.iter();
         mesh.triangles.retain(|_| *k.next().expect("one flag per triangle"));
         let mut k = keep.iter();
@@ -201,8 +205,15 @@ fn group_mesh(
         let mut refined = subdiv::subdivided_mesh(&cage, levels, name);
         refined.slots = mesh.slots.clone();
         mesh.append(refined);
+        // Quad-mesh Ptex faces are not carried through the refinement (warned of where a
+        // quad-mesh file is read).
+        mesh.ptex_surface = mesh.ptex_surface.or(Some((surface_name.span, target)));
     }
+    let before = mesh.triangles.len();
     freeform::group_surfaces(group, bases, &approximations, &mut mesh, diags);
+    if mesh.triangles.len() > before {
+        mesh.ptex_surface = mesh.ptex_surface.or(Some((group.span, "free-form surface")));
+    }
     Some(mesh)
 }
 

@@ -130,17 +130,28 @@ pub fn triangulate_polygons(
     let file = group.span.file;
     let mut slot_of_material: Vec<Option<u32>> = vec![None; polys.material_names.len()];
     let mut last_named: Option<u32> = None;
-    // Quad-mesh Ptex faces: kept per triangle only where some polygon is a quad or an
-    // n-gon of 5 or more vertices (an object of triangles pays nothing).
-    let with_quads = (0..polys.list.len()).any(|pi| ptex_outline(group, pi).is_some_and(|o| o.len() >= 4));
-    if with_quads {
+    // Quad-mesh Ptex faces: a table per triangle only where some polygon is a quad, an
+    // n-gon or has holes; a group of lone triangles (3-vertex polygons, strips, fans) has
+    // none (its triangle t's faces are 3t … 3t + 2) unless one of them is left out.
+    let with_table = !mesh.triangles.is_empty()
+        || mesh.ptex_faces != 0
+        || (0..polys.list.len()).any(|pi| !matches!(ptex_form(group, pi), PtexForm::Lone | PtexForm::NoFace));
+    if with_table {
+        mesh.materialize_ptex_triangles();
         mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
+    } else {
+        mesh.ptex_triangles = true;
     }
     for (pi, poly) in polys.list.iter().enumerate() {
-        let quad = ptex_outline(group, pi).and_then(|o| <[u32; 4]>::try_from(o).ok());
-        let ngon = quad.is_none() && ptex_outline(group, pi).is_some_and(|o| o.len() <= ptex_quads::MAX_NGON_VERTICES);
+        let form = ptex_form(group, pi);
         let face = mesh.ptex_faces;
-        let faces = if quad.is_some() { 1 } else { polys.loops(pi).next().map_or(0, |l| l.len() as u32) };
+        let outline_len = polys.loops(pi).next().map_or(0, |l| l.len() as u32);
+        let faces = match form {
+            PtexForm::Quad(_) | PtexForm::Ngon { one_quad: true, .. } => 1,
+            PtexForm::Ngon { .. } => outline_len,
+            PtexForm::Lone => outline_len.saturating_sub(2).saturating_mul(3),
+            PtexForm::NoFace => 0,
+        };
         mesh.ptex_faces = face.saturating_add(faces);
         let at = Span::new(file, poly.offset.0, poly.offset.0 + 1);
         let slot = match poly.material {
@@ -196,25 +207,92 @@ pub fn triangulate_polygons(
         }
         let added = mesh.triangles.len() - before;
         mesh.triangle_slots.extend(std::iter::repeat_n(slot, added));
-        if with_quads {
-            match quad {
-                Some(q) => {
-                    let codes = ptex_quads::quad_triangles(face, q.map(|v| v + base), &mesh.triangles[before..]);
-                    let codes: Vec<u32> = codes.collect();
-                    mesh.ptex_quads.extend(codes);
+        // A group of lone triangles stays without a table while each polygon's triangles
+        // are its faces' (3 each, in order); else the table is written out from here.
+        if mesh.ptex_triangles && (added as u64 * 3 != u64::from(faces) || before as u64 * 3 != u64::from(face)) {
+            mesh.ptex_triangles = false;
+            mesh.ptex_quads = (0..before as u32)
+                .map(|t| t.checked_mul(3).map_or(ptex_quads::NONE, ptex_quads::encode_triangle))
+                .collect();
+        }
+        if !mesh.ptex_triangles {
+            ptex_codes(form, face, base, at, mesh, before);
+        }
+    }
+}
+
+/// What a polygon is to a quad-mesh Ptex file.
+#[derive(Clone, Copy)]
+enum PtexForm<'a> {
+    /// A quad (without holes): one face; its outline.
+    Quad([u32; 4]),
+    /// Triangles each a polygon of its own (a 3-vertex polygon without holes, a strip, a
+    /// fan): 3 faces each.
+    Lone,
+    /// An n-gon (n ≠ 4) or a polygon with holes: its outer boundary's n sub-quads, or of a
+    /// 4-vertex boundary with holes one quad face.
+    Ngon { outline: &'a [u32], one_quad: bool, holed: bool },
+    /// Fewer than 3 vertices: no face.
+    NoFace,
+}
+
+/// The quad-mesh Ptex form of polygon `pi` of `group`.
+fn ptex_form(group: &Group, pi: usize) -> PtexForm<'_> {
+    let polys = &group.polygons;
+    let mut loops = polys.loops(pi);
+    let outline = loops.next().unwrap_or(&[]);
+    let holed = loops.next().is_some();
+    if outline.len() < 3 {
+        return PtexForm::NoFace;
+    }
+    match polys.list[pi].kind {
+        PolygonKind::Strip | PolygonKind::Fan => PtexForm::Lone,
+        _ if holed => PtexForm::Ngon { outline, one_quad: outline.len() == 4, holed },
+        _ if outline.len() == 3 => PtexForm::Lone,
+        _ => match <[u32; 4]>::try_from(outline) {
+            Ok(q) => PtexForm::Quad(q),
+            Err(_) => PtexForm::Ngon { outline, one_quad: false, holed },
+        },
+    }
+}
+
+/// Appends to `mesh.ptex_quads` the packed values of the triangles `before..` of a
+/// polygon (its vertices from mesh vertex `base`, at `at` in the file) of form `form` and
+/// first face id `face`, and an n-gon's outline to `mesh.ptex_ngons`.
+fn ptex_codes(form: PtexForm, face: u32, base: u32, at: Span, mesh: &mut Mesh, before: usize) {
+    let added = mesh.triangles.len() - before;
+    match form {
+        PtexForm::Quad(q) => {
+            let codes: Vec<u32> =
+                ptex_quads::quad_triangles(face, q.map(|v| v + base), &mesh.triangles[before..]).collect();
+            mesh.ptex_quads.extend(codes);
+        }
+        PtexForm::Lone => {
+            let first = |k: u32| k.checked_mul(3).and_then(|f| f.checked_add(face));
+            mesh.ptex_quads
+                .extend((0..added as u32).map(|k| first(k).map_or(ptex_quads::NONE, ptex_quads::encode_triangle)));
+        }
+        PtexForm::Ngon { outline, one_quad, holed } => {
+            let fits = outline.len() <= ptex_quads::MAX_NGON_VERTICES && face <= ptex_quads::MAX_NGON_FACE;
+            if holed && mesh.ptex_holed.is_none() {
+                mesh.ptex_holed = Some(at);
+            }
+            if fits && added > 0 {
+                if !holed {
+                    // (Kept from when the n-gon's outline was rebuilt from its triangles.)
+                    starts_at(&mut mesh.triangles[before..], outline[0] + base);
                 }
-                None if ngon && added > 0 && starts_at(&mut mesh.triangles[before..], outline[0] + base) => {
-                    let code = ptex_quads::encode_ngon(face);
-                    mesh.ptex_quads.resize(mesh.triangles.len(), code);
-                }
-                None => {
-                    mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
-                    if added > 0 && mesh.ptex_unmapped.is_none() {
-                        mesh.ptex_unmapped = Some((at, outline.len()));
-                    }
+                let vertices: Vec<u32> = outline.iter().map(|v| v + base).collect();
+                mesh.ptex_ngons.push(face, &vertices, one_quad);
+                mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::encode_ngon(face));
+            } else {
+                mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE);
+                if !fits && added > 0 && mesh.ptex_unmapped.is_none() {
+                    mesh.ptex_unmapped = Some((at, outline.len()));
                 }
             }
         }
+        PtexForm::NoFace => mesh.ptex_quads.resize(mesh.triangles.len(), ptex_quads::NONE),
     }
 }
 
@@ -228,22 +306,6 @@ fn starts_at(tris: &mut [[u32; 3]], v0: u32) -> bool {
         tris[0].rotate_left(1);
     }
     true
-}
-
-/// The outline of polygon `pi` of `group` (group-relative, in the polygon's order) if it
-/// has quad-mesh Ptex faces: a `c`, `cp` or `p` polygon of 3 or more vertices without holes.
-fn ptex_outline(group: &Group, pi: usize) -> Option<&[u32]> {
-    let polys = &group.polygons;
-    let kind = polys.list[pi].kind;
-    if !matches!(kind, PolygonKind::Convex | PolygonKind::ConvexLegacy | PolygonKind::General) {
-        return None;
-    }
-    let mut loops = polys.loops(pi);
-    let outline = loops.next()?;
-    if loops.next().is_some() || outline.len() < 3 {
-        return None;
-    }
-    Some(outline)
 }
 
 impl Triangulator {

@@ -103,6 +103,9 @@ pub fn trilist_mesh_with(
     if let Some(border) = &list.border {
         add_triangles(Indices::Tree(&border.indices), border, &mut mesh, list, diags)?;
     }
+    // Quad-mesh Ptex: each triangle is a face of its own (3 sub-quads), in order.
+    mesh.ptex_triangles = true;
+    mesh.ptex_faces = u32::try_from(mesh.triangles.len()).ok().and_then(|t| t.checked_mul(3)).unwrap_or(u32::MAX);
     Some(mesh)
 }
 

@@ -135,7 +135,7 @@ fn add_general<const N: usize, const C: usize, const F: usize, const T: usize>(
             let Some((_, under)) = layer_roles(curve, tint, multiscatter, role, hit, sum, frames) else { return false };
             // Under two tints, the lobe alone takes the reflection tint (clamped to 1, as a
             // tint's one-component mix is).
-            let lobe = tint * reflection_tint.get(hit).clamp(Rgb::ZERO, Rgb::ONE);
+            let lobe = reflection_tint.iter().fold(tint, |l, t| l * t.get(hit).clamp(Rgb::ZERO, Rgb::ONE));
             sum.push_in_frame(scale * lobe, Lobe::Sheen(r), role, frame)
                 && add_general(
                     multiscatter,

@@ -7,8 +7,8 @@
 //! sub-quad of an n-gon the point lies in, and (u, v) the point's place on it (a quad's
 //! origin at the polygon's vertex 0, u along its edge 0 → 1, v along 0 → 3; a sub-quad's
 //! at its vertex, u toward the next edge's midpoint), as the renderer found them
-//! ([`scene::mesh::ptex_quads`], `State::ptex_quad`); a triangle of no such face (a
-//! polygon with holes, a strip, a fan) has none.
+//! ([`scene::mesh::ptex_quads`], `State::ptex_quad`); a triangle of no such face (of a
+//! subdivision or free-form surface, or adaptively displaced) has none.
 
 use shader::State;
 

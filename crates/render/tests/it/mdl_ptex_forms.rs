@@ -1,0 +1,234 @@
+//! Quad-mesh Ptex files on geometry without `c`/`p` quads: the triangles of a strip, a fan
+//! and a trilist (each a face of its own: 3 sub-quads, numbered per triangle in the
+//! object's face order) and a polygon with holes (its outer boundary's 5 sub-quads), each
+//! sub-quad a constant colour, rendered in both engines; and a hostile n-gon's warning at
+//! its line.
+
+use crate::mdl_ptex::{ptex_bytes, FaceSpec, MODULE};
+use crate::support;
+use render::{EngineKind, Settings};
+
+/// One polygon as Ptex sees it: its object (0: lone triangles, 1: the holed pentagon), its
+/// first face id, its vertices (x, y) in its own order, and a hole (x0, y0, x1, y1) on
+/// pixel borders.
+struct Poly {
+    object: usize,
+    first: usize,
+    points: &'static [[f32; 2]],
+    hole: Option<[f32; 4]>,
+}
+
+/// The strip's two triangles (the second turned as a strip makes it: vertices 2, 1, 3),
+/// the fan's two, the trilist's two; the pentagon with a square hole around its centroid.
+const POLYS: [Poly; 7] = [
+    Poly { object: 0, first: 0, points: &[[-0.9, 0.9], [-0.9, 0.1], [-0.1, 0.9]], hole: None },
+    Poly { object: 0, first: 3, points: &[[-0.1, 0.9], [-0.9, 0.1], [-0.1, 0.1]], hole: None },
+    Poly { object: 0, first: 6, points: &[[0.1, 0.1], [0.9, 0.1], [0.9, 0.9]], hole: None },
+    Poly { object: 0, first: 9, points: &[[0.1, 0.1], [0.9, 0.9], [0.1, 0.9]], hole: None },
+    Poly { object: 0, first: 12, points: &[[0.1, -0.9], [0.9, -0.9], [0.9, -0.1]], hole: None },
+    Poly { object: 0, first: 15, points: &[[0.1, -0.9], [0.9, -0.1], [0.1, -0.1]], hole: None },
+    Poly {
+        object: 1,
+        first: 0,
+        points: &[[-0.9, -0.9], [-0.1, -0.9], [-0.1, -0.3], [-0.5, -0.1], [-0.9, -0.3]],
+        hole: Some([-0.625, -0.625, -0.375, -0.375]),
+    },
+];
+
+/// The two objects (sharing one quad-mesh Ptex file, each numbering its faces from 0):
+/// lone triangles only (a strip, a fan, a trilist) and a pentagon with a hole.
+const FORMS_SCENE: &str = r#"
+options "opt" filter box 1 1 end options
+light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
+instance "sun_inst" "sun" end instance
+camera "cam" focal 1 aperture 2 aspect 1 resolution 32 32 end camera
+instance "cam_inst" "cam" end instance
+shader "tinted" "mdl::ptexmod::faces" ()
+object "lone" group
+    -0.9 0.9 -1  -0.9 0.1 -1  -0.1 0.9 -1  -0.1 0.1 -1  0.1 0.1 -1  0.9 0.1 -1  0.9 0.9 -1  0.1 0.9 -1
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
+    strip 0 1 2 3
+    fan 4 5 6 7
+end group
+trilist vertex 4 p triangle 2
+    [ 0.1 -0.9 -1  0.9 -0.9 -1  0.9 -0.1 -1  0.1 -0.1 -1 ]
+    [ 0 1 2  0 2 3 ]
+end trilist
+end object
+object "holed" group
+    -0.9 -0.9 -1  -0.1 -0.9 -1  -0.1 -0.3 -1  -0.5 -0.1 -1  -0.9 -0.3 -1
+    -0.625 -0.625 -1  -0.375 -0.625 -1  -0.375 -0.375 -1  -0.625 -0.375 -1
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8
+    p 0 1 2 3 4 hole 5 8 7 6
+end group end object
+instance "lone_inst" "lone" material "tinted" end instance
+instance "holed_inst" "holed" material "tinted" end instance
+instgroup "root" "cam_inst" "sun_inst" "lone_inst" "holed_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+
+/// The constant colour of face `f` (each channel in (0, 1)).
+fn form_colour(f: usize) -> [f32; 3] {
+    let t = (f + 1) as f32 / 20.0;
+    [t, 1.0 - 0.5 * t, 0.2 + 0.05 * (f % 3) as f32]
+}
+
+/// The (object, face) whose sub-quad region holds point (x, y), by Ptex's split (sub-quad
+/// i: vertex i, the midpoint of edge i → i+1, the vertex mean, the midpoint of edge
+/// i−1 → i; a convex counter-clockwise quadrilateral here); `None` in a hole or outside.
+fn form_at(x: f32, y: f32) -> Option<(usize, usize)> {
+    for poly in &POLYS {
+        if poly.hole.is_some_and(|[x0, y0, x1, y1]| x > x0 && x < x1 && y > y0 && y < y1) {
+            continue;
+        }
+        let pts = poly.points;
+        let n = pts.len();
+        let mean = pts.iter().fold([0.0; 2], |a, p| [a[0] + p[0] / n as f32, a[1] + p[1] / n as f32]);
+        let mid = |a: [f32; 2], b: [f32; 2]| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+        for i in 0..n {
+            let (prev, here, next) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+            let quad = [here, mid(here, next), mean, mid(prev, here)];
+            let inside = (0..4).all(|k| {
+                let (a, b) = (quad[k], quad[(k + 1) % 4]);
+                (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]) >= 0.0
+            });
+            if inside {
+                return Some((poly.object, poly.first + i));
+            }
+        }
+    }
+    None
+}
+
+/// A strip's, a fan's and a trilist's triangles (an object of lone triangles, which keeps
+/// no table until the renderer writes one) and a pentagon with a hole, in a quad-mesh file
+/// whose faces are distinct constant colours: every pixel wholly inside one sub-quad's
+/// region is that face's colour within 1e-4 in both engines (the classic engine's π
+/// times), all 18 + 5 sub-quads are seen, and the only message is the warning that the
+/// holed polygon's numbering is a guess, at its line.
+#[test]
+fn each_geometry_form_renders_its_sub_quads_ptex_faces() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_forms_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    let faces: Vec<FaceSpec> = (0..18).map(|f| FaceSpec { log2: (0, 0), texels: vec![form_colour(f)] }).collect();
+    std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let parsed = mi::parse_str("t.mi", FORMS_SCENE);
+        let built = support::build_parsed(&parsed, 32, std::slice::from_ref(&dir));
+        assert_eq!(built.messages.len(), 1, "{:#?}", built.messages);
+        assert!(built.messages[0].contains("t.mi:23:") && built.messages[0].contains("holes"), "{:?}", built.messages);
+        let settings = Settings { engine, spp: Some(4), ..Settings::default() };
+        let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
+        let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
+        let mut seen = std::collections::HashSet::new();
+        for (k, p) in film.rgba().iter().enumerate() {
+            let (px, py) = ((k % 32) as f32, (k / 32) as f32);
+            let (x0, x1) = (-1.0 + px / 16.0 + 1e-3, -1.0 + (px + 1.0) / 16.0 - 1e-3);
+            let (y0, y1) = (1.0 - (py + 1.0) / 16.0 + 1e-3, 1.0 - py / 16.0 - 1e-3);
+            let corners = [form_at(x0, y0), form_at(x1, y0), form_at(x0, y1), form_at(x1, y1)];
+            let Some(found) = corners[0] else { continue };
+            if corners.iter().any(|c| *c != Some(found)) {
+                continue;
+            }
+            seen.insert(found);
+            let want = form_colour(found.1);
+            for c in 0..3 {
+                assert!(
+                    (p[c] - want[c] * scale).abs() <= 1e-4 * scale,
+                    "{engine:?}, pixel {k} ({found:?}): {p:?} vs {want:?} × {scale}"
+                );
+            }
+        }
+        assert_eq!(seen.len(), 18 + 5, "{engine:?}: pixels of every sub-quad");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A hostile n-gon (over `MAX_NGON_VERTICES` vertices) in a scene that reads a quad-mesh
+/// file: a warning at its line naming its vertex count (its sub-quads are not made).
+#[test]
+fn a_hostile_ngon_is_warned_of_at_its_line() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_hostile_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &[FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] }])).unwrap();
+    let n = scene::mesh::ptex_quads::MAX_NGON_VERTICES + 1;
+    let ring: Vec<String> = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            format!("{} {} -1", a.cos(), a.sin())
+        })
+        .collect();
+    let verts: Vec<String> = (0..n).map(|k| format!("v {k}")).collect();
+    let poly: Vec<String> = (0..n).map(|k| k.to_string()).collect();
+    let at = FORMS_SCENE.find("object \"holed\"").unwrap();
+    let end = FORMS_SCENE.find("end group end object").unwrap();
+    let text = format!(
+        "{}object \"holed\" group\n    {}\n    {}\n    c {}\n{}",
+        &FORMS_SCENE[..at],
+        ring.join("  "),
+        verts.join(" "),
+        poly.join(" "),
+        &FORMS_SCENE[end..]
+    );
+    let parsed = mi::parse_str("t.mi", &text);
+    let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
+    let want = format!("a polygon of {n} vertices has no quad-mesh Ptex faces");
+    assert!(built.messages.iter().any(|m| m.starts_with("t.mi:22:") && m.contains(&want)), "{:#?}", built.messages);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A subdivision surface and an adaptively displaced quad in a scene that reads a
+/// quad-mesh file: the surface does not carry the faces (black) and is warned of at its
+/// line (the surface's name); the displaced quad carries them and is not warned of.
+#[test]
+fn surfaces_are_warned_of_at_their_lines_adaptive_displacement_is_not() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_surfaces_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &[FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] }])).unwrap();
+    let text = r#"
+options "opt" end options
+camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
+instance "cam_inst" "cam" end instance
+shader "tinted" "mdl::ptexmod::faces" ()
+shader "disp" "maya_material_displace" ("displacement" 0)
+material "m" = "tinted" displace = "disp" end material
+object "cube" group
+    -1 -1 -11  1 -1 -11  -1 1 -11  1 1 -11  -1 -1 -9  1 -1 -9  -1 1 -9  1 1 -9
+    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
+    subdivision surface "s"
+    p 0 2 3 1
+    p 4 5 7 6
+    p 0 1 5 4
+    p 2 6 7 3
+    p 0 4 6 2
+    p 1 3 7 5
+    end subdivision surface
+end group end object
+object "plane"
+    approximate displace length 0.05 0 10
+    group
+    -1 -1 -5  1 -1 -5  1 1 -5  -1 1 -5
+    v 0 v 1 v 2 v 3
+    c 0 1 2 3
+end group end object
+instance "cube_inst" "cube" material "tinted" end instance
+instance "plane_inst" "plane" material "m" end instance
+instgroup "root" "cam_inst" "cube_inst" "plane_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#;
+    let line = |what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
+    let parsed = mi::parse_str("t.mi", text);
+    let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
+    let at = line("subdivision surface \"s\"");
+    let what = "subdivision surface has no quad-mesh Ptex faces";
+    assert!(
+        built.messages.iter().any(|m| m.starts_with(&format!("t.mi:{at}:")) && m.contains(what)),
+        "{what} at line {at}: {:#?}",
+        built.messages
+    );
+    assert_eq!(built.messages.len(), 1, "{:#?}", built.messages);
+    std::fs::remove_dir_all(&dir).ok();
+}
