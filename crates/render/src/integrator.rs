@@ -5,6 +5,7 @@
 
 mod ambient_highlight;
 mod cutout;
+mod deep_material;
 mod env_light;
 mod fog;
 mod gi_depth;
@@ -493,7 +494,20 @@ pub fn trace_camera_path_into(
             let d = light_hit.map(|(_, t, _)| t).or(hit.map(|h| h.t)).unwrap_or(f32::INFINITY);
             let left = light_hit.is_none() && found.is_none();
             let (keep, to_env) = r.split(d);
-            let weight = if left { keep + to_env } else { to_env };
+            // (A glossy refraction's rays fade into its deep material's colour, the base's
+            // share alone sees the environment.)
+            let weight = match r.deep {
+                Some(deep) => {
+                    radiance += throughput * to_env * deep;
+                    if left {
+                        keep
+                    } else {
+                        Rgb::ZERO
+                    }
+                }
+                None if left => keep + to_env,
+                None => to_env,
+            };
             if weight != Rgb::ZERO {
                 radiance += throughput
                     * weight
@@ -734,7 +748,9 @@ pub fn trace_camera_path_into(
             refractions += 1;
         }
         let bounce_weight = bs.weight();
-        reach = glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs);
+        reach = glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs, || {
+            deep_material::colour(world, accel, shading, s.material, &ray, &stop)
+        });
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;

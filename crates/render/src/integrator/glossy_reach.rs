@@ -1,4 +1,5 @@
-//! `mib_glossy_reflection`'s `max_distance`, `falloff` and `environment_color` in the path
+//! `mib_glossy_reflection`'s `max_distance`, `falloff` and `environment_color`, and
+//! `mib_glossy_refraction`'s `max_distance`, `falloff` and `deep_material`, in the path
 //! engine. The classic shader weighs what its glossy rays find by `reflection_color`,
 //! but the environment by `environment_color`; with `max_distance` > 0 a ray that finds a
 //! surface at distance d fades towards the environment by t = (d / max_distance)^falloff,
@@ -23,6 +24,16 @@
 //! the lobe (the classic shader's glossy rays find only lights that are geometry), and a
 //! segment through a participating medium that scatters before its end (it goes on with
 //! the whole bounce).
+//!
+//! `mib_glossy_refraction` ([`material::SurfaceModel::MibGlossyRefraction`] whose lobe
+//! [`reaches`](bsdf::MibGlossyRefractionLobe::reaches)) splits its segments the same way,
+//! following mental ray's shader (not a physical medium): a glossy ray, refracted or
+//! totally reflected, that finds a surface at d gives (1 − t)·what it finds + t·C, t =
+//! (d / max_distance)^falloff (1 past the distance or leaving the scene), where C is the
+//! deep material's shader run once at the entry point ([`super::deep_material`]). So the
+//! segment after such a bounce adds t·g⊙C (g: the glossy share) and goes on with b + (1
+//! − t)·g; a ray that leaves takes the environment by b alone. Next-event estimation
+//! does not sample the environment at such a surface, as above.
 
 use bsdf::{Bsdf, BsdfSample, Rgb};
 use glam::Vec3A;
@@ -34,11 +45,15 @@ use crate::accel::Accel;
 use crate::environment::Environment;
 use crate::world::World;
 
-/// Whether a surface of `model` splits its glossy rays' view of the environment from its
-/// base's (and so is not lit by environment sampling).
+/// Whether a surface of `model` splits its glossy rays' view of the environment (or the
+/// deep material) from its base's (and so is not lit by environment sampling).
 #[inline]
 pub(super) fn reaches(model: &SurfaceModel) -> bool {
-    matches!(model, SurfaceModel::MibGlossy(lobe) if lobe.reaches())
+    match model {
+        SurfaceModel::MibGlossy(lobe) => lobe.reaches(),
+        SurfaceModel::MibGlossyRefraction(lobe) => lobe.reaches(),
+        _ => false,
+    }
 }
 
 /// The glossy share of a bounce, to split the segment after it.
@@ -57,18 +72,65 @@ pub(super) struct Reach {
     max_distance: f32,
     /// `falloff`.
     falloff: f32,
+    /// `mib_glossy_refraction`'s deep material's colour at the bounce: what the glossy
+    /// share fades into, in place of the environment along the ray; `None` for
+    /// `mib_glossy_reflection`.
+    pub(super) deep: Option<Rgb>,
 }
 
 impl Reach {
     /// The split of the bounce `bs` sampled from `bsdf` seen from `wo` (local frame) at a
     /// surface of `model`; `None` where the surface does not split its rays. (Inlined into
     /// the path loop, which asks at every bounce: most surfaces are no glossy lobe.)
+    /// `deep` gives the deep material's colour at the bounce (run only where a
+    /// `mib_glossy_refraction` fades and its glossy share is not 0).
     #[inline]
-    pub(super) fn after(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
+    pub(super) fn after(
+        model: &SurfaceModel,
+        bsdf: &Bsdf,
+        wo: Vec3A,
+        bs: &BsdfSample,
+        deep: impl FnOnce() -> Rgb,
+    ) -> Option<Reach> {
         match model {
             SurfaceModel::MibGlossy(_) => Reach::after_glossy(model, bsdf, wo, bs),
+            SurfaceModel::MibGlossyRefraction(_) => Reach::after_refraction(model, bsdf, wo, bs, deep),
             _ => None,
         }
+    }
+
+    /// [`Reach::after`] for a glossy refraction's surface: the glossy share (refracted and
+    /// totally reflected rays alike, as the classic shader fades them all) fades into
+    /// the deep material, the top's or back's share goes on whole.
+    #[inline(never)]
+    fn after_refraction(
+        model: &SurfaceModel,
+        bsdf: &Bsdf,
+        wo: Vec3A,
+        bs: &BsdfSample,
+        deep: impl FnOnce() -> Rgb,
+    ) -> Option<Reach> {
+        let SurfaceModel::MibGlossyRefraction(lobe) = model else { return None };
+        let Bsdf::MibGlossyRefraction(b) = bsdf else { return None };
+        if !lobe.reaches() {
+            return None;
+        }
+        let (base, glossy) = if bs.delta {
+            // Only the glossy lobe has a delta.
+            (Rgb::ZERO, Rgb::ONE)
+        } else {
+            shares(b.eval_split(wo, bs.wi))
+        };
+        let deep = if glossy == Rgb::ZERO { Rgb::ZERO } else { deep() };
+        Some(Reach {
+            glossy,
+            seen: Rgb::ONE,
+            base,
+            ratio: Rgb::ONE,
+            max_distance: lobe.max_distance,
+            falloff: lobe.falloff,
+            deep: Some(deep),
+        })
     }
 
     /// [`Reach::after`] for a glossy lobe's surface.
@@ -83,16 +145,7 @@ impl Reach {
             // Only the mirror has a delta.
             (Rgb::ZERO, Rgb::ONE)
         } else {
-            let (fb, fg) = b.carried_split(wo, bs.wi);
-            let sum = fb + fg;
-            let share = |x: Rgb| {
-                Rgb::new(
-                    if sum.x > 0.0 { x.x / sum.x } else { 0.0 },
-                    if sum.y > 0.0 { x.y / sum.y } else { 0.0 },
-                    if sum.z > 0.0 { x.z / sum.z } else { 0.0 },
-                )
-            };
-            (share(fb), share(fg))
+            shares(b.carried_split(wo, bs.wi))
         };
         Some(Reach {
             glossy,
@@ -101,6 +154,7 @@ impl Reach {
             ratio: lobe.environment_ratio(),
             max_distance: lobe.max_distance,
             falloff: lobe.falloff,
+            deep: None,
         })
     }
 
@@ -110,6 +164,20 @@ impl Reach {
         let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
         (self.base + self.glossy * self.seen * (1.0 - t), self.ratio * self.glossy * t)
     }
+}
+
+/// The shares of a bounce's two parts `(base, glossy)` of f in their sum, per channel (0
+/// where the sum is).
+fn shares((fb, fg): (Rgb, Rgb)) -> (Rgb, Rgb) {
+    let sum = fb + fg;
+    let share = |x: Rgb| {
+        Rgb::new(
+            if sum.x > 0.0 { x.x / sum.x } else { 0.0 },
+            if sum.y > 0.0 { x.y / sum.y } else { 0.0 },
+            if sum.z > 0.0 { x.z / sum.z } else { 0.0 },
+        )
+    };
+    (share(fb), share(fg))
 }
 
 /// The environment along `dir` for a ray that left a surface (all of it, no MIS; as
