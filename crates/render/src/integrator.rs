@@ -649,7 +649,8 @@ pub fn trace_camera_path_into(
         let mis = settings.mis && depth + 1 < settings.max_depth;
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
-        let env_here = env.filter(|_| own_env.is_none() && !glossy_reach::reaches(&material.model));
+        let reaching = glossy_reach::reaches(&material.model);
+        let env_here = env.filter(|_| own_env.is_none() && !reaching);
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && !bsdf.is_delta()) {
             let v = Vertex { p: s.p, err: s.err, time: ray.time, ng, frame: &frame, wo, bsdf: &bsdf, departure };
             radiance += throughput
@@ -670,7 +671,11 @@ pub fn trace_camera_path_into(
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
-                let f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
+                let mut f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
+                if reaching {
+                    // (A glossy refraction's rays fade towards its deep material on the way.)
+                    f = glossy_reach::light_through(&material.model, &bsdf, (wo, wi), light.lobes.specular, ls.dist, f);
+                }
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {

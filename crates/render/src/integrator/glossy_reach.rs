@@ -33,7 +33,9 @@
 //! deep material's shader run once at the entry point ([`super::deep_material`]). So the
 //! segment after such a bounce adds t·g⊙C (g: the glossy share) and goes on with b + (1
 //! − t)·g; a ray that leaves takes the environment by b alone. Next-event estimation
-//! does not sample the environment at such a surface, as above.
+//! does not sample the environment at such a surface, as above; the lights it samples
+//! there it takes through the glossy part of f × (1 − t) of their distance
+//! ([`light_through`]), as the segment a BSDF sample finds them along keeps.
 
 use bsdf::{Bsdf, BsdfSample, Rgb};
 use glam::Vec3A;
@@ -164,6 +166,30 @@ impl Reach {
         let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
         (self.base + self.glossy * self.seen * (1.0 - t), self.ratio * self.glossy * t)
     }
+}
+
+/// f(ωo, ωi) = `f` towards a light that next-event estimation found at distance `dist`
+/// (infinite: a light at infinity) from a `mib_glossy_refraction` surface whose rays fade:
+/// its glossy part (lit where the light lights the `specular` lobes) × (1 − t), as the
+/// segment a BSDF sample finds that light along keeps 1 − t of the glossy share, so both
+/// strategies estimate the same light (the classic shader's rays see a light past
+/// `max_distance` only as the deep material). `f` unchanged for any other surface
+/// (`mib_glossy_reflection`'s light by next-event estimation is not split).
+#[inline(never)]
+pub(super) fn light_through(
+    model: &SurfaceModel,
+    bsdf: &Bsdf,
+    (wo, wi): (Vec3A, Vec3A),
+    specular: bool,
+    dist: f32,
+    f: Rgb,
+) -> Rgb {
+    let (SurfaceModel::MibGlossyRefraction(lobe), Bsdf::MibGlossyRefraction(b)) = (model, bsdf) else { return f };
+    if !lobe.reaches() || !specular {
+        return f;
+    }
+    let t = if dist.is_finite() { baselib::glossy::distance_fade(dist, lobe.max_distance, lobe.falloff) } else { 1.0 };
+    (f - b.eval_split(wo, wi).1 * t).max(Rgb::ZERO)
 }
 
 /// The shares of a bounce's two parts `(base, glossy)` of f in their sum, per channel (0

@@ -313,3 +313,27 @@ fn without_max_distance_the_deep_material_changes_nothing() {
         assert!(plain == with, "{reach}");
     }
 }
+
+/// Next-event estimation through a fading glossy refraction: a pane seen from above with
+/// nothing below, lit from below by a Maya directional light (intensity 1, no shadows,
+/// travelling along (0.2, 1, 0): near the refracted view). Without `max_distance` the path
+/// engine's next-event estimation finds the light through the glossy lobe (image mean
+/// above 0.01; the classic shader's rays never find a directional light); with
+/// `max_distance` 1 and no deep material (the classic shader's fade to black) the light
+/// lies past reach and every pixel is 0 within 1e-6 in both engines.
+#[test]
+fn lights_past_max_distance_are_not_seen_through_the_lobe() {
+    let light = r#"light "sun" "maya_directionallight" ("intensity" 1, "useRayTraceShadows" off) direction 0.2 1 0 end light
+instance "sun_inst" "sun" end instance"#;
+    let view = support::two_tone::view(SIDE);
+    let scene = |reach: &str| {
+        support::two_tone::facing(&view, &deep_pane(0.2, light, reach), (0.0, true), None, "\"sun_inst\"")
+    };
+    let open = mean(&pixels(&scene(""), EngineKind::Path, 16));
+    assert!(open.min_element() > 0.01, "the light through the lobe: {open}");
+    for engine in [EngineKind::Classic, EngineKind::Path] {
+        for (i, p) in pixels(&scene(r#", "max_distance" 1"#), engine, 16).iter().enumerate() {
+            assert!(p.max_element() < 1e-6, "{engine:?}, pixel {i}: {p}");
+        }
+    }
+}
