@@ -493,21 +493,10 @@ pub fn trace_camera_path_into(
             // Past a glossy bounce whose rays see the environment their own way.
             let d = light_hit.map(|(_, t, _)| t).or(hit.map(|h| h.t)).unwrap_or(f32::INFINITY);
             let left = light_hit.is_none() && found.is_none();
-            let (keep, to_env) = r.split(d);
-            // (A glossy refraction's rays fade into its deep material's colour, the base's
-            // share alone sees the environment.)
-            let weight = match r.deep {
-                Some(deep) => {
-                    radiance += throughput * to_env * deep;
-                    if left {
-                        keep
-                    } else {
-                        Rgb::ZERO
-                    }
-                }
-                None if left => keep + to_env,
-                None => to_env,
-            };
+            let (keep, weight, deep) = r.segment(d, left);
+            if let Some(deep) = deep {
+                radiance += throughput * deep;
+            }
             if weight != Rgb::ZERO {
                 radiance += throughput
                     * weight
@@ -673,7 +662,6 @@ pub fn trace_camera_path_into(
                 let wi = frame.to_local(ls.wi);
                 let mut f = light_lobes::eval(&bsdf, wo, wi, light.lobes);
                 if reaching {
-                    // (A glossy refraction's rays fade towards its deep material on the way.)
                     f = glossy_reach::light_through(&material.model, &bsdf, (wo, wi), light.lobes.specular, ls.dist, f);
                 }
                 // The light must be on the side of the geometric surface the shading frame

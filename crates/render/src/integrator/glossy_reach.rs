@@ -160,6 +160,20 @@ impl Reach {
         })
     }
 
+    /// For a segment that found something at distance `d` (infinite: it left the scene;
+    /// `left`: it found nothing): the factor the path's throughput keeps, the weight of
+    /// the environment along it, and for a glossy refraction the deep material's colour
+    /// its glossy share fades into (its base's share alone sees the environment).
+    #[inline]
+    pub(super) fn segment(&self, d: f32, left: bool) -> (Rgb, Rgb, Option<Rgb>) {
+        let (keep, to_env) = self.split(d);
+        match self.deep {
+            Some(deep) => (keep, if left { keep } else { Rgb::ZERO }, Some(to_env * deep)),
+            None if left => (keep, keep + to_env, None),
+            None => (keep, to_env, None),
+        }
+    }
+
     /// For a segment that found something at distance `d` (infinite: it left the scene):
     /// the factor the path's throughput keeps and the weight of the environment along it.
     pub(super) fn split(&self, d: f32) -> (Rgb, Rgb) {
