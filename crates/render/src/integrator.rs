@@ -741,9 +741,8 @@ pub fn trace_camera_path_into(
             refractions += 1;
         }
         let bounce_weight = bs.weight();
-        reach = glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs, || {
-            deep_material::colour(world, accel, shading, s.material, &ray, &stop)
-        });
+        let deep = || deep_material::colour(world, accel, shading, s.material, &ray, &stop);
+        reach = if reaching { glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs, deep) } else { None };
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;

@@ -68,25 +68,25 @@ pub(super) struct Reach {
     seen: Rgb,
     /// The base's share.
     base: Rgb,
-    /// `environment_color` / `reflection_color`, per channel.
+    /// `environment_color` / `reflection_color`, per channel; for a glossy refraction
+    /// ([`Reach::into_deep`]) its deep material's colour at the bounce.
     ratio: Rgb,
     /// `max_distance` (0: none).
     max_distance: f32,
     /// `falloff`.
     falloff: f32,
-    /// `mib_glossy_refraction`'s deep material's colour at the bounce: what the glossy
-    /// share fades into, in place of the environment along the ray; `None` for
-    /// `mib_glossy_reflection`.
-    pub(super) deep: Option<Rgb>,
+    /// Whether the glossy share fades into `mib_glossy_refraction`'s deep material's
+    /// colour (`ratio`) in place of the environment along the ray. (A flag beside the
+    /// colour keeps the struct, copied at every bounce, as small as before.)
+    into_deep: bool,
 }
 
 impl Reach {
     /// The split of the bounce `bs` sampled from `bsdf` seen from `wo` (local frame) at a
-    /// surface of `model`; `None` where the surface does not split its rays. (Inlined into
-    /// the path loop, which asks at every bounce: most surfaces are no glossy lobe.)
-    /// `deep` gives the deep material's colour at the bounce (run only where a
-    /// `mib_glossy_refraction` fades and its glossy share is not 0).
-    #[inline]
+    /// surface of `model`; `None` where the surface does not split its rays. `deep` gives the deep material's colour at the bounce (run only where a
+    /// `mib_glossy_refraction` fades and its glossy share is not 0). (Out of line: the
+    /// path loop asks only where [`reaches`] says so.)
+    #[inline(never)]
     pub(super) fn after(
         model: &SurfaceModel,
         bsdf: &Bsdf,
@@ -104,7 +104,7 @@ impl Reach {
     /// [`Reach::after`] for a glossy refraction's surface: the glossy share (refracted and
     /// totally reflected rays alike, as the classic shader fades them all) fades into
     /// the deep material, the top's or back's share goes on whole.
-    #[inline(never)]
+    #[inline]
     fn after_refraction(
         model: &SurfaceModel,
         bsdf: &Bsdf,
@@ -128,15 +128,15 @@ impl Reach {
             glossy,
             seen: Rgb::ONE,
             base,
-            ratio: Rgb::ONE,
+            ratio: deep,
             max_distance: lobe.max_distance,
             falloff: lobe.falloff,
-            deep: Some(deep),
+            into_deep: true,
         })
     }
 
     /// [`Reach::after`] for a glossy lobe's surface.
-    #[inline(never)]
+    #[inline]
     fn after_glossy(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
         let SurfaceModel::MibGlossy(lobe) = model else { return None };
         let Bsdf::MibGlossy(b) = bsdf else { return None };
@@ -156,21 +156,23 @@ impl Reach {
             ratio: lobe.environment_ratio(),
             max_distance: lobe.max_distance,
             falloff: lobe.falloff,
-            deep: None,
+            into_deep: false,
         })
     }
 
     /// For a segment that found something at distance `d` (infinite: it left the scene;
     /// `left`: it found nothing): the factor the path's throughput keeps, the weight of
     /// the environment along it, and for a glossy refraction the deep material's colour
-    /// its glossy share fades into (its base's share alone sees the environment).
-    #[inline]
+    /// its glossy share fades into (its base's share alone sees the environment). (Out of
+    /// line: rare, and the path loop's inlining budget is tight.)
+    #[inline(never)]
     pub(super) fn segment(&self, d: f32, left: bool) -> (Rgb, Rgb, Option<Rgb>) {
         let (keep, to_env) = self.split(d);
-        match self.deep {
-            Some(deep) => (keep, if left { keep } else { Rgb::ZERO }, Some(to_env * deep)),
-            None if left => (keep, keep + to_env, None),
-            None => (keep, to_env, None),
+        match (self.into_deep, left) {
+            // (`to_env` is then the glossy share's fade × the deep colour.)
+            (true, _) => (keep, if left { keep } else { Rgb::ZERO }, Some(to_env)),
+            (false, true) => (keep, keep + to_env, None),
+            (false, false) => (keep, to_env, None),
         }
     }
 
