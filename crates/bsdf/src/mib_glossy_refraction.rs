@@ -27,6 +27,15 @@
 //! side reaching the back: a Lambertian diffuse transmission, f = albedo/π for ωo below
 //! and ωi above). Directions are in the local shading frame (z = the surface's front
 //! normal: the lobe knows inside from outside).
+//!
+//! The top or back material is a layer of what the glossy lobe leaves: its albedo is
+//! capped per channel at 1 − c·max w (the lobe's largest albedo over all views), so that
+//! the two never scatter more than all the light, from either side. mira's departure from
+//! the classic shader, which adds its top or back material whole: there that material
+//! takes direct light alone, here its Lambertian layer also takes indirect light, and
+//! inside a closed object a back material beside the totally reflected glossy lobe would
+//! otherwise reflect more than it receives, bounce after bounce. Where the layer's albedo
+//! plus c·max w is at most 1 (the common glass: a faint top, a dark back) nothing changes.
 
 use std::f32::consts::FRAC_1_PI;
 
@@ -313,6 +322,23 @@ pub struct MibGlossyRefractionLobe {
     /// `render_reverse_of_back_material`: the back material is lit from the front's side
     /// (a diffuse transmission) rather than from the back's.
     pub back_through: bool,
+    /// `max_distance`: the glossy rays (refracted and totally reflected) fade towards the
+    /// deep material by (d / max_distance)^`falloff` over a distance d, wholly past it; 0:
+    /// no limit (the integrator splits the segments, `render`'s `integrator::glossy_reach`).
+    pub max_distance: f32,
+    /// `falloff`: the power of the fade.
+    pub falloff: f32,
+    /// [`MibGlossyRefractionLobe::layer_room`].
+    room: Rgb,
+}
+
+/// What a glossy lobe of `color` and view-angle `curve` leaves at the view where it takes
+/// most, per channel: 1 − c·max w (the curve is monotonic in cos θ, so its largest value
+/// is at the normal or at grazing); unbounded in channels the lobe does not take from.
+fn room_left(color: Rgb, curve: (f32, f32, f32)) -> Rgb {
+    let w = edge_weight(0.0, curve).max(edge_weight(1.0, curve)).max(0.0);
+    let room = |c: f32| if c * w > 0.0 { (1.0 - c * w).max(0.0) } else { f32::INFINITY };
+    Rgb::new(room(color.x), room(color.y), room(color.z))
 }
 
 impl MibGlossyRefractionLobe {
@@ -329,7 +355,19 @@ impl MibGlossyRefractionLobe {
                 UpperFraction::of(&d, |o| kept_fraction(&d, o, ior, n)),
             )
         });
-        MibGlossyRefractionLobe { color, curve, ior, dist, kept, back: Rgb::ZERO, back_through: false }
+        let room = room_left(color, curve);
+        MibGlossyRefractionLobe {
+            color,
+            curve,
+            ior,
+            dist,
+            kept,
+            back: Rgb::ZERO,
+            back_through: false,
+            max_distance: 0.0,
+            falloff: 2.0,
+            room,
+        }
     }
 
     /// The lobe with a back material of Lambertian albedo `back`, lit from the front's
@@ -338,14 +376,42 @@ impl MibGlossyRefractionLobe {
         MibGlossyRefractionLobe { back, back_through: through, ..self }
     }
 
+    /// The lobe whose glossy rays fade into the deep material over `max_distance` (≤ 0:
+    /// none) by the power `falloff`.
+    pub fn with_reach(self, max_distance: f32, falloff: f32) -> MibGlossyRefractionLobe {
+        MibGlossyRefractionLobe { max_distance: max_distance.max(0.0), falloff, ..self }
+    }
+
+    /// Whether the glossy rays fade into the deep material (a `max_distance`, and a lobe
+    /// that casts rays: mental ray's shader casts none of `refraction_color` black).
+    pub fn reaches(&self) -> bool {
+        self.max_distance > 0.0 && self.color != Rgb::ZERO
+    }
+
+    /// The most the Lambertian layer (top or back material) may reflect per channel: what
+    /// the glossy lobe leaves at the view where it takes most, 1 − c·max w over all views
+    /// (unbounded in channels the lobe does not take from: there the layer keeps its albedo).
+    pub fn layer_room(&self) -> Rgb {
+        self.room
+    }
+
     /// The BSDF seen from `wo` (local frame, z = the front normal) over a top of Lambertian
     /// albedo `base` (the back material's albedo seen from the back).
+    ///
+    /// The Lambertian layer is capped at [`MibGlossyRefractionLobe::layer_room`], so that
+    /// the layer and the glossy lobe together scatter at most all the light from either
+    /// side (white furnace ≤ 1; a constant cap keeps the layer reciprocal). The classic
+    /// shader adds its top or back material uncapped (it takes direct light alone, the
+    /// path engine's layer also indirect light, which inside a closed object would grow
+    /// without bound); where the layer's albedo and the lobe's largest albedo sum to at
+    /// most 1 nothing changes.
     pub fn bsdf(&self, base: Rgb, wo: Vec3A) -> MibGlossyRefraction {
         let front = wo.z > 0.0;
         let w = edge_weight(wo.z.abs(), self.curve);
         let a = self.kept.as_ref().map_or(1.0, |(f, b)| if front { f.at(wo) } else { b.at(wo) });
+        let layer = if front { base } else { self.back };
         MibGlossyRefraction {
-            base: if front { base } else { self.back },
+            base: layer.min(self.room),
             base_through: !front && self.back_through,
             tint: self.color * (w.max(0.0) / a),
             dist: self.dist,

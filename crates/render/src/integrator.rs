@@ -5,6 +5,7 @@
 
 mod ambient_highlight;
 mod cutout;
+mod deep_material;
 mod emitters;
 mod env_light;
 mod fog;
@@ -461,8 +462,10 @@ pub fn trace_camera_path_into(
             // Past a glossy bounce whose rays see the environment their own way.
             let d = light_hit.map(|(_, t, _)| t).or(hit.map(|h| h.t)).unwrap_or(f32::INFINITY);
             let left = light_hit.is_none() && found.is_none();
-            let (keep, to_env) = r.split(d);
-            let weight = if left { keep + to_env } else { to_env };
+            let (keep, weight, deep) = r.segment(d, left);
+            if let Some(deep) = deep {
+                radiance += throughput * deep;
+            }
             if weight != Rgb::ZERO {
                 radiance += throughput
                     * weight
@@ -613,8 +616,10 @@ pub fn trace_camera_path_into(
         let mis = settings.mis && depth + 1 < settings.max_depth;
         // (One choice — one light, the common case — needs no float-to-index conversion.)
         let k = if choices <= 1 { 0 } else { ((choice * choices as f32) as usize).min(choices - 1) };
-        let env_here = env.filter(|_| own_env.is_none() && (lambert || !glossy_reach::reaches(&material.model)));
-        // (A Lambertian lobe is no delta: light sampling always applies.)
+        // (A Lambertian lobe neither fades into a deep material nor is a delta: light
+        // sampling always applies.)
+        let reaching = !lambert && glossy_reach::reaches(&material.model);
+        let env_here = env.filter(|_| own_env.is_none() && !reaching);
         let sampled = lambert || !bsdf.is_delta();
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && sampled) {
             let v = Vertex {
@@ -645,11 +650,14 @@ pub fn trace_camera_path_into(
             if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
                 ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
-                let f = if lambert {
+                let mut f = if lambert {
                     lambert_hit::eval(material.diffuse, wo, wi, light.lobes)
                 } else {
                     light_lobes::eval(&bsdf, wo, wi, light.lobes)
                 };
+                if reaching {
+                    f = glossy_reach::light_through(&material.model, &bsdf, (wo, wi), light.lobes.specular, ls.dist, f);
+                }
                 // The light must be on the side of the geometric surface the shading frame
                 // puts it on (reflection above, transmission below).
                 if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
@@ -741,7 +749,8 @@ pub fn trace_camera_path_into(
             }
         }
         let bounce_weight = bs.weight();
-        reach = if lambert { None } else { glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs) };
+        let deep = || deep_material::colour(world, accel, shading, s.material, &ray, &stop);
+        reach = if reaching { glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs, deep) } else { None };
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);
         last_env = own_env;

@@ -20,12 +20,11 @@
 //! `render_reverse_of_back_material` (the classic shader then shades it with the normal
 //! facing out) a Lambertian transmission of the light on the front's side; its
 //! connected parameters keep their constant values and its emission is not shown
-//! (warned). Not honoured, warned: `max_distance` with
-//! `deep_material` (no fade: the classic shader blends its refracted rays towards the
-//! deep material's colour shaded once at the entry point, a lit colour rather than
-//! radiance found along the ray; a path reading needs that colour as a second estimate at
-//! the entry point — direct and indirect light on a Lambertian of the deep colour —
-//! weighted by the fade of the segment traced next: `docs/maya_coverage.md`). `u_axis` (constant
+//! (warned). Both layers are capped at what the glossy lobe leaves
+//! ([`bsdf::MibGlossyRefractionLobe::layer_room`]). `max_distance` and `falloff` are the
+//! lobe's: the path engine fades the segment after a glossy bounce into `deep_material`
+//! as mental ray's shader does (not a physical medium: the deep material's shader run
+//! once at the entry point, `render`'s `integrator::glossy_reach`). `u_axis` (constant
 //! or connected) lays the spreads along it, as `mib_glossy_reflection`'s.
 
 use mi::ast::{Param, Value};
@@ -82,12 +81,7 @@ pub(super) fn glossy_refraction(r: &mut Reader, params: &[Param], lib: &Library,
     if let Some((albedo, through)) = back {
         lobe = lobe.with_back(albedo, through);
     }
-    if r.scalar(params, "max_distance", 0.0) > 0.0 {
-        r.warn(
-            "mib_glossy_refraction's max_distance is not honoured by the path engine (no fade into deep_material)"
-                .into(),
-        );
-    }
+    lobe = lobe.with_reach(r.scalar(params, "max_distance", 0.0), r.scalar(params, "falloff", 2.0));
     if lobe.dist.is_some_and(|d| d.alpha_x != d.alpha_y) {
         super::mib_glossy::lobe_axes(r, params, "mib_glossy_refraction", &mut surface);
     }

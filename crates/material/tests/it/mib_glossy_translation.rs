@@ -233,8 +233,9 @@ material "m" "mib_glossy_reflection" ("base_material" "base", {params}) end mate
 /// the lobe (front only), which is seen from inside too (the model has an inside); its
 /// weight at normal incidence from the front is `refraction_color` × the base weight 1
 /// (exactly, 1e-6), η = 1/`ior` there and `ior` from inside; no warning when every
-/// parameter is honoured; `samples` 0 leaves the top alone. `back_material` and
-/// `max_distance` are warned about (`v_axis` is not: it changes nothing).
+/// parameter is honoured; `samples` 0 leaves the top alone. `max_distance` and `falloff`
+/// are the lobe's (3 and the default 2), not warned about; nor is `v_axis` (it changes
+/// nothing).
 #[test]
 fn glossy_refraction_lies_under_its_top_material() {
     let (s, warnings) = translated(
@@ -259,19 +260,22 @@ material "m" "mib_glossy_refraction" ("top_material" "top", "samples" 0) end mat
     );
     assert!(warnings.is_empty(), "{warnings:?}");
     assert_eq!((alone.model, alone.diffuse), (SurfaceModel::Lambert, Rgb::splat(0.4)));
-    let (_, warnings) = translated(
+    let (s, warnings) = translated(
         r#"shader "top" "mib_illum_lambert" ("diffuse" 0.4 0.4 0.4)
 material "m" "mib_glossy_refraction" ("top_material" "top", "max_distance" 3, "v_axis" 1 0 0) end material
 "#,
     );
-    assert!(!warnings.iter().any(|w| w.contains("v_axis")), "{warnings:?}");
-    assert!(warnings.iter().any(|w| w.contains("max_distance")), "no warning about max_distance: {warnings:?}");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let SurfaceModel::MibGlossyRefraction(lobe) = &s.model else { panic!("{:?}", s.model) };
+    assert_eq!((lobe.max_distance, lobe.falloff), (3.0, 2.0));
+    assert!(lobe.reaches());
 }
 
 /// `mib_glossy_refraction`'s `back_material` (a `mib_illum_lambert`): its diffuse colour
 /// is the lobe's base seen from the back (exactly), reflected on the back's side, or
 /// transmitted from the front's with `render_reverse_of_back_material`; the top stays the
-/// front's; no warning. A black `refraction_color` with a back material keeps both (a
+/// front's; no warning (refraction colour 0.05: the layer's cap 0.95 keeps the colour
+/// whole). A black `refraction_color` with a back material keeps both (a
 /// lobe of colour 0). A back material whose colour is connected to a texture warns (its
 /// constant colour is kept, the top's colour is not driven by it).
 #[test]
@@ -281,7 +285,7 @@ fn glossy_refraction_shows_its_back_material_from_the_back() {
             r#"shader "top" "mib_illum_lambert" ("diffuse" 0.3 0.2 0.1)
 shader "back" "mib_illum_lambert" ("diffuse" 0.1 0.5 0.9)
 material "m" "mib_glossy_refraction" ("top_material" "top", "back_material" "back",
-    "render_reverse_of_back_material" {reverse}, "ior" 1.5) end material
+    "render_reverse_of_back_material" {reverse}, "ior" 1.5, "refraction_color" 0.05 0.05 0.05) end material
 "#
         ));
         assert!(warnings.is_empty(), "{warnings:?}");

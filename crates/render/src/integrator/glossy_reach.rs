@@ -1,4 +1,5 @@
-//! `mib_glossy_reflection`'s `max_distance`, `falloff` and `environment_color` in the path
+//! `mib_glossy_reflection`'s `max_distance`, `falloff` and `environment_color`, and
+//! `mib_glossy_refraction`'s `max_distance`, `falloff` and `deep_material`, in the path
 //! engine. The classic shader weighs what its glossy rays find by `reflection_color`,
 //! but the environment by `environment_color`; with `max_distance` > 0 a ray that finds a
 //! surface at distance d fades towards the environment by t = (d / max_distance)^falloff,
@@ -23,6 +24,18 @@
 //! the lobe (the classic shader's glossy rays find only lights that are geometry), and a
 //! segment through a participating medium that scatters before its end (it goes on with
 //! the whole bounce).
+//!
+//! `mib_glossy_refraction` ([`material::SurfaceModel::MibGlossyRefraction`] whose lobe
+//! [`reaches`](bsdf::MibGlossyRefractionLobe::reaches)) splits its segments the same way,
+//! following mental ray's shader (not a physical medium): a glossy ray, refracted or
+//! totally reflected, that finds a surface at d gives (1 − t)·what it finds + t·C, t =
+//! (d / max_distance)^falloff (1 past the distance or leaving the scene), where C is the
+//! deep material's shader run once at the entry point ([`super::deep_material`]). So the
+//! segment after such a bounce adds t·g⊙C (g: the glossy share) and goes on with b + (1
+//! − t)·g; a ray that leaves takes the environment by b alone. Next-event estimation
+//! does not sample the environment at such a surface, as above; the lights it samples
+//! there it takes through the glossy part of f × (1 − t) of their distance
+//! ([`light_through`]), as the segment a BSDF sample finds them along keeps.
 
 use bsdf::{Bsdf, BsdfSample, Rgb};
 use glam::Vec3A;
@@ -34,11 +47,15 @@ use crate::accel::Accel;
 use crate::environment::Environment;
 use crate::world::World;
 
-/// Whether a surface of `model` splits its glossy rays' view of the environment from its
-/// base's (and so is not lit by environment sampling).
+/// Whether a surface of `model` splits its glossy rays' view of the environment (or the
+/// deep material) from its base's (and so is not lit by environment sampling).
 #[inline]
 pub(super) fn reaches(model: &SurfaceModel) -> bool {
-    matches!(model, SurfaceModel::MibGlossy(lobe) if lobe.reaches())
+    match model {
+        SurfaceModel::MibGlossy(lobe) => lobe.reaches(),
+        SurfaceModel::MibGlossyRefraction(lobe) => lobe.reaches(),
+        _ => false,
+    }
 }
 
 /// The glossy share of a bounce, to split the segment after it.
@@ -51,28 +68,75 @@ pub(super) struct Reach {
     seen: Rgb,
     /// The base's share.
     base: Rgb,
-    /// `environment_color` / `reflection_color`, per channel.
+    /// `environment_color` / `reflection_color`, per channel; for a glossy refraction
+    /// ([`Reach::into_deep`]) its deep material's colour at the bounce.
     ratio: Rgb,
     /// `max_distance` (0: none).
     max_distance: f32,
     /// `falloff`.
     falloff: f32,
+    /// Whether the glossy share fades into `mib_glossy_refraction`'s deep material's
+    /// colour (`ratio`) in place of the environment along the ray. (A flag beside the
+    /// colour keeps the struct, copied at every bounce, as small as before.)
+    into_deep: bool,
 }
 
 impl Reach {
     /// The split of the bounce `bs` sampled from `bsdf` seen from `wo` (local frame) at a
-    /// surface of `model`; `None` where the surface does not split its rays. (Inlined into
-    /// the path loop, which asks at every bounce: most surfaces are no glossy lobe.)
-    #[inline]
-    pub(super) fn after(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
+    /// surface of `model`; `None` where the surface does not split its rays. `deep` gives the deep material's colour at the bounce (run only where a
+    /// `mib_glossy_refraction` fades and its glossy share is not 0). (Out of line: the
+    /// path loop asks only where [`reaches`] says so.)
+    #[inline(never)]
+    pub(super) fn after(
+        model: &SurfaceModel,
+        bsdf: &Bsdf,
+        wo: Vec3A,
+        bs: &BsdfSample,
+        deep: impl FnOnce() -> Rgb,
+    ) -> Option<Reach> {
         match model {
             SurfaceModel::MibGlossy(_) => Reach::after_glossy(model, bsdf, wo, bs),
+            SurfaceModel::MibGlossyRefraction(_) => Reach::after_refraction(model, bsdf, wo, bs, deep),
             _ => None,
         }
     }
 
+    /// [`Reach::after`] for a glossy refraction's surface: the glossy share (refracted and
+    /// totally reflected rays alike, as the classic shader fades them all) fades into
+    /// the deep material, the top's or back's share goes on whole.
+    #[inline]
+    fn after_refraction(
+        model: &SurfaceModel,
+        bsdf: &Bsdf,
+        wo: Vec3A,
+        bs: &BsdfSample,
+        deep: impl FnOnce() -> Rgb,
+    ) -> Option<Reach> {
+        let SurfaceModel::MibGlossyRefraction(lobe) = model else { return None };
+        let Bsdf::MibGlossyRefraction(b) = bsdf else { return None };
+        if !lobe.reaches() {
+            return None;
+        }
+        let (base, glossy) = if bs.delta {
+            // Only the glossy lobe has a delta.
+            (Rgb::ZERO, Rgb::ONE)
+        } else {
+            shares(b.eval_split(wo, bs.wi))
+        };
+        let deep = if glossy == Rgb::ZERO { Rgb::ZERO } else { deep() };
+        Some(Reach {
+            glossy,
+            seen: Rgb::ONE,
+            base,
+            ratio: deep,
+            max_distance: lobe.max_distance,
+            falloff: lobe.falloff,
+            into_deep: true,
+        })
+    }
+
     /// [`Reach::after`] for a glossy lobe's surface.
-    #[inline(never)]
+    #[inline]
     fn after_glossy(model: &SurfaceModel, bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Option<Reach> {
         let SurfaceModel::MibGlossy(lobe) = model else { return None };
         let Bsdf::MibGlossy(b) = bsdf else { return None };
@@ -83,16 +147,7 @@ impl Reach {
             // Only the mirror has a delta.
             (Rgb::ZERO, Rgb::ONE)
         } else {
-            let (fb, fg) = b.carried_split(wo, bs.wi);
-            let sum = fb + fg;
-            let share = |x: Rgb| {
-                Rgb::new(
-                    if sum.x > 0.0 { x.x / sum.x } else { 0.0 },
-                    if sum.y > 0.0 { x.y / sum.y } else { 0.0 },
-                    if sum.z > 0.0 { x.z / sum.z } else { 0.0 },
-                )
-            };
-            (share(fb), share(fg))
+            shares(b.carried_split(wo, bs.wi))
         };
         Some(Reach {
             glossy,
@@ -101,7 +156,24 @@ impl Reach {
             ratio: lobe.environment_ratio(),
             max_distance: lobe.max_distance,
             falloff: lobe.falloff,
+            into_deep: false,
         })
+    }
+
+    /// For a segment that found something at distance `d` (infinite: it left the scene;
+    /// `left`: it found nothing): the factor the path's throughput keeps, the weight of
+    /// the environment along it, and for a glossy refraction the deep material's colour
+    /// its glossy share fades into (its base's share alone sees the environment). (Out of
+    /// line: rare, and the path loop's inlining budget is tight.)
+    #[inline(never)]
+    pub(super) fn segment(&self, d: f32, left: bool) -> (Rgb, Rgb, Option<Rgb>) {
+        let (keep, to_env) = self.split(d);
+        match (self.into_deep, left) {
+            // (`to_env` is then the glossy share's fade × the deep colour.)
+            (true, _) => (keep, if left { keep } else { Rgb::ZERO }, Some(to_env)),
+            (false, true) => (keep, keep + to_env, None),
+            (false, false) => (keep, to_env, None),
+        }
     }
 
     /// For a segment that found something at distance `d` (infinite: it left the scene):
@@ -110,6 +182,44 @@ impl Reach {
         let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
         (self.base + self.glossy * self.seen * (1.0 - t), self.ratio * self.glossy * t)
     }
+}
+
+/// f(ωo, ωi) = `f` towards a light that next-event estimation found at distance `dist`
+/// (infinite: a light at infinity) from a `mib_glossy_refraction` surface whose rays fade:
+/// its glossy part (lit where the light lights the `specular` lobes) × (1 − t), as the
+/// segment a BSDF sample finds that light along keeps 1 − t of the glossy share, so both
+/// strategies estimate the same light (the classic shader's rays see a light past
+/// `max_distance` only as the deep material). `f` unchanged for any other surface
+/// (`mib_glossy_reflection`'s light by next-event estimation is not split).
+#[inline(never)]
+pub(super) fn light_through(
+    model: &SurfaceModel,
+    bsdf: &Bsdf,
+    (wo, wi): (Vec3A, Vec3A),
+    specular: bool,
+    dist: f32,
+    f: Rgb,
+) -> Rgb {
+    let (SurfaceModel::MibGlossyRefraction(lobe), Bsdf::MibGlossyRefraction(b)) = (model, bsdf) else { return f };
+    if !lobe.reaches() || !specular {
+        return f;
+    }
+    let t = if dist.is_finite() { baselib::glossy::distance_fade(dist, lobe.max_distance, lobe.falloff) } else { 1.0 };
+    (f - b.eval_split(wo, wi).1 * t).max(Rgb::ZERO)
+}
+
+/// The shares of a bounce's two parts `(base, glossy)` of f in their sum, per channel (0
+/// where the sum is).
+fn shares((fb, fg): (Rgb, Rgb)) -> (Rgb, Rgb) {
+    let sum = fb + fg;
+    let share = |x: Rgb| {
+        Rgb::new(
+            if sum.x > 0.0 { x.x / sum.x } else { 0.0 },
+            if sum.y > 0.0 { x.y / sum.y } else { 0.0 },
+            if sum.z > 0.0 { x.z / sum.z } else { 0.0 },
+        )
+    };
+    (share(fb), share(fg))
 }
 
 /// The environment along `dir` for a ray that left a surface (all of it, no MIS; as
