@@ -1,0 +1,178 @@
+//! What neighbouring faces of a Ptex texture share, so that a filter is continuous across
+//! them: a value at each mesh vertex ([`Ptex::add_vertex`]) and a value along each edge
+//! (`add_edge`, quads).
+//!
+//! A vertex's value is the mean of the corner texels of every face around it (each at the
+//! level the filter width picks for it), the faces found by walking the adjacency around
+//! the vertex both ways from the face that asks, so every face around it finds the same
+//! faces. (Ptex's own separable filters apply the corner part of a kernel to the
+//! diagonal face at a vertex of four faces and equally to every corner face at one of
+//! five or more; mira averages all of them at any valence, the same for every face.)
+//!
+//! An edge's value at fraction t along it is the mean of the two faces' texel rows along
+//! it, each interpolated at its own resolution (knots at its texel centres, the last half
+//! texel at either end toward the vertex's value); with no face across, the face's own
+//! row. Both faces compute the same function whatever their resolutions (a constant face
+//! is a row of one texel), which is what makes the quad filter continuous.
+
+use super::filter::Taps;
+use super::{FaceTexels, MeshType, Ptex};
+
+/// Most faces a walk around one vertex visits (a vertex of more faces averages the
+/// first ones found; adjacency that loops without returning stops there too).
+const MAX_VALENCE: usize = 32;
+
+impl Ptex {
+    /// Edges (and corners) per face.
+    fn sides(&self) -> usize {
+        match self.mesh {
+            MeshType::Quad => 4,
+            MeshType::Triangle => 3,
+        }
+    }
+
+    /// The faces around the vertex at corner `corner` of face `face` (corner k starts edge
+    /// k: quads 0 (0, 0), 1 (1, 0), 2 (1, 1), 3 (0, 1); triangles 0 (0, 0), 1 (1, 0), 2
+    /// (0, 1)), each with its corner there, into `out`; how many. Across edge k (from the
+    /// vertex) the face across runs that edge the other way, so the vertex is the corner
+    /// after its edge; across edge k − 1 (to the vertex) its edge's first corner.
+    fn faces_around(&self, face: usize, corner: usize, out: &mut [(usize, usize); MAX_VALENCE]) -> usize {
+        let n = self.sides();
+        out[0] = (face, corner);
+        let mut count = 1;
+        let mut at = (face, corner);
+        let mut closed = false;
+        while count < MAX_VALENCE {
+            let Some((g, edge)) = self.adjacency.get(at.0).and_then(|a| a.across(at.1)) else { break };
+            let next = (g, (edge + 1) % n);
+            if out[..count].contains(&next) {
+                closed = true;
+                break;
+            }
+            out[count] = next;
+            count += 1;
+            at = next;
+        }
+        at = (face, corner);
+        while !closed && count < MAX_VALENCE {
+            let Some((g, edge)) = self.adjacency.get(at.0).and_then(|a| a.across((at.1 + n - 1) % n)) else { break };
+            let next = (g, edge);
+            if out[..count].contains(&next) {
+                break;
+            }
+            out[count] = next;
+            count += 1;
+            at = next;
+        }
+        count
+    }
+
+    /// Index of the first value of face `face`'s texel at corner `corner`, at the level
+    /// `width` picks (quads: the corner texel of its image; triangles: the upright small
+    /// triangle at the corner).
+    fn corner_texel(&self, face: usize, corner: usize, width: Option<f32>) -> Option<usize> {
+        let t = self.level(face, self.level_for(face, width))?;
+        let (w, h) = (1usize << t.ulog2, 1usize << t.vlog2);
+        let index = match (self.mesh, corner) {
+            (_, 0) => 0,
+            (_, 1) => w - 1,
+            (MeshType::Quad, 2) => h * w - 1,
+            (MeshType::Quad, _) => (h - 1) * w,
+            (MeshType::Triangle, _) => (w - 1) * w,
+        };
+        Some(t.start + index * self.channels)
+    }
+
+    /// Adds `weight` × the value of the vertex at corner `corner` of face `face` (the
+    /// module documentation).
+    pub(super) fn add_vertex(&self, face: usize, corner: usize, width: Option<f32>, weight: f32, taps: &mut Taps) {
+        if weight == 0.0 {
+            return;
+        }
+        let mut around = [(0, 0); MAX_VALENCE];
+        let count = self.faces_around(face, corner, &mut around);
+        let mut starts = [0usize; MAX_VALENCE];
+        let mut found = 0;
+        for &(f, c) in &around[..count] {
+            if let Some(start) = self.corner_texel(f, c, width) {
+                starts[found] = start;
+                found += 1;
+            }
+        }
+        for start in &starts[..found] {
+            taps.add(weight / found as f32, *start);
+        }
+    }
+
+    /// Adds `weight` × face `face`'s row of texels along its edge `edge` (quads: 0 v = 0,
+    /// 1 u = 1, 2 v = 1, 3 u = 0, each counter-clockwise) at fraction `t` along it
+    /// (`(edge, t)` = `along`),
+    /// interpolated linearly between texel centres, toward the vertex's value in the half
+    /// texel at either end. `texels` is the face's level.
+    fn add_row(
+        &self,
+        face: usize,
+        texels: FaceTexels,
+        (edge, t): (usize, f32),
+        width: Option<f32>,
+        weight: f32,
+        taps: &mut Taps,
+    ) {
+        let (w, h) = (1usize << texels.ulog2, 1usize << texels.vlog2);
+        let n = if edge % 2 == 0 { w } else { h };
+        let texel = |k: usize| {
+            let index = match edge {
+                0 => k,
+                1 => k * w + w - 1,
+                2 => (h - 1) * w + w - 1 - k,
+                _ => (h - 1 - k) * w,
+            };
+            texels.start + index * self.channels
+        };
+        let p = t.clamp(0.0, 1.0) * n as f32 - 0.5;
+        let last = (n - 1) as f32;
+        if p < 0.0 {
+            let f = 2.0 * p + 1.0;
+            taps.add(weight * f, texel(0));
+            self.add_vertex(face, edge, width, weight * (1.0 - f), taps);
+        } else if p > last {
+            let f = 2.0 * (p - last);
+            taps.add(weight * (1.0 - f), texel(n - 1));
+            self.add_vertex(face, (edge + 1) % 4, width, weight * f, taps);
+        } else {
+            let k = (p.floor() as usize).min(n.saturating_sub(2));
+            let f = p - k as f32;
+            taps.add(weight * (1.0 - f), texel(k));
+            if f > 0.0 && k + 1 < n {
+                taps.add(weight * f, texel(k + 1));
+            }
+        }
+    }
+
+    /// Adds `weight` × the value of quad face `face`'s edge `edge` at fraction `t` along it
+    /// (`(edge, t)` = `along`):
+    /// the mean of its row and the row of the face across (at the fraction 1 − t along that
+    /// face's edge), or its own row where no face is across.
+    pub(super) fn add_edge(
+        &self,
+        face: usize,
+        texels: FaceTexels,
+        (edge, t): (usize, f32),
+        width: Option<f32>,
+        weight: f32,
+        taps: &mut Taps,
+    ) {
+        if weight == 0.0 {
+            return;
+        }
+        let across = self.adjacency.get(face).and_then(|a| a.across(edge));
+        let other = across.and_then(|(g, e)| Some((g, e, *self.level(g, self.level_for(g, width))?)));
+        match other {
+            Some((g, e, g_texels)) => {
+                self.add_row(face, texels, (edge, t), width, 0.5 * weight, taps);
+                self.add_row(g, g_texels, (e, 1.0 - t), width, 0.5 * weight, taps);
+            }
+            None => self.add_row(face, texels, (edge, t), width, weight, taps),
+        }
+    }
+}
