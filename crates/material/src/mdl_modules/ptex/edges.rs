@@ -22,6 +22,15 @@ use super::{FaceTexels, MeshType, Ptex};
 /// first ones found; adjacency that loops without returning stops there too).
 const MAX_VALENCE: usize = 32;
 
+/// A vertex as one lookup found it: the faces around it with their corners there, and
+/// the corner texels' first values.
+pub(super) struct Vertex {
+    around: [(usize, usize); MAX_VALENCE],
+    count: usize,
+    starts: [usize; MAX_VALENCE],
+    found: usize,
+}
+
 impl Ptex {
     /// Edges (and corners) per face.
     fn sides(&self) -> usize {
@@ -89,18 +98,23 @@ impl Ptex {
         if weight == 0.0 {
             return;
         }
-        let mut around = [(0, 0); MAX_VALENCE];
-        let count = self.faces_around(face, corner, &mut around);
-        let mut starts = [0usize; MAX_VALENCE];
-        let mut found = 0;
-        for &(f, c) in &around[..count] {
-            if let Some(start) = self.corner_texel(f, c, width) {
-                starts[found] = start;
-                found += 1;
+        // Every face around a vertex finds the same faces: one walk per vertex a lookup.
+        let known = taps.vertex.as_ref().is_some_and(|v| v.around[..v.count].contains(&(face, corner)));
+        if !known {
+            let mut v = Vertex { around: [(0, 0); MAX_VALENCE], count: 0, starts: [0; MAX_VALENCE], found: 0 };
+            v.count = self.faces_around(face, corner, &mut v.around);
+            for &(f, c) in &v.around[..v.count] {
+                if let Some(start) = self.corner_texel(f, c, width) {
+                    v.starts[v.found] = start;
+                    v.found += 1;
+                }
             }
+            taps.vertex = Some(v);
         }
-        for start in &starts[..found] {
-            taps.add(weight / found as f32, *start);
+        let found = taps.vertex.as_ref().map_or(0, |v| v.found);
+        for k in 0..found {
+            let start = taps.vertex.as_ref().map_or(0, |v| v.starts[k]);
+            taps.add(weight / found as f32, start);
         }
     }
 

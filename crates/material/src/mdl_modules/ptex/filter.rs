@@ -69,6 +69,9 @@ pub(super) struct Taps<'a> {
     ptex: &'a Ptex,
     first: usize,
     out: &'a mut [f32],
+    /// The last vertex whose value was asked for in this lookup (the corner rows and
+    /// patches of one lookup ask for the same vertex up to five times).
+    pub(super) vertex: Option<super::edges::Vertex>,
 }
 
 impl Taps<'_> {
@@ -137,7 +140,7 @@ impl Ptex {
         let level = self.level_for(face, width);
         let Some(texels) = self.level(face, level).copied() else { return false };
         let (u, v) = (finite(u), finite(v));
-        let mut taps = Taps { ptex: self, first, out };
+        let mut taps = Taps { ptex: self, first, out, vertex: None };
         let one_texel = texels.ulog2 + texels.vlog2 == 0;
         let alone = self.adjacency.get(face).is_none_or(|a| a.faces.iter().all(|&f| f < 0));
         // A face of one texel is blended with its neighbours on quads (continuity with
