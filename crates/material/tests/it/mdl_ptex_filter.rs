@@ -102,9 +102,9 @@ fn triangle_interpolation_is_exact_at_centroids_and_linear_inside() {
 }
 
 /// Files of constant faces (flagged constant, and a constant block) read their value
-/// everywhere without adjacency, and with it on triangles and at a quad face's centre
-/// (its texel's centre; elsewhere a constant quad is blended with its neighbours,
-/// `mdl_ptex_seams`), 1e-6.
+/// everywhere without adjacency, and with it at a face's centre (its texel's centre or
+/// centroid; elsewhere a constant face is blended with its neighbours, `mdl_ptex_seams`),
+/// 1e-6.
 #[test]
 fn constant_faces_are_unchanged() {
     for mesh in [0, 1] {
@@ -118,8 +118,12 @@ fn constant_faces_are_unchanged() {
         for adj in [&adjacency[..], &[]] {
             let ptex = read(&ptex_file_full(mesh, 3, 1, &faces, 6, adj, &[]));
             for (id, f) in faces.iter().enumerate() {
-                let all = [(0.0, 0.0), (0.5, 0.0), (0.2, 0.3), (0.01, 0.98), (0.5, 0.5)];
-                let points = if mesh == 1 && !adj.is_empty() { &all[4..] } else { &all[..] };
+                let all = [(0.0, 0.0), (0.5, 0.0), (0.2, 0.3), (0.01, 0.98), (0.5, 0.5), (1.0 / 3.0, 1.0 / 3.0)];
+                let points = match (mesh, adj.is_empty()) {
+                    (_, true) => &all[..],
+                    (0, false) => &all[5..],
+                    _ => &all[4..5],
+                };
                 for &(u, v) in points {
                     for width in [None, Some(0.3), Some(2.0)] {
                         let got = at(&ptex, id as u32, u, v, width, Filter::Bilinear);

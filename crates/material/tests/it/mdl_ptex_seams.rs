@@ -1,7 +1,8 @@
 //! Continuity of the Ptex filter where neighbouring faces differ (`ptex::edges`): a
 //! constant quad beside a textured one, quads of 2 × 2 and 4 × 4 texels, a vertex of four
-//! quads of four different resolutions (a constant one among them) and a vertex of six
-//! triangles. Files written byte by byte by `mdl_ptex`'s writer.
+//! quads of four different resolutions (a constant one among them), a vertex of six
+//! triangles, a constant triangle beside a textured one and triangles of 2 × 2 and 4 × 4
+//! texels. Files written byte by byte by `mdl_ptex`'s writer.
 //!
 //! What is asserted: points 1e-6 apart on either side of each shared edge, along its
 //! whole length (its vertices included), read values within 1e-4 of each other (the
@@ -143,4 +144,59 @@ fn six_triangles_around_a_vertex_are_continuous() {
         assert!((got - mean).abs() <= 1e-6, "face {k} at the vertex: {got} vs {mean}");
     }
     assert!((mean - varied(0, 16)[0] as f32).abs() > 0.01);
+}
+
+/// Points 1e-6 apart across the shared edge of two triangles, face 0's edge 1 (u + v = 1,
+/// at fraction t from (1, 0)) and face 1's edge `edge_b` (at fraction 1 − t), over the
+/// edge's whole length (its vertices included): their largest difference, and the largest
+/// difference between face 0's side with and without the adjacency (the blend).
+fn across_triangle_edge(faces: &[Face], edge_b: u8) -> (f32, f32) {
+    let mut adjacency = [([-1, 1, -1, -1], [0, edge_b, 0, 0]), ([-1; 4], [0; 4])];
+    (adjacency[1].0[edge_b as usize], adjacency[1].1[edge_b as usize]) = (0, 1);
+    let joined = read(&ptex_file_full(0, 3, 1, faces, 6, &adjacency, &[]));
+    let apart = read(&ptex_file_full(0, 3, 1, faces, 6, &[], &[]));
+    // A point at fraction t along a triangle's edge, depth ε inside (`filter::from_edge`).
+    let inside = |edge: u8, t: f32| match edge {
+        0 => (t, EPS),
+        1 => (1.0 - EPS - t, t),
+        _ => (EPS, 1.0 - EPS - t),
+    };
+    let (mut gap, mut blended) = (0.0f32, 0.0f32);
+    for k in 0..=96 {
+        let t = k as f32 / 96.0;
+        let (ua, va) = inside(1, t);
+        let (ub, vb) = inside(edge_b, 1.0 - t);
+        let a = at(&joined, 0, ua, va);
+        gap = gap.max((a - at(&joined, 1, ub, vb)).abs());
+        blended = blended.max((a - at(&apart, 0, ua, va)).abs());
+    }
+    (gap, blended)
+}
+
+/// A constant triangle (face 0, 0.9) beside one of 4 × 4 texels (its long edge against
+/// the other's): across the edge within 1e-4 over its whole length; the constant face is
+/// blended toward its neighbour there (> 0.01 from 0.9) and keeps 0.9 at its centroid
+/// (1e-6).
+#[test]
+fn a_constant_triangle_meets_a_textured_one_without_a_seam() {
+    let faces = [Face { log2: (0, 0), texels: vec![0.9], how: How::ConstantInfo }, zipped((2, 2), 1)];
+    let (gap, blended) = across_triangle_edge(&faces, 1);
+    assert!(gap <= 1e-4, "seam {gap}");
+    assert!(blended > 0.01, "the constant face is blended at the edge ({blended})");
+    let adjacency = [([-1, 1, -1, -1], [0, 1, 0, 0]), ([-1, 0, -1, -1], [0, 1, 0, 0])];
+    let ptex = read(&ptex_file_full(0, 3, 1, &faces, 6, &adjacency, &[]));
+    assert!((at(&ptex, 0, 1.0 / 3.0, 1.0 / 3.0) - 0.9).abs() <= 1e-6);
+}
+
+/// A triangle of 2 × 2 texels (face 0, its long edge) against one of 4 × 4 (face 1, its
+/// edge 2, u = 0: turned), and the same with face 1's edge 0: across the edge within 1e-4
+/// over its whole length, each blended (> 0.01 from its value without adjacency).
+#[test]
+fn triangles_of_two_and_four_texels_a_side_meet_without_a_seam() {
+    let faces = [zipped((1, 1), 0), zipped((2, 2), 1)];
+    for edge_b in [2, 0] {
+        let (gap, blended) = across_triangle_edge(&faces, edge_b);
+        assert!(gap <= 1e-4, "edge {edge_b}: seam {gap}");
+        assert!(blended > 0.01, "edge {edge_b}: blended {blended}");
+    }
 }

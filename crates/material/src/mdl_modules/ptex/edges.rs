@@ -1,6 +1,6 @@
 //! What neighbouring faces of a Ptex texture share, so that a filter is continuous across
 //! them: a value at each mesh vertex ([`Ptex::add_vertex`]) and a value along each edge
-//! (`add_edge`, quads).
+//! (`add_edge`).
 //!
 //! A vertex's value is the mean of the corner texels of every face around it (each at the
 //! level the filter width picks for it), the faces found by walking the adjacency around
@@ -13,7 +13,10 @@
 //! it, each interpolated at its own resolution (knots at its texel centres, the last half
 //! texel at either end toward the vertex's value); with no face across, the face's own
 //! row. Both faces compute the same function whatever their resolutions (a constant face
-//! is a row of one texel), which is what makes the quad filter continuous.
+//! is a row of one texel), which is what makes the filter continuous. A triangle's row
+//! has knots at its edge texels' middles and, between them, at the lattice vertices on
+//! the edge (the mean of the face's three texels there), so that with equal resolutions
+//! the edge's value is that of the dual-mesh interpolation across the edge.
 
 use super::filter::Taps;
 use super::{FaceTexels, MeshType, Ptex};
@@ -132,6 +135,9 @@ impl Ptex {
         weight: f32,
         taps: &mut Taps,
     ) {
+        if self.mesh == MeshType::Triangle {
+            return self.add_triangle_row(face, texels, (edge, t), width, weight, taps);
+        }
         let (w, h) = (1usize << texels.ulog2, 1usize << texels.vlog2);
         let n = if edge % 2 == 0 { w } else { h };
         let texel = |k: usize| {
@@ -163,7 +169,65 @@ impl Ptex {
         }
     }
 
-    /// Adds `weight` × the value of quad face `face`'s edge `edge` at fraction `t` along it
+    /// Adds `weight` × triangle face `face`'s own values along its edge `edge` (0 v = 0, 1
+    /// u + v = 1, 2 u = 0, each counter-clockwise) at fraction `t` along it: piecewise
+    /// linear through the face's corner vertices' values (t = 0, 1), its edge texels (one
+    /// per 1/n of the edge, at their middles) and, at the lattice vertices between them,
+    /// the mean of the three texels of the face around each (the two edge texels and the
+    /// inverted one between them). `texels` is the face's level (n × n).
+    fn add_triangle_row(
+        &self,
+        face: usize,
+        texels: FaceTexels,
+        (edge, t): (usize, f32),
+        width: Option<f32>,
+        weight: f32,
+        taps: &mut Taps,
+    ) {
+        let n = 1usize << texels.ulog2;
+        let nf = n as f32;
+        // Texels by their centroids in the edge's frame (fraction along it, depth into the
+        // face): the k-th edge texel at ((k + 1/3)/n, 1/(3n)), the inverted texel at
+        // lattice vertex k at ((k − 1/3)/n, 2/(3n)), the same for each edge.
+        let at = |t: f32, s: f32| {
+            let (u, v) = super::filter::from_edge(MeshType::Triangle, edge, t, s);
+            self.nearest(texels, u, v)
+        };
+        let edge_texel = |k: usize| at((k as f32 + 1.0 / 3.0) / nf, 1.0 / (3.0 * nf));
+        let p = if t.is_finite() { t.clamp(0.0, 1.0) * nf } else { 0.0 };
+        if p < 0.5 {
+            let f = 2.0 * p;
+            taps.add(weight * f, edge_texel(0));
+            self.add_vertex(face, edge, width, weight * (1.0 - f), taps);
+            return;
+        }
+        if p > nf - 0.5 {
+            let f = 2.0 * (p - (nf - 0.5));
+            taps.add(weight * (1.0 - f), edge_texel(n - 1));
+            self.add_vertex(face, (edge + 1) % 3, width, weight * f, taps);
+            return;
+        }
+        // Between edge texel k (g = 0), lattice vertex k + 1 (g = 1/2) and edge texel k + 1.
+        let q = p - 0.5;
+        let k = (q.floor() as usize).min(n - 1);
+        let g = q - k as f32;
+        let (w_left, w_vertex, w_right) =
+            if g <= 0.5 { (1.0 - 2.0 * g, 2.0 * g, 0.0) } else { (0.0, 2.0 - 2.0 * g, 2.0 * g - 1.0) };
+        if w_left != 0.0 {
+            taps.add(weight * w_left, edge_texel(k));
+        }
+        if w_vertex != 0.0 && k + 1 < n {
+            let inverted = at((k as f32 + 1.0 - 1.0 / 3.0) / nf, 2.0 / (3.0 * nf));
+            for start in [edge_texel(k), edge_texel(k + 1), inverted] {
+                taps.add(weight * w_vertex / 3.0, start);
+            }
+        }
+        if w_right != 0.0 && k + 1 < n {
+            taps.add(weight * w_right, edge_texel(k + 1));
+        }
+    }
+
+    /// Adds `weight` × the value of face `face`'s edge `edge` at fraction `t` along it
     /// (`(edge, t)` = `along`):
     /// the mean of its row and the row of the face across (at the fraction 1 − t along that
     /// face's edge), or its own row where no face is across.

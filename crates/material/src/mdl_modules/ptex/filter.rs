@@ -28,19 +28,22 @@
 //! V next to the edge shared with small triangle N is interpolated in the triangle (V,
 //! centroid of the point's texel, centroid of N) from (the mean at V, the texel, N's
 //! texel). The result is continuous, exact at each texel's centroid, and reproduces
-//! linear data away from unmatched borders. Texels past a face edge come from the face
-//! across it, or are left out (a missing N counts as the texel itself).
+//! linear data away from unmatched borders. Along a face edge the pieces against it go
+//! from the texel at their centroid straight toward the edge's value (the mean of both
+//! faces' values along it, each at its own resolution, [`super::edges`]), and a lattice
+//! vertex on a face edge takes the edge's value there; with equal resolutions this is the
+//! interpolation with the texels across the edge. Texels past a face edge come from the
+//! face across it, or are left out (a missing N counts as the texel itself).
 //!
 //! Across an edge: both faces see the shared edge counter-clockwise, so a point at
 //! distance s past edge e of one face, at fraction t along it, lies at depth s inside the
 //! adjacent face, at fraction 1 − t along its edge (two triangles unfold into a
 //! parallelogram: t and s are barycentric weights, see `outside_edge`). Triangle values
-//! agree on both sides of an edge when the faces have one resolution along it (faces of
-//! different resolutions, and a constant triangle, which keeps its value, leave a seam);
-//! at a face corner the lattice vertex takes the vertex's value, shared by every face
-//! around it.
+//! agree on both sides of an edge whatever the faces' resolutions (a constant triangle
+//! with neighbours is blended with them near its edges); at a face corner the lattice
+//! vertex takes the vertex's value, shared by every face around it.
 //!
-//! A face of one texel with no neighbours (or a triangle's) has its value everywhere.
+//! A face of one texel with no neighbours has its value everywhere.
 
 use super::{quad_texel, triangle_texel, FaceTexels, MeshType, Ptex};
 
@@ -143,9 +146,8 @@ impl Ptex {
         let mut taps = Taps { ptex: self, first, out, vertex: None };
         let one_texel = texels.ulog2 + texels.vlog2 == 0;
         let alone = self.adjacency.get(face).is_none_or(|a| a.faces.iter().all(|&f| f < 0));
-        // A face of one texel is blended with its neighbours on quads (continuity with
-        // them), kept whole on triangles.
-        if filter == Filter::Nearest || (one_texel && (alone || self.mesh == MeshType::Triangle)) {
+        // A face of one texel is blended with its neighbours (continuity with them).
+        if filter == Filter::Nearest || (one_texel && alone) {
             taps.add(1.0, self.nearest(texels, u, v));
             return true;
         }
@@ -158,7 +160,7 @@ impl Ptex {
 
     /// Index of the first value of the texel of `texels` nearest to (`u`, `v`), clamped
     /// to the face.
-    fn nearest(&self, texels: FaceTexels, u: f32, v: f32) -> usize {
+    pub(super) fn nearest(&self, texels: FaceTexels, u: f32, v: f32) -> usize {
         let index = match self.mesh {
             MeshType::Quad => quad_texel(texels.ulog2, texels.vlog2, u, v),
             MeshType::Triangle => triangle_texel(texels.ulog2, u, v),
@@ -290,6 +292,18 @@ impl Ptex {
             return;
         };
         let own = self.nearest(texels, centroid.0 / n, centroid.1 / n);
+        if let Some(edge) = face_edge_of(vertex, corners[a].0, n) {
+            // The piece (V, M, C) against the face edge (M the middle of V–A): from the
+            // texel at C straight toward the edge's value at the point of V–M in line.
+            let (wc, wm) = (wt - wn, 2.0 * wn);
+            taps.add(wc, own);
+            if wv + wm > 0.0 {
+                let mid = ((vertex.0 + corners[a].0 .0) / 2.0, (vertex.1 + corners[a].0 .1) / 2.0);
+                let q = ((wv * vertex.0 + wm * mid.0) / (wv + wm), (wv * vertex.1 + wm * mid.1) / (wv + wm));
+                self.add_edge(face, texels, (edge, edge_fraction(edge, q, n)), width, 1.0 - wc, taps);
+            }
+            return;
+        }
         taps.add(wt, own);
         let neighbour = self.texel_at(face, across.0 / n, across.1 / n, width).unwrap_or(own);
         taps.add(wn, neighbour);
@@ -304,6 +318,12 @@ impl Ptex {
             self.add_vertex(face, corner, width, wv, taps);
             return;
         }
+        // A lattice vertex on a face edge: the edge's value there.
+        let on_edge = [(0, vertex.1 == 0.0), (1, vertex.0 + vertex.1 == n), (2, vertex.0 == 0.0)];
+        if let Some(&(edge, _)) = on_edge.iter().find(|(_, on)| *on) {
+            self.add_edge(face, texels, (edge, edge_fraction(edge, vertex, n)), width, wv, taps);
+            return;
+        }
         // The mean of the texels around V.
         let mut around = [0usize; 6];
         let mut count = 0;
@@ -316,6 +336,30 @@ impl Ptex {
         for start in &around[..count] {
             taps.add(wv / count as f32, *start);
         }
+    }
+}
+
+/// The triangle face edge (0 v = 0, 1 u + v = 1, 2 u = 0) both lattice points `a` and `b`
+/// (lattice units of a face n texels a side) lie on, if any.
+fn face_edge_of(a: (f32, f32), b: (f32, f32), n: f32) -> Option<usize> {
+    if a.1 == 0.0 && b.1 == 0.0 {
+        Some(0)
+    } else if a.0 + a.1 == n && b.0 + b.1 == n {
+        Some(1)
+    } else if a.0 == 0.0 && b.0 == 0.0 {
+        Some(2)
+    } else {
+        None
+    }
+}
+
+/// The fraction along triangle face edge `edge` (counter-clockwise) of the point `q` on it
+/// (lattice units of a face n texels a side).
+fn edge_fraction(edge: usize, q: (f32, f32), n: f32) -> f32 {
+    match edge {
+        0 => q.0 / n,
+        1 => q.1 / n,
+        _ => 1.0 - q.1 / n,
     }
 }
 
@@ -367,7 +411,7 @@ fn outside_edge(mesh: MeshType, u: f32, v: f32) -> Option<(usize, f32, f32)> {
 
 /// The face coordinates of the point at fraction `t` along edge `edge` (counter-clockwise)
 /// and depth `s` into the face ([`outside_edge`]'s inverse).
-fn from_edge(mesh: MeshType, edge: usize, t: f32, s: f32) -> (f32, f32) {
+pub(super) fn from_edge(mesh: MeshType, edge: usize, t: f32, s: f32) -> (f32, f32) {
     match (mesh, edge) {
         (_, 0) => (t, s),
         (MeshType::Quad, 1) => (1.0 - s, t),
