@@ -151,6 +151,15 @@ impl CameraModel {
         }
     }
 
+    /// The width of a pixel's footprint at world point `p` seen from the camera (scene
+    /// units): the pixel width at the camera plus the pixel angle times the distance
+    /// from the camera's origin (pbrt-v4's camera-ray approximation of ray differentials,
+    /// used by the path engine at every bounce).
+    pub fn footprint_at(&self, p: Vec3A) -> f32 {
+        let origin = self.camera_to_world.translation;
+        self.pixel_width() + self.pixel_angle() * (p - origin).length()
+    }
+
     /// Depth (−z in camera space) of a world point: what the `z` frame buffer stores.
     pub fn depth(&self, p: Vec3A) -> f32 {
         -self.world_to_camera.transform_point3a(p).z

@@ -167,6 +167,8 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.object_to_world = placed.object_to_world;
     s.world_to_object = placed.world_to_object;
     s.footprint += s.spread * hit.t;
+    let to_world = |e: Vec3A| placed.object_to_world.transform_vector3a(e);
+    s.tri_area = 0.5 * to_world(p1 - p0).cross(to_world(p2 - p0)).length();
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
     // Pixel differentials across the footprint (raster x along the camera's right), and
     // the first texture space's dUV/dx, dUV/dy over the triangle.

@@ -154,6 +154,15 @@ pub struct State {
     pub footprint: f32,
     /// Growth of the footprint per unit distance (radians).
     pub spread: f32,
+    /// The path engine's width of a pixel's footprint at the hit (scene units), which
+    /// tracks no ray footprint of its own (`footprint` stays 0 there, so the shaders that
+    /// read it keep their results): pbrt-v4's camera-ray approximation, the camera's
+    /// pixel width plus its pixel angle times the camera's distance to the point, at
+    /// every bounce. 0 where unknown (the classic engine keeps `footprint`).
+    pub camera_footprint: f32,
+    /// World-space area of the hit triangle (scene units²), 0 where unknown: the scale of
+    /// per-face textures (Ptex) whose face coordinates span the triangle.
+    pub tri_area: f32,
     /// The light a light or shadow shader works for (index into the shading lights).
     pub light: Option<u32>,
     /// Distance travelled by the last ray traced from this state (mental ray's

@@ -29,7 +29,9 @@
 
 use glam::Vec4;
 
+mod edges;
 pub mod filter;
+pub mod footprint;
 pub mod quad;
 pub mod reader;
 

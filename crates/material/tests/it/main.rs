@@ -44,6 +44,7 @@ mod mdl_per_hit;
 mod mdl_per_hit_curves;
 mod mdl_ptex;
 mod mdl_ptex_filter;
+mod mdl_ptex_seams;
 mod mdl_rough_transmission;
 mod mdl_state_space;
 mod mdl_statements;

@@ -5,7 +5,7 @@
 //! What is asserted: bilinear on a 2 × 2 quad face at texel centres, the face centre,
 //! edges and corners (1e-6); on triangle faces each texel at its centroid, grid vertices
 //! the mean of the texels around them, and linear data reproduced inside the face (1e-5);
-//! constant faces unchanged (1e-6); across a shared edge (quads and triangles, edges
+//! constant faces unchanged without neighbours (1e-6); across a shared edge (quads and triangles, edges
 //! turned against each other) values agree on both sides within 1e-4, where without the
 //! adjacency they do not; reduced levels read back as written (1e-6), in Ptex's reduction
 //! order, and a filter width picks them; bad adjacency and cut or inconsistent levels are
@@ -102,7 +102,9 @@ fn triangle_interpolation_is_exact_at_centroids_and_linear_inside() {
 }
 
 /// Files of constant faces (flagged constant, and a constant block) read their value
-/// everywhere, with and without adjacency between them (1e-6).
+/// everywhere without adjacency, and with it at a face's centre (its texel's centre or
+/// centroid; elsewhere a constant face is blended with its neighbours, `mdl_ptex_seams`),
+/// 1e-6.
 #[test]
 fn constant_faces_are_unchanged() {
     for mesh in [0, 1] {
@@ -116,7 +118,13 @@ fn constant_faces_are_unchanged() {
         for adj in [&adjacency[..], &[]] {
             let ptex = read(&ptex_file_full(mesh, 3, 1, &faces, 6, adj, &[]));
             for (id, f) in faces.iter().enumerate() {
-                for (u, v) in [(0.0, 0.0), (0.5, 0.0), (0.2, 0.3), (0.01, 0.98), (0.5, 0.5)] {
+                let all = [(0.0, 0.0), (0.5, 0.0), (0.2, 0.3), (0.01, 0.98), (0.5, 0.5), (1.0 / 3.0, 1.0 / 3.0)];
+                let points = match (mesh, adj.is_empty()) {
+                    (_, true) => &all[..],
+                    (0, false) => &all[5..],
+                    _ => &all[4..5],
+                };
+                for &(u, v) in points {
                     for width in [None, Some(0.3), Some(2.0)] {
                         let got = at(&ptex, id as u32, u, v, width, Filter::Bilinear);
                         assert!((got - f.texels[0] as f32).abs() <= 1e-6, "mesh {mesh}, face {id}: {got}");
@@ -242,6 +250,9 @@ fn reduced_levels_read_back_and_a_wide_footprint_picks_them() {
     assert_eq!(ptex.level_for(2, Some(1.5 / 16.0)), 0);
     assert_eq!(ptex.level_for(2, Some(3.0 / 16.0)), 1);
     assert_eq!(ptex.level_for(2, Some(0.25)), 2);
+    // Exactly between two levels (the geometric mean of their texel widths): the finer.
+    assert_eq!(ptex.level_for(2, Some(2f32.sqrt() / 16.0)), 0);
+    assert_eq!(ptex.level_for(2, Some(2f32.sqrt() / 8.0)), 1);
     // Face 1 has one reduced level: wider widths fall back to it until the face's width.
     assert_eq!(ptex.level_for(1, Some(0.5)), 1);
     assert_eq!(ptex.level_for(1, Some(1.0)), 2);

@@ -65,6 +65,7 @@ fn varying_material_at<'w>(
         ..State::default()
     };
     crate::tracer::fill_state(world, hit, &mut state);
+    state.camera_footprint = world.camera.footprint_at(state.point);
     let mut ctx = Ctx::new(shading, &tracer, state);
     m.at(&mut ctx)
 }

@@ -68,6 +68,7 @@ mod mdl_measured;
 mod mdl_object_space;
 mod mdl_ptex;
 mod mdl_ptex_forms;
+mod mdl_ptex_footprint;
 mod mdl_rough_glass_media;
 mod mdl_sky_sun_share;
 mod mdl_spot;

@@ -144,7 +144,7 @@ impl HitExpr {
             }
             HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval_in(s, f).truncate().into()),
             HitExpr::LookupPtex { ptex, channel } => match super::super::ptex::quad::face_at(ptex.mesh, s) {
-                Some((face, u, v)) => ptex.lookup(face, u, v, None, *channel),
+                Some((face, u, v)) => ptex.lookup(face, u, v, super::super::ptex::footprint::filter_width(s), *channel),
                 None => Vec4::ZERO,
             },
             HitExpr::Pattern(p, at) => p.eval(at.eval_in(s, f).truncate().into()),

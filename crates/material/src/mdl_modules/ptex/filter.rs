@@ -6,10 +6,19 @@
 //! u + v ≤ 1 (the module documentation of [`super`]). Widths are in the same units (a
 //! face is 1 across).
 //!
-//! Quads (bilinear): the four texel centres around the point, weighted by the point's
-//! fractions between them. A texel centre outside the face is looked up in the face
-//! across that edge (its nearest texel at the point the edge's mapping gives), or, with
-//! no face there, the face's own border texel (clamp to the edge).
+//! Quads (bilinear): between the texel centres around the point, weighted by the point's
+//! fractions between them. In the half texel along a face edge the value goes linearly
+//! from the face's texels (on the line of texel centres) to the edge's value (on the
+//! edge): the mean of the two faces' rows of texels along it, each interpolated at its own
+//! resolution ([`super::edges`]; with equal resolutions this is bilinear interpolation
+//! with the texels across the edge). In the half-texel square at a face corner it is a
+//! Coons patch: the two edges' values along the square's sides on the edges, plus the
+//! corner texel, less the value at the vertex (the mean of the corner texels of every
+//! face around it) weighted bilinearly. Every face computes the same values on a shared
+//! edge and at a shared vertex, so the result is continuous across faces of any
+//! resolutions, constant faces (one texel, blended with textured neighbours within it) and
+//! mesh vertices of any valence. With no face across, an edge's value is the face's own
+//! row (clamp to the edge).
 //!
 //! Triangles: Ptex has no bilinear filter of triangle texels (its triangle filter is an
 //! elliptical Gaussian); mira interpolates linearly between texel centres on the dual
@@ -19,18 +28,22 @@
 //! V next to the edge shared with small triangle N is interpolated in the triangle (V,
 //! centroid of the point's texel, centroid of N) from (the mean at V, the texel, N's
 //! texel). The result is continuous, exact at each texel's centroid, and reproduces
-//! linear data away from unmatched borders. Texels past a face edge come from the face
-//! across it, or are left out (a missing N counts as the texel itself).
+//! linear data away from unmatched borders. Along a face edge the pieces against it go
+//! from the texel at their centroid straight toward the edge's value (the mean of both
+//! faces' values along it, each at its own resolution, [`super::edges`]), and a lattice
+//! vertex on a face edge takes the edge's value there; with equal resolutions this is the
+//! interpolation with the texels across the edge. Texels past a face edge come from the
+//! face across it, or are left out (a missing N counts as the texel itself).
 //!
 //! Across an edge: both faces see the shared edge counter-clockwise, so a point at
 //! distance s past edge e of one face, at fraction t along it, lies at depth s inside the
 //! adjacent face, at fraction 1 − t along its edge (two triangles unfold into a
-//! parallelogram: t and s are barycentric weights, see `outside_edge`). Values agree on both sides of an edge
-//! when the faces have one resolution along it; at a mesh vertex (a face corner) texels
-//! past two edges are found through one of them.
+//! parallelogram: t and s are barycentric weights, see `outside_edge`). Triangle values
+//! agree on both sides of an edge whatever the faces' resolutions (a constant triangle
+//! with neighbours is blended with them near its edges); at a face corner the lattice
+//! vertex takes the vertex's value, shared by every face around it.
 //!
-//! A face of one texel (a constant face, or the average level a wide footprint picks)
-//! has its value everywhere, unblended with its neighbours.
+//! A face of one texel with no neighbours has its value everywhere.
 
 use super::{quad_texel, triangle_texel, FaceTexels, MeshType, Ptex};
 
@@ -55,14 +68,18 @@ const AROUND_VERTEX: [(f32, f32); 6] = [
 ];
 
 /// Weighted texels (their first value's index in the texels) summed into a value.
-struct Taps<'a> {
+pub(super) struct Taps<'a> {
     ptex: &'a Ptex,
     first: usize,
     out: &'a mut [f32],
+    /// The last vertex whose value was asked for in this lookup (the corner rows and
+    /// patches of one lookup ask for the same vertex up to five times).
+    pub(super) vertex: Option<super::edges::Vertex>,
 }
 
 impl Taps<'_> {
-    fn add(&mut self, weight: f32, start: usize) {
+    /// Adds `weight` × the texel whose first value is at `start`.
+    pub(super) fn add(&mut self, weight: f32, start: usize) {
         let channels = self.ptex.channels;
         for (c, o) in self.out.iter_mut().enumerate() {
             let channel = self.first + c;
@@ -126,8 +143,11 @@ impl Ptex {
         let level = self.level_for(face, width);
         let Some(texels) = self.level(face, level).copied() else { return false };
         let (u, v) = (finite(u), finite(v));
-        let mut taps = Taps { ptex: self, first, out };
-        if filter == Filter::Nearest || texels.ulog2 + texels.vlog2 == 0 {
+        let mut taps = Taps { ptex: self, first, out, vertex: None };
+        let one_texel = texels.ulog2 + texels.vlog2 == 0;
+        let alone = self.adjacency.get(face).is_none_or(|a| a.faces.iter().all(|&f| f < 0));
+        // A face of one texel is blended with its neighbours (continuity with them).
+        if filter == Filter::Nearest || (one_texel && alone) {
             taps.add(1.0, self.nearest(texels, u, v));
             return true;
         }
@@ -140,7 +160,7 @@ impl Ptex {
 
     /// Index of the first value of the texel of `texels` nearest to (`u`, `v`), clamped
     /// to the face.
-    fn nearest(&self, texels: FaceTexels, u: f32, v: f32) -> usize {
+    pub(super) fn nearest(&self, texels: FaceTexels, u: f32, v: f32) -> usize {
         let index = match self.mesh {
             MeshType::Quad => quad_texel(texels.ulog2, texels.vlog2, u, v),
             MeshType::Triangle => triangle_texel(texels.ulog2, u, v),
@@ -160,27 +180,80 @@ impl Ptex {
         Some(self.nearest(*self.level(other, self.level_for(other, width))?, u, v))
     }
 
-    /// Bilinear interpolation of the four texel centres around (`u`, `v`).
+    /// Bilinear interpolation of the texel centres around (`u`, `v`); in the half texel
+    /// along an edge, between the face's texels and the edge's value; in the half texel
+    /// square at a corner, a Coons patch of the two edges' values, the corner texel and
+    /// the vertex's value (the module documentation).
     fn bilinear_quad(&self, face: usize, texels: FaceTexels, u: f32, v: f32, width: Option<f32>, taps: &mut Taps) {
-        let (w, h) = (1i64 << texels.ulog2, 1i64 << texels.vlog2);
-        let x = u.clamp(0.0, 1.0) * w as f32 - 0.5;
-        let y = v.clamp(0.0, 1.0) * h as f32 - 0.5;
-        let (i0, j0) = (x.floor() as i64, y.floor() as i64);
-        let (fx, fy) = (x - i0 as f32, y - j0 as f32);
-        for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let weight = if di == 0 { 1.0 - fx } else { fx } * if dj == 0 { 1.0 - fy } else { fy };
-            if weight == 0.0 {
-                continue;
-            }
-            let (i, j) = (i0 + di, j0 + dj);
-            let inside = (0..w).contains(&i) && (0..h).contains(&j);
-            let start = if inside {
-                texels.start + (j * w + i) as usize * self.channels
+        let (w, h) = (1usize << texels.ulog2, 1usize << texels.vlog2);
+        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+        let x = u * w as f32 - 0.5;
+        let y = v * h as f32 - 0.5;
+        // The edge a point within half a texel of lies along, and its depth fraction (0 on
+        // the edge, 1 on the line of texel centres), with its fraction along the edge.
+        let near = |p: f32, n: usize, low: usize, high: usize, t_low: f32, t_high: f32| {
+            let last = (n - 1) as f32;
+            if p < 0.0 {
+                Some((low, 1.0 + 2.0 * p, t_low))
+            } else if p > last {
+                Some((high, 1.0 - 2.0 * (p - last), t_high))
             } else {
-                let (cu, cv) = ((i as f32 + 0.5) / w as f32, (j as f32 + 0.5) / h as f32);
-                self.texel_at(face, cu, cv, width).unwrap_or_else(|| self.nearest(texels, cu, cv))
-            };
-            taps.add(weight, start);
+                None
+            }
+        };
+        let along_u = near(x, w, 3, 1, 1.0 - v, v);
+        let along_v = near(y, h, 0, 2, u, 1.0 - u);
+        let texel = |i: usize, j: usize| texels.start + (j * w + i) * self.channels;
+        // Interpolation between texel centres along one axis: the lower index, its fraction.
+        let split = |p: f32, n: usize| {
+            let k = (p.max(0.0).floor() as usize).min(n.saturating_sub(2));
+            (k, (p - k as f32).clamp(0.0, 1.0))
+        };
+        match (along_u, along_v) {
+            (None, None) => {
+                let ((i, fx), (j, fy)) = (split(x, w), split(y, h));
+                for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let weight = if di == 0 { 1.0 - fx } else { fx } * if dj == 0 { 1.0 - fy } else { fy };
+                    if weight != 0.0 {
+                        taps.add(weight, texel(i + di, j + dj));
+                    }
+                }
+            }
+            (Some((edge, depth, t)), None) => {
+                let i = if edge == 3 { 0 } else { w - 1 };
+                let (j, fy) = split(y, h);
+                taps.add(depth * (1.0 - fy), texel(i, j));
+                if fy > 0.0 {
+                    taps.add(depth * fy, texel(i, j + 1));
+                }
+                self.add_edge(face, texels, (edge, t), width, 1.0 - depth, taps);
+            }
+            (None, Some((edge, depth, t))) => {
+                let j = if edge == 0 { 0 } else { h - 1 };
+                let (i, fx) = split(x, w);
+                taps.add(depth * (1.0 - fx), texel(i, j));
+                if fx > 0.0 {
+                    taps.add(depth * fx, texel(i + 1, j));
+                }
+                self.add_edge(face, texels, (edge, t), width, 1.0 - depth, taps);
+            }
+            (Some((eu, au, tu)), Some((ev, av, tv))) => {
+                // Coons patch over the corner square: both edges' values, plus the corner
+                // texel, less the vertex's value (bilinear in the square's corners).
+                let corner = match (eu, ev) {
+                    (3, 0) => 0,
+                    (1, 0) => 1,
+                    (1, _) => 2,
+                    _ => 3,
+                };
+                let (i, j) = (if eu == 3 { 0 } else { w - 1 }, if ev == 0 { 0 } else { h - 1 });
+                self.add_edge(face, texels, (ev, tv), width, 1.0 - av, taps);
+                self.add_edge(face, texels, (eu, tu), width, 1.0 - au, taps);
+                if au * av != 0.0 {
+                    taps.add(au * av, texel(i, j));
+                }
+                self.add_vertex(face, corner, width, -(1.0 - au) * (1.0 - av), taps);
+            }
         }
     }
 
@@ -219,9 +292,38 @@ impl Ptex {
             return;
         };
         let own = self.nearest(texels, centroid.0 / n, centroid.1 / n);
+        if let Some(edge) = face_edge_of(vertex, corners[a].0, n) {
+            // The piece (V, M, C) against the face edge (M the middle of V–A): from the
+            // texel at C straight toward the edge's value at the point of V–M in line.
+            let (wc, wm) = (wt - wn, 2.0 * wn);
+            taps.add(wc, own);
+            if wv + wm > 0.0 {
+                let mid = ((vertex.0 + corners[a].0 .0) / 2.0, (vertex.1 + corners[a].0 .1) / 2.0);
+                let q = ((wv * vertex.0 + wm * mid.0) / (wv + wm), (wv * vertex.1 + wm * mid.1) / (wv + wm));
+                self.add_edge(face, texels, (edge, edge_fraction(edge, q, n)), width, 1.0 - wc, taps);
+            }
+            return;
+        }
         taps.add(wt, own);
         let neighbour = self.texel_at(face, across.0 / n, across.1 / n, width).unwrap_or(own);
         taps.add(wn, neighbour);
+        // A face corner: the vertex's value, shared by every face around it.
+        let corner = match (vertex.0 == 0.0, vertex.1 == 0.0) {
+            (true, true) => Some(0),
+            (false, true) if vertex.0 == n => Some(1),
+            (true, false) if vertex.1 == n => Some(2),
+            _ => None,
+        };
+        if let Some(corner) = corner {
+            self.add_vertex(face, corner, width, wv, taps);
+            return;
+        }
+        // A lattice vertex on a face edge: the edge's value there.
+        let on_edge = [(0, vertex.1 == 0.0), (1, vertex.0 + vertex.1 == n), (2, vertex.0 == 0.0)];
+        if let Some(&(edge, _)) = on_edge.iter().find(|(_, on)| *on) {
+            self.add_edge(face, texels, (edge, edge_fraction(edge, vertex, n)), width, wv, taps);
+            return;
+        }
         // The mean of the texels around V.
         let mut around = [0usize; 6];
         let mut count = 0;
@@ -234,6 +336,30 @@ impl Ptex {
         for start in &around[..count] {
             taps.add(wv / count as f32, *start);
         }
+    }
+}
+
+/// The triangle face edge (0 v = 0, 1 u + v = 1, 2 u = 0) both lattice points `a` and `b`
+/// (lattice units of a face n texels a side) lie on, if any.
+fn face_edge_of(a: (f32, f32), b: (f32, f32), n: f32) -> Option<usize> {
+    if a.1 == 0.0 && b.1 == 0.0 {
+        Some(0)
+    } else if a.0 + a.1 == n && b.0 + b.1 == n {
+        Some(1)
+    } else if a.0 == 0.0 && b.0 == 0.0 {
+        Some(2)
+    } else {
+        None
+    }
+}
+
+/// The fraction along triangle face edge `edge` (counter-clockwise) of the point `q` on it
+/// (lattice units of a face n texels a side).
+fn edge_fraction(edge: usize, q: (f32, f32), n: f32) -> f32 {
+    match edge {
+        0 => q.0 / n,
+        1 => q.1 / n,
+        _ => 1.0 - q.1 / n,
     }
 }
 
@@ -285,7 +411,7 @@ fn outside_edge(mesh: MeshType, u: f32, v: f32) -> Option<(usize, f32, f32)> {
 
 /// The face coordinates of the point at fraction `t` along edge `edge` (counter-clockwise)
 /// and depth `s` into the face ([`outside_edge`]'s inverse).
-fn from_edge(mesh: MeshType, edge: usize, t: f32, s: f32) -> (f32, f32) {
+pub(super) fn from_edge(mesh: MeshType, edge: usize, t: f32, s: f32) -> (f32, f32) {
     match (mesh, edge) {
         (_, 0) => (t, s),
         (MeshType::Quad, 1) => (1.0 - s, t),

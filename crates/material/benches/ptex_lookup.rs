@@ -1,0 +1,74 @@
+//! Cost of a filtered Ptex lookup (`Ptex::sample`, bilinear) against a level-0 one: four
+//! quad faces of 16 × 16 texels around a vertex (each adjoining two others), with reduced
+//! levels of 8 × 8, 4 × 4, 2 × 2 and the average, 1024 lookups a run at points spread over
+//! the four faces (a fixed sequence).
+//!
+//! - `level0`: no width (level 0; 1/8 of the points within half a texel of an edge);
+//! - `width_0.25`: level 2 (4 × 4: half the points near an edge, 1/16 in a corner);
+//! - `width_1`: each face's average (one texel: every point near an edge or a corner).
+//!
+//! Run with `cargo bench -p material --bench ptex_lookup`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use material::mdl_modules::ptex::{Adjacency, FaceTexels, Filter, MeshType, Ptex};
+
+/// Four faces of 16 × 16 texels (face 0 lower left, 1 lower right, 2 upper right, 3 upper
+/// left, u right, v up) with their reductions: box averages of varied texels.
+fn texture() -> Ptex {
+    let mut texels = Vec::new();
+    let (mut faces, mut reductions) = (Vec::new(), Vec::new());
+    for f in 0..4usize {
+        let mut level: Vec<f32> = (0..256).map(|t| ((f * 37 + t * 13) % 29) as f32 / 28.0).collect();
+        faces.push(FaceTexels { start: texels.len(), ulog2: 4, vlog2: 4 });
+        texels.extend(&level);
+        let mut levels = Vec::new();
+        for log2 in (0..4u8).rev() {
+            let n = 1usize << log2;
+            let prev = std::mem::take(&mut level);
+            let at = |x: usize, y: usize| prev[y * 2 * n + x];
+            level = (0..n * n)
+                .map(|t| {
+                    let (x, y) = (2 * (t % n), 2 * (t / n));
+                    (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1)) / 4.0
+                })
+                .collect();
+            levels.push(FaceTexels { start: texels.len(), ulog2: log2, vlog2: log2 });
+            texels.extend(&level);
+        }
+        reductions.push(levels);
+    }
+    let edges = |e: [u8; 4]| e.iter().enumerate().fold(0u8, |b, (k, x)| b | x << (2 * k));
+    let adjacency = vec![
+        Adjacency { faces: [-1, 1, 3, -1], edges: edges([0, 3, 0, 0]) },
+        Adjacency { faces: [-1, -1, 2, 0], edges: edges([0, 0, 0, 1]) },
+        Adjacency { faces: [1, -1, -1, 3], edges: edges([2, 0, 0, 1]) },
+        Adjacency { faces: [0, 2, -1, -1], edges: edges([2, 3, 0, 0]) },
+    ];
+    Ptex { mesh: MeshType::Quad, channels: 1, alpha: None, faces, reductions, adjacency, texels }
+}
+
+fn bench(c: &mut Criterion) {
+    let ptex = texture();
+    let mut state = 12345u32;
+    let mut next = || {
+        state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        (state >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let points: Vec<(u32, f32, f32)> = (0..1024).map(|k| ((k % 4) as u32, next(), next())).collect();
+    for (name, width) in [("level0", None), ("width_0.25", Some(0.25)), ("width_1", Some(1.0))] {
+        c.bench_function(&format!("ptex_lookup/{name}"), |b| {
+            b.iter(|| {
+                let mut sum = 0.0f32;
+                let mut out = [0.0f32; 1];
+                for &(face, u, v) in &points {
+                    ptex.sample(face, u, v, width, Filter::Bilinear, 0, &mut out);
+                    sum += out[0];
+                }
+                std::hint::black_box(sum)
+            });
+        });
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
