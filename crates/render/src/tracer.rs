@@ -169,6 +169,14 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.footprint += s.spread * hit.t;
     let to_world = |e: Vec3A| placed.object_to_world.transform_vector3a(e);
     s.tri_area = 0.5 * to_world(p1 - p0).cross(to_world(p2 - p0)).length();
+    if let Some(split) = &mesh.ptex_split {
+        // A displaced mesh's Ptex faces are its original triangles': their area sets the
+        // lookup's width in face units, not the finer triangle's.
+        let share = split.area_share(hit.prim as usize);
+        if share > 0.0 {
+            s.tri_area /= share;
+        }
+    }
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
     // Pixel differentials across the footprint (raster x along the camera's right), and
     // the first texture space's dUV/dx, dUV/dy over the triangle.

@@ -95,6 +95,22 @@ impl PtexSplit {
         Some((usize::try_from(t).ok()?, b.map(|x| x as f32)))
     }
 
+    /// The share of its original triangle's area that fine triangle `prim` covers, in the
+    /// original's barycentric parameters (1/n² for an even split; the corners' barycentric
+    /// triangle's area for an uneven one): a fine triangle's world area divided by it is the
+    /// original's, which a Ptex filter width in face units needs.
+    pub fn area_share(&self, prim: usize) -> f32 {
+        if self.fine.is_empty() {
+            let n = self.n.max(1) as f32;
+            return 1.0 / (n * n);
+        }
+        self.fine.get(prim).map_or(1.0, |o| {
+            let [c0, c1, c2] = o.corners;
+            let (e1, e2) = ([c1[0] - c0[0], c1[1] - c0[1]], [c2[0] - c0[0], c2[1] - c0[1]]);
+            (e1[0] * e2[1] - e1[1] * e2[0]).abs()
+        })
+    }
+
     /// Bytes held per fine triangle beyond the original's data.
     pub fn memory_bytes(&self) -> usize {
         self.fine.len() * std::mem::size_of::<FineOrigin>()
@@ -135,6 +151,21 @@ mod tests {
                 let back: Vec3A = (0..3).map(|k| Vec3A::from(positions[triangles[t][k] as usize]) * b[k]).sum();
                 assert!((back - centroid).length() < 1e-6, "n {n}, fine {prim}: {back} vs {centroid}");
             }
+        }
+    }
+
+    /// A fine triangle's share of its original's area: 1/n² for an even split (exact), and
+    /// for an uneven one its corners' barycentric triangle's area (a quarter of the
+    /// original, then a sixteenth, within 1e-7), so the original's area is recovered.
+    #[test]
+    fn a_fine_triangle_knows_its_share_of_the_original() {
+        let even = PtexSplit { n: 3, ..PtexSplit::default() };
+        assert_eq!(even.area_share(5), 1.0 / 9.0);
+        let quarter = FineOrigin { triangle: 0, corners: [[0.5, 0.0], [0.5, 0.5], [0.0, 0.5]] };
+        let sixteenth = FineOrigin { triangle: 1, corners: [[0.0, 0.0], [0.25, 0.0], [0.0, 0.25]] };
+        let uneven = PtexSplit { n: 1, fine: vec![FineOrigin::whole(2), quarter, sixteenth], ..PtexSplit::default() };
+        for (prim, share) in [(0, 1.0), (1, 0.25), (2, 1.0 / 16.0)] {
+            assert!((uneven.area_share(prim) - share).abs() < 1e-7, "{prim}: {}", uneven.area_share(prim));
         }
     }
 }
