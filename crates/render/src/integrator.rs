@@ -749,7 +749,10 @@ pub fn trace_camera_path_into(
             }
         }
         let bounce_weight = bs.weight();
-        let deep = || deep_material::colour(world, accel, shading, s.material, &ray, &stop);
+        let deep = || {
+            let levels = (reflections, refractions);
+            deep_material::colour(world, accel, shading, s.material, (&ray, &stop), [seed, depth], levels)
+        };
         reach = if reaching { glossy_reach::Reach::after(&material.model, &bsdf, wo, &bs, deep) } else { None };
         throughput *= bounce_weight;
         from_instance = Some(stop.instance);

@@ -169,13 +169,10 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.footprint += s.spread * hit.t;
     let to_world = |e: Vec3A| placed.object_to_world.transform_vector3a(e);
     s.tri_area = 0.5 * to_world(p1 - p0).cross(to_world(p2 - p0)).length();
-    if let Some(split) = &mesh.ptex_split {
-        // A displaced mesh's Ptex faces are its original triangles': their area sets the
-        // lookup's width in face units, not the finer triangle's.
-        let share = split.area_share(hit.prim as usize);
-        if share > 0.0 {
-            s.tri_area /= share;
-        }
+    if s.ptex_quad.is_some() {
+        // A quad-mesh Ptex lookup's width in face units needs its face's size: `tri_area`
+        // becomes half the face's world area (a quad of two triangles keeps its triangle's).
+        s.tri_area *= 0.5 * ptex_face_ratio(mesh, hit.prim as usize, s.bary);
     }
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
     // Pixel differentials across the footprint (raster x along the camera's right), and
@@ -470,6 +467,25 @@ impl Tracer for SceneTracer<'_> {
             emission: h.emission * spread,
         })
     }
+}
+
+/// The area of the quad-mesh Ptex face a hit at barycentrics `bary` on triangle `prim` of
+/// `mesh` lies on, over the triangle's (a displaced mesh's faces are its original
+/// triangles': the finer triangle's share of its original divides); 2, a quad's, where
+/// unknown.
+fn ptex_face_ratio(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) -> f32 {
+    use scene::mesh::ptex_ngons::face_area_ratio;
+    let ratio = if let Some(split) = &mesh.ptex_split {
+        let share = f64::from(split.area_share(prim));
+        split
+            .original(prim, bary)
+            .and_then(|(t, _)| face_area_ratio(&split.codes, &split.ngons, &split.triangles, &split.positions, t))
+            .filter(|_| share > 0.0)
+            .map(|r| r / share)
+    } else {
+        face_area_ratio(&mesh.ptex_quads, &mesh.ptex_ngons, &mesh.triangles, &mesh.positions, prim)
+    };
+    ratio.filter(|r| r.is_finite() && *r > 0.0).map_or(2.0, |r| r as f32)
 }
 
 /// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on triangle `prim`

@@ -161,7 +161,9 @@ pub struct State {
     /// every bounce. 0 where unknown (the classic engine keeps `footprint`).
     pub camera_footprint: f32,
     /// World-space area of the hit triangle (scene units²), 0 where unknown: the scale of
-    /// per-face textures (Ptex) whose face coordinates span the triangle.
+    /// per-face textures (Ptex) whose face coordinates span the triangle. On a quad-mesh
+    /// Ptex face ([`State::ptex_quad`]) half that face's world area instead (a quad's: its
+    /// triangle's), whatever the triangle it was cut into.
     pub tri_area: f32,
     /// The light a light or shadow shader works for (index into the shading lights).
     pub light: Option<u32>,

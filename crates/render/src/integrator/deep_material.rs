@@ -8,8 +8,10 @@
 //! `mib_illum_lambert` deep material gives the direct light of a Lambertian of its colour
 //! from the lights on the view's side (no light arriving along the ray, no final
 //! gathering), a constant colour (`mib_color_mix` …) that colour. The path engine runs
-//! the same shader through the scene's shader graph at the same state: the classic
-//! engine's value, its light loop and shadow rays included.
+//! the same shader through the scene's shader graph at the same state (the path's sample
+//! stream and bounce in place of the classic engine's pixel and sample, for the shader's
+//! own sample numbers): the classic engine's estimate, its light loop and shadow rays
+//! included.
 
 use bsdf::Rgb;
 use shader::{Ctx, NodeId, RayType, Shading, Slot, State, Tag, Value};
@@ -22,14 +24,18 @@ use crate::world::World;
 /// The deep material's colour at `hit` along `ray` on a surface of world material
 /// `material`; black where there is no shader graph, the material's surface shader is not
 /// a `mib_glossy_refraction`, or it names no deep material (the classic shader's fade to
-/// black then).
+/// black then). `site` (the path's sample stream and its bounce) stands in for the classic
+/// engine's pixel, so the shader's own sample numbers (area-light positions, soft shadows)
+/// differ from path to path and bounce to bounce, as they differ from pixel to pixel and
+/// sample to sample there; `levels` are the path's (reflection, refraction) counts.
 pub(super) fn colour(
     world: &World,
     accel: &dyn Accel,
     shading: Option<&Shading>,
     material: u32,
-    ray: &Ray,
-    hit: &Hit,
+    (ray, hit): (&Ray, &Hit),
+    site: [u32; 2],
+    levels: (u32, u32),
 ) -> Rgb {
     let Some((shading, node)) = shading.and_then(|s| deep_node(s, material).map(|n| (s, n))) else {
         return Rgb::ZERO;
@@ -43,6 +49,9 @@ pub(super) fn colour(
         ior: 1.0,
         child_dist: f32::INFINITY,
         time: ray.time,
+        pixel: site,
+        reflection_level: levels.0,
+        refraction_level: levels.1,
         ..State::default()
     };
     fill_state(world, hit, &mut state);

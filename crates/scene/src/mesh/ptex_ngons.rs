@@ -49,6 +49,8 @@ struct Frame {
     e2: Vec3,
     /// Whether the sub-quads lie in angular order (the binary search applies).
     star: bool,
+    /// The polygon's area (object space; of its projection on its Newell plane).
+    area: f32,
 }
 
 /// The n-gons of a mesh, in increasing first face id.
@@ -123,6 +125,16 @@ impl Ngons {
         }
     }
 
+    /// The object-space area of each Ptex face of the prepared n-gon of first face id
+    /// `first`: the polygon's area over its n sub-quads (the whole, for a polygon given one
+    /// quad face); `None` before [`Ngons::prepare`] or for a polygon without a plane.
+    pub fn face_area(&self, first: u32) -> Option<f64> {
+        let k = self.find(first)?;
+        let (p, f) = (self.polygons[k], self.frames.get(k)?);
+        let faces = if p.one_quad { 1.0 } else { f64::from(p.len.max(1)) };
+        (f.area > 0.0).then(|| f64::from(f.area) / faces)
+    }
+
     /// The sub-quad face id and (u, v) of the object-space point `hit` on the n-gon of first
     /// face id `first` (prepared), and how many sub-quads' bilinear maps were inverted (the
     /// search's work).
@@ -135,28 +147,30 @@ impl Ngons {
         let Some(outline) = self.outline.get(p.start as usize..(p.start + p.len) as usize) else { return (None, 0) };
         let (c, e1, e2) = (f.centroid.as_dvec3(), f.e1.as_dvec3(), f.e2.as_dvec3());
         let flat = |q: DVec3| [(q - c).dot(e1), (q - c).dot(e2)];
-        let Some(points) =
-            outline.iter().map(|&v| positions.get(v as usize).map(|q| q.as_dvec3())).collect::<Option<Vec<_>>>()
-        else {
-            return (None, 0);
-        };
+        // The outline's points are read as the search needs them (three sub-quads' worth
+        // for a star-shaped polygon), never all n per hit.
+        let point = |i: usize| outline.get(i).and_then(|&v| positions.get(v as usize)).map(|q| q.as_dvec3());
         let at = flat(hit);
-        let n = points.len();
+        let n = outline.len();
+        if n < 3 {
+            return (None, 0);
+        }
         if p.one_quad {
-            let quad = [0, 1, 2, 3].map(|k| flat(points[k]));
+            let [Some(a), Some(b), Some(d), Some(e)] = [0, 1, 2, 3].map(point) else { return (None, 0) };
+            let quad = [a, b, d, e].map(flat);
             let uv =
                 invert_bilinear(quad, at).map(|[u, v]| (p.first, u.clamp(0.0, 1.0) as f32, v.clamp(0.0, 1.0) as f32));
             return (uv, 1);
         }
         let sub_quad = |i: usize| {
-            let (prev, here, next) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
-            [here, (here + next) * 0.5, c, (prev + here) * 0.5].map(flat)
+            let (prev, here, next) = (point((i + n - 1) % n)?, point(i)?, point((i + 1) % n)?);
+            Some([here, (here + next) * 0.5, c, (prev + here) * 0.5].map(flat))
         };
         let mut tried = 0;
         let mut best: Option<(f64, usize, [f64; 2])> = None;
         let mut try_one = |i: usize| {
             tried += 1;
-            if let Some(uv) = invert_bilinear(sub_quad(i), at) {
+            if let Some(uv) = sub_quad(i).and_then(|quad| invert_bilinear(quad, at)) {
                 let outside = [-uv[0], uv[0] - 1.0, -uv[1], uv[1] - 1.0].into_iter().fold(0.0, f64::max);
                 if best.is_none_or(|b| outside < b.0) {
                     best = Some((outside, i, uv));
@@ -165,7 +179,8 @@ impl Ngons {
         };
         if f.star {
             let angles = &self.angles[p.start as usize..(p.start + p.len) as usize];
-            let last = 0.5 * (points[n - 1] + points[0]);
+            let (Some(end), Some(start)) = (point(n - 1), point(0)) else { return (None, 0) };
+            let last = 0.5 * (end + start);
             let phi = angle_from(flat(last), at);
             let i = angles.partition_point(|&a| f64::from(a) <= phi).min(n - 1);
             for k in [i, (i + 1) % n, (i + n - 1) % n] {
@@ -207,6 +222,7 @@ fn frame(outline: &[u32], positions: &[Vec3], angles: &mut [f32]) -> Option<Fram
         let (a, b) = (points[k], points[(k + 1) % n]);
         normal += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
     }
+    let area = 0.5 * normal.length();
     let normal = normal.try_normalize()?;
     let e1 = normal.any_orthonormal_vector();
     let e2 = normal.cross(e1);
@@ -225,7 +241,35 @@ fn frame(outline: &[u32], positions: &[Vec3], angles: &mut [f32]) -> Option<Fram
         angles[i] = a as f32;
         previous = a;
     }
-    Some(Frame { centroid: centroid.as_vec3(), e1: e1.as_vec3(), e2: e2.as_vec3(), star })
+    Some(Frame { centroid: centroid.as_vec3(), e1: e1.as_vec3(), e2: e2.as_vec3(), star, area: area as f32 })
+}
+
+/// The area of the quad-mesh Ptex face a hit on triangle `prim` lies on, over the
+/// triangle's own area (both object space; arguments as [`hit_face_uv`]): 2 on a quad of
+/// two triangles, ⅓ on a lone triangle (each of its 3 sub-quads), an n-gon's area over n
+/// over the triangle's on an n-gon's sub-quads; `None` where the triangle has no face or
+/// no area. A Ptex filter width in face units needs the face's size, not the triangle's.
+pub fn face_area_ratio(
+    codes: &[u32],
+    ngons: &Ngons,
+    triangles: &[[u32; 3]],
+    positions: &[Vec3],
+    prim: usize,
+) -> Option<f64> {
+    let code = *codes.get(prim)?;
+    if ptex_quads::decode(code).is_some() {
+        return Some(2.0);
+    }
+    if ptex_quads::triangle_first(code).is_some() {
+        return Some(1.0 / 3.0);
+    }
+    let first = ptex_quads::ngon_first(code)?;
+    let t = triangles.get(prim)?;
+    let [a, b, c] = [t[0], t[1], t[2]].map(|v| positions.get(v as usize).map(|p| p.as_dvec3()));
+    let (a, b, c) = (a?, b?, c?);
+    let own = 0.5 * (b - a).cross(c - a).length();
+    (own > 0.0).then_some(())?;
+    Some(ngons.face_area(first)? / own)
 }
 
 /// The quad-mesh Ptex face id and (u, v) of a hit at barycentrics `bary` on triangle
@@ -337,5 +381,36 @@ mod tests {
         assert!(found.is_some());
         // The frames and angles cost nothing until prepared; a missing n-gon is none.
         assert_eq!(ngons.locate(7, &positions, DVec3::ZERO), (None, 0));
+    }
+
+    /// The face-area ratio a Ptex filter width needs: 2 on a quad's triangle, ⅓ on a lone
+    /// triangle (exact), and on a fan triangle of a unit-circumradius hexagon (area
+    /// 3√3/2, its triangles from vertex 0 of areas √3/4, √3/2, √3/2, √3/4) the hexagon's
+    /// area over 6 over that triangle's, within 1e-6; `None` before `prepare`.
+    #[test]
+    fn face_areas_are_the_ptex_faces_not_the_triangles() {
+        let positions: Vec<Vec3> = (0..6)
+            .map(|k| {
+                let a = std::f32::consts::TAU * k as f32 / 6.0;
+                Vec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let triangles: Vec<[u32; 3]> = (1..5u32).map(|k| [0, k, k + 1]).collect();
+        let mut ngons = Ngons::default();
+        ngons.push(10, &(0..6u32).collect::<Vec<_>>(), false);
+        let codes = vec![ptex_quads::encode_ngon(10); 4];
+        assert_eq!(face_area_ratio(&codes, &ngons, &triangles, &positions, 0), None);
+        ngons.prepare(&positions);
+        let hexagon = 1.5 * 3f64.sqrt();
+        for (prim, own) in
+            [(0, 3f64.sqrt() / 4.0), (1, 3f64.sqrt() / 2.0), (2, 3f64.sqrt() / 2.0), (3, 3f64.sqrt() / 4.0)]
+        {
+            let r = face_area_ratio(&codes, &ngons, &triangles, &positions, prim).expect("a prepared n-gon");
+            assert!((r - hexagon / 6.0 / own).abs() < 1e-6, "{prim}: {r}");
+        }
+        let quad = [ptex_quads::encode(3, [0, 1, 2])];
+        assert_eq!(face_area_ratio(&quad, &ngons, &triangles, &positions, 0), Some(2.0));
+        let lone = [ptex_quads::encode_triangle(7)];
+        assert_eq!(face_area_ratio(&lone, &ngons, &triangles, &positions, 0), Some(1.0 / 3.0));
     }
 }

@@ -8,9 +8,11 @@
 //! and the geometric normal, |cos θ| at least 1/1000), and the face's size in scene units
 //! is `√(2 A)` for a hit triangle of area `A`: a triangle-mesh face (barycentric u, v each
 //! spanning one such side, the face's (u, v) area ½) or half of a quad (the quad's area
-//! 2 A, exact for a planar parallelogram). An n-gon's sub-quads are smaller than the
-//! triangles it is cut into (a sub-quad is 1/n of the polygon, a triangle 1/(n − 2)): there
-//! the width is underestimated by √(2 (n − 2)/n), less than one level.
+//! 2 A, exact for a planar parallelogram). For a quad-mesh file's other faces the render
+//! hands in half the face's own area as `A` (`render`'s tracer): a lone triangle's
+//! sub-quads A/6 of its triangle's, an n-gon's sub-quads half the polygon's area over n
+//! (scaled from object to world space by the hit triangle), a displaced mesh's faces its
+//! original triangles' — so a sub-quad's width is its own, not the triangle's.
 
 use shader::State;
 
