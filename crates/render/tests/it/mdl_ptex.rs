@@ -14,8 +14,8 @@ use material::mdl_modules::ptex::{reader, Ptex};
 use render::{EngineKind, Settings};
 
 /// `bytes` as a zlib stream of one stored (uncompressed) deflate block.
-fn zlib_stored(bytes: &[u8]) -> Vec<u8> {
-    let len = bytes.len() as u16;
+pub(crate) fn zlib_stored(bytes: &[u8]) -> Vec<u8> {
+    let len = u16::try_from(bytes.len()).expect("a stored block holds up to 65535 bytes");
     let mut out = vec![0x78, 0x01, 0x01];
     out.extend(len.to_le_bytes());
     out.extend((!len).to_le_bytes());
@@ -373,6 +373,39 @@ fn sub_quad_at(x: f32, y: f32) -> Option<usize> {
     None
 }
 
+/// Checks a 32 × 32 render of the square [−1, 1]² (pixel rows from the top) whose regions
+/// are constant colours: every pixel wholly inside one region (`region_at` equal at its
+/// four corners, 1e-3 inside) is `colour(region)` within 1e-4 (the classic engine's π
+/// times). Returns the regions seen.
+pub(crate) fn assert_constant_regions<K: Copy + Eq + std::hash::Hash + std::fmt::Debug>(
+    engine: EngineKind,
+    pixels: &[[f32; 4]],
+    region_at: impl Fn(f32, f32) -> Option<K>,
+    colour: impl Fn(K) -> [f32; 3],
+) -> std::collections::HashSet<K> {
+    let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
+    let mut seen = std::collections::HashSet::new();
+    for (k, p) in pixels.iter().enumerate() {
+        let (px, py) = ((k % 32) as f32, (k / 32) as f32);
+        let (x0, x1) = (-1.0 + px / 16.0 + 1e-3, -1.0 + (px + 1.0) / 16.0 - 1e-3);
+        let (y0, y1) = (1.0 - (py + 1.0) / 16.0 + 1e-3, 1.0 - py / 16.0 - 1e-3);
+        let corners = [region_at(x0, y0), region_at(x1, y0), region_at(x0, y1), region_at(x1, y1)];
+        let Some(region) = corners[0] else { continue };
+        if corners.iter().any(|c| *c != Some(region)) {
+            continue;
+        }
+        seen.insert(region);
+        let want = colour(region);
+        for c in 0..3 {
+            assert!(
+                (p[c] - want[c] * scale).abs() <= 1e-4 * scale,
+                "{engine:?}, pixel {k} ({region:?}): {p:?} vs {want:?} × {scale}"
+            );
+        }
+    }
+    seen
+}
+
 /// Ptex's sub-quads of n-gons: a pentagon (ear-clipped `p` polygon whose vertex 0 is not
 /// the group's first) and a triangle (3 sub-quads) in a quad-mesh file whose eight faces
 /// are distinct constant colours: every pixel wholly inside one sub-quad's region is that
@@ -391,26 +424,7 @@ fn each_ngon_renders_its_sub_quads_ptex_faces() {
         assert!(built.messages.is_empty(), "{:#?}", built.messages);
         let settings = Settings { engine, spp: Some(4), ..Settings::default() };
         let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
-        let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
-        let mut seen = std::collections::HashSet::new();
-        for (k, p) in film.rgba().iter().enumerate() {
-            let (px, py) = ((k % 32) as f32, (k / 32) as f32);
-            let (x0, x1) = (-1.0 + px / 16.0 + 1e-3, -1.0 + (px + 1.0) / 16.0 - 1e-3);
-            let (y0, y1) = (1.0 - (py + 1.0) / 16.0 + 1e-3, 1.0 - py / 16.0 - 1e-3);
-            let corners = [sub_quad_at(x0, y0), sub_quad_at(x1, y0), sub_quad_at(x0, y1), sub_quad_at(x1, y1)];
-            let Some(face) = corners[0] else { continue };
-            if corners.iter().any(|c| *c != Some(face)) {
-                continue;
-            }
-            seen.insert(face);
-            let want = sub_quad_colour(face);
-            for c in 0..3 {
-                assert!(
-                    (p[c] - want[c] * scale).abs() <= 1e-4 * scale,
-                    "{engine:?}, pixel {k} (face {face}): {p:?} vs {want:?} × {scale}"
-                );
-            }
-        }
+        let seen = assert_constant_regions(engine, &film.rgba(), sub_quad_at, sub_quad_colour);
         assert_eq!(seen.len(), 8, "{engine:?}: pixels of every sub-quad");
     }
     std::fs::remove_dir_all(&dir).ok();

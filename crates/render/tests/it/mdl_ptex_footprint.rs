@@ -13,24 +13,9 @@
 //! that texel (0.8, then 0.2 at another) within 1e-4; each image is the same bit for bit
 //! on one thread and on three.
 
+use crate::mdl_ptex::zlib_stored;
 use crate::support;
 use render::{EngineKind, Settings};
-
-/// `bytes` as a zlib stream of one stored (uncompressed) deflate block.
-fn zlib_stored(bytes: &[u8]) -> Vec<u8> {
-    let len = u16::try_from(bytes.len()).expect("a stored block holds up to 65535 bytes");
-    let mut out = vec![0x78, 0x01, 0x01];
-    out.extend(len.to_le_bytes());
-    out.extend((!len).to_le_bytes());
-    out.extend(bytes);
-    let (mut a, mut b) = (1u32, 0u32);
-    for &x in bytes {
-        a = (a + u32::from(x)) % 65521;
-        b = (b + a) % 65521;
-    }
-    out.extend((b << 16 | a).to_be_bytes());
-    out
-}
 
 /// Level 0's texel `t` of a face (8 × 8 square image, row v = 0 first): 0.8 where its
 /// row and column add up odd, else 0.2.

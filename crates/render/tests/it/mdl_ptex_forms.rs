@@ -4,7 +4,7 @@
 //! sub-quad a constant colour, rendered in both engines; and a hostile n-gon's warning at
 //! its line.
 
-use crate::mdl_ptex::{ptex_bytes, FaceSpec, MODULE};
+use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, FaceSpec, MODULE};
 use crate::support;
 use render::{EngineKind, Settings};
 
@@ -120,26 +120,7 @@ fn each_geometry_form_renders_its_sub_quads_ptex_faces() {
         assert!(built.messages[0].contains("t.mi:23:") && built.messages[0].contains("holes"), "{:?}", built.messages);
         let settings = Settings { engine, spp: Some(4), ..Settings::default() };
         let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
-        let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
-        let mut seen = std::collections::HashSet::new();
-        for (k, p) in film.rgba().iter().enumerate() {
-            let (px, py) = ((k % 32) as f32, (k / 32) as f32);
-            let (x0, x1) = (-1.0 + px / 16.0 + 1e-3, -1.0 + (px + 1.0) / 16.0 - 1e-3);
-            let (y0, y1) = (1.0 - (py + 1.0) / 16.0 + 1e-3, 1.0 - py / 16.0 - 1e-3);
-            let corners = [form_at(x0, y0), form_at(x1, y0), form_at(x0, y1), form_at(x1, y1)];
-            let Some(found) = corners[0] else { continue };
-            if corners.iter().any(|c| *c != Some(found)) {
-                continue;
-            }
-            seen.insert(found);
-            let want = form_colour(found.1);
-            for c in 0..3 {
-                assert!(
-                    (p[c] - want[c] * scale).abs() <= 1e-4 * scale,
-                    "{engine:?}, pixel {k} ({found:?}): {p:?} vs {want:?} × {scale}"
-                );
-            }
-        }
+        let seen = assert_constant_regions(engine, &film.rgba(), form_at, |(_, face)| form_colour(face));
         assert_eq!(seen.len(), 18 + 5, "{engine:?}: pixels of every sub-quad");
     }
     std::fs::remove_dir_all(&dir).ok();
