@@ -346,17 +346,36 @@ impl<'w> EmbreeAccel<'w> {
         unsafe { rtcGetDeviceError(self.device) }
     }
 
+    /// The Embree ray of `ray`, written as three 16-byte stores (origin and `tnear`,
+    /// direction and time, `tfar`, mask, id and flags): Embree's one-ray kernels load each
+    /// of those groups as one 16-byte vector, which a group written piecemeal (the compiler
+    /// stored an 8-byte, a 4-byte and a 4-byte piece) could not be forwarded from, and the
+    /// ray's own scalars are read one by one, each from the store that wrote it, instead of
+    /// as 8-byte pairs spanning two of the caller's stores (`tmax` with `time`). Measured in
+    /// speed36 (docs/performance.md): perf put most of the wrapper's cycles on those stalls.
+    #[inline(always)]
     fn rtc_ray(ray: &Ray) -> RtcRay {
-        RtcRay {
-            org: ray.origin.to_array(),
-            tnear: ray.tmin,
-            dir: ray.dir.to_array(),
-            time: ray.time,
-            tfar: ray.tmax,
-            mask: ray.mask,
-            id: 0,
-            flags: 0,
-        }
+        // SAFETY: the references are valid and aligned; volatile reads keep each 4-byte
+        // field a load of its own (the compiler merged `tmax` and `time` into one).
+        let (tmin, tmax, time) = unsafe {
+            (std::ptr::read_volatile(&ray.tmin), std::ptr::read_volatile(&ray.tmax), std::ptr::read_volatile(&ray.time))
+        };
+        let groups = [
+            ray.origin.extend(tmin),
+            ray.dir.extend(time),
+            glam::Vec4::new(tmax, f32::from_bits(ray.mask), f32::from_bits(0), f32::from_bits(0)),
+        ];
+        // SAFETY: `RtcRay` is 48 bytes of 4-byte plain fields (aligned to 16), laid out as
+        // the three groups' lanes in order: org, tnear | dir, time | tfar, mask, id, flags.
+        unsafe { std::mem::transmute::<[glam::Vec4; 3], RtcRay>(groups) }
+    }
+
+    /// The barycentrics of a hit Embree wrote, read as two 4-byte loads (Embree stores them
+    /// one by one; one 8-byte load across both stalled on store forwarding).
+    #[inline(always)]
+    fn hit_uv(hit: &RtcHit) -> (f32, f32) {
+        // SAFETY: the references are valid and aligned.
+        unsafe { (std::ptr::read_volatile(&hit.u), std::ptr::read_volatile(&hit.v)) }
     }
 
     /// Eight rays that trace nothing, to be filled by [`EmbreeAccel::fill_packet`].
@@ -452,12 +471,9 @@ impl Accel for EmbreeAccel<'_> {
         // Flattened meshes are top-level geometries (their id is the instance); the others
         // are hit inside an instance.
         let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
-        (rh.hit.geom_id != INVALID_ID).then_some(Hit {
-            t: rh.ray.tfar,
-            instance,
-            prim: rh.hit.prim_id,
-            u: rh.hit.u,
-            v: rh.hit.v,
+        (rh.hit.geom_id != INVALID_ID).then(|| {
+            let (u, v) = Self::hit_uv(&rh.hit);
+            Hit { t: rh.ray.tfar, instance, prim: rh.hit.prim_id, u, v }
         })
     }
 
