@@ -144,11 +144,8 @@ fn displace_mesh(
         if let Some(w) = warning {
             diagnostics.push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {w}")));
         }
-        for word in plan::ignored(a) {
-            diagnostics.push(Diagnostic::warning(
-                a.span,
-                format!("object '{name}': approximate displace: '{word}' is read without effect"),
-            ));
+        for said in plan::unused(a) {
+            diagnostics.push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {said}")));
         }
         match sharp {
             Some(s) if s >= 1.0 => {
