@@ -30,7 +30,8 @@
 //! or an adaptive refinement past that is an error at the `approximate` statement (the
 //! object is not displaced), the default level is lowered with a warning. Hair is not
 //! displaced. A mesh whose vertices move (motion vectors, `motion steps`) is displaced at
-//! every motion step on the same finer triangles ([`moving`]). Object area lights whose
+//! every motion step on the same finer triangles ([`moving`]); a moving instance's `view`
+//! criteria hold over the whole shutter ([`adaptive::View::over_shutter`]). Object area lights whose
 //! geometry is displaced emit from the displaced triangles, and emission given for a
 //! whole surface (MDL `lumen`, `candela`) is spread over its displaced area ([`emitters`]).
 //! Instances of one object with the same materials share one
@@ -144,11 +145,8 @@ fn displace_mesh(
         if let Some(w) = warning {
             diagnostics.push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {w}")));
         }
-        for word in plan::ignored(a) {
-            diagnostics.push(Diagnostic::warning(
-                a.span,
-                format!("object '{name}': approximate displace: '{word}' is read without effect"),
-            ));
+        for said in plan::unused(a) {
+            diagnostics.push(Diagnostic::warning(a.span, format!("object '{name}': approximate displace: {said}")));
         }
         match sharp {
             Some(s) if s >= 1.0 => {
@@ -270,7 +268,7 @@ fn displace_vertices(
     let level = match plan {
         Plan::Uniform(level) => level,
         Plan::Adaptive(criteria) => {
-            let view = adaptive::View { object_to_world: inst.object_to_world, camera: &world.camera };
+            let view = adaptive::View::over_shutter(inst, &world.camera);
             let carry = !original.ptex_quads.is_empty();
             return match adaptive::refine(mesh, &criteria, Some(&view), *budget, &offset_at, carry) {
                 Ok((mut out, fine)) => {

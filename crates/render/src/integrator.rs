@@ -292,6 +292,8 @@ pub fn trace_camera_path_into(
     let mut last_env = None;
     // The glossy share of the last bounce, where it splits what its rays see.
     let mut reach: Option<glossy_reach::Reach> = None;
+    // The share of the last bounce that next-event estimation left out (`glossy_reach::unlit_share`).
+    let mut unlit = Rgb::ZERO;
     let light_count = world.lights.len();
     // The environment is one more light to choose for next-event estimation.
     let choices = light_count + usize::from(env.is_some_and(|e| e.sampled));
@@ -435,6 +437,7 @@ pub fn trace_camera_path_into(
                     }
                     ray = Ray { mask: mask::SECONDARY, origin: p, dir, tmin: 0.0, tmax: f32::INFINITY, time: ray.time };
                     reach = None;
+                    unlit = Rgb::ZERO;
                     continue;
                 }
                 Some(bsdf::medium::Flight::Through { weight }) => throughput *= weight,
@@ -475,6 +478,7 @@ pub fn trace_camera_path_into(
                 break;
             }
             throughput *= keep;
+            unlit = r.unlit_after(unlit, d);
         }
         if let (None, None, Some(node), Some(shading)) = (&light_hit, &found, last_env, shading) {
             // Left a material with an environment of its own: that one, all of it.
@@ -508,6 +512,7 @@ pub fn trace_camera_path_into(
             } else {
                 0.0
             };
+            let weight = glossy_reach::hit_weight(if linked { unlit } else { Rgb::ZERO }, weight);
             radiance += throughput * le * weight;
             break;
         }
@@ -619,6 +624,7 @@ pub fn trace_camera_path_into(
         // (A Lambertian lobe neither fades into a deep material nor is a delta: light
         // sampling always applies.)
         let reaching = !lambert && glossy_reach::reaches(&material.model);
+        let unlit_lobe = !lambert && glossy_reach::unlit_lobe(&material.model);
         let env_here = env.filter(|_| own_env.is_none() && !reaching);
         let sampled = lambert || !bsdf.is_delta();
         if let (Some(env), true) = (env_here, k == light_count && choices > light_count && sampled) {
@@ -655,7 +661,7 @@ pub fn trace_camera_path_into(
                 } else {
                     light_lobes::eval(&bsdf, wo, wi, light.lobes)
                 };
-                if reaching {
+                if unlit_lobe {
                     f = glossy_reach::light_through(&material.model, &bsdf, (wo, wi), light.lobes.specular, ls.dist, f);
                 }
                 // The light must be on the side of the geometric surface the shading frame
@@ -768,6 +774,7 @@ pub fn trace_camera_path_into(
         if !(world.has_media && media.follow(world, s.material, s.ng, wi, (&ray, &stop))) {
             last_pdf = bs.pdf;
             last_delta = bs.delta;
+            unlit = if unlit_lobe { glossy_reach::unlit_share(&bsdf, wo, &bs) } else { Rgb::ZERO };
         }
         let u_rr = sampler.next_1d();
         if depth + 1 >= settings.rr_depth {

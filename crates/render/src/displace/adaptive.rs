@@ -21,31 +21,73 @@ use crate::camera::CameraModel;
 use crate::mesh::ptex_split::FineOrigin;
 use crate::mesh::MeshData;
 
-/// How `view` criteria measure: the instance's placement and the camera.
+/// How `view` criteria measure: the camera, and where the instance and the camera stand
+/// at the times the measure is taken.
+///
+/// A still instance under a still camera is measured where it stands. One that moves
+/// while the shutter is open (instance `motion transform`, or a moving camera) is
+/// measured at each of the times its keys and the camera's lie at over the shutter
+/// (opening, close and the keys between), and an edge is as long as its longest there:
+/// the criteria then hold at every time the shutter sees (mental ray's motion time 0
+/// may lie before the shutter opens, and an instance coming towards the camera is
+/// larger at the close). Between two keys a point moves linearly, so an edge's world
+/// length is convex in time and its depth linear: their ratio is quasi-convex, its
+/// largest value on the interval at one of its ends; the keys give the exact largest
+/// on-screen size (while the edge stays in front of the camera, and for a still camera:
+/// a moving camera's depth is taken at the same key times).
 pub struct View<'a> {
-    /// Object → world of the instance.
-    pub object_to_world: Affine3A,
     /// The camera the image is rendered from.
     pub camera: &'a CameraModel,
+    /// (object → world, world → camera) at each time the measure is taken.
+    pub poses: Vec<(Affine3A, Affine3A)>,
 }
 
-impl View<'_> {
+impl<'a> View<'a> {
+    /// The measure of `inst` seen by `camera`: where both stand at every key time over
+    /// the shutter (the union of the instance's and the camera's key times), or where they
+    /// stand when neither moves.
+    pub fn over_shutter(inst: &crate::world::InstanceData, camera: &'a CameraModel) -> View<'a> {
+        let times = |n: usize| (0..n).map(move |j| if n == 1 { 0.0 } else { j as f32 / (n - 1) as f32 });
+        let mut at: Vec<f32> = times(inst.keys.len()).chain(times(camera.keys.len())).collect();
+        at.sort_by(f32::total_cmp);
+        at.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
+        let poses = if at.is_empty() {
+            vec![(inst.object_to_world, camera.world_to_camera)]
+        } else {
+            at.iter()
+                .map(|&t| {
+                    let to_camera = if camera.keys.is_empty() {
+                        camera.world_to_camera
+                    } else {
+                        camera.camera_to_world_at(t).inverse()
+                    };
+                    (inst.object_to_world_at(t), to_camera)
+                })
+                .collect()
+        };
+        View { camera, poses }
+    }
+
     /// Raster length, in pixel diagonals, of the object-space vector `d` seen at the
     /// object-space point `at` as if parallel to the image plane (mental ray's measure of
     /// view-dependent approximations): world length × focal·width/aperture ÷ depth
     /// (orthographic cameras: no division by depth), the depth at least the near clip
-    /// distance and 1e-4.
+    /// distance and 1e-4; the largest over the poses.
     fn pixels(&self, d: Vec3A, at: Vec3A) -> f32 {
         let c = self.camera;
-        let world = self.object_to_world.transform_vector3a(d).length();
         let per_unit = c.width.max(1) as f32 / c.aperture.max(f32::MIN_POSITIVE);
-        let pixels = if c.orthographic {
-            world * per_unit
-        } else {
-            let depth = c.depth(self.object_to_world.transform_point3a(at)).abs().max(c.clip.0).max(1e-4);
-            world * per_unit * c.focal / depth
-        };
-        pixels / std::f32::consts::SQRT_2
+        let mut most = 0.0f32;
+        for (object_to_world, world_to_camera) in &self.poses {
+            let world = object_to_world.transform_vector3a(d).length();
+            let pixels = if c.orthographic {
+                world * per_unit
+            } else {
+                let depth = -world_to_camera.transform_point3a(object_to_world.transform_point3a(at)).z;
+                world * per_unit * c.focal / depth.abs().max(c.clip.0).max(1e-4)
+            };
+            most = most.max(pixels);
+        }
+        most / std::f32::consts::SQRT_2
     }
 }
 

@@ -23,10 +23,23 @@
 //! `sharp s` does not change which triangles are made: it sets how the displaced
 //! surface's shading normals lean from the smooth interpolated vertex normals (0) to the
 //! faceted geometric normals of the fine triangles (1), blending in between
-//! ([`sharpness`], applied by [`crate::mesh::MeshData::sharpen`]). `nosmoothing`, `tree`,
-//! `grid`, `delaunay` are read as written, without effect; `offscreen` and `grading` too,
-//! each with a warning ([`ignored`]): the manual pages at hand do not say precisely what
-//! they change.
+//! ([`sharpness`], applied by [`crate::mesh::MeshData::sharpen`]). `nosmoothing` and
+//! `tree` (the style mira's edge splitting is) are read as written, without effect.
+//! `grid`, `delaunay`, `grading` and `offscreen` are read with a warning that says why
+//! they change nothing here ([`unused`]):
+//!
+//! - `grading g` is the minimum-angle bound of mental ray's graded (Delaunay) meshing:
+//!   mental ray's scene-database record of an approximation (`miApprox`, in the
+//!   `shader.h` its shader SDK ships) keeps it as `grading`, "min angle bound for graded
+//!   meshing", beside the style `miAPPROX_STYLE_DELAUNAY`; mira's displacement makes no
+//!   Delaunay mesh (it splits edges, the `tree` style), so no bound on angles applies.
+//!   A value no triangle can meet (negative, 60° or more: a triangle's angles sum to
+//!   180°) is named in the warning.
+//! - `offscreen`: the manual pages at hand list no meaning for it, and `miApprox` has no
+//!   field for it (criteria, `sharp`, ray flags, `any`, `view`, method, style, levels,
+//!   `max`, `grading`); `view` criteria measure every edge by its depth, inside the view
+//!   or outside it, as mental ray's manual gives the measure ("as if the surface was
+//!   parallel to the screen", so that a surface seen in a mirror stays well approximated).
 
 use mi::ast::{ApproxTerm, Approximation};
 
@@ -209,9 +222,45 @@ pub fn sharpness(a: &Approximation) -> (Option<f32>, Option<String>) {
     }
 }
 
-/// The words of `a` that mira reads without effect and says so: `offscreen`, `grading`.
-pub fn ignored(a: &Approximation) -> Vec<&'static str> {
-    ["offscreen", "grading"].into_iter().filter(|w| a.technique.contains(&ApproxTerm::Word(w))).collect()
+/// What mira says about the words of `a` it reads without effect (`grid`, `delaunay`,
+/// `grading g`, `offscreen`; see the module's documentation): one warning each, the
+/// word first.
+pub fn unused(a: &Approximation) -> Vec<String> {
+    let t = &a.technique;
+    let has = |w: &'static str| t.contains(&ApproxTerm::Word(w));
+    let mut out = Vec::new();
+    for style in ["grid", "delaunay"] {
+        if has(style) {
+            out.push(format!(
+                "'{style}' has no effect: displaced triangles are refined by splitting their edges (the 'tree' style)"
+            ));
+        }
+    }
+    if let Some(i) = t.iter().position(|x| *x == ApproxTerm::Word("grading")) {
+        let g = match t.get(i + 1) {
+            Some(ApproxTerm::Num(n)) => n.as_f64(),
+            _ => f64::NAN,
+        };
+        let bad = if (0.0..60.0).contains(&g) {
+            String::new()
+        } else {
+            format!(" (and {g} is no angle every triangle can keep: 0 ≤ g < 60 degrees)")
+        };
+        out.push(format!(
+            "'grading {g}' has no effect: it bounds the angles of mental ray's Delaunay meshing (miApprox.grading, \
+             \"min angle bound for graded meshing\", mental ray's shader.h), and displaced triangles are refined by \
+             splitting their edges{bad}"
+        ));
+    }
+    if has("offscreen") {
+        out.push(
+            "'offscreen' has no effect: mental ray's approximation record (miApprox, shader.h) has no field for it and \
+             the manual pages at hand do not describe it; 'view' criteria measure every edge by its depth, inside the \
+             view or not"
+                .to_string(),
+        );
+    }
+    out
 }
 
 /// The technique words of an approximation (`view length`, `fine`, …), for messages.
@@ -283,7 +332,17 @@ mod tests {
         assert_eq!(sharpness(&approximation("length 0.5 0 5")), (None, None));
         let (sharp, w) = sharpness(&approximation("fine length 0.5 sharp 3 0 5"));
         assert!(sharp == Some(1.0) && w.is_some());
-        assert_eq!(ignored(&approximation("fine view offscreen length 0.5 grading 2 0 5")), ["offscreen", "grading"]);
+        let said = unused(&approximation("fine view offscreen length 0.5 grading 2 0 5"));
+        assert!(
+            said.len() == 2 && said[0].starts_with("'grading 2'") && said[1].starts_with("'offscreen'"),
+            "{said:?}"
+        );
+        for (g, bad) in [("30", false), ("0", false), ("-5", true), ("60", true), ("75", true)] {
+            let said = unused(&approximation(&format!("delaunay length 0.5 grading {g} 0 5")));
+            assert_eq!(said.len(), 2, "{said:?}");
+            assert!(said[0].starts_with("'delaunay'"), "{said:?}");
+            assert_eq!(said[1].contains("no angle every triangle can keep"), bad, "{g}: {said:?}");
+        }
         let Reading::Plan(Plan::Adaptive(c), w) = reading("length 0.5 0 40") else { panic!() };
         assert_eq!(c.max_level, MAX_LEVEL);
         assert_eq!(w.len(), 1, "{w:?}");

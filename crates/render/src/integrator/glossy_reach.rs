@@ -33,9 +33,11 @@
 //! deep material's shader run once at the entry point ([`super::deep_material`]). So the
 //! segment after such a bounce adds t·g⊙C (g: the glossy share) and goes on with b + (1
 //! − t)·g; a ray that leaves takes the environment by b alone. Next-event estimation
-//! does not sample the environment at such a surface, as above; the lights it samples
-//! there it takes through the glossy part of f × (1 − t) of their distance
-//! ([`light_through`]), as the segment a BSDF sample finds them along keeps.
+//! does not sample the environment at such a surface, as above. At every
+//! `mib_glossy_refraction` surface (with `max_distance` or not) next-event estimation
+//! leaves the glossy lobe out ([`light_through`]): the classic shader's glossy rays find
+//! only lights that are geometry, and the path engine's take such a light whole through
+//! the lobe ([`hit_weight`]).
 
 use bsdf::{Bsdf, BsdfSample, Rgb};
 use glam::Vec3A;
@@ -184,28 +186,81 @@ impl Reach {
     }
 }
 
+/// Whether next-event estimation at a surface of `model` leaves out its glossy lobe: a
+/// `mib_glossy_refraction`'s (see [`light_through`]).
+#[inline]
+pub(super) fn unlit_lobe(model: &SurfaceModel) -> bool {
+    matches!(model, SurfaceModel::MibGlossyRefraction(_))
+}
+
 /// f(ωo, ωi) = `f` towards a light that next-event estimation found at distance `dist`
-/// (infinite: a light at infinity) from a `mib_glossy_refraction` surface whose rays fade:
-/// its glossy part (lit where the light lights the `specular` lobes) × (1 − t), as the
-/// segment a BSDF sample finds that light along keeps 1 − t of the glossy share, so both
-/// strategies estimate the same light (the classic shader's rays see a light past
-/// `max_distance` only as the deep material). `f` unchanged for any other surface
-/// (`mib_glossy_reflection`'s light by next-event estimation is not split).
+/// from a surface of `model`: at a `mib_glossy_refraction` ([`unlit_lobe`]), without its
+/// glossy part (where the light lights the `specular` lobes). mental ray's shader
+/// (mental ray 3.6's base library, "very similar to `mib_glossy_reflection`") traces its
+/// glossy rays, refracted or totally reflected, and weighs what they find: they find a
+/// light only where it is geometry (an area light they hit), never a point, spot or
+/// directional light, and no light loop runs through the lobe (the classic shader here,
+/// `baselib::glossy`, does the same). So the path engine takes the lights through that
+/// lobe only where its own rays find them (a light's geometry, the whole of the glossy
+/// share: [`hit_weight`]), and within `max_distance` those rays keep 1 − t of it as any
+/// segment does. `f` unchanged for any other surface (`mib_glossy_reflection`'s light by
+/// next-event estimation is not split). `dist` is unused (the glossy part is left out at
+/// any distance).
 #[inline(never)]
 pub(super) fn light_through(
     model: &SurfaceModel,
     bsdf: &Bsdf,
     (wo, wi): (Vec3A, Vec3A),
     specular: bool,
-    dist: f32,
+    _dist: f32,
     f: Rgb,
 ) -> Rgb {
-    let (SurfaceModel::MibGlossyRefraction(lobe), Bsdf::MibGlossyRefraction(b)) = (model, bsdf) else { return f };
-    if !lobe.reaches() || !specular {
+    let (SurfaceModel::MibGlossyRefraction(_), Bsdf::MibGlossyRefraction(b)) = (model, bsdf) else { return f };
+    if !specular {
         return f;
     }
-    let t = if dist.is_finite() { baselib::glossy::distance_fade(dist, lobe.max_distance, lobe.falloff) } else { 1.0 };
-    (f - b.eval_split(wo, wi).1 * t).max(Rgb::ZERO)
+    (f - b.eval_split(wo, wi).1).max(Rgb::ZERO)
+}
+
+/// The glossy lobe's share of a bounce sampled from `bsdf` (a `mib_glossy_refraction`'s,
+/// [`unlit_lobe`]) seen from `wo`, per channel: all of a delta sample, the glossy part of
+/// f in the whole for another; 0 for any other surface. Light its ray finds is taken
+/// whole there ([`hit_weight`]): next-event estimation left it out ([`light_through`]).
+#[inline(never)]
+pub(super) fn unlit_share(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Rgb {
+    match bsdf {
+        Bsdf::MibGlossyRefraction(_) if bs.delta => Rgb::ONE,
+        Bsdf::MibGlossyRefraction(b) => shares(b.eval_split(wo, bs.wi)).1,
+        _ => Rgb::ZERO,
+    }
+}
+
+/// The weight of light a ray found, per channel: the MIS weight `mis` (what the bounce
+/// before shares with next-event estimation) for the share of the path that next-event
+/// estimation could have found it along, 1 for the share `unlit` it could not
+/// ([`unlit_share`]): unlit + (1 − unlit)·mis.
+#[inline]
+pub(super) fn hit_weight(unlit: Rgb, mis: f32) -> Rgb {
+    unlit + (Rgb::ONE - unlit) * mis
+}
+
+impl Reach {
+    /// The share `unlit` of the bounce's weight that next-event estimation left out
+    /// ([`unlit_share`]) after the segment to something at distance `d` kept
+    /// [`Reach::split`]'s part of it: the glossy share faded by 1 − t over what was kept.
+    pub(super) fn unlit_after(&self, unlit: Rgb, d: f32) -> Rgb {
+        if unlit == Rgb::ZERO {
+            return unlit;
+        }
+        let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
+        let (kept, _) = self.split(d);
+        let faded = unlit * (1.0 - t);
+        Rgb::new(
+            if kept.x > 0.0 { (faded.x / kept.x).min(1.0) } else { 0.0 },
+            if kept.y > 0.0 { (faded.y / kept.y).min(1.0) } else { 0.0 },
+            if kept.z > 0.0 { (faded.z / kept.z).min(1.0) } else { 0.0 },
+        )
+    }
 }
 
 /// The shares of a bounce's two parts `(base, glossy)` of f in their sum, per channel (0

@@ -100,7 +100,7 @@ fn the_greatest_level_stops_the_refinement() {
 fn view_length_splits_nearer_triangles_more_finely() {
     let square = |name: &str| {
         format!(
-            "object \"{name}\"\n approximate displace view length 1 0 8\n group\n 0 0 0  1 0 0  1 1 0  0 1 0\n \
+            "object \"{name}\"\n approximate displace view length 0.25 0 8\n group\n 0 0 0  1 0 0  1 1 0  0 1 0\n \
              v 0 v 1 v 2 v 3\n p 0 1 2 3\n end group end object\n"
         )
     };
@@ -174,5 +174,50 @@ fn hostile_values_fail_or_are_clamped_at_the_statement() {
             let l = (positions[t[k] as usize] - positions[t[(k + 1) % 3] as usize]).length();
             assert!(l <= 0.5 + 1e-6, "{l}");
         }
+    }
+}
+
+/// `offscreen`, `grading`, `grid` and `delaunay` change no triangle (mental ray's
+/// `grading` bounds the angles of its Delaunay meshing, which displacement here does not
+/// do; `offscreen` has no documented meaning): under `view length 0.25` on a 19-unit-wide
+/// strip 3 units from an 8-pixel 90° camera (which sees 6 units of it), each statement
+/// makes the same triangles at the same positions, bit for bit, as `view length 0.25 0 8`
+/// alone, with one warning per word at the statement's line (t.mi:10) naming it
+/// (`grading` citing `miApprox`); `grading -5` and `grading 75` are also named as angles
+/// no triangle can keep.
+#[test]
+fn offscreen_grading_and_styles_change_no_triangle() {
+    let strip = |approx: &str| {
+        plane("", WAVE, approx, "m")
+            .replace("0 0 0  1 0 0  1 1 0  0 1 0\n    0 0 0", "-9 0 0  10 0 0  10 1 0  -9 1 0\n    0 0 0")
+    };
+    let base = build(&strip("approximate displace view length 0.25 0 8"));
+    assert!(!base.messages.iter().any(|m| m.contains("warning")), "{:?}", base.messages);
+    let [(triangles, positions)] = meshes(&base.built.world)[..] else { panic!("one instance") };
+    assert!(positions.iter().any(|p| p.x < -8.0) && triangles.len() > 64, "{}", triangles.len());
+    for (approx, words) in [
+        ("approximate displace view offscreen length 0.25 0 8", &["'offscreen'"][..]),
+        ("approximate displace delaunay view length 0.25 grading 30 0 8", &["'delaunay'", "'grading 30'"]),
+        ("approximate displace grid view length 0.25 grading -5 0 8", &["'grid'", "'grading -5'"]),
+        ("approximate displace view offscreen length 0.25 grading 75 0 8", &["'offscreen'", "'grading 75'"]),
+    ] {
+        let b = build(&strip(approx));
+        let warnings: Vec<&String> = b.messages.iter().filter(|m| m.contains("warning")).collect();
+        assert_eq!(warnings.len(), words.len(), "{approx}: {warnings:?}");
+        for w in words {
+            let said = warnings.iter().find(|m| m.contains(w)).unwrap_or_else(|| panic!("{approx}: {w} {warnings:?}"));
+            assert!(said.contains("t.mi:10:") && said.contains("no effect"), "{said}");
+            if w.starts_with("'grading") {
+                assert!(said.contains("miApprox"), "{said}");
+                let impossible = said.contains("no angle every triangle can keep");
+                assert_eq!(impossible, !w.contains("30"), "{said}");
+            }
+        }
+        let [(t, p)] = meshes(&b.built.world)[..] else { panic!("one instance") };
+        assert_eq!(t, triangles, "{approx}");
+        assert!(
+            p.iter().zip(positions).all(|(a, b)| a.to_array() == b.to_array()) && p.len() == positions.len(),
+            "{approx}"
+        );
     }
 }

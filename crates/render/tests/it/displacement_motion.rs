@@ -196,3 +196,57 @@ fn a_moving_instance_carries_its_displaced_surface() {
     assert_eq!(height(1.25, 0.5, 0.0), None);
     assert_eq!(height(0.25, 0.5, 1.0), None);
 }
+
+/// A moving instance's `view length 1` holds over the whole shutter: the square of
+/// `displacement::plane` (displaced 0.25 towards the camera) rises from depth 2.75 at the
+/// shutter's opening to 1.25 at its close (`motion transform`, `motion on shutter 0 1`,
+/// a 64-pixel 90° camera). The criterion is measured where the instance stands at each of
+/// its keys (the largest on-screen size over the shutter: see `displace::adaptive::View`),
+/// so every edge spans at most one pixel diagonal at the close, seen at its middle's depth
+/// there (1e-4), and at the opening; the same square standing still at the opening's
+/// place, planned there alone, has an edge longer than a pixel diagonal at the close's
+/// place (what planning at motion time 0 gave) and fewer than half the triangles.
+#[test]
+fn a_moving_instances_view_criteria_hold_over_the_shutter() {
+    let approx = "approximate displace view length 1 0 8";
+    let still = crate::displacement::plane("motion on shutter 0 1", &constant_material(0.25), approx, "m");
+    let moving = still.replace(
+        r#"material "m" end instance"#,
+        r#"material "m" motion transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -1.5 1 end instance"#,
+    );
+    assert!(moving.contains("motion transform"), "{moving}");
+    let built = |text: &str| support::build_parsed(&mi::parse_str("t.mi", text), 64, &[]);
+    let (still, moving) = (built(&still), built(&moving));
+    for b in [&still, &moving] {
+        assert!(!b.messages.iter().any(|m| m.contains("error") || m.contains("warning")), "{:?}", b.messages);
+    }
+    // The largest edge, in pixel diagonals (as the criterion measures: world length ×
+    // 64/2 ÷ the depth of its middle ÷ √2), of the instance's mesh placed at shutter time
+    // `time` (`place`: the moving instance's placement there).
+    let widest = |b: &support::BuiltScene, place: &render::world::InstanceData, time: f32| {
+        let world = &b.built.world;
+        let [inst] = &world.instances[..] else { panic!("one instance") };
+        let to_world = place.object_to_world_at(time);
+        let m = &world.meshes[inst.mesh as usize];
+        let mut most = 0.0f32;
+        for t in &m.triangles {
+            for k in 0..3 {
+                let (a, c) = (m.positions[t[k] as usize], m.positions[t[(k + 1) % 3] as usize]);
+                let (a, c) = (to_world.transform_point3a(a.into()), to_world.transform_point3a(c.into()));
+                let depth = world.camera.depth((a + c) * 0.5);
+                most = most.max((a - c).length() * 32.0 / depth / std::f32::consts::SQRT_2);
+            }
+        }
+        (most, m.triangles.len())
+    };
+    let place = &moving.built.world.instances[0];
+    assert!(place.moves(), "the instance moves while the shutter is open");
+    let depth_at = |time: f32| moving.built.world.camera.depth(place.object_to_world_at(time).translation);
+    assert!((depth_at(0.0) - 3.0).abs() < 1e-4 && (depth_at(1.0) - 1.5).abs() < 1e-4);
+    let (at_close, n_moving) = widest(&moving, place, 1.0);
+    let (at_open, _) = widest(&moving, place, 0.0);
+    assert!(at_close <= 1.0 + 1e-4 && at_open <= 1.0 + 1e-4, "{at_open} at the opening, {at_close} at the close");
+    let (still_at_close, n_still) = widest(&still, place, 1.0);
+    assert!(still_at_close > 1.0, "the still plan seen at the close: {still_at_close}");
+    assert!(n_moving > 2 * n_still, "moving {n_moving}, still {n_still}");
+}
