@@ -5,7 +5,9 @@
 //!
 //! - `level0`: no width (level 0; 1/8 of the points within half a texel of an edge);
 //! - `width_0.25`: level 2 (4 × 4: half the points near an edge, 1/16 in a corner);
-//! - `width_1`: each face's average (one texel: every point near an edge or a corner).
+//! - `width_1`: each face's average (one texel: every point near an edge or a corner);
+//! - `width_0.35`: between levels 2 and 3 (4 × 4 and 2 × 2 texels: a blend of both, each
+//!   read as its own width would read it).
 //!
 //! Run with `cargo bench -p material --bench ptex_lookup`.
 
@@ -55,7 +57,9 @@ fn bench(c: &mut Criterion) {
         (state >> 8) as f32 / (1u32 << 24) as f32
     };
     let points: Vec<(u32, f32, f32)> = (0..1024).map(|k| ((k % 4) as u32, next(), next())).collect();
-    for (name, width) in [("level0", None), ("width_0.25", Some(0.25)), ("width_1", Some(1.0))] {
+    for (name, width) in
+        [("level0", None), ("width_0.25", Some(0.25)), ("width_1", Some(1.0)), ("width_0.35", Some(0.35))]
+    {
         c.bench_function(&format!("ptex_lookup/{name}"), |b| {
             b.iter(|| {
                 let mut sum = 0.0f32;

@@ -363,6 +363,7 @@ fn ptex_split_of(
         fine,
         codes: original.ptex_quads.clone(),
         ngons: original.ptex_ngons.clone(),
+        refined: original.ptex_refined.clone(),
         triangles: original.triangles.clone(),
         positions: original.positions.clone(),
     }))

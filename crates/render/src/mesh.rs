@@ -45,6 +45,9 @@ pub struct MeshData {
     /// The n-gons' outlines, prepared for the per-hit search
     /// ([`scene::mesh::ptex_ngons`]); empty where `ptex_quads` is.
     pub ptex_ngons: scene::mesh::ptex_ngons::Ngons,
+    /// The refined subdivision surfaces' and ccmeshes' Ptex faces
+    /// ([`scene::mesh::ptex_refined`]); empty where `ptex_quads` is.
+    pub ptex_refined: scene::mesh::ptex_refined::Refined,
     /// For a mesh whose triangles were split from another's (uniform or adaptive
     /// displacement) where the scene reads a quad-mesh Ptex file: that one's Ptex faces,
     /// which each fine triangle keeps ([`ptex_split`]); `ptex_quads` is then empty.
@@ -135,6 +138,7 @@ impl MeshData {
             + self.slots.len() * 4
             + self.ptex_quads.len() * 4
             + self.ptex_ngons.memory_bytes()
+            + self.ptex_refined.memory_bytes()
             + self.ptex_split.as_ref().map_or(0, |s| s.memory_bytes())
             + self.motion.len() * 16
             + vecs(&self.motion_more)

@@ -268,8 +268,9 @@ fn compile_scene_shading(
 /// In a scene that reads a quad-mesh Ptex file, for each object: a warning at its first
 /// polygon that has no quad-mesh Ptex face (an n-gon of over [`MAX_NGON_VERTICES`]
 /// vertices: lookups there are black), at its first polygon with holes (given its outer
-/// boundary's sub-quads, mira's reading), and at its first subdivision or free-form surface
-/// (no quad-mesh faces: black).
+/// boundary's sub-quads, mira's reading), and at its first free-form surface (Ptex defines
+/// no faces for them: black; subdivision surfaces and ccmeshes carry their control faces',
+/// `scene::mesh::ptex_refined`).
 ///
 /// [`MAX_NGON_VERTICES`]: scene::mesh::ptex_quads::MAX_NGON_VERTICES
 fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnostic>) {
@@ -298,11 +299,16 @@ fn unmapped_quad_ptex_polygons(scene: &Scene, diagnostics: &mut Vec<mi::Diagnost
             ));
         }
         if let Some((span, what)) = mesh.ptex_surface {
+            let why = if what == "free-form surface" {
+                "Ptex defines faces for polygon meshes and subdivision surfaces only"
+            } else {
+                "its refined triangles are beyond the numbers mira packs per object"
+            };
             diagnostics.push(mi::Diagnostic::warning(
                 span,
                 format!(
-                    "object '{}': this {what} has no quad-mesh Ptex faces (mira does not carry its control \
-                     faces through the refinement): quad-mesh Ptex lookups on it are black",
+                    "object '{}': this {what} has no quad-mesh Ptex faces ({why}): quad-mesh Ptex lookups on it \
+                     are black",
                     object.name
                 ),
             ));

@@ -479,11 +479,13 @@ fn ptex_face_ratio(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) ->
         let share = f64::from(split.area_share(prim));
         split
             .original(prim, bary)
-            .and_then(|(t, _)| face_area_ratio(&split.codes, &split.ngons, &split.triangles, &split.positions, t))
+            .and_then(|(t, _)| {
+                face_area_ratio(&split.codes, &split.ngons, &split.refined, &split.triangles, &split.positions, t)
+            })
             .filter(|_| share > 0.0)
             .map(|r| r / share)
     } else {
-        face_area_ratio(&mesh.ptex_quads, &mesh.ptex_ngons, &mesh.triangles, &mesh.positions, prim)
+        face_area_ratio(&mesh.ptex_quads, &mesh.ptex_ngons, &mesh.ptex_refined, &mesh.triangles, &mesh.positions, prim)
     };
     ratio.filter(|r| r.is_finite() && *r > 0.0).map_or(2.0, |r| r as f32)
 }
@@ -500,6 +502,7 @@ fn ptex_quad_face(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) -> 
     scene::mesh::ptex_ngons::hit_face_uv(
         &mesh.ptex_quads,
         &mesh.ptex_ngons,
+        &mesh.ptex_refined,
         &mesh.triangles,
         &mesh.positions,
         prim,

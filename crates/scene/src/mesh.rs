@@ -9,6 +9,7 @@ use glam::Vec3;
 
 pub mod ptex_ngons;
 pub mod ptex_quads;
+pub mod ptex_refined;
 
 /// What a face says about its material; the instance decides what it becomes.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
@@ -76,9 +77,13 @@ pub struct Mesh {
     /// The mesh's n-gons' outlines ([`ptex_ngons`]), where its n-gon triangles find their
     /// sub-quads.
     pub ptex_ngons: ptex_ngons::Ngons,
-    /// How many quad-mesh Ptex face ids the mesh's polygons number ([`ptex_quads`]: a quad
-    /// one, any other polygon one per outline vertex, a strip's or a fan's triangles 3
-    /// each).
+    /// The mesh's refined subdivision surfaces and ccmeshes ([`ptex_refined`]), where their
+    /// triangles find their cage's Ptex faces.
+    pub ptex_refined: ptex_refined::Refined,
+    /// How many quad-mesh Ptex face ids the mesh's polygons and surfaces number
+    /// ([`ptex_quads`]: a quad one, any other polygon one per outline vertex, a strip's or
+    /// a fan's triangles 3 each; a subdivision surface's or ccmesh's control faces
+    /// likewise).
     pub ptex_faces: u32,
     /// The first polygon that has no quad-mesh Ptex face (an n-gon of over
     /// [`ptex_quads::MAX_NGON_VERTICES`] vertices, or one past the face ids the packing
@@ -86,8 +91,8 @@ pub struct Mesh {
     pub ptex_unmapped: Option<(mi::Span, usize)>,
     /// The first polygon with holes (given its outer boundary's sub-quads: mira's reading).
     pub ptex_holed: Option<mi::Span>,
-    /// The first surface whose triangles have no quad-mesh Ptex faces (a subdivision
-    /// surface, a ccmesh, a free-form surface): its name's place and what it is.
+    /// The first surface whose triangles have no quad-mesh Ptex faces (a free-form
+    /// surface, which Ptex does not define): its place and what it is.
     pub ptex_surface: Option<(mi::Span, &'static str)>,
 }
 
@@ -140,6 +145,7 @@ impl Mesh {
             + self.triangle_slots.len() * 4
             + self.ptex_quads.len() * 4
             + self.ptex_ngons.memory_bytes()
+            + self.ptex_refined.memory_bytes()
     }
 
     /// Writes out the table of a mesh of lone triangles ([`Mesh::ptex_triangles`]): before
@@ -205,6 +211,7 @@ impl Mesh {
             && self.ptex_quads.is_empty()
             && !self.ptex_triangles
             && self.ptex_ngons.is_empty()
+            && self.ptex_refined.is_empty()
             && self.ptex_faces == 0
             && self.ptex_unmapped.is_none()
             && self.ptex_holed.is_none()
@@ -235,10 +242,12 @@ impl Mesh {
             } else if other.ptex_quads.is_empty() {
                 self.ptex_quads.resize(mine + theirs, ptex_quads::NONE);
             } else {
-                self.ptex_quads.extend(other.ptex_quads.iter().map(|&c| ptex_quads::offset(c, offset)));
+                let refined = self.ptex_refined.triangles;
+                self.ptex_quads.extend(other.ptex_quads.iter().map(|&c| ptex_quads::offset(c, offset, refined)));
             }
         }
         self.ptex_ngons.append(&other.ptex_ngons, offset, base);
+        self.ptex_refined.append(&other.ptex_refined, offset);
         self.ptex_faces = self.ptex_faces.saturating_add(other.ptex_faces);
         self.ptex_unmapped = self.ptex_unmapped.or(other.ptex_unmapped);
         self.ptex_holed = self.ptex_holed.or(other.ptex_holed);

@@ -29,6 +29,7 @@
 
 use glam::Vec4;
 
+pub mod anisotropic;
 mod edges;
 pub mod filter;
 pub mod footprint;

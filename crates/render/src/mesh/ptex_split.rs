@@ -48,6 +48,8 @@ pub struct PtexSplit {
     pub codes: Vec<u32>,
     /// The original's prepared n-gons.
     pub ngons: scene::mesh::ptex_ngons::Ngons,
+    /// The original's refined surfaces.
+    pub refined: scene::mesh::ptex_refined::Refined,
     /// The original's triangles.
     pub triangles: Vec<[u32; 3]>,
     /// The original's object-space vertices (undisplaced).
@@ -120,7 +122,15 @@ impl PtexSplit {
     /// `prim`.
     pub fn face_uv(&self, prim: usize, bary: [f32; 3]) -> Option<(u32, f32, f32)> {
         let (t, b) = self.original(prim, bary)?;
-        scene::mesh::ptex_ngons::hit_face_uv(&self.codes, &self.ngons, &self.triangles, &self.positions, t, b)
+        scene::mesh::ptex_ngons::hit_face_uv(
+            &self.codes,
+            &self.ngons,
+            &self.refined,
+            &self.triangles,
+            &self.positions,
+            t,
+            b,
+        )
     }
 }
 

@@ -19,6 +19,7 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh, quad_ptex: bool) -> scene
         ptex_quads: if quad_ptex { m.ptex_quads.clone() } else { Vec::new() },
         ptex_triangles: quad_ptex && m.ptex_triangles,
         ptex_ngons: if quad_ptex { m.ptex_ngons.clone() } else { Default::default() },
+        ptex_refined: if quad_ptex { m.ptex_refined.clone() } else { Default::default() },
         // The slot table itself is small; `mesh_data` reads its length.
         slots: m.slots.clone(),
         motion: m.motion.clone(),
@@ -47,10 +48,12 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
     let quads = std::mem::take(&mut m.ptex_quads);
     let keep_quads = quad_ptex && quads.len() == m.triangles.len();
     let mut ngons = std::mem::take(&mut m.ptex_ngons);
+    let mut refined = std::mem::take(&mut m.ptex_refined);
     if keep_quads {
         ngons.prepare(&positions);
     } else {
         ngons = Default::default();
+        refined = Default::default();
     }
     let mut mesh = MeshData {
         positions,
@@ -67,6 +70,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         slots: if m.slots.len() <= 1 || slots.iter().all(|&s| s == 0) { Vec::new() } else { slots },
         ptex_quads: if keep_quads { quads } else { Vec::new() },
         ptex_ngons: ngons,
+        ptex_refined: refined,
         ptex_split: None,
         hair: None,
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),

@@ -69,6 +69,7 @@ mod mdl_object_space;
 mod mdl_ptex;
 mod mdl_ptex_footprint;
 mod mdl_ptex_forms;
+mod mdl_ptex_subdiv;
 mod mdl_rough_glass_media;
 mod mdl_sky_sun_share;
 mod mdl_spot;

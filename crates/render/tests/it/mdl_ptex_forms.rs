@@ -1,8 +1,9 @@
 //! Quad-mesh Ptex files on geometry without `c`/`p` quads: the triangles of a strip, a fan
 //! and a trilist (each a face of its own: 3 sub-quads, numbered per triangle in the
 //! object's face order) and a polygon with holes (its outer boundary's 5 sub-quads), each
-//! sub-quad a constant colour, rendered in both engines; and a hostile n-gon's warning at
-//! its line.
+//! sub-quad a constant colour, rendered in both engines; a hostile n-gon's warning at its
+//! line; a free-form surface's warning at its line (subdivision surfaces are in
+//! `mdl_ptex_subdiv`).
 
 use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, FaceSpec, MODULE};
 use crate::support;
@@ -160,11 +161,12 @@ fn a_hostile_ngon_is_warned_of_at_its_line() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A subdivision surface and an adaptively displaced quad in a scene that reads a
-/// quad-mesh file: the surface does not carry the faces (black) and is warned of at its
-/// line (the surface's name); the displaced quad carries them and is not warned of.
+/// A free-form surface, a subdivision surface and an adaptively displaced quad in a scene
+/// that reads a quad-mesh file: the free-form surface has no faces (Ptex defines none for
+/// it: black) and is warned of at its group's line; the subdivision surface and the
+/// displaced quad carry theirs and are not warned of.
 #[test]
-fn surfaces_are_warned_of_at_their_lines_adaptive_displacement_is_not() {
+fn free_form_surfaces_are_warned_of_at_their_lines_subdivision_and_displacement_are_not() {
     let dir = std::env::temp_dir().join(format!("mira_render_ptex_surfaces_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
@@ -188,6 +190,14 @@ object "cube" group
     p 1 3 7 5
     end subdivision surface
 end group end object
+object "patch"
+    basis "lin" bezier 1
+    group
+    -1 -1 -7  1 -1 -7  -1 1 -7  1 1 -7
+    v 0 v 1 v 2 v 3
+    surface "f" "" "lin" 0 1 0. 1. "lin" 0 1 0. 1. 0 1 2 3
+    approximate surface regular parametric 4 3 "f"
+end group end object
 object "plane"
     approximate displace length 0.05 0 10
     group
@@ -197,14 +207,15 @@ object "plane"
 end group end object
 instance "cube_inst" "cube" material "tinted" end instance
 instance "plane_inst" "plane" material "m" end instance
-instgroup "root" "cam_inst" "cube_inst" "plane_inst" end instgroup
+instance "patch_inst" "patch" material "tinted" end instance
+instgroup "root" "cam_inst" "cube_inst" "patch_inst" "plane_inst" end instgroup
 render "root" "cam_inst" "opt"
 "#;
     let line = |what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
     let parsed = mi::parse_str("t.mi", text);
     let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
-    let at = line("subdivision surface \"s\"");
-    let what = "subdivision surface has no quad-mesh Ptex faces";
+    let at = line("object \"patch\"") + 2;
+    let what = "free-form surface has no quad-mesh Ptex faces (Ptex defines faces for polygon meshes";
     assert!(
         built.messages.iter().any(|m| m.starts_with(&format!("t.mi:{at}:")) && m.contains(what)),
         "{what} at line {at}: {:#?}",

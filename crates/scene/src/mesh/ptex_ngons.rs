@@ -24,6 +24,7 @@
 use glam::{DVec3, Vec3};
 
 use super::ptex_quads::{self, invert_bilinear};
+use super::ptex_refined::Refined;
 
 /// One n-gon's outline and, once prepared, its search data.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -247,16 +248,22 @@ fn frame(outline: &[u32], positions: &[Vec3], angles: &mut [f32]) -> Option<Fram
 /// The area of the quad-mesh Ptex face a hit on triangle `prim` lies on, over the
 /// triangle's own area (both object space; arguments as [`hit_face_uv`]): 2 on a quad of
 /// two triangles, ⅓ on a lone triangle (each of its 3 sub-quads), an n-gon's area over n
-/// over the triangle's on an n-gon's sub-quads; `None` where the triangle has no face or
-/// no area. A Ptex filter width in face units needs the face's size, not the triangle's.
+/// over the triangle's on an n-gon's sub-quads, one over the triangle's share of its face
+/// on a refined surface ([`Refined::area_share`]); `None` where the triangle has no face
+/// or no area. A Ptex filter width in face units needs the face's size, not the
+/// triangle's.
 pub fn face_area_ratio(
     codes: &[u32],
     ngons: &Ngons,
+    refined: &Refined,
     triangles: &[[u32; 3]],
     positions: &[Vec3],
     prim: usize,
 ) -> Option<f64> {
     let code = *codes.get(prim)?;
+    if let Some(number) = ptex_quads::refined_number(code) {
+        return refined.area_share(number).filter(|s| *s > 0.0).map(|s| 1.0 / s);
+    }
     if ptex_quads::decode(code).is_some() {
         return Some(2.0);
     }
@@ -274,11 +281,12 @@ pub fn face_area_ratio(
 
 /// The quad-mesh Ptex face id and (u, v) of a hit at barycentrics `bary` on triangle
 /// `prim` of a mesh (`codes` its packed values, [`ptex_quads`]; `ngons` its prepared
-/// n-gons; `triangles` its vertex indices; `positions` its object-space vertices), or
-/// `None` where the triangle has no face.
+/// n-gons; `refined` its refined surfaces; `triangles` its vertex indices; `positions`
+/// its object-space vertices), or `None` where the triangle has no face.
 pub fn hit_face_uv(
     codes: &[u32],
     ngons: &Ngons,
+    refined: &Refined,
     triangles: &[[u32; 3]],
     positions: &[Vec3],
     prim: usize,
@@ -287,6 +295,9 @@ pub fn hit_face_uv(
     let code = *codes.get(prim)?;
     if let Some(hit) = ptex_quads::face_uv(code, bary) {
         return Some(hit);
+    }
+    if let Some(number) = ptex_quads::refined_number(code) {
+        return refined.face_uv(number, bary);
     }
     if let Some(first) = ptex_quads::triangle_first(code) {
         return ptex_quads::triangle_face_uv(first, bary);
@@ -337,7 +348,8 @@ mod tests {
                     .expect("inside the polygon");
                 hit_triangles.insert(prim);
                 let (face, gu, gv) =
-                    hit_face_uv(&codes, &ngons, &triangles, &positions, prim, bary).expect("an n-gon face");
+                    hit_face_uv(&codes, &ngons, &Refined::default(), &triangles, &positions, prim, bary)
+                        .expect("an n-gon face");
                 assert_eq!(face, 40 + i as u32, "{n}-gon, sub-quad {i} at ({u}, {v})");
                 let (du, dv) = ((f64::from(gu) - u).abs(), (f64::from(gv) - v).abs());
                 assert!(du < 1e-5 && dv < 1e-5, "sub-quad {i}: ({u}, {v}) vs ({gu}, {gv})");
@@ -399,18 +411,19 @@ mod tests {
         let mut ngons = Ngons::default();
         ngons.push(10, &(0..6u32).collect::<Vec<_>>(), false);
         let codes = vec![ptex_quads::encode_ngon(10); 4];
-        assert_eq!(face_area_ratio(&codes, &ngons, &triangles, &positions, 0), None);
+        assert_eq!(face_area_ratio(&codes, &ngons, &Refined::default(), &triangles, &positions, 0), None);
         ngons.prepare(&positions);
         let hexagon = 1.5 * 3f64.sqrt();
         for (prim, own) in
             [(0, 3f64.sqrt() / 4.0), (1, 3f64.sqrt() / 2.0), (2, 3f64.sqrt() / 2.0), (3, 3f64.sqrt() / 4.0)]
         {
-            let r = face_area_ratio(&codes, &ngons, &triangles, &positions, prim).expect("a prepared n-gon");
+            let r = face_area_ratio(&codes, &ngons, &Refined::default(), &triangles, &positions, prim)
+                .expect("a prepared n-gon");
             assert!((r - hexagon / 6.0 / own).abs() < 1e-6, "{prim}: {r}");
         }
         let quad = [ptex_quads::encode(3, [0, 1, 2])];
-        assert_eq!(face_area_ratio(&quad, &ngons, &triangles, &positions, 0), Some(2.0));
+        assert_eq!(face_area_ratio(&quad, &ngons, &Refined::default(), &triangles, &positions, 0), Some(2.0));
         let lone = [ptex_quads::encode_triangle(7)];
-        assert_eq!(face_area_ratio(&lone, &ngons, &triangles, &positions, 0), Some(1.0 / 3.0));
+        assert_eq!(face_area_ratio(&lone, &ngons, &Refined::default(), &triangles, &positions, 0), Some(1.0 / 3.0));
     }
 }

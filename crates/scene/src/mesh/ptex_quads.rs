@@ -26,12 +26,20 @@
 //! leaves unchanged). A larger n-gon's outline is kept per polygon
 //! ([`super::ptex_ngons`]), where the hit's sub-quad is found.
 //!
+//! A triangle of a subdivision surface or a ccmesh refined by one level or more lies in
+//! one fine quad of the refinement, inside one Ptex face of its control cage (a cage quad
+//! one face, a cage n-gon one per corner: its level-1 sub-quads); its value holds its
+//! number among the mesh's refined triangles, by which [`super::ptex_refined`] finds the
+//! face and the fine quad's place on it.
+//!
 //! Packing: a quad's triangle has bit 31 clear, bits 0–5 the corners k₀, k₁, k₂ of its
 //! vertices 0, 1, 2 (two bits each), bits 6–30 the face id (at most [`MAX_FACE`]); an
-//! n-gon's triangle has bits 31, 30 = 1, 0 and bits 0–29 the polygon's first face id (at
-//! most [`MAX_NGON_FACE`]); a triangle of its own has bits 31, 30 = 1, 1 and bits 0–29 its
-//! first face id (at most [`MAX_NGON_FACE`] − 1); [`NONE`] for a triangle that has no
-//! face (a polygon of too many vertices, or beyond the face ids the packing holds).
+//! n-gon's triangle has bits 31, 30, 29 = 1, 0, 0 and bits 0–28 the polygon's first face
+//! id (at most [`MAX_NGON_FACE`]); a refined triangle bits 31, 30, 29 = 1, 0, 1 and bits
+//! 0–28 its refined number (at most [`MAX_REFINED`]); a triangle of its own has bits 31,
+//! 30 = 1, 1 and bits 0–29 its first face id (at most [`MAX_TRIANGLE_FACE`]); [`NONE`]
+//! for a triangle that has no face (a polygon of too many vertices, or beyond the face
+//! ids the packing holds).
 
 /// The packed value of a triangle with no quad face.
 pub const NONE: u32 = u32::MAX;
@@ -40,7 +48,13 @@ pub const NONE: u32 = u32::MAX;
 pub const MAX_FACE: u32 = (1 << 25) - 1;
 
 /// The largest first face id of an n-gon the packing holds.
-pub const MAX_NGON_FACE: u32 = (1 << 30) - 1;
+pub const MAX_NGON_FACE: u32 = (1 << 29) - 1;
+
+/// The largest refined triangle number the packing holds.
+pub const MAX_REFINED: u32 = (1 << 29) - 1;
+
+/// The largest first face id of a triangle that is a polygon of its own.
+pub const MAX_TRIANGLE_FACE: u32 = (1 << 30) - 2;
 
 /// The most vertices an n-gon may have to get sub-quad faces: a hostile polygon of more
 /// (10⁶ vertices, say) gets [`NONE`] and the unmapped-polygon warning at its line. Its
@@ -53,6 +67,9 @@ const NGON: u32 = 1 << 31;
 
 /// The bit that, with [`NGON`], marks a triangle that is a polygon of its own.
 const OWN: u32 = 1 << 30;
+
+/// The bit that, with [`NGON`] and without [`OWN`], marks a refined triangle.
+const REFINED: u32 = 1 << 29;
 
 /// The face coordinates (u, v) of a quad's corners 0…3 (Ptex's quad convention).
 pub const CORNER_UV: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
@@ -67,8 +84,12 @@ pub fn encode(face: u32, corners: [u8; 3]) -> u32 {
 }
 
 /// Packed value `code` with its face id moved on by `by` (a mesh appended after another:
-/// its faces numbered after that one's).
-pub fn offset(code: u32, by: u32) -> u32 {
+/// its faces numbered after that one's) and, for a refined triangle, its refined number
+/// by `refined_by` (its faces are moved on in its surface's record).
+pub fn offset(code: u32, by: u32, refined_by: u32) -> u32 {
+    if let Some(number) = refined_number(code) {
+        return number.checked_add(refined_by).map_or(NONE, encode_refined);
+    }
     if let Some(first) = triangle_first(code) {
         return first.checked_add(by).map_or(NONE, encode_triangle);
     }
@@ -96,17 +117,32 @@ pub fn encode_ngon(first: u32) -> u32 {
     NGON | first
 }
 
-/// The first face id of the n-gon of packed value `code` (`None` for a quad's triangle, a
-/// lone triangle's and [`NONE`]).
+/// The first face id of the n-gon of packed value `code` (`None` for any other value and
+/// [`NONE`]).
 pub fn ngon_first(code: u32) -> Option<u32> {
-    (code & (NGON | OWN) == NGON).then_some(code & MAX_NGON_FACE)
+    (code & (NGON | OWN | REFINED) == NGON).then_some(code & MAX_NGON_FACE)
+}
+
+/// The packed value of the refined triangle of refined number `number`; [`NONE`] beyond
+/// [`MAX_REFINED`].
+pub fn encode_refined(number: u32) -> u32 {
+    if number > MAX_REFINED {
+        return NONE;
+    }
+    NGON | REFINED | number
+}
+
+/// The refined number of the refined triangle of packed value `code` (`None` for any
+/// other value and [`NONE`]).
+pub fn refined_number(code: u32) -> Option<u32> {
+    (code & (NGON | OWN | REFINED) == NGON | REFINED).then_some(code & MAX_REFINED)
 }
 
 /// The packed value of a triangle that is a polygon of its own, its vertex 0 the
 /// polygon's, whose first sub-quad face id is `first`; [`NONE`] beyond
-/// [`MAX_NGON_FACE`] − 1.
+/// [`MAX_TRIANGLE_FACE`].
 pub fn encode_triangle(first: u32) -> u32 {
-    if first >= MAX_NGON_FACE {
+    if first > MAX_TRIANGLE_FACE {
         return NONE;
     }
     NGON | OWN | first
@@ -115,7 +151,7 @@ pub fn encode_triangle(first: u32) -> u32 {
 /// The first sub-quad face id of the lone triangle of packed value `code` (`None` for any
 /// other value and [`NONE`]).
 pub fn triangle_first(code: u32) -> Option<u32> {
-    (code & (NGON | OWN) == NGON | OWN && code != NONE).then_some(code & MAX_NGON_FACE)
+    (code & (NGON | OWN) == NGON | OWN && code != NONE).then_some(code & (OWN - 1))
 }
 
 /// The sub-quad face id and its (u, v) of a hit at barycentrics `bary` on a triangle that
@@ -283,11 +319,30 @@ mod tests {
         }
         let code = encode_triangle(12);
         assert_eq!((triangle_first(code), ngon_first(code), decode(code)), (Some(12), None, None));
-        assert_eq!(triangle_first(offset(code, 3)), Some(15));
+        assert_eq!(triangle_first(offset(code, 3, 100)), Some(15));
         assert_eq!((triangle_first(encode_ngon(12)), ngon_first(encode_ngon(12))), (None, Some(12)));
         assert_eq!((triangle_first(NONE), ngon_first(NONE)), (None, None));
-        assert_eq!(encode_triangle(MAX_NGON_FACE), NONE);
-        assert_eq!(triangle_first(encode_triangle(MAX_NGON_FACE - 1)), Some(MAX_NGON_FACE - 1));
+        assert_eq!(encode_triangle(MAX_TRIANGLE_FACE + 1), NONE);
+        assert_eq!(triangle_first(encode_triangle(MAX_TRIANGLE_FACE)), Some(MAX_TRIANGLE_FACE));
         assert_eq!(triangle_first(encode(7, [0, 1, 2])), None);
+        assert_eq!(ngon_first(encode_ngon(MAX_NGON_FACE)), Some(MAX_NGON_FACE));
+        assert_eq!(encode_ngon(MAX_NGON_FACE + 1), NONE);
+    }
+
+    /// Refined triangles' values round-trip (exact), move on by the refined offset alone,
+    /// and stay apart from every other kind; beyond [`MAX_REFINED`] they are none.
+    #[test]
+    fn refined_values_round_trip_apart_from_the_others() {
+        for number in [0, 1, 12345, MAX_REFINED] {
+            let code = encode_refined(number);
+            assert_eq!(refined_number(code), Some(number));
+            assert_eq!((ngon_first(code), triangle_first(code), decode(code)), (None, None, None));
+        }
+        assert_eq!(refined_number(offset(encode_refined(7), 1000, 5)), Some(12));
+        assert_eq!(offset(encode_refined(MAX_REFINED), 0, 1), NONE);
+        assert_eq!(encode_refined(MAX_REFINED + 1), NONE);
+        for other in [encode_ngon(3), encode_triangle(3), encode(3, [0, 1, 2]), NONE] {
+            assert_eq!(refined_number(other), None);
+        }
     }
 }

@@ -3,7 +3,8 @@
 //!
 //! Subdivision surfaces and ccmeshes are refined by the level their `approximate …
 //! parametric N` statement gives ([`DEFAULT_SUBDIVISION_LEVELS`] without one), at most as
-//! many levels as keep the face count under [`MAX_SUBDIVISION_FACES`]. Free-form surfaces
+//! many levels as keep the face count under [`MAX_SUBDIVISION_FACES`]; their triangles keep
+//! their control faces' quad-mesh Ptex faces ([`crate::mesh::ptex_refined`]). Free-form surfaces
 //! (Bézier, NURBS, … with trims and texture surfaces) are tessellated by [`freeform`]. The
 //! shapes of mental ray's geometry shaders (`mib_geo_sphere`, …) are made by [`procedural`].
 
@@ -22,6 +23,7 @@ use mi::ast::{
 };
 use mi::Diagnostic;
 
+use crate::mesh::ptex_quads::MAX_NGON_VERTICES;
 use crate::mesh::{HairGeometry, MaterialSlot, Mesh};
 use subdiv::{Cage, SHARP};
 
@@ -204,10 +206,17 @@ fn group_mesh(
         // The cage's face slots index `mesh.slots`, which the refined mesh shares.
         let mut refined = subdiv::subdivided_mesh(&cage, levels, name);
         refined.slots = mesh.slots.clone();
+        // Its triangles carry their cage faces' quad-mesh Ptex faces, numbered after the
+        // group's polygons; where they could not be (a control face of too many vertices
+        // left unrefined, numbers beyond the packing), warned of where such a file is read.
+        if levels == 0 {
+            if let Some(n) = (0..cage.face_count()).map(|f| cage.face(f).len()).find(|&n| n > MAX_NGON_VERTICES) {
+                mesh.ptex_unmapped = mesh.ptex_unmapped.or(Some((surface_name.span, n)));
+            }
+        } else if refined.ptex_refined.is_empty() {
+            mesh.ptex_surface = mesh.ptex_surface.or(Some((surface_name.span, target)));
+        }
         mesh.append(refined);
-        // Quad-mesh Ptex faces are not carried through the refinement (warned of where a
-        // quad-mesh file is read).
-        mesh.ptex_surface = mesh.ptex_surface.or(Some((surface_name.span, target)));
     }
     let before = mesh.triangles.len();
     freeform::group_surfaces(group, bases, &approximations, &mut mesh, diags);

@@ -290,7 +290,10 @@ pub fn subdivide(cage: &Cage) -> Cage {
 }
 
 /// The cage as a triangle mesh after `levels` levels, vertices on the limit surface with
-/// limit normals (for `levels` ≥ 1; level 0 is the cage itself with flat shading).
+/// limit normals (for `levels` ≥ 1; level 0 is the cage itself with flat shading). Its
+/// triangles carry their cage faces' quad-mesh Ptex faces, numbered from 0
+/// ([`crate::mesh::ptex_refined`] for `levels` ≥ 1; level 0 as polygons,
+/// [`crate::mesh::ptex_quads`]).
 pub fn subdivided_mesh(cage: &Cage, levels: u32, name: &str) -> Mesh {
     let mut c = cage.clone();
     for _ in 0..levels {
@@ -313,7 +316,57 @@ pub fn subdivided_mesh(cage: &Cage, levels: u32, name: &str) -> Mesh {
             mesh.triangle_slots.push(c.face_slots[f]);
         }
     }
+    if levels == 0 {
+        cage_ptex_faces(&c, &mut mesh);
+    } else {
+        let degrees: Vec<u32> = (0..cage.face_count()).map(|f| cage.face(f).len() as u32).collect();
+        // All quads after a level: two triangles each, in the order the table numbers them.
+        if let Some((codes, faces)) = mesh.ptex_refined.push_surface(&degrees, levels, 0) {
+            if codes.len() == mesh.triangles.len() {
+                mesh.ptex_quads = codes;
+                mesh.ptex_faces = faces;
+            } else {
+                mesh.ptex_refined = Default::default();
+            }
+        }
+    }
     mesh
+}
+
+/// The quad-mesh Ptex faces of an unrefined cage's fanned triangles, as polygons number
+/// them ([`crate::mesh::ptex_quads`]): a quad one face, a triangle its 3 sub-quads from its
+/// barycentrics, a larger n-gon its sub-quads found on its outline (none beyond
+/// [`MAX_NGON_VERTICES`](crate::mesh::ptex_quads::MAX_NGON_VERTICES) vertices).
+fn cage_ptex_faces(c: &Cage, mesh: &mut Mesh) {
+    use crate::mesh::ptex_quads;
+    let mut face = 0u32;
+    let mut at = 0;
+    for f in 0..c.face_count() {
+        let vs = c.face(f);
+        let count = vs.len().saturating_sub(2);
+        let triangles = &mesh.triangles[at..at + count];
+        at += count;
+        match vs.len() {
+            4 => {
+                let quad = [vs[0], vs[1], vs[2], vs[3]];
+                let codes: Vec<u32> = ptex_quads::quad_triangles(face, quad, triangles).collect();
+                mesh.ptex_quads.extend(codes);
+            }
+            3 => mesh.ptex_quads.push(ptex_quads::encode_triangle(face)),
+            n => {
+                let fits = n <= ptex_quads::MAX_NGON_VERTICES && face <= ptex_quads::MAX_NGON_FACE;
+                mesh.ptex_quads.extend(std::iter::repeat_n(
+                    if fits { ptex_quads::encode_ngon(face) } else { ptex_quads::NONE },
+                    count,
+                ));
+                if fits {
+                    mesh.ptex_ngons.push(face, vs, false);
+                }
+            }
+        }
+        face = face.saturating_add(if vs.len() == 4 { 1 } else { vs.len() as u32 });
+    }
+    mesh.ptex_faces = face;
 }
 
 /// Limit positions and normals of every vertex of a (once or more subdivided, all-quad) cage.
@@ -539,6 +592,89 @@ mod tests {
         // Open boundary: the corners stay put.
         assert!(m.positions.contains(&Vec3::new(0.0, 0.0, 0.0)));
         assert!(m.positions.contains(&Vec3::new(3.0, 3.0, 0.0)));
+    }
+
+    /// The Ptex face and (u, v) of each corner of fine triangle `t` of `m` (exact data, `None`
+    /// where it has none).
+    fn corner_faces(m: &Mesh, t: usize) -> [(u32, f32, f32); 3] {
+        let at = |b: [f32; 3]| {
+            crate::mesh::ptex_ngons::hit_face_uv(
+                &m.ptex_quads,
+                &m.ptex_ngons,
+                &m.ptex_refined,
+                &m.triangles,
+                &m.positions,
+                t,
+                b,
+            )
+            .expect("a Ptex face")
+        };
+        [at([1.0, 0.0, 0.0]), at([0.0, 1.0, 0.0]), at([0.0, 0.0, 1.0])]
+    }
+
+    /// A lone unit square (its boundary fixed: every vertex a corner of one face) keeps the
+    /// identity parametrisation at every level (Catmull–Clark's linear precision): each fine
+    /// triangle's corners carry face 0 and (u, v) = their position (x, y) within 1e-6, so
+    /// the refinement's order and the table's agree, at levels 0 to 3; the triangles'
+    /// shares of the face sum to 1 (1e-12).
+    #[test]
+    fn a_refined_square_carries_its_faces_coordinates() {
+        let mut c = Cage::default();
+        for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+            c.positions.push(DVec3::new(p[0], p[1], 0.0));
+        }
+        c.push_face(&[0, 1, 2, 3], 0);
+        for levels in 0..=3 {
+            let m = subdivided_mesh(&c, levels, "s");
+            assert_eq!((m.ptex_faces, m.ptex_quads.len()), (1, 2 << (2 * levels)));
+            let mut share = 0.0;
+            for (t, tri) in m.triangles.iter().enumerate() {
+                for (k, (face, u, v)) in corner_faces(&m, t).into_iter().enumerate() {
+                    let p = m.positions[tri[k] as usize];
+                    assert_eq!(face, 0);
+                    assert!((u - p.x).abs() < 1e-6 && (v - p.y).abs() < 1e-6, "level {levels}, {t}: {u} {v} at {p}");
+                }
+                if levels > 0 {
+                    let number = crate::mesh::ptex_quads::refined_number(m.ptex_quads[t]).expect("refined");
+                    share += m.ptex_refined.area_share(number).expect("a share");
+                }
+            }
+            assert!(levels == 0 || (share - 1.0).abs() < 1e-12, "level {levels}: {share}");
+        }
+    }
+
+    /// A lone regular pentagon refined 1 to 3 levels: by its mirror symmetries each
+    /// sub-quad's region stays the kite (vertex i, the midpoints of its edges, the centre),
+    /// so every fine triangle's centroid lies in the kite of its face (face − first = i,
+    /// by angle from the centre, 1e-6 slack), every face is met and each one's triangles'
+    /// shares sum to 1 (1e-12).
+    #[test]
+    fn a_refined_pentagon_carries_its_sub_quads() {
+        let mut c = Cage::default();
+        let angle = |k: f64| std::f64::consts::TAU * k / 5.0;
+        for k in 0..5 {
+            c.positions.push(DVec3::new(angle(k as f64).cos(), angle(k as f64).sin(), 0.0));
+        }
+        c.push_face(&[0, 1, 2, 3, 4], 0);
+        for levels in 1..=3 {
+            let m = subdivided_mesh(&c, levels, "p");
+            assert_eq!(m.ptex_faces, 5);
+            let mut shares = [0.0; 5];
+            for (t, tri) in m.triangles.iter().enumerate() {
+                let faces = corner_faces(&m, t);
+                let face = faces[0].0 as usize;
+                assert!(face < 5 && faces.iter().all(|f| f.0 as usize == face), "{t}: {faces:?}");
+                let centroid = tri.iter().map(|&v| m.positions[v as usize].as_dvec3()).sum::<DVec3>() / 3.0;
+                // Kite i spans the angles between the spokes to the midpoints of edges
+                // i − 1 → i and i → i + 1: angle(i) ± π/5.
+                let off = centroid.y.atan2(centroid.x) - angle(face as f64);
+                let off = (off + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+                assert!(off.abs() <= std::f64::consts::PI / 5.0 + 1e-6, "level {levels}, {t}: face {face}, {off}");
+                let number = crate::mesh::ptex_quads::refined_number(m.ptex_quads[t]).expect("refined");
+                shares[face] += m.ptex_refined.area_share(number).expect("a share");
+            }
+            assert!(shares.iter().all(|s| (s - 1.0).abs() < 1e-12), "level {levels}: {shares:?}");
+        }
     }
 
     #[test]

@@ -123,9 +123,40 @@ impl Ptex {
         best
     }
 
+    /// The levels a [`Filter::Bilinear`] lookup of width `width` at face `face` blends:
+    /// the finer (as [`Ptex::level_for`] picks it), and, where the file has a coarser one
+    /// and the width lies within the octave below the coarser's texel width, the coarser's
+    /// weight t ∈ (0, 1) — the width's place in that octave on a log₂ scale (between two
+    /// consecutive levels: between their texel widths) — and the widths (face units, each
+    /// exactly its level's texel) that pick each level.
+    pub fn blend_for(&self, face: usize, width: Option<f32>) -> (usize, Option<(f32, f32, f32)>) {
+        let fine = self.level_for(face, width);
+        let blend = || {
+            let width = width.filter(|w| w.is_finite() && *w > 0.0)?;
+            let top = self.faces.get(face)?;
+            let res = i32::from(top.ulog2.max(top.vlog2));
+            let reductions = self.reductions.get(face)?;
+            let coarse = reductions.get(fine)?;
+            let halvings = |l: &FaceTexels| res - i32::from(l.ulog2.max(l.vlog2));
+            let h0 = if fine == 0 { 0 } else { halvings(reductions.get(fine - 1)?) };
+            let h1 = halvings(coarse);
+            if h1 <= h0 {
+                return None;
+            }
+            // Over the octave below the coarser level's texel (where the file has no
+            // levels between the two, the finer is read alone until then).
+            let t = width.log2() + res as f32 - (h1 - 1) as f32;
+            let texel = |h: i32| (2.0f32).powi(h - res);
+            (t > 0.0 && t < 1.0).then(|| (t, texel(h0), texel(h1)))
+        };
+        (fine, blend())
+    }
+
     /// The filtered value at face `face`, face coordinates (`u`, `v`), for a filter of
-    /// width `width` (face units, [`Ptex::level_for`]): channels `first`, `first + 1`, …
-    /// into `out` (0 past the last channel). False for a face the file has not (`out`
+    /// width `width` (face units): channels `first`, `first + 1`, … into `out` (0 past the
+    /// last channel). [`Filter::Bilinear`] blends the two levels around the width
+    /// ([`Ptex::blend_for`]: no step where the width crosses a level), [`Filter::Nearest`]
+    /// reads the one [`Ptex::level_for`] picks. False for a face the file has not (`out`
     /// left at 0).
     #[allow(clippy::too_many_arguments)]
     pub fn sample(
@@ -138,9 +169,45 @@ impl Ptex {
         first: usize,
         out: &mut [f32],
     ) -> bool {
+        if filter == Filter::Nearest || out.len() > 4 || width.is_none() {
+            let level = self.level_for(face as usize, width);
+            return self.sample_level(face, u, v, width, level, filter, first, out);
+        }
+        match self.blend_for(face as usize, width) {
+            (level, None) => self.sample_level(face, u, v, width, level, filter, first, out),
+            (level, Some((t, fine, coarse))) => {
+                let mut lanes = [0.0f32; 4];
+                let lanes = &mut lanes[..out.len()];
+                if !self.sample_level(face, u, v, Some(coarse), level + 1, filter, first, lanes) {
+                    out.fill(0.0);
+                    return false;
+                }
+                self.sample_level(face, u, v, Some(fine), level, filter, first, out);
+                for (o, c) in out.iter_mut().zip(lanes.iter()) {
+                    *o += t * (c - *o);
+                }
+                true
+            }
+        }
+    }
+
+    /// [`Ptex::sample`] at level `level` of the face (what [`Ptex::level_for`] picks for
+    /// `width`, which picks the neighbours' levels).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn sample_level(
+        &self,
+        face: u32,
+        u: f32,
+        v: f32,
+        width: Option<f32>,
+        level: usize,
+        filter: Filter,
+        first: usize,
+        out: &mut [f32],
+    ) -> bool {
         out.fill(0.0);
         let face = face as usize;
-        let level = self.level_for(face, width);
         let Some(texels) = self.level(face, level).copied() else { return false };
         let (u, v) = (finite(u), finite(v));
         let mut taps = Taps { ptex: self, first, out, vertex: None };

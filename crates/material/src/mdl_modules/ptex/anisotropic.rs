@@ -1,0 +1,55 @@
+//! Lookups with separate filter widths along a face's u and v ([`Ptex::sample_rect`]): a
+//! footprint seen at a grazing angle is long along one face axis and short along the
+//! other, and Ptex's own filters take the two widths apart.
+//!
+//! The short width picks the levels (blended, [`Ptex::blend_for`]); along the long axis
+//! the lookup averages n = ⌈long / short⌉ such lookups (at most [`MAX_PROBES`]) spaced
+//! evenly over the long width, the footprint's rectangle covered by n squares of the
+//! short width — the rectangle's average of the face, where an isotropic width (the
+//! footprint's area as a square) would blur the short axis as much as the long one.
+
+use super::{Filter, Ptex};
+
+/// The most lookups a rectangle is averaged from (a longer footprint is read with squares
+/// wider than its short width: blurred along the short axis by that much).
+pub const MAX_PROBES: usize = 16;
+
+impl Ptex {
+    /// The filtered value at face `face`, face coordinates (`u`, `v`), over a footprint
+    /// `widths` wide along u and v (face units): channels `first`, `first + 1`, … into
+    /// `out` (at most 4 lanes; 0 past the last channel). A width that is 0 or not finite
+    /// counts as the other; both: level 0. False for a face the file has not.
+    pub fn sample_rect(&self, face: u32, u: f32, v: f32, widths: (f32, f32), first: usize, out: &mut [f32]) -> bool {
+        let ok = |w: f32| w.is_finite() && w > 0.0;
+        let (wu, wv) = match widths {
+            (a, b) if ok(a) && ok(b) => (a, b),
+            (a, _) if ok(a) => (a, a),
+            (_, b) if ok(b) => (b, b),
+            _ => return self.sample(face, u, v, None, Filter::Bilinear, first, out),
+        };
+        let (short, long) = (wu.min(wv), wu.max(wv));
+        let probes = ((long / short).ceil() as usize).clamp(1, MAX_PROBES);
+        if probes == 1 || out.len() > 4 {
+            return self.sample(face, u, v, Some(long), Filter::Bilinear, first, out);
+        }
+        // Squares of the spacing's width (the short width unless the probes ran out).
+        let step = long / probes as f32;
+        let width = short.max(step);
+        let along_u = wu >= wv;
+        out.fill(0.0);
+        let mut lanes = [0.0f32; 4];
+        let lanes = &mut lanes[..out.len()];
+        for k in 0..probes {
+            let offset = (k as f32 + 0.5) * step - 0.5 * long;
+            let (pu, pv) = if along_u { (u + offset, v) } else { (u, v + offset) };
+            if !self.sample(face, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
+                out.fill(0.0);
+                return false;
+            }
+            for (o, l) in out.iter_mut().zip(lanes.iter()) {
+                *o += *l / probes as f32;
+            }
+        }
+        true
+    }
+}
