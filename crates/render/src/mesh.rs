@@ -173,17 +173,19 @@ impl MeshData {
         !self.vertices.is_empty()
     }
 
-    /// Moves the positions and packed normals ([`MeshData::normals_oct`], one a vertex)
-    /// into 16-byte records ([`MeshData::vertices`]) in the positions' own allocation,
-    /// grown by a third (a large block is remapped, not copied), so that no second copy of
-    /// the positions is made. Nothing changes unless every vertex has a packed normal and
-    /// the mesh's vertices hold still (no motion vectors or keys) and it keeps no quad-mesh
-    /// Ptex faces (whose readers take the positions as a slice).
+    /// Moves the positions and normals (one a vertex: [`MeshData::normals`], encoded to
+    /// 32 bits on all threads, or [`MeshData::normals_oct`]) into 16-byte records
+    /// ([`MeshData::vertices`]) in the positions' own allocation, grown by a third (a large
+    /// block is remapped, not copied), so that no second copy of the positions is made; the
+    /// codes are written into the given normals' own array first, so none is allocated
+    /// either. Nothing changes unless every vertex has a normal, the mesh's vertices hold
+    /// still (no motion vectors or keys) and it keeps no quad-mesh Ptex faces or hair data
+    /// (whose readers take the positions as a slice).
     #[allow(unsafe_code)] // the in-place move from 12- to 16-byte records; see the SAFETY notes
     pub fn interleave(&mut self) {
         let n = self.positions.len();
         if n == 0
-            || self.normals_oct.len() != n
+            || (self.normals.len() != n && self.normals_oct.len() != n)
             || !self.motion.is_empty()
             || self.moves()
             || !self.ptex_quads.is_empty()
@@ -192,14 +194,22 @@ impl MeshData {
         {
             return;
         }
+        let mut normals = std::mem::take(&mut self.normals);
+        let packed = std::mem::take(&mut self.normals_oct);
+        let from_normals = normals.len() == n;
+        if from_normals {
+            use rayon::prelude::*;
+            // Each normal's code in its own x lane ([`MeshData::pack_normals`]' codes).
+            normals.par_iter_mut().for_each(|v| v.x = f32::from_bits(crate::octahedral::encode((*v).into())));
+        }
+        let code = |i: usize| if from_normals { normals[i].x.to_bits() } else { packed[i] };
         let mut positions = std::mem::take(&mut self.positions);
         // Room for n records (4 floats each) in whole records: a multiple of 4 `Vec3`s.
         let cap = (4 * n).div_ceil(3).next_multiple_of(4);
         positions.reserve_exact(cap - n);
-        let codes = std::mem::take(&mut self.normals_oct);
         if positions.capacity() % 4 != 0 {
             // The allocator gave a capacity of a size that is not whole records: copied.
-            self.vertices = positions.iter().zip(&codes).map(|(&p, &c)| Vertex { p, n: c }).collect();
+            self.vertices = positions.iter().enumerate().map(|(i, &p)| Vertex { p, n: code(i) }).collect();
             return;
         }
         let floats = positions.capacity() * 3;
@@ -213,7 +223,7 @@ impl MeshData {
             // plain f32/u32 data (alignment 4, the allocation's).
             unsafe {
                 let p = base.add(3 * i).cast::<[f32; 3]>().read();
-                base.add(4 * i).cast::<Vertex>().write(Vertex { p: Vec3::from_array(p), n: codes[i] });
+                base.add(4 * i).cast::<Vertex>().write(Vertex { p: Vec3::from_array(p), n: code(i) });
             }
         }
         // SAFETY: the allocation is `floats` f32s, alignment 4: exactly `floats / 4`

@@ -116,16 +116,24 @@ mod tests {
     }
 
     /// A mesh of 600 vertices at random places with random unit normals and 1,000 random
-    /// triangles over them, its normals packed to 32 bits (a large mesh's plain layout).
+    /// triangles over them.
     fn random_mesh(rng: &mut Rng) -> MeshData {
         let mut v = || Vec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
         let positions: Vec<Vec3> = (0..600).map(|_| v() * 300.0).collect();
         let normals: Vec<Vec3> = (0..600).map(|_| v().normalize_or(Vec3::Z)).collect();
         let mut index = || (rng.next() * 600.0) as u32 % 600;
         let triangles = (0..1000).map(|_| [index(), index(), index()]).collect();
-        let mut mesh = MeshData { positions, normals, triangles, ..MeshData::default() };
-        mesh.pack_normals();
-        mesh
+        MeshData { positions, normals, triangles, ..MeshData::default() }
+    }
+
+    /// The mesh with its normals packed to 32 bits (a large mesh's plain layout) and the
+    /// mesh interleaved from its given normals.
+    fn both_layouts(given: &MeshData) -> (MeshData, MeshData) {
+        let mut plain = given.clone();
+        plain.pack_normals();
+        let mut interleaved = given.clone();
+        interleaved.interleave();
+        (plain, interleaved)
     }
 
     /// The interleaved layout ([`MeshData::interleave`]) gives every hit the surface data
@@ -135,9 +143,7 @@ mod tests {
     #[test]
     fn interleaved_vertices_give_the_plain_layouts_surface_bit_for_bit() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-        let mesh = random_mesh(&mut rng);
-        let mut interleaved = mesh.clone();
-        interleaved.interleave();
+        let (mesh, interleaved) = both_layouts(&random_mesh(&mut rng));
         assert!(interleaved.is_interleaved() && interleaved.positions.is_empty() && interleaved.normals_oct.is_empty());
         assert_eq!(interleaved.vertex_count(), 600);
         for keep_faces in [true, false] {
@@ -157,14 +163,18 @@ mod tests {
         }
     }
 
-    /// Interleaving keeps each vertex's position and normal code, and a mesh with motion
-    /// vectors stays plain (its readers take the positions as a slice).
+    /// Interleaving keeps each vertex's position and normal code (the codes
+    /// [`MeshData::pack_normals`] gives, whether interleaved from the given normals or
+    /// the packed ones), and a mesh with motion vectors stays plain (its readers take the
+    /// positions as a slice). Exact.
     #[test]
     fn interleaving_keeps_every_vertex_and_leaves_moving_meshes_plain() {
         let mut rng = Rng(7);
-        let mesh = random_mesh(&mut rng);
-        let mut interleaved = mesh.clone();
-        interleaved.interleave();
+        let (mesh, interleaved) = both_layouts(&random_mesh(&mut rng));
+        let mut from_packed = mesh.clone();
+        from_packed.interleave();
+        assert_eq!(from_packed.vertices, interleaved.vertices);
+        assert!(interleaved.normals.is_empty() && interleaved.normals_oct.is_empty());
         for (i, (&p, &n)) in mesh.positions.iter().zip(&mesh.normals_oct).enumerate() {
             assert_eq!(interleaved.vertices[i], crate::mesh::Vertex { p, n });
         }

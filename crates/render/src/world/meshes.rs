@@ -76,11 +76,12 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         position_keys: Vec::new(),
         sharp: 0.0,
     };
-    mesh.pack_normals_if_large();
     if mesh.triangles.len() >= crate::mesh::LARGE_MESH_TRIANGLES {
-        // Positions and normals in one 16-byte record a vertex: a hit's normals come in
-        // the cache lines its positions are read from (the same bytes as before).
+        // Positions and packed normals in one 16-byte record a vertex: a hit's normals
+        // come in the cache lines its positions are read from (the same bytes as before).
         mesh.interleave();
     }
+    // Those not interleaved (motion, Ptex faces).
+    mesh.pack_normals_if_large();
     mesh
 }
