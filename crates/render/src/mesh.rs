@@ -85,6 +85,22 @@ pub struct Vertex {
     pub n: u32,
 }
 
+/// The positions' allocation while [`MeshData::interleave`] writes its records on all
+/// threads (each wave's threads touch disjoint floats).
+#[derive(Clone, Copy)]
+struct Records(*mut f32);
+
+impl Records {
+    /// The allocation's first float.
+    fn ptr(&self) -> *mut f32 {
+        self.0
+    }
+}
+
+// SAFETY: shared only within `interleave`, whose waves give each thread its own floats.
+#[allow(unsafe_code)]
+unsafe impl Sync for Records {}
+
 const _: () = assert!(std::mem::size_of::<Vertex>() == 16 && std::mem::align_of::<Vertex>() == 4);
 
 /// Triangles from which a mesh counts as large: its vertex normals are kept in 32 bits
@@ -174,11 +190,11 @@ impl MeshData {
     }
 
     /// Moves the positions and normals (one a vertex: [`MeshData::normals`], encoded to
-    /// 32 bits on all threads, or [`MeshData::normals_oct`]) into 16-byte records
+    /// 32 bits, or [`MeshData::normals_oct`]) into 16-byte records
     /// ([`MeshData::vertices`]) in the positions' own allocation, grown by a third (a large
     /// block is remapped, not copied), so that no second copy of the positions is made; the
-    /// codes are written into the given normals' own array first, so none is allocated
-    /// either. Nothing changes unless every vertex has a normal, the mesh's vertices hold
+    /// codes are encoded as the records are written (on all threads), so no array of them
+    /// is allocated either. Nothing changes unless every vertex has a normal, the mesh's vertices hold
     /// still (no motion vectors or keys) and it keeps no quad-mesh Ptex faces or hair data
     /// (whose readers take the positions as a slice).
     #[allow(unsafe_code)] // the in-place move from 12- to 16-byte records; see the SAFETY notes
@@ -194,15 +210,13 @@ impl MeshData {
         {
             return;
         }
-        let mut normals = std::mem::take(&mut self.normals);
+        let normals = std::mem::take(&mut self.normals);
         let packed = std::mem::take(&mut self.normals_oct);
-        let from_normals = normals.len() == n;
-        if from_normals {
-            use rayon::prelude::*;
-            // Each normal's code in its own x lane ([`MeshData::pack_normals`]' codes).
-            normals.par_iter_mut().for_each(|v| v.x = f32::from_bits(crate::octahedral::encode((*v).into())));
-        }
-        let code = |i: usize| if from_normals { normals[i].x.to_bits() } else { packed[i] };
+        // [`MeshData::pack_normals`]' codes, encoded as the records are written.
+        let code = |i: usize| match normals.get(i) {
+            Some(&v) => crate::octahedral::encode(v.into()),
+            None => packed[i],
+        };
         let mut positions = std::mem::take(&mut self.positions);
         // Room for n records (4 floats each) in whole records: a multiple of 4 `Vec3`s.
         let cap = (4 * n).div_ceil(3).next_multiple_of(4);
@@ -213,23 +227,34 @@ impl MeshData {
             return;
         }
         let floats = positions.capacity() * 3;
-        let base = positions.as_mut_ptr().cast::<f32>();
+        let base = Records(positions.as_mut_ptr().cast::<f32>());
         std::mem::forget(positions);
-        // Back to front: record i (floats 4i..4i+4) overwrites only positions i and
-        // above (floats 3j..3j+3 with 3j + 3 > 4i means j ≥ i), which are moved already;
-        // position i is read before its record is written.
-        for i in (0..n).rev() {
-            // SAFETY: 4i + 4 ≤ 4n ≤ the allocation's `floats`; reads and writes are of
-            // plain f32/u32 data (alignment 4, the allocation's).
+        // Record i (floats 4i..4i+4) replaces position i (floats 3i..3i+3), in waves from
+        // the back: the vertices a ≤ i < b with 4a ≥ 3b read floats 3a..3b and write floats
+        // 4a..4b, which are disjoint, and leave the positions below a (floats ..3a) alone,
+        // so a wave's records are written on all threads in any order.
+        let write = |i: usize| {
+            // SAFETY: 4i + 4 ≤ 4n ≤ the allocation's `floats`; no other thread reads or
+            // writes these floats in this wave (above); plain f32/u32 data, alignment 4.
             unsafe {
-                let p = base.add(3 * i).cast::<[f32; 3]>().read();
-                base.add(4 * i).cast::<Vertex>().write(Vertex { p: Vec3::from_array(p), n: code(i) });
+                let p = base.ptr().add(3 * i).cast::<[f32; 3]>().read();
+                base.ptr().add(4 * i).cast::<Vertex>().write(Vertex { p: Vec3::from_array(p), n: code(i) });
             }
+        };
+        let mut b = n;
+        while b > 4096 {
+            use rayon::prelude::*;
+            let a = (3 * b).div_ceil(4);
+            (a..b).into_par_iter().with_min_len(4096).for_each(write);
+            b = a;
         }
+        // The first few back to front: record i overwrites only positions i and above,
+        // read already.
+        (0..b).rev().for_each(write);
         // SAFETY: the allocation is `floats` f32s, alignment 4: exactly `floats / 4`
         // records of 16 bytes, alignment 4 (the capacity is a multiple of 4 `Vec3`s); the
         // first n are written.
-        self.vertices = unsafe { Vec::from_raw_parts(base.cast::<Vertex>(), n, floats / 4) };
+        self.vertices = unsafe { Vec::from_raw_parts(base.0.cast::<Vertex>(), n, floats / 4) };
     }
 
     /// The mesh with its vertices in separate arrays again (positions, packed normals):

@@ -86,6 +86,9 @@ mod tests {
     use crate::mesh::MeshData;
     use glam::Vec3;
 
+    /// Vertices of the random test mesh.
+    const VERTICES: usize = 20_000;
+
     /// A small xorshift generator: numbers in [0, 1).
     struct Rng(u64);
 
@@ -115,13 +118,14 @@ mod tests {
         world
     }
 
-    /// A mesh of 600 vertices at random places with random unit normals and 1,000 random
-    /// triangles over them.
+    /// A mesh of 20,000 vertices at random places with random unit normals (enough for
+    /// several of [`MeshData::interleave`]'s parallel waves) and 1,000 random triangles
+    /// over them.
     fn random_mesh(rng: &mut Rng) -> MeshData {
         let mut v = || Vec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
-        let positions: Vec<Vec3> = (0..600).map(|_| v() * 300.0).collect();
-        let normals: Vec<Vec3> = (0..600).map(|_| v().normalize_or(Vec3::Z)).collect();
-        let mut index = || (rng.next() * 600.0) as u32 % 600;
+        let positions: Vec<Vec3> = (0..VERTICES).map(|_| v() * 300.0).collect();
+        let normals: Vec<Vec3> = (0..VERTICES).map(|_| v().normalize_or(Vec3::Z)).collect();
+        let mut index = || (rng.next() * VERTICES as f32) as u32 % VERTICES as u32;
         let triangles = (0..1000).map(|_| [index(), index(), index()]).collect();
         MeshData { positions, normals, triangles, ..MeshData::default() }
     }
@@ -145,7 +149,7 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let (mesh, interleaved) = both_layouts(&random_mesh(&mut rng));
         assert!(interleaved.is_interleaved() && interleaved.positions.is_empty() && interleaved.normals_oct.is_empty());
-        assert_eq!(interleaved.vertex_count(), 600);
+        assert_eq!(interleaved.vertex_count(), VERTICES);
         for keep_faces in [true, false] {
             let plain = world_with(mesh.clone(), keep_faces);
             let packed = world_with(interleaved.clone(), keep_faces);
@@ -180,8 +184,8 @@ mod tests {
         }
         let back = interleaved.to_plain();
         assert_eq!((back.positions, back.normals_oct), (mesh.positions.clone(), mesh.normals_oct.clone()));
-        let mut moving = MeshData { motion: vec![Vec3A::X; 600], ..mesh };
+        let mut moving = MeshData { motion: vec![Vec3A::X; VERTICES], ..mesh };
         moving.interleave();
-        assert!(!moving.is_interleaved() && moving.positions.len() == 600);
+        assert!(!moving.is_interleaved() && moving.positions.len() == VERTICES);
     }
 }
