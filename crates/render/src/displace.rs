@@ -173,6 +173,14 @@ fn displace_vertices(
 ) -> Option<MeshData> {
     let inst = &world.instances[index];
     let original = &world.meshes[inst.mesh as usize];
+    // The subdivision reads the positions as a slice: an interleaved large mesh's copied out.
+    let plain;
+    let original = if original.is_interleaved() {
+        plain = original.to_plain();
+        &plain
+    } else {
+        original
+    };
     let object = scene.objects.get(inst.mesh as usize).filter(|_| original.hair.is_none());
     let object = object?;
     let span = object.span;

@@ -10,18 +10,25 @@ pub mod ptex_split;
 /// Positions and normals are stored packed (`Vec3`, 12 bytes a vertex each, as the scene
 /// builds them, so the world takes the scene's arrays without copying them); readers widen
 /// them to `Vec3A` ([`MeshData::position`], [`MeshData::normal`]) before any arithmetic, so
-/// results are the same as with `Vec3A` storage.
+/// results are the same as with `Vec3A` storage. A large mesh keeps each vertex's position
+/// and packed normal together instead ([`MeshData::vertices`]); the accessors read either.
 #[derive(Clone, Debug, Default)]
 pub struct MeshData {
     /// Vertex positions.
     pub positions: Vec<Vec3>,
-    /// Vertex shading normals (empty: use [`MeshData::normals_oct`], or if that is empty
-    /// too, the geometric normal).
+    /// Vertex shading normals (empty: use [`MeshData::normals_oct`] or
+    /// [`MeshData::vertices`], or if both are empty too, the geometric normal).
     pub normals: Vec<Vec3>,
     /// Vertex shading normals of a large mesh ([`LARGE_MESH_TRIANGLES`]), unit vectors as
     /// 32-bit octahedral codes ([`crate::octahedral`]: within 7e-5 radians of the scene's
     /// direction): 4 bytes a vertex instead of 12. Empty where [`MeshData::normals`] holds them.
     pub normals_oct: Vec<u32>,
+    /// A large mesh's vertices with their normals ([`MeshData::interleave`]): position and
+    /// 32-bit octahedral normal in one 16-byte record, so that the hit's normals come in
+    /// the cache lines Embree's leaf test loaded its positions from. When not empty,
+    /// [`MeshData::positions`] and [`MeshData::normals_oct`] are empty; read positions
+    /// through [`MeshData::position`] or [`MeshData::vertex_positions`].
+    pub vertices: Vec<Vertex>,
     /// Vertex coordinates of each texture space (mental ray's `tex_list`).
     pub textures: Vec<Vec<Vec3A>>,
     /// Vertex user vectors (`u`), one array per user space, each one vector per vertex as
@@ -69,6 +76,36 @@ pub struct MeshData {
     pub sharp: f32,
 }
 
+/// A vertex of an interleaved mesh ([`MeshData::vertices`]): its object-space position
+/// and the 32-bit octahedral code of its unit shading normal ([`crate::octahedral`]),
+/// 16 bytes, the position first (Embree reads it as a float3 with a 16-byte stride).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct Vertex {
+    /// Object-space position.
+    pub p: Vec3,
+    /// The unit shading normal's octahedral code.
+    pub n: u32,
+}
+
+/// The positions' allocation while [`MeshData::interleave`] writes its records on all
+/// threads (each wave's threads touch disjoint floats).
+#[derive(Clone, Copy)]
+struct Records(*mut f32);
+
+impl Records {
+    /// The allocation's first float.
+    fn ptr(&self) -> *mut f32 {
+        self.0
+    }
+}
+
+// SAFETY: shared only within `interleave`, whose waves give each thread its own floats.
+#[allow(unsafe_code)]
+unsafe impl Sync for Records {}
+
+const _: () = assert!(std::mem::size_of::<Vertex>() == 16 && std::mem::align_of::<Vertex>() == 4);
+
 /// Triangles from which a mesh counts as large: its vertex normals are kept in 32 bits
 /// ([`MeshData::pack_normals_if_large`]) and Embree builds it compact. Measured on the
 /// 4 M-triangle heavy scene (speed17): 4 bytes a triangle less, the image within the
@@ -82,7 +119,21 @@ impl MeshData {
     /// Object-space position of vertex `i`.
     #[inline(always)]
     pub fn position(&self, i: u32) -> Vec3A {
-        Vec3A::from(self.positions[i as usize])
+        match self.positions.get(i as usize) {
+            Some(&p) => Vec3A::from(p),
+            None => Vec3A::from(self.vertices[i as usize].p),
+        }
+    }
+
+    /// Number of vertices (in either form).
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len().max(self.vertices.len())
+    }
+
+    /// The object-space vertex positions in vertex order (in either form).
+    pub fn vertex_positions(&self) -> impl Iterator<Item = Vec3> + '_ {
+        self.positions.iter().copied().chain(self.vertices.iter().map(|v| v.p))
     }
 
     /// Object-space shading normal of vertex `i` (the mesh must have normals; those of
@@ -91,14 +142,17 @@ impl MeshData {
     pub fn normal(&self, i: u32) -> Vec3A {
         match self.normals.get(i as usize) {
             Some(&n) => Vec3A::from(n),
-            None => crate::octahedral::decode(self.normals_oct[i as usize]),
+            None => crate::octahedral::decode(match self.vertices.get(i as usize) {
+                Some(v) => v.n,
+                None => self.normals_oct[i as usize],
+            }),
         }
     }
 
     /// Whether the mesh has vertex shading normals (in either form).
     #[inline(always)]
     pub fn has_normals(&self) -> bool {
-        !self.normals.is_empty() || !self.normals_oct.is_empty()
+        !self.normals.is_empty() || !self.normals_oct.is_empty() || !self.vertices.is_empty()
     }
 
     /// The shading normal of a hit given the interpolated vertex normal `ns` and the
@@ -117,11 +171,104 @@ impl MeshData {
     /// Moves the vertex normals into their 32-bit form ([`MeshData::normals_oct`]) if the
     /// mesh is large ([`LARGE_MESH_TRIANGLES`]); small meshes keep them exactly as given.
     pub fn pack_normals_if_large(&mut self) {
-        if self.triangles.len() >= LARGE_MESH_TRIANGLES && !self.normals.is_empty() {
+        if self.triangles.len() >= LARGE_MESH_TRIANGLES {
+            self.pack_normals();
+        }
+    }
+
+    /// Moves the vertex normals into their 32-bit form ([`MeshData::normals_oct`]) whatever
+    /// the mesh's size (nothing to do without normals or once packed).
+    pub fn pack_normals(&mut self) {
+        if !self.normals.is_empty() {
             use rayon::prelude::*;
             self.normals_oct = self.normals.par_iter().map(|&n| crate::octahedral::encode(n.into())).collect();
             self.normals = Vec::new();
         }
+    }
+
+    /// Whether the mesh keeps its vertices interleaved ([`MeshData::vertices`]).
+    #[inline]
+    pub fn is_interleaved(&self) -> bool {
+        !self.vertices.is_empty()
+    }
+
+    /// Moves the positions and normals (one a vertex: [`MeshData::normals`], encoded to
+    /// 32 bits, or [`MeshData::normals_oct`]) into 16-byte records
+    /// ([`MeshData::vertices`]) in the positions' own allocation, grown by a third (a large
+    /// block is remapped, not copied), so that no second copy of the positions is made; the
+    /// codes are encoded as the records are written (on all threads), so no array of them
+    /// is allocated either. Nothing changes unless every vertex has a normal, the mesh's vertices hold
+    /// still (no motion vectors or keys) and it keeps no quad-mesh Ptex faces or hair data
+    /// (whose readers take the positions as a slice).
+    #[allow(unsafe_code)] // the in-place move from 12- to 16-byte records; see the SAFETY notes
+    pub fn interleave(&mut self) {
+        let n = self.positions.len();
+        if n == 0
+            || (self.normals.len() != n && self.normals_oct.len() != n)
+            || !self.motion.is_empty()
+            || self.moves()
+            || !self.ptex_quads.is_empty()
+            || self.ptex_split.is_some()
+            || self.hair.is_some()
+        {
+            return;
+        }
+        let normals = std::mem::take(&mut self.normals);
+        let packed = std::mem::take(&mut self.normals_oct);
+        // [`MeshData::pack_normals`]' codes, encoded as the records are written.
+        let code = |i: usize| match normals.get(i) {
+            Some(&v) => crate::octahedral::encode(v.into()),
+            None => packed[i],
+        };
+        let mut positions = std::mem::take(&mut self.positions);
+        // Room for n records (4 floats each) in whole records: a multiple of 4 `Vec3`s.
+        let cap = (4 * n).div_ceil(3).next_multiple_of(4);
+        positions.reserve_exact(cap - n);
+        if positions.capacity() % 4 != 0 {
+            // The allocator gave a capacity of a size that is not whole records: copied.
+            self.vertices = positions.iter().enumerate().map(|(i, &p)| Vertex { p, n: code(i) }).collect();
+            return;
+        }
+        let floats = positions.capacity() * 3;
+        let base = Records(positions.as_mut_ptr().cast::<f32>());
+        std::mem::forget(positions);
+        // Record i (floats 4i..4i+4) replaces position i (floats 3i..3i+3), in waves from
+        // the back: the vertices a ≤ i < b with 4a ≥ 3b read floats 3a..3b and write floats
+        // 4a..4b, which are disjoint, and leave the positions below a (floats ..3a) alone,
+        // so a wave's records are written on all threads in any order.
+        let write = |i: usize| {
+            // SAFETY: 4i + 4 ≤ 4n ≤ the allocation's `floats`; no other thread reads or
+            // writes these floats in this wave (above); plain f32/u32 data, alignment 4.
+            unsafe {
+                let p = base.ptr().add(3 * i).cast::<[f32; 3]>().read();
+                base.ptr().add(4 * i).cast::<Vertex>().write(Vertex { p: Vec3::from_array(p), n: code(i) });
+            }
+        };
+        let mut b = n;
+        while b > 4096 {
+            use rayon::prelude::*;
+            let a = (3 * b).div_ceil(4);
+            (a..b).into_par_iter().with_min_len(4096).for_each(write);
+            b = a;
+        }
+        // The first few back to front: record i overwrites only positions i and above,
+        // read already.
+        (0..b).rev().for_each(write);
+        // SAFETY: the allocation is `floats` f32s, alignment 4: exactly `floats / 4`
+        // records of 16 bytes, alignment 4 (the capacity is a multiple of 4 `Vec3`s); the
+        // first n are written.
+        self.vertices = unsafe { Vec::from_raw_parts(base.0.cast::<Vertex>(), n, floats / 4) };
+    }
+
+    /// The mesh with its vertices in separate arrays again (positions, packed normals):
+    /// a copy for the code that reads [`MeshData::positions`] as a slice (displacement).
+    pub fn to_plain(&self) -> MeshData {
+        let mut plain = MeshData { vertices: Vec::new(), ..self.clone() };
+        if self.is_interleaved() {
+            plain.positions = self.vertices.iter().map(|v| v.p).collect();
+            plain.normals_oct = self.vertices.iter().map(|v| v.n).collect();
+        }
+        plain
     }
 
     /// Bytes held by the mesh's arrays (their lengths; what a triangle and its vertices
@@ -129,6 +276,7 @@ impl MeshData {
     pub fn memory_bytes(&self) -> usize {
         let vecs = |v: &[Vec<Vec3A>]| v.iter().map(|a| a.len() * 16).sum::<usize>();
         self.positions.len() * 12
+            + self.vertices.len() * 16
             + self.normals.len() * 12
             + self.normals_oct.len() * 4
             + vecs(&self.textures)
@@ -183,7 +331,7 @@ impl MeshData {
     /// All object-space vertex positions at shutter time `time`.
     pub fn positions_at(&self, time: f32) -> Vec<Vec3A> {
         if self.position_keys.is_empty() {
-            self.positions.iter().map(|&p| Vec3A::from(p)).collect()
+            self.vertex_positions().map(Vec3A::from).collect()
         } else {
             let (j, f) = crate::motion::key_segment(self.position_keys.len(), time);
             let (a, b) = (&self.position_keys[j], &self.position_keys[j + 1]);

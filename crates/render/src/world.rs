@@ -155,7 +155,7 @@ impl World {
         for inst in &self.instances {
             let mesh = &self.meshes[inst.mesh as usize];
             if !inst.moves() && !mesh.moves() {
-                for &p in &mesh.positions {
+                for p in mesh.vertex_positions() {
                     let w = inst.object_to_world.transform_point3a(p.into());
                     lo = lo.min(w);
                     hi = hi.max(w);

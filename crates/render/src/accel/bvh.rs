@@ -318,7 +318,7 @@ impl BvhAccel {
                     b.extend(hi);
                     return b;
                 }
-                for &p in &mesh.positions {
+                for p in mesh.vertex_positions() {
                     b.extend(i.object_to_world.transform_point3a(p.into()));
                 }
                 b

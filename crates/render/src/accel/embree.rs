@@ -563,7 +563,20 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
     // buffers are the mesh's own arrays, which outlive the accel (it borrows the world).
     unsafe {
         let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
-        if transform == glam::Affine3A::IDENTITY && m.positions.capacity() > m.positions.len() {
+        if transform == glam::Affine3A::IDENTITY && m.is_interleaved() {
+            // The 16-byte records' first 12 bytes are the position: a float3 buffer with a
+            // 16-byte stride (Embree ignores the fourth float its loads bring, the normal).
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_VERTEX,
+                0,
+                FORMAT_FLOAT3,
+                m.vertices.as_ptr().cast(),
+                0,
+                std::mem::size_of::<crate::mesh::Vertex>(),
+                m.vertices.len(),
+            );
+        } else if transform == glam::Affine3A::IDENTITY && m.positions.capacity() > m.positions.len() {
             // Vec3 is three f32: a float3 buffer with a 12-byte stride; the vector's room
             // for one more vertex lets Embree read the last one with a 16-byte load.
             rtcSetSharedGeometryBuffer(
@@ -577,14 +590,14 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
                 m.positions.len(),
             );
         } else {
-            let verts =
-                rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, m.positions.len()) as *mut f32;
+            let count = m.vertex_count();
+            let verts = rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, 0, FORMAT_FLOAT3, 12, count) as *mut f32;
             if !verts.is_null() {
-                let out = std::slice::from_raw_parts_mut(verts, 3 * m.positions.len());
+                let out = std::slice::from_raw_parts_mut(verts, 3 * count);
                 // Identity placements land here when the vector has no room past its end:
                 // their vertices are copied as they are.
                 let identity = transform == glam::Affine3A::IDENTITY;
-                for (o, &p) in out.chunks_exact_mut(3).zip(&m.positions) {
+                for (o, p) in out.chunks_exact_mut(3).zip(m.vertex_positions()) {
                     let p = if identity { p.into() } else { transform.transform_point3a(p.into()) };
                     o.copy_from_slice(&glam::Vec3A::to_array(&p));
                 }

@@ -79,3 +79,113 @@ pub(super) fn surface_into(world: &World, ray: &Ray, hit: &Hit, out: &mut Surfac
     let material = inst.materials.get(slot).copied().unwrap_or(0);
     *out = Surface { p, ng, ns, material, tag: inst.tag, err };
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::MeshData;
+    use glam::Vec3;
+
+    /// Vertices of the random test mesh.
+    const VERTICES: usize = 20_000;
+
+    /// A small xorshift generator: numbers in [0, 1).
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    /// The seed Cornell box's world with its first instance's mesh replaced by `mesh`.
+    fn world_with(mesh: MeshData, keep_faces: bool) -> World {
+        let text = include_str!("../../../../scenes/iray_cornell_box.mi");
+        let parsed = mi::parse_str("cbox.mi", text);
+        let mut diags = Vec::new();
+        let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("the scene builds");
+        let mut world = World::from_scene(&scene);
+        let k = world.instances[0].mesh as usize;
+        world.meshes[k] = mesh;
+        world.faces = if keep_faces {
+            crate::world::FaceCache::build(&world.meshes, &world.instances)
+        } else {
+            crate::world::FaceCache::default()
+        };
+        world
+    }
+
+    /// A mesh of 20,000 vertices at random places with random unit normals (enough for
+    /// several of [`MeshData::interleave`]'s parallel waves) and 1,000 random triangles
+    /// over them.
+    fn random_mesh(rng: &mut Rng) -> MeshData {
+        let mut v = || Vec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - 1.0;
+        let positions: Vec<Vec3> = (0..VERTICES).map(|_| v() * 300.0).collect();
+        let normals: Vec<Vec3> = (0..VERTICES).map(|_| v().normalize_or(Vec3::Z)).collect();
+        let mut index = || (rng.next() * VERTICES as f32) as u32 % VERTICES as u32;
+        let triangles = (0..1000).map(|_| [index(), index(), index()]).collect();
+        MeshData { positions, normals, triangles, ..MeshData::default() }
+    }
+
+    /// The mesh with its normals packed to 32 bits (a large mesh's plain layout) and the
+    /// mesh interleaved from its given normals.
+    fn both_layouts(given: &MeshData) -> (MeshData, MeshData) {
+        let mut plain = given.clone();
+        plain.pack_normals();
+        let mut interleaved = given.clone();
+        interleaved.interleave();
+        (plain, interleaved)
+    }
+
+    /// The interleaved layout ([`MeshData::interleave`]) gives every hit the surface data
+    /// of the plain layout (positions, packed normals) bit for bit: point, both normals,
+    /// hit-error bound and material, on 20,000 random hits (random triangles and
+    /// barycentrics), with the faces kept and computed per hit. Tolerance: none (exact).
+    #[test]
+    fn interleaved_vertices_give_the_plain_layouts_surface_bit_for_bit() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let (mesh, interleaved) = both_layouts(&random_mesh(&mut rng));
+        assert!(interleaved.is_interleaved() && interleaved.positions.is_empty() && interleaved.normals_oct.is_empty());
+        assert_eq!(interleaved.vertex_count(), VERTICES);
+        for keep_faces in [true, false] {
+            let plain = world_with(mesh.clone(), keep_faces);
+            let packed = world_with(interleaved.clone(), keep_faces);
+            let ray = Ray::new(Vec3A::ZERO, Vec3A::Z);
+            for _ in 0..20_000 {
+                let (u, v) = (rng.next(), rng.next());
+                let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+                let hit = Hit { t: 1.0, instance: 0, prim: (rng.next() * 1000.0) as u32 % 1000, u, v };
+                let (a, b) = (surface(&plain, &ray, &hit), surface(&packed, &ray, &hit));
+                for (x, y) in [(a.p, b.p), (a.ng, b.ng), (a.ns, b.ns)] {
+                    assert_eq!(x.to_array().map(f32::to_bits), y.to_array().map(f32::to_bits), "hit {hit:?}");
+                }
+                assert_eq!((a.err.to_bits(), a.material, a.tag), (b.err.to_bits(), b.material, b.tag));
+            }
+        }
+    }
+
+    /// Interleaving keeps each vertex's position and normal code (the codes
+    /// [`MeshData::pack_normals`] gives, whether interleaved from the given normals or
+    /// the packed ones), and a mesh with motion vectors stays plain (its readers take the
+    /// positions as a slice). Exact.
+    #[test]
+    fn interleaving_keeps_every_vertex_and_leaves_moving_meshes_plain() {
+        let mut rng = Rng(7);
+        let (mesh, interleaved) = both_layouts(&random_mesh(&mut rng));
+        let mut from_packed = mesh.clone();
+        from_packed.interleave();
+        assert_eq!(from_packed.vertices, interleaved.vertices);
+        assert!(interleaved.normals.is_empty() && interleaved.normals_oct.is_empty());
+        for (i, (&p, &n)) in mesh.positions.iter().zip(&mesh.normals_oct).enumerate() {
+            assert_eq!(interleaved.vertices[i], crate::mesh::Vertex { p, n });
+        }
+        let back = interleaved.to_plain();
+        assert_eq!((back.positions, back.normals_oct), (mesh.positions.clone(), mesh.normals_oct.clone()));
+        let mut moving = MeshData { motion: vec![Vec3A::X; VERTICES], ..mesh };
+        moving.interleave();
+        assert!(!moving.is_interleaved() && moving.positions.len() == VERTICES);
+    }
+}

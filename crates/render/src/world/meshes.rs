@@ -30,7 +30,8 @@ pub(super) fn copy_of_rendered_arrays(m: &scene::Mesh, quad_ptex: bool) -> scene
 
 /// The renderer's form of a scene mesh: its position, normal, triangle and slot arrays are
 /// moved out of `m`, not copied (a large mesh's normals then packed to 32 bits,
-/// [`MeshData::pack_normals_if_large`]). Its quad-mesh Ptex faces are moved out of `m`
+/// [`MeshData::pack_normals_if_large`], and interleaved with its positions,
+/// [`MeshData::interleave`]). Its quad-mesh Ptex faces are moved out of `m`
 /// and kept only where `quad_ptex` (the scene reads a quad-mesh Ptex file), else dropped:
 /// no bytes per triangle.
 pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
@@ -59,6 +60,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         positions,
         normals: std::mem::take(&mut m.normals),
         normals_oct: Vec::new(),
+        vertices: Vec::new(),
         textures: m.textures.iter().map(|t| t.coords.iter().map(|c| Vec3A::from(*c)).collect()).collect(),
         // Moved, not copied: the vectors keep the scene's packed form.
         user: m.user.iter_mut().map(|u| std::mem::take(&mut u.coords)).collect(),
@@ -78,6 +80,12 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         position_keys: Vec::new(),
         sharp: 0.0,
     };
+    if mesh.triangles.len() >= crate::mesh::LARGE_MESH_TRIANGLES {
+        // Positions and packed normals in one 16-byte record a vertex: a hit's normals
+        // come in the cache lines its positions are read from (the same bytes as before).
+        mesh.interleave();
+    }
+    // Those not interleaved (motion, Ptex faces).
     mesh.pack_normals_if_large();
     mesh
 }

@@ -83,7 +83,7 @@ pub fn vertex_keys(shutter: &Shutter, mesh: &MeshData) -> Option<Option<Vec<Vec<
     let position_keys: Vec<Vec<Vec3A>> = shutter
         .key_times(vectors)
         .map(|tau| {
-            (0..mesh.positions.len())
+            (0..mesh.vertex_count())
                 .map(|i| motion_path(mesh.position(i as u32), &mesh.motion_vectors(i, vectors), tau))
                 .collect()
         })

@@ -78,7 +78,9 @@ fn a_large_mesh_keeps_its_normals_in_32_bits_within_the_stated_angle() {
     let large: Vec<_> = world.meshes.iter().filter(|m| m.triangles.len() >= LARGE_MESH_TRIANGLES).collect();
     assert_eq!(large.len(), 1, "one large mesh");
     let mesh = large[0];
-    assert!(mesh.normals.is_empty() && mesh.normals_oct.len() == given.len() && mesh.has_normals());
+    // Interleaved with the positions: one 16-byte record a vertex.
+    assert!(mesh.normals.is_empty() && mesh.normals_oct.is_empty() && mesh.has_normals());
+    assert!(mesh.is_interleaved() && mesh.positions.is_empty() && mesh.vertices.len() == given.len());
     // The file's normals are printed to f32's shortest decimal: the stored direction is the
     // given one to about 1e-7; the bound's small slack covers that and f32 arithmetic.
     let mut worst = 0.0f32;
@@ -88,7 +90,44 @@ fn a_large_mesh_keeps_its_normals_in_32_bits_within_the_stated_angle() {
         worst = worst.max(got.cross(*n).length().atan2(got.dot(*n)));
     }
     assert!(worst <= render::octahedral::MAX_ANGLE_ERROR + 1e-6, "largest error {worst} rad");
-    assert!(world.meshes.iter().filter(|m| m.triangles.len() < LARGE_MESH_TRIANGLES).all(|m| m.normals_oct.is_empty()));
+    assert!(world
+        .meshes
+        .iter()
+        .filter(|m| m.triangles.len() < LARGE_MESH_TRIANGLES)
+        .all(|m| m.normals_oct.is_empty() && !m.is_interleaved()));
+}
+
+/// Embree reads the large mesh's interleaved vertices (a float3 buffer with a 16-byte
+/// stride) as it reads the same positions in a plain 12-byte-stride array: the same hits
+/// bit for bit (instance, triangle, distance, barycentrics) and the same occlusion, on
+/// 20,000 random rays. Tolerance: none (exact).
+#[cfg(embree)]
+#[test]
+fn embree_reads_interleaved_vertices_as_plain_ones_bit_for_bit() {
+    let (mut world, _) = world();
+    let k = world.meshes.iter().position(|m| m.is_interleaved()).expect("an interleaved mesh");
+    let interleaved = accel::build(&world, Backend::Embree);
+    let hits = |a: &dyn accel::Accel, rays: &[render::ray::Ray]| {
+        rays.iter()
+            .map(|r| {
+                (
+                    a.intersect(r).map(|h| (h.instance, h.prim, h.t.to_bits(), h.u.to_bits(), h.v.to_bits())),
+                    a.occluded(r),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
+    let got = hits(interleaved.as_ref(), &rays);
+    drop(interleaved);
+    let mut plain = world.meshes[k].to_plain();
+    // Room past the end, so that Embree shares the array as it does a large mesh's.
+    plain.positions.reserve_exact(1);
+    world.meshes[k] = plain;
+    let want = hits(accel::build(&world, Backend::Embree).as_ref(), &rays);
+    let field = world.instances.len() as u32 - 1;
+    assert!(got.iter().filter(|(h, _)| h.is_some_and(|h| h.0 == field)).count() > 2_000);
+    assert!(got == want, "{} rays differ", got.iter().zip(&want).filter(|(a, b)| a != b).count());
 }
 
 /// Embree's compact build of the large mesh finds the Rust backend's hits (same triangle,
