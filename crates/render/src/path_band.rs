@@ -48,6 +48,9 @@ pub(crate) struct PathBand<'a> {
     /// The world's materials with their constant parameters, built once per render
     /// ([`crate::integrator::constant_materials`]).
     pub constants: &'a [material::HitMaterial<'a>],
+    /// Which of them the path engine's kernel for plain hits may trace
+    /// ([`crate::integrator::plain_materials`]).
+    pub plain: &'a [bool],
     /// The pixel filter the camera samples are drawn from.
     pub filter: &'a PixelFilter,
     /// The media around the camera.
@@ -180,6 +183,7 @@ impl PathBand<'_> {
             shading: self.shading,
             env: self.env,
             constants: self.constants,
+            plain: self.plain,
         };
         for ((lane, &hit), result) in lanes.iter().zip(&hits).zip(&mut results) {
             let sampler = &mut samplers[lane.sampler];
