@@ -265,13 +265,14 @@ pub fn trace_camera_path_into(
 ) {
     // Paths that meet only plain surfaces are traced by a compact kernel of their own
     // (`plain_path`); it hands any other path over at the bounce it meets anything else.
-    let mut resume = Resume::camera(&camera);
-    if !scene.plain.is_empty()
-        && camera_media.is_empty()
-        && plain_path::trace(scene, &camera, camera_media, sampler, settings, counts, out, &mut resume)
-    {
-        return;
-    }
+    let resume = if !scene.plain.is_empty() && camera_media.is_empty() {
+        match plain_path::trace(scene, &camera, camera_media, sampler, settings, counts, out) {
+            Some(handed) => handed,
+            None => return,
+        }
+    } else {
+        Resume::camera(&camera)
+    };
     let PathScene { world, accel, shading, env, constants, .. } = *scene;
     let Resume { depth: start, mut ray, known: mut camera_hit, mut throughput, .. } = resume;
     let mut radiance = resume.radiance;

@@ -19,11 +19,10 @@ use super::cutout::linked_shadow_passed;
 use super::hit_surface::{surface_into, Surface};
 use super::media::{self, Departure, MediumStack};
 use super::path_state::{RadianceSum, Resume};
-use super::{
-    emitters::environment_seen, env_light, hit_light, lambert_hit, light_radiance, power_heuristic, roulette_survival,
-};
+use super::{emitters::environment_seen, env_light, lambert_hit, light_radiance, power_heuristic, roulette_survival};
 use super::{CameraRay, PathResult, PathScene, PathSettings, PendingShadow, Vertex};
 use crate::accel::Hit;
+use crate::light::LightSource;
 use crate::ray::{mask, FirstHit, Ray, RayCounts};
 use crate::sampler::Sampler;
 use crate::world::World;
@@ -50,11 +49,10 @@ pub fn plain_materials(world: &World, shading: Option<&Shading>) -> Vec<bool> {
     world.materials.iter().enumerate().map(plain).collect()
 }
 
-/// Traces `camera`'s path while it meets only plain surfaces (see the module), writing
-/// its result to `out` and returning `true` when it ends there; `false` when it met
-/// anything else, with the state to go on from in `resume` (which holds the camera's start
-/// on entry). The caller checks that the scene has plain materials and that the camera is
-/// in no medium.
+/// Traces `camera`'s path while it meets only plain surfaces (see the module): `None`
+/// when the path ends there (its result written to `out`); else the state to go on from
+/// where it met anything else. The caller checks that the scene has plain materials and
+/// that the camera is in no medium.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 pub(super) fn trace(
@@ -65,10 +63,8 @@ pub(super) fn trace(
     settings: &PathSettings,
     counts: &mut RayCounts,
     out: &mut PathResult,
-    resume: &mut Resume,
-) -> bool {
+) -> Option<Resume> {
     let PathScene { world, accel, shading, env, constants, plain } = *scene;
-    let mut known = camera.hit;
     let mut ray = camera.ray;
     let mut throughput = Rgb::ONE;
     let mut radiance = RadianceSum::ZERO;
@@ -82,15 +78,20 @@ pub(super) fn trace(
     let seed = sampler.stream();
     let mut s = Surface::UNSET;
     let mut depth = 0;
+    // The ray counts, added to `counts` when the kernel stops.
+    let (mut rays, mut shadow_rays) = (0u64, 0u64);
+    // What the current ray finds (traced at the end of the bounce before: no `Option` of
+    // a known hit to take at every bounce).
+    let mut h = match camera.hit {
+        Some(found) => found,
+        None if settings.max_depth > 0 => accel.intersect(&ray),
+        None => None,
+    };
     // `Some(found)`: handed over at `depth` with the ray's hit found; `None`: the path ended.
     let handed: Option<Option<Hit>> = loop {
         if depth >= settings.max_depth {
             break None;
         }
-        let h = match known.take() {
-            Some(found) => found,
-            None => accel.intersect(&ray),
-        };
         // The distance to what the ray found (along it, as the general loop's cut-out loop
         // gives it): a plain surface, or nothing.
         let t = match &h {
@@ -103,8 +104,8 @@ pub(super) fn trace(
             }
             None => ray.tmax,
         };
-        counts.rays += 1;
-        if let Some((li, lt, le)) = hit_light(&world.lights, &ray, t, depth == 0) {
+        rays += 1;
+        if let Some((li, lt, le)) = nearest_light(&world.lights, &ray, t, depth == 0) {
             let le = light_radiance(&world.lights[li], le, env, ray.dir);
             if depth == 0 {
                 alpha = 1.0;
@@ -122,7 +123,7 @@ pub(super) fn trace(
             radiance += throughput * le * weight;
             break None;
         }
-        let Some(h) = h else {
+        let Some(found) = h else {
             // Left the scene: the environment.
             if let Some(env) = env {
                 let le = environment_seen(env, &ray, depth, (last_pdf, last_delta), pick, settings.mis);
@@ -133,7 +134,7 @@ pub(super) fn trace(
             }
             break None;
         };
-        let stop = Hit { t, ..h };
+        let stop = Hit { t, ..found };
         let material = &constants[s.material as usize];
         if depth == 0 {
             alpha = 1.0;
@@ -181,15 +182,17 @@ pub(super) fn trace(
                 );
         } else if k < light_count && world.lights_instance(k, stop.instance) {
             let light = &world.lights[k];
-            if let Some(mut ls) = light.sample_at(s.p, u_light, ray.time) {
-                ls.radiance = light_radiance(light, ls.radiance, env, ls.wi);
+            if let Some(ls) = light.sample_at(s.p, u_light, ray.time) {
+                // (Kept apart from `ls`, which is not written to: the shadow ray reads
+                // only its direction, distance and delta.)
+                let l_radiance = light_radiance(light, ls.radiance, env, ls.wi);
                 let wi = frame.to_local(ls.wi);
                 let f = lambert_hit::eval(material.diffuse, wo, wi, light.lobes);
-                if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && ls.radiance != Rgb::ZERO {
+                if (ls.wi.dot(ng) > 0.0) == (wi.z > 0.0) && f != Rgb::ZERO && l_radiance != Rgb::ZERO {
                     let (dir, dist) = light.shadow_ray_at(s.p, &ls, u_light, ray.time);
                     let origin = s.leave(ng, dir);
                     let tmax = if dist.is_finite() { dist * (1.0 - 1e-4) } else { f32::INFINITY };
-                    counts.shadow_rays += 1;
+                    shadow_rays += 1;
                     let shadow = Ray { mask: mask::SHADOW, origin, dir, tmin: 0.0, tmax, time: ray.time };
                     let defer = depth == 0
                         && camera.defer_shadow
@@ -203,6 +206,13 @@ pub(super) fn trace(
                         Rgb::ONE
                     } else if light.shadow && !world.shadow_unlinked.is_empty() && !world.has_media {
                         linked_shadow_passed(world, accel, shading, &shadow, seed, (k, Some(stop.instance)))
+                    } else if light.shadow && !world.has_media && !world.has_cutouts {
+                        // (What `light_transmittance` gives here, asked directly.)
+                        if accel.occluded(&shadow) {
+                            Rgb::ZERO
+                        } else {
+                            Rgb::ONE
+                        }
                     } else {
                         media::light_transmittance(
                             world,
@@ -226,7 +236,7 @@ pub(super) fn trace(
                         } else {
                             power_heuristic(pick * ls.pdf, lambert_hit::pdf(wo, wi))
                         };
-                        let term = throughput * f * ls.radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
+                        let term = throughput * f * l_radiance * tr * (wi.z.abs() * weight / (pick * ls.pdf));
                         if defer {
                             radiance.lit += term;
                         } else {
@@ -266,32 +276,53 @@ pub(super) fn trace(
             time: ray.time,
         };
         depth += 1;
+        if depth < settings.max_depth {
+            h = accel.intersect(&ray);
+        }
     };
+    counts.rays += rays;
+    counts.shadow_rays += shadow_rays;
     match handed {
         None => {
             // (No fog: the general loop's alpha, `alpha + (1 − alpha) · 0`, is `alpha`.)
             let pending = pending.map(|ray| PendingShadow { ray, blocked: radiance.shadowed });
             *out = PathResult { radiance: radiance.lit, alpha, first, glow, pending };
-            true
+            None
         }
-        Some(found) => {
-            *resume = Resume {
-                depth,
-                ray,
-                known: Some(found),
-                throughput,
-                radiance,
-                pending,
-                first,
-                glow,
-                alpha,
-                last_pdf,
-                last_delta,
-                from_instance,
-            };
-            false
+        Some(found) => Some(Resume {
+            depth,
+            ray,
+            known: Some(found),
+            throughput,
+            radiance,
+            pending,
+            first,
+            glow,
+            alpha,
+            last_pdf,
+            last_delta,
+            from_instance,
+        }),
+    }
+}
+
+/// The closest visible light `ray` finds before distance `tmax` (the general loop's
+/// `hit_light`, the same lights compared in the same order; the best kept in three
+/// values rather than an `Option` of a tuple, which the loop kept in memory).
+#[inline(always)]
+fn nearest_light(lights: &[LightSource], ray: &Ray, tmax: f32, camera: bool) -> Option<(usize, f32, Rgb)> {
+    let (mut best, mut best_t, mut best_le) = (usize::MAX, 0.0f32, Rgb::ZERO);
+    for (i, l) in lights.iter().enumerate() {
+        if !l.visible || camera && l.is_portal() {
+            continue;
+        }
+        if let Some((t, le)) = l.intersect_until(ray, tmax) {
+            if best == usize::MAX || t < best_t {
+                (best, best_t, best_le) = (i, t, le);
+            }
         }
     }
+    (best != usize::MAX).then_some((best, best_t, best_le))
 }
 
 #[cfg(test)]
@@ -383,15 +414,12 @@ material "cut" "mia_material" ("diffuse" 0.2 0.3 0.7, "reflectivity" 0, "diffuse
                         "{what}"
                     );
                     // How the kernel alone fares with this path.
-                    let mut resume = Resume::camera(&camera);
                     let (mut out, mut c) = (PathResult::EMPTY, RayCounts::default());
                     let mut sampler = start.clone();
-                    if trace(&scene, &camera, &media, &mut sampler, &settings, &mut c, &mut out, &mut resume) {
-                        tally.whole += 1;
-                    } else if resume.depth == 0 {
-                        tally.at_camera += 1;
-                    } else {
-                        tally.mid_path += 1;
+                    match trace(&scene, &camera, &media, &mut sampler, &settings, &mut c, &mut out) {
+                        None => tally.whole += 1,
+                        Some(resume) if resume.depth == 0 => tally.at_camera += 1,
+                        Some(_) => tally.mid_path += 1,
                     }
                 }
             }
