@@ -189,6 +189,12 @@ impl PathBand<'_> {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
             let camera = CameraRay { ray: lane.ray, hit: Some(hit), defer_shadow: true };
+            if !self.world.has_media {
+                // (No media: the camera is in none, wherever it moves: what the two
+                // questions below answer.)
+                trace_camera_path_into(&scene, camera, self.camera_media, sampler, self.path, &mut out.counts, result);
+                continue;
+            }
             // A camera that moves across a medium's surface while the shutter is open: the
             // media where it is at this sample's time.
             let moved_media = crate::integrator::camera_media_at(self.world, self.accel, self.camera_media, lane.time);
