@@ -329,6 +329,7 @@ fn nearest_light(lights: &[LightSource], ray: &Ray, tmax: f32, camera: bool) -> 
 mod tests {
     use super::*;
     use crate::accel::Backend;
+    use crate::environment::{Environment, Source};
     use crate::integrator::{constant_materials, trace_camera_path_into};
     use crate::sampler::pixel_seed;
 
@@ -367,18 +368,18 @@ material "cut" "mia_material" ("diffuse" 0.2 0.3 0.7, "reflectivity" 0, "diffuse
         mid_path: u32,
     }
 
-    /// Traces 32 × 32 pixels × 4 samples over `world`'s image (first shadow rays left to
-    /// the caller on odd samples) with the kernel and with the general loop alone (no
-    /// plain materials), asserting that every path's radiance (lit and shadowed), alpha,
+    /// Traces 32 × 32 pixels × 4 samples over `world`'s image lit by `env` besides its
+    /// light (first shadow rays left to the caller on odd samples) with the kernel and
+    /// with the general loop alone (no plain materials), asserting that every path's radiance (lit and shadowed), alpha,
     /// first hit, glow, pending shadow ray and ray counts are the same bit for bit
     /// (tolerance: none); returns how the kernel traced them.
-    fn kernel_against_general(world: &World, backend: Backend) -> Tally {
+    fn kernel_against_general(world: &World, backend: Backend, env: Option<&Environment>) -> Tally {
         let accel = crate::accel::build(world, backend);
         let constants = constant_materials(world);
         let plain = plain_materials(world, None);
         assert!(plain.iter().any(|&p| p), "the scene has plain materials");
         let scene =
-            PathScene { world, accel: accel.as_ref(), shading: None, env: None, constants: &constants, plain: &plain };
+            PathScene { world, accel: accel.as_ref(), shading: None, env, constants: &constants, plain: &plain };
         let general = PathScene { plain: &[], ..scene };
         let settings = PathSettings::default();
         let (w, h) = (world.camera.width as f32, world.camera.height as f32);
@@ -434,7 +435,7 @@ material "cut" "mia_material" ("diffuse" 0.2 0.3 0.7, "reflectivity" 0, "diffuse
     fn kernel_equals_the_general_loop_on_the_cornell_box() {
         let world = cornell(false);
         for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
-            let tally = kernel_against_general(&world, backend);
+            let tally = kernel_against_general(&world, backend, None);
             assert!(tally.whole == 4096, "{backend:?}: {tally:?}");
         }
     }
@@ -454,8 +455,24 @@ material "cut" "mia_material" ("diffuse" 0.2 0.3 0.7, "reflectivity" 0, "diffuse
             assert!(!plain[m], "material {m} is not plain");
         }
         for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
-            let tally = kernel_against_general(&world, backend);
+            let tally = kernel_against_general(&world, backend, None);
             assert!(tally.whole > 500 && tally.at_camera > 300 && tally.mid_path > 300, "{backend:?}: {tally:?}");
+        }
+    }
+
+    /// The Cornell box under an environment (a sky brighter towards +y, sampled as one
+    /// more light, seen by the rays that leave through the open front): every path equals
+    /// the general loop's bit for bit, all of them traced whole by the kernel.
+    #[test]
+    fn kernel_equals_the_general_loop_under_an_environment() {
+        let world = cornell(false);
+        let sky = Environment::new(Source::Function(Box::new(|d: glam::Vec3A| {
+            Rgb::new(0.4, 0.5, 0.7) * (1.5 + d.y) + Rgb::splat(0.1)
+        })));
+        assert!(sky.sampled);
+        for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
+            let tally = kernel_against_general(&world, backend, Some(&sky));
+            assert!(tally.whole == 4096, "{backend:?}: {tally:?}");
         }
     }
 }
