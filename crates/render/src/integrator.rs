@@ -21,6 +21,8 @@ mod material_env;
 mod matte;
 mod media;
 mod own_stretch;
+mod path_state;
+mod plain_path;
 mod roulette;
 
 use bsdf::Bsdf;
@@ -43,6 +45,8 @@ pub use hit_surface::hit_normals;
 use hit_surface::{surface, surface_into, Surface};
 use media::Departure;
 pub use media::{camera_media_at, camera_ray_media, media_at, MediumStack};
+use path_state::Resume;
+pub use plain_path::plain_materials;
 use roulette::roulette_survival;
 
 /// Integrator settings.
@@ -106,24 +110,6 @@ impl PathResult {
             Some(p) if blocked => p.blocked,
             _ => self.radiance,
         }
-    }
-}
-
-/// A path's radiance, summed term by term twice while the first bounce's shadow ray is
-/// left to the caller: `lit` with that ray's light, `shadowed` without it. Every other
-/// term goes into both in the same order, so each is, bit for bit, the sum the path makes
-/// when the ray is (or is not) blocked.
-#[derive(Clone, Copy)]
-struct RadianceSum {
-    lit: Rgb,
-    shadowed: Rgb,
-}
-
-impl std::ops::AddAssign<Rgb> for RadianceSum {
-    #[inline(always)]
-    fn add_assign(&mut self, term: Rgb) {
-        self.lit += term;
-        self.shadowed += term;
     }
 }
 
@@ -230,6 +216,9 @@ pub struct PathScene<'a> {
     pub env: Option<&'a Environment<'a>>,
     /// `world`'s materials with their constant parameters ([`constant_materials`]).
     pub constants: &'a [HitMaterial<'a>],
+    /// Which of them the compact kernel for plain hits may trace ([`plain_materials`],
+    /// built with `shading`); empty: the general loop traces every path.
+    pub plain: &'a [bool],
 }
 
 /// A camera ray, and what [`Accel::intersect`] finds along it when that is known already
@@ -274,20 +263,23 @@ pub fn trace_camera_path_into(
     counts: &mut RayCounts,
     out: &mut PathResult,
 ) {
-    let PathScene { world, accel, shading, env, constants } = *scene;
-    let camera_ray = camera.ray;
-    let mut camera_hit = camera.hit;
-    let mut ray = camera_ray;
-    let mut throughput = Rgb::ONE;
-    let mut radiance = RadianceSum { lit: Rgb::ZERO, shadowed: Rgb::ZERO };
+    // Paths that meet only plain surfaces are traced by a compact kernel of their own
+    // (`plain_path`); it hands any other path over at the bounce it meets anything else.
+    let resume = if !scene.plain.is_empty() && camera_media.is_empty() {
+        match plain_path::trace(scene, &camera, camera_media, sampler, settings, counts, out) {
+            Some(handed) => handed,
+            None => return,
+        }
+    } else {
+        Resume::camera(&camera)
+    };
+    let PathScene { world, accel, shading, env, constants, .. } = *scene;
+    let Resume { depth: start, mut ray, known: mut camera_hit, mut throughput, .. } = resume;
+    let mut radiance = resume.radiance;
     // The first bounce's shadow ray, when it is left to the caller.
-    let mut pending: Option<Ray> = None;
-    let mut first = None;
-    let mut glow = None;
-    let mut alpha = 0.0;
+    let (mut pending, mut first, mut glow, mut alpha) = (resume.pending, resume.first, resume.glow, resume.alpha);
     // The BSDF density of the last bounce (for MIS on lights hit), and whether it was a delta.
-    let mut last_pdf = 0.0f32;
-    let mut last_delta = true;
+    let (mut last_pdf, mut last_delta) = (resume.last_pdf, resume.last_delta);
     // The environment of the material the path last scattered at, when it has its own.
     let mut last_env = None;
     // The glossy share of the last bounce, where it splits what its rays see.
@@ -302,7 +294,7 @@ pub fn trace_camera_path_into(
     // The media the path is in.
     let mut media = camera_media.clone();
     // The instance the path last scattered at (light linking; none at the camera).
-    let mut from_instance: Option<u32> = None;
+    let mut from_instance = resume.from_instance;
     // The camera's and materials' fogs, when the path engine applies them (see `fog`),
     // the mental ray type of the path's current segment, and the share of the camera
     // ray's colour they cover (for alpha, as the classic fogs give it).
@@ -328,7 +320,7 @@ pub fn trace_camera_path_into(
     let mut varying: Option<HitMaterial> = None;
     // The surface data of the last hit found (written in place, [`surface_into`]).
     let mut s = Surface::UNSET;
-    for depth in 0..settings.max_depth {
+    for depth in start..settings.max_depth {
         counts.rays += 1;
         // (The last bounce's glossy share, `reach`, is read where it is used below, not
         // moved out here at every bounce: every bounce that goes on sets it anew.)

@@ -487,9 +487,14 @@ impl LightSource {
     /// without copying the ray for each light).
     #[inline]
     pub fn intersect_until(&self, ray: &Ray, tmax: f32) -> Option<(f32, Rgb)> {
-        if let (Output::Radiance { l, two_sided }, Shape::Rect { .. }, true) =
+        if let (Output::Radiance { l, two_sided }, Shape::Rect { normal, .. }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
+            // (A one-sided rectangle met from behind, or edge on, gives nothing: its
+            // plane's distance is not worked out.)
+            if !*two_sided && ray.dir.dot(*normal) >= 0.0 {
+                return None;
+            }
             let (t, facing) = self.shape.intersect(self.position, ray.origin, ray.dir, ray.tmin, tmax)?;
             return (facing || *two_sided).then_some((t, *l));
         }

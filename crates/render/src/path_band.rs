@@ -48,6 +48,9 @@ pub(crate) struct PathBand<'a> {
     /// The world's materials with their constant parameters, built once per render
     /// ([`crate::integrator::constant_materials`]).
     pub constants: &'a [material::HitMaterial<'a>],
+    /// Which of them the path engine's kernel for plain hits may trace
+    /// ([`crate::integrator::plain_materials`]).
+    pub plain: &'a [bool],
     /// The pixel filter the camera samples are drawn from.
     pub filter: &'a PixelFilter,
     /// The media around the camera.
@@ -180,11 +183,18 @@ impl PathBand<'_> {
             shading: self.shading,
             env: self.env,
             constants: self.constants,
+            plain: self.plain,
         };
         for ((lane, &hit), result) in lanes.iter().zip(&hits).zip(&mut results) {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
             let camera = CameraRay { ray: lane.ray, hit: Some(hit), defer_shadow: true };
+            if !self.world.has_media {
+                // (No media: the camera is in none, wherever it moves: what the two
+                // questions below answer.)
+                trace_camera_path_into(&scene, camera, self.camera_media, sampler, self.path, &mut out.counts, result);
+                continue;
+            }
             // A camera that moves across a medium's surface while the shutter is open: the
             // media where it is at this sample's time.
             let moved_media = crate::integrator::camera_media_at(self.world, self.accel, self.camera_media, lane.time);

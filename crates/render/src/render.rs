@@ -313,6 +313,8 @@ pub fn render_prepared_with_film(
     let path_settings = settings.path.with_scene_options(&world.options);
     // The path engine's constant materials, built once (empty for the classic engine).
     let constants = if classic.is_none() { crate::integrator::constant_materials(world) } else { Vec::new() };
+    // Which of them the path engine's kernel for plain hits may trace.
+    let plain = if classic.is_none() { crate::integrator::plain_materials(world, shading) } else { Vec::new() };
     // The media the camera is in (both engines; found once, where the camera is when the
     // shutter opens; a moving camera follows its way from there, per sample).
     let camera_media = crate::integrator::media_at(world, accel, cam.camera_to_world_at(0.0).translation, 0.0);
@@ -447,6 +449,7 @@ pub fn render_prepared_with_film(
                     shading,
                     env,
                     constants: &constants,
+                    plain: &plain,
                     filter: &filter,
                     camera_media: &camera_media,
                     path: &path_settings,

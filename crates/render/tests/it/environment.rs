@@ -8,7 +8,7 @@ use crate::support;
 use bsdf::Rgb;
 use glam::Vec3A;
 use render::environment::{Environment, Source};
-use render::integrator::{constant_materials, trace_path, PathScene, PathSettings};
+use render::integrator::{constant_materials, plain_materials, trace_path, PathScene, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::{EngineKind, Settings};
@@ -140,7 +140,9 @@ pub(crate) fn plane_stats(world: &render::World, env: &Environment, res: u32, sp
     let accel = render::accel::build(world, render::Backend::default_available());
     let settings = PathSettings::default();
     let constants = constant_materials(world);
-    let scene = PathScene { world, accel: accel.as_ref(), shading: None, env: Some(env), constants: &constants };
+    let plain = plain_materials(world, None);
+    let scene =
+        PathScene { world, accel: accel.as_ref(), shading: None, env: Some(env), constants: &constants, plain: &plain };
     let mut values = Vec::new();
     for y in 0..res {
         for x in 0..res {

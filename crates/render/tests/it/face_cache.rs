@@ -111,7 +111,7 @@ fn kept_faces_change_no_path() {
     let (w, h) = (kept.camera.width, kept.camera.height);
     let settings = PathSettings::default();
     let (constants_kept, constants_computed) = (constant_materials(&kept), constant_materials(&computed));
-    let scene = |world, accel, constants| PathScene { world, accel, shading: None, env: None, constants };
+    let scene = |world, accel, constants| PathScene { world, accel, shading: None, env: None, constants, plain: &[] };
     let scene_kept = scene(&kept, accel_kept.as_ref(), &constants_kept);
     let scene_computed = scene(&computed, accel_computed.as_ref(), &constants_computed);
     let mut lit = 0;

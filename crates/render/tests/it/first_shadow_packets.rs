@@ -3,7 +3,7 @@
 //! radiance is bit for bit the one it makes tracing the ray itself, on both backends.
 
 use render::accel::Backend;
-use render::integrator::{constant_materials, trace_camera_path, CameraRay, PathScene, PathSettings};
+use render::integrator::{constant_materials, plain_materials, trace_camera_path, CameraRay, PathScene, PathSettings};
 use render::ray::RayCounts;
 use render::sampler::{pixel_seed, Sampler};
 use render::World;
@@ -28,7 +28,15 @@ fn deferred_first_shadow_rays_give_the_paths_own_radiance() {
     for backend in [Backend::Rust, Backend::Embree].into_iter().filter(|b| b.available()) {
         let accel = render::accel::build(&world, backend);
         let constants = constant_materials(&world);
-        let scene = PathScene { world: &world, accel: accel.as_ref(), shading: None, env: None, constants: &constants };
+        let plain = plain_materials(&world, None);
+        let scene = PathScene {
+            world: &world,
+            accel: accel.as_ref(),
+            shading: None,
+            env: None,
+            constants: &constants,
+            plain: &plain,
+        };
         let (mut blocked, mut lit) = (0u32, 0u32);
         for y in 0..24u32 {
             for x in 0..24u32 {
