@@ -51,7 +51,8 @@
 //!   refracts by P_k ⊙ T_k (P_k the transparencies above it) with its index and limit,
 //!   as the classic layeredShader shows what that layer's refraction ray finds; rampShader
 //!   layers whose transparency or incandescence ramps follow the view are read at each
-//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`); the
+//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k and every layer's
+//!   translucence by its share there too (`view_layers`, [`StackTranslucence`]); the
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
 //!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
 //!   `bsdf::MayaGlossy::add_translucence`: up to three distinct foci, a fourth merged
@@ -117,6 +118,7 @@ mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
 pub use translucence::{translucent_passage, TranslucentLayer, CONNECTED_STAND_IN};
+pub use view_layers::StackTranslucence;
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -642,7 +644,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 let tables = view_layers::ramp_tables(graph, m);
                 follows_view |= tables.is_some();
                 view_transparencies[i] = tables.as_ref().map(|[t, _]| Box::new(*t));
-                by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
+                let mut by_layer = view_layers::Layer::material(t, layer.diffuse, layer.emission, tables);
+                if let SurfaceModel::Maya(g) = &layer.model {
+                    by_layer = by_layer.with_lobes(g);
+                }
+                by_view.push(by_layer);
                 // Maya's highlight shows by the layer's share, as its diffuse colour (the
                 // first layer's); every layer's translucence adds to the stack's by its
                 // share, with its depth for the stack's shadow rays.

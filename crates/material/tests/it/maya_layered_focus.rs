@@ -78,3 +78,100 @@ fn each_layers_focus_is_a_lobe_of_its_own_up_to_three() {
     let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.125;
     assert!((total - want).abs().max_element() < 1e-6, "{total} vs {want}");
 }
+
+/// The transparency ramp of [`view_stack`]'s top layer: 0.9 at facing ratio 0 to 0.2 at
+/// 0.75 (24/32: its knots lie on the path engine's table points), linear, 0.2 after.
+fn view_ramp() -> maya::utility::Ramp {
+    maya::utility::Ramp::new(vec![(0.0, Vec3A::splat(0.9), 1), (0.75, Vec3A::splat(0.2), 1)], Vec3A::ZERO)
+}
+
+/// The rampShader layer's colour and translucence, the lambert layer's.
+const RAMP_LAYER: ([f32; 3], f32) = ([0.7, 0.5, 0.2], 0.6);
+const LAMBERT_LAYER: ([f32; 3], f32) = ([0.2, 0.4, 0.9], 0.5);
+
+/// A layeredShader whose top layer follows the view: a rampShader (light-angle input,
+/// constant colour, `translucence` 0.6, transparency ramp [`view_ramp`]) over an opaque
+/// lambert of `translucenceFocus` `focus`.
+fn view_stack(focus: f32) -> Compiled {
+    let ([r, g, b], ta) = RAMP_LAYER;
+    let ([r2, g2, b2], tb) = LAMBERT_LAYER;
+    let body = format!(
+        "shader \"a\" \"maya_rampshader\" (\"colorInput\" 0, \"diffuse\" 0.8, \"translucence\" {ta},\n\
+         \"color\" [ {{ \"color_Position\" 0, \"color_Color\" {r} {g} {b}, \"color_Interp\" 1 }} ],\n\
+         \"transparency\" [ {{ \"transparency_Position\" 0, \"transparency_Color\" 0.9 0.9 0.9, \"transparency_Interp\" 1 }},\n\
+         {{ \"transparency_Position\" 0.75, \"transparency_Color\" 0.2 0.2 0.2, \"transparency_Interp\" 1 }} ])\n\
+         shader \"b\" \"maya_lambert\" (\"color\" {r2} {g2} {b2}, \"diffuse\" 0.8, \"translucence\" {tb}, \
+         \"translucenceFocus\" {focus})\n\
+         shader \"mat\" \"maya_layeredshader\" (\"inputs\" [ {{ \"color\" = \"a.outColor\", \"transparency\" = \"a.outTransparency\" }},\n\
+         {{ \"color\" = \"b.outColor\", \"transparency\" = \"b.outTransparency\" }} ])\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"mat.outColor\") end material\n"
+    );
+    let c = compile("", &format!("{LIBS}{body}"), &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    c
+}
+
+/// The classic stack's shares of its two layers at facing ratio `f`: what
+/// `maya::layered_shader::composite_layers` (compositing as textures, colour 1 for the
+/// layer asked, 0 for the other) gives, the top layer's transparency the classic ramp's
+/// at f, the bottom one opaque.
+fn classic_shares(f: f32) -> [Vec3A; 2] {
+    use maya::layered_shader::{composite_layers, ShaderLayer};
+    let t = view_ramp().at(f);
+    std::array::from_fn(|i| {
+        let layer = |k: usize, transparency: Vec3A| ShaderLayer {
+            color: if k == i { Vec3A::ONE } else { Vec3A::ZERO },
+            transparency,
+            includes_behind: false,
+        };
+        composite_layers(&[layer(0, t), layer(1, Vec3A::ZERO)], true, Vec3A::ZERO).0
+    })
+}
+
+/// A layeredShader whose rampShader layer's transparency follows the view weights its
+/// layers' translucence lobes by their shares at each hit's facing ratio f
+/// (`material::maya::StackTranslucence`, applied by `ViewTransparency::apply`), as the
+/// classic stack composites them at that ray. [`view_stack`] at f = 0.3, 0.55, 0.8 and 1:
+/// with the lambert layer's focus 0.5 the hit's two lobes are w_a(f) · A_a (focus 0, the
+/// rampShader's light-angle shape, A_a = 2 · t_a · c_a for its constant ramp) and
+/// w_b(f) · c_b · t_b (exponent 2), w the classic composite's shares at f, within 1e-5;
+/// with focus 0 they share one lobe whose A ⊙ S(u) is w_a · t_a · c_a + w_b · c_b · t_b · u
+/// within 1e-5 at u = 0.1 … 1. Before, the lobes kept the shares at f = 1 (w_a = 0.8):
+/// at f = 0.3, w_a = 0.38.
+#[test]
+fn a_view_following_stack_weights_its_translucence_at_the_hits_facing_ratio() {
+    let (ca, ta) = (Vec3A::from_array(RAMP_LAYER.0), RAMP_LAYER.1);
+    let (cb, tb) = (Vec3A::from_array(LAMBERT_LAYER.0), LAMBERT_LAYER.1);
+    for focus in [0.5f32, 0.0] {
+        let c = view_stack(focus);
+        let (s, warnings) =
+            material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let view = s.view_transparency.as_deref().expect("a stack that follows the view");
+        for f in [0.3f32, 0.55, 0.8, 1.0] {
+            let mut hit = s.constant();
+            view.apply(f, &mut hit);
+            let SurfaceModel::Maya(g) = &*hit.model else { panic!("a Maya model: {:?}", hit.model) };
+            let [wa, wb] = classic_shares(f);
+            let got: Vec<(Vec3A, f32)> = g.translucence_lobes().filter(|(a, _)| *a != Vec3A::ZERO).collect();
+            let shape = g.light_angle.expect("the rampShader layer's light-angle shape");
+            if focus > 0.0 {
+                let want = [(wa * ca * ta * 2.0, 0.0), (wb * cb * tb, focus_exponent(focus))];
+                assert_eq!(got.len(), 2, "f {f}: {got:?}");
+                for ((a, n), (wa, wn)) in got.iter().zip(want) {
+                    assert!(
+                        (*a - wa).abs().max_element() < 1e-5 && (n - wn).abs() < 1e-6,
+                        "f {f}: {a} {n} vs {wa} {wn}"
+                    );
+                }
+            } else {
+                assert_eq!(got.len(), 1, "f {f}: {got:?}");
+                for u in [0.1f32, 0.25, 0.5, 0.75, 1.0] {
+                    let a = got[0].0 * shape.factor(u) * u;
+                    let want = wa * ca * ta + wb * cb * tb * u;
+                    assert!((a - want).abs().max_element() < 1e-5, "f {f}, u {u}: {a} vs {want}");
+                }
+            }
+        }
+    }
+}
