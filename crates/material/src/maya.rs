@@ -26,8 +26,8 @@
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); its light from
 //!   behind a transmission lobe: for the light-angle input the classic
-//!   t · C((1 + cos θ)/2) ⊙ L tabulated over the ramp's [0, ½] at every sixteenth and
-//!   read linearly between (albedo 2∫t · C((1 − u)/2) du, not capped:
+//!   t · C((1 + cos θ)/2) ⊙ L from the ramp's own knots and interpolation over [0, ½]
+//!   (albedo 2∫t · C((1 − u)/2) du, not capped:
 //!   `bsdf::MayaGlossy::light_angle`), for the other inputs a
 //!   Lambertian one of albedo C(1) · `translucence`, faded as the lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
@@ -666,6 +666,16 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                             // Each layer's translucence keeps its own focus: a lobe of its
                             // own beside the others (same focus: merged; a rampShader
                             // layer's light-angle shape mixed by albedo).
+                            if let (Some(mine), Some(theirs)) = (first.light_angle, g.light_angle) {
+                                if first.focus <= 0.0 && !mine.mixes_exactly(&theirs) {
+                                    warnings.push(format!(
+                                        "layer '{}': its colour ramp's light from behind and an upper layer's have \
+                                         knots at different places; the path engine mixes them at the union of \
+                                         their knots in [0, 0.5], linearly between",
+                                        graph.nodes[m as usize].name
+                                    ));
+                                }
+                            }
                             let mut fits = first.add_translucence(g.translucence, g.focus, g.light_angle);
                             for (a, n) in g.translucence_lobes().skip(1) {
                                 fits &= first.add_translucence(a, n, None);

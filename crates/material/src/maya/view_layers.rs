@@ -21,6 +21,10 @@ use super::{Reader, ViewTransparency};
 /// A quantity at the facing ratios k/32, k = 0 … 32.
 type Table = [Rgb; VIEW_RAMP_STEPS];
 
+/// A translucence lobe before its layer's share: albedo (linear RGB), forward-lobe
+/// exponent and light-angle shape (`bsdf::MayaGlossy::add_translucence`'s arguments).
+type Lobe = (Rgb, f32, Option<LightAngle>);
+
 /// One layer of the stack at the facing ratios k/32.
 pub(super) struct Layer {
     /// Its transparency.
@@ -34,7 +38,7 @@ pub(super) struct Layer {
     /// A material layer's translucence lobes before its share: albedo (linear RGB),
     /// forward-lobe exponent and light-angle shape (`bsdf::MayaGlossy::add_translucence`'s
     /// arguments), in the order the stack adds them; empty: not translucent.
-    lobes: Vec<(Rgb, f32, Option<LightAngle>)>,
+    lobes: Vec<Lobe>,
 }
 
 impl Layer {
@@ -149,7 +153,7 @@ pub(super) fn tabulate(layers: &[Layer], texture: bool, below: Rgb) -> ViewTrans
 #[derive(Clone, Debug, PartialEq)]
 pub struct StackTranslucence {
     /// Per layer (top first): its transparency table and its lobes.
-    layers: Vec<(Table, Vec<(Rgb, f32, Option<LightAngle>)>)>,
+    layers: Vec<(Table, Vec<Lobe>)>,
 }
 
 impl StackTranslucence {
