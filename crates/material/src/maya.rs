@@ -55,8 +55,9 @@
 //!   translucence by its share there too (`view_layers`, [`StackTranslucence`]); the
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
 //!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
-//!   `bsdf::MayaGlossy::add_translucence`: up to three distinct foci, a fourth merged
-//!   into the third's with a warning) and every translucent layer's depth for shadow rays, which pass the
+//!   `bsdf::MayaGlossy::add_translucence`: up to four distinct foci, a fifth merged
+//!   into the lobe of the nearest exponent with a warning that bounds the change,
+//!   `bsdf::Merged`) and every translucent layer's depth for shadow rays, which pass the
 //!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
@@ -676,16 +677,23 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                                     ));
                                 }
                             }
-                            let mut fits = first.add_translucence(g.translucence, g.focus, g.light_angle);
+                            let mut merged = first.add_translucence(g.translucence, g.focus, g.light_angle).err();
                             for (a, n) in g.translucence_lobes().skip(1) {
-                                fits &= first.add_translucence(a, n, None);
+                                let lost = first.add_translucence(a, n, None).err();
+                                merged = merged.or(lost);
                             }
-                            if !fits {
+                            if let Some(lost) = merged {
                                 warnings.push(format!(
                                     "layer '{}': the path engine carries {} translucence lobes of distinct \
-                                     'translucenceFocus'; this layer's is merged into the last one's focus",
+                                     'translucenceFocus'; this layer's (exponent {:.3}) joins the lobe of the \
+                                     nearest exponent ({:.3}): its light from behind keeps its total straight \
+                                     through, but its forward peak (n + 2)/2 becomes {:.3} instead of {:.3}",
                                     graph.nodes[m as usize].name,
-                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE
+                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE,
+                                    lost.exponent,
+                                    lost.into,
+                                    0.5 * (lost.into + 2.0),
+                                    0.5 * (lost.exponent + 2.0)
                                 ));
                             }
                             first

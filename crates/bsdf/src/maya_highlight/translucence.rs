@@ -297,6 +297,20 @@ pub fn uniform_opposite(wo: Vec3A, u: Vec2) -> Vec3A {
     Vec3A::new(r * phi.cos(), r * phi.sin(), side * z)
 }
 
+/// A translucence [`crate::MayaGlossy::add_translucence`] could not carry as a lobe of its own
+/// (every further lobe taken by another focus): its albedo joined the further lobe of
+/// the nearest exponent. Both lobes are normalised (albedo kept at normal incidence), so
+/// the merged light keeps its total straight through; what changes is its spread: the
+/// forward peak (n + 2)/2 of its own exponent n becomes (m + 2)/2, and its value towards
+/// any view changes by at most albedo · max((n + 2)/2, (m + 2)/2)/π.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Merged {
+    /// The exponent n of the translucence that was merged.
+    pub exponent: f32,
+    /// The exponent m of the lobe it joined.
+    pub into: f32,
+}
+
 /// The largest focus read: beyond it the lobe's exponent grows without bound.
 const MAX_FOCUS: f32 = 0.99;
 

@@ -174,7 +174,7 @@ impl StackTranslucence {
     /// `g` with its translucence replaced by the stack's at facing ratio `facing`, every
     /// lobe's albedo divided by `coverage` (the hit's, as its diffuse colour is; 1 for a
     /// refracting stack). Layers of one focus share a lobe as in the constant stack
-    /// (`bsdf::MayaGlossy::add_translucence`, which merges a fourth distinct focus as the
+    /// (`bsdf::MayaGlossy::add_translucence`, which merges a fifth distinct focus as the
     /// translation warned).
     pub fn apply(&self, facing: f32, coverage: f32, g: &MayaGlossy) -> MayaGlossy {
         let mut out = *g;

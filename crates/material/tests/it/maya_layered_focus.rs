@@ -1,7 +1,8 @@
 //! A layeredShader's translucent layers in the path engine's translation keep their own
 //! `translucenceFocus` (`bsdf::MayaGlossy::add_translucence`): each focus a forward lobe
-//! of albedo Σ w_i · c_i · t_i over its layers (w_i the layer's share), up to three
-//! distinct foci; a fourth is merged into the third's with a warning naming its layer.
+//! of albedo Σ w_i · c_i · t_i over its layers (w_i the layer's share), up to four
+//! distinct foci; a fifth is merged into the lobe of the nearest exponent with a warning
+//! naming its layer and the change of its forward peak.
 
 use crate::support;
 
@@ -13,7 +14,7 @@ use support::maya::{compile, Compiled};
 const LIBS: &str = "$include \"mayabase.mi\"\n";
 
 /// The layers' colours, in order.
-const COLORS: [[f32; 3]; 4] = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5]];
+const COLORS: [[f32; 3]; 5] = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5], [0.7, 0.6, 0.2]];
 
 /// The layers' `translucence`.
 const T: f32 = 0.6;
@@ -52,12 +53,14 @@ fn lobes(c: &Compiled) -> (Vec<(Vec3A, f32)>, Vec<String>) {
 
 /// Three layers of foci 0.5, 0 and 0.25 (shares ½, ¼, ¼): three lobes, the focus-0 one
 /// first, each of albedo w_i · c_i · t and exponent 2φ/(1 − φ) within 1e-6, no warning.
-/// Two layers of one focus (0.5) share a lobe of albedo the sum of theirs. A fourth
-/// distinct focus (0.75 under 0.5, 0, 0.25): still three lobes, the fourth layer's albedo
-/// added to the last (the total albedo kept within 1e-6), and a warning naming "l3".
-/// Before, the stack took the first translucent layer's focus for all (warned).
+/// Two layers of one focus (0.5) share a lobe of albedo the sum of theirs. Four distinct
+/// foci (0.75 under 0.5, 0, 0.25): four lobes, no warning. A fifth (0.8, exponent 8,
+/// under those): still four lobes, the fifth layer's albedo added to the lobe of the
+/// nearest exponent (0.75's, 6, which keeps it; the total albedo kept within 1e-6), and a
+/// warning naming "l4" and both forward peaks, 5 and 4. Before, a fourth focus was merged
+/// into the third's.
 #[test]
-fn each_layers_focus_is_a_lobe_of_its_own_up_to_three() {
+fn each_layers_focus_is_a_lobe_of_its_own_up_to_four() {
     let c = |i: usize| Vec3A::from_array(COLORS[i]) * T;
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25]));
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -72,11 +75,57 @@ fn each_layers_focus_is_a_lobe_of_its_own_up_to_three() {
     assert_eq!(got.len(), 1, "{got:?}");
     assert!((got[0].0 - (c(0) * 0.5 + c(1) * 0.5)).abs().max_element() < 1e-6, "{got:?}");
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75]));
-    assert_eq!(got.len(), 3, "{got:?}");
-    assert!(warnings.len() == 1 && warnings[0].contains("'l3'"), "{warnings:?}");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(got.len(), 4, "{got:?}");
+    let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75, 0.8]));
+    assert_eq!(got.len(), 4, "{got:?}");
+    assert!(
+        warnings.len() == 1 && warnings[0].contains("'l4'") && warnings[0].contains("becomes 4.000 instead of 5.000"),
+        "{warnings:?}"
+    );
     let total = got.iter().fold(Vec3A::ZERO, |s, (a, _)| s + *a);
-    let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.125;
+    let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.0625 + c(4) * 0.0625;
     assert!((total - want).abs().max_element() < 1e-6, "{total} vs {want}");
+    let (a, _) = got.iter().find(|(_, n)| (*n - 6.0).abs() < 1e-5).expect("the lobe of exponent 6");
+    assert!((*a - (c(3) + c(4)) * 0.0625).abs().max_element() < 1e-6, "{a}");
+}
+
+/// A stack of four layers of foci 0, 0.3, 0.6 and 0.9 (shares ½, ¼, ⅛, ⅛): the path
+/// engine's translucence, f of the translated stack's BSDF, is the sum of each layer's
+/// alone — a Maya BSDF of albedo w_i · c_i · t and exponent 2φ_i/(1 − φ_i) — within 1e-5
+/// over 24 × 24 direction pairs, with no warning. Before, the fourth focus (0.9,
+/// exponent 18) was merged into the third's lobe (0.6, exponent 3): its forward peak 2.5
+/// instead of 10.
+#[test]
+fn four_foci_are_the_sum_of_their_layers() {
+    use bsdf::maya_highlight::Shape;
+    let foci = [0.0f32, 0.3, 0.6, 0.9];
+    let c = stack(&foci);
+    let (s, warnings) =
+        material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let SurfaceModel::Maya(g) = &s.model else { panic!("a Maya model: {:?}", s.model) };
+    let plain = bsdf::MayaGlossy::new(Shape::Phong { power: 1.0 }, Vec3A::ZERO);
+    let shares = [0.5f32, 0.25, 0.125, 0.125];
+    let alone: Vec<bsdf::MayaGlossy> = (0..4)
+        .map(|i| plain.with_translucence(Vec3A::from_array(COLORS[i]) * T * shares[i], focus_exponent(foci[i])))
+        .collect();
+    let directions: Vec<Vec3A> = (0..24)
+        .map(|k| {
+            let z = 1.0 - 2.0 * (k as f32 + 0.5) / 24.0;
+            let phi = 2.4 * k as f32;
+            let r = (1.0 - z * z).sqrt();
+            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect();
+    for &wo in &directions {
+        let stack = g.bsdf(Vec3A::ZERO, wo);
+        for &wi in &directions {
+            let want = alone.iter().fold(Vec3A::ZERO, |sum, l| sum + l.bsdf(Vec3A::ZERO, wo).eval_translucence(wo, wi));
+            let got = stack.eval_translucence(wo, wi);
+            assert!((got - want).abs().max_element() < 1e-5, "{wo} {wi}: {got} vs {want}");
+        }
+    }
 }
 
 /// The transparency ramp of [`view_stack`]'s top layer: 0.9 at facing ratio 0 to 0.2 at
