@@ -266,17 +266,29 @@ impl LightAngle {
     /// S(u) per channel (`u` clamped to [0, 1]).
     pub fn shape_at(&self, u: f32) -> Rgb {
         let u = u.clamp(0.0, 1.0);
-        let ramp = if self.count == 0 {
-            [0.0; 3]
-        } else {
-            ramp_at(&self.knots_array()[..usize::from(self.count)], 0.5 * (1.0 - u))
-        };
-        Rgb::from(ramp) + Rgb::from(self.linear) * u
+        Rgb::from(self.ramp_value(0.5 * (1.0 - u))) + Rgb::from(self.linear) * u
     }
 
-    /// The knots as a fixed array (no allocation).
-    fn knots_array(&self) -> [(f32, [f32; 3], Interp); LIGHT_ANGLE_KNOTS] {
-        std::array::from_fn(|k| (self.at[k], self.value[k], self.interp[k]))
+    /// The ramp part at the ramp's position `x`, as [`ramp_at`] of the knots (read in
+    /// place: the lobe evaluates it at every light).
+    fn ramp_value(&self, x: f32) -> [f32; 3] {
+        let n = usize::from(self.count).min(LIGHT_ANGLE_KNOTS);
+        if n == 0 {
+            return [0.0; 3];
+        }
+        if x <= self.at[0] {
+            return self.value[0];
+        }
+        for k in 1..n {
+            let (p0, p1) = (self.at[k - 1], self.at[k]);
+            if x < p1 {
+                let tau = if p1 > p0 { (x - p0) / (p1 - p0) } else { 1.0 };
+                let s = self.interp[k - 1].blend(tau);
+                let (v0, v1) = (self.value[k - 1], self.value[k]);
+                return [v0[0] + (v1[0] - v0[0]) * s, v0[1] + (v1[1] - v0[1]) * s, v0[2] + (v1[2] - v0[2]) * s];
+            }
+        }
+        self.value[n - 1]
     }
 
     /// The factor S(u)/u that multiplies the albedo's A/π at the light's cosine `u`
