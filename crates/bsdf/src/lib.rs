@@ -43,7 +43,7 @@ pub use frame::Frame;
 pub use lambert::Lambert;
 pub use layer_curve::{CurveKind, LayerCurve};
 pub use lobes::{Lobe, LobeSum, Lobes, Role, SharedLobes, WideBsdf, WideLobes};
-pub use maya_highlight::{MayaBsdf, MayaGlossy};
+pub use maya_highlight::{MayaBsdf, MayaGlossy, Merged};
 pub use medium::Medium;
 pub use mia::MiaBsdf;
 pub use mib_glossy::{MibGlossy, MibGlossyLobe};

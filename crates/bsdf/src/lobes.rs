@@ -667,7 +667,10 @@ mod tests {
         }
     }
 
-    /// A `Bsdf` is at most 416 bytes (x86-64; 352 before the Maya BSDF's translucence
+    /// A `Bsdf` is at most 416 bytes (x86-64; maya42 kept it there: rampShader's light-angle
+    /// translucence became the colour ramp's own knots, 4 knots and a slope, 84 bytes in
+    /// place of the 112-byte table, and the Maya BSDF gained a third further forward lobe,
+    /// 16 bytes; 352 before the Maya BSDF's translucence
     /// carried a light-angle table of rampShader's colour ramp — 9 colours, 112 bytes with
     /// its tag, in place of the 16-byte share it replaced — and two further forward lobes
     /// of their own focus, 32 bytes, less 48 bytes from storing the specular-colour ramp's

@@ -58,6 +58,7 @@ mod shape;
 pub mod translucence;
 
 pub use shape::{anisotropic, blinn, blinn_distribution, phong, phong_e, ramp_blinn, schlick, Shape};
+pub use translucence::Merged;
 
 /// The smallest view cosine the albedo table holds (grazing views take its value).
 const ALBEDO_MIN_COS: f32 = 0.02;
@@ -74,8 +75,9 @@ pub const VIEW_RAMP_STEPS: usize = 33;
 pub const SPECULAR_RAMP_STEPS: usize = 9;
 
 /// How many further forward lobes of their own focus a [`MayaGlossy`] carries besides
-/// its first translucence (a layeredShader's layers of other `translucenceFocus`).
-pub const MORE_TRANSLUCENCE: usize = 2;
+/// its first translucence (a layeredShader's layers of other `translucenceFocus`: four
+/// distinct foci in all; a fifth is merged into the nearest, [`Merged`]).
+pub const MORE_TRANSLUCENCE: usize = 3;
 
 /// rampShader's ramps that follow the view, tabulated (linear between the points: a
 /// ramp whose points lie on the table's and interpolate linearly is exact):
@@ -254,20 +256,25 @@ impl MayaGlossy {
     /// and light-angle shape `light_angle` (only for focus 0) to this one's: merged into
     /// the first lobe where the focus is the same (their light-angle shapes mixed by
     /// albedo), else carried as a lobe of its own ([`MayaGlossy::translucence_more`]; a
-    /// focus-0 lobe is always the first, the only one with a light-angle shape). `false`
-    /// when no room was left and it was merged into the last further lobe, whose focus
-    /// it then takes.
-    pub fn add_translucence(&mut self, albedo: Rgb, focus: f32, light_angle: Option<translucence::LightAngle>) -> bool {
+    /// focus-0 lobe is always the first, the only one with a light-angle shape). `Err`
+    /// when no room was left and it was merged into the further lobe of the nearest
+    /// exponent, which keeps its own ([`Merged`]).
+    pub fn add_translucence(
+        &mut self,
+        albedo: Rgb,
+        focus: f32,
+        light_angle: Option<translucence::LightAngle>,
+    ) -> Result<(), Merged> {
         let albedo = albedo.max(Rgb::ZERO);
         let focus = focus.max(0.0);
         if albedo == Rgb::ZERO {
-            return true;
+            return Ok(());
         }
         if self.translucence == Rgb::ZERO {
             self.translucence = albedo;
             self.focus = focus;
             self.light_angle = if focus <= 0.0 { light_angle } else { None };
-            return true;
+            return Ok(());
         }
         if (focus - self.focus).abs() <= 1e-6 {
             if focus <= 0.0 && (light_angle.is_some() || self.light_angle.is_some()) {
@@ -276,7 +283,7 @@ impl MayaGlossy {
                 self.light_angle = Some(mine.mixed(self.translucence, &theirs, albedo));
             }
             self.translucence += albedo;
-            return true;
+            return Ok(());
         }
         if focus <= 0.0 {
             // The focus-0 lobe goes first (it alone carries a light-angle shape).
@@ -291,7 +298,7 @@ impl MayaGlossy {
 
     /// Adds a forward lobe (`albedo`, exponent `n` > 0) among the further ones (see
     /// [`MayaGlossy::add_translucence`]).
-    fn add_further(&mut self, albedo: Rgb, n: f32) -> bool {
+    fn add_further(&mut self, albedo: Rgb, n: f32) -> Result<(), Merged> {
         let add = |lobe: &mut [f32; 4]| {
             for c in 0..3 {
                 lobe[c] += albedo[c];
@@ -299,16 +306,19 @@ impl MayaGlossy {
         };
         if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] != [0.0; 3] && (l[3] - n).abs() <= 1e-6) {
             add(lobe);
-            return true;
+            return Ok(());
         }
         if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] == [0.0; 3]) {
             *lobe = [albedo.x, albedo.y, albedo.z, n];
-            return true;
+            return Ok(());
         }
-        let last = &mut self.translucence_more[MORE_TRANSLUCENCE - 1];
-        add(last);
-        last[3] = n;
-        false
+        let nearest = self
+            .translucence_more
+            .iter_mut()
+            .min_by(|a, b| (a[3] - n).abs().total_cmp(&(b[3] - n).abs()))
+            .expect("further lobes");
+        add(nearest);
+        Err(Merged { exponent: n, into: nearest[3] })
     }
 
     /// Every translucence lobe: albedo (linear RGB) and exponent, the first

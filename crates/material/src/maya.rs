@@ -26,8 +26,8 @@
 //!   facing the light or the viewer) times `diffuse` (+ `translucence` for the light-angle
 //!   input, whose documented lambert recipe this reproduces exactly); its light from
 //!   behind a transmission lobe: for the light-angle input the classic
-//!   t · C((1 + cos θ)/2) ⊙ L tabulated over the ramp's [0, ½] at every sixteenth and
-//!   read linearly between (albedo 2∫t · C((1 − u)/2) du, not capped:
+//!   t · C((1 + cos θ)/2) ⊙ L from the ramp's own knots and interpolation over [0, ½]
+//!   (albedo 2∫t · C((1 − u)/2) du, not capped:
 //!   `bsdf::MayaGlossy::light_angle`), for the other inputs a
 //!   Lambertian one of albedo C(1) · `translucence`, faded as the lit colour, with `translucenceDepth` for shadow rays ([`translucence`]); the transparency
 //!   and incandescence ramps at each hit's facing ratio ([`ViewTransparency`]: the hit's
@@ -51,11 +51,13 @@
 //!   refracts by P_k ⊙ T_k (P_k the transparencies above it) with its index and limit,
 //!   as the classic layeredShader shows what that layer's refraction ray finds; rampShader
 //!   layers whose transparency or incandescence ramps follow the view are read at each
-//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k too (`view_layers`); the
+//!   hit's facing ratio, the refraction's weight P_k ⊙ T_k and every layer's
+//!   translucence by its share there too (`view_layers`, [`StackTranslucence`]); the
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
 //!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
-//!   `bsdf::MayaGlossy::add_translucence`: up to three distinct foci, a fourth merged
-//!   into the third's with a warning) and every translucent layer's depth for shadow rays, which pass the
+//!   `bsdf::MayaGlossy::add_translucence`: up to four distinct foci, a fifth merged
+//!   into the lobe of the nearest exponent with a warning that bounds the change,
+//!   `bsdf::Merged`) and every translucent layer's depth for shadow rays, which pass the
 //!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
@@ -117,6 +119,7 @@ mod view_layers;
 mod view_transparency;
 pub use matte::MayaMatte;
 pub use translucence::{translucent_passage, TranslucentLayer, CONNECTED_STAND_IN};
+pub use view_layers::StackTranslucence;
 pub use view_transparency::ViewTransparency;
 
 use crate::{Binding, SurfaceMaterial, SurfaceModel, Target, Varying};
@@ -642,7 +645,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 let tables = view_layers::ramp_tables(graph, m);
                 follows_view |= tables.is_some();
                 view_transparencies[i] = tables.as_ref().map(|[t, _]| Box::new(*t));
-                by_view.push(view_layers::Layer::material(t, layer.diffuse, layer.emission, tables));
+                let mut by_layer = view_layers::Layer::material(t, layer.diffuse, layer.emission, tables);
+                if let SurfaceModel::Maya(g) = &layer.model {
+                    by_layer = by_layer.with_lobes(g);
+                }
+                by_view.push(by_layer);
                 // Maya's highlight shows by the layer's share, as its diffuse colour (the
                 // first layer's); every layer's translucence adds to the stack's by its
                 // share, with its depth for the stack's shadow rays.
@@ -660,16 +667,33 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                             // Each layer's translucence keeps its own focus: a lobe of its
                             // own beside the others (same focus: merged; a rampShader
                             // layer's light-angle shape mixed by albedo).
-                            let mut fits = first.add_translucence(g.translucence, g.focus, g.light_angle);
-                            for (a, n) in g.translucence_lobes().skip(1) {
-                                fits &= first.add_translucence(a, n, None);
+                            if let (Some(mine), Some(theirs)) = (first.light_angle, g.light_angle) {
+                                if first.focus <= 0.0 && !mine.mixes_exactly(&theirs) {
+                                    warnings.push(format!(
+                                        "layer '{}': its colour ramp's light from behind and an upper layer's have \
+                                         knots at different places; the path engine mixes them at the union of \
+                                         their knots in [0, 0.5], linearly between",
+                                        graph.nodes[m as usize].name
+                                    ));
+                                }
                             }
-                            if !fits {
+                            let mut merged = first.add_translucence(g.translucence, g.focus, g.light_angle).err();
+                            for (a, n) in g.translucence_lobes().skip(1) {
+                                let lost = first.add_translucence(a, n, None).err();
+                                merged = merged.or(lost);
+                            }
+                            if let Some(lost) = merged {
                                 warnings.push(format!(
                                     "layer '{}': the path engine carries {} translucence lobes of distinct \
-                                     'translucenceFocus'; this layer's is merged into the last one's focus",
+                                     'translucenceFocus'; this layer's (exponent {:.3}) joins the lobe of the \
+                                     nearest exponent ({:.3}): its light from behind keeps its total straight \
+                                     through, but its forward peak (n + 2)/2 becomes {:.3} instead of {:.3}",
                                     graph.nodes[m as usize].name,
-                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE
+                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE,
+                                    lost.exponent,
+                                    lost.into,
+                                    0.5 * (lost.into + 2.0),
+                                    0.5 * (lost.exponent + 2.0)
                                 ));
                             }
                             first

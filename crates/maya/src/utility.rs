@@ -270,6 +270,11 @@ impl Ramp {
         Ramp { points: ramp_points(value, prefix, member), empty }
     }
 
+    /// The ramp's points (position, value, Maya interpolation), sorted by position.
+    pub fn points(&self) -> &[(f32, Vec3A, i32)] {
+        &self.points
+    }
+
     /// Whether the ramp has no points (it is its `empty` value everywhere).
     pub fn is_empty(&self) -> bool {
         self.points.is_empty()

@@ -249,7 +249,7 @@ fn a_stack_of_translucent_layers_keeps_each_layers_focus() {
         let (a, b) = (plain.with_translucence(ca * w, n0), plain.with_translucence(cb * (1.0 - w), n5));
         for (first, second) in [(a, b), (b, a)] {
             let mut stack = first;
-            assert!(stack.add_translucence(second.translucence, second.focus, None));
+            assert_eq!(stack.add_translucence(second.translucence, second.focus, None), Ok(()));
             assert_eq!(stack.focus, 0.0, "the focus-0 lobe goes first");
             for wo in sphere(64) {
                 let (sa, sb, s) = (a.bsdf(Rgb::ZERO, wo), b.bsdf(Rgb::ZERO, wo), stack.bsdf(Rgb::ZERO, wo));
@@ -277,19 +277,20 @@ fn a_stack_of_translucent_layers_keeps_each_layers_focus() {
     }
 }
 
-/// A stack carries three distinct foci exactly (a lobe each: the stack's f is their sum
-/// within 1e-5); a fourth is merged into the last further lobe (`add_translucence` says
-/// so), and a layer of a focus already carried joins its lobe.
+/// A stack carries four distinct foci exactly (a lobe each: the stack's f is their sum
+/// within 1e-5); a fifth is merged into the further lobe of the nearest exponent, which
+/// keeps its own (`add_translucence` says so, naming both exponents), and a layer of a
+/// focus already carried joins its lobe.
 #[test]
-fn a_stack_carries_three_foci_and_merges_a_fourth() {
+fn a_stack_carries_four_foci_and_merges_a_fifth_into_the_nearest() {
     let plain = MayaGlossy::new(Shape::Phong { power: 1.0 }, Rgb::ZERO);
-    let foci = [0.0f32, 2.0, 8.0];
+    let foci = [0.0f32, 2.0, 8.0, 18.0];
     let lobes: Vec<MayaGlossy> = foci.iter().map(|&n| plain.with_translucence(Rgb::splat(0.2), n)).collect();
     let mut stack = plain;
     for l in &lobes {
-        assert!(stack.add_translucence(l.translucence, l.focus, None));
+        assert_eq!(stack.add_translucence(l.translucence, l.focus, None), Ok(()));
     }
-    assert!(stack.add_translucence(Rgb::splat(0.1), 2.0, None), "a focus already carried");
+    assert_eq!(stack.add_translucence(Rgb::splat(0.1), 2.0, None), Ok(()), "a focus already carried");
     for wo in sphere(16) {
         for wi in sphere(16) {
             let want = lobes.iter().fold(Rgb::ZERO, |s, l| s + l.bsdf(Rgb::ZERO, wo).eval(wo, wi))
@@ -298,6 +299,9 @@ fn a_stack_carries_three_foci_and_merges_a_fourth() {
             assert!((got - want).abs().max_element() < 1e-5, "{got} vs {want}");
         }
     }
-    assert!(!stack.add_translucence(Rgb::splat(0.1), 30.0, None), "a fourth focus has no lobe of its own");
-    assert_eq!(stack.translucence_lobes().count(), 3);
+    let merged = stack.add_translucence(Rgb::splat(0.1), 10.0, None);
+    assert_eq!(merged, Err(crate::Merged { exponent: 10.0, into: 8.0 }), "a fifth focus has no lobe of its own");
+    assert_eq!(stack.translucence_lobes().count(), 4);
+    let (a, n) = stack.translucence_lobes().find(|(_, n)| *n == 8.0).expect("the lobe of exponent 8");
+    assert!((a - Rgb::splat(0.3)).abs().max_element() < 1e-6 && n == 8.0, "{a} {n}");
 }

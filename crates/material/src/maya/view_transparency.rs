@@ -12,6 +12,7 @@ use std::borrow::Cow;
 use bsdf::maya_highlight::{table_at, VIEW_RAMP_STEPS};
 use bsdf::Rgb;
 
+use super::view_layers::StackTranslucence;
 use super::MIN_HIGHLIGHT_COVERAGE;
 use crate::{HitMaterial, SurfaceModel};
 
@@ -43,6 +44,9 @@ pub struct ViewTransparency {
     /// P(f) the refraction's weight. `None` for a rampShader, whose are `albedo` ⊙ (1 −
     /// T), `incandescence` ⊙ (1 − T) and T.
     pub stack: Option<Box<[[Rgb; VIEW_RAMP_STEPS]; 3]>>,
+    /// For such a stack with translucent layers: their translucence, weighted by the
+    /// layers' shares at each hit's facing ratio ([`StackTranslucence::apply`]).
+    pub stack_translucence: Option<Box<StackTranslucence>>,
 }
 
 impl ViewTransparency {
@@ -62,6 +66,7 @@ impl ViewTransparency {
             highlight,
             refracts: false,
             stack: None,
+            stack_translucence: None,
         }
     }
 
@@ -82,7 +87,15 @@ impl ViewTransparency {
             highlight: false,
             refracts: false,
             stack: Some(Box::new([lit, emission, passed])),
+            stack_translucence: None,
         }
+    }
+
+    /// The same stack with its layers' translucence (see
+    /// [`ViewTransparency::stack_translucence`]).
+    pub fn with_stack_translucence(mut self, translucence: StackTranslucence) -> Self {
+        self.stack_translucence = Some(Box::new(translucence));
+        self
     }
 
     /// The same ramps on a material whose translucence has the albedo `translucence`
@@ -112,7 +125,9 @@ impl ViewTransparency {
     /// colour and incandescence faded by 1 − T(f), the coverage (for shadow rays) and
     /// tint as above without the least coverage (a refracting stack: its lit colour,
     /// emission and P(f) as the weight, undivided). A stack's ([`ViewTransparency::stack`])
-    /// takes its lit colour and emission at f divided by p (its highlight untouched).
+    /// takes its lit colour and emission at f divided by p (its highlight untouched), and
+    /// its layers' translucence by their shares at f, divided by p as well (undivided
+    /// when it refracts: [`StackTranslucence::apply`]).
     pub fn apply(&self, facing: f32, hit: &mut HitMaterial<'_>) {
         let t = self.transparency_at(facing);
         let mut p = 1.0 - (t.x + t.y + t.z) / 3.0;
@@ -133,10 +148,14 @@ impl ViewTransparency {
             };
             let translucence = self.translucence * (Rgb::ONE - t);
             let refracting = match &*hit.model {
-                SurfaceModel::Maya(g) => Some(
-                    g.with_refraction(weight, g.ior, g.refraction_limit)
-                        .with_translucence(if self.stack.is_some() { g.translucence } else { translucence }, g.focus),
-                ),
+                SurfaceModel::Maya(g) => {
+                    let g = g.with_refraction(weight, g.ior, g.refraction_limit);
+                    Some(match (&self.stack, &self.stack_translucence) {
+                        (Some(_), Some(layers)) => layers.apply(facing, 1.0, &g),
+                        (Some(_), None) => g,
+                        (None, _) => g.with_translucence(translucence, g.focus),
+                    })
+                }
                 _ => None,
             };
             if let Some(g) = refracting {
@@ -153,6 +172,13 @@ impl ViewTransparency {
             let k = if p > 0.0 { 1.0 / p } else { 1.0 };
             hit.diffuse = table_at(&stack[0], facing) * k;
             hit.emission = table_at(&stack[1], facing) * k;
+            let translucent = match (&self.stack_translucence, &*hit.model) {
+                (Some(layers), SurfaceModel::Maya(g)) => Some(layers.apply(facing, p, g)),
+                _ => None,
+            };
+            if let Some(g) = translucent {
+                hit.model = Cow::Owned(SurfaceModel::Maya(Box::new(g)));
+            }
             return;
         }
         let fade = if p > 0.0 { (Rgb::ONE - t) / p } else { Rgb::ONE };

@@ -18,6 +18,7 @@ mod maya_layered_focus;
 mod maya_materials;
 mod maya_path;
 mod maya_ramp;
+mod maya_ramp_translucence;
 mod maya_solid_textures;
 mod maya_stand_in_lines;
 mod maya_textures2d;

@@ -1,7 +1,8 @@
 //! A layeredShader's translucent layers in the path engine's translation keep their own
 //! `translucenceFocus` (`bsdf::MayaGlossy::add_translucence`): each focus a forward lobe
-//! of albedo Σ w_i · c_i · t_i over its layers (w_i the layer's share), up to three
-//! distinct foci; a fourth is merged into the third's with a warning naming its layer.
+//! of albedo Σ w_i · c_i · t_i over its layers (w_i the layer's share), up to four
+//! distinct foci; a fifth is merged into the lobe of the nearest exponent with a warning
+//! naming its layer and the change of its forward peak.
 
 use crate::support;
 
@@ -13,7 +14,7 @@ use support::maya::{compile, Compiled};
 const LIBS: &str = "$include \"mayabase.mi\"\n";
 
 /// The layers' colours, in order.
-const COLORS: [[f32; 3]; 4] = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5]];
+const COLORS: [[f32; 3]; 5] = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5], [0.7, 0.6, 0.2]];
 
 /// The layers' `translucence`.
 const T: f32 = 0.6;
@@ -52,12 +53,14 @@ fn lobes(c: &Compiled) -> (Vec<(Vec3A, f32)>, Vec<String>) {
 
 /// Three layers of foci 0.5, 0 and 0.25 (shares ½, ¼, ¼): three lobes, the focus-0 one
 /// first, each of albedo w_i · c_i · t and exponent 2φ/(1 − φ) within 1e-6, no warning.
-/// Two layers of one focus (0.5) share a lobe of albedo the sum of theirs. A fourth
-/// distinct focus (0.75 under 0.5, 0, 0.25): still three lobes, the fourth layer's albedo
-/// added to the last (the total albedo kept within 1e-6), and a warning naming "l3".
-/// Before, the stack took the first translucent layer's focus for all (warned).
+/// Two layers of one focus (0.5) share a lobe of albedo the sum of theirs. Four distinct
+/// foci (0.75 under 0.5, 0, 0.25): four lobes, no warning. A fifth (0.8, exponent 8,
+/// under those): still four lobes, the fifth layer's albedo added to the lobe of the
+/// nearest exponent (0.75's, 6, which keeps it; the total albedo kept within 1e-6), and a
+/// warning naming "l4" and both forward peaks, 5 and 4. Before, a fourth focus was merged
+/// into the third's.
 #[test]
-fn each_layers_focus_is_a_lobe_of_its_own_up_to_three() {
+fn each_layers_focus_is_a_lobe_of_its_own_up_to_four() {
     let c = |i: usize| Vec3A::from_array(COLORS[i]) * T;
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25]));
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -72,9 +75,152 @@ fn each_layers_focus_is_a_lobe_of_its_own_up_to_three() {
     assert_eq!(got.len(), 1, "{got:?}");
     assert!((got[0].0 - (c(0) * 0.5 + c(1) * 0.5)).abs().max_element() < 1e-6, "{got:?}");
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75]));
-    assert_eq!(got.len(), 3, "{got:?}");
-    assert!(warnings.len() == 1 && warnings[0].contains("'l3'"), "{warnings:?}");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(got.len(), 4, "{got:?}");
+    let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75, 0.8]));
+    assert_eq!(got.len(), 4, "{got:?}");
+    assert!(
+        warnings.len() == 1 && warnings[0].contains("'l4'") && warnings[0].contains("becomes 4.000 instead of 5.000"),
+        "{warnings:?}"
+    );
     let total = got.iter().fold(Vec3A::ZERO, |s, (a, _)| s + *a);
-    let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.125;
+    let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.0625 + c(4) * 0.0625;
     assert!((total - want).abs().max_element() < 1e-6, "{total} vs {want}");
+    let (a, _) = got.iter().find(|(_, n)| (*n - 6.0).abs() < 1e-5).expect("the lobe of exponent 6");
+    assert!((*a - (c(3) + c(4)) * 0.0625).abs().max_element() < 1e-6, "{a}");
+}
+
+/// A stack of four layers of foci 0, 0.3, 0.6 and 0.9 (shares ½, ¼, ⅛, ⅛): the path
+/// engine's translucence, f of the translated stack's BSDF, is the sum of each layer's
+/// alone — a Maya BSDF of albedo w_i · c_i · t and exponent 2φ_i/(1 − φ_i) — within 1e-5
+/// over 24 × 24 direction pairs, with no warning. Before, the fourth focus (0.9,
+/// exponent 18) was merged into the third's lobe (0.6, exponent 3): its forward peak 2.5
+/// instead of 10.
+#[test]
+fn four_foci_are_the_sum_of_their_layers() {
+    use bsdf::maya_highlight::Shape;
+    let foci = [0.0f32, 0.3, 0.6, 0.9];
+    let c = stack(&foci);
+    let (s, warnings) =
+        material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let SurfaceModel::Maya(g) = &s.model else { panic!("a Maya model: {:?}", s.model) };
+    let plain = bsdf::MayaGlossy::new(Shape::Phong { power: 1.0 }, Vec3A::ZERO);
+    let shares = [0.5f32, 0.25, 0.125, 0.125];
+    let alone: Vec<bsdf::MayaGlossy> = (0..4)
+        .map(|i| plain.with_translucence(Vec3A::from_array(COLORS[i]) * T * shares[i], focus_exponent(foci[i])))
+        .collect();
+    let directions: Vec<Vec3A> = (0..24)
+        .map(|k| {
+            let z = 1.0 - 2.0 * (k as f32 + 0.5) / 24.0;
+            let phi = 2.4 * k as f32;
+            let r = (1.0 - z * z).sqrt();
+            Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect();
+    for &wo in &directions {
+        let stack = g.bsdf(Vec3A::ZERO, wo);
+        for &wi in &directions {
+            let want = alone.iter().fold(Vec3A::ZERO, |sum, l| sum + l.bsdf(Vec3A::ZERO, wo).eval_translucence(wo, wi));
+            let got = stack.eval_translucence(wo, wi);
+            assert!((got - want).abs().max_element() < 1e-5, "{wo} {wi}: {got} vs {want}");
+        }
+    }
+}
+
+/// The transparency ramp of [`view_stack`]'s top layer: 0.9 at facing ratio 0 to 0.2 at
+/// 0.75 (24/32: its knots lie on the path engine's table points), linear, 0.2 after.
+fn view_ramp() -> maya::utility::Ramp {
+    maya::utility::Ramp::new(vec![(0.0, Vec3A::splat(0.9), 1), (0.75, Vec3A::splat(0.2), 1)], Vec3A::ZERO)
+}
+
+/// The rampShader layer's colour and translucence, the lambert layer's.
+const RAMP_LAYER: ([f32; 3], f32) = ([0.7, 0.5, 0.2], 0.6);
+const LAMBERT_LAYER: ([f32; 3], f32) = ([0.2, 0.4, 0.9], 0.5);
+
+/// A layeredShader whose top layer follows the view: a rampShader (light-angle input,
+/// constant colour, `translucence` 0.6, transparency ramp [`view_ramp`]) over an opaque
+/// lambert of `translucenceFocus` `focus`.
+fn view_stack(focus: f32) -> Compiled {
+    let ([r, g, b], ta) = RAMP_LAYER;
+    let ([r2, g2, b2], tb) = LAMBERT_LAYER;
+    let body = format!(
+        "shader \"a\" \"maya_rampshader\" (\"colorInput\" 0, \"diffuse\" 0.8, \"translucence\" {ta},\n\
+         \"color\" [ {{ \"color_Position\" 0, \"color_Color\" {r} {g} {b}, \"color_Interp\" 1 }} ],\n\
+         \"transparency\" [ {{ \"transparency_Position\" 0, \"transparency_Color\" 0.9 0.9 0.9, \"transparency_Interp\" 1 }},\n\
+         {{ \"transparency_Position\" 0.75, \"transparency_Color\" 0.2 0.2 0.2, \"transparency_Interp\" 1 }} ])\n\
+         shader \"b\" \"maya_lambert\" (\"color\" {r2} {g2} {b2}, \"diffuse\" 0.8, \"translucence\" {tb}, \
+         \"translucenceFocus\" {focus})\n\
+         shader \"mat\" \"maya_layeredshader\" (\"inputs\" [ {{ \"color\" = \"a.outColor\", \"transparency\" = \"a.outTransparency\" }},\n\
+         {{ \"color\" = \"b.outColor\", \"transparency\" = \"b.outTransparency\" }} ])\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"mat.outColor\") end material\n"
+    );
+    let c = compile("", &format!("{LIBS}{body}"), &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    c
+}
+
+/// The classic stack's shares of its two layers at facing ratio `f`: what
+/// `maya::layered_shader::composite_layers` (compositing as textures, colour 1 for the
+/// layer asked, 0 for the other) gives, the top layer's transparency the classic ramp's
+/// at f, the bottom one opaque.
+fn classic_shares(f: f32) -> [Vec3A; 2] {
+    use maya::layered_shader::{composite_layers, ShaderLayer};
+    let t = view_ramp().at(f);
+    std::array::from_fn(|i| {
+        let layer = |k: usize, transparency: Vec3A| ShaderLayer {
+            color: if k == i { Vec3A::ONE } else { Vec3A::ZERO },
+            transparency,
+            includes_behind: false,
+        };
+        composite_layers(&[layer(0, t), layer(1, Vec3A::ZERO)], true, Vec3A::ZERO).0
+    })
+}
+
+/// A layeredShader whose rampShader layer's transparency follows the view weights its
+/// layers' translucence lobes by their shares at each hit's facing ratio f
+/// (`material::maya::StackTranslucence`, applied by `ViewTransparency::apply`), as the
+/// classic stack composites them at that ray. [`view_stack`] at f = 0.3, 0.55, 0.8 and 1:
+/// with the lambert layer's focus 0.5 the hit's two lobes are w_a(f) · A_a (focus 0, the
+/// rampShader's light-angle shape, A_a = 2 · t_a · c_a for its constant ramp) and
+/// w_b(f) · c_b · t_b (exponent 2), w the classic composite's shares at f, within 1e-5;
+/// with focus 0 they share one lobe whose A ⊙ S(u) is w_a · t_a · c_a + w_b · c_b · t_b · u
+/// within 1e-5 at u = 0.1 … 1. Before, the lobes kept the shares at f = 1 (w_a = 0.8):
+/// at f = 0.3, w_a = 0.38.
+#[test]
+fn a_view_following_stack_weights_its_translucence_at_the_hits_facing_ratio() {
+    let (ca, ta) = (Vec3A::from_array(RAMP_LAYER.0), RAMP_LAYER.1);
+    let (cb, tb) = (Vec3A::from_array(LAMBERT_LAYER.0), LAMBERT_LAYER.1);
+    for focus in [0.5f32, 0.0] {
+        let c = view_stack(focus);
+        let (s, warnings) =
+            material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let view = s.view_transparency.as_deref().expect("a stack that follows the view");
+        for f in [0.3f32, 0.55, 0.8, 1.0] {
+            let mut hit = s.constant();
+            view.apply(f, &mut hit);
+            let SurfaceModel::Maya(g) = &*hit.model else { panic!("a Maya model: {:?}", hit.model) };
+            let [wa, wb] = classic_shares(f);
+            let got: Vec<(Vec3A, f32)> = g.translucence_lobes().filter(|(a, _)| *a != Vec3A::ZERO).collect();
+            let shape = g.light_angle.expect("the rampShader layer's light-angle shape");
+            if focus > 0.0 {
+                let want = [(wa * ca * ta * 2.0, 0.0), (wb * cb * tb, focus_exponent(focus))];
+                assert_eq!(got.len(), 2, "f {f}: {got:?}");
+                for ((a, n), (wa, wn)) in got.iter().zip(want) {
+                    assert!(
+                        (*a - wa).abs().max_element() < 1e-5 && (n - wn).abs() < 1e-6,
+                        "f {f}: {a} {n} vs {wa} {wn}"
+                    );
+                }
+            } else {
+                assert_eq!(got.len(), 1, "f {f}: {got:?}");
+                for u in [0.1f32, 0.25, 0.5, 0.75, 1.0] {
+                    let a = got[0].0 * shape.factor(u) * u;
+                    let want = wa * ca * ta + wb * cb * tb * u;
+                    assert!((a - want).abs().max_element() < 1e-5, "f {f}, u {u}: {a} vs {want}");
+                }
+            }
+        }
+    }
 }

@@ -55,6 +55,7 @@ mod maya_translucence_path;
 mod maya_transparent_path;
 mod maya_use_background_path;
 mod maya_vertex_data;
+mod maya_view_stack_translucence;
 mod maya_volume_axis_path;
 mod maya_volume_dir_path;
 mod maya_volume_highlight_path;

@@ -388,9 +388,8 @@ fn a_layered_shader_carries_every_layers_translucence_in_the_path_engine() {
 
 /// The path engine's rampShader passes light from behind at every angle as the classic
 /// one: under the light-angle input the classic shader adds t · C((1 + cos θ)/2) ⊙ L for a
-/// light behind (no cosine factor), which the path lobe reads from its table of the ramp
-/// at every sixteenth of [0, ½] (`bsdf::maya_highlight::translucence::LightAngle`), exact
-/// for this linear ramp. The opaque slab (s = 0.1, D = 1) lit from behind at θ = 0°, 30° and 60°
+/// light behind (no cosine factor), which the path lobe reads from the ramp's own knots
+/// (`bsdf::maya_highlight::translucence::LightAngle`). The opaque slab (s = 0.1, D = 1) lit from behind at θ = 0°, 30° and 60°
 /// from the normal (direct light, 4 samples per pixel): the path image's mean is the
 /// classic one's within 2 % per channel, and every path pixel the closed form
 /// t · C((1 − cos θ)/2) · (1 − s/(D cos θ)) within 2 %. Before, the path lobe was
@@ -444,8 +443,7 @@ fn ramp_at(points: &[(f32, Vec3A)], x: f32) -> Vec3A {
 
 /// The path engine's rampShader follows a colour ramp with a knot inside [0, ½] (at ¼:
 /// (0.6, 0.5, 0.4) at 0, (0.9, 0.2, 0.1) at ¼, (0.1, 0.2, 0.9) at 1), read from behind
-/// through the lobe's table of the ramp at every sixteenth of [0, ½]
-/// (`bsdf::maya_highlight::translucence::LightAngle`). The opaque slab (s = 0.1, D = 1)
+/// from the ramp's own knots (`bsdf::maya_highlight::translucence::LightAngle`). The opaque slab (s = 0.1, D = 1)
 /// lit from behind at θ = 0°, 30°, 45° and 60° (the knot) from the normal (direct light,
 /// 4 samples per pixel): the path image's mean is the classic one's within 2 % per
 /// channel, and every path pixel the closed form t · C((1 − cos θ)/2) · (1 − s/(D cos θ))
