@@ -533,6 +533,7 @@ pub fn trace_camera_path_into(
                 (throughput * weight, next, reflections + 1, true, Some(stop.instance));
             last_env = own_env;
             reach = None;
+            unlit = Rgb::ZERO;
             continue;
         }
         // The commonest hit, one Lambertian lobe, skips the general BSDF's dispatch below

@@ -263,12 +263,51 @@ impl MeshData {
     /// The mesh with its vertices in separate arrays again (positions, packed normals):
     /// a copy for the code that reads [`MeshData::positions`] as a slice (displacement).
     pub fn to_plain(&self) -> MeshData {
-        let mut plain = MeshData { vertices: Vec::new(), ..self.clone() };
-        if self.is_interleaved() {
-            plain.positions = self.vertices.iter().map(|v| v.p).collect();
-            plain.normals_oct = self.vertices.iter().map(|v| v.n).collect();
+        if !self.is_interleaved() {
+            return self.clone();
         }
-        plain
+        // Every field named, so that a new one is not forgotten; the records themselves
+        // are not cloned (a large mesh's would briefly cost 16 bytes a vertex more).
+        let MeshData {
+            positions: _,
+            normals,
+            normals_oct: _,
+            vertices,
+            textures,
+            user,
+            bump_basis,
+            triangles,
+            slots,
+            ptex_quads,
+            ptex_ngons,
+            ptex_refined,
+            ptex_split,
+            hair,
+            motion,
+            motion_more,
+            position_keys,
+            sharp,
+        } = self;
+        MeshData {
+            positions: vertices.iter().map(|v| v.p).collect(),
+            normals: normals.clone(),
+            normals_oct: vertices.iter().map(|v| v.n).collect(),
+            vertices: Vec::new(),
+            textures: textures.clone(),
+            user: user.clone(),
+            bump_basis: bump_basis.clone(),
+            triangles: triangles.clone(),
+            slots: slots.clone(),
+            ptex_quads: ptex_quads.clone(),
+            ptex_ngons: ptex_ngons.clone(),
+            ptex_refined: ptex_refined.clone(),
+            ptex_split: ptex_split.clone(),
+            hair: hair.clone(),
+            motion: motion.clone(),
+            motion_more: motion_more.clone(),
+            position_keys: position_keys.clone(),
+            sharp: *sharp,
+        }
     }
 
     /// Bytes held by the mesh's arrays (their lengths; what a triangle and its vertices

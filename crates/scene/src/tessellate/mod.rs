@@ -209,14 +209,25 @@ fn group_mesh(
         // Its triangles carry their cage faces' quad-mesh Ptex faces, numbered after the
         // group's polygons; where they could not be (a control face of too many vertices
         // left unrefined, numbers beyond the packing), warned of where such a file is read.
+        let mut unmapped = false;
         if levels == 0 {
             if let Some(n) = (0..cage.face_count()).map(|f| cage.face(f).len()).find(|&n| n > MAX_NGON_VERTICES) {
                 mesh.ptex_unmapped = mesh.ptex_unmapped.or(Some((surface_name.span, n)));
+                unmapped = true;
             }
         } else if refined.ptex_refined.is_empty() {
             mesh.ptex_surface = mesh.ptex_surface.or(Some((surface_name.span, target)));
+            unmapped = true;
         }
+        let first = mesh.triangles.len();
         mesh.append(refined);
+        // Face ids or refined numbers past what the packing holds (many surfaces in one
+        // object) leave triangles without a face: say so rather than render them black
+        // silently.
+        if !unmapped && mesh.ptex_quads.get(first..).is_some_and(|codes| codes.contains(&crate::mesh::ptex_quads::NONE))
+        {
+            mesh.ptex_surface = mesh.ptex_surface.or(Some((surface_name.span, target)));
+        }
     }
     let before = mesh.triangles.len();
     freeform::group_surfaces(group, bases, &approximations, &mut mesh, diags);
