@@ -313,3 +313,57 @@ fn a_ccmesh_renders_its_quads_texels_and_its_ngons_sub_quads() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The pentagon's sub-quads' orientation: each of faces 1–5 holds 2 × 2 texels (red tells
+/// the u half, blue the v half), the ccmesh refined 3 levels and seen at 64². Ptex's and
+/// OpenSubdiv's convention puts sub-quad i's (0, 0) at vertex i, (1, 0) at the midpoint of
+/// edge i → i + 1, (1, 1) at the centre and (0, 1) at the midpoint of edge i − 1 → i. At a
+/// point a fifth of the way from each of the kite's corners to its centroid, the pixel's
+/// colour (the classic engine's over π) is nearer the file's lookup at that corner's face
+/// coordinates (0.1 or 0.9 in u and v) than at any other corner's, in both engines: a u/v
+/// swap, a turned or mirrored sub-quad misplaces at least two corners' colours.
+#[test]
+fn a_ccmesh_pentagons_sub_quads_are_oriented_as_ptex_numbers_them() {
+    let dir = std::env::temp_dir().join(format!("mira_render_ptex_orient_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
+    let halves = (0..4).map(|t| [0.2 + 0.6 * (t & 1) as f32, 0.85, 0.2 + 0.6 * (t >> 1) as f32]).collect::<Vec<_>>();
+    let mut faces = vec![FaceSpec { log2: (2, 2), texels: square_texels() }];
+    faces.extend((1..6).map(|_| FaceSpec { log2: (1, 1), texels: halves.clone() }));
+    let bytes = ptex_bytes(1, &faces);
+    std::fs::write(dir.join("faces.ptx"), &bytes).unwrap();
+    let ptex: Ptex = reader::read(&bytes).expect("the test file").0;
+    let text = ccmesh_scene().replace("resolution 32 32", "resolution 64 64");
+    let mid = |a: (f32, f32), b: (f32, f32)| ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+    for engine in [EngineKind::Path, EngineKind::Classic] {
+        let parsed = mi::parse_str("t.mi", &text);
+        let built = support::build_parsed(&parsed, 64, std::slice::from_ref(&dir));
+        assert!(built.messages.is_empty(), "{:#?}", built.messages);
+        let settings = Settings { engine, spp: Some(4), ..Settings::default() };
+        let (film, _) = support::render_world(&built.built.world, &built.built.shading, &settings);
+        let pixels = film.rgba();
+        let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
+        for i in 0..5 {
+            let face = 1 + i as u32;
+            let vertex = pentagon_vertex(i);
+            let corners = [
+                (vertex, (0.1, 0.1)),
+                (mid(vertex, pentagon_vertex((i + 1) % 5)), (0.9, 0.1)),
+                ((0.5, 0.0), (0.9, 0.9)),
+                (mid(pentagon_vertex((i + 4) % 5), vertex), (0.1, 0.9)),
+            ];
+            let centroid = corners.iter().fold((0.0, 0.0), |s, (p, _)| (s.0 + p.0 / 4.0, s.1 + p.1 / 4.0));
+            let expected = corners.map(|(_, (u, v))| ptex.lookup(face, u, v, None, 0));
+            for (k, ((x, y), _)) in corners.iter().enumerate() {
+                let (px, py) = (x + 0.2 * (centroid.0 - x), y + 0.2 * (centroid.1 - y));
+                assert_eq!(kite_at(px, py), Some(face as usize), "the point lies in kite {i}");
+                let (col, row) = (((px + 1.0) * 32.0) as usize, ((1.0 - py) * 32.0) as usize);
+                let p = pixels[row * 64 + col];
+                let distance = |e: glam::Vec4| (0..3).map(|c| (p[c] / scale - e[c]).abs()).fold(0.0, f32::max);
+                let nearest = (0..4).min_by(|&a, &b| distance(expected[a]).total_cmp(&distance(expected[b]))).unwrap();
+                assert_eq!(nearest, k, "{engine:?}: sub-quad {i}, corner {k}: pixel {p:?}, lookups {expected:?}");
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
