@@ -2,7 +2,7 @@
 //! without building tokens, and binary blocks of a known length.
 
 use super::number::parse_f32_simple;
-use super::{is_delimiter, is_name_char, is_name_start, Lexer, Tok};
+use super::{is_delimiter, is_name_char, is_name_start, swar, Lexer, Tok};
 use crate::diag::Diagnostic;
 use crate::source::Span;
 
@@ -17,6 +17,12 @@ impl Lexer {
             Some(b'0'..=b'9' | b'.') => {}
             Some(b'-' | b'+') if matches!(src.get(start + 1), Some(b'0'..=b'9' | b'.')) => {}
             _ => return Ok(None),
+        }
+        if let Some((v, end)) = swar::f32_decimal(src, start) {
+            if end == src.len() || is_delimiter(src[end]) {
+                self.pos = end;
+                return Ok(Some(v));
+            }
         }
         if let Some((v, len)) = parse_f32_simple(&src[start..]) {
             if start + len == src.len() || is_delimiter(src[start + len]) {
@@ -46,6 +52,12 @@ impl Lexer {
         self.skip_trivia();
         let start = self.pos;
         let src = &*self.src;
+        if let Some((v, end)) = swar::u32_digits(src, start) {
+            if end == src.len() || is_delimiter(src[end]) {
+                self.pos = end;
+                return Ok(Some(v));
+            }
+        }
         let mut i = start;
         let mut v: u64 = 0;
         while let Some(&d) = src.get(i) {

@@ -16,6 +16,9 @@ mod bulk;
 mod directive;
 mod number;
 mod parallel;
+#[cfg(test)]
+mod parallel_trees;
+mod swar;
 mod token;
 
 pub use directive::directive_args;

@@ -5,7 +5,7 @@ use super::{is_delimiter, Lexer, Tok, Token};
 use crate::diag::Diagnostic;
 
 /// Exact powers of ten as `f32` (all representable).
-const POW10_F32: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+pub(super) const POW10_F32: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
 
 /// Parses the common short decimal forms (`-12.5`, `0.136563`, `1e-5`) exactly: when the
 /// decimal mantissa fits 24 bits and the power of ten is at most 10, one `f32` multiply or

@@ -11,7 +11,7 @@
 use rayon::prelude::*;
 
 use super::number::parse_f32_simple;
-use super::{is_delimiter, Lexer};
+use super::{is_delimiter, swar, Lexer};
 
 /// Lists of at least this many bytes are read in parallel (smaller ones are not worth a
 /// thread's wake-up).
@@ -37,29 +37,32 @@ impl Lexer {
         self.list_parallel(out, parse_u32_piece)
     }
 
-    fn list_parallel<T: Send>(&mut self, out: &mut Vec<T>, parse: fn(&[u8], &mut Vec<T>) -> bool) -> bool {
+    fn list_parallel<T: Send + Copy>(&mut self, out: &mut Vec<T>, parse: fn(&[u8], &mut Vec<T>) -> bool) -> bool {
         let start = self.pos;
         let Some(end) = list_end(&self.src[start..]).map(|e| start + e) else { return false };
-        if end - start < PARALLEL_FROM_BYTES {
+        let (from_bytes, piece_bytes) = limits();
+        if end - start < from_bytes {
             return false;
         }
-        let pieces = pieces(&self.src[start..end]);
+        let pieces = pieces(&self.src[start..end], piece_bytes);
         let keep = out.len();
         let base = self.src.as_ptr() as usize;
+        // One buffer per piece of a round, kept from round to round: their pages are
+        // faulted in once, not once a round.
+        let mut buffers: Vec<Vec<T>> = Vec::new();
+        buffers.resize_with(pieces.len().min(PIECES_PER_ROUND), Vec::new);
         for round in pieces.chunks(PIECES_PER_ROUND) {
-            let read: Option<Vec<Vec<T>>> = round
-                .par_iter()
-                .map(|piece| {
-                    let mut v = Vec::with_capacity(piece.len() / 4);
-                    parse(piece, &mut v).then_some(v)
-                })
-                .collect();
-            let Some(read) = read else {
+            let all_read = round.par_iter().zip(buffers[..round.len()].par_iter_mut()).all(|(piece, buffer)| {
+                buffer.clear();
+                buffer.reserve(piece.len() / 4);
+                parse(piece, buffer)
+            });
+            if !all_read {
                 out.truncate(keep);
                 return false;
-            };
-            for mut v in read {
-                out.append(&mut v);
+            }
+            for buffer in &buffers[..round.len()] {
+                out.extend_from_slice(buffer);
             }
             // The text read so far is not needed again (unless a message quotes it or the
             // serial path re-reads the list): a mapped file's pages go back to the page cache.
@@ -86,13 +89,38 @@ fn list_end(text: &[u8]) -> Option<usize> {
     }
 }
 
-/// `text` cut into pieces of about [`PIECE_BYTES`], each ending just after a line break
+/// The list length from which lists are read in parallel and the bytes per piece:
+/// [`PARALLEL_FROM_BYTES`] and [`PIECE_BYTES`], or in unit tests what [`with_limits`] set.
+fn limits() -> (usize, usize) {
+    #[cfg(test)]
+    return LIMITS.with(std::cell::Cell::get);
+    #[cfg(not(test))]
+    (PARALLEL_FROM_BYTES, PIECE_BYTES)
+}
+
+#[cfg(test)]
+thread_local! {
+    static LIMITS: std::cell::Cell<(usize, usize)> = const { std::cell::Cell::new((PARALLEL_FROM_BYTES, PIECE_BYTES)) };
+}
+
+/// Runs `f` (on this thread) with lists of at least `from_bytes` read in parallel, in
+/// pieces of about `piece_bytes`: `usize::MAX` reads every list serially, small pieces
+/// put piece boundaries everywhere.
+#[cfg(test)]
+pub(crate) fn with_limits<R>(from_bytes: usize, piece_bytes: usize, f: impl FnOnce() -> R) -> R {
+    let before = LIMITS.with(|l| l.replace((from_bytes, piece_bytes.max(1))));
+    let result = f();
+    LIMITS.with(|l| l.set(before));
+    result
+}
+
+/// `text` cut into pieces of about `piece_bytes`, each ending just after a line break
 /// (numbers and comments never span one) or at the end.
-fn pieces(text: &[u8]) -> Vec<&[u8]> {
-    let mut out = Vec::with_capacity(text.len() / PIECE_BYTES + 1);
+fn pieces(text: &[u8], piece_bytes: usize) -> Vec<&[u8]> {
+    let mut out = Vec::with_capacity(text.len() / piece_bytes + 1);
     let mut at = 0;
     while at < text.len() {
-        let cut = at + PIECE_BYTES;
+        let cut = at + piece_bytes;
         let end = if cut >= text.len() {
             text.len()
         } else {
@@ -132,23 +160,37 @@ fn ends_at(text: &[u8], end: usize) -> bool {
 fn parse_f32_piece(text: &[u8], out: &mut Vec<f32>) -> bool {
     let mut i = skip_trivia(text, 0);
     while i < text.len() {
-        let signed = matches!(text[i], b'-' | b'+');
-        let first = if signed { text.get(i + 1) } else { Some(&text[i]) };
-        if !matches!(first, Some(b'0'..=b'9' | b'.')) {
-            return false;
-        }
-        let rest = &text[i..];
-        let (v, len) = match parse_f32_simple(rest) {
-            Some((v, len)) if ends_at(text, i + len) => (v, len),
-            _ => match fast_float2::parse_partial::<f32, _>(rest) {
-                Ok((v, len)) if ends_at(text, i + len) => (v, len),
-                _ => return false,
+        let (v, end) = match swar::f32_decimal(text, i) {
+            Some((v, end)) if ends_at(text, end) => (v, end),
+            _ => match parse_f32_general(text, i) {
+                Some(read) => read,
+                None => return false,
             },
         };
         out.push(v);
-        i = skip_trivia(text, i + len);
+        i = skip_trivia(text, end);
     }
     true
+}
+
+/// The number at `text[i..]` read as [`Lexer::try_f32`] reads it (the short decimal fast
+/// path, else the full parser), with the offset past it; `None` when no number properly
+/// cut off is there.
+#[inline(never)]
+fn parse_f32_general(text: &[u8], i: usize) -> Option<(f32, usize)> {
+    let signed = matches!(text[i], b'-' | b'+');
+    let first = if signed { text.get(i + 1) } else { Some(&text[i]) };
+    if !matches!(first, Some(b'0'..=b'9' | b'.')) {
+        return None;
+    }
+    let rest = &text[i..];
+    match parse_f32_simple(rest) {
+        Some((v, len)) if ends_at(text, i + len) => Some((v, i + len)),
+        _ => match fast_float2::parse_partial::<f32, _>(rest) {
+            Ok((v, len)) if ends_at(text, i + len) => Some((v, i + len)),
+            _ => None,
+        },
+    }
 }
 
 /// Reads a piece holding only non-negative integers that fit `u32`, whitespace and
@@ -156,25 +198,40 @@ fn parse_f32_piece(text: &[u8], out: &mut Vec<f32>) -> bool {
 fn parse_u32_piece(text: &[u8], out: &mut Vec<u32>) -> bool {
     let mut i = skip_trivia(text, 0);
     while i < text.len() {
-        let start = i;
-        let mut v: u64 = 0;
-        while let Some(&d) = text.get(i) {
-            if !d.is_ascii_digit() {
-                break;
-            }
-            v = v * 10 + u64::from(d - b'0');
-            if v > u64::from(u32::MAX) {
-                return false;
-            }
-            i += 1;
-        }
-        if i == start || !ends_at(text, i) {
-            return false;
-        }
-        out.push(v as u32);
-        i = skip_trivia(text, i);
+        let (v, end) = match swar::u32_digits(text, i) {
+            Some((v, end)) if ends_at(text, end) => (v, end),
+            _ => match parse_u32_general(text, i) {
+                Some(read) => read,
+                None => return false,
+            },
+        };
+        out.push(v);
+        i = skip_trivia(text, end);
     }
     true
+}
+
+/// The integer at `text[i..]` read digit by digit, with the offset past it; `None` when
+/// no integer that fits `u32` and is properly cut off is there.
+#[inline(never)]
+fn parse_u32_general(text: &[u8], i: usize) -> Option<(u32, usize)> {
+    let start = i;
+    let mut i = i;
+    let mut v: u64 = 0;
+    while let Some(&d) = text.get(i) {
+        if !d.is_ascii_digit() {
+            break;
+        }
+        v = v * 10 + u64::from(d - b'0');
+        if v > u64::from(u32::MAX) {
+            return None;
+        }
+        i += 1;
+    }
+    if i == start || !ends_at(text, i) {
+        return None;
+    }
+    Some((v as u32, i))
 }
 
 #[cfg(test)]
@@ -291,5 +348,61 @@ mod tests {
         let line = text[..at].matches('\n').count() + 1;
         assert_eq!(line, 4 + 90_000 + 1, "{}", error.message);
         assert!(error.message.contains("malformed number"), "{}", error.message);
+    }
+
+    /// Single-thread speed of the piece readers on a real scene's trilist (the file named by
+    /// `MI_PARSE_TIMING`, e.g. the heavy bench scene): `cargo test -p mi --release --lib
+    /// piece_reader_speed -- --ignored --nocapture`.
+    #[test]
+    #[ignore = "a measurement, not a check: needs MI_PARSE_TIMING=<scene.mi>"]
+    fn piece_reader_speed() {
+        let Ok(path) = std::env::var("MI_PARSE_TIMING") else { return };
+        let text = std::fs::read(path).unwrap();
+        let open = text.windows(8).position(|w| w == b"trilist\n").unwrap();
+        let v0 = open + memchr::memchr(b'[', &text[open..]).unwrap() + 1;
+        let v1 = v0 + list_end(&text[v0..]).unwrap();
+        let t0 = v1 + 1 + memchr::memchr(b'[', &text[v1 + 1..]).unwrap() + 1;
+        let t1 = t0 + list_end(&text[t0..]).unwrap();
+        for _ in 0..3 {
+            let clock = std::time::Instant::now();
+            let mut floats = Vec::with_capacity((v1 - v0) / 4);
+            assert!(parse_f32_piece(&text[v0..v1], &mut floats));
+            let f = clock.elapsed();
+            let clock = std::time::Instant::now();
+            let mut ints = Vec::with_capacity((t1 - t0) / 4);
+            assert!(parse_u32_piece(&text[t0..t1], &mut ints));
+            let u = clock.elapsed();
+            // The digit-by-digit readers alone (the pieces' readers before the SWAR paths).
+            let clock = std::time::Instant::now();
+            let mut serial = Vec::with_capacity(floats.len());
+            let (piece, mut i) = (&text[v0..v1], skip_trivia(&text[v0..v1], 0));
+            while i < piece.len() {
+                let (v, end) = parse_f32_general(piece, i).unwrap();
+                serial.push(v);
+                i = skip_trivia(piece, end);
+            }
+            let sf = clock.elapsed();
+            let clock = std::time::Instant::now();
+            let mut serial_ints = Vec::with_capacity(ints.len());
+            let (piece, mut i) = (&text[t0..t1], skip_trivia(&text[t0..t1], 0));
+            while i < piece.len() {
+                let (v, end) = parse_u32_general(piece, i).unwrap();
+                serial_ints.push(v);
+                i = skip_trivia(piece, end);
+            }
+            let su = clock.elapsed();
+            assert_eq!(serial_ints, ints);
+            assert!(serial.iter().zip(&floats).all(|(a, b)| a.to_bits() == b.to_bits()) && serial.len() == floats.len());
+            let ns = |t: std::time::Duration, n: usize| t.as_secs_f64() * 1e9 / n as f64;
+            println!(
+                "{} floats: {:.2} ns each (digit by digit {:.2}); {} indices: {:.2} ns each (digit by digit {:.2})",
+                floats.len(),
+                ns(f, floats.len()),
+                ns(sf, floats.len()),
+                ints.len(),
+                ns(u, ints.len()),
+                ns(su, ints.len()),
+            );
+        }
     }
 }
