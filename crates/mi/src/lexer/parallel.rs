@@ -392,7 +392,9 @@ mod tests {
             }
             let su = clock.elapsed();
             assert_eq!(serial_ints, ints);
-            assert!(serial.iter().zip(&floats).all(|(a, b)| a.to_bits() == b.to_bits()) && serial.len() == floats.len());
+            assert!(
+                serial.iter().zip(&floats).all(|(a, b)| a.to_bits() == b.to_bits()) && serial.len() == floats.len()
+            );
             let ns = |t: std::time::Duration, n: usize| t.as_secs_f64() * 1e9 / n as f64;
             println!(
                 "{} floats: {:.2} ns each (digit by digit {:.2}); {} indices: {:.2} ns each (digit by digit {:.2})",

@@ -67,7 +67,8 @@ struct Expected {
 fn mesh_scene(seed: u64, vertices: usize) -> (String, Expected) {
     let mut rng = Rng(seed | 1);
     let mut expected = Expected::default();
-    let mut s = format!("object \"tri\"\n  visible on\n  trilist vertex {vertices} p n t 2\n  triangle {vertices}\n  [\n");
+    let mut s =
+        format!("object \"tri\"\n  visible on\n  trilist vertex {vertices} p n t 2\n  triangle {vertices}\n  [\n");
     for _ in 0..vertices * 8 {
         let x = number(&mut rng);
         expected.trilist_floats.push(x.parse::<f32>().unwrap().to_bits());
@@ -106,8 +107,7 @@ fn mesh_scene(seed: u64, vertices: usize) -> (String, Expected) {
 
 /// The ways a list is read: serially, in parallel in pieces of a few lines (boundaries
 /// everywhere), of a few kilobytes, and as shipped.
-const WAYS: [(usize, usize); 4] =
-    [(usize::MAX, 1), (0, 40), (0, 4096), (super::PARALLEL_FROM_BYTES, 256 << 10)];
+const WAYS: [(usize, usize); 4] = [(usize::MAX, 1), (0, 40), (0, 4096), (super::PARALLEL_FROM_BYTES, 256 << 10)];
 
 fn parse_with(way: (usize, usize), text: &str) -> Parsed {
     with_limits(way.0, way.1, || crate::parse_str("mesh.mi", text))
@@ -177,11 +177,7 @@ fn malformed_numbers_are_reported_where_the_serial_reader_reports_them() {
             // The message points at the bad token's line and column.
             let line = 5 + at / 3;
             let column = 1 + (0..at % 3).map(|k| ["12.5 ", "-0.125 ", "3"][k].len()).sum::<usize>();
-            assert!(
-                expected[0].starts_with(&format!("mesh.mi:{line}:{column}")),
-                "{bad:?} at {at}: {}",
-                expected[0]
-            );
+            assert!(expected[0].starts_with(&format!("mesh.mi:{line}:{column}")), "{bad:?} at {at}: {}", expected[0]);
             for way in &WAYS[1..] {
                 assert_eq!(messages(&parse_with(*way, &text)), expected, "{bad:?} at {at}, {way:?}");
             }

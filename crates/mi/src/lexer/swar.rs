@@ -86,7 +86,8 @@ pub(super) fn f32_decimal(text: &[u8], at: usize) -> Option<(f32, usize)> {
             return None;
         }
         if frac_digits > 0 {
-            mantissa = mantissa * u64::from(POW10_U32[frac_digits as usize]) + u64::from(digits_value(word, frac_digits));
+            mantissa =
+                mantissa * u64::from(POW10_U32[frac_digits as usize]) + u64::from(digits_value(word, frac_digits));
             i += frac_digits as usize;
         }
     }
@@ -130,7 +131,11 @@ mod tests {
                 .map(|k| {
                     let pick = (r >> (8 + 4 * k)) as usize;
                     // Mostly digits, so that well-formed numbers are common.
-                    if pick % 4 != 0 { b'0' + (pick / 4 % 10) as u8 } else { chars[pick / 4 % chars.len()] }
+                    if pick % 4 != 0 {
+                        b'0' + (pick / 4 % 10) as u8
+                    } else {
+                        chars[pick / 4 % chars.len()]
+                    }
                 })
                 .collect();
             s.extend_from_slice(b" 1234567\n");
@@ -157,7 +162,17 @@ mod tests {
             assert_eq!((v.to_bits(), end), (value.to_bits(), text.len()), "{text:?}");
         }
         // Left to the general path: too long, too large, no digits, too near the end.
-        for text in ["16777216 ", "12345678.5 ", "0.12345678 ", "16777217 ", "1.6777217 ", ". x      ", "- 1      ", "-.x      ", "1.5"] {
+        for text in [
+            "16777216 ",
+            "12345678.5 ",
+            "0.12345678 ",
+            "16777217 ",
+            "1.6777217 ",
+            ". x      ",
+            "- 1      ",
+            "-.x      ",
+            "1.5",
+        ] {
             assert_eq!(f32_decimal(text.as_bytes(), 0), None, "{text:?}");
         }
     }
