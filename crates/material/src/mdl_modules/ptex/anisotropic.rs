@@ -7,8 +7,18 @@
 //! evenly over the long width, the footprint's rectangle covered by n squares of the
 //! short width — the rectangle's average of the face, where an isotropic width (the
 //! footprint's area as a square) would blur the short axis as much as the long one.
+//!
+//! A probe past a face edge reads the face across it ([`Ptex::across_edges`]: the point
+//! carried over the edge as the bilinear filter carries texels, `filter`'s `outside_edge`
+//! mapping, and on over further edges up to [`MAX_CROSSINGS`] times), with the same widths
+//! (the neighbour taken to be as large as the face); where no face is across, the probe
+//! clamps to the face's edge.
 
+use super::filter::{from_edge, outside_edge};
 use super::{Filter, Ptex};
+
+/// The most face edges a probe is carried across.
+pub const MAX_CROSSINGS: usize = 4;
 
 /// The most lookups a rectangle is averaged from (a longer footprint is read with squares
 /// wider than its short width: blurred along the short axis by that much).
@@ -42,7 +52,8 @@ impl Ptex {
         for k in 0..probes {
             let offset = (k as f32 + 0.5) * step - 0.5 * long;
             let (pu, pv) = if along_u { (u + offset, v) } else { (u, v + offset) };
-            if !self.sample(face, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
+            let (pface, pu, pv) = self.across_edges(face, pu, pv);
+            if !self.sample(pface, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
                 out.fill(0.0);
                 return false;
             }
@@ -51,5 +62,25 @@ impl Ptex {
             }
         }
         true
+    }
+
+    /// The face and face coordinates of the point (`u`, `v`) of face `face`, carried across
+    /// the edges it lies past into the faces there (at most [`MAX_CROSSINGS`] edges); the
+    /// point as given (then clamped by the lookup) past an edge with no face across.
+    pub fn across_edges(&self, face: u32, u: f32, v: f32) -> (u32, f32, f32) {
+        let (mut face, mut u, mut v) = (face, u, v);
+        for _ in 0..MAX_CROSSINGS {
+            let Some((edge, t, s)) = outside_edge(self.mesh, u, v) else { break };
+            let Some((other, other_edge)) = self.adjacency.get(face as usize).and_then(|a| a.across(edge)) else {
+                break;
+            };
+            let Ok(other) = u32::try_from(other) else { break };
+            if other as usize >= self.faces.len() {
+                break;
+            }
+            (u, v) = from_edge(self.mesh, other_edge, 1.0 - t, -s);
+            face = other;
+        }
+        (face, u, v)
     }
 }
