@@ -197,23 +197,24 @@ fn a_grazing_view_along_the_varying_axis_blurs_as_the_box_average() {
     eprintln!("{message}");
 }
 
-/// `sample_rect`'s probes past an edge read the face across it: a footprint 0.2 × 0.02 at
-/// u = 0.97 of the centre face (10 probes from u = 0.88 to 1.06) equals the mean of the
-/// probes read at their own places, the last three on the face to the right at u − 1
+/// `sample_rect`'s probes past an edge read the face across it: a footprint 0.5 × 1/16 at
+/// u = 0.9 of the centre face (8 probes from u = 0.68 to 1.12) equals the mean of the
+/// probes read at their own places, the last two on the face to the right at u − 1
 /// (1e-6), and likewise along v into the face above; a face with no neighbour there (the
 /// plane's right column, or a file without adjacency) reads its probes as before, clamped
 /// to its edge (bit for bit the old loop). Triangles: faces 0 and 1 sharing their edges 1
-/// (u + v = 1), a footprint 0.2 × 0.02 along u at (0.66, 0.3) of face 0 reads its probes
-/// past the edge on face 1 at (1 − u, 1 − v) (1e-6).
+/// (u + v = 1), a footprint 0.5 long along u at (0.68, 0.3) of face 0 (4 probes, 8 × 8
+/// texels) reads its probes past the edge on face 1 at (1 − u, 1 − v) (1e-6).
 #[test]
 fn probes_across_an_edge_read_the_neighbour() {
     let (wired, lone) = (plane(true), plane(false));
-    let (short, long) = (0.02f32, 0.2f32);
-    // The probes' places (as `sample_rect` computes them): n = 10 spaced long / 10 over the
-    // long width around `at`, each read with the larger of the spacing and the short width.
-    let step = long / 10.0;
+    // The probes' places (as `sample_rect` computes them): n = long / short = 8 (short the
+    // texel of the level it picks, 16 × 16) spaced long / 8 around `at`, each read with
+    // the spacing's width.
+    let (short, long, n) = (0.0625f32, 0.5f32, 8);
+    let step = long / n as f32;
     let width = short.max(step);
-    let probes = move |at: f32| (0..10).map(move |k| at + ((k as f32 + 0.5) * step - 0.5 * long));
+    let probes = move |at: f32| (0..n).map(move |k| at + ((k as f32 + 0.5) * step - 0.5 * long));
     let one = |ptex: &Ptex, face: u32, u: f32, v: f32| {
         let mut out = [0.0f32; 1];
         assert!(ptex.sample(face, u, v, Some(width), Filter::Bilinear, 0, &mut out));
@@ -226,27 +227,27 @@ fn probes_across_an_edge_read_the_neighbour() {
     };
     // Along u into face 5 (right of 4); along v into face 7 (above 4).
     let mut want = 0.0;
-    for pu in probes(0.97) {
-        want += if pu > 1.0 { one(&wired, 5, pu - 1.0, 0.4) } else { one(&wired, 4, pu, 0.4) } / 10.0;
+    for pu in probes(0.9) {
+        want += if pu > 1.0 { one(&wired, 5, pu - 1.0, 0.4) } else { one(&wired, 4, pu, 0.4) } / n as f32;
     }
-    let got = rect(&wired, 4, 0.97, 0.4, (long, short));
+    let got = rect(&wired, 4, 0.9, 0.4, (long, short));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");
     let mut want = 0.0;
-    for pv in probes(0.97) {
-        want += if pv > 1.0 { one(&wired, 7, 0.3, pv - 1.0) } else { one(&wired, 4, 0.3, pv) } / 10.0;
+    for pv in probes(0.9) {
+        want += if pv > 1.0 { one(&wired, 7, 0.3, pv - 1.0) } else { one(&wired, 4, 0.3, pv) } / n as f32;
     }
-    let got = rect(&wired, 4, 0.3, 0.97, (short, long));
+    let got = rect(&wired, 4, 0.3, 0.9, (short, long));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");
     // It differs from the clamped read (the pattern goes on across the edge).
-    let clamped: f32 = probes(0.97).map(|pu| one(&wired, 4, pu, 0.4) / 10.0).sum();
-    assert!((rect(&wired, 4, 0.97, 0.4, (long, short)) - clamped).abs() > 1e-3);
+    let clamped: f32 = probes(0.9).map(|pu| one(&wired, 4, pu, 0.4) / n as f32).sum();
+    assert!((rect(&wired, 4, 0.9, 0.4, (long, short)) - clamped).abs() > 1e-3);
     // No face across: as before (each probe at its own place, clamped by the lookup).
     for (ptex, face) in [(&wired, 5u32), (&lone, 4)] {
         let mut old = 0.0f32;
-        for pu in probes(0.97) {
-            old += one(ptex, face, pu, 0.4) / 10.0;
+        for pu in probes(0.9) {
+            old += one(ptex, face, pu, 0.4) / n as f32;
         }
-        assert_eq!(rect(ptex, face, 0.97, 0.4, (long, short)), old, "face {face}");
+        assert_eq!(rect(ptex, face, 0.9, 0.4, (long, short)), old, "face {face}");
     }
     // Triangles: a point (u, v) past edge 1 lies t = v along it and s = 1 − u − v (< 0)
     // into the face; on face 1 that is t′ = 1 − t along its edge 1 at depth −s, face
@@ -259,11 +260,20 @@ fn probes_across_an_edge_read_the_neighbour() {
         })
         .collect();
     let triangles = read(&ptex_file_full(0, 3, 1, &faces, 6, &[([-1, 1, -1, -1], [0, 1, 0, 0]); 2], &[]));
-    let (u, v) = (0.66f32, 0.3f32);
+    // 8 × 8 texels: level 0, its texel 1/8 the probes' spacing: 4 probes over 0.5.
+    let (u, v, n) = (0.68f32, 0.3f32, 4);
+    let step = long / n as f32;
+    let width = 0.125f32.max(step);
+    let one = |ptex: &Ptex, face: u32, u: f32, v: f32| {
+        let mut out = [0.0f32; 1];
+        assert!(ptex.sample(face, u, v, Some(width), Filter::Bilinear, 0, &mut out));
+        out[0]
+    };
+    let probes = move |at: f32| (0..n).map(move |k| at + ((k as f32 + 0.5) * step - 0.5 * long));
     let mut want = 0.0;
     for pu in probes(u) {
-        want += if pu + v > 1.0 { one(&triangles, 1, 1.0 - pu, 1.0 - v) } else { one(&triangles, 0, pu, v) } / 10.0;
+        want += if pu + v > 1.0 { one(&triangles, 1, 1.0 - pu, 1.0 - v) } else { one(&triangles, 0, pu, v) } / n as f32;
     }
-    let got = rect(&triangles, 0, u, v, (long, short));
+    let got = rect(&triangles, 0, u, v, (long, 0.0625));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");
 }

@@ -3,7 +3,9 @@
 //! other, and Ptex's own filters take the two widths apart.
 //!
 //! The short width picks the levels (blended, [`Ptex::blend_for`]); along the long axis
-//! the lookup averages n = ⌈long / short⌉ such lookups (at most [`MAX_PROBES`]) spaced
+//! the lookup averages n = ⌈long / max(short, t)⌉ such lookups (t the width of a texel
+//! along the long axis of the level the short width picks: a footprint within a texel is
+//! one interpolated lookup, as the isotropic one; at most [`MAX_PROBES`]) spaced
 //! evenly over the long width, the footprint's rectangle covered by n squares of the
 //! short width — the rectangle's average of the face, where an isotropic width (the
 //! footprint's area as a square) would blur the short axis as much as the long one.
@@ -15,7 +17,7 @@
 //! clamps to the face's edge.
 
 use super::filter::{from_edge, outside_edge};
-use super::{Filter, Ptex};
+use super::{Filter, MeshType, Ptex};
 
 /// The most face edges a probe is carried across.
 pub const MAX_CROSSINGS: usize = 4;
@@ -38,14 +40,20 @@ impl Ptex {
             _ => return self.sample(face, u, v, None, Filter::Bilinear, first, out),
         };
         let (short, long) = (wu.min(wv), wu.max(wv));
-        let probes = ((long / short).ceil() as usize).clamp(1, MAX_PROBES);
+        let along_u = wu >= wv;
+        // A footprint no longer than a texel of the level the short width picks (along the
+        // long axis) is covered by one interpolated lookup.
+        let texel = self.level(face as usize, self.level_for(face as usize, Some(short))).map_or(0.0, |t| {
+            let log2 = if along_u || self.mesh == MeshType::Triangle { t.ulog2 } else { t.vlog2 };
+            (0.5f32).powi(i32::from(log2))
+        });
+        let probes = ((long / short.max(texel)).ceil() as usize).clamp(1, MAX_PROBES);
         if probes == 1 || out.len() > 4 {
             return self.sample(face, u, v, Some(long), Filter::Bilinear, first, out);
         }
         // Squares of the spacing's width (the short width unless the probes ran out).
         let step = long / probes as f32;
         let width = short.max(step);
-        let along_u = wu >= wv;
         out.fill(0.0);
         let mut lanes = [0.0f32; 4];
         let lanes = &mut lanes[..out.len()];
