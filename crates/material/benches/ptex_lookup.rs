@@ -9,10 +9,21 @@
 //! - `width_0.35`: between levels 2 and 3 (4 × 4 and 2 × 2 texels: a blend of both, each
 //!   read as its own width would read it).
 //!
+//! And the lookup at a hit (`Ptex::lookup_at`: the footprint's widths along u and v, then
+//! `Ptex::sample_rect`) over the same points, from states on faces 1 scene unit a side
+//! with a footprint of 0.25 (mdl44):
+//!
+//! - `at/head_on`: seen along the normal (isotropic: one lookup, as `width_0.25`);
+//! - `at/75deg`: 75° off the normal, tilted along v (widths 0.25 and 0.97: 4 probes);
+//! - `widths/75deg`: the widths alone (`footprint::filter_widths`).
+//!
 //! Run with `cargo bench -p material --bench ptex_lookup`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use glam::Vec3A;
+use material::mdl_modules::ptex::footprint::filter_widths;
 use material::mdl_modules::ptex::{Adjacency, FaceTexels, Filter, MeshType, Ptex};
+use shader::State;
 
 /// Four faces of 16 × 16 texels (face 0 lower left, 1 lower right, 2 upper right, 3 upper
 /// left, u right, v up) with their reductions: box averages of varied texels.
@@ -71,6 +82,37 @@ fn bench(c: &mut Criterion) {
                 std::hint::black_box(sum)
             });
         });
+    }
+    let (sin, cos) = (75f32.to_radians().sin(), 75f32.to_radians().cos());
+    for (name, dir) in [("head_on", -Vec3A::Z), ("75deg", Vec3A::new(0.0, sin, -cos))] {
+        let states: Vec<State> = points
+            .iter()
+            .map(|&at| State {
+                dir,
+                normal_geom: Vec3A::Z,
+                camera_footprint: 0.25,
+                tri_area: 0.5,
+                face_edges: [Vec3A::X, Vec3A::new(1.0, 1.0, 0.0)],
+                ptex_quad_jacobian: [1.0, 0.0, 1.0, 1.0],
+                ptex_quad: Some(at),
+                ..State::default()
+            })
+            .collect();
+        c.bench_function(&format!("ptex_lookup/at/{name}"), |b| {
+            b.iter(|| {
+                let sum: f32 = states.iter().map(|s| ptex.lookup_at(s, 0).x).sum();
+                std::hint::black_box(sum)
+            });
+        });
+        if name == "75deg" {
+            c.bench_function(&format!("ptex_lookup/widths/{name}"), |b| {
+                b.iter(|| {
+                    let sum: f32 =
+                        states.iter().filter_map(|s| filter_widths(MeshType::Quad, s)).map(|(u, v)| u + v).sum();
+                    std::hint::black_box(sum)
+                });
+            });
+        }
     }
 }
 

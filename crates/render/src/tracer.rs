@@ -168,11 +168,14 @@ pub fn fill_state(world: &World, hit: &Hit, s: &mut State) {
     s.world_to_object = placed.world_to_object;
     s.footprint += s.spread * hit.t;
     let to_world = |e: Vec3A| placed.object_to_world.transform_vector3a(e);
-    s.tri_area = 0.5 * to_world(p1 - p0).cross(to_world(p2 - p0)).length();
-    if s.ptex_quad.is_some() {
+    s.face_edges = [to_world(p1 - p0), to_world(p2 - p0)];
+    s.tri_area = 0.5 * s.face_edges[0].cross(s.face_edges[1]).length();
+    s.ptex_quad_jacobian = [0.0; 4];
+    if let Some(at) = s.ptex_quad {
         // A quad-mesh Ptex lookup's width in face units needs its face's size: `tri_area`
         // becomes half the face's world area (a quad of two triangles keeps its triangle's).
         s.tri_area *= 0.5 * ptex_face_ratio(mesh, hit.prim as usize, s.bary);
+        s.ptex_quad_jacobian = ptex_quad_jacobian(mesh, hit.prim as usize, s.bary, at);
     }
     s.motion = motion(inst, mesh, [i0, i1, i2], s);
     // Pixel differentials across the footprint (raster x along the camera's right), and
@@ -488,6 +491,29 @@ fn ptex_face_ratio(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3]) ->
         face_area_ratio(&mesh.ptex_quads, &mesh.ptex_ngons, &mesh.ptex_refined, &mesh.triangles, &mesh.positions, prim)
     };
     ratio.filter(|r| r.is_finite() && *r > 0.0).map_or(2.0, |r| r as f32)
+}
+
+/// How the quad-mesh Ptex face coordinates `at` (face, u, v) of a hit at barycentrics
+/// `bary` on triangle `prim` of `mesh` change with the barycentrics b1 and b2
+/// ([`State::ptex_quad_jacobian`]): differences over a step of 2⁻⁸ along each (exact where
+/// the face's (u, v) are affine on the triangle, as on a quad's; a sub-quad's bilinear map
+/// to within the step), backward where the forward step leaves the face; zero where both
+/// do.
+fn ptex_quad_jacobian(mesh: &crate::mesh::MeshData, prim: usize, bary: [f32; 3], at: (u32, f32, f32)) -> [f32; 4] {
+    const STEP: f32 = 1.0 / 256.0;
+    let column = |k: usize| {
+        [STEP, -STEP].into_iter().find_map(|h| {
+            let mut b = bary;
+            b[0] -= h;
+            b[k] += h;
+            let (face, u, v) = ptex_quad_face(mesh, prim, b)?;
+            (face == at.0).then(|| [(u - at.1) / h, (v - at.2) / h])
+        })
+    };
+    match (column(1), column(2)) {
+        (Some([a, b]), Some([c, d])) => [a, b, c, d],
+        _ => [0.0; 4],
+    }
 }
 
 /// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on triangle `prim`

@@ -165,6 +165,15 @@ pub struct State {
     /// Ptex face ([`State::ptex_quad`]) half that face's world area instead (a quad's: its
     /// triangle's), whatever the triangle it was cut into.
     pub tri_area: f32,
+    /// The hit triangle's world-space edges from its first vertex, p1 − p0 and p2 − p0:
+    /// dP/du and dP/dv of its barycentric (u, v) (a triangle-mesh Ptex file's face
+    /// coordinates), for footprints that differ along u and v; zero where unknown.
+    pub face_edges: [Vec3A; 2],
+    /// On a quad-mesh Ptex face ([`State::ptex_quad`]): d(u, v)/d(b1, b2), how the face's
+    /// (u, v) change with the hit's barycentrics b1 and b2 (column-major: du/db1, dv/db1,
+    /// du/db2, dv/db2), so that the face's dP/du, dP/dv follow from `face_edges`; zero
+    /// where unknown.
+    pub ptex_quad_jacobian: [f32; 4],
     /// The light a light or shadow shader works for (index into the shading lights).
     pub light: Option<u32>,
     /// Distance travelled by the last ray traced from this state (mental ray's

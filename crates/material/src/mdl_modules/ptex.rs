@@ -124,6 +124,39 @@ impl Ptex {
         if channel >= self.channels || !self.sample(face, u, v, width, Filter::Bilinear, channel, &mut lanes) {
             return Vec4::ZERO;
         }
+        self.lanes_from(lanes, channel)
+    }
+
+    /// [`Ptex::lookup`] over a footprint `widths` wide along u and v (face units;
+    /// [`Ptex::sample_rect`], which reads equal widths exactly as [`Ptex::lookup`] reads
+    /// one of them; `None`: the highest resolution).
+    pub fn lookup_rect(&self, face: u32, u: f32, v: f32, widths: Option<(f32, f32)>, channel: usize) -> Vec4 {
+        let mut lanes = [0.0f32; 4];
+        let found = match widths {
+            _ if channel >= self.channels => false,
+            Some(widths) => self.sample_rect(face, u, v, widths, channel, &mut lanes),
+            None => self.sample(face, u, v, None, Filter::Bilinear, channel, &mut lanes),
+        };
+        if !found {
+            return Vec4::ZERO;
+        }
+        self.lanes_from(lanes, channel)
+    }
+
+    /// The value `tex::lookup_*` gives at hit `s` (the engines' Ptex lookup): at the face
+    /// and coordinates [`quad::face_at`] finds, over the footprint's widths along u and v
+    /// ([`footprint::filter_widths`], [`Ptex::lookup_rect`]); black where the hit has no
+    /// face of this file.
+    #[inline]
+    pub fn lookup_at(&self, s: &shader::State, channel: usize) -> Vec4 {
+        match quad::face_at(self.mesh, s) {
+            Some((face, u, v)) => self.lookup_rect(face, u, v, footprint::filter_widths(self.mesh, s), channel),
+            None => Vec4::ZERO,
+        }
+    }
+
+    /// A lookup's lanes from channel `channel` on: one channel left is a grey colour.
+    fn lanes_from(&self, lanes: [f32; 4], channel: usize) -> Vec4 {
         if self.channels - channel == 1 {
             return Vec4::splat(lanes[0]);
         }

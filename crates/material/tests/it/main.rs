@@ -44,6 +44,7 @@ mod mdl_microfacet_params;
 mod mdl_per_hit;
 mod mdl_per_hit_curves;
 mod mdl_ptex;
+mod mdl_ptex_aniso;
 mod mdl_ptex_blend;
 mod mdl_ptex_filter;
 mod mdl_ptex_seams;

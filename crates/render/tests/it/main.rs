@@ -68,6 +68,7 @@ mod mdl_environment_calls;
 mod mdl_measured;
 mod mdl_object_space;
 mod mdl_ptex;
+mod mdl_ptex_aniso;
 mod mdl_ptex_footprint;
 mod mdl_ptex_forms;
 mod mdl_ptex_subdiv;

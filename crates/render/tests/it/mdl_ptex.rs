@@ -134,13 +134,16 @@ render "root" "cam_inst" "opt"
 "#;
 
 /// The range (per channel, low and high) of `colour(px, x, y)` over pixel `k` of the 8 × 8
-/// image: pixel (px, py from the top) covers x ∈ [−1 + px/4, −1 + (px + 1)/4], y likewise
-/// from the top, sampled on a 17 × 17 grid.
-fn lookup_range(k: usize, colour: impl Fn(f32, f32, f32) -> [f32; 3]) -> ([f32; 3], [f32; 3]) {
+/// image and a margin of `margin` sixteenths of a pixel around it: pixel (px, py from the
+/// top) covers x ∈ [−1 + px/4, −1 + (px + 1)/4], y likewise from the top, sampled every
+/// 1/16 pixel. The margin: the lookup reads the pixel's footprint, anisotropic in face
+/// units (on a 1 × 2 quad twice as long along u as along v even head-on), so where it spans
+/// more than a texel its probes along the long axis reach past the sample's place.
+fn lookup_range(k: usize, margin: i32, colour: impl Fn(f32, f32, f32) -> [f32; 3]) -> ([f32; 3], [f32; 3]) {
     let (px, py) = ((k % 8) as f32, (k / 8) as f32);
     let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-    for a in 0..=16 {
-        for b in 0..=16 {
+    for a in -margin..=16 + margin {
+        for b in -margin..=16 + margin {
             let x = -1.0 + (px + a as f32 / 16.0) / 4.0;
             let y = 1.0 - (py + b as f32 / 16.0) / 4.0;
             let c = colour(px, x, y);
@@ -184,7 +187,7 @@ fn each_triangle_renders_its_ptex_faces_texels() {
         let scale = if engine == EngineKind::Classic { std::f32::consts::PI } else { 1.0 };
         let (mut constant, mut narrow) = (0, 0);
         for (k, p) in film.rgba().iter().enumerate() {
-            let (lo, hi) = lookup_range(k, |_, x, y| expected(&ptex, x, y));
+            let (lo, hi) = lookup_range(k, 0, |_, x, y| expected(&ptex, x, y));
             assert_within(engine, k, p, (lo, hi), scale);
             let spread = (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f32::max);
             constant += usize::from(spread == 0.0);
@@ -219,7 +222,7 @@ fn expected_quads(ptex: &Ptex, x: f32, y: f32) -> [f32; 3] {
 
 /// Two quads side by side (and, out of view, a pentagon after them: faces 2–6, which the
 /// file lacks: black, no warning).
-const QUAD_SCENE: &str = r#"
+pub(crate) const QUAD_SCENE: &str = r#"
 options "opt" filter box 1 1 end options
 light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
 instance "sun_inst" "sun" end instance
@@ -296,7 +299,7 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
         let (mut inside, mut spread_sum) = (0, 0.0f32);
         for (k, p) in film.rgba().iter().enumerate() {
             // The seam x = 0 itself belongs to either quad: stay on the pixel's side.
-            let (lo, hi) = lookup_range(k, |px, x, y| {
+            let (lo, hi) = lookup_range(k, 4, |px, x, y| {
                 let x = if px == 3.0 {
                     x.min(-1e-4)
                 } else if px == 4.0 {
@@ -311,8 +314,9 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
             spread_sum += (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f32::max);
         }
         // The ranges are narrow (a misplaced or turned face leaves them): a pixel spans at
-        // most half a texel of either face.
-        assert!(inside == 64 && spread_sum / 64.0 < 0.25, "{engine:?}: mean spread {}", spread_sum / 64.0);
+        // most half a texel of either face (with the quarter-pixel margin the mean spread
+        // measured 0.265; 0.3 allowed).
+        assert!(inside == 64 && spread_sum / 64.0 < 0.3, "{engine:?}: mean spread {}", spread_sum / 64.0);
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -143,10 +143,7 @@ impl HitExpr {
                 volume.texel(c.x as i64, c.y as i64, c.z as i64)
             }
             HitExpr::LookupCube { cube, dir } => cube.lookup(dir.eval_in(s, f).truncate().into()),
-            HitExpr::LookupPtex { ptex, channel } => match super::super::ptex::quad::face_at(ptex.mesh, s) {
-                Some((face, u, v)) => ptex.lookup(face, u, v, super::super::ptex::footprint::filter_width(s), *channel),
-                None => Vec4::ZERO,
-            },
+            HitExpr::LookupPtex { ptex, channel } => ptex.lookup_at(s, *channel),
             HitExpr::Pattern(p, at) => p.eval(at.eval_in(s, f).truncate().into()),
             HitExpr::Sky(sky, args) => {
                 let dir =

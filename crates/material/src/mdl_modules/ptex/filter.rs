@@ -456,7 +456,7 @@ fn clamp_into(mesh: MeshType, u: f32, v: f32) -> (f32, f32) {
 /// inside the face. On triangles t is the point's barycentric weight of the edge's end
 /// vertex and s that of the vertex opposite the edge, so that t' = 1 − t, s' = −s is the
 /// affine map onto the adjacent face (the two faces unfolded into a parallelogram).
-fn outside_edge(mesh: MeshType, u: f32, v: f32) -> Option<(usize, f32, f32)> {
+pub(super) fn outside_edge(mesh: MeshType, u: f32, v: f32) -> Option<(usize, f32, f32)> {
     let past: &[f32] = match mesh {
         MeshType::Quad => &[-v, u - 1.0, v - 1.0, -u],
         MeshType::Triangle => &[-v, u + v - 1.0, -u],
