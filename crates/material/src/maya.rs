@@ -671,16 +671,18 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                             let diffuse = bsdf::maya_highlight::translucence::LightAngle::DIFFUSE;
                             let (mine, theirs) =
                                 (first.light_angle.unwrap_or(diffuse), g.light_angle.unwrap_or(diffuse));
-                            if first.focus <= 0.0 && g.focus <= 0.0 && first.translucence != Rgb::ZERO {
-                                if !mine.mixes_exactly(&theirs) {
-                                    warnings.push(format!(
-                                        "layer '{}': the stack's light from behind sums more than {} distinct \
-                                         colour ramps (or diffuse translucence); the path engine adds this \
-                                         layer's to the largest one's ramp",
-                                        graph.nodes[m as usize].name,
-                                        bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
-                                    ));
-                                }
+                            let mixing = first.focus <= 0.0
+                                && g.focus <= 0.0
+                                && first.translucence != Rgb::ZERO
+                                && g.translucence != Rgb::ZERO;
+                            if mixing && !mine.mixes_exactly(&theirs) {
+                                warnings.push(format!(
+                                    "layer '{}': the stack's light from behind sums more than {} distinct colour \
+                                     ramps (or diffuse translucence); the path engine adds this layer's to the \
+                                     largest one's ramp",
+                                    graph.nodes[m as usize].name,
+                                    bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
+                                ));
                             }
                             let mut merged = first.add_translucence(g.translucence, g.focus, g.light_angle).err();
                             for (a, n) in g.translucence_lobes().skip(1) {

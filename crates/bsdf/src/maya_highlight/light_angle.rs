@@ -249,8 +249,8 @@ impl LightAngle {
                     .max_by(|&i, &j| size(&out.weight[i]).total_cmp(&size(&out.weight[j])))
                     .unwrap_or(0)
             });
-            for c in 0..3 {
-                out.weight[slot][c] += w[c];
+            for (o, x) in out.weight[slot].iter_mut().zip(w) {
+                *o += x;
             }
         };
         for (p, w) in self.used() {
