@@ -667,7 +667,9 @@ mod tests {
         }
     }
 
-    /// A `Bsdf` is at most 416 bytes (x86-64; maya42 kept it there: rampShader's light-angle
+    /// A `Bsdf` is at most 416 bytes (x86-64; maya44 kept it there: the light-angle shape
+    /// became references to interned ramps and their weights, 80 bytes for any knot count;
+    /// maya42 kept it there: rampShader's light-angle
     /// translucence became the colour ramp's own knots, 4 knots and a slope, 84 bytes in
     /// place of the 112-byte table, and the Maya BSDF gained a third further forward lobe,
     /// 16 bytes; 352 before the Maya BSDF's translucence

@@ -54,6 +54,7 @@ use glam::{Vec2, Vec3A};
 
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, Rgb};
 
+mod light_angle;
 mod shape;
 pub mod translucence;
 

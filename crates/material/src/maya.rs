@@ -666,16 +666,23 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                         Some(mut first) => {
                             // Each layer's translucence keeps its own focus: a lobe of its
                             // own beside the others (same focus: merged; a rampShader
-                            // layer's light-angle shape mixed by albedo).
-                            if let (Some(mine), Some(theirs)) = (first.light_angle, g.light_angle) {
-                                if first.focus <= 0.0 && !mine.mixes_exactly(&theirs) {
-                                    warnings.push(format!(
-                                        "layer '{}': its colour ramp's light from behind and an upper layer's have \
-                                         knots at different places; the path engine mixes them at the union of \
-                                         their knots in [0, 0.5], linearly between",
-                                        graph.nodes[m as usize].name
-                                    ));
-                                }
+                            // layer's light-angle shape mixed by albedo, each
+                            // layer's ramp kept).
+                            let diffuse = bsdf::maya_highlight::translucence::LightAngle::DIFFUSE;
+                            let (mine, theirs) =
+                                (first.light_angle.unwrap_or(diffuse), g.light_angle.unwrap_or(diffuse));
+                            let mixing = first.focus <= 0.0
+                                && g.focus <= 0.0
+                                && first.translucence != Rgb::ZERO
+                                && g.translucence != Rgb::ZERO;
+                            if mixing && !mine.mixes_exactly(&theirs) {
+                                warnings.push(format!(
+                                    "layer '{}': the stack's light from behind sums more than {} distinct colour \
+                                     ramps (or diffuse translucence); the path engine adds this layer's to the \
+                                     largest one's ramp",
+                                    graph.nodes[m as usize].name,
+                                    bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
+                                ));
                             }
                             let mut merged = first.add_translucence(g.translucence, g.focus, g.light_angle).err();
                             for (a, n) in g.translucence_lobes().skip(1) {

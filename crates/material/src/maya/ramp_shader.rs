@@ -34,7 +34,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
     let c = color_at(1.0);
     // The light from behind (`translucence` t), a transmission lobe of this albedo
     // before the fade. The light-angle input's classic P(u) ⊙ L = t · C((1 − u)/2) ⊙ L
-    // for a light behind at |cos θ| = u (no cosine factor) is the ramp itself, its knots
+    // for a light behind at |cos θ| = u (no cosine factor) is the ramp itself, all its knots
     // in [0, ½] and the next with their interpolation
     // (`bsdf::maya_highlight::translucence::LightAngle`): a lobe of albedo A = 2∫P du,
     // not capped (where the classic shader passes more light than it receives, so does
@@ -44,16 +44,7 @@ pub(super) fn translate(r: &mut Reader, surface: &mut SurfaceMaterial, alone: bo
         let knots: Vec<(f32, Rgb, i32)> = color.as_ref().map_or_else(Vec::new, |ramp| {
             ramp.points().iter().map(|&(x, c, interp)| (x, Rgb::new(c.x, c.y, c.z), interp)).collect()
         });
-        let (a, shape, exact) =
-            bsdf::maya_highlight::translucence::LightAngle::from_ramp(&knots, color_at(0.5), t.max(0.0));
-        if !exact {
-            r.warnings.push(format!(
-                "the colour ramp has more than {} points in [0, 0.5]: the path engine's light from behind reads it \
-                 at {} points of [0, 0.5], linearly between",
-                bsdf::maya_highlight::translucence::LIGHT_ANGLE_KNOTS - 1,
-                bsdf::maya_highlight::translucence::LIGHT_ANGLE_KNOTS
-            ));
-        }
+        let (a, shape) = bsdf::maya_highlight::translucence::LightAngle::from_ramp(&knots, color_at(0.5), t.max(0.0));
         (a, Some(shape))
     } else {
         (c * t.max(0.0), None)

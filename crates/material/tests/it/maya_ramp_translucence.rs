@@ -63,3 +63,113 @@ fn the_light_from_behind_follows_the_ramp_in_every_interpolation() {
         println!("interp {interp}: largest difference {worst:e}");
     }
 }
+
+/// A 5-knot and a 7-knot colour ramp, 4 and 5 of their knots in [0, ½], the rest past it,
+/// smooth (2) and spline (3) segments: position, colour, interpolation.
+fn many_knots() -> [Vec<(f32, [f32; 3], i32)>; 2] {
+    [
+        vec![
+            (0.05, [0.9, 0.2, 0.4], 2),
+            (0.18, [0.1, 0.7, 0.3], 3),
+            (0.31, [0.6, 0.1, 0.9], 2),
+            (0.47, [0.3, 0.9, 0.2], 3),
+            (0.72, [1.1, 0.4, 0.6], 2),
+        ],
+        vec![
+            (0.0, [0.2, 0.5, 0.8], 3),
+            (0.08, [0.9, 0.1, 0.2], 2),
+            (0.15, [0.4, 0.8, 0.1], 3),
+            (0.26, [0.7, 0.3, 0.5], 2),
+            (0.39, [0.1, 0.6, 0.9], 3),
+            (0.55, [0.8, 0.8, 0.3], 2),
+            (0.9, [0.3, 0.2, 0.7], 3),
+        ],
+    ]
+}
+
+/// A rampShader "name" of colour ramp `knots`, `translucence` [`T`], `diffuse` [`D`] and
+/// transparency `tr` (`.mi` text).
+fn ramp_shader(name: &str, knots: &[(f32, [f32; 3], i32)], tr: f32) -> String {
+    let points: Vec<String> = knots
+        .iter()
+        .map(|(x, [r, g, b], i)| {
+            format!("{{ \"color_Position\" {x}, \"color_Color\" {r} {g} {b}, \"color_Interp\" {i} }}")
+        })
+        .collect();
+    format!(
+        "shader \"{name}\" \"maya_rampshader\" (\"colorInput\" 0, \"diffuse\" {D}, \"translucence\" {T},\n\
+         \"transparency\" [ {{ \"transparency_Position\" 0, \"transparency_Color\" {tr} {tr} {tr}, \
+         \"transparency_Interp\" 1 }} ], \"color\" [ {} ])\n",
+        points.join(", ")
+    )
+}
+
+/// The translated Maya model of material "m" in `body` (no warning) and its diffuse colour.
+fn translated(body: &str) -> (bsdf::MayaGlossy, bsdf::Rgb) {
+    let c = compile("", &format!("$include \"mayabase.mi\"\n{body}"), &["m"], "");
+    assert!(c.messages.is_empty(), "{:#?}", c.messages);
+    let (s, warnings) =
+        material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let SurfaceModel::Maya(g) = &s.model else { panic!("a Maya model: {:?}", s.model) };
+    (**g, s.diffuse)
+}
+
+/// The light from behind a unit light at cosine `u` gives through `g` seen head-on:
+/// f · π · u.
+fn through(g: &bsdf::MayaGlossy, diffuse: bsdf::Rgb, u: f32) -> Vec3A {
+    let wo = Vec3A::Z;
+    let wi = Vec3A::new((1.0 - u * u).sqrt(), 0.0, -u);
+    g.bsdf(diffuse, wo).eval(wo, wi) * (std::f32::consts::PI * u)
+}
+
+/// Ramps of 5 and 7 knots (past the former limit of 3 in [0, ½], which read them at 4
+/// points, linearly between, with a warning): at 9 light angles θ = 0°, 10° … 80° behind,
+/// the path engine's light from behind seen head-on is the classic shader's `lit_color`
+/// for a unit light at cos θ within 1e-4 per channel; no warning.
+#[test]
+fn ramps_of_many_knots_are_followed_at_every_light_angle() {
+    for knots in many_knots() {
+        let (g, diffuse) = translated(&format!(
+            "{}material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"mat.outColor\") end material\n",
+            ramp_shader("mat", &knots, 0.0)
+        ));
+        let classic = Ramp::new(knots.iter().map(|(x, c, i)| (*x, Vec3A::from_array(*c), *i)).collect(), Vec3A::ZERO);
+        for k in 0..9 {
+            let u = (k as f32 * 10.0).to_radians().cos();
+            let got = through(&g, diffuse, u);
+            let want = lit_color(ColorInput::LightAngle, &classic, &[(Vec3A::ONE, -u)], D, T, 1.0);
+            assert!((got - want).abs().max_element() < 1e-4, "{} knots, θ {}°: {got} vs {want}", knots.len(), k * 10);
+        }
+    }
+}
+
+/// A layeredShader of two rampShader layers whose ramps' knots differ (the 5-knot ramp
+/// over the 7-knot one, the top of transparency 0.4: shares 0.6 and 0.4): its light from
+/// behind at 9 light angles equals the sum of each layer's alone (each as a material of its
+/// own and opaque, times its share) within 1e-5, no warning (before: the union of their knots, linearly
+/// between, warned).
+#[test]
+fn a_stack_of_differing_ramps_is_the_sum_of_each() {
+    let [five, seven] = many_knots();
+    let layers = format!("{}{}", ramp_shader("top", &five, 0.4), ramp_shader("under", &seven, 0.0));
+    let (stack, stack_diffuse) = translated(&format!(
+        "{layers}shader \"mat\" \"maya_layeredshader\" (\"inputs\" [ \
+         {{ \"color\" = \"top.outColor\", \"transparency\" = \"top.outTransparency\" }}, \
+         {{ \"color\" = \"under.outColor\", \"transparency\" = \"under.outTransparency\" }} ])\n\
+         material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"mat.outColor\") end material\n"
+    ));
+    let alone = |knots: &[(f32, [f32; 3], i32)]| {
+        translated(&format!(
+            "{}material \"m\" opaque \"maya_shadingengine\" (\"surfaceShader\" = \"mat.outColor\") end material\n",
+            ramp_shader("mat", knots, 0.0)
+        ))
+    };
+    let ((top, top_diffuse), (under, under_diffuse)) = (alone(&five), alone(&seven));
+    for k in 0..9 {
+        let u = (k as f32 * 10.0).to_radians().cos();
+        let got = through(&stack, stack_diffuse, u);
+        let want = through(&top, top_diffuse, u) * 0.6 + through(&under, under_diffuse, u) * 0.4;
+        assert!((got - want).abs().max_element() < 1e-5, "θ {}°: {got} vs {want}", k * 10);
+    }
+}

@@ -20,10 +20,10 @@
 //! surface (its shadow rays know nothing of the split), so a ray that leaves takes all of
 //! it (no MIS), as at a material with its own environment (`material_env`). The
 //! environment is that one where the material has it (the shader's own `environment`
-//! included), else the scene's. Not split: light reached by next-event estimation through
-//! the lobe (the classic shader's glossy rays find only lights that are geometry), and a
-//! segment through a participating medium that scatters before its end (it goes on with
-//! the whole bounce).
+//! included), else the scene's. Not split: a segment through a participating medium that
+//! scatters before its end (it goes on with the whole bounce). At every
+//! `mib_glossy_reflection` surface (with a reach or not) next-event estimation leaves the
+//! glossy lobe out ([`light_through`]) as for `mib_glossy_refraction` below.
 //!
 //! `mib_glossy_refraction` ([`material::SurfaceModel::MibGlossyRefraction`] whose lobe
 //! [`reaches`](bsdf::MibGlossyRefractionLobe::reaches)) splits its segments the same way,
@@ -187,25 +187,24 @@ impl Reach {
 }
 
 /// Whether next-event estimation at a surface of `model` leaves out its glossy lobe: a
-/// `mib_glossy_refraction`'s (see [`light_through`]).
+/// `mib_glossy_refraction`'s or a `mib_glossy_reflection`'s (see [`light_through`]).
 #[inline]
 pub(super) fn unlit_lobe(model: &SurfaceModel) -> bool {
-    matches!(model, SurfaceModel::MibGlossyRefraction(_))
+    matches!(model, SurfaceModel::MibGlossyRefraction(_) | SurfaceModel::MibGlossy(_))
 }
 
 /// f(ωo, ωi) = `f` towards a light that next-event estimation found at distance `dist`
-/// from a surface of `model`: at a `mib_glossy_refraction` ([`unlit_lobe`]), without its
-/// glossy part (where the light lights the `specular` lobes). mental ray's shader
-/// (mental ray 3.6's base library, "very similar to `mib_glossy_reflection`") traces its
-/// glossy rays, refracted or totally reflected, and weighs what they find: they find a
+/// from a surface of `model`: at a `mib_glossy_refraction` or `mib_glossy_reflection`
+/// ([`unlit_lobe`]), without its glossy part (where the light lights the `specular`
+/// lobes). mental ray's shaders (mental ray 3.6's base library) trace their glossy rays
+/// (reflected; or refracted and totally reflected) and weigh what they find: they find a
 /// light only where it is geometry (an area light they hit), never a point, spot or
-/// directional light, and no light loop runs through the lobe (the classic shader here,
-/// `baselib::glossy`, does the same). So the path engine takes the lights through that
+/// directional light, and no light loop runs through the lobe (the classic shaders here,
+/// `baselib::glossy`, do the same). So the path engine takes the lights through that
 /// lobe only where its own rays find them (a light's geometry, the whole of the glossy
 /// share: [`hit_weight`]), and within `max_distance` those rays keep 1 − t of it as any
-/// segment does. `f` unchanged for any other surface (`mib_glossy_reflection`'s light by
-/// next-event estimation is not split). `dist` is unused (the glossy part is left out at
-/// any distance).
+/// segment does. `f` unchanged for any other surface. `dist` is unused (the glossy part
+/// is left out at any distance).
 #[inline(never)]
 pub(super) fn light_through(
     model: &SurfaceModel,
@@ -215,22 +214,30 @@ pub(super) fn light_through(
     _dist: f32,
     f: Rgb,
 ) -> Rgb {
-    let (SurfaceModel::MibGlossyRefraction(_), Bsdf::MibGlossyRefraction(b)) = (model, bsdf) else { return f };
     if !specular {
         return f;
     }
-    (f - b.eval_split(wo, wi).1).max(Rgb::ZERO)
+    let glossy = match (model, bsdf) {
+        (SurfaceModel::MibGlossyRefraction(_), Bsdf::MibGlossyRefraction(b)) => b.eval_split(wo, wi).1,
+        (SurfaceModel::MibGlossy(_), Bsdf::MibGlossy(b)) => b.eval_split(wo, wi).1,
+        _ => return f,
+    };
+    (f - glossy).max(Rgb::ZERO)
 }
 
-/// The glossy lobe's share of a bounce sampled from `bsdf` (a `mib_glossy_refraction`'s,
-/// [`unlit_lobe`]) seen from `wo`, per channel: all of a delta sample, the glossy part of
-/// f in the whole for another; 0 for any other surface. Light its ray finds is taken
+/// The glossy lobe's share of a bounce sampled from `bsdf` (a `mib_glossy_refraction`'s
+/// or `mib_glossy_reflection`'s, [`unlit_lobe`]) seen from `wo`, per channel: all of a
+/// delta sample, the glossy part of the sample's f in the whole for another (the whole
+/// carried colour for `mib_glossy_reflection`: the weight its samples have); 0 for any
+/// other surface. Light its ray finds is taken
 /// whole there ([`hit_weight`]): next-event estimation left it out ([`light_through`]).
 #[inline(never)]
 pub(super) fn unlit_share(bsdf: &Bsdf, wo: Vec3A, bs: &BsdfSample) -> Rgb {
     match bsdf {
         Bsdf::MibGlossyRefraction(_) if bs.delta => Rgb::ONE,
         Bsdf::MibGlossyRefraction(b) => shares(b.eval_split(wo, bs.wi)).1,
+        Bsdf::MibGlossy(_) if bs.delta => Rgb::ONE,
+        Bsdf::MibGlossy(b) => shares(b.carried_split(wo, bs.wi)).1,
         _ => Rgb::ZERO,
     }
 }
@@ -247,14 +254,15 @@ pub(super) fn hit_weight(unlit: Rgb, mis: f32) -> Rgb {
 impl Reach {
     /// The share `unlit` of the bounce's weight that next-event estimation left out
     /// ([`unlit_share`]) after the segment to something at distance `d` kept
-    /// [`Reach::split`]'s part of it: the glossy share faded by 1 − t over what was kept.
+    /// [`Reach::split`]'s part of it: the glossy share faded by 1 − t (and weighed by what
+    /// it reflects of what it finds, [`Reach::seen`]) over what was kept.
     pub(super) fn unlit_after(&self, unlit: Rgb, d: f32) -> Rgb {
         if unlit == Rgb::ZERO {
             return unlit;
         }
         let t = if d.is_finite() { baselib::glossy::distance_fade(d, self.max_distance, self.falloff) } else { 1.0 };
         let (kept, _) = self.split(d);
-        let faded = unlit * (1.0 - t);
+        let faded = unlit * self.seen * (1.0 - t);
         Rgb::new(
             if kept.x > 0.0 { (faded.x / kept.x).min(1.0) } else { 0.0 },
             if kept.y > 0.0 { (faded.y / kept.y).min(1.0) } else { 0.0 },

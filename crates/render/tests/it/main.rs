@@ -86,6 +86,7 @@ mod media_entry;
 mod media_orthographic;
 mod mia_helpers;
 mod mib_glossy_path;
+mod mib_glossy_reflection_lights;
 mod mib_glossy_refraction_path;
 mod mirror_seam_path;
 mod motion;

@@ -474,6 +474,84 @@ fn the_path_engine_follows_a_ramp_with_a_knot_lit_from_behind() {
     }
 }
 
+/// A 5-knot and a 7-knot colour ramp (4 and 5 knots in [0, ½], the rest past it), smooth
+/// (2) and spline (3) segments: position, colour, Maya interpolation.
+fn many_knots() -> [Vec<(f32, Vec3A, i32)>; 2] {
+    let c = |r: f32, g: f32, b: f32| Vec3A::new(r, g, b);
+    [
+        vec![
+            (0.05, c(0.9, 0.2, 0.4), 2),
+            (0.18, c(0.1, 0.7, 0.3), 3),
+            (0.31, c(0.6, 0.1, 0.9), 2),
+            (0.47, c(0.3, 0.9, 0.2), 3),
+            (0.72, c(1.1, 0.4, 0.6), 2),
+        ],
+        vec![
+            (0.0, c(0.2, 0.5, 0.8), 3),
+            (0.08, c(0.9, 0.1, 0.2), 2),
+            (0.15, c(0.4, 0.8, 0.1), 3),
+            (0.26, c(0.7, 0.3, 0.5), 2),
+            (0.39, c(0.1, 0.6, 0.9), 3),
+            (0.55, c(0.8, 0.8, 0.3), 2),
+            (0.9, c(0.3, 0.2, 0.7), 3),
+        ],
+    ]
+}
+
+/// The path engine's rampShader follows colour ramps of many knots with smooth and spline
+/// segments (`bsdf::maya_highlight::translucence::LightAngle`, each ramp's knots interned):
+/// the 5- and 7-knot ramps of [`many_knots`] on the opaque slab (s = 0.1, D = 1,
+/// `translucence` [`T`]) lit from behind at θ = 0°, 25°, 50° and 65° (direct light, 4
+/// samples per pixel): the path image's mean and the means of its halves are the classic
+/// ones' within 2 % per channel, and the classic mean is the closed form
+/// t · C((1 − cos θ)/2) · (1 − s/(D cos θ)) (C read as `maya::utility::curve_at`) within
+/// 1e-3. Before, a ramp of more than 3 knots in [0, ½] was read at 4 points, linearly
+/// between (warned).
+#[test]
+fn the_path_engine_follows_ramps_of_many_knots_lit_from_behind() {
+    let (thick, depth) = (0.1f32, 1.0f32);
+    for knots in many_knots() {
+        let points: Vec<String> = knots
+            .iter()
+            .map(|(x, c, i)| {
+                format!(r#"{{ "color_Position" {x}, "color_Color" {} {} {}, "color_Interp" {i} }}"#, c.x, c.y, c.z)
+            })
+            .collect();
+        let ramp = format!(
+            r#"shader "mat" "maya_rampshader" ("colorInput" 0, "diffuse" 0.8, "translucence" {T}, "translucenceDepth" {depth},
+    "color" [ {} ])"#,
+            points.join(",\n    ")
+        );
+        for degrees in [0.0f32, 25.0, 50.0, 65.0] {
+            let (sin, cos) = degrees.to_radians().sin_cos();
+            let text = scene_with(thick, false, &ramp).replace("direction 0 1 0", &format!("direction {sin} {cos} 0"));
+            let path = path_pixels(&text, 4, 1);
+            let classic = pixels(&text, EngineKind::Classic, 4);
+            let want = maya::utility::curve_at(&knots, 0.5 * (1.0 - cos)) * T * (1.0 - thick / (depth * cos));
+            let name = format!("{} knots, {degrees}°", knots.len());
+            assert!((mean(&classic) - want).abs().max_element() < 1e-3, "{name}: classic {} vs {want}", mean(&classic));
+            for (what, c, p) in [
+                ("image", mean(&classic), mean(&path)),
+                (
+                    "left half",
+                    support::two_tone::half_mean(&classic, SIDE, true),
+                    support::two_tone::half_mean(&path, SIDE, true),
+                ),
+                (
+                    "right half",
+                    support::two_tone::half_mean(&classic, SIDE, false),
+                    support::two_tone::half_mean(&path, SIDE, false),
+                ),
+            ] {
+                println!("{name}, {what}: path {p} classic {c}");
+                for k in 0..3 {
+                    assert!((p[k] / c[k] - 1.0).abs() < 0.02, "{name}, {what}: path {p} vs classic {c}");
+                }
+            }
+        }
+    }
+}
+
 /// A rampShader whose light from behind passes more than it receives: `translucence`
 /// 0.9 and a ramp (0.9, 0.8, 0.3) at 0 to (0.9, 0.6, 0.5) at 1, so t · (C(0) + C(½)) =
 /// (1.62, 1.35, 0.63) and the lobe's albedo 2∫t · C((1 − u)/2) du is the same, above 1 in
