@@ -69,7 +69,8 @@ fn solid_angle_of_part(light: &LightSource, p: Vec3A, (s0, s1): (f64, f64), (t0,
 
 /// Points where the light is sampled in solid angle: close under it, beside it, far off
 /// centre, and above a two-sided one.
-const VIEWPOINTS: [[f32; 3]; 5] = [[0.3, -0.2, 1.9], [0.5, 0.1, 1.5], [2.5, -1.0, 1.2], [-1.0, 2.0, -1.0], [0.0, 0.0, 0.0]];
+const VIEWPOINTS: [[f32; 3]; 5] =
+    [[0.3, -0.2, 1.9], [0.5, 0.1, 1.5], [2.5, -1.0, 1.2], [-1.0, 2.0, -1.0], [0.0, 0.0, 0.0]];
 
 /// ∫ pdf dω over the directions that reach the light is 1 (relative 1e-3), the integral
 /// taken over the rectangle's area (dω = cos / dist² dA, 800² cells, f64), from points near
