@@ -691,7 +691,7 @@ fn rect_sample(
         }
         let d = rect.point(u) - p;
         let dist = d.length();
-        if !(dist > 0.0) {
+        if dist.is_nan() || dist <= 0.0 {
             return None;
         }
         return Some(LightSample { wi: d / dist, dist, radiance: l, pdf: rect.pdf(), delta: false });

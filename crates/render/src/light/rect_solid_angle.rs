@@ -69,7 +69,9 @@ impl SphericalRect {
         let h = rel.dot(normal).abs();
         let r2 = rel.length_squared();
         // area · cos / dist² ≥ MIN (cos = h / dist), without a division.
-        if !(area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt()) || eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
+        // (False for NaN too.)
+        let large = area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt();
+        if !large || eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
             return None;
         }
         let rect = Self::new(centre - 0.5 * (eu + ev), eu, ev, p);
