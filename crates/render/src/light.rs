@@ -21,6 +21,9 @@ pub use shader::light::Shape;
 
 use crate::ray::Ray;
 
+pub mod rect_solid_angle;
+use rect_solid_angle::SphericalRect;
+
 /// A distribution over directions and the frame it is given in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LocalDistribution {
@@ -394,6 +397,10 @@ impl LightSource {
                 })
             }
             Output::Portal { scale, reverse } => {
+                if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
+                    let normal = if *reverse { -normal } else { normal };
+                    return rect_sample(self.position, eu, ev, normal, area, *scale, false, p, u);
+                }
                 let (q, n) = self.point_on(u);
                 let n = if *reverse { -n } else { n };
                 let d = q - p;
@@ -461,6 +468,11 @@ impl LightSource {
                 1.0 / (2.0 * PI * (1.0 - cos_max))
             }
             (Output::Radiance { .. } | Output::Portal { .. }, shape) => {
+                if let Shape::Rect { u: eu, v: ev, normal, area } = *shape {
+                    if let Some(rect) = SphericalRect::view(self.position, eu, ev, normal, area, p) {
+                        return rect.pdf();
+                    }
+                }
                 let n = shape.normal_at(self.position, p + wi * t);
                 let cos_l = wi.dot(n).abs();
                 if cos_l == 0.0 {
@@ -655,9 +667,10 @@ impl LightSource {
 }
 
 /// A sample of a rectangle of radiance `l` centred at `centre` (full edges `eu`, `ev`, unit
-/// normal `normal` on its emitting side, area `area`; both sides when `two_sided`) seen from `p`: the
-/// point picked uniformly by area by `u`, its density per solid angle. `None` when that
-/// point is `p` itself or faces away.
+/// normal `normal` on its emitting side, area `area`; both sides when `two_sided`) seen from
+/// `p`: the point picked by `u` uniformly in the solid angle the rectangle subtends where
+/// [`SphericalRect::view`] allows it, else uniformly by area; its density per solid angle.
+/// `None` when that point is `p` itself or faces away.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn rect_sample(
@@ -671,8 +684,37 @@ fn rect_sample(
     p: Vec3A,
     u: Vec2,
 ) -> Option<LightSample> {
-    // The arithmetic of `Shape::point_on` and `Shape::area` for rectangles, step by step:
-    // the same numbers bit for bit as the general path.
+    if let Some(rect) = SphericalRect::view(centre, eu, ev, normal, area, p) {
+        // (`view` declines points in the plane: p is strictly on one side.)
+        if !two_sided && (p - centre).dot(normal) <= 0.0 {
+            return None;
+        }
+        let d = rect.point(u) - p;
+        let dist = d.length();
+        if dist.is_nan() || dist <= 0.0 {
+            return None;
+        }
+        return Some(LightSample { wi: d / dist, dist, radiance: l, pdf: rect.pdf(), delta: false });
+    }
+    rect_sample_by_area(centre, eu, ev, normal, area, l, two_sided, p, u)
+}
+
+/// [`rect_sample`]'s point picked uniformly by area (the parametrisation's fallback).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rect_sample_by_area(
+    centre: Vec3A,
+    eu: Vec3A,
+    ev: Vec3A,
+    normal: Vec3A,
+    area: f32,
+    l: Rgb,
+    two_sided: bool,
+    p: Vec3A,
+    u: Vec2,
+) -> Option<LightSample> {
+    // The arithmetic of `Shape::point_on` and `Shape::area` for rectangles, step
+    // by step: the same numbers bit for bit as the general path.
     let q = centre + eu * (u.x - 0.5) + ev * (u.y - 0.5);
     let d = q - p;
     let dist2 = d.length_squared();

@@ -115,3 +115,51 @@ fn rect_samples_match_the_shape_and_the_density() {
         assert!(front > 1_000 && (two_sided || behind > 1_000), "{front} in front, {behind} behind");
     }
 }
+
+/// A 1.5 × 1.1 rectangle light (orthogonal edges, turned about Z) at the same place: sampled
+/// uniformly in solid angle near it. The inlined sample equals `sample`'s bit for bit and
+/// the moving-light path's (motion keys holding it still) to 1e-6; a ray along it finds the light at the sample's
+/// distance (relative 1e-4) with the light's radiance; `pdf_at` gives the sample's density
+/// (relative 1e-5); points behind a one-sided light get none.
+#[test]
+fn rect_solid_angle_samples_match_the_general_path() {
+    let mut r = numbers();
+    let (s, c) = 0.3f32.sin_cos();
+    for two_sided in [false, true] {
+        let fast = LightSource {
+            shape: Shape::rect(Vec3A::new(1.5 * c, 1.5 * s, 0.0), Vec3A::new(-1.1 * s, 1.1 * c, 0.0), -Vec3A::Z),
+            ..rect_light(two_sided)
+        };
+        let general = LightSource { motion: vec![Affine3A::IDENTITY; 2], ..fast.clone() };
+        let (mut front, mut behind) = (0, 0);
+        for k in 0..5_000 {
+            let z = if k % 3 == 0 { 2.0 + 1.5 * r() } else { 2.0 - 1.5 * r() };
+            let p = Vec3A::new(4.0 * r() - 2.0, 4.0 * r() - 2.0, z);
+            let (u, time) = (Vec2::new(r(), r()), r());
+            let got = fast.sample_at(p, u, time);
+            let bits = |ls: render::light::LightSample| {
+                (ls.wi.to_array().map(f32::to_bits), ls.dist.to_bits(), ls.pdf.to_bits())
+            };
+            assert_eq!(got.map(bits), fast.sample(p, u).map(bits), "{p}");
+            // The moving light's path normalises the direction again: equal to 1e-6.
+            let other = general.sample_at(p, u, time);
+            assert_eq!(got.is_some(), other.is_some(), "{p}");
+            if let (Some(a), Some(b)) = (got, other) {
+                assert!((a.wi - b.wi).length() < 1e-6 && a.dist == b.dist && a.pdf == b.pdf, "{a:?} {b:?}");
+            }
+            if z > 2.0 && !two_sided {
+                assert!(got.is_none(), "a point behind the light got {got:?}");
+                behind += 1;
+                continue;
+            }
+            let Some(ls) = got else { continue };
+            front += 1;
+            let (t, l) = fast.intersect(&Ray::new(p, ls.wi)).expect("the ray along the sample finds the light");
+            assert!((t - ls.dist).abs() <= 1e-4 * ls.dist, "t {t} against {}", ls.dist);
+            assert_eq!(l, ls.radiance);
+            let pdf = fast.pdf_at(p, ls.wi, t, 0.0);
+            assert!((pdf - ls.pdf).abs() <= 1e-5 * ls.pdf, "pdf {pdf} against {}", ls.pdf);
+        }
+        assert!(front > 2_000 && (two_sided || behind > 1_000), "{front} in front, {behind} behind");
+    }
+}
