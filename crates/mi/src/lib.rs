@@ -16,6 +16,8 @@ pub mod ast;
 pub mod diag;
 pub mod grammar;
 pub mod lexer;
+#[cfg(test)]
+mod parallel_trees;
 mod parser;
 pub mod preprocess;
 mod printer;

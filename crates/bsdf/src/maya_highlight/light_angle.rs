@@ -135,6 +135,19 @@ pub struct RampShape {
 }
 
 impl RampShape {
+    /// Whether `self` and `other` hold the same numbers bit for bit (NaNs included).
+    fn same_bits(&self, other: &RampShape) -> bool {
+        let bits = |c: &[f32; 3]| c.map(f32::to_bits);
+        self.knots.len() == other.knots.len()
+            && self
+                .knots
+                .iter()
+                .zip(&other.knots)
+                .all(|(a, b)| a.0.to_bits() == b.0.to_bits() && bits(&a.1) == bits(&b.1) && a.2 == b.2)
+            && bits(&self.scale) == bits(&other.scale)
+            && bits(&self.linear) == bits(&other.linear)
+    }
+
     /// S(u) per channel (`u` in [0, 1]).
     fn at(&self, u: f32) -> [f32; 3] {
         let r = ramp_at(&self.knots, 0.5 * (1.0 - u));
@@ -154,7 +167,9 @@ fn intern(shape: RampShape) -> &'static RampShape {
         return &DIFFUSE_SHAPE;
     }
     let mut shapes = SHAPES.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-    if let Some(s) = shapes.iter().find(|s| ***s == shape) {
+    // Compared bit for bit: a NaN in a knot or scale (which `==` never matches) finds its
+    // earlier copy too, so the same ramp is never leaked twice.
+    if let Some(s) = shapes.iter().find(|s| s.same_bits(&shape)) {
         return s;
     }
     let shape: &'static RampShape = Box::leak(Box::new(shape));

@@ -16,12 +16,12 @@ mod bulk;
 mod directive;
 mod number;
 mod parallel;
-#[cfg(test)]
-mod parallel_trees;
 mod swar;
 mod token;
 
 pub use directive::directive_args;
+#[cfg(test)]
+pub(crate) use parallel::with_limits;
 pub use parallel::PARALLEL_FROM_BYTES;
 pub use token::{Directive, SkipEnd, Tok, Token};
 

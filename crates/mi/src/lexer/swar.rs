@@ -60,7 +60,7 @@ pub(super) fn u32_digits(text: &[u8], at: usize) -> Option<(u32, usize)> {
 }
 
 /// Reads the number at `text[at..]` of the form `[-+]digits[.digits]` (or `[-+].digits`)
-/// with at most seven digits on each side, nine in all, as an `f32`, exactly as
+/// with at most seven digits on each side (a mantissa of at most 2²⁴), as an `f32`, exactly as
 /// [`super::number::parse_f32_simple`] does. Returns the value and the offset just past
 /// the number; `None` (read it the general way) for any other form or when a load would
 /// pass the end of `text`. The byte after the number is not checked (an `e` there means an

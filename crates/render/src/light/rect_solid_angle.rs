@@ -21,10 +21,15 @@ use glam::{Vec2, Vec3A};
 /// The estimated solid angle (steradians; area × cos / dist² at the light's centre) below
 /// which a rectangle is sampled by area: there the two densities differ less, and the
 /// parametrisation's setup (four arc cosines, a sine and cosine, eight square roots per
-/// sample and per density) costs more than the variance it saves (below 10⁻³ sr Ω in `f32` would also lose precision). Measured on the bench
+/// sample and per density) costs more than the variance it saves. Measured on the bench
 /// Cornell box (docs/performance.md, speed37): sampling every point of it (≈ 0.02–0.5 sr)
 /// in solid angle cut the relMSE by 4 % for 38 % more render CPU.
 pub const MIN_SOLID_ANGLE: f32 = 0.25;
+
+/// The least solid angle Ω (steradians) sampled by the parametrisation: Ω is computed as
+/// γ0 + γ1 + γ2 + γ3 − 2π, whose `f32` rounding (≈ 1e-6 sr) would be a large share of a
+/// smaller Ω.
+const MIN_EXACT_SOLID_ANGLE: f32 = 1e-3;
 
 /// Edges whose cosine is above this are not a rectangle: the parallelogram is sampled by
 /// area.
@@ -73,12 +78,16 @@ impl SphericalRect {
         let r2 = rel.length_squared();
         // area · cos / dist² ≥ MIN (cos = h / dist), without a division.
         // (False for NaN too.)
-        let large = area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt();
+        // (h > 0: a point in the light's plane, its centre included, is sampled by area.)
+        let large = h > 0.0 && area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt();
         if !large || eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
             return None;
         }
         let rect = Self::new(centre - 0.5 * (eu + ev), eu, ev, p);
-        (rect.solid_angle > 0.0 && rect.solid_angle.is_finite()).then_some(rect)
+        // The estimate at the centre is far above Ω for a long thin strip; below
+        // MIN_EXACT_SOLID_ANGLE Ω, a difference of angles near 2π in `f32`, loses its
+        // precision, so such a strip is sampled by area too.
+        (rect.solid_angle >= MIN_EXACT_SOLID_ANGLE && rect.solid_angle.is_finite()).then_some(rect)
     }
 
     /// The rectangle with corner `corner` and orthogonal edges `eu`, `ev` seen from `p`.

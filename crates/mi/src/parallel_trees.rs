@@ -5,8 +5,8 @@
 
 use std::fmt::Write;
 
-use super::parallel::with_limits;
 use crate::ast::{Geometry, Item};
+use crate::lexer::with_limits;
 use crate::Parsed;
 
 /// A small deterministic generator (xorshift64).
@@ -107,7 +107,7 @@ fn mesh_scene(seed: u64, vertices: usize) -> (String, Expected) {
 
 /// The ways a list is read: serially, in parallel in pieces of a few lines (boundaries
 /// everywhere), of a few kilobytes, and as shipped.
-const WAYS: [(usize, usize); 4] = [(usize::MAX, 1), (0, 40), (0, 4096), (super::PARALLEL_FROM_BYTES, 256 << 10)];
+const WAYS: [(usize, usize); 4] = [(usize::MAX, 1), (0, 40), (0, 4096), (crate::lexer::PARALLEL_FROM_BYTES, 256 << 10)];
 
 fn parse_with(way: (usize, usize), text: &str) -> Parsed {
     with_limits(way.0, way.1, || crate::parse_str("mesh.mi", text))
