@@ -84,6 +84,17 @@ pub fn pixels(text: &str, engine: EngineKind, spp: u32) -> Vec<Vec3A> {
     super::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
 }
 
+/// The path engine's RGB pixels of `text` with `spp` samples per pixel and paths cut
+/// after `max_depth` bounces, asserting the world was built without a warning.
+pub fn path_pixels_to_depth(text: &str, spp: u32, max_depth: u32) -> Vec<Vec3A> {
+    let (scene, shading) = super::build_clean(text);
+    let world = render::World::from_scene_shaded(&scene, Some(&shading));
+    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
+    let mut settings = Settings { engine: EngineKind::Path, spp: Some(spp), ..Settings::default() };
+    settings.path.max_depth = max_depth;
+    super::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
+}
+
 /// [`pixels`] of a scene whose world warns only about what the test expects: every
 /// warning contains `expected`.
 pub fn pixels_warned(text: &str, engine: EngineKind, spp: u32, expected: &str) -> Vec<Vec3A> {
