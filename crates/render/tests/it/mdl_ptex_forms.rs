@@ -168,11 +168,10 @@ fn free_form_surfaces_are_warned_of_at_their_lines_subdivision_and_displacement_
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &[FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] }])).unwrap();
-    let text = r#"
-options "opt" end options
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
+    let text = SceneText::new()
+        .options("")
+        .text(
+            r#"shader "tinted" "mdl::ptexmod::faces" ()
 shader "disp" "maya_material_displace" ("displacement" 0)
 material "m" = "tinted" displace = "disp" end material
 object "cube" group
@@ -204,12 +203,14 @@ object "plane"
 end group end object
 instance "cube_inst" "cube" material "tinted" end instance
 instance "plane_inst" "plane" material "m" end instance
-instance "patch_inst" "patch" material "tinted" end instance
-instgroup "root" "cam_inst" "cube_inst" "patch_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+instance "patch_inst" "patch" material "tinted" end instance"#,
+        )
+        .instance("cube_inst")
+        .instance("patch_inst")
+        .instance("plane_inst")
+        .build();
     let line = |what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
-    let parsed = mi::parse_str("t.mi", text);
+    let parsed = mi::parse_str("t.mi", &text);
     let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
     let at = line("object \"patch\"") + 2;
     let what = "free-form surface has no quad-mesh Ptex faces (Ptex defines faces for polygon meshes";
