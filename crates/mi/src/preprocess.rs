@@ -88,11 +88,13 @@ struct Frame {
 
 /// The preprocessed token stream.
 pub(crate) struct TokenStream {
+    /// Every file and text read so far, for messages' file:line:col.
     pub sources: SourceMap,
     frames: Vec<Frame>,
     lookahead: VecDeque<Token>,
     /// A token to produce before reading on (the end marker of an include not opened).
     pending: Option<Token>,
+    /// The `$include`s met, in order.
     pub includes: Vec<IncludeRecord>,
     /// Built-in declaration files already read.
     builtins_read: Vec<&'static str>,

@@ -1,3 +1,7 @@
+//! Unit tests of the `mib_glossy_reflection` lobe: its albedo, its sampling against its
+//! density, its convergence to the classic shader's estimate, the mirror limit, the kept
+//! share table and the environment colour.
+
 use super::*;
 use crate::testing;
 use crate::Bsdf;

@@ -1,3 +1,7 @@
+//! Unit tests of the `mib_glossy_refraction` lobe: its albedo, its sampling against its
+//! density, its convergence to the classic shader's estimate, and its limits (sharp
+//! refraction, index 1, the back material, the white furnace).
+
 use super::*;
 use crate::testing;
 use crate::Bsdf;

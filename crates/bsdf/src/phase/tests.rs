@@ -1,3 +1,6 @@
+//! Unit tests of the phase functions: normalisation, mean cosine and chi-square checks of
+//! their sampling against their densities.
+
 use super::*;
 use crate::testing::{chi_square_limit_99, pooled_chi_square, r2};
 use std::f64::consts::PI;

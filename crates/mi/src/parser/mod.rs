@@ -74,8 +74,11 @@ const TOP_LEVEL: &[&str] = &[
     "root",
 ];
 
+/// The recursive-descent reader of a preprocessed token stream into the syntax tree.
 pub(crate) struct Parser {
+    /// The tokens, includes expanded.
     pub ts: TokenStream,
+    /// The messages so far, in order of reading.
     pub diags: Vec<Diagnostic>,
     depth: u32,
     max_errors: usize,
@@ -88,6 +91,7 @@ fn is_marker(tok: Tok) -> bool {
 }
 
 impl Parser {
+    /// A parser of `ts` that gives up after `max_errors` errors (at least one).
     pub fn new(ts: TokenStream, max_errors: usize) -> Parser {
         Parser { ts, diags: Vec::new(), depth: 0, max_errors: max_errors.max(1), ends: Vec::new() }
     }

@@ -6,6 +6,40 @@ use std::sync::atomic::AtomicBool;
 
 use shader::{Shading, ShadingOptions};
 
+use crate::support::scene_text::{translate, SceneText};
+
+/// A `maya_directionallight` of `parameters` shining at 60° from straight down, along
+/// (−cos 30°, −sin 30°, 0) in world space.
+fn sun_60(parameters: &str) -> String {
+    format!(r#""maya_directionallight" ({parameters}) direction -0.8660254 -0.5 0"#)
+}
+
+/// A warm `maya_pointlight` of intensity 6 with quadratic decay at its instance's origin.
+const DECAYING_POINT: &str = r#""maya_pointlight" ("color" 1 0.8 0.6, "intensity" 6, "decayRate" 2) origin 0 0 0"#;
+
+/// Material "m" of the shading engine whose surface shader is "top" (defined by the test).
+const TOP_MATERIAL: &str =
+    r#"material "m" opaque "maya_shadingengine" ("surfaceShader" = "top.outColor") end material"#;
+
+/// Object "plane" of material "m" (x and z in ±3 at y = 0, texture coordinates 0…1) and its
+/// instance "plane_inst".
+const UV_PLANE: &str = r#"object "plane" group -3 0 3  3 0 3  3 0 -3  -3 0 -3  0 0 0  1 0 0  1 1 0  0 1 0
+    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7 c "m" 0 1 2 3 end group end object
+instance "plane_inst" "plane" end instance"#;
+
+/// A `maya_lambert` "lam" of colour (0.6, 0.5, 0.4) and `diffuse`, its material "m"
+/// (shadow shader too) and object "plane" of it (x and z in ±`half` at y = 0) with
+/// instance "plane_inst".
+fn lambert_plane(diffuse: f32, half: u32) -> String {
+    format!(
+        r#"shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" {diffuse})
+material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor")
+    shadow "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
+object "plane" group -{half} 0 {half}  {half} 0 {half}  {half} 0 -{half}  -{half} 0 -{half}  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
+instance "plane_inst" "plane" end instance"#
+    )
+}
+
 /// A parsed, built and compiled scene.
 struct Loaded {
     scene: scene::Scene,
@@ -48,22 +82,12 @@ fn export(name: &str, resolution: (u32, u32)) -> Loaded {
 fn a_lambert_plane_renders_c_d_i_cos_theta_in_every_pixel() {
     // A camera 3 units above a large lambert plane, looking straight down; a directional
     // light of intensity 2 at 60° from the normal: every pixel is c·d·I·cos 60°.
-    let text = r#"
-$include "mayabase.mi"
-options "opt" samples 0 0 filter box 1 1 end options
-camera "cam" focal 1 aperture 0.5 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -3 1 end instance
-light "sun" "maya_directionallight" ("intensity" 2, "useRayTraceShadows" on) direction -0.8660254 -0.5 0 end light
-instance "sun_inst" "sun" end instance
-shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.7)
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor")
-    shadow "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
-object "plane" group -20 0 20  20 0 20  20 0 -20  -20 0 -20  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "sun_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
-    let l = load(&mi::parse_str("plane.mi", text), Vec::new(), None);
+    let text = SceneText::maya_down("samples 0 0 filter box 1 1", 0.5, 8, 3.0)
+        .light("sun", &sun_60(r#""intensity" 2, "useRayTraceShadows" on"#), None)
+        .text(&lambert_plane(0.7, 20))
+        .instance("plane_inst")
+        .build();
+    let l = load(&mi::parse_str("plane.mi", &text), Vec::new(), None);
     let (w, h, px) = render_classic(&l, 1);
     assert_eq!((w, h), (8, 8));
     let k = 0.7 * 2.0 * 0.5;
@@ -181,30 +205,26 @@ fn the_path_engine_agrees_with_the_classic_engine_on_a_diffuse_maya_scene() {
     // A checker-textured lambert plane under a directional light at 60°, a point light
     // with quadratic decay and a spot: nothing else in the scene, so no indirect light;
     // the image means of the two engines agree within 2 %.
-    let text = r#"
-$include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-light "sun" "maya_directionallight" ("intensity" 0.8) direction -0.8660254 -0.5 0 end light
-instance "sun_inst" "sun" end instance
-light "pt" "maya_pointlight" ("color" 1 0.8 0.6, "intensity" 6, "decayRate" 2) origin 0 0 0 end light
-instance "pt_inst" "pt" transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 -2 0 1 end instance
-light "sp" "maya_spotlight" ("color" 0.5 0.6 1, "intensity" 0.5, "coneAngle" 1.2)
-    origin 0 0 0 direction 0 -1 0 spread 0.8253356 end light
-instance "sp_inst" "sp" transform 1 0 0 0  0 1 0 0  0 0 1 0  1 -2.5 0.5 1 end instance
-shader "place" "maya_place2dtexture" ("repeatU" 3, "repeatV" 3)
+    let text = SceneText::maya_down("samples 0 2 filter box 1 1", 1.2, 32, 4.0)
+        .light("sun", &sun_60(r#""intensity" 0.8"#), None)
+        .light("pt", DECAYING_POINT, Some(&translate(-1.0, -2.0, 0.0)))
+        .light(
+            "sp",
+            r#""maya_spotlight" ("color" 0.5 0.6 1, "intensity" 0.5, "coneAngle" 1.2)
+    origin 0 0 0 direction 0 -1 0 spread 0.8253356"#,
+            Some(&translate(1.0, -2.5, 0.5)),
+        )
+        .text(
+            r#"shader "place" "maya_place2dtexture" ("repeatU" 3, "repeatV" 3)
 shader "chk" "maya_checker" ("uvCoord" = "place.outUV", "color1" 0.9 0.8 0.7, "color2" 0.2 0.3 0.4)
 shader "lam" "maya_lambert" ("color" = "chk.outColor", "diffuse" 0.8)
 material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor")
-    shadow "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
-object "plane" group -3 0 3  3 0 3  3 0 -3  -3 0 -3  0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "sun_inst" "pt_inst" "sp_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
-    let l = load(&mi::parse_str("plane.mi", text), Vec::new(), None);
+    shadow "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material"#,
+        )
+        .text(UV_PLANE)
+        .instance("plane_inst")
+        .build();
+    let l = load(&mi::parse_str("plane.mi", &text), Vec::new(), None);
     let (_, _, classic) = render_classic(&l, 4);
     let world = path_world(&l);
     assert_eq!(world.lights.len(), 3);
@@ -242,26 +262,15 @@ fn both_engines_agree_on_ramp_layered_and_3d_textured_maya_materials() {
     // a layeredShader of two lamberts (path: the albedos mixed by their visible shares)
     // and a lambert coloured by a marble 3D texture (evaluated per hit in both engines).
     let scene = |materials: &str| {
-        format!(
-            r#"
-$include "mayabase.mi"
-$include "AdskShaderSDK.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-light "sun" "maya_directionallight" ("intensity" 0.8) direction -0.8660254 -0.5 0 end light
-instance "sun_inst" "sun" end instance
-light "pt" "maya_pointlight" ("color" 1 0.8 0.6, "intensity" 6, "decayRate" 2) origin 0 0 0 end light
-instance "pt_inst" "pt" transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 -2 0 1 end instance
-{materials}
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "top.outColor") end material
-object "plane" group -3 0 3  3 0 3  3 0 -3  -3 0 -3  0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "sun_inst" "pt_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-        )
+        SceneText::maya_down("samples 0 2 filter box 1 1", 1.2, 32, 4.0)
+            .include("AdskShaderSDK.mi")
+            .light("sun", &sun_60(r#""intensity" 0.8"#), None)
+            .light("pt", DECAYING_POINT, Some(&translate(-1.0, -2.0, 0.0)))
+            .text(materials)
+            .text(TOP_MATERIAL)
+            .text(UV_PLANE)
+            .instance("plane_inst")
+            .build()
     };
     let cases = [
         (
@@ -303,24 +312,18 @@ fn a_sphere_volume_light_lights_the_plane_by_its_falloff_in_both_engines() {
     // is 1/r, so a pixel shows c·d·I·(1 − r/3)/r. Seen from 4 above; both engines are
     // checked against the formula at the pixel centres (within 2 % of the peak: a
     // pixel averages the smooth falloff over its footprint).
-    let text = r#"
-$include "mayabase.mi"
-options "opt" samples 0 2 filter box 1 1 end options
-camera "cam" focal 1 aperture 1.2 aspect 1 resolution 24 24 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-light "vol" "maya_volumelight" ("color" 1 0.9 0.8, "intensity" 2, "lightShape" 1, "colorRange" [
+    let text = SceneText::maya_down("samples 0 2 filter box 1 1", 1.2, 24, 4.0)
+        .light(
+            "vol",
+            r#""maya_volumelight" ("color" 1 0.9 0.8, "intensity" 2, "lightShape" 1, "colorRange" [
     { "colorRange_Position" 0, "colorRange_Color" 0 0 0, "colorRange_Interp" 1 },
-    { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]) origin 0 0 0 end light
-instance "vol_inst" "vol" transform 0.33333333 0 0 0  0 0.33333333 0 0  0 0 0.33333333 0  0 -0.33333333 0 1 end instance
-shader "lam" "maya_lambert" ("color" 0.6 0.5 0.4, "diffuse" 0.8)
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "lam.outColor")
-    shadow "maya_shadingengine" ("surfaceShader" = "lam.outColor") end material
-object "plane" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "vol_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
-    let l = load(&mi::parse_str("volume.mi", text), Vec::new(), None);
+    { "colorRange_Position" 1, "colorRange_Color" 1 1 1, "colorRange_Interp" 1 } ]) origin 0 0 0"#,
+            Some("0.33333333 0 0 0  0 0.33333333 0 0  0 0 0.33333333 0  0 -0.33333333 0 1"),
+        )
+        .text(&lambert_plane(0.8, 5))
+        .instance("plane_inst")
+        .build();
+    let l = load(&mi::parse_str("volume.mi", &text), Vec::new(), None);
     let world = path_world(&l);
     assert_eq!(world.lights.len(), 1, "the volume light is translated for the path engine");
     let accel = render::accel::build(&world, render::Backend::Rust);
@@ -350,23 +353,14 @@ render "root" "cam_inst" "opt"
 /// seen through an aperture of 1.2 at `resolution`² pixels, with the shader lines
 /// `materials` defining "top" (the plane's material) and the camera's extra `outputs`.
 fn lit_plane(materials: &str, outputs: &str, resolution: u32) -> String {
-    format!(
-        r#"
-$include "mayabase.mi"
-options "opt" samples 0 0 filter box 1 1 end options
-camera "cam" {outputs} focal 1 aperture 1.2 aspect 1 resolution {resolution} {resolution} end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-light "sun" "maya_directionallight" ("intensity" 1) direction 0 -1 0 end light
-instance "sun_inst" "sun" end instance
-{materials}
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "top.outColor") end material
-object "plane" group -3 0 3  3 0 3  3 0 -3  -3 0 -3  0 0 0  1 0 0  1 1 0  0 1 0
-    v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "sun_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    SceneText::maya_down("samples 0 0 filter box 1 1", 1.2, resolution, 4.0)
+        .camera(&format!("{outputs} focal 1 aperture 1.2 aspect 1"))
+        .light("sun", r#""maya_directionallight" ("intensity" 1) direction 0 -1 0"#, None)
+        .text(materials)
+        .text(TOP_MATERIAL)
+        .text(UV_PLANE)
+        .instance("plane_inst")
+        .build()
 }
 
 /// The second moments (Σ I·dx², Σ I·dy²) of the image's red channel about its
@@ -561,28 +555,20 @@ shader "sampler" "maya_volumesampler" ("volumeShader" = "fog")"#,
 /// ray crosses 4 units within 2e-5 of it), at 4×4 pixels, optionally a point light of
 /// intensity 2 (no decay, no shadows) 1 beside the middle of the rays: the pixels.
 fn through_fog(volume: &str, light: bool) -> Vec<[f32; 4]> {
-    let light = if light {
-        r#"light "lamp" "maya_pointlight" ("intensity" 2, "decayRate" 0) origin 0 0 0 end light
-instance "lamp_inst" "lamp" transform 1 0 0 0  0 1 0 0  0 0 1 0  -1 -2 0 1 end instance"#
-    } else {
-        ""
-    };
-    let members = if light.is_empty() { "" } else { r#" "lamp_inst""# };
-    let text = format!(
-        r#"
-$include "mayabase.mi"
-options "opt" samples 0 0 filter box 1 1 end options
-camera "cam" volume {volume} focal 1 aperture 0.01 aspect 1 resolution 4 4 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 0 1 0  0 -1 0 0  0 0 -4 1 end instance
-{light}
-shader "flat" "maya_surfaceshader" ("outColor" 0.8 0.8 0.8)
+    let mut scene = SceneText::maya_down("samples 0 0 filter box 1 1", 0.01, 4, 4.0)
+        .camera(&format!("volume {volume} focal 1 aperture 0.01 aspect 1"))
+        .text(
+            r#"shader "flat" "maya_surfaceshader" ("outColor" 0.8 0.8 0.8)
 material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material
 object "plane" group -5 0 5  5 0 5  5 0 -5  -5 0 -5  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "plane_inst"{members} end instgroup
-render "root" "cam_inst" "opt"
-"#
-    );
+instance "plane_inst" "plane" end instance"#,
+        )
+        .instance("plane_inst");
+    if light {
+        let lamp = r#""maya_pointlight" ("intensity" 2, "decayRate" 0) origin 0 0 0"#;
+        scene = scene.light("lamp", lamp, Some(&translate(-1.0, -2.0, 0.0)));
+    }
+    let text = scene.build();
     let l = load(&mi::parse_str("fog.mi", &text), Vec::new(), None);
     render_classic(&l, 1).2
 }

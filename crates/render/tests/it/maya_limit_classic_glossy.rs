@@ -21,26 +21,13 @@ const SIDE: usize = 8;
 /// ceiling (phongE without a highlight, reflectivity r, incandescence e,
 /// `reflectionLimit` `limit`) at y = 5, the camera between them looking down.
 fn two_reflectors(limit: u32, spread: f32, e: f32, r: f32) -> String {
-    let view = support::maya_view::top_down(SIDE).replace("end options", "trace depth 8 8 16 end options");
-    format!(
-        r#"
-$include "mayabase.mi"
-{view}
-shader "glow" "mib_color_mix" ("num" 0, "color_base" {e} {e} {e} 1)
+    let ground = format!(
+        r#"shader "glow" "mib_color_mix" ("num" 0, "color_base" {e} {e} {e} 1)
 material "g" opaque "mib_glossy_reflection" ("base_material" "glow", "reflection_color" 1 1 1,
     "environment_color" 0 0 0, "reflection_base_weight" 1, "reflection_edge_weight" 1,
-    "samples" 16, "u_spread" {spread}, "v_spread" {spread}) end material
-shader "mat" "maya_phongE" ("color" 0 0 0, "diffuse" 0, "whiteness" 0 0 0, "specularColor" 1 1 1,
-    "reflectivity" {r}, "reflectionLimit" {limit}, "incandescence" {e} {e} {e})
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "mat.outColor") end material
-object "ground" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
-instance "ground_inst" "ground" end instance
-object "ceiling" group -500 5 500  500 5 500  500 5 -500  -500 5 -500  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
-instance "ceiling_inst" "ceiling" end instance
-instgroup "root" "cam_inst" "ground_inst" "ceiling_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    "samples" 16, "u_spread" {spread}, "v_spread" {spread}) end material"#
+    );
+    support::maya_view::under_a_mirror(SIDE, "trace depth 8 8 16", &ground, "g", 500, limit, e, r)
 }
 
 /// Two facing reflectors: the `mib_glossy_reflection` ground G (base e, reflection

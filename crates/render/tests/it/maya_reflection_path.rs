@@ -351,25 +351,10 @@ render "root" "cam_inst" "opt"
 fn reflection_limit_counts_other_materials_glossy_reflections_in_both_engines() {
     let (r, e) = (0.5f32, 0.25f32);
     let text = |limit: u32| {
-        let view = support::maya_view::top_down(SIDE).replace("end options", "trace depth 8 8 16 end options");
-        format!(
-            r#"
-$include "mayabase.mi"
-{view}
-material "g" opaque "mia_material" ("diffuse_weight" 0, "reflectivity" 1, "refl_gloss" 0.8,
+        let ground = r#"material "g" opaque "mia_material" ("diffuse_weight" 0, "reflectivity" 1, "refl_gloss" 0.8,
     "refl_gloss_samples" 16, "brdf_fresnel" off, "brdf_0_degree_refl" 1, "brdf_90_degree_refl" 1,
-    "refl_color" 1 1 1, "refr_color" 0 0 0, "transparency" 0) end material
-shader "mat" "maya_phongE" ("color" 0 0 0, "diffuse" 0, "whiteness" 0 0 0, "specularColor" 1 1 1,
-    "reflectivity" {r}, "reflectionLimit" {limit}, "incandescence" {e} {e} {e})
-material "m" opaque "maya_shadingengine" ("surfaceShader" = "mat.outColor") end material
-object "ground" group -500 0 500  500 0 500  500 0 -500  -500 0 -500  v 0 v 1 v 2 v 3 c "g" 0 1 2 3 end group end object
-instance "ground_inst" "ground" end instance
-object "ceiling" group -500 5 500  500 5 500  500 5 -500  -500 5 -500  v 0 v 1 v 2 v 3 c "m" 0 1 2 3 end group end object
-instance "ceiling_inst" "ceiling" end instance
-instgroup "root" "cam_inst" "ground_inst" "ceiling_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-        )
+    "refl_color" 1 1 1, "refr_color" 0 0 0, "transparency" 0) end material"#;
+        support::maya_view::under_a_mirror(SIDE, "trace depth 8 8 16", ground, "g", 500, limit, e, r)
     };
     for limit in [0u32, 1, 2] {
         let want = if limit >= 2 { e * (1.0 + r) } else { e };

@@ -7,11 +7,12 @@
 //! engines (the path engine's shadow rays read it as the classic engine's do).
 
 use crate::support;
-use crate::support::maya_view::{mean, pixels};
+// `path_pixels(text, spp, depth)`: paths of at most `depth` rays (1: direct light only, as
+// the classic engine without final gathering).
+use crate::support::maya_view::{mean, path_pixels_to_depth as path_pixels, pixels};
 
 use glam::Vec3A;
-use render::integrator::PathSettings;
-use render::{EngineKind, Settings};
+use render::EngineKind;
 
 /// The image's side in pixels.
 const SIDE: usize = 8;
@@ -21,19 +22,6 @@ const COLOR: Vec3A = Vec3A::new(0.6, 0.5, 0.4);
 
 /// The slab's `translucence` t.
 const T: f32 = 0.7;
-
-/// The pixels of `text` rendered by the path engine with `spp` samples per pixel and
-/// paths of at most `depth` rays (1: direct light only, as the classic engine without
-/// final gathering), asserting the world was built without a warning.
-fn path_pixels(text: &str, spp: u32, depth: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let path = PathSettings { max_depth: depth, ..PathSettings::default() };
-    let settings = Settings { engine: EngineKind::Path, spp: Some(spp), path, ..Settings::default() };
-    let film = support::render_world(&world, &shading, &settings).0;
-    film.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
 
 /// The bits of `px`, for exact comparisons.
 fn bits(px: &[Vec3A]) -> Vec<u32> {

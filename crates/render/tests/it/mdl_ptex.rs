@@ -10,6 +10,7 @@
 //! between them, so each pixel is checked against the lookup's range over it.
 
 use crate::support;
+use crate::support::scene_text::SceneText;
 use material::mdl_modules::ptex::{reader, Ptex};
 use render::{EngineKind, Settings};
 
@@ -114,24 +115,33 @@ export material faces() = material(surface: material_surface(scattering: df::dif
     tint: tex::lookup_color(texture_ptex("./faces.ptx")))));
 "#;
 
+/// A Ptex test's scene: `head` (the camera and its light, as [`SceneText::head_on`]),
+/// shader "tinted" the test module's material `material`, the objects' text `objects`,
+/// then an instance `{name}_inst` of material "tinted" for each of `names`, in order.
+pub(crate) fn ptex_scene(head: SceneText, material: &str, objects: &str, names: &[&str]) -> String {
+    let mut scene = head.text(&format!("shader \"tinted\" \"mdl::ptexmod::{material}\" ()")).text(objects);
+    for name in names {
+        scene = scene
+            .text(&format!("instance \"{name}_inst\" \"{name}\" material \"tinted\" end instance"))
+            .instance(&format!("{name}_inst"));
+    }
+    scene.build()
+}
+
 /// The square of two triangles, seen and lit head-on (as `support::lit_square`).
-const SCENE: &str = r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-object "square" group
+fn scene() -> String {
+    ptex_scene(
+        SceneText::head_on(8),
+        "faces",
+        r#"object "square" group
     -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
     v 0 v 1 v 2 v 3
     p 0 1 2
     p 0 2 3
-end group end object
-instance "square_inst" "square" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+end group end object"#,
+        &["square"],
+    )
+}
 
 /// The range (per channel, low and high) of `colour(px, x, y)` over pixel `k` of the 8 × 8
 /// image and a margin of `margin` sixteenths of a pixel around it: pixel (px, py from the
@@ -179,7 +189,7 @@ fn each_triangle_renders_its_ptex_faces_texels() {
     std::fs::write(dir.join("faces.ptx"), ptex_file()).unwrap();
     let ptex = reader::read(&ptex_file()).expect("the test file").0;
     for engine in [EngineKind::Path, EngineKind::Classic] {
-        let parsed = mi::parse_str("t.mi", SCENE);
+        let parsed = mi::parse_str("t.mi", &scene());
         let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
         assert!(built.messages.is_empty(), "{:#?}", built.messages);
         let settings = Settings { engine, spp: Some(4), ..Settings::default() };
@@ -222,25 +232,21 @@ fn expected_quads(ptex: &Ptex, x: f32, y: f32) -> [f32; 3] {
 
 /// Two quads side by side (and, out of view, a pentagon after them: faces 2–6, which the
 /// file lacks: black, no warning).
-pub(crate) const QUAD_SCENE: &str = r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-object "quads" group
+pub(crate) fn quad_scene() -> String {
+    ptex_scene(
+        SceneText::head_on(8),
+        "faces",
+        r#"object "quads" group
     -1 -1 -1  0 -1 -1  1 -1 -1  1 1 -1  0 1 -1  -1 1 -1
     10 10 -1  11 10 -1  11.5 10.5 -1  11 11 -1  10 11 -1
     v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8 v 9 v 10
     c 0 1 4 5
     p 3 4 1 2
     p 6 7 8 9 10
-end group end object
-instance "quads_inst" "quads" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "quads_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+end group end object"#,
+        &["quads"],
+    )
+}
 
 /// A quad-mesh Ptex file on two quads (one fanned `c` polygon, one ear-clipped `p` polygon
 /// whose vertex 0 is its upper right corner): every pixel, on both triangles of each quad,
@@ -264,7 +270,8 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
     let ptex = reader::read(&ptex_bytes(1, &faces)).expect("the quad file").0;
     // The same quads displaced (by 0, `parametric 2`: each triangle split into 16, which
     // keep their original's faces and places on them).
-    let displaced = QUAD_SCENE
+    let quads = quad_scene();
+    let displaced = quads
         .replace(
             "shader \"tinted\" \"mdl::ptexmod::faces\" ()\n",
             "shader \"tinted\" \"mdl::ptexmod::faces\" ()\nshader \"disp\" \"maya_material_displace\" (\"displacement\" 0)\n\
@@ -274,8 +281,8 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
         .replace("material \"tinted\" end instance", "material \"m\" end instance");
     let adaptive = displaced.replace("approximate displace parametric 2", "approximate displace length 0.05");
     for (engine, text) in [
-        (EngineKind::Path, QUAD_SCENE),
-        (EngineKind::Classic, QUAD_SCENE),
+        (EngineKind::Path, &quads),
+        (EngineKind::Classic, &quads),
         (EngineKind::Path, &displaced),
         (EngineKind::Classic, &displaced),
         (EngineKind::Path, &adaptive),
@@ -284,8 +291,8 @@ fn each_quad_renders_its_quad_mesh_ptex_faces_texels() {
         let parsed = mi::parse_str("t.mi", text);
         let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
         let fine = built.built.world.meshes.iter().map(|m| m.triangles.len()).max().unwrap_or(0);
-        if text == QUAD_SCENE || text == displaced {
-            assert_eq!(fine, if text == QUAD_SCENE { 7 } else { 7 * 16 }, "{engine:?}");
+        if *text == quads || *text == displaced {
+            assert_eq!(fine, if *text == quads { 7 } else { 7 * 16 }, "{engine:?}");
         } else {
             // Uneven: not 7 · 4^k.
             assert!(fine > 7 * 64 && !(0..8).any(|k| fine == 7 << (2 * k)), "{engine:?}: {fine} fine triangles");
@@ -328,24 +335,20 @@ const NGONS: [&[[f32; 2]]; 2] =
 
 /// A pentagon and a triangle in a quad-mesh file's mesh (faces 0–4 the pentagon's
 /// sub-quads, 5–7 the triangle's), seen and lit head-on.
-const NGON_SCENE: &str = r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-object "ngons" group
+fn ngon_scene() -> String {
+    ptex_scene(
+        SceneText::head_on(32),
+        "faces",
+        r#"object "ngons" group
     -0.9 -0.9 -1  -0.1 -0.9 -1  -0.1 0.3 -1  -0.5 0.9 -1  -0.9 0.3 -1
     0.1 -0.9 -1  0.9 -0.9 -1  0.5 0.9 -1
     v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
     p 2 3 4 0 1
     c 5 6 7
-end group end object
-instance "ngons_inst" "ngons" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "ngons_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+end group end object"#,
+        &["ngons"],
+    )
+}
 
 /// The constant colour of sub-quad face `f`.
 fn sub_quad_colour(f: usize) -> [f32; 3] {
@@ -423,7 +426,7 @@ fn each_ngon_renders_its_sub_quads_ptex_faces() {
     let faces: Vec<FaceSpec> = (0..8).map(|f| FaceSpec { log2: (0, 0), texels: vec![sub_quad_colour(f)] }).collect();
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
     for engine in [EngineKind::Path, EngineKind::Classic] {
-        let parsed = mi::parse_str("t.mi", NGON_SCENE);
+        let parsed = mi::parse_str("t.mi", &ngon_scene());
         let built = support::build_parsed(&parsed, 32, std::slice::from_ref(&dir));
         assert!(built.messages.is_empty(), "{:#?}", built.messages);
         let settings = Settings { engine, spp: Some(4), ..Settings::default() };

@@ -14,7 +14,7 @@
 //! tilted along the left quad's v, gets the widths (0.05, 0.05 / (2 cos 75°)) (1e-4
 //! relative).
 
-use crate::mdl_ptex::{ptex_bytes, FaceSpec, MODULE, QUAD_SCENE};
+use crate::mdl_ptex::{ptex_bytes, quad_scene, FaceSpec, MODULE};
 use crate::support;
 use glam::{Vec2, Vec3A};
 use material::mdl_modules::ptex::footprint::{face_axes, filter_widths};
@@ -47,7 +47,7 @@ fn the_tracer_gives_each_face_its_axes() {
     let faces =
         [FaceSpec { log2: (1, 1), texels: vec![[0.5; 3]; 4] }, FaceSpec { log2: (1, 1), texels: vec![[0.5; 3]; 4] }];
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
-    let parsed = mi::parse_str("t.mi", QUAD_SCENE);
+    let parsed = mi::parse_str("t.mi", &quad_scene());
     let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
     let world = &built.built.world;
     let bvh = accel::build(world, Backend::Rust);

@@ -13,8 +13,9 @@
 //! that texel (0.8, then 0.2 at another) within 1e-4; each image is the same bit for bit
 //! on one thread and on three.
 
-use crate::mdl_ptex::zlib_stored;
+use crate::mdl_ptex::{ptex_scene, zlib_stored};
 use crate::support;
+use crate::support::scene_text::SceneText;
 use render::{EngineKind, Settings};
 
 /// Level 0's texel `t` of a face (8 × 8 square image, row v = 0 first): 0.8 where its
@@ -92,20 +93,8 @@ export material faces() = material(surface: material_surface(scattering: df::dif
 /// The scene: the camera (aperture `aperture`, focal 1, 8 × 8 pixels, at the origin
 /// looking down −z) and the object `object`, lit head-on.
 fn scene(aperture: f64, object: &str) -> String {
-    format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture {aperture} aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-{object}
-instance "mesh_inst" "mesh" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "mesh_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+    let head = SceneText::head_on(8).camera(&format!("focal 1 aperture {aperture} aspect 1"));
+    ptex_scene(head, "faces", object, &["mesh"])
 }
 
 /// A grid of `n` × `n` squares over [−1, 1]² at z = −1, each two triangles (`p a b c`,

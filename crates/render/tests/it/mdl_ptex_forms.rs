@@ -5,8 +5,9 @@
 //! line; a free-form surface's warning at its line (subdivision surfaces are in
 //! `mdl_ptex_subdiv`).
 
-use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, FaceSpec, MODULE};
+use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, ptex_scene, FaceSpec, MODULE};
 use crate::support;
+use crate::support::scene_text::SceneText;
 use render::{EngineKind, Settings};
 
 /// One polygon as Ptex sees it: its object (0: lone triangles, 1: the holed pentagon), its
@@ -38,14 +39,11 @@ const POLYS: [Poly; 7] = [
 
 /// The two objects (sharing one quad-mesh Ptex file, each numbering its faces from 0):
 /// lone triangles only (a strip, a fan, a trilist) and a pentagon with a hole.
-const FORMS_SCENE: &str = r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-object "lone" group
+fn forms_scene() -> String {
+    ptex_scene(
+        SceneText::head_on(32),
+        "faces",
+        r#"object "lone" group
     -0.9 0.9 -1  -0.9 0.1 -1  -0.1 0.9 -1  -0.1 0.1 -1  0.1 0.1 -1  0.9 0.1 -1  0.9 0.9 -1  0.1 0.9 -1
     v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
     strip 0 1 2 3
@@ -61,12 +59,10 @@ object "holed" group
     -0.625 -0.625 -1  -0.375 -0.625 -1  -0.375 -0.375 -1  -0.625 -0.375 -1
     v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8
     p 0 1 2 3 4 hole 5 8 7 6
-end group end object
-instance "lone_inst" "lone" material "tinted" end instance
-instance "holed_inst" "holed" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "lone_inst" "holed_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+end group end object"#,
+        &["lone", "holed"],
+    )
+}
 
 /// The constant colour of face `f` (each channel in (0, 1)).
 fn form_colour(f: usize) -> [f32; 3] {
@@ -115,7 +111,7 @@ fn each_geometry_form_renders_its_sub_quads_ptex_faces() {
     let faces: Vec<FaceSpec> = (0..18).map(|f| FaceSpec { log2: (0, 0), texels: vec![form_colour(f)] }).collect();
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &faces)).unwrap();
     for engine in [EngineKind::Path, EngineKind::Classic] {
-        let parsed = mi::parse_str("t.mi", FORMS_SCENE);
+        let parsed = mi::parse_str("t.mi", &forms_scene());
         let built = support::build_parsed(&parsed, 32, std::slice::from_ref(&dir));
         assert_eq!(built.messages.len(), 1, "{:#?}", built.messages);
         assert!(built.messages[0].contains("t.mi:23:") && built.messages[0].contains("holes"), "{:?}", built.messages);
@@ -144,15 +140,16 @@ fn a_hostile_ngon_is_warned_of_at_its_line() {
         .collect();
     let verts: Vec<String> = (0..n).map(|k| format!("v {k}")).collect();
     let poly: Vec<String> = (0..n).map(|k| k.to_string()).collect();
-    let at = FORMS_SCENE.find("object \"holed\"").unwrap();
-    let end = FORMS_SCENE.find("end group end object").unwrap();
+    let forms = forms_scene();
+    let at = forms.find("object \"holed\"").unwrap();
+    let end = forms.find("end group end object").unwrap();
     let text = format!(
         "{}object \"holed\" group\n    {}\n    {}\n    c {}\n{}",
-        &FORMS_SCENE[..at],
+        &forms[..at],
         ring.join("  "),
         verts.join(" "),
         poly.join(" "),
-        &FORMS_SCENE[end..]
+        &forms[end..]
     );
     let parsed = mi::parse_str("t.mi", &text);
     let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
@@ -171,11 +168,10 @@ fn free_form_surfaces_are_warned_of_at_their_lines_subdivision_and_displacement_
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ptexmod.mdl"), MODULE).unwrap();
     std::fs::write(dir.join("faces.ptx"), ptex_bytes(1, &[FaceSpec { log2: (0, 0), texels: vec![[0.5; 3]] }])).unwrap();
-    let text = r#"
-options "opt" end options
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
+    let text = SceneText::new()
+        .options("")
+        .text(
+            r#"shader "tinted" "mdl::ptexmod::faces" ()
 shader "disp" "maya_material_displace" ("displacement" 0)
 material "m" = "tinted" displace = "disp" end material
 object "cube" group
@@ -207,12 +203,14 @@ object "plane"
 end group end object
 instance "cube_inst" "cube" material "tinted" end instance
 instance "plane_inst" "plane" material "m" end instance
-instance "patch_inst" "patch" material "tinted" end instance
-instgroup "root" "cam_inst" "cube_inst" "patch_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
+instance "patch_inst" "patch" material "tinted" end instance"#,
+        )
+        .instance("cube_inst")
+        .instance("patch_inst")
+        .instance("plane_inst")
+        .build();
     let line = |what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
-    let parsed = mi::parse_str("t.mi", text);
+    let parsed = mi::parse_str("t.mi", &text);
     let built = support::build_parsed(&parsed, 8, std::slice::from_ref(&dir));
     let at = line("object \"patch\"") + 2;
     let what = "free-form surface has no quad-mesh Ptex faces (Ptex defines faces for polygon meshes";

@@ -12,8 +12,9 @@
 //! refinement keeps the bilinear parametrisation (Catmull–Clark's linear precision), so a
 //! point's face coordinates are its place on the square.
 
-use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, FaceSpec};
+use crate::mdl_ptex::{assert_constant_regions, ptex_bytes, ptex_scene, FaceSpec};
 use crate::support;
+use crate::support::scene_text::SceneText;
 use glam::DVec3;
 use material::mdl_modules::ptex::{reader, Ptex};
 use render::{EngineKind, Settings};
@@ -69,25 +70,15 @@ fn cube_scene(material: &str) -> String {
     }
     let faces: String =
         CUBE_FACES.iter().map(|(f, ..)| format!("    p {} {} {} {}\n", f[0], f[1], f[2], f[3])).collect();
-    format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::{material}" ()
-object "cube" group
+    let objects = format!(
+        r#"object "cube" group
 {vectors}    v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7
     subdivision surface "s"
 {faces}    end subdivision surface
     approximate subdivision surface parametric 2 "s"
-end group end object
-instance "cube_inst" "cube" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "cube_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+end group end object"#
+    );
+    ptex_scene(SceneText::head_on(32), material, &objects, &["cube"])
 }
 
 /// The nearest hit of the ray from the origin along `dir` on `mesh`'s triangles
@@ -186,15 +177,8 @@ fn ccmesh_scene() -> String {
             format!("{x} {y} -1  ")
         })
         .collect();
-    format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 32 32 end camera
-instance "cam_inst" "cam" end instance
-shader "tinted" "mdl::ptexmod::faces" ()
-object "mesh" group
+    let objects = format!(
+        r#"object "mesh" group
     -0.1 0.4 -1  -0.9 0.4 -1  -0.9 -0.4 -1  -0.1 -0.4 -1
     {pentagon}
     v 0 v 1 v 2 v 3 v 4 v 5 v 6 v 7 v 8
@@ -203,12 +187,9 @@ object "mesh" group
         p 4 5 6 7 8
     end ccmesh
     approximate ccmesh parametric 3 "c"
-end group end object
-instance "mesh_inst" "mesh" material "tinted" end instance
-instgroup "root" "cam_inst" "sun_inst" "mesh_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+end group end object"#
+    );
+    ptex_scene(SceneText::head_on(32), "faces", &objects, &["mesh"])
 }
 
 /// Vertex `k` of the regular pentagon (centre (0.5, 0), radius 0.4, vertex 0 straight up).

@@ -4,7 +4,7 @@
 //! light (`render`'s `integrator::glossy_reach`: `light_through`, `hit_weight`).
 
 use crate::support;
-use crate::support::maya_view::{mean, pixels};
+use crate::support::maya_view::{mean, path_pixels_to_depth as path_pixels, pixels};
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -62,17 +62,6 @@ fn a_point_light_is_not_seen_through_the_lobe() {
     }
 }
 
-/// The image of `text` in the path engine at `spp` samples per pixel, its paths cut after
-/// `max_depth` bounces.
-fn path_pixels(text: &str, spp: u32, max_depth: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let mut settings = render::Settings { engine: EngineKind::Path, spp: Some(spp), ..render::Settings::default() };
-    settings.path.max_depth = max_depth;
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
-
 /// A glossy ground (spread 0.2, no base material, no `max_distance`) under a ceiling 6
 /// above it facing down (`mib_illum_lambert` of diffuse 0.8, behind the camera) lit by
 /// [`LAMP`] between them: the classic shader's glossy rays see the lit ceiling and never
@@ -93,22 +82,7 @@ instance "ceiling_inst" "ceiling" end instance"#;
     let classic = pixels(&text, EngineKind::Classic, 4);
     let path = path_pixels(&text, 256, 2);
     assert!(mean(&classic).min_element() > 0.01, "the ceiling is seen: {}", mean(&classic));
-    for (what, c, p) in [
-        ("image", mean(&classic), mean(&path)),
-        (
-            "left half",
-            support::two_tone::half_mean(&classic, SIDE, true),
-            support::two_tone::half_mean(&path, SIDE, true),
-        ),
-        (
-            "right half",
-            support::two_tone::half_mean(&classic, SIDE, false),
-            support::two_tone::half_mean(&path, SIDE, false),
-        ),
-    ] {
-        println!("{what}: classic {c}, path {p}");
-        assert!((p - c).abs().max_element() <= 0.02 * c.max_element(), "{what}: path {p} vs classic {c}");
-    }
+    support::two_tone::assert_halves_agree(&classic, &path, SIDE, "a lit ceiling");
 }
 
 /// A light the path's own rays find through the glossy lobe is taken whole

@@ -4,7 +4,7 @@
 //! (Maya's `refractionLimit` counting its transmissions: `maya_limit_classic_glossy`.)
 
 use crate::support;
-use crate::support::maya_view::{mean, pixels, pixels_warned};
+use crate::support::maya_view::{mean, path_pixels_to_depth as path_pixels, pixels, pixels_warned};
 
 use glam::Vec3A;
 use render::EngineKind;
@@ -338,17 +338,6 @@ instance "sun_inst" "sun" end instance"#;
     }
 }
 
-/// The image of `text` in the path engine at `spp` samples per pixel, its paths cut after
-/// `max_depth` bounces.
-fn path_pixels(text: &str, spp: u32, max_depth: u32) -> Vec<Vec3A> {
-    let (scene, shading) = support::build_clean(text);
-    let world = render::World::from_scene_shaded(&scene, Some(&shading));
-    assert!(world.warnings.is_empty(), "{:?}", world.warnings);
-    let mut settings = render::Settings { engine: EngineKind::Path, spp: Some(spp), ..render::Settings::default() };
-    settings.path.max_depth = max_depth;
-    support::render_world(&world, &shading, &settings).0.rgba().iter().map(|p| Vec3A::new(p[0], p[1], p[2])).collect()
-}
-
 /// A glossy pane (`ior` 1.5, spread 0.2, `refraction_color` (0.9, 0.7, 0.5), no
 /// `max_distance`) over a floor 3 below it (`mib_illum_lambert` of diffuse 0.8) lit by a
 /// Maya point light (intensity 1, no decay, no shadows) 1 below the pane, straight under
@@ -380,22 +369,7 @@ instance "floor_inst" "floor" end instance"#;
     );
     let classic = pixels(&text, EngineKind::Classic, 4);
     let path = path_pixels(&text, 256, 2);
-    for (what, c, p) in [
-        ("image", mean(&classic), mean(&path)),
-        (
-            "left half",
-            support::two_tone::half_mean(&classic, SIDE, true),
-            support::two_tone::half_mean(&path, SIDE, true),
-        ),
-        (
-            "right half",
-            support::two_tone::half_mean(&classic, SIDE, false),
-            support::two_tone::half_mean(&path, SIDE, false),
-        ),
-    ] {
-        println!("{what}: classic {c}, path {p}");
-        assert!((p - c).abs().max_element() <= 0.02 * c.max_element(), "{what}: path {p} vs classic {c}");
-    }
+    support::two_tone::assert_halves_agree(&classic, &path, SIDE, "a lit floor");
 }
 
 /// A light the path's own rays find through the glossy lobe is taken whole

@@ -1,3 +1,6 @@
+//! Unit tests of instance flags: instance modes forcing bits on or off, and the closest
+//! instance winning over the object and the defaults.
+
 use super::*;
 
 fn stmts(text: &str) -> Vec<Stmt> {

@@ -4,7 +4,7 @@
 //! pipeline's world stage ([`build_parsed`]); and the textured square the material tests and
 //! benchmarks look at ([`lit_square`]); the top-down view of the Maya path-engine tests
 //! ([`maya_view`]); the two-tone scene of the glossy path tests ([`two_tone`]); a box object
-//! of quads ([`box_object`]). The benchmarks include this file
+//! of quads ([`box_object`]); the builder of their scenes' `.mi` text ([`scene_text`]). The benchmarks include this file
 //! too.
 
 #![allow(dead_code)]
@@ -12,6 +12,7 @@
 pub mod maya_view;
 pub mod moving_quad;
 pub mod rays;
+pub mod scene_text;
 pub mod two_tone;
 
 use std::path::PathBuf;
@@ -134,25 +135,19 @@ pub const QUADRANTS: &str = r#"color texture "quadrants" [ 4 4 ]
 /// albedo: `body` (textures, shaders, materials) goes before the square, whose instance
 /// takes `material`.
 pub fn lit_square(body: &str, material: &str) -> String {
-    format!(
-        r#"
-options "opt" filter box 1 1 end options
-light "sun" "mib_light_infinite" ("color" 3.14159265 3.14159265 3.14159265) direction 0 0 -1 end light
-instance "sun_inst" "sun" end instance
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-{body}
-object "square" group
+    scene_text::SceneText::head_on(8)
+        .text(body)
+        .text(&format!(
+            r#"object "square" group
     -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1
     0 0 0  1 0 0  1 1 0  0 1 0
     v 0 t 4 v 1 t 5 v 2 t 6 v 3 t 7
     p 0 1 2 3
 end group end object
-instance "square_inst" "square" material "{material}" end instance
-instgroup "root" "cam_inst" "sun_inst" "square_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+instance "square_inst" "square" material "{material}" end instance"#
+        ))
+        .instance("square_inst")
+        .build()
 }
 
 /// The mean colour of the pixels in columns `x0..x1` and rows `y0..y1` (from the top) of a
