@@ -569,16 +569,21 @@ impl LightSource {
 
     /// [`LightSource::sample`] with the light where it is at shutter time `time`.
     ///
-    /// The common case — a rectangle that emits radiance and does not move — is inlined
-    /// here (the same arithmetic as [`LightSource::sample`]'s); the rest is
-    /// `sample_any_at`, out of line.
+    /// The common case — a rectangle that emits radiance and does not move, sampled by
+    /// area — is inlined at the caller (the same arithmetic as [`LightSource::sample`]'s);
+    /// the rest, a rectangle that looks large from `p` included, is `sample_any_at`, out of
+    /// line.
     #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
         if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal, area }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
-            let frame = self.rect_frame.as_ref();
-            return rect_sample(self.position, eu, ev, normal, area, frame, *l, *two_sided, p, u);
+            // By area unless the light looks large from `p`; then `sample_any_at` (out of
+            // line: the one call here, so the caller's loop keeps its registers) asks again
+            // and samples it in solid angle.
+            if !self.rect_frame.as_ref().is_some_and(|frame| frame.looks_large(self.position, p)) {
+                return rect_sample_by_area(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
+            }
         }
         self.sample_any_at(p, u, time)
     }
