@@ -60,8 +60,9 @@ pub struct RectFrame {
     /// The rectangle's area (world units²).
     area: f32,
     /// The squared distance from the centre beyond which the rectangle never looks large:
-    /// area × cos / dist² ≥ [`MIN_SOLID_ANGLE`] needs dist² ≤ area × |normal| / MIN; twice
-    /// that, a margin for rounding, so that this quick test never changes the decision.
+    /// area × cos / dist² ≥ [`MIN_SOLID_ANGLE`] needs dist² ≤ area × |normal| / MIN; 1 %
+    /// more, a margin far above the test's `f32` rounding (≈ 1e-6 relative), so that this
+    /// quick test never changes the decision.
     reach2: f32,
 }
 
@@ -75,7 +76,7 @@ impl RectFrame {
         }
         let (lu, lv) = (eu.length(), ev.length());
         let (x, y) = (eu / lu, ev / lv);
-        let reach2 = 2.0 * area * normal.length() / MIN_SOLID_ANGLE;
+        let reach2 = 1.01 * area * normal.length() / MIN_SOLID_ANGLE;
         Some(RectFrame { half_diagonal: 0.5 * (eu + ev), x, y, z: x.cross(y), normal, lu, lv, area, reach2 })
     }
 
