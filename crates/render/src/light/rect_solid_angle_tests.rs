@@ -87,7 +87,7 @@ fn density_integrates_to_one() {
     let light = rect_light(false);
     for p in VIEWPOINTS.map(Vec3A::from) {
         let pdf = light.pdf(p, Vec3A::Z, 1.0);
-        let (c, eu, ev, normal, area) = rect_of(&light);
+        let (c, ..) = rect_of(&light);
         assert!(frame_of(&light).view(c, p).is_some(), "{p} is sampled in solid angle");
         let integral = f64::from(pdf) * solid_angle_of_part(&light, p, (0.0, 1.0), (0.0, 1.0), 800);
         assert!((integral - 1.0).abs() < 1e-3, "∫ pdf dω = {integral} from {p}");
@@ -99,7 +99,7 @@ fn density_integrates_to_one() {
 #[test]
 fn samples_land_on_the_rectangle() {
     let light = rect_light(true);
-    let (c, eu, ev, normal, area) = rect_of(&light);
+    let (c, eu, ev, normal, _) = rect_of(&light);
     let mut r = numbers(7);
     for p in VIEWPOINTS.map(Vec3A::from) {
         let rect = frame_of(&light).view(c, p).expect("in solid angle");
@@ -122,7 +122,7 @@ fn samples_land_on_the_rectangle() {
 #[test]
 fn directions_follow_the_density_chi_square() {
     let light = rect_light(true);
-    let (c, eu, ev, normal, area) = rect_of(&light);
+    let (c, eu, ev, ..) = rect_of(&light);
     let mut r = numbers(11);
     const CELLS: usize = 8;
     const N: usize = 200_000;
@@ -221,7 +221,7 @@ fn pdf_equals_the_samplers_density() {
     let mut r = numbers(5);
     for two_sided in [false, true] {
         let light = rect_light(two_sided);
-        let (c, eu, ev, normal, area) = rect_of(&light);
+        let (c, ..) = rect_of(&light);
         let (mut solid, mut by_area) = (0, 0);
         for k in 0..20_000 {
             let spread = if k % 2 == 0 { 4.0 } else { 300.0 };
