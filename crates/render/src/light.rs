@@ -22,7 +22,7 @@ pub use shader::light::Shape;
 use crate::ray::Ray;
 
 pub mod rect_solid_angle;
-use rect_solid_angle::SphericalRect;
+pub use rect_solid_angle::RectFrame;
 
 /// A distribution over directions and the frame it is given in.
 #[derive(Clone, Debug, PartialEq)]
@@ -113,6 +113,10 @@ pub struct LightSource {
     pub direction: Vec3A,
     /// The shape.
     pub shape: Shape,
+    /// A rectangle's frame for sampling it in solid angle, worked out from `shape` when the
+    /// light is built: [`RectFrame::of`] of it (a light whose `shape` changes needs it anew;
+    /// `None`: a rectangle sampled by area, or another shape).
+    pub rect_frame: Option<RectFrame>,
     /// What it emits.
     pub output: Output,
     /// Cosine of the spot's outer half-angle.
@@ -262,6 +266,7 @@ impl LightSource {
             kind: light.kind,
             position: light.position.as_vec3a(),
             direction: light.direction.as_vec3a(),
+            rect_frame: RectFrame::of(&shape),
             shape,
             output,
             spread: light.spread as f32,
@@ -399,7 +404,8 @@ impl LightSource {
             Output::Portal { scale, reverse } => {
                 if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
                     let normal = if *reverse { -normal } else { normal };
-                    return rect_sample(self.position, eu, ev, normal, area, *scale, false, p, u);
+                    let frame = self.rect_frame.as_ref();
+                    return rect_sample(self.position, eu, ev, normal, area, frame, *scale, false, p, u);
                 }
                 let (q, n) = self.point_on(u);
                 let n = if *reverse { -n } else { n };
@@ -419,7 +425,8 @@ impl LightSource {
                     return self.sample_sphere_cone(p, radius, *l, u);
                 }
                 if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
-                    return rect_sample(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
+                    let frame = self.rect_frame.as_ref();
+                    return rect_sample(self.position, eu, ev, normal, area, frame, *l, *two_sided, p, u);
                 }
                 let (q, n) = self.point_on(u);
                 let d = q - p;
@@ -468,8 +475,8 @@ impl LightSource {
                 1.0 / (2.0 * PI * (1.0 - cos_max))
             }
             (Output::Radiance { .. } | Output::Portal { .. }, shape) => {
-                if let Shape::Rect { u: eu, v: ev, normal, area } = *shape {
-                    if let Some(rect) = SphericalRect::view(self.position, eu, ev, normal, area, p) {
+                if let (Shape::Rect { .. }, Some(frame)) = (shape, &self.rect_frame) {
+                    if let Some(rect) = frame.view(self.position, p) {
                         return rect.pdf();
                     }
                 }
@@ -562,15 +569,21 @@ impl LightSource {
 
     /// [`LightSource::sample`] with the light where it is at shutter time `time`.
     ///
-    /// The common case — a rectangle that emits radiance and does not move — is inlined
-    /// at the caller (the same arithmetic as [`LightSource::sample`]'s); the rest is
-    /// `sample_any_at`, out of line.
+    /// The common case — a rectangle that emits radiance and does not move, sampled by
+    /// area — is inlined at the caller (the same arithmetic as [`LightSource::sample`]'s);
+    /// the rest, a rectangle that looks large from `p` included, is `sample_any_at`, out of
+    /// line.
     #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
         if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal, area }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
-            return rect_sample(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
+            // By area unless the light looks large from `p`; then `sample_any_at` (out of
+            // line: the one call here, so the caller's loop keeps its registers) asks again
+            // and samples it in solid angle.
+            if !self.rect_frame.as_ref().is_some_and(|frame| frame.looks_large(self.position, p)) {
+                return rect_sample_by_area(self.position, eu, ev, normal, area, *l, *two_sided, p, u);
+            }
         }
         self.sample_any_at(p, u, time)
     }
@@ -667,10 +680,13 @@ impl LightSource {
 }
 
 /// A sample of a rectangle of radiance `l` centred at `centre` (full edges `eu`, `ev`, unit
-/// normal `normal` on its emitting side, area `area`; both sides when `two_sided`) seen from
-/// `p`: the point picked by `u` uniformly in the solid angle the rectangle subtends where
-/// [`SphericalRect::view`] allows it, else uniformly by area; its density per solid angle.
-/// `None` when that point is `p` itself or faces away.
+/// normal `normal` on its emitting side, area `area`, frame `frame` when it has one; both
+/// sides when `two_sided`) seen from `p`: the point picked by `u` uniformly in the solid
+/// angle the rectangle subtends where [`RectFrame::view`] allows it, else uniformly by area;
+/// its density per solid angle. `None` when that point is `p` itself or faces away.
+///
+/// Inlined at every caller: the test whether the light looks large from `p` is a few
+/// multiplications; the solid-angle sampler behind it is out of line.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn rect_sample(
@@ -679,24 +695,50 @@ fn rect_sample(
     ev: Vec3A,
     normal: Vec3A,
     area: f32,
+    frame: Option<&RectFrame>,
     l: Rgb,
     two_sided: bool,
     p: Vec3A,
     u: Vec2,
 ) -> Option<LightSample> {
-    if let Some(rect) = SphericalRect::view(centre, eu, ev, normal, area, p) {
-        // (`view` declines points in the plane: p is strictly on one side.)
-        if !two_sided && (p - centre).dot(normal) <= 0.0 {
-            return None;
+    if let Some(frame) = frame {
+        if frame.looks_large(centre, p) {
+            return rect_sample_large(centre, eu, ev, normal, area, frame, l, two_sided, p, u);
         }
-        let d = rect.point(u) - p;
-        let dist = d.length();
-        if dist.is_nan() || dist <= 0.0 {
-            return None;
-        }
-        return Some(LightSample { wi: d / dist, dist, radiance: l, pdf: rect.pdf(), delta: false });
     }
     rect_sample_by_area(centre, eu, ev, normal, area, l, two_sided, p, u)
+}
+
+/// [`rect_sample`] where the rectangle [`RectFrame::looks_large`] from `p` (out of line):
+/// in solid angle when [`RectFrame::view_large`] allows it, else by area.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+#[cold]
+fn rect_sample_large(
+    centre: Vec3A,
+    eu: Vec3A,
+    ev: Vec3A,
+    normal: Vec3A,
+    area: f32,
+    frame: &RectFrame,
+    l: Rgb,
+    two_sided: bool,
+    p: Vec3A,
+    u: Vec2,
+) -> Option<LightSample> {
+    let Some(rect) = frame.view_large(centre, p) else {
+        return rect_sample_by_area(centre, eu, ev, normal, area, l, two_sided, p, u);
+    };
+    // (`looks_large` declines points in the plane: p is strictly on one side.)
+    if !two_sided && (p - centre).dot(normal) <= 0.0 {
+        return None;
+    }
+    let d = rect.point(u) - p;
+    let dist = d.length();
+    if dist.is_nan() || dist <= 0.0 {
+        return None;
+    }
+    Some(LightSample { wi: d / dist, dist, radiance: l, pdf: rect.pdf(), delta: false })
 }
 
 /// [`rect_sample`]'s point picked uniformly by area (the parametrisation's fallback).

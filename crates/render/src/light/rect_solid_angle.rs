@@ -9,14 +9,17 @@
 //! Near the light, sampling by area has a density per solid angle of dist² / (cos · A) that
 //! varies across the light by large factors; uniform solid-angle sampling removes that
 //! variance. Far away the two coincide and the parametrisation loses precision (Ω is the
-//! difference of numbers near 2π), so [`SphericalRect::view`] declines by a deterministic
+//! difference of numbers near 2π), so [`RectFrame::view`] declines by a deterministic
 //! criterion of the point and the light alone (the light's estimated solid angle below
-//! [`MIN_SOLID_ANGLE`], or edges that are not orthogonal), and the light falls back to area
-//! sampling. The sampler and the density both ask it, so they agree on the density.
+//! [`MIN_SOLID_ANGLE`]), and the light falls back to area sampling; so does a light whose
+//! edges are not orthogonal (it has no [`RectFrame`]). The sampler and the density both ask
+//! it, so they agree on the density. What depends on the light alone (its frame, edge
+//! lengths, the orthogonality test) is worked out once, when the light is built.
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3A};
+use shader::light::Shape;
 
 /// The estimated solid angle (steradians; area × cos / dist² at the light's centre) below
 /// which a rectangle is sampled by area: there the two densities differ less, and the
@@ -34,6 +37,90 @@ const MIN_EXACT_SOLID_ANGLE: f32 = 1e-3;
 /// Edges whose cosine is above this are not a rectangle: the parallelogram is sampled by
 /// area.
 const MAX_EDGE_COSINE: f32 = 1e-4;
+
+/// What sampling a rectangle light in solid angle needs of the light alone, worked out once
+/// when the light is built ([`RectFrame::of`]): its orthonormal frame, edge lengths, normal
+/// and area (world units). Only rectangles with orthogonal edges have one; a skewed
+/// parallelogram is always sampled by area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectFrame {
+    /// Half the sum of the full edges: the first corner is the centre minus this.
+    half_diagonal: Vec3A,
+    /// Unit vector along the first edge.
+    x: Vec3A,
+    /// Unit vector along the second edge.
+    y: Vec3A,
+    /// `x × y`.
+    z: Vec3A,
+    /// Unit normal of the shape (either side: the test takes |cos|).
+    normal: Vec3A,
+    /// Lengths of the first and second edges.
+    lu: f32,
+    lv: f32,
+    /// The rectangle's area (world units²).
+    area: f32,
+    /// The squared distance from the centre beyond which the rectangle never looks large:
+    /// area × cos / dist² ≥ [`MIN_SOLID_ANGLE`] needs dist² ≤ area × |normal| / MIN; 1 %
+    /// more, a margin far above the test's `f32` rounding (≈ 1e-6 relative), so that this
+    /// quick test never changes the decision.
+    reach2: f32,
+}
+
+impl RectFrame {
+    /// The frame of `shape` when it is a rectangle whose edges are orthogonal (their cosine
+    /// at most `MAX_EDGE_COSINE`); `None` for any other shape.
+    pub fn of(shape: &Shape) -> Option<RectFrame> {
+        let Shape::Rect { u: eu, v: ev, normal, area } = *shape else { return None };
+        if eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
+            return None;
+        }
+        let (lu, lv) = (eu.length(), ev.length());
+        let (x, y) = (eu / lu, ev / lv);
+        let reach2 = 1.01 * area * normal.length() / MIN_SOLID_ANGLE;
+        Some(RectFrame { half_diagonal: 0.5 * (eu + ev), x, y, z: x.cross(y), normal, lu, lv, area, reach2 })
+    }
+
+    /// Whether the rectangle centred at `centre` looks large from `p`: its estimated solid
+    /// angle, area × cos / dist² at its centre, at least [`MIN_SOLID_ANGLE`] (false for a
+    /// point in its plane, its centre included, and for NaN). The per-point half of the
+    /// decision that [`RectFrame::view`] makes; the sampler and the density both ask it.
+    #[inline(always)]
+    pub fn looks_large(&self, centre: Vec3A, p: Vec3A) -> bool {
+        let rel = p - centre;
+        let r2 = rel.length_squared();
+        // Far away (most points of a room lit by a small light): no more.
+        if r2 > self.reach2 {
+            return false;
+        }
+        let h = rel.dot(self.normal).abs();
+        // area · cos / dist² ≥ MIN (cos = h / dist), without a division.
+        h > 0.0 && self.area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt()
+    }
+
+    /// The rectangle centred at `centre` as seen from `p`, when it is to be sampled in
+    /// solid angle: `None` (sample it by area) when it does not [`RectFrame::looks_large`]
+    /// from `p`, or when Ω does not come out at least `MIN_EXACT_SOLID_ANGLE` and finite. A
+    /// function of `p` and the light alone.
+    #[inline]
+    pub fn view(&self, centre: Vec3A, p: Vec3A) -> Option<SphericalRect> {
+        if !self.looks_large(centre, p) {
+            return None;
+        }
+        self.view_large(centre, p)
+    }
+
+    /// [`RectFrame::view`] for a point from which the rectangle [`RectFrame::looks_large`]:
+    /// the parametrisation's setup, out of line (most points of a scene with small lights
+    /// never get here).
+    #[inline(never)]
+    pub fn view_large(&self, centre: Vec3A, p: Vec3A) -> Option<SphericalRect> {
+        let rect = SphericalRect::new(self, centre - self.half_diagonal, p);
+        // The estimate at the centre is far above Ω for a long thin strip; below
+        // MIN_EXACT_SOLID_ANGLE Ω, a difference of angles near 2π in `f32`, loses its
+        // precision, so such a strip is sampled by area too.
+        (rect.solid_angle >= MIN_EXACT_SOLID_ANGLE && rect.solid_angle.is_finite()).then_some(rect)
+    }
+}
 
 /// A rectangle as seen from a point, in the rectangle's frame: what sampling it uniformly in
 /// solid angle needs (world units; the frame is orthonormal).
@@ -66,35 +153,10 @@ pub struct SphericalRect {
 }
 
 impl SphericalRect {
-    /// The rectangle centred at `centre` with full edges `eu`, `ev` (orthogonal), unit normal
-    /// `normal` and area `area` as seen from `p`, when it is to be sampled in solid angle:
-    /// `None` (sample it by area) when its edges are not orthogonal, when it subtends an
-    /// estimated solid angle below [`MIN_SOLID_ANGLE`] (this covers `p` in its plane), or
-    /// when Ω does not come out positive and finite. A function of `p` and the light alone.
-    #[inline]
-    pub fn view(centre: Vec3A, eu: Vec3A, ev: Vec3A, normal: Vec3A, area: f32, p: Vec3A) -> Option<SphericalRect> {
-        let rel = p - centre;
-        let h = rel.dot(normal).abs();
-        let r2 = rel.length_squared();
-        // area · cos / dist² ≥ MIN (cos = h / dist), without a division.
-        // (False for NaN too.)
-        // (h > 0: a point in the light's plane, its centre included, is sampled by area.)
-        let large = h > 0.0 && area * h >= MIN_SOLID_ANGLE * r2 * r2.sqrt();
-        if !large || eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
-            return None;
-        }
-        let rect = Self::new(centre - 0.5 * (eu + ev), eu, ev, p);
-        // The estimate at the centre is far above Ω for a long thin strip; below
-        // MIN_EXACT_SOLID_ANGLE Ω, a difference of angles near 2π in `f32`, loses its
-        // precision, so such a strip is sampled by area too.
-        (rect.solid_angle >= MIN_EXACT_SOLID_ANGLE && rect.solid_angle.is_finite()).then_some(rect)
-    }
-
-    /// The rectangle with corner `corner` and orthogonal edges `eu`, `ev` seen from `p`.
-    fn new(corner: Vec3A, eu: Vec3A, ev: Vec3A, p: Vec3A) -> SphericalRect {
-        let (lu, lv) = (eu.length(), ev.length());
-        let (x, y) = (eu / lu, ev / lv);
-        let mut z = x.cross(y);
+    /// The rectangle of frame `frame` with first corner `corner` seen from `p`.
+    fn new(frame: &RectFrame, corner: Vec3A, p: Vec3A) -> SphericalRect {
+        let (lu, lv) = (frame.lu, frame.lv);
+        let (x, y, mut z) = (frame.x, frame.y, frame.z);
         let d = corner - p;
         let (x0, y0, mut z0) = (d.dot(x), d.dot(y), d.dot(z));
         if z0 > 0.0 {

@@ -10,7 +10,7 @@ use glam::{Affine3A, Mat3A, Vec3, Vec3A};
 use material::SurfaceMaterial;
 use render::camera::CameraModel;
 use render::integrator::PathSettings;
-use render::light::{LightSource, Output, Shape};
+use render::light::{LightSource, Output, RectFrame, Shape};
 use render::mesh::MeshData;
 use render::world::{InstanceData, World};
 use render::{accel, Backend, Settings};
@@ -223,6 +223,7 @@ fn lambertian_plane_under_a_point_light() {
         position: Vec3A::new(0.0, 0.0, h),
         direction: -Vec3A::Z,
         shape: Shape::Point,
+        rect_frame: None,
         output: Output::Intensity(Rgb::splat(intensity)),
         spread: 0.0,
         cone: None,
@@ -271,6 +272,7 @@ fn area_light_seen_directly_and_mis_on_off_agree() {
         position: Vec3A::new(0.0, 0.0, 1.0),
         direction: -Vec3A::Z,
         shape: Shape::rect(Vec3A::new(2.0, 0.0, 0.0), Vec3A::new(0.0, 2.0, 0.0), -Vec3A::Z),
+        rect_frame: RectFrame::of(&Shape::rect(Vec3A::new(2.0, 0.0, 0.0), Vec3A::new(0.0, 2.0, 0.0), -Vec3A::Z)),
         output: Output::Radiance { l: Rgb::splat(e / std::f32::consts::PI), two_sided: false },
         spread: 0.0,
         cone: None,

@@ -183,6 +183,7 @@ fn path_world(l: &Loaded) -> render::World {
                 position: light.position.as_vec3a(),
                 direction: light.direction.as_vec3a(),
                 shape: render::light::Shape::Point,
+                rect_frame: None,
                 output,
                 spread: light.spread as f32,
                 cone: e.cone,

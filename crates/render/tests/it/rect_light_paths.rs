@@ -4,7 +4,7 @@
 
 use bsdf::Rgb;
 use glam::{Affine3A, Vec2, Vec3A};
-use render::light::{LightSource, Output, Shape};
+use render::light::{LightSource, Output, RectFrame, Shape};
 use render::ray::Ray;
 use scene::LightKind;
 
@@ -16,6 +16,8 @@ fn rect_light(two_sided: bool) -> LightSource {
         position: Vec3A::new(0.3, -0.2, 2.0),
         direction: -Vec3A::Z,
         shape: Shape::rect(Vec3A::new(1.5, 0.0, 0.0), Vec3A::new(0.4, 1.1, 0.0), -Vec3A::Z),
+        // Skewed edges: no frame, sampled by area.
+        rect_frame: None,
         output: Output::Radiance { l: Rgb::new(4.0, 3.0, 2.0), two_sided },
         spread: 0.0,
         cone: None,
@@ -126,10 +128,9 @@ fn rect_solid_angle_samples_match_the_general_path() {
     let mut r = numbers();
     let (s, c) = 0.3f32.sin_cos();
     for two_sided in [false, true] {
-        let fast = LightSource {
-            shape: Shape::rect(Vec3A::new(1.5 * c, 1.5 * s, 0.0), Vec3A::new(-1.1 * s, 1.1 * c, 0.0), -Vec3A::Z),
-            ..rect_light(two_sided)
-        };
+        let shape = Shape::rect(Vec3A::new(1.5 * c, 1.5 * s, 0.0), Vec3A::new(-1.1 * s, 1.1 * c, 0.0), -Vec3A::Z);
+        let fast = LightSource { rect_frame: RectFrame::of(&shape), shape, ..rect_light(two_sided) };
+        assert!(fast.rect_frame.is_some(), "orthogonal edges: a frame");
         let general = LightSource { motion: vec![Affine3A::IDENTITY; 2], ..fast.clone() };
         let (mut front, mut behind) = (0, 0);
         for k in 0..5_000 {
