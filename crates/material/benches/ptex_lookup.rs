@@ -23,7 +23,9 @@
 //! - `at/75deg_diagonal`: 75° off the normal, tilted along the faces' diagonal (major 0.97
 //!   along (1, 1) / √2, minor 0.25: 3 probes; before mdl45 its bounding rectangle, equal
 //!   widths: one isotropic lookup);
-//! - `ellipse/75deg`, `ellipse/75deg_diagonal`: the ellipse alone.
+//! - `ellipse/75deg`, `ellipse/75deg_diagonal`: the ellipse alone;
+//! - `rect/{head_on, 75deg, 75deg_diagonal}`: mdl44's reading at a hit (the bounding
+//!   rectangle: `footprint::filter_widths`, then `Ptex::lookup_rect`), for comparison.
 //!
 //! Run with `cargo bench -p material --bench ptex_lookup`.
 
@@ -110,6 +112,18 @@ fn bench(c: &mut Criterion) {
         c.bench_function(&format!("ptex_lookup/at/{name}"), |b| {
             b.iter(|| {
                 let sum: f32 = states.iter().map(|s| ptex.lookup_at(s, 0).x).sum();
+                std::hint::black_box(sum)
+            });
+        });
+        c.bench_function(&format!("ptex_lookup/rect/{name}"), |b| {
+            b.iter(|| {
+                let sum: f32 = states
+                    .iter()
+                    .map(|s| {
+                        let (face, u, v) = s.ptex_quad.unwrap_or_default();
+                        ptex.lookup_rect(face, u, v, filter_widths(MeshType::Quad, s), 0).x
+                    })
+                    .sum();
                 std::hint::black_box(sum)
             });
         });

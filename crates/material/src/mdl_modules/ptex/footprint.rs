@@ -166,7 +166,9 @@ pub fn filter_ellipse(mesh: MeshType, s: &State) -> Option<FaceEllipse> {
     // The ellipse's matrix x xᵀ + y yᵀ = [[a, b], [b, c]].
     let (a, b, c) = (xu * xu + yu * yu, xu * xv + yu * yv, xv * xv + yv * yv);
     if b == 0.0 {
-        return filter_widths(mesh, s).map(FaceEllipse::along_axes);
+        // Axes along u and v: the extents themselves, as `filter_widths` reads them.
+        let (wu, wv) = widths_at_area(width, (a.sqrt(), c.sqrt()));
+        return Some(FaceEllipse::along_axes((wu, wv)));
     }
     let half = 0.5 * (a - c);
     let large = 0.5 * (a + c) + (half * half + b * b).sqrt();
@@ -197,13 +199,21 @@ pub fn filter_widths(mesh: MeshType, s: &State) -> Option<(f32, f32)> {
     let width = filter_width(s)?;
     let footprint = if s.footprint > 0.0 { s.footprint } else { s.camera_footprint };
     let extents = face_axes(mesh, s).and_then(|axes| face_extents(axes, s.dir, s.normal_geom, footprint));
-    let Some((wu, wv)) = extents else { return Some((width, width)) };
+    let Some(extents) = extents else { return Some((width, width)) };
+    Some(widths_at_area(width, extents))
+}
+
+/// Widths along u and v of the aspect of `extents` (along u, along v) whose product is
+/// `width`²: (w √r, w / √r), r = extents' ratio; (w, w) where r is within
+/// [`ISOTROPIC_ASPECT`] of 1 or not a positive finite number.
+#[inline]
+fn widths_at_area(width: f32, (wu, wv): (f32, f32)) -> (f32, f32) {
     let ratio = wu / wv;
     if !(ratio.is_finite() && ratio > 0.0) || ratio.max(ratio.recip()) <= 1.0 + ISOTROPIC_ASPECT {
-        return Some((width, width));
+        return (width, width);
     }
     let k = ratio.sqrt();
-    Some((width * k, width / k))
+    (width * k, width / k)
 }
 
 #[cfg(test)]
