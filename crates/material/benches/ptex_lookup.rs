@@ -17,11 +17,21 @@
 //! - `at/75deg`: 75° off the normal, tilted along v (widths 0.25 and 0.97: 4 probes);
 //! - `widths/75deg`: the widths alone (`footprint::filter_widths`).
 //!
+//! mdl45 (`lookup_at` reads the footprint's ellipse, `footprint::filter_ellipse`, then
+//! `Ptex::sample_ellipse`):
+//!
+//! - `at/75deg_diagonal`: 75° off the normal, tilted along the faces' diagonal (major 0.97
+//!   along (1, 1) / √2, minor 0.25: 3 probes; before mdl45 its bounding rectangle, equal
+//!   widths: one isotropic lookup);
+//! - `ellipse/75deg`, `ellipse/75deg_diagonal`: the ellipse alone;
+//! - `rect/{head_on, 75deg, 75deg_diagonal}`: mdl44's reading at a hit (the bounding
+//!   rectangle: `footprint::filter_widths`, then `Ptex::lookup_rect`), for comparison.
+//!
 //! Run with `cargo bench -p material --bench ptex_lookup`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec3A;
-use material::mdl_modules::ptex::footprint::filter_widths;
+use material::mdl_modules::ptex::footprint::{filter_ellipse, filter_widths};
 use material::mdl_modules::ptex::{Adjacency, FaceTexels, Filter, MeshType, Ptex};
 use shader::State;
 
@@ -84,7 +94,8 @@ fn bench(c: &mut Criterion) {
         });
     }
     let (sin, cos) = (75f32.to_radians().sin(), 75f32.to_radians().cos());
-    for (name, dir) in [("head_on", -Vec3A::Z), ("75deg", Vec3A::new(0.0, sin, -cos))] {
+    let diagonal = Vec3A::new(sin * std::f32::consts::FRAC_1_SQRT_2, sin * std::f32::consts::FRAC_1_SQRT_2, -cos);
+    for (name, dir) in [("head_on", -Vec3A::Z), ("75deg", Vec3A::new(0.0, sin, -cos)), ("75deg_diagonal", diagonal)] {
         let states: Vec<State> = points
             .iter()
             .map(|&at| State {
@@ -104,6 +115,27 @@ fn bench(c: &mut Criterion) {
                 std::hint::black_box(sum)
             });
         });
+        c.bench_function(&format!("ptex_lookup/rect/{name}"), |b| {
+            b.iter(|| {
+                let sum: f32 = states
+                    .iter()
+                    .map(|s| {
+                        let (face, u, v) = s.ptex_quad.unwrap_or_default();
+                        ptex.lookup_rect(face, u, v, filter_widths(MeshType::Quad, s), 0).x
+                    })
+                    .sum();
+                std::hint::black_box(sum)
+            });
+        });
+        if name != "head_on" {
+            c.bench_function(&format!("ptex_lookup/ellipse/{name}"), |b| {
+                b.iter(|| {
+                    let sum: f32 =
+                        states.iter().filter_map(|s| filter_ellipse(MeshType::Quad, s)).map(|e| e.major).sum();
+                    std::hint::black_box(sum)
+                });
+            });
+        }
         if name == "75deg" {
             c.bench_function(&format!("ptex_lookup/widths/{name}"), |b| {
                 b.iter(|| {

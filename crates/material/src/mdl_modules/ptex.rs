@@ -37,6 +37,7 @@ pub mod quad;
 pub mod reader;
 
 pub use filter::Filter;
+use footprint::FaceEllipse;
 
 /// The mesh type a Ptex file's faces are textures of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -143,14 +144,30 @@ impl Ptex {
         self.lanes_from(lanes, channel)
     }
 
+    /// [`Ptex::lookup`] over the footprint `ellipse` (face units; [`Ptex::sample_ellipse`],
+    /// which reads a round one exactly as [`Ptex::lookup`] reads its width; `None`: the
+    /// highest resolution).
+    pub fn lookup_ellipse(&self, face: u32, u: f32, v: f32, ellipse: Option<FaceEllipse>, channel: usize) -> Vec4 {
+        let mut lanes = [0.0f32; 4];
+        let found = match ellipse {
+            _ if channel >= self.channels => false,
+            Some(ellipse) => self.sample_ellipse(face, u, v, ellipse, channel, &mut lanes),
+            None => self.sample(face, u, v, None, Filter::Bilinear, channel, &mut lanes),
+        };
+        if !found {
+            return Vec4::ZERO;
+        }
+        self.lanes_from(lanes, channel)
+    }
+
     /// The value `tex::lookup_*` gives at hit `s` (the engines' Ptex lookup): at the face
-    /// and coordinates [`quad::face_at`] finds, over the footprint's widths along u and v
-    /// ([`footprint::filter_widths`], [`Ptex::lookup_rect`]); black where the hit has no
-    /// face of this file.
+    /// and coordinates [`quad::face_at`] finds, over the footprint's ellipse in face
+    /// coordinates ([`footprint::filter_ellipse`], [`Ptex::lookup_ellipse`]); black where
+    /// the hit has no face of this file.
     #[inline]
     pub fn lookup_at(&self, s: &shader::State, channel: usize) -> Vec4 {
         match quad::face_at(self.mesh, s) {
-            Some((face, u, v)) => self.lookup_rect(face, u, v, footprint::filter_widths(self.mesh, s), channel),
+            Some((face, u, v)) => self.lookup_ellipse(face, u, v, footprint::filter_ellipse(self.mesh, s), channel),
             None => Vec4::ZERO,
         }
     }

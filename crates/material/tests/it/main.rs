@@ -46,6 +46,7 @@ mod mdl_per_hit_curves;
 mod mdl_ptex;
 mod mdl_ptex_aniso;
 mod mdl_ptex_blend;
+mod mdl_ptex_ellipse;
 mod mdl_ptex_filter;
 mod mdl_ptex_seams;
 mod mdl_rough_transmission;

@@ -113,9 +113,15 @@ impl PtexSplit {
         })
     }
 
-    /// Bytes held per fine triangle beyond the original's data.
+    /// Bytes held: the fine triangles' places and the copies of the original's Ptex
+    /// tables, triangles and vertices (each displaced mesh holds its own).
     pub fn memory_bytes(&self) -> usize {
         self.fine.len() * std::mem::size_of::<FineOrigin>()
+            + self.codes.len() * 4
+            + self.ngons.memory_bytes()
+            + self.refined.memory_bytes()
+            + self.triangles.len() * 12
+            + self.positions.len() * 12
     }
 
     /// The quad-mesh Ptex face and (u, v) of a hit at barycentrics `bary` on fine triangle
@@ -177,5 +183,21 @@ mod tests {
         for (prim, share) in [(0, 1.0), (1, 0.25), (2, 1.0 / 16.0)] {
             assert!((uneven.area_share(prim) - share).abs() < 1e-7, "{prim}: {}", uneven.area_share(prim));
         }
+    }
+
+    /// A split's bytes count the fine triangles' places and its copies of the original's
+    /// codes, triangles and vertices (exact).
+    #[test]
+    fn a_split_counts_the_originals_copies() {
+        let split = PtexSplit {
+            n: 1,
+            fine: vec![FineOrigin::whole(0); 5],
+            codes: vec![0; 2],
+            triangles: vec![[0, 1, 2]; 2],
+            positions: vec![Vec3::ZERO; 4],
+            ..PtexSplit::default()
+        };
+        let empty = PtexSplit::default().memory_bytes();
+        assert_eq!(split.memory_bytes() - empty, 5 * std::mem::size_of::<FineOrigin>() + 2 * 4 + 2 * 12 + 4 * 12);
     }
 }

@@ -1,35 +1,53 @@
-//! Lookups with separate filter widths along a face's u and v ([`Ptex::sample_rect`]): a
-//! footprint seen at a grazing angle is long along one face axis and short along the
-//! other, and Ptex's own filters take the two widths apart.
+//! Lookups over an anisotropic footprint ([`Ptex::sample_ellipse`], and
+//! [`Ptex::sample_rect`] for one along the face's axes): a footprint seen at a grazing
+//! angle is long along one direction and short across it, and Ptex's own filters take the
+//! two widths apart.
 //!
-//! The short width picks the levels (blended, [`Ptex::blend_for`]); along the long axis
-//! the lookup averages n = ⌈long / max(short, t)⌉ such lookups (t the width of a texel
-//! along the long axis of the level the short width picks: a footprint within a texel is
-//! one interpolated lookup, as the isotropic one; at most [`MAX_PROBES`]) spaced
-//! evenly over the long width, the footprint's rectangle covered by n squares of the
-//! short width — the rectangle's average of the face, where an isotropic width (the
-//! footprint's area as a square) would blur the short axis as much as the long one.
+//! The footprint is an ellipse in face coordinates (`footprint::FaceEllipse`: its major
+//! axis' direction, its widths along and across it), read as the rectangle of those widths
+//! turned along the major axis: n lookups of the minor width (blended levels,
+//! [`Ptex::blend_for`]), spaced evenly over the major width along its direction, averaged.
+//! A thin footprint diagonal to the face's axes so averages only texels along its major
+//! axis (reading its bounding rectangle in face space would blur across it). Several
+//! probes rather than an elliptical Gaussian over the texels of one level: each probe is
+//! the filter's own interpolation, continuous across face edges of any resolutions
+//! (`filter`, `edges`), so the ellipse needs no texel gather of its own across edges; its
+//! cost is one lookup per probe, n at most [`MAX_PROBES`]. A round footprint (major =
+//! minor) is one lookup at its width, exactly the isotropic lookup.
+//!
+//! The number of probes: n = ⌈major / max(minor, t)⌉ (at most [`MAX_PROBES`]), t the
+//! distance along the major axis across one texel (the nearer of the next u and v texel
+//! borders) of the level the minor width picks, at the footprint's centre and at each end
+//! of its major axis: an end past a face edge is carried into the face across it, with
+//! the axis' direction (the edge's orientation: the unfolding of the two faces,
+//! `filter`'s `outside_edge`), and t taken there at that face's own resolution, so a
+//! footprint reaching a finer neighbour is probed at the neighbour's texels. A footprint
+//! within a texel along its axis is one interpolated lookup of its major width, as the
+//! isotropic one. Each probe reads a square as wide as the spacing's larger extent along u
+//! or v (the minor width where that is larger; past [`MAX_PROBES`] the squares widen with
+//! the spacing, blurring across the axis by that much).
 //!
 //! A probe past a face edge reads the face across it ([`Ptex::across_edges`]: the point
-//! carried over the edge as the bilinear filter carries texels, `filter`'s `outside_edge`
-//! mapping, and on over further edges up to [`MAX_CROSSINGS`] times), with the same widths
-//! (the neighbour taken to be as large as the face); where no face is across, the probe
-//! clamps to the face's edge.
+//! carried over the edge as the bilinear filter carries texels, and on over further edges
+//! up to [`MAX_CROSSINGS`] times) at the probe's width in face units, which picks that
+//! face's level at its own resolution (Ptex's faces are all one unit across); where no
+//! face is across, the probe clamps to the face's edge.
 
-use super::filter::{from_edge, outside_edge};
+use super::filter::{edge_frame, from_edge, outside_edge};
+use super::footprint::FaceEllipse;
 use super::{Filter, MeshType, Ptex};
 
 /// The most face edges a probe is carried across.
 pub const MAX_CROSSINGS: usize = 4;
 
-/// The most lookups a rectangle is averaged from (a longer footprint is read with squares
-/// wider than its short width: blurred along the short axis by that much).
+/// The most lookups a footprint is averaged from (a longer footprint is read with squares
+/// wider than its minor width: blurred across its axis by that much).
 pub const MAX_PROBES: usize = 16;
 
 impl Ptex {
     /// The filtered value at face `face`, face coordinates (`u`, `v`), over a footprint
-    /// `widths` wide along u and v (face units): channels `first`, `first + 1`, … into
-    /// `out` (at most 4 lanes; 0 past the last channel). A width that is 0 or not finite
+    /// `widths` wide along u and v (face units): [`Ptex::sample_ellipse`] with its major
+    /// axis along the longer (u where they are equal). A width that is 0 or not finite
     /// counts as the other; both: level 0. False for a face the file has not.
     pub fn sample_rect(&self, face: u32, u: f32, v: f32, widths: (f32, f32), first: usize, out: &mut [f32]) -> bool {
         let ok = |w: f32| w.is_finite() && w > 0.0;
@@ -39,28 +57,64 @@ impl Ptex {
             (_, b) if ok(b) => (b, b),
             _ => return self.sample(face, u, v, None, Filter::Bilinear, first, out),
         };
-        let (short, long) = (wu.min(wv), wu.max(wv));
-        let along_u = wu >= wv;
-        // A footprint no longer than a texel of the level the short width picks (along the
-        // long axis) is covered by one interpolated lookup.
-        let texel = self.level(face as usize, self.level_for(face as usize, Some(short))).map_or(0.0, |t| {
-            let log2 = if along_u || self.mesh == MeshType::Triangle { t.ulog2 } else { t.vlog2 };
-            (0.5f32).powi(i32::from(log2))
-        });
-        let probes = ((long / short.max(texel)).ceil() as usize).clamp(1, MAX_PROBES);
-        if probes == 1 || out.len() > 4 {
-            return self.sample(face, u, v, Some(long), Filter::Bilinear, first, out);
+        self.sample_ellipse(face, u, v, FaceEllipse::along_axes((wu, wv)), first, out)
+    }
+
+    /// The filtered value at face `face`, face coordinates (`u`, `v`), over the footprint
+    /// `ellipse` (face units; the module documentation): channels `first`, `first + 1`, …
+    /// into `out` (at most 4 lanes; 0 past the last channel). A minor width that is 0 or
+    /// not finite counts as the major; a major that is not positive and finite: level 0.
+    /// False for a face the file has not.
+    pub fn sample_ellipse(
+        &self,
+        face: u32,
+        u: f32,
+        v: f32,
+        ellipse: FaceEllipse,
+        first: usize,
+        out: &mut [f32],
+    ) -> bool {
+        let FaceEllipse { axis, major, minor } = ellipse;
+        if !(major.is_finite() && major > 0.0) {
+            return self.sample(face, u, v, None, Filter::Bilinear, first, out);
         }
-        // Squares of the spacing's width (the short width unless the probes ran out).
-        let step = long / probes as f32;
-        let width = short.max(step);
+        let minor = if minor.is_finite() && minor > 0.0 { minor.min(major) } else { major };
+        let norm = (axis.0 * axis.0 + axis.1 * axis.1).sqrt();
+        let (du, dv) = if norm.is_finite() && norm > 0.0 {
+            if norm == 1.0 {
+                axis
+            } else {
+                (axis.0 / norm, axis.1 / norm)
+            }
+        } else {
+            (1.0, 0.0)
+        };
+        // One texel along the axis, at the centre and at both ends (each at its face's
+        // resolution, the axis carried across edges).
+        let mut texel = self.texel_along(face, (du, dv), minor);
+        for end in [-0.5 * major, 0.5 * major] {
+            let (eu, ev) = (u + end * du, v + end * dv);
+            if outside_edge(self.mesh, eu, ev).is_some() {
+                let (eface, _, _, edir) = self.carry_across(face, eu, ev, (du, dv));
+                if eface != face {
+                    texel = texel.min(self.texel_along(eface, edir, minor));
+                }
+            }
+        }
+        let probes = ((major / minor.max(texel)).ceil() as usize).clamp(1, MAX_PROBES);
+        if probes == 1 || out.len() > 4 {
+            return self.sample(face, u, v, Some(major), Filter::Bilinear, first, out);
+        }
+        // Squares as wide as the spacing's larger extent along u or v (the minor width
+        // unless that is wider).
+        let step = major / probes as f32;
+        let width = minor.max(step * du.abs().max(dv.abs()));
         out.fill(0.0);
         let mut lanes = [0.0f32; 4];
         let lanes = &mut lanes[..out.len()];
         for k in 0..probes {
-            let offset = (k as f32 + 0.5) * step - 0.5 * long;
-            let (pu, pv) = if along_u { (u + offset, v) } else { (u, v + offset) };
-            let (pface, pu, pv) = self.across_edges(face, pu, pv);
+            let offset = (k as f32 + 0.5) * step - 0.5 * major;
+            let (pface, pu, pv) = self.across_edges(face, u + offset * du, v + offset * dv);
             if !self.sample(pface, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
                 out.fill(0.0);
                 return false;
@@ -72,11 +126,30 @@ impl Ptex {
         true
     }
 
+    /// The distance (face units) along direction `dir` (a unit vector of face coordinates)
+    /// across one texel of the level of face `face` that width `width` picks: the texel's
+    /// width along u over |du| or its height along v over |dv|, the smaller (triangles: the
+    /// face's side over n along both); 0 for a face the file has not.
+    fn texel_along(&self, face: u32, (du, dv): (f32, f32), width: f32) -> f32 {
+        let Some(t) = self.level(face as usize, self.level_for(face as usize, Some(width))) else { return 0.0 };
+        let vlog2 = if self.mesh == MeshType::Triangle { t.ulog2 } else { t.vlog2 };
+        let across = |log2: u8, d: f32| if d == 0.0 { f32::INFINITY } else { (0.5f32).powi(i32::from(log2)) / d.abs() };
+        across(t.ulog2, du).min(across(vlog2, dv))
+    }
+
     /// The face and face coordinates of the point (`u`, `v`) of face `face`, carried across
     /// the edges it lies past into the faces there (at most [`MAX_CROSSINGS`] edges); the
     /// point as given (then clamped by the lookup) past an edge with no face across.
     pub fn across_edges(&self, face: u32, u: f32, v: f32) -> (u32, f32, f32) {
-        let (mut face, mut u, mut v) = (face, u, v);
+        let (face, u, v, _) = self.carry_across(face, u, v, (0.0, 0.0));
+        (face, u, v)
+    }
+
+    /// [`Ptex::across_edges`], carrying the direction `dir` (face coordinates) along: each
+    /// edge's unfolding is affine, its linear part turns `dir` into the face across
+    /// (unnormalised: triangles' unfoldings shear it).
+    fn carry_across(&self, face: u32, u: f32, v: f32, dir: (f32, f32)) -> (u32, f32, f32, (f32, f32)) {
+        let (mut face, mut u, mut v, mut dir) = (face, u, v, dir);
         for _ in 0..MAX_CROSSINGS {
             let Some((edge, t, s)) = outside_edge(self.mesh, u, v) else { break };
             let Some((other, other_edge)) = self.adjacency.get(face as usize).and_then(|a| a.across(edge)) else {
@@ -86,9 +159,15 @@ impl Ptex {
             if other as usize >= self.faces.len() {
                 break;
             }
+            if dir != (0.0, 0.0) {
+                let (t1, s1) = edge_frame(self.mesh, edge, u + dir.0, v + dir.1);
+                let (au, av) = from_edge(self.mesh, other_edge, 1.0 - t, -s);
+                let (bu, bv) = from_edge(self.mesh, other_edge, 1.0 - t1, -s1);
+                dir = (bu - au, bv - av);
+            }
             (u, v) = from_edge(self.mesh, other_edge, 1.0 - t, -s);
             face = other;
         }
-        (face, u, v)
+        (face, u, v, dir)
     }
 }

@@ -465,15 +465,22 @@ pub(super) fn outside_edge(mesh: MeshType, u: f32, v: f32) -> Option<(usize, f32
     if past[edge] <= 0.0 {
         return None;
     }
-    let (t, s) = match (mesh, edge) {
+    let (t, s) = edge_frame(mesh, edge, u, v);
+    Some((edge, t, s))
+}
+
+/// The fraction t along edge `edge` (counter-clockwise) and the depth s into the face of
+/// the point (`u`, `v`) (face coordinates; any point, inside the face or not): the frame
+/// [`outside_edge`] gives, [`from_edge`]'s inverse.
+pub(super) fn edge_frame(mesh: MeshType, edge: usize, u: f32, v: f32) -> (f32, f32) {
+    match (mesh, edge) {
         (_, 0) => (u, v),
         (MeshType::Quad, 1) => (v, 1.0 - u),
         (MeshType::Quad, 2) => (1.0 - u, 1.0 - v),
         (MeshType::Quad, _) => (1.0 - v, u),
         (MeshType::Triangle, 1) => (v, 1.0 - u - v),
         (MeshType::Triangle, _) => (1.0 - u - v, u),
-    };
-    Some((edge, t, s))
+    }
 }
 
 /// The face coordinates of the point at fraction `t` along edge `edge` (counter-clockwise)

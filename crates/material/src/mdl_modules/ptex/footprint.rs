@@ -15,16 +15,19 @@
 //! original triangles' — so a sub-quad's width is its own, not the triangle's.
 
 //!
-//! Anisotropic ([`filter_widths`], read by [`Ptex::sample_rect`](super::Ptex::sample_rect)):
-//! the pixel's footprint, a disc `footprint` wide across the ray, lands on the surface's
-//! tangent plane as an ellipse `footprint` wide across the tilt and `footprint / |cos θ|`
-//! along the ray's projection; the inverse of the face parameterisation's Jacobian
-//! (dP/du, dP/dv: [`face_axes`]) carries it into face coordinates, where its extents
-//! along u and along v ([`face_extents`]) give the rectangle's aspect. The widths keep that
-//! aspect and the isotropic width's area (their product is `filter_width`², so a footprint
-//! whose extents are equal reads exactly as the isotropic lookup does; on faces whose axes
-//! are orthogonal and equally long, as a grid of square quads, they are the extents
-//! themselves).
+//! Anisotropic ([`filter_ellipse`], read by
+//! [`Ptex::sample_ellipse`](super::Ptex::sample_ellipse)): the pixel's footprint, a disc
+//! `footprint` wide across the ray, lands on the surface's tangent plane as an ellipse
+//! `footprint` wide across the tilt and `footprint / |cos θ|` along the ray's projection;
+//! the inverse of the face parameterisation's Jacobian (dP/du, dP/dv: [`face_axes`])
+//! carries it into face coordinates ([`conjugate_diameters`]), where its principal axes
+//! give the direction and aspect of the footprint read. The widths keep that aspect and
+//! the isotropic width's area (major × minor = `filter_width`², so a footprint whose
+//! aspect is 1 reads exactly as the isotropic lookup does; on faces whose axes are
+//! orthogonal and equally long, as a grid of square quads, they are the ellipse's own
+//! widths). [`filter_widths`] gives the ellipse's bounding rectangle along u and v at the
+//! same area (the axis-aligned reading, [`Ptex::sample_rect`](super::Ptex::sample_rect)),
+//! which is what [`filter_ellipse`] reads where the ellipse's axes lie along u and v.
 
 use glam::Vec3A;
 use shader::State;
@@ -79,6 +82,20 @@ pub fn face_axes(mesh: MeshType, s: &State) -> Option<[Vec3A; 2]> {
 /// squares in the plane of the axes). Grazing hits are limited to a 1/1000 cosine. `None`
 /// for degenerate axes or a footprint that is not positive.
 pub fn face_extents(axes: [Vec3A; 2], dir: Vec3A, normal: Vec3A, footprint: f32) -> Option<(f32, f32)> {
+    let [(xu, xv), (yu, yv)] = conjugate_diameters(axes, dir, normal, footprint)?;
+    let extents = ((xu * xu + yu * yu).sqrt(), (xv * xv + yv * yv).sqrt());
+    (extents.0.is_finite() && extents.1.is_finite()).then_some(extents)
+}
+
+/// Two conjugate diameters (full widths, face units (du, dv) each) of the ellipse that the
+/// footprint `footprint` wide (scene units, across the ray) of a ray along `dir` casts on a
+/// surface of geometric normal `normal`, in the coordinates of a face whose dP/du, dP/dv
+/// are `axes`: two perpendicular diameters of the pixel's disc, each carried along the ray
+/// onto the tangent plane and into face coordinates (least squares in the plane of the
+/// axes). The ellipse is {x c₁ + y c₂ : c₁² + c₂² ≤ ¼} for the two diameters x, y.
+/// Grazing hits are limited to a 1/1000 cosine. `None` for degenerate axes or a footprint
+/// that is not positive.
+pub fn conjugate_diameters(axes: [Vec3A; 2], dir: Vec3A, normal: Vec3A, footprint: f32) -> Option<[(f32, f32); 2]> {
     if !(footprint.is_finite() && footprint > 0.0) {
         return None;
     }
@@ -90,8 +107,6 @@ pub fn face_extents(axes: [Vec3A; 2], dir: Vec3A, normal: Vec3A, footprint: f32)
     }
     let cos = normal.dot(dir);
     let cos = if cos.abs() < 1e-3 { 1e-3f32.copysign(cos) } else { cos };
-    // Two conjugate diameters of the ellipse: two perpendicular diameters of the disc,
-    // each carried along the ray onto the plane.
     let x = dir.any_orthonormal_vector();
     let y = x.cross(dir);
     let face = |v: Vec3A| {
@@ -99,9 +114,78 @@ pub fn face_extents(axes: [Vec3A; 2], dir: Vec3A, normal: Vec3A, footprint: f32)
         let (ra, rb) = (a.dot(p), b.dot(p));
         ((bb * ra - ab * rb) / det, (aa * rb - ab * ra) / det)
     };
-    let ((xu, xv), (yu, yv)) = (face(x), face(y));
-    let extents = ((xu * xu + yu * yu).sqrt(), (xv * xv + yv * yv).sqrt());
-    (extents.0.is_finite() && extents.1.is_finite()).then_some(extents)
+    Some([face(x), face(y)])
+}
+
+/// A lookup's footprint in face coordinates: an ellipse (or the rectangle a lookup reads
+/// for it, [`Ptex::sample_ellipse`](super::Ptex::sample_ellipse)) `major` × `minor` wide
+/// (full widths, face units), its major axis along `axis`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceEllipse {
+    /// Unit direction (face coordinates du, dv) of the major axis.
+    pub axis: (f32, f32),
+    /// Full width along the major axis (face units).
+    pub major: f32,
+    /// Full width along the minor axis (face units, at most `major`).
+    pub minor: f32,
+}
+
+impl FaceEllipse {
+    /// A round footprint `width` wide (face units): the major axis along u.
+    pub fn round(width: f32) -> Self {
+        Self { axis: (1.0, 0.0), major: width, minor: width }
+    }
+
+    /// The footprint `widths` wide along u and v (face units): its major axis along the
+    /// longer (u where they are equal).
+    pub fn along_axes((wu, wv): (f32, f32)) -> Self {
+        if wu >= wv {
+            Self { axis: (1.0, 0.0), major: wu, minor: wv }
+        } else {
+            Self { axis: (0.0, 1.0), major: wv, minor: wu }
+        }
+    }
+}
+
+/// The footprint of a lookup of a Ptex file of mesh type `mesh` at hit `s`, as an ellipse
+/// in face coordinates for [`Ptex::sample_ellipse`](super::Ptex::sample_ellipse): the
+/// ellipse of [`conjugate_diameters`] (its axes from the eigenvectors of x xᵀ + y yᵀ, its
+/// aspect their singular values' ratio) at the area of [`filter_width`]'s square (major ×
+/// minor = w², the isotropic width w): a footprint diagonal to the face's axes keeps its
+/// direction, where [`filter_widths`] reads its bounding rectangle's aspect. Where the
+/// ellipse's axes lie along u and v (no cross term) exactly [`filter_widths`]'s widths; a
+/// round footprint ([`FaceEllipse::round`], w) where the aspect is within
+/// [`ISOTROPIC_ASPECT`] of 1 or the state has no face axes. `None` where [`filter_width`]
+/// is (the lookup then reads level 0).
+#[inline]
+pub fn filter_ellipse(mesh: MeshType, s: &State) -> Option<FaceEllipse> {
+    let width = filter_width(s)?;
+    let footprint = if s.footprint > 0.0 { s.footprint } else { s.camera_footprint };
+    let diameters = face_axes(mesh, s).and_then(|axes| conjugate_diameters(axes, s.dir, s.normal_geom, footprint));
+    let Some([(xu, xv), (yu, yv)]) = diameters else { return Some(FaceEllipse::round(width)) };
+    // The ellipse's matrix x xᵀ + y yᵀ = [[a, b], [b, c]].
+    let (a, b, c) = (xu * xu + yu * yu, xu * xv + yu * yv, xv * xv + yv * yv);
+    if b == 0.0 {
+        // Axes along u and v: the extents themselves, as `filter_widths` reads them.
+        let (wu, wv) = widths_at_area(width, (a.sqrt(), c.sqrt()));
+        return Some(FaceEllipse::along_axes((wu, wv)));
+    }
+    let half = 0.5 * (a - c);
+    let large = 0.5 * (a + c) + (half * half + b * b).sqrt();
+    // The singular values: σ₁ = √large, σ₁ σ₂ = |det| (no cancellation at large aspects).
+    let (major, area) = (large.sqrt(), (xu * yv - xv * yu).abs());
+    let ratio = major * major / area;
+    if !(ratio.is_finite() && ratio > 0.0) || ratio <= 1.0 + ISOTROPIC_ASPECT {
+        return Some(FaceEllipse::round(width));
+    }
+    // The eigenvector of `large`, from the row that is the better conditioned.
+    let (du, dv) = if a >= c { (large - c, b) } else { (b, large - a) };
+    let norm = (du * du + dv * dv).sqrt();
+    if !(norm.is_finite() && norm > 0.0) {
+        return Some(FaceEllipse::round(width));
+    }
+    let k = ratio.sqrt();
+    Some(FaceEllipse { axis: (du / norm, dv / norm), major: width * k, minor: width / k })
 }
 
 /// The filter widths (face units, along u and v) of a lookup of a Ptex file of mesh type
@@ -115,13 +199,21 @@ pub fn filter_widths(mesh: MeshType, s: &State) -> Option<(f32, f32)> {
     let width = filter_width(s)?;
     let footprint = if s.footprint > 0.0 { s.footprint } else { s.camera_footprint };
     let extents = face_axes(mesh, s).and_then(|axes| face_extents(axes, s.dir, s.normal_geom, footprint));
-    let Some((wu, wv)) = extents else { return Some((width, width)) };
+    let Some(extents) = extents else { return Some((width, width)) };
+    Some(widths_at_area(width, extents))
+}
+
+/// Widths along u and v of the aspect of `extents` (along u, along v) whose product is
+/// `width`²: (w √r, w / √r), r = extents' ratio; (w, w) where r is within
+/// [`ISOTROPIC_ASPECT`] of 1 or not a positive finite number.
+#[inline]
+fn widths_at_area(width: f32, (wu, wv): (f32, f32)) -> (f32, f32) {
     let ratio = wu / wv;
     if !(ratio.is_finite() && ratio > 0.0) || ratio.max(ratio.recip()) <= 1.0 + ISOTROPIC_ASPECT {
-        return Some((width, width));
+        return (width, width);
     }
     let k = ratio.sqrt();
-    Some((width * k, width / k))
+    (width * k, width / k)
 }
 
 #[cfg(test)]
