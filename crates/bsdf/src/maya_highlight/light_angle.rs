@@ -17,7 +17,10 @@
 //! as `crate::measured_factor` interns its tables), so that the BSDF holds only a
 //! reference to it, whatever the number of knots. A layeredShader stack's lobe is the
 //! albedo-weighted sum of its layers' shapes: [`LightAngle`] holds up to
-//! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp.
+//! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp; a
+//! material's translation folds any further ones into interned composite shapes
+//! ([`LightAngle::mixed_interned`], exact), a mix per hit adds them to the largest part
+//! ([`LightAngle::mixed`]).
 
 use std::sync::Mutex;
 
