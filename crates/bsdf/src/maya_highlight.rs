@@ -55,6 +55,7 @@ use glam::{Vec2, Vec3A};
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, Rgb};
 
 mod light_angle;
+pub mod ramp_curve;
 mod shape;
 pub mod translucence;
 
@@ -266,6 +267,30 @@ impl MayaGlossy {
         focus: f32,
         light_angle: Option<translucence::LightAngle>,
     ) -> Result<(), Merged> {
+        self.add_translucence_with(albedo, focus, light_angle, false)
+    }
+
+    /// [`MayaGlossy::add_translucence`] whose light-angle shapes mix exactly for any
+    /// number of distinct ramps ([`translucence::LightAngle::mixed_interned`]): for a
+    /// material's translation only, never per hit.
+    pub fn add_translucence_interned(
+        &mut self,
+        albedo: Rgb,
+        focus: f32,
+        light_angle: Option<translucence::LightAngle>,
+    ) -> Result<(), Merged> {
+        self.add_translucence_with(albedo, focus, light_angle, true)
+    }
+
+    /// [`MayaGlossy::add_translucence`], its light-angle shapes mixed by
+    /// [`translucence::LightAngle::mixed_interned`] where `interned`.
+    fn add_translucence_with(
+        &mut self,
+        albedo: Rgb,
+        focus: f32,
+        light_angle: Option<translucence::LightAngle>,
+        interned: bool,
+    ) -> Result<(), Merged> {
         let albedo = albedo.max(Rgb::ZERO);
         let focus = focus.max(0.0);
         if albedo == Rgb::ZERO {
@@ -281,7 +306,11 @@ impl MayaGlossy {
             if focus <= 0.0 && (light_angle.is_some() || self.light_angle.is_some()) {
                 let mine = self.light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
                 let theirs = light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
-                self.light_angle = Some(mine.mixed(self.translucence, &theirs, albedo));
+                self.light_angle = Some(if interned {
+                    mine.mixed_interned(self.translucence, &theirs, albedo)
+                } else {
+                    mine.mixed(self.translucence, &theirs, albedo)
+                });
             }
             self.translucence += albedo;
             return Ok(());

@@ -609,6 +609,8 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     // follow the view: transparency, diffuse colour, incandescence, plain colour.
     let mut by_view: Vec<view_layers::Layer> = Vec::new();
     let mut follows_view = false;
+    // The first layer past LIGHT_ANGLE_PARTS distinct light-angle shapes, if any.
+    let mut many_ramps: Option<String> = None;
     let mut through = Rgb::ONE;
     let mut lobe: Option<bsdf::MayaGlossy> = None;
     // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
@@ -675,16 +677,14 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                                 && g.focus <= 0.0
                                 && first.translucence != Rgb::ZERO
                                 && g.translucence != Rgb::ZERO;
-                            if mixing && !mine.mixes_exactly(&theirs) {
-                                warnings.push(format!(
-                                    "layer '{}': the stack's light from behind sums more than {} distinct colour \
-                                     ramps (or diffuse translucence); the path engine adds this layer's to the \
-                                     largest one's ramp",
-                                    graph.nodes[m as usize].name,
-                                    bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
-                                ));
+                            // Exact here for any number of ramps (interned composites);
+                            // a stack that follows the view mixes per hit, where only
+                            // LIGHT_ANGLE_PARTS fit (warned after the loop).
+                            if mixing && !mine.mixes_exactly(&theirs) && many_ramps.is_none() {
+                                many_ramps = Some(graph.nodes[m as usize].name.to_string());
                             }
-                            let mut merged = first.add_translucence(g.translucence, g.focus, g.light_angle).err();
+                            let mut merged =
+                                first.add_translucence_interned(g.translucence, g.focus, g.light_angle).err();
                             for (a, n) in g.translucence_lobes().skip(1) {
                                 let lost = first.add_translucence(a, n, None).err();
                                 merged = merged.or(lost);
@@ -736,6 +736,14 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             .zip(depths)
             .map(|((&transparency, by_view), depth)| TranslucentLayer { transparency, by_view, depth })
             .collect();
+    }
+    if let (Some(layer), true) = (&many_ramps, follows_view) {
+        warnings.push(format!(
+            "layer '{layer}': the stack's light from behind sums more than {} distinct colour ramps (or \
+             diffuse translucence) and its shares follow the view; the path engine mixes them at each hit, \
+             where a further one adds its weight to the largest one's ramp",
+            bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
+        ));
     }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).

@@ -6,7 +6,7 @@
 //! (black), `specularColor` (0.5 grey), `specularRollOff` (1), `reflectivity` (0) and
 //! `environment` (black) — arrays of {`<name>_Position`, `<name>_Color` or
 //! `<name>_FloatValue`, `<name>_Interp`}, interpolation 0 none, 1 linear, 2 smooth,
-//! 3 spline (read as smooth), an empty ramp taking the value in brackets;
+//! 3 spline (`bsdf::maya_highlight::ramp_curve`), an empty ramp taking the value in brackets;
 //! `ambientColor`, `normalCamera`, `diffuse` (0.8), `translucence` (0), `specularity`
 //! (0), `eccentricity` (0.3), `reflectionLimit` (1), `refractions`, `refractiveIndex`,
 //! `refractionLimit`, `matteOpacity`, `glowIntensity`, `lightList` (the lights, as the

@@ -3,7 +3,8 @@
 //!
 //! Parameters after the shared 2D texture ones ([`crate::texture`]): `type` (0 V, 1 U,
 //! 2 diagonal, 3 radial, 4 circular, 5 box; the others read as V), `interpolation` (0
-//! none, 1 linear, 4 smooth; the others read as linear), `colorEntryList` (array of
+//! none, 1 linear, 2 exponential up, 3 exponential down, 4 smooth, 5 bump, 6 spike; the
+//! others read as linear: see [`interpolation_blend`]), `colorEntryList` (array of
 //! {position, color}), `uWave`, `vWave`, `noise` (0), `noiseFreq` (0.5), `hueNoise`,
 //! `satNoise`, `valNoise` (0), `hueNoiseFreq`, `satNoiseFreq`, `valNoiseFreq` (0.5).
 //!
@@ -36,7 +37,7 @@ use crate::maya_shader;
 use crate::noise::gradient_noise;
 use crate::texture::{balance, outside, texture_params, texture_uv, EXTRA};
 use crate::utility::{hsv_to_rgb, rgb_to_hsv};
-use crate::values::rgb;
+use crate::values::{luma, rgb};
 
 /// The position along a ramp of `type` (Maya's enumeration) at `uv`.
 pub fn ramp_position(kind: i32, uv: Vec2) -> f32 {
@@ -51,8 +52,48 @@ pub fn ramp_position(kind: i32, uv: Vec2) -> f32 {
     }
 }
 
+/// The blend s ∈ [0, 1] from entry colour `c0` to the next one `c1` at the segment's
+/// parameter `tau` ∈ [0, 1] under the ramp texture's `interpolation` (colour
+/// = c0 + (c1 − c0) · s).
+///
+/// Maya's node reference names the modes (none, linear, exponential up, exponential
+/// down, smooth, bump, spike) and gives no formula; its user guide describes smooth as
+/// a bell curve over which each colour dominates its region, and a ramp used as a bump
+/// map as grey by each colour's luminance. mira's reading:
+///
+/// ```text
+/// 0 none:              s = 0
+/// 1 linear:            s = τ
+/// 2 exponential up:    s = τ²             (leaves c0 slowly, reaches c1 steeply)
+/// 3 exponential down:  s = 1 − (1 − τ)²   (leaves c0 steeply, reaches c1 flat)
+/// 4 smooth:            s = 3τ² − 2τ³      (flat at both entries)
+/// 5 bump:              flat at the brighter entry, steep at the darker one, a
+///                      quarter sine: s = sin(πτ/2) towards a brighter c1,
+///                      1 − cos(πτ/2) towards a darker one (Maya's luminance, Rec. 601 weights) —
+///                      rounded crests at the bright entries, creases at the dark
+/// 6 spike:             the opposite: steep at the brighter entry, flat at the darker
+///                      one — sharp peaks at the bright entries
+/// ```
+///
+/// Equal luminances read as bump's and spike's "towards a brighter c1" branch.
+pub fn interpolation_blend(interpolation: i32, tau: f32, c0: Vec3A, c1: Vec3A) -> f32 {
+    use std::f32::consts::FRAC_PI_2;
+    let rises = || luma(c1) >= luma(c0);
+    match interpolation {
+        0 => 0.0,
+        2 => tau * tau,
+        3 => 1.0 - (1.0 - tau) * (1.0 - tau),
+        4 => tau * tau * (3.0 - 2.0 * tau),
+        5 if rises() => (FRAC_PI_2 * tau).sin(),
+        5 => 1.0 - (FRAC_PI_2 * tau).cos(),
+        6 if rises() => 1.0 - (FRAC_PI_2 * tau).cos(),
+        6 => (FRAC_PI_2 * tau).sin(),
+        _ => tau,
+    }
+}
+
 /// The colour of sorted ramp entries (position, colour) at `t` with Maya's
-/// `interpolation` (0 none, 1 linear, 4 smooth; the others read as linear).
+/// `interpolation` ([`interpolation_blend`]).
 pub fn ramp_color(entries: &[(f32, Vec3A)], t: f32, interpolation: i32) -> Vec3A {
     let Some(first) = entries.first() else { return Vec3A::ZERO };
     if t <= first.0 {
@@ -63,12 +104,7 @@ pub fn ramp_color(entries: &[(f32, Vec3A)], t: f32, interpolation: i32) -> Vec3A
         if t < p1 {
             let span = p1 - p0;
             let x = if span > 0.0 { (t - p0) / span } else { 1.0 };
-            let x = match interpolation {
-                0 => 0.0,
-                4 => x * x * (3.0 - 2.0 * x),
-                _ => x,
-            };
-            return c0 + (c1 - c0) * x;
+            return c0 + (c1 - c0) * interpolation_blend(interpolation, x, c0, c1);
         }
     }
     entries[entries.len() - 1].1
@@ -205,6 +241,53 @@ mod tests {
         assert_eq!(ramp_position(0, Vec2::new(0.2, 0.7)), 0.7);
         assert_eq!(ramp_position(1, Vec2::new(0.2, 0.7)), 0.2);
         assert!((ramp_position(5, Vec2::new(0.5, 0.9)) - 0.8).abs() < 1e-6);
+    }
+
+    /// Each interpolation at τ = ¼ and ⅔ of the segment from black at 0.2 to white at
+    /// 0.6 (rising) and from white to black (falling) against its formula within 1e-5:
+    /// none 0, linear τ, exponential up τ², down 1 − (1 − τ)², smooth 3τ² − 2τ³, bump
+    /// sin(πτ/2) rising and 1 − cos(πτ/2) falling, spike the reverse; every mode takes
+    /// the entries' own colours at τ = 0 and (but none) τ → 1; an unknown code is linear.
+    #[test]
+    fn each_interpolation_follows_its_formula() {
+        use std::f32::consts::FRAC_PI_2;
+        let rising = [(0.2, Vec3A::ZERO), (0.6, Vec3A::ONE)];
+        let falling = [(0.2, Vec3A::ONE), (0.6, Vec3A::ZERO)];
+        for tau in [0.25f32, 2.0 / 3.0] {
+            let (up, down) = ((FRAC_PI_2 * tau).sin(), 1.0 - (FRAC_PI_2 * tau).cos());
+            let want: [(i32, f32, f32); 8] = [
+                (0, 0.0, 0.0),
+                (1, tau, tau),
+                (2, tau * tau, tau * tau),
+                (3, 1.0 - (1.0 - tau) * (1.0 - tau), 1.0 - (1.0 - tau) * (1.0 - tau)),
+                (4, tau * tau * (3.0 - 2.0 * tau), tau * tau * (3.0 - 2.0 * tau)),
+                (5, up, down),
+                (6, down, up),
+                (9, tau, tau),
+            ];
+            let t = 0.2 + 0.4 * tau;
+            for (mode, s_rise, s_fall) in want {
+                let got = ramp_color(&rising, t, mode);
+                assert!((got - Vec3A::splat(s_rise)).abs().max_element() < 1e-5, "mode {mode} rising τ {tau}: {got}");
+                let got = ramp_color(&falling, t, mode);
+                assert!(
+                    (got - Vec3A::splat(1.0 - s_fall)).abs().max_element() < 1e-5,
+                    "mode {mode} falling τ {tau}: {got}"
+                );
+            }
+        }
+        for mode in 0..7 {
+            assert_eq!(ramp_color(&rising, 0.2, mode), Vec3A::ZERO);
+            assert_eq!(ramp_color(&rising, 0.6, mode), Vec3A::ONE);
+            if mode != 0 {
+                assert!((ramp_color(&rising, 0.6 - 1e-6, mode) - Vec3A::ONE).abs().max_element() < 1e-4, "mode {mode}");
+            }
+        }
+        // Bump is flat at the bright entry, spike at the dark one (one-sided slopes).
+        let slope =
+            |mode: i32, t: f32, h: f32| (ramp_color(&rising, t + h, mode).x - ramp_color(&rising, t, mode).x) / h;
+        assert!(slope(5, 0.6 - 1e-3, 1e-3 * 0.5).abs() < 0.05 && slope(5, 0.2, 1e-3) > 3.0);
+        assert!(slope(6, 0.2, 1e-3).abs() < 0.05 && slope(6, 0.6 - 1e-3, 1e-3 * 0.5) > 3.0);
     }
 
     /// uWave alone: a U ramp's position is u − uWave · sin(2π v); vWave alone: a V ramp's

@@ -210,25 +210,13 @@ maya_shader!(
 );
 
 /// The value of sorted curve points (position, value, Maya interpolation: 0 none, 1
-/// linear, 2 smooth, 3 spline read as smooth) at `t`.
+/// linear, 2 smooth, 3 spline) at `t`, as `bsdf::maya_highlight::ramp_curve` documents
+/// the interpolations (the path engine reads ramps there too); no points: `t` as grey.
 pub fn curve_at(points: &[(f32, Vec3A, i32)], t: f32) -> Vec3A {
-    let Some(first) = points.first() else { return Vec3A::splat(t) };
-    if t <= first.0 {
-        return first.1;
+    if points.is_empty() {
+        return Vec3A::splat(t);
     }
-    for w in points.windows(2) {
-        let ((p0, v0, interp), (p1, v1, _)) = (w[0], w[1]);
-        if t < p1 {
-            let x = if p1 > p0 { (t - p0) / (p1 - p0) } else { 1.0 };
-            let x = match interp {
-                0 => 0.0,
-                1 => x,
-                _ => x * x * (3.0 - 2.0 * x),
-            };
-            return v0 + (v1 - v0) * x;
-        }
-    }
-    points[points.len() - 1].1
+    bsdf::maya_highlight::ramp_curve::ramp_value(points, t)
 }
 
 /// The points of a ramp array of structs {`<p>_Position`, `<p>_<value>`,

@@ -3,8 +3,8 @@
 //! (C the colour ramp), with no cosine factor.
 //!
 //! mira's path lobe evaluates the ramp itself — all its knots that the light from behind
-//! reads (those in [0, ½] and the first after), with their interpolation, as
-//! `maya::utility::curve_at` reads a ramp — in the shape S = P/A, A = 2∫P du its albedo
+//! reads (those in [0, ½] and the first after, one more for a spline), with their
+//! interpolation, as the classic shaders read a ramp ([`super::ramp_curve`]) — in the shape S = P/A, A = 2∫P du its albedo
 //! (per channel, in closed form, not capped: where the classic shader passes more light
 //! than it receives, so does the lobe; 2∫S du = 1); f = A/π ⊙ S(u)/u. It depends on the
 //! light's direction only, as the classic formula (not reciprocal: the classic shaders
@@ -17,107 +17,23 @@
 //! as `crate::measured_factor` interns its tables), so that the BSDF holds only a
 //! reference to it, whatever the number of knots. A layeredShader stack's lobe is the
 //! albedo-weighted sum of its layers' shapes: [`LightAngle`] holds up to
-//! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp.
+//! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp; a
+//! material's translation folds any further ones into interned composite shapes
+//! ([`LightAngle::mixed_interned`], exact), a mix per hit adds them to the largest part
+//! ([`LightAngle::mixed`]).
 
 use std::sync::Mutex;
 
+use super::ramp_curve::{self, ramp_value, Interp, Knot};
 use crate::Rgb;
 
 /// How many distinct shapes (ramps, or diffuse translucence) one [`LightAngle`] sums:
 /// a layeredShader stack's lobe keeps its layers' own ramps up to this many.
 pub const LIGHT_ANGLE_PARTS: usize = 4;
 
-/// How a ramp's segment runs from its knot to the next, as Maya's `<ramp>_Interp`
-/// (and the classic shaders' `maya::utility::curve_at`) reads it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u8)]
-pub enum Interp {
-    /// 0, none: the knot's value up to the next knot.
-    Step,
-    /// 1, linear.
-    Linear,
-    /// 2, smooth, and 3, spline (read as smooth, as the classic shaders do): the
-    /// smoothstep 3τ² − 2τ³ of the segment's parameter τ.
-    Smooth,
-}
-
-impl Interp {
-    /// Maya's interpolation code: 0 none, 1 linear, anything else smooth.
-    pub fn from_maya(code: i32) -> Interp {
-        match code {
-            0 => Interp::Step,
-            1 => Interp::Linear,
-            _ => Interp::Smooth,
-        }
-    }
-
-    /// The segment's blend at its parameter `tau` ∈ [0, 1].
-    fn blend(self, tau: f32) -> f32 {
-        match self {
-            Interp::Step => 0.0,
-            Interp::Linear => tau,
-            Interp::Smooth => tau * tau * (3.0 - 2.0 * tau),
-        }
-    }
-
-    /// ∫_0^τ of [`Interp::blend`].
-    fn integral(self, tau: f64) -> f64 {
-        match self {
-            Interp::Step => 0.0,
-            Interp::Linear => 0.5 * tau * tau,
-            Interp::Smooth => tau * tau * tau - 0.5 * tau * tau * tau * tau,
-        }
-    }
-}
-
-/// A ramp knot: position on the ramp, value per channel, its segment's interpolation.
-type Knot = (f32, [f32; 3], Interp);
-
-/// The value of the sorted knots at `x`, as `maya::utility::curve_at` reads a ramp: the
-/// first knot's value before it, the last one's after it, each segment by its first
-/// knot's interpolation.
-fn ramp_at(knots: &[Knot], x: f32) -> [f32; 3] {
-    let Some(first) = knots.first() else { return [0.0; 3] };
-    if x <= first.0 {
-        return first.1;
-    }
-    for w in knots.windows(2) {
-        let ((p0, v0, interp), (p1, v1, _)) = (w[0], w[1]);
-        if x < p1 {
-            let tau = if p1 > p0 { (x - p0) / (p1 - p0) } else { 1.0 };
-            let s = interp.blend(tau);
-            return [v0[0] + (v1[0] - v0[0]) * s, v0[1] + (v1[1] - v0[1]) * s, v0[2] + (v1[2] - v0[2]) * s];
-        }
-    }
-    knots[knots.len() - 1].1
-}
-
-/// ∫ over x ∈ [0, ½] of the knots' ramp ([`ramp_at`]), per channel, in closed form.
+/// ∫ over x ∈ [0, ½] of the knots' ramp ([`ramp_value`]), per channel, in closed form.
 fn ramp_integral(knots: &[Knot]) -> [f64; 3] {
-    let mut sum = [0.0f64; 3];
-    let Some(first) = knots.first() else { return sum };
-    let add = |sum: &mut [f64; 3], len: f64, v: [f32; 3]| {
-        for c in 0..3 {
-            sum[c] += len * f64::from(v[c]);
-        }
-    };
-    // Before the first knot and after the last: their values.
-    add(&mut sum, f64::from(first.0.clamp(0.0, 0.5)), first.1);
-    let last = knots[knots.len() - 1];
-    add(&mut sum, f64::from(0.5 - last.0.clamp(0.0, 0.5)), last.1);
-    for w in knots.windows(2) {
-        let ((p0, v0, interp), (p1, v1, _)) = (w[0], w[1]);
-        let (a, b) = (f64::from(p0.clamp(0.0, 0.5)), f64::from(p1.clamp(0.0, 0.5)));
-        if b <= a {
-            continue;
-        }
-        let (p0, len) = (f64::from(p0), f64::from(p1 - p0));
-        let rise = (interp.integral((b - p0) / len) - interp.integral((a - p0) / len)) * len;
-        for c in 0..3 {
-            sum[c] += (b - a) * f64::from(v0[c]) + f64::from(v1[c] - v0[c]) * rise;
-        }
-    }
-    sum
+    ramp_curve::ramp_integral(knots, 0.0, 0.5)
 }
 
 /// One normalised shape S(u) (2∫S du = 1 per channel): `scale` ⊙ the ramp of `knots` at
@@ -132,6 +48,10 @@ pub struct RampShape {
     scale: [f32; 3],
     /// The linear part's slope per channel.
     linear: [f32; 3],
+    /// Further interned shapes summed in with their per-channel weights (a composite of
+    /// a stack's parts past [`LIGHT_ANGLE_PARTS`], [`LightAngle::mixed_interned`]; the
+    /// weights of a channel sum to 1, the own ramp and linear part then being 0).
+    sum: Vec<(&'static RampShape, [f32; 3])>,
 }
 
 impl RampShape {
@@ -143,20 +63,29 @@ impl RampShape {
                 .knots
                 .iter()
                 .zip(&other.knots)
-                .all(|(a, b)| a.0.to_bits() == b.0.to_bits() && bits(&a.1) == bits(&b.1) && a.2 == b.2)
+                .all(|(a, b)| a.0.to_bits() == b.0.to_bits() && bits(&a.1.into()) == bits(&b.1.into()) && a.2 == b.2)
             && bits(&self.scale) == bits(&other.scale)
             && bits(&self.linear) == bits(&other.linear)
+            && self.sum.len() == other.sum.len()
+            && self.sum.iter().zip(&other.sum).all(|(a, b)| std::ptr::eq(a.0, b.0) && bits(&a.1) == bits(&b.1))
     }
 
     /// S(u) per channel (`u` in [0, 1]).
     fn at(&self, u: f32) -> [f32; 3] {
-        let r = ramp_at(&self.knots, 0.5 * (1.0 - u));
-        std::array::from_fn(|c| self.scale[c] * r[c] + self.linear[c] * u)
+        let r = ramp_value(&self.knots, 0.5 * (1.0 - u));
+        let mut s: [f32; 3] = std::array::from_fn(|c| self.scale[c] * r[c] + self.linear[c] * u);
+        for (part, w) in &self.sum {
+            let v = part.at(u);
+            for c in 0..3 {
+                s[c] += w[c] * v[c];
+            }
+        }
+        s
     }
 }
 
 /// Diffuse translucence's shape, S(u) = u.
-static DIFFUSE_SHAPE: RampShape = RampShape { knots: Vec::new(), scale: [0.0; 3], linear: [1.0; 3] };
+static DIFFUSE_SHAPE: RampShape = RampShape { knots: Vec::new(), scale: [0.0; 3], linear: [1.0; 3], sum: Vec::new() };
 
 /// Every distinct shape interned so far (kept for the life of the process).
 static SHAPES: Mutex<Vec<&'static RampShape>> = Mutex::new(Vec::new());
@@ -198,21 +127,19 @@ impl LightAngle {
     /// A = 2∫P du (a channel of albedo 0 or less takes the diffuse shape). Exact for any
     /// number of knots.
     pub fn from_ramp(knots: &[(f32, Rgb, i32)], empty: Rgb, t: f32) -> (Rgb, LightAngle) {
-        let full: Vec<Knot> = if knots.is_empty() {
-            vec![(0.0, empty.into(), Interp::Linear)]
-        } else {
-            knots.iter().map(|&(x, c, i)| (x, c.into(), Interp::from_maya(i))).collect()
-        };
+        let full: Vec<Knot> = if knots.is_empty() { vec![(0.0, empty, 1)] } else { knots.to_vec() };
         // The knots the classic shader reads for a light behind: those in [0, ½] and
-        // the first after ½.
+        // the first after ½ (and the one after that where a spline segment crosses ½:
+        // its slope at the first knot after ½ reads it).
         let inside = full.iter().filter(|k| k.0 <= 0.5).count();
-        let kept = full[..(inside + 1).min(full.len())].to_vec();
+        let spline_crosses = inside > 0 && Interp::from_maya(full[inside - 1].2) == Interp::Spline;
+        let kept = full[..(inside + 1 + usize::from(spline_crosses)).min(full.len())].to_vec();
         let integral = ramp_integral(&kept);
         let albedo: [f32; 3] = std::array::from_fn(|c| (4.0 * f64::from(t) * integral[c]) as f32);
         let linear = albedo.map(|a| if a > 0.0 { 0.0 } else { 1.0 });
         let scale = albedo.map(|a| if a > 0.0 { t / a } else { 0.0 });
         let knots = if scale == [0.0; 3] { Vec::new() } else { kept };
-        let shape = intern(RampShape { knots, scale, linear });
+        let shape = intern(RampShape { knots, scale, linear, sum: Vec::new() });
         let mut out = LightAngle::DIFFUSE;
         out.parts[0] = shape;
         (Rgb::from(albedo).max(Rgb::ZERO), out)
@@ -242,12 +169,29 @@ impl LightAngle {
     /// past [`LIGHT_ANGLE_PARTS`] adds its weight to the part of the largest weight (whose
     /// shape it then takes).
     pub fn mixed(&self, a: Rgb, other: &LightAngle, b: Rgb) -> LightAngle {
+        self.mix(a, other, b, false)
+    }
+
+    /// [`LightAngle::mixed`], exact for any number of distinct shapes: past
+    /// [`LIGHT_ANGLE_PARTS`] the two parts of the smallest weights are folded into one
+    /// interned composite shape (their per-channel weighted mean, kept for the life of
+    /// the process) until four remain. For a material's translation only (a mix per hit
+    /// would intern a composite per hit).
+    pub fn mixed_interned(&self, a: Rgb, other: &LightAngle, b: Rgb) -> LightAngle {
+        self.mix(a, other, b, true)
+    }
+
+    /// [`LightAngle::mixed`] (`exact` false) or [`LightAngle::mixed_interned`].
+    fn mix(&self, a: Rgb, other: &LightAngle, b: Rgb, exact: bool) -> LightAngle {
         let (a, b) = (a.max(Rgb::ZERO), b.max(Rgb::ZERO));
         let mut wa = [0.0f32; 3];
         let mut wb = [0.0f32; 3];
         for c in 0..3 {
             let total = a[c] + b[c];
             (wa[c], wb[c]) = if total > 0.0 { (a[c] / total, b[c] / total) } else { (1.0, 0.0) };
+        }
+        if exact && !self.mixes_exactly(other) {
+            return self.folded(wa, other, wb);
         }
         let mut out = LightAngle { weight: [[0.0; 3]; LIGHT_ANGLE_PARTS], ..LightAngle::DIFFUSE };
         let mut add = |shape: &'static RampShape, w: [f32; 3]| {
@@ -276,6 +220,45 @@ impl LightAngle {
         }
         if out.used().next().is_none() {
             return LightAngle::DIFFUSE;
+        }
+        out
+    }
+
+    /// The mix of `self` by per-channel share `wa` and `other` by `wb` with every
+    /// distinct shape kept: the two parts of the smallest total weight folded into an
+    /// interned composite until [`LIGHT_ANGLE_PARTS`] remain.
+    fn folded(&self, wa: [f32; 3], other: &LightAngle, wb: [f32; 3]) -> LightAngle {
+        let mut parts: Vec<(&'static RampShape, [f32; 3])> = Vec::new();
+        let scaled = self
+            .used()
+            .map(|(p, w)| (p, std::array::from_fn(|c| w[c] * wa[c])))
+            .chain(other.used().map(|(p, w)| (p, std::array::from_fn(|c| w[c] * wb[c]))));
+        for (p, w) in scaled {
+            match parts.iter_mut().find(|(q, _)| std::ptr::eq(*q, p)) {
+                Some((_, ow)) => (0..3).for_each(|c| ow[c] += w[c]),
+                None => parts.push((p, w)),
+            }
+        }
+        let size = |w: &[f32; 3]| w[0] + w[1] + w[2];
+        while parts.len() > LIGHT_ANGLE_PARTS {
+            parts.sort_by(|x, y| size(&y.1).total_cmp(&size(&x.1)));
+            let (y, x) = (parts.pop().expect("parts"), parts.pop().expect("parts"));
+            let total: [f32; 3] = std::array::from_fn(|c| x.1[c] + y.1[c]);
+            let share = |w: [f32; 3]| -> [f32; 3] {
+                std::array::from_fn(|c| if total[c] > 0.0 { w[c] / total[c] } else { 0.0 })
+            };
+            let composite = RampShape {
+                knots: Vec::new(),
+                scale: [0.0; 3],
+                linear: [0.0; 3],
+                sum: vec![(x.0, share(x.1)), (y.0, share(y.1))],
+            };
+            parts.push((intern(composite), total));
+        }
+        let mut out = LightAngle { weight: [[0.0; 3]; LIGHT_ANGLE_PARTS], ..LightAngle::DIFFUSE };
+        for (k, (p, w)) in parts.into_iter().enumerate() {
+            out.parts[k] = p;
+            out.weight[k] = w;
         }
         out
     }

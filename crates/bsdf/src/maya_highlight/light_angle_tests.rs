@@ -54,26 +54,12 @@ fn the_light_angle_shape_follows_the_ramp_and_keeps_its_albedo() {
     assert!((crate::maya_highlight::translucence::UNIFORM_PDF * TAU - 1.0).abs() < 1e-6);
 }
 
-/// The classic ramp of `knots` (position, colour, Maya interpolation) at `x`, as
-/// `maya::utility::curve_at` reads it (written out here: the bsdf crate does not
-/// depend on the maya crate).
+/// The classic ramp of `knots` (position, colour, Maya interpolation) at `x`, read
+/// over the whole ramp as the classic shaders read it (`ramp_curve::ramp_value`, whose
+/// formulas its own tests check); the lobe keeps only the knots the light from behind
+/// reads.
 fn classic_ramp(knots: &[(f32, Rgb, i32)], x: f32) -> Rgb {
-    if x <= knots[0].0 {
-        return knots[0].1;
-    }
-    for w in knots.windows(2) {
-        let ((p0, v0, interp), (p1, v1, _)) = (w[0], w[1]);
-        if x < p1 {
-            let t = (x - p0) / (p1 - p0);
-            let t = match interp {
-                0 => 0.0,
-                1 => t,
-                _ => t * t * (3.0 - 2.0 * t),
-            };
-            return v0 + (v1 - v0) * t;
-        }
-    }
-    knots[knots.len() - 1].1
+    crate::maya_highlight::ramp_curve::ramp_value(knots, x)
 }
 
 /// Ramps with knots off the former table's sixteenths (0.1, 0.37 and 0.8) in each
@@ -237,4 +223,49 @@ fn a_lobe_of_differing_ramps_samples_its_density_and_keeps_its_albedo() {
         let want = a + b + 0.2;
         assert!(((albedo / want) - 1.0).abs().max_element() < 0.01, "{wo}: {albedo} vs {want}");
     }
+}
+
+/// Six distinct ramp shapes and the diffuse one mixed one by one with
+/// `mixed_interned` (albedos 0.1 … 0.7 per part, differing per channel): the mix's
+/// (Σ a) ⊙ S(u) is Σ a_i ⊙ S_i(u) within 1e-5 at 50 light cosines, though only
+/// LIGHT_ANGLE_PARTS parts fit (composites hold the rest); the same mix again interns
+/// nothing new (the same composites, bit for bit equal results); the lossy `mixed` of
+/// the same parts differs (it adds past the fourth to the largest).
+#[test]
+fn an_interned_mix_keeps_every_shape_exactly() {
+    let shapes: Vec<(Rgb, LightAngle)> = (0..6)
+        .map(|i| {
+            let x = 0.1 + 0.07 * i as f32;
+            let knots = [
+                (0.0, Rgb::new(0.9, 0.2, 0.4), 1),
+                (x, Rgb::new(0.1, 0.8 - 0.1 * i as f32, 0.3), if i % 2 == 0 { 1 } else { 3 }),
+                (0.7, Rgb::new(0.5, 0.5, 0.9), 2),
+            ];
+            LightAngle::from_ramp(&knots, Rgb::ZERO, 0.6)
+        })
+        .chain(std::iter::once((Rgb::splat(0.3), LightAngle::DIFFUSE)))
+        .collect();
+    let weights: Vec<Rgb> = (0..7).map(|i| Rgb::new(0.1 + 0.1 * i as f32, 0.7 - 0.1 * i as f32, 0.35)).collect();
+    let mix = |exact: bool| {
+        let (mut total, mut out) = (weights[0], shapes[0].1);
+        for (w, (_, s)) in weights.iter().zip(&shapes).skip(1) {
+            out = if exact { out.mixed_interned(total, s, *w) } else { out.mixed(total, s, *w) };
+            total += *w;
+        }
+        (total, out)
+    };
+    let (total, exact) = mix(true);
+    let (_, again) = mix(true);
+    let (_, lossy) = mix(false);
+    let mut lossy_error = 0.0f32;
+    for i in 0..50 {
+        let u = (i as f32 + 0.5) / 50.0;
+        let want: Rgb = weights.iter().zip(&shapes).map(|(w, (_, s))| *w * s.shape_at(u)).sum();
+        let got = total * exact.shape_at(u);
+        assert!((got - want).abs().max_element() < 1e-5, "u {u}: {got} vs {want}");
+        assert_eq!(again.shape_at(u), exact.shape_at(u));
+        lossy_error = lossy_error.max((total * lossy.shape_at(u) - want).abs().max_element());
+    }
+    assert!(lossy_error > 1e-3, "{lossy_error}");
+    assert_eq!(again, exact);
 }

@@ -180,6 +180,7 @@ impl Shape {
 
     /// A direction `l` drawn from this lobe's sampling density given `v` (v.z > 0); `None`
     /// when the draw falls below the surface.
+    #[inline]
     pub(super) fn sample(&self, v: Vec3A, u: Vec2) -> Option<Vec3A> {
         let l = match *self {
             Shape::Blinn { eccentricity, .. } | Shape::RampBlinn { eccentricity } => {

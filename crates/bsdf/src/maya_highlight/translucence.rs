@@ -25,7 +25,8 @@ use glam::{Vec2, Vec3A};
 
 use crate::Frame;
 
-pub use super::light_angle::{Interp, LightAngle, RampShape, LIGHT_ANGLE_PARTS};
+pub use super::light_angle::{LightAngle, RampShape, LIGHT_ANGLE_PARTS};
+pub use super::ramp_curve::Interp;
 
 /// The density of [`uniform_opposite`]'s directions, 1/(2π).
 pub const UNIFORM_PDF: f32 = 0.5 * FRAC_1_PI;

@@ -122,7 +122,7 @@ fn ramp_keys(params: &[Param], name: &str, member: &str) -> Vec<(f32, Rgb, i32)>
 pub const MAX_RAMP_KEYS: usize = 8;
 
 /// A volume light's `colorRange` ramp or `penumbra` graph, as the classic light reads it
-/// (`maya::utility::curve_at`: Maya's none, linear and smooth interpolations; white when
+/// (`maya::utility::curve_at`: Maya's none, linear, smooth and spline interpolations; white when
 /// empty), held in place so the light stays `Copy`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VolumeRamp {

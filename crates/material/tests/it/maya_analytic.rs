@@ -302,6 +302,40 @@ fn condition_set_range_and_remap_value_in_a_graph() {
     assert_rgb(shade(&c, [0.0, 0.0]), [0.0, 0.2, 0.8], 1e-5);
 }
 
+/// Spline and the ramp texture's exponential interpolations through the shader graph:
+/// remapValue's curve (0, 0), (0.5, 1), (1, 0.25), all spline, at 0.4 is the Catmull-Rom
+/// Hermite cubic with slopes 0 (first knot) and (0.25 − 0)/(1 − 0) at ½ (τ = 0.8:
+/// 0.896 · 1 + 0.5 · 0.25 · (−0.128) = 0.88); a U ramp from black to white with
+/// exponential up (2) at u = 0.4 is 0.4² = 0.16, exponential down (3) 1 − 0.6² = 0.64
+/// (1e-5).
+#[test]
+fn spline_and_exponential_interpolations_in_a_graph() {
+    let c = scene(
+        r#"
+        shader "si" "maya_samplerinfo" ()
+        shader "sr" "maya_setrange" ("value" = "si.facingRatio", "min" 0.4 0.4 0.4, "max" 0.4 0.4 0.4,
+            "oldMax" 1 1 1)
+        shader "rv" "maya_remapvalue" ("inputValue" = "sr.outValue",
+            "value" [ { "value_Position" 0, "value_FloatValue" 0, "value_Interp" 3 },
+                      { "value_Position" 0.5, "value_FloatValue" 1, "value_Interp" 3 },
+                      { "value_Position" 1, "value_FloatValue" 0.25, "value_Interp" 3 } ])
+        shader "blend" "maya_blendcolors" ("color1" 0 1 0, "color2" 0 0 1, "blender" = "rv.outValue")
+        shader "flat" "maya_surfaceshader" ("outColor" = "blend.output")
+        material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#,
+    );
+    assert_rgb(shade(&c, [0.0, 0.0]), [0.0, 0.88, 0.12], 1e-5);
+    for (mode, want) in [(2, 0.16f32), (3, 0.64)] {
+        let c = scene(&format!(
+            r#"
+            shader "rmp" "maya_ramp" ("type" 1, "interpolation" {mode},
+                "colorEntryList" [ {{ "position" 0, "color" 0 0 0 }}, {{ "position" 1, "color" 1 1 1 }} ])
+            shader "flat" "maya_surfaceshader" ("outColor" = "rmp.outColor")
+            material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#
+        ));
+        assert_rgb(shade(&c, [0.4, 0.5]), [want; 3], 1e-5);
+    }
+}
+
 #[test]
 fn bump2d_tilts_the_normal_against_the_slope() {
     // A ramp in u (0 → 1 across the tile) as the bump height with depth 0.1: dh/du = 1,
