@@ -27,7 +27,7 @@ use crate::mesh::MeshData;
 use crate::motion::Shutter;
 
 pub use build::areas_of;
-pub use faces::{face_normal, FaceCache, FACE_CACHE_BUDGET, FACE_CACHE_TRIANGLES};
+pub use faces::{face_normal, Face, FaceCache, FACE_CACHE_BUDGET, FACE_CACHE_TRIANGLES};
 pub use instance::{InstanceData, Placement};
 pub use motion_keys::{vertex_keys, world_key_positions, world_motion_bounds};
 

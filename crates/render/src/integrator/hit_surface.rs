@@ -50,34 +50,55 @@ pub(super) fn surface(world: &World, ray: &Ray, hit: &Hit) -> Surface {
 #[inline(never)]
 pub(super) fn surface_into(world: &World, ray: &Ray, hit: &Hit, out: &mut Surface) {
     let inst = &world.instances[hit.instance as usize];
+    let w = 1.0 - hit.u - hit.v;
+    // A kept face: the instance and its mesh hold still, and what the general path below
+    // reads from them (vertices, normal, error bound, material) was read once, the same
+    // numbers, when the world was built.
+    if let Some(face) = world.faces.face(hit.instance, hit.prim) {
+        let [p0, p1, p2] = face.vertices.map(Vec3A::from);
+        let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
+        let p = inst.object_to_world.transform_point3a(p_obj);
+        let ng = Vec3A::from(face.ng);
+        let ns = if face.smooth {
+            let mesh = &world.meshes[inst.mesh as usize];
+            shading_normal(mesh, mesh.triangles[hit.prim as usize], &inst.normal_to_world, hit, w, ng)
+        } else {
+            ng
+        };
+        *out = Surface { p, ng, ns, material: face.material, tag: inst.tag, err: face.err };
+        return;
+    }
     let mesh = &world.meshes[inst.mesh as usize];
     let tri = mesh.triangles[hit.prim as usize];
-    let [i0, i1, i2] = tri;
     // Where the instance and its vertices are at the ray's time (see `crate::motion`).
     let placed = inst.placement(ray.time);
     let [p0, p1, p2] = mesh.triangle_at(tri, ray.time);
-    let w = 1.0 - hit.u - hit.v;
     let p_obj = p0 * w + p1 * hit.u + p2 * hit.v;
     let p = placed.object_to_world.transform_point3a(p_obj);
-    // The face's unit normal and hit-error bound: kept for instances that hold still
-    // (the same numbers as computed here), else computed.
-    let (ng, err) = match world.faces.get(hit.instance, hit.prim) {
-        Some(face) => face,
-        None => (
-            crate::world::face_normal(&placed.normal_to_world, p0, p1, p2),
-            super::leave::hit_error(p0, p1, p2, &placed.object_to_world),
-        ),
-    };
-    let ns = if !mesh.has_normals() {
-        ng
-    } else {
-        let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;
-        let n = (placed.normal_to_world * n).normalize_or(ng);
-        mesh.sharpen(if n.dot(ng) < 0.0 { -n } else { n }, ng)
-    };
+    let ng = crate::world::face_normal(&placed.normal_to_world, p0, p1, p2);
+    let err = super::leave::hit_error(p0, p1, p2, &placed.object_to_world);
+    let ns = if !mesh.has_normals() { ng } else { shading_normal(mesh, tri, &placed.normal_to_world, hit, w, ng) };
     let slot = mesh.slots.get(hit.prim as usize).copied().unwrap_or(0) as usize;
     let material = inst.materials.get(slot).copied().unwrap_or(0);
     *out = Surface { p, ng, ns, material, tag: inst.tag, err };
+}
+
+/// The unit shading normal (world space, on `ng`'s side) at barycentrics (`w`, `hit.u`,
+/// `hit.v`) of triangle `tri` of `mesh` (which has vertex normals), whose normals go to
+/// world space by `normal_to_world`.
+#[inline(always)]
+fn shading_normal(
+    mesh: &crate::mesh::MeshData,
+    tri: [u32; 3],
+    normal_to_world: &glam::Mat3A,
+    hit: &Hit,
+    w: f32,
+    ng: Vec3A,
+) -> Vec3A {
+    let [i0, i1, i2] = tri;
+    let n = mesh.normal(i0) * w + mesh.normal(i1) * hit.u + mesh.normal(i2) * hit.v;
+    let n = (*normal_to_world * n).normalize_or(ng);
+    mesh.sharpen(if n.dot(ng) < 0.0 { -n } else { n }, ng)
 }
 
 #[cfg(test)]

@@ -1,28 +1,45 @@
 //! The world-space geometric normals and hit-error bounds of the triangles of instances
-//! that hold still, computed once when the world is built (and again after displacement
-//! has edited it) instead of at every hit: the path engine's `surface` reads them where
-//! it found them computed ([`FaceCache::get`]), the same numbers bit for bit as the ones it
-//! computes itself ([`face_normal`], [`shader::trace::hit_error`]).
+//! that hold still, with their object-space vertices and materials, computed once when
+//! the world is built (and again after displacement has edited it) instead of at every
+//! hit: the path engine's `surface` reads them where it found them computed
+//! ([`FaceCache::face`]), the same numbers bit for bit as the ones it computes itself
+//! ([`face_normal`], [`shader::trace::hit_error`], the mesh's vertices and slots).
 
-use glam::{Mat3A, Vec3A, Vec4};
+use glam::{Mat3A, Vec3, Vec3A};
 
 use super::InstanceData;
 use crate::mesh::MeshData;
 
-/// Most triangles an instance may have for its faces to be kept (16 bytes each): larger
+/// Most triangles an instance may have for its faces to be kept (60 bytes each): larger
 /// meshes' faces are as far from the cache in memory as their vertices are.
 pub const FACE_CACHE_TRIANGLES: usize = 1 << 16;
 
-/// Most faces kept over all instances (16 MiB).
+/// Most faces kept over all instances (60 MiB).
 pub const FACE_CACHE_BUDGET: usize = 1 << 20;
 
 /// Per instance (as [`World::instances`](super::World::instances)), for each triangle of its
-/// mesh: the unit geometric normal in world space (x, y, z) and the bound on how far a hit
-/// point lies off it (w, world units); an empty list for instances whose faces are
-/// computed at each hit (they move, their mesh deforms or is large, or the budget is spent).
+/// mesh, what a hit on it needs that does not change ([`Face`]); an empty list for
+/// instances whose faces are computed at each hit (they move, their mesh deforms or is
+/// large, or the budget is spent).
 #[derive(Clone, Debug, Default)]
 pub struct FaceCache {
-    faces: Vec<Box<[Vec4]>>,
+    faces: Vec<Box<[Face]>>,
+}
+
+/// A kept triangle of an instance that holds still.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Face {
+    /// The triangle's vertices (object space, the mesh's positions).
+    pub vertices: [Vec3; 3],
+    /// The unit geometric normal (world space, the counter-clockwise front; [`face_normal`]).
+    pub ng: Vec3,
+    /// The bound on how far a hit point lies off the triangle (world units).
+    pub err: f32,
+    /// The material (an index into [`World::materials`](super::World::materials)): the
+    /// instance's material of the triangle's slot, 0 where either is missing.
+    pub material: u32,
+    /// Whether the mesh has vertex shading normals ([`MeshData::has_normals`]).
+    pub smooth: bool,
 }
 
 impl FaceCache {
@@ -42,11 +59,17 @@ impl FaceCache {
                 budget -= n;
                 mesh.triangles
                     .iter()
-                    .map(|&tri| {
+                    .enumerate()
+                    .map(|(prim, &tri)| {
                         let [p0, p1, p2] = mesh.triangle_at(tri, 0.0);
-                        let ng = face_normal(&inst.normal_to_world, p0, p1, p2);
-                        let err = shader::trace::hit_error(p0, p1, p2, &inst.object_to_world);
-                        ng.extend(err)
+                        let slot = mesh.slots.get(prim).copied().unwrap_or(0) as usize;
+                        Face {
+                            vertices: [p0, p1, p2].map(Vec3::from),
+                            ng: face_normal(&inst.normal_to_world, p0, p1, p2).into(),
+                            err: shader::trace::hit_error(p0, p1, p2, &inst.object_to_world),
+                            material: inst.materials.get(slot).copied().unwrap_or(0),
+                            smooth: mesh.has_normals(),
+                        }
                     })
                     .collect()
             })
@@ -58,8 +81,14 @@ impl FaceCache {
     /// its hit-error bound, when kept.
     #[inline(always)]
     pub fn get(&self, instance: u32, prim: u32) -> Option<(Vec3A, f32)> {
-        let f = *self.faces.get(instance as usize)?.get(prim as usize)?;
-        Some((Vec3A::from_vec4(f), f.w))
+        let f = self.face(instance, prim)?;
+        Some((Vec3A::from(f.ng), f.err))
+    }
+
+    /// Triangle `prim` of instance `instance`, when kept.
+    #[inline(always)]
+    pub fn face(&self, instance: u32, prim: u32) -> Option<&Face> {
+        self.faces.get(instance as usize)?.get(prim as usize)
     }
 
     /// Faces kept, over all instances.
