@@ -37,7 +37,7 @@ use crate::maya_shader;
 use crate::noise::gradient_noise;
 use crate::texture::{balance, outside, texture_params, texture_uv, EXTRA};
 use crate::utility::{hsv_to_rgb, rgb_to_hsv};
-use crate::values::{luma, rgb};
+use crate::values::rgb;
 
 /// The position along a ramp of `type` (Maya's enumeration) at `uv`.
 pub fn ramp_position(kind: i32, uv: Vec2) -> f32 {
@@ -58,32 +58,35 @@ pub fn ramp_position(kind: i32, uv: Vec2) -> f32 {
 ///
 /// Maya's node reference names the modes (none, linear, exponential up, exponential
 /// down, smooth, bump, spike) and gives no formula; its user guide describes smooth as
-/// a bell curve over which each colour dominates its region, and a ramp used as a bump
-/// map as grey by each colour's luminance. mira's reading:
+/// a bell curve over which each colour dominates its region. The formulas are those of
+/// the reimplementations that were fitted to Maya's images (Arnold for Maya's
+/// `MayaUtils.cpp`, appleseed's `as_maya_ramp_helpers.h`, both agreeing):
 ///
 /// ```text
 /// 0 none:              s = 0
 /// 1 linear:            s = τ
 /// 2 exponential up:    s = τ²             (leaves c0 slowly, reaches c1 steeply)
 /// 3 exponential down:  s = 1 − (1 − τ)²   (leaves c0 steeply, reaches c1 flat)
-/// 4 smooth:            s = 3τ² − 2τ³      (flat at both entries)
+/// 4 smooth:            s = (1 − cos πτ)/2 (a half cosine: flat at both entries)
 /// 5 bump:              flat at the brighter entry, steep at the darker one, a
 ///                      quarter sine: s = sin(πτ/2) towards a brighter c1,
-///                      1 − cos(πτ/2) towards a darker one (Maya's luminance, Rec. 601 weights) —
-///                      rounded crests at the bright entries, creases at the dark
+///                      1 − cos(πτ/2) towards a darker one, "brighter" by the sum of
+///                      the channels (Arnold for Maya's choice since 2012, replacing a
+///                      luminance that mixed up coloured entries) — rounded crests at
+///                      the bright entries, creases at the dark
 /// 6 spike:             the opposite: steep at the brighter entry, flat at the darker
 ///                      one — sharp peaks at the bright entries
 /// ```
 ///
-/// Equal luminances read as bump's and spike's "towards a brighter c1" branch.
+/// Equal brightnesses read as bump's and spike's "towards a brighter c1" branch.
 pub fn interpolation_blend(interpolation: i32, tau: f32, c0: Vec3A, c1: Vec3A) -> f32 {
     use std::f32::consts::FRAC_PI_2;
-    let rises = || luma(c1) >= luma(c0);
+    let rises = || c1.element_sum() >= c0.element_sum();
     match interpolation {
         0 => 0.0,
         2 => tau * tau,
         3 => 1.0 - (1.0 - tau) * (1.0 - tau),
-        4 => tau * tau * (3.0 - 2.0 * tau),
+        4 => 0.5 * (1.0 - (std::f32::consts::PI * tau).cos()),
         5 if rises() => (FRAC_PI_2 * tau).sin(),
         5 => 1.0 - (FRAC_PI_2 * tau).cos(),
         6 if rises() => 1.0 - (FRAC_PI_2 * tau).cos(),
@@ -236,7 +239,9 @@ mod tests {
         assert!((ramp_color(&e, 0.25, 1) - Vec3A::splat(0.5)).length() < 1e-6);
         assert_eq!(ramp_color(&e, 0.25, 0), Vec3A::ZERO);
         assert!((ramp_color(&e, 0.25, 4) - Vec3A::splat(0.5)).length() < 1e-6);
-        assert!((ramp_color(&e, 0.125, 4) - Vec3A::splat(0.15625)).length() < 1e-6);
+        // Smooth at τ = ¼: (1 − cos(π/4)) / 2.
+        let smooth = 0.5 * (1.0 - std::f32::consts::FRAC_PI_4.cos());
+        assert!((ramp_color(&e, 0.125, 4) - Vec3A::splat(smooth)).length() < 1e-6);
         assert!((ramp_color(&e, 0.75, 1) - Vec3A::new(1.0, 0.5, 0.5)).length() < 1e-6);
         assert_eq!(ramp_position(0, Vec2::new(0.2, 0.7)), 0.7);
         assert_eq!(ramp_position(1, Vec2::new(0.2, 0.7)), 0.2);
@@ -245,7 +250,7 @@ mod tests {
 
     /// Each interpolation at τ = ¼ and ⅔ of the segment from black at 0.2 to white at
     /// 0.6 (rising) and from white to black (falling) against its formula within 1e-5:
-    /// none 0, linear τ, exponential up τ², down 1 − (1 − τ)², smooth 3τ² − 2τ³, bump
+    /// none 0, linear τ, exponential up τ², down 1 − (1 − τ)², smooth (1 − cos πτ)/2, bump
     /// sin(πτ/2) rising and 1 − cos(πτ/2) falling, spike the reverse; every mode takes
     /// the entries' own colours at τ = 0 and (but none) τ → 1; an unknown code is linear.
     #[test]
@@ -255,12 +260,13 @@ mod tests {
         let falling = [(0.2, Vec3A::ONE), (0.6, Vec3A::ZERO)];
         for tau in [0.25f32, 2.0 / 3.0] {
             let (up, down) = ((FRAC_PI_2 * tau).sin(), 1.0 - (FRAC_PI_2 * tau).cos());
+            let smooth = 0.5 * (1.0 - (2.0 * FRAC_PI_2 * tau).cos());
             let want: [(i32, f32, f32); 8] = [
                 (0, 0.0, 0.0),
                 (1, tau, tau),
                 (2, tau * tau, tau * tau),
                 (3, 1.0 - (1.0 - tau) * (1.0 - tau), 1.0 - (1.0 - tau) * (1.0 - tau)),
-                (4, tau * tau * (3.0 - 2.0 * tau), tau * tau * (3.0 - 2.0 * tau)),
+                (4, smooth, smooth),
                 (5, up, down),
                 (6, down, up),
                 (9, tau, tau),
@@ -283,6 +289,12 @@ mod tests {
                 assert!((ramp_color(&rising, 0.6 - 1e-6, mode) - Vec3A::ONE).abs().max_element() < 1e-4, "mode {mode}");
             }
         }
+        // "Brighter" is the channel sum: green (sum 1, luminance 0.587) towards magenta
+        // (sum 1.8, luminance 0.373) rises, so bump is sin(πτ/2) there (a luminance test
+        // would take the falling branch, 1 − cos(πτ/2)).
+        let (green, magenta) = (Vec3A::new(0.0, 1.0, 0.0), Vec3A::new(0.9, 0.0, 0.9));
+        let s = interpolation_blend(5, 0.25, green, magenta);
+        assert!((s - (FRAC_PI_2 * 0.25).sin()).abs() < 1e-6, "{s}");
         // Bump is flat at the bright entry, spike at the dark one (one-sided slopes).
         let slope =
             |mode: i32, t: f32, h: f32| (ramp_color(&rising, t + h, mode).x - ramp_color(&rising, t, mode).x) / h;

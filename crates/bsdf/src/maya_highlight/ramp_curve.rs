@@ -22,9 +22,13 @@
 //!
 //! The spline is Catmull-Rom's for knots at any spacing (the slope at a knot is the
 //! chord between its neighbours, in value per unit of position): it passes through
-//! every knot and is C1 where two spline segments meet. End condition: the slope at
-//! the first and the last knot is 0, so the curve joins the constant the ramp takes
-//! before its first knot and after its last one without a kink. Other codes read as
+//! every knot and is C1 where two spline segments meet. End condition: a phantom knot
+//! one end segment's width beyond the first (and the last) knot, holding that knot's
+//! value, so the end slope is half the end segment's chord. Maya documents no formula;
+//! this is the reading of Arnold for Maya's remap shaders (MtoA's `MayaUtils.cpp`, whose
+//! spline was rewritten in 2012 to match Maya, its ticket #713), and Cortex's
+//! `FloatSplineParameterHandler` notes Maya's implicit doubling of the end points. The
+//! curve therefore meets the constant beyond the ends with a kink. Other codes read as
 //! smooth. Outside the knots the ramp is the first knot's value before it and the last
 //! one's after it.
 
@@ -81,13 +85,26 @@ impl Interp {
 }
 
 /// The spline's slope (value per unit position) at knot `i` of sorted `knots`: the
-/// chord between its neighbours, 0 at the first and the last knot.
+/// chord between its neighbours; at the first and the last knot, the chord to a phantom
+/// knot one end segment's width outside holding the end's value (half the end segment's
+/// chord); 0 for a lone knot or knots at one place.
 pub fn spline_slope(knots: &[Knot], i: usize) -> Rgb {
-    if i == 0 || i + 1 >= knots.len() {
+    let n = knots.len();
+    if n < 2 || i >= n {
         return Rgb::ZERO;
     }
-    let (p0, v0, _) = knots[i - 1];
-    let (p1, v1, _) = knots[i + 1];
+    let (p0, v0) = if i == 0 {
+        // Phantom knot before the first: p_0 − (p_1 − p_0), value v_0.
+        (2.0 * knots[0].0 - knots[1].0, knots[0].1)
+    } else {
+        (knots[i - 1].0, knots[i - 1].1)
+    };
+    let (p1, v1) = if i + 1 == n {
+        // Phantom knot after the last: p_{n−1} + (p_{n−1} − p_{n−2}), value v_{n−1}.
+        (2.0 * knots[n - 1].0 - knots[n - 2].0, knots[n - 1].1)
+    } else {
+        (knots[i + 1].0, knots[i + 1].1)
+    };
     if p1 > p0 {
         (v1 - v0) / (p1 - p0)
     } else {

@@ -39,9 +39,10 @@ fn none_linear_and_smooth_follow_their_formulas() {
 /// The spline on [0.3, 0.7] at τ = ¼, ½, ¾ is the Hermite cubic with the slopes
 /// m(0.3) = (v(0.7) − v(0.1))/0.6 and m(0.7) = (v(0.8) − v(0.3))/0.5, written out
 /// (h00 = 2τ³ − 3τ² + 1, h10 = τ³ − 2τ² + τ, h01 = −2τ³ + 3τ², h11 = τ³ − τ²), within
-/// 1e-5; on the first segment the end slope is 0.
+/// 1e-5; on the first segment the end slope is half its chord, (v(0.3) − v(0.1)) / 0.4
+/// (a phantom knot at −0.1 holding v(0.1)).
 #[test]
-fn the_spline_is_catmull_rom_with_flat_ends() {
+fn the_spline_is_catmull_rom_with_phantom_end_knots() {
     let k = knots(3);
     let m03 = (k[2].1 - k[0].1) / 0.6;
     let m07 = (k[3].1 - k[1].1) / 0.5;
@@ -54,10 +55,11 @@ fn the_spline_is_catmull_rom_with_flat_ends() {
         let got = ramp_value(&k, 0.3 + 0.4 * tau);
         assert!(close(got, want, 1e-5), "τ {tau}: {got} vs {want}");
     }
-    // First segment [0.1, 0.3]: slope 0 at 0.1, m(0.3) at 0.3.
+    // First segment [0.1, 0.3]: slope (v(0.3) − v(0.1)) / 0.4 at 0.1, m(0.3) at 0.3.
+    let m01 = (k[1].1 - k[0].1) / 0.4;
     let tau = 0.5f32;
-    // τ = ½: h00 = h01 = ½, h11 = −⅛; h10 multiplies the first knot's slope, 0.
-    let want = k[0].1 * 0.5 + k[1].1 * 0.5 - m03 * 0.2 * 0.125;
+    // τ = ½: h00 = h01 = ½, h10 = ⅛, h11 = −⅛.
+    let want = k[0].1 * 0.5 + k[1].1 * 0.5 + m01 * 0.2 * 0.125 - m03 * 0.2 * 0.125;
     let got = ramp_value(&k, 0.1 + 0.2 * tau);
     assert!(close(got, want, 1e-5), "{got} vs {want}");
 }
@@ -83,13 +85,18 @@ fn the_spline_passes_through_its_knots_and_is_c1() {
         assert!(close(left, m, 5e-3) && close(right, m, 5e-3), "knot {p}: {left} {right} vs {m}");
         assert!(close(ramp_value(&k, p - 1e-6), ramp_value(&k, p + 1e-6), 1e-5));
     }
-    // Flat ends: the slope at the first and last knot is 0, matching the constant beyond.
+    // The ends: the slope at the first and last knot is half the end segment's chord
+    // (a phantom knot one segment outside holding the end's value).
     // (Second-order one-sided quotients on the curve's side, within 5e-3 as above.)
     let f = |x: f32| ramp_value(&k, x);
     let h = 1e-3f32;
     let first = (f(0.1 + h) * 4.0 - f(0.1) * 3.0 - f(0.1 + 2.0 * h)) / (2.0 * h);
     let last = (f(0.8) * 3.0 - f(0.8 - h) * 4.0 + f(0.8 - 2.0 * h)) / (2.0 * h);
-    assert!(first.abs().max_element() < 5e-3 && last.abs().max_element() < 5e-3, "{first} {last}");
+    let want_first = (k[1].1 - k[0].1) / (2.0 * (k[1].0 - k[0].0));
+    let want_last = (k[3].1 - k[2].1) / (2.0 * (k[3].0 - k[2].0));
+    assert_eq!(spline_slope(&k, 0), want_first);
+    assert_eq!(spline_slope(&k, 3), want_last);
+    assert!(close(first, want_first, 5e-3) && close(last, want_last, 5e-3), "{first} {last}");
 }
 
 /// The closed-form integral over [a, b] matches a midpoint rule (100 000 steps, f64

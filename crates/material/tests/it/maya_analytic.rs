@@ -304,8 +304,9 @@ fn condition_set_range_and_remap_value_in_a_graph() {
 
 /// Spline and the ramp texture's exponential interpolations through the shader graph:
 /// remapValue's curve (0, 0), (0.5, 1), (1, 0.25), all spline, at 0.4 is the Catmull-Rom
-/// Hermite cubic with slopes 0 (first knot) and (0.25 − 0)/(1 − 0) at ½ (τ = 0.8:
-/// 0.896 · 1 + 0.5 · 0.25 · (−0.128) = 0.88); a U ramp from black to white with
+/// Hermite cubic with slopes (1 − 0)/(0.5 − (−0.5)) = 1 at the first knot (a phantom knot
+/// at −0.5 holding 0) and (0.25 − 0)/(1 − 0) at ½ (τ = 0.8: h10 = 0.032, h01 = 0.896,
+/// h11 = −0.128: 0.5 · 1 · 0.032 + 0.896 · 1 + 0.5 · 0.25 · (−0.128) = 0.896); a U ramp from black to white with
 /// exponential up (2) at u = 0.4 is 0.4² = 0.16, exponential down (3) 1 − 0.6² = 0.64
 /// (1e-5).
 #[test]
@@ -323,7 +324,7 @@ fn spline_and_exponential_interpolations_in_a_graph() {
         shader "flat" "maya_surfaceshader" ("outColor" = "blend.output")
         material "m" opaque "maya_shadingengine" ("surfaceShader" = "flat.outColor") end material"#,
     );
-    assert_rgb(shade(&c, [0.0, 0.0]), [0.0, 0.88, 0.12], 1e-5);
+    assert_rgb(shade(&c, [0.0, 0.0]), [0.0, 0.896, 0.104], 1e-5);
     for (mode, want) in [(2, 0.16f32), (3, 0.64)] {
         let c = scene(&format!(
             r#"
