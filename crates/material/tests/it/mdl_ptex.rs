@@ -655,3 +655,14 @@ fn face_edits_replace_faces() {
     let e = reader::read(&file).unwrap_err();
     assert!(e.offset == at as u64 + 5 && e.message.contains("face 9"), "{e}");
 }
+
+/// The 2 × 2 box reduction of an n × n image.
+pub(crate) fn reduce(values: &[f64], n: usize) -> Vec<f64> {
+    let m = n / 2;
+    (0..m * m)
+        .map(|t| {
+            let (x, y) = (2 * (t % m), 2 * (t / m));
+            (values[y * n + x] + values[y * n + x + 1] + values[(y + 1) * n + x] + values[(y + 1) * n + x + 1]) / 4.0
+        })
+        .collect()
+}

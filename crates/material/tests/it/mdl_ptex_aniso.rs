@@ -15,7 +15,7 @@ use material::mdl_modules::ptex::footprint::{filter_width, filter_widths};
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
 
-use crate::mdl_ptex::{ptex_file_full, read, Face, How};
+use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
 
 /// Texels a face side (level 0).
 const SIDE: usize = 32;
@@ -25,17 +25,6 @@ const PERIOD: f64 = 0.3;
 /// The texture at world x.
 fn pattern(x: f64) -> f64 {
     0.5 + 0.4 * (std::f64::consts::TAU * x / PERIOD).sin()
-}
-
-/// The 2 × 2 box reduction of an n × n image.
-fn reduce(values: &[f64], n: usize) -> Vec<f64> {
-    let m = n / 2;
-    (0..m * m)
-        .map(|t| {
-            let (x, y) = (2 * (t % m), 2 * (t / m));
-            (values[y * n + x] + values[y * n + x + 1] + values[(y + 1) * n + x] + values[(y + 1) * n + x + 1]) / 4.0
-        })
-        .collect()
 }
 
 /// The plane's file (the module documentation); `wired`: with adjacency (else none).

@@ -4,24 +4,13 @@
 
 use material::mdl_modules::ptex::{Filter, Ptex};
 
-use crate::mdl_ptex::{ptex_file_full, read, Face, How};
+use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
 
 /// One float channel of the first lookup lane.
 fn at(ptex: &Ptex, u: f32, v: f32, width: Option<f32>) -> f32 {
     let mut out = [0.0f32; 1];
     assert!(ptex.sample(0, u, v, width, Filter::Bilinear, 0, &mut out));
     out[0]
-}
-
-/// The 2 × 2 box reduction of an n × n image.
-fn reduce(values: &[f64], n: usize) -> Vec<f64> {
-    let m = n / 2;
-    (0..m * m)
-        .map(|t| {
-            let (x, y) = (2 * (t % m), 2 * (t / m));
-            (values[y * n + x] + values[y * n + x + 1] + values[(y + 1) * n + x] + values[(y + 1) * n + x + 1]) / 4.0
-        })
-        .collect()
 }
 
 /// One quad face of 16 × 16 texels of exp(−(r / 0.12)²) (r the distance of the texel

@@ -9,18 +9,7 @@ use material::mdl_modules::ptex::footprint::{filter_ellipse, filter_width, FaceE
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
 
-use crate::mdl_ptex::{ptex_file_full, read, Face, How};
-
-/// The 2 × 2 box reduction of an n × n image.
-fn reduce(values: &[f64], n: usize) -> Vec<f64> {
-    let m = n / 2;
-    (0..m * m)
-        .map(|t| {
-            let (x, y) = (2 * (t % m), 2 * (t / m));
-            (values[y * n + x] + values[y * n + x + 1] + values[(y + 1) * n + x] + values[(y + 1) * n + x + 1]) / 4.0
-        })
-        .collect()
-}
+use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
 
 /// One quad face of 64 × 64 texels striped along its diagonal u = v: texel (i, j) is 1
 /// where (i − j) mod 8 < 4, else 0 (stripes 4 texels wide along u), with its box-reduced
