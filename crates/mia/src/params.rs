@@ -6,73 +6,136 @@ use glam::Vec3A;
 use shader::rgb;
 use shader::{Ctx, NodeId};
 
-/// Parameter positions (the implementations list the names in this order).
+/// Parameter positions (the implementations list the names in this order); each variant
+/// is the position of the parameter it names (the last four only in `mia_material_x`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(usize)]
-#[allow(missing_docs)]
 pub enum P {
+    /// `diffuse_weight`.
     DiffuseWeight,
+    /// `diffuse`.
     Diffuse,
+    /// `diffuse_roughness`.
     DiffuseRoughness,
+    /// `reflectivity`.
     Reflectivity,
+    /// `refl_color`.
     ReflColor,
+    /// `refl_gloss`.
     ReflGloss,
+    /// `refl_gloss_samples`.
     ReflGlossSamples,
+    /// `refl_interpolate`.
     ReflInterpolate,
+    /// `refl_hl_only`.
     ReflHlOnly,
+    /// `refl_is_metal`.
     ReflIsMetal,
+    /// `transparency`.
     Transparency,
+    /// `refr_color`.
     RefrColor,
+    /// `refr_gloss`.
     RefrGloss,
+    /// `refr_ior`.
     RefrIor,
+    /// `refr_gloss_samples`.
     RefrGlossSamples,
+    /// `refr_interpolate`.
     RefrInterpolate,
+    /// `refr_translucency`.
     RefrTranslucency,
+    /// `refr_trans_color`.
     RefrTransColor,
+    /// `refr_trans_weight`.
     RefrTransWeight,
+    /// `anisotropy`.
     Anisotropy,
+    /// `anisotropy_rotation`.
     AnisotropyRotation,
+    /// `anisotropy_channel`.
     AnisotropyChannel,
+    /// `brdf_fresnel`.
     BrdfFresnel,
+    /// `brdf_0_degree_refl`.
     Brdf0DegreeRefl,
+    /// `brdf_90_degree_refl`.
     Brdf90DegreeRefl,
+    /// `brdf_curve`.
     BrdfCurve,
+    /// `brdf_conserve_energy`.
     BrdfConserveEnergy,
+    /// `refl_falloff_on`.
     ReflFalloffOn,
+    /// `refl_falloff_dist`.
     ReflFalloffDist,
+    /// `refl_falloff_color_on`.
     ReflFalloffColorOn,
+    /// `refl_falloff_color`.
     ReflFalloffColor,
+    /// `refl_depth`.
     ReflDepth,
+    /// `refl_cutoff`.
     ReflCutoff,
+    /// `refr_falloff_on`.
     RefrFalloffOn,
+    /// `refr_falloff_dist`.
     RefrFalloffDist,
+    /// `refr_falloff_color_on`.
     RefrFalloffColorOn,
+    /// `refr_falloff_color`.
     RefrFalloffColor,
+    /// `refr_depth`.
     RefrDepth,
+    /// `refr_cutoff`.
     RefrCutoff,
+    /// `indirect_multiplier`.
     IndirectMultiplier,
+    /// `ao_on`.
     AoOn,
+    /// `ao_samples`.
     AoSamples,
+    /// `ao_distance`.
     AoDistance,
+    /// `ao_dark`.
     AoDark,
+    /// `ao_ambient`.
     AoAmbient,
+    /// `ao_do_details`.
     AoDoDetails,
+    /// `thin_walled`.
     ThinWalled,
+    /// `no_visible_area_hl`.
     NoVisibleAreaHl,
+    /// `skip_inside_refl`.
     SkipInsideRefl,
+    /// `do_refractive_caustics`.
     DoRefractiveCaustics,
+    /// `backface_cull`.
     BackfaceCull,
+    /// `propagate_alpha`.
     PropagateAlpha,
+    /// `hl_vs_refl_balance`.
     HlVsReflBalance,
+    /// `cutout_opacity`.
     CutoutOpacity,
+    /// `additional_color`.
     AdditionalColor,
+    /// `bump`.
     Bump,
+    /// `no_diffuse_bump`.
     NoDiffuseBump,
+    /// `mode`.
     Mode,
+    /// `lights`.
     Lights,
+    /// `intr_grid_density`.
     IntrGridDensity,
+    /// `bump_mode`.
     BumpMode,
+    /// `overall_bump`.
     OverallBump,
+    /// `standard_bump`.
     StandardBump,
 }
 

@@ -13,7 +13,7 @@
 
 use material::mdl_modules::ptex::{reader, Filter, Ptex};
 
-use crate::mdl_ptex::{centroid, ptex_file, ptex_file_full, read, Face, How};
+use crate::mdl_ptex::{centroid, ptex_file, ptex_file_full, read, reduce, Face, How};
 
 /// One float channel per texel, from `values` (row by row, v = 0 first).
 fn face(log2: (i8, i8), values: Vec<f64>) -> Face {
@@ -193,18 +193,6 @@ fn triangle_values_are_continuous_across_shared_edges() {
     assert!(seam > 0.01, "the faces differ at their edges without adjacency ({seam})");
 }
 
-/// The 2 × 2 box reduction of a w × h image of one channel.
-fn box_reduce(values: &[f64], w: usize, h: usize) -> Vec<f64> {
-    let mut out = Vec::new();
-    for y in 0..h / 2 {
-        for x in 0..w / 2 {
-            let at = |i: usize, j: usize| values[(2 * y + j) * w + 2 * x + i];
-            out.push((at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)) / 4.0);
-        }
-    }
-    out
-}
-
 /// Quad faces of 2^1, 2^3 and 2^4 texels a side: Ptex's reduction order is face 2, face 1,
 /// face 0 (larger smaller side first); level 1 holds faces 2 and 1, level 2 face 2. The
 /// reduced levels read back as written (box reductions; 1e-6), each face ends in its
@@ -213,16 +201,16 @@ fn box_reduce(values: &[f64], w: usize, h: usize) -> Vec<f64> {
 fn reduced_levels_read_back_and_a_wide_footprint_picks_them() {
     let sizes = [1i8, 3, 4];
     let faces: Vec<Face> = sizes.iter().enumerate().map(|(id, &l)| face((l, l), varied(id, 1 << (2 * l)))).collect();
-    let reduce = |f: &Face, times: usize| {
+    let reduced = |f: &Face, times: usize| {
         let (mut values, mut n) = (f.texels.clone(), 1usize << f.log2.0);
         for _ in 0..times {
-            values = box_reduce(&values, n, n);
+            values = reduce(&values, n);
             n /= 2;
         }
         face((n.trailing_zeros() as i8, n.trailing_zeros() as i8), values)
     };
-    let level1 = vec![reduce(&faces[2], 1), reduce(&faces[1], 1)];
-    let level2 = vec![reduce(&faces[2], 2)];
+    let level1 = vec![reduced(&faces[2], 1), reduced(&faces[1], 1)];
+    let level2 = vec![reduced(&faces[2], 2)];
     let ptex = read(&ptex_file_full(1, 3, 1, &faces, 6, &[], &[level1.clone(), level2.clone()]));
     let expect = [vec![], vec![&level1[1]], vec![&level1[0], &level2[0]]];
     for (id, levels) in expect.iter().enumerate() {

@@ -13,6 +13,7 @@ use std::path::PathBuf;
 
 use render::{EngineKind, Settings};
 use shader::Shading;
+use support::scene_text::{translate, SceneText};
 use support::{mean, QUADRANTS};
 
 /// Renders the parsed scene with the path engine at `res`², `spp` samples: the pixels,
@@ -100,6 +101,39 @@ fn an_undeclared_helper_shader_on_the_emitter_warns_and_keeps_the_light() {
     assert!(left[0] > 4.0 * left[1] && left[0] > 4.0 * left[2], "left wall still red: {left:?}");
 }
 
+/// The view of the analytic-irradiance tests: `$include "export_multi.mdl"`, options
+/// `filter box 1 1 {options}`, an orthographic camera 0.2 units wide at 4² pixels at
+/// z = 1 looking down −z, and the shader "grey" (`export_multi::matte`, tint 0.5). The
+/// caller adds the lights and [`MDL_PLANE`].
+fn mdl_plane_view(options: &str) -> SceneText {
+    SceneText::new()
+        .include("export_multi.mdl")
+        .options(&format!("filter box 1 1 {options}"))
+        .camera("focal infinity aperture 0.2 aspect 1")
+        .resolution(4)
+        .camera_transform(&translate(0.0, 0.0, -1.0))
+        .text(r#"shader "grey" "mdl::export_multi::matte" ("tint" 0.5 0.5 0.5)"#)
+}
+
+/// The object "plane" of shader "grey" (100 × 100 at z = −5, facing +z) and its
+/// instance "plane_inst".
+const MDL_PLANE: &str = r#"object "plane" group
+    -50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5
+    v 0 v 1 v 2 v 3
+    p "grey" 0 1 2 3
+end group end object
+instance "plane_inst" "plane" end instance"#;
+
+/// The `.mi` text of [`mdl_plane_view`] with `options` under a 1 × 1 `physical_light`
+/// rectangle "lamp" of flux 100 at z = −3 facing down, over [`MDL_PLANE`].
+pub(crate) fn rectangle_lamp_over_mdl_plane(options: &str) -> String {
+    mdl_plane_view(options)
+        .light("lamp", r#""physical_light" ("color" 100 100 100) origin 0 0 -3 rectangle 1 0 0 0 -1 0 4 4"#, None)
+        .text(MDL_PLANE)
+        .instance("plane_inst")
+        .build()
+}
+
 /// The irradiance at distance `h` below the centre of a Lambertian square of side `s` and
 /// radiance `l`, facing it (midpoint rule, 200² cells).
 fn square_irradiance(l: f64, s: f64, h: f64) -> f64 {
@@ -122,24 +156,8 @@ fn physical_light_rectangle_over_an_mdl_plane_gives_the_analytic_irradiance() {
     // A 1 × 1 physical_light of flux 100, facing down 2 units above a plane of matte tint
     // 0.5, seen from above by an orthographic camera. The scene's "light relative scale"
     // 0.5 does not dim it: mental ray scales only what legacy (non-BSDF) shaders receive.
-    let text = r#"
-$include "export_multi.mdl"
-options "opt" filter box 1 1 "light relative scale" 0.5 end options
-camera "cam" focal infinity aperture 0.2 aspect 1 resolution 4 4 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -1 1 end instance
-shader "grey" "mdl::export_multi::matte" ("tint" 0.5 0.5 0.5)
-light "lamp" "physical_light" ("color" 100 100 100) origin 0 0 -3 rectangle 1 0 0 0 -1 0 4 4 end light
-instance "lamp_inst" "lamp" end instance
-object "plane" group
-    -50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5
-    v 0 v 1 v 2 v 3
-    p "grey" 0 1 2 3
-end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "lamp_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
-    let parsed = mi::parse_str("t.mi", text);
+    let text = rectangle_lamp_over_mdl_plane("\"light relative scale\" 0.5");
+    let parsed = mi::parse_str("t.mi", &text);
     let (px, messages, _) = render_parsed(&parsed, 4, 256, &[support::mdl_modules()]);
     assert!(messages.is_empty(), "{messages:#?}");
     // Radiance of the square: flux / (π A) = 100 / π; the plane reflects 0.5 / π of the
@@ -231,30 +249,21 @@ shader "mat" "mdl::export_multi::matte" ("tint" 0.5 0.25 0)"#,
 /// (4², 256 spp).
 #[test]
 fn physical_light_object_light_over_an_mdl_plane_gives_the_analytic_irradiance() {
-    let text = r#"
-$include "export_multi.mdl"
-options "opt" filter box 1 1 "light relative scale" 0.5 end options
-camera "cam" focal infinity aperture 0.2 aspect 1 resolution 4 4 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -1 1 end instance
-shader "grey" "mdl::export_multi::matte" ("tint" 0.5 0.5 0.5)
-object "lamp" group
+    let text = mdl_plane_view("\"light relative scale\" 0.5")
+        .text(
+            r#"object "lamp" group
     -0.5 -0.5 -3  -0.5 0.5 -3  0.5 0.5 -3  0.5 -0.5 -3
     v 0 v 1 v 2 v 3
     p "grey" 0 1 2 3
 end group end object
-instance "lamp_inst" "lamp" visible off shadow off end instance
-light "lamp_light" "physical_light" ("color" 100 100 100) origin 0 0 -3 object "lamp_inst" 4 4 end light
-instance "lamp_light_inst" "lamp_light" end instance
-object "plane" group
-    -50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5
-    v 0 v 1 v 2 v 3
-    p "grey" 0 1 2 3
-end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "lamp_light_inst" "lamp_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#;
-    let parsed = mi::parse_str("t.mi", text);
+instance "lamp_inst" "lamp" visible off shadow off end instance"#,
+        )
+        .light("lamp_light", r#""physical_light" ("color" 100 100 100) origin 0 0 -3 object "lamp_inst" 4 4"#, None)
+        .instance("lamp_inst")
+        .text(MDL_PLANE)
+        .instance("plane_inst")
+        .build();
+    let parsed = mi::parse_str("t.mi", &text);
     let (px, messages, _) = render_parsed(&parsed, 4, 256, &[support::mdl_modules()]);
     assert!(messages.is_empty(), "{messages:#?}");
     let e = square_irradiance(100.0 / std::f64::consts::PI, 1.0, 2.0);

@@ -5,6 +5,7 @@
 //! choice; `"light relative scale"` leaves the light on BSDF (MDL) materials unchanged.
 
 use crate::support;
+use crate::support::scene_text::SceneText;
 
 use render::integrator::PathSettings;
 use render::{EngineKind, Settings};
@@ -13,24 +14,21 @@ use render::{EngineKind, Settings};
 /// of albedo 0.5 that faces it and fills the left half of the view, under a constant
 /// environment of radiance 2 and nothing else; `options` go into the options block.
 fn plane_under_environment(options: &str, res: u32) -> String {
-    format!(
-        r#"
-options "opt" filter box 1 1 {options} end options
-camera "cam" focal infinity aperture 2 aspect 1 resolution {res} {res}
-    environment "mib_color_mix" ("num" 0, "color_base" 2 2 2 1)
-end camera
-instance "cam_inst" "cam" end instance
-material "half" "mib_illum_lambert" ("ambient" 0 0 0 1, "diffuse" 0.5 0.5 0.5 1) end material
+    SceneText::new()
+        .options(&format!("filter box 1 1 {options}"))
+        .camera(r#"focal infinity aperture 2 aspect 1 environment "mib_color_mix" ("num" 0, "color_base" 2 2 2 1)"#)
+        .resolution(res)
+        .text(
+            r#"material "half" "mib_illum_lambert" ("ambient" 0 0 0 1, "diffuse" 0.5 0.5 0.5 1) end material
 object "plane" group
     -50 -50 -5  0 -50 -5  0 50 -5  -50 50 -5
     v 0 v 1 v 2 v 3
     p "half" 0 1 2 3
 end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+instance "plane_inst" "plane" end instance"#,
+        )
+        .instance("plane_inst")
+        .build()
 }
 
 /// Direct light only: one scattering event, light sampling alone.
@@ -132,29 +130,8 @@ fn progressive_and_gi_next_take_the_path_engine() {
 /// with the option at 0.5 and without it (and is lit).
 #[test]
 fn light_relative_scale_leaves_mdl_materials_unchanged() {
-    let text = |options: &str| {
-        format!(
-            r#"
-$include "export_multi.mdl"
-options "opt" filter box 1 1 {options} end options
-camera "cam" focal infinity aperture 0.2 aspect 1 resolution 4 4 end camera
-instance "cam_inst" "cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -1 1 end instance
-shader "grey" "mdl::export_multi::matte" ("tint" 0.5 0.5 0.5)
-light "lamp" "physical_light" ("color" 100 100 100) origin 0 0 -3 rectangle 1 0 0 0 -1 0 4 4 end light
-instance "lamp_inst" "lamp" end instance
-object "plane" group
-    -50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5
-    v 0 v 1 v 2 v 3
-    p "grey" 0 1 2 3
-end group end object
-instance "plane_inst" "plane" end instance
-instgroup "root" "cam_inst" "lamp_inst" "plane_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-        )
-    };
     let render = |options: &str| {
-        let parsed = mi::parse_str("t.mi", &text(options));
+        let parsed = mi::parse_str("t.mi", &crate::mdl_cornell::rectangle_lamp_over_mdl_plane(options));
         let b = support::build_parsed(&parsed, 4, &[support::mdl_modules()]);
         assert!(b.messages.is_empty(), "{:#?}", b.messages);
         let settings = Settings { engine: EngineKind::Path, spp: Some(16), ..Settings::default() };
@@ -206,22 +183,18 @@ fn sphere_around_light(options: &str) -> String {
         let last = &ring_ids[ring_ids.len() - 1];
         polys.push_str(&format!("    p \"wall\" {bottom} {} {}\n", last[k], last[j]));
     }
-    format!(
-        r#"
-options "opt" filter box 1 1 {options} end options
-camera "cam" focal 1 aperture 2 aspect 1 resolution 8 8 end camera
-instance "cam_inst" "cam" end instance
-light "lamp" "mib_light_point" ("color" 1 1 1) origin 0 0 0 end light
-instance "lamp_inst" "lamp" end instance
-material "wall" "mib_illum_lambert" ("ambient" 0 0 0 1, "diffuse" 0.5 0.5 0.5 1) end material
+    SceneText::new()
+        .options(&format!("filter box 1 1 {options}"))
+        .light("lamp", r#""mib_light_point" ("color" 1 1 1) origin 0 0 0"#, None)
+        .text(&format!(
+            r#"material "wall" "mib_illum_lambert" ("ambient" 0 0 0 1, "diffuse" 0.5 0.5 0.5 1) end material
 object "ball" group
 {verts}    {vrefs}
 {polys}end group end object
-instance "ball_inst" "ball" end instance
-instgroup "root" "cam_inst" "lamp_inst" "ball_inst" end instgroup
-render "root" "cam_inst" "opt"
-"#
-    )
+instance "ball_inst" "ball" end instance"#
+        ))
+        .instance("ball_inst")
+        .build()
 }
 
 /// `"gi depth"` with `"gi" on` bounds the indirect bounces. Inside the lit sphere
