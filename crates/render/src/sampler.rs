@@ -79,20 +79,18 @@ const BUFFERED: u32 = 8;
 /// The salts of the four lanes of a set's scramble hash (`sobol_burley::sample_4d`'s).
 const LANE_SALTS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
 
-/// The scramble hashes of the kept dimension sets under `seed`: [`set_scramble`] of sets
-/// `0 .. KEPT_SETS`, in plain integer code so that the 64 lanes vectorise (see
-/// [`scramble::dispatch`]).
+/// Writes to `out` the scramble hashes of the kept dimension sets under `seed`:
+/// [`set_scramble`] of sets `0 .. KEPT_SETS`, in plain integer code so that the 64 lanes
+/// vectorise (see [`scramble::dispatch`]).
 #[inline(always)]
-fn kept_scrambles(seed: u32) -> [[u32; 4]; KEPT_SETS] {
+fn kept_scrambles(seed: u32, out: &mut [[u32; 4]; KEPT_SETS]) {
     let base = seed.wrapping_mul(0x9c8f_2d3b);
-    let mut out = [[0u32; 4]; KEPT_SETS];
     for (set, lanes) in out.iter_mut().enumerate() {
         let s = base ^ set as u32;
         for (lane, salt) in lanes.iter_mut().zip(LANE_SALTS) {
             *lane = parts::hash(s ^ salt);
         }
     }
-    out
 }
 
 /// The sample stream of one pixel sample. Numbers are made eight dimensions at a time
@@ -125,22 +123,35 @@ pub struct Sampler {
 impl Sampler {
     /// Sample `index` of the pixel whose scramble seed is `seed`.
     pub fn new(seed: u32, index: u32) -> Sampler {
-        let shuffle_seed = parts::hash(seed ^ 0x79c6_8e4a);
-        Sampler {
+        let mut sampler = Sampler {
             index,
             seed,
-            shuffle_seed,
-            shuffled: Self::shuffle(shuffle_seed, index),
+            shuffle_seed: 0,
+            shuffled: 0,
             dimension: 0,
             filled: 0,
             buffer: [0.0; BUFFERED as usize + 1],
-            scrambles: scramble::dispatch(
-                #[inline(always)]
-                || kept_scrambles(seed),
-            ),
+            scrambles: [[0; 4]; KEPT_SETS],
             nibbles: nibble_table(),
             xor_finish: scramble::XorFinish::detect(),
-        }
+        };
+        sampler.start_pixel(seed, index);
+        sampler
+    }
+
+    /// Starts sample `index` of the pixel whose scramble seed is `seed`, in place: the same
+    /// numbers as `Sampler::new(seed, index)` (a band reuses its samplers' slots rather than
+    /// moving a new one into them).
+    #[inline(never)]
+    pub fn start_pixel(&mut self, seed: u32, index: u32) {
+        self.seed = seed;
+        self.shuffle_seed = parts::hash(seed ^ 0x79c6_8e4a);
+        self.restart(index);
+        let scrambles = &mut self.scrambles;
+        scramble::dispatch(
+            #[inline(always)]
+            || kept_scrambles(seed, scrambles),
+        );
     }
 
     /// Starts sample `index` of the same pixel (dimension 0 again), keeping what depends on
@@ -349,6 +360,25 @@ mod tests {
                 }
                 assert_eq!(s.next_1d().to_bits(), fresh.next_1d().to_bits());
             }
+        }
+    }
+
+    /// A sampler started in place for another pixel ([`Sampler::start_pixel`], after
+    /// numbers of its old pixel were drawn) gives, bit for bit, a new sampler's numbers.
+    #[test]
+    fn started_in_place_equals_new() {
+        let mut reused = Sampler::new(pixel_seed(1, 2, 3), 5);
+        for (x, index) in [(0u32, 0u32), (7, 3), (9, 1000), (65_000, 17)] {
+            for _ in 0..13 {
+                reused.next_1d();
+            }
+            let seed = pixel_seed(x, 4, 3);
+            reused.start_pixel(seed, index);
+            let mut fresh = Sampler::new(seed, index);
+            for d in 0..80 {
+                assert_eq!(reused.next_1d().to_bits(), fresh.next_1d().to_bits(), "{x} {index} {d}");
+            }
+            assert_eq!(reused.stream(), fresh.stream());
         }
     }
 
