@@ -11,7 +11,9 @@
 //! sampler makes two sets at once), and [`dispatch`] picks the best build the CPU has at
 //! run time (SSE4.1: every x86-64 CPU since about 2008; AVX2: since about 2013): the binary
 //! still runs on any x86-64, and the numbers are the same bit for bit either way (integer
-//! arithmetic only).
+//! arithmetic only). The refill of the kept sets ([`XorFinish`]) is written in AVX2
+//! intrinsics instead, one 256-bit vector from the table's rows to the sampler's buffer:
+//! compiled from plain code, LLVM split those eight lanes into pieces.
 #![allow(unsafe_code)]
 
 use sobol_burley::parts;
@@ -45,7 +47,8 @@ fn row(rows: &PairRows, nibbles: u32, k: usize) -> &[u32; 8] {
 /// no feature question.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct XorFinish {
-    /// Whether the CPU has AVX2 (only ever true where it was detected).
+    /// Whether the CPU has AVX2 (only ever true where it was detected; read on x86-64).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     avx2: bool,
 }
 
