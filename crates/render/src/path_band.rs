@@ -109,8 +109,12 @@ impl PathBand<'_> {
     ) {
         let cam = self.world.camera.raster_rays();
         let mut lanes: Vec<Lane> = Vec::with_capacity(PACKET);
-        // The samplers of the pixels with lanes waiting (the last one the current pixel's).
+        // The samplers of the pixels with lanes waiting and of the current pixel, in a ring of
+        // `PACKET + 1` slots reused in place (a pixel begins with fewer than `PACKET` lanes
+        // waiting, so with its own at most `PACKET` pixels are open: a slot is free again by
+        // the time the ring comes back to it). `current`: the current pixel's slot.
         let mut samplers: Vec<Sampler> = Vec::with_capacity(PACKET + 1);
+        let mut current: Option<usize> = None;
         let mut row = None;
         for k in 0..pixels.len() {
             if cancel.load(Ordering::Relaxed) {
@@ -124,14 +128,18 @@ impl PathBand<'_> {
                 // Packets never span two rows: a row's packets are then the same whichever
                 // rows are rendered with it (a part of interleaved rows, a strip).
                 self.finish(&mut lanes, &mut samplers, pixels, base, out);
-                samplers.clear();
                 row = Some(y);
             }
             // One sampler per pixel, restarted for each sample: the scrambles that depend
             // on the pixel alone are hashed once.
-            samplers.push(Sampler::new(pixel_seed(x, y, self.seed), self.first));
+            let s = current.map_or(0, |c| (c + 1) % (PACKET + 1));
+            let seed = pixel_seed(x, y, self.seed);
+            match samplers.get_mut(s) {
+                Some(slot) => slot.start_pixel(seed, self.first),
+                None => samplers.push(Sampler::new(seed, self.first)),
+            }
+            current = Some(s);
             for index in self.first..self.first + self.count {
-                let s = samplers.len() - 1;
                 let sampler = &mut samplers[s];
                 sampler.restart(index);
                 let u = sampler.next_2d();
@@ -145,10 +153,6 @@ impl PathBand<'_> {
                 lanes.push(Lane { k, index, weight, ray, position: sampler.position(), sampler: s, time });
                 if lanes.len() == PACKET {
                     self.finish(&mut lanes, &mut samplers, pixels, base, out);
-                    // Only the current pixel's sampler is still needed.
-                    let current = samplers.pop();
-                    samplers.clear();
-                    samplers.extend(current);
                 }
             }
         }

@@ -32,21 +32,31 @@ pub fn pixel_seed(x: u32, y: u32, seed: u32) -> u32 {
 /// first 64 dimensions, more than a path of nine bounces uses. Later sets hash each time.
 const KEPT_SETS: usize = 16;
 
+/// Pairs of kept dimension sets: a refill makes sets `2·pair` and `2·pair + 1` together.
+const KEPT_PAIRS: usize = KEPT_SETS / 2;
+
 /// Sobol points of the kept dimension sets for each nibble of the sample index (the top
-/// 16 bits of the bit-reversed index, which are the ones Sobol's table uses): the
-/// construction is linear over XOR in the index bits, so a point is the XOR of four
-/// entries instead of one table row per set bit. Entry `[set][k][v]` is the point of the
-/// index whose nibble `k` (bits 16 + 4k …) is `v` and whose other bits are 0.
-type NibbleTable = [[[[u32; 4]; 16]; 4]; KEPT_SETS];
+/// 16 bits of the bit-reversed index, which are the ones Sobol's table uses), two sets a
+/// row: the construction is linear over XOR in the index bits, so a point is the XOR of
+/// four entries instead of one table row per set bit. Entry `[pair][k][v]` holds the points
+/// of sets `2·pair` (lanes 0–3) and `2·pair + 1` (lanes 4–7) of the index whose nibble `k`
+/// (bits 16 + 4k …) is `v` and whose other bits are 0: one refill reads four rows of eight
+/// lanes (one 256-bit vector each with AVX2).
+type NibbleTable = [scramble::PairRows; KEPT_PAIRS];
 
 fn nibble_table() -> &'static NibbleTable {
     static TABLE: OnceLock<Box<NibbleTable>> = OnceLock::new();
     TABLE.get_or_init(|| {
-        let mut table = Box::new([[[[0u32; 4]; 16]; 4]; KEPT_SETS]);
-        for (set, nibbles) in table.iter_mut().enumerate() {
+        let mut table = Box::new([[[[0u32; 8]; 16]; 4]; KEPT_PAIRS]);
+        for (pair, nibbles) in table.iter_mut().enumerate() {
             for (k, points) in nibbles.iter_mut().enumerate() {
                 for (v, point) in points.iter_mut().enumerate() {
-                    *point = parts::sobol_int4_rev((v as u32) << (16 + 4 * k), set as u32).into();
+                    let index = (v as u32) << (16 + 4 * k);
+                    let set = 2 * pair as u32;
+                    let first: [u32; 4] = parts::sobol_int4_rev(index, set).into();
+                    let second: [u32; 4] = parts::sobol_int4_rev(index, set + 1).into();
+                    point[..4].copy_from_slice(&first);
+                    point[4..].copy_from_slice(&second);
                 }
             }
         }
@@ -69,20 +79,18 @@ const BUFFERED: u32 = 8;
 /// The salts of the four lanes of a set's scramble hash (`sobol_burley::sample_4d`'s).
 const LANE_SALTS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
 
-/// The scramble hashes of the kept dimension sets under `seed`: [`set_scramble`] of sets
-/// `0 .. KEPT_SETS`, in plain integer code so that the 64 lanes vectorise (see
-/// [`scramble::dispatch`]).
+/// Writes to `out` the scramble hashes of the kept dimension sets under `seed`:
+/// [`set_scramble`] of sets `0 .. KEPT_SETS`, in plain integer code so that the 64 lanes
+/// vectorise (see [`scramble::dispatch`]).
 #[inline(always)]
-fn kept_scrambles(seed: u32) -> [[u32; 4]; KEPT_SETS] {
+fn kept_scrambles(seed: u32, out: &mut [[u32; 4]; KEPT_SETS]) {
     let base = seed.wrapping_mul(0x9c8f_2d3b);
-    let mut out = [[0u32; 4]; KEPT_SETS];
     for (set, lanes) in out.iter_mut().enumerate() {
         let s = base ^ set as u32;
         for (lane, salt) in lanes.iter_mut().zip(LANE_SALTS) {
             *lane = parts::hash(s ^ salt);
         }
     }
-    out
 }
 
 /// The sample stream of one pixel sample. Numbers are made eight dimensions at a time
@@ -108,26 +116,42 @@ pub struct Sampler {
     /// outlive [`Sampler::restart`]), all made with the sampler.
     scrambles: [[u32; 4]; KEPT_SETS],
     nibbles: &'static NibbleTable,
+    /// The refill's vector code for this CPU.
+    xor_finish: scramble::XorFinish,
 }
 
 impl Sampler {
     /// Sample `index` of the pixel whose scramble seed is `seed`.
     pub fn new(seed: u32, index: u32) -> Sampler {
-        let shuffle_seed = parts::hash(seed ^ 0x79c6_8e4a);
-        Sampler {
+        let mut sampler = Sampler {
             index,
             seed,
-            shuffle_seed,
-            shuffled: Self::shuffle(shuffle_seed, index),
+            shuffle_seed: 0,
+            shuffled: 0,
             dimension: 0,
             filled: 0,
             buffer: [0.0; BUFFERED as usize + 1],
-            scrambles: scramble::dispatch(
-                #[inline(always)]
-                || kept_scrambles(seed),
-            ),
+            scrambles: [[0; 4]; KEPT_SETS],
             nibbles: nibble_table(),
-        }
+            xor_finish: scramble::XorFinish::detect(),
+        };
+        sampler.start_pixel(seed, index);
+        sampler
+    }
+
+    /// Starts sample `index` of the pixel whose scramble seed is `seed`, in place: the same
+    /// numbers as `Sampler::new(seed, index)` (a band reuses its samplers' slots rather than
+    /// moving a new one into them).
+    #[inline(never)]
+    pub fn start_pixel(&mut self, seed: u32, index: u32) {
+        self.seed = seed;
+        self.shuffle_seed = parts::hash(seed ^ 0x79c6_8e4a);
+        self.restart(index);
+        let scrambles = &mut self.scrambles;
+        scramble::dispatch(
+            #[inline(always)]
+            || kept_scrambles(seed, scrambles),
+        );
     }
 
     /// Starts sample `index` of the same pixel (dimension 0 again), keeping what depends on
@@ -148,20 +172,14 @@ impl Sampler {
     }
 
     /// The bit-reversed Sobol points and the scramble hashes of dimensions
-    /// `4·set … 4·set + 3` of this sample.
+    /// `4·set … 4·set + 3` of this sample, for a set past the kept ones.
     #[inline(always)]
     fn set_parts(&self, set: u32) -> ([u32; 4], [u32; 4]) {
-        if (set as usize) < KEPT_SETS {
-            let table = &self.nibbles[set as usize];
-            let n = self.shuffled >> 16;
-            let point = |k: usize| Int4::from(table[k][((n >> (4 * k)) & 15) as usize]);
-            ((point(0) ^ point(1) ^ point(2) ^ point(3)).into(), self.scrambles[set as usize])
-        } else {
-            (parts::sobol_int4_rev(self.shuffled, set).into(), set_scramble(self.seed, set).into())
-        }
+        (parts::sobol_int4_rev(self.shuffled, set).into(), set_scramble(self.seed, set).into())
     }
 
-    /// Dimensions `4·set … 4·set + 7` of this sample (sets `set` and `set + 1`).
+    /// Dimensions `4·set … 4·set + 7` of this sample (sets `set` and `set + 1`), past the
+    /// kept sets.
     #[inline(always)]
     fn two_sets(&self, set: u32) -> [f32; BUFFERED as usize] {
         let (s0, h0) = self.set_parts(set);
@@ -193,10 +211,29 @@ impl Sampler {
     /// past the table.
     #[inline(never)]
     fn refill(&mut self, d: u32) -> f32 {
+        // (`d` is a multiple of 8: the pair of sets `d / 8`, sets `d / 4` and `d / 4 + 1`.)
+        let pair = (d / BUFFERED) as usize;
+        if pair >= KEPT_PAIRS {
+            return self.refill_past_kept(d);
+        }
+        // Both sets' points are the XOR of four rows of the table, one a nibble of the
+        // shuffled index; the scrambles of the two sets lie side by side.
+        let table: &'static NibbleTable = self.nibbles;
+        let hashes = self.scrambles[2 * pair..2 * pair + 2].as_flattened();
+        let hashes: &[u32; BUFFERED as usize] = hashes.try_into().expect("two sets of four");
+        let out = self.buffer.first_chunk_mut::<{ BUFFERED as usize }>().expect("the buffer");
+        self.xor_finish.run(&table[pair], self.shuffled >> 16, hashes, out);
+        self.filled = d + BUFFERED;
+        self.buffer[0]
+    }
+
+    /// [`Sampler::refill`] past the kept sets: the points and scrambles worked out, or past
+    /// the table a hashed number.
+    #[inline(never)]
+    fn refill_past_kept(&mut self, d: u32) -> f32 {
         if d < sobol_burley::NUM_DIMENSIONS {
             // The set's arithmetic built for the best instructions the CPU has.
-            // (`d` is a multiple of 8 below 256: sets `d / 4` and `d / 4 + 1` are both in
-            // the table.)
+            // (Sets `d / 4` and `d / 4 + 1` are both in the table.)
             let numbers = scramble::dispatch(
                 #[inline(always)]
                 || self.two_sets(d / 4),
@@ -323,6 +360,25 @@ mod tests {
                 }
                 assert_eq!(s.next_1d().to_bits(), fresh.next_1d().to_bits());
             }
+        }
+    }
+
+    /// A sampler started in place for another pixel ([`Sampler::start_pixel`], after
+    /// numbers of its old pixel were drawn) gives, bit for bit, a new sampler's numbers.
+    #[test]
+    fn started_in_place_equals_new() {
+        let mut reused = Sampler::new(pixel_seed(1, 2, 3), 5);
+        for (x, index) in [(0u32, 0u32), (7, 3), (9, 1000), (65_000, 17)] {
+            for _ in 0..13 {
+                reused.next_1d();
+            }
+            let seed = pixel_seed(x, 4, 3);
+            reused.start_pixel(seed, index);
+            let mut fresh = Sampler::new(seed, index);
+            for d in 0..80 {
+                assert_eq!(reused.next_1d().to_bits(), fresh.next_1d().to_bits(), "{x} {index} {d}");
+            }
+            assert_eq!(reused.stream(), fresh.stream());
         }
     }
 
