@@ -345,6 +345,61 @@ mod tests {
         assert_eq!(lx.peek_word(), Some(&b"end"[..]));
     }
 
+    /// The densest list (one digit and one delimiter a number) fills the fresh memory the
+    /// numbers go into to its last slot, and a list read into an empty vector is handed
+    /// over without the unused room.
+    #[test]
+    fn the_densest_list_fits_and_keeps_no_spare_room() {
+        let lines = 400_000;
+        let mut text = String::new();
+        for i in 0..lines {
+            text.push_str(&format!("{} {} {}\n", i % 10, (i / 10) % 10, (i / 100) % 10));
+        }
+        text.push_str("]\nend trilist\n");
+        let list_bytes = text.find(']').unwrap();
+        assert_eq!(list_bytes, 6 * lines, "two bytes a number");
+        for read_as_u32 in [false, true] {
+            let mut lx = lexer(&text);
+            let expect = |i: usize| [i % 10, (i / 10) % 10, (i / 100) % 10];
+            if read_as_u32 {
+                let mut out = Vec::new();
+                assert!(lx.u32_list_parallel(&mut out));
+                assert_eq!(out.len(), 3 * lines);
+                assert_eq!(out.capacity(), out.len());
+                assert!(out
+                    .chunks_exact(3)
+                    .enumerate()
+                    .all(|(i, c)| expect(i).iter().zip(c).all(|(&e, &v)| e as u32 == v)));
+            } else {
+                let mut out = Vec::new();
+                assert!(lx.f32_list_parallel(&mut out));
+                assert_eq!(out.len(), 3 * lines);
+                assert_eq!(out.capacity(), out.len());
+                assert!(out
+                    .chunks_exact(3)
+                    .enumerate()
+                    .all(|(i, c)| expect(i).iter().zip(c).all(|(&e, &v)| e as f32 == v)));
+            }
+            assert_eq!(lx.peek_word(), Some(&b"end"[..]));
+        }
+    }
+
+    /// Buffers of any lengths, empty ones among them, land in order from the given index,
+    /// and numbers that do not fit make the vector grow.
+    #[test]
+    fn copies_land_in_order_and_grow_when_short() {
+        let buffers: Vec<Vec<u32>> = (0..70u32).map(|b| (0..(b * 7) % 23).map(|k| b * 1000 + k).collect()).collect();
+        let expected: Vec<u32> = buffers.iter().flatten().copied().collect();
+        let mut numbers = vec![7u32; 5 + expected.len()];
+        assert_eq!(copy_parallel(&mut numbers, 5, &buffers), 5 + expected.len());
+        assert_eq!(&numbers[..5], &[7; 5]);
+        assert_eq!(&numbers[5..], &expected[..]);
+        let mut short = vec![1u32; 3];
+        assert_eq!(copy_parallel(&mut short, 2, &buffers), 2 + expected.len());
+        assert_eq!(&short[..2], &[1, 1]);
+        assert_eq!(&short[2..], &expected[..]);
+    }
+
     #[test]
     fn parallel_indices_equal_the_serial_path() {
         let mut text = String::new();
