@@ -55,7 +55,14 @@ impl Lexer {
         // (speed43: the heavy scene's 96 MB of vertex numbers and indices, 24 k page faults,
         // were the serial part of its parse). The pages past the numbers are never touched
         // and are handed back at the end.
-        let mut numbers: Vec<T> = vec![T::ZERO; (end - start) / 2 + 1];
+        let room = (end - start) / 2 + 1;
+        // Where the system refuses that much address space (strict overcommit, a list
+        // near the memory's size), the one-at-a-time path reads the list instead of the
+        // allocation aborting the process.
+        if Vec::<T>::new().try_reserve_exact(room).is_err() {
+            return false;
+        }
+        let mut numbers: Vec<T> = vec![T::ZERO; room];
         let mut written = 0;
         // One buffer per piece of a round, kept from round to round: their pages are
         // faulted in once, not once a round.
