@@ -23,6 +23,60 @@ pub fn process_cpu_seconds() -> Option<f64> {
     Some((user + system) as f64 / 100.0)
 }
 
+/// Bytes of the world's vertex and triangle arrays (positions, normals, interleaved
+/// vertex records, texture and user coordinates, bump bases, motion, triangles, material
+/// slots, Ptex face codes, hair data): the geometry mira holds while it renders, each
+/// array counted at its length (the allocator may hold a little more).
+pub fn geometry_bytes(world: &render::World) -> u64 {
+    fn bytes<T>(v: &[T]) -> usize {
+        std::mem::size_of_val(v)
+    }
+    let mesh = |m: &render::mesh::MeshData| {
+        bytes(&m.positions)
+            + bytes(&m.normals)
+            + bytes(&m.normals_oct)
+            + bytes(&m.vertices)
+            + m.textures.iter().map(|t| bytes(t)).sum::<usize>()
+            + m.user.iter().map(|u| bytes(u)).sum::<usize>()
+            + bytes(&m.bump_basis)
+            + bytes(&m.triangles)
+            + bytes(&m.slots)
+            + bytes(&m.ptex_quads)
+            + m.hair.as_ref().map_or(0, |h| bytes(&h.along) + bytes(&h.across) + bytes(&h.tangents))
+            + bytes(&m.motion)
+            + m.motion_more.iter().map(|k| bytes(k)).sum::<usize>()
+            + m.position_keys.iter().map(|k| bytes(k)).sum::<usize>()
+    };
+    world.meshes.iter().map(mesh).sum::<usize>() as u64
+}
+
+/// The `geometry:` line of `--stats`: the world's vertex and triangle bytes
+/// ([`geometry_bytes`]) and the acceleration structure's as its backend reports them.
+fn geometry_line(world: &render::World, accel: &dyn render::Accel) -> String {
+    let mib = |b: u64| b as f64 / (1 << 20) as f64;
+    let triangles = world.instanced_triangles().max(1) as f64;
+    let geometry = geometry_bytes(world);
+    let mut line = format!(
+        "geometry:       {:.1} MiB vertices and triangles ({:.1} B a triangle)",
+        mib(geometry),
+        geometry as f64 / triangles
+    );
+    match accel.memory() {
+        Some(m) if m.counted => {
+            line += &format!(", BVH {:.1} MiB ({:.1} B a triangle)", mib(m.bytes), m.bytes as f64 / triangles)
+        }
+        Some(m) => {
+            line += &format!(
+                ", BVH {:.1} MiB as Embree reports its allocations ({:.1} B a triangle)",
+                mib(m.bytes),
+                m.bytes as f64 / triangles
+            )
+        }
+        None => {}
+    }
+    line
+}
+
 /// Adds one strip's counts to the whole image's (the pre-passes' once: every strip reports
 /// the same).
 pub fn add_strip_stats(total: &mut render::Stats, strip: &render::Stats, first: bool) {
@@ -81,6 +135,7 @@ pub fn print_stats(
         t_accel.as_secs_f64()
     );
     println!("acceleration:   {:?}, built in {:.3} s", accel.backend(), t_accel.as_secs_f64());
+    println!("{}", geometry_line(world, accel));
     let engine = if classic { "classic" } else { "path" };
     println!("render:         {:.3} s ({engine}), {} x {} pixels, {} spp", secs, width, height, stats.spp);
     if let (Some(start), Some(now)) = (stages.cpu_at_render, process_cpu_seconds()) {

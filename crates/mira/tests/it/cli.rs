@@ -83,7 +83,11 @@ fn render_writes_exr_and_png() {
         ]);
         assert_eq!(code, 0, "{err}");
         assert!(
-            stdout.contains("Mrays/s") && stdout.contains("samples/s") && stdout.contains("peak memory"),
+            stdout.contains("Mrays/s")
+                && stdout.contains("samples/s")
+                && stdout.contains("peak memory")
+                && stdout.contains("MiB vertices and triangles")
+                && stdout.contains("BVH"),
             "{stdout}"
         );
         assert!(err.contains("wrote"), "{err}");

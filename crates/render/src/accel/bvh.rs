@@ -391,6 +391,30 @@ impl BvhAccel {
     }
 }
 
+impl BvhAccel {
+    /// Bytes of the BVHs' nodes, primitive indices and triangle copies.
+    fn heap_bytes(&self) -> u64 {
+        fn bvh_bytes(b: &CwBvh) -> usize {
+            std::mem::size_of_val(&b.nodes[..])
+                + std::mem::size_of_val(&b.primitive_indices[..])
+                + b.exact_node_aabbs.as_ref().map_or(0, |a| std::mem::size_of_val(&a[..]))
+        }
+        fn moving_bytes(m: &MovingBvh) -> usize {
+            bvh_bytes(&m.bvh) + std::mem::size_of_val(&m.tris[..]) + std::mem::size_of_val(&m.verts[..])
+        }
+        fn mesh_bytes(m: &MeshBvh) -> usize {
+            bvh_bytes(&m.bvh) + std::mem::size_of_val(&m.tris[..]) + m.moving.as_ref().map_or(0, moving_bytes)
+        }
+        let bytes = self.meshes.iter().map(mesh_bytes).sum::<usize>()
+            + self.tlas.as_ref().map_or(0, bvh_bytes)
+            + self.flat.as_ref().map_or(0, mesh_bytes)
+            + self.flat_moving.as_ref().map_or(0, moving_bytes)
+            + std::mem::size_of_val(&self.instances[..])
+            + std::mem::size_of_val(&self.tlas_instances[..]);
+        bytes as u64
+    }
+}
+
 impl Accel for BvhAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut best = None;
@@ -460,5 +484,9 @@ impl Accel for BvhAccel {
 
     fn backend(&self) -> Backend {
         Backend::Rust
+    }
+
+    fn memory(&self) -> Option<super::AccelMemory> {
+        Some(super::AccelMemory { bytes: self.heap_bytes(), counted: true })
     }
 }

@@ -118,10 +118,25 @@ struct RtcRayHit {
     hit: RtcHit,
 }
 
+/// `RTCMemoryMonitorFunction`: called by Embree with the bytes it is about to allocate
+/// (positive) or has freed (negative); returning `false` would make the allocation fail.
+type MemoryMonitor = unsafe extern "C" fn(user: *mut c_void, bytes: isize, post: bool) -> bool;
+
+/// The memory monitor mira installs on its devices: adds Embree's allocations and frees
+/// to the `AtomicI64` at `user` (the device's [`EmbreeAccel::memory`]) and allows them all.
+unsafe extern "C" fn count_memory(user: *mut c_void, bytes: isize, _post: bool) -> bool {
+    // SAFETY: `user` is the `AtomicI64` boxed in the `EmbreeAccel` that owns the device,
+    // which outlives every call (the device is released in its `drop`).
+    let counter = unsafe { &*(user as *const std::sync::atomic::AtomicI64) };
+    counter.fetch_add(bytes as i64, std::sync::atomic::Ordering::Relaxed);
+    true
+}
+
 #[link(name = "embree3")]
 extern "C" {
     fn rtcNewDevice(config: *const c_char) -> RtcDevice;
     fn rtcReleaseDevice(device: RtcDevice);
+    fn rtcSetDeviceMemoryMonitorFunction(device: RtcDevice, monitor: MemoryMonitor, user: *mut c_void);
     fn rtcGetDeviceError(device: RtcDevice) -> c_uint;
     fn rtcNewScene(device: RtcDevice) -> RtcScene;
     fn rtcSetSceneBuildQuality(scene: RtcScene, quality: c_uint);
@@ -215,6 +230,9 @@ pub struct EmbreeAccel<'w> {
     /// last bit against its one-ray kernel (AVX2: 4,035 of 16,384 first-hit depths of the
     /// 1 M-triangle heavy scene), where the common layout agrees but for exact ties.
     packets: bool,
+    /// Bytes Embree holds for this device, as its memory monitor reported them
+    /// ([`count_memory`]): boxed, so that its address, which Embree keeps, stays put.
+    memory: Box<std::sync::atomic::AtomicI64>,
     world: std::marker::PhantomData<&'w World>,
 }
 
@@ -266,6 +284,11 @@ impl<'w> EmbreeAccel<'w> {
         // from Embree itself or from live Rust buffers of the stated sizes.
         unsafe {
             let device = rtcNewDevice(config.as_ptr());
+            let memory = Box::new(std::sync::atomic::AtomicI64::new(0));
+            if !device.is_null() {
+                let user = std::ptr::from_ref::<std::sync::atomic::AtomicI64>(&memory).cast_mut().cast::<c_void>();
+                rtcSetDeviceMemoryMonitorFunction(device, count_memory, user);
+            }
             let mut compact = false;
             let meshes: Vec<RtcScene> = world
                 .meshes
@@ -335,7 +358,7 @@ impl<'w> EmbreeAccel<'w> {
                 rtcReleaseGeometry(geom);
             }
             rtcCommitScene(top);
-            EmbreeAccel { device, top, meshes, packets: !compact, world: std::marker::PhantomData }
+            EmbreeAccel { device, top, meshes, packets: !compact, memory, world: std::marker::PhantomData }
         }
     }
 
@@ -551,6 +574,11 @@ impl Accel for EmbreeAccel<'_> {
 
     fn backend(&self) -> Backend {
         Backend::Embree
+    }
+
+    fn memory(&self) -> Option<super::AccelMemory> {
+        let bytes = self.memory.load(std::sync::atomic::Ordering::Relaxed);
+        Some(super::AccelMemory { bytes: bytes.max(0) as u64, counted: false })
     }
 }
 

@@ -77,6 +77,23 @@ pub trait Accel: Send + Sync {
     }
     /// Which backend this is.
     fn backend(&self) -> Backend;
+    /// Bytes the built structure holds (nodes, leaves and any copied triangles), as far as
+    /// the backend knows them ([`AccelMemory`]); `None` where it cannot tell.
+    fn memory(&self) -> Option<AccelMemory> {
+        None
+    }
+}
+
+/// The memory of a built acceleration structure, for `--stats`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AccelMemory {
+    /// Bytes held (nodes, leaves, copied triangles and vertices).
+    pub bytes: u64,
+    /// How the figure was obtained: `true` when the backend counted its own arrays,
+    /// `false` when it is what the library reported allocating through its memory monitor
+    /// (Embree: its node and leaf blocks and build arrays still held, which includes
+    /// allocated block space its build did not fill).
+    pub counted: bool,
 }
 
 /// Which instances are placed flat in world space (their mesh is used by no other

@@ -288,3 +288,25 @@ fn embree_reads_every_ray_field() {
     }
     assert!(first_hits > 1_500 && second_hits > 300, "{first_hits} first hits, {second_hits} second hits");
 }
+
+/// Both backends report the bytes of what they built (`--stats`' `geometry:` line): the
+/// Rust BVH counts its own arrays, at least its world-space triangle copies (three
+/// 16-byte points a triangle); Embree's memory monitor reports what the device holds after
+/// the build, within a few kilobytes a triangle of this small scene (its block sizes).
+#[test]
+fn backends_report_their_memory() {
+    let world = cornell();
+    let triangles = world.instanced_triangles() as u64;
+    assert!(triangles > 0);
+    let rust = accel::build(&world, Backend::Rust).memory().expect("the Rust BVH counts its arrays");
+    assert!(rust.counted);
+    assert!(rust.bytes >= 48 * triangles, "{} bytes for {triangles} triangles", rust.bytes);
+    assert!(rust.bytes <= 1024 * triangles, "{} bytes for {triangles} triangles", rust.bytes);
+    #[cfg(embree)]
+    {
+        let embree = accel::build(&world, Backend::Embree).memory().expect("Embree's monitor reports");
+        assert!(!embree.counted);
+        assert!(embree.bytes >= 16 * triangles, "{} bytes for {triangles} triangles", embree.bytes);
+        assert!(embree.bytes <= 4096 * triangles, "{} bytes for {triangles} triangles", embree.bytes);
+    }
+}
