@@ -48,6 +48,7 @@ mod mdl_ptex_aniso;
 mod mdl_ptex_blend;
 mod mdl_ptex_ellipse;
 mod mdl_ptex_filter;
+mod mdl_ptex_gauss;
 mod mdl_ptex_seams;
 mod mdl_rough_transmission;
 mod mdl_state_space;

@@ -5,6 +5,7 @@
 //! byte by `mdl_ptex`'s writer.
 
 use glam::Vec3A;
+use material::mdl_modules::ptex::anisotropic::major_axis_weights;
 use material::mdl_modules::ptex::footprint::{filter_ellipse, filter_width, FaceEllipse};
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
@@ -118,8 +119,8 @@ fn a_diagonal_tilt_gives_a_diagonal_ellipse() {
 /// texel there 1/16: 16 probes spaced 1/16, each 1/16 wide (level 0 on both faces). Their
 /// values, by hand: 6 of face 0's a, two in face 0's half texel along the edge (3/4 a +
 /// 1/4 e and 1/4 a + 3/4 e, e = (a + b) / 2 the edge's value, b face 1's column 2), 8 of
-/// face 1's column 2 (at its texel centres): the mean (7 a + e + 8 b) / 16, matched within
-/// 1e-3 for face 1 constant (b = 0.75) and for face 1 striped by column (1, 0, 1, 0: b =
+/// face 1's column 2 (at its texel centres): their sum with the probes' Gaussian weights
+/// (`major_axis_weights(16)`), matched within 1e-3 for face 1 constant (b = 0.75) and for face 1 striped by column (1, 0, 1, 0: b =
 /// 1). Probed at face 0's spacing (4 probes 1/4 wide: face 1's stripes read at its 1 × 4
 /// level, their mean) the stripes' value is off by more than 0.1.
 #[test]
@@ -148,12 +149,14 @@ fn probes_across_an_edge_take_the_neighbours_resolution() {
         let got =
             f64::from(ellipse_at(&ptex, 0, u, v, FaceEllipse { axis: (1.0, 0.0), major: 1.0, minor: 1.0 / 64.0 }));
         let e = (a + b) / 2.0;
-        let want = (7.0 * a + e + 8.0 * b) / 16.0;
+        let values = [a, a, a, a, a, a, 0.75 * a + 0.25 * e, 0.25 * a + 0.75 * e, b, b, b, b, b, b, b, b];
+        let weights = major_axis_weights(16);
+        let want: f64 = values.iter().zip(weights).map(|(x, w)| x * f64::from(w)).sum();
         // At face 0's spacing: 4 probes 1/4 apart, each 1/4 wide.
         let first_face: f64 = (0..4)
             .map(|k| {
                 let (face, pu, pv) = ptex.across_edges(0, u - 0.5 + (k as f32 + 0.5) * 0.25, v);
-                f64::from(sample_at(&ptex, face, pu, pv, 0.25)) / 4.0
+                f64::from(sample_at(&ptex, face, pu, pv, 0.25)) * f64::from(major_axis_weights(4)[k])
             })
             .sum();
         let message = format!("b {b}: got {got}, by hand {want}, at face 0's spacing {first_face}");

@@ -6,8 +6,9 @@
 //! The footprint is an ellipse in face coordinates (`footprint::FaceEllipse`: its major
 //! axis' direction, its widths along and across it), read as the rectangle of those widths
 //! turned along the major axis: n lookups of the minor width (blended levels,
-//! [`Ptex::blend_for`]), spaced evenly over the major width along its direction, averaged.
-//! A thin footprint diagonal to the face's axes so averages only texels along its major
+//! [`Ptex::blend_for`]), spaced evenly over the major width along its direction, weighted
+//! by Ptex's Gaussian of their distance from the centre ([`major_axis_weights`]). A thin
+//! footprint diagonal to the face's axes so averages only texels along its major
 //! axis (reading its bounding rectangle in face space would blur across it). Several
 //! probes rather than an elliptical Gaussian over the texels of one level: each probe is
 //! the filter's own interpolation, continuous across face edges of any resolutions
@@ -43,6 +44,29 @@ pub const MAX_CROSSINGS: usize = 4;
 /// The most lookups a footprint is averaged from (a longer footprint is read with squares
 /// wider than its minor width: blurred across its axis by that much).
 pub const MAX_PROBES: usize = 16;
+
+/// The weights (summing to 1) of `probes` probes (1 to [`MAX_PROBES`]; entries past
+/// `probes` 0) spaced evenly over an elliptical footprint's major width: Ptex's Gaussian
+/// kernel exp(−2 x²), x the probe's distance from the footprint's centre in major widths
+/// (probe k at x = (k + ½) / n − ½), normalised. Ptex's convention makes the filter
+/// width w the Gaussian's 2σ (σ = w / 2) and lets the kernel run to ±2 w; mira keeps the
+/// probes within the footprint's own major width (|x| ≤ ½, the ends weighing e^(−½) ≈
+/// 0.61 of the centre) so the blur along the major axis stays that of the footprint,
+/// matching the minor width's lookup across it. Symmetric about the centre.
+pub fn major_axis_weights(probes: usize) -> [f32; MAX_PROBES] {
+    let probes = probes.clamp(1, MAX_PROBES);
+    let mut weights = [0.0f32; MAX_PROBES];
+    let mut sum = 0.0f32;
+    for (k, w) in weights[..probes].iter_mut().enumerate() {
+        let x = (k as f32 + 0.5) / probes as f32 - 0.5;
+        *w = (-2.0 * x * x).exp();
+        sum += *w;
+    }
+    for w in &mut weights[..probes] {
+        *w /= sum;
+    }
+    weights
+}
 
 impl Ptex {
     /// The filtered value at face `face`, face coordinates (`u`, `v`), over a footprint
@@ -109,10 +133,11 @@ impl Ptex {
         // unless that is wider).
         let step = major / probes as f32;
         let width = minor.max(step * du.abs().max(dv.abs()));
+        let weights = major_axis_weights(probes);
         out.fill(0.0);
         let mut lanes = [0.0f32; 4];
         let lanes = &mut lanes[..out.len()];
-        for k in 0..probes {
+        for (k, weight) in weights[..probes].iter().enumerate() {
             let offset = (k as f32 + 0.5) * step - 0.5 * major;
             let (pface, pu, pv) = self.across_edges(face, u + offset * du, v + offset * dv);
             if !self.sample(pface, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
@@ -120,7 +145,7 @@ impl Ptex {
                 return false;
             }
             for (o, l) in out.iter_mut().zip(lanes.iter()) {
-                *o += *l / probes as f32;
+                *o += *l * weight;
             }
         }
         true
