@@ -167,3 +167,36 @@ fn probes_across_an_edge_take_the_neighbours_resolution() {
         eprintln!("{message}");
     }
 }
+
+/// A strip of three quad faces along u, the middle one finer: face 0 and face 2 constant
+/// (1 × 1, 0), face 1 of 4 × 1 texels (0, 1, 0, 0), each sharing its u = 1 edge with the
+/// next one's u = 0 edge (no reduced levels: every probe reads level 0). A footprint 3
+/// long along u and 1/64 wide centred at u = 0.75 on face 0 crosses face 1 and ends
+/// 0.25 into face 2: a texel along the axis is 1 at its centre and both ends but 1/4 in
+/// face 1, so it is probed 12 times, 1/4 apart and 1/4 wide, and probe 8 lands on the
+/// centre of face 1's texel 1, every other probe on a 0 (face 0 and face 2 blend only
+/// toward edge values of 0; face 1's other texels 0, read at their centres): it reads
+/// probe 8's weight, `major_axis_weights(12)[8]`, within 1e-4. Spaced by the centre and
+/// the ends alone (3 probes 1 apart, 1 wide, at u = −0.25, 0.75, 1.75) the lookup would
+/// read face 1 once, at its average (0.25 × the middle probe's weight, 0.0817): off by
+/// more than 0.005, 50 times the tolerance.
+#[test]
+fn a_crossed_face_sets_the_probes_spacing() {
+    let constant = || Face { log2: (0, 0), texels: vec![0.0], how: How::ConstantInfo };
+    let middle = Face { log2: (2, 0), texels: vec![0.0, 1.0, 0.0, 0.0], how: How::Zipped };
+    let adjacency = [([-1, 1, -1, -1], [0, 3, 0, 0]), ([-1, 2, -1, 0], [0, 3, 0, 1]), ([-1, -1, -1, 1], [0, 0, 0, 1])];
+    let ptex = read(&ptex_file_full(1, 3, 1, &[constant(), middle, constant()], 6, &adjacency, &[]));
+    let (u, v) = (0.75f32, 0.5f32);
+    let got = ellipse_at(&ptex, 0, u, v, FaceEllipse { axis: (1.0, 0.0), major: 3.0, minor: 1.0 / 64.0 });
+    let want = major_axis_weights(12)[8];
+    let ends_only: f32 = (0..3)
+        .map(|k| {
+            let (face, pu, pv) = ptex.across_edges(0, u - 1.0 + k as f32, v);
+            sample_at(&ptex, face, pu, pv, 1.0) * major_axis_weights(3)[k]
+        })
+        .sum();
+    let message = format!("got {got}, by hand {want}, spaced by the centre and ends {ends_only}");
+    assert!((got - want).abs() <= 1e-4, "{message}");
+    assert!((ends_only - want).abs() > 0.005, "{message}");
+    eprintln!("{message}");
+}

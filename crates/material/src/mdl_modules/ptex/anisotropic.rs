@@ -18,15 +18,16 @@
 //!
 //! The number of probes: n = ⌈major / max(minor, t)⌉ (at most [`MAX_PROBES`]), t the
 //! distance along the major axis across one texel (the nearer of the next u and v texel
-//! borders) of the level the minor width picks, at the footprint's centre and at each end
-//! of its major axis: an end past a face edge is carried into the face across it, with
-//! the axis' direction (the edge's orientation: the unfolding of the two faces,
-//! `filter`'s `outside_edge`), and t taken there at that face's own resolution, so a
-//! footprint reaching a finer neighbour is probed at the neighbour's texels. A footprint
-//! within a texel along its axis is one interpolated lookup of its major width, as the
-//! isotropic one. Each probe reads a square as wide as the spacing's larger extent along u
-//! or v (the minor width where that is larger; past [`MAX_PROBES`] the squares widen with
-//! the spacing, blurring across the axis by that much).
+//! borders) of the level the minor width picks, the smallest over every face the major
+//! axis crosses: walked from the centre to each end, face by face, the axis carried
+//! across each edge it leaves by with its direction (the edge's orientation: the
+//! unfolding of the two faces, `filter`'s `outside_edge`), t taken in each face at its
+//! own resolution, so a footprint reaching or crossing a finer face is probed at that
+//! face's texels. A footprint within a texel along its axis is one interpolated lookup of
+//! its major width, as the isotropic one. Each probe reads a square as wide as the
+//! spacing's larger extent along u or v in the face it lands in (the axis carried there;
+//! the minor width where that is larger; past [`MAX_PROBES`] the squares widen with the
+//! spacing, blurring across the axis by that much).
 //!
 //! A probe past a face edge reads the face across it ([`Ptex::across_edges`]: the point
 //! carried over the edge as the bilinear filter carries texels, and on over further edges
@@ -66,6 +67,22 @@ pub fn major_axis_weights(probes: usize) -> [f32; MAX_PROBES] {
         *w /= sum;
     }
     weights
+}
+
+/// How far past a face edge (face units along the axis) a walk along the major axis steps
+/// to carry the axis into the face across it.
+const EDGE_NUDGE: f32 = 1e-5;
+
+/// The distance along `dir` (face coordinates per unit; any length) from (`u`, `v`) to the
+/// edge of the face (a quad's unit square, a triangle's u, v ≥ 0, u + v ≤ 1) the ray
+/// leaves by: 0 for a point already past an edge it moves away from, infinite for no
+/// motion.
+fn exit_distance(mesh: MeshType, (u, v): (f32, f32), (du, dv): (f32, f32)) -> f32 {
+    let toward = |gap: f32, rate: f32| if rate > 0.0 { (gap / rate).max(0.0) } else { f32::INFINITY };
+    match mesh {
+        MeshType::Quad => toward(1.0 - u, du).min(toward(u, -du)).min(toward(1.0 - v, dv)).min(toward(v, -dv)),
+        MeshType::Triangle => toward(u, -du).min(toward(v, -dv)).min(toward(1.0 - u - v, du + dv)),
+    }
 }
 
 impl Ptex {
@@ -113,33 +130,24 @@ impl Ptex {
         } else {
             (1.0, 0.0)
         };
-        // One texel along the axis, at the centre and at both ends (each at its face's
+        // One texel along the axis in every face the axis crosses (each at its own
         // resolution, the axis carried across edges).
-        let mut texel = self.texel_along(face, (du, dv), minor);
-        for end in [-0.5 * major, 0.5 * major] {
-            let (eu, ev) = (u + end * du, v + end * dv);
-            if outside_edge(self.mesh, eu, ev).is_some() {
-                let (eface, _, _, edir) = self.carry_across(face, eu, ev, (du, dv));
-                if eface != face {
-                    texel = texel.min(self.texel_along(eface, edir, minor));
-                }
-            }
-        }
+        let texel = self.finest_texel_along(face, (u, v), (du, dv), major, minor);
         let probes = ((major / minor.max(texel)).ceil() as usize).clamp(1, MAX_PROBES);
         if probes == 1 || out.len() > 4 {
             return self.sample(face, u, v, Some(major), Filter::Bilinear, first, out);
         }
-        // Squares as wide as the spacing's larger extent along u or v (the minor width
-        // unless that is wider).
+        // Squares as wide as the spacing's larger extent along u or v in the probe's face
+        // (the minor width unless that is wider).
         let step = major / probes as f32;
-        let width = minor.max(step * du.abs().max(dv.abs()));
         let weights = major_axis_weights(probes);
         out.fill(0.0);
         let mut lanes = [0.0f32; 4];
         let lanes = &mut lanes[..out.len()];
         for (k, weight) in weights[..probes].iter().enumerate() {
             let offset = (k as f32 + 0.5) * step - 0.5 * major;
-            let (pface, pu, pv) = self.across_edges(face, u + offset * du, v + offset * dv);
+            let (pface, pu, pv, pdir) = self.carry_across(face, u + offset * du, v + offset * dv, (du, dv));
+            let width = minor.max(step * pdir.0.abs().max(pdir.1.abs()));
             if !self.sample(pface, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
                 out.fill(0.0);
                 return false;
@@ -149,6 +157,35 @@ impl Ptex {
             }
         }
         true
+    }
+
+    /// The smallest distance (face units of face `face`, along its unit direction `dir`)
+    /// across one texel ([`Ptex::texel_along`], at the level the minor width `minor`
+    /// picks) in any face the major axis crosses: walked from the centre (`u`, `v`) to
+    /// each end (`major` / 2 away), face by face, the axis carried across each edge it
+    /// leaves by (up to [`MAX_CROSSINGS`] edges each way; ends where no face is across).
+    fn finest_texel_along(&self, face: u32, (u, v): (f32, f32), (du, dv): (f32, f32), major: f32, minor: f32) -> f32 {
+        let mut texel = self.texel_along(face, (du, dv), minor);
+        for sign in [-1.0f32, 1.0] {
+            let (mut f, mut pu, mut pv, mut dir) = (face, u, v, (sign * du, sign * dv));
+            let mut left = 0.5 * major;
+            for _ in 0..MAX_CROSSINGS {
+                let exit = exit_distance(self.mesh, (pu, pv), dir);
+                if !(exit < left) {
+                    break;
+                }
+                // Just past the edge the axis leaves by.
+                let past = exit + EDGE_NUDGE;
+                let (next, nu, nv, ndir) = self.carry_across(f, pu + past * dir.0, pv + past * dir.1, dir);
+                if next == f {
+                    break;
+                }
+                texel = texel.min(self.texel_along(next, ndir, minor));
+                (f, pu, pv, dir) = (next, nu, nv, ndir);
+                left -= past;
+            }
+        }
+        texel
     }
 
     /// The distance (face units) along direction `dir` (a unit vector of face coordinates)
