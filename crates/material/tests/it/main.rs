@@ -50,6 +50,7 @@ mod mdl_ptex_ellipse;
 mod mdl_ptex_filter;
 mod mdl_ptex_gauss;
 mod mdl_ptex_seams;
+mod mdl_ptex_subface;
 mod mdl_rough_transmission;
 mod mdl_state_space;
 mod mdl_statements;

@@ -32,8 +32,22 @@
 //! A probe past a face edge reads the face across it ([`Ptex::across_edges`]: the point
 //! carried over the edge as the bilinear filter carries texels, and on over further edges
 //! up to [`MAX_CROSSINGS`] times) at the probe's width in face units, which picks that
-//! face's level at its own resolution (Ptex's faces are all one unit across); where no
+//! face's level at its own resolution (Ptex's faces are all one unit across, sub-faces half a unit, below); where no
 //! face is across, the probe clamps to the face's edge.
+//!
+//! Ptex's sub-faces (quad-mesh files: the n sub-quads of a face of n ≠ 4 vertices, each
+//! half a quad face's size in parameter space, flagged 8 in the file): a quad face's edge
+//! against a non-quad face is shared by two sub-faces, each along half of it. The quad
+//! face's adjacency names the primary one, along the first half (fraction t < ½ along the
+//! edge, counter-clockwise), which maps to 1 − 2 t along the primary's own edge at twice
+//! the depth; the second half lands past the primary's previous edge and is carried on, as
+//! any point, into the secondary sub-face across it. Back from a sub-face, fraction t
+//! along its edge is (1 − t) / 2 along the quad face's (the primary, whose edge the quad
+//! face's adjacency names) or 1 − t / 2 (the secondary), at half the depth. A width in
+//! face units doubles into a sub-face and halves out of one (Ptex's filters build a
+//! sub-face's kernel on its main face at half its coordinates and widths). Only these
+//! probes are carried so; the bilinear lookup's blending across an edge (`edges`) still
+//! pairs a sub-face's edge with the whole of a quad face's.
 
 use super::filter::{edge_frame, from_edge, outside_edge};
 use super::footprint::FaceEllipse;
@@ -146,8 +160,8 @@ impl Ptex {
         let lanes = &mut lanes[..out.len()];
         for (k, weight) in weights[..probes].iter().enumerate() {
             let offset = (k as f32 + 0.5) * step - 0.5 * major;
-            let (pface, pu, pv, pdir) = self.carry_across(face, u + offset * du, v + offset * dv, (du, dv));
-            let width = minor.max(step * pdir.0.abs().max(pdir.1.abs()));
+            let (pface, pu, pv, pdir, scale) = self.carry_across(face, u + offset * du, v + offset * dv, (du, dv));
+            let width = (minor * scale).max(step * pdir.0.abs().max(pdir.1.abs()));
             if !self.sample(pface, pu, pv, Some(width), Filter::Bilinear, first, lanes) {
                 out.fill(0.0);
                 return false;
@@ -168,7 +182,7 @@ impl Ptex {
         let mut texel = self.texel_along(face, (du, dv), minor);
         for sign in [-1.0f32, 1.0] {
             let (mut f, mut pu, mut pv, mut dir) = (face, u, v, (sign * du, sign * dv));
-            let mut left = 0.5 * major;
+            let (mut left, mut scale) = (0.5 * major, 1.0f32);
             for _ in 0..MAX_CROSSINGS {
                 let exit = exit_distance(self.mesh, (pu, pv), dir);
                 if !(exit < left) {
@@ -176,11 +190,12 @@ impl Ptex {
                 }
                 // Just past the edge the axis leaves by.
                 let past = exit + EDGE_NUDGE;
-                let (next, nu, nv, ndir) = self.carry_across(f, pu + past * dir.0, pv + past * dir.1, dir);
+                let (next, nu, nv, ndir, step) = self.carry_across(f, pu + past * dir.0, pv + past * dir.1, dir);
                 if next == f {
                     break;
                 }
-                texel = texel.min(self.texel_along(next, ndir, minor));
+                scale *= step;
+                texel = texel.min(self.texel_along(next, ndir, minor * scale));
                 (f, pu, pv, dir) = (next, nu, nv, ndir);
                 left -= past;
             }
@@ -203,15 +218,17 @@ impl Ptex {
     /// the edges it lies past into the faces there (at most [`MAX_CROSSINGS`] edges); the
     /// point as given (then clamped by the lookup) past an edge with no face across.
     pub fn across_edges(&self, face: u32, u: f32, v: f32) -> (u32, f32, f32) {
-        let (face, u, v, _) = self.carry_across(face, u, v, (0.0, 0.0));
+        let (face, u, v, _, _) = self.carry_across(face, u, v, (0.0, 0.0));
         (face, u, v)
     }
 
     /// [`Ptex::across_edges`], carrying the direction `dir` (face coordinates) along: each
     /// edge's unfolding is affine, its linear part turns `dir` into the face across
-    /// (unnormalised: triangles' unfoldings shear it).
-    fn carry_across(&self, face: u32, u: f32, v: f32, dir: (f32, f32)) -> (u32, f32, f32, (f32, f32)) {
-        let (mut face, mut u, mut v, mut dir) = (face, u, v, dir);
+    /// (unnormalised: triangles' unfoldings shear it); and the scale of the landing face's
+    /// units to the starting face's (1, but 2 into a sub-face from a quad face and ½ out of
+    /// one: the module documentation).
+    fn carry_across(&self, face: u32, u: f32, v: f32, dir: (f32, f32)) -> (u32, f32, f32, (f32, f32), f32) {
+        let (mut face, mut u, mut v, mut dir, mut scale) = (face, u, v, dir, 1.0f32);
         for _ in 0..MAX_CROSSINGS {
             let Some((edge, t, s)) = outside_edge(self.mesh, u, v) else { break };
             let Some((other, other_edge)) = self.adjacency.get(face as usize).and_then(|a| a.across(edge)) else {
@@ -221,15 +238,31 @@ impl Ptex {
             if other as usize >= self.faces.len() {
                 break;
             }
+            // The point's fraction along the other face's edge and depth into it.
+            let (from, to) = (self.is_subface(face), self.is_subface(other));
+            let (along, deeper): (fn(f32) -> f32, f32) = match (from, to) {
+                (false, true) => (|t| 1.0 - 2.0 * t, 2.0),
+                (true, false) if self.primary_sub_face(other, other_edge, face) => (|t| 0.5 * (1.0 - t), 0.5),
+                (true, false) => (|t| 1.0 - 0.5 * t, 0.5),
+                _ => (|t| 1.0 - t, 1.0),
+            };
             if dir != (0.0, 0.0) {
                 let (t1, s1) = edge_frame(self.mesh, edge, u + dir.0, v + dir.1);
-                let (au, av) = from_edge(self.mesh, other_edge, 1.0 - t, -s);
-                let (bu, bv) = from_edge(self.mesh, other_edge, 1.0 - t1, -s1);
+                let (au, av) = from_edge(self.mesh, other_edge, along(t), -s * deeper);
+                let (bu, bv) = from_edge(self.mesh, other_edge, along(t1), -s1 * deeper);
                 dir = (bu - au, bv - av);
             }
-            (u, v) = from_edge(self.mesh, other_edge, 1.0 - t, -s);
+            (u, v) = from_edge(self.mesh, other_edge, along(t), -s * deeper);
             face = other;
+            scale *= deeper;
         }
-        (face, u, v, dir)
+        (face, u, v, dir, scale)
+    }
+
+    /// Whether sub-face `sub` is the primary of the two sub-faces along edge `edge` of quad
+    /// face `main` (the one `main`'s adjacency names: it covers the first half of the edge,
+    /// counter-clockwise; the module documentation).
+    fn primary_sub_face(&self, main: u32, edge: usize, sub: u32) -> bool {
+        self.adjacency.get(main as usize).and_then(|a| a.across(edge)).is_some_and(|(f, _)| f == sub as usize)
     }
 }
