@@ -49,6 +49,8 @@
 //! probes are carried so; the bilinear lookup's blending across an edge (`edges`) still
 //! pairs a sub-face's edge with the whole of a quad face's.
 
+use std::sync::OnceLock;
+
 use super::filter::{edge_frame, from_edge, outside_edge};
 use super::footprint::FaceEllipse;
 use super::{Filter, MeshType, Ptex};
@@ -69,6 +71,12 @@ pub const MAX_PROBES: usize = 16;
 /// 0.61 of the centre) so the blur along the major axis stays that of the footprint,
 /// matching the minor width's lookup across it. Symmetric about the centre.
 pub fn major_axis_weights(probes: usize) -> [f32; MAX_PROBES] {
+    static TABLE: OnceLock<[[f32; MAX_PROBES]; MAX_PROBES]> = OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|k| gaussian_weights(k + 1)))[probes.clamp(1, MAX_PROBES) - 1]
+}
+
+/// [`major_axis_weights`] computed.
+fn gaussian_weights(probes: usize) -> [f32; MAX_PROBES] {
     let probes = probes.clamp(1, MAX_PROBES);
     let mut weights = [0.0f32; MAX_PROBES];
     let mut sum = 0.0f32;
@@ -134,6 +142,10 @@ impl Ptex {
             return self.sample(face, u, v, None, Filter::Bilinear, first, out);
         }
         let minor = if minor.is_finite() && minor > 0.0 { minor.min(major) } else { major };
+        if minor == major {
+            // Round: one lookup (n = 1 whatever the texels).
+            return self.sample(face, u, v, Some(major), Filter::Bilinear, first, out);
+        }
         let norm = (axis.0 * axis.0 + axis.1 * axis.1).sqrt();
         let (du, dv) = if norm.is_finite() && norm > 0.0 {
             if norm == 1.0 {
