@@ -197,7 +197,7 @@ impl Ptex {
             let (mut left, mut scale) = (0.5 * major, 1.0f32);
             for _ in 0..MAX_CROSSINGS {
                 let exit = exit_distance(self.mesh, (pu, pv), dir);
-                if !(exit < left) {
+                if exit.is_nan() || exit >= left {
                     break;
                 }
                 // Just past the edge the axis leaves by.
