@@ -67,7 +67,7 @@ fn texture() -> Ptex {
         Adjacency { faces: [1, -1, -1, 3], edges: edges([2, 0, 0, 1]) },
         Adjacency { faces: [0, 2, -1, -1], edges: edges([2, 3, 0, 0]) },
     ];
-    Ptex { mesh: MeshType::Quad, channels: 1, alpha: None, faces, reductions, adjacency, texels }
+    Ptex { mesh: MeshType::Quad, channels: 1, alpha: None, faces, reductions, adjacency, subfaces: Vec::new(), texels }
 }
 
 fn bench(c: &mut Criterion) {

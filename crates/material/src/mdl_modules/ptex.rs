@@ -97,6 +97,10 @@ pub struct Ptex {
     pub reductions: Vec<Vec<FaceTexels>>,
     /// Per face: its neighbours.
     pub adjacency: Vec<Adjacency>,
+    /// Per face: whether the file flags it a sub-face (Ptex's flag 8: one of the sub-quads
+    /// of a quad-mesh file's non-quad face, half a quad face's size in parameter space:
+    /// its edge against a quad face is half of that face's edge); empty: none is.
+    pub subfaces: Vec<bool>,
     /// Every face's texels, row by row (v = 0 first, u fastest), channels interleaved.
     pub texels: Vec<f32>,
 }
@@ -170,6 +174,12 @@ impl Ptex {
             Some((face, u, v)) => self.lookup_ellipse(face, u, v, footprint::filter_ellipse(self.mesh, s), channel),
             None => Vec4::ZERO,
         }
+    }
+
+    /// Whether face `face` is a sub-face ([`Ptex::subfaces`]).
+    #[inline]
+    pub fn is_subface(&self, face: u32) -> bool {
+        self.subfaces.get(face as usize).copied().unwrap_or(false)
     }
 
     /// A lookup's lanes from channel `channel` on: one channel left is a grey colour.

@@ -183,6 +183,22 @@ pub(crate) fn ptex_file_full(
     adjacency: &[([i32; 4], [u8; 4])],
     reduced: &[Vec<Face>],
 ) -> Vec<u8> {
+    ptex_file_sub_faces(mesh, dt, channels, faces, level, adjacency, reduced, &[])
+}
+
+/// [`ptex_file_full`] with the faces numbered in `sub_faces` flagged sub-faces (Ptex's
+/// face info flag 8).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn ptex_file_sub_faces(
+    mesh: u32,
+    dt: u32,
+    channels: u16,
+    faces: &[Face],
+    level: u32,
+    adjacency: &[([i32; 4], [u8; 4])],
+    reduced: &[Vec<Face>],
+    sub_faces: &[usize],
+) -> Vec<u8> {
     let n = channels as usize;
     let pixel = |values: &[f64]| values.iter().flat_map(|x| elem(dt, *x)).collect::<Vec<u8>>();
     let mut infos = Vec::new();
@@ -190,7 +206,8 @@ pub(crate) fn ptex_file_full(
     for (id, f) in faces.iter().enumerate() {
         let (adjfaces, adjedges) = adjacency.get(id).copied().unwrap_or(([-1; 4], [0; 4]));
         let edges = adjedges.iter().enumerate().fold(0u8, |b, (k, e)| b | e << (2 * k));
-        infos.extend([f.log2.0 as u8, f.log2.1 as u8, edges, u8::from(f.how == How::ConstantInfo)]);
+        let flags = u8::from(f.how == How::ConstantInfo) | if sub_faces.contains(&id) { 8 } else { 0 };
+        infos.extend([f.log2.0 as u8, f.log2.1 as u8, edges, flags]);
         infos.extend(adjfaces.iter().flat_map(|a| a.to_le_bytes()));
         // The constant block: a constant face's value, else the face's average.
         let count = f.texels.len() / n;

@@ -11,6 +11,7 @@
 //! normal +z) with the path engine's camera footprint.
 
 use glam::{Vec3A, Vec4};
+use material::mdl_modules::ptex::anisotropic::major_axis_weights;
 use material::mdl_modules::ptex::footprint::{filter_width, filter_widths};
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
@@ -187,8 +188,8 @@ fn a_grazing_view_along_the_varying_axis_blurs_as_the_box_average() {
 }
 
 /// `sample_rect`'s probes past an edge read the face across it: a footprint 0.5 × 1/16 at
-/// u = 0.9 of the centre face (8 probes from u = 0.68 to 1.12) equals the mean of the
-/// probes read at their own places, the last two on the face to the right at u − 1
+/// u = 0.9 of the centre face (8 probes from u = 0.68 to 1.12) equals the sum of the
+/// probes read at their own places with their Gaussian weights (`major_axis_weights`), the last two on the face to the right at u − 1
 /// (1e-6), and likewise along v into the face above; a face with no neighbour there (the
 /// plane's right column, or a file without adjacency) reads its probes as before, clamped
 /// to its edge (bit for bit the old loop). Triangles: faces 0 and 1 sharing their edges 1
@@ -203,7 +204,8 @@ fn probes_across_an_edge_read_the_neighbour() {
     let (short, long, n) = (0.0625f32, 0.5f32, 8);
     let step = long / n as f32;
     let width = short.max(step);
-    let probes = move |at: f32| (0..n).map(move |k| at + ((k as f32 + 0.5) * step - 0.5 * long));
+    let weights = major_axis_weights(n);
+    let probes = move |at: f32| (0..n).map(move |k| (at + ((k as f32 + 0.5) * step - 0.5 * long), weights[k]));
     let one = |ptex: &Ptex, face: u32, u: f32, v: f32| {
         let mut out = [0.0f32; 1];
         assert!(ptex.sample(face, u, v, Some(width), Filter::Bilinear, 0, &mut out));
@@ -216,25 +218,25 @@ fn probes_across_an_edge_read_the_neighbour() {
     };
     // Along u into face 5 (right of 4); along v into face 7 (above 4).
     let mut want = 0.0;
-    for pu in probes(0.9) {
-        want += if pu > 1.0 { one(&wired, 5, pu - 1.0, 0.4) } else { one(&wired, 4, pu, 0.4) } / n as f32;
+    for (pu, w) in probes(0.9) {
+        want += if pu > 1.0 { one(&wired, 5, pu - 1.0, 0.4) } else { one(&wired, 4, pu, 0.4) } * w;
     }
     let got = rect(&wired, 4, 0.9, 0.4, (long, short));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");
     let mut want = 0.0;
-    for pv in probes(0.9) {
-        want += if pv > 1.0 { one(&wired, 7, 0.3, pv - 1.0) } else { one(&wired, 4, 0.3, pv) } / n as f32;
+    for (pv, w) in probes(0.9) {
+        want += if pv > 1.0 { one(&wired, 7, 0.3, pv - 1.0) } else { one(&wired, 4, 0.3, pv) } * w;
     }
     let got = rect(&wired, 4, 0.3, 0.9, (short, long));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");
     // It differs from the clamped read (the pattern goes on across the edge).
-    let clamped: f32 = probes(0.9).map(|pu| one(&wired, 4, pu, 0.4) / n as f32).sum();
+    let clamped: f32 = probes(0.9).map(|(pu, w)| one(&wired, 4, pu, 0.4) * w).sum();
     assert!((rect(&wired, 4, 0.9, 0.4, (long, short)) - clamped).abs() > 1e-3);
     // No face across: as before (each probe at its own place, clamped by the lookup).
     for (ptex, face) in [(&wired, 5u32), (&lone, 4)] {
         let mut old = 0.0f32;
-        for pu in probes(0.9) {
-            old += one(ptex, face, pu, 0.4) / n as f32;
+        for (pu, w) in probes(0.9) {
+            old += one(ptex, face, pu, 0.4) * w;
         }
         assert_eq!(rect(ptex, face, 0.9, 0.4, (long, short)), old, "face {face}");
     }
@@ -258,10 +260,11 @@ fn probes_across_an_edge_read_the_neighbour() {
         assert!(ptex.sample(face, u, v, Some(width), Filter::Bilinear, 0, &mut out));
         out[0]
     };
-    let probes = move |at: f32| (0..n).map(move |k| at + ((k as f32 + 0.5) * step - 0.5 * long));
+    let weights = major_axis_weights(n);
+    let probes = move |at: f32| (0..n).map(move |k| (at + ((k as f32 + 0.5) * step - 0.5 * long), weights[k]));
     let mut want = 0.0;
-    for pu in probes(u) {
-        want += if pu + v > 1.0 { one(&triangles, 1, 1.0 - pu, 1.0 - v) } else { one(&triangles, 0, pu, v) } / n as f32;
+    for (pu, w) in probes(u) {
+        want += if pu + v > 1.0 { one(&triangles, 1, 1.0 - pu, 1.0 - v) } else { one(&triangles, 0, pu, v) } * w;
     }
     let got = rect(&triangles, 0, u, v, (long, 0.0625));
     assert!((got - want).abs() <= 1e-6, "{got} vs {want}");

@@ -5,6 +5,7 @@
 //! byte by `mdl_ptex`'s writer.
 
 use glam::Vec3A;
+use material::mdl_modules::ptex::anisotropic::major_axis_weights;
 use material::mdl_modules::ptex::footprint::{filter_ellipse, filter_width, FaceEllipse};
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
@@ -118,8 +119,8 @@ fn a_diagonal_tilt_gives_a_diagonal_ellipse() {
 /// texel there 1/16: 16 probes spaced 1/16, each 1/16 wide (level 0 on both faces). Their
 /// values, by hand: 6 of face 0's a, two in face 0's half texel along the edge (3/4 a +
 /// 1/4 e and 1/4 a + 3/4 e, e = (a + b) / 2 the edge's value, b face 1's column 2), 8 of
-/// face 1's column 2 (at its texel centres): the mean (7 a + e + 8 b) / 16, matched within
-/// 1e-3 for face 1 constant (b = 0.75) and for face 1 striped by column (1, 0, 1, 0: b =
+/// face 1's column 2 (at its texel centres): their sum with the probes' Gaussian weights
+/// (`major_axis_weights(16)`), matched within 1e-3 for face 1 constant (b = 0.75) and for face 1 striped by column (1, 0, 1, 0: b =
 /// 1). Probed at face 0's spacing (4 probes 1/4 wide: face 1's stripes read at its 1 × 4
 /// level, their mean) the stripes' value is off by more than 0.1.
 #[test]
@@ -148,12 +149,14 @@ fn probes_across_an_edge_take_the_neighbours_resolution() {
         let got =
             f64::from(ellipse_at(&ptex, 0, u, v, FaceEllipse { axis: (1.0, 0.0), major: 1.0, minor: 1.0 / 64.0 }));
         let e = (a + b) / 2.0;
-        let want = (7.0 * a + e + 8.0 * b) / 16.0;
+        let values = [a, a, a, a, a, a, 0.75 * a + 0.25 * e, 0.25 * a + 0.75 * e, b, b, b, b, b, b, b, b];
+        let weights = major_axis_weights(16);
+        let want: f64 = values.iter().zip(weights).map(|(x, w)| x * f64::from(w)).sum();
         // At face 0's spacing: 4 probes 1/4 apart, each 1/4 wide.
         let first_face: f64 = (0..4)
             .map(|k| {
                 let (face, pu, pv) = ptex.across_edges(0, u - 0.5 + (k as f32 + 0.5) * 0.25, v);
-                f64::from(sample_at(&ptex, face, pu, pv, 0.25)) / 4.0
+                f64::from(sample_at(&ptex, face, pu, pv, 0.25)) * f64::from(major_axis_weights(4)[k])
             })
             .sum();
         let message = format!("b {b}: got {got}, by hand {want}, at face 0's spacing {first_face}");
@@ -163,4 +166,37 @@ fn probes_across_an_edge_take_the_neighbours_resolution() {
         }
         eprintln!("{message}");
     }
+}
+
+/// A strip of three quad faces along u, the middle one finer: face 0 and face 2 constant
+/// (1 × 1, 0), face 1 of 4 × 1 texels (0, 1, 0, 0), each sharing its u = 1 edge with the
+/// next one's u = 0 edge (no reduced levels: every probe reads level 0). A footprint 3
+/// long along u and 1/64 wide centred at u = 0.75 on face 0 crosses face 1 and ends
+/// 0.25 into face 2: a texel along the axis is 1 at its centre and both ends but 1/4 in
+/// face 1, so it is probed 12 times, 1/4 apart and 1/4 wide, and probe 8 lands on the
+/// centre of face 1's texel 1, every other probe on a 0 (face 0 and face 2 blend only
+/// toward edge values of 0; face 1's other texels 0, read at their centres): it reads
+/// probe 8's weight, `major_axis_weights(12)[8]`, within 1e-4. Spaced by the centre and
+/// the ends alone (3 probes 1 apart, 1 wide, at u = −0.25, 0.75, 1.75) the lookup would
+/// read face 1 once, at its average (0.25 × the middle probe's weight, 0.0817): off by
+/// more than 0.005, 50 times the tolerance.
+#[test]
+fn a_crossed_face_sets_the_probes_spacing() {
+    let constant = || Face { log2: (0, 0), texels: vec![0.0], how: How::ConstantInfo };
+    let middle = Face { log2: (2, 0), texels: vec![0.0, 1.0, 0.0, 0.0], how: How::Zipped };
+    let adjacency = [([-1, 1, -1, -1], [0, 3, 0, 0]), ([-1, 2, -1, 0], [0, 3, 0, 1]), ([-1, -1, -1, 1], [0, 0, 0, 1])];
+    let ptex = read(&ptex_file_full(1, 3, 1, &[constant(), middle, constant()], 6, &adjacency, &[]));
+    let (u, v) = (0.75f32, 0.5f32);
+    let got = ellipse_at(&ptex, 0, u, v, FaceEllipse { axis: (1.0, 0.0), major: 3.0, minor: 1.0 / 64.0 });
+    let want = major_axis_weights(12)[8];
+    let ends_only: f32 = (0..3)
+        .map(|k| {
+            let (face, pu, pv) = ptex.across_edges(0, u - 1.0 + k as f32, v);
+            sample_at(&ptex, face, pu, pv, 1.0) * major_axis_weights(3)[k]
+        })
+        .sum();
+    let message = format!("got {got}, by hand {want}, spaced by the centre and ends {ends_only}");
+    assert!((got - want).abs() <= 1e-4, "{message}");
+    assert!((ends_only - want).abs() > 0.005, "{message}");
+    eprintln!("{message}");
 }

@@ -5,7 +5,7 @@
 //! channel count, level count, face count, the sizes of the sections that follow), an
 //! extension header (its size in the header: border modes, the large-meta-data and edit
 //! sections), then the sections in order: face infos (zlib; per face its resolution as
-//! log2 of u and v, adjacency, flags: 1 = constant), the constant values (zlib; one texel
+//! log2 of u and v, adjacency, flags: 1 = constant, 8 = sub-face), the constant values (zlib; one texel
 //! per face), the level infos (per level its data size, its header's zlib size, its face
 //! count), the levels' data, the meta data, eight bytes, the large meta data, and edits.
 //! Level 0 (the highest resolution) is a zlib block of one 32-bit word per face (bits
@@ -379,6 +379,11 @@ pub fn read(bytes: &[u8]) -> Result<(Ptex, usize), ReadError> {
         faces: Vec::with_capacity(nfaces),
         reductions: Vec::with_capacity(nfaces),
         adjacency: infos.iter().map(|i| Adjacency { faces: i.adjfaces, edges: i.adjedges }).collect(),
+        subfaces: if h.mesh == MeshType::Quad && infos.iter().any(|i| i.flags & 8 != 0) {
+            infos.iter().map(|i| i.flags & 8 != 0).collect()
+        } else {
+            Vec::new()
+        },
         texels: Vec::new(),
     };
     let mut non_finite = 0usize;
