@@ -22,7 +22,8 @@ fn render(traversal: bool, engine: EngineKind) -> (Vec<[f32; 4]>, Vec<String>) {
         let options = "\tstate = \"miDefaultOptions:state\"\n";
         let params = "\t( \"miLabel\" 2 )\n";
         assert_eq!((text.matches(options).count(), text.matches(params).count()), (1, 1));
-        text = text.replace(options, &format!("{options}\ttraversal \"adskTraversal\"\n"));
+        // On the same line, so that the messages' line numbers stay.
+        text = text.replace(options, "\tstate = \"miDefaultOptions:state\" traversal \"adskTraversal\"\n");
         text = text.replace(params, "\t( \"miLabel\" 2, \"passEncoding\" \"perspShape:fbdata\" )\n");
     }
     let parsed = mi::parse_str(&path.to_string_lossy(), &text);
