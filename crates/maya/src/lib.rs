@@ -260,9 +260,11 @@ mod tests {
 
     /// `mayabase.mi` and `AdskShaderSDK.mi` declare the same interfaces in the same
     /// order (parameters, types, defaults, results, apply lists): each declaration printed
-    /// with its name blanked reads the same.
+    /// with its name blanked reads the same; the SDK's DAG traversal shader
+    /// (`adskTraversal`, no `maya_*` twin) aside.
     #[test]
     fn both_declaration_files_declare_the_same_interfaces() {
+        const SDK_ONLY: &[&str] = &["adskTraversal"];
         let decls = |file: &str| -> Vec<(String, String)> {
             let text = mi::stdlib::text(file).expect("built in");
             let parsed = mi::parse_str(file, text);
@@ -278,6 +280,10 @@ mod tests {
                         return None;
                     }
                     let name = d.name.text.clone();
+                    // The SDK's DAG traversal shader has no maya_* twin.
+                    if SDK_ONLY.contains(&name.as_str()) {
+                        return None;
+                    }
                     let printed = String::from_utf8(mi::print(std::slice::from_ref(&item))).expect("utf-8");
                     Some((name.clone(), printed.replace(&format!("\"{name}\""), "\"X\"")))
                 })
@@ -291,6 +297,27 @@ mod tests {
             assert!(mt.contains("\"X\" ("), "{m} printed as {mt}");
             assert_eq!(mt, at, "{m} and {a} differ");
         }
+    }
+
+    /// The AdskShaderSDK's DAG traversal shader is declared as its header
+    /// (`adskTraversal.h`, struct `adskInstanceParameters`) gives it: one parameter,
+    /// `passEncoding`, a tag (declared as a data element's), no result type, no apply.
+    #[test]
+    fn the_sdk_traversal_shader_is_declared_as_its_header_gives_it() {
+        let text = mi::stdlib::text("AdskShaderSDK.mi").expect("built in");
+        let parsed = mi::parse_str("AdskShaderSDK.mi", text);
+        let decl = parsed
+            .items
+            .iter()
+            .find_map(|item| match item {
+                mi::ast::Item::Declare(d) if d.name.text == "adskTraversal" => Some(d),
+                _ => None,
+            })
+            .expect("declared");
+        let params: Vec<(&str, mi::ast::ParamType)> =
+            decl.params.iter().map(|p| (p.name.text.as_str(), p.ty.clone())).collect();
+        assert_eq!(params, vec![("passEncoding", mi::ast::ParamType::Data)]);
+        assert!(decl.ret.is_none() && decl.body.is_empty(), "{:?} {:?}", decl.ret, decl.body);
     }
 
     /// Both families are registered: every maya_* implementation has an adskMaya* twin

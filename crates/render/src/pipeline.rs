@@ -174,8 +174,8 @@ pub fn set_resolution(scene: &mut Scene, width: u32, height: u32) {
 }
 
 /// The engine for `scene`: `asked` when given, else the classic engine when the scene's
-/// materials are mental ray shaders (and its options do not say `"progressive" on` or
-/// `"gi" on`) and the path engine otherwise ([`Shading::wants_classic`]).
+/// materials are mental ray shaders (and its options do not say `"progressive" on`,
+/// `"gi" on` or `"iray" on`) and the path engine otherwise ([`Shading::wants_classic`]).
 pub fn choose_engine(scene: &Scene, asked: Option<EngineKind>) -> EngineKind {
     asked.unwrap_or(if Shading::wants_classic(scene) { EngineKind::Classic } else { EngineKind::Path })
 }

@@ -679,6 +679,20 @@ mod tests {
         assert_eq!(off.gi_depth(), None, "\"gi depth\" is GI \"Next\"'s only");
     }
 
+    /// `"iray" on` (mental ray's iray rendering mode, switched on by a scene option: its
+    /// manual's iray.html; Maya writes the string option `"iray"`) asks for path tracing;
+    /// off or absent, not.
+    #[test]
+    fn iray_rendering_mode() {
+        let on = options("options \"o\" \"iray\" on end options", Dialect::MentalRay);
+        assert!(on.iray_mode() && on.asks_for_path_tracing());
+        assert!(!on.progressive_mode() && !on.gi_next());
+        for text in ["options \"o\" \"iray\" off end options", "options \"o\" end options"] {
+            let off = options(text, Dialect::MentalRay);
+            assert!(!off.iray_mode() && !off.asks_for_path_tracing(), "{text}");
+        }
+    }
+
     /// `"environment lighting mode"`: `"off"` (any case) is off, `"light"` and any other
     /// value on, absent `None`.
     #[test]

@@ -471,9 +471,10 @@ impl Shading {
     /// material shader (not an MDL material). Decided without compiling anything. A shader
     /// no declaration names (an exporter's helper: the shader graph warns and ignores it)
     /// decides nothing, so that one helper on an MDL scene's lamp does not send the whole
-    /// scene to the classic engine. Options that ask for mental ray's progressive rendering
-    /// or its brute-force GI "Next" (`"progressive" on`, `"gi" on`:
-    /// [`scene::Options::asks_for_path_tracing`]) take the path engine whatever the materials.
+    /// scene to the classic engine. Options that ask for mental ray's progressive rendering,
+    /// its brute-force GI "Next" or its iray mode (`"progressive" on`, `"gi" on`,
+    /// `"iray" on`: [`scene::Options::asks_for_path_tracing`]) take the path engine whatever
+    /// the materials.
     pub fn wants_classic(scene: &Scene) -> bool {
         if scene.options.asks_for_path_tracing() {
             return false;

@@ -53,6 +53,7 @@ mod maya_specular_texture_path;
 mod maya_translucence_depth;
 mod maya_translucence_path;
 mod maya_transparent_path;
+mod maya_traversal;
 mod maya_use_background_path;
 mod maya_vertex_data;
 mod maya_view_stack_translucence;

@@ -104,15 +104,17 @@ fn an_unknown_environment_lighting_mode_warns() {
 }
 
 /// The automatic engine choice: a scene of mental ray shaders renders classic, unless its
-/// options ask for mental ray's progressive rendering or GI "Next" (`"progressive" on`,
-/// `"gi" on`); an engine asked for is kept.
+/// options ask for mental ray's progressive rendering, GI "Next" or iray rendering mode
+/// (`"progressive" on`, `"gi" on`, `"iray" on`: mental ray's manual, iray.html, switches
+/// iray on by a scene option; Maya writes `"iray"`); an engine asked for is kept.
 #[test]
 fn progressive_and_gi_next_take_the_path_engine() {
     for (options, want) in [
         ("", EngineKind::Classic),
-        ("\"progressive\" off \"gi\" off", EngineKind::Classic),
+        ("\"progressive\" off \"gi\" off \"iray\" off", EngineKind::Classic),
         ("\"progressive\" on", EngineKind::Path),
         ("\"gi\" on", EngineKind::Path),
+        ("\"iray\" on", EngineKind::Path),
     ] {
         // (Declared, as `base.mi` declares it: a shader the scene declares is mental ray's.)
         let declared = format!(

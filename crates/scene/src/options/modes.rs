@@ -1,5 +1,5 @@
 //! mental ray's rendering-mode string options as typed settings: `"progressive"`, `"gi"`
-//! (GI "Next"), `"environment lighting mode"` and `"light relative scale"`, read as mental
+//! (GI "Next"), `"iray"`, `"environment lighting mode"` and `"light relative scale"`, read as mental
 //! ray documented them (sources below; the stored copies of mental ray's own manual list
 //! these options only by section title, so where a statement comes from another page it is
 //! named).
@@ -23,6 +23,16 @@
 //!   counterpart of the latter (it follows one ray per bounce and averages over the pixel's
 //!   samples): mira reads it and does not change its estimator for it, and says so with a
 //!   warning at the option (`crate::sanity`, shown by `mira render --warnings`).
+//! - `"iray" on|off` — mental ray's iray rendering mode (3.8 to 3.14). mental ray's own
+//!   manual (<https://help.autodesk.com/cloudhelp/2016/ENU/mental-ray-docs/mr_docs/manual/iray.html>)
+//!   says the mode is switched on globally by a scene option (or on the command line), always
+//!   renders progressively (the progressive options, such as the automatic stop criteria,
+//!   control it), takes a few environment lighting options from regular mental ray, and
+//!   silently ignores every other rendering option of regular mental ray; Maya's exports
+//!   write the switch as the string option `"iray"` (default off). It is a consistent
+//!   path tracer without interpolation, which mira's path engine is: `"iray" on` takes the
+//!   path engine in the automatic choice, as `"progressive" on` and `"gi" on` do. Off
+//!   unless set.
 //! - `"environment lighting mode"` — mental ray's built-in image-based lighting (since 3.7):
 //!   NVIDIA's mental ray blog (<https://elementalray.wordpress.com/tag/hdr/>, "The Native
 //!   (Builtin) IBL") describes it as fast automatic *direct* lighting from the camera's
@@ -127,10 +137,15 @@ impl Options {
         self.string_options.get("gi rays").and_then(AttrValue::as_f64)
     }
 
-    /// Whether the string options ask for mental ray's progressive or brute-force GI
+    /// `"iray" on`: mental ray's iray rendering mode (since 3.8; see the module comment).
+    pub fn iray_mode(&self) -> bool {
+        self.string_options.get("iray").and_then(AttrValue::as_bool).unwrap_or(false)
+    }
+
+    /// Whether the string options ask for mental ray's progressive, brute-force GI or iray
     /// rendering, which mira's path engine is (the automatic engine choice takes it).
     pub fn asks_for_path_tracing(&self) -> bool {
-        self.progressive_mode() || self.gi_next()
+        self.progressive_mode() || self.gi_next() || self.iray_mode()
     }
 
     /// `"environment lighting mode"` as written; `None` where the scene does not set it (the
