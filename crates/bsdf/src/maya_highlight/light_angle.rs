@@ -145,6 +145,14 @@ impl LightAngle {
         (Rgb::from(albedo).max(Rgb::ZERO), out)
     }
 
+    /// Whether `self` and `other` sum the same interned shapes by the same weights, bit
+    /// for bit.
+    pub fn same_parts(&self, other: &LightAngle) -> bool {
+        let bits = |w: &[[f32; 3]; LIGHT_ANGLE_PARTS]| w.map(|c| c.map(f32::to_bits));
+        self.parts.iter().zip(&other.parts).all(|(a, b)| std::ptr::eq(*a, *b))
+            && bits(&self.weight) == bits(&other.weight)
+    }
+
     /// The parts in use: shape and weight.
     fn used(&self) -> impl Iterator<Item = (&'static RampShape, [f32; 3])> + '_ {
         self.parts.iter().zip(self.weight).filter(|(_, w)| *w != [0.0; 3]).map(|(p, w)| (*p, w))
