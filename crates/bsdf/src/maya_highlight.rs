@@ -101,7 +101,8 @@ fn intern_specular_ramp(table: SpecularRamp) -> &'static SpecularRamp {
 
 /// How many further forward lobes of their own focus a [`MayaGlossy`] carries besides
 /// its first translucence (a layeredShader's layers of other `translucenceFocus`: four
-/// distinct foci in all; a fifth is merged into the nearest, [`Merged`]).
+/// distinct foci in all; a stack of more holds them in [`translucent_stack`], the
+/// translation's choice where [`MayaGlossy::add_translucence`] says [`Merged`]).
 pub const MORE_TRANSLUCENCE: usize = 3;
 
 /// rampShader's ramps that follow the view, tabulated (linear between the points: a

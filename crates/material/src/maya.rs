@@ -56,9 +56,10 @@
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
 //!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
 //!   `bsdf::MayaGlossy::add_translucence`: up to four distinct foci in the BSDF's own
-//!   lobes, any number held by the material past them,
-//!   `bsdf::maya_highlight::translucent_stack`) and every translucent layer's depth for shadow rays, which pass the
-//!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
+//!   lobes, any number held by the material past them and for a stack whose shares
+//!   follow the view, `bsdf::maya_highlight::translucent_stack`) and every translucent
+//!   layer's depth for shadow rays, which pass the product of the layers' passages
+//!   ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at

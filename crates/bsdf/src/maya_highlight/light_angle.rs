@@ -19,8 +19,9 @@
 //! albedo-weighted sum of its layers' shapes: [`LightAngle`] holds up to
 //! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp; a
 //! material's translation folds any further ones into interned composite shapes
-//! ([`LightAngle::mixed_interned`], exact), a mix per hit adds them to the largest part
-//! ([`LightAngle::mixed`]).
+//! ([`LightAngle::mixed_interned`], exact); [`LightAngle::mixed`] adds them to the largest
+//! part instead (a stack whose layers' shares follow the view is not mixed per hit: its
+//! lobes are held by the material, `super::translucent_stack`).
 
 use std::sync::Mutex;
 
