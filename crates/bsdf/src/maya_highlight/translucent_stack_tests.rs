@@ -32,12 +32,12 @@ fn shares(layers: usize, f: f32) -> Vec<Rgb> {
 /// Six distinct light-angle ramps (knots at 0, 0.1 + 0.05 i and 0.6, interpolations none,
 /// linear, smooth, spline in turn): the layers' lobes (albedo, exponent 0, shape).
 fn ramp_lobes() -> Vec<StackLobe> {
-    (0..6)
+    (0..6i32)
         .map(|i| {
             let k = i as f32;
             let knots = [
-                (0.0, Rgb::new(0.9 - 0.1 * k, 0.2 + 0.1 * k, 0.5), (i % 4) as i32),
-                (0.1 + 0.05 * k, Rgb::new(0.3, 0.8 - 0.1 * k, 0.1 + 0.1 * k), ((i + 1) % 4) as i32),
+                (0.0, Rgb::new(0.9 - 0.1 * k, 0.2 + 0.1 * k, 0.5), i % 4),
+                (0.1 + 0.05 * k, Rgb::new(0.3, 0.8 - 0.1 * k, 0.1 + 0.1 * k), (i + 1) % 4),
                 (0.6, Rgb::new(0.1 * k, 0.4, 0.9 - 0.1 * k), 1),
             ];
             let (albedo, shape) = LightAngle::from_ramp(&knots, Rgb::ZERO, 0.6);
