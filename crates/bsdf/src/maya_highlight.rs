@@ -49,15 +49,18 @@
 //! both by c ([`MayaGlossy::with_coverage`]): over all rays they are Maya's exactly.
 
 use std::f32::consts::FRAC_1_PI;
+use std::sync::Mutex;
 
 use glam::{Vec2, Vec3A};
 
 use crate::{cosine_on_side, luminance, BsdfSample, Frame, Rgb};
 
+mod glossy_translucence;
 mod light_angle;
 pub mod ramp_curve;
 mod shape;
 pub mod translucence;
+pub mod translucent_stack;
 
 pub use shape::{anisotropic, blinn, blinn_distribution, phong, phong_e, ramp_blinn, schlick, Shape};
 pub use translucence::Merged;
@@ -76,9 +79,30 @@ pub const VIEW_RAMP_STEPS: usize = 33;
 /// ([`MayaGlossy::specular_ramp`]), evenly spaced over [0, 1].
 pub const SPECULAR_RAMP_STEPS: usize = 9;
 
+/// A tabulated `specularColor` ramp: the colour (linear RGB) at highlight strengths
+/// k/8 ([`MayaGlossy::specular_ramp`]).
+pub type SpecularRamp = [[f32; 3]; SPECULAR_RAMP_STEPS];
+
+/// Every distinct [`SpecularRamp`] interned so far (kept for the life of the process, as
+/// a ramp's knots: a BSDF holds a reference, 8 bytes instead of 108).
+static SPECULAR_RAMPS: Mutex<Vec<&'static SpecularRamp>> = Mutex::new(Vec::new());
+
+/// The interned copy of `table` (an equal one, bit for bit, interned before, or a new one).
+fn intern_specular_ramp(table: SpecularRamp) -> &'static SpecularRamp {
+    let bits = |t: &SpecularRamp| t.map(|c| c.map(f32::to_bits));
+    let mut ramps = SPECULAR_RAMPS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some(r) = ramps.iter().find(|r| bits(r) == bits(&table)) {
+        return r;
+    }
+    let ramp: &'static SpecularRamp = Box::leak(Box::new(table));
+    ramps.push(ramp);
+    ramp
+}
+
 /// How many further forward lobes of their own focus a [`MayaGlossy`] carries besides
 /// its first translucence (a layeredShader's layers of other `translucenceFocus`: four
-/// distinct foci in all; a fifth is merged into the nearest, [`Merged`]).
+/// distinct foci in all; a stack of more holds them in [`translucent_stack`], the
+/// translation's choice where [`MayaGlossy::add_translucence`] says [`Merged`]).
 pub const MORE_TRANSLUCENCE: usize = 3;
 
 /// rampShader's ramps that follow the view, tabulated (linear between the points: a
@@ -184,8 +208,9 @@ pub struct MayaGlossy {
     /// mirror emits the environment ramp instead of `reflected`.
     pub view_ramps: Option<ViewRamps>,
     /// rampShader's `specularColor` ramp by the highlight's strength H ∈ [0, 1] at
-    /// H = k/8 (linear RGB), when it varies: the highlight is then tint ⊙ S(H) · H.
-    pub specular_ramp: Option<[[f32; 3]; SPECULAR_RAMP_STEPS]>,
+    /// H = k/8 (linear RGB), when it varies: the highlight is then tint ⊙ S(H) · H
+    /// (interned).
+    pub specular_ramp: Option<&'static SpecularRamp>,
     /// The lambert family's `translucence`: the albedo c · t of the light it passes from
     /// behind (linear RGB, faded and divided by the coverage as the diffuse colour is),
     /// concentrated about the light's straight-through direction by the cosine power
@@ -206,6 +231,11 @@ pub struct MayaGlossy {
     /// layers differ in `translucenceFocus`): albedo (linear RGB, as
     /// [`MayaGlossy::translucence`]) and exponent n; an albedo of zero: none.
     pub translucence_more: [[f32; 4]; MORE_TRANSLUCENCE],
+    /// A layeredShader's translucence held by the material
+    /// ([`translucent_stack::TranslucentStack`]: any number of lobes, weighted by the
+    /// layers' shares at the hit's facing ratio) where its lobes do not fit the ones above
+    /// or its layers' shares follow the view; the lobes above are then empty.
+    pub translucence_stack: Option<translucent_stack::StackAt>,
     /// The unit lobe's albedo at view cosines 0, 1/8, … 1 (the first at
     /// [`ALBEDO_MIN_COS`]).
     albedo: [f32; ALBEDO_STEPS],
@@ -235,6 +265,7 @@ impl MayaGlossy {
             translucence_per_diffuse: None,
             light_angle: None,
             translucence_more: [[0.0; 4]; MORE_TRANSLUCENCE],
+            translucence_stack: None,
             albedo,
         }
     }
@@ -254,141 +285,6 @@ impl MayaGlossy {
         self
     }
 
-    /// Adds a translucence of albedo `albedo` (linear RGB), forward-lobe exponent `focus`
-    /// and light-angle shape `light_angle` (only for focus 0) to this one's: merged into
-    /// the first lobe where the focus is the same (their light-angle shapes mixed by
-    /// albedo), else carried as a lobe of its own ([`MayaGlossy::translucence_more`]; a
-    /// focus-0 lobe is always the first, the only one with a light-angle shape). `Err`
-    /// when no room was left and it was merged into the further lobe of the nearest
-    /// exponent, which keeps its own ([`Merged`]).
-    pub fn add_translucence(
-        &mut self,
-        albedo: Rgb,
-        focus: f32,
-        light_angle: Option<translucence::LightAngle>,
-    ) -> Result<(), Merged> {
-        self.add_translucence_with(albedo, focus, light_angle, false)
-    }
-
-    /// [`MayaGlossy::add_translucence`] whose light-angle shapes mix exactly for any
-    /// number of distinct ramps ([`translucence::LightAngle::mixed_interned`]): for a
-    /// material's translation only, never per hit.
-    pub fn add_translucence_interned(
-        &mut self,
-        albedo: Rgb,
-        focus: f32,
-        light_angle: Option<translucence::LightAngle>,
-    ) -> Result<(), Merged> {
-        self.add_translucence_with(albedo, focus, light_angle, true)
-    }
-
-    /// [`MayaGlossy::add_translucence`], its light-angle shapes mixed by
-    /// [`translucence::LightAngle::mixed_interned`] where `interned`.
-    fn add_translucence_with(
-        &mut self,
-        albedo: Rgb,
-        focus: f32,
-        light_angle: Option<translucence::LightAngle>,
-        interned: bool,
-    ) -> Result<(), Merged> {
-        let albedo = albedo.max(Rgb::ZERO);
-        let focus = focus.max(0.0);
-        if albedo == Rgb::ZERO {
-            return Ok(());
-        }
-        if self.translucence == Rgb::ZERO {
-            self.translucence = albedo;
-            self.focus = focus;
-            self.light_angle = if focus <= 0.0 { light_angle } else { None };
-            return Ok(());
-        }
-        if (focus - self.focus).abs() <= 1e-6 {
-            if focus <= 0.0 && (light_angle.is_some() || self.light_angle.is_some()) {
-                let mine = self.light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
-                let theirs = light_angle.unwrap_or(translucence::LightAngle::DIFFUSE);
-                self.light_angle = Some(if interned {
-                    mine.mixed_interned(self.translucence, &theirs, albedo)
-                } else {
-                    mine.mixed(self.translucence, &theirs, albedo)
-                });
-            }
-            self.translucence += albedo;
-            return Ok(());
-        }
-        if focus <= 0.0 {
-            // The focus-0 lobe goes first (it alone carries a light-angle shape).
-            let (first, n) = (self.translucence, self.focus);
-            self.translucence = albedo;
-            self.focus = 0.0;
-            self.light_angle = light_angle;
-            return self.add_further(first, n);
-        }
-        self.add_further(albedo, focus)
-    }
-
-    /// Adds a forward lobe (`albedo`, exponent `n` > 0) among the further ones (see
-    /// [`MayaGlossy::add_translucence`]).
-    fn add_further(&mut self, albedo: Rgb, n: f32) -> Result<(), Merged> {
-        let add = |lobe: &mut [f32; 4]| {
-            for c in 0..3 {
-                lobe[c] += albedo[c];
-            }
-        };
-        if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] != [0.0; 3] && (l[3] - n).abs() <= 1e-6) {
-            add(lobe);
-            return Ok(());
-        }
-        if let Some(lobe) = self.translucence_more.iter_mut().find(|l| l[..3] == [0.0; 3]) {
-            *lobe = [albedo.x, albedo.y, albedo.z, n];
-            return Ok(());
-        }
-        let nearest = self
-            .translucence_more
-            .iter_mut()
-            .min_by(|a, b| (a[3] - n).abs().total_cmp(&(b[3] - n).abs()))
-            .expect("further lobes");
-        add(nearest);
-        Err(Merged { exponent: n, into: nearest[3] })
-    }
-
-    /// Every translucence lobe: albedo (linear RGB) and exponent, the first
-    /// ([`MayaGlossy::translucence`]) first, then the further ones that are not empty.
-    pub fn translucence_lobes(&self) -> impl Iterator<Item = (Rgb, f32)> + '_ {
-        std::iter::once((self.translucence, self.focus)).chain(
-            self.translucence_more.iter().filter(|l| l[..3] != [0.0; 3]).map(|l| (Rgb::new(l[0], l[1], l[2]), l[3])),
-        )
-    }
-
-    /// The same with the translucence following each hit's diffuse colour: its albedo is
-    /// `k` × that colour (see [`MayaGlossy::translucence_per_diffuse`]).
-    pub fn with_translucence_per_diffuse(mut self, k: f32) -> MayaGlossy {
-        self.translucence_per_diffuse = Some(k.max(0.0));
-        self
-    }
-
-    /// The same with the translucence scaled by `k` (≥ 0): its albedo, and its share of
-    /// each hit's diffuse colour where it follows it (a connected `translucence` at one
-    /// hit).
-    pub fn translucence_scaled(mut self, k: f32) -> MayaGlossy {
-        let k = k.max(0.0);
-        self.translucence *= k;
-        for lobe in &mut self.translucence_more {
-            lobe[..3].iter_mut().for_each(|c| *c *= k);
-        }
-        self.translucence_per_diffuse = self.translucence_per_diffuse.map(|r| r * k);
-        self
-    }
-
-    /// The same with every translucence lobe's albedo divided by `k` (> 0; a stack's
-    /// coverage, as its diffuse colour is).
-    pub fn translucence_divided(mut self, k: f32) -> MayaGlossy {
-        self.translucence /= k;
-        for lobe in &mut self.translucence_more {
-            lobe[..3].iter_mut().for_each(|c| *c /= k);
-        }
-        self
-    }
-
     /// The same highlight and mirror with rampShader's view-dependent ramps (see
     /// [`MayaGlossy::view_ramps`]).
     pub fn with_view_ramps(mut self, ramps: ViewRamps) -> MayaGlossy {
@@ -399,8 +295,8 @@ impl MayaGlossy {
     /// The same highlight coloured by a `specularColor` ramp over its strength (see
     /// [`MayaGlossy::specular_ramp`]; `ramp` gives the colour at a strength in [0, 1]).
     pub fn with_specular_ramp(mut self, ramp: impl Fn(f32) -> Rgb) -> MayaGlossy {
-        self.specular_ramp =
-            Some(std::array::from_fn(|k| ramp(k as f32 / (SPECULAR_RAMP_STEPS - 1) as f32).max(Rgb::ZERO).into()));
+        let table = std::array::from_fn(|k| ramp(k as f32 / (SPECULAR_RAMP_STEPS - 1) as f32).max(Rgb::ZERO).into());
+        self.specular_ramp = Some(intern_specular_ramp(table));
         self
     }
 
@@ -465,6 +361,10 @@ impl MayaGlossy {
                 lobe[c] *= k[c].max(0.0);
             }
         }
+        if let Some(at) = &mut self.translucence_stack {
+            // (For a material's translation: interns the scaled stack.)
+            at.stack = at.stack.scaled(k);
+        }
         // A layer's colour is its constant one (the layered shader warns when it varies).
         self.translucence_per_diffuse = None;
         self
@@ -520,7 +420,8 @@ impl MayaGlossy {
         let t = luminance(self.refraction).max(0.0);
         let translucence = self.translucence_per_diffuse.map_or(self.translucence, |k| diffuse.max(Rgb::ZERO) * k);
         let more = self.translucence_more.iter().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
-        let tl = luminance(translucence).max(0.0) + more;
+        let stacked = self.translucence_stack.map_or(0.0, |s| luminance(s.albedo()).max(0.0));
+        let tl = luminance(translucence).max(0.0) + more + stacked;
         let total = d + g + m + t + tl;
         let (diffuse_share, mirror_share, refraction_share, translucence_share) =
             if total > 0.0 { (d / total, m / total, t / total, tl / total) } else { (1.0, 0.0, 0.0, 0.0) };
@@ -540,6 +441,7 @@ impl MayaGlossy {
             focus: self.focus,
             light_angle: self.light_angle,
             translucence_more: self.translucence_more,
+            translucence_stack: self.translucence_stack,
             diffuse_share,
             mirror_share,
             refraction_share,
@@ -577,7 +479,7 @@ pub struct MayaBsdf {
     /// [`MayaGlossy::tinted_by`].
     pub tinted_by: Rgb,
     /// [`MayaGlossy::specular_ramp`].
-    pub specular_ramp: Option<[[f32; 3]; SPECULAR_RAMP_STEPS]>,
+    pub specular_ramp: Option<&'static SpecularRamp>,
     /// [`MayaGlossy::translucence`]: f = translucence · K(focus, −ωo·ωi)/π on the side
     /// opposite ωo.
     pub translucence: Rgb,
@@ -589,6 +491,9 @@ pub struct MayaBsdf {
     /// [`MayaGlossy::translucence_more`]: further forward lobes, each
     /// albedo · K(n, −ωo·ωi)/π.
     pub translucence_more: [[f32; 4]; MORE_TRANSLUCENCE],
+    /// [`MayaGlossy::translucence_stack`] at this hit: its f is added to the lobes above
+    /// (which are then empty).
+    pub translucence_stack: Option<translucent_stack::StackAt>,
     /// The probability of sampling the diffuse lobe.
     diffuse_share: f32,
     /// The probability of sampling the mirror.
@@ -646,112 +551,13 @@ impl MayaBsdf {
         crate::dielectric::refract(wo, n, self.eta).unwrap_or(Vec3A::new(-wo.x, -wo.y, wo.z))
     }
 
-    /// The translucence's f(ωo, ωi) for ωi on the side opposite ωo: the first lobe's
-    /// translucence · K(focus, −ωo·ωi)/π (times its light-angle factor at ωi where it has
-    /// one) plus each further lobe's albedo · K(n, −ωo·ωi)/π; zero on ωo's side.
-    pub fn eval_translucence(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        if wo.z * wi.z >= 0.0 {
-            return Rgb::ZERO;
-        }
-        let x = -wo.dot(wi);
-        let mut f = Rgb::ZERO;
-        if self.translucence != Rgb::ZERO {
-            f = self.translucence * (translucence::forward_lobe(self.focus, x) * FRAC_1_PI);
-            if let Some(table) = &self.light_angle {
-                f *= table.factor(wi.z.abs());
-            }
-        }
-        for lobe in self.further() {
-            f += Rgb::new(lobe[0], lobe[1], lobe[2]) * (translucence::forward_lobe(lobe[3], x) * FRAC_1_PI);
-        }
-        f
-    }
-
-    /// The further forward lobes that are not empty.
-    fn further(&self) -> impl Iterator<Item = &[f32; 4]> {
-        self.translucence_more.iter().filter(|l| l[..3] != [0.0; 3])
-    }
-
-    /// The first translucence lobe's share of the translucence's samples (by luminance;
-    /// 1 without further lobes).
-    fn first_translucence_share(&self) -> f32 {
-        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
-        if more <= 0.0 {
-            return 1.0;
-        }
-        let first = luminance(self.translucence).max(0.0);
-        first / (first + more)
-    }
-
-    /// The density of the first translucence lobe's sampling ([`MayaBsdf::sample`]):
-    /// uniform on the side opposite ωo for a light-angle shape, cosine-weighted there for
-    /// diffuse translucence, else the cosine power about −ωo (over the whole sphere: its
-    /// samples on ωo's side carry the other lobes' f).
-    fn first_translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        if self.focus <= 0.0 {
-            if wo.z * wi.z < 0.0 {
-                if self.light_angle.is_some() {
-                    return translucence::UNIFORM_PDF;
-                }
-                wi.z.abs() * FRAC_1_PI
-            } else {
-                0.0
-            }
-        } else {
-            translucence::pdf_about(self.focus, -wo.dot(wi))
-        }
-    }
-
-    /// The density of the translucence's sampling: the first lobe's and each further
-    /// lobe's (the cosine power about −ωo), mixed by their luminance.
-    fn translucence_pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        let first = self.first_translucence_share();
-        if first >= 1.0 {
-            return self.first_translucence_pdf(wo, wi);
-        }
-        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
-        let x = -wo.dot(wi);
-        let further = self
-            .further()
-            .map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0) * translucence::pdf_about(l[3], x))
-            .sum::<f32>();
-        let first_pdf = if first > 0.0 { first * self.first_translucence_pdf(wo, wi) } else { 0.0 };
-        first_pdf + (1.0 - first) * further / more
-    }
-
-    /// A direction of the translucence's sampling from `wo` by `u`, the lobe chosen by
-    /// `v` ∈ [0, 1) (see [`MayaBsdf::translucence_pdf`]).
-    fn sample_translucence(&self, wo: Vec3A, u: Vec2, v: f32) -> Option<Vec3A> {
-        let first = self.first_translucence_share();
-        if v < first {
-            return if self.focus <= 0.0 && self.light_angle.is_some() {
-                Some(translucence::uniform_opposite(wo, u))
-            } else if self.focus <= 0.0 {
-                Some(-cosine_on_side(wo, u)?)
-            } else {
-                Some(translucence::sample_about(-wo, self.focus, u))
-            };
-        }
-        let more = self.further().map(|l| luminance(Rgb::new(l[0], l[1], l[2])).max(0.0)).sum::<f32>();
-        let mut pick = (v - first) / (1.0 - first) * more;
-        let mut n = 0.0;
-        for l in self.further() {
-            n = l[3];
-            pick -= luminance(Rgb::new(l[0], l[1], l[2])).max(0.0);
-            if pick < 0.0 {
-                break;
-            }
-        }
-        Some(translucence::sample_about(-wo, n, u))
-    }
-
     /// f(ωo, ωi): diffuse/π + tint · H(ωo, ωi)/(π |cos θi|) on ωo's side, the
     /// translucence ([`MayaBsdf::eval_translucence`]) on the other.
     pub fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         let Some((v, l)) = upper(wo, wi) else { return self.eval_translucence(wo, wi) };
         let h = self.shape.value(v, l);
         let tint = match &self.specular_ramp {
-            Some(s) => self.tint * rgb_table_at(s, h),
+            Some(s) => self.tint * rgb_table_at(&s[..], h),
             None => self.tint,
         };
         (self.diffuse + tint * (h / l.z)) * FRAC_1_PI
@@ -779,7 +585,8 @@ impl MayaBsdf {
                 && self.diffuse == Rgb::ZERO
                 && self.tint == Rgb::ZERO
                 && self.translucence == Rgb::ZERO
-                && self.further().next().is_none())
+                && self.further().next().is_none()
+                && self.translucence_stack.is_none())
         {
             return None;
         }

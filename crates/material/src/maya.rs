@@ -55,10 +55,11 @@
 //!   translucence by its share there too (`view_layers`, [`StackTranslucence`]); the
 //!   first layer's highlight and mirror, every layer's translucence by its share w_i
 //!   (divided by the stack's coverage as its diffuse colour is; each with its own focus,
-//!   `bsdf::MayaGlossy::add_translucence`: up to four distinct foci, a fifth merged
-//!   into the lobe of the nearest exponent with a warning that bounds the change,
-//!   `bsdf::Merged`) and every translucent layer's depth for shadow rays, which pass the
-//!   product of the layers' passages ([`SurfaceMaterial::translucence_layers`]);
+//!   `bsdf::MayaGlossy::add_translucence`: up to four distinct foci in the BSDF's own
+//!   lobes, any number held by the material past them and for a stack whose shares
+//!   follow the view, `bsdf::maya_highlight::translucent_stack`) and every translucent
+//!   layer's depth for shadow rays, which pass the product of the layers' passages
+//!   ([`SurfaceMaterial::translucence_layers`]);
 //! - surfaceShader: no scattering, `outColor` emitted (it is unlit in Maya too);
 //! - Maya's ambient lights: lambert, blinn, phong, phongE and anisotropic reflect them by
 //!   `color` (the diffuse colour / `diffuse`: [`SurfaceMaterial::ambient`], added at
@@ -609,8 +610,11 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     // follow the view: transparency, diffuse colour, incandescence, plain colour.
     let mut by_view: Vec<view_layers::Layer> = Vec::new();
     let mut follows_view = false;
-    // The first layer past LIGHT_ANGLE_PARTS distinct light-angle shapes, if any.
-    let mut many_ramps: Option<String> = None;
+    // Every layer's translucence lobes by its share, and whether the stack needs them
+    // held by the material (a focus past the BSDF's own lobes, or a layer that holds a
+    // stack itself).
+    let mut parts: Vec<bsdf::maya_highlight::translucent_stack::StackLobe> = Vec::new();
+    let mut needs_stack = false;
     let mut through = Rgb::ONE;
     let mut lobe: Option<bsdf::MayaGlossy> = None;
     // What the shown layers reflect of ambient light, Σ w_i · diffuse_i ⊙ ambient_i
@@ -658,51 +662,29 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
                 if let SurfaceModel::Maya(g) = layer.model {
                     // (A translucent layer that does not show still passes shadow rays
                     // by its translucence depth, as in the classic stack.)
-                    let translucent = g.translucence != Rgb::ZERO || g.translucence_per_diffuse.is_some();
+                    let translucent = g.translucence != Rgb::ZERO
+                        || g.translucence_per_diffuse.is_some()
+                        || g.translucence_stack.is_some();
                     let g = g.scaled(w);
                     if translucent {
                         depths[i] = layer.translucence_depth;
                     }
+                    parts.extend(g.translucence_parts());
+                    needs_stack |= g.translucence_stack.is_some();
                     lobe = Some(match lobe {
                         None => g,
                         Some(mut first) => {
                             // Each layer's translucence keeps its own focus: a lobe of its
                             // own beside the others (same focus: merged; a rampShader
-                            // layer's light-angle shape mixed by albedo, each
-                            // layer's ramp kept).
-                            let diffuse = bsdf::maya_highlight::translucence::LightAngle::DIFFUSE;
-                            let (mine, theirs) =
-                                (first.light_angle.unwrap_or(diffuse), g.light_angle.unwrap_or(diffuse));
-                            let mixing = first.focus <= 0.0
-                                && g.focus <= 0.0
-                                && first.translucence != Rgb::ZERO
-                                && g.translucence != Rgb::ZERO;
-                            // Exact here for any number of ramps (interned composites);
-                            // a stack that follows the view mixes per hit, where only
-                            // LIGHT_ANGLE_PARTS fit (warned after the loop).
-                            if mixing && !mine.mixes_exactly(&theirs) && many_ramps.is_none() {
-                                many_ramps = Some(graph.nodes[m as usize].name.to_string());
-                            }
+                            // layer's light-angle shape mixed by albedo, each layer's ramp
+                            // kept, exactly for any number of ramps). Past the BSDF's own
+                            // lobes the stack's are held by the material (after the loop).
                             let mut merged =
-                                first.add_translucence_interned(g.translucence, g.focus, g.light_angle).err();
+                                first.add_translucence_interned(g.translucence, g.focus, g.light_angle).is_err();
                             for (a, n) in g.translucence_lobes().skip(1) {
-                                let lost = first.add_translucence(a, n, None).err();
-                                merged = merged.or(lost);
+                                merged |= first.add_translucence(a, n, None).is_err();
                             }
-                            if let Some(lost) = merged {
-                                warnings.push(format!(
-                                    "layer '{}': the path engine carries {} translucence lobes of distinct \
-                                     'translucenceFocus'; this layer's (exponent {:.3}) joins the lobe of the \
-                                     nearest exponent ({:.3}): its light from behind keeps its total straight \
-                                     through, but its forward peak (n + 2)/2 becomes {:.3} instead of {:.3}",
-                                    graph.nodes[m as usize].name,
-                                    1 + bsdf::maya_highlight::MORE_TRANSLUCENCE,
-                                    lost.exponent,
-                                    lost.into,
-                                    0.5 * (lost.into + 2.0),
-                                    0.5 * (lost.exponent + 2.0)
-                                ));
-                            }
+                            needs_stack |= merged;
                             first
                         }
                     });
@@ -737,14 +719,6 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
             .map(|((&transparency, by_view), depth)| TranslucentLayer { transparency, by_view, depth })
             .collect();
     }
-    if let (Some(layer), true) = (&many_ramps, follows_view) {
-        warnings.push(format!(
-            "layer '{layer}': the stack's light from behind sums more than {} distinct colour ramps (or \
-             diffuse translucence) and its shares follow the view; the path engine mixes them at each hit, \
-             where a further one adds its weight to the largest one's ramp",
-            bsdf::maya_highlight::translucence::LIGHT_ANGLE_PARTS
-        ));
-    }
     // As a ratio of the stack's diffuse colour per channel (exact: the stack's colours
     // are constant).
     let ratio = |a: f32, d: f32| if d > 0.0 { a / d } else { 0.0 };
@@ -758,6 +732,10 @@ fn layered_shader(name: &str, graph: &Graph, node: NodeId) -> (SurfaceMaterial, 
     let coverage = if refraction.is_none() && surface.opacity > 0.0 { surface.opacity } else { 1.0 };
     surface.diffuse /= coverage;
     surface.emission /= coverage;
+    if let (Some(g), true) = (&mut lobe, needs_stack) {
+        // Every lobe exact, whatever their number (`bsdf::maya_highlight::translucent_stack`).
+        *g = g.with_translucence_stack(bsdf::maya_highlight::translucent_stack::TranslucentStack::constant(parts));
+    }
     if let Some(g) = lobe {
         // The translucence divided by the coverage as the diffuse colour is (the
         // highlight and the mirror by the lobe's coverage).

@@ -19,8 +19,9 @@
 //! albedo-weighted sum of its layers' shapes: [`LightAngle`] holds up to
 //! [`LIGHT_ANGLE_PARTS`] shapes and their weights, each evaluated from its own ramp; a
 //! material's translation folds any further ones into interned composite shapes
-//! ([`LightAngle::mixed_interned`], exact), a mix per hit adds them to the largest part
-//! ([`LightAngle::mixed`]).
+//! ([`LightAngle::mixed_interned`], exact); [`LightAngle::mixed`] adds them to the largest
+//! part instead (a stack whose layers' shares follow the view is not mixed per hit: its
+//! lobes are held by the material, `super::translucent_stack`).
 
 use std::sync::Mutex;
 
@@ -143,6 +144,14 @@ impl LightAngle {
         let mut out = LightAngle::DIFFUSE;
         out.parts[0] = shape;
         (Rgb::from(albedo).max(Rgb::ZERO), out)
+    }
+
+    /// Whether `self` and `other` sum the same interned shapes by the same weights, bit
+    /// for bit.
+    pub fn same_parts(&self, other: &LightAngle) -> bool {
+        let bits = |w: &[[f32; 3]; LIGHT_ANGLE_PARTS]| w.map(|c| c.map(f32::to_bits));
+        self.parts.iter().zip(&other.parts).all(|(a, b)| std::ptr::eq(*a, *b))
+            && bits(&self.weight) == bits(&other.weight)
     }
 
     /// The parts in use: shape and weight.

@@ -128,7 +128,10 @@ pub fn translucent_passage(material: &SurfaceMaterial, hit: &HitMaterial, inside
         return None;
     }
     let translucent = match &*hit.model {
-        SurfaceModel::Maya(g) => g.translucence_per_diffuse.map_or(g.translucence != Rgb::ZERO, |k| k > 0.0),
+        SurfaceModel::Maya(g) => {
+            g.translucence_stack.is_some()
+                || g.translucence_per_diffuse.map_or(g.translucence != Rgb::ZERO, |k| k > 0.0)
+        }
         _ => false,
     };
     // (A stack's layers say themselves which are translucent: a layer that does not show

@@ -7,11 +7,12 @@
 //! (see `crate::maya`'s module doc) at each f — and sets each hit from the table
 //! ([`ViewTransparency::stack`]) instead of taking the ramps at f = 1. The layers'
 //! translucence lobes are weighted by their shares w_i(f) at each hit too
-//! ([`StackTranslucence`]), as the classic stack composites its layers' light from
-//! behind at the facing ratio of the ray that sees it.
+//! ([`StackTranslucence`]: the stack's lobes held by the material, evaluated by the hit's
+//! BSDF at f), as the classic stack composites its layers' light from behind at the
+//! facing ratio of the ray that sees it.
 
-use bsdf::maya_highlight::translucence::LightAngle;
-use bsdf::maya_highlight::{table_at, VIEW_RAMP_STEPS};
+use bsdf::maya_highlight::translucent_stack::{StackAt, StackLayer, StackLobe, TranslucentStack};
+use bsdf::maya_highlight::VIEW_RAMP_STEPS;
 use bsdf::{MayaGlossy, Rgb};
 use shader::{Graph, NodeId};
 
@@ -20,10 +21,6 @@ use super::{Reader, ViewTransparency};
 
 /// A quantity at the facing ratios k/32, k = 0 … 32.
 type Table = [Rgb; VIEW_RAMP_STEPS];
-
-/// A translucence lobe before its layer's share: albedo (linear RGB), forward-lobe
-/// exponent and light-angle shape (`bsdf::MayaGlossy::add_translucence`'s arguments).
-type Lobe = (Rgb, f32, Option<LightAngle>);
 
 /// One layer of the stack at the facing ratios k/32.
 pub(super) struct Layer {
@@ -35,10 +32,9 @@ pub(super) struct Layer {
     emission: Table,
     /// A plain colour layer's colour (`None` for a material).
     plain: Option<Rgb>,
-    /// A material layer's translucence lobes before its share: albedo (linear RGB),
-    /// forward-lobe exponent and light-angle shape (`bsdf::MayaGlossy::add_translucence`'s
-    /// arguments), in the order the stack adds them; empty: not translucent.
-    lobes: Vec<Lobe>,
+    /// A material layer's translucence lobes before its share
+    /// (`bsdf::MayaGlossy::translucence_parts`); empty: not translucent.
+    lobes: Vec<StackLobe>,
 }
 
 impl Layer {
@@ -55,11 +51,7 @@ impl Layer {
     /// The same layer with the translucence lobes of its material's model `g` (before its
     /// share; see [`Layer::lobes`]).
     pub(super) fn with_lobes(mut self, g: &MayaGlossy) -> Layer {
-        let first = (g.translucence, g.focus, if g.focus <= 0.0 { g.light_angle } else { None });
-        self.lobes = std::iter::once(first)
-            .chain(g.translucence_lobes().skip(1).map(|(a, n)| (a, n, None)))
-            .filter(|(a, _, _)| *a != Rgb::ZERO)
-            .collect();
+        self.lobes = g.translucence_parts();
         self
     }
 
@@ -136,8 +128,11 @@ pub(super) fn tabulate(layers: &[Layer], texture: bool, below: Rgb) -> ViewTrans
     }
     let view = ViewTransparency::stack(transparency, lit, emission, passed);
     if layers.iter().any(|l| !l.lobes.is_empty()) {
-        let layers = layers.iter().map(|l| (l.transparency, l.lobes.clone())).collect();
-        view.with_stack_translucence(StackTranslucence { layers })
+        let layers = layers
+            .iter()
+            .map(|l| StackLayer { transparency: l.transparency.to_vec(), lobes: l.lobes.clone() })
+            .collect();
+        view.with_stack_translucence(StackTranslucence { stack: TranslucentStack::interned(layers) })
     } else {
         view
     }
@@ -145,55 +140,27 @@ pub(super) fn tabulate(layers: &[Layer], texture: bool, below: Rgb) -> ViewTrans
 
 /// The translucence of a layeredShader stack whose layers' transparencies follow the
 /// view: each layer's transparency T_i at the facing ratios k/32 and its translucence
-/// lobes before its share (see [`Layer::lobes`]). At a hit of facing ratio f the stack's
-/// lobes are Σ_i w_i(f) ⊙ (layer i's lobes), w_i(f) = T_0(f) ⊙ ⋯ ⊙ T_(i−1)(f) ⊙
-/// (1 − T_i(f)) per channel — the shares the classic stack composites its layers by at
-/// that ray — each T_i(f) read linearly between the table's points (exact for a linear
-/// ramp whose knots lie on k/32) and the product taken at f.
+/// lobes before its share, held for the material (`bsdf::maya_highlight::translucent_stack`).
+/// At a hit of facing ratio f the stack's lobes are Σ_i w_i(f) ⊙ (layer i's lobes),
+/// w_i(f) = T_0(f) ⊙ ⋯ ⊙ T_(i−1)(f) ⊙ (1 − T_i(f)) per channel — the shares the classic
+/// stack composites its layers by at that ray — each T_i(f) read linearly between the
+/// table's points (exact for a linear ramp whose knots lie on k/32) and the product taken
+/// at f: the hit's BSDF evaluates them itself, exactly for any number of layers, foci and
+/// ramps (no lobe merged, nothing allocated per hit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StackTranslucence {
-    /// Per layer (top first): its transparency table and its lobes.
-    layers: Vec<(Table, Vec<Lobe>)>,
+    /// The stack's layers and lobes (interned).
+    pub stack: &'static TranslucentStack,
 }
 
 impl StackTranslucence {
-    /// The shares w_i(f) of the layers at facing ratio `facing` (see the type's doc).
-    pub fn shares(&self, facing: f32) -> Vec<Rgb> {
-        let mut through = Rgb::ONE;
-        self.layers
-            .iter()
-            .map(|(t, _)| {
-                let t = table_at(t, facing).clamp(Rgb::ZERO, Rgb::ONE);
-                let w = through * (Rgb::ONE - t);
-                through *= t;
-                w
-            })
-            .collect()
-    }
-
     /// `g` with its translucence replaced by the stack's at facing ratio `facing`, every
     /// lobe's albedo divided by `coverage` (the hit's, as its diffuse colour is; 1 for a
-    /// refracting stack). Layers of one focus share a lobe as in the constant stack
-    /// (`bsdf::MayaGlossy::add_translucence`, which merges a fifth distinct focus as the
-    /// translation warned).
+    /// refracting stack).
     pub fn apply(&self, facing: f32, coverage: f32, g: &MayaGlossy) -> MayaGlossy {
-        let mut out = *g;
-        out.translucence = Rgb::ZERO;
-        out.translucence_per_diffuse = None;
-        out.light_angle = None;
-        out.focus = 0.0;
-        out.translucence_more = [[0.0; 4]; bsdf::maya_highlight::MORE_TRANSLUCENCE];
-        let k = if coverage > 0.0 { 1.0 / coverage } else { 1.0 };
-        let mut through = Rgb::ONE;
-        for (t, lobes) in &self.layers {
-            let t = table_at(t, facing).clamp(Rgb::ZERO, Rgb::ONE);
-            let w = through * (Rgb::ONE - t) * k;
-            through *= t;
-            for (a, n, shape) in lobes {
-                // (A focus beyond the lobes carried is merged, as the translation warned.)
-                let _ = out.add_translucence(*a * w, *n, *shape);
-            }
-        }
+        let mut out = g.with_translucence_stack(self.stack);
+        let scale = if coverage > 0.0 { 1.0 / coverage } else { 1.0 };
+        out.translucence_stack = Some(StackAt { stack: self.stack, facing: facing.clamp(0.0, 1.0), scale });
         out
     }
 }

@@ -25,6 +25,7 @@ mod maya_textures2d;
 mod maya_textures3d;
 mod maya_utilities;
 mod maya_vector_product;
+mod maya_view_stack_parts;
 mod mdl_base_conversions;
 mod mdl_base_functions;
 mod mdl_combinators;

@@ -1,8 +1,8 @@
 //! A layeredShader's translucent layers in the path engine's translation keep their own
 //! `translucenceFocus` (`bsdf::MayaGlossy::add_translucence`): each focus a forward lobe
 //! of albedo Σ w_i · c_i · t_i over its layers (w_i the layer's share), up to four
-//! distinct foci; a fifth is merged into the lobe of the nearest exponent with a warning
-//! naming its layer and the change of its forward peak.
+//! distinct foci in the BSDF's own lobes; past them every layer's lobe is held by the
+//! material (`bsdf::maya_highlight::translucent_stack`), exactly, with no warning.
 
 use crate::support;
 
@@ -14,7 +14,8 @@ use support::maya::{compile, Compiled};
 const LIBS: &str = "$include \"mayabase.mi\"\n";
 
 /// The layers' colours, in order.
-const COLORS: [[f32; 3]; 5] = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5], [0.7, 0.6, 0.2]];
+const COLORS: [[f32; 3]; 6] =
+    [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.1, 0.3, 0.9], [0.5, 0.5, 0.5], [0.7, 0.6, 0.2], [0.3, 0.6, 0.8]];
 
 /// The layers' `translucence`.
 const T: f32 = 0.6;
@@ -48,19 +49,18 @@ fn lobes(c: &Compiled) -> (Vec<(Vec3A, f32)>, Vec<String>) {
     let (s, warnings) =
         material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
     let SurfaceModel::Maya(g) = &s.model else { panic!("a Maya model: {:?}", s.model) };
-    (g.translucence_lobes().filter(|(a, _)| *a != Vec3A::ZERO).collect(), warnings)
+    (g.translucence_parts().iter().map(|l| (l.albedo, l.exponent)).collect(), warnings)
 }
 
 /// Three layers of foci 0.5, 0 and 0.25 (shares ½, ¼, ¼): three lobes, the focus-0 one
 /// first, each of albedo w_i · c_i · t and exponent 2φ/(1 − φ) within 1e-6, no warning.
 /// Two layers of one focus (0.5) share a lobe of albedo the sum of theirs. Four distinct
 /// foci (0.75 under 0.5, 0, 0.25): four lobes, no warning. A fifth (0.8, exponent 8,
-/// under those): still four lobes, the fifth layer's albedo added to the lobe of the
-/// nearest exponent (0.75's, 6, which keeps it; the total albedo kept within 1e-6), and a
-/// warning naming "l4" and both forward peaks, 5 and 4. Before, a fourth focus was merged
-/// into the third's.
+/// under those): five lobes held by the material, each layer's w_i · c_i · t at its own
+/// exponent within 1e-6, no warning. Before, a fifth focus was merged into the lobe of
+/// the nearest exponent (warned), and before that a fourth into the third's.
 #[test]
-fn each_layers_focus_is_a_lobe_of_its_own_up_to_four() {
+fn each_layers_focus_is_a_lobe_of_its_own() {
     let c = |i: usize| Vec3A::from_array(COLORS[i]) * T;
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25]));
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -77,37 +77,44 @@ fn each_layers_focus_is_a_lobe_of_its_own_up_to_four() {
     let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75]));
     assert!(warnings.is_empty(), "{warnings:?}");
     assert_eq!(got.len(), 4, "{got:?}");
-    let (got, warnings) = lobes(&stack(&[0.5, 0.0, 0.25, 0.75, 0.8]));
-    assert_eq!(got.len(), 4, "{got:?}");
-    assert!(
-        warnings.len() == 1 && warnings[0].contains("'l4'") && warnings[0].contains("becomes 4.000 instead of 5.000"),
-        "{warnings:?}"
-    );
-    let total = got.iter().fold(Vec3A::ZERO, |s, (a, _)| s + *a);
-    let want = c(0) * 0.5 + c(1) * 0.25 + c(2) * 0.125 + c(3) * 0.0625 + c(4) * 0.0625;
-    assert!((total - want).abs().max_element() < 1e-6, "{total} vs {want}");
-    let (a, _) = got.iter().find(|(_, n)| (*n - 6.0).abs() < 1e-5).expect("the lobe of exponent 6");
-    assert!((*a - (c(3) + c(4)) * 0.0625).abs().max_element() < 1e-6, "{a}");
+    let foci = [0.5, 0.0, 0.25, 0.75, 0.8];
+    let (got, warnings) = lobes(&stack(&foci));
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(got.len(), 5, "{got:?}");
+    let shares = [0.5, 0.25, 0.125, 0.0625, 0.0625];
+    for (i, (a, n)) in got.iter().enumerate() {
+        let (wa, wn) = (c(i) * shares[i], focus_exponent(foci[i]));
+        assert!((*a - wa).abs().max_element() < 1e-6 && (n - wn).abs() < 1e-6, "{i}: {a} {n} vs {wa} {wn}");
+    }
 }
 
-/// A stack of four layers of foci 0, 0.3, 0.6 and 0.9 (shares ½, ¼, ⅛, ⅛): the path
+/// A stack of four layers of foci 0, 0.3, 0.6 and 0.9 (shares ½, ¼, ⅛, ⅛), and one of six
+/// (0, 0.2, 0.4, 0.6, 0.8, 0.9; shares ½ … 1/32, 1/32: held by the material): the path
 /// engine's translucence, f of the translated stack's BSDF, is the sum of each layer's
 /// alone — a Maya BSDF of albedo w_i · c_i · t and exponent 2φ_i/(1 − φ_i) — within 1e-5
 /// over 24 × 24 direction pairs, with no warning. Before, the fourth focus (0.9,
 /// exponent 18) was merged into the third's lobe (0.6, exponent 3): its forward peak 2.5
-/// instead of 10.
+/// instead of 10; later a fifth into the nearest.
 #[test]
-fn four_foci_are_the_sum_of_their_layers() {
+fn foci_are_the_sum_of_their_layers() {
+    for foci in [&[0.0f32, 0.3, 0.6, 0.9][..], &[0.0, 0.2, 0.4, 0.6, 0.8, 0.9]] {
+        foci_sum(foci);
+    }
+}
+
+/// [`foci_are_the_sum_of_their_layers`] for the stack of `foci`.
+fn foci_sum(foci: &[f32]) {
     use bsdf::maya_highlight::Shape;
-    let foci = [0.0f32, 0.3, 0.6, 0.9];
-    let c = stack(&foci);
+    let c = stack(foci);
     let (s, warnings) =
         material::maya::surface_material("m", &c.shading.graph, c.material("m")).expect("a Maya shading engine");
     assert!(warnings.is_empty(), "{warnings:?}");
     let SurfaceModel::Maya(g) = &s.model else { panic!("a Maya model: {:?}", s.model) };
     let plain = bsdf::MayaGlossy::new(Shape::Phong { power: 1.0 }, Vec3A::ZERO);
-    let shares = [0.5f32, 0.25, 0.125, 0.125];
-    let alone: Vec<bsdf::MayaGlossy> = (0..4)
+    let shares: Vec<f32> = (0..foci.len())
+        .map(|i| if i + 1 < foci.len() { 0.5f32.powi(i as i32 + 1) } else { 0.5f32.powi(i as i32) })
+        .collect();
+    let alone: Vec<bsdf::MayaGlossy> = (0..foci.len())
         .map(|i| plain.with_translucence(Vec3A::from_array(COLORS[i]) * T * shares[i], focus_exponent(foci[i])))
         .collect();
     let directions: Vec<Vec3A> = (0..24)
@@ -181,12 +188,12 @@ fn classic_shares(f: f32) -> [Vec3A; 2] {
 /// layers' translucence lobes by their shares at each hit's facing ratio f
 /// (`material::maya::StackTranslucence`, applied by `ViewTransparency::apply`), as the
 /// classic stack composites them at that ray. [`view_stack`] at f = 0.3, 0.55, 0.8 and 1:
-/// with the lambert layer's focus 0.5 the hit's two lobes are w_a(f) · A_a (focus 0, the
+/// the hit's two lobes (held by the material, read at f) are w_a(f) · A_a (focus 0, the
 /// rampShader's light-angle shape, A_a = 2 · t_a · c_a for its constant ramp) and
-/// w_b(f) · c_b · t_b (exponent 2), w the classic composite's shares at f, within 1e-5;
-/// with focus 0 they share one lobe whose A ⊙ S(u) is w_a · t_a · c_a + w_b · c_b · t_b · u
-/// within 1e-5 at u = 0.1 … 1. Before, the lobes kept the shares at f = 1 (w_a = 0.8):
-/// at f = 0.3, w_a = 0.38.
+/// w_b(f) · c_b · t_b (the lambert layer's focus 0.5, exponent 2, or 0), w the classic
+/// composite's shares at f, within 1e-5; with focus 0 their A ⊙ S(u) sum to
+/// w_a · t_a · c_a + w_b · c_b · t_b · u within 1e-5 at u = 0.1 … 1. Before, the lobes kept
+/// the shares at f = 1 (w_a = 0.8): at f = 0.3, w_a = 0.38.
 #[test]
 fn a_view_following_stack_weights_its_translucence_at_the_hits_facing_ratio() {
     let (ca, ta) = (Vec3A::from_array(RAMP_LAYER.0), RAMP_LAYER.1);
@@ -202,21 +209,19 @@ fn a_view_following_stack_weights_its_translucence_at_the_hits_facing_ratio() {
             view.apply(f, &mut hit);
             let SurfaceModel::Maya(g) = &*hit.model else { panic!("a Maya model: {:?}", hit.model) };
             let [wa, wb] = classic_shares(f);
-            let got: Vec<(Vec3A, f32)> = g.translucence_lobes().filter(|(a, _)| *a != Vec3A::ZERO).collect();
-            let shape = g.light_angle.expect("the rampShader layer's light-angle shape");
-            if focus > 0.0 {
-                let want = [(wa * ca * ta * 2.0, 0.0), (wb * cb * tb, focus_exponent(focus))];
-                assert_eq!(got.len(), 2, "f {f}: {got:?}");
-                for ((a, n), (wa, wn)) in got.iter().zip(want) {
-                    assert!(
-                        (*a - wa).abs().max_element() < 1e-5 && (n - wn).abs() < 1e-6,
-                        "f {f}: {a} {n} vs {wa} {wn}"
-                    );
-                }
-            } else {
-                assert_eq!(got.len(), 1, "f {f}: {got:?}");
+            let got = g.translucence_parts();
+            assert_eq!(got.len(), 2, "f {f}: {got:?}");
+            let want = [(wa * ca * ta * 2.0, 0.0), (wb * cb * tb, focus_exponent(focus))];
+            for (l, (wa, wn)) in got.iter().zip(want) {
+                assert!(
+                    (l.albedo - wa).abs().max_element() < 1e-5 && (l.exponent - wn).abs() < 1e-6,
+                    "f {f}: {l:?} vs {wa} {wn}"
+                );
+            }
+            let shape = got[0].light_angle.expect("the rampShader layer's light-angle shape");
+            if focus <= 0.0 {
                 for u in [0.1f32, 0.25, 0.5, 0.75, 1.0] {
-                    let a = got[0].0 * shape.factor(u) * u;
+                    let a = got[0].albedo * shape.factor(u) * u + got[1].albedo * u;
                     let want = wa * ca * ta + wb * cb * tb * u;
                     assert!((a - want).abs().max_element() < 1e-5, "f {f}, u {u}: {a} vs {want}");
                 }
