@@ -673,6 +673,20 @@ fn face_edits_replace_faces() {
     assert!(e.offset == at as u64 + 5 && e.message.contains("face 9"), "{e}");
 }
 
+/// The reduced levels of one square face of `side` × `side` texels (`side` a power of two),
+/// box-reduced down to 2 × 2, one face per level, in the file's level order.
+pub(crate) fn reduced_levels(texels: &[f64], side: usize) -> Vec<Vec<Face>> {
+    let mut levels = Vec::new();
+    let (mut values, mut side) = (texels.to_vec(), side);
+    while side > 2 {
+        values = reduce(&values, side);
+        side /= 2;
+        let log2 = side.trailing_zeros() as i8;
+        levels.push(vec![Face { log2: (log2, log2), texels: values.clone(), how: How::Zipped }]);
+    }
+    levels
+}
+
 /// The 2 × 2 box reduction of an n × n image.
 pub(crate) fn reduce(values: &[f64], n: usize) -> Vec<f64> {
     let m = n / 2;

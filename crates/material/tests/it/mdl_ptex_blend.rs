@@ -4,7 +4,7 @@
 
 use material::mdl_modules::ptex::{Filter, Ptex};
 
-use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
+use crate::mdl_ptex::{ptex_file_full, read, reduced_levels, Face, How};
 
 /// One float channel of the first lookup lane.
 fn at(ptex: &Ptex, u: f32, v: f32, width: Option<f32>) -> f32 {
@@ -31,14 +31,7 @@ fn a_width_sweep_has_no_steps() {
             (-(x * x + y * y) / (0.12 * 0.12)).exp()
         })
         .collect();
-    let mut levels = Vec::new();
-    let (mut values, mut side) = (texels.clone(), n);
-    while side > 2 {
-        values = reduce(&values, side);
-        side /= 2;
-        let log2 = side.trailing_zeros() as i8;
-        levels.push(vec![Face { log2: (log2, log2), texels: values.clone(), how: How::Zipped }]);
-    }
+    let levels = reduced_levels(&texels, n);
     let face = Face { log2: (4, 4), texels: texels.clone(), how: How::Zipped };
     let ptex = read(&ptex_file_full(1, 3, 1, &[face], 6, &[], &levels));
     // Each level's own texel width: its central four texels' mean.
@@ -105,14 +98,7 @@ fn a_grazing_footprint_reads_its_rectangle() {
             0.5 + 0.25 * (tau * 2.0 * u).sin() + 0.2 * (tau * 4.0 * v).cos()
         })
         .collect();
-    let mut levels = Vec::new();
-    let (mut values, mut side) = (texels.clone(), n);
-    while side > 2 {
-        values = reduce(&values, side);
-        side /= 2;
-        let log2 = side.trailing_zeros() as i8;
-        levels.push(vec![Face { log2: (log2, log2), texels: values.clone(), how: How::Zipped }]);
-    }
+    let levels = reduced_levels(&texels, n);
     let ptex = read(&ptex_file_full(
         1,
         3,

@@ -10,7 +10,7 @@ use material::mdl_modules::ptex::footprint::{filter_ellipse, filter_width, FaceE
 use material::mdl_modules::ptex::{Filter, MeshType, Ptex};
 use shader::State;
 
-use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
+use crate::mdl_ptex::{ptex_file_full, read, reduced_levels, Face, How};
 
 /// One quad face of 64 × 64 texels striped along its diagonal u = v: texel (i, j) is 1
 /// where (i − j) mod 8 < 4, else 0 (stripes 4 texels wide along u), with its box-reduced
@@ -19,14 +19,7 @@ fn diagonal_stripes() -> Ptex {
     let n = 64usize;
     let texels: Vec<f64> =
         (0..n * n).map(|t| if ((t % n) as i64 - (t / n) as i64).rem_euclid(8) < 4 { 1.0 } else { 0.0 }).collect();
-    let mut levels = Vec::new();
-    let (mut values, mut side) = (texels.clone(), n);
-    while side > 2 {
-        values = reduce(&values, side);
-        side /= 2;
-        let log2 = side.trailing_zeros() as i8;
-        levels.push(vec![Face { log2: (log2, log2), texels: values.clone(), how: How::Zipped }]);
-    }
+    let levels = reduced_levels(&texels, n);
     read(&ptex_file_full(1, 3, 1, &[Face { log2: (6, 6), texels, how: How::Zipped }], 6, &[], &levels))
 }
 

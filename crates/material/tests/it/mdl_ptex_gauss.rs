@@ -7,21 +7,14 @@ use material::mdl_modules::ptex::anisotropic::{major_axis_weights, MAX_PROBES};
 use material::mdl_modules::ptex::footprint::FaceEllipse;
 use material::mdl_modules::ptex::Ptex;
 
-use crate::mdl_ptex::{ptex_file_full, read, reduce, Face, How};
+use crate::mdl_ptex::{ptex_file_full, read, reduced_levels, Face, How};
 
 /// One quad face of 64 × 64 texels, texel (i, j) = `f(i, j)`, with its box-reduced levels
 /// down to 2 × 2.
 fn face_of(f: impl Fn(usize, usize) -> f64) -> Ptex {
     let n = 64usize;
     let texels: Vec<f64> = (0..n * n).map(|t| f(t % n, t / n)).collect();
-    let mut levels = Vec::new();
-    let (mut values, mut side) = (texels.clone(), n);
-    while side > 2 {
-        values = reduce(&values, side);
-        side /= 2;
-        let log2 = side.trailing_zeros() as i8;
-        levels.push(vec![Face { log2: (log2, log2), texels: values.clone(), how: How::Zipped }]);
-    }
+    let levels = reduced_levels(&texels, n);
     read(&ptex_file_full(1, 3, 1, &[Face { log2: (6, 6), texels, how: How::Zipped }], 6, &[], &levels))
 }
 
