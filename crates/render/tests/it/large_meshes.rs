@@ -4,9 +4,11 @@
 //! builds it compact (8-wide nodes over indexed leaves where the CPU has them) with the
 //! hits the Rust backend finds.
 
+#[cfg(embree)]
 use crate::support;
 
 use glam::Vec3A;
+#[cfg(embree)]
 use render::accel::{self, Backend};
 use render::mesh::LARGE_MESH_TRIANGLES;
 use render::pipeline::build_world_taking_meshes;
