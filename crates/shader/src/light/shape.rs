@@ -238,11 +238,18 @@ mod tests {
     use super::*;
 
     /// A rectangle keeps the area its edges give, `u.cross(v).length()`, bit for bit (what
-    /// light samples' densities used before the shape kept it), for edges of many lengths
-    /// and angles, and so does a rectangle carried by a rigid motion with a scale
-    /// ([`super::super::ShadingLight::moved`] rebuilds it from its moved edges).
+    /// light samples' densities used before the shape kept it), and the edges' dot products
+    /// and Gram determinant as the hit test worked them out before the shape kept them,
+    /// for edges of many lengths and angles, and so does a rectangle carried by a rigid
+    /// motion with a scale ([`super::super::ShadingLight::moved`] rebuilds it from its moved
+    /// edges).
     #[test]
     fn rectangles_keep_their_edges_area_bit_for_bit() {
+        let gram_bits = |u: Vec3A, v: Vec3A| {
+            let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+            [uu, uv, vv, uu * vv - uv * uv].map(f32::to_bits)
+        };
+        let kept_bits = |g: EdgeGram| [g.uu, g.uv, g.vv, g.det].map(f32::to_bits);
         let mut z = 0x5eed_u32;
         let mut r = move || {
             z ^= z << 13;
@@ -257,6 +264,8 @@ mod tests {
             let n = u.cross(v).normalize_or(Vec3A::Z);
             let s = Shape::rect(u, v, n);
             assert_eq!(s.area().to_bits(), u.cross(v).length().to_bits(), "{u} {v}");
+            let Shape::Rect { gram, .. } = s else { panic!("a rectangle") };
+            assert_eq!(kept_bits(gram), gram_bits(u, v), "{u} {v}");
             let by = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(0.5 + 2.0 * r()),
                 glam::Quat::from_rotation_arc(glam::Vec3::Z, glam::Vec3::new(r() - 0.5, r(), 0.3).normalize()),
@@ -280,8 +289,9 @@ mod tests {
                 photons: None,
             }
             .moved(by);
-            let Some(Shape::Rect { u: mu, v: mv, area, .. }) = light.shape else { panic!("a rectangle") };
+            let Some(Shape::Rect { u: mu, v: mv, area, gram, .. }) = light.shape else { panic!("a rectangle") };
             assert_eq!(area.to_bits(), mu.cross(mv).length().to_bits(), "{mu} {mv}");
+            assert_eq!(kept_bits(gram), gram_bits(mu, mv), "{mu} {mv}");
             assert_eq!(mu, by.transform_vector3a(u));
         }
     }
