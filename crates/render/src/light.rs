@@ -402,7 +402,7 @@ impl LightSource {
                 })
             }
             Output::Portal { scale, reverse } => {
-                if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
+                if let Shape::Rect { u: eu, v: ev, normal, area, .. } = self.shape {
                     let normal = if *reverse { -normal } else { normal };
                     let frame = self.rect_frame.as_ref();
                     return rect_sample(self.position, eu, ev, normal, area, frame, *scale, false, p, u);
@@ -424,7 +424,7 @@ impl LightSource {
                 if let Shape::Sphere { radius } = self.shape {
                     return self.sample_sphere_cone(p, radius, *l, u);
                 }
-                if let Shape::Rect { u: eu, v: ev, normal, area } = self.shape {
+                if let Shape::Rect { u: eu, v: ev, normal, area, .. } = self.shape {
                     let frame = self.rect_frame.as_ref();
                     return rect_sample(self.position, eu, ev, normal, area, frame, *l, *two_sided, p, u);
                 }
@@ -575,7 +575,7 @@ impl LightSource {
     /// line.
     #[inline]
     pub fn sample_at(&self, p: Vec3A, u: Vec2, time: f32) -> Option<LightSample> {
-        if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal, area }, true) =
+        if let (Output::Radiance { l, two_sided }, &Shape::Rect { u: eu, v: ev, normal, area, .. }, true) =
             (&self.output, &self.shape, self.motion.is_empty())
         {
             // By area unless the light looks large from `p`; then `sample_any_at` (out of

@@ -115,6 +115,7 @@ impl PathBand<'_> {
         // the time the ring comes back to it). `current`: the current pixel's slot.
         let mut samplers: Vec<Sampler> = Vec::with_capacity(PACKET + 1);
         let mut current: Option<usize> = None;
+        let mut packet = PacketBuffers::new();
         let mut row = None;
         for k in 0..pixels.len() {
             if cancel.load(Ordering::Relaxed) {
@@ -127,7 +128,7 @@ impl PathBand<'_> {
             if row != Some(y) {
                 // Packets never span two rows: a row's packets are then the same whichever
                 // rows are rendered with it (a part of interleaved rows, a strip).
-                self.finish(&mut lanes, &mut samplers, pixels, base, out);
+                self.finish(&mut lanes, &mut samplers, &mut packet, pixels, base, out);
                 row = Some(y);
             }
             // One sampler per pixel, restarted for each sample: the scrambles that depend
@@ -152,11 +153,11 @@ impl PathBand<'_> {
                 let ray = cam.ray_at(raster.x, raster.y, time);
                 lanes.push(Lane { k, index, weight, ray, position: sampler.position(), sampler: s, time });
                 if lanes.len() == PACKET {
-                    self.finish(&mut lanes, &mut samplers, pixels, base, out);
+                    self.finish(&mut lanes, &mut samplers, &mut packet, pixels, base, out);
                 }
             }
         }
-        self.finish(&mut lanes, &mut samplers, pixels, base, out);
+        self.finish(&mut lanes, &mut samplers, &mut packet, pixels, base, out);
     }
 
     /// Traces the waiting lanes' camera rays together, then each lane's path in order, and
@@ -165,6 +166,7 @@ impl PathBand<'_> {
         &self,
         lanes: &mut Vec<Lane>,
         samplers: &mut [Sampler],
+        packet: &mut PacketBuffers,
         pixels: &mut [Pixel],
         base: usize,
         out: &mut BandOutput,
@@ -173,14 +175,12 @@ impl PathBand<'_> {
         if n == 0 {
             return;
         }
-        let mut rays = [Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z); PACKET];
+        let PacketBuffers { rays, hits, results, shadows } = packet;
         for (r, lane) in rays.iter_mut().zip(lanes.iter()) {
             *r = lane.ray;
         }
-        let mut hits: [Option<Hit>; PACKET] = [None; PACKET];
         self.accel.intersect_batch(&rays[..n], &mut hits[..n]);
-        // (Each path writes its result in place: returned by value, it was copied.)
-        let mut results = [PathResult::EMPTY; PACKET];
+        // (Each path writes its whole result in place: returned by value, it was copied.)
         let scene = PathScene {
             world: self.world,
             accel: self.accel,
@@ -189,7 +189,7 @@ impl PathBand<'_> {
             constants: self.constants,
             plain: self.plain,
         };
-        for ((lane, &hit), result) in lanes.iter().zip(&hits).zip(&mut results) {
+        for ((lane, &hit), result) in lanes.iter().zip(hits.iter()).zip(results.iter_mut()) {
             let sampler = &mut samplers[lane.sampler];
             sampler.resume(&lane.position);
             let camera = CameraRay { ray: lane.ray, hit: Some(hit), defer_shadow: true };
@@ -216,7 +216,6 @@ impl PathBand<'_> {
             );
         }
         // The first bounces' shadow rays, traced together.
-        let mut shadows = [Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z); PACKET];
         let mut owner = [0usize; PACKET];
         let mut m = 0;
         for (i, r) in results[..n].iter().enumerate() {
@@ -233,7 +232,7 @@ impl PathBand<'_> {
             lane_blocked[i] = b;
         }
         let cam = &self.world.camera;
-        for ((lane, r), blocked) in lanes.drain(..).zip(&results).zip(lane_blocked) {
+        for ((lane, r), blocked) in lanes.drain(..).zip(results.iter()).zip(lane_blocked) {
             let radiance = r.radiance_given(blocked);
             let px = &mut pixels[lane.k];
             if lane.index == 0 {
@@ -251,6 +250,34 @@ impl PathBand<'_> {
                 out.writes.push((base + lane.k, buffer, [g.x, g.y, g.z, 1.0]));
             }
             out.nonfinite += u64::from(px.add(radiance, r.alpha, lane.weight, lane.index));
+        }
+    }
+}
+
+/// A packet's camera rays, their hits, its paths' results and the first bounces' shadow
+/// rays: made once per band and reused by every packet (each packet writes the first `n`
+/// entries it reads, so nothing is cleared between packets: the `PathResult`s' zeroing
+/// was a `memset` per packet).
+struct PacketBuffers {
+    /// The waiting lanes' camera rays (world space).
+    rays: [Ray; PACKET],
+    /// What [`Accel::intersect_batch`] found along each.
+    hits: [Option<Hit>; PACKET],
+    /// Each lane's path, as [`trace_camera_path_into`] wrote it.
+    results: [PathResult; PACKET],
+    /// The deferred first-bounce shadow rays, packed (world space).
+    shadows: [Ray; PACKET],
+}
+
+impl PacketBuffers {
+    /// Buffers for one band (their contents are placeholders until a packet writes them).
+    fn new() -> Self {
+        let ray = Ray::new(glam::Vec3A::ZERO, glam::Vec3A::Z);
+        PacketBuffers {
+            rays: [ray; PACKET],
+            hits: [None; PACKET],
+            results: [PathResult::EMPTY; PACKET],
+            shadows: [ray; PACKET],
         }
     }
 }

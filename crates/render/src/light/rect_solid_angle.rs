@@ -70,7 +70,7 @@ impl RectFrame {
     /// The frame of `shape` when it is a rectangle whose edges are orthogonal (their cosine
     /// at most `MAX_EDGE_COSINE`); `None` for any other shape.
     pub fn of(shape: &Shape) -> Option<RectFrame> {
-        let Shape::Rect { u: eu, v: ev, normal, area } = *shape else { return None };
+        let Shape::Rect { u: eu, v: ev, normal, area, .. } = *shape else { return None };
         if eu.dot(ev).abs() > MAX_EDGE_COSINE * area {
             return None;
         }

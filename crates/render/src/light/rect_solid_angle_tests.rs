@@ -34,7 +34,7 @@ fn rect_light(two_sided: bool) -> LightSource {
 
 /// The light's centre, edges, normal and area.
 fn rect_of(light: &LightSource) -> (Vec3A, Vec3A, Vec3A, Vec3A, f32) {
-    let Shape::Rect { u, v, normal, area } = light.shape else { unreachable!() };
+    let Shape::Rect { u, v, normal, area, .. } = light.shape else { unreachable!() };
     (light.position, u, v, normal, area)
 }
 

@@ -28,6 +28,9 @@ pub enum Shape {
         /// Its area, `u.cross(v).length()` (world units²): kept with the shape so that a
         /// light sample's density needs no square root.
         area: f32,
+        /// The edges' dot products, kept with the shape so that a ray's hit test (asked of
+        /// every ray the path engine traces) does not work them out again.
+        gram: EdgeGram,
     },
     /// A disc centred on the position.
     Disc {
@@ -53,11 +56,35 @@ pub enum Shape {
     Mesh(Arc<MeshShape>),
 }
 
+/// The dot products of a parallelogram's full edges `u` and `v` and the determinant of
+/// their Gram matrix (world units², units⁴): what solving a point in the edges' basis
+/// needs of the edges alone ([`EdgeGram::of`]; the same numbers, bit for bit, as working
+/// them out at each hit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeGram {
+    /// `u · u`.
+    pub uu: f32,
+    /// `u · v`.
+    pub uv: f32,
+    /// `v · v`.
+    pub vv: f32,
+    /// `uu · vv − uv²` (0 for parallel edges).
+    pub det: f32,
+}
+
+impl EdgeGram {
+    /// The Gram matrix of edges `u` and `v`.
+    pub fn of(u: Vec3A, v: Vec3A) -> EdgeGram {
+        let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+        EdgeGram { uu, uv, vv, det: uu * vv - uv * uv }
+    }
+}
+
 impl Shape {
     /// The parallelogram of full edges `u`, `v` (world space) and unit normal `normal`
     /// (its emitting side), with its area.
     pub fn rect(u: Vec3A, v: Vec3A, normal: Vec3A) -> Shape {
-        Shape::Rect { u, v, normal, area: u.cross(v).length() }
+        Shape::Rect { u, v, normal, area: u.cross(v).length(), gram: EdgeGram::of(u, v) }
     }
 
     /// The shape of a scene area light (`None` for object and user shapes, which have no
@@ -158,12 +185,11 @@ impl Shape {
         };
         match *self {
             Shape::Mesh(ref m) => m.intersect(origin, dir, tmin, tmax),
-            Shape::Rect { u, v, normal, .. } => {
+            Shape::Rect { u, v, normal, gram, .. } => {
                 let (t, denom) = plane(normal)?;
                 let q = origin + dir * t - center;
                 // The edges need not be orthogonal: solve in the parallelogram's own basis.
-                let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
-                let det = uu * vv - uv * uv;
+                let EdgeGram { uu, uv, vv, det } = gram;
                 let (a, b) = if det.abs() > 0.0 {
                     ((q.dot(u) * vv - q.dot(v) * uv) / det, (q.dot(v) * uu - q.dot(u) * uv) / det)
                 } else {
@@ -212,11 +238,18 @@ mod tests {
     use super::*;
 
     /// A rectangle keeps the area its edges give, `u.cross(v).length()`, bit for bit (what
-    /// light samples' densities used before the shape kept it), for edges of many lengths
-    /// and angles, and so does a rectangle carried by a rigid motion with a scale
-    /// ([`super::super::ShadingLight::moved`] rebuilds it from its moved edges).
+    /// light samples' densities used before the shape kept it), and the edges' dot products
+    /// and Gram determinant as the hit test worked them out before the shape kept them,
+    /// for edges of many lengths and angles, and so does a rectangle carried by a rigid
+    /// motion with a scale ([`super::super::ShadingLight::moved`] rebuilds it from its moved
+    /// edges).
     #[test]
     fn rectangles_keep_their_edges_area_bit_for_bit() {
+        let gram_bits = |u: Vec3A, v: Vec3A| {
+            let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+            [uu, uv, vv, uu * vv - uv * uv].map(f32::to_bits)
+        };
+        let kept_bits = |g: EdgeGram| [g.uu, g.uv, g.vv, g.det].map(f32::to_bits);
         let mut z = 0x5eed_u32;
         let mut r = move || {
             z ^= z << 13;
@@ -231,6 +264,8 @@ mod tests {
             let n = u.cross(v).normalize_or(Vec3A::Z);
             let s = Shape::rect(u, v, n);
             assert_eq!(s.area().to_bits(), u.cross(v).length().to_bits(), "{u} {v}");
+            let Shape::Rect { gram, .. } = s else { panic!("a rectangle") };
+            assert_eq!(kept_bits(gram), gram_bits(u, v), "{u} {v}");
             let by = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(0.5 + 2.0 * r()),
                 glam::Quat::from_rotation_arc(glam::Vec3::Z, glam::Vec3::new(r() - 0.5, r(), 0.3).normalize()),
@@ -254,8 +289,9 @@ mod tests {
                 photons: None,
             }
             .moved(by);
-            let Some(Shape::Rect { u: mu, v: mv, area, .. }) = light.shape else { panic!("a rectangle") };
+            let Some(Shape::Rect { u: mu, v: mv, area, gram, .. }) = light.shape else { panic!("a rectangle") };
             assert_eq!(area.to_bits(), mu.cross(mv).length().to_bits(), "{mu} {mv}");
+            assert_eq!(kept_bits(gram), gram_bits(mu, mv), "{mu} {mv}");
             assert_eq!(mu, by.transform_vector3a(u));
         }
     }
