@@ -67,7 +67,7 @@ fn geometry_line(world: &render::World, accel: &dyn render::Accel) -> String {
         }
         Some(m) => {
             line += &format!(
-                ", BVH {:.1} MiB as Embree reports its allocations ({:.1} B a triangle)",
+                ", BVH {:.1} MiB as Embree reports its allocations, with the quads it reads ({:.1} B a triangle)",
                 mib(m.bytes),
                 m.bytes as f64 / triangles
             )

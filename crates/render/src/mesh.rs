@@ -4,6 +4,7 @@
 use glam::{Vec3, Vec3A};
 
 pub mod ptex_split;
+pub mod quad_pairs;
 
 /// A triangle mesh, object space.
 ///
@@ -70,6 +71,10 @@ pub struct MeshData {
     /// [`crate::motion`]), when the vertices move while it is open; empty: they stay at
     /// `positions`.
     pub position_keys: Vec<Vec<Vec3A>>,
+    /// The number of triangle pairs at the start of [`MeshData::triangles`] that make quads
+    /// ([`quad_pairs`]: triangles 2k and 2k + 1 share an edge, the diagonal of quad k), for
+    /// the acceleration structure; 0 for meshes not so ordered ([`MeshData::pair_into_quads`]).
+    pub quad_pairs: u32,
     /// How far the shading normal leans from the interpolated vertex normal towards the
     /// triangle's geometric normal, 0…1 (a displacement approximation's `sharp`, see
     /// [`MeshData::sharpen`]); 0 for every mesh that has none.
@@ -186,6 +191,26 @@ impl MeshData {
         }
     }
 
+    /// Reorders the triangles of a large mesh whose vertices are interleaved (and which so
+    /// holds no per-corner Ptex data, hair or motion) as pairs that share an edge
+    /// ([`quad_pairs::pair_in_place`]), its material slots with them, and records the
+    /// pairs in [`MeshData::quad_pairs`]: the acceleration structure then holds the mesh as
+    /// quads. Each triangle keeps its corners and winding (rotated at most). Nothing
+    /// changes for other meshes.
+    pub fn pair_into_quads(&mut self) {
+        if self.triangles.len() < LARGE_MESH_TRIANGLES || !self.is_interleaved() || self.quad_pairs > 0 {
+            return;
+        }
+        let vertex_count = self.vertex_count();
+        let Some((pairs, order)) = quad_pairs::pair_in_place(&mut self.triangles, vertex_count) else {
+            return;
+        };
+        if !self.slots.is_empty() {
+            self.slots = order.iter().map(|&t| self.slots[t as usize]).collect();
+        }
+        self.quad_pairs = pairs;
+    }
+
     /// Whether the mesh keeps its vertices interleaved ([`MeshData::vertices`]).
     #[inline]
     pub fn is_interleaved(&self) -> bool {
@@ -286,6 +311,7 @@ impl MeshData {
             motion,
             motion_more,
             position_keys,
+            quad_pairs,
             sharp,
         } = self;
         MeshData {
@@ -306,6 +332,7 @@ impl MeshData {
             motion: motion.clone(),
             motion_more: motion_more.clone(),
             position_keys: position_keys.clone(),
+            quad_pairs: *quad_pairs,
             sharp: *sharp,
         }
     }

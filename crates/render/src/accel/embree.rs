@@ -15,6 +15,7 @@ use std::os::raw::{c_char, c_uint};
 
 use super::{Accel, Backend, Hit};
 use crate::accel::bvh::instance_mask;
+use crate::mesh::quad_pairs;
 use crate::ray::Ray;
 use crate::world::World;
 
@@ -23,10 +24,12 @@ type RtcScene = *mut c_void;
 type RtcGeometry = *mut c_void;
 
 const GEOMETRY_TYPE_TRIANGLE: c_uint = 0;
+const GEOMETRY_TYPE_QUAD: c_uint = 1;
 const GEOMETRY_TYPE_INSTANCE: c_uint = 121;
 const BUFFER_TYPE_INDEX: c_uint = 0;
 const BUFFER_TYPE_VERTEX: c_uint = 1;
 const FORMAT_UINT3: c_uint = 0x5003;
+const FORMAT_UINT4: c_uint = 0x5004;
 const FORMAT_FLOAT3: c_uint = 0x9003;
 const FORMAT_FLOAT3X4_COLUMN_MAJOR: c_uint = 0x9234;
 const BUILD_QUALITY_MEDIUM: c_uint = 1;
@@ -197,7 +200,14 @@ const COMPACT_FROM_TRIANGLES: usize = crate::mesh::LARGE_MESH_TRIANGLES;
 /// normals in 4 bytes a vertex. Images are the same as with the 4-wide nodes. Quantized 8-wide nodes
 /// (`qbvh8.triangle4i`) take 30.5 B but peak at 353 MiB while building, and have no packet
 /// kernels. Build quality has no effect on compact leaves (always binned SAH).
-const COMPACT_DEVICE: &std::ffi::CStr = c"threads=0,tri_accel=bvh8.triangle4i";
+///
+/// Large meshes reach Embree as quads where their triangles pair up
+/// ([`crate::mesh::MeshData::pair_into_quads`]): compact
+/// ones in 8-wide nodes over indexed quad leaves (`bvh8.quad4i`; Embree's own choice for
+/// compact quads is 4-wide, `bvh4.quad4i`). Measured on the heavy scene (speed45): 21.5 B a
+/// triangle for the BVH against `bvh8.triangle4i`'s 40.9 (the quads' own arrays add 12),
+/// built in about half the time.
+const COMPACT_DEVICE: &std::ffi::CStr = c"threads=0,tri_accel=bvh8.triangle4i,quad_accel=bvh8.quad4i";
 
 /// Whether this CPU runs Embree's 8-wide kernels (AVX; without it Embree has no 8-wide
 /// BVH factory to build with, so [`COMPACT_DEVICE`] must not be asked for).
@@ -233,6 +243,13 @@ pub struct EmbreeAccel<'w> {
     /// Bytes Embree holds for this device, as its memory monitor reported them
     /// ([`count_memory`]): boxed, so that its address, which Embree keeps, stays put.
     memory: Box<std::sync::atomic::AtomicI64>,
+    /// Each mesh's quads where Embree holds it as quads (its triangles paired,
+    /// [`crate::mesh::MeshData::quad_pairs`]; measured in speed45: half the primitives to
+    /// build, half the BVH's bytes); empty where it holds triangles.
+    quads: Vec<Vec<[u32; 4]>>,
+    /// For each instance, its mesh's [`crate::mesh::MeshData::quad_pairs`] where Embree
+    /// holds that mesh as quads, or `u32::MAX` where it holds triangles.
+    quad_pairs_of: Vec<u32>,
     world: std::marker::PhantomData<&'w World>,
 }
 
@@ -262,23 +279,39 @@ impl<'w> EmbreeAccel<'w> {
         let compact = flat_triangles >= COMPACT_FROM_TRIANGLES
             || world.meshes.iter().zip(&shared).any(|(m, &used)| used && m.triangles.len() >= COMPACT_FROM_TRIANGLES);
         if compact && wide_nodes_supported() {
-            let accel = Self::with_device(world, &flat, &shared, flat_triangles, COMPACT_DEVICE);
+            let accel = Self::with_device(world, &flat, &shared, flat_triangles, COMPACT_DEVICE, true);
             if accel.error() == 0 {
                 return accel;
             }
             // An Embree built without 8-wide kernels rejects the layout: build the default.
         }
-        Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0")
+        Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0", compact)
+    }
+
+    /// Builds Embree scenes for a world as a large world's are — compact, its still
+    /// meshes as quads — whatever its size: for tests and measurements of that layout on
+    /// small scenes.
+    pub fn new_compact(world: &'w World) -> EmbreeAccel<'w> {
+        let flat = super::flat_instances(world);
+        let mut shared = vec![false; world.meshes.len()];
+        for (inst, f) in world.instances.iter().zip(&flat) {
+            shared[inst.mesh as usize] |= !f;
+        }
+        let flat_triangles = COMPACT_FROM_TRIANGLES.max(1);
+        let config = if wide_nodes_supported() { COMPACT_DEVICE } else { c"threads=0" };
+        Self::with_device(world, &flat, &shared, flat_triangles, config, true)
     }
 
     /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
-    /// `flat` says, the meshes in `shared` built as scenes of their own.
+    /// `flat` says, the meshes in `shared` built as scenes of their own; with `use_quads`,
+    /// the meshes paired into quads that do not move as quads.
     fn with_device(
         world: &'w World,
         flat: &[bool],
         shared: &[bool],
         flat_triangles: usize,
         config: &std::ffi::CStr,
+        use_quads: bool,
     ) -> EmbreeAccel<'w> {
         // SAFETY: `config` is a NUL-terminated string; every pointer passed below comes
         // from Embree itself or from live Rust buffers of the stated sizes.
@@ -290,11 +323,25 @@ impl<'w> EmbreeAccel<'w> {
                 rtcSetDeviceMemoryMonitorFunction(device, count_memory, user);
             }
             let mut compact = false;
+            // Quads for the meshes paired into them that Embree holds still (a flat instance
+            // of a still mesh may move).
+            let still = |inst: &crate::world::InstanceData, flat: bool| {
+                let mesh = &world.meshes[inst.mesh as usize];
+                use_quads && mesh.quad_pairs > 0 && !mesh.moves() && !(flat && inst.moves())
+            };
+            let mut quads: Vec<Vec<[u32; 4]>> = vec![Vec::new(); world.meshes.len()];
+            for (inst, &f) in world.instances.iter().zip(flat) {
+                let mesh = &world.meshes[inst.mesh as usize];
+                if still(inst, f) && quads[inst.mesh as usize].is_empty() {
+                    quads[inst.mesh as usize] = quad_pairs::quads(&mesh.triangles, mesh.quad_pairs);
+                }
+            }
             let meshes: Vec<RtcScene> = world
                 .meshes
                 .iter()
                 .zip(shared)
-                .map(|(m, &used)| {
+                .zip(&quads)
+                .map(|((m, &used), q)| {
                     let scene = rtcNewScene(device);
                     rtcSetSceneBuildQuality(scene, BUILD_QUALITY);
                     if m.triangles.len() >= COMPACT_FROM_TRIANGLES {
@@ -306,7 +353,7 @@ impl<'w> EmbreeAccel<'w> {
                         rtcAttachGeometryByID(scene, geom, 0);
                         rtcReleaseGeometry(geom);
                     } else if used && !m.triangles.is_empty() {
-                        let geom = triangle_geometry(device, m, glam::Affine3A::IDENTITY);
+                        let geom = still_geometry(device, m, q, glam::Affine3A::IDENTITY);
                         rtcAttachGeometryByID(scene, geom, 0);
                         rtcReleaseGeometry(geom);
                     }
@@ -334,7 +381,7 @@ impl<'w> EmbreeAccel<'w> {
                 }
                 if flat[i] {
                     // A mesh used once: its triangles go into the top scene in world space.
-                    let geom = triangle_geometry(device, mesh, inst.object_to_world);
+                    let geom = still_geometry(device, mesh, &quads[inst.mesh as usize], inst.object_to_world);
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
                     rtcAttachGeometryByID(top, geom, i as c_uint);
@@ -358,8 +405,35 @@ impl<'w> EmbreeAccel<'w> {
                 rtcReleaseGeometry(geom);
             }
             rtcCommitScene(top);
-            EmbreeAccel { device, top, meshes, packets: !compact, memory, world: std::marker::PhantomData }
+            let quad_pairs_of = world
+                .instances
+                .iter()
+                .zip(flat)
+                .map(|(inst, &f)| {
+                    let mesh = inst.mesh as usize;
+                    if still(inst, f) && !quads[mesh].is_empty() {
+                        world.meshes[mesh].quad_pairs
+                    } else {
+                        u32::MAX
+                    }
+                })
+                .collect();
+            EmbreeAccel {
+                device,
+                top,
+                meshes,
+                packets: !compact,
+                memory,
+                quads,
+                quad_pairs_of,
+                world: std::marker::PhantomData,
+            }
         }
+    }
+
+    /// How many quads Embree holds (0 where it holds triangles).
+    pub fn quad_count(&self) -> usize {
+        self.quads.iter().map(Vec::len).sum()
     }
 
     /// Embree's last error code (0: none).
@@ -399,6 +473,18 @@ impl<'w> EmbreeAccel<'w> {
     fn hit_uv(hit: &RtcHit) -> (f32, f32) {
         // SAFETY: the references are valid and aligned.
         unsafe { (std::ptr::read_volatile(&hit.u), std::ptr::read_volatile(&hit.v)) }
+    }
+
+    /// The hit at `t` on primitive `prim` of `instance` at Embree's `(u, v)`: a quad's hit
+    /// turned into its triangle's ([`quad_pairs::triangle_hit`]).
+    #[inline(always)]
+    fn hit(&self, t: f32, instance: u32, prim: u32, u: f32, v: f32) -> Hit {
+        let pairs = self.quad_pairs_of[instance as usize];
+        if pairs != u32::MAX {
+            let (prim, u, v) = quad_pairs::triangle_hit(pairs, prim, u, v);
+            return Hit { t, instance, prim, u, v };
+        }
+        Hit { t, instance, prim, u, v }
     }
 
     /// Eight rays that trace nothing, to be filled by [`EmbreeAccel::fill_packet`].
@@ -463,13 +549,8 @@ impl<'w> EmbreeAccel<'w> {
         };
         for (h, rh) in hits.iter_mut().zip(&rh) {
             let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
-            *h = (rh.hit.geom_id != INVALID_ID).then_some(Hit {
-                t: rh.ray.tfar,
-                instance,
-                prim: rh.hit.prim_id,
-                u: rh.hit.u,
-                v: rh.hit.v,
-            });
+            *h = (rh.hit.geom_id != INVALID_ID)
+                .then(|| self.hit(rh.ray.tfar, instance, rh.hit.prim_id, rh.hit.u, rh.hit.v));
         }
     }
 }
@@ -496,7 +577,7 @@ impl Accel for EmbreeAccel<'_> {
         let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
         (rh.hit.geom_id != INVALID_ID).then(|| {
             let (u, v) = Self::hit_uv(&rh.hit);
-            Hit { t: rh.ray.tfar, instance, prim: rh.hit.prim_id, u, v }
+            self.hit(rh.ray.tfar, instance, rh.hit.prim_id, u, v)
         })
     }
 
@@ -541,13 +622,8 @@ impl Accel for EmbreeAccel<'_> {
                 let (geom, inst) = (rh.hit.geom_id[k], rh.hit.inst_id[0][k]);
                 // As in `intersect`: flattened meshes are hit as top-level geometries.
                 let instance = if inst == INVALID_ID { geom } else { inst };
-                *h = (geom != INVALID_ID).then_some(Hit {
-                    t: rh.ray.tfar[k],
-                    instance,
-                    prim: rh.hit.prim_id[k],
-                    u: rh.hit.u[k],
-                    v: rh.hit.v[k],
-                });
+                *h = (geom != INVALID_ID)
+                    .then(|| self.hit(rh.ray.tfar[k], instance, rh.hit.prim_id[k], rh.hit.u[k], rh.hit.v[k]));
             }
         }
     }
@@ -577,20 +653,28 @@ impl Accel for EmbreeAccel<'_> {
     }
 
     fn memory(&self) -> Option<super::AccelMemory> {
-        let bytes = self.memory.load(std::sync::atomic::Ordering::Relaxed);
-        Some(super::AccelMemory { bytes: bytes.max(0) as u64, counted: false })
+        let bytes = self.memory.load(std::sync::atomic::Ordering::Relaxed).max(0) as u64;
+        let quads: usize = self.quads.iter().map(|q| q.capacity() * std::mem::size_of::<[u32; 4]>()).sum();
+        Some(super::AccelMemory { bytes: bytes + quads as u64, counted: false })
     }
 }
 
-/// A committed triangle geometry of `mesh` with its vertices carried by `transform`.
+/// A committed geometry of a mesh that does not move, its vertices carried by
+/// `transform`: its `quads` ([`quad_pairs::quads`]) where it has them, else its triangles.
 ///
 /// # Safety
-/// `device` must be a live Embree device.
-unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transform: glam::Affine3A) -> RtcGeometry {
+/// `device` must be a live Embree device; `quads` must outlive the geometry.
+unsafe fn still_geometry(
+    device: RtcDevice,
+    m: &crate::mesh::MeshData,
+    quads: &[[u32; 4]],
+    transform: glam::Affine3A,
+) -> RtcGeometry {
     // SAFETY: the buffers Embree returns hold exactly the item counts asked for; the shared
-    // buffers are the mesh's own arrays, which outlive the accel (it borrows the world).
+    // buffers are the mesh's own arrays and its quads, which outlive the accel (it borrows
+    // the world and owns the quads).
     unsafe {
-        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
+        let geom = rtcNewGeometry(device, if quads.is_empty() { GEOMETRY_TYPE_TRIANGLE } else { GEOMETRY_TYPE_QUAD });
         if transform == glam::Affine3A::IDENTITY && m.is_interleaved() {
             // The 16-byte records' first 12 bytes are the position: a float3 buffer with a
             // 16-byte stride (Embree ignores the fourth float its loads bring, the normal).
@@ -631,16 +715,29 @@ unsafe fn triangle_geometry(device: RtcDevice, m: &crate::mesh::MeshData, transf
                 }
             }
         }
-        rtcSetSharedGeometryBuffer(
-            geom,
-            BUFFER_TYPE_INDEX,
-            0,
-            FORMAT_UINT3,
-            m.triangles.as_ptr().cast(),
-            0,
-            12,
-            m.triangles.len(),
-        );
+        if quads.is_empty() {
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_INDEX,
+                0,
+                FORMAT_UINT3,
+                m.triangles.as_ptr().cast(),
+                0,
+                12,
+                m.triangles.len(),
+            );
+        } else {
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_INDEX,
+                0,
+                FORMAT_UINT4,
+                quads.as_ptr().cast(),
+                0,
+                16,
+                quads.len(),
+            );
+        }
         // Committed again by the caller after setting the mask.
         rtcCommitGeometry(geom);
         geom

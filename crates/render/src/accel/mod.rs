@@ -92,7 +92,7 @@ pub struct AccelMemory {
     /// How the figure was obtained: `true` when the backend counted its own arrays,
     /// `false` when it is what the library reported allocating through its memory monitor
     /// (Embree: its node and leaf blocks and build arrays still held, which includes
-    /// allocated block space its build did not fill).
+    /// allocated block space its build did not fill), with the quad arrays mira hands it.
     pub counted: bool,
 }
 

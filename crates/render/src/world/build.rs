@@ -166,6 +166,11 @@ impl World {
         let unlinked_lights = unlinked_lights(scene, &instances, &light_indices);
         let shadow_unlinked = shadow_unlinked_lights(scene, &instances, &light_indices);
         let lights = lights.into_iter().map(|(l, _)| l).collect();
+        // Large still meshes as quads for the acceleration structure (their triangles
+        // reordered, so before anything below reads them by index).
+        for mesh in &mut meshes {
+            mesh.pair_into_quads();
+        }
         let faces = super::FaceCache::build(&meshes, &instances);
         World {
             meshes,

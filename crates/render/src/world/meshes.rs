@@ -78,6 +78,7 @@ pub(super) fn mesh_data(m: &mut scene::Mesh, quad_ptex: bool) -> MeshData {
         motion: m.motion.iter().map(|v| Vec3A::from(*v)).collect(),
         motion_more: m.motion_more.iter().map(|k| k.iter().map(|v| Vec3A::from(*v)).collect()).collect(),
         position_keys: Vec::new(),
+        quad_pairs: 0,
         sharp: 0.0,
     };
     if mesh.triangles.len() >= crate::mesh::LARGE_MESH_TRIANGLES {

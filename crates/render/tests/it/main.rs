@@ -99,6 +99,7 @@ mod motion_shading;
 mod path_materials;
 mod photometric;
 mod photons;
+mod quad_hits;
 mod rect_light_paths;
 mod shutter_shape;
 mod simple_lights;

@@ -1,0 +1,128 @@
+use super::*;
+
+/// The point at barycentrics (u, v) of a triangle of `points`.
+fn on_triangle(points: &[[f32; 2]], tri: [u32; 3], u: f32, v: f32) -> [f32; 2] {
+    let w = [1.0 - u - v, u, v];
+    let mut out = [0.0; 2];
+    for (k, &i) in tri.iter().enumerate() {
+        out[0] += w[k] * points[i as usize][0];
+        out[1] += w[k] * points[i as usize][1];
+    }
+    out
+}
+
+/// The point at the quad's (u, v) as Embree splits it.
+fn on_quad(points: &[[f32; 2]], q: [u32; 4], u: f32, v: f32) -> [f32; 2] {
+    if u + v <= 1.0 {
+        on_triangle(points, [q[0], q[1], q[3]], u, v)
+    } else {
+        on_triangle(points, [q[2], q[3], q[1]], 1.0 - u, 1.0 - v)
+    }
+}
+
+/// A 3 × 2 grid of squares, each split into two triangles along alternating diagonals
+/// and listed out of order, plus one triangle sharing no edge.
+fn grid() -> (Vec<[f32; 2]>, Vec<[u32; 3]>) {
+    let mut points = Vec::new();
+    for j in 0..3 {
+        for i in 0..4 {
+            points.push([i as f32, j as f32]);
+        }
+    }
+    points.extend([[10.0, 10.0], [11.0, 10.0], [10.0, 11.0]]);
+    let at = |i: u32, j: u32| j * 4 + i;
+    let mut tris = Vec::new();
+    for j in 0..2 {
+        for i in 0..3 {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            if (i + j) % 2 == 0 {
+                tris.extend([[a, b, c], [a, c, d]]);
+            } else {
+                tris.extend([[b, c, d], [d, a, b]]);
+            }
+        }
+    }
+    // All first halves, the lone triangle, then the second halves backwards.
+    let mut order: Vec<[u32; 3]> = tris.iter().step_by(2).copied().collect();
+    order.push([12, 13, 14]);
+    order.extend(tris.iter().skip(1).step_by(2).rev().copied());
+    (points, order)
+}
+
+/// Whether `a` is `b` rotated (the same corners in the same cyclic order).
+fn is_rotation(a: [u32; 3], b: [u32; 3]) -> bool {
+    (0..3).any(|r| (0..3).all(|k| a[k] == b[(k + r) % 3]))
+}
+
+#[test]
+fn the_new_order_holds_every_triangle_once_with_its_winding() {
+    let (points, before) = grid();
+    let mut after = before.clone();
+    let (pairs, order) = pair_in_place(&mut after, points.len()).unwrap();
+    let mut seen = vec![0; before.len()];
+    for (i, &was) in order.iter().enumerate() {
+        seen[was as usize] += 1;
+        assert!(is_rotation(after[i], before[was as usize]), "{:?} from {:?}", after[i], before[was as usize]);
+    }
+    assert!(seen.iter().all(|&n| n == 1), "{seen:?}");
+    // Greedy pairing may pair across squares and strand a triangle or two; the far
+    // triangle has no neighbour: of 13 triangles at least 5 pairs, the far one alone.
+    assert!(pairs >= 5, "{pairs} pairs");
+    assert!(after[2 * pairs as usize..].contains(&[12, 13, 14]));
+}
+
+#[test]
+fn a_quad_hit_is_the_same_point_on_its_triangle() {
+    let (points, mut tris) = grid();
+    let (pairs, _) = pair_in_place(&mut tris, points.len()).unwrap();
+    let quads = quads(&tris, pairs);
+    assert_eq!(quads.len(), tris.len() - pairs as usize);
+    for (q, &quad) in quads.iter().enumerate() {
+        for iu in 0..=16 {
+            for iv in 0..=16 {
+                let (u, v) = (iu as f32 / 16.0, iv as f32 / 16.0);
+                if quad[2] == quad[3] && u + v > 1.0 {
+                    continue; // outside a lone triangle
+                }
+                let want = on_quad(&points, quad, u, v);
+                let (t, tu, tv) = triangle_hit(pairs, q as u32, u, v);
+                let got = on_triangle(&points, tris[t as usize], tu, tv);
+                assert!(tu >= 0.0 && tv >= 0.0 && tu + tv <= 1.0 + 1e-6, "({tu}, {tv})");
+                for k in 0..2 {
+                    assert!((got[k] - want[k]).abs() <= 1e-5, "quad {q} at ({u}, {v}): {got:?} against {want:?}");
+                }
+            }
+        }
+    }
+}
+
+/// A 200 × 200 grid whose squares' first triangles are all listed before all their second
+/// ones (as the heavy benchmark's sphere lists each face's upward triangles before its
+/// downward ones): nearly every triangle still finds its partner.
+#[test]
+fn far_apart_partners_pair_up() {
+    let side = 200u32;
+    let at = |i: u32, j: u32| j * (side + 1) + i;
+    let (mut first, mut second) = (Vec::new(), Vec::new());
+    for j in 0..side {
+        for i in 0..side {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            first.push([a, b, c]);
+            second.push([a, c, d]);
+        }
+    }
+    first.extend(second);
+    let (pairs, _) = pair_in_place(&mut first, ((side + 1) * (side + 1)) as usize).unwrap();
+    let lone = first.len() - 2 * pairs as usize;
+    assert!(lone * 100 <= first.len(), "{lone} of {} triangles alone", first.len());
+}
+
+#[test]
+fn neighbours_wound_the_other_way_and_bad_indices_are_not_paired() {
+    // Two triangles over one edge, the second flipped: both stay lone.
+    let mut tris = [[0, 1, 2], [1, 2, 3]];
+    assert_eq!(pair_in_place(&mut tris, 4).unwrap().0, 0);
+    assert_eq!(tris, [[0, 1, 2], [1, 2, 3]]);
+    let mut bad = [[0, 1, 7]];
+    assert!(pair_in_place(&mut bad, 4).is_none());
+}

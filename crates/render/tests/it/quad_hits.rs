@@ -1,0 +1,101 @@
+//! Embree holds a large world's still meshes as quads (pairs of triangles sharing an edge,
+//! `render::accel::quads`) and turns each quad hit back into the triangle's. Built that
+//! way whatever its size (`EmbreeAccel::new_compact`), on a small
+//! height field whose triangles are listed out of order, a quarter of them wound the other
+//! way (their neighbours cannot pair with them) and one triangle alone, Embree finds what
+//! the Rust backend finds — the same triangle (a ray grazing a shared edge may take either),
+//! the distance within 1e-4 relative, the barycentrics within 1e-3 — and the same occlusion.
+
+#![cfg(embree)]
+
+use crate::support;
+
+use render::accel::{self, Accel, Backend};
+use render::mesh::quad_pairs;
+
+/// Quads along each side of the field.
+const SIDE: usize = 24;
+
+/// The seed Cornell box with the field and a lone triangle inside it.
+fn world() -> render::World {
+    let mut vertices = String::new();
+    for j in 0..=SIDE {
+        for i in 0..=SIDE {
+            let (x, z) = (60.0 + 440.0 * i as f32 / SIDE as f32, 60.0 + 440.0 * j as f32 / SIDE as f32);
+            let y = 150.0 + 40.0 * (x / 23.0).sin() * (z / 31.0).cos();
+            vertices.push_str(&format!("{x} {y} {z}\n"));
+        }
+    }
+    let at = |i: usize, j: usize| j * (SIDE + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..SIDE {
+        for i in 0..SIDE {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            triangles.push([a, c, b]);
+            // Every fourth square's second triangle wound the other way: no pair for it.
+            triangles.push(if (i + 2 * j) % 4 == 0 { [a, c, d] } else { [a, d, c] });
+        }
+    }
+    // Out of order: a fixed stride through the list (coprime with its length).
+    let n = triangles.len();
+    let mut order: Vec<[usize; 3]> = (0..n).map(|k| triangles[(k * 389) % n]).collect();
+    let lone = (SIDE + 1) * (SIDE + 1);
+    vertices.push_str("300 380 300\n360 380 300\n300 380 360\n");
+    order.push([lone, lone + 2, lone + 1]);
+    let list: String = order.iter().map(|t| format!("{} {} {}\n", t[0], t[1], t[2])).collect();
+    let extra = format!(
+        "object \"Field_obj\"\n trilist vertex {} p triangle {}\n[\n{vertices}]\n[\n{list}]\n end trilist\nend object\n\
+         instance \"Field_inst\" \"Field_obj\" end instance\n",
+        lone + 3,
+        order.len()
+    );
+    let mut text = include_str!("../../../../scenes/iray_cornell_box.mi").to_string();
+    let root = text.find("instgroup").expect("the scene has a root group");
+    text.insert_str(root, &extra);
+    let list_end = text[root..].find("end instgroup").expect("closed root group") + root;
+    text.insert_str(list_end, "    \"Field_inst\"\n");
+    let parsed = mi::parse_str("quad_hits.mi", &text);
+    assert!(!parsed.diagnostics.has_errors(), "{:?}", parsed.diagnostics.list);
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("the scene builds");
+    render::World::from_scene(&scene)
+}
+
+#[test]
+fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
+    let mut world = world();
+    let field = world.instances.len() as u32 - 1;
+    let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
+    let count = mesh.triangles.len();
+    let vertex_count = mesh.vertex_count();
+    let (pairs, _) = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs");
+    mesh.quad_pairs = pairs;
+    let lone = count - 2 * pairs as usize;
+    assert!(lone > SIDE * SIDE / 4 && pairs > 0, "{pairs} pairs, {lone} lone");
+    let quads = count - pairs as usize;
+    let rust = accel::build(&world, Backend::Rust);
+    let embree = render::accel::embree::EmbreeAccel::new_compact(&world);
+    assert_eq!(embree.error(), 0);
+    assert_eq!(embree.quad_count(), quads, "Embree holds the field as quads");
+    let rays = support::rays::in_cornell_box(20_000, 0x9e37_79b9_7f4a_7c15);
+    let (mut different, mut on_field) = (0, 0);
+    for ray in &rays {
+        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
+        match (a, b) {
+            (Some(a), Some(b)) => {
+                on_field += (a.instance == field) as u32;
+                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
+                if (a.instance, a.prim) != (b.instance, b.prim) {
+                    different += 1;
+                    continue;
+                }
+                assert!((a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3, "{a:?} vs {b:?}");
+            }
+            (None, None) => {}
+            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
+        }
+        assert_eq!(rust.occluded(ray), embree.occluded(ray), "{ray:?}");
+    }
+    assert!(on_field > 2_000, "{on_field} rays hit the field");
+    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+}
