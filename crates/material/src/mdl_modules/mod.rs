@@ -75,6 +75,9 @@ pub struct MdlMaterials {
     /// Whether a quad-mesh Ptex file was read: the renderer then keeps the meshes' quad
     /// faces ([`ptex::quad`]).
     pub quad_ptex: bool,
+    /// Whether any Ptex file was read: a triangle mesh's Ptex faces are its triangles by
+    /// index and corner, so the renderer then keeps every mesh's triangles in their order.
+    pub reads_ptex: bool,
 }
 
 impl MdlMaterials {
@@ -184,6 +187,7 @@ pub fn compile(lib: &Library, search: MdlSearchPath) -> (MdlMaterials, Vec<Diagn
     }
     out.module_sources = set.sources().files().map(|(_, f)| f.bytes.shared_bytes()).collect();
     out.quad_ptex = textures.read_quad_ptex();
+    out.reads_ptex = textures.read_any_ptex();
     (out, diags)
 }
 

@@ -105,6 +105,11 @@ impl Textures {
             .clone()
     }
 
+    /// Whether any Ptex file (of a triangle or a quad mesh) was read.
+    pub fn read_any_ptex(&self) -> bool {
+        self.ptexes.values().any(Result::is_ok)
+    }
+
     /// Whether a quad-mesh Ptex file was read.
     pub fn read_quad_ptex(&self) -> bool {
         self.ptexes.values().any(|p| matches!(p, Ok(p) if p.mesh == MeshType::Quad))

@@ -167,9 +167,12 @@ impl World {
         let shadow_unlinked = shadow_unlinked_lights(scene, &instances, &light_indices);
         let lights = lights.into_iter().map(|(l, _)| l).collect();
         // Large still meshes as quads for the acceleration structure (their triangles
-        // reordered, so before anything below reads them by index).
-        for mesh in &mut meshes {
-            mesh.pair_into_quads();
+        // reordered, so before anything below reads them by index) — unless a Ptex file
+        // names faces by triangle index and corner.
+        if !mdl.reads_ptex {
+            for mesh in &mut meshes {
+                mesh.pair_into_quads();
+            }
         }
         let faces = super::FaceCache::build(&meshes, &instances);
         World {

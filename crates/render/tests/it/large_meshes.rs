@@ -166,3 +166,40 @@ fn embree_compact_build_of_a_large_mesh_agrees_with_the_rust_backend() {
     assert!(on_field > 2_000, "{on_field} rays hit the height field");
     assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
 }
+
+/// A large mesh's triangles are paired into quads for the acceleration structure
+/// (`MeshData::quad_pairs`: nearly all of the height field's, each triangle a rotation of
+/// one in the file); where a Ptex file was read — a triangle mesh's Ptex faces are its
+/// triangles by index and corner — every triangle keeps the file's place and corners.
+#[test]
+fn a_large_mesh_pairs_its_triangles_unless_a_ptex_file_names_them() {
+    let (text, _) = scene_text();
+    let parsed = mi::parse_str("large_meshes.mi", &text);
+    let mut diags = Vec::new();
+    let scene = scene::Scene::build(&parsed, 0, &mut diags).expect("the scene builds");
+    let field = |world: &render::World| {
+        let inst = world.instances.iter().max_by_key(|i| world.meshes[i.mesh as usize].triangles.len()).unwrap();
+        world.meshes[inst.mesh as usize].clone()
+    };
+    let mut mdl = material::mdl_modules::MdlMaterials::default();
+    let paired = field(&render::World::from_scene_with_mdl(&scene, None, &mdl));
+    mdl.reads_ptex = true;
+    let kept = field(&render::World::from_scene_with_mdl(&scene, None, &mdl));
+    assert_eq!(kept.quad_pairs, 0);
+    assert_eq!(kept.triangles.len(), 2 * SIDE * SIDE);
+    let at = |i: usize, j: usize| (j * (SIDE + 1) + i) as u32;
+    // The file's order: square by square, (a, c, b) then (a, d, c).
+    for (k, tri) in kept.triangles.iter().enumerate().step_by(997) {
+        let (square, second) = (k / 2, k % 2 == 1);
+        let (i, j) = (square % SIDE, square / SIDE);
+        let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+        assert_eq!(*tri, if second { [a, d, c] } else { [a, c, b] }, "triangle {k}");
+    }
+    let pairs = paired.quad_pairs as usize;
+    assert!(pairs * 2 >= paired.triangles.len() * 99 / 100, "{pairs} pairs of {} triangles", paired.triangles.len());
+    let rotation_of_one =
+        |t: [u32; 3]| kept.triangles.iter().any(|k| (0..3).any(|r| (0..3).all(|c| t[c] == k[(c + r) % 3])));
+    for t in paired.triangles.iter().step_by(49_999) {
+        assert!(rotation_of_one(*t), "{t:?} is a rotation of a triangle of the file");
+    }
+}
