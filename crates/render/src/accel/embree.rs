@@ -288,16 +288,16 @@ impl<'w> EmbreeAccel<'w> {
         Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0", compact)
     }
 
-    /// Builds Embree scenes for a world as a large world's are — compact, its still
-    /// meshes as quads — whatever its size: for tests and measurements of that layout on
-    /// small scenes.
+    /// Builds Embree scenes for a world as a large world's are — compact, the still meshes
+    /// whose triangles were paired ([`crate::mesh::MeshData::quad_pairs`]) as quads —
+    /// whatever its size: for tests and measurements of that layout on small scenes.
     pub fn new_compact(world: &'w World) -> EmbreeAccel<'w> {
         let flat = super::flat_instances(world);
         let mut shared = vec![false; world.meshes.len()];
         for (inst, f) in world.instances.iter().zip(&flat) {
             shared[inst.mesh as usize] |= !f;
         }
-        let flat_triangles = COMPACT_FROM_TRIANGLES.max(1);
+        let flat_triangles = COMPACT_FROM_TRIANGLES;
         let config = if wide_nodes_supported() { COMPACT_DEVICE } else { c"threads=0" };
         Self::with_device(world, &flat, &shared, flat_triangles, config, true)
     }
@@ -716,16 +716,7 @@ unsafe fn still_geometry(
             }
         }
         if quads.is_empty() {
-            rtcSetSharedGeometryBuffer(
-                geom,
-                BUFFER_TYPE_INDEX,
-                0,
-                FORMAT_UINT3,
-                m.triangles.as_ptr().cast(),
-                0,
-                12,
-                m.triangles.len(),
-            );
+            share_triangles(geom, m);
         } else {
             rtcSetSharedGeometryBuffer(
                 geom,
@@ -769,6 +760,20 @@ unsafe fn moving_triangle_geometry(
                 }
             }
         }
+        share_triangles(geom, m);
+        rtcCommitGeometry(geom);
+        geom
+    }
+}
+
+/// Hands Embree the mesh's own triangle array as `geom`'s index buffer (not copied).
+///
+/// # Safety
+/// `geom` must be a live triangle geometry; the mesh must outlive it (the accel borrows
+/// the world).
+unsafe fn share_triangles(geom: RtcGeometry, m: &crate::mesh::MeshData) {
+    // SAFETY: the array holds `m.triangles.len()` 12-byte index triples.
+    unsafe {
         rtcSetSharedGeometryBuffer(
             geom,
             BUFFER_TYPE_INDEX,
@@ -778,9 +783,7 @@ unsafe fn moving_triangle_geometry(
             0,
             12,
             m.triangles.len(),
-        );
-        rtcCommitGeometry(geom);
-        geom
+        )
     }
 }
 

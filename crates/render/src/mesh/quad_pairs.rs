@@ -12,8 +12,12 @@
 //! triangle `pairs + k`, given as a quad whose last two corners coincide.
 //!
 //! The pairing is greedy in triangle order, each triangle taking the first unpaired
-//! neighbour across one of its edges (edges `(1, 2)`, `(2, 0)`, `(0, 1)` in turn), and only
+//! later neighbour (of the first [`MAX_CANDIDATES`] past it at the edge's end) across one of its edges (edges `(1, 2)`, `(2, 0)`, `(0, 1)` in turn), and only
 //! neighbours wound the same way (the shared edge runs the other way in them).
+
+/// The most triangles at a vertex a triangle looks through for its partner (a usual mesh
+/// has fewer than a dozen at any vertex).
+const MAX_CANDIDATES: usize = 64;
 
 /// Reorders `triangles` (vertex indices into `vertex_count` vertices) as pairs sharing an
 /// edge, then the rest in their order, and returns the number of pairs and the new order
@@ -39,9 +43,13 @@ pub fn pair_in_place(triangles: &mut [[u32; 3]], vertex_count: usize) -> Option<
                 return None;
             }
             // A neighbour wound the same way runs the edge from `to` to `from`.
-            incident.of(to).iter().find_map(|&s| {
+            // The triangles past t at `to`, the first few of them: a vertex shared by a
+            // great many triangles (a hostile file's) costs no more than a usual one.
+            let around = incident.of(to);
+            let past = &around[around.partition_point(|&s| s as usize <= t)..];
+            past.iter().take(MAX_CANDIDATES).find_map(|&s| {
                 let s = s as usize;
-                if s <= t || paired[s] {
+                if paired[s] {
                     return None;
                 }
                 let other = &triangles[s];

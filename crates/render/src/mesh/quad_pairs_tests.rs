@@ -126,3 +126,12 @@ fn neighbours_wound_the_other_way_and_bad_indices_are_not_paired() {
     let mut bad = [[0, 1, 7]];
     assert!(pair_in_place(&mut bad, 4).is_none());
 }
+
+/// Thousands of copies of one triangle (every corner shared by all of them, none wound the
+/// other way): none pairs, and each looks through a bounded number of the others.
+#[test]
+fn a_vertex_shared_by_every_triangle_pairs_none() {
+    let mut tris = vec![[0, 1, 2]; 50_000];
+    assert_eq!(pair_in_place(&mut tris, 3).unwrap().0, 0);
+    assert!(tris.iter().all(|&t| t == [0, 1, 2]));
+}

@@ -144,27 +144,9 @@ fn embree_compact_build_of_a_large_mesh_agrees_with_the_rust_backend() {
     assert_eq!(embree.backend(), Backend::Embree);
     let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
     let field = world.instances.len() as u32 - 1;
-    let (mut different, mut on_field) = (0, 0);
-    for ray in &rays {
-        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
-        match (a, b) {
-            (Some(a), Some(b)) => {
-                on_field += (a.instance == field) as u32;
-                if (a.instance, a.prim) != (b.instance, b.prim) {
-                    different += 1;
-                    assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
-                    continue;
-                }
-                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
-                assert!((a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3, "{a:?} vs {b:?}");
-            }
-            (None, None) => {}
-            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
-        }
-        assert_eq!(rust.occluded(ray), embree.occluded(ray), "{ray:?}");
-    }
-    assert!(on_field > 2_000, "{on_field} rays hit the height field");
-    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+    let agreement = support::backends::assert_agree(rust.as_ref(), embree.as_ref(), &rays, field);
+    assert!(agreement.on_instance > 2_000, "{} rays hit the height field", agreement.on_instance);
+    assert!(agreement.different <= rays.len() / 1000, "{} rays hit different triangles", agreement.different);
 }
 
 /// A large mesh's triangles are paired into quads for the acceleration structure

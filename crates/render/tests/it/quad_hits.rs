@@ -1,8 +1,8 @@
-//! Embree holds a large world's still meshes as quads (pairs of triangles sharing an edge,
-//! `render::accel::quads`) and turns each quad hit back into the triangle's. Built that
-//! way whatever its size (`EmbreeAccel::new_compact`), on a small
-//! height field whose triangles are listed out of order, a quarter of them wound the other
-//! way (their neighbours cannot pair with them) and one triangle alone, Embree finds what
+//! Embree holds a large world's paired meshes as quads (pairs of triangles sharing an edge,
+//! `render::mesh::quad_pairs`) and turns each quad hit back into the triangle's. Built that
+//! way whatever its size (`EmbreeAccel::new_compact`), on a small height field whose
+//! triangles are listed out of order, one in eight wound the other way (no neighbour can
+//! pair with them) and one triangle alone, Embree finds what
 //! the Rust backend finds — the same triangle (a ray grazing a shared edge may take either),
 //! the distance within 1e-4 relative, the barycentrics within 1e-3 — and the same occlusion.
 
@@ -10,7 +10,7 @@
 
 use crate::support;
 
-use render::accel::{self, Accel, Backend};
+use render::accel::{self, Backend};
 use render::mesh::quad_pairs;
 
 /// Quads along each side of the field.
@@ -78,24 +78,7 @@ fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
     assert_eq!(embree.error(), 0);
     assert_eq!(embree.quad_count(), quads, "Embree holds the field as quads");
     let rays = support::rays::in_cornell_box(20_000, 0x9e37_79b9_7f4a_7c15);
-    let (mut different, mut on_field) = (0, 0);
-    for ray in &rays {
-        let (a, b) = (rust.intersect(ray), embree.intersect(ray));
-        match (a, b) {
-            (Some(a), Some(b)) => {
-                on_field += (a.instance == field) as u32;
-                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} vs {b:?}");
-                if (a.instance, a.prim) != (b.instance, b.prim) {
-                    different += 1;
-                    continue;
-                }
-                assert!((a.u - b.u).abs() < 1e-3 && (a.v - b.v).abs() < 1e-3, "{a:?} vs {b:?}");
-            }
-            (None, None) => {}
-            _ => panic!("one backend hit and the other missed: {a:?} {b:?} for {ray:?}"),
-        }
-        assert_eq!(rust.occluded(ray), embree.occluded(ray), "{ray:?}");
-    }
-    assert!(on_field > 2_000, "{on_field} rays hit the field");
-    assert!(different <= rays.len() / 1000, "{different} rays hit different triangles");
+    let agreement = support::backends::assert_agree(rust.as_ref(), &embree, &rays, field);
+    assert!(agreement.on_instance > 2_000, "{} rays hit the field", agreement.on_instance);
+    assert!(agreement.different <= rays.len() / 1000, "{} rays hit different triangles", agreement.different);
 }

@@ -9,6 +9,7 @@
 
 #![allow(dead_code)]
 
+pub mod backends;
 pub mod maya_view;
 pub mod moving_quad;
 pub mod rays;
