@@ -9,7 +9,8 @@
 //!   code over origin and direction together; the direction's octahedral cell then the
 //!   origin);
 //!
-//! and with Embree's stream kernel (`rtcIntersect1M`, incoherent and coherent flags) on
+//! and with Embree's stream kernel (`rtcIntersect1M`, incoherent and coherent flags) and its
+//! 8-ray packet kernel (`rtcIntersect8`, scenes not built compact) on
 //! the same waves; and, to see whether two paths in flight would hide the hit's vertex
 //! reads (the triangle's indices, then its normals) behind the other path's traversal,
 //! path order with those reads after each ray against two paths' rays interleaved with
@@ -310,7 +311,13 @@ fn main() {
     #[derive(Clone, Copy, Debug)]
     enum Kernel {
         One,
-        Stream { coherent: bool },
+        Stream {
+            coherent: bool,
+        },
+        /// Embree's 8-ray packet kernel (`rtcIntersect8`, through `intersect_batch`) on
+        /// consecutive runs of eight rays of a wave; one ray at a time where the scene is
+        /// built compact (no packets there).
+        Packet8,
     }
     let path_order: Vec<Vec<usize>> = vec![b.iter().map(|x| x.at).collect()];
     let mut variants: Vec<(String, Vec<Vec<usize>>, Kernel)> = vec![("path order".into(), path_order, Kernel::One)];
@@ -324,6 +331,12 @@ fn main() {
             }
             variants.push((format!("waves of {p} paths, sorted {order:?}"), sorted, Kernel::One));
         }
+        variants.push((format!("waves of {p} paths, packets of 8"), w.clone(), Kernel::Packet8));
+        let mut sorted = w.clone();
+        for wave in &mut sorted {
+            wave.sort_by_key(|&i| key(Order::OctantOrigin, &rec[i].0, lo, hi));
+        }
+        variants.push((format!("waves of {p} paths, sorted, packets of 8"), sorted, Kernel::Packet8));
         if p == 256 || p == 4096 {
             variants.push((
                 format!("waves of {p} paths, stream incoherent"),
@@ -390,6 +403,16 @@ fn main() {
                         for &i in batch {
                             let h = accel.intersect(&rec[i].0);
                             mismatches += usize::from(h != rec[i].1);
+                        }
+                    }
+                    Kernel::Packet8 => {
+                        rays.clear();
+                        rays.extend(batch.iter().map(|&i| rec[i].0));
+                        hits.clear();
+                        hits.resize(rays.len(), None);
+                        accel.intersect_batch(&rays, &mut hits);
+                        for (&i, h) in batch.iter().zip(&hits) {
+                            mismatches += usize::from(h.map(|h| h.prim) != rec[i].1.map(|h| h.prim));
                         }
                     }
                     Kernel::Stream { coherent } => {
