@@ -68,7 +68,7 @@ fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
     let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
     let count = mesh.triangles.len();
     let vertex_count = mesh.vertex_count();
-    let (pairs, _) = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs");
+    let pairs = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs").pairs;
     mesh.quad_pairs = pairs;
     let lone = count - 2 * pairs as usize;
     assert!(lone > SIDE * SIDE / 4 && pairs > 0, "{pairs} pairs, {lone} lone");
