@@ -12,8 +12,11 @@
 //! triangle `pairs + k`, given as a quad whose last two corners coincide.
 //!
 //! The pairing is greedy in triangle order, each triangle taking the first unpaired
-//! later neighbour (of the first [`MAX_CANDIDATES`] past it at the edge's end) across one of its edges (edges `(1, 2)`, `(2, 0)`, `(0, 1)` in turn), and only
-//! neighbours wound the same way (the shared edge runs the other way in them).
+//! later neighbour (of the first [`MAX_CANDIDATES`] past it at the edge's end) across one
+//! of its edges (edges `(1, 2)`, `(2, 0)`, `(0, 1)` in turn), and only neighbours wound the
+//! same way (the shared edge runs the other way in them). That pass is serial; the
+//! vertex → triangles table it reads ([`super::incidence`]) and the new order are built on
+//! the pool's threads, with the same result at any thread count.
 
 use super::incidence::Incidence;
 use rayon::prelude::*;
@@ -144,6 +147,7 @@ impl Pairing {
 
     /// `values`, one a triangle in the order before, in the new order (on all threads).
     pub fn reorder(&self, values: &[u32]) -> Vec<u32> {
+        debug_assert_eq!(values.len(), self.partner.len(), "one value a triangle");
         let mut out = vec![0u32; values.len()];
         self.scatter(&mut out, |t, out| *out = values[t], |t, s, out| *out = [values[t], values[s]]);
         out
