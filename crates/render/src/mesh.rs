@@ -3,6 +3,7 @@
 
 use glam::{Vec3, Vec3A};
 
+pub mod incidence;
 pub mod ptex_split;
 pub mod quad_pairs;
 
@@ -202,13 +203,13 @@ impl MeshData {
             return;
         }
         let vertex_count = self.vertex_count();
-        let Some((pairs, order)) = quad_pairs::pair_in_place(&mut self.triangles, vertex_count) else {
+        let Some(pairing) = quad_pairs::pair_in_place(&mut self.triangles, vertex_count) else {
             return;
         };
         if !self.slots.is_empty() {
-            self.slots = order.iter().map(|&t| self.slots[t as usize]).collect();
+            self.slots = pairing.reorder(&self.slots);
         }
-        self.quad_pairs = pairs;
+        self.quad_pairs = pairing.pairs;
     }
 
     /// Whether the mesh keeps its vertices interleaved ([`MeshData::vertices`]).

@@ -19,6 +19,7 @@ use mi::ast::{Arg, Block, KwStmt, Param, ShaderItem, ShaderList, Stmt, Value};
 use mi::Diagnostic;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::light::{AreaShape, Light};
 use crate::names::{Def, Table};
@@ -369,6 +370,17 @@ pub fn light(l: &mut Light, blocks: &[&Block], diags: &mut Vec<Diagnostic>) {
 pub fn mesh(geometry: &mut ObjectGeometry, object: &str, span: mi::Span, diags: &mut Vec<Diagnostic>) {
     let mesh = &mut geometry.mesh;
     let limit = WORLD_LIMIT as f32;
+    // Checked on all threads first (a large mesh usually has nothing to mend).
+    let finite = |v: &Vec3| v.is_finite();
+    if mesh.positions.par_iter().all(|p| p.is_finite() && p.abs().max_element() <= limit)
+        && mesh.normals.par_iter().all(finite)
+        && mesh.motion.par_iter().all(finite)
+        && mesh.motion_more.iter().all(|m| m.par_iter().all(finite))
+        && mesh.textures.iter().chain(&mesh.user).all(|space| space.coords.par_iter().all(finite))
+        && mesh.derivatives.iter().chain(&mesh.bump_basis).flatten().all(finite)
+    {
+        return;
+    }
     let bad: Vec<bool> = mesh.positions.iter().map(|p| !(p.is_finite() && p.abs().max_element() <= limit)).collect();
     let bad_positions = bad.iter().filter(|b| **b).count();
     let mut bad_values = 0usize;

@@ -234,6 +234,16 @@ const BUILD_QUALITY: c_uint = BUILD_QUALITY_MEDIUM;
 pub struct EmbreeAccel<'w> {
     device: RtcDevice,
     top: RtcScene,
+    /// The meshes used once and held as quads, in a top-level scene of their own where
+    /// every instance is used once, queried after `top`; null where they are in `top`.
+    /// In one scene with the other meshes' triangles Embree builds two BVHs (one a
+    /// geometry type) in one parallel loop: the caller takes the triangles', and where
+    /// TBB's worker took the quads' the caller waits inside Embree's task isolation and
+    /// cannot help, so the large build ran on one thread in most runs (docs/performance.md,
+    /// speed47). Apart, each scene is one BVH its committing thread builds with the
+    /// worker's help. Queried in Embree's own order (triangles, then quads, the ray's
+    /// `tfar` carried over), the hits are the same as from one scene.
+    quad_top: RtcScene,
     meshes: Vec<RtcScene>,
     /// Whether [`Accel::intersect_batch`] traces packets (`rtcIntersect8`): only where no
     /// scene is built compact. With indexed leaves Embree's packet kernel moved hits in the
@@ -279,19 +289,31 @@ impl<'w> EmbreeAccel<'w> {
         let compact = flat_triangles >= COMPACT_FROM_TRIANGLES
             || world.meshes.iter().zip(&shared).any(|(m, &used)| used && m.triangles.len() >= COMPACT_FROM_TRIANGLES);
         if compact && wide_nodes_supported() {
-            let accel = Self::with_device(world, &flat, &shared, flat_triangles, COMPACT_DEVICE, true);
+            let accel = Self::with_device(world, &flat, &shared, flat_triangles, COMPACT_DEVICE, true, true);
             if accel.error() == 0 {
                 return accel;
             }
             // An Embree built without 8-wide kernels rejects the layout: build the default.
         }
-        Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0", compact)
+        Self::with_device(world, &flat, &shared, flat_triangles, c"threads=0", compact, true)
     }
 
     /// Builds Embree scenes for a world as a large world's are — compact, the still meshes
     /// whose triangles were paired ([`crate::mesh::MeshData::quad_pairs`]) as quads —
     /// whatever its size: for tests and measurements of that layout on small scenes.
     pub fn new_compact(world: &'w World) -> EmbreeAccel<'w> {
+        Self::compact_layout(world, true)
+    }
+
+    /// [`EmbreeAccel::new_compact`] with the quad meshes in the top scene with the rest
+    /// (no `quad_top`): the layout the split is checked against.
+    pub fn new_compact_in_one_scene(world: &'w World) -> EmbreeAccel<'w> {
+        Self::compact_layout(world, false)
+    }
+
+    /// The compact layout, the quad meshes used once in a scene of their own if
+    /// `quads_apart` (and no instance is shared).
+    fn compact_layout(world: &'w World, quads_apart: bool) -> EmbreeAccel<'w> {
         let flat = super::flat_instances(world);
         let mut shared = vec![false; world.meshes.len()];
         for (inst, f) in world.instances.iter().zip(&flat) {
@@ -299,12 +321,13 @@ impl<'w> EmbreeAccel<'w> {
         }
         let flat_triangles = COMPACT_FROM_TRIANGLES;
         let config = if wide_nodes_supported() { COMPACT_DEVICE } else { c"threads=0" };
-        Self::with_device(world, &flat, &shared, flat_triangles, config, true)
+        Self::with_device(world, &flat, &shared, flat_triangles, config, true, quads_apart)
     }
 
     /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
     /// `flat` says, the meshes in `shared` built as scenes of their own; with `use_quads`,
-    /// the meshes paired into quads that do not move as quads.
+    /// the meshes paired into quads that do not move as quads; with `quads_apart`, those
+    /// used once in a scene of their own (`quad_top`).
     fn with_device(
         world: &'w World,
         flat: &[bool],
@@ -312,6 +335,7 @@ impl<'w> EmbreeAccel<'w> {
         flat_triangles: usize,
         config: &std::ffi::CStr,
         use_quads: bool,
+        quads_apart: bool,
     ) -> EmbreeAccel<'w> {
         // SAFETY: `config` is a NUL-terminated string; every pointer passed below comes
         // from Embree itself or from live Rust buffers of the stated sizes.
@@ -367,6 +391,25 @@ impl<'w> EmbreeAccel<'w> {
                 rtcSetSceneFlags(top, SCENE_FLAG_COMPACT);
                 compact = true;
             }
+            // The flat quad meshes apart where no instance is shared (Embree orders an
+            // instance's BVH after the quads', which two scenes queried in turn would not).
+            let apart = quads_apart
+                && flat.iter().all(|&f| f)
+                && world
+                    .instances
+                    .iter()
+                    .zip(flat)
+                    .any(|(inst, &f)| still(inst, f) && !quads[inst.mesh as usize].is_empty());
+            let quad_top = if apart {
+                let scene = rtcNewScene(device);
+                rtcSetSceneBuildQuality(scene, BUILD_QUALITY);
+                if flat_triangles >= COMPACT_FROM_TRIANGLES {
+                    rtcSetSceneFlags(scene, SCENE_FLAG_COMPACT);
+                }
+                scene
+            } else {
+                std::ptr::null_mut()
+            };
             for (i, inst) in world.instances.iter().enumerate() {
                 let mesh = &world.meshes[inst.mesh as usize];
                 if flat[i] && (inst.moves() || mesh.moves()) {
@@ -380,11 +423,14 @@ impl<'w> EmbreeAccel<'w> {
                     continue;
                 }
                 if flat[i] {
-                    // A mesh used once: its triangles go into the top scene in world space.
-                    let geom = still_geometry(device, mesh, &quads[inst.mesh as usize], inst.object_to_world);
+                    // A mesh used once: its triangles go into the top scene in world space
+                    // (its quads into their own scene, as above).
+                    let quads = &quads[inst.mesh as usize];
+                    let geom = still_geometry(device, mesh, quads, inst.object_to_world);
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
-                    rtcAttachGeometryByID(top, geom, i as c_uint);
+                    let scene = if apart && !quads.is_empty() { quad_top } else { top };
+                    rtcAttachGeometryByID(scene, geom, i as c_uint);
                     rtcReleaseGeometry(geom);
                     continue;
                 }
@@ -405,6 +451,9 @@ impl<'w> EmbreeAccel<'w> {
                 rtcReleaseGeometry(geom);
             }
             rtcCommitScene(top);
+            if !quad_top.is_null() {
+                rtcCommitScene(quad_top);
+            }
             let quad_pairs_of = world
                 .instances
                 .iter()
@@ -421,6 +470,7 @@ impl<'w> EmbreeAccel<'w> {
             EmbreeAccel {
                 device,
                 top,
+                quad_top,
                 meshes,
                 packets: !compact,
                 memory,
@@ -429,6 +479,11 @@ impl<'w> EmbreeAccel<'w> {
                 world: std::marker::PhantomData,
             }
         }
+    }
+
+    /// Whether the quad meshes used once are in a top-level scene of their own.
+    pub fn quads_apart(&self) -> bool {
+        !self.quad_top.is_null()
     }
 
     /// How many quads Embree holds (0 where it holds triangles).
@@ -517,6 +572,12 @@ impl<'w> EmbreeAccel<'w> {
         }
     }
 
+    /// The top-level scenes a query traces, in order: `top`, then `quad_top` if built.
+    #[inline(always)]
+    fn scenes(&self) -> impl Iterator<Item = RtcScene> {
+        std::iter::once(self.top).chain((!self.quad_top.is_null()).then_some(self.quad_top))
+    }
+
     fn context() -> IntersectContext {
         IntersectContext { flags: 0, filter: std::ptr::null(), inst_id: [INVALID_ID] }
     }
@@ -541,12 +602,15 @@ impl<'w> EmbreeAccel<'w> {
                 },
             })
             .collect();
-        let mut ctx = IntersectContext { flags: if coherent { CONTEXT_FLAG_COHERENT } else { 0 }, ..Self::context() };
-        // SAFETY: `top` is a committed scene; `rh` holds `rays.len()` 16-byte aligned
-        // `RTCRayHit`s one after another (stride = their size).
-        unsafe {
-            rtcIntersect1M(self.top, &mut ctx, rh.as_mut_ptr(), rh.len() as c_uint, std::mem::size_of::<RtcRayHit>())
-        };
+        for scene in self.scenes() {
+            let mut ctx =
+                IntersectContext { flags: if coherent { CONTEXT_FLAG_COHERENT } else { 0 }, ..Self::context() };
+            // SAFETY: `scene` is a committed scene; `rh` holds `rays.len()` 16-byte aligned
+            // `RTCRayHit`s one after another (stride = their size).
+            unsafe {
+                rtcIntersect1M(scene, &mut ctx, rh.as_mut_ptr(), rh.len() as c_uint, std::mem::size_of::<RtcRayHit>())
+            };
+        }
         for (h, rh) in hits.iter_mut().zip(&rh) {
             let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
             *h = (rh.hit.geom_id != INVALID_ID)
@@ -568,10 +632,13 @@ impl Accel for EmbreeAccel<'_> {
                 inst_id: [INVALID_ID],
             },
         };
-        let mut ctx = Self::context();
-        // SAFETY: `top` is a committed scene; `ctx` and `rh` are valid, 16-byte aligned
-        // structures laid out as Embree 3.13 declares them.
-        unsafe { rtcIntersect1(self.top, &mut ctx, &mut rh) };
+        // Each scene in turn, the ray's `tfar` carried over (Embree's own order in one scene).
+        for scene in self.scenes() {
+            let mut ctx = Self::context();
+            // SAFETY: `scene` is a committed scene; `ctx` and `rh` are valid, 16-byte
+            // aligned structures laid out as Embree 3.13 declares them.
+            unsafe { rtcIntersect1(scene, &mut ctx, &mut rh) };
+        }
         // Flattened meshes are top-level geometries (their id is the instance); the others
         // are hit inside an instance.
         let instance = if rh.hit.inst_id[0] == INVALID_ID { rh.hit.geom_id } else { rh.hit.inst_id[0] };
@@ -583,11 +650,16 @@ impl Accel for EmbreeAccel<'_> {
 
     fn occluded(&self, ray: &Ray) -> bool {
         let mut r = Self::rtc_ray(ray);
-        let mut ctx = Self::context();
-        // SAFETY: as for `intersect`.
-        unsafe { rtcOccluded1(self.top, &mut ctx, &mut r) };
-        // Embree sets tfar to −∞ when the ray is blocked.
-        r.tfar < 0.0 && r.tfar.is_infinite()
+        for scene in self.scenes() {
+            let mut ctx = Self::context();
+            // SAFETY: as for `intersect`.
+            unsafe { rtcOccluded1(scene, &mut ctx, &mut r) };
+            // Embree sets tfar to −∞ when the ray is blocked.
+            if r.tfar < 0.0 && r.tfar.is_infinite() {
+                return true;
+            }
+        }
+        false
     }
 
     fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
@@ -613,11 +685,14 @@ impl Accel for EmbreeAccel<'_> {
                 },
             };
             Self::fill_packet(rays, &mut valid, &mut rh.ray);
-            let mut ctx = IntersectContext { flags: CONTEXT_FLAG_COHERENT, ..Self::context() };
-            // SAFETY: `top` is a committed scene; `valid` and `rh` are 32-byte aligned and
-            // laid out as Embree 3.13's `int[8]` mask and `RTCRayHit8` (one instance
-            // level); lanes past the batch are marked invalid and left alone.
-            unsafe { rtcIntersect8(&valid, self.top, &mut ctx, &mut rh) };
+            for scene in self.scenes() {
+                let mut ctx = IntersectContext { flags: CONTEXT_FLAG_COHERENT, ..Self::context() };
+                // SAFETY: `scene` is a committed scene; `valid` and `rh` are 32-byte
+                // aligned and laid out as Embree 3.13's `int[8]` mask and `RTCRayHit8`
+                // (one instance level); lanes past the batch are marked invalid and left
+                // alone.
+                unsafe { rtcIntersect8(&valid, scene, &mut ctx, &mut rh) };
+            }
             for (k, h) in hits.iter_mut().enumerate() {
                 let (geom, inst) = (rh.hit.geom_id[k], rh.hit.inst_id[0][k]);
                 // As in `intersect`: flattened meshes are hit as top-level geometries.
@@ -636,11 +711,14 @@ impl Accel for EmbreeAccel<'_> {
             }
             let (mut valid, mut r) = (Valid8([0; 8]), Self::empty_packet());
             Self::fill_packet(rays, &mut valid, &mut r);
-            let mut ctx = IntersectContext { flags: CONTEXT_FLAG_COHERENT, ..Self::context() };
-            // SAFETY: `top` is a committed scene; `valid` and `r` are 32-byte aligned and
-            // laid out as Embree 3.13's `int[8]` mask and `RTCRay8`; lanes past the batch
-            // are marked invalid and left alone.
-            unsafe { rtcOccluded8(&valid, self.top, &mut ctx, &mut r) };
+            for scene in self.scenes() {
+                let mut ctx = IntersectContext { flags: CONTEXT_FLAG_COHERENT, ..Self::context() };
+                // SAFETY: `scene` is a committed scene; `valid` and `r` are 32-byte aligned
+                // and laid out as Embree 3.13's `int[8]` mask and `RTCRay8`; lanes past the
+                // batch are marked invalid and left alone (a blocked lane's tfar is −∞,
+                // which the next scene leaves as it is).
+                unsafe { rtcOccluded8(&valid, scene, &mut ctx, &mut r) };
+            }
             for (k, b) in blocked.iter_mut().enumerate() {
                 // Embree sets tfar to −∞ in the lanes that are blocked.
                 *b = r.tfar[k] < 0.0 && r.tfar[k].is_infinite();
@@ -792,6 +870,9 @@ impl Drop for EmbreeAccel<'_> {
         // SAFETY: the scenes and device were created by `new` and are released once.
         unsafe {
             rtcReleaseScene(self.top);
+            if !self.quad_top.is_null() {
+                rtcReleaseScene(self.quad_top);
+            }
             for s in &self.meshes {
                 rtcReleaseScene(*s);
             }

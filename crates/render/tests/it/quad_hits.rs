@@ -68,7 +68,7 @@ fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
     let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
     let count = mesh.triangles.len();
     let vertex_count = mesh.vertex_count();
-    let (pairs, _) = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs");
+    let pairs = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs").pairs;
     mesh.quad_pairs = pairs;
     let lone = count - 2 * pairs as usize;
     assert!(lone > SIDE * SIDE / 4 && pairs > 0, "{pairs} pairs, {lone} lone");
@@ -81,4 +81,48 @@ fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
     let agreement = support::backends::assert_agree(rust.as_ref(), &embree, &rays, field);
     assert!(agreement.on_instance > 2_000, "{} rays hit the field", agreement.on_instance);
     assert!(agreement.different <= rays.len() / 1000, "{} rays hit different triangles", agreement.different);
+}
+
+/// A hit's fields as bits, for comparing two backends' hits exactly.
+fn bits(hit: Option<render::accel::Hit>) -> Option<(u32, u32, u32, u32, u32)> {
+    hit.map(|h| (h.t.to_bits(), h.instance, h.prim, h.u.to_bits(), h.v.to_bits()))
+}
+
+/// The field's quads in a top-level scene of their own (as a large world is built, so that
+/// Embree builds them on both threads) hit what one scene holding the box's triangles and
+/// the field's quads hits, bit for bit, one ray at a time and in batches, and block the
+/// same rays: Embree queries the two BVHs in the same order either way.
+#[test]
+fn quads_apart_hit_what_one_scene_hits() {
+    use render::accel::Accel;
+    let mut world = world();
+    let field = world.instances.len() as u32 - 1;
+    let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
+    let vertex_count = mesh.vertex_count();
+    mesh.quad_pairs = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs").pairs;
+    let apart = render::accel::embree::EmbreeAccel::new_compact(&world);
+    let one = render::accel::embree::EmbreeAccel::new_compact_in_one_scene(&world);
+    assert_eq!((apart.error(), one.error()), (0, 0));
+    assert!(apart.quads_apart() && !one.quads_apart());
+    let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
+    let (mut on_field, mut elsewhere) = (0, 0);
+    for ray in &rays {
+        let hit = apart.intersect(ray);
+        assert_eq!(bits(hit), bits(one.intersect(ray)), "{ray:?}");
+        assert_eq!(apart.occluded(ray), one.occluded(ray), "{ray:?}");
+        match hit {
+            Some(h) if h.instance == field => on_field += 1,
+            Some(_) => elsewhere += 1,
+            None => {}
+        }
+    }
+    assert!(on_field > 2_000 && elsewhere > 2_000, "{on_field} rays on the field, {elsewhere} elsewhere");
+    let (mut hits_apart, mut hits_one) = (vec![None; rays.len()], vec![None; rays.len()]);
+    apart.intersect_batch(&rays, &mut hits_apart);
+    one.intersect_batch(&rays, &mut hits_one);
+    assert!(hits_apart.iter().zip(&hits_one).all(|(a, b)| bits(*a) == bits(*b)));
+    let (mut blocked_apart, mut blocked_one) = (vec![false; rays.len()], vec![false; rays.len()]);
+    apart.occluded_batch(&rays, &mut blocked_apart);
+    one.occluded_batch(&rays, &mut blocked_one);
+    assert_eq!(blocked_apart, blocked_one);
 }

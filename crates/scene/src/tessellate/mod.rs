@@ -22,6 +22,7 @@ use mi::ast::{
     Object, PolygonMaterial, Stmt, SubdivSurface, VertexAttr,
 };
 use mi::Diagnostic;
+use rayon::prelude::*;
 
 use crate::mesh::ptex_quads::MAX_NGON_VERTICES;
 use crate::mesh::{HairGeometry, MaterialSlot, Mesh};
@@ -102,8 +103,9 @@ pub fn tessellate_with(object: &Object, taken: &taken::TakenTrilists, diags: &mu
 /// hairs with such points: nothing downstream could place them.
 fn drop_nonfinite(out: &mut ObjectGeometry, span: mi::Span, diags: &mut Vec<Diagnostic>) {
     let mesh = &mut out.mesh;
-    let finite: Vec<bool> = mesh.positions.iter().map(|p| p.is_finite()).collect();
-    if finite.iter().any(|f| !f) {
+    // Checked on all threads first: a large mesh's positions are usually all finite.
+    if !mesh.positions.par_iter().all(|p| p.is_finite()) {
+        let finite: Vec<bool> = mesh.positions.iter().map(|p| p.is_finite()).collect();
         let before = mesh.triangles.len();
         let keep: Vec<bool> = mesh.triangles.iter().map(|t| t.iter().all(|&i| finite[i as usize])).collect();
         if keep.contains(&false) {

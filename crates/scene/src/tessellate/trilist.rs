@@ -9,6 +9,7 @@
 use glam::Vec3;
 use mi::ast::{LayoutItem, Triangles, Trilist};
 use mi::Diagnostic;
+use rayon::prelude::*;
 
 use super::taken::TrilistArrays;
 use crate::mesh::{MaterialSlot, Mesh, TexSpace};
@@ -41,19 +42,22 @@ pub fn trilist_mesh_with(
     let mut offset = 0;
     for item in &list.layout {
         let width = item.floats();
-        let column = |k: usize| -> Vec<Vec3> {
+        // On all threads (each vector where the numbers' line puts it).
+        let column_with = |k: usize, f: fn(Vec3) -> Vec3| -> Vec<Vec3> {
             (0..n)
+                .into_par_iter()
                 .map(|v| {
                     let line = &floats[v * per_line + offset + 3 * k..];
-                    Vec3::new(line[0], line[1], line[2])
+                    f(Vec3::new(line[0], line[1], line[2]))
                 })
                 .collect()
         };
+        let column = |k: usize| column_with(k, |v| v);
         match item {
             // Moved in place below when the numbers are owned (the layout starts with `p`).
             LayoutItem::P if owned_floats.is_some() && offset == 0 => {}
             LayoutItem::P => mesh.positions = column(0),
-            LayoutItem::N => mesh.normals = column(0).into_iter().map(Vec3::normalize_or_zero).collect(),
+            LayoutItem::N => mesh.normals = column_with(0, Vec3::normalize_or_zero),
             LayoutItem::D => {
                 let (du, dv) = (column(0), column(1));
                 mesh.derivatives = du.into_iter().zip(dv).map(|(a, b)| [a, b]).collect();
@@ -149,7 +153,9 @@ fn add_triangles(
     diags: &mut Vec<Diagnostic>,
 ) -> Option<()> {
     let n = list.vertex_count;
-    if let Some(&bad) = indices.as_slice().iter().find(|&&i| i >= n) {
+    // Checked on all threads; the first bad index found again only for the message.
+    let bad = indices.as_slice().par_chunks(1 << 16).any(|c| c.iter().any(|&i| i >= n));
+    if let Some(&bad) = indices.as_slice().iter().find(|&&i| bad && i >= n) {
         diags.push(Diagnostic::error(
             list.span.start(),
             format!("trilist triangle uses vertex line {bad} but there are {n}"),
