@@ -11,7 +11,7 @@
 #![allow(unsafe_code)]
 
 use std::ffi::c_void;
-use std::os::raw::{c_char, c_uint};
+use std::os::raw::c_uint;
 
 use super::{Accel, Backend, Hit};
 use crate::accel::bvh::instance_mask;
@@ -19,111 +19,8 @@ use crate::mesh::quad_pairs;
 use crate::ray::Ray;
 use crate::world::World;
 
-type RtcDevice = *mut c_void;
-type RtcScene = *mut c_void;
-type RtcGeometry = *mut c_void;
-
-const GEOMETRY_TYPE_TRIANGLE: c_uint = 0;
-const GEOMETRY_TYPE_QUAD: c_uint = 1;
-const GEOMETRY_TYPE_INSTANCE: c_uint = 121;
-const BUFFER_TYPE_INDEX: c_uint = 0;
-const BUFFER_TYPE_VERTEX: c_uint = 1;
-const FORMAT_UINT3: c_uint = 0x5003;
-const FORMAT_UINT4: c_uint = 0x5004;
-const FORMAT_FLOAT3: c_uint = 0x9003;
-const FORMAT_FLOAT3X4_COLUMN_MAJOR: c_uint = 0x9234;
-const BUILD_QUALITY_MEDIUM: c_uint = 1;
-const SCENE_FLAG_COMPACT: c_uint = 2;
-const INVALID_ID: c_uint = c_uint::MAX;
-
-/// `struct RTCIntersectContext` of Embree 3.13 built with one instance level.
-#[repr(C)]
-struct IntersectContext {
-    flags: c_uint,
-    filter: *const c_void,
-    inst_id: [c_uint; 1],
-}
-
-/// `struct RTCRay`.
-#[repr(C, align(16))]
-#[derive(Clone, Copy)]
-struct RtcRay {
-    org: [f32; 3],
-    tnear: f32,
-    dir: [f32; 3],
-    time: f32,
-    tfar: f32,
-    mask: c_uint,
-    id: c_uint,
-    flags: c_uint,
-}
-
-/// `struct RTCHit` with one instance level.
-#[repr(C, align(16))]
-#[derive(Clone, Copy)]
-struct RtcHit {
-    ng: [f32; 3],
-    u: f32,
-    v: f32,
-    prim_id: c_uint,
-    geom_id: c_uint,
-    inst_id: [c_uint; 1],
-}
-
-/// `struct RTCRay8`: eight rays, one array per field.
-#[repr(C, align(32))]
-struct RtcRay8 {
-    org_x: [f32; 8],
-    org_y: [f32; 8],
-    org_z: [f32; 8],
-    tnear: [f32; 8],
-    dir_x: [f32; 8],
-    dir_y: [f32; 8],
-    dir_z: [f32; 8],
-    time: [f32; 8],
-    tfar: [f32; 8],
-    mask: [c_uint; 8],
-    id: [c_uint; 8],
-    flags: [c_uint; 8],
-}
-
-/// `struct RTCHit8` with one instance level.
-#[repr(C, align(32))]
-struct RtcHit8 {
-    ng_x: [f32; 8],
-    ng_y: [f32; 8],
-    ng_z: [f32; 8],
-    u: [f32; 8],
-    v: [f32; 8],
-    prim_id: [c_uint; 8],
-    geom_id: [c_uint; 8],
-    inst_id: [[c_uint; 8]; 1],
-}
-
-/// `struct RTCRayHit8`.
-#[repr(C, align(32))]
-struct RtcRayHit8 {
-    ray: RtcRay8,
-    hit: RtcHit8,
-}
-
-/// The valid-lane mask of a packet of eight (−1: trace the lane, 0: skip it).
-#[repr(C, align(32))]
-struct Valid8([i32; 8]);
-
-/// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT`: the packet's rays are coherent.
-const CONTEXT_FLAG_COHERENT: c_uint = 1;
-
-/// `struct RTCRayHit`.
-#[repr(C, align(16))]
-struct RtcRayHit {
-    ray: RtcRay,
-    hit: RtcHit,
-}
-
-/// `RTCMemoryMonitorFunction`: called by Embree with the bytes it is about to allocate
-/// (positive) or has freed (negative); returning `false` would make the allocation fail.
-type MemoryMonitor = unsafe extern "C" fn(user: *mut c_void, bytes: isize, post: bool) -> bool;
+mod ffi;
+use ffi::*;
 
 /// The memory monitor mira installs on its devices: adds Embree's allocations and frees
 /// to the `AtomicI64` at `user` (the device's [`EmbreeAccel::memory`]) and allows them all.
@@ -133,56 +30,6 @@ unsafe extern "C" fn count_memory(user: *mut c_void, bytes: isize, _post: bool) 
     let counter = unsafe { &*(user as *const std::sync::atomic::AtomicI64) };
     counter.fetch_add(bytes as i64, std::sync::atomic::Ordering::Relaxed);
     true
-}
-
-#[link(name = "embree3")]
-extern "C" {
-    fn rtcNewDevice(config: *const c_char) -> RtcDevice;
-    fn rtcReleaseDevice(device: RtcDevice);
-    fn rtcSetDeviceMemoryMonitorFunction(device: RtcDevice, monitor: MemoryMonitor, user: *mut c_void);
-    fn rtcGetDeviceError(device: RtcDevice) -> c_uint;
-    fn rtcNewScene(device: RtcDevice) -> RtcScene;
-    fn rtcSetSceneBuildQuality(scene: RtcScene, quality: c_uint);
-    fn rtcCommitScene(scene: RtcScene);
-    fn rtcReleaseScene(scene: RtcScene);
-    fn rtcNewGeometry(device: RtcDevice, kind: c_uint) -> RtcGeometry;
-    fn rtcSetNewGeometryBuffer(
-        geometry: RtcGeometry,
-        kind: c_uint,
-        slot: c_uint,
-        format: c_uint,
-        byte_stride: usize,
-        item_count: usize,
-    ) -> *mut c_void;
-    fn rtcSetSharedGeometryBuffer(
-        geometry: RtcGeometry,
-        kind: c_uint,
-        slot: c_uint,
-        format: c_uint,
-        ptr: *const c_void,
-        byte_offset: usize,
-        byte_stride: usize,
-        item_count: usize,
-    );
-    fn rtcSetSceneFlags(scene: RtcScene, flags: c_uint);
-    fn rtcSetGeometryInstancedScene(geometry: RtcGeometry, scene: RtcScene);
-    fn rtcSetGeometryTransform(geometry: RtcGeometry, time_step: c_uint, format: c_uint, xfm: *const f32);
-    fn rtcSetGeometryMask(geometry: RtcGeometry, mask: c_uint);
-    fn rtcSetGeometryTimeStepCount(geometry: RtcGeometry, count: c_uint);
-    fn rtcCommitGeometry(geometry: RtcGeometry);
-    fn rtcAttachGeometryByID(scene: RtcScene, geometry: RtcGeometry, id: c_uint);
-    fn rtcReleaseGeometry(geometry: RtcGeometry);
-    fn rtcIntersect1(scene: RtcScene, context: *mut IntersectContext, rayhit: *mut RtcRayHit);
-    fn rtcOccluded1(scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay);
-    fn rtcIntersect8(valid: *const Valid8, scene: RtcScene, context: *mut IntersectContext, rayhit: *mut RtcRayHit8);
-    fn rtcOccluded8(valid: *const Valid8, scene: RtcScene, context: *mut IntersectContext, ray: *mut RtcRay8);
-    fn rtcIntersect1M(
-        scene: RtcScene,
-        context: *mut IntersectContext,
-        rayhit: *mut RtcRayHit,
-        count: c_uint,
-        byte_stride: usize,
-    );
 }
 
 /// Triangles stored (shared meshes once, flattened instances each) from which the scene's
