@@ -154,8 +154,9 @@ fn add_triangles(
 ) -> Option<()> {
     let n = list.vertex_count;
     // Checked on all threads; the first bad index found again only for the message.
-    let bad = indices.as_slice().par_chunks(1 << 16).any(|c| c.iter().any(|&i| i >= n));
-    if let Some(&bad) = indices.as_slice().iter().find(|&&i| bad && i >= n) {
+    let any_bad = indices.as_slice().par_chunks(1 << 16).any(|c| c.iter().any(|&i| i >= n));
+    let first_bad = if any_bad { indices.as_slice().iter().find(|&&i| i >= n) } else { None };
+    if let Some(&bad) = first_bad {
         diags.push(Diagnostic::error(
             list.span.start(),
             format!("trilist triangle uses vertex line {bad} but there are {n}"),
