@@ -80,17 +80,19 @@ const BUILD_QUALITY: c_uint = BUILD_QUALITY_MEDIUM;
 /// and index arrays (shared buffers), which the borrow `'w` keeps alive and unchanged.
 pub struct EmbreeAccel<'w> {
     device: RtcDevice,
-    top: RtcScene,
-    /// The meshes used once and held as quads, in a top-level scene of their own where
-    /// every instance is used once, queried after `top`; null where they are in `top`.
-    /// In one scene with the other meshes' triangles Embree builds two BVHs (one a
-    /// geometry type) in one parallel loop: the caller takes the triangles', and where
-    /// TBB's worker took the quads' the caller waits inside Embree's task isolation and
-    /// cannot help, so the large build ran on one thread in most runs (docs/performance.md,
-    /// speed47). Apart, each scene is one BVH its committing thread builds with the
-    /// worker's help. Queried in Embree's own order (triangles, then quads, the ray's
-    /// `tfar` carried over), the hits are the same as from one scene.
-    quad_top: RtcScene,
+    /// The top-level scenes, in the order every query traces them (the ray's `tfar`
+    /// carried from one to the next): one scene holding every mesh used once (as
+    /// triangles or quads) and every shared mesh's instance; or, where a mesh used once is
+    /// held as quads ([`Self::quads`]), up to three, one a kind of geometry: the other
+    /// meshes used once (triangles, still and moving), those quads, then the instances.
+    /// In one scene Embree builds a BVH for each kind in one parallel loop: the caller
+    /// takes the first, and where TBB's worker took the large one the caller waits inside
+    /// Embree's task isolation and cannot help, so a large build ran on one thread in most
+    /// runs (docs/performance.md, speed47 and tops48). Apart, each scene is one BVH its
+    /// committing thread builds with the worker's help. Queried in Embree's own order of
+    /// the kinds (triangles, moving triangles, quads, instances, moving instances), the
+    /// hits are those of one scene bit for bit. Never empty.
+    tops: Vec<RtcScene>,
     meshes: Vec<RtcScene>,
     /// Whether [`Accel::intersect_batch`] traces packets (`rtcIntersect8`): only where no
     /// scene is built compact. With indexed leaves Embree's packet kernel moved hits in the
@@ -152,15 +154,14 @@ impl<'w> EmbreeAccel<'w> {
         Self::compact_layout(world, true)
     }
 
-    /// [`EmbreeAccel::new_compact`] with the quad meshes in the top scene with the rest
-    /// (no `quad_top`): the layout the split is checked against.
+    /// [`EmbreeAccel::new_compact`] with every top-level geometry in one scene (no split
+    /// by kind): the layout the split is checked against.
     pub fn new_compact_in_one_scene(world: &'w World) -> EmbreeAccel<'w> {
         Self::compact_layout(world, false)
     }
 
-    /// The compact layout, the quad meshes used once in a scene of their own if
-    /// `quads_apart` (and no instance is shared).
-    fn compact_layout(world: &'w World, quads_apart: bool) -> EmbreeAccel<'w> {
+    /// The compact layout, the top-level geometry split by kind if `kinds_apart`.
+    fn compact_layout(world: &'w World, kinds_apart: bool) -> EmbreeAccel<'w> {
         let flat = super::flat_instances(world);
         let mut shared = vec![false; world.meshes.len()];
         for (inst, f) in world.instances.iter().zip(&flat) {
@@ -168,13 +169,13 @@ impl<'w> EmbreeAccel<'w> {
         }
         let flat_triangles = COMPACT_FROM_TRIANGLES;
         let config = if wide_nodes_supported() { COMPACT_DEVICE } else { c"threads=0" };
-        Self::with_device(world, &flat, &shared, flat_triangles, config, true, quads_apart)
+        Self::with_device(world, &flat, &shared, flat_triangles, config, true, kinds_apart)
     }
 
     /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
     /// `flat` says, the meshes in `shared` built as scenes of their own; with `use_quads`,
-    /// the meshes paired into quads that do not move as quads; with `quads_apart`, those
-    /// used once in a scene of their own (`quad_top`).
+    /// the meshes paired into quads that do not move as quads; with `kinds_apart`, where a
+    /// mesh used once is held as quads, the top-level geometry in one scene a kind (`tops`).
     fn with_device(
         world: &'w World,
         flat: &[bool],
@@ -182,7 +183,7 @@ impl<'w> EmbreeAccel<'w> {
         flat_triangles: usize,
         config: &std::ffi::CStr,
         use_quads: bool,
-        quads_apart: bool,
+        kinds_apart: bool,
     ) -> EmbreeAccel<'w> {
         // SAFETY: `config` is a NUL-terminated string; every pointer passed below comes
         // from Embree itself or from live Rust buffers of the stated sizes.
@@ -232,31 +233,27 @@ impl<'w> EmbreeAccel<'w> {
                     scene
                 })
                 .collect();
-            let top = rtcNewScene(device);
-            rtcSetSceneBuildQuality(top, BUILD_QUALITY);
-            if flat_triangles >= COMPACT_FROM_TRIANGLES {
-                rtcSetSceneFlags(top, SCENE_FLAG_COMPACT);
-                compact = true;
-            }
-            // The flat quad meshes apart where no instance is shared (Embree orders an
-            // instance's BVH after the quads', which two scenes queried in turn would not).
-            let apart = quads_apart
-                && flat.iter().all(|&f| f)
-                && world
-                    .instances
-                    .iter()
-                    .zip(flat)
-                    .any(|(inst, &f)| still(inst, f) && !quads[inst.mesh as usize].is_empty());
-            let quad_top = if apart {
+            let top_scene = || {
                 let scene = rtcNewScene(device);
                 rtcSetSceneBuildQuality(scene, BUILD_QUALITY);
                 if flat_triangles >= COMPACT_FROM_TRIANGLES {
                     rtcSetSceneFlags(scene, SCENE_FLAG_COMPACT);
                 }
                 scene
-            } else {
-                std::ptr::null_mut()
             };
+            let top = top_scene();
+            compact |= flat_triangles >= COMPACT_FROM_TRIANGLES;
+            // The kinds of top-level geometry in scenes of their own where a mesh used once
+            // is held as quads (see `tops`).
+            let apart = kinds_apart
+                && world
+                    .instances
+                    .iter()
+                    .zip(flat)
+                    .any(|(inst, &f)| f && still(inst, f) && !quads[inst.mesh as usize].is_empty());
+            let quad_top = if apart { top_scene() } else { std::ptr::null_mut() };
+            let inst_top = if apart && flat.iter().any(|&f| !f) { top_scene() } else { std::ptr::null_mut() };
+            let mut top_used = false;
             for (i, inst) in world.instances.iter().enumerate() {
                 let mesh = &world.meshes[inst.mesh as usize];
                 if flat[i] && (inst.moves() || mesh.moves()) {
@@ -267,6 +264,7 @@ impl<'w> EmbreeAccel<'w> {
                     rtcCommitGeometry(geom);
                     rtcAttachGeometryByID(top, geom, i as c_uint);
                     rtcReleaseGeometry(geom);
+                    top_used = true;
                     continue;
                 }
                 if flat[i] {
@@ -277,6 +275,7 @@ impl<'w> EmbreeAccel<'w> {
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
                     let scene = if apart && !quads.is_empty() { quad_top } else { top };
+                    top_used |= scene == top;
                     rtcAttachGeometryByID(scene, geom, i as c_uint);
                     rtcReleaseGeometry(geom);
                     continue;
@@ -294,12 +293,21 @@ impl<'w> EmbreeAccel<'w> {
                 }
                 rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                 rtcCommitGeometry(geom);
-                rtcAttachGeometryByID(top, geom, i as c_uint);
+                let scene = if inst_top.is_null() { top } else { inst_top };
+                top_used |= scene == top;
+                rtcAttachGeometryByID(scene, geom, i as c_uint);
                 rtcReleaseGeometry(geom);
             }
-            rtcCommitScene(top);
-            if !quad_top.is_null() {
-                rtcCommitScene(quad_top);
+            // In query order; an empty `top` beside the others is left out.
+            let mut tops = Vec::with_capacity(3);
+            if top_used || quad_top.is_null() {
+                tops.push(top);
+            } else {
+                rtcReleaseScene(top);
+            }
+            tops.extend([quad_top, inst_top].into_iter().filter(|s| !s.is_null()));
+            for &scene in &tops {
+                rtcCommitScene(scene);
             }
             let quad_pairs_of = world
                 .instances
@@ -316,8 +324,7 @@ impl<'w> EmbreeAccel<'w> {
                 .collect();
             EmbreeAccel {
                 device,
-                top,
-                quad_top,
+                tops,
                 meshes,
                 packets: !compact,
                 memory,
@@ -328,9 +335,9 @@ impl<'w> EmbreeAccel<'w> {
         }
     }
 
-    /// Whether the quad meshes used once are in a top-level scene of their own.
-    pub fn quads_apart(&self) -> bool {
-        !self.quad_top.is_null()
+    /// How many top-level scenes a query traces (1 to 3; see [`EmbreeAccel`]'s `tops`).
+    pub fn top_level_scenes(&self) -> usize {
+        self.tops.len()
     }
 
     /// How many quads Embree holds (0 where it holds triangles).
@@ -419,10 +426,10 @@ impl<'w> EmbreeAccel<'w> {
         }
     }
 
-    /// The top-level scenes a query traces, in order: `top`, then `quad_top` if built.
+    /// The top-level scenes a query traces, in order.
     #[inline(always)]
-    fn scenes(&self) -> impl Iterator<Item = RtcScene> {
-        std::iter::once(self.top).chain((!self.quad_top.is_null()).then_some(self.quad_top))
+    fn scenes(&self) -> impl Iterator<Item = RtcScene> + '_ {
+        self.tops.iter().copied()
     }
 
     fn context() -> IntersectContext {
@@ -716,9 +723,8 @@ impl Drop for EmbreeAccel<'_> {
     fn drop(&mut self) {
         // SAFETY: the scenes and device were created by `new` and are released once.
         unsafe {
-            rtcReleaseScene(self.top);
-            if !self.quad_top.is_null() {
-                rtcReleaseScene(self.quad_top);
+            for &scene in &self.tops {
+                rtcReleaseScene(scene);
             }
             for s in &self.meshes {
                 rtcReleaseScene(*s);

@@ -16,8 +16,10 @@ use render::mesh::quad_pairs;
 /// Quads along each side of the field.
 const SIDE: usize = 24;
 
-/// The seed Cornell box with the field and a lone triangle inside it.
-fn world() -> render::World {
+/// The seed Cornell box with the field and a lone triangle inside it; with `shared_block`,
+/// the short block also a second time, 300 mm higher (its mesh then shared by two
+/// instances: held by Embree as a scene of its own, instanced twice).
+fn world(shared_block: bool) -> render::World {
     let mut vertices = String::new();
     for j in 0..=SIDE {
         for i in 0..=SIDE {
@@ -43,17 +45,26 @@ fn world() -> render::World {
     vertices.push_str("300 380 300\n360 380 300\n300 380 360\n");
     order.push([lone, lone + 2, lone + 1]);
     let list: String = order.iter().map(|t| format!("{} {} {}\n", t[0], t[1], t[2])).collect();
-    let extra = format!(
+    let mut extra = format!(
         "object \"Field_obj\"\n trilist vertex {} p triangle {}\n[\n{vertices}]\n[\n{list}]\n end trilist\nend object\n\
          instance \"Field_inst\" \"Field_obj\" end instance\n",
         lone + 3,
         order.len()
     );
+    if shared_block {
+        // The instance transform maps world to object space: the copy stands 300 mm up.
+        extra.push_str(
+            "instance \"Short_block_up\" \"Short_block_obj\"\n material \"white\"\n transform 1 0 0 0 0 1 0 0 0 0 1 0 0 -300 0 1\nend instance\n",
+        );
+    }
     let mut text = include_str!("../../../../scenes/iray_cornell_box.mi").to_string();
     let root = text.find("instgroup").expect("the scene has a root group");
     text.insert_str(root, &extra);
     let list_end = text[root..].find("end instgroup").expect("closed root group") + root;
-    text.insert_str(list_end, "    \"Field_inst\"\n");
+    text.insert_str(
+        list_end,
+        if shared_block { "    \"Field_inst\"\n    \"Short_block_up\"\n" } else { "    \"Field_inst\"\n" },
+    );
     let parsed = mi::parse_str("quad_hits.mi", &text);
     assert!(!parsed.diagnostics.has_errors(), "{:?}", parsed.diagnostics.list);
     let mut diags = Vec::new();
@@ -63,7 +74,7 @@ fn world() -> render::World {
 
 #[test]
 fn embree_quad_hits_are_the_rust_backends_triangle_hits() {
-    let mut world = world();
+    let mut world = world(false);
     let field = world.instances.len() as u32 - 1;
     let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
     let count = mesh.triangles.len();
@@ -88,41 +99,54 @@ fn bits(hit: Option<render::accel::Hit>) -> Option<(u32, u32, u32, u32, u32)> {
     hit.map(|h| (h.t.to_bits(), h.instance, h.prim, h.u.to_bits(), h.v.to_bits()))
 }
 
-/// The field's quads in a top-level scene of their own (as a large world is built, so that
-/// Embree builds them on both threads) hit what one scene holding the box's triangles and
-/// the field's quads hits, bit for bit, one ray at a time and in batches, and block the
-/// same rays: Embree queries the two BVHs in the same order either way.
+/// The top-level geometry split by kind (as a large world is built, so that Embree builds
+/// each kind's BVH on both threads: the box's triangles, the field's quads and, with the
+/// shared block, the instances, in three scenes) hits what one scene holding them all hits,
+/// bit for bit, one ray at a time and in batches, and blocks the same rays: the scenes are
+/// queried in the order Embree queries one scene's BVHs.
 #[test]
-fn quads_apart_hit_what_one_scene_hits() {
+fn kinds_apart_hit_what_one_scene_hits() {
     use render::accel::Accel;
-    let mut world = world();
-    let field = world.instances.len() as u32 - 1;
-    let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
-    let vertex_count = mesh.vertex_count();
-    mesh.quad_pairs = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs").pairs;
-    let apart = render::accel::embree::EmbreeAccel::new_compact(&world);
-    let one = render::accel::embree::EmbreeAccel::new_compact_in_one_scene(&world);
-    assert_eq!((apart.error(), one.error()), (0, 0));
-    assert!(apart.quads_apart() && !one.quads_apart());
-    let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
-    let (mut on_field, mut elsewhere) = (0, 0);
-    for ray in &rays {
-        let hit = apart.intersect(ray);
-        assert_eq!(bits(hit), bits(one.intersect(ray)), "{ray:?}");
-        assert_eq!(apart.occluded(ray), one.occluded(ray), "{ray:?}");
-        match hit {
-            Some(h) if h.instance == field => on_field += 1,
-            Some(_) => elsewhere += 1,
-            None => {}
+    for shared_block in [false, true] {
+        let mut world = world(shared_block);
+        let field =
+            world.instances.iter().position(|i| world.meshes[i.mesh as usize].triangles.len() == 2 * SIDE * SIDE + 1);
+        let field = field.expect("the field is placed") as u32;
+        let mesh = &mut world.meshes[world.instances[field as usize].mesh as usize];
+        let vertex_count = mesh.vertex_count();
+        mesh.quad_pairs = quad_pairs::pair_in_place(&mut mesh.triangles, vertex_count).expect("pairs").pairs;
+        let shared_mesh = world
+            .instances
+            .iter()
+            .map(|i| i.mesh)
+            .find(|&m| world.instances.iter().filter(|i| i.mesh == m).count() > 1);
+        assert_eq!(shared_mesh.is_some(), shared_block);
+        let apart = render::accel::embree::EmbreeAccel::new_compact(&world);
+        let one = render::accel::embree::EmbreeAccel::new_compact_in_one_scene(&world);
+        assert_eq!((apart.error(), one.error()), (0, 0));
+        assert_eq!((apart.top_level_scenes(), one.top_level_scenes()), (if shared_block { 3 } else { 2 }, 1));
+        let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
+        let (mut on_field, mut on_shared, mut elsewhere) = (0, 0, 0);
+        for ray in &rays {
+            let hit = apart.intersect(ray);
+            assert_eq!(bits(hit), bits(one.intersect(ray)), "{ray:?}");
+            assert_eq!(apart.occluded(ray), one.occluded(ray), "{ray:?}");
+            match hit {
+                Some(h) if h.instance == field => on_field += 1,
+                Some(h) if Some(world.instances[h.instance as usize].mesh) == shared_mesh => on_shared += 1,
+                Some(_) => elsewhere += 1,
+                None => {}
+            }
         }
+        assert!(on_field > 2_000 && elsewhere > 2_000, "{on_field} rays on the field, {elsewhere} elsewhere");
+        assert!(!shared_block || on_shared > 500, "{on_shared} rays on the shared block's two instances");
+        let (mut hits_apart, mut hits_one) = (vec![None; rays.len()], vec![None; rays.len()]);
+        apart.intersect_batch(&rays, &mut hits_apart);
+        one.intersect_batch(&rays, &mut hits_one);
+        assert!(hits_apart.iter().zip(&hits_one).all(|(a, b)| bits(*a) == bits(*b)));
+        let (mut blocked_apart, mut blocked_one) = (vec![false; rays.len()], vec![false; rays.len()]);
+        apart.occluded_batch(&rays, &mut blocked_apart);
+        one.occluded_batch(&rays, &mut blocked_one);
+        assert_eq!(blocked_apart, blocked_one);
     }
-    assert!(on_field > 2_000 && elsewhere > 2_000, "{on_field} rays on the field, {elsewhere} elsewhere");
-    let (mut hits_apart, mut hits_one) = (vec![None; rays.len()], vec![None; rays.len()]);
-    apart.intersect_batch(&rays, &mut hits_apart);
-    one.intersect_batch(&rays, &mut hits_one);
-    assert!(hits_apart.iter().zip(&hits_one).all(|(a, b)| bits(*a) == bits(*b)));
-    let (mut blocked_apart, mut blocked_one) = (vec![false; rays.len()], vec![false; rays.len()]);
-    apart.occluded_batch(&rays, &mut blocked_apart);
-    one.occluded_batch(&rays, &mut blocked_one);
-    assert_eq!(blocked_apart, blocked_one);
 }
