@@ -81,17 +81,15 @@ const BUILD_QUALITY: c_uint = BUILD_QUALITY_MEDIUM;
 pub struct EmbreeAccel<'w> {
     device: RtcDevice,
     /// The top-level scenes, in the order every query traces them (the ray's `tfar`
-    /// carried from one to the next): one scene holding every mesh used once (as
-    /// triangles or quads) and every shared mesh's instance; or, where a mesh used once is
-    /// held as quads ([`Self::quads`]), up to three, one a kind of geometry: the other
-    /// meshes used once (triangles, still and moving), those quads, then the instances.
-    /// In one scene Embree builds a BVH for each kind in one parallel loop: the caller
-    /// takes the first, and where TBB's worker took the large one the caller waits inside
-    /// Embree's task isolation and cannot help, so a large build ran on one thread in most
-    /// runs (docs/performance.md, speed47 and tops48). Apart, each scene is one BVH its
-    /// committing thread builds with the worker's help. Queried in Embree's own order of
-    /// the kinds (triangles, moving triangles, quads, instances, moving instances), the
-    /// hits are those of one scene bit for bit. Never empty.
+    /// carried from one to the next). A small world: one scene holding every mesh used
+    /// once and every shared mesh's instance. A large world (built compact): one scene a
+    /// kind of geometry it has ([`TopKind`]: still triangles, moving triangles, quads,
+    /// instances). In one scene Embree builds a BVH for each kind in one parallel loop:
+    /// the caller takes the first, and where TBB's worker took the large one the caller
+    /// waits inside Embree's task isolation and cannot help, so a large build ran on one
+    /// thread in most runs (docs/performance.md, speed47 and tops48). Apart, each scene is
+    /// one BVH its committing thread builds with the worker's help. Queried in Embree's own
+    /// order of the kinds, the hits are those of one scene bit for bit. Never empty.
     tops: Vec<RtcScene>,
     meshes: Vec<RtcScene>,
     /// Whether [`Accel::intersect_batch`] traces packets (`rtcIntersect8`): only where no
@@ -118,6 +116,27 @@ pub struct EmbreeAccel<'w> {
 unsafe impl Send for EmbreeAccel<'_> {}
 // SAFETY: as above: queries on a committed scene are thread-safe.
 unsafe impl Sync for EmbreeAccel<'_> {}
+
+/// The kinds of top-level geometry a large world holds in scenes of their own (see
+/// [`EmbreeAccel`]'s `tops`), in the order Embree queries its BVHs for them in one scene
+/// (`Scene::commit_task` of Embree 3.13: triangles, moving triangles, quads, moving quads,
+/// …, instances, moving instances).
+#[derive(Clone, Copy)]
+enum TopKind {
+    /// Still meshes used once, as triangles in world space.
+    Triangles,
+    /// Moving meshes used once, as triangles in world space at each key.
+    MovingTriangles,
+    /// Still meshes used once, paired into quads ([`EmbreeAccel`]'s `quads`).
+    Quads,
+    /// Instances of shared meshes (or large meshes on moving instances), still and moving.
+    Instances,
+}
+
+impl TopKind {
+    /// How many kinds there are.
+    const COUNT: usize = 4;
+}
 
 impl<'w> EmbreeAccel<'w> {
     /// Builds Embree scenes for a world (falls back to an empty scene on device errors,
@@ -174,8 +193,9 @@ impl<'w> EmbreeAccel<'w> {
 
     /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
     /// `flat` says, the meshes in `shared` built as scenes of their own; with `use_quads`,
-    /// the meshes paired into quads that do not move as quads; with `kinds_apart`, where a
-    /// mesh used once is held as quads, the top-level geometry in one scene a kind (`tops`).
+    /// the meshes paired into quads that do not move as quads; with `kinds_apart`, where
+    /// `flat_triangles` makes the world large, the top-level geometry in one scene a kind
+    /// (`tops`).
     fn with_device(
         world: &'w World,
         flat: &[bool],
@@ -241,19 +261,18 @@ impl<'w> EmbreeAccel<'w> {
                 }
                 scene
             };
-            let top = top_scene();
             compact |= flat_triangles >= COMPACT_FROM_TRIANGLES;
-            // The kinds of top-level geometry in scenes of their own where a mesh used once
-            // is held as quads (see `tops`).
-            let apart = kinds_apart
-                && world
-                    .instances
-                    .iter()
-                    .zip(flat)
-                    .any(|(inst, &f)| f && still(inst, f) && !quads[inst.mesh as usize].is_empty());
-            let quad_top = if apart { top_scene() } else { std::ptr::null_mut() };
-            let inst_top = if apart && flat.iter().any(|&f| !f) { top_scene() } else { std::ptr::null_mut() };
-            let mut top_used = false;
+            // A large world's top-level geometry in one scene a kind (see `tops`), in
+            // Embree's order of the kinds; a small world's in one scene.
+            let apart = kinds_apart && flat_triangles >= COMPACT_FROM_TRIANGLES;
+            let mut scenes: [RtcScene; TopKind::COUNT] = [std::ptr::null_mut(); TopKind::COUNT];
+            let mut scene_for = |kind: TopKind| {
+                let slot = if apart { kind as usize } else { 0 };
+                if scenes[slot].is_null() {
+                    scenes[slot] = top_scene();
+                }
+                scenes[slot]
+            };
             for (i, inst) in world.instances.iter().enumerate() {
                 let mesh = &world.meshes[inst.mesh as usize];
                 if flat[i] && (inst.moves() || mesh.moves()) {
@@ -262,21 +281,18 @@ impl<'w> EmbreeAccel<'w> {
                     let geom = moving_triangle_geometry(device, mesh, &keys);
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
-                    rtcAttachGeometryByID(top, geom, i as c_uint);
+                    rtcAttachGeometryByID(scene_for(TopKind::MovingTriangles), geom, i as c_uint);
                     rtcReleaseGeometry(geom);
-                    top_used = true;
                     continue;
                 }
                 if flat[i] {
-                    // A mesh used once: its triangles go into the top scene in world space
-                    // (its quads into their own scene, as above).
+                    // A still mesh used once: its triangles (or quads) in world space.
                     let quads = &quads[inst.mesh as usize];
                     let geom = still_geometry(device, mesh, quads, inst.object_to_world);
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
-                    let scene = if apart && !quads.is_empty() { quad_top } else { top };
-                    top_used |= scene == top;
-                    rtcAttachGeometryByID(scene, geom, i as c_uint);
+                    let kind = if quads.is_empty() { TopKind::Triangles } else { TopKind::Quads };
+                    rtcAttachGeometryByID(scene_for(kind), geom, i as c_uint);
                     rtcReleaseGeometry(geom);
                     continue;
                 }
@@ -293,19 +309,14 @@ impl<'w> EmbreeAccel<'w> {
                 }
                 rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                 rtcCommitGeometry(geom);
-                let scene = if inst_top.is_null() { top } else { inst_top };
-                top_used |= scene == top;
-                rtcAttachGeometryByID(scene, geom, i as c_uint);
+                rtcAttachGeometryByID(scene_for(TopKind::Instances), geom, i as c_uint);
                 rtcReleaseGeometry(geom);
             }
-            // In query order; an empty `top` beside the others is left out.
-            let mut tops = Vec::with_capacity(3);
-            if top_used || quad_top.is_null() {
-                tops.push(top);
-            } else {
-                rtcReleaseScene(top);
+            // In query order, the kinds with geometry (an empty world: one empty scene).
+            let mut tops: Vec<RtcScene> = scenes.into_iter().filter(|s| !s.is_null()).collect();
+            if tops.is_empty() {
+                tops.push(top_scene());
             }
-            tops.extend([quad_top, inst_top].into_iter().filter(|s| !s.is_null()));
             for &scene in &tops {
                 rtcCommitScene(scene);
             }
@@ -335,7 +346,7 @@ impl<'w> EmbreeAccel<'w> {
         }
     }
 
-    /// How many top-level scenes a query traces (1 to 3; see [`EmbreeAccel`]'s `tops`).
+    /// How many top-level scenes a query traces (1 to 4; see [`EmbreeAccel`]'s `tops`).
     pub fn top_level_scenes(&self) -> usize {
         self.tops.len()
     }

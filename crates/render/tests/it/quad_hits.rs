@@ -16,10 +16,11 @@ use render::mesh::quad_pairs;
 /// Quads along each side of the field.
 const SIDE: usize = 24;
 
-/// The seed Cornell box with the field and a lone triangle inside it; with `shared_block`,
+/// The seed Cornell box with the field and a lone triangle inside it; with `more_kinds`,
 /// the short block also a second time, 300 mm higher (its mesh then shared by two
-/// instances: held by Embree as a scene of its own, instanced twice).
-fn world(shared_block: bool) -> render::World {
+/// instances: held by Embree as a scene of its own, instanced twice), and the tall block
+/// sliding 30 mm along x while the shutter is open (a moving mesh used once).
+fn world(more_kinds: bool) -> render::World {
     let mut vertices = String::new();
     for j in 0..=SIDE {
         for i in 0..=SIDE {
@@ -51,7 +52,7 @@ fn world(shared_block: bool) -> render::World {
         lone + 3,
         order.len()
     );
-    if shared_block {
+    if more_kinds {
         // The instance transform maps world to object space: the copy stands 300 mm up.
         extra.push_str(
             "instance \"Short_block_up\" \"Short_block_obj\"\n material \"white\"\n transform 1 0 0 0 0 1 0 0 0 0 1 0 0 -300 0 1\nend instance\n",
@@ -63,8 +64,14 @@ fn world(shared_block: bool) -> render::World {
     let list_end = text[root..].find("end instgroup").expect("closed root group") + root;
     text.insert_str(
         list_end,
-        if shared_block { "    \"Field_inst\"\n    \"Short_block_up\"\n" } else { "    \"Field_inst\"\n" },
+        if more_kinds { "    \"Field_inst\"\n    \"Short_block_up\"\n" } else { "    \"Field_inst\"\n" },
     );
+    if more_kinds {
+        let tall = "instance \"Tall_block_inst\" \"Tall_block_obj\"\n";
+        assert!(text.contains(tall));
+        text = text.replace(tall, &format!("{tall}    motion transform 1 0 0 0 0 1 0 0 0 0 1 0 -30 0 0 1\n"));
+        text = text.replace("options \"Options\"\n", "options \"Options\"\n    motion on\n    shutter 0 1\n");
+    }
     let parsed = mi::parse_str("quad_hits.mi", &text);
     assert!(!parsed.diagnostics.has_errors(), "{:?}", parsed.diagnostics.list);
     let mut diags = Vec::new();
@@ -100,15 +107,16 @@ fn bits(hit: Option<render::accel::Hit>) -> Option<(u32, u32, u32, u32, u32)> {
 }
 
 /// The top-level geometry split by kind (as a large world is built, so that Embree builds
-/// each kind's BVH on both threads: the box's triangles, the field's quads and, with the
-/// shared block, the instances, in three scenes) hits what one scene holding them all hits,
-/// bit for bit, one ray at a time and in batches, and blocks the same rays: the scenes are
-/// queried in the order Embree queries one scene's BVHs.
+/// each kind's BVH on both threads: the box's triangles, the field's quads and, with more
+/// kinds, the moving block's triangles and the shared block's instances, in two or four
+/// scenes) hits what one scene holding them all hits, bit for bit, one ray at a time and in
+/// batches (rays at spread shutter times), and blocks the same rays: the scenes are queried
+/// in the order Embree queries one scene's BVHs.
 #[test]
 fn kinds_apart_hit_what_one_scene_hits() {
     use render::accel::Accel;
-    for shared_block in [false, true] {
-        let mut world = world(shared_block);
+    for more_kinds in [false, true] {
+        let mut world = world(more_kinds);
         let field =
             world.instances.iter().position(|i| world.meshes[i.mesh as usize].triangles.len() == 2 * SIDE * SIDE + 1);
         let field = field.expect("the field is placed") as u32;
@@ -120,13 +128,18 @@ fn kinds_apart_hit_what_one_scene_hits() {
             .iter()
             .map(|i| i.mesh)
             .find(|&m| world.instances.iter().filter(|i| i.mesh == m).count() > 1);
-        assert_eq!(shared_mesh.is_some(), shared_block);
+        assert_eq!(shared_mesh.is_some(), more_kinds);
+        let moving = world.instances.iter().position(|i| i.moves());
+        assert_eq!(moving.is_some(), more_kinds);
         let apart = render::accel::embree::EmbreeAccel::new_compact(&world);
         let one = render::accel::embree::EmbreeAccel::new_compact_in_one_scene(&world);
         assert_eq!((apart.error(), one.error()), (0, 0));
-        assert_eq!((apart.top_level_scenes(), one.top_level_scenes()), (if shared_block { 3 } else { 2 }, 1));
-        let rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
-        let (mut on_field, mut on_shared, mut elsewhere) = (0, 0, 0);
+        assert_eq!((apart.top_level_scenes(), one.top_level_scenes()), (if more_kinds { 4 } else { 2 }, 1));
+        let mut rays = support::rays::in_cornell_box(20_000, 0x2545_f491_4f6c_dd1d);
+        for (k, ray) in rays.iter_mut().enumerate() {
+            ray.time = (k as f32 * 0.618_034).fract();
+        }
+        let (mut on_field, mut on_shared, mut on_moving, mut elsewhere) = (0, 0, 0, 0);
         for ray in &rays {
             let hit = apart.intersect(ray);
             assert_eq!(bits(hit), bits(one.intersect(ray)), "{ray:?}");
@@ -134,12 +147,14 @@ fn kinds_apart_hit_what_one_scene_hits() {
             match hit {
                 Some(h) if h.instance == field => on_field += 1,
                 Some(h) if Some(world.instances[h.instance as usize].mesh) == shared_mesh => on_shared += 1,
+                Some(h) if Some(h.instance as usize) == moving => on_moving += 1,
                 Some(_) => elsewhere += 1,
                 None => {}
             }
         }
         assert!(on_field > 2_000 && elsewhere > 2_000, "{on_field} rays on the field, {elsewhere} elsewhere");
-        assert!(!shared_block || on_shared > 500, "{on_shared} rays on the shared block's two instances");
+        assert!(!more_kinds || on_shared > 500, "{on_shared} rays on the shared block's two instances");
+        assert!(!more_kinds || on_moving > 500, "{on_moving} rays on the moving block");
         let (mut hits_apart, mut hits_one) = (vec![None; rays.len()], vec![None; rays.len()]);
         apart.intersect_batch(&rays, &mut hits_apart);
         one.intersect_batch(&rays, &mut hits_one);
