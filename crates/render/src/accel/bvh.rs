@@ -12,6 +12,8 @@
 //! instances of shared meshes are bounded the same way and enter at the ray's time. A
 //! static scene has none of them and traces exactly as before.
 
+mod parts;
+
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::{build_cwbvh, build_cwbvh_from_tris};
@@ -19,6 +21,7 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
+use rayon::prelude::*;
 
 use super::{intersect_triangle, Accel, Backend, Hit};
 use crate::ray::mask;
@@ -185,7 +188,7 @@ pub struct BvhAccel {
 }
 
 /// A BVH over triangles (each carrying its mesh index and instance).
-fn triangle_bvh(source: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
+fn triangle_bvh(source: &[Tri], params: BvhBuildParams) -> MeshBvh {
     if source.is_empty() {
         return MeshBvh { bvh: CwBvh::default(), tris: Vec::new(), moving: None };
     }
@@ -247,11 +250,11 @@ impl BvhAccel {
                 if used && m.moves() {
                     let source =
                         m.triangles.iter().enumerate().map(|(i, t)| (i as u32, 0, *t, &m.position_keys[..])).collect();
-                    let mut empty = triangle_bvh(Vec::new(), params);
+                    let mut empty = triangle_bvh(&[], params);
                     empty.moving = MovingBvh::build(source, params);
                     return empty;
                 }
-                let source = if used {
+                let source: Vec<Tri> = if used {
                     m.triangles
                         .iter()
                         .enumerate()
@@ -266,7 +269,7 @@ impl BvhAccel {
                 } else {
                     Vec::new()
                 };
-                triangle_bvh(source, params)
+                parts::bvh_in_parts(source, params, parts::PART_TRIANGLES).unwrap_or_else(|| triangle_bvh(&[], params))
             })
             .collect();
         let instances: Vec<InstanceRef> = world
@@ -288,7 +291,7 @@ impl BvhAccel {
                 continue;
             }
             let w = |i: u32| inst.object_to_world.transform_point3a(m.position(i));
-            world_tris.extend(m.triangles.iter().enumerate().map(|(i, t)| Tri {
+            world_tris.par_extend(m.triangles.par_iter().enumerate().map(|(i, t)| Tri {
                 p0: w(t[0]),
                 p1: w(t[1]),
                 p2: w(t[2]),
@@ -296,7 +299,7 @@ impl BvhAccel {
                 instance: k as u32,
             }));
         }
-        let flat_bvh = (!world_tris.is_empty()).then(|| triangle_bvh(world_tris, params));
+        let flat_bvh = parts::bvh_in_parts(world_tris, params, parts::PART_TRIANGLES);
         let moving_source = moving_keys
             .iter()
             .flat_map(|(k, keys)| {
