@@ -59,7 +59,8 @@ pub(super) fn bvh_in_parts(mut tris: Vec<Tri>, params: BvhBuildParams, part_tria
 
 /// The box of a triangle's vertices, (min, max).
 fn triangle_box(t: &Tri) -> (Vec3A, Vec3A) {
-    (t.p0.min(t.p1).min(t.p2), t.p0.max(t.p1).max(t.p2))
+    let [p0, p1, p2] = t.corners();
+    (p0.min(p1).min(p2), p0.max(p1).max(p2))
 }
 
 /// A box that holds nothing.
@@ -76,7 +77,10 @@ fn union(a: (Vec3A, Vec3A), b: (Vec3A, Vec3A)) -> (Vec3A, Vec3A) {
 /// of their box (ties broken by instance and triangle, so the split is one whatever the
 /// order the triangles came in).
 fn halve(piece: &mut [Tri]) -> [&mut [Tri]; 2] {
-    let centroid = |t: &Tri| t.p0 + t.p1 + t.p2;
+    let centroid = |t: &Tri| {
+        let [p0, p1, p2] = t.corners();
+        p0 + p1 + p2
+    };
     let (lo, hi) = piece.iter().map(|t| (centroid(t), centroid(t))).fold(empty_box(), union);
     let extent = hi - lo;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
@@ -154,7 +158,6 @@ fn join(parts: Vec<MeshBvh>) -> MeshBvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accel::intersect_triangle;
     use crate::ray::Ray;
     use obvhs::ray::RayHit;
 
@@ -175,7 +178,7 @@ mod tests {
         for index in 0..20_000 {
             let c = Vec3A::new(rnd(), rnd(), rnd()) * 100.0;
             let mut corner = || c + (Vec3A::new(rnd(), rnd(), rnd()) - 0.5) * 2.0;
-            tris.push(Tri { p0: corner(), p1: corner(), p2: corner(), index, instance: 1 });
+            tris.push(Tri::new(corner(), corner(), corner(), index, 1));
         }
         let v = |x: f32, y: f32, z: f32| Vec3A::new(x, y, z) * 100.0;
         let faces = [
@@ -185,8 +188,8 @@ mod tests {
         ];
         for (k, (a, b, c, d)) in faces.into_iter().enumerate() {
             let index = 2 * k as u32;
-            tris.push(Tri { p0: a, p1: b, p2: c, index, instance: 0 });
-            tris.push(Tri { p0: a, p1: c, p2: d, index: index + 1, instance: 0 });
+            tris.push(Tri::new(a, b, c, index, 0));
+            tris.push(Tri::new(a, c, d, index + 1, 0));
         }
         tris
     }
@@ -199,7 +202,7 @@ mod tests {
         let bvh_ray = super::super::traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
         bvh.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
             let t = &bvh.tris[id];
-            match intersect_triangle(&Ray { tmax: r.tmax, ..*ray }, t.p0, t.p1, t.p2) {
+            match t.hit(&Ray { tmax: r.tmax, ..*ray }) {
                 Some((d, _, _)) => {
                     best = Some((d, t.instance, t.index));
                     d
@@ -209,7 +212,7 @@ mod tests {
         });
         let blocked = !bvh.bvh.ray_traverse_miss(bvh_ray, |_, id| {
             let t = &bvh.tris[id];
-            intersect_triangle(ray, t.p0, t.p1, t.p2).map_or(f32::INFINITY, |h| h.0)
+            t.hit(ray).map_or(f32::INFINITY, |h| h.0)
         });
         (best, blocked)
     }
