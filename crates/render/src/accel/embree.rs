@@ -89,8 +89,12 @@ pub struct EmbreeAccel<'w> {
     /// waits inside Embree's task isolation and cannot help, so a large build ran on one
     /// thread in most runs (docs/performance.md, speed47 and tops48). Apart, each scene is
     /// one BVH its committing thread builds with the worker's help. Queried in Embree's own
-    /// order of the kinds, the hits are those of one scene bit for bit. Never empty.
-    tops: Vec<RtcScene>,
+    /// order of the kinds, the hits are those of one scene bit for bit. `top` is the
+    /// first, `more_tops` the others, null past the last (all null in a small world,
+    /// whose queries then test one pointer: a list on the heap cost the Cornell box's
+    /// render 0.8 % more instructions).
+    top: RtcScene,
+    more_tops: [RtcScene; TopKind::COUNT - 1],
     meshes: Vec<RtcScene>,
     /// Whether [`Accel::intersect_batch`] traces packets (`rtcIntersect8`): only where no
     /// scene is built compact. With indexed leaves Embree's packet kernel moved hits in the
@@ -320,6 +324,9 @@ impl<'w> EmbreeAccel<'w> {
             for &scene in &tops {
                 rtcCommitScene(scene);
             }
+            let top = tops[0];
+            let mut more_tops = [std::ptr::null_mut(); TopKind::COUNT - 1];
+            more_tops[..tops.len() - 1].copy_from_slice(&tops[1..]);
             let quad_pairs_of = world
                 .instances
                 .iter()
@@ -335,7 +342,8 @@ impl<'w> EmbreeAccel<'w> {
                 .collect();
             EmbreeAccel {
                 device,
-                tops,
+                top,
+                more_tops,
                 meshes,
                 packets: !compact,
                 memory,
@@ -348,7 +356,13 @@ impl<'w> EmbreeAccel<'w> {
 
     /// How many top-level scenes a query traces (1 to 4; see [`EmbreeAccel`]'s `tops`).
     pub fn top_level_scenes(&self) -> usize {
-        self.tops.len()
+        1 + self.more_tops().count()
+    }
+
+    /// The top-level scenes queried after `top`, in order.
+    #[inline(always)]
+    fn more_tops(&self) -> impl Iterator<Item = RtcScene> + '_ {
+        self.more_tops.iter().copied().take_while(|s| !s.is_null())
     }
 
     /// How many quads Embree holds (0 where it holds triangles).
@@ -440,7 +454,7 @@ impl<'w> EmbreeAccel<'w> {
     /// The top-level scenes a query traces, in order.
     #[inline(always)]
     fn scenes(&self) -> impl Iterator<Item = RtcScene> + '_ {
-        self.tops.iter().copied()
+        std::iter::once(self.top).chain(self.more_tops())
     }
 
     fn context() -> IntersectContext {
@@ -498,10 +512,14 @@ impl Accel for EmbreeAccel<'_> {
             },
         };
         // Each scene in turn, the ray's `tfar` carried over (Embree's own order in one scene).
-        for scene in self.scenes() {
+        // `top` first, outside the loop over the others (which a small world does not have).
+        let mut ctx = Self::context();
+        // SAFETY: `top` is a committed scene; `ctx` and `rh` are valid, 16-byte aligned
+        // structures laid out as Embree 3.13 declares them.
+        unsafe { rtcIntersect1(self.top, &mut ctx, &mut rh) };
+        for scene in self.more_tops() {
             let mut ctx = Self::context();
-            // SAFETY: `scene` is a committed scene; `ctx` and `rh` are valid, 16-byte
-            // aligned structures laid out as Embree 3.13 declares them.
+            // SAFETY: as above, for each further committed top-level scene.
             unsafe { rtcIntersect1(scene, &mut ctx, &mut rh) };
         }
         // Flattened meshes are top-level geometries (their id is the instance); the others
@@ -515,12 +533,19 @@ impl Accel for EmbreeAccel<'_> {
 
     fn occluded(&self, ray: &Ray) -> bool {
         let mut r = Self::rtc_ray(ray);
-        for scene in self.scenes() {
+        let blocked = |r: &RtcRay| r.tfar < 0.0 && r.tfar.is_infinite();
+        let mut ctx = Self::context();
+        // SAFETY: as for `intersect`.
+        unsafe { rtcOccluded1(self.top, &mut ctx, &mut r) };
+        // Embree sets tfar to −∞ when the ray is blocked.
+        if blocked(&r) {
+            return true;
+        }
+        for scene in self.more_tops() {
             let mut ctx = Self::context();
             // SAFETY: as for `intersect`.
             unsafe { rtcOccluded1(scene, &mut ctx, &mut r) };
-            // Embree sets tfar to −∞ when the ray is blocked.
-            if r.tfar < 0.0 && r.tfar.is_infinite() {
+            if blocked(&r) {
                 return true;
             }
         }
@@ -734,7 +759,7 @@ impl Drop for EmbreeAccel<'_> {
     fn drop(&mut self) {
         // SAFETY: the scenes and device were created by `new` and are released once.
         unsafe {
-            for &scene in &self.tops {
+            for scene in self.scenes() {
                 rtcReleaseScene(scene);
             }
             for s in &self.meshes {
