@@ -192,14 +192,20 @@ impl MeshData {
         }
     }
 
-    /// Reorders the triangles of a large mesh whose vertices are interleaved (and which so
-    /// holds no per-corner Ptex data, hair or motion) as pairs that share an edge
+    /// Reorders the triangles of a large mesh as pairs that share an edge
     /// ([`quad_pairs::pair_in_place`]), its material slots with them, and records the
     /// pairs in [`MeshData::quad_pairs`]: the acceleration structure then holds the mesh as
-    /// quads. Each triangle keeps its corners and winding (rotated at most). Nothing
-    /// changes for other meshes.
+    /// quads (moving ones too: the pairing only reads the indices). Each triangle keeps its
+    /// corners and winding (rotated at most). Nothing changes for other meshes, nor for a
+    /// mesh whose data names triangles by index and corner (quad-mesh Ptex faces, the faces
+    /// of the mesh it was split from) or per triangle beside the slots (hair tangents).
     pub fn pair_into_quads(&mut self) {
-        if self.triangles.len() < LARGE_MESH_TRIANGLES || !self.is_interleaved() || self.quad_pairs > 0 {
+        if self.triangles.len() < LARGE_MESH_TRIANGLES
+            || self.quad_pairs > 0
+            || !self.ptex_quads.is_empty()
+            || self.ptex_split.is_some()
+            || self.hair.is_some()
+        {
             return;
         }
         let vertex_count = self.vertex_count();

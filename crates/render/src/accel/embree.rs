@@ -133,13 +133,15 @@ enum TopKind {
     MovingTriangles,
     /// Still meshes used once, paired into quads ([`EmbreeAccel`]'s `quads`).
     Quads,
+    /// Moving meshes used once, paired into quads, in world space at each key.
+    MovingQuads,
     /// Instances of shared meshes (or large meshes on moving instances), still and moving.
     Instances,
 }
 
 impl TopKind {
     /// How many kinds there are.
-    const COUNT: usize = 4;
+    const COUNT: usize = 5;
 }
 
 impl<'w> EmbreeAccel<'w> {
@@ -197,7 +199,7 @@ impl<'w> EmbreeAccel<'w> {
 
     /// [`EmbreeAccel::new`] on a device of configuration `config`, the instances placed as
     /// `flat` says, the meshes in `shared` built as scenes of their own; with `use_quads`,
-    /// the meshes paired into quads that do not move as quads; with `kinds_apart`, where
+    /// the meshes paired into quads as quads (still or moving); with `kinds_apart`, where
     /// `flat_triangles` makes the world large, the top-level geometry in one scene a kind
     /// (`tops`).
     fn with_device(
@@ -219,16 +221,11 @@ impl<'w> EmbreeAccel<'w> {
                 rtcSetDeviceMemoryMonitorFunction(device, count_memory, user);
             }
             let mut compact = false;
-            // Quads for the meshes paired into them that Embree holds still (a flat instance
-            // of a still mesh may move).
-            let still = |inst: &crate::world::InstanceData, flat: bool| {
-                let mesh = &world.meshes[inst.mesh as usize];
-                use_quads && mesh.quad_pairs > 0 && !mesh.moves() && !(flat && inst.moves())
-            };
+            // Quads for the placed meshes paired into them, still or moving.
             let mut quads: Vec<Vec<[u32; 4]>> = vec![Vec::new(); world.meshes.len()];
-            for (inst, &f) in world.instances.iter().zip(flat) {
+            for inst in &world.instances {
                 let mesh = &world.meshes[inst.mesh as usize];
-                if still(inst, f) && quads[inst.mesh as usize].is_empty() {
+                if use_quads && mesh.quad_pairs > 0 && quads[inst.mesh as usize].is_empty() {
                     quads[inst.mesh as usize] = quad_pairs::quads(&mesh.triangles, mesh.quad_pairs);
                 }
             }
@@ -245,7 +242,7 @@ impl<'w> EmbreeAccel<'w> {
                         compact |= used;
                     }
                     if used && !m.triangles.is_empty() && m.moves() {
-                        let geom = moving_triangle_geometry(device, m, &m.position_keys);
+                        let geom = moving_geometry(device, m, q, Keys::Shared(&m.position_keys));
                         rtcAttachGeometryByID(scene, geom, 0);
                         rtcReleaseGeometry(geom);
                     } else if used && !m.triangles.is_empty() {
@@ -280,12 +277,19 @@ impl<'w> EmbreeAccel<'w> {
             for (i, inst) in world.instances.iter().enumerate() {
                 let mesh = &world.meshes[inst.mesh as usize];
                 if flat[i] && (inst.moves() || mesh.moves()) {
-                    // A moving mesh used once: in world space at each key.
-                    let keys = crate::world::world_key_positions(inst, mesh);
-                    let geom = moving_triangle_geometry(device, mesh, &keys);
+                    // A moving mesh used once: in world space at each key (the mesh's own
+                    // keys where its placement is the identity).
+                    let quads = &quads[inst.mesh as usize];
+                    let geom = if !inst.moves() && inst.object_to_world == glam::Affine3A::IDENTITY {
+                        moving_geometry(device, mesh, quads, Keys::Shared(&mesh.position_keys))
+                    } else {
+                        let keys = crate::world::world_key_positions(inst, mesh);
+                        moving_geometry(device, mesh, quads, Keys::Copied(&keys))
+                    };
                     rtcSetGeometryMask(geom, instance_mask(&inst.flags));
                     rtcCommitGeometry(geom);
-                    rtcAttachGeometryByID(scene_for(TopKind::MovingTriangles), geom, i as c_uint);
+                    let kind = if quads.is_empty() { TopKind::MovingTriangles } else { TopKind::MovingQuads };
+                    rtcAttachGeometryByID(scene_for(kind), geom, i as c_uint);
                     rtcReleaseGeometry(geom);
                     continue;
                 }
@@ -330,13 +334,12 @@ impl<'w> EmbreeAccel<'w> {
             let quad_pairs_of = world
                 .instances
                 .iter()
-                .zip(flat)
-                .map(|(inst, &f)| {
+                .map(|inst| {
                     let mesh = inst.mesh as usize;
-                    if still(inst, f) && !quads[mesh].is_empty() {
-                        world.meshes[mesh].quad_pairs
-                    } else {
+                    if quads[mesh].is_empty() {
                         u32::MAX
+                    } else {
+                        world.meshes[mesh].quad_pairs
                     }
                 })
                 .collect();
@@ -686,16 +689,7 @@ unsafe fn still_geometry(
         if quads.is_empty() {
             share_triangles(geom, m);
         } else {
-            rtcSetSharedGeometryBuffer(
-                geom,
-                BUFFER_TYPE_INDEX,
-                0,
-                FORMAT_UINT4,
-                quads.as_ptr().cast(),
-                0,
-                16,
-                quads.len(),
-            );
+            share_quads(geom, quads);
         }
         // Committed again by the caller after setting the mask.
         rtcCommitGeometry(geom);
@@ -703,22 +697,54 @@ unsafe fn still_geometry(
     }
 }
 
-/// A committed triangle geometry of `mesh` whose vertices are at `keys[j]` at the j-th of
-/// `keys.len()` time steps spread evenly over the shutter.
+/// The vertex positions of a moving geometry at each of its keys (time steps spread
+/// evenly over the shutter).
+enum Keys<'a> {
+    /// Arrays that outlive the accel (the world's): Embree reads them in place, 16 bytes
+    /// a vertex (`Vec3A`), without a copy.
+    Shared(&'a [Vec<glam::Vec3A>]),
+    /// Arrays made for the build (world-space keys of a placed mesh): copied into buffers
+    /// Embree owns.
+    Copied(&'a [Vec<glam::Vec3A>]),
+}
+
+/// A committed geometry of `mesh` whose vertices are at `keys[j]` at the j-th time step:
+/// its `quads` ([`quad_pairs::quads`]) where it has them, else its triangles. Measured on
+/// the heavy scene's sphere deforming (docs/performance.md, quadsmb49): as quads the
+/// motion-blur BVH builds in half the time and takes half the bytes.
 ///
 /// # Safety
-/// `device` must be a live Embree device.
-unsafe fn moving_triangle_geometry(
+/// `device` must be a live Embree device; `quads` and shared keys must outlive the
+/// geometry.
+unsafe fn moving_geometry(
     device: RtcDevice,
     m: &crate::mesh::MeshData,
-    keys: &[Vec<glam::Vec3A>],
+    quads: &[[u32; 4]],
+    keys: Keys<'_>,
 ) -> RtcGeometry {
-    // SAFETY: the buffers Embree returns hold exactly the item counts asked for; the index
-    // buffer is the mesh's own array, which outlives the accel (it borrows the world).
+    // SAFETY: the buffers Embree returns hold exactly the item counts asked for; shared
+    // buffers (the mesh's triangles, its quads, shared keys) outlive the accel (it borrows
+    // the world and owns the quads), and each `Vec3A` is 16 bytes, so Embree's 16-byte
+    // loads of a vertex stay inside its array.
     unsafe {
-        let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryTimeStepCount(geom, keys.len() as c_uint);
-        for (step, key) in keys.iter().enumerate() {
+        let geom = rtcNewGeometry(device, if quads.is_empty() { GEOMETRY_TYPE_TRIANGLE } else { GEOMETRY_TYPE_QUAD });
+        let (Keys::Shared(arrays) | Keys::Copied(arrays)) = keys;
+        rtcSetGeometryTimeStepCount(geom, arrays.len() as c_uint);
+        for (step, key) in arrays.iter().enumerate() {
+            if let Keys::Shared(_) = keys {
+                let stride = std::mem::size_of::<glam::Vec3A>();
+                rtcSetSharedGeometryBuffer(
+                    geom,
+                    BUFFER_TYPE_VERTEX,
+                    step as c_uint,
+                    FORMAT_FLOAT3,
+                    key.as_ptr().cast(),
+                    0,
+                    stride,
+                    key.len(),
+                );
+                continue;
+            }
             let verts = rtcSetNewGeometryBuffer(geom, BUFFER_TYPE_VERTEX, step as c_uint, FORMAT_FLOAT3, 12, key.len())
                 as *mut f32;
             if !verts.is_null() {
@@ -728,7 +754,11 @@ unsafe fn moving_triangle_geometry(
                 }
             }
         }
-        share_triangles(geom, m);
+        if quads.is_empty() {
+            share_triangles(geom, m);
+        } else {
+            share_quads(geom, quads);
+        }
         rtcCommitGeometry(geom);
         geom
     }
@@ -752,6 +782,17 @@ unsafe fn share_triangles(geom: RtcGeometry, m: &crate::mesh::MeshData) {
             12,
             m.triangles.len(),
         )
+    }
+}
+
+/// Hands Embree `quads` as `geom`'s index buffer (not copied).
+///
+/// # Safety
+/// `geom` must be a live quad geometry; `quads` must outlive it (the accel owns them).
+unsafe fn share_quads(geom: RtcGeometry, quads: &[[u32; 4]]) {
+    // SAFETY: the array holds `quads.len()` 16-byte index quadruples.
+    unsafe {
+        rtcSetSharedGeometryBuffer(geom, BUFFER_TYPE_INDEX, 0, FORMAT_UINT4, quads.as_ptr().cast(), 0, 16, quads.len())
     }
 }
 

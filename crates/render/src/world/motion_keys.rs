@@ -101,14 +101,19 @@ pub fn vertex_keys(shutter: &Shutter, mesh: &MeshData) -> Option<Option<Vec<Vec<
 /// the instance's and the mesh's), for acceleration structures that store moving
 /// triangles in world space. Exact between keys when only one of the two moves (the
 /// instances [`crate::accel::flat_instances`] flattens); when both do, the world-space
-/// path between keys is not linear (see [`world_motion_bounds`]).
+/// path between keys is not linear (see [`world_motion_bounds`]). Where the keys are the
+/// mesh's own, each is its key as stored, not one interpolated at the key's time (the
+/// last one came out a rounding off: `a + (b − a)·1`).
 pub fn world_key_positions(inst: &InstanceData, mesh: &MeshData) -> Vec<Vec<Vec3A>> {
     let keys = inst.keys.len().max(mesh.position_keys.len()).max(1);
     (0..keys)
         .map(|j| {
             let s = if keys == 1 { 0.0 } else { j as f32 / (keys - 1) as f32 };
             let to_world = inst.object_to_world_at(s);
-            mesh.positions_at(s).into_iter().map(|p| to_world.transform_point3a(p)).collect()
+            match mesh.position_keys.get(j).filter(|_| mesh.position_keys.len() == keys) {
+                Some(key) => key.iter().map(|&p| to_world.transform_point3a(p)).collect(),
+                None => mesh.positions_at(s).into_iter().map(|p| to_world.transform_point3a(p)).collect(),
+            }
         })
         .collect()
 }
