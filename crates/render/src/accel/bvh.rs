@@ -16,10 +16,9 @@ mod parts;
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::builder::{build_cwbvh, build_cwbvh_from_tris};
+use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};
-use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 
@@ -58,6 +57,13 @@ impl Tri {
     fn hit(&self, ray: &Ray) -> Option<(f32, f32, f32)> {
         let [p0, p1, p2] = self.corners();
         intersect_triangle(ray, p0, p1, p2)
+    }
+}
+
+impl obvhs::Boundable for Tri {
+    /// The box of its vertices (the box obvhs's own triangles give the same vertices).
+    fn aabb(&self) -> Aabb {
+        Aabb::from_points(&self.corners())
     }
 }
 
@@ -209,21 +215,27 @@ pub struct BvhAccel {
     flat_moving: Option<MovingBvh>,
 }
 
-/// A BVH over triangles (each carrying its mesh index and instance).
-fn triangle_bvh(source: &[Tri], params: BvhBuildParams) -> MeshBvh {
-    if source.is_empty() {
-        return MeshBvh { bvh: CwBvh::default(), tris: Vec::new(), moving: None };
+/// A BVH over triangles (each carrying its mesh index and instance), which it keeps in
+/// its leaf order ([`sort_into_bvh`]).
+fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
+    if tris.is_empty() {
+        return MeshBvh { bvh: CwBvh::default(), tris, moving: None };
     }
-    let boxes: Vec<Triangle> = source
-        .iter()
-        .map(|t| {
-            let [v0, v1, v2] = t.corners();
-            Triangle { v0, v1, v2 }
-        })
-        .collect();
-    let bvh = build_cwbvh_from_tris(&boxes, params, &mut Default::default());
-    let tris = bvh.primitive_indices.iter().map(|&i| source[i as usize]).collect();
+    let bvh = sort_into_bvh(&mut tris, params);
     MeshBvh { bvh, tris, moving: None }
+}
+
+/// The 8-wide BVH of the triangles of `piece`, which it puts in the BVH's leaf order
+/// (traversal names a triangle by its place in that order): the caller's array becomes
+/// the one traversal reads, and no array of boxes or second array of the triangles is kept
+/// beside it (a copy of the piece while it is put in order). `params` must not split
+/// primitives (`pre_split`): each triangle is in one leaf.
+fn sort_into_bvh(piece: &mut [Tri], params: BvhBuildParams) -> CwBvh {
+    debug_assert!(!params.pre_split);
+    let bvh = build_cwbvh(piece, params, &mut Default::default());
+    let ordered: Vec<Tri> = bvh.primitive_indices.iter().map(|&i| piece[i as usize]).collect();
+    piece.copy_from_slice(&ordered);
+    bvh
 }
 
 /// The traversal ray for `origin + t·dir`, t in [tmin, tmax]. Negative zeros in the
@@ -278,7 +290,7 @@ impl BvhAccel {
                 if used && m.moves() {
                     let source =
                         m.triangles.iter().enumerate().map(|(i, t)| (i as u32, 0, *t, &m.position_keys[..])).collect();
-                    let mut empty = triangle_bvh(&[], params);
+                    let mut empty = triangle_bvh(Vec::new(), params);
                     empty.moving = MovingBvh::build(source, params);
                     return empty;
                 }
@@ -291,7 +303,8 @@ impl BvhAccel {
                 } else {
                     Vec::new()
                 };
-                parts::bvh_in_parts(source, params, parts::PART_TRIANGLES).unwrap_or_else(|| triangle_bvh(&[], params))
+                parts::bvh_in_parts(source, params, parts::PART_TRIANGLES)
+                    .unwrap_or_else(|| triangle_bvh(Vec::new(), params))
             })
             .collect();
         let instances: Vec<InstanceRef> = world

@@ -11,7 +11,7 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 
-use super::{triangle_bvh, MeshBvh, Tri};
+use super::{sort_into_bvh, triangle_bvh, MeshBvh, Tri};
 
 /// Triangles a part: a world with at least twice as many flattened triangles is built in
 /// parts (at most [`MAX_PARTS`]).
@@ -29,7 +29,7 @@ pub(super) fn bvh_in_parts(mut tris: Vec<Tri>, params: BvhBuildParams, part_tria
         return None;
     }
     if tris.len() < 2 * part_triangles {
-        return Some(triangle_bvh(&tris, params));
+        return Some(triangle_bvh(tris, params));
     }
     // Triangles large against the world (a room's walls) would stretch whichever part they
     // joined over the whole world: they make a part of their own, first.
@@ -53,11 +53,14 @@ pub(super) fn bvh_in_parts(mut tris: Vec<Tri>, params: BvhBuildParams, part_tria
     pieces.insert(0, large_tris);
     // A world of large triangles only leaves no rest (and one without leaves no large part).
     pieces.retain(|piece| !piece.is_empty());
-    if let [whole] = &pieces[..] {
-        return Some(triangle_bvh(whole, params));
+    if pieces.len() == 1 {
+        // The one piece is every triangle.
+        return Some(triangle_bvh(tris, params));
     }
-    let parts: Vec<MeshBvh> = pieces.into_par_iter().map(|piece| triangle_bvh(piece, params)).collect();
-    Some(join(parts))
+    // Each part puts its piece in its own leaf order, so the pieces, one after the other,
+    // are the joined BVH's triangles as they are.
+    let parts: Vec<CwBvh> = pieces.into_par_iter().map(|piece| sort_into_bvh(piece, params)).collect();
+    Some(join(parts, tris))
 }
 
 /// The box of a triangle's vertices, (min, max).
@@ -101,15 +104,14 @@ fn halve(piece: &mut [Tri]) -> [&mut [Tri]; 2] {
     [first, second]
 }
 
-/// One BVH over `parts` (1 to 8, each with triangles): a root node whose children are the
-/// parts' roots, the parts' other nodes after them, each part's triangles after the last
-/// part's. Nodes and primitives keep their order within a part, their indices moved by
-/// where the part now starts.
-fn join(parts: Vec<MeshBvh>) -> MeshBvh {
+/// One BVH over `parts` (1 to 8, each with triangles) whose triangles are `tris`, each
+/// part's in its leaf order after the last part's: a root node whose children are the
+/// parts' roots, the parts' other nodes after them. Nodes and primitives keep their order
+/// within a part, their indices moved by where the part now starts.
+fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh {
     assert!(!parts.is_empty() && parts.len() <= MAX_PARTS);
-    let total = parts.iter().map(|p| p.bvh.total_aabb).fold(Aabb::empty(), |a, b| a.union(&b));
-    let node_count = 1 + parts.iter().map(|p| p.bvh.nodes.len()).sum::<usize>();
-    let triangle_count: usize = parts.iter().map(|p| p.tris.len()).sum();
+    let total = parts.iter().map(|p| p.total_aabb).fold(Aabb::empty(), |a, b| a.union(&b));
+    let node_count = 1 + parts.iter().map(|p| p.nodes.len()).sum::<usize>();
     let mut root = CwBvhNode { p: total.min.into(), child_base_idx: 1, primitive_base_idx: 0, ..Default::default() };
     // The children's boxes on the root's 8-bit grid, as obvhs lays out a node: a power of
     // two a step, each box widened outward to whole steps.
@@ -117,7 +119,7 @@ fn join(parts: Vec<MeshBvh>) -> MeshBvh {
     root.e = [step.x, step.y, step.z].map(|s| (s.to_bits() >> 23) as u8);
     let per_step = step.recip();
     for (slot, part) in parts.iter().enumerate() {
-        let b = part.bvh.total_aabb;
+        let b = part.total_aabb;
         let lo = ((b.min - total.min) * per_step).floor().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
         let hi = ((b.max - total.min) * per_step).ceil().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
         (root.child_min_x[slot], root.child_min_y[slot], root.child_min_z[slot]) = (lo.x as u8, lo.y as u8, lo.z as u8);
@@ -133,8 +135,8 @@ fn join(parts: Vec<MeshBvh>) -> MeshBvh {
     let mut bases = Vec::with_capacity(parts.len());
     for part in &parts {
         bases.push((node_base, prim_base));
-        node_base += part.bvh.nodes.len() - 1;
-        prim_base += part.bvh.primitive_indices.len();
+        node_base += part.nodes.len() - 1;
+        prim_base += part.primitive_indices.len();
     }
     let moved = |node: &CwBvhNode, (node_base, prim_base): (usize, usize)| CwBvhNode {
         // A part's nodes past its root were at 1…; now at node_base….
@@ -143,16 +145,15 @@ fn join(parts: Vec<MeshBvh>) -> MeshBvh {
         ..*node
     };
     for (part, &base) in parts.iter().zip(&bases) {
-        nodes.push(moved(&part.bvh.nodes[0], base));
+        nodes.push(moved(&part.nodes[0], base));
     }
-    let mut tris = Vec::with_capacity(triangle_count);
+    assert_eq!(prim_base, tris.len(), "the parts hold every triangle once");
     let mut primitive_indices = Vec::with_capacity(prim_base);
-    for (part, base) in parts.into_iter().zip(bases) {
-        nodes.extend(part.bvh.nodes[1..].iter().map(|n| moved(n, base)));
-        let first = tris.len() as u32;
-        // The primitives index the joined triangles, in each part's order.
-        primitive_indices.extend(part.bvh.primitive_indices.iter().map(|&i| first + i));
-        tris.extend(part.tris);
+    for (part, (node_base, first)) in parts.into_iter().zip(bases) {
+        nodes.extend(part.nodes[1..].iter().map(|n| moved(n, (node_base, first))));
+        // Each part's primitives as it numbered them (its piece's order before it was
+        // sorted), moved to where its piece starts.
+        primitive_indices.extend(part.primitive_indices.iter().map(|&i| first as u32 + i));
     }
     let bvh = CwBvh { nodes, primitive_indices, total_aabb: total, exact_node_aabbs: None, uses_spatial_splits: false };
     MeshBvh { bvh, tris, moving: None }
@@ -239,7 +240,7 @@ mod tests {
 
     fn joined_parts_agree(tris: Vec<Tri>, parts: u32, part_triangles: usize) {
         let params = BvhBuildParams::medium_build();
-        let whole = triangle_bvh(&tris, params);
+        let whole = triangle_bvh(tris.clone(), params);
         let joined = bvh_in_parts(tris.clone(), params, part_triangles).expect("triangles");
         assert_eq!(joined.bvh.nodes[0].imask.count_ones(), parts, "parts under the root");
         let mut seen: Vec<(u32, u32)> = joined.tris.iter().map(|t| (t.instance, t.index)).collect();
@@ -326,7 +327,7 @@ mod tests {
         let params = BvhBuildParams::medium_build();
         let tris = triangles();
         let one = bvh_in_parts(tris.clone(), params, tris.len()).expect("triangles");
-        let whole = triangle_bvh(&tris, params);
+        let whole = triangle_bvh(tris.clone(), params);
         assert!(one.bvh.nodes == whole.bvh.nodes && one.bvh.primitive_indices == whole.bvh.primitive_indices);
     }
 }
