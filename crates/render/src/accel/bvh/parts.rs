@@ -1,8 +1,9 @@
 //! The BVH of many triangles (a large world's flattened instances, or a large shared mesh),
-//! built in parts on all threads and joined under one root. obvhs turns its binary BVH into the 8-wide one on one thread, which for the heavy
-//! scene's 4 M triangles was most of a 5–7 s build; parts of a million triangles each are
-//! converted side by side, and the joined BVH is traversed as one (a root node over the
-//! parts' roots), so rays cost what they did.
+//! built in parts on all threads and joined under one root. obvhs turns its binary BVH
+//! into the 8-wide one on one thread, which for the heavy scene's 4 M triangles was most of
+//! a 5–7 s build; parts of about half a million triangles each are built side by side, each
+//! sorting its own piece of the triangles into its leaf order, and the joined BVH is
+//! traversed as one (a root node over the parts' roots), so rays cost what they did.
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
@@ -14,8 +15,10 @@ use rayon::prelude::*;
 use super::{sort_into_bvh, triangle_bvh, MeshBvh, Tri};
 
 /// Triangles a part: a world with at least twice as many flattened triangles is built in
-/// parts (at most [`MAX_PARTS`]).
-pub(super) const PART_TRIANGLES: usize = 1 << 20;
+/// parts (at most [`MAX_PARTS`]). Each part being built holds ≈ 210 bytes a triangle of
+/// obvhs's scratch (docs/performance.md, rustmem49), so parts of half a million keep
+/// two threads' builds near 200 MiB.
+pub(super) const PART_TRIANGLES: usize = 1 << 19;
 
 /// At most this many parts: the children of one 8-wide root node.
 const MAX_PARTS: usize = 8;
@@ -44,13 +47,10 @@ pub(super) fn bvh_in_parts(mut tris: Vec<Tri>, params: BvhBuildParams, part_tria
         }
     }
     let (large_tris, rest) = tris.split_at_mut(large);
-    let most = if large > 0 { MAX_PARTS / 2 } else { MAX_PARTS };
-    let wanted = (rest.len() / part_triangles).next_power_of_two().clamp(1, most);
-    let mut pieces: Vec<&mut [Tri]> = vec![rest];
-    while pieces.len() < wanted {
-        pieces = pieces.into_par_iter().flat_map_iter(halve).collect();
-    }
-    pieces.insert(0, large_tris);
+    let most = if large > 0 { MAX_PARTS - 1 } else { MAX_PARTS };
+    let wanted = rest.len().div_ceil(part_triangles).clamp(1, most);
+    let mut pieces = vec![large_tris];
+    pieces.extend(split(rest, wanted));
     // A world of large triangles only leaves no rest (and one without leaves no large part).
     pieces.retain(|piece| !piece.is_empty());
     if pieces.len() == 1 {
@@ -79,10 +79,23 @@ fn union(a: (Vec3A, Vec3A), b: (Vec3A, Vec3A)) -> (Vec3A, Vec3A) {
     (a.0.min(b.0), a.1.max(b.1))
 }
 
-/// `piece` split in two at the median of its triangles' centroids along the longest side
-/// of their box (ties broken by instance and triangle, so the split is one whatever the
-/// order the triangles came in).
-fn halve(piece: &mut [Tri]) -> [&mut [Tri]; 2] {
+/// `piece` split into `count` pieces of (nearly) equal size, each split in two
+/// ([`cut`]) with as many triangles on each side as pieces are to come of it.
+fn split(piece: &mut [Tri], count: usize) -> Vec<&mut [Tri]> {
+    if count <= 1 {
+        return vec![piece];
+    }
+    let before = count / 2;
+    let (first, second) = cut(piece, piece.len() * before / count);
+    let (mut a, b) = rayon::join(|| split(first, before), || split(second, count - before));
+    a.extend(b);
+    a
+}
+
+/// `piece` cut in two with `at` triangles in the first, those whose centroids come first
+/// along the longest side of their box (ties broken by instance and triangle, so the cut is
+/// one whatever the order the triangles came in).
+fn cut(piece: &mut [Tri], at: usize) -> (&mut [Tri], &mut [Tri]) {
     let centroid = |t: &Tri| {
         let [p0, p1, p2] = t.corners();
         p0 + p1 + p2
@@ -96,12 +109,15 @@ fn halve(piece: &mut [Tri]) -> [&mut [Tri]; 2] {
     } else {
         2
     };
-    let middle = piece.len() / 2;
-    piece.select_nth_unstable_by(middle, |a, b| {
-        centroid(a)[axis].total_cmp(&centroid(b)[axis]).then(a.instance.cmp(&b.instance)).then(a.index.cmp(&b.index))
-    });
-    let (first, second) = piece.split_at_mut(middle);
-    [first, second]
+    if at > 0 && at < piece.len() {
+        piece.select_nth_unstable_by(at, |a, b| {
+            centroid(a)[axis]
+                .total_cmp(&centroid(b)[axis])
+                .then(a.instance.cmp(&b.instance))
+                .then(a.index.cmp(&b.index))
+        });
+    }
+    piece.split_at_mut(at)
 }
 
 /// One BVH over `parts` (1 to 8, each with triangles) whose triangles are `tris`, each
@@ -221,20 +237,21 @@ mod tests {
         (best, blocked)
     }
 
-    /// Built in parts and joined — the small triangles halved three times (8 parts), or,
-    /// with the cube's faces, the faces apart and the rest halved twice (5 parts) — the
-    /// BVH holds every triangle once and finds what the BVH built whole finds: on 20,000
-    /// rays from inside and outside the cube, the same closest distance bit for bit (the
-    /// nearest of the same triangle tests), the same triangle unless two lie at that very
-    /// distance, and the same occlusion.
+    /// Built in parts and joined — the small triangles in 8 parts or 3 (an odd count: cuts
+    /// at a third), or, with the cube's faces, the faces apart and the rest in 7 parts or 3
+    /// — the BVH holds every triangle once and finds what the BVH built whole finds: on
+    /// 20,000 rays from inside and outside the cube, the same closest distance bit for bit
+    /// (the nearest of the same triangle tests), the same triangle unless two lie at that
+    /// very distance, and the same occlusion.
     #[test]
     fn joined_parts_find_what_one_bvh_finds() {
-        for (faces, parts) in [(false, 8), (true, 5)] {
+        for (faces, part_triangles, parts) in [(false, 2_000, 8), (true, 2_000, 8), (false, 7_000, 3), (true, 7_000, 4)]
+        {
             let mut tris = triangles();
             if !faces {
                 tris.retain(|t| t.instance == 1);
             }
-            joined_parts_agree(tris, parts, 2_000);
+            joined_parts_agree(tris, parts, part_triangles);
         }
     }
 
