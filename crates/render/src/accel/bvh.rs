@@ -6,13 +6,16 @@
 //! renormalised).
 //!
 //! Moving geometry (see [`crate::motion`]) lives apart from the static: its triangles keep
-//! their vertices at each key over the shutter, are bounded by the union of their boxes
-//! at the keys (which holds the triangle at every time in between, since the vertices move
-//! linearly from key to key) and are intersected where they are at the ray's time; moving
-//! instances of shared meshes are bounded the same way and enter at the ray's time. A
-//! static scene has none of them and traces exactly as before.
+//! their vertices at each key over the shutter, in BVHs whose boxes move with them
+//! ([`moving`]: each node's box at both ends of an interval between keys, interpolated to
+//! the ray's time), and are intersected where they are at the ray's time; moving instances
+//! of shared meshes are bounded by the union of their boxes over the shutter and enter at
+//! the ray's time. A static scene has none of them and traces exactly as before.
 
+mod moving;
 mod parts;
+
+use moving::{KeySet, MovingBvh, MovingTri};
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
@@ -74,114 +77,6 @@ struct MeshBvh {
     moving: Option<MovingBvh>,
 }
 
-/// A moving triangle in BVH order: where its keys start in [`MovingBvh::verts`], how many
-/// there are, its index in the mesh and its instance.
-#[derive(Clone, Copy)]
-struct MovingTri {
-    first: u32,
-    keys: u32,
-    index: u32,
-    instance: u32,
-}
-
-/// A moving triangle to build from: its index in the mesh, its instance, its vertex
-/// indices and its mesh's vertex positions at each key.
-type MovingSource<'k> = (u32, u32, [u32; 3], &'k [Vec<Vec3A>]);
-
-/// A BVH over moving triangles, bounded over the whole shutter.
-struct MovingBvh {
-    bvh: CwBvh,
-    tris: Vec<MovingTri>,
-    /// Each triangle's vertices at each of its keys.
-    verts: Vec<[Vec3A; 3]>,
-}
-
-impl MovingBvh {
-    /// A BVH over the triangles `tris` (index in the mesh, instance) of meshes whose vertex
-    /// keys are `keys` (one list of positions per key, evenly over the shutter).
-    fn build(source: Vec<MovingSource>, params: BvhBuildParams) -> Option<MovingBvh> {
-        if source.is_empty() {
-            return None;
-        }
-        let mut tris = Vec::with_capacity(source.len());
-        let mut verts = Vec::new();
-        let mut boxes = Vec::with_capacity(source.len());
-        for (index, instance, tri, keys) in source {
-            let mut b = Aabb::empty();
-            tris.push(MovingTri { first: verts.len() as u32, keys: keys.len() as u32, index, instance });
-            for key in keys {
-                let v = tri.map(|i| key[i as usize]);
-                for p in v {
-                    b.extend(p);
-                }
-                verts.push(v);
-            }
-            boxes.push(b);
-        }
-        let bvh = build_cwbvh(&boxes, params, &mut Default::default());
-        let tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
-        Some(MovingBvh { bvh, tris, verts })
-    }
-
-    /// The vertices of `t` at shutter time `time`.
-    #[inline]
-    fn at(&self, t: &MovingTri, time: f32) -> [Vec3A; 3] {
-        let first = t.first as usize;
-        if t.keys < 2 {
-            return self.verts[first];
-        }
-        let (j, f) = crate::motion::key_segment(t.keys as usize, time);
-        let (a, b) = (self.verts[first + j], self.verts[first + j + 1]);
-        [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f]
-    }
-
-    /// The closest hit of `ray` among triangles that `accept` lets through, updating
-    /// `best` (the hit's instance is `instance` if given, else the triangle's); returns the
-    /// closest distance found (`ray.tmax` if none).
-    fn closest(
-        &self,
-        ray: &Ray,
-        instance: Option<u32>,
-        accept: impl Fn(&MovingTri) -> bool,
-        best: &mut Option<Hit>,
-    ) -> f32 {
-        let mut found = ray.tmax;
-        let mut hit = RayHit::none();
-        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
-        self.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
-            let t = &self.tris[id];
-            if !accept(t) {
-                return f32::INFINITY;
-            }
-            let [p0, p1, p2] = self.at(t, ray.time);
-            match intersect_triangle(&Ray { tmax: r.tmax, ..*ray }, p0, p1, p2) {
-                Some((d, u, v)) => {
-                    if d < found {
-                        found = d;
-                        *best = Some(Hit { t: d, instance: instance.unwrap_or(t.instance), prim: t.index, u, v });
-                    }
-                    d
-                }
-                None => f32::INFINITY,
-            }
-        });
-        found
-    }
-
-    /// Whether `ray` hits a triangle that `accept` lets through.
-    fn any(&self, ray: &Ray, accept: impl Fn(&MovingTri) -> bool) -> bool {
-        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
-        !self.bvh.ray_traverse_miss(bvh_ray, |_, id| {
-            let t = &self.tris[id];
-            if !accept(t) {
-                return f32::INFINITY;
-            }
-            let [p0, p1, p2] = self.at(t, ray.time);
-            intersect_triangle(ray, p0, p1, p2).map_or(f32::INFINITY, |h| h.0)
-        })
-    }
-}
-
 struct InstanceRef {
     mesh: u32,
     world_to_object: glam::Affine3A,
@@ -200,6 +95,11 @@ impl InstanceRef {
             crate::motion::lerp_keys(&self.keys, time).inverse()
         }
     }
+}
+
+/// The triangles of mesh `m` as moving triangles of key set `set` and instance `instance`.
+fn moving_triangles(m: &crate::mesh::MeshData, set: usize, instance: u32) -> impl Iterator<Item = MovingTri> + '_ {
+    m.triangles.iter().enumerate().map(move |(i, &v)| MovingTri { v, set: set as u32, index: i as u32, instance })
 }
 
 /// Two-level BVH over a [`World`], with singly-used meshes flattened into world space.
@@ -238,12 +138,34 @@ fn sort_into_bvh(piece: &mut [Tri], params: BvhBuildParams) -> CwBvh {
     bvh
 }
 
-/// The traversal ray for `origin + t·dir`, t in [tmin, tmax]. Negative zeros in the
-/// direction become positive: obvhs picks the traversal octant from the comparison
-/// `d < 0` but inverts −0 to −1/ε, and the two disagreeing made rays straight down an
-/// axis (shadow rays towards a sun at (0, 0, −1) ⇒ direction (−0, −0, 1)) miss.
-fn traversal_ray(origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> BvhRay {
-    BvhRay::new(origin, dir + Vec3A::ZERO, tmin, tmax)
+/// The ray obvhs traverses in `bvh` for `origin + t·dir`, t in [tmin, tmax], and how far
+/// back along it that one starts (`shift`, in units of t: obvhs's distance t′ is
+/// t + `shift`; a leaf's triangles are still tested with the ray itself, and what the
+/// callback returns to obvhs is t′).
+///
+/// The start is moved back because obvhs 0.4's node test raises every box's entry
+/// distance to at least an absolute 1e-4 (where the ray's tmin was meant), which drops
+/// boxes the ray leaves within 1e-4 of its origin — and its box distances are differences
+/// of terms as large as the node's extent over the direction's component, so a flat box
+/// (one face) at the origin came out anywhere within that rounding of it: such boxes were
+/// not entered, and a probe ray starting 5e-5 before a box's side found its far side
+/// (`mia_roundcorners` on the Rust backend; docs/performance.md, movingbvh49). Moved back
+/// by 2e-4 plus eight times that rounding, only boxes wholly behind the origin are dropped.
+/// (Directions within 1e-3 of parallel to an axis plane are not counted in the rounding: a
+/// flat box along that axis is one the ray runs along, and counting them would start an
+/// axis-aligned ray — a sun's shadow ray — far behind.)
+///
+/// Negative zeros in the direction become positive: obvhs picks the traversal octant from
+/// the comparison `d < 0` but inverts −0 to −1/ε, and the two disagreeing made rays
+/// straight down an axis (shadow rays towards a sun at (0, 0, −1) ⇒ direction (−0, −0, 1))
+/// miss.
+fn traversal_ray(bvh: &CwBvh, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> (BvhRay, f32) {
+    let dir = dir + Vec3A::ZERO;
+    let longest = dir.abs().max_element().max(f32::MIN_POSITIVE);
+    let shortest = dir.abs().min_element().max(longest * 1e-3);
+    let extent = bvh.total_aabb.min.abs().max(bvh.total_aabb.max.abs()).max_element() + origin.abs().max_element();
+    let shift = 2e-4 + 8.0 * f32::EPSILON * extent / shortest;
+    (BvhRay::new(origin - dir * shift, dir, tmin + shift, tmax + shift), shift)
 }
 
 /// The ray kinds an instance accepts, from its flags.
@@ -288,10 +210,9 @@ impl BvhAccel {
             .zip(&shared)
             .map(|(m, &used)| {
                 if used && m.moves() {
-                    let source =
-                        m.triangles.iter().enumerate().map(|(i, t)| (i as u32, 0, *t, &m.position_keys[..])).collect();
+                    let tris = moving_triangles(m, 0, 0).collect();
                     let mut empty = triangle_bvh(Vec::new(), params);
-                    empty.moving = MovingBvh::build(source, params);
+                    empty.moving = MovingBvh::build(vec![m.position_keys.clone()], tris);
                     return empty;
                 }
                 let source: Vec<Tri> = if used {
@@ -334,14 +255,15 @@ impl BvhAccel {
             );
         }
         let flat_bvh = parts::bvh_in_parts(world_tris, params, parts::PART_TRIANGLES);
-        let moving_source = moving_keys
+        let moving_tris = moving_keys
             .iter()
-            .flat_map(|(k, keys)| {
-                let m = &world.meshes[world.instances[*k as usize].mesh as usize];
-                m.triangles.iter().enumerate().map(move |(i, t)| (i as u32, *k, *t, &keys[..]))
+            .enumerate()
+            .flat_map(|(set, (k, _))| {
+                moving_triangles(&world.meshes[world.instances[*k as usize].mesh as usize], set, *k)
             })
             .collect();
-        let flat_moving = MovingBvh::build(moving_source, params);
+        let sets: Vec<KeySet> = moving_keys.into_iter().map(|(_, keys)| keys).collect();
+        let flat_moving = MovingBvh::build(sets, moving_tris);
         let tlas_instances: Vec<u32> = (0..world.instances.len() as u32).filter(|k| !flat[*k as usize]).collect();
         let bounds: Vec<Aabb> = tlas_instances
             .iter()
@@ -370,17 +292,17 @@ impl BvhAccel {
         let Some(flat) = &self.flat else { return ray.tmax };
         let mut found = ray.tmax;
         let mut hit = RayHit::none();
-        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
-        flat.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+        let (bvh_ray, shift) = traversal_ray(&flat.bvh, ray.origin, ray.dir, ray.tmin, ray.tmax);
+        flat.bvh.ray_traverse(bvh_ray, &mut hit, |_, id| {
             let t = &flat.tris[id];
             if self.instances[t.instance as usize].mask & ray.mask == 0 {
                 return f32::INFINITY;
             }
-            match t.hit(&Ray { tmax: r.tmax, ..*ray }) {
+            match t.hit(&Ray { tmax: found, ..*ray }) {
                 Some((d, u, v)) => {
                     found = d;
                     *best = Some(Hit { t: d, instance: t.instance, prim: t.index, u, v });
-                    d
+                    d + shift
                 }
                 None => f32::INFINITY,
             }
@@ -409,17 +331,19 @@ impl BvhAccel {
             return if found < tmax { found } else { f32::INFINITY };
         }
         let mut found = f32::INFINITY;
+        let mut reach = local.tmax;
         let mut hit = RayHit::none();
-        let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
-        mesh.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+        let (bvh_ray, shift) = traversal_ray(&mesh.bvh, local.origin, local.dir, local.tmin, local.tmax);
+        mesh.bvh.ray_traverse(bvh_ray, &mut hit, |_, id| {
             let t = &mesh.tris[id];
-            match t.hit(&Ray { tmax: r.tmax, ..local }) {
+            match t.hit(&Ray { tmax: reach, ..local }) {
                 Some((d, u, v)) => {
                     if d < found {
                         found = d;
                         *best = Some(Hit { t: d, instance, prim: t.index, u, v });
                     }
-                    d
+                    reach = reach.min(d);
+                    d + shift
                 }
                 None => f32::INFINITY,
             }
@@ -437,7 +361,7 @@ impl BvhAccel {
                 + b.exact_node_aabbs.as_ref().map_or(0, |a| std::mem::size_of_val(&a[..]))
         }
         fn moving_bytes(m: &MovingBvh) -> usize {
-            bvh_bytes(&m.bvh) + std::mem::size_of_val(&m.tris[..]) + std::mem::size_of_val(&m.verts[..])
+            m.heap_bytes()
         }
         fn mesh_bytes(m: &MeshBvh) -> usize {
             bvh_bytes(&m.bvh) + std::mem::size_of_val(&m.tris[..]) + m.moving.as_ref().map_or(0, moving_bytes)
@@ -462,17 +386,20 @@ impl Accel for BvhAccel {
         }
         let Some(tlas) = self.tlas.as_ref() else { return best };
         let mut hit = RayHit::none();
-        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, tmax);
-        tlas.ray_traverse(bvh_ray, &mut hit, |r, id| {
+        let (bvh_ray, shift) = traversal_ray(tlas, ray.origin, ray.dir, ray.tmin, tmax);
+        let mut reach = tmax;
+        tlas.ray_traverse(bvh_ray, &mut hit, |_, id| {
             let instance = self.tlas_instances[tlas.primitive_indices[id] as usize];
-            self.intersect_instance(ray, r.tmax, instance, &mut best)
+            let found = self.intersect_instance(ray, reach, instance, &mut best);
+            reach = reach.min(found);
+            found + shift
         });
         best
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
         if let Some(flat) = &self.flat {
-            let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
+            let (bvh_ray, _) = traversal_ray(&flat.bvh, ray.origin, ray.dir, ray.tmin, ray.tmax);
             let missed = flat.bvh.ray_traverse_miss(bvh_ray, |_, id| {
                 let t = &flat.tris[id];
                 if self.instances[t.instance as usize].mask & ray.mask == 0 {
@@ -490,7 +417,7 @@ impl Accel for BvhAccel {
             }
         }
         let Some(tlas) = self.tlas.as_ref() else { return false };
-        let bvh_ray = traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
+        let (bvh_ray, _) = traversal_ray(tlas, ray.origin, ray.dir, ray.tmin, ray.tmax);
         !tlas.ray_traverse_miss(bvh_ray, |_, id| {
             let inst = &self.instances[self.tlas_instances[tlas.primitive_indices[id] as usize] as usize];
             if inst.mask & ray.mask == 0 {
@@ -506,7 +433,7 @@ impl Accel for BvhAccel {
             if let Some(moving) = &mesh.moving {
                 return if moving.any(&local, |_| true) { ray.tmin } else { f32::INFINITY };
             }
-            let bvh_ray = traversal_ray(local.origin, local.dir, local.tmin, local.tmax);
+            let (bvh_ray, _) = traversal_ray(&mesh.bvh, local.origin, local.dir, local.tmin, local.tmax);
             let missed = mesh.bvh.ray_traverse_miss(bvh_ray, |_, id| {
                 let t = &mesh.tris[id];
                 t.hit(&local).map_or(f32::INFINITY, |h| h.0)

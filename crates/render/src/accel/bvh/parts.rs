@@ -219,13 +219,15 @@ mod tests {
     fn trace(bvh: &MeshBvh, ray: &Ray) -> (Option<(f32, u32, u32)>, bool) {
         let mut best = None;
         let mut hit = RayHit::none();
-        let bvh_ray = super::super::traversal_ray(ray.origin, ray.dir, ray.tmin, ray.tmax);
-        bvh.bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+        let (bvh_ray, shift) = super::super::traversal_ray(&bvh.bvh, ray.origin, ray.dir, ray.tmin, ray.tmax);
+        let mut reach = ray.tmax;
+        bvh.bvh.ray_traverse(bvh_ray, &mut hit, |_, id| {
             let t = &bvh.tris[id];
-            match t.hit(&Ray { tmax: r.tmax, ..*ray }) {
+            match t.hit(&Ray { tmax: reach, ..*ray }) {
                 Some((d, _, _)) => {
                     best = Some((d, t.instance, t.index));
-                    d
+                    reach = d;
+                    d + shift
                 }
                 None => f32::INFINITY,
             }
