@@ -6,8 +6,8 @@
 //! since every vertex moves linearly over the interval, that box holds everything below
 //! the node at t. A box over the whole shutter instead would be stretched by the whole
 //! motion — for a mesh sliding further than its triangles are wide, every ray would test
-//! most of it. Where the keys are more than two, there is one tree per interval of the
-//! finest keys.
+//! most of it. Triangles are grouped by their key count, and each group has one tree per
+//! interval between its keys.
 
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
@@ -116,9 +116,10 @@ struct Tree {
 pub(in crate::accel) struct MovingBvh {
     sets: Vec<KeySet>,
     tris: Vec<MovingTri>,
-    /// One tree per interval between the finest keys (intervals of shutter time
-    /// 1 / `trees.len()`).
-    trees: Vec<Tree>,
+    /// The triangles grouped by how many keys they have, each group with one tree per
+    /// interval between its keys (intervals of shutter time 1 / its length): a set of many
+    /// keys (a fast turn has up to 48 intervals) does not multiply the trees of the others.
+    groups: Vec<Vec<Tree>>,
 }
 
 /// The shutter times where interval `k` of `count` starts and ends.
@@ -135,9 +136,22 @@ impl MovingBvh {
         if tris.is_empty() {
             return None;
         }
-        let intervals = sets.iter().map(|s| s.len().saturating_sub(1)).max().unwrap_or(1).max(1);
-        let mut bvh = MovingBvh { sets, tris, trees: Vec::new() };
-        bvh.trees = (0..intervals).map(|k| bvh.tree(interval(k, intervals))).collect();
+        let keys_of = |t: &MovingTri| sets[t.set as usize].len();
+        let mut counts: Vec<usize> = tris.iter().map(keys_of).collect();
+        counts.sort_unstable();
+        counts.dedup();
+        let groups: Vec<(usize, Vec<u32>)> = counts
+            .into_iter()
+            .map(|count| (count, (0..tris.len() as u32).filter(|&k| keys_of(&tris[k as usize]) == count).collect()))
+            .collect();
+        let mut bvh = MovingBvh { sets, tris, groups: Vec::new() };
+        bvh.groups = groups
+            .iter()
+            .map(|(count, members)| {
+                let intervals = count.saturating_sub(1).max(1);
+                (0..intervals).map(|k| bvh.tree(members, interval(k, intervals))).collect()
+            })
+            .collect();
         Some(bvh)
     }
 
@@ -146,8 +160,9 @@ impl MovingBvh {
         self.sets.iter().flatten().map(|k| std::mem::size_of_val(&k[..])).sum::<usize>()
             + std::mem::size_of_val(&self.tris[..])
             + self
-                .trees
+                .groups
                 .iter()
+                .flatten()
                 .map(|t| std::mem::size_of_val(&t.nodes[..]) + std::mem::size_of_val(&t.prims[..]))
                 .sum::<usize>()
     }
@@ -167,48 +182,33 @@ impl MovingBvh {
         })
     }
 
-    /// The box of `t` at the start and at the end of the interval from `t0` to `t1`,
-    /// holding it at every time between: its boxes at the ends, or, where one of its own
-    /// keys falls inside the interval (a set with other key times), the box of all of them
-    /// at both ends.
+    /// The box of `t` at the start and at the end of the interval from `t0` to `t1`, one
+    /// between two of its keys (its group's trees have its key count's intervals), where
+    /// it moves linearly: the interpolated box holds it at every time between.
     fn ends(&self, t: &MovingTri, (t0, t1): (f32, f32)) -> Ends {
         let corners = |p: [Vec3A; 3]| (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
         let (lo0, hi0) = corners(self.at(t, t0));
         let (lo1, hi1) = corners(self.at(t, t1));
-        let keys = &self.sets[t.set as usize];
-        let last = keys.len().saturating_sub(1);
-        let inside = (1..last).filter(|&j| {
-            let time = j as f32 / last as f32;
-            time > t0 && time < t1
-        });
-        let mut ends = [lo0, hi0, lo1, hi1];
-        for j in inside {
-            let (lo, hi) = corners(t.v.map(|i| keys[j][i as usize]));
-            let all = [ends[0].min(ends[2]).min(lo), ends[1].max(ends[3]).max(hi)];
-            ends = [all[0], all[1], all[0], all[1]];
-        }
-        ends
+        [lo0, hi0, lo1, hi1]
     }
 
-    /// The tree of the interval `span` (shutter times).
-    fn tree(&self, span: (f32, f32)) -> Tree {
-        let boxes: Vec<PackedEnds> = self.tris.par_iter().map(|t| self.ends(t, span).map(Vec3::from)).collect();
+    /// The tree over the triangles `members` (indices into `tris`) of the interval `span`
+    /// (shutter times).
+    fn tree(&self, members: &[u32], span: (f32, f32)) -> Tree {
+        let boxes: Vec<PackedEnds> =
+            members.par_iter().map(|&k| self.ends(&self.tris[k as usize], span).map(Vec3::from)).collect();
         let largest = boxes
             .par_iter()
             .map(|b| b.iter().map(|c| c.abs().max_element()).fold(0.0f32, f32::max))
             .reduce(|| 0.0, f32::max);
         let centres: Vec<Vec3> = boxes.par_iter().map(|b| (b[0] + b[1] + b[2] + b[3]) * 0.25).collect();
         let builder = Builder { boxes: &boxes, centres: &centres };
-        let mut prims: Vec<u32> = (0..self.tris.len() as u32).collect();
+        let mut prims: Vec<u32> = (0..members.len() as u32).collect();
         let nodes = builder.build(&mut prims, 0, 0);
+        for p in &mut prims {
+            *p = members[*p as usize];
+        }
         Tree { nodes, prims, pad: largest * 1e-6 }
-    }
-
-    /// The tree for shutter time `time`, and where in its interval `time` lies (0…1).
-    #[inline]
-    fn tree_at(&self, time: f32) -> (&Tree, f32) {
-        let (k, f) = crate::motion::key_segment(self.trees.len() + 1, time);
-        (&self.trees[k], f)
     }
 
     /// The closest hit of `ray` among triangles that `accept` lets through, updating
@@ -256,17 +256,36 @@ impl MovingBvh {
     }
 
     /// Visits the triangles whose leaves' boxes at the ray's time `ray` meets within its
-    /// reach, nearest box first; `visit` gets each triangle and the reach so far and
-    /// returns the new reach (below `ray.tmin`: stop).
+    /// reach, group by group, nearest box first; `visit` gets each triangle and the reach
+    /// so far and returns the new reach (below `ray.tmin`: stop).
     #[inline]
     fn traverse(&self, ray: &Ray, mut visit: impl FnMut(&MovingTri, f32) -> f32) {
-        let (tree, f) = self.tree_at(ray.time);
+        let mut reach = ray.tmax;
+        for trees in &self.groups {
+            // The group's tree for the ray's time, and where in its interval that lies.
+            let (k, f) = crate::motion::key_segment(trees.len() + 1, ray.time);
+            if !self.traverse_tree(&trees[k], f, ray, &mut reach, &mut visit) {
+                return;
+            }
+        }
+    }
+
+    /// [`MovingBvh::traverse`] in one tree, `f` (0…1) the ray's time in its interval;
+    /// false where `visit` stopped it.
+    #[inline]
+    fn traverse_tree(
+        &self,
+        tree: &Tree,
+        f: f32,
+        ray: &Ray,
+        reach: &mut f32,
+        visit: &mut impl FnMut(&MovingTri, f32) -> f32,
+    ) -> bool {
         let tiny = Vec3A::splat(1e-30);
         // A direction component of 0 taken as a tiny one of its sign: no 0 · ∞ below.
         let dir = Vec3A::select(ray.dir.abs().cmplt(tiny), tiny.copysign(ray.dir), ray.dir);
         let inv = dir.recip();
         let pad = Vec3A::splat(tree.pad);
-        let mut reach = ray.tmax;
         // The entry distance of node `n`'s box at the ray's time, if the ray meets it
         // within [tmin, reach].
         let enter = |n: &Node, reach: f32| -> Option<f32> {
@@ -282,22 +301,22 @@ impl MovingBvh {
         let mut stack = [(0u32, 0.0f32); STACK];
         let mut depth = 0;
         let mut node = 0usize;
-        if enter(&tree.nodes[0], reach).is_none() {
-            return;
+        if enter(&tree.nodes[0], *reach).is_none() {
+            return true;
         }
         loop {
             let n = &tree.nodes[node];
             if n.count > 0 {
                 let first = n.link as usize;
                 for &p in &tree.prims[first..first + n.count as usize] {
-                    reach = visit(&self.tris[p as usize], reach);
-                    if reach < ray.tmin {
-                        return;
+                    *reach = visit(&self.tris[p as usize], *reach);
+                    if *reach < ray.tmin {
+                        return false;
                     }
                 }
             } else {
                 let (a, b) = (node + 1, node + n.link as usize);
-                match (enter(&tree.nodes[a], reach), enter(&tree.nodes[b], reach)) {
+                match (enter(&tree.nodes[a], *reach), enter(&tree.nodes[b], *reach)) {
                     (Some(ta), Some(tb)) => {
                         let (near, far, far_t) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
                         stack[depth] = (far as u32, far_t);
@@ -319,11 +338,11 @@ impl MovingBvh {
             // The next node on the stack that the ray can still reach.
             loop {
                 if depth == 0 {
-                    return;
+                    return true;
                 }
                 depth -= 1;
                 let (next, near) = stack[depth];
-                if near <= reach {
+                if near <= *reach {
                     node = next as usize;
                     break;
                 }
@@ -524,14 +543,13 @@ mod tests {
     /// The trees find, for 20,000 rays at spread shutter times from inside and outside the
     /// cube, the closest hit of all the triangles where they are at the ray's time (every
     /// triangle tested: the same distance bit for bit, the same triangle unless two lie at
-    /// that very distance) and the same occlusion. Sets of 2, 3 and 4 keys make 3 trees,
-    /// and the 3-key set's middle key falls inside the second (its boxes there hold its
-    /// box at every key in the interval).
+    /// that very distance) and the same occlusion. The sets of 1, 2, 3 and 4 keys make four
+    /// groups of 1, 1, 2 and 3 trees.
     #[test]
     fn moving_trees_find_what_every_triangle_finds() {
         let (sets, tris) = moving_triangles();
         let bvh = MovingBvh::build(sets, tris.clone()).expect("triangles");
-        assert_eq!(bvh.trees.len(), 3);
+        assert_eq!(bvh.groups.iter().map(Vec::len).collect::<Vec<_>>(), [1, 1, 2, 3]);
         let mut rnd = numbers(0x2545_f491_4f6c_dd1d);
         let (mut hits, mut blocked) = (0, 0);
         for k in 0..20_000 {
