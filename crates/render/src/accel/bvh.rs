@@ -121,7 +121,9 @@ fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
     if tris.is_empty() {
         return MeshBvh { bvh: CwBvh::default(), tris, moving: None };
     }
-    let bvh = sort_into_bvh(&mut tris, params);
+    let mut bvh = sort_into_bvh(&mut tris, params);
+    // The triangles are in leaf order: the map to the order they came in is not needed.
+    bvh.primitive_indices = Vec::new();
     MeshBvh { bvh, tris, moving: None }
 }
 
@@ -164,7 +166,8 @@ fn traversal_ray(bvh: &CwBvh, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -
     let longest = dir.abs().max_element().max(f32::MIN_POSITIVE);
     let shortest = dir.abs().min_element().max(longest * 1e-3);
     let extent = bvh.total_aabb.min.abs().max(bvh.total_aabb.max.abs()).max_element() + origin.abs().max_element();
-    let shift = 2e-4 + 8.0 * f32::EPSILON * extent / shortest;
+    // At most 1e30: a zero direction (a ray from a point to itself) leaves the origin.
+    let shift = (2e-4 + 8.0 * f32::EPSILON * extent / shortest).min(1e30);
     (BvhRay::new(origin - dir * shift, dir, tmin + shift, tmax + shift), shift)
 }
 

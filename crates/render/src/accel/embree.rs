@@ -357,7 +357,7 @@ impl<'w> EmbreeAccel<'w> {
         }
     }
 
-    /// How many top-level scenes a query traces (1 to 4; see [`EmbreeAccel`]'s `tops`).
+    /// How many top-level scenes a query traces (1 to 5; see [`EmbreeAccel`]'s `tops`).
     pub fn top_level_scenes(&self) -> usize {
         1 + self.more_tops().count()
     }

@@ -359,3 +359,23 @@ fn backends_report_their_memory() {
         assert!(embree.bytes <= 4096 * triangles, "{} bytes for {triangles} triangles", embree.bytes);
     }
 }
+
+/// A ray without a direction (from a point to itself) or with a subnormal one, far beside
+/// the scene and not towards it, finds nothing and blocks nothing on either backend,
+/// without a panic (the Rust backend moves its traversal's start back by a distance that grows as
+/// the direction shrinks: it is bounded).
+#[test]
+fn rays_without_a_direction_find_nothing() {
+    let world = cornell();
+    for backend in [Backend::Rust, Backend::default_available()] {
+        let built = accel::build(&world, backend);
+        for dir in [Vec3A::ZERO, Vec3A::new(1e-41, 0.0, 0.0), Vec3A::new(0.0, -1e-40, 1e-41)] {
+            // Beside the box, looking away from it or along it.
+            for origin in [Vec3A::new(5000.0, 100.0, 100.0), Vec3A::new(9000.0, -40.0, 300.0)] {
+                let ray = Ray { origin, dir, tmin: 0.0, tmax: f32::INFINITY, mask: !0, time: 0.0 };
+                assert!(built.intersect(&ray).is_none(), "{backend:?} {ray:?}");
+                assert!(!built.occluded(&ray), "{backend:?} {ray:?}");
+            }
+        }
+    }
+}

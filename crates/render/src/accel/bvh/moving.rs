@@ -122,11 +122,6 @@ pub(in crate::accel) struct MovingBvh {
     groups: Vec<Vec<Tree>>,
 }
 
-/// The shutter times where interval `k` of `count` starts and ends.
-fn interval(k: usize, count: usize) -> (f32, f32) {
-    (k as f32 / count as f32, (k + 1) as f32 / count as f32)
-}
-
 impl MovingBvh {
     /// The BVHs of `tris`, whose vertices are in `sets` (a triangle naming a set or vertex
     /// that is not there is left out); `None` without triangles.
@@ -149,7 +144,7 @@ impl MovingBvh {
             .iter()
             .map(|(count, members)| {
                 let intervals = count.saturating_sub(1).max(1);
-                (0..intervals).map(|k| bvh.tree(members, interval(k, intervals))).collect()
+                (0..intervals).map(|k| bvh.tree(members, k)).collect()
             })
             .collect();
         Some(bvh)
@@ -182,21 +177,27 @@ impl MovingBvh {
         })
     }
 
-    /// The box of `t` at the start and at the end of the interval from `t0` to `t1`, one
-    /// between two of its keys (its group's trees have its key count's intervals), where
-    /// it moves linearly: the interpolated box holds it at every time between.
-    fn ends(&self, t: &MovingTri, (t0, t1): (f32, f32)) -> Ends {
-        let corners = |p: [Vec3A; 3]| (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-        let (lo0, hi0) = corners(self.at(t, t0));
-        let (lo1, hi1) = corners(self.at(t, t1));
+    /// The box of `t` at its keys `k` and `k + 1` (its one key twice if it has one), the
+    /// ends of its group's interval `k`: read from the keys themselves, not from positions
+    /// at the interval's end times, which f32 can put a rounding into the neighbouring
+    /// interval (7/13 lands in interval 7 at 4.8e-7 of it), off by that fraction of the
+    /// neighbouring interval's motion.
+    fn ends(&self, t: &MovingTri, k: usize) -> Ends {
+        let keys = &self.sets[t.set as usize];
+        let corners = |key: &[Vec3A]| {
+            let p = t.v.map(|i| key[i as usize]);
+            (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
+        };
+        let (lo0, hi0) = corners(&keys[k.min(keys.len() - 1)]);
+        let (lo1, hi1) = corners(&keys[(k + 1).min(keys.len() - 1)]);
         [lo0, hi0, lo1, hi1]
     }
 
-    /// The tree over the triangles `members` (indices into `tris`) of the interval `span`
-    /// (shutter times).
-    fn tree(&self, members: &[u32], span: (f32, f32)) -> Tree {
+    /// The tree over the triangles `members` (indices into `tris`, all of one key count)
+    /// of the interval between their keys `k` and `k + 1`.
+    fn tree(&self, members: &[u32], k: usize) -> Tree {
         let boxes: Vec<PackedEnds> =
-            members.par_iter().map(|&k| self.ends(&self.tris[k as usize], span).map(Vec3::from)).collect();
+            members.par_iter().map(|&m| self.ends(&self.tris[m as usize], k).map(Vec3::from)).collect();
         let largest = boxes
             .par_iter()
             .map(|b| b.iter().map(|c| c.abs().max_element()).fold(0.0f32, f32::max))
@@ -587,5 +588,49 @@ mod tests {
             assert_eq!(bvh.any(&ray, |t| t.set == 3), still);
         }
         assert!(hits > 1_500 && blocked == hits, "{hits} hits");
+    }
+
+    /// A triangle of 14 keys that holds still to key 7 and then jumps 10,000 units a key:
+    /// rays down onto it (a thousandth inside its edges, and at its centroid) at every
+    /// key's time and the floats either side (k/13 in f32 can round into the neighbouring
+    /// interval) all hit it where it is, as testing it does. (Its boxes taken at the
+    /// intervals' end times missed it at `prev_float(7/13)`: checked.)
+    #[test]
+    fn uneven_keys_are_bounded_at_every_time() {
+        let keys: KeySet = (0..14)
+            .map(|j: usize| {
+                let x = 1e4 * j.saturating_sub(7) as f32;
+                vec![Vec3A::new(x, 0.0, 0.0), Vec3A::new(x + 1.0, 0.0, 0.0), Vec3A::new(x, 1.0, 0.0)]
+            })
+            .collect();
+        let tri = MovingTri { v: [0, 1, 2], set: 0, index: 0, instance: 0 };
+        let bvh = MovingBvh::build(vec![keys], vec![tri]).expect("a triangle");
+        let mut tested = 0;
+        for m in 0..=13 {
+            let t = m as f32 / 13.0;
+            for time in [f32::from_bits(t.to_bits().saturating_sub(1)), t, f32::from_bits(t.to_bits() + 1)] {
+                if !(0.0..=1.0).contains(&time) {
+                    continue;
+                }
+                let [p0, p1, p2] = bvh.at(&tri, time);
+                // Points a thousandth inside the triangle's edges, and its centroid.
+                for (u, v) in [(0.001, 0.3), (0.3, 0.001), (0.6, 0.399), (1.0 / 3.0, 1.0 / 3.0)] {
+                    let target = p0 + (p1 - p0) * u + (p2 - p0) * v;
+                    let origin = target + Vec3A::Z * 5.0;
+                    let ray = Ray { origin, dir: -Vec3A::Z, tmin: 1e-3, tmax: f32::INFINITY, mask: !0, time };
+                    // (Far along x the aim's rounding may put it just off an edge.)
+                    let want = intersect_triangle(&ray, p0, p1, p2).map(|h| h.0);
+                    if want.is_none() {
+                        continue;
+                    }
+                    let mut best = None;
+                    bvh.closest(&ray, None, |_| true, &mut best);
+                    assert_eq!(best.map(|h| h.t), want, "time {time}, {u} {v}");
+                    assert!(bvh.any(&ray, |_| true), "time {time}, {u} {v}");
+                    tested += 1;
+                }
+            }
+        }
+        assert!(tested >= 140, "{tested} rays");
     }
 }

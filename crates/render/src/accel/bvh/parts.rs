@@ -164,13 +164,11 @@ fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh {
         nodes.push(moved(&part.nodes[0], base));
     }
     assert_eq!(prim_base, tris.len(), "the parts hold every triangle once");
-    let mut primitive_indices = Vec::with_capacity(prim_base);
-    for (part, (node_base, first)) in parts.into_iter().zip(bases) {
-        nodes.extend(part.nodes[1..].iter().map(|n| moved(n, (node_base, first))));
-        // Each part's primitives as it numbered them (its piece's order before it was
-        // sorted), moved to where its piece starts.
-        primitive_indices.extend(part.primitive_indices.iter().map(|&i| first as u32 + i));
+    for (part, base) in parts.into_iter().zip(bases) {
+        nodes.extend(part.nodes[1..].iter().map(|n| moved(n, base)));
     }
+    // The triangles are in leaf order: no map to the order they came in is kept.
+    let primitive_indices = Vec::new();
     let bvh = CwBvh { nodes, primitive_indices, total_aabb: total, exact_node_aabbs: None, uses_spatial_splits: false };
     MeshBvh { bvh, tris, moving: None }
 }
