@@ -70,11 +70,11 @@ impl obvhs::Boundable for Tri {
     }
 }
 
-struct MeshBvh {
+struct MeshBvh<'w> {
     bvh: CwBvh,
     tris: Vec<Tri>,
     /// The mesh's triangles when its vertices move (then `tris` is empty).
-    moving: Option<MovingBvh>,
+    moving: Option<MovingBvh<'w>>,
 }
 
 struct InstanceRef {
@@ -103,21 +103,21 @@ fn moving_triangles(m: &crate::mesh::MeshData, set: usize, instance: u32) -> imp
 }
 
 /// Two-level BVH over a [`World`], with singly-used meshes flattened into world space.
-pub struct BvhAccel {
-    meshes: Vec<MeshBvh>,
+pub struct BvhAccel<'w> {
+    meshes: Vec<MeshBvh<'w>>,
     instances: Vec<InstanceRef>,
     /// Instances of the top-level BVH (its primitive i is instance `tlas_instances[i]`).
     tlas_instances: Vec<u32>,
     tlas: Option<CwBvh>,
     /// The world-space BVH of the flattened instances.
-    flat: Option<MeshBvh>,
+    flat: Option<MeshBvh<'w>>,
     /// The world-space BVH of the flattened instances that move.
-    flat_moving: Option<MovingBvh>,
+    flat_moving: Option<MovingBvh<'w>>,
 }
 
 /// A BVH over triangles (each carrying its mesh index and instance), which it keeps in
 /// its leaf order ([`sort_into_bvh`]).
-fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh {
+fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh<'static> {
     if tris.is_empty() {
         return MeshBvh { bvh: CwBvh::default(), tris, moving: None };
     }
@@ -198,9 +198,10 @@ pub fn instance_mask(flags: &scene::Flags) -> u32 {
     m
 }
 
-impl BvhAccel {
-    /// Builds the BVHs of a world.
-    pub fn new(world: &World) -> BvhAccel {
+impl<'w> BvhAccel<'w> {
+    /// Builds the BVHs of a world (reading moving meshes' keys in place: it borrows the
+    /// world).
+    pub fn new(world: &'w World) -> BvhAccel<'w> {
         let params = BvhBuildParams::medium_build();
         let flat = super::flat_instances(world);
         let mut shared = vec![false; world.meshes.len()];
@@ -215,7 +216,7 @@ impl BvhAccel {
                 if used && m.moves() {
                     let tris = moving_triangles(m, 0, 0).collect();
                     let mut empty = triangle_bvh(Vec::new(), params);
-                    empty.moving = MovingBvh::build(vec![m.position_keys.clone()], tris);
+                    empty.moving = MovingBvh::build(vec![KeySet::Borrowed(&m.position_keys)], tris);
                     return empty;
                 }
                 let source: Vec<Tri> = if used {
@@ -246,7 +247,14 @@ impl BvhAccel {
         for (k, inst) in world.instances.iter().enumerate().filter(|(k, _)| flat[*k]) {
             let m = &world.meshes[inst.mesh as usize];
             if inst.moves() || m.moves() {
-                moving_keys.push((k as u32, crate::world::world_key_positions(inst, m)));
+                // The mesh's own keys where it is placed at the identity (as Embree reads
+                // them), world-space copies where it is placed elsewhere or its instance moves.
+                let keys = if m.moves() && !inst.moves() && inst.object_to_world == glam::Affine3A::IDENTITY {
+                    KeySet::Borrowed(&m.position_keys)
+                } else {
+                    KeySet::Owned(crate::world::world_key_positions(inst, m))
+                };
+                moving_keys.push((k as u32, keys));
                 continue;
             }
             let w = |i: u32| inst.object_to_world.transform_point3a(m.position(i));
@@ -355,7 +363,7 @@ impl BvhAccel {
     }
 }
 
-impl BvhAccel {
+impl BvhAccel<'_> {
     /// Bytes of the BVHs' nodes, primitive indices and triangle copies.
     fn heap_bytes(&self) -> u64 {
         fn bvh_bytes(b: &CwBvh) -> usize {
@@ -379,7 +387,7 @@ impl BvhAccel {
     }
 }
 
-impl Accel for BvhAccel {
+impl Accel for BvhAccel<'_> {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut best = None;
         let mut tmax = self.intersect_flat(ray, &mut best);

@@ -16,8 +16,10 @@ use crate::accel::{intersect_triangle, Hit};
 use crate::ray::Ray;
 
 /// Vertex positions at each key: `keys[j][i]` is vertex i at the j-th of the keys spread
-/// evenly over the shutter (one key: it holds still).
-pub(in crate::accel) type KeySet = Vec<Vec<Vec3A>>;
+/// evenly over the shutter (one key: it holds still). Borrowed where they are a mesh's own
+/// (`position_keys`, which the BVH then reads in place), owned where they were made for it
+/// (a placed instance's world-space keys).
+pub(in crate::accel) type KeySet<'k> = std::borrow::Cow<'k, [Vec<Vec3A>]>;
 
 /// A moving triangle: its vertices in key set `set`, its index in its mesh and its
 /// instance.
@@ -113,8 +115,8 @@ struct Tree {
 }
 
 /// Moving triangles and their BVHs.
-pub(in crate::accel) struct MovingBvh {
-    sets: Vec<KeySet>,
+pub(in crate::accel) struct MovingBvh<'k> {
+    sets: Vec<KeySet<'k>>,
     tris: Vec<MovingTri>,
     /// The triangles grouped by how many keys they have, each group with one tree per
     /// interval between its keys (intervals of shutter time 1 / its length): a set of many
@@ -122,10 +124,10 @@ pub(in crate::accel) struct MovingBvh {
     groups: Vec<Vec<Tree>>,
 }
 
-impl MovingBvh {
+impl<'k> MovingBvh<'k> {
     /// The BVHs of `tris`, whose vertices are in `sets` (a triangle naming a set or vertex
     /// that is not there is left out); `None` without triangles.
-    pub(in crate::accel) fn build(sets: Vec<KeySet>, mut tris: Vec<MovingTri>) -> Option<MovingBvh> {
+    pub(in crate::accel) fn build(sets: Vec<KeySet<'k>>, mut tris: Vec<MovingTri>) -> Option<MovingBvh<'k>> {
         let vertices: Vec<usize> = sets.iter().map(|s| s.iter().map(Vec::len).min().unwrap_or(0)).collect();
         tris.retain(|t| vertices.get(t.set as usize).is_some_and(|&n| t.v.iter().all(|&i| (i as usize) < n)));
         if tris.is_empty() {
@@ -150,9 +152,14 @@ impl MovingBvh {
         Some(bvh)
     }
 
-    /// Bytes of its key sets, triangles and trees.
+    /// Bytes of the key sets it owns (borrowed ones are the world's geometry), its
+    /// triangles and trees.
     pub(in crate::accel) fn heap_bytes(&self) -> usize {
-        self.sets.iter().flatten().map(|k| std::mem::size_of_val(&k[..])).sum::<usize>()
+        let owned = |set: &KeySet| match set {
+            std::borrow::Cow::Owned(keys) => keys.iter().map(|k| std::mem::size_of_val(&k[..])).sum::<usize>(),
+            std::borrow::Cow::Borrowed(_) => 0,
+        };
+        self.sets.iter().map(owned).sum::<usize>()
             + std::mem::size_of_val(&self.tris[..])
             + self
                 .groups
@@ -500,7 +507,7 @@ mod tests {
 
     /// Triangles in a 100-unit cube in four key sets: two keys (sliding 30 units), three
     /// (turning about the cube's centre), four (a zigzag) and one (still).
-    fn moving_triangles() -> (Vec<KeySet>, Vec<MovingTri>) {
+    fn moving_triangles() -> (Vec<KeySet<'static>>, Vec<MovingTri>) {
         let mut rnd = numbers(0x5851_f42d_4c95_7f2d);
         let mut sets = Vec::new();
         let mut tris = Vec::new();
@@ -528,7 +535,7 @@ mod tests {
                     })
                     .collect()
             };
-            sets.push((0..keys).map(key).collect());
+            sets.push(KeySet::Owned((0..keys).map(key).collect()));
             for k in 0..count as u32 {
                 tris.push(MovingTri {
                     v: [3 * k, 3 * k + 1, 3 * k + 2],
@@ -597,14 +604,14 @@ mod tests {
     /// intervals' end times missed it at `prev_float(7/13)`: checked.)
     #[test]
     fn uneven_keys_are_bounded_at_every_time() {
-        let keys: KeySet = (0..14)
+        let keys: Vec<Vec<Vec3A>> = (0..14)
             .map(|j: usize| {
                 let x = 1e4 * j.saturating_sub(7) as f32;
                 vec![Vec3A::new(x, 0.0, 0.0), Vec3A::new(x + 1.0, 0.0, 0.0), Vec3A::new(x, 1.0, 0.0)]
             })
             .collect();
         let tri = MovingTri { v: [0, 1, 2], set: 0, index: 0, instance: 0 };
-        let bvh = MovingBvh::build(vec![keys], vec![tri]).expect("a triangle");
+        let bvh = MovingBvh::build(vec![KeySet::Owned(keys)], vec![tri]).expect("a triangle");
         let mut tested = 0;
         for m in 0..=13 {
             let t = m as f32 / 13.0;

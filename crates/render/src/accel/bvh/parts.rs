@@ -27,7 +27,11 @@ const MAX_PARTS: usize = 8;
 /// `part_triangles` where there are at least twice as many. The parts depend on the
 /// triangles only, never on the thread count, so a scene gives the same hits on any machine
 /// and at any thread count.
-pub(super) fn bvh_in_parts(mut tris: Vec<Tri>, params: BvhBuildParams, part_triangles: usize) -> Option<MeshBvh> {
+pub(super) fn bvh_in_parts(
+    mut tris: Vec<Tri>,
+    params: BvhBuildParams,
+    part_triangles: usize,
+) -> Option<MeshBvh<'static>> {
     if tris.is_empty() {
         return None;
     }
@@ -124,7 +128,7 @@ fn cut(piece: &mut [Tri], at: usize) -> (&mut [Tri], &mut [Tri]) {
 /// part's in its leaf order after the last part's: a root node whose children are the
 /// parts' roots, the parts' other nodes after them. Nodes and primitives keep their order
 /// within a part, their indices moved by where the part now starts.
-fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh {
+fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh<'static> {
     assert!(!parts.is_empty() && parts.len() <= MAX_PARTS);
     let total = parts.iter().map(|p| p.total_aabb).fold(Aabb::empty(), |a, b| a.union(&b));
     let node_count = 1 + parts.iter().map(|p| p.nodes.len()).sum::<usize>();
