@@ -465,3 +465,14 @@ impl Accel for BvhAccel<'_> {
         Some(super::AccelMemory { bytes: self.heap_bytes(), counted: true })
     }
 }
+
+/// A deterministic stream of numbers in [0, 1) for the BVH tests (a 64-bit LCG's top 24
+/// bits).
+#[cfg(test)]
+fn test_numbers(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 40) as f32) / (1u64 << 24) as f32
+    }
+}

@@ -494,16 +494,8 @@ impl Builder<'_> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_numbers as numbers;
     use super::*;
-
-    /// A deterministic stream of numbers in [0, 1).
-    fn numbers(seed: u64) -> impl FnMut() -> f32 {
-        let mut state = seed;
-        move || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((state >> 40) as f32) / (1u64 << 24) as f32
-        }
-    }
 
     /// Triangles in a 100-unit cube in four key sets: two keys (sliding 30 units), three
     /// (turning about the cube's centre), four (a zigzag) and one (still).

@@ -179,18 +179,10 @@ fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh<'static> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_numbers as numbers;
     use super::*;
     use crate::ray::Ray;
     use obvhs::ray::RayHit;
-
-    /// A deterministic stream of numbers in [0, 1).
-    fn numbers(seed: u64) -> impl FnMut() -> f32 {
-        let mut state = seed;
-        move || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((state >> 40) as f32) / (1u64 << 24) as f32
-        }
-    }
 
     /// 20,000 small triangles scattered through a 100-unit cube, and 6 large ones (the
     /// cube's faces, two triangles each on three sides) that make a part of their own.
