@@ -1,5 +1,6 @@
-//! The pure-Rust backend: compressed 8-wide BVHs (Ylitie et al. 2017, built by PLOC with
-//! reinsertion, from the `obvhs` crate). Instances of meshes used once are merged into one
+//! The pure-Rust backend: 8-wide BVHs (built by PLOC with reinsertion as the compressed
+//! wide BVHs of Ylitie et al. 2017, by the `obvhs` crate, and traversed as [`wide`] lays
+//! them out). Instances of meshes used once are merged into one
 //! world-space BVH; meshes used by several instances get one BVH each, shared, under a
 //! BVH over those instances' world bounds. Rays enter an instance's BVH transformed to its
 //! object space (the parameter t is the same in both spaces, since the direction is not
@@ -14,14 +15,15 @@
 
 mod moving;
 mod parts;
+mod wide;
 
 use moving::{KeySet, MovingBvh, MovingTri};
+use wide::WideBvh;
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::cwbvh::CwBvh;
-use obvhs::ray::{Ray as BvhRay, RayHit};
 use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 
@@ -71,7 +73,8 @@ impl obvhs::Boundable for Tri {
 }
 
 struct MeshBvh<'w> {
-    bvh: CwBvh,
+    bvh: WideBvh,
+    /// The triangles in the BVH's leaf order.
     tris: Vec<Tri>,
     /// The mesh's triangles when its vertices move (then `tris` is empty).
     moving: Option<MovingBvh<'w>>,
@@ -106,9 +109,10 @@ fn moving_triangles(m: &crate::mesh::MeshData, set: usize, instance: u32) -> imp
 pub struct BvhAccel<'w> {
     meshes: Vec<MeshBvh<'w>>,
     instances: Vec<InstanceRef>,
-    /// Instances of the top-level BVH (its primitive i is instance `tlas_instances[i]`).
+    /// Instances of the top-level BVH (its primitive i, in leaf order, is instance
+    /// `tlas_instances[i]`).
     tlas_instances: Vec<u32>,
-    tlas: Option<CwBvh>,
+    tlas: Option<WideBvh>,
     /// The world-space BVH of the flattened instances.
     flat: Option<MeshBvh<'w>>,
     /// The world-space BVH of the flattened instances that move.
@@ -119,11 +123,10 @@ pub struct BvhAccel<'w> {
 /// its leaf order ([`sort_into_bvh`]).
 fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh<'static> {
     if tris.is_empty() {
-        return MeshBvh { bvh: CwBvh::default(), tris, moving: None };
+        return MeshBvh { bvh: WideBvh::default(), tris, moving: None };
     }
-    let mut bvh = sort_into_bvh(&mut tris, params);
-    // The triangles are in leaf order: the map to the order they came in is not needed.
-    bvh.primitive_indices = Vec::new();
+    // The triangles are in leaf order: the map to the order they came in is not kept.
+    let bvh = WideBvh::from_cwbvh(&sort_into_bvh(&mut tris, params));
     MeshBvh { bvh, tris, moving: None }
 }
 
@@ -138,37 +141,6 @@ fn sort_into_bvh(piece: &mut [Tri], params: BvhBuildParams) -> CwBvh {
     let ordered: Vec<Tri> = bvh.primitive_indices.iter().map(|&i| piece[i as usize]).collect();
     piece.copy_from_slice(&ordered);
     bvh
-}
-
-/// The ray obvhs traverses in `bvh` for `origin + t·dir`, t in [tmin, tmax], and how far
-/// back along it that one starts (`shift`, in units of t: obvhs's distance t′ is
-/// t + `shift`; a leaf's triangles are still tested with the ray itself, and what the
-/// callback returns to obvhs is t′).
-///
-/// The start is moved back because obvhs 0.4's node test raises every box's entry
-/// distance to at least an absolute 1e-4 (where the ray's tmin was meant), which drops
-/// boxes the ray leaves within 1e-4 of its origin — and its box distances are differences
-/// of terms as large as the node's extent over the direction's component, so a flat box
-/// (one face) at the origin came out anywhere within that rounding of it: such boxes were
-/// not entered, and a probe ray starting 5e-5 before a box's side found its far side
-/// (`mia_roundcorners` on the Rust backend; docs/performance.md, movingbvh49). Moved back
-/// by 2e-4 plus eight times that rounding, only boxes wholly behind the origin are dropped.
-/// (Directions within 1e-3 of parallel to an axis plane are not counted in the rounding: a
-/// flat box along that axis is one the ray runs along, and counting them would start an
-/// axis-aligned ray — a sun's shadow ray — far behind.)
-///
-/// Negative zeros in the direction become positive: obvhs picks the traversal octant from
-/// the comparison `d < 0` but inverts −0 to −1/ε, and the two disagreeing made rays
-/// straight down an axis (shadow rays towards a sun at (0, 0, −1) ⇒ direction (−0, −0, 1))
-/// miss.
-fn traversal_ray(bvh: &CwBvh, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> (BvhRay, f32) {
-    let dir = dir + Vec3A::ZERO;
-    let longest = dir.abs().max_element().max(f32::MIN_POSITIVE);
-    let shortest = dir.abs().min_element().max(longest * 1e-3);
-    let extent = bvh.total_aabb.min.abs().max(bvh.total_aabb.max.abs()).max_element() + origin.abs().max_element();
-    // At most 1e30: a zero direction (a ray from a point to itself) leaves the origin.
-    let shift = (2e-4 + 8.0 * f32::EPSILON * extent / shortest).min(1e30);
-    (BvhRay::new(origin - dir * shift, dir, tmin + shift, tmax + shift), shift)
 }
 
 /// The ray kinds an instance accepts, from its flags.
@@ -275,8 +247,8 @@ impl<'w> BvhAccel<'w> {
             .collect();
         let sets: Vec<KeySet> = moving_keys.into_iter().map(|(_, keys)| keys).collect();
         let flat_moving = MovingBvh::build(sets, moving_tris);
-        let tlas_instances: Vec<u32> = (0..world.instances.len() as u32).filter(|k| !flat[*k as usize]).collect();
-        let bounds: Vec<Aabb> = tlas_instances
+        let tlas_members: Vec<u32> = (0..world.instances.len() as u32).filter(|k| !flat[*k as usize]).collect();
+        let bounds: Vec<Aabb> = tlas_members
             .iter()
             .map(|&k| {
                 let i = &world.instances[k as usize];
@@ -295,37 +267,38 @@ impl<'w> BvhAccel<'w> {
             })
             .collect();
         let tlas = (!bounds.is_empty()).then(|| build_cwbvh(&bounds, params, &mut Default::default()));
+        let tlas_instances = tlas
+            .as_ref()
+            .map_or_else(Vec::new, |t| t.primitive_indices.iter().map(|&i| tlas_members[i as usize]).collect());
+        let tlas = tlas.as_ref().map(WideBvh::from_cwbvh);
         BvhAccel { meshes, instances, tlas_instances, tlas, flat: flat_bvh, flat_moving }
     }
 
-    /// Closest hit among the flattened instances, updating `best`.
+    /// Closest hit among the flattened instances, updating `best`; returns the new
+    /// closest distance (`ray.tmax` if none).
     fn intersect_flat(&self, ray: &Ray, best: &mut Option<Hit>) -> f32 {
         let Some(flat) = &self.flat else { return ray.tmax };
-        let mut found = ray.tmax;
-        let mut hit = RayHit::none();
-        let (bvh_ray, shift) = traversal_ray(&flat.bvh, ray.origin, ray.dir, ray.tmin, ray.tmax);
-        flat.bvh.ray_traverse(bvh_ray, &mut hit, |_, id| {
+        flat.bvh.closest(ray.origin, ray.dir, ray.tmin, ray.tmax, |id, reach| {
             let t = &flat.tris[id];
             if self.instances[t.instance as usize].mask & ray.mask == 0 {
-                return f32::INFINITY;
+                return reach;
             }
-            match t.hit(&Ray { tmax: found, ..*ray }) {
+            match t.hit(&Ray { tmax: reach, ..*ray }) {
                 Some((d, u, v)) => {
-                    found = d;
                     *best = Some(Hit { t: d, instance: t.instance, prim: t.index, u, v });
-                    d + shift
+                    d
                 }
-                None => f32::INFINITY,
+                None => reach,
             }
-        });
-        found
+        })
     }
 
-    /// Closest hit in one instance, updating `best`; returns the new closest distance.
+    /// Closest hit in one instance within `tmax`, updating `best`; returns the new closest
+    /// distance (`tmax` if none).
     fn intersect_instance(&self, ray: &Ray, tmax: f32, instance: u32, best: &mut Option<Hit>) -> f32 {
         let inst = &self.instances[instance as usize];
         if inst.mask & ray.mask == 0 {
-            return f32::INFINITY;
+            return tmax;
         }
         let mesh = &self.meshes[inst.mesh as usize];
         let world_to_object = inst.world_to_object_at(ray.time);
@@ -338,38 +311,26 @@ impl<'w> BvhAccel<'w> {
             time: ray.time,
         };
         if let Some(moving) = &mesh.moving {
-            let found = moving.closest(&local, Some(instance), |_| true, best);
-            return if found < tmax { found } else { f32::INFINITY };
+            return moving.closest(&local, Some(instance), |_| true, best).min(tmax);
         }
-        let mut found = f32::INFINITY;
-        let mut reach = local.tmax;
-        let mut hit = RayHit::none();
-        let (bvh_ray, shift) = traversal_ray(&mesh.bvh, local.origin, local.dir, local.tmin, local.tmax);
-        mesh.bvh.ray_traverse(bvh_ray, &mut hit, |_, id| {
+        mesh.bvh.closest(local.origin, local.dir, local.tmin, tmax, |id, reach| {
             let t = &mesh.tris[id];
             match t.hit(&Ray { tmax: reach, ..local }) {
                 Some((d, u, v)) => {
-                    if d < found {
-                        found = d;
-                        *best = Some(Hit { t: d, instance, prim: t.index, u, v });
-                    }
-                    reach = reach.min(d);
-                    d + shift
+                    *best = Some(Hit { t: d, instance, prim: t.index, u, v });
+                    d
                 }
-                None => f32::INFINITY,
+                None => reach,
             }
-        });
-        found
+        })
     }
 }
 
 impl BvhAccel<'_> {
     /// Bytes of the BVHs' nodes, primitive indices and triangle copies.
     fn heap_bytes(&self) -> u64 {
-        fn bvh_bytes(b: &CwBvh) -> usize {
-            std::mem::size_of_val(&b.nodes[..])
-                + std::mem::size_of_val(&b.primitive_indices[..])
-                + b.exact_node_aabbs.as_ref().map_or(0, |a| std::mem::size_of_val(&a[..]))
+        fn bvh_bytes(b: &WideBvh) -> usize {
+            b.heap_bytes()
         }
         fn moving_bytes(m: &MovingBvh) -> usize {
             m.heap_bytes()
@@ -396,29 +357,19 @@ impl Accel for BvhAccel<'_> {
             tmax = moving.closest(&Ray { tmax, ..*ray }, None, accept, &mut best);
         }
         let Some(tlas) = self.tlas.as_ref() else { return best };
-        let mut hit = RayHit::none();
-        let (bvh_ray, shift) = traversal_ray(tlas, ray.origin, ray.dir, ray.tmin, tmax);
-        let mut reach = tmax;
-        tlas.ray_traverse(bvh_ray, &mut hit, |_, id| {
-            let instance = self.tlas_instances[tlas.primitive_indices[id] as usize];
-            let found = self.intersect_instance(ray, reach, instance, &mut best);
-            reach = reach.min(found);
-            found + shift
+        tlas.closest(ray.origin, ray.dir, ray.tmin, tmax, |id, reach| {
+            self.intersect_instance(ray, reach, self.tlas_instances[id], &mut best)
         });
         best
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
         if let Some(flat) = &self.flat {
-            let (bvh_ray, _) = traversal_ray(&flat.bvh, ray.origin, ray.dir, ray.tmin, ray.tmax);
-            let missed = flat.bvh.ray_traverse_miss(bvh_ray, |_, id| {
+            let blocked = flat.bvh.any(ray.origin, ray.dir, ray.tmin, ray.tmax, |id| {
                 let t = &flat.tris[id];
-                if self.instances[t.instance as usize].mask & ray.mask == 0 {
-                    return f32::INFINITY;
-                }
-                t.hit(ray).map_or(f32::INFINITY, |h| h.0)
+                self.instances[t.instance as usize].mask & ray.mask != 0 && t.hit(ray).is_some()
             });
-            if !missed {
+            if blocked {
                 return true;
             }
         }
@@ -428,11 +379,10 @@ impl Accel for BvhAccel<'_> {
             }
         }
         let Some(tlas) = self.tlas.as_ref() else { return false };
-        let (bvh_ray, _) = traversal_ray(tlas, ray.origin, ray.dir, ray.tmin, ray.tmax);
-        !tlas.ray_traverse_miss(bvh_ray, |_, id| {
-            let inst = &self.instances[self.tlas_instances[tlas.primitive_indices[id] as usize] as usize];
+        tlas.any(ray.origin, ray.dir, ray.tmin, ray.tmax, |id| {
+            let inst = &self.instances[self.tlas_instances[id] as usize];
             if inst.mask & ray.mask == 0 {
-                return f32::INFINITY;
+                return false;
             }
             let mesh = &self.meshes[inst.mesh as usize];
             let world_to_object = inst.world_to_object_at(ray.time);
@@ -442,18 +392,9 @@ impl Accel for BvhAccel<'_> {
                 ..*ray
             };
             if let Some(moving) = &mesh.moving {
-                return if moving.any(&local, |_| true) { ray.tmin } else { f32::INFINITY };
+                return moving.any(&local, |_| true);
             }
-            let (bvh_ray, _) = traversal_ray(&mesh.bvh, local.origin, local.dir, local.tmin, local.tmax);
-            let missed = mesh.bvh.ray_traverse_miss(bvh_ray, |_, id| {
-                let t = &mesh.tris[id];
-                t.hit(&local).map_or(f32::INFINITY, |h| h.0)
-            });
-            if missed {
-                f32::INFINITY
-            } else {
-                ray.tmin
-            }
+            mesh.bvh.any(local.origin, local.dir, local.tmin, local.tmax, |id| mesh.tris[id].hit(&local).is_some())
         })
     }
 
