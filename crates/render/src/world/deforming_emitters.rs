@@ -44,7 +44,7 @@ pub fn deforming_mesh(picked: &[u32], meshes: &[MeshData], instances: &[Instance
                 // The emitting side stays the one the normals give under a mirroring
                 // placement (as `MeshShape::of_instance` keeps it).
                 let flip = inst.object_to_world.matrix3.determinant() < 0.0;
-                let positions = mesh.positions_at(s);
+                let positions = positions_at_key(inst, mesh, j, segments, s);
                 for t in &mesh.triangles {
                     let vertex = |k: usize| positions.get(t[k] as usize).copied();
                     let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
@@ -58,6 +58,18 @@ pub fn deforming_mesh(picked: &[u32], meshes: &[MeshData], instances: &[Instance
         })
         .collect();
     DeformingMesh::new(keys)
+}
+
+/// The vertices of `mesh` at light key `j` of `segments` (shutter time `s`), object space,
+/// as the world's moving geometry holds them ([`super::world_key_positions`]): where one of
+/// the geometry's keys falls at that time and the mesh has a key at each of them, that key
+/// itself (interpolating at its time could come out a last bit off it), else interpolated.
+fn positions_at_key(inst: &InstanceData, mesh: &MeshData, j: usize, segments: usize, s: f32) -> Vec<glam::Vec3A> {
+    let geometry_intervals = inst.keys.len().max(mesh.position_keys.len()).max(1) - 1;
+    if mesh.position_keys.len() == geometry_intervals + 1 && (j * geometry_intervals) % segments == 0 {
+        return mesh.position_keys[j * geometry_intervals / segments].clone();
+    }
+    mesh.positions_at(s)
 }
 
 /// Least common multiple.

@@ -317,3 +317,33 @@ fn the_path_engine_follows_deforming_object_lights() {
     assert!((vertices - want).abs() < 0.01, "vertices: {vertices}");
     assert!((crossing - 2.0 * want).abs() < 0.02, "crossing: {crossing}");
 }
+
+/// A deforming object light's triangles at a key of its geometry are that key's, bit for
+/// bit: the lamp's vertices at x = −0.376 carry the motion vector (1.376, 0, 0), which puts
+/// them at x = 1 at the shutter's close, where interpolating between the two keys gives
+/// 0.99999994. The light's last key holds the world's geometry at its last key exactly
+/// (both backends and both engines read the geometry from those keys).
+#[test]
+fn a_deforming_light_holds_its_geometry_keys_bit_for_bit() {
+    let lamp = r#"
+object "lamp" group
+    -0.376 -0.025 1  -0.326 -0.025 1  -0.326 0.025 1  -0.376 0.025 1
+    1.376 0 0
+    v 0 m 4 v 1 m 4 v 2 m 4 v 3 m 4
+    c "m" 0 3 2 1
+end group end object
+instance "lamp_inst" "lamp" visible off shadow off trace off end instance
+"#;
+    let c = support::compile(&scene(OBJECT_LIGHT, AT_LAMP, lamp, "\"lamp_inst\""));
+    let world = render::World::from_scene_shaded(&c.scene, Some(&c.shading));
+    let light = world.light_meshes.iter().flatten().next().expect("a deforming light");
+    let inst = world.instances.iter().find(|i| !world.meshes[i.mesh as usize].position_keys.is_empty()).expect("lamp");
+    let mesh = &world.meshes[inst.mesh as usize];
+    let geometry = render::world::world_key_positions(inst, mesh);
+    assert_eq!((light.key_count(), geometry.len()), (2, 2));
+    for (j, key) in geometry.iter().enumerate() {
+        let want: Vec<[glam::Vec3A; 3]> = mesh.triangles.iter().map(|t| t.map(|v| key[v as usize])).collect();
+        assert_eq!(light.key(j), &want[..], "key {j}");
+    }
+    assert_eq!(geometry[1][0].x, 1.0, "the vertex the test is about");
+}

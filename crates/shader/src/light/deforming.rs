@@ -30,6 +30,11 @@ impl DeformingMesh {
         self.keys.len()
     }
 
+    /// The triangles at key `j` (shutter time `j / (key_count − 1)`), world space.
+    pub fn key(&self, j: usize) -> &[[Vec3A; 3]] {
+        &self.keys[j]
+    }
+
     /// The triangles at shutter time `s` (0 at the opening, 1 at the closing; clamped),
     /// interpolated linearly between the two keys around it and sampled uniformly by
     /// their area there. `None` when none of them has area at that time.
