@@ -571,4 +571,33 @@ mod tests {
             }
         }
     }
+
+    /// A deep tree — 380 triangles nested like Russian dolls, each 0.8 of the last, which
+    /// PLOC can only pair one level at a time — needs more stack than the fixed one and is
+    /// traversed on the heap, finding what testing every triangle finds.
+    #[test]
+    fn a_deep_tree_is_traversed_on_the_heap() {
+        let tris: Vec<Tri> = (0..380u32)
+            .map(|k| {
+                let scale = 0.8f32.powi(k as i32);
+                let v = |x: f32, y: f32, z: f32| Vec3A::new(x, y, z + 0.1) * scale;
+                Tri::new(v(-1.0, -1.0, 0.5), v(1.0, -1.0, -0.5), v(0.0, 1.0, 0.0), k, 0)
+            })
+            .collect();
+        let bvh = triangle_bvh(tris.clone(), BvhBuildParams::medium_build());
+        assert!(bvh.bvh.stack_need > LOCAL_STACK, "stack need {}", bvh.bvh.stack_need);
+        let mut rnd = numbers(7);
+        let mut hits = 0;
+        for _ in 0..2_000 {
+            let origin = Vec3A::new(rnd() - 0.5, rnd() - 0.5, 2.0) * Vec3A::new(1e-3, 1e-3, 1.0);
+            let target = Vec3A::new(rnd() - 0.5, rnd() - 0.5, 0.0) * 1e-4;
+            let ray = Ray::new(origin, target - origin);
+            let want = every_triangle(&tris, &ray);
+            let got = traced(&bvh, &ray, false);
+            assert_eq!(want.0.map(|h| h.0.to_bits()), got.0.map(|h| h.0.to_bits()), "{ray:?}");
+            assert_eq!(want.1, got.1);
+            hits += usize::from(got.0.is_some());
+        }
+        assert!(hits > 1_000, "{hits} hits");
+    }
 }
