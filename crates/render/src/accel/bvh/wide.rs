@@ -22,8 +22,9 @@ use obvhs::cwbvh::CwBvh;
 
 /// One node: the boxes of up to eight children, in the BVH's space, as planes by side
 /// (`planes[0]` the low sides, `planes[1]` the high), axis and lane (children 0–3, 4–7);
-/// then what each child is. An empty slot's box is empty (low +∞, high −∞), so no ray
-/// enters it.
+/// then what each child is. An empty slot's box is empty (low +∞, high −∞), and the
+/// slots in use are a mask of their own, which every box test is masked by (a ray with a
+/// NaN in it passes every box test).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub(super) struct WideNode {
@@ -32,6 +33,8 @@ pub(super) struct WideNode {
     child: [u32; 8],
     /// A leaf's primitive count (1–3); 0 for an inner child, [`EMPTY`] for an empty slot.
     count: [u8; 8],
+    /// The slots in use, a bit a slot.
+    occupied: u8,
 }
 
 /// The `count` of an empty slot.
@@ -49,7 +52,9 @@ impl WideNode {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(super) struct WideBvh {
     nodes: Vec<WideNode>,
-    /// Stack entries a traversal can need: seven a level below the root, and one.
+    /// Stack entries a traversal can need: a node pushes at most the eight children it
+    /// enters and opens one of them, so seven stay a level, and the deepest inner node's
+    /// eight: `7 · depth + 8`.
     stack_need: usize,
 }
 
@@ -94,17 +99,39 @@ impl BoxRay {
             let far = &node.planes[1 - self.near[axis]][axis];
             for half in 0..2 {
                 // Where the direction's component is ±0 the distances are ±∞, or NaN
-                // (0·∞) for a plane through the origin; SSE's max and min return their
-                // second operand when either is NaN, so a NaN leaves the bounds as they
+                // (0·∞) for a plane through the origin, which leaves the bounds as they
                 // were: a ray lying in a box's plane counts as inside that slab.
-                enter[half] = ((near[half] - self.origin[axis]) * self.inverse[axis]).max(enter[half]);
-                leave[half] = ((far[half] - self.origin[axis]) * self.inverse[axis]).min(leave[half]);
+                enter[half] = raise(enter[half], (near[half] - self.origin[axis]) * self.inverse[axis]);
+                leave[half] = lower(leave[half], (far[half] - self.origin[axis]) * self.inverse[axis]);
             }
         }
         let widen = Vec4::splat(WIDEN);
         let mask = enter[0].cmple(leave[0] * widen).bitmask() | (enter[1].cmple(leave[1] * widen).bitmask() << 4);
-        (mask, enter)
+        (mask & u32::from(node.occupied), enter)
     }
+}
+
+/// `bound` raised to `distance` in each lane where that is larger; `bound` where `distance`
+/// is NaN.
+#[inline(always)]
+fn raise(bound: Vec4, distance: Vec4) -> Vec4 {
+    // On x86 glam's `max` is SSE's (or, without SSE, a compare), which returns its second
+    // operand when either is NaN: one instruction. Elsewhere (NEON's max returns the NaN)
+    // the same by a compare and a select.
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    return distance.max(bound);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    return Vec4::select(distance.cmpgt(bound), distance, bound);
+}
+
+/// `bound` lowered to `distance` in each lane where that is smaller; `bound` where
+/// `distance` is NaN (as [`raise`]).
+#[inline(always)]
+fn lower(bound: Vec4, distance: Vec4) -> Vec4 {
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    return distance.min(bound);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    return Vec4::select(distance.cmplt(bound), distance, bound);
 }
 
 /// How much further than a box's exit distance, and than the nearest hit so far, a box
@@ -117,8 +144,8 @@ const WIDEN: f32 = 1.0 + 1.0 / (1 << 20) as f32;
 /// Room for [`LOCAL_STACK`] entries on the thread's stack; deeper trees use the heap.
 const LOCAL_STACK: usize = 256;
 
-/// A traversal stack of fixed capacity, which the traversal never exceeds (it pushes at
-/// most seven entries more than it pops a level, and the tree's depth is known). Its
+/// A traversal stack of fixed capacity, which the traversal never exceeds (see
+/// `WideBvh::stack_need`; the tree's depth is known). Its
 /// entries are left unwritten until pushed: clearing an array of 256 on every query would
 /// cost a tenth of a small scene's traversal.
 struct Stack<const N: usize> {
@@ -182,9 +209,11 @@ impl PendingStack for Vec<Pending> {
 }
 
 impl WideBvh {
-    /// The nodes of `cwbvh` with their children's boxes unpacked (each plane `p + q·2^e`,
-    /// which rounds to the nearest `f32`: a box never shrinks past what obvhs bounded, as
-    /// rounding is monotonic and the true plane lies outside its primitives).
+    /// The nodes of `cwbvh` with their children's boxes unpacked: each plane `p + q·2^e`,
+    /// moved outward by one unit in the last place of the node's largest coordinate.
+    /// obvhs quantizes a child's side from `fl(side − p)`, whose rounding can reach the
+    /// next multiple of 2^e: far from the origin the plane came out inside the child by up
+    /// to that unit (a low side at 0.3125 for a vertex at 0.3, with p = −999423.7).
     pub(super) fn from_cwbvh(cwbvh: &CwBvh) -> WideBvh {
         let nodes: Vec<WideNode> = cwbvh
             .nodes
@@ -196,16 +225,21 @@ impl WideBvh {
                     planes: [[[Vec4::INFINITY; 2]; 3], [[Vec4::NEG_INFINITY; 2]; 3]],
                     child: [0; 8],
                     count: [EMPTY; 8],
+                    occupied: 0,
                 };
                 for slot in 0..8 {
                     if n.child_meta[slot] == 0 {
                         continue;
                     }
+                    node.occupied |= 1 << slot;
                     let lo = [n.child_min_x[slot], n.child_min_y[slot], n.child_min_z[slot]];
                     let hi = [n.child_max_x[slot], n.child_max_y[slot], n.child_max_z[slot]];
                     for axis in 0..3 {
-                        node.planes[0][axis][slot / 4][slot % 4] = origin[axis] + f32::from(lo[axis]) * step[axis];
-                        node.planes[1][axis][slot / 4][slot % 4] = origin[axis] + f32::from(hi[axis]) * step[axis];
+                        let low = origin[axis] + f32::from(lo[axis]) * step[axis];
+                        let high = origin[axis] + f32::from(hi[axis]) * step[axis];
+                        let unit = origin[axis].abs().max(low.abs()).max(high.abs()) * f32::EPSILON;
+                        node.planes[0][axis][slot / 4][slot % 4] = low - unit;
+                        node.planes[1][axis][slot / 4][slot % 4] = high + unit;
                     }
                     if n.is_leaf(slot) {
                         let (first, count) = n.child_primitives(slot);
@@ -219,8 +253,13 @@ impl WideBvh {
                 node
             })
             .collect();
-        let depth = depth_below(&nodes, 0);
-        WideBvh { nodes, stack_need: 7 * depth + 1 }
+        WideBvh::with_nodes(nodes)
+    }
+
+    /// A BVH of `nodes` (the root first).
+    fn with_nodes(nodes: Vec<WideNode>) -> WideBvh {
+        let stack_need = if nodes.is_empty() { 0 } else { 7 * depth_below(&nodes, 0) + 8 };
+        WideBvh { nodes, stack_need }
     }
 
     /// Bytes of its nodes.
@@ -247,7 +286,8 @@ impl WideBvh {
         reach: f32,
         test: impl FnMut(usize, f32) -> f32,
     ) -> f32 {
-        if self.nodes.is_empty() {
+        // A ray with a NaN or an infinity in it meets nothing (its box tests would pass).
+        if self.nodes.is_empty() || !(origin.is_finite() && dir.is_finite()) {
             return reach;
         }
         let ray = BoxRay::new(origin, dir, tmin);
@@ -262,7 +302,7 @@ impl WideBvh {
     /// enters for t in [`tmin`, `tmax`] (it stops at the first that does).
     #[inline]
     pub(super) fn any(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32, test: impl FnMut(usize) -> bool) -> bool {
-        if self.nodes.is_empty() {
+        if self.nodes.is_empty() || !(origin.is_finite() && dir.is_finite()) {
             return false;
         }
         let ray = BoxRay::new(origin, dir, tmin);
@@ -297,7 +337,7 @@ impl WideBvh {
                     reach = test(primitive, reach);
                 }
             } else if mask != 0 {
-                let enter: [f32; 8] = bytemuck_enter(enter);
+                let enter: [f32; 8] = lanes(enter);
                 let mut left = mask;
                 let mut pushed = 0;
                 while left != 0 {
@@ -371,7 +411,7 @@ impl WideBvh {
 
 /// The eight lanes of two vectors.
 #[inline(always)]
-fn bytemuck_enter(enter: [Vec4; 2]) -> [f32; 8] {
+fn lanes(enter: [Vec4; 2]) -> [f32; 8] {
     let [a, b] = enter.map(|v| v.to_array());
     [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
 }
@@ -508,10 +548,27 @@ mod tests {
     }
 
     /// Unpacked boxes hold what obvhs bounded: every child's box contains every vertex of
-    /// every triangle beneath it, and every triangle is in one leaf.
+    /// every triangle beneath it, and every triangle is in one leaf — for the triangles
+    /// of [`triangles`], and for two far apart, where obvhs's quantized low side came out
+    /// at 0.3125 for a vertex at 0.3 (fails without the outward unit — checked).
     #[test]
     fn unpacked_boxes_contain_their_triangles() {
-        let bvh = triangle_bvh(triangles(), BvhBuildParams::medium_build());
+        let far = vec![
+            Tri::new(
+                Vec3A::new(-999_423.7, 0.0, 0.0),
+                Vec3A::new(-999_000.0, 1.0, 0.0),
+                Vec3A::new(-999_000.0, 0.0, 1.0),
+                0,
+                0,
+            ),
+            Tri::new(Vec3A::new(0.3, 0.0, 0.0), Vec3A::new(0.5, 1.0, 0.0), Vec3A::new(0.5, 0.0, 1.0), 1, 0),
+        ];
+        boxes_contain_their_triangles(triangles());
+        boxes_contain_their_triangles(far);
+    }
+
+    fn boxes_contain_their_triangles(tris: Vec<Tri>) {
+        let bvh = triangle_bvh(tris, BvhBuildParams::medium_build());
         let nodes = &bvh.bvh.nodes;
         // The triangles beneath a child: its leaf's, or those of every leaf below its node.
         let beneath = |node: &WideNode, slot: usize| {
@@ -554,6 +611,7 @@ mod tests {
             planes: [[[Vec4::INFINITY; 2]; 3], [[Vec4::NEG_INFINITY; 2]; 3]],
             child: [0; 8],
             count: [EMPTY; 8],
+            occupied: 1,
         };
         for (axis, (lo, hi)) in [(0.0, 10.0), (0.0, 10.0), (5.0, 5.0)].into_iter().enumerate() {
             node.planes[0][axis][0].x = lo;
@@ -589,7 +647,8 @@ mod tests {
         let mut rnd = numbers(7);
         let mut hits = 0;
         for _ in 0..2_000 {
-            let origin = Vec3A::new(rnd() - 0.5, rnd() - 0.5, 2.0) * Vec3A::new(1e-3, 1e-3, 1.0);
+            // From below, where the smallest triangle is the nearest: every level is opened.
+            let origin = Vec3A::new(rnd() - 0.5, rnd() - 0.5, -2.0) * Vec3A::new(1e-3, 1e-3, 1.0);
             let target = Vec3A::new(rnd() - 0.5, rnd() - 0.5, 0.0) * 1e-4;
             let ray = Ray::new(origin, target - origin);
             let want = every_triangle(&tris, &ray);
@@ -599,5 +658,75 @@ mod tests {
             hits += usize::from(got.0.is_some());
         }
         assert!(hits > 1_000, "{hits} hits");
+    }
+
+    /// A chain of `depth` nodes under the root, each entering seven leaves and, nearest
+    /// (last in slot order), the next node, the last node eight leaves: the stack holds
+    /// `7 · depth + 8` entries at its fullest, 260 at depth 36 — past the fixed 256 — and
+    /// every leaf is visited once by both queries, at depths on both sides of that.
+    #[test]
+    fn the_fullest_stack_fits() {
+        for depth in 34..=38u32 {
+            let nodes: Vec<WideNode> = (0..=depth)
+                .map(|level| {
+                    let mut node = WideNode {
+                        planes: [[[Vec4::splat(-1.0); 2]; 3], [[Vec4::splat(1.0); 2]; 3]],
+                        child: std::array::from_fn(|slot| 8 * level + slot as u32),
+                        count: [1; 8],
+                        occupied: 0xff,
+                    };
+                    if level < depth {
+                        (node.child[7], node.count[7]) = (level + 1, 0);
+                    }
+                    node
+                })
+                .collect();
+            let bvh = WideBvh::with_nodes(nodes);
+            assert_eq!(bvh.stack_need, 7 * depth as usize + 8);
+            let (origin, dir) = (Vec3A::new(0.0, 0.0, -5.0), Vec3A::Z);
+            let mut seen = Vec::new();
+            bvh.closest(origin, dir, 0.0, f32::INFINITY, |leaf, reach| {
+                seen.push(leaf);
+                reach
+            });
+            let mut tested = 0;
+            assert!(!bvh.any(origin, dir, 0.0, f32::INFINITY, |_| {
+                tested += 1;
+                false
+            }));
+            seen.sort_unstable();
+            let leaves: Vec<usize> = (0..=depth as usize)
+                .flat_map(|level| (8 * level..8 * level + 8).filter(move |&l| l % 8 != 7 || level == depth as usize))
+                .collect();
+            assert_eq!((seen, tested), (leaves.clone(), leaves.len()), "depth {depth}");
+        }
+    }
+
+    /// Rays with a NaN or an infinity in their origin or direction, or without a
+    /// direction, meet nothing and test no primitive (a NaN passes every box test; the
+    /// empty slots of a node of few children were then taken for leaves of 255).
+    #[test]
+    fn broken_rays_meet_nothing() {
+        let tris: Vec<Tri> = triangles().into_iter().take(5).collect();
+        let bvh = triangle_bvh(tris, BvhBuildParams::medium_build());
+        let nan = Vec3A::splat(f32::NAN);
+        for (origin, dir) in [
+            (nan, Vec3A::Z),
+            (Vec3A::ZERO, nan),
+            (Vec3A::ZERO, Vec3A::new(f32::INFINITY, 0.0, 0.0)),
+            (Vec3A::new(f32::NEG_INFINITY, 0.0, 0.0), Vec3A::X),
+            (Vec3A::ZERO, Vec3A::ZERO.normalize()),
+        ] {
+            let mut tested = 0;
+            bvh.bvh.closest(origin, dir, 0.0, f32::INFINITY, |_, reach| {
+                tested += 1;
+                reach
+            });
+            assert!(!bvh.bvh.any(origin, dir, 0.0, f32::INFINITY, |_| {
+                tested += 1;
+                true
+            }));
+            assert_eq!(tested, 0, "{origin} {dir}");
+        }
     }
 }
