@@ -630,12 +630,14 @@ mod tests {
         }
     }
 
-    /// A deep tree — 380 triangles nested like Russian dolls, each 0.8 of the last, which
-    /// PLOC can only pair one level at a time — needs more stack than the fixed one and is
-    /// traversed on the heap, finding what testing every triangle finds.
+    /// A deep tree — 250 triangles nested like Russian dolls, each 0.8 of the last, which
+    /// PLOC can only pair one level at a time — is opened level by level by rays from where
+    /// the smallest is nearest, finding what testing every triangle finds. (Deeper nests
+    /// make deeper trees, whose traversal takes the heap stack — `the_fullest_stack_fits` —
+    /// but with debug assertions obvhs's builder refuses trees 32 or more levels deep.)
     #[test]
-    fn a_deep_tree_is_traversed_on_the_heap() {
-        let tris: Vec<Tri> = (0..380u32)
+    fn a_deep_tree_finds_what_every_triangle_finds() {
+        let tris: Vec<Tri> = (0..250u32)
             .map(|k| {
                 let scale = 0.8f32.powi(k as i32);
                 let v = |x: f32, y: f32, z: f32| Vec3A::new(x, y, z + 0.1) * scale;
@@ -643,7 +645,8 @@ mod tests {
             })
             .collect();
         let bvh = triangle_bvh(tris.clone(), BvhBuildParams::medium_build());
-        assert!(bvh.bvh.stack_need > LOCAL_STACK, "stack need {}", bvh.bvh.stack_need);
+        let depth = (bvh.bvh.stack_need - 8) / 7;
+        assert!((20..32).contains(&depth), "depth {depth}");
         let mut rnd = numbers(7);
         let mut hits = 0;
         for _ in 0..2_000 {
