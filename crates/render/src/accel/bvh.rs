@@ -417,3 +417,17 @@ fn test_numbers(seed: u64) -> impl FnMut() -> f32 {
         ((state >> 40) as f32) / (1u64 << 24) as f32
     }
 }
+
+/// `count` small triangles for the BVH tests, each with its corners within `spread` of a
+/// point of the 100-unit cube (from the stream of `seed`), indexed 0… in `instance`.
+#[cfg(test)]
+fn test_scattered_triangles(seed: u64, count: u32, spread: f32, instance: u32) -> Vec<Tri> {
+    let mut rnd = test_numbers(seed);
+    (0..count)
+        .map(|index| {
+            let c = Vec3A::new(rnd(), rnd(), rnd()) * 100.0;
+            let mut corner = || c + (Vec3A::new(rnd(), rnd(), rnd()) - 0.5) * (2.0 * spread);
+            Tri::new(corner(), corner(), corner(), index, instance)
+        })
+        .collect()
+}

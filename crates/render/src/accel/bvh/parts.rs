@@ -186,13 +186,7 @@ mod tests {
     /// 20,000 small triangles scattered through a 100-unit cube, and 6 large ones (the
     /// cube's faces, two triangles each on three sides) that make a part of their own.
     fn triangles() -> Vec<Tri> {
-        let mut rnd = numbers(0x5851_f42d_4c95_7f2d);
-        let mut tris = Vec::new();
-        for index in 0..20_000 {
-            let c = Vec3A::new(rnd(), rnd(), rnd()) * 100.0;
-            let mut corner = || c + (Vec3A::new(rnd(), rnd(), rnd()) - 0.5) * 2.0;
-            tris.push(Tri::new(corner(), corner(), corner(), index, 1));
-        }
+        let mut tris = super::super::test_scattered_triangles(0x5851_f42d_4c95_7f2d, 20_000, 1.0, 1);
         let v = |x: f32, y: f32, z: f32| Vec3A::new(x, y, z) * 100.0;
         let faces = [
             (v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(1.0, 1.0, 0.0), v(0.0, 1.0, 0.0)),

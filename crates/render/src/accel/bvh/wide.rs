@@ -444,13 +444,7 @@ mod tests {
     /// 3,000 small triangles in a 100-unit cube, and 60 stacked planes (two triangles
     /// each, 0.5 apart along z, every one in an axis plane: flat boxes).
     fn triangles() -> Vec<Tri> {
-        let mut rnd = numbers(0x0bad_5eed_1234_5678);
-        let mut tris = Vec::new();
-        for index in 0..3_000 {
-            let c = Vec3A::new(rnd(), rnd(), rnd()) * 100.0;
-            let mut corner = || c + (Vec3A::new(rnd(), rnd(), rnd()) - 0.5) * 4.0;
-            tris.push(Tri::new(corner(), corner(), corner(), index, 0));
-        }
+        let mut tris = super::super::test_scattered_triangles(0x0bad_5eed_1234_5678, 3_000, 2.0, 0);
         for plane in 0..60u32 {
             let z = 20.0 + 0.5 * plane as f32;
             let v = |x: f32, y: f32| Vec3A::new(x, y, z);
