@@ -624,14 +624,13 @@ mod tests {
         }
     }
 
-    /// A deep tree — 250 triangles nested like Russian dolls, each 0.8 of the last, which
+    /// A deep tree — 300 triangles nested like Russian dolls, each 0.8 of the last, which
     /// PLOC can only pair one level at a time — is opened level by level by rays from where
-    /// the smallest is nearest, finding what testing every triangle finds. (Deeper nests
-    /// make deeper trees, whose traversal takes the heap stack — `the_fullest_stack_fits` —
-    /// but with debug assertions obvhs's builder refuses trees 32 or more levels deep.)
+    /// the smallest is nearest, finding what testing every triangle finds; the tree is
+    /// deeper than the fixed stack allows, so its traversal takes the heap stack.
     #[test]
     fn a_deep_tree_finds_what_every_triangle_finds() {
-        let tris: Vec<Tri> = (0..250u32)
+        let tris: Vec<Tri> = (0..300u32)
             .map(|k| {
                 let scale = 0.8f32.powi(k as i32);
                 let v = |x: f32, y: f32, z: f32| Vec3A::new(x, y, z + 0.1) * scale;
@@ -640,7 +639,7 @@ mod tests {
             .collect();
         let bvh = triangle_bvh(tris.clone(), BvhBuildParams::medium_build());
         let depth = (bvh.bvh.stack_need - 8) / 7;
-        assert!((20..32).contains(&depth), "depth {depth}");
+        assert!(bvh.bvh.stack_need > LOCAL_STACK, "depth {depth}");
         let mut rnd = numbers(7);
         let mut hits = 0;
         for _ in 0..2_000 {
