@@ -1,6 +1,6 @@
-//! The pure-Rust backend: 8-wide BVHs (built by PLOC with reinsertion as the compressed
-//! wide BVHs of Ylitie et al. 2017, by the `obvhs` crate, and traversed as [`wide`] lays
-//! them out). Instances of meshes used once are merged into one
+//! The pure-Rust backend: 8-wide BVHs (binary BVHs built by PLOC with reinsertion, by the
+//! `obvhs` crate, collapsed into 8-wide nodes by [`collapse`] and traversed as [`wide`]
+//! lays them out). Instances of meshes used once are merged into one
 //! world-space BVH; meshes used by several instances get one BVH each, shared, under a
 //! BVH over those instances' world bounds. Rays enter an instance's BVH transformed to its
 //! object space (the parameter t is the same in both spaces, since the direction is not
@@ -13,6 +13,7 @@
 //! of shared meshes are bounded by the union of their boxes over the shutter and enter at
 //! the ray's time. A static scene has none of them and traces exactly as before.
 
+mod collapse;
 mod moving;
 mod parts;
 mod wide;
@@ -22,11 +23,7 @@ use wide::WideBvh;
 
 use glam::Vec3A;
 use obvhs::aabb::Aabb;
-use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
-use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
-use obvhs::cwbvh::CwBvh;
-use obvhs::ploc::PlocBuilder;
-use obvhs::{Boundable, BvhBuildParams};
+use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 
 use super::{intersect_triangle, Accel, Backend, Hit};
@@ -128,38 +125,21 @@ fn triangle_bvh(mut tris: Vec<Tri>, params: BvhBuildParams) -> MeshBvh<'static> 
         return MeshBvh { bvh: WideBvh::default(), tris, moving: None };
     }
     // The triangles are in leaf order: the map to the order they came in is not kept.
-    let bvh = WideBvh::from_cwbvh(&sort_into_bvh(&mut tris, params));
+    let bvh = sort_into_bvh(&mut tris, params);
     MeshBvh { bvh, tris, moving: None }
 }
 
-/// The 8-wide BVH of the triangles of `piece`, which it puts in the BVH's leaf order
-/// (traversal names a triangle by its place in that order): the caller's array becomes
-/// the one traversal reads, and no array of boxes or second array of the triangles is kept
-/// beside it (a copy of the piece while it is put in order). `params` must not split
-/// primitives (`pre_split`): each triangle is in one leaf.
-fn sort_into_bvh(piece: &mut [Tri], params: BvhBuildParams) -> CwBvh {
+/// The 8-wide BVH of the triangles of `piece` ([`collapse::build_wide`]), which it puts
+/// in the BVH's leaf order (traversal names a triangle by its place in that order): the
+/// caller's array becomes the one traversal reads, and no array of boxes or second array of
+/// the triangles is kept beside it (a copy of the piece while it is put in order). `params`
+/// must not split primitives (`pre_split`): each triangle is in one leaf.
+fn sort_into_bvh(piece: &mut [Tri], params: BvhBuildParams) -> WideBvh {
     debug_assert!(!params.pre_split);
-    let bvh = build_cwbvh(piece, params);
-    let ordered: Vec<Tri> = bvh.primitive_indices.iter().map(|&i| piece[i as usize]).collect();
+    let (bvh, order) = collapse::build_wide(piece, params);
+    let ordered: Vec<Tri> = order.iter().map(|&i| piece[i as usize]).collect();
     piece.copy_from_slice(&ordered);
     bvh
-}
-
-/// obvhs's compressed wide BVH of `primitives`, built as obvhs's own `build_cwbvh` builds
-/// it (PLOC, reinsertion, the cost-optimal collapse into 8-wide nodes of up to three
-/// primitives a leaf) but without ordering each node's children by ray octant: that order
-/// is for obvhs's own traversal (a GPU's), where [`wide`] enters children nearest first,
-/// and it was a third of the conversion's time (8.5 % of the heavy scene's whole run).
-fn build_cwbvh<T: Boundable>(primitives: &[T], params: BvhBuildParams) -> CwBvh {
-    let mut bvh2 = PlocBuilder::with_capacity(primitives.len()).build(
-        params.ploc_search_distance,
-        primitives,
-        (0..primitives.len() as u32).collect(),
-        params.sort_precision,
-        params.search_depth_threshold,
-    );
-    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-    bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), false, false)
 }
 
 /// The ray kinds an instance accepts, from its flags.
@@ -285,11 +265,9 @@ impl<'w> BvhAccel<'w> {
                 b
             })
             .collect();
-        let tlas = (!bounds.is_empty()).then(|| build_cwbvh(&bounds, params));
-        let tlas_instances = tlas
-            .as_ref()
-            .map_or_else(Vec::new, |t| t.primitive_indices.iter().map(|&i| tlas_members[i as usize]).collect());
-        let tlas = tlas.as_ref().map(WideBvh::from_cwbvh);
+        let (tlas, tlas_order) = collapse::build_wide(&bounds, params);
+        let tlas_instances = tlas_order.iter().map(|&i| tlas_members[i as usize]).collect();
+        let tlas = (!bounds.is_empty()).then_some(tlas);
         BvhAccel { meshes, instances, tlas_instances, tlas, flat: flat_bvh, flat_moving }
     }
 

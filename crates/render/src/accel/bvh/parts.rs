@@ -1,14 +1,11 @@
 //! The BVH of many triangles (a large world's flattened instances, or a large shared mesh),
-//! built in parts on all threads and joined under one root. obvhs turns its binary BVH
-//! into the 8-wide one on one thread, which for the heavy scene's 4 M triangles was most of
-//! a 5–7 s build; parts of about half a million triangles each are built side by side, each
+//! built in parts on all threads and joined under one root. Much of a build runs on one
+//! thread (obvhs's conversion to its 8-wide BVH was most of the heavy scene's 5–7 s build
+//! in one piece); parts of about half a million triangles each are built side by side, each
 //! sorting its own piece of the triangles into its leaf order, and the joined BVH is
 //! traversed as one (a root node over the parts' roots), so rays cost what they did.
 
 use glam::Vec3A;
-use obvhs::aabb::Aabb;
-use obvhs::cwbvh::node::CwBvhNode;
-use obvhs::cwbvh::CwBvh;
 use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 
@@ -63,8 +60,10 @@ pub(super) fn bvh_in_parts(
     }
     // Each part puts its piece in its own leaf order, so the pieces, one after the other,
     // are the joined BVH's triangles as they are.
-    let parts: Vec<CwBvh> = pieces.into_par_iter().map(|piece| sort_into_bvh(piece, params)).collect();
-    Some(join(parts, tris))
+    let parts: Vec<(WideBvh, usize)> =
+        pieces.into_par_iter().map(|piece| (sort_into_bvh(piece, params), piece.len())).collect();
+    assert_eq!(parts.iter().map(|(_, n)| n).sum::<usize>(), tris.len(), "the parts hold every triangle once");
+    Some(MeshBvh { bvh: WideBvh::join(parts), tris, moving: None })
 }
 
 /// The box of a triangle's vertices, (min, max).
@@ -122,59 +121,6 @@ fn cut(piece: &mut [Tri], at: usize) -> (&mut [Tri], &mut [Tri]) {
         });
     }
     piece.split_at_mut(at)
-}
-
-/// One BVH over `parts` (1 to 8, each with triangles) whose triangles are `tris`, each
-/// part's in its leaf order after the last part's: a root node whose children are the
-/// parts' roots, the parts' other nodes after them. Nodes and primitives keep their order
-/// within a part, their indices moved by where the part now starts.
-fn join(parts: Vec<CwBvh>, tris: Vec<Tri>) -> MeshBvh<'static> {
-    assert!(!parts.is_empty() && parts.len() <= MAX_PARTS);
-    let total = parts.iter().map(|p| p.total_aabb).fold(Aabb::empty(), |a, b| a.union(&b));
-    let node_count = 1 + parts.iter().map(|p| p.nodes.len()).sum::<usize>();
-    let mut root = CwBvhNode { p: total.min.into(), child_base_idx: 1, primitive_base_idx: 0, ..Default::default() };
-    // The children's boxes on the root's 8-bit grid, as obvhs lays out a node: a power of
-    // two a step, each box widened outward to whole steps.
-    let step = ((total.max - total.min).max(Vec3A::splat(1e-20)) * (1.0 / 255.0)).log2().ceil().exp2();
-    root.e = [step.x, step.y, step.z].map(|s| (s.to_bits() >> 23) as u8);
-    let per_step = step.recip();
-    for (slot, part) in parts.iter().enumerate() {
-        let b = part.total_aabb;
-        let lo = ((b.min - total.min) * per_step).floor().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
-        let hi = ((b.max - total.min) * per_step).ceil().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
-        (root.child_min_x[slot], root.child_min_y[slot], root.child_min_z[slot]) = (lo.x as u8, lo.y as u8, lo.z as u8);
-        (root.child_max_x[slot], root.child_max_y[slot], root.child_max_z[slot]) = (hi.x as u8, hi.y as u8, hi.z as u8);
-        root.imask |= 1 << slot;
-        root.child_meta[slot] = (24 + slot as u8) | 0b0010_0000;
-    }
-    let mut nodes = Vec::with_capacity(node_count);
-    nodes.push(root);
-    // Where each part's nodes past its root go, and where its primitives start.
-    let mut node_base = 1 + parts.len();
-    let mut prim_base = 0;
-    let mut bases = Vec::with_capacity(parts.len());
-    for part in &parts {
-        bases.push((node_base, prim_base));
-        node_base += part.nodes.len() - 1;
-        prim_base += part.primitive_indices.len();
-    }
-    let moved = |node: &CwBvhNode, (node_base, prim_base): (usize, usize)| CwBvhNode {
-        // A part's nodes past its root were at 1…; now at node_base….
-        child_base_idx: (node_base + node.child_base_idx as usize - 1) as u32,
-        primitive_base_idx: (prim_base + node.primitive_base_idx as usize) as u32,
-        ..*node
-    };
-    for (part, &base) in parts.iter().zip(&bases) {
-        nodes.push(moved(&part.nodes[0], base));
-    }
-    assert_eq!(prim_base, tris.len(), "the parts hold every triangle once");
-    for (part, base) in parts.into_iter().zip(bases) {
-        nodes.extend(part.nodes[1..].iter().map(|n| moved(n, base)));
-    }
-    // The triangles are in leaf order: no map to the order they came in is kept.
-    let primitive_indices = Vec::new();
-    let bvh = CwBvh { nodes, primitive_indices, total_aabb: total, exact_node_aabbs: None, uses_spatial_splits: false };
-    MeshBvh { bvh: WideBvh::from_cwbvh(&bvh), tris, moving: None }
 }
 
 #[cfg(test)]

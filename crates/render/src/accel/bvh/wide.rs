@@ -1,15 +1,15 @@
-//! The 8-wide BVH the Rust backend traverses: obvhs's compressed wide BVH (built by PLOC,
-//! its children's boxes on an 8-bit grid) unpacked once into nodes whose eight children's
-//! boxes are plain `f32` planes, laid out so that one ray tests four children in one SSE
-//! operation; children are entered nearest first.
+//! The 8-wide BVH the Rust backend traverses: nodes whose eight children's boxes are plain
+//! `f32` planes (made by [`super::collapse`] from a binary BVH), laid out so that one ray
+//! tests four children in one SSE operation; children are entered nearest first.
 //!
-//! Why not obvhs's own traversal: its node layout is made for GPUs (80 bytes a node, each
-//! box corner decoded from a byte on every visit), it visits children in an order fixed by
-//! the ray's octant rather than by distance, and its box test raises every entry distance
-//! to an absolute 1e-4 and computes it as a difference of node-sized terms, which dropped
-//! flat boxes at a ray's origin (docs/performance.md, movingbvh49, widebvh50). Here a box's
-//! entry and exit distances are `(plane − origin) · (1 / direction)`, whose sign is exact,
-//! and the ray's own `tmin`/`tmax` bound them.
+//! Why not obvhs's own wide BVH and traversal: its node layout is made for GPUs (80 bytes a
+//! node, each box corner quantized to a byte and decoded on every visit), it visits
+//! children in an order fixed by the ray's octant rather than by distance, and its box test
+//! raises every entry distance to an absolute 1e-4 and computes it as a difference of
+//! node-sized terms, which dropped flat boxes at a ray's origin (docs/performance.md,
+//! movingbvh49, widebvh50). Here a box's entry and exit distances are
+//! `(plane − origin) · (1 / direction)`, whose sign is exact, and the ray's own
+//! `tmin`/`tmax` bound them.
 //!
 //! A leaf is a run of primitives (1–3) in the BVH's primitive order: the caller keeps its
 //! primitives in that order (the triangles are sorted into it) and tests primitive `i` of
@@ -18,7 +18,7 @@
 use std::mem::MaybeUninit;
 
 use glam::{Vec3A, Vec4};
-use obvhs::cwbvh::CwBvh;
+use obvhs::aabb::Aabb;
 
 /// One node: the boxes of up to eight children, in the BVH's space, as planes by side
 /// (`planes[0]` the low sides, `planes[1]` the high), axis and lane (children 0–3, 4–7);
@@ -41,6 +41,33 @@ pub(super) struct WideNode {
 const EMPTY: u8 = u8::MAX;
 
 impl WideNode {
+    /// A node without children.
+    pub(super) const EMPTY: WideNode = WideNode {
+        planes: [[[Vec4::INFINITY; 2]; 3], [[Vec4::NEG_INFINITY; 2]; 3]],
+        child: [0; 8],
+        count: [EMPTY; 8],
+        occupied: 0,
+    };
+
+    /// Puts a child in `slot` (0–7): its box, and a leaf's first primitive and count (1–254)
+    /// or, with `count` 0, an inner node's index.
+    pub(super) fn set_child(&mut self, slot: usize, bounds: &Aabb, child: u32, count: u8) {
+        debug_assert!(count != EMPTY);
+        for axis in 0..3 {
+            self.planes[0][axis][slot / 4][slot % 4] = bounds.min[axis];
+            self.planes[1][axis][slot / 4][slot % 4] = bounds.max[axis];
+        }
+        self.child[slot] = child;
+        self.count[slot] = count;
+        self.occupied |= 1 << slot;
+    }
+
+    /// The box of the child in `slot`.
+    fn child_box(&self, slot: usize) -> Aabb {
+        let side = |side: usize| Vec3A::from_array([0, 1, 2].map(|axis| self.planes[side][axis][slot / 4][slot % 4]));
+        Aabb::new(side(0), side(1))
+    }
+
     /// How many of its children are inner nodes (the rest are leaves or empty).
     #[cfg(test)]
     pub(super) fn inner_children(&self) -> u32 {
@@ -56,6 +83,22 @@ pub(super) struct WideBvh {
     /// enters and opens one of them, so seven stay a level, and the deepest inner node's
     /// eight: `7 · depth + 8`.
     stack_need: usize,
+}
+
+/// How a BVH is filled ([`WideBvh::check`]).
+#[cfg(test)]
+#[derive(Debug, Default)]
+pub(super) struct TreeSummary {
+    pub nodes: usize,
+    pub leaves: usize,
+    pub primitives: usize,
+    pub largest_leaf: usize,
+    pub fewest_children: usize,
+    pub mean_children: f32,
+    /// The surface (half area) of every node's box, the root's included.
+    pub node_surface: f64,
+    /// The surface of every leaf's box times its primitives.
+    pub leaf_surface_primitives: f64,
 }
 
 /// A child waiting on the traversal stack, and the distance at which the ray enters it.
@@ -209,55 +252,8 @@ impl PendingStack for Vec<Pending> {
 }
 
 impl WideBvh {
-    /// The nodes of `cwbvh` with their children's boxes unpacked: each plane `p + q·2^e`,
-    /// moved outward by one unit in the last place of the node's largest coordinate.
-    /// obvhs quantizes a child's side from `fl(side − p)`, whose rounding can reach the
-    /// next multiple of 2^e: far from the origin the plane came out inside the child by up
-    /// to that unit (a low side at 0.3125 for a vertex at 0.3, with p = −999423.7).
-    pub(super) fn from_cwbvh(cwbvh: &CwBvh) -> WideBvh {
-        let nodes: Vec<WideNode> = cwbvh
-            .nodes
-            .iter()
-            .map(|n| {
-                let origin = [n.p.x, n.p.y, n.p.z];
-                let step = n.e.map(|e| f32::from_bits(u32::from(e) << 23));
-                let mut node = WideNode {
-                    planes: [[[Vec4::INFINITY; 2]; 3], [[Vec4::NEG_INFINITY; 2]; 3]],
-                    child: [0; 8],
-                    count: [EMPTY; 8],
-                    occupied: 0,
-                };
-                for slot in 0..8 {
-                    if n.child_meta[slot] == 0 {
-                        continue;
-                    }
-                    node.occupied |= 1 << slot;
-                    let lo = [n.child_min_x[slot], n.child_min_y[slot], n.child_min_z[slot]];
-                    let hi = [n.child_max_x[slot], n.child_max_y[slot], n.child_max_z[slot]];
-                    for axis in 0..3 {
-                        let low = origin[axis] + f32::from(lo[axis]) * step[axis];
-                        let high = origin[axis] + f32::from(hi[axis]) * step[axis];
-                        let unit = origin[axis].abs().max(low.abs()).max(high.abs()) * f32::EPSILON;
-                        node.planes[0][axis][slot / 4][slot % 4] = low - unit;
-                        node.planes[1][axis][slot / 4][slot % 4] = high + unit;
-                    }
-                    if n.is_leaf(slot) {
-                        let (first, count) = n.child_primitives(slot);
-                        node.child[slot] = first;
-                        node.count[slot] = count as u8;
-                    } else {
-                        node.child[slot] = n.child_node_index(slot);
-                        node.count[slot] = 0;
-                    }
-                }
-                node
-            })
-            .collect();
-        WideBvh::with_nodes(nodes)
-    }
-
     /// A BVH of `nodes` (the root first).
-    fn with_nodes(nodes: Vec<WideNode>) -> WideBvh {
+    pub(super) fn with_nodes(nodes: Vec<WideNode>) -> WideBvh {
         let stack_need = if nodes.is_empty() { 0 } else { 7 * depth_below(&nodes, 0) + 8 };
         WideBvh { nodes, stack_need }
     }
@@ -265,6 +261,89 @@ impl WideBvh {
     /// Bytes of its nodes.
     pub(super) fn heap_bytes(&self) -> usize {
         std::mem::size_of_val(&self.nodes[..])
+    }
+
+    /// The box of everything in it: the union of its root's children's boxes (empty for an
+    /// empty BVH).
+    pub(super) fn root_box(&self) -> Aabb {
+        let Some(root) = self.nodes.first() else { return Aabb::empty() };
+        (0..8)
+            .filter(|&slot| root.occupied & (1 << slot) != 0)
+            .map(|slot| root.child_box(slot))
+            .fold(Aabb::empty(), |a, b| a.union(&b))
+    }
+
+    /// One BVH over `parts` (1 to 8 BVHs, none empty, each with the number of primitives
+    /// given), whose leaves name the parts' primitives one part after another: a root whose
+    /// children are the parts' roots, then each part's nodes in their order, their inner
+    /// children and leaves moved by where the part's nodes and primitives now start.
+    pub(super) fn join(parts: Vec<(WideBvh, usize)>) -> WideBvh {
+        assert!(!parts.is_empty() && parts.len() <= 8 && parts.iter().all(|(p, _)| !p.nodes.is_empty()));
+        let mut nodes = Vec::with_capacity(1 + parts.iter().map(|(p, _)| p.nodes.len()).sum::<usize>());
+        nodes.push(WideNode::EMPTY);
+        let mut root = WideNode::EMPTY;
+        let mut primitive_base = 0u32;
+        for (slot, (part, primitives)) in parts.into_iter().enumerate() {
+            let node_base = nodes.len() as u32;
+            root.set_child(slot, &part.root_box(), node_base, 0);
+            nodes.extend(part.nodes.iter().map(|node| {
+                let mut moved = *node;
+                for (child, &count) in moved.child.iter_mut().zip(&node.count) {
+                    match count {
+                        EMPTY => {}
+                        0 => *child += node_base,
+                        _ => *child += primitive_base,
+                    }
+                }
+                moved
+            }));
+            primitive_base += primitives as u32;
+        }
+        nodes[0] = root;
+        WideBvh::with_nodes(nodes)
+    }
+
+    /// For tests: checks that every child's box is, bit for bit, the union of the boxes of
+    /// the primitives beneath it (`primitive_box` of a leaf's primitive), and tells how the
+    /// tree is filled.
+    #[cfg(test)]
+    pub(super) fn check(&self, primitive_box: &dyn Fn(usize) -> Aabb) -> TreeSummary {
+        let mut summary = TreeSummary { nodes: self.nodes.len(), fewest_children: 8, ..TreeSummary::default() };
+        let mut children = 0;
+        // Each node's exact box, children before parents: nodes are placed after their parent.
+        let mut exact = vec![Aabb::empty(); self.nodes.len()];
+        for (n, node) in self.nodes.iter().enumerate().rev() {
+            let slots: Vec<usize> = (0..8).filter(|&slot| node.occupied & (1 << slot) != 0).collect();
+            children += slots.len();
+            summary.fewest_children = summary.fewest_children.min(slots.len());
+            for slot in slots {
+                let (child, count) = (node.child[slot] as usize, usize::from(node.count[slot]));
+                let inside = if count == 0 {
+                    assert!(child > n, "node {n}'s child {child} is placed after it");
+                    summary.node_surface += f64::from(exact[child].half_area());
+                    exact[child]
+                } else {
+                    summary.leaves += 1;
+                    summary.primitives += count;
+                    summary.largest_leaf = summary.largest_leaf.max(count);
+                    let leaf = (child..child + count).map(primitive_box).fold(Aabb::empty(), |a, b| a.union(&b));
+                    summary.leaf_surface_primitives += f64::from(leaf.half_area()) * count as f64;
+                    leaf
+                };
+                let stored = node.child_box(slot);
+                assert_eq!(
+                    (stored.min.to_array(), stored.max.to_array()),
+                    (inside.min.to_array(), inside.max.to_array()),
+                    "node {n} slot {slot}"
+                );
+                exact[n] = exact[n].union(&inside);
+            }
+        }
+        if let Some(root) = exact.first() {
+            summary.node_surface += f64::from(root.half_area());
+        }
+        summary.mean_children = children as f32 / self.nodes.len().max(1) as f32;
+        summary
     }
 
     /// The root node (for tests).
@@ -541,12 +620,12 @@ mod tests {
         assert!(other_triangle <= 4, "{other_triangle} rays hit another triangle at the same distance");
     }
 
-    /// Unpacked boxes hold what obvhs bounded: every child's box contains every vertex of
-    /// every triangle beneath it, and every triangle is in one leaf — for the triangles
-    /// of [`triangles`], and for two far apart, where obvhs's quantized low side came out
-    /// at 0.3125 for a vertex at 0.3 (fails without the outward unit — checked).
+    /// Every child's box contains every vertex of every triangle beneath it, and every
+    /// triangle is in one leaf — for the triangles of [`triangles`], and for two far apart,
+    /// where the quantized boxes of obvhs's wide BVH (which this BVH was unpacked from
+    /// until widebvh51) put a low side at 0.3125 for a vertex at 0.3.
     #[test]
-    fn unpacked_boxes_contain_their_triangles() {
+    fn child_boxes_contain_their_triangles() {
         let far = vec![
             Tri::new(
                 Vec3A::new(-999_423.7, 0.0, 0.0),
