@@ -13,8 +13,9 @@
 //! no quantization and no padding.
 //!
 //! Why not obvhs's own conversion (`bvh2_to_cwbvh`), which makes the same choice: it
-//! quantizes each box to 8 bits a side for GPU memory (a box here was then unpacked and
-//! padded outward, looser than the primitives' own), and recurses once a binary level.
+//! quantizes each box to 8 bits a side for GPU memory (the boxes were then unpacked here
+//! and padded outward, looser than the primitives' own), and it orders each node's children
+//! by ray octant for its own traversal, where [`WideBvh`] enters the nearest first.
 
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
