@@ -71,8 +71,9 @@ struct Node {
 /// A box at the two ends of an interval: (lo0, hi0, lo1, hi1).
 type Ends = [Vec3A; 4];
 
-/// [`Ends`] packed (48 bytes), as the build keeps one a triangle.
-type PackedEnds = [Vec3; 4];
+/// A triangle's box in the middle of an interval (low and high corners, packed: 24 bytes),
+/// as the build keeps one a triangle.
+type MidBox = [Vec3; 2];
 
 /// The box holding nothing at either end.
 const NO_ENDS: Ends = [Vec3A::INFINITY, Vec3A::NEG_INFINITY, Vec3A::INFINITY, Vec3A::NEG_INFINITY];
@@ -203,14 +204,22 @@ impl<'k> MovingBvh<'k> {
     /// The tree over the triangles `members` (indices into `tris`, all of one key count)
     /// of the interval between their keys `k` and `k + 1`.
     fn tree(&self, members: &[u32], k: usize) -> Tree {
-        let boxes: Vec<PackedEnds> =
-            members.par_iter().map(|&m| self.ends(&self.tris[m as usize], k).map(Vec3::from)).collect();
-        let largest = boxes
-            .par_iter()
-            .map(|b| b.iter().map(|c| c.abs().max_element()).fold(0.0f32, f32::max))
+        let ends = |p: u32| self.ends(&self.tris[members[p as usize] as usize], k);
+        let largest = (0..members.len() as u32)
+            .into_par_iter()
+            .map(|p| ends(p).iter().map(|c| Vec3::from(*c).abs().max_element()).fold(0.0f32, f32::max))
             .reduce(|| 0.0, f32::max);
-        let centres: Vec<Vec3> = boxes.par_iter().map(|b| (b[0] + b[1] + b[2] + b[3]) * 0.25).collect();
-        let builder = Builder { boxes: &boxes, centres: &centres };
+        // Each triangle's box in the middle of the interval and its centre, what splits are
+        // chosen by; the boxes at the interval's ends are read again for the leaves.
+        let (mids, centres): (Vec<MidBox>, Vec<Vec3>) = (0..members.len() as u32)
+            .into_par_iter()
+            .map(|p| {
+                let e = ends(p);
+                let b = e.map(Vec3::from);
+                ([((e[0] + e[2]) * 0.5).into(), ((e[1] + e[3]) * 0.5).into()], (b[0] + b[1] + b[2] + b[3]) * 0.25)
+            })
+            .unzip();
+        let builder = Builder { mids: &mids, centres: &centres, ends: &ends };
         let mut prims: Vec<u32> = (0..members.len() as u32).collect();
         let nodes = builder.build(&mut prims, 0, 0);
         for p in &mut prims {
@@ -359,11 +368,14 @@ impl<'k> MovingBvh<'k> {
     }
 }
 
-/// What a tree is built from: each triangle's boxes at the interval's ends and the centre
-/// of its box in the middle of the interval.
+/// What a tree is built from: each triangle's box in the middle of the interval and the
+/// centre of its boxes at the interval's ends, by which splits are chosen, and its boxes at
+/// the ends, which the leaves are bounded by (worked out again from the keys for each leaf:
+/// kept, they were 48 bytes a triangle for the whole build).
 struct Builder<'a> {
-    boxes: &'a [PackedEnds],
+    mids: &'a [MidBox],
     centres: &'a [Vec3],
+    ends: &'a (dyn Fn(u32) -> Ends + Sync),
 }
 
 /// Half the surface area of the box from `lo` to `hi` (0 for an empty box).
@@ -376,7 +388,14 @@ impl Builder<'_> {
     /// Triangle `p`'s boxes at the interval's ends.
     #[inline]
     fn ends(&self, p: u32) -> Ends {
-        self.boxes[p as usize].map(Vec3A::from)
+        (self.ends)(p)
+    }
+
+    /// Triangle `p`'s box in the middle of the interval, (low, high).
+    #[inline]
+    fn mid(&self, p: u32) -> (Vec3A, Vec3A) {
+        let [lo, hi] = self.mids[p as usize];
+        (lo.into(), hi.into())
     }
 
     /// The centre of triangle `p`'s box in the middle of the interval, what splits are
@@ -450,9 +469,7 @@ impl Builder<'_> {
         let mut boxes = [(Vec3A::INFINITY, Vec3A::NEG_INFINITY); BINS];
         for &p in prims.iter() {
             let k = bin(p);
-            let e = self.ends(p);
-            // The triangle's box in the middle of the interval.
-            let (m_lo, m_hi) = ((e[0] + e[2]) * 0.5, (e[1] + e[3]) * 0.5);
+            let (m_lo, m_hi) = self.mid(p);
             counts[k] += 1;
             boxes[k] = (boxes[k].0.min(m_lo), boxes[k].1.max(m_hi));
         }
