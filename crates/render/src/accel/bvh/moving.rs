@@ -205,20 +205,20 @@ impl<'k> MovingBvh<'k> {
     /// of the interval between their keys `k` and `k + 1`.
     fn tree(&self, members: &[u32], k: usize) -> Tree {
         let ends = |p: u32| self.ends(&self.tris[members[p as usize] as usize], k);
-        let largest = (0..members.len() as u32)
-            .into_par_iter()
-            .map(|p| ends(p).iter().map(|c| Vec3::from(*c).abs().max_element()).fold(0.0f32, f32::max))
-            .reduce(|| 0.0, f32::max);
         // Each triangle's box in the middle of the interval and its centre, what splits are
-        // chosen by; the boxes at the interval's ends are read again for the leaves.
-        let (mids, centres): (Vec<MidBox>, Vec<Vec3>) = (0..members.len() as u32)
+        // chosen by, and its largest coordinate, in one read of its keys; the boxes at the
+        // interval's ends are read again for the leaves.
+        let (mids, (centres, largests)): (Vec<MidBox>, (Vec<Vec3>, Vec<f32>)) = (0..members.len() as u32)
             .into_par_iter()
             .map(|p| {
                 let e = ends(p);
                 let b = e.map(Vec3::from);
-                ([((e[0] + e[2]) * 0.5).into(), ((e[1] + e[3]) * 0.5).into()], (b[0] + b[1] + b[2] + b[3]) * 0.25)
+                let largest = b.iter().map(|c| c.abs().max_element()).fold(0.0f32, f32::max);
+                let mid = [((e[0] + e[2]) * 0.5).into(), ((e[1] + e[3]) * 0.5).into()];
+                (mid, ((b[0] + b[1] + b[2] + b[3]) * 0.25, largest))
             })
             .unzip();
+        let largest = largests.into_iter().fold(0.0f32, f32::max);
         let builder = Builder { mids: &mids, centres: &centres, ends: &ends };
         let mut prims: Vec<u32> = (0..members.len() as u32).collect();
         let nodes = builder.build(&mut prims, 0, 0);
